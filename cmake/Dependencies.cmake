@@ -1,0 +1,47 @@
+# Every dependency is a Debian package; scripts/install-deps.sh installs them.
+# A missing one stops configuration with the name of the package to install.
+
+function(rimu_require found debian_package what)
+  if(NOT ${found})
+    message(FATAL_ERROR "Rimu needs ${what}: install the Debian package '${debian_package}' "
+                        "(or run scripts/install-deps.sh).")
+  endif()
+endfunction()
+
+find_package(PkgConfig QUIET)
+rimu_require(PKG_CONFIG_FOUND pkg-config "pkg-config")
+
+find_package(Threads REQUIRED)
+
+find_package(embree 3 QUIET CONFIG)
+rimu_require(embree_FOUND libembree-dev "Embree 3 (ray tracing kernels)")
+
+find_package(OpenEXR 3 QUIET CONFIG)
+rimu_require(OpenEXR_FOUND libopenexr-dev "OpenEXR 3 (EXR output)")
+
+find_package(TBB QUIET CONFIG)
+rimu_require(TBB_FOUND libtbb-dev "oneTBB (parallelism)")
+
+find_package(doctest QUIET CONFIG)
+rimu_require(doctest_FOUND doctest-dev "doctest (unit tests)")
+
+find_package(nlohmann_json 3 QUIET CONFIG)
+rimu_require(nlohmann_json_FOUND nlohmann-json3-dev "nlohmann-json (scene files, JSON output)")
+
+find_package(CLI11 QUIET CONFIG)
+rimu_require(CLI11_FOUND libcli11-dev "CLI11 (command-line parsing)")
+
+find_package(tinyobjloader QUIET CONFIG)
+rimu_require(tinyobjloader_FOUND libtinyobjloader-dev "tinyobjloader (OBJ meshes)")
+
+# Debian 12's CMake package files of OpenColorIO and OpenImageIO point at wrong include folders,
+# so these two are found through pkg-config.
+pkg_check_modules(OCIO QUIET IMPORTED_TARGET OpenColorIO)
+rimu_require(OCIO_FOUND libopencolorio-dev "OpenColorIO 2 (display transforms)")
+pkg_check_modules(OIIO QUIET IMPORTED_TARGET OpenImageIO)
+rimu_require(OIIO_FOUND libopenimageio-dev "OpenImageIO 2 (image IO)")
+
+if(RIMU_BUILD_BENCHMARKS)
+  find_package(benchmark QUIET CONFIG)
+  rimu_require(benchmark_FOUND libbenchmark-dev "Google Benchmark (benchmarks)")
+endif()

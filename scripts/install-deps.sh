@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Rimu builds against, and only those that are missing.
+# Idempotent: when everything is present it does nothing (no apt-get update, no network).
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libembree-dev          # Embree 3: BVH and ray queries
+  libopenexr-dev         # OpenEXR 3: film output
+  libopencolorio-dev     # OpenColorIO 2: display transforms
+  libopenimageio-dev     # OpenImageIO 2: textures, PNG output
+  libtbb-dev             # oneTBB: parallel tiles
+  doctest-dev            # unit tests
+  nlohmann-json3-dev     # scene files, --json output
+  libcli11-dev           # command-line parsing
+  libbenchmark-dev       # Google Benchmark (benchmarks only)
+  libtinyobjloader-dev   # OBJ meshes
+  gnuplot-nox            # plots in benchmark reports and figures
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

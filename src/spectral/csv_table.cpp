@@ -1,0 +1,97 @@
+#include "spectral/csv_table.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "spectral/error.h"
+
+namespace rimu {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string> split_cells(std::string_view line) {
+  std::vector<std::string> cells;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    cells.emplace_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return cells;
+}
+
+}  // namespace
+
+bool parse_finite_number(std::string_view text, double& value) {
+  text = trim(text);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return false;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+}
+
+CsvTable CsvTable::read(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError({path.string(), 0, ""}, "cannot open the file (does it exist and is it readable?)");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return parse(text.str(), path.string());
+}
+
+CsvTable CsvTable::parse(std::string_view text, const std::string& name) {
+  CsvTable table;
+  table.name_ = name;
+  int line_number = 0;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t newline = text.find('\n', start);
+    const std::string_view line =
+        trim(text.substr(start, newline == std::string_view::npos ? text.npos : newline - start));
+    ++line_number;
+    start = newline == std::string_view::npos ? text.size() + 1 : newline + 1;
+    if (line.empty() || line.front() == '#') continue;
+    std::vector<std::string> cells = split_cells(line);
+    if (table.header_.empty()) {
+      table.header_ = std::move(cells);
+      continue;
+    }
+    if (cells.size() != table.header_.size()) {
+      throw InputError({name, line_number, ""}, "expected " + std::to_string(table.header_.size()) +
+                                                     " comma-separated cells (as in the header), found " +
+                                                     std::to_string(cells.size()));
+    }
+    table.rows_.push_back(std::move(cells));
+    table.lines_.push_back(line_number);
+  }
+  if (table.header_.empty()) throw InputError({name, 0, ""}, "the file is empty: expected a header line");
+  if (table.rows_.empty()) throw InputError({name, 0, ""}, "the file has a header but no data rows");
+  return table;
+}
+
+size_t CsvTable::column_index(std::string_view column_name) const {
+  for (size_t i = 0; i < header_.size(); ++i)
+    if (header_[i] == column_name) return i;
+  std::string known;
+  for (const auto& h : header_) known += (known.empty() ? "" : ", ") + h;
+  throw InputError({name_, 1, ""}, "no column '" + std::string(column_name) + "'; the columns are: " + known);
+}
+
+std::vector<double> CsvTable::numbers(size_t column) const {
+  std::vector<double> values(rows_.size());
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    if (!parse_finite_number(rows_[r][column], values[r]))
+      throw InputError({name_, lines_[r], ""}, "column '" + header_[column] + "': expected a finite number, found '" +
+                                                    rows_[r][column] + "'");
+  }
+  return values;
+}
+
+}  // namespace rimu

@@ -1,0 +1,147 @@
+#include "spectral/spectral_library.h"
+
+#include "spectral/csv_table.h"
+#include "spectral/data_directory.h"
+#include "spectral/error.h"
+
+namespace rimu {
+namespace {
+
+struct IlluminantSource {
+  std::string_view file;
+  std::vector<std::string> columns;
+};
+
+// Which table holds which illuminant. A, D50 and D65 come from the 1 nm CIE tables; the others from CIE 15's
+// 5 nm tabulations (the data the CIE publishes their chromaticities and CRI from).
+const std::vector<IlluminantSource>& illuminant_sources() {
+  static const std::vector<IlluminantSource> sources = [] {
+    std::vector<IlluminantSource> s = {
+        {"spectra/illuminants/cie_a_1nm.csv", {"A"}},
+        {"spectra/illuminants/cie_d50_1nm.csv", {"D50"}},
+        {"spectra/illuminants/cie_d65_1nm.csv", {"D65"}},
+        {"spectra/illuminants/cie_e_5nm.csv", {"E"}},
+        {"spectra/illuminants/cie_f1_f12_5nm.csv", {}},
+        {"spectra/illuminants/cie_fl3_1_15_5nm.csv", {}},
+        {"spectra/illuminants/cie_hp1_hp5_5nm.csv", {"HP1", "HP2", "HP3", "HP4", "HP5"}},
+        {"spectra/illuminants/cie_led_5nm.csv",
+         {"LED-B1", "LED-B2", "LED-B3", "LED-B4", "LED-B5", "LED-BH1", "LED-RGB1", "LED-V1", "LED-V2"}},
+    };
+    for (int i = 1; i <= 12; ++i) s[4].columns.push_back("F" + std::to_string(i));
+    for (int i = 1; i <= 15; ++i) s[5].columns.push_back("FL3." + std::to_string(i));
+    return s;
+  }();
+  return sources;
+}
+
+constexpr std::string_view kColorChecker = "spectra/reflectances/colorchecker_classic_babelcolor_avg_10nm.csv";
+
+}  // namespace
+
+SpectralLibrary::SpectralLibrary(std::filesystem::path data_root) : root_(std::move(data_root)) {}
+
+SpectralLibrary SpectralLibrary::at_default_location() { return SpectralLibrary(find_data_directory()); }
+
+std::filesystem::path SpectralLibrary::resolve(const std::filesystem::path& path) const {
+  return path.is_absolute() ? path : root_ / path;
+}
+
+const CsvTable& SpectralLibrary::table(const std::filesystem::path& path) {
+  std::lock_guard lock(mutex_);
+  return table_unlocked(path);
+}
+
+const CsvTable& SpectralLibrary::table_unlocked(const std::filesystem::path& path) {
+  const std::string key = resolve(path).string();
+  auto it = tables_.find(key);
+  if (it == tables_.end()) it = tables_.emplace(key, std::make_unique<CsvTable>(CsvTable::read(key))).first;
+  return *it->second;
+}
+
+const Observer& SpectralLibrary::observer(StandardObserver which) {
+  std::lock_guard lock(mutex_);
+  auto& slot = observers_[which];
+  if (!slot) {
+    const bool ten = which == StandardObserver::cie1964_10deg;
+    const CsvTable& t = table_unlocked(ten ? "cmf/cie1964_10deg_xyz_1nm.csv" : "cmf/cie1931_2deg_xyz_1nm.csv");
+    const std::string suffix = ten ? "10" : "";
+    // The CMFs are tabulated over the whole 360-830 nm range; zero outside it.
+    slot = std::make_unique<Observer>(Observer{
+        ten ? "CIE 1964 10°" : "CIE 1931 2°",
+        TabulatedSpectrum::from_csv(t, "xbar" + suffix, Extrapolation::zero),
+        TabulatedSpectrum::from_csv(t, "ybar" + suffix, Extrapolation::zero),
+        TabulatedSpectrum::from_csv(t, "zbar" + suffix, Extrapolation::zero)});
+  }
+  return *slot;
+}
+
+const TabulatedSpectrum& SpectralLibrary::photopic_v() {
+  std::lock_guard lock(mutex_);
+  if (!photopic_v_)
+    photopic_v_ = std::make_unique<TabulatedSpectrum>(
+        TabulatedSpectrum::from_csv(table_unlocked("cmf/cie1924_photopic_v_1nm.csv"), "V", Extrapolation::zero));
+  return *photopic_v_;
+}
+
+const TabulatedSpectrum& SpectralLibrary::scotopic_v_prime() {
+  std::lock_guard lock(mutex_);
+  if (!scotopic_v_prime_)
+    scotopic_v_prime_ = std::make_unique<TabulatedSpectrum>(
+        TabulatedSpectrum::from_csv(table_unlocked("cmf/cie1951_scotopic_vprime_1nm.csv"), "Vprime", Extrapolation::zero));
+  return *scotopic_v_prime_;
+}
+
+const DaylightBasis& SpectralLibrary::daylight_basis() {
+  std::lock_guard lock(mutex_);
+  if (!daylight_basis_) {
+    const CsvTable& t = table_unlocked("spectra/illuminants/cie_d_series_basis_s0_s1_s2_5nm.csv");
+    daylight_basis_ = std::make_unique<DaylightBasis>(DaylightBasis{
+        TabulatedSpectrum::from_csv(t, "S0", Extrapolation::zero),
+        TabulatedSpectrum::from_csv(t, "S1", Extrapolation::zero),
+        TabulatedSpectrum::from_csv(t, "S2", Extrapolation::zero)});
+  }
+  return *daylight_basis_;
+}
+
+std::vector<std::string> SpectralLibrary::illuminant_names() {
+  std::vector<std::string> names;
+  for (const auto& source : illuminant_sources())
+    for (const auto& c : source.columns) names.push_back(c);
+  return names;
+}
+
+SpectrumPtr SpectralLibrary::illuminant(std::string_view name) {
+  std::lock_guard lock(mutex_);
+  const std::string key = "illuminant:" + std::string(name);
+  if (auto it = spectra_.find(key); it != spectra_.end()) return it->second;
+  for (const auto& source : illuminant_sources()) {
+    for (const auto& column : source.columns) {
+      if (column != name) continue;
+      auto s = std::make_shared<TabulatedSpectrum>(
+          TabulatedSpectrum::from_csv(table_unlocked(source.file), column, Extrapolation::zero));
+      spectra_.emplace(key, s);
+      return s;
+    }
+  }
+  std::string known;
+  for (const auto& n : illuminant_names()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError({}, "unknown illuminant '" + std::string(name) + "'; known illuminants: " + known);
+}
+
+std::vector<std::string> SpectralLibrary::colorchecker_patch_names() {
+  std::lock_guard lock(mutex_);
+  const auto& header = table_unlocked(kColorChecker).header();
+  return {header.begin() + 1, header.end()};
+}
+
+SpectrumPtr SpectralLibrary::colorchecker_patch(std::string_view name) {
+  std::lock_guard lock(mutex_);
+  const std::string key = "colorchecker:" + std::string(name);
+  if (auto it = spectra_.find(key); it != spectra_.end()) return it->second;
+  auto s = std::make_shared<TabulatedSpectrum>(
+      TabulatedSpectrum::from_csv(table_unlocked(kColorChecker), std::string(name), Extrapolation::clamp));
+  spectra_.emplace(key, s);
+  return s;
+}
+
+}  // namespace rimu
