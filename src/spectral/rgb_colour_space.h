@@ -27,6 +27,7 @@ class RgbColourSpace {
   /// A built-in space by name: "srgb-linear" (= Rec.709), "rec2020", "display-p3" (linear), "aces2065-1",
   /// "acescg", "cie-rgb". Throws InputError listing the names.
   static const RgbColourSpace& named(std::string_view name);
+  /// The canonical names of the built-in spaces (aliases such as "rec709" are accepted by named() but not listed).
   static std::vector<std::string> names();
 
   const std::string& name() const { return name_; }

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds Rimu and runs the whole test suite through CTest.
+#   scripts/test.sh              Release build in build/
+#   scripts/test.sh --sanitize   ASan+UBSan build in build-sanitize/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build_dir=build
+cmake_args=(-DCMAKE_BUILD_TYPE=Release)
+if [ "${1:-}" = "--sanitize" ]; then
+  build_dir=build-sanitize
+  cmake_args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DRIMU_SANITIZE=ON -DRIMU_BUILD_BENCHMARKS=OFF)
+fi
+
+scripts/install-deps.sh
+cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
+cmake --build "$build_dir" -j"$(nproc)"
+ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"

@@ -1,0 +1,127 @@
+#include "spectral/rgb_upsampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "spectral/cielab.h"
+#include "spectral/colorimetry.h"
+#include "spectral/delta_e.h"
+#include "spectral/photometry_constants.h"
+#include "spectral/upsampling_whites.h"
+
+namespace rimu {
+namespace {
+
+void check_finite(const Rgb& rgb, const std::string& space, const SourceLocation& where) {
+  if (std::isfinite(rgb.r) && std::isfinite(rgb.g) && std::isfinite(rgb.b)) return;
+  throw InputError(where, "RGB (" + std::to_string(rgb.r) + ", " + std::to_string(rgb.g) + ", " +
+                              std::to_string(rgb.b) + ") in " + space +
+                              " is not finite: every component must be a finite number to be upsampled");
+}
+
+/// Re-imposes XYZ = target on a non-negative knot spectrum by the smallest change in the metric Σ ΔS_i²/S_i:
+/// ΔS = diag(S)·Aᵀλ with (A·diag(S)·Aᵀ)·λ = target − A·S. Knots at zero stay at zero, so the result stays ≥ 0
+/// if the relative change 1 + (Aᵀλ)_i stays ≥ 0; where it does not, the knot is clamped to 0 and the step
+/// repeated (the table is close enough that one step is normally exact to 1e-15).
+void correct_to(KnotValues& s, const KnotColorimetry& c, const Xyz& target) {
+  const double t[3] = {target.x, target.y, target.z};
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    const Xyz got = c.xyz_of(s);
+    const double r[3] = {t[0] - got.x, t[1] - got.y, t[2] - got.z};
+    if (std::abs(r[0]) + std::abs(r[1]) + std::abs(r[2]) <= 1e-14 * (std::abs(t[0]) + t[1] + std::abs(t[2]))) return;
+    Matrix3 m;
+    for (int i = 0; i < kUpsampleKnotCount; ++i)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) m(k, l) += c.row(k)[i] * s[i] * c.row(l)[i];
+    const double scale = m(0, 0) + m(1, 1) + m(2, 2);
+    if (!(std::abs(m.determinant()) > 1e-12 * scale * scale * scale)) return;  // fewer than 3 live knots
+    const auto lambda = m.inverse().apply(std::array<double, 3>{r[0], r[1], r[2]});
+    for (int i = 0; i < kUpsampleKnotCount; ++i) {
+      const double g = lambda[0] * c.row(0)[i] + lambda[1] * c.row(1)[i] + lambda[2] * c.row(2)[i];
+      s[i] = std::fmax(0.0, s[i] * (1.0 + g));
+    }
+  }
+}
+
+double delta_e(const Xyz& a, const Xyz& b, const Xyz& white) { return delta_e_2000(lab_of(a, white), lab_of(b, white)); }
+
+Xyz scaled(const Xyz& v, double k) { return {v.x * k, v.y * k, v.z * k}; }
+
+}  // namespace
+
+RgbUpsampler::RgbUpsampler(SpectralLibrary& library, const RgbColourSpace& space)
+    : space_(space),
+      illuminant_(std::make_shared<const TabulatedSpectrum>(
+          upsampling_illuminant(library, upsampling_white_for(space.white())))),
+      colorimetry_(library.observer(StandardObserver::cie1931_2deg), *illuminant_, upsampling_white_for(space.white()).white),
+      table_(UpsamplingTable::read(library.root() / upsampling_table_file(upsampling_white_for(space.white())))),
+      gamut_(table_.gamut()) {
+  const double white_y = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) {
+    return illuminant_->value(l) * library.observer(StandardObserver::cie1931_2deg).y_bar.value(l);
+  });
+  emission_scale_ = 1.0 / (kMaxLuminousEfficacy_lm_W * white_y);
+}
+
+KnotValues RgbUpsampler::smooth_shape(Chromaticity xy, bool* moved) const {
+  const Chromaticity w = gamut_.white();
+  const double dx = xy.x - w.x, dy = xy.y - w.y;
+  const double angle = std::atan2(dy, dx);
+  double rho = std::hypot(dx, dy) == 0.0 ? 0.0 : std::hypot(dx, dy) / (gamut_.boundary_radius(angle) * table_.usable_fraction);
+  const bool outside = rho > 1.0;
+  if (outside) {
+    rho = 1.0;
+    xy = gamut_.at(angle, table_.usable_fraction);
+  }
+  if (moved) *moved = outside;
+  KnotValues s = table_.interpolate(angle, rho);
+  correct_to(s, colorimetry_, xyz_from_xyY(xy, 1.0));
+  return s;
+}
+
+UpsampledReflectance RgbUpsampler::upsample_reflectance(const Rgb& rgb, const SourceLocation& where) const {
+  check_finite(rgb, space_.name(), where);
+  UpsampledReflectance out;
+  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) return out;
+  const Xyz xyz = space_.to_xyz(rgb);
+  const Xyz white = colorimetry_.white_xyz();
+  if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+    out.gamut_mapped = true;
+    out.delta_e2000 = delta_e(xyz, Xyz{}, white);
+    return out;
+  }
+  bool moved = false;
+  KnotValues s = smooth_shape(chromaticity_of(xyz), &moved);
+  // Brightness limit (Manuka notes Eq. 12: every value ≤ 1): Y_max = 1 / max s for the Y = 1 shape.
+  const double peak = *std::max_element(s.begin(), s.end());
+  double luminance = xyz.y;
+  if (luminance * peak > 1.0) {
+    luminance = 1.0 / peak;
+    moved = true;
+  }
+  for (double& v : s) v = std::fmin(v * luminance, 1.0);
+  out.spectrum = ReflectanceSpectrum(s);
+  out.gamut_mapped = moved;
+  out.delta_e2000 = delta_e(xyz, xyz_of(out.spectrum.samples()), white);
+  return out;
+}
+
+UpsampledEmission RgbUpsampler::upsample_emission(const Rgb& rgb, const SourceLocation& where) const {
+  check_finite(rgb, space_.name(), where);
+  UpsampledEmission out;
+  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) return out;
+  const Xyz xyz = space_.to_xyz(rgb);
+  if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+    out.gamut_mapped = true;
+    out.delta_e2000 = delta_e(scaled(xyz, 1.0 / std::fmax(std::abs(xyz.y), 1e-300)), Xyz{}, colorimetry_.white_xyz());
+    return out;
+  }
+  bool moved = false;
+  const KnotValues s = smooth_shape(chromaticity_of(xyz), &moved);
+  out.spectrum = EmissionSpectrum(s, emission_scale_ * xyz.y, illuminant_);
+  out.gamut_mapped = moved;
+  // Both at Y = 1 (L* = 100): the difference is the chromaticity shift alone.
+  out.delta_e2000 = delta_e(scaled(xyz, 1.0 / xyz.y), xyz_of(out.spectrum.shape()), colorimetry_.white_xyz());
+  return out;
+}
+
+}  // namespace rimu

@@ -1,0 +1,86 @@
+// RGB → spectrum: Meng et al. (2015) smoothest spectra, per colour space, with gamut mapping for reflectances.
+#pragma once
+
+#include <memory>
+
+#include "spectral/error.h"
+#include "spectral/rgb_colour_space.h"
+#include "spectral/spectral_library.h"
+#include "spectral/upsampled_spectrum.h"
+#include "spectral/upsampling_table.h"
+
+namespace rimu {
+
+/// An upsampled reflectance and what gamut mapping did to reach it.
+struct UpsampledReflectance {
+  ReflectanceSpectrum spectrum;
+  bool gamut_mapped = false;  ///< true if the spectrum's colour is not the input's (chromaticity or brightness moved)
+  double delta_e2000 = 0;     ///< CIEDE2000 between input and spectrum under the space's white (reference Y = 1)
+};
+
+/// An upsampled emission spectrum and whether its chromaticity had to move (emission has no brightness limit).
+struct UpsampledEmission {
+  EmissionSpectrum spectrum;
+  bool gamut_mapped = false;  ///< true if the input chromaticity lay outside the gamut of non-negative spectra
+  double delta_e2000 = 0;     ///< CIEDE2000 of the chromaticity shift, both colours taken at L* = 100
+};
+
+/// Turns linear RGB of one colour space into spectra (docs/upsampling.md has the method and its accuracy).
+///
+/// Setup (the constructor) loads the table for the space's white and builds the knot colorimetry; then every
+/// upsample_* call is independent, allocation-free and thread-safe (the object is immutable).
+///
+/// Both upsample_* functions: RGB → XYZ (the space's matrix, Y(white) = 1) → polar coordinates (θ, ρ) around the
+/// white in the knot gamut → bilinear interpolation of the table's Y-normalised spectra → a correction that
+/// restores the exact target colour (the smallest change Σ ΔS_i²/S_i, which keeps zeros at zero: ΔS = diag(S)·Aᵀλ,
+/// with λ from the 3×3 system A·diag(S)·Aᵀ·λ = residual, repeated while clamping at 0) → scaled to Y.
+///
+/// Defined behaviour for inputs that have no non-negative spectrum:
+/// - RGB (0,0,0) → exactly zero, not "mapped".
+/// - Y ≤ 0 or X+Y+Z ≤ 0 (possible with negative components) → zero, gamut_mapped.
+/// - a chromaticity outside the usable gamut (negative components or primaries beyond the spectral locus, e.g.
+///   ACES AP0, AP1 green) → moved along the straight line towards the white to the gamut edge, Y kept, gamut_mapped.
+///   Negative components whose colour is inside the locus need no mapping: the spectrum stays ≥ 0 and reproduces
+///   the negative RGB exactly.
+/// - NaN or ±Inf in any component → InputError (with `where`).
+class RgbUpsampler {
+ public:
+  /// Loads data/upsampling/smooth_<white>.bin. Throws InputError if the space's white has no table.
+  RgbUpsampler(SpectralLibrary& library, const RgbColourSpace& space);
+
+  /// A reflectance in [0,1] whose colour under the space's white is `rgb`, or the nearest one the gamut-mapping
+  /// rule allows: chromaticity kept (moved to the gamut edge only if outside it), luminance Y clipped to the
+  /// brightness limit Y_max(xy) = Y of the smooth spectrum scaled to peak 1. Cost ~1-2 µs.
+  UpsampledReflectance upsample_reflectance(const Rgb& rgb, const SourceLocation& where = {}) const;
+
+  /// An emission spectrum whose absolute colour (emission_xyz) is `rgb`'s XYZ read in cd/m², up to the
+  /// illuminant-vs-rounded-white difference of KnotColorimetry (≤ 1e-4): the white illuminant W times the smooth
+  /// spectrum of the input chromaticity, scaled so Y matches. No upper limit; RGB (1,1,1) gives W itself.
+  UpsampledEmission upsample_emission(const Rgb& rgb, const SourceLocation& where = {}) const;
+
+  /// The smooth spectrum of chromaticity `xy` with Y = 1 (xy moved to the gamut edge if outside), and whether it
+  /// was moved. Its peak's reciprocal is the brightness limit at xy.
+  KnotValues smooth_shape(Chromaticity xy, bool* moved = nullptr) const;
+
+  /// XYZ (Y(white) = 1) of a knot spectrum seen as a reflectance under the space's white.
+  Xyz xyz_of(const KnotSamples& samples) const { return colorimetry_.xyz_of(samples.knots()); }
+  /// Linear RGB of a reflectance lit by the space's white: the round trip of upsample_reflectance.
+  Rgb rgb_of(const ReflectanceSpectrum& spectrum) const { return space_.from_xyz(xyz_of(spectrum.samples())); }
+
+  const RgbColourSpace& space() const { return space_; }
+  const KnotColorimetry& colorimetry() const { return colorimetry_; }
+  const UpsamplingTable& table() const { return table_; }
+  const KnotGamut& gamut() const { return gamut_; }
+  /// The white illuminant's spectrum (relative power), shared with every EmissionSpectrum.
+  const std::shared_ptr<const TabulatedSpectrum>& illuminant() const { return illuminant_; }
+
+ private:
+  RgbColourSpace space_;
+  std::shared_ptr<const TabulatedSpectrum> illuminant_;
+  KnotColorimetry colorimetry_;
+  UpsamplingTable table_;
+  KnotGamut gamut_;
+  double emission_scale_;  // 1 / (K_m Σ W ȳ Δλ): radiance per unit luminance of W
+};
+
+}  // namespace rimu

@@ -1,0 +1,44 @@
+// Everything a colour scientist asks of a light's spectrum, in one report (the library side of `rimu-colour report`).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "spectral/chromaticity.h"
+#include "spectral/colour_rendering_index.h"
+#include "spectral/planckian_locus.h"
+#include "spectral/rgb_colour_space.h"
+#include "spectral/spectrum_source.h"
+
+namespace rimu {
+
+/// The colorimetry and photometry of one emission spectrum.
+struct SpectrumReport {
+  std::string description;
+  Xyz xyz_2deg;        ///< relative, Y = 100 (CIE 1931 2°, 1 nm over 360-830 nm)
+  Chromaticity xy_2deg;
+  Uv1976 uv_prime_2deg;
+  Xyz xyz_10deg;       ///< relative, Y = 100 (CIE 1964 10°)
+  Chromaticity xy_10deg;
+  Xyz absolute_xyz;    ///< K_m ∫ S x̄ dλ ...: cd/m² if S is a spectral radiance in W/(m²·sr·nm)
+  CctDuv cct;          ///< CCT and Duv (Ohno 2013), 2° observer
+  double luminous_efficacy_lm_w = 0;           ///< of radiation, photopic, 360-830 nm
+  double scotopic_luminous_efficacy_lm_w = 0;  ///< of radiation, scotopic (K'_m = 1700 lm/W)
+  std::optional<ColourRenderingIndex> cri;     ///< empty when CIE 13.3 defines none (CCT outside 1000-25000 K)
+  std::string cri_unavailable_reason;
+  Rgb srgb_linear;     ///< the light's colour at Y = 1 in linear sRGB (no chromatic adaptation)
+  Rgb acescg;          ///< the same in ACEScg
+};
+
+/// Builds the spectrum described by `source` and analyses it. Throws InputError for bad input.
+SpectrumReport analyse_spectrum(const SpectrumSource& source, SpectralLibrary& library);
+/// Analyses an existing spectrum.
+SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& description, SpectralLibrary& library);
+
+/// A human-readable report (several lines, ending with a newline).
+std::string report_text(const SpectrumReport& report);
+/// The same as JSON (one object, pretty-printed, ending with a newline).
+std::string report_json(const SpectrumReport& report);
+
+}  // namespace rimu
