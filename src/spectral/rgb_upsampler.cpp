@@ -94,7 +94,9 @@ UpsampledReflectance RgbUpsampler::upsample_reflectance(const Rgb& rgb, const So
   // Brightness limit (Manuka notes Eq. 12: every value ≤ 1): Y_max = 1 / max s for the Y = 1 shape.
   const double peak = *std::max_element(s.begin(), s.end());
   double luminance = xyz.y;
-  if (luminance * peak > 1.0) {
+  // The tolerance keeps white and greys (peak 1 ± 1e-15 after the correction) from counting as clipped; the
+  // min(·, 1) below removes that rounding from the stored values.
+  if (luminance * peak > 1.0 + 1e-12) {
     luminance = 1.0 / peak;
     moved = true;
   }

@@ -75,7 +75,12 @@ SampledSpectrum TabulatedSpectrum::sample(const SampledWavelengths& lambda) cons
   const float* d = dense_1nm_.data();
   const Float4 lo(d[index[0]], d[index[1]], d[index[2]], d[index[3]]);
   const Float4 hi(d[index[0] + 1], d[index[1] + 1], d[index[2] + 1], d[index[3] + 1]);
-  return mul_add(t, hi - lo, lo);
+  const Float4 value = mul_add(t, hi - lo, lo);
+  if (extrapolation_ == Extrapolation::clamp) return value;  // the 1 nm copy already holds the end values
+  // Zero extrapolation is a step at the end knots; the 1 nm copy would ramp over the nanometre outside them.
+  const Float4 l = lambda.lambda_nm();
+  const Mask4 inside = (l >= Float4(float(lambda_.front()))) & (l <= Float4(float(lambda_.back())));
+  return select(inside, value, Float4(0.0f));
 }
 
 }  // namespace rimu

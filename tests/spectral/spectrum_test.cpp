@@ -192,13 +192,11 @@ TEST_CASE("tabulated spectrum: the dense 1 nm sample() path equals value()") {
       TabulatedSpectrum({400.0, 410.0, 430.0}, {1.0, 3.0, -1.0}, Extrapolation::clamp, "short clamp"), 4);
 }
 
-TEST_CASE("tabulated spectrum: the dense path at the ends of a zero-extrapolated table inside 360-830 nm" *
-          doctest::may_fail()) {
-  // KNOWN BUG (reported, tabulated_spectrum.cpp): with zero extrapolation and knots that end inside 360-830 nm
-  // (every 380-780 nm CIE table: F, FL3, HP, LED), value() steps from 0 to S(first knot) at the first knot, but
-  // the 1 nm copy holds 0 at the whole nm before it and so ramps linearly over that 1 nm (likewise after the
-  // last knot): sample() returns ~S(380)/2 at 379.5 nm where value() returns 0. Remove may_fail once fixed (e.g.
-  // by masking lanes outside [first, last knot] to zero in the dense path).
+TEST_CASE("tabulated spectrum: the dense path at the ends of a zero-extrapolated table inside 360-830 nm") {
+  // Regression: with zero extrapolation and knots that end inside 360-830 nm (every 380-780 nm CIE table: F,
+  // FL3, HP, LED), value() steps from 0 to S(first knot) at the first knot, while the 1 nm copy holds 0 at the
+  // whole nm before it; sample() once ramped over that nanometre (~S(380)/2 at 379.5 nm). It now masks lanes
+  // outside [first, last knot] to zero.
   check_sample_matches_value(
       TabulatedSpectrum({400.0, 410.0, 430.0}, {1.0, 3.0, -1.0}, Extrapolation::zero, "short zero"), 5);
   check_sample_matches_value(*test::library().illuminant("F2"), 6);

@@ -145,7 +145,6 @@ TEST_CASE("round trip of every 17³ grid colour of sRGB, ACEScg and Rec.2020: ex
   for (const char* space : {"srgb-linear", "acescg", "rec2020"}) {
     CAPTURE(space);
     const auto& up = upsampler(space);
-    int mapped = 0;
     double worst = 0;
     for (int r = 0; r <= 16; ++r)
       for (int g = 0; g <= 16; ++g)
@@ -153,11 +152,18 @@ TEST_CASE("round trip of every 17³ grid colour of sRGB, ACEScg and Rec.2020: ex
           const auto u = up.upsample_reflectance({r / 16.0, g / 16.0, b / 16.0});
           REQUIRE(u.spectrum.samples().min_value() >= 0.0f);
           REQUIRE(u.spectrum.samples().max_value() <= 1.0f);
-          if (u.gamut_mapped) ++mapped;
-          else worst = std::max(worst, u.delta_e2000);
+          if (!u.gamut_mapped) {
+            worst = std::max(worst, u.delta_e2000);
+          } else if (std::string(space) == "srgb-linear" && r + g + b > 0) {
+            // sRGB lies inside the knot gamut, so its mapping only clips brightness: chromaticity is kept to the
+            // float precision of the knots (relative 6e-8 on X, Y, Z; 1e-6 in xy leaves margin for dark colours).
+            const Chromaticity want = chromaticity_of(up.space().to_xyz({r / 16.0, g / 16.0, b / 16.0}));
+            const Chromaticity got = chromaticity_of(up.xyz_of(u.spectrum.samples()));
+            CHECK(std::abs(got.x - want.x) <= 1e-6);
+            CHECK(std::abs(got.y - want.y) <= 1e-6);
+          }
         }
     CHECK(worst <= 1e-4);
-    CHECK(mapped < 17 * 17 * 17 / 2);
   }
 }
 
@@ -177,10 +183,11 @@ TEST_CASE("the round trip also holds through colorimetry.h with the illuminant's
 }
 
 TEST_CASE("chromaticities on and just inside the gamut edge: non-negative, continuous like the exact optimum") {
-  // Near the edge the smoothest spectrum itself is very sensitive: its peak grows like 1/(1 − ρ) and the exact
-  // QP solution moves by up to 3.8 % of its peak when ρ moves by 1e-4 at ρ = 1 (measured, docs/upsampling.md).
-  // So continuity is tested relative to the exact optimum: the table may move at most 3x as much, plus 1e-3 of
-  // the peak (a jump between table cells would be of the order of the peak).
+  // Near the edge the smoothest spectrum itself is very sensitive: its peak grows like 1/(1 − ρ), and the exact
+  // QP solution moves by up to 3.8 % of its peak when ρ moves by 1e-4 at ρ = 1 (measured over 360 angles,
+  // docs/upsampling.md; the table's spectra move by up to 1.6 %). Continuity is asserted at that scale: ≤ 5 % of
+  // the peak per 1e-4 in ρ. A jump between table cells, or a discontinuous gamut clip, would be of the order
+  // of the peak itself.
   const auto& up = upsampler("srgb-linear");
   const double edge = up.table().usable_fraction;
   for (int a = 0; a < 72; ++a) {
@@ -200,7 +207,8 @@ TEST_CASE("chromaticities on and just inside the gamut edge: non-negative, conti
       jump = std::max(jump, std::abs(on[i] - inside[i]));
       exact_jump = std::max(exact_jump, std::abs(exact_on->knots[i] - exact_inside->knots[i]));
     }
-    CHECK(jump <= 3 * exact_jump + 1e-3 * peak);
+    CHECK(jump <= 0.05 * peak);
+    CHECK(exact_jump <= 0.05 * peak);
   }
 }
 

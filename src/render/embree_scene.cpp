@@ -1,0 +1,215 @@
+#include "render/embree_scene.h"
+
+#include <cmath>
+#include <limits>
+
+namespace rimu {
+namespace {
+
+void embree_error_callback(void* user, RTCError code, const char* message) {
+  auto* last_error = static_cast<std::string*>(user);
+  *last_error = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
+}
+
+RTCRay to_embree(const Ray& ray) {
+  RTCRay r;
+  r.org_x = ray.origin.x;
+  r.org_y = ray.origin.y;
+  r.org_z = ray.origin.z;
+  r.dir_x = ray.direction.x;
+  r.dir_y = ray.direction.y;
+  r.dir_z = ray.direction.z;
+  r.tnear = ray.t_min;
+  r.tfar = ray.t_max;
+  r.time = 0.0f;
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+  return r;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene() {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw RenderError("cannot create an Embree device (rtcNewDevice failed)");
+  rtcSetDeviceErrorFunction(device_, embree_error_callback, &last_error_);
+  scene_ = rtcNewScene(device_);
+  // Robust mode: no missed hits at edges shared by triangles, which would leak light through closed meshes.
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  check_error("creating the scene");
+}
+
+EmbreeScene::~EmbreeScene() {
+  for (auto& p : prototypes_)
+    if (p.scene) rtcReleaseScene(p.scene);
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::check_error(const char* what) const {
+  if (!last_error_.empty()) {
+    const std::string message = last_error_ + " (while " + what + ")";
+    last_error_.clear();
+    throw RenderError(message);
+  }
+}
+
+unsigned EmbreeScene::attach_mesh(RTCScene scene, const TriangleMesh& mesh) {
+  RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), mesh.positions.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), mesh.triangle_count()));
+  check_error("allocating mesh buffers");
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    vertices[3 * i + 0] = mesh.positions[i].x;
+    vertices[3 * i + 1] = mesh.positions[i].y;
+    vertices[3 * i + 2] = mesh.positions[i].z;
+  }
+  for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = mesh.indices[i];
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene, geometry);
+  rtcReleaseGeometry(geometry);
+  check_error("adding a triangle mesh");
+  return id;
+}
+
+unsigned EmbreeScene::add_mesh(const TriangleMesh& mesh, int material, int light) {
+  meshes_.push_back(std::make_unique<TriangleMesh>(mesh));
+  const unsigned id = attach_mesh(scene_, *meshes_.back());
+  geometries_.resize(id + 1);
+  instance_of_geometry_.resize(id + 1, -1);
+  geometries_[id] = {GeometryInfo::Kind::mesh, material, light, meshes_.back().get()};
+  return id;
+}
+
+unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material) {
+  RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* data = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+  data[0] = centre.x;
+  data[1] = centre.y;
+  data[2] = centre.z;
+  data[3] = radius;
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  check_error("adding a sphere");
+  geometries_.resize(id + 1);
+  instance_of_geometry_.resize(id + 1, -1);
+  geometries_[id] = {GeometryInfo::Kind::sphere, material, -1, nullptr};
+  return id;
+}
+
+int EmbreeScene::add_prototype(const std::vector<std::pair<TriangleMesh, int>>& meshes) {
+  Prototype prototype;
+  prototype.scene = rtcNewScene(device_);
+  rtcSetSceneFlags(prototype.scene, RTC_SCENE_FLAG_ROBUST);
+  for (const auto& [mesh, material] : meshes) {
+    prototype.meshes.push_back(std::make_unique<TriangleMesh>(mesh));
+    const unsigned id = attach_mesh(prototype.scene, *prototype.meshes.back());
+    prototype.geometries.resize(id + 1);
+    prototype.geometries[id] = {GeometryInfo::Kind::mesh, material, -1, prototype.meshes.back().get()};
+  }
+  rtcCommitScene(prototype.scene);
+  check_error("building a prototype's BVH");
+  prototypes_.push_back(std::move(prototype));
+  return int(prototypes_.size()) - 1;
+}
+
+void EmbreeScene::add_instance(int prototype, const Transform& object_to_world) {
+  RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(geometry, prototypes_.at(prototype).scene);
+  rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, object_to_world.rows().data());
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  check_error("adding an instance");
+  instances_.push_back({prototype, object_to_world});
+  geometries_.resize(id + 1);
+  instance_of_geometry_.resize(id + 1, -1);
+  instance_of_geometry_[id] = int(instances_.size()) - 1;
+}
+
+void EmbreeScene::commit() {
+  rtcCommitScene(scene_);
+  check_error("building the BVH");
+  RTCBounds b;
+  rtcGetSceneBounds(scene_, &b);
+  bounds_min_ = {b.lower_x, b.lower_y, b.lower_z};
+  bounds_max_ = {b.upper_x, b.upper_y, b.upper_z};
+}
+
+std::optional<SurfaceHit> EmbreeScene::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray = to_embree(ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  return shade_hit(rh);
+}
+
+bool EmbreeScene::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r = to_embree(ray);
+  rtcOccluded1(scene_, &context, &r);
+  return r.tfar == -std::numeric_limits<float>::infinity();
+}
+
+SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
+  SurfaceHit hit;
+  hit.t = rh.ray.tfar;
+  const Vec3 origin{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z};
+  const Vec3 direction{rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
+  hit.position = origin + direction * hit.t;
+  hit.primitive = rh.hit.primID;
+
+  const GeometryInfo* info = nullptr;
+  const Transform* object_to_world = nullptr;
+  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    const Instance& instance = instances_[size_t(instance_of_geometry_[rh.hit.instID[0]])];
+    info = &prototypes_[size_t(instance.prototype)].geometries[rh.hit.geomID];
+    object_to_world = &instance.object_to_world;
+  } else {
+    info = &geometries_[rh.hit.geomID];
+  }
+  hit.material = info->material;
+  hit.light = info->light;
+
+  // Embree's Ng is unnormalised and, for triangles, is (v1−v0)×(v2−v0)... in object space for instances.
+  Vec3 ng{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+  if (object_to_world) ng = object_to_world->normal(ng);
+  hit.geometric_normal = normalize(ng);
+  hit.shading_normal = hit.geometric_normal;
+
+  if (info->kind == GeometryInfo::Kind::sphere) {
+    // Spherical uv: u = azimuth/2π, v = polar angle/π about +y.
+    const Vec3 n = hit.geometric_normal;
+    hit.uv = {float(0.5 + std::atan2(n.z, n.x) / (2.0 * M_PI)), float(std::acos(std::fmax(-1.0f, std::fmin(1.0f, n.y))) / M_PI)};
+    return hit;
+  }
+  const TriangleMesh& mesh = *info->mesh;
+  const uint32_t* tri = &mesh.indices[3 * size_t(rh.hit.primID)];
+  const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+  if (!mesh.uvs.empty()) {
+    const Vec2 a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
+    hit.uv = {w * a.x + u * b.x + v * c.x, w * a.y + u * b.y + v * c.y};
+  } else {
+    hit.uv = {u, v};
+  }
+  if (!mesh.normals.empty()) {
+    Vec3 n = mesh.normals[tri[0]] * w + mesh.normals[tri[1]] * u + mesh.normals[tri[2]] * v;
+    if (object_to_world) n = object_to_world->normal(n);
+    const float len = length(n);
+    // Interpolated normals can vanish between opposite vertex normals; fall back to the geometric one.
+    if (len > 1e-12f && std::isfinite(len)) hit.shading_normal = face_forward(n / len, hit.geometric_normal);
+  }
+  return hit;
+}
+
+}  // namespace rimu

@@ -1,0 +1,83 @@
+// The scene's geometry in Embree 3: one BVH, built once, queried with the single-ray API.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/render_error.h"
+#include "render/surface_hit.h"
+#include "render/triangle_mesh.h"
+#include "transport/ray.h"
+
+namespace rimu {
+
+/// Owns an Embree device and scene. Errors reported by Embree's callback become exceptions (RenderError) at the
+/// call that caused them, so the rest of Rimu sees one error style.
+///
+/// Usage: add meshes, spheres and instances; commit(); then intersect()/occluded() from any number of threads.
+class EmbreeScene {
+ public:
+  EmbreeScene();
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  /// A world-space triangle mesh. `light` is the emitter index (or -1). Returns the geometry id.
+  unsigned add_mesh(const TriangleMesh& mesh, int material, int light);
+  /// A sphere (Embree's native sphere primitive).
+  unsigned add_sphere(Vec3 centre, float radius, int material);
+
+  /// A prototype: meshes in object space, shared by instances (no lights inside prototypes).
+  int add_prototype(const std::vector<std::pair<TriangleMesh, int /*material*/>>& meshes);
+  /// An instance of a prototype placed by `object_to_world`.
+  void add_instance(int prototype, const Transform& object_to_world);
+
+  /// Builds the BVH. No geometry may be added afterwards.
+  void commit();
+
+  /// Closest hit along the ray within [t_min, t_max], or nothing.
+  std::optional<SurfaceHit> intersect(const Ray& ray) const;
+  /// True if anything blocks the ray within [t_min, t_max].
+  bool occluded(const Ray& ray) const;
+
+  /// Axis-aligned bounds of everything (after commit()).
+  Vec3 bounds_min() const { return bounds_min_; }
+  Vec3 bounds_max() const { return bounds_max_; }
+
+ private:
+  struct GeometryInfo {
+    enum class Kind { mesh, sphere } kind = Kind::mesh;
+    int material = -1;
+    int light = -1;
+    const TriangleMesh* mesh = nullptr;  // owned by meshes_ (kept for normals and uvs)
+  };
+  struct Prototype {
+    RTCScene scene = nullptr;
+    std::vector<GeometryInfo> geometries;
+    std::vector<std::unique_ptr<TriangleMesh>> meshes;
+  };
+  struct Instance {
+    int prototype;
+    Transform object_to_world;
+  };
+
+  unsigned attach_mesh(RTCScene scene, const TriangleMesh& mesh);
+  SurfaceHit shade_hit(const RTCRayHit& rh) const;
+  void check_error(const char* what) const;
+
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<GeometryInfo> geometries_;  // indexed by top-level geomID
+  std::vector<std::unique_ptr<TriangleMesh>> meshes_;
+  std::vector<Prototype> prototypes_;
+  std::vector<Instance> instances_;       // indexed by instance geomID via instance_of_geometry_
+  std::vector<int> instance_of_geometry_;
+  Vec3 bounds_min_, bounds_max_;
+  mutable std::string last_error_;
+};
+
+}  // namespace rimu

@@ -1,0 +1,22 @@
+// What a ray hit.
+#pragma once
+
+#include <cstdint>
+
+#include "transport/vector.h"
+
+namespace rimu {
+
+/// A ray-surface intersection in world space.
+struct SurfaceHit {
+  float t = 0;                 ///< ray parameter (distance, since ray directions are unit)
+  Vec3 position;
+  Vec3 geometric_normal;       ///< unit; the front side of the triangle (counter-clockwise winding) or sphere's outside
+  Vec3 shading_normal;         ///< unit; interpolated vertex normal, on the same side as geometric_normal
+  Vec2 uv;
+  int32_t material = -1;       ///< index into the scene's materials
+  int32_t light = -1;          ///< index into the scene's lights if the surface emits, else -1
+  uint32_t primitive = 0;      ///< triangle index within its mesh (for area-light pdfs)
+};
+
+}  // namespace rimu
