@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "render/render_error.h"
-#include "render/surface_hit.h"
+#include "transport/surface_hit.h"
 #include "render/triangle_mesh.h"
 #include "transport/ray.h"
+#include "transport/ray_queries.h"
 
 namespace rimu {
 
@@ -19,7 +20,7 @@ namespace rimu {
 /// call that caused them, so the rest of Rimu sees one error style.
 ///
 /// Usage: add meshes, spheres and instances; commit(); then intersect()/occluded() from any number of threads.
-class EmbreeScene {
+class EmbreeScene final : public RayQueries {
  public:
   EmbreeScene();
   ~EmbreeScene();
@@ -40,9 +41,9 @@ class EmbreeScene {
   void commit();
 
   /// Closest hit along the ray within [t_min, t_max], or nothing.
-  std::optional<SurfaceHit> intersect(const Ray& ray) const;
+  std::optional<SurfaceHit> intersect(const Ray& ray) const override;
   /// True if anything blocks the ray within [t_min, t_max].
-  bool occluded(const Ray& ray) const;
+  bool occluded(const Ray& ray) const override;
 
   /// Axis-aligned bounds of everything (after commit()).
   Vec3 bounds_min() const { return bounds_min_; }

@@ -39,7 +39,7 @@ double hue_angle_deg(double y, double x) {
   if (x == 0.0 && y == 0.0) return 0.0;
   double h = std::atan2(y, x) * (180.0 / std::numbers::pi);
   if (h < 0.0) h += 360.0;
-  // atan2 of a tiny negative y gives -0.0 + 360 = 360 exactly in double; fold it back into [0, 360).
+  // A hue a hair below 0° (atan2(-1e-300, 1)) rounds to exactly 360 after the shift; fold it back to 0.
   return h >= 360.0 ? h - 360.0 : h;
 }
 

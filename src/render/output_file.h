@@ -1,0 +1,39 @@
+// Writing an output file so that it either appears complete at its destination or not at all.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace rimu {
+
+/// An output file could not be written (disk full, permissions, a library failure). The message names the path.
+/// A bad destination the user can fix before rendering (a missing folder) is an InputError instead.
+class OutputError : public std::runtime_error {
+ public:
+  OutputError(std::filesystem::path path, const std::string& what);
+  const std::filesystem::path& path() const noexcept { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Throws InputError (naming the path) if the folder `path` would be written in does not exist or is not a folder.
+/// Cheap: callers run it before rendering so that a typo in -o does not cost a render.
+void check_output_path(const std::filesystem::path& path);
+
+/// The temporary name write_atomically() uses for `path`: a hidden file in the same folder (so the final rename
+/// stays on one file system and is atomic), unique per process and call, ending in the destination's extension
+/// (OpenImageIO picks the format by extension).
+std::filesystem::path temporary_output_path(const std::filesystem::path& path);
+
+/// Runs `write(temporary)` and renames the temporary file to `path` (replacing an existing file atomically).
+/// Every library's error style ends here: any exception thrown by `write` (OpenEXR's Iex exceptions, OpenColorIO's,
+/// a runtime_error built from OpenImageIO's geterror()) becomes an OutputError naming `path`, and the temporary
+/// file is removed, so a failed write leaves neither the destination nor a temporary behind. InputError from
+/// check_output_path() passes through unchanged.
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(const std::filesystem::path& temporary)>& write);
+
+}  // namespace rimu

@@ -1,0 +1,90 @@
+#include "transport/fresnel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rimu {
+namespace {
+
+/// A complex number per lane; only what the conductor Fresnel equations need.
+struct Complex4 {
+  Float4 re, im;
+};
+Complex4 operator+(Complex4 a, Complex4 b) { return {a.re + b.re, a.im + b.im}; }
+Complex4 operator-(Complex4 a, Complex4 b) { return {a.re - b.re, a.im - b.im}; }
+Complex4 operator*(Complex4 a, Complex4 b) { return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re}; }
+Complex4 operator/(Complex4 a, Complex4 b) {
+  const Float4 d = b.re * b.re + b.im * b.im;
+  return {(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
+}
+Float4 norm2(Complex4 a) { return a.re * a.re + a.im * a.im; }
+/// Principal square root: Re ≥ 0, and Im has the sign of the argument's Im.
+Complex4 complex_sqrt(Complex4 z) {
+  const Float4 modulus = sqrt(norm2(z));
+  const Float4 re = sqrt(max(Float4(0.0f), (modulus + z.re) * Float4(0.5f)));
+  const Float4 im_abs = sqrt(max(Float4(0.0f), (modulus - z.re) * Float4(0.5f)));
+  return {re, select(z.im < Float4(0.0f), -im_abs, im_abs)};
+}
+/// |num|²/|den|², or 1 where the denominator vanishes (the grazing limit, reached only for η = 1).
+Float4 ratio2(Complex4 num, Complex4 den) {
+  const Float4 d = norm2(den);
+  return select(d > Float4(0.0f), norm2(num) / d, Float4(1.0f));
+}
+
+}  // namespace
+
+SampledSpectrum fresnel_dielectric(SampledSpectrum cos_theta_i, SampledSpectrum eta) {
+  const Mask4 inside = cos_theta_i < Float4(0.0f);
+  const Float4 eta_rel = select(inside, Float4(1.0f) / eta, eta);  // n_t / n_i along this ray
+  const Float4 cos_i = min(abs(cos_theta_i), Float4(1.0f));
+  const Float4 sin2_t = (Float4(1.0f) - cos_i * cos_i) / (eta_rel * eta_rel);
+  const Mask4 total_internal = sin2_t >= Float4(1.0f);
+  const Float4 cos_t = sqrt(max(Float4(0.0f), Float4(1.0f) - sin2_t));
+  // Both denominators are > 0 unless cos θi = cos θt = 0, which is the total-internal branch.
+  const Float4 r_s = (cos_i - eta_rel * cos_t) / (cos_i + eta_rel * cos_t);
+  const Float4 r_p = (eta_rel * cos_i - cos_t) / (eta_rel * cos_i + cos_t);
+  return select(total_internal, Float4(1.0f), Float4(0.5f) * (r_s * r_s + r_p * r_p));
+}
+
+double fresnel_dielectric(double cos_theta_i, double eta) {
+  const double eta_rel = cos_theta_i < 0 ? 1.0 / eta : eta;
+  const double cos_i = std::min(std::fabs(cos_theta_i), 1.0);
+  const double sin2_t = (1.0 - cos_i * cos_i) / (eta_rel * eta_rel);
+  if (sin2_t >= 1.0) return 1.0;
+  const double cos_t = std::sqrt(1.0 - sin2_t);
+  const double r_s = (cos_i - eta_rel * cos_t) / (cos_i + eta_rel * cos_t);
+  const double r_p = (eta_rel * cos_i - cos_t) / (eta_rel * cos_i + cos_t);
+  return 0.5 * (r_s * r_s + r_p * r_p);
+}
+
+SampledSpectrum fresnel_conductor(SampledSpectrum cos_theta_i, SampledSpectrum n, SampledSpectrum k) {
+  const Float4 cos_i = clamp(cos_theta_i, Float4(0.0f), Float4(1.0f));
+  const Complex4 eta{n, k};
+  const Complex4 cos_i_c{cos_i, Float4(0.0f)};
+  const Complex4 sin2_i{Float4(1.0f) - cos_i * cos_i, Float4(0.0f)};
+  const Complex4 cos_t = complex_sqrt(Complex4{Float4(1.0f), Float4(0.0f)} - sin2_i / (eta * eta));
+  const Complex4 eta_cos_t = eta * cos_t, eta_cos_i = eta * cos_i_c;
+  const Float4 rs2 = ratio2(cos_i_c - eta_cos_t, cos_i_c + eta_cos_t);
+  const Float4 rp2 = ratio2(eta_cos_i - cos_t, eta_cos_i + cos_t);
+  return Float4(0.5f) * (rs2 + rp2);
+}
+
+double fresnel_diffuse_reflectance(double eta) {
+  // 2∫ F(μ) μ dμ over [a, b] by composite Simpson with `intervals` (even) panels. F(μ)·μ is smooth on each
+  // piece; for η < 1 it has a kink at the critical cosine √(1 − η²), where the integral is split.
+  const auto simpson = [eta](double a, double b, int intervals) {
+    const double h = (b - a) / intervals;
+    double s = 0;
+    for (int i = 0; i <= intervals; ++i) {
+      const double mu = a + i * h;
+      const double w = (i == 0 || i == intervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+      s += w * fresnel_dielectric(mu, eta) * mu;
+    }
+    return 2.0 * s * h / 3.0;
+  };
+  if (eta >= 1.0) return simpson(0.0, 1.0, 512);
+  const double mu_critical = std::sqrt(1.0 - eta * eta);
+  return simpson(0.0, mu_critical, 256) + simpson(mu_critical, 1.0, 512);
+}
+
+}  // namespace rimu
