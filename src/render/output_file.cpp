@@ -17,7 +17,7 @@ std::filesystem::path folder_of(const std::filesystem::path& path) {
 }  // namespace
 
 OutputError::OutputError(std::filesystem::path path, const std::string& what)
-    : std::runtime_error("cannot write '" + path.string() + "': " + what), path_(std::move(path)) {}
+    : RenderError("cannot write '" + path.string() + "': " + what), path_(std::move(path)) {}
 
 void check_output_path(const std::filesystem::path& path) {
   if (path.empty() || !path.has_filename()) throw InputError({path.string(), 0, ""}, "the output path names no file");

@@ -3,14 +3,16 @@
 
 #include <filesystem>
 #include <functional>
-#include <stdexcept>
 #include <string>
+
+#include "render/render_error.h"
 
 namespace rimu {
 
 /// An output file could not be written (disk full, permissions, a library failure). The message names the path.
+/// A RenderError, so tools exit with status 2.
 /// A bad destination the user can fix before rendering (a missing folder) is an InputError instead.
-class OutputError : public std::runtime_error {
+class OutputError : public RenderError {
  public:
   OutputError(std::filesystem::path path, const std::string& what);
   const std::filesystem::path& path() const noexcept { return path_; }

@@ -46,16 +46,24 @@ SampledSpectrum fresnel_dielectric(SampledSpectrum cos_theta_i, SampledSpectrum 
   return select(total_internal, Float4(1.0f), Float4(0.5f) * (r_s * r_s + r_p * r_p));
 }
 
-double fresnel_dielectric(double cos_theta_i, double eta) {
-  const double eta_rel = cos_theta_i < 0 ? 1.0 / eta : eta;
-  const double cos_i = std::min(std::fabs(cos_theta_i), 1.0);
-  const double sin2_t = (1.0 - cos_i * cos_i) / (eta_rel * eta_rel);
-  if (sin2_t >= 1.0) return 1.0;
-  const double cos_t = std::sqrt(1.0 - sin2_t);
-  const double r_s = (cos_i - eta_rel * cos_t) / (cos_i + eta_rel * cos_t);
-  const double r_p = (eta_rel * cos_i - cos_t) / (eta_rel * cos_i + cos_t);
-  return 0.5 * (r_s * r_s + r_p * r_p);
+namespace {
+
+template <typename Real>
+Real fresnel_dielectric_scalar(Real cos_theta_i, Real eta) {
+  const Real eta_rel = cos_theta_i < 0 ? Real(1) / eta : eta;
+  const Real cos_i = std::min(std::fabs(cos_theta_i), Real(1));
+  const Real sin2_t = (Real(1) - cos_i * cos_i) / (eta_rel * eta_rel);
+  if (sin2_t >= Real(1)) return Real(1);
+  const Real cos_t = std::sqrt(Real(1) - sin2_t);
+  const Real r_s = (cos_i - eta_rel * cos_t) / (cos_i + eta_rel * cos_t);
+  const Real r_p = (eta_rel * cos_i - cos_t) / (eta_rel * cos_i + cos_t);
+  return Real(0.5) * (r_s * r_s + r_p * r_p);
 }
+
+}  // namespace
+
+float fresnel_dielectric(float cos_theta_i, float eta) { return fresnel_dielectric_scalar(cos_theta_i, eta); }
+double fresnel_dielectric(double cos_theta_i, double eta) { return fresnel_dielectric_scalar(cos_theta_i, eta); }
 
 SampledSpectrum fresnel_conductor(SampledSpectrum cos_theta_i, SampledSpectrum n, SampledSpectrum k) {
   const Float4 cos_i = clamp(cos_theta_i, Float4(0.0f), Float4(1.0f));
@@ -70,21 +78,26 @@ SampledSpectrum fresnel_conductor(SampledSpectrum cos_theta_i, SampledSpectrum n
 }
 
 double fresnel_diffuse_reflectance(double eta) {
-  // 2∫ F(μ) μ dμ over [a, b] by composite Simpson with `intervals` (even) panels. F(μ)·μ is smooth on each
-  // piece; for η < 1 it has a kink at the critical cosine √(1 − η²), where the integral is split.
-  const auto simpson = [eta](double a, double b, int intervals) {
+  // 2∫ g(x) dx over [a, b] by composite Simpson with `intervals` (even) panels.
+  const auto simpson = [](const auto& g, double a, double b, int intervals) {
     const double h = (b - a) / intervals;
     double s = 0;
     for (int i = 0; i <= intervals; ++i) {
-      const double mu = a + i * h;
       const double w = (i == 0 || i == intervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-      s += w * fresnel_dielectric(mu, eta) * mu;
+      s += w * g(a + i * h);
     }
     return 2.0 * s * h / 3.0;
   };
-  if (eta >= 1.0) return simpson(0.0, 1.0, 512);
+  // η ≥ 1: F(μ)·μ is smooth on [0, 1].
+  if (eta >= 1.0) return simpson([eta](double mu) { return fresnel_dielectric(mu, eta) * mu; }, 0.0, 1.0, 512);
+  // η < 1: total reflection below the critical cosine μc = √(1 − η²) contributes 2∫₀^μc μ dμ = μc². Above it,
+  // F behaves like 1 − c√(μ − μc); the substitution μ = μc + t² makes the integrand smooth again.
   const double mu_critical = std::sqrt(1.0 - eta * eta);
-  return simpson(0.0, mu_critical, 256) + simpson(mu_critical, 1.0, 512);
+  const auto smooth = [eta, mu_critical](double t) {
+    const double mu = mu_critical + t * t;
+    return fresnel_dielectric(mu, eta) * mu * 2.0 * t;
+  };
+  return mu_critical * mu_critical + simpson(smooth, 0.0, std::sqrt(1.0 - mu_critical), 512);
 }
 
 }  // namespace rimu

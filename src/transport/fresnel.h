@@ -13,7 +13,9 @@ namespace rimu {
 /// the outside, negative = from the inside. `eta` = n_inside / n_outside (> 0).
 /// Total internal reflection (sin θt ≥ 1) returns exactly 1; grazing incidence (cos θi = 0) returns 1, no NaN.
 SampledSpectrum fresnel_dielectric(SampledSpectrum cos_theta_i, SampledSpectrum eta);
-/// The same in double precision, one wavelength (setup-time integrals and tests).
+/// The same for one wavelength, in float (per-lane geometry, e.g. rough refraction) and double (setup-time
+/// integrals and tests).
+float fresnel_dielectric(float cos_theta_i, float eta);
 double fresnel_dielectric(double cos_theta_i, double eta);
 
 /// Unpolarised reflectance of a conductor with complex relative index η = n + ik, per lane: the same Fresnel
@@ -22,8 +24,9 @@ double fresnel_dielectric(double cos_theta_i, double eta);
 SampledSpectrum fresnel_conductor(SampledSpectrum cos_theta_i, SampledSpectrum n, SampledSpectrum k);
 
 /// Hemispherical reflectance of a smooth dielectric interface under uniform diffuse (cosine-weighted) light from
-/// the outside: F̄_ext(η) = 2 ∫₀¹ F(μ, η) μ dμ, by composite Simpson quadrature split at the critical angle when
-/// η < 1 (error < 1e-7). Setup-time cost (about a thousand Fresnel evaluations).
+/// the outside: F̄_ext(η) = 2 ∫₀¹ F(μ, η) μ dμ, by composite Simpson quadrature (for η < 1, split at the critical
+/// angle with a substitution that removes F's square-root kink there). Error < 1e-7; setup-time cost (about 500
+/// Fresnel evaluations).
 /// The inside's value follows from reciprocity: 1 − F̄_int = (1 − F̄_ext)/η² (e.g. Judd 1942).
 double fresnel_diffuse_reflectance(double eta);
 

@@ -217,7 +217,7 @@ TEST_CASE("away from the edge the table's spectra are nearly as smooth as the ex
   // rougher where spectra change fast between nodes. Measured worst over 360 angles (docs/upsampling.md):
   // 1.2 % at ρ = 0.5, 7.8 % at ρ = 0.9 (of the usable gamut); asserted 2 % and 10 %.
   const auto& up = upsampler("srgb-linear");
-  for (const auto [rho, bound] : {std::pair{0.5, 1.02}, std::pair{0.9, 1.10}}) {
+  for (const auto& [rho, bound] : {std::pair{0.5, 1.02}, std::pair{0.9, 1.10}}) {
     for (int a = 0; a < 72; ++a) {
       const double angle = a * 2 * 3.14159265358979 / 72 + 0.01;
       CAPTURE(angle);

@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    std::filesystem::create_directories(out);
     SpectralLibrary library(data);
     for (const UpsamplingWhite& white : upsampling_whites()) {
       const auto start = std::chrono::steady_clock::now();

@@ -1,0 +1,55 @@
+// Writing a film to OpenEXR: its channels, spectral bins and the render's metadata.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "render/film.h"
+
+namespace rimu {
+
+/// What the render did, for the file's metadata.
+struct RenderMetadata {
+  int samples_per_pixel = 0;  ///< spp actually reached (less than requested when interrupted)
+  uint64_t seed = 0;
+  double render_time_s = 0.0;
+  bool interrupted = false;   ///< adds "rimu:interrupted" = "interrupted at N spp"
+  std::string scene;          ///< scene file, if any
+  std::map<std::string, std::string> extra;  ///< more string attributes, written as "rimu:<key>"
+};
+
+enum class ExrPixelType { half, float32 };
+
+struct ExrOptions {
+  ExrPixelType pixel_type = ExrPixelType::half;
+  RenderMetadata metadata;
+  /// Name XYZ channels R, G, B instead of X, Y, Z. Some readers take a lone "Y" channel for luminance and ignore
+  /// X and Z; with R, G, B and the XYZ chromaticities, colour-managed readers show the right colours.
+  bool xyz_channels_as_rgb = false;
+};
+
+/// Writes the film's crop window as the EXR data window (display window = the full image); pixels without samples
+/// are 0. Channels:
+/// - XYZ film: X, Y, Z, and the `chromaticities` attribute for XYZ: the chromaticities of the RGB triples
+///   (1,0,0), (0,1,0), (0,0,1), (1,1,1) as ImfChromaticities.h defines them, which for X, Y, Z stored as
+///   R, G, B are red (1, 0), green (0, 1), blue (0, 0), white (1/3, 1/3).
+/// - camera film: R, G, B (raw sensor, no chromaticities; the camera is named in "rimu:camera").
+/// - spectral bins (when the film has them): one channel per bin named "S0.<centre>nm" with a comma as the
+///   decimal separator, e.g. "S0.362,35nm", following Fichet, Pacanowski & Wilkie, "An OpenEXR Layout for
+///   Spectral Images", JCGT 10(3), 2021 (S0 = unpolarised emission), plus "spectralLayoutVersion" = "1.0".
+///   Values are the mean spectral radiance over the bin (W/(m²·sr·nm) for radiance inputs).
+/// Half values are clamped to ±65504 (the largest half) rather than overflowing to Inf.
+/// Attributes: rimu:version, rimu:filmResponse, rimu:camera, rimu:spp (int), rimu:seed (string: 64 bits),
+/// rimu:renderTimeSeconds (double), rimu:samplesAccepted / rimu:discardedNaN / rimu:discardedInf /
+/// rimu:discardedNegative (double: exact to 2⁵³), rimu:luminanceNitsPerUnitY (XYZ films), rimu:scene,
+/// rimu:interrupted, rimu:<extra keys>.
+/// Written to a temporary file in the same folder and renamed (write_atomically): on failure no file is left at
+/// `path`. Throws InputError for a missing folder, OutputError for anything else.
+void write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options = {});
+
+/// The EXR channel name of spectral bin `bin` (see write_exr).
+std::string spectral_channel_name(const SpectralBinning& binning, int bin);
+
+}  // namespace rimu

@@ -1,0 +1,82 @@
+#include "render/progress_reporter.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rimu {
+
+ProgressReporter::ProgressReporter(uint64_t total, std::string label, Options options)
+    : total_(total),
+      label_(std::move(label)),
+      options_(options),
+      terminal_(options.terminal >= 0 ? options.terminal == 1 : ::isatty(::fileno(options.stream)) == 1),
+      start_(std::chrono::steady_clock::now()) {}
+
+ProgressReporter::~ProgressReporter() { finish(); }
+
+double ProgressReporter::elapsed_s() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+std::string ProgressReporter::format_duration(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  const long s = std::lround(seconds);
+  char text[32];
+  if (s >= 3600)
+    std::snprintf(text, sizeof(text), "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  else
+    std::snprintf(text, sizeof(text), "%ld:%02ld", s / 60, s % 60);
+  return text;
+}
+
+void ProgressReporter::add(uint64_t units) {
+  done_.fetch_add(units, std::memory_order_relaxed);
+  if (!terminal_) return;
+  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::steady_clock::now() - start_).count();
+  int64_t due = next_draw_ns_.load(std::memory_order_relaxed);
+  if (now_ns < due) return;
+  // One thread claims this redraw; the others carry on rendering.
+  if (!next_draw_ns_.compare_exchange_strong(due, now_ns + int64_t(options_.min_interval_s * 1e9))) return;
+  std::unique_lock lock(draw_mutex_, std::try_to_lock);
+  if (lock.owns_lock() && !finished_) draw(false);
+}
+
+void ProgressReporter::draw(bool final_line) {
+  const uint64_t done = std::min(done_.load(std::memory_order_relaxed), total_);
+  const double elapsed = elapsed_s();
+  const double fraction = total_ > 0 ? double(done) / double(total_) : 1.0;
+  const double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
+  char line[256];
+  if (final_line) {
+    std::snprintf(line, sizeof(line), "%s: %s%.1f%% in %s, %.3g samples/s", label_.c_str(),
+                  done < total_ ? "interrupted at " : "", 100.0 * fraction, format_duration(elapsed).c_str(), rate);
+  } else {
+    constexpr int kBarWidth = 30;
+    char bar[kBarWidth + 1];
+    const int filled = int(fraction * kBarWidth);
+    for (int i = 0; i < kBarWidth; ++i) bar[i] = i < filled ? '=' : ' ';
+    bar[kBarWidth] = '\0';
+    const double eta = rate > 0 ? double(total_ - done) / rate : NAN;
+    std::snprintf(line, sizeof(line), "%s [%s] %5.1f%% %.3g samples/s ETA %s", label_.c_str(), bar,
+                  100.0 * fraction, rate, format_duration(eta).c_str());
+  }
+  // "\r...\033[K": back to the line start, write, clear what a longer previous line left behind.
+  if (terminal_)
+    std::fprintf(options_.stream, "\r%s\033[K%s", line, final_line ? "\n" : "");
+  else
+    std::fprintf(options_.stream, "%s\n", line);
+  std::fflush(options_.stream);
+  ++redraws_;
+}
+
+void ProgressReporter::finish() {
+  std::lock_guard lock(draw_mutex_);
+  if (finished_) return;
+  draw(true);
+  finished_ = true;
+}
+
+}  // namespace rimu

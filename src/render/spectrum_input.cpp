@@ -1,0 +1,126 @@
+#include "render/spectrum_input.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "spectral/blackbody_spectrum.h"
+#include "spectral/csv_table.h"
+#include "spectral/daylight.h"
+#include "spectral/tabulated_spectrum.h"
+
+namespace rimu {
+namespace {
+
+// Runs `build` and re-raises an InputError from lower layers with the scene's key path added.
+template <typename F>
+SpectrumPtr at_key(const JsonCursor& where, F&& build) {
+  try {
+    return build();
+  } catch (const InputError& e) {
+    if (!e.where().key.empty()) throw;
+    SourceLocation loc = e.where();
+    loc.key = where.path();
+    if (loc.file.empty()) loc.file = where.file();
+    throw InputError(loc, e.explanation());
+  }
+}
+
+void check_range(const JsonCursor& where, const Spectrum& s, SpectrumRole role) {
+  // Checked at the integer wavelengths of 360-830 nm: tabulated inputs are linear between their knots, and
+  // every analytic one here is smooth, so this finds any negative lobe a user could have written.
+  for (int nm = 360; nm <= 830; ++nm) {
+    const double v = s.value(nm);
+    if (!std::isfinite(v)) where.fail("the spectrum is not finite at " + std::to_string(nm) + " nm");
+    if (role == SpectrumRole::ior && !(v > 0.0))
+      where.fail("an index of refraction must be positive; it is " + std::to_string(v) + " at " + std::to_string(nm) + " nm");
+    if (role != SpectrumRole::ior && v < 0.0)
+      where.fail("the spectrum is negative (" + std::to_string(v) + ") at " + std::to_string(nm) + " nm");
+  }
+}
+
+}  // namespace
+
+std::string ScaledSpectrum::describe() const {
+  std::ostringstream out;
+  out << scale_ << " × " << base_->describe();
+  return out.str();
+}
+
+const RgbUpsampler& SpectrumInputContext::upsampler(const std::string& space_name, const JsonCursor& where) {
+  auto it = upsamplers_.find(space_name);
+  if (it != upsamplers_.end()) return *it->second;
+  try {
+    auto u = std::make_unique<RgbUpsampler>(library_, RgbColourSpace::named(space_name));
+    return *upsamplers_.emplace(space_name, std::move(u)).first->second;
+  } catch (const InputError& e) {
+    where.fail(e.explanation());
+  }
+}
+
+SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole role) {
+  if (value.is_number()) {
+    const double c = value.number(role == SpectrumRole::ior ? 1e-6 : 0.0, 1e30);
+    return std::make_shared<ConstantSpectrum>(c);
+  }
+  if (!value.is_object())
+    value.fail("expected a spectrum: a number, or an object with one of constant, illuminant, csv, blackbody, "
+               "daylight, rgb, spectrum");
+  SpectrumPtr base;
+  if (value.has("constant")) {
+    value.only_keys({"constant", "scale"});
+    base = std::make_shared<ConstantSpectrum>(value.at("constant").number(0.0, 1e30));
+  } else if (value.has("illuminant")) {
+    value.only_keys({"illuminant", "scale"});
+    const std::string name = value.at("illuminant").string();
+    base = at_key(value.at("illuminant"), [&] { return library_.illuminant(name); });
+  } else if (value.has("csv")) {
+    value.only_keys({"csv", "column", "scale"});
+    const std::filesystem::path path = scene_directory_ / value.at("csv").string();
+    const std::string column = value.string_or("column", "");
+    const Extrapolation extrapolation = role == SpectrumRole::emission ? Extrapolation::zero : Extrapolation::clamp;
+    base = at_key(value.at("csv"), [&] {
+      const CsvTable table = CsvTable::read(path);
+      if (table.column_count() < 2) throw InputError({path.string(), 1, ""}, "expected wavelength_nm and a value column");
+      const std::string c = column.empty() ? table.header()[1] : column;
+      return std::make_shared<TabulatedSpectrum>(TabulatedSpectrum::from_csv(table, c, extrapolation));
+    });
+  } else if (value.has("blackbody")) {
+    value.only_keys({"blackbody", "scale"});
+    const double t = value.at("blackbody").number(1.0, 1e6);
+    base = std::make_shared<BlackbodySpectrum>(t, BlackbodySpectrum::Scale::peak_one);
+  } else if (value.has("daylight")) {
+    value.only_keys({"daylight", "scale"});
+    const double cct = value.at("daylight").number(4000.0, 25000.0);
+    base = std::make_shared<TabulatedSpectrum>(daylight_spectrum(library_.daylight_basis(), cct));
+  } else if (value.has("rgb")) {
+    value.only_keys({"rgb", "space", "scale"});
+    if (role == SpectrumRole::ior) value.at("rgb").fail("an index of refraction cannot be given as RGB");
+    const Vec3 rgb = value.at("rgb").vec3();
+    const std::string space = value.string_or("space", "srgb-linear");
+    const RgbUpsampler& up = upsampler(space, value.has("space") ? value.at("space") : value);
+    const Rgb colour{rgb.x, rgb.y, rgb.z};
+    if (role == SpectrumRole::reflectance) {
+      base = std::make_shared<ReflectanceSpectrum>(up.upsample_reflectance(colour, value.where()).spectrum);
+    } else {
+      base = std::make_shared<EmissionSpectrum>(up.upsample_emission(colour, value.where()).spectrum);
+    }
+  } else if (value.has("spectrum")) {
+    value.only_keys({"spectrum", "scale"});
+    const std::string name = value.at("spectrum").string();
+    if (!named_ || !named_->has(name))
+      value.at("spectrum").fail("no spectrum named '" + name + "' in the scene's \"spectra\" section");
+    if (++named_depth_ > 8) value.fail("named spectra refer to each other in a cycle");
+    base = parse(named_->at(name), role);
+    --named_depth_;
+  } else {
+    value.fail("expected one of the keys constant, illuminant, csv, blackbody, daylight, rgb, spectrum");
+  }
+  if (value.has("scale")) {
+    const double scale = value.at("scale").number(0.0, 1e30);
+    base = std::make_shared<ScaledSpectrum>(std::move(base), scale);
+  }
+  check_range(value, *base, role);
+  return base;
+}
+
+}  // namespace rimu

@@ -1,0 +1,73 @@
+// Spectral inputs of a scene: every key that takes a spectrum accepts the same forms.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "render/json_cursor.h"
+#include "spectral/rgb_upsampler.h"
+#include "spectral/spectral_library.h"
+#include "spectral/spectrum.h"
+
+namespace rimu {
+
+/// How a spectrum is used decides how RGB is upsampled and what values are allowed.
+enum class SpectrumRole {
+  reflectance,  ///< [0, 1]: RGB is upsampled with gamut mapping (RgbUpsampler::upsample_reflectance)
+  emission,     ///< ≥ 0, unbounded: RGB is upsampled as the colour space's white shaped (upsample_emission)
+  ior,          ///< > 0: index of refraction; RGB is not accepted
+};
+
+/// Shared state while a scene loads: the data library, the scene's folder (CSV paths are relative to it),
+/// named spectra from the scene's "spectra" section, and one upsampler per colour space (built on first use).
+class SpectrumInputContext {
+ public:
+  SpectrumInputContext(SpectralLibrary& library, std::filesystem::path scene_directory)
+      : library_(library), scene_directory_(std::move(scene_directory)) {}
+
+  /// Parses a spectral value. Accepted forms (all objects may add "scale": k):
+  ///   0.5                                   a constant
+  ///   {"constant": 0.5}
+  ///   {"illuminant": "D65"}                 a CIE illuminant by name (relative power, 100 at 560 nm)
+  ///   {"csv": "file.csv", "column": "red"}  a table, path relative to the scene file
+  ///   {"blackbody": 2700}                   Planck at T kelvin, scaled so its peak is 1
+  ///   {"daylight": 6500}                    CIE daylight at a CCT (4000-25000 K), ≈100 at 560 nm
+  ///   {"rgb": [r, g, b], "space": "srgb-linear"}   upsampled (see SpectrumRole)
+  ///   {"spectrum": "name"}                  a spectrum defined in the scene's "spectra" section
+  /// Errors name the key path.
+  SpectrumPtr parse(const JsonCursor& value, SpectrumRole role);
+
+  /// Registers the scene's "spectra" section (an object of name → spectral value, parsed lazily by role).
+  void set_named(const JsonCursor& section) { named_.emplace(section); }
+
+  SpectralLibrary& library() { return library_; }
+  const std::filesystem::path& scene_directory() const { return scene_directory_; }
+  const RgbUpsampler& upsampler(const std::string& space_name, const JsonCursor& where);
+
+ private:
+  SpectralLibrary& library_;
+  std::filesystem::path scene_directory_;
+  std::optional<JsonCursor> named_;
+  std::map<std::string, std::unique_ptr<RgbUpsampler>> upsamplers_;
+  int named_depth_ = 0;
+};
+
+/// A spectrum multiplied by a constant.
+class ScaledSpectrum final : public Spectrum {
+ public:
+  ScaledSpectrum(SpectrumPtr base, double scale) : base_(std::move(base)), scale_(scale) {}
+  double value(double lambda_nm) const override { return scale_ * base_->value(lambda_nm); }
+  SampledSpectrum sample(const SampledWavelengths& lambda) const override {
+    return base_->sample(lambda) * Float4(float(scale_));
+  }
+  double max_value() const override { return scale_ * base_->max_value(); }
+  std::string describe() const override;
+
+ private:
+  SpectrumPtr base_;
+  double scale_;
+};
+
+}  // namespace rimu

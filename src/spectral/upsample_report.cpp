@@ -1,0 +1,60 @@
+#include "spectral/upsample_report.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <vector>
+
+#include "spectral/error.h"
+
+namespace rimu {
+
+void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, const Rgb& rgb,
+                           const UpsampleReportOptions& options) {
+  std::vector<double> values(kUpsampleKnotCount);
+  bool mapped = false;
+  double delta_e = 0;
+  Rgb back;
+  if (options.emission) {
+    const UpsampledEmission e = upsampler.upsample_emission(rgb);
+    for (int i = 0; i < kUpsampleKnotCount; ++i) values[i] = e.spectrum.value(upsample_knot_nm(i));
+    mapped = e.gamut_mapped, delta_e = e.delta_e2000;
+    // Round trip of the chromaticity-carrying factor, scaled back to the input luminance.
+    const Xyz shape = upsampler.xyz_of(e.spectrum.shape());
+    const double y = upsampler.space().to_xyz(rgb).y;
+    back = upsampler.space().from_xyz({shape.x * y, shape.y * y, shape.z * y});
+  } else {
+    const UpsampledReflectance r = upsampler.upsample_reflectance(rgb);
+    for (int i = 0; i < kUpsampleKnotCount; ++i) values[i] = r.spectrum.samples().knot(i);
+    mapped = r.gamut_mapped, delta_e = r.delta_e2000;
+    back = upsampler.rgb_of(r.spectrum);
+  }
+  const char* unit = options.emission ? "W/(m2 sr nm) for RGB luminance in cd/m2" : "reflectance factor";
+  if (options.csv) {
+    out << "wavelength_nm," << (options.emission ? "spectral_radiance" : "reflectance") << '\n';
+    for (int i = 0; i < kUpsampleKnotCount; ++i) out << upsample_knot_nm(i) << ',' << values[i] << '\n';
+  } else {
+    out << (options.emission ? "emission" : "reflectance") << " upsampled from " << upsampler.space().name() << " ("
+        << rgb.r << ", " << rgb.g << ", " << rgb.b << "), table " << upsampler.table().white_name << "\n"
+        << "  round trip RGB: (" << back.r << ", " << back.g << ", " << back.b << ")\n"
+        << "  CIEDE2000 to input: " << delta_e << "\n"
+        << "  gamut mapping acted: " << (mapped ? "yes" : "no") << "\n"
+        << "  spectrum (" << unit << "):\n";
+    for (int i = 0; i < kUpsampleKnotCount; ++i) out << "    " << upsample_knot_nm(i) << " nm  " << values[i] << '\n';
+  }
+  if (!options.plot_png.empty()) {
+    const std::string data = options.plot_png.string() + ".dat", script = options.plot_png.string() + ".gp";
+    {
+      std::ofstream d(data);
+      for (int i = 0; i < kUpsampleKnotCount; ++i) d << upsample_knot_nm(i) << ' ' << values[i] << '\n';
+      std::ofstream g(script);
+      g << "set terminal pngcairo size 900,500\nset output '" << options.plot_png.string() << "'\n"
+        << "set xlabel 'wavelength (nm)'\nset ylabel '" << unit << "'\nset xrange [360:830]\nset grid\n"
+        << "plot '" << data << "' with lines lw 2 title '" << upsampler.space().name() << " (" << rgb.r << ", "
+        << rgb.g << ", " << rgb.b << ")" << (mapped ? ", gamut-mapped" : "") << "'\n";
+    }
+    if (std::system(("/usr/bin/gnuplot '" + script + "'").c_str()) != 0)
+      throw InputError({script, 0, ""}, "gnuplot failed to plot the spectrum");
+  }
+}
+
+}  // namespace rimu

@@ -1,0 +1,70 @@
+// An emissive triangle mesh: uniform spectral radiance L(λ) over its surface, from its front side or both sides.
+//
+// Sampling (from a reference point x): a triangle with probability A_k / A (Distribution1D over areas), a point y
+// uniform on it, so the area density is p_A = (A_k/A)·(1/A_k) = 1/A everywhere on the mesh. The solid-angle
+// density at x follows from dω = |cos θ_l| dA / d², with θ_l between the light's normal at y and y → x:
+//   p_ω = p_A · d² / |cos θ_l| = d² / (A |cos θ_l|).
+// Grazing directions (cos θ_l → 0) make p_ω infinite; sample_li then returns std::nullopt and pdf_li returns 0, a
+// set of zero measure, so no energy is lost. (Spherical-triangle sampling, which has no such singularity, is not
+// implemented.)
+//
+// Front side: the normal n_k = (v1 − v0) × (v2 − v0) / |…|, i.e. counter-clockwise winding seen from the front,
+// as in SurfaceHit::geometric_normal. A one-sided light emits towards w_out only when n·w_out > 0.
+// Degenerate (zero-area or non-finite) triangles are kept in the index space (so triangle k of the mesh is still
+// SurfaceHit::primitive == k) but get probability 0; they are counted, and never divide anything.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "transport/distribution_1d.h"
+#include "transport/light.h"
+#include "transport/light_spectrum.h"
+
+namespace rimu {
+
+class AreaLight final : public Light {
+ public:
+  /// `vertices_m`: world-space positions (after the instance transform); `indices`: three per triangle, triangle
+  /// k is (indices[3k], indices[3k+1], indices[3k+2]), indices < vertices_m.size() (asserted). `radiance` in
+  /// W/(m²·sr·nm). Cost O(triangles).
+  AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t> indices, LightSpectrum radiance,
+            bool two_sided);
+
+  /// A point uniform by area on the mesh, with p_ω = d²/(A|cos θ_l|). std::nullopt for a reference on the light
+  /// (d = 0), behind a one-sided light, at grazing angles (p_ω not finite), or if the light has no area or power.
+  std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
+                                       Vec2 u) const override;
+  /// p_ω for a ray from `ref` along wi that hit triangle hit->primitive at hit->position; 0 without a hit, for a
+  /// degenerate triangle, the back of a one-sided light, or a grazing hit.
+  float pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const override;
+  /// L on the emitting side(s), 0 behind a one-sided light; w_out points away from the surface.
+  SampledSpectrum radiance(const SurfaceHit& hit, Vec3 w_out, const SampledWavelengths& lambda) const override;
+  /// Lambertian emitter: Φ = π A ∫L(λ) dλ per emitting side.
+  double total_power_w(double scene_radius_m) const override;
+
+  int triangle_count() const { return int(triangles_.size()); }
+  /// Triangles skipped for zero (or non-finite) area.
+  int degenerate_triangle_count() const { return degenerate_count_; }
+  double area_m2() const { return area_m2_; }
+  bool two_sided() const { return two_sided_; }
+
+ private:
+  struct Triangle {
+    Vec3 v0, v1, v2;
+    Vec3 normal;  // unit front normal; zero for degenerate triangles
+    double area_m2 = 0.0;
+  };
+  /// p_ω = d²/(A|cos θ_l|) if the point y on triangle k is seen from the emitting side, finite and > 0; else 0.
+  float solid_angle_pdf(const Triangle& t, Vec3 wi, float distance_squared) const;
+
+  std::vector<Triangle> triangles_;
+  Distribution1D by_area_;
+  LightSpectrum radiance_;
+  double area_m2_ = 0.0;
+  int degenerate_count_ = 0;
+  bool two_sided_;
+};
+
+}  // namespace rimu

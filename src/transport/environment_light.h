@@ -1,0 +1,73 @@
+// Light from infinitely far away in every direction: a constant radiance, or an equirectangular image.
+//
+// Directions. The light has its own orthonormal frame (s, t, n), given at construction (default: world x, y, z):
+// n is "up", the image's top row. A direction d with local coordinates (d_s, d_t, d_n) maps to
+//   θ = acos(d_n) ∈ [0, π]  (0 at the top),   φ = atan2(−d_t, d_s) wrapped to [0, 2π),
+//   u = φ / 2π (image x = ⌊u·width⌋),         v = θ / π (image y = ⌊v·height⌋),
+// so u = 0 (the left edge) looks along +s, and u grows to the RIGHT of a viewer at the centre who looks along +s
+// with n up (the image is not mirrored when seen from inside). The frame must be right-handed (s × t = n);
+// a y-up scene passes Frame{{1,0,0},{0,0,-1},{0,1,0}}: +y up, u = 0 along +x.
+//
+// Lookup: nearest pixel (piecewise constant), NOT bilinear, so the radiance is constant on exactly the cells the
+// sampling density is constant on: importance sampling by luminance then matches the integrand pixel for pixel.
+//
+// Sampling (Pharr, Jakob & Humphreys, PBR 3rd ed., §14.2.4): a Distribution2D over the pixels with weights
+//   f(x, y) = (Y(x, y) + 10⁻³·Ȳ) · sin θ_y        (θ_y at the row's centre),
+// the sin θ accounting for the smaller solid angle of rows near the poles. The small floor 10⁻³·Ȳ (Ȳ the mean
+// pixel luminance) keeps a nonzero density wherever the image could be nonzero even if its luminance is 0 (a deep
+// violet pixel), at the cost of ≤ 0.1 % of the samples. With dω = sin θ dθ dφ = 2π² sin θ du dv,
+//   p_ω(d) = p(u, v) / (2π² sin θ).
+// Directions at the poles (sin θ = 0) have p_ω undefined: std::nullopt / pdf 0 (a set of zero measure).
+// A black image (every weight 0) falls back to uniform sphere sampling, p_ω = 1/4π; so does a constant light.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "transport/distribution_2d.h"
+#include "transport/environment_image.h"
+#include "transport/frame.h"
+#include "transport/light.h"
+#include "transport/light_spectrum.h"
+
+namespace rimu {
+
+class EnvironmentLight final : public Light {
+ public:
+  /// Constant radiance `radiance` W/(m²·sr·nm) from every direction.
+  explicit EnvironmentLight(LightSpectrum radiance);
+  /// An image, its radiance multiplied by `scale` (set at load time, e.g. from nits in issue 5), oriented by
+  /// `frame` (see above). Cost O(width·height): the sampling distribution and 16 wavelengths of every pixel for
+  /// the power estimate.
+  EnvironmentLight(std::shared_ptr<const EnvironmentImage> image, double scale,
+                   Frame frame = Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+
+  /// A direction by luminance (image) or uniform on the sphere; distance ∞.
+  std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
+                                       Vec2 u) const override;
+  /// p_ω(wi); `hit` is ignored.
+  float pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit = nullptr) const override;
+  /// The radiance arriving from direction `direction` (nearest pixel, × scale).
+  SampledSpectrum radiance_escaped(Vec3 direction, const SampledWavelengths& lambda) const override;
+  /// Power entering a sphere of radius r: each point of it receives π·L̄ per unit area, so Φ = 4π² r² ∫L̄(λ) dλ, with
+  /// L̄ the radiance averaged over directions (solid-angle weighted; for an image, a 16-wavelength midpoint rule).
+  double total_power_w(double scene_radius_m) const override;
+  bool is_infinite() const override { return true; }
+
+  /// (u, v) ∈ [0, 1)² of a world direction (convention above), and back.
+  Vec2 direction_to_uv(Vec3 direction) const;
+  Vec3 uv_to_direction(Vec2 uv) const;
+
+ private:
+  float solid_angle_pdf(Vec3 local_direction) const;
+  SampledSpectrum lookup(Vec2 uv, const SampledWavelengths& lambda) const;
+
+  std::shared_ptr<const EnvironmentImage> image_;  // null for a constant environment
+  std::optional<LightSpectrum> constant_;          // set for a constant environment
+  double image_scale_ = 1.0;
+  Frame frame_;
+  Distribution2D distribution_;  // empty: uniform sphere sampling
+  double mean_radiance_integral_ = 0.0;  // ∫L̄(λ)dλ over 360-830 nm, W/(m²·sr)
+};
+
+}  // namespace rimu

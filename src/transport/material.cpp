@@ -1,0 +1,85 @@
+#include "transport/material.h"
+
+#include <vector>
+
+#include "spectral/error.h"
+#include "spectral/tabulated_spectrum.h"
+#include "spectral/wavelength_range.h"
+#include "transport/fresnel.h"
+
+namespace rimu {
+namespace {
+
+void check_roughness(float roughness, const char* what) {
+  if (!(roughness >= 0.0f && roughness <= 1.0f))
+    throw InputError({}, std::string(what) + " must lie in [0, 1], got " + std::to_string(roughness));
+}
+
+TrowbridgeReitz distribution_for(float roughness_u, float roughness_v) {
+  return TrowbridgeReitz(TrowbridgeReitz::roughness_to_alpha(roughness_u),
+                         TrowbridgeReitz::roughness_to_alpha(roughness_v));
+}
+
+Float4 clamp_unit(Float4 x) { return clamp(x, Float4(0.0f), Float4(1.0f)); }
+
+/// The smallest value of `s` on a 1 nm grid over the transported range (for load-time validation).
+double min_over_range(const Spectrum& s) {
+  double lowest = s.value(kLambdaMinNm);
+  for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 1.0) lowest = std::min(lowest, s.value(l));
+  return lowest;
+}
+
+}  // namespace
+
+DiffuseMaterial::DiffuseMaterial(SpectralTexturePtr reflectance) : reflectance_(std::move(reflectance)) {
+  if (!reflectance_) throw InputError({}, "a diffuse material needs a reflectance");
+}
+
+Bsdf DiffuseMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
+  return DiffuseBsdf(clamp_unit(reflectance_->evaluate(uv, lambda)));
+}
+
+ConductorMaterial::ConductorMaterial(ComplexIorSpectra ior, float roughness_u, float roughness_v)
+    : ior_(std::move(ior)), distribution_(distribution_for(roughness_u, roughness_v)) {
+  if (!ior_.n || !ior_.k) throw InputError({}, "a conductor needs both n and k spectra");
+  check_roughness(roughness_u, "conductor roughness");
+  check_roughness(roughness_v, "conductor roughness");
+}
+
+Bsdf ConductorMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
+  return ConductorBsdf(ior_.n->sample(lambda), ior_.k->sample(lambda), distribution_);
+}
+
+DielectricMaterial::DielectricMaterial(SpectrumPtr ior, float roughness)
+    : ior_(std::move(ior)), distribution_(distribution_for(roughness, roughness)) {
+  if (!ior_) throw InputError({}, "a dielectric needs an index of refraction");
+  check_roughness(roughness, "dielectric roughness");
+  if (!(min_over_range(*ior_) > 0.0))
+    throw InputError({}, "the index of refraction of " + ior_->describe() + " must be positive over 360-830 nm");
+}
+
+Bsdf DielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
+  return DielectricBsdf(ior_->sample(lambda), distribution_);
+}
+
+CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior)
+    : reflectance_(std::move(reflectance)), coat_ior_(std::move(coat_ior)) {
+  if (!reflectance_ || !coat_ior_) throw InputError({}, "a coated diffuse material needs a reflectance and a coat index");
+  // η < 1 would make the coat's internal reflectance formula describe a coat less dense than air: not a coat.
+  if (!(min_over_range(*coat_ior_) >= 1.0))
+    throw InputError({}, "the coat index of " + coat_ior_->describe() + " must be at least 1 over 360-830 nm");
+  std::vector<double> lambda_nm, reflectance_ext;
+  for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 5.0) {
+    lambda_nm.push_back(l);
+    reflectance_ext.push_back(fresnel_diffuse_reflectance(coat_ior_->value(l)));
+  }
+  coat_diffuse_reflectance_ = std::make_shared<TabulatedSpectrum>(
+      std::move(lambda_nm), std::move(reflectance_ext), Extrapolation::clamp, "diffuse Fresnel reflectance of the coat");
+}
+
+Bsdf CoatedDiffuseMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
+  return CoatedDiffuseBsdf(clamp_unit(reflectance_->evaluate(uv, lambda)), coat_ior_->sample(lambda),
+                           coat_diffuse_reflectance_->sample(lambda));
+}
+
+}  // namespace rimu

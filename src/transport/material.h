@@ -1,0 +1,86 @@
+// Materials: what a surface is made of, turned into a BSDF at a hit for the path's wavelengths.
+#pragma once
+
+#include <memory>
+#include <variant>
+
+#include "spectral/optical_constants.h"
+#include "spectral/spectrum.h"
+#include "transport/bsdf.h"
+#include "transport/spectral_texture.h"
+
+namespace rimu {
+
+/// Lambertian: reflectance ρ(λ) (clamped to [0, 1] per lane: values above 1 would create energy).
+class DiffuseMaterial {
+ public:
+  explicit DiffuseMaterial(SpectralTexturePtr reflectance);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectralTexturePtr reflectance_;
+};
+
+/// A metal with measured (or given) n(λ), k(λ); smooth when roughness is 0, else GGX with α = roughness².
+class ConductorMaterial {
+ public:
+  /// Throws InputError if a roughness is outside [0, 1] or a spectrum is missing.
+  ConductorMaterial(ComplexIorSpectra ior, float roughness_u, float roughness_v);
+  ConductorMaterial(ComplexIorSpectra ior, float roughness) : ConductorMaterial(std::move(ior), roughness, roughness) {}
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  ComplexIorSpectra ior_;
+  TrowbridgeReitz distribution_;
+};
+
+/// Glass, water: index of refraction n(λ) (a SellmeierSpectrum disperses; a ConstantSpectrum does not) against
+/// an outside of index 1; smooth when roughness is 0, else GGX with α = roughness².
+class DielectricMaterial {
+ public:
+  /// Throws InputError if roughness is outside [0, 1], the spectrum is missing, or n ≤ 0 somewhere.
+  DielectricMaterial(SpectrumPtr ior, float roughness);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectrumPtr ior_;
+  TrowbridgeReitz distribution_;
+};
+
+/// A Lambertian base of reflectance ρ(λ) under a smooth clear coat of index n(λ) (CoatedDiffuseBsdf).
+/// The coat's hemispherical reflectance F̄_ext(n(λ)) is tabulated at 5 nm at construction (it is a smooth
+/// function of n, which varies by about 1% over the visible for glasses).
+class CoatedDiffuseMaterial {
+ public:
+  /// Throws InputError if the coat index is not ≥ 1 over 360-830 nm or an input is missing.
+  CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectralTexturePtr reflectance_;
+  SpectrumPtr coat_ior_;
+  SpectrumPtr coat_diffuse_reflectance_;  // F̄_ext(λ)
+};
+
+/// A surface material of any kind, held by value (a std::variant): a scene keeps a std::vector<Material>.
+/// Built once at scene load (where invalid parameters throw InputError); bsdf() is called per hit from many
+/// threads, evaluates the spectral inputs at the path's wavelengths and returns the BSDF by value (no allocation).
+/// Roughness parameters are perceptual, r ∈ [0, 1], with α = r² (TrowbridgeReitz::roughness_to_alpha).
+class Material {
+ public:
+  using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial>;
+
+  template <typename T>
+  Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)
+
+  /// The BSDF at texture coordinates `uv` for the four wavelengths of the path.
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
+    return std::visit([&](const auto& m) { return m.bsdf(uv, lambda); }, material_);
+  }
+  const Variant& variant() const { return material_; }
+
+ private:
+  Variant material_;
+};
+
+}  // namespace rimu

@@ -1,0 +1,163 @@
+#include "transport/path_integrator.h"
+
+#include <cmath>
+
+#include "transport/frame.h"
+
+namespace rimu {
+namespace {
+
+constexpr float kLanes = float(kLaneCount);
+
+// The shading frame at a hit, flipped for opaque (two-sided) materials so that wo is on the +z side.
+struct ShadingContext {
+  Frame frame;
+  Vec3 geometric_normal;  // on the same side as the shading normal
+};
+
+ShadingContext shading_context(const SurfaceHit& hit, Vec3 wo_world, bool two_sided) {
+  Vec3 ns = hit.shading_normal, ng = hit.geometric_normal;
+  if (two_sided && dot(wo_world, ng) < 0.0f) {
+    ns = -ns;
+    ng = -ng;
+  }
+  return {Frame::from_normal(ns), ng};
+}
+
+}  // namespace
+
+Vec3 offset_ray_origin(Vec3 position, Vec3 geometric_normal, Vec3 direction, float scene_scale) {
+  // Float coordinates near |p| carry a rounding error of ~|p|·2⁻²⁴ per operation; Embree's hit point adds a few.
+  // 2⁻¹⁸·|p| is a safe margin; the scene-scale term covers points near the origin of a large scene.
+  const float magnitude = std::fmax(max_component(abs(position)), 1e-4f * scene_scale);
+  const float offset = magnitude * 0x1p-18f;
+  return position + face_forward(geometric_normal, direction) * offset;
+}
+
+SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
+                                         Sampler& sampler) const {
+  const auto& lights = *scene_.lights;
+  const LightSampler& light_sampler = *scene_.light_sampler;
+
+  SampledSpectrum radiance(0.0f);
+  SampledSpectrum beta(1.0f);        // f / p(x̄ | hero), per lane
+  SampledSpectrum pdf_ratio(1.0f);   // R_k = p(x̄ | λ_k) / p(x̄ | hero)
+  Ray ray = camera_ray;
+
+  // What the previous bounce left for MIS when this segment hits a light.
+  bool previous_specular = true;     // the camera "bounce" cannot be matched by light sampling
+  float previous_hero_pdf = 1.0f;    // q_{0,bsdf}
+  float previous_sum_ratio = kLanes; // Σ_k R_k before the bounce
+  float previous_bsdf_sum = kLanes;  // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
+  LightReference previous_reference{};
+
+  // Adds an emitter seen along the sampled direction: spectral MIS, and power-heuristic MIS against light sampling.
+  auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle) {
+    if (previous_specular || light_pdf_solid_angle <= 0.0f) {
+      radiance += beta * emitted * Float4(kLanes / sum(pdf_ratio));
+      return;
+    }
+    const float s_light = light_pdf_solid_angle * previous_sum_ratio;
+    const float s_bsdf = previous_bsdf_sum;
+    const float weight = previous_hero_pdf * s_bsdf / (s_light * s_light + s_bsdf * s_bsdf);
+    radiance += beta * emitted * Float4(kLanes * weight);
+  };
+
+  for (int depth = 0;; ++depth) {
+    const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
+    if (!hit) {
+      for (int index : scene_.infinite_lights) {
+        const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
+        const float pdf = previous_specular ? 0.0f
+                                            : light_sampler.probability(index) *
+                                                  lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
+        add_emission(le, pdf);
+      }
+      break;
+    }
+
+    const Vec3 wo_world = -ray.direction;
+    if (hit->light >= 0) {
+      const Light& light = *lights[size_t(hit->light)];
+      const SampledSpectrum le = light.radiance(*hit, wo_world, lambda);
+      const float pdf = previous_specular ? 0.0f
+                                          : light_sampler.probability(hit->light) *
+                                                light.pdf_li(previous_reference, ray.direction, &*hit);
+      add_emission(le, pdf);
+    }
+    if (depth >= settings_.max_depth || hit->material < 0) break;
+
+    const Bsdf bsdf = (*scene_.materials)[size_t(hit->material)].bsdf(hit->uv, lambda);
+    const BsdfFlags flags = bsdf.flags();
+    const ShadingContext shading = shading_context(*hit, wo_world, !flags.has_transmission);
+    const Vec3 wo = shading.frame.to_local(wo_world);
+    if (wo.z == 0.0f) break;
+
+    const LightReference reference{hit->position, shading.geometric_normal};
+    const float sum_ratio = sum(pdf_ratio);
+
+    // Next-event estimation: one light, picked by power.
+    const float u_light_choice = sampler.next_1d();
+    const Vec2 u_light = sampler.next_2d();
+    if (flags.has_non_delta) {
+      if (const auto pick = light_sampler.pick(u_light_choice)) {
+        const Light& light = *lights[size_t(pick->index)];
+        if (const auto ls = light.sample_li(reference, lambda, u_light)) {
+          const Vec3 wi = shading.frame.to_local(ls->wi);
+          const SampledSpectrum f = bsdf.eval(wo, wi) * Float4(std::fabs(wi.z));
+          // A direction below the geometric surface cannot be reached by an opaque material's light.
+          const bool wrong_side = !flags.has_transmission && dot(ls->wi, shading.geometric_normal) <= 0.0f;
+          if (!wrong_side && max_lane(f) > 0.0f) {
+            Ray shadow;
+            shadow.origin = offset_ray_origin(hit->position, hit->geometric_normal, ls->wi, scene_.scene_scale);
+            shadow.direction = ls->wi;
+            shadow.t_max = std::isinf(ls->distance) ? ls->distance : ls->distance * (1.0f - 0x1p-12f);
+            if (!scene_.geometry->occluded(shadow)) {
+              const float q_light = pick->probability * ls->pdf_solid_angle;
+              const float s_light = q_light * sum_ratio;
+              const float s_bsdf = ls->is_delta ? 0.0f : sum(pdf_ratio * bsdf.pdf(wo, wi));
+              const float weight = s_light / (s_light * s_light + s_bsdf * s_bsdf);
+              radiance += beta * f * ls->radiance * Float4(kLanes * weight);
+            }
+          }
+        }
+      }
+    }
+
+    // BSDF sampling continues the path.
+    const float u_lobe = sampler.next_1d();
+    const Vec2 u_direction = sampler.next_2d();
+    const std::optional<BsdfSample> bs = bsdf.sample(wo, u_lobe, u_direction);
+    if (!bs || !(bs->pdf[0] > 0.0f)) break;
+    const Vec3 wi_world = shading.frame.to_world(bs->wi);
+    // Opaque materials: the sampled direction must leave on the geometric front side (shading normals can lie).
+    if (!flags.has_transmission && dot(wi_world, shading.geometric_normal) <= 0.0f) break;
+
+    previous_specular = bs->is_delta;
+    previous_hero_pdf = bs->pdf[0];
+    previous_sum_ratio = sum_ratio;
+    previous_bsdf_sum = sum(pdf_ratio * bs->pdf);
+    previous_reference = reference;
+
+    beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
+    pdf_ratio *= bs->pdf / Float4(bs->pdf[0]);
+
+    // Russian roulette on the effective throughput (what the film will see), after a few bounces.
+    const float u_roulette = sampler.next_1d();
+    if (depth + 1 >= settings_.russian_roulette_depth) {
+      const float effective = max_lane(beta) * kLanes / sum(pdf_ratio);
+      const float survive = std::fmin(1.0f, effective);
+      if (!(survive > 0.0f) || u_roulette >= survive) break;
+      beta /= Float4(survive);
+    }
+    if (max_lane(abs(beta)) == 0.0f) break;
+
+    ray.origin = offset_ray_origin(hit->position, hit->geometric_normal, wi_world, scene_.scene_scale);
+    ray.direction = wi_world;
+    ray.t_min = 0.0f;
+    ray.t_max = INFINITY;
+  }
+  return radiance;
+}
+
+}  // namespace rimu

@@ -1,0 +1,56 @@
+// The hero-wavelength unidirectional path tracer: spectral MIS over four lanes, NEE + BSDF sampling with MIS.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "spectral/sampled_wavelengths.h"
+#include "transport/light.h"
+#include "transport/light_sampler.h"
+#include "transport/material.h"
+#include "transport/ray.h"
+#include "transport/ray_queries.h"
+#include "transport/sampler.h"
+
+namespace rimu {
+
+/// What the integrator needs of a scene: geometry queries, materials by index, lights by index, and how lights
+/// are picked. Non-owning; the render side owns everything and keeps it alive while rendering.
+struct TransportScene {
+  const RayQueries* geometry = nullptr;
+  const std::vector<Material>* materials = nullptr;
+  const std::vector<std::unique_ptr<Light>>* lights = nullptr;
+  const LightSampler* light_sampler = nullptr;
+  std::vector<int> infinite_lights;  ///< indices of lights with is_infinite(): seen by escaping rays
+  float scene_scale = 1.0f;          ///< bounding-box diagonal, for scale-aware ray offsets
+};
+
+struct PathIntegratorSettings {
+  int max_depth = 16;         ///< the number of surface interactions after which a path ends
+  int russian_roulette_depth = 3;  ///< from this depth on, paths are terminated with probability 1 − q
+};
+
+/// Estimates the radiance arriving along camera rays, per lane (see docs/transport.md for the estimator).
+///
+/// Dimension order per camera sample (every estimator draws the same dimension for the same decision):
+/// the render loop draws 0-1 film position, 2-3 lens, 4 wavelength; then per bounce, in this order:
+/// light choice (1), light position (2), BSDF lobe (1), BSDF direction (2), Russian roulette (1).
+class PathIntegrator {
+ public:
+  PathIntegrator(const TransportScene& scene, PathIntegratorSettings settings) : scene_(scene), settings_(settings) {}
+
+  /// Radiance along `ray` at the four wavelengths, in W/(m²·sr·nm): lane j is this path's estimate for λⱼ,
+  /// already weighted by spectral MIS, so the film's mean over lanes of Lⱼ c(λⱼ)/p(λⱼ) is unbiased.
+  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const;
+
+ private:
+  const TransportScene& scene_;
+  PathIntegratorSettings settings_;
+};
+
+/// The origin of a ray leaving `position` on the side `normal`·`direction` > 0, offset against self-intersection
+/// by a distance that scales with the magnitude of the coordinates (float spacing) and the scene's size.
+Vec3 offset_ray_origin(Vec3 position, Vec3 geometric_normal, Vec3 direction, float scene_scale);
+
+}  // namespace rimu

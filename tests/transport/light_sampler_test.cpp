@@ -1,0 +1,62 @@
+// Picking lights by power: chi-square against the powers, zero-power lights, empty scenes, and the weights each
+// light type reports.
+#include <doctest/doctest.h>
+
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "light_test_support.h"
+#include "transport/area_light.h"
+#include "transport/distant_light.h"
+#include "transport/light_sampler.h"
+#include "transport/point_light.h"
+
+using namespace rimu;
+
+TEST_CASE("light sampler picks lights in proportion to their power and never a dark one") {
+  const std::vector<double> power_w = {10.0, 0.0, 2.5, 100.0, 0.0, 0.01};
+  const LightSampler sampler(power_w);
+  CHECK(sampler.light_count() == 6);
+  const int n = 100000;
+  std::vector<double> observed(power_w.size(), 0.0), expected(power_w.size());
+  double total = 0;
+  for (double p : power_w) total += p;
+  for (size_t i = 0; i < power_w.size(); ++i) {
+    expected[i] = n * power_w[i] / total;
+    CHECK(sampler.probability(int(i)) == doctest::Approx(power_w[i] / total).epsilon(1e-6));
+  }
+  std::mt19937 rng(40);
+  for (int s = 0; s < n; ++s) {
+    const auto pick = sampler.pick(test::uniform01(rng));
+    REQUIRE(pick);
+    REQUIRE(power_w[pick->index] > 0.0);
+    REQUIRE(pick->probability == sampler.probability(pick->index));
+    observed[pick->index] += 1;
+  }
+  CHECK(test::chi_square(observed, expected).p_value > test::kChiSquareAlpha);
+  CHECK(sampler.probability(-1) == 0.0f);
+  CHECK(sampler.probability(6) == 0.0f);
+}
+
+TEST_CASE("light sampler of a scene without power picks nothing") {
+  const std::vector<double> zeros = {0.0, 0.0};
+  CHECK_FALSE(LightSampler(zeros).pick(0.3f));
+  CHECK_FALSE(LightSampler(std::vector<double>{}).pick(0.3f));
+  CHECK(LightSampler(zeros).probability(0) == 0.0f);
+}
+
+TEST_CASE("light sampler weights lights by their radiant power, lights at infinity by the scene radius") {
+  auto spectrum = std::make_shared<ConstantSpectrum>(1.0);
+  const PointLight point({0, 0, 0}, LightSpectrum(spectrum, 1.0));      // 4π · 470 W
+  const DistantLight sun({0, 0, 1}, LightSpectrum(spectrum, 4.0));      // π r² · 4 · 470 W
+  const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<uint32_t> idx = {0, 1, 2};
+  const AreaLight dark(v, idx, LightSpectrum(spectrum, 0.0), false);  // black: never picked
+  const std::vector<const Light*> lights = {&point, &sun, &dark};
+  const LightSampler sampler(lights, 1.0);
+  // With r = 1 m the sun's weight is 4π, equal to the point light's.
+  CHECK(sampler.probability(0) == doctest::Approx(0.5));
+  CHECK(sampler.probability(1) == doctest::Approx(0.5));
+  CHECK(sampler.probability(2) == 0.0f);
+}

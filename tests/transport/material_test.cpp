@@ -1,0 +1,95 @@
+// Materials turn spectral inputs into BSDFs at the path's wavelengths.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <variant>
+
+#include "spectral/error.h"
+#include "spectral/optical_constants.h"
+#include "test_support.h"
+#include "transport/material.h"
+
+using namespace rimu;
+
+namespace {
+
+SpectralTexturePtr constant_texture(double value) {
+  return std::make_shared<ConstantSpectralTexture>(std::make_shared<ConstantSpectrum>(value));
+}
+
+const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+
+}  // namespace
+
+TEST_CASE("material: diffuse evaluates its reflectance per lane and clamps it to [0, 1]") {
+  auto& lib = test::library();
+  const Material patch = DiffuseMaterial(std::make_shared<ConstantSpectralTexture>(lib.colorchecker_patch("dark_skin")));
+  const Bsdf bsdf = patch.bsdf({0.5f, 0.5f}, kLambda);
+  REQUIRE(std::holds_alternative<DiffuseBsdf>(bsdf.variant()));
+  const Float4 albedo = std::get<DiffuseBsdf>(bsdf.variant()).albedo();
+  const Float4 expected = lib.colorchecker_patch("dark_skin")->sample(kLambda);
+  for (int lane = 0; lane < 4; ++lane) CHECK(albedo[lane] == expected[lane]);
+  const Material too_bright = DiffuseMaterial(constant_texture(1.5));
+  CHECK(std::get<DiffuseBsdf>(too_bright.bsdf({}, kLambda).variant()).albedo()[0] == 1.0f);
+  CHECK(!bsdf.flags().has_delta);
+  CHECK(!bsdf.flags().has_transmission);
+}
+
+TEST_CASE("material: conductors and dielectrics are smooth at roughness 0 and rough above it") {
+  auto& lib = test::library();
+  const Material mirror = ConductorMaterial(conductor_ior(lib, "silver"), 0.0f);
+  const Material brushed = ConductorMaterial(conductor_ior(lib, "aluminium"), 0.2f, 0.6f);
+  CHECK(mirror.bsdf({}, kLambda).flags().has_delta);
+  CHECK(!brushed.bsdf({}, kLambda).flags().has_delta);
+  CHECK(brushed.bsdf({}, kLambda).flags().has_non_delta);
+  const Material glass = DielectricMaterial(dielectric_ior(lib, "bk7"), 0.0f);
+  const Material frosted = DielectricMaterial(dielectric_ior(lib, "water"), 0.5f);
+  CHECK(glass.bsdf({}, kLambda).flags().has_transmission);
+  CHECK(glass.bsdf({}, kLambda).flags().has_delta);
+  CHECK(frosted.bsdf({}, kLambda).flags().has_non_delta);
+}
+
+TEST_CASE("material: a Sellmeier glass disperses, a constant index does not") {
+  const Vec3 wo = normalize(Vec3(0.6f, 0.0f, 0.8f));
+  const Material bk7 = DielectricMaterial(dielectric_ior(test::library(), "bk7"), 0.0f);
+  const Material constant = DielectricMaterial(std::make_shared<ConstantSpectrum>(1.5), 0.0f);
+  const auto dispersed = bk7.bsdf({}, kLambda).sample(wo, 0.99f, {0.5f, 0.5f});
+  const auto plain = constant.bsdf({}, kLambda).sample(wo, 0.99f, {0.5f, 0.5f});
+  REQUIRE(dispersed);
+  REQUIRE(plain);
+  CHECK(dispersed->wavelength_dependent_direction);
+  CHECK(!plain->wavelength_dependent_direction);
+  CHECK(plain->pdf[3] == doctest::Approx(plain->pdf[0]));  // every lane could have refracted here
+}
+
+TEST_CASE("material: coated diffuse under a glass coat conserves energy with a white base") {
+  // The coat's F̄_ext is tabulated over wavelength; a white base must still give albedo 1 (coated_diffuse_bsdf.h).
+  const Material coated = CoatedDiffuseMaterial(constant_texture(1.0), dielectric_ior(test::library(), "bk7"));
+  const Bsdf bsdf = coated.bsdf({}, kLambda);
+  const Vec3 wo = normalize(Vec3(0.3f, 0.1f, 0.9f));
+  // Albedo = F(θo) + ∫ f_diffuse cos dωi, the integral by a 200×200 midpoint rule in (cos θ, φ) (error ~1e-5).
+  Float4 integral(0.0f);
+  const int steps = 200;
+  for (int i = 0; i < steps; ++i) {
+    const float z = (i + 0.5f) / steps, s = std::sqrt(1.0f - z * z);
+    for (int j = 0; j < steps; ++j) {
+      const float phi = 6.2831853f * (j + 0.5f) / steps;
+      integral += bsdf.eval(wo, {s * std::cos(phi), s * std::sin(phi), z}) * Float4(z);
+    }
+  }
+  integral *= Float4(6.2831853f / (steps * steps));
+  const auto specular = bsdf.sample(wo, 0.0f, {0.5f, 0.5f});
+  REQUIRE(specular);
+  REQUIRE(specular->is_delta);
+  const Float4 total = integral + specular->f * Float4(specular->wi.z);
+  for (int lane = 0; lane < 4; ++lane) CHECK(total[lane] == doctest::Approx(1.0).epsilon(2e-4));
+}
+
+TEST_CASE("material: invalid parameters are input errors") {
+  auto& lib = test::library();
+  CHECK_THROWS_AS(ConductorMaterial(conductor_ior(lib, "gold"), 1.5f), InputError);
+  CHECK_THROWS_AS(DielectricMaterial(dielectric_ior(lib, "bk7"), -0.1f), InputError);
+  CHECK_THROWS_AS(DielectricMaterial(std::make_shared<ConstantSpectrum>(0.0), 0.0f), InputError);
+  CHECK_THROWS_AS(CoatedDiffuseMaterial(constant_texture(0.5), std::make_shared<ConstantSpectrum>(0.8)), InputError);
+  CHECK_THROWS_AS(DiffuseMaterial(nullptr), InputError);
+}
