@@ -23,12 +23,12 @@ struct FilterSample {
 ///
 /// Each axis is sampled by inverting the CDF of f₁ tabulated at 257 equally spaced knots and linearly
 /// interpolated (PiecewiseLinearDistribution). The filter actually applied is therefore that interpolant:
-/// the box exactly, the smooth filters within 1e-4 of their peak (|f₁''| h²/8 with h = r/128).
+/// the box exactly, a smooth filter within h²/8·max|f₁''| (h = r/128): < 1e-4 of the peak for the defaults.
 /// f₁ per filter:
 /// - box:             1
 /// - Gaussian:        exp(−x²/2σ²) − exp(−r²/2σ²)  (shifted so it reaches 0 at the radius instead of jumping)
 /// - Blackman–Harris: a₀ + a₁cos(πx/r) + a₂cos(2πx/r) + a₃cos(3πx/r) with the 4-term −92 dB coefficients
-///   (0.35875, 0.48829, 0.14128, 0.01168) of Harris 1978 (Proc. IEEE 66(1), p. 65), centred on 0: the window
+///   (0.35875, 0.48829, 0.14128, 0.01168) of Harris 1978 (Proc. IEEE 66(1)), centred on 0: the window
 ///   ends at a₀ − a₁ + a₂ − a₃ = 6e-5 > 0, so it is positive everywhere.
 class PixelFilter {
  public:

@@ -26,10 +26,9 @@ enum class ResponseKind {
 /// - Camera RGB: c = (r̄, ḡ, b̄) / ∫ḡ dλ, so the equal-energy radiance of 1 W/(m²·sr·nm) gives G = 1.
 ///   Sensors are measured over a limited range (e.g. 380-720 nm); the response is zero outside it.
 ///
-/// The integrals are those of the functions the per-sample path actually evaluates: TabulatedSpectrum::sample()
-/// interpolates a 1 nm copy of the table, so a curve with zero extrapolation falls to zero over the 1 nm beyond
-/// its last measurement; ∫ is the exact integral of that piecewise-linear function over 360-830 nm, which makes
-/// the film's estimate of a constant radiance exactly unbiased.
+/// The integrals are exact integrals over 360-830 nm of the piecewise-linear curves the per-sample path evaluates
+/// (TabulatedSpectrum::sample(), zero outside a camera's measured range), so the film's estimate of a constant
+/// radiance is unbiased to float rounding.
 class SpectralResponse {
  public:
   /// CIE XYZ with the given standard observer.
@@ -74,7 +73,7 @@ class SpectralResponse {
   std::array<std::string, 3> channel_names_;
 };
 
-/// The exact integral over 360-830 nm of the piecewise-linear function TabulatedSpectrum::sample() evaluates.
+/// The exact integral over 360-830 nm, in nm × curve units, of the piecewise-linear function a TabulatedSpectrum is.
 double integral_as_sampled_nm(const TabulatedSpectrum& curve);
 
 }  // namespace rimu

@@ -96,12 +96,16 @@ const PlyVertex kVertices[] = {
 
 std::string ply_file(PlyFormat format, const std::vector<std::vector<int>>& faces = {{0, 1, 2, 3}, {0, 1, 4}}) {
   const char* name = format == PlyFormat::ascii ? "ascii" : format == PlyFormat::little ? "binary_little_endian" : "binary_big_endian";
-  std::string out = std::string("ply\nformat ") + name + " 1.0\ncomment written by rimu's mesh loader test\n" +
-                    "element vertex 5\nproperty float x\nproperty float y\nproperty double z\nproperty uchar red\n"
-                    "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\n"
-                    "property list uchar int extra\n"
-                    "element face " + std::to_string(faces.size()) + "\nproperty int flags\nproperty list uchar uint vertex_indices\n"
-                    "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+  // Built with += (a chain of + on a string literal trips GCC 12's false -Wrestrict warning).
+  std::string out = "ply\nformat ";
+  out += name;
+  out += " 1.0\ncomment written by rimu's mesh loader test\n"
+         "element vertex 5\nproperty float x\nproperty float y\nproperty double z\nproperty uchar red\n"
+         "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\n"
+         "property list uchar int extra\nelement face ";
+  out += std::to_string(faces.size());
+  out += "\nproperty int flags\nproperty list uchar uint vertex_indices\n"
+         "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
   if (format == PlyFormat::ascii) {
     for (const PlyVertex& v : kVertices)
       out += std::to_string(v.x) + " " + std::to_string(v.y) + " " + (v.z == 0.1 ? "0.1" : std::to_string(v.z)) + " " +
@@ -232,15 +236,14 @@ TEST_CASE("PLY degenerate triangles are kept, validate() passes, and the scene c
 }
 
 TEST_CASE("truncated PLY files load only when complete and otherwise give an InputError, never a crash") {
-  TempDir dir;
+  // In memory (parse_ply is load_ply after reading the file): a file write per length would take seconds.
   for (PlyFormat format : {PlyFormat::ascii, PlyFormat::little, PlyFormat::big}) {
     const std::string whole = ply_file(format);
     for (size_t length = 0; length <= whole.size(); ++length) {
       CAPTURE(length);
-      const fs::path file = dir.write("truncated.ply", whole.substr(0, length));
       bool loaded = false;
       try {
-        loaded = load_ply(file).validate().empty();
+        loaded = parse_ply(whole.substr(0, length), "truncated.ply").validate().empty();
       } catch (const InputError&) {
       }
       // Binary: every byte is needed. Ascii: dropping the final newline still leaves the last number whole.

@@ -1,0 +1,44 @@
+// One render from the command line's point of view: load, override, render, write. The `rimu` tool is a thin
+// parser in front of run_render_job(); tests call it directly.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "render/film.h"
+#include "render/renderer.h"
+
+namespace rimu {
+
+struct RenderJob {
+  std::optional<std::filesystem::path> scene;  ///< empty: the embedded Cornell box
+  std::filesystem::path exr_output = "rimu.exr";
+  std::optional<std::filesystem::path> png_output;
+  std::optional<int> samples_per_pixel, threads, width, height;
+  std::optional<uint64_t> seed;
+  std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
+  std::optional<PixelBounds> crop;
+  bool float_exr = false;
+  double exposure_ev = 0.0;
+  std::string view = "Standard";
+  bool quiet = false;  ///< no progress bar (it is also off when stderr is not a terminal)
+};
+
+struct RenderJobResult {
+  RenderStatistics statistics;
+  FilmSampleCounts sample_counts;
+};
+
+/// Runs the job: throws InputError for bad input (scene, options) before rendering starts, RenderError for
+/// failures of the machine or a library. Ctrl-C stops the render; the image reached so far is still written.
+/// A summary (time, samples/s, discarded samples) goes to `log`.
+RenderJobResult run_render_job(const RenderJob& job, std::ostream& log);
+
+/// Parses "WxH", "x0,y0,x1,y1": InputError naming `option` on malformed text.
+std::pair<int, int> parse_resolution(const std::string& text, const std::string& option);
+PixelBounds parse_crop(const std::string& text, const std::string& option);
+
+}  // namespace rimu

@@ -1,0 +1,95 @@
+#include "render/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "render/interrupt_flag.h"
+#include "render/progress_reporter.h"
+#include "transport/path_integrator.h"
+
+namespace rimu {
+namespace {
+
+constexpr int kTileSize = 16;
+
+std::vector<PixelBounds> make_tiles(const PixelBounds& b) {
+  std::vector<PixelBounds> tiles;
+  for (int y = b.y0; y < b.y1; y += kTileSize)
+    for (int x = b.x0; x < b.x1; x += kTileSize)
+      tiles.push_back({x, y, std::min(x + kTileSize, b.x1), std::min(y + kTileSize, b.y1)});
+  return tiles;
+}
+
+}  // namespace
+
+RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
+
+  const TransportScene view = scene.transport_view();
+  const PathIntegrator integrator(view, scene.settings.integrator);
+  const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
+  const IndependentSampler prototype_sampler(options.seed);
+  const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
+
+  RenderStatistics stats;
+  int pass_size = 1;
+  while (stats.samples_per_pixel_done < options.samples_per_pixel) {
+    const int first = stats.samples_per_pixel_done;
+    const int count = std::min(pass_size, options.samples_per_pixel - first);
+    std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
+    std::atomic<bool> stopped{false};
+
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      std::unique_ptr<Sampler> sampler = prototype_sampler.clone();
+      for (size_t t = range.begin(); t != range.end(); ++t) {
+        if (options.interrupt && options.interrupt->requested()) {
+          stopped = true;
+          return;
+        }
+        auto tile = std::make_unique<FilmTile>(film.make_tile(tiles[t]));
+        const PixelBounds& b = tile->bounds();
+        for (int y = b.y0; y < b.y1; ++y) {
+          for (int x = b.x0; x < b.x1; ++x) {
+            for (int s = first; s < first + count; ++s) {
+              sampler->start_pixel_sample(x, y, uint32_t(s));
+              // Dimension order: film (2), lens (2), wavelength (1); then the integrator's per-bounce dimensions.
+              const FilterSample fs = filter.sample(sampler->next_2d());
+              const Vec2 lens = sampler->next_2d();
+              const SampledWavelengths lambda = SampledWavelengths::sample_visible(sampler->next_1d());
+              const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset_px.x, float(y) + 0.5f + fs.offset_px.y, lens);
+              const SampledSpectrum radiance = integrator.radiance(ray, lambda, *sampler);
+              tile->add_sample(x, y, radiance, lambda, fs.weight);
+            }
+          }
+        }
+        if (options.progress) options.progress->add(uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count));
+        results[t] = std::move(tile);
+      }
+    });
+    if (stopped) {
+      stats.interrupted = true;  // the unfinished pass is dropped: every pixel keeps the same sample count
+      break;
+    }
+    for (const auto& tile : results) film.merge_tile(*tile);
+    stats.samples_per_pixel_done += count;
+    stats.camera_samples += uint64_t(film.pixel_bounds().area()) * uint64_t(count);
+    pass_size = std::min(pass_size * 2, 16);
+    if (options.interrupt && options.interrupt->requested()) {
+      stats.interrupted = stats.samples_per_pixel_done < options.samples_per_pixel;
+      break;
+    }
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+}  // namespace rimu

@@ -1,0 +1,67 @@
+// A loaded scene: geometry in Embree, materials, lights, camera and render settings.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/embree_scene.h"
+#include "spectral/spectral_library.h"
+#include "transport/light.h"
+#include "transport/light_sampler.h"
+#include "transport/material.h"
+#include "transport/path_integrator.h"
+
+namespace rimu {
+
+/// A pixel filter as the scene describes it (render/pixel_filter.h builds it).
+struct FilterSettings {
+  std::string type = "gaussian";  ///< box, gaussian, blackman-harris
+  float radius_px = 1.5f;
+  float sigma_px = 0.5f;
+};
+
+/// How to render: what the scene's "film" and "integrator" sections say, before command-line overrides.
+struct RenderSettings {
+  int width = 256, height = 256;
+  int samples_per_pixel = 16;
+  uint64_t seed = 1;
+  PathIntegratorSettings integrator;
+  std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
+  int spectral_bins = 0;              ///< 0 = no spectral framebuffer
+  FilterSettings filter;
+};
+
+/// Everything the renderer needs, owned in one place. Immutable after loading; shared by all render threads.
+struct Scene {
+  std::string source;  ///< the scene file, for messages and metadata
+  EmbreeScene geometry;
+  std::vector<Material> materials;
+  std::vector<std::string> material_names;
+  std::vector<std::unique_ptr<Light>> lights;
+  std::unique_ptr<LightSampler> light_sampler;
+  std::vector<int> infinite_lights;
+  CameraSettings camera;
+  RenderSettings settings;
+  float scene_scale = 1.0f;              ///< bounding-box diagonal (m)
+  size_t degenerate_triangles_removed = 0;
+
+  /// The non-owning view the integrator works on.
+  TransportScene transport_view() const;
+};
+
+/// Loads a JSON scene (docs/scene-format.md). Every error is an InputError naming the file and the key path
+/// (or line, for malformed JSON). Geometry is built into Embree before this returns.
+std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, SpectralLibrary& library);
+/// The same from an already parsed document; relative paths resolve against `directory`.
+std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::string& name,
+                                  const std::filesystem::path& directory, SpectralLibrary& library);
+/// The embedded default scene: the measured Cornell box (data/scenes/cornell_box/scene.json).
+std::filesystem::path default_scene_path(const SpectralLibrary& library);
+
+}  // namespace rimu

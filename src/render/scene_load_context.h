@@ -1,0 +1,31 @@
+// Internal to scene loading: the state shared by the parts of the loader (one file per section).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "render/json_cursor.h"
+#include "render/scene.h"
+#include "render/spectrum_input.h"
+#include "render/triangle_mesh.h"
+
+namespace rimu::scene_loading {
+
+struct LoadContext {
+  Scene& scene;
+  SpectrumInputContext spectra;
+  std::map<std::string, int> material_index;
+  std::map<std::string, int> prototype_index;
+};
+
+/// "transform": an array of operations applied in order to the object ({"translate": v}, {"scale": v or s},
+/// {"rotate": {"angle_deg": a, "axis": v}}, {"matrix": 12 row-major numbers}); absent = identity.
+Transform parse_transform(const JsonCursor& shape);
+void load_materials(const JsonCursor& section, LoadContext& context);
+void load_shapes(const JsonCursor& section, LoadContext& context);
+void load_prototypes(const JsonCursor& section, LoadContext& context);
+/// Loads the "lights" section. Runs before load_shapes, which appends an AreaLight per emissive shape.
+void load_lights(const JsonCursor& section, LoadContext& context);
+
+}  // namespace rimu::scene_loading

@@ -1,0 +1,107 @@
+#include <cmath>
+
+#include "render/scene.h"
+#include "render/scene_load_context.h"
+
+namespace rimu {
+
+using scene_loading::LoadContext;
+
+TransportScene Scene::transport_view() const {
+  TransportScene view;
+  view.geometry = &geometry;
+  view.materials = &materials;
+  view.lights = &lights;
+  view.light_sampler = light_sampler.get();
+  view.infinite_lights = infinite_lights;
+  view.scene_scale = scene_scale;
+  return view;
+}
+
+std::filesystem::path default_scene_path(const SpectralLibrary& library) {
+  return library.root() / "scenes" / "cornell_box" / "scene.json";
+}
+
+namespace {
+
+void load_camera(const JsonCursor& c, Scene& scene) {
+  c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance"});
+  const std::string type = c.has("type") ? c.at("type").choice({"pinhole", "thin_lens"}) : "pinhole";
+  const Vec3 from = c.at("from").vec3(), to = c.at("to").vec3();
+  const Vec3 up = c.has("up") ? c.at("up").vec3() : Vec3{0, 1, 0};
+  if (length(to - from) == 0.0f) c.at("to").fail("'to' equals 'from': the camera has no viewing direction");
+  if (length(cross(up, to - from)) == 0.0f) c.at("up").fail("'up' is parallel to the viewing direction");
+  scene.camera.camera_to_world = Transform::look_at(from, to, up);
+  scene.camera.vertical_fov_deg = float(c.number_or("vertical_fov_deg", 40.0, 1e-3, 179.0));
+  if (type == "thin_lens") {
+    scene.camera.lens_radius = float(c.at("lens_radius").number(0.0, 1e6));
+    scene.camera.focus_distance = float(c.at("focus_distance").number(1e-6, 1e9));
+  }
+}
+
+void load_film(const JsonCursor& c, RenderSettings& s) {
+  c.only_keys({"resolution", "response", "spectral_bins", "filter"});
+  if (c.has("resolution")) {
+    const JsonCursor r = c.at("resolution");
+    if (r.size() != 2) r.fail("expected [width, height]");
+    s.width = r.at(size_t(0)).integer(1, 1 << 15);
+    s.height = r.at(size_t(1)).integer(1, 1 << 15);
+  }
+  s.film_response = c.string_or("response", s.film_response);
+  s.spectral_bins = c.integer_or("spectral_bins", 0, 0, 471);
+  if (const auto f = c.find("filter")) {
+    f->only_keys({"type", "radius", "sigma"});
+    s.filter.type = f->at("type").choice({"box", "gaussian", "blackman-harris"});
+    s.filter.radius_px = float(f->number_or("radius", s.filter.type == "box" ? 0.5 : 1.5, 0.01, 16.0));
+    s.filter.sigma_px = float(f->number_or("sigma", 0.5, 0.01, 16.0));
+  }
+}
+
+void load_integrator(const JsonCursor& c, RenderSettings& s) {
+  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed"});
+  s.samples_per_pixel = c.integer_or("spp", s.samples_per_pixel, 1, 1 << 24);
+  s.integrator.max_depth = c.integer_or("max_depth", s.integrator.max_depth, 0, 100000);
+  s.integrator.russian_roulette_depth =
+      c.integer_or("russian_roulette_depth", s.integrator.russian_roulette_depth, 1, 100000);
+  s.seed = uint64_t(c.integer_or("seed", int(s.seed), 0, 2147483647));
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::string& name,
+                                  const std::filesystem::path& directory, SpectralLibrary& library) {
+  auto scene = std::make_unique<Scene>();
+  scene->source = name;
+  const JsonCursor root(document, name);
+  root.only_keys({"description", "camera", "film", "integrator", "spectra", "materials", "prototypes", "shapes",
+                  "lights"});
+  LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}};
+  if (const auto spectra = root.find("spectra")) context.spectra.set_named(*spectra);
+
+  load_camera(root.at("camera"), *scene);
+  if (const auto film = root.find("film")) load_film(*film, scene->settings);
+  if (const auto integrator = root.find("integrator")) load_integrator(*integrator, scene->settings);
+  if (const auto materials = root.find("materials")) scene_loading::load_materials(*materials, context);
+  if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
+  if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
+  if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
+
+  scene->geometry.commit();
+  const Vec3 extent = scene->geometry.bounds_max() - scene->geometry.bounds_min();
+  scene->scene_scale = is_finite(extent) && length(extent) > 0.0f ? length(extent) : 1.0f;
+
+  std::vector<const Light*> light_pointers;
+  for (size_t i = 0; i < scene->lights.size(); ++i) {
+    light_pointers.push_back(scene->lights[i].get());
+    if (scene->lights[i]->is_infinite()) scene->infinite_lights.push_back(int(i));
+  }
+  scene->light_sampler = std::make_unique<LightSampler>(light_pointers, 0.5 * double(scene->scene_scale));
+  return scene;
+}
+
+std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, SpectralLibrary& library) {
+  const nlohmann::json document = parse_json_file(path);
+  return load_scene(document, path.string(), path.parent_path(), library);
+}
+
+}  // namespace rimu

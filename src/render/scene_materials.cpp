@@ -1,0 +1,75 @@
+// The "materials" section of the JSON scene format.
+#include "render/scene_load_context.h"
+#include "spectral/optical_constants.h"
+#include "transport/spectral_texture.h"
+
+namespace rimu::scene_loading {
+namespace {
+
+SpectralTexturePtr reflectance_texture(const JsonCursor& value, LoadContext& context) {
+  return std::make_shared<ConstantSpectralTexture>(context.spectra.parse(value, SpectrumRole::reflectance));
+}
+
+// Roughness in [0, 1] (perceptual: alpha = roughness²; see transport/microfacet.h).
+float roughness_of(const JsonCursor& m) { return float(m.number_or("roughness", 0.0, 0.0, 1.0)); }
+
+template <typename F>
+auto with_key(const JsonCursor& where, F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    if (!e.where().key.empty()) throw;
+    where.fail(e.explanation());
+  }
+}
+
+Material load_material(const JsonCursor& m, LoadContext& context) {
+  const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "coated_diffuse"});
+  SpectralLibrary& library = context.spectra.library();
+  if (type == "diffuse") {
+    m.only_keys({"type", "reflectance"});
+    return DiffuseMaterial(reflectance_texture(m.at("reflectance"), context));
+  }
+  if (type == "conductor") {
+    m.only_keys({"type", "metal", "n", "k", "roughness", "roughness_u", "roughness_v"});
+    ComplexIorSpectra ior;
+    if (m.has("metal")) {
+      const JsonCursor metal = m.at("metal");
+      ior = with_key(metal, [&] { return conductor_ior(library, metal.string()); });
+    } else {
+      ior.n = context.spectra.parse(m.at("n"), SpectrumRole::ior);
+      ior.k = context.spectra.parse(m.at("k"), SpectrumRole::emission);  // ≥ 0, unbounded
+    }
+    const float r = roughness_of(m);
+    return ConductorMaterial(ior, float(m.number_or("roughness_u", r, 0.0, 1.0)),
+                             float(m.number_or("roughness_v", r, 0.0, 1.0)));
+  }
+  if (type == "dielectric") {
+    m.only_keys({"type", "ior", "glass", "roughness"});
+    SpectrumPtr ior;
+    if (m.has("glass")) {
+      const JsonCursor glass = m.at("glass");
+      ior = with_key(glass, [&] { return dielectric_ior(library, glass.string()); });
+    } else {
+      ior = context.spectra.parse(m.at("ior"), SpectrumRole::ior);
+    }
+    return DielectricMaterial(ior, roughness_of(m));
+  }
+  m.only_keys({"type", "reflectance", "coat_ior"});
+  const SpectrumPtr coat = m.has("coat_ior") ? context.spectra.parse(m.at("coat_ior"), SpectrumRole::ior)
+                                             : std::make_shared<ConstantSpectrum>(1.5);
+  return CoatedDiffuseMaterial(reflectance_texture(m.at("reflectance"), context), coat);
+}
+
+}  // namespace
+
+void load_materials(const JsonCursor& section, LoadContext& context) {
+  if (!section.is_object()) section.fail("expected an object of material name → material");
+  for (const auto& [name, unused] : section.value().items()) {
+    context.scene.materials.push_back(load_material(section.at(name), context));
+    context.scene.material_names.push_back(name);
+    context.material_index[name] = int(context.scene.materials.size()) - 1;
+  }
+}
+
+}  // namespace rimu::scene_loading

@@ -1,0 +1,161 @@
+// Shapes, transforms and instancing of the JSON scene format.
+#include <cmath>
+
+#include "render/mesh_loader.h"
+#include "transport/area_light.h"
+#include "transport/light_spectrum.h"
+#include "render/scene_load_context.h"
+
+namespace rimu::scene_loading {
+namespace {
+
+int material_of(const JsonCursor& shape, const LoadContext& context) {
+  const JsonCursor m = shape.at("material");
+  const std::string name = m.string();
+  const auto it = context.material_index.find(name);
+  if (it == context.material_index.end()) {
+    std::string known;
+    for (const auto& [n, i] : context.material_index) known += (known.empty() ? "" : ", ") + n;
+    m.fail("unknown material '" + name + "'" + (known.empty() ? "; the scene defines none" : "; defined: " + known));
+  }
+  return it->second;
+}
+
+std::vector<Vec3> vec3_array(const JsonCursor& c) {
+  std::vector<Vec3> out;
+  for (size_t i = 0; i < c.size(); ++i) out.push_back(c.at(i).vec3());
+  return out;
+}
+
+// The mesh a shape describes, in object space (before its transform).
+TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadContext& context) {
+  TriangleMesh mesh;
+  if (type == "mesh") {
+    const JsonCursor file = shape.at("file");
+    const std::filesystem::path path = context.spectra.scene_directory() / file.string();
+    try {
+      mesh = load_mesh(path);
+    } catch (const InputError& e) {
+      SourceLocation where = e.where();
+      if (where.key.empty()) where.key = file.path();
+      throw InputError(where, e.explanation());
+    }
+  } else if (type == "quad") {
+    const JsonCursor v = shape.at("vertices");
+    if (v.size() != 4) v.fail("a quad has 4 vertices, counter-clockwise seen from its front");
+    mesh.positions = vec3_array(v);
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+  } else {  // triangles
+    mesh.positions = vec3_array(shape.at("positions"));
+    const JsonCursor indices = shape.at("indices");
+    for (size_t i = 0; i < indices.size(); ++i) mesh.indices.push_back(uint32_t(indices.at(i).integer(0, 1 << 30)));
+    if (const auto normals = shape.find("normals")) mesh.normals = vec3_array(*normals);
+    if (const auto uvs = shape.find("uvs"))
+      for (size_t i = 0; i < uvs->size(); ++i) mesh.uvs.push_back(uvs->at(i).vec2());
+  }
+  if (const std::string problem = mesh.validate(); !problem.empty()) shape.fail("invalid mesh: " + problem);
+  return mesh;
+}
+
+}  // namespace
+
+Transform parse_transform(const JsonCursor& shape) {
+  Transform t;
+  const auto ops = shape.find("transform");
+  if (!ops) return t;
+  for (size_t i = 0; i < ops->size(); ++i) {
+    const JsonCursor op = ops->at(i);
+    op.only_keys({"translate", "scale", "rotate", "matrix"});
+    if (op.size() != 1) op.fail("each transform step has exactly one of translate, scale, rotate, matrix");
+    Transform step;
+    if (op.has("translate")) {
+      step = Transform::translate(op.at("translate").vec3());
+    } else if (op.has("scale")) {
+      const JsonCursor s = op.at("scale");
+      const Vec3 v = s.is_number() ? Vec3{float(s.number()), float(s.number()), float(s.number())} : s.vec3();
+      if (v.x == 0.0f || v.y == 0.0f || v.z == 0.0f) s.fail("a scale of 0 collapses the shape");
+      step = Transform::scale(v);
+    } else if (op.has("rotate")) {
+      const JsonCursor r = op.at("rotate");
+      r.only_keys({"angle_deg", "axis"});
+      const Vec3 axis = r.at("axis").vec3();
+      if (length(axis) == 0.0f) r.at("axis").fail("the rotation axis is zero");
+      step = Transform::rotate(float(r.at("angle_deg").number()), axis);
+    } else {
+      const JsonCursor m = op.at("matrix");
+      if (m.size() != 12) m.fail("expected 12 numbers: three rows of a 3x4 matrix");
+      std::array<float, 12> rows{};
+      for (size_t k = 0; k < 12; ++k) rows[k] = float(m.at(k).number());
+      bool invertible = false;
+      step = Transform::from_rows(rows, invertible);
+      if (!invertible) m.fail("the matrix is singular (it flattens the shape)");
+    }
+    t = step * t;  // later steps apply after earlier ones
+  }
+  if (!t.is_finite() || !std::isfinite(t.determinant()) || t.determinant() == 0.0f)
+    ops->fail("the combined transform is singular or not finite");
+  return t;
+}
+
+void load_shapes(const JsonCursor& section, LoadContext& context) {
+  Scene& scene = context.scene;
+  for (size_t i = 0; i < section.size(); ++i) {
+    const JsonCursor shape = section.at(i);
+    const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "sphere", "instance"});
+    if (type == "sphere") {
+      shape.only_keys({"type", "name", "center", "radius", "material", "transform"});
+      if (shape.has("transform")) shape.at("transform").fail("spheres take center and radius, not a transform");
+      const Vec3 centre = shape.at("center").vec3();
+      const float radius = float(shape.at("radius").number(1e-30, 1e30));
+      scene.geometry.add_sphere(centre, radius, material_of(shape, context));
+      continue;
+    }
+    if (type == "instance") {
+      shape.only_keys({"type", "name", "prototype", "transform"});
+      const JsonCursor p = shape.at("prototype");
+      const auto it = context.prototype_index.find(p.string());
+      if (it == context.prototype_index.end()) p.fail("unknown prototype '" + p.string() + "'");
+      scene.geometry.add_instance(it->second, parse_transform(shape));
+      continue;
+    }
+    shape.only_keys({"type", "name", "file", "vertices", "positions", "indices", "normals", "uvs", "material",
+                     "transform", "emission", "two_sided"});
+    TriangleMesh mesh = mesh_of(shape, type, context);
+    mesh.transform(parse_transform(shape));
+    scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
+    if (mesh.triangle_count() == 0) continue;  // only degenerate triangles (counted above)
+    const int material = material_of(shape, context);
+    if (const auto emission = shape.find("emission")) {
+      // Lights were loaded first, so area lights take the indices after them, in the order of the shapes.
+      LightSpectrum radiance(context.spectra.parse(*emission, SpectrumRole::emission), 1.0);
+      auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, std::move(radiance),
+                                               shape.boolean_or("two_sided", false));
+      scene.lights.push_back(std::move(light));
+      scene.geometry.add_mesh(mesh, material, int(scene.lights.size()) - 1);
+    } else {
+      if (shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
+      scene.geometry.add_mesh(mesh, material, -1);
+    }
+  }
+}
+
+void load_prototypes(const JsonCursor& section, LoadContext& context) {
+  if (!section.is_object()) section.fail("expected an object of name → array of shapes");
+  for (const auto& [name, unused] : section.value().items()) {
+    const JsonCursor shapes = section.at(name);
+    std::vector<std::pair<TriangleMesh, int>> meshes;
+    for (size_t i = 0; i < shapes.size(); ++i) {
+      const JsonCursor shape = shapes.at(i);
+      const std::string type = shape.at("type").choice({"mesh", "triangles", "quad"});
+      shape.only_keys({"type", "name", "file", "vertices", "positions", "indices", "normals", "uvs", "material",
+                       "transform"});
+      TriangleMesh mesh = mesh_of(shape, type, context);
+      mesh.transform(parse_transform(shape));
+      context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
+      if (mesh.triangle_count() > 0) meshes.emplace_back(std::move(mesh), material_of(shape, context));
+    }
+    context.prototype_index[name] = context.scene.geometry.add_prototype(meshes);
+  }
+}
+
+}  // namespace rimu::scene_loading
