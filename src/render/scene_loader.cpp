@@ -58,7 +58,15 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 }
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed"});
+  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "wavelengths", "direct_lighting"});
+  if (const auto d = c.find("direct_lighting")) {
+    const std::string v = d->choice({"mis", "nee_only", "bsdf_only"});
+    s.integrator.direct_lighting = v == "nee_only"    ? DirectLighting::nee_only
+                                   : v == "bsdf_only" ? DirectLighting::bsdf_only
+                                                      : DirectLighting::mis;
+  }
+  if (const auto mode = c.find("wavelengths"))
+    s.integrator.wavelengths = mode->choice({"hero", "single"}) == "single" ? WavelengthMode::single : WavelengthMode::hero;
   s.samples_per_pixel = c.integer_or("spp", s.samples_per_pixel, 1, 1 << 24);
   s.integrator.max_depth = c.integer_or("max_depth", s.integrator.max_depth, 0, 100000);
   s.integrator.russian_roulette_depth =

@@ -40,19 +40,26 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
   const LightSampler& light_sampler = *scene_.light_sampler;
 
   SampledSpectrum radiance(0.0f);
-  SampledSpectrum beta(1.0f);        // f / p(x̄ | hero), per lane
-  SampledSpectrum pdf_ratio(1.0f);   // R_k = p(x̄ | λ_k) / p(x̄ | hero)
+  // R_k = p(x̄ | λ_k) / p(x̄ | hero). Single-wavelength mode makes the partners' techniques absent (R_k = 0), so
+  // the hero's estimate is 4·β·L (the film averages four lanes) and the partners' outputs are masked to zero.
+  const bool single = settings_.wavelengths == WavelengthMode::single;
+  SampledSpectrum pdf_ratio = single ? Float4(1.0f, 0.0f, 0.0f, 0.0f) : Float4(1.0f);
+  SampledSpectrum beta = pdf_ratio;  // f / p(x̄ | hero), per lane
   Ray ray = camera_ray;
 
   // What the previous bounce left for MIS when this segment hits a light.
   bool previous_specular = true;     // the camera "bounce" cannot be matched by light sampling
   float previous_hero_pdf = 1.0f;    // q_{0,bsdf}
-  float previous_sum_ratio = kLanes; // Σ_k R_k before the bounce
-  float previous_bsdf_sum = kLanes;  // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
+  float previous_sum_ratio = sum(pdf_ratio);  // Σ_k R_k before the bounce
+  float previous_bsdf_sum = sum(pdf_ratio);   // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
   LightReference previous_reference{};
 
   // Adds an emitter seen along the sampled direction: spectral MIS, and power-heuristic MIS against light sampling.
+  const DirectLighting strategy = settings_.direct_lighting;
   auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle) {
+    // NEE-only: a non-delta bounce leaves emitters to next-event estimation (which then takes full weight).
+    if (strategy == DirectLighting::nee_only && !previous_specular) return;
+    if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
     if (previous_specular || light_pdf_solid_angle <= 0.0f) {
       radiance += beta * emitted * Float4(kLanes / sum(pdf_ratio));
       return;
@@ -99,7 +106,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     // Next-event estimation: one light, picked by power.
     const float u_light_choice = sampler.next_1d();
     const Vec2 u_light = sampler.next_2d();
-    if (flags.has_non_delta) {
+    if (flags.has_non_delta && strategy != DirectLighting::bsdf_only) {
       if (const auto pick = light_sampler.pick(u_light_choice)) {
         const Light& light = *lights[size_t(pick->index)];
         if (const auto ls = light.sample_li(reference, lambda, u_light)) {
@@ -115,7 +122,8 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
             if (!scene_.geometry->occluded(shadow)) {
               const float q_light = pick->probability * ls->pdf_solid_angle;
               const float s_light = q_light * sum_ratio;
-              const float s_bsdf = ls->is_delta ? 0.0f : sum(pdf_ratio * bsdf.pdf(wo, wi));
+              const float s_bsdf =
+                  ls->is_delta || strategy == DirectLighting::nee_only ? 0.0f : sum(pdf_ratio * bsdf.pdf(wo, wi));
               const float weight = s_light / (s_light * s_light + s_bsdf * s_bsdf);
               radiance += beta * f * ls->radiance * Float4(kLanes * weight);
             }
@@ -157,7 +165,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     ray.t_min = 0.0f;
     ray.t_max = INFINITY;
   }
-  return radiance;
+  return single ? radiance * Float4(1.0f, 0.0f, 0.0f, 0.0f) : radiance;
 }
 
 }  // namespace rimu

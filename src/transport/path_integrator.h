@@ -26,9 +26,24 @@ struct TransportScene {
   float scene_scale = 1.0f;          ///< bounding-box diagonal, for scale-aware ray offsets
 };
 
+/// How the four lanes are used.
+enum class WavelengthMode {
+  hero,    ///< hero + three partners, combined by spectral MIS (the default)
+  single,  ///< the hero alone: partners carry nothing (a baseline, and a reference for unbiasedness tests)
+};
+
+/// How light sources are found (the default combines both; the others exist to check the combination).
+enum class DirectLighting {
+  mis,        ///< next-event estimation and BSDF sampling, power heuristic
+  nee_only,   ///< only next-event estimation sees non-delta emitters (BSDF-sampled hits on lights add nothing)
+  bsdf_only,  ///< no next-event estimation: lights are found only by BSDF sampling (delta lights are then invisible)
+};
+
 struct PathIntegratorSettings {
   int max_depth = 16;         ///< the number of surface interactions after which a path ends
   int russian_roulette_depth = 3;  ///< from this depth on, paths are terminated with probability 1 − q
+  WavelengthMode wavelengths = WavelengthMode::hero;
+  DirectLighting direct_lighting = DirectLighting::mis;
 };
 
 /// Estimates the radiance arriving along camera rays, per lane (see docs/transport.md for the estimator).
