@@ -6,5 +6,6 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)"
-# Until the renderer lands (issue 4), the main job is the colour toolkit's report on CIE illuminant D65.
-build/bin/rimu-colour report D65
+# The main job: render the embedded default scene, the measured spectral Cornell box, to EXR (CIE XYZ) and PNG (sRGB).
+mkdir -p out
+build/bin/rimu -o out/cornell_box.exr --png out/cornell_box.png "$@"

@@ -16,12 +16,13 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const std::string& obj
   if (extension == ".obj") return load_obj(path, object);
   if (extension == ".ply") {
     if (!object.empty())
-      throw InputError({path.string(), 0, ""}, "a PLY file holds a single mesh; object '" + object +
-                                                   "' can only be chosen in an OBJ file");
+      throw InputError({path.string(), 0, ""},
+                       "a PLY file holds a single mesh; object '" + object + "' can only be chosen in an OBJ file");
     return load_ply(path);
   }
-  throw InputError({path.string(), 0, ""}, "unsupported mesh format '" + (extension.empty() ? "(no extension)" : extension) +
-                                               "'; supported: .obj, .ply");
+  throw InputError(
+      {path.string(), 0, ""},
+      "unsupported mesh format '" + (extension.empty() ? "(no extension)" : extension) + "'; supported: .obj, .ply");
 }
 
 }  // namespace rimu

@@ -47,7 +47,8 @@ bool parse_finite_float(std::string_view word, double& value) {
 void check_numbers(const Words& words, size_t required, size_t checked, const SourceLocation& where) {
   if (words.size() < required + 1)
     throw InputError(where, "'" + std::string(words[0]) + "' needs at least " + std::to_string(required) +
-                                (required == 1 ? " number" : " numbers") + ", found " + std::to_string(words.size() - 1));
+                                (required == 1 ? " number" : " numbers") + ", found " +
+                                std::to_string(words.size() - 1));
   for (size_t i = 1; i <= checked && i < words.size(); ++i) {
     double value = 0.0;
     if (!parse_finite_float(words[i], value))
@@ -62,8 +63,8 @@ struct Counts {
 // Checks one index of a face corner: 1-based, or negative = counted back from the statements so far.
 // Positive indices may point forward (tinyobjloader resolves them against the whole file), so they are checked
 // against the file's totals.
-void check_index(std::string_view part, const char* what, const char* what_plural, long long so_far, long long total, std::string_view corner,
-                 const SourceLocation& where) {
+void check_index(std::string_view part, const char* what, const char* what_plural, long long so_far, long long total,
+                 std::string_view corner, const SourceLocation& where) {
   long long index = 0;
   const auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), index);
   if (ec != std::errc() || ptr != part.data() + part.size())
@@ -71,8 +72,8 @@ void check_index(std::string_view part, const char* what, const char* what_plura
   if (index == 0)
     throw InputError(where, "face corner '" + std::string(corner) + "': OBJ indices start at 1 (0 is not an index)");
   if (index > total)
-    throw InputError(where, "face corner '" + std::string(corner) + "' refers to " + what + " " + std::to_string(index) +
-                                " but the file has " + std::to_string(total));
+    throw InputError(where, "face corner '" + std::string(corner) + "' refers to " + what + " " +
+                                std::to_string(index) + " but the file has " + std::to_string(total));
   if (index < 0 && so_far + index < 0)
     throw InputError(where, "face corner '" + std::string(corner) + "' refers " + std::to_string(-index) + " " +
                                 what_plural + " back but only " + std::to_string(so_far) + " come before this line");
@@ -93,7 +94,9 @@ void check_face(const Words& words, const Counts& so_far, const Counts& total, c
       start = i + 1;
     }
     check_index(parts[0], "vertex", "vertices", so_far.positions, total.positions, corner, where);
-    if (!parts[1].empty()) check_index(parts[1], "texture coordinate", "texture coordinates", so_far.texcoords, total.texcoords, corner, where);
+    if (!parts[1].empty())
+      check_index(parts[1], "texture coordinate", "texture coordinates", so_far.texcoords, total.texcoords, corner,
+                  where);
     if (!parts[2].empty()) check_index(parts[2], "normal", "normals", so_far.normals, total.normals, corner, where);
     if (part == 3 && parts[2].empty())
       throw InputError(where, "face corner '" + std::string(corner) + "' ends in '/' with no normal index");

@@ -48,8 +48,9 @@ struct CornerHash {
 
 // The line of statement `index`, or 0 when the check pass and tinyobjloader disagree on the count.
 int line_of(const std::vector<int>& lines, size_t expected_count, int index) {
-  return lines.size() == expected_count && index >= 0 && static_cast<size_t>(index) < lines.size() ? lines[static_cast<size_t>(index)]
-                                                                                                      : 0;
+  return lines.size() == expected_count && index >= 0 && static_cast<size_t>(index) < lines.size()
+             ? lines[static_cast<size_t>(index)]
+             : 0;
 }
 
 // Unit normal of triangle (a, b, c), computed in double so large coordinates do not overflow. A degenerate
@@ -63,8 +64,8 @@ Vec3 geometric_normal(Vec3 a, Vec3 b, Vec3 c) {
   return {float(n[0] / len), float(n[1] / len), float(n[2] / len)};
 }
 
-std::vector<const tinyobj::shape_t*> select_shapes(const std::vector<tinyobj::shape_t>& shapes, const std::string& object,
-                                                   const std::string& file) {
+std::vector<const tinyobj::shape_t*> select_shapes(const std::vector<tinyobj::shape_t>& shapes,
+                                                   const std::string& object, const std::string& file) {
   std::vector<const tinyobj::shape_t*> selected;
   for (const tinyobj::shape_t& s : shapes)
     if (!s.mesh.indices.empty() && (object.empty() || s.name == object)) selected.push_back(&s);
@@ -75,8 +76,8 @@ std::vector<const tinyobj::shape_t*> select_shapes(const std::vector<tinyobj::sh
     if (!s.mesh.indices.empty()) names.insert(s.name.empty() ? "(unnamed)" : "'" + s.name + "'");
   std::string known;
   for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-  throw InputError({file, 0, ""}, "no object or group named '" + object + "' has faces; the file has: " +
-                                      (known.empty() ? "no faces" : known));
+  throw InputError({file, 0, ""}, "no object or group named '" + object +
+                                      "' has faces; the file has: " + (known.empty() ? "no faces" : known));
 }
 
 }  // namespace
@@ -106,8 +107,10 @@ TriangleMesh parse_obj(std::string_view text, const std::string& file, const std
   auto position = [&](int i) {
     if (i < 0 || static_cast<size_t>(i) >= position_count)  // the check pass makes this unreachable
       throw InputError({file, 0, ""}, "a face refers to vertex " + std::to_string(i + 1) + ", which does not exist");
-    const Vec3 p{attrib.vertices[3 * size_t(i)], attrib.vertices[3 * size_t(i) + 1], attrib.vertices[3 * size_t(i) + 2]};
-    if (!is_finite(p)) throw InputError({file, line_of(lines.positions, position_count, i), ""}, "the vertex is not finite");
+    const Vec3 p{attrib.vertices[3 * size_t(i)], attrib.vertices[3 * size_t(i) + 1],
+                 attrib.vertices[3 * size_t(i) + 2]};
+    if (!is_finite(p))
+      throw InputError({file, line_of(lines.positions, position_count, i), ""}, "the vertex is not finite");
     return p;
   };
   auto normal = [&](int i) {
@@ -116,12 +119,14 @@ TriangleMesh parse_obj(std::string_view text, const std::string& file, const std
     const Vec3 n{attrib.normals[3 * size_t(i)], attrib.normals[3 * size_t(i) + 1], attrib.normals[3 * size_t(i) + 2]};
     const float len = length(n);
     if (!(len > 0.0f) || !std::isfinite(len))
-      throw InputError({file, line_of(lines.normals, normal_count, i), ""}, "a face uses this normal, which is zero or not finite");
+      throw InputError({file, line_of(lines.normals, normal_count, i), ""},
+                       "a face uses this normal, which is zero or not finite");
     return n / len;
   };
   auto uv = [&](int i) {
     if (static_cast<size_t>(i) >= texcoord_count)
-      throw InputError({file, 0, ""}, "a face refers to texture coordinate " + std::to_string(i + 1) + ", which does not exist");
+      throw InputError({file, 0, ""},
+                       "a face refers to texture coordinate " + std::to_string(i + 1) + ", which does not exist");
     return Vec2{attrib.texcoords[2 * size_t(i)], attrib.texcoords[2 * size_t(i) + 1]};
   };
 

@@ -1,11 +1,13 @@
 #include "render/ply_format.h"
 
 #include <bit>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "spectral/error.h"
 
@@ -19,9 +21,9 @@ struct TypeName {
 };
 // PLY 1.0 names (Turk 1994) and the sized aliases most writers use today.
 constexpr TypeName kTypeNames[] = {
-    {"char", Type::int8},     {"int8", Type::int8},     {"uchar", Type::uint8},   {"uint8", Type::uint8},
-    {"short", Type::int16},   {"int16", Type::int16},   {"ushort", Type::uint16}, {"uint16", Type::uint16},
-    {"int", Type::int32},     {"int32", Type::int32},   {"uint", Type::uint32},   {"uint32", Type::uint32},
+    {"char", Type::int8},     {"int8", Type::int8},       {"uchar", Type::uint8},    {"uint8", Type::uint8},
+    {"short", Type::int16},   {"int16", Type::int16},     {"ushort", Type::uint16},  {"uint16", Type::uint16},
+    {"int", Type::int32},     {"int32", Type::int32},     {"uint", Type::uint32},    {"uint32", Type::uint32},
     {"float", Type::float32}, {"float32", Type::float32}, {"double", Type::float64}, {"float64", Type::float64},
 };
 
@@ -50,13 +52,17 @@ Type parse_type(std::string_view word, const SourceLocation& where) {
 size_t size_of(Type type) {
   switch (type) {
     case Type::int8:
-    case Type::uint8: return 1;
+    case Type::uint8:
+      return 1;
     case Type::int16:
-    case Type::uint16: return 2;
+    case Type::uint16:
+      return 2;
     case Type::int32:
     case Type::uint32:
-    case Type::float32: return 4;
-    case Type::float64: return 8;
+    case Type::float32:
+      return 4;
+    case Type::float64:
+      return 8;
   }
   return 0;
 }
@@ -90,21 +96,27 @@ Header parse_header(std::string_view bytes, const std::string& file) {
 
     const std::vector<std::string_view> words = split_words(line);
     if (line_number == 1) {
-      if (words.size() != 1 || words[0] != "ply") throw InputError(where, "not a PLY file: it does not start with 'ply'");
+      if (words.size() != 1 || words[0] != "ply")
+        throw InputError(where, "not a PLY file: it does not start with 'ply'");
       continue;
     }
     if (words.empty() || words[0] == "comment" || words[0] == "obj_info") continue;
     const std::string_view keyword = words[0];
 
     if (keyword == "format") {
-      if (words.size() != 3) throw InputError(where, "expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
-      if (words[1] == "ascii") header.format = Format::ascii;
-      else if (words[1] == "binary_little_endian") header.format = Format::binary_little_endian;
-      else if (words[1] == "binary_big_endian") header.format = Format::binary_big_endian;
+      if (words.size() != 3)
+        throw InputError(where, "expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
+      if (words[1] == "ascii")
+        header.format = Format::ascii;
+      else if (words[1] == "binary_little_endian")
+        header.format = Format::binary_little_endian;
+      else if (words[1] == "binary_big_endian")
+        header.format = Format::binary_big_endian;
       else
         throw InputError(where, "unknown PLY format '" + std::string(words[1]) +
                                     "'; supported: ascii, binary_little_endian, binary_big_endian");
-      if (words[2] != "1.0") throw InputError(where, "unsupported PLY version '" + std::string(words[2]) + "' (only 1.0)");
+      if (words[2] != "1.0")
+        throw InputError(where, "unsupported PLY version '" + std::string(words[2]) + "' (only 1.0)");
       has_format = true;
     } else if (keyword == "element") {
       Element element;
@@ -184,14 +196,22 @@ double BodyReader::read_binary(Type type) {
     return static_cast<double>(value);
   };
   switch (type) {
-    case Type::int8: return as(int8_t{});
-    case Type::uint8: return as(uint8_t{});
-    case Type::int16: return as(int16_t{});
-    case Type::uint16: return as(uint16_t{});
-    case Type::int32: return as(int32_t{});
-    case Type::uint32: return as(uint32_t{});
-    case Type::float32: return as(float{});
-    case Type::float64: return as(double{});
+    case Type::int8:
+      return as(int8_t{});
+    case Type::uint8:
+      return as(uint8_t{});
+    case Type::int16:
+      return as(int16_t{});
+    case Type::uint16:
+      return as(uint16_t{});
+    case Type::int32:
+      return as(int32_t{});
+    case Type::uint32:
+      return as(uint32_t{});
+    case Type::float32:
+      return as(float{});
+    case Type::float64:
+      return as(double{});
   }
   return 0.0;
 }

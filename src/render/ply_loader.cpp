@@ -29,7 +29,8 @@ constexpr std::array<std::array<const char*, 2>, 4> kUvNames = {
 
 void require_scalar(const ply::Element& vertex, int index, const std::string& file) {
   const ply::Property& p = vertex.properties[static_cast<size_t>(index)];
-  if (p.is_list) throw InputError({file, p.header_line, ""}, "vertex property '" + p.name + "' must be a scalar, not a list");
+  if (p.is_list)
+    throw InputError({file, p.header_line, ""}, "vertex property '" + p.name + "' must be a scalar, not a list");
 }
 
 VertexLayout vertex_layout(const ply::Element& vertex, const std::string& file) {
@@ -40,7 +41,8 @@ VertexLayout vertex_layout(const ply::Element& vertex, const std::string& file) 
   for (int i = 0; i < 3; ++i) {
     layout.position[i] = vertex.index_of(axes[i]);
     if (layout.position[i] < 0)
-      throw InputError({file, vertex.header_line, ""}, std::string("element 'vertex' has no property '") + axes[i] + "'");
+      throw InputError({file, vertex.header_line, ""},
+                       std::string("element 'vertex' has no property '") + axes[i] + "'");
     require_scalar(vertex, layout.position[i], file);
     layout.normal[i] = vertex.index_of(normal_axes[i]);
     normals_found += layout.normal[i] >= 0;
@@ -77,7 +79,8 @@ void read_record(ply::BodyReader& reader, const ply::Element& element, std::vect
   }
 }
 
-void read_vertices(ply::BodyReader& reader, const ply::Element& element, const VertexLayout& layout, TriangleMesh& mesh) {
+void read_vertices(ply::BodyReader& reader, const ply::Element& element, const VertexLayout& layout,
+                   TriangleMesh& mesh) {
   // A record takes at least one byte, so the file size bounds the allocation even when the count is garbage.
   const size_t reserve = static_cast<size_t>(std::min<uint64_t>(element.count, reader.remaining()));
   mesh.positions.reserve(reserve);
@@ -100,7 +103,8 @@ void read_vertices(ply::BodyReader& reader, const ply::Element& element, const V
       const double nx = value(layout.normal[0]), ny = value(layout.normal[1]), nz = value(layout.normal[2]);
       const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
       if (!(len > 0.0) || !std::isfinite(len)) reader.fail("the normal is zero or not finite");
-      mesh.normals.push_back({static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)});
+      mesh.normals.push_back(
+          {static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)});
     }
     if (layout.uv[0] >= 0) {
       const double u = value(layout.uv[0]), v = value(layout.uv[1]);
@@ -131,7 +135,8 @@ void read_faces(ply::BodyReader& reader, const ply::Element& element, int list_i
       const double n = reader.read(property.count_type);
       if (n < 3) reader.fail("has " + std::to_string(static_cast<long long>(n)) + " vertices; a face needs at least 3");
       // Every value takes at least one byte: a longer list than the rest of the file is a truncated file.
-      if (n > static_cast<double>(reader.remaining())) reader.fail("the file ends inside this record (is it truncated?)");
+      if (n > static_cast<double>(reader.remaining()))
+        reader.fail("the file ends inside this record (is it truncated?)");
       polygon.clear();
       for (uint64_t i = 0; i < static_cast<uint64_t>(n); ++i) {
         const double index = reader.read(property.type);
@@ -141,7 +146,8 @@ void read_faces(ply::BodyReader& reader, const ply::Element& element, int list_i
         polygon.push_back(static_cast<uint32_t>(index));
       }
       // Fan triangulation keeps the polygon's winding: (0, i, i+1) turns the same way as the polygon.
-      for (size_t i = 1; i + 1 < polygon.size(); ++i) mesh.indices.insert(mesh.indices.end(), {polygon[0], polygon[i], polygon[i + 1]});
+      for (size_t i = 1; i + 1 < polygon.size(); ++i)
+        mesh.indices.insert(mesh.indices.end(), {polygon[0], polygon[i], polygon[i + 1]});
     }
   }
 }
@@ -173,7 +179,8 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& file) {
 
   int list_index = face->index_of("vertex_indices");
   if (list_index < 0) list_index = face->index_of("vertex_index");
-  if (list_index < 0) throw InputError({file, face->header_line, ""}, "element 'face' has no list property 'vertex_indices'");
+  if (list_index < 0)
+    throw InputError({file, face->header_line, ""}, "element 'face' has no list property 'vertex_indices'");
   const ply::Property& list = face->properties[static_cast<size_t>(list_index)];
   if (!list.is_list || !ply::is_integer(list.type))
     throw InputError({file, list.header_line, ""}, "'" + list.name + "' must be a list of an integer type");
@@ -181,9 +188,12 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& file) {
   TriangleMesh mesh;
   ply::BodyReader reader(bytes, header, file);
   for (const ply::Element& element : header.elements) {
-    if (&element == vertex) read_vertices(reader, element, layout, mesh);
-    else if (&element == face) read_faces(reader, element, list_index, vertex->count, mesh);
-    else skip_element(reader, element);
+    if (&element == vertex)
+      read_vertices(reader, element, layout, mesh);
+    else if (&element == face)
+      read_faces(reader, element, list_index, vertex->count, mesh);
+    else
+      skip_element(reader, element);
   }
   if (mesh.indices.empty()) throw InputError({file, face->header_line, ""}, "the file has no faces");
   return mesh;

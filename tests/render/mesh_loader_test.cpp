@@ -1,7 +1,6 @@
 // OBJ and PLY loading: the meshes that come out, the errors bad files give, and no crash on garbage.
 // The files are written by the tests themselves, so every expected number below is exact by construction.
 #include <doctest/doctest.h>
-
 #include <unistd.h>
 
 #include <bit>
@@ -52,7 +51,8 @@ SourceLocation expect_input_error(const std::function<void()>& load, std::initia
     load();
   } catch (const InputError& e) {
     const std::string message = e.what();
-    for (const std::string& fragment : fragments) CHECK_MESSAGE(message.find(fragment) != std::string::npos, message, " lacks ", fragment);
+    for (const std::string& fragment : fragments)
+      CHECK_MESSAGE(message.find(fragment) != std::string::npos, message, " lacks ", fragment);
     return e.where();
   }
   FAIL("no InputError; expected one mentioning ", *fragments.begin());
@@ -61,7 +61,8 @@ SourceLocation expect_input_error(const std::function<void()>& load, std::initia
 
 // Twice the signed area of triangle t projected on the xy plane (positive = counter-clockwise seen from +z).
 double signed_area2_xy(const TriangleMesh& m, size_t t) {
-  const Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
+  const Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+             c = m.positions[m.indices[3 * t + 2]];
   return double(b.x - a.x) * (c.y - a.y) - double(b.y - a.y) * (c.x - a.x);
 }
 
@@ -90,38 +91,47 @@ struct PlyVertex {
   float nx, ny, nz, s, t;
 };
 const PlyVertex kVertices[] = {
-    {0, 0, 0, 10, 0, 0, 1, 0, 0},   {1, 0, 0, 20, 0, 0, 2, 1, 0},     {1, 1, 0, 30, 0, 0, 1, 1, 1},
-    {0, 1, 0, 40, 0, 0, 1, 0, 1}, {0.5f, 0.5f, 0.1, 50, 0, -1, 1, 0.5f, 0.25f},
+    {0, 0, 0, 10, 0, 0, 1, 0, 0},
+    {1, 0, 0, 20, 0, 0, 2, 1, 0},
+    {1, 1, 0, 30, 0, 0, 1, 1, 1},
+    {0, 1, 0, 40, 0, 0, 1, 0, 1},
+    {0.5f, 0.5f, 0.1, 50, 0, -1, 1, 0.5f, 0.25f},
 };
 
 std::string ply_file(PlyFormat format, const std::vector<std::vector<int>>& faces = {{0, 1, 2, 3}, {0, 1, 4}}) {
-  const char* name = format == PlyFormat::ascii ? "ascii" : format == PlyFormat::little ? "binary_little_endian" : "binary_big_endian";
+  const char* name = format == PlyFormat::ascii    ? "ascii"
+                     : format == PlyFormat::little ? "binary_little_endian"
+                                                   : "binary_big_endian";
   // Built with += (a chain of + on a string literal trips GCC 12's false -Wrestrict warning).
   std::string out = "ply\nformat ";
   out += name;
-  out += " 1.0\ncomment written by rimu's mesh loader test\n"
-         "element vertex 5\nproperty float x\nproperty float y\nproperty double z\nproperty uchar red\n"
-         "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\n"
-         "property list uchar int extra\nelement face ";
+  out +=
+      " 1.0\ncomment written by rimu's mesh loader test\n"
+      "element vertex 5\nproperty float x\nproperty float y\nproperty double z\nproperty uchar red\n"
+      "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\n"
+      "property list uchar int extra\nelement face ";
   out += std::to_string(faces.size());
-  out += "\nproperty int flags\nproperty list uchar uint vertex_indices\n"
-         "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+  out +=
+      "\nproperty int flags\nproperty list uchar uint vertex_indices\n"
+      "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n";
   if (format == PlyFormat::ascii) {
     for (const PlyVertex& v : kVertices)
       out += std::to_string(v.x) + " " + std::to_string(v.y) + " " + (v.z == 0.1 ? "0.1" : std::to_string(v.z)) + " " +
-             std::to_string(v.red) + " " + std::to_string(v.nx) + " " + std::to_string(v.ny) + " " + std::to_string(v.nz) +
-             " " + std::to_string(v.s) + " " + std::to_string(v.t) + " 2 7 8\n";
+             std::to_string(v.red) + " " + std::to_string(v.nx) + " " + std::to_string(v.ny) + " " +
+             std::to_string(v.nz) + " " + std::to_string(v.s) + " " + std::to_string(v.t) + " 2 7 8\n";
     for (const auto& f : faces) {
-      out += "9 " + std::to_string(f.size());
-      for (int i : f) out += " " + std::to_string(i);
-      out += "\n";
+      out += "9 ";  // the flags property, then the index list
+      out += std::to_string(f.size());
+      for (int i : f) out += ' ' + std::to_string(i);
+      out += '\n';
     }
     out += "0 1\n";
     return out;
   }
   for (const PlyVertex& v : kVertices) {
     put(out, v.x, format), put(out, v.y, format), put(out, v.z, format), put(out, v.red, format);
-    put(out, v.nx, format), put(out, v.ny, format), put(out, v.nz, format), put(out, v.s, format), put(out, v.t, format);
+    put(out, v.nx, format), put(out, v.ny, format), put(out, v.nz, format), put(out, v.s, format),
+        put(out, v.t, format);
     put(out, uint8_t{2}, format), put(out, int32_t{7}, format), put(out, int32_t{8}, format);
   }
   for (const auto& f : faces) {
@@ -148,8 +158,8 @@ TEST_CASE("PLY ascii, binary little-endian and binary big-endian files give the 
     // The quad is fanned from its first corner: (0 1 2) and (0 2 3); then the triangle (0 1 4).
     CHECK(mesh.indices == std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 1, 4});
     CHECK(mesh.positions[2] == Vec3(1, 1, 0));
-    CHECK(mesh.positions[4] == Vec3(0.5f, 0.5f, 0.1f));  // the double 0.1 rounded to the nearest float
-    CHECK(mesh.normals[1] == Vec3(0, 0, 1));              // (0, 0, 2) normalised
+    CHECK(mesh.positions[4] == Vec3(0.5f, 0.5f, 0.1f));                   // the double 0.1 rounded to the nearest float
+    CHECK(mesh.normals[1] == Vec3(0, 0, 1));                              // (0, 0, 2) normalised
     CHECK(mesh.normals[4].y == static_cast<float>(-1 / std::sqrt(2.0)));  // (0, -1, 1) normalised in double
     CHECK(mesh.uvs[4].x == 0.5f);
     CHECK(mesh.uvs[4].y == 0.25f);
@@ -190,31 +200,42 @@ TEST_CASE("PLY errors name the file and the header line or the element and recor
   auto load = [&dir](const std::string& bytes) { return [&dir, bytes] { load_ply(dir.write("bad.ply", bytes)); }; };
 
   CHECK(expect_input_error(load("solid cube\n"), {"bad.ply:1", "not a PLY file"}).line == 1);
-  CHECK(expect_input_error(load(with("ascii 1.0", "binary_middle_endian 1.0")), {"bad.ply:2", "binary_middle_endian"}).line == 2);
+  CHECK(expect_input_error(load(with("ascii 1.0", "binary_middle_endian 1.0")), {"bad.ply:2", "binary_middle_endian"})
+            .line == 2);
   CHECK(expect_input_error(load(with("ascii 1.0", "ascii 2.0")), {"bad.ply:2", "version"}).line == 2);
-  CHECK(expect_input_error(load(with("property double z", "property float128 z")), {"bad.ply:7", "float128"}).line == 7);
-  CHECK(expect_input_error(load(with("property float x", "property float w")), {"bad.ply:4", "no property 'x'"}).line == 4);
+  CHECK(expect_input_error(load(with("property double z", "property float128 z")), {"bad.ply:7", "float128"}).line ==
+        7);
+  CHECK(expect_input_error(load(with("property float x", "property float w")), {"bad.ply:4", "no property 'x'"}).line ==
+        4);
   expect_input_error(load(good.substr(0, good.find("end_header"))), {"bad.ply", "end_header"});
-  expect_input_error(load("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n"),
+  expect_input_error(load("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float "
+                          "z\nend_header\n"),
                      {"bad.ply", "no 'face' element"});
   expect_input_error(load(with("element vertex 5", "element vertex five")), {"bad.ply:4", "five"});
 
   // Body errors in ascii carry the body line; the faces start on line kPlyBodyLine + 5.
-  CHECK(expect_input_error(load(with("9 3 0 1 4", "9 3 0 1 7")), {"bad.ply", "face 1", "refers to vertex 7 but there are 5 vertices"})
+  CHECK(expect_input_error(load(with("9 3 0 1 4", "9 3 0 1 7")),
+                           {"bad.ply", "face 1", "refers to vertex 7 but there are 5 vertices"})
             .line == kPlyBodyLine + 6);
-  CHECK(expect_input_error(load(with("9 3 0 1 4", "9 2 0 1")), {"bad.ply", "face 1", "has 2 vertices"}).line == kPlyBodyLine + 6);
+  CHECK(expect_input_error(load(with("9 3 0 1 4", "9 2 0 1")), {"bad.ply", "face 1", "has 2 vertices"}).line ==
+        kPlyBodyLine + 6);
   const std::string vertex2 = "1.000000 1.000000 0";
-  CHECK(expect_input_error(load(with(vertex2, "1.000000 nan 0")), {"bad.ply", "vertex 2", "not finite"}).line == kPlyBodyLine + 2);
-  CHECK(expect_input_error(load(with(vertex2, "1.000000 1e39 0")), {"bad.ply", "vertex 2", "not finite"}).line == kPlyBodyLine + 2);
-  CHECK(expect_input_error(load(with(vertex2, "1.000000 one 0")), {"bad.ply", "vertex 2", "expected a number"}).line == kPlyBodyLine + 2);
-  expect_input_error(load(with("0.000000 0.000000 1.000000 1.000000 1.000000", "0.000000 0.000000 0.000000 1.000000 1.000000")),
-                     {"bad.ply", "vertex 2", "normal is zero"});
+  CHECK(expect_input_error(load(with(vertex2, "1.000000 nan 0")), {"bad.ply", "vertex 2", "not finite"}).line ==
+        kPlyBodyLine + 2);
+  CHECK(expect_input_error(load(with(vertex2, "1.000000 1e39 0")), {"bad.ply", "vertex 2", "not finite"}).line ==
+        kPlyBodyLine + 2);
+  CHECK(expect_input_error(load(with(vertex2, "1.000000 one 0")), {"bad.ply", "vertex 2", "expected a number"}).line ==
+        kPlyBodyLine + 2);
+  expect_input_error(
+      load(with("0.000000 0.000000 1.000000 1.000000 1.000000", "0.000000 0.000000 0.000000 1.000000 1.000000")),
+      {"bad.ply", "vertex 2", "normal is zero"});
   expect_input_error(load(with("9 4 0 1 2 3", "9 4 0 1 2 3.5")), {"bad.ply", "face 0", "integer type"});
   expect_input_error(load(good.substr(0, good.size() - 9)), {"bad.ply", "face 1", "truncated"});
 
   // Binary: the same checks by element and record, with the byte offset instead of a line.
   std::string binary = ply_file(PlyFormat::little, {{0, 1, 2, 3}, {0, 1, 2048}});
-  const SourceLocation where = expect_input_error(load(binary), {"bad.ply", "face 1", "refers to vertex 2048 but there are 5 vertices", "byte"});
+  const SourceLocation where =
+      expect_input_error(load(binary), {"bad.ply", "face 1", "refers to vertex 2048 but there are 5 vertices", "byte"});
   CHECK(where.line == 0);
   // A vertex record is x y (4 + 4), z (8), red (1), nx ny nz s t (5 * 4) and the list (1 + 2 * 4): 46 bytes.
   std::string nan_vertex = ply_file(PlyFormat::big), nan_bytes;
@@ -290,15 +311,16 @@ TEST_CASE("garbled PLY files load a valid mesh or give an InputError, never a cr
 TEST_CASE("OBJ quads are triangulated and (position, uv, normal) corners are de-indexed") {
   TempDir dir;
   // A unit square in z = 0 facing +z: 4 positions, 4 uvs, 1 normal shared by all corners.
-  const std::string text = "# square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 3\n"
-                           "f 1/1/1 2/2/1 3/3/1 4/4/1\n";
+  const std::string text =
+      "# square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 3\n"
+      "f 1/1/1 2/2/1 3/3/1 4/4/1\n";
   const TriangleMesh mesh = load_obj(dir.write("square.obj", text));
   CHECK(mesh.triangle_count() == 2);
   CHECK(mesh.positions.size() == 4);  // each corner (p, t, n) is distinct, and each is used twice at most
   REQUIRE(mesh.normals.size() == 4);
   REQUIRE(mesh.uvs.size() == 4);
   for (size_t v = 0; v < 4; ++v) {
-    CHECK(mesh.normals[v] == Vec3(0, 0, 1));  // (0, 0, 3) normalised
+    CHECK(mesh.normals[v] == Vec3(0, 0, 1));      // (0, 0, 3) normalised
     CHECK(mesh.uvs[v].x == mesh.positions[v].x);  // this square's uvs equal its xy
     CHECK(mesh.uvs[v].y == mesh.positions[v].y);
   }
@@ -363,7 +385,8 @@ TEST_CASE("OBJ errors name the file and the line") {
   auto load = [&dir](const std::string& text) { return [&dir, text] { load_obj(dir.write("bad.obj", text)); }; };
   const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
   CHECK(expect_input_error(load("v 0 0 0\nv 1 abc 0\n"), {"bad.obj:2", "'abc' is not a finite number"}).line == 2);
-  CHECK(expect_input_error(load("v 0 0 0\r\nv 1 0 0\r\nv 1 1e39 0\r\n"), {"bad.obj:3", "not a finite number"}).line == 3);
+  CHECK(expect_input_error(load("v 0 0 0\r\nv 1 0 0\r\nv 1 1e39 0\r\n"), {"bad.obj:3", "not a finite number"}).line ==
+        3);
   CHECK(expect_input_error(load("v 0 0 0\nv 1 nan 0\n"), {"bad.obj:2", "not a finite number"}).line == 2);
   CHECK(expect_input_error(load("v 0 0\n"), {"bad.obj:1", "needs at least 3 numbers"}).line == 1);
   CHECK(expect_input_error(load(quad + "f 1 2 9\n"), {"bad.obj:5", "refers to vertex 9 but the file has 4"}).line == 5);
@@ -382,8 +405,9 @@ TEST_CASE("OBJ errors name the file and the line") {
 TEST_CASE("OBJ degenerate triangles are kept and validate() passes") {
   TempDir dir;
   // Collinear points, and a triangle repeating a vertex; one normal-less face so the flat-normal path sees them.
-  const TriangleMesh mesh = load_obj(dir.write("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nvn 0 0 1\n"
-                                                                 "f 1//1 2//1 3//1\nf 1 2 2\n"));
+  const TriangleMesh mesh = load_obj(dir.write("degenerate.obj",
+                                               "v 0 0 0\nv 1 0 0\nv 2 0 0\nvn 0 0 1\n"
+                                               "f 1//1 2//1 3//1\nf 1 2 2\n"));
   CHECK(mesh.triangle_count() == 2);
   CHECK(mesh.validate().empty());
   TriangleMesh cleaned = mesh;
@@ -391,8 +415,9 @@ TEST_CASE("OBJ degenerate triangles are kept and validate() passes") {
 }
 
 TEST_CASE("truncated and garbled OBJ text loads a valid mesh or gives an InputError, never a crash") {
-  const std::string whole = "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\n"
-                            "f 1/1/1 2/2/1 3/2/1 4/1/1\nf -4/-2/-1 -2/-1/-1 -1/-1/-1\n";
+  const std::string whole =
+      "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nvn 0 0 1\n"
+      "f 1/1/1 2/2/1 3/2/1 4/1/1\nf -4/-2/-1 -2/-1/-1 -1/-1/-1\n";
   std::mt19937 random(7u);
   auto attempt = [](const std::string& text) {
     try {

@@ -6,10 +6,18 @@
 #include <iostream>
 
 #include "spectral/error.h"
+#include "spectral/gamut_figure.h"
+#include "spectral/rgb_upsampler.h"
+#include "spectral/upsample_report.h"
 #include "spectral/spectrum_report.h"
 #include "spectral/spectrum_source.h"
 
 namespace {
+
+struct UpsampleFlags {
+  bool emission = false;
+  bool csv = false;
+};
 
 struct ReportOptions {
   std::string illuminant;
@@ -60,6 +68,25 @@ int main(int argc, char** argv) {
   report_cmd->add_option("--column", report.column, "which power column of --csv (default: the second column)");
   report_cmd->add_flag("--json", report.json, "print JSON instead of text");
 
+  std::string gamut_png = "gamut.png", gamut_csv, gamut_space = "srgb-linear";
+  CLI::App* gamut_cmd = app.add_subcommand(
+      "gamut", "plot the brightest reflectance per chromaticity: MacAdam's optimal colours vs the upsampler's smooth spectra");
+  gamut_cmd->add_option("--out", gamut_png, "PNG to write (default gamut.png); gnuplot script and data go beside it");
+  gamut_cmd->add_option("--csv", gamut_csv, "also write the values per chromaticity bin as CSV (default: beside the PNG)");
+  gamut_cmd->add_option("--space", gamut_space, "colour space whose white and triangle are used (default srgb-linear)");
+
+  std::vector<double> upsample_rgb;
+  std::string upsample_space = "srgb-linear", upsample_plot;
+  UpsampleFlags upsample_flags;
+  CLI::App* upsample_cmd = app.add_subcommand(
+      "upsample", "turn a linear RGB colour into a spectrum (Meng et al. 2015 smoothest spectra, gamut-mapped)");
+  upsample_cmd->add_option("rgb", upsample_rgb, "three linear RGB components, e.g. 0.8 0.2 0.1")->expected(3)->required();
+  upsample_cmd->add_option("--space", upsample_space,
+                           "srgb-linear, rec2020, display-p3, aces2065-1, acescg or cie-rgb (default srgb-linear)");
+  upsample_cmd->add_flag("--emission", upsample_flags.emission, "upsample as a light's colour (no reflectance limit)");
+  upsample_cmd->add_flag("--csv", upsample_flags.csv, "print the spectrum as CSV only");
+  upsample_cmd->add_option("--plot", upsample_plot, "also plot the spectrum to this PNG (gnuplot)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -73,6 +100,20 @@ int main(int argc, char** argv) {
       const rimu::SpectrumSource source = source_from(report, given);
       const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library);
       std::cout << (report.json ? rimu::report_json(r) : rimu::report_text(r)) << std::flush;
+    } else if (*gamut_cmd) {
+      const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(gamut_space));
+      const std::filesystem::path png = gamut_png;
+      const std::filesystem::path csv = gamut_csv.empty() ? std::filesystem::path(png).replace_extension(".csv")
+                                                          : std::filesystem::path(gamut_csv);
+      rimu::write_gamut_figure(library, upsampler, png, csv);
+      std::cout << "wrote " << png.string() << " and " << csv.string() << "\n";
+    } else if (*upsample_cmd) {
+      const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(upsample_space));
+      rimu::UpsampleReportOptions options;
+      options.emission = upsample_flags.emission;
+      options.csv = upsample_flags.csv;
+      if (!upsample_plot.empty()) options.plot_png = upsample_plot;
+      rimu::write_upsample_report(std::cout, upsampler, {upsample_rgb[0], upsample_rgb[1], upsample_rgb[2]}, options);
     }
     return 0;
   } catch (const rimu::InputError& e) {
