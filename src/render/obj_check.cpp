@@ -1,5 +1,6 @@
 #include "render/obj_check.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -12,15 +13,19 @@ namespace {
 
 using Words = std::vector<std::string_view>;
 
-// Calls fn(line_number, words) for each line. Line ends are \n, \r\n or a lone \r, as tinyobjloader counts
-// them, so the line numbers here and in its messages agree.
+// Calls fn(line_number, words) for each line, with at most `max_words` words. Line ends are \n, \r\n or a
+// lone \r, as tinyobjloader counts them, so the line numbers here and in its messages agree.
 template <typename Fn>
-void for_each_line(std::string_view text, Fn fn) {
+void for_each_line(std::string_view text, size_t max_words, Fn fn) {
   Words words;
   size_t i = 0;
   for (int line_number = 1; i < text.size(); ++line_number) {
     words.clear();
     while (i < text.size() && text[i] != '\n' && text[i] != '\r') {
+      if (words.size() == max_words) {
+        i = std::min(text.find_first_of("\r\n", i), text.size());
+        break;
+      }
       while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
       const size_t start = i;
       while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\n' && text[i] != '\r') ++i;
@@ -107,7 +112,7 @@ void check_face(const Words& words, const Counts& so_far, const Counts& total, c
 
 StatementLines check_obj_text(std::string_view text, const std::string& file) {
   Counts total;
-  for_each_line(text, [&](int, const Words& words) {
+  for_each_line(text, 1, [&](int, const Words& words) {
     total.positions += words[0] == "v";
     total.texcoords += words[0] == "vt";
     total.normals += words[0] == "vn";
@@ -115,7 +120,7 @@ StatementLines check_obj_text(std::string_view text, const std::string& file) {
 
   StatementLines lines;
   Counts so_far;
-  for_each_line(text, [&](int line_number, const Words& words) {
+  for_each_line(text, std::numeric_limits<size_t>::max(), [&](int line_number, const Words& words) {
     const SourceLocation where{file, line_number, ""};
     if (words[0] == "v") {
       check_numbers(words, 3, 3, where);  // x y z [w] [r g b]: only x y z reach the mesh

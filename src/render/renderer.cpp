@@ -30,13 +30,18 @@ std::vector<PixelBounds> make_tiles(const PixelBounds& b) {
 }  // namespace
 
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options) {
+  const TransportScene view = scene.transport_view();
+  const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
+  return render(view, scene.settings.integrator, camera, filter, film, options);
+}
+
+RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
+                        const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
 
-  const TransportScene view = scene.transport_view();
-  const PathIntegrator integrator(view, scene.settings.integrator);
-  const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
+  const PathIntegrator integrator(transport, integrator_settings);
   const IndependentSampler prototype_sampler(options.seed);
   const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
 

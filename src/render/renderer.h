@@ -35,4 +35,10 @@ struct RenderStatistics {
 /// tile and throws away the unfinished pass, so every pixel of the result has the same number of samples.
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options);
 
+/// The same over a transport view and camera the caller assembles: for wrapping part of a scene, e.g. a ray
+/// counter around `transport.geometry` (render/ray_recorder.h). The overload above is this one with
+/// scene.transport_view(), scene.settings.integrator and the scene's camera at its settings' resolution.
+RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
+                        const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options);
+
 }  // namespace rimu

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "render/json_cursor.h"
+#include "render/rgb_image.h"
 #include "render/scene.h"
 #include "render/spectrum_input.h"
 #include "render/triangle_mesh.h"
@@ -22,6 +23,9 @@ struct LoadContext {
 /// "transform": an array of operations applied in order to the object ({"translate": v}, {"scale": v or s},
 /// {"rotate": {"angle_deg": a, "axis": v}}, {"matrix": 12 row-major numbers}); absent = identity.
 Transform parse_transform(const JsonCursor& shape);
+/// Reads the image named by a texture or environment object: "encoding" is "srgb" (8-bit sRGB-encoded, decoded to
+/// linear) or "linear"; by default integer files are sRGB-encoded and float files (EXR, HDR) linear.
+std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const std::filesystem::path& path);
 void load_materials(const JsonCursor& section, LoadContext& context);
 void load_shapes(const JsonCursor& section, LoadContext& context);
 void load_prototypes(const JsonCursor& section, LoadContext& context);

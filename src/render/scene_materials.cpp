@@ -1,4 +1,5 @@
 // The "materials" section of the JSON scene format.
+#include "render/image_texture.h"
 #include "render/scene_load_context.h"
 #include "spectral/optical_constants.h"
 #include "transport/spectral_texture.h"
@@ -6,7 +7,16 @@
 namespace rimu::scene_loading {
 namespace {
 
+// A reflectance: any spectral input, or {"texture": "file.png", "colour_space": ..., "encoding": ..., "scale": k}.
 SpectralTexturePtr reflectance_texture(const JsonCursor& value, LoadContext& context) {
+  if (value.is_object() && value.has("texture")) {
+    value.only_keys({"texture", "colour_space", "encoding", "scale"});
+    const std::filesystem::path path = context.spectra.scene_directory() / value.at("texture").string();
+    const std::shared_ptr<const RgbImage> image = load_rgb_image(value, path);
+    const std::string space = value.string_or("colour_space", "srgb-linear");
+    const auto upsampler = context.spectra.upsampler(space, value.has("colour_space") ? value.at("colour_space") : value);
+    return std::make_shared<ImageTexture>(image, upsampler, float(value.number_or("scale", 1.0, 0.0, 1.0)));
+  }
   return std::make_shared<ConstantSpectralTexture>(context.spectra.parse(value, SpectrumRole::reflectance));
 }
 

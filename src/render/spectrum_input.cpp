@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "spectral/blackbody_spectrum.h"
+#include "spectral/colorimetry.h"
+#include "spectral/photometry_constants.h"
 #include "spectral/csv_table.h"
 #include "spectral/daylight.h"
 #include "spectral/tabulated_spectrum.h"
@@ -46,12 +48,22 @@ std::string ScaledSpectrum::describe() const {
   return out.str();
 }
 
-const RgbUpsampler& SpectrumInputContext::upsampler(const std::string& space_name, const JsonCursor& where) {
+double SpectrumInputContext::emission_rgb_scale() {
+  if (emission_rgb_scale_ == 0.0) {
+    const Observer& o = library_.observer(StandardObserver::cie1931_2deg);
+    emission_rgb_scale_ =
+        kMaxLuminousEfficacy_lm_W * integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) { return o.y_bar.value(l); });
+  }
+  return emission_rgb_scale_;
+}
+
+std::shared_ptr<const RgbUpsampler> SpectrumInputContext::upsampler(const std::string& space_name,
+                                                                   const JsonCursor& where) {
   auto it = upsamplers_.find(space_name);
-  if (it != upsamplers_.end()) return *it->second;
+  if (it != upsamplers_.end()) return it->second;
   try {
-    auto u = std::make_unique<RgbUpsampler>(library_, RgbColourSpace::named(space_name));
-    return *upsamplers_.emplace(space_name, std::move(u)).first->second;
+    auto u = std::make_shared<const RgbUpsampler>(library_, RgbColourSpace::named(space_name));
+    return upsamplers_.emplace(space_name, std::move(u)).first->second;
   } catch (const InputError& e) {
     where.fail(e.explanation());
   }
@@ -97,12 +109,13 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
     if (role == SpectrumRole::ior) value.at("rgb").fail("an index of refraction cannot be given as RGB");
     const Vec3 rgb = value.at("rgb").vec3();
     const std::string space = value.string_or("space", "srgb-linear");
-    const RgbUpsampler& up = upsampler(space, value.has("space") ? value.at("space") : value);
+    const RgbUpsampler& up = *upsampler(space, value.has("space") ? value.at("space") : value);
     const Rgb colour{rgb.x, rgb.y, rgb.z};
     if (role == SpectrumRole::reflectance) {
       base = std::make_shared<ReflectanceSpectrum>(up.upsample_reflectance(colour, value.where()).spectrum);
     } else {
-      base = std::make_shared<EmissionSpectrum>(up.upsample_emission(colour, value.where()).spectrum);
+      base = std::make_shared<ScaledSpectrum>(
+          std::make_shared<EmissionSpectrum>(up.upsample_emission(colour, value.where()).spectrum), emission_rgb_scale());
     }
   } else if (value.has("spectrum")) {
     value.only_keys({"spectrum", "scale"});

@@ -43,15 +43,21 @@ class SpectrumInputContext {
   void set_named(const JsonCursor& section) { named_.emplace(section); }
 
   SpectralLibrary& library() { return library_; }
+  /// RGB emission in a scene is in film units: an RGB whose luminance is Y renders with film Y (render/film.h, where
+  /// an equal-energy radiance of 1 W/(m²·sr·nm) gives Y = 1). The upsampler reads Y as cd/m², so RGB emission is
+  /// multiplied by this factor, K_m·∫ȳ dλ ≈ 72 983 cd/m² per film unit (CIE 1931 2°, 360-830 nm at 1 nm).
+  double emission_rgb_scale();
   const std::filesystem::path& scene_directory() const { return scene_directory_; }
-  const RgbUpsampler& upsampler(const std::string& space_name, const JsonCursor& where);
+  /// The upsampler of a colour space, built on first use and shared (textures keep it after loading).
+  std::shared_ptr<const RgbUpsampler> upsampler(const std::string& space_name, const JsonCursor& where);
 
  private:
   SpectralLibrary& library_;
   std::filesystem::path scene_directory_;
   std::optional<JsonCursor> named_;
-  std::map<std::string, std::unique_ptr<RgbUpsampler>> upsamplers_;
+  std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;
   int named_depth_ = 0;
+  double emission_rgb_scale_ = 0.0;
 };
 
 /// A spectrum multiplied by a constant.
