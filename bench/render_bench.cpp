@@ -234,7 +234,10 @@ int main(int argc, char** argv) {
     if (thread_counts.empty()) thread_counts = cores > 1 ? std::vector<int>{1, cores} : std::vector<int>{1};
 
     std::string command;
-    for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+    for (int i = 0; i < argc; ++i) {
+      if (i > 0) command += ' ';
+      command += argv[i];
+    }
     std::printf("command: %s\n", command.c_str());
     std::printf("machine: %s, %d logical cores\n", cpu_model().c_str(), cores);
     std::printf("build:   %s\n", RIMU_BENCH_BUILD);

@@ -34,7 +34,7 @@ TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadConte
     const JsonCursor file = shape.at("file");
     const std::filesystem::path path = context.spectra.scene_directory() / file.string();
     try {
-      mesh = load_mesh(path);
+      mesh = load_mesh(path, shape.string_or("object", ""));
     } catch (const InputError& e) {
       SourceLocation where = e.where();
       if (where.key.empty()) where.key = file.path();
@@ -118,8 +118,8 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       scene.geometry.add_instance(it->second, parse_transform(shape));
       continue;
     }
-    shape.only_keys({"type", "name", "file", "vertices", "positions", "indices", "normals", "uvs", "material",
-                     "transform", "emission", "two_sided"});
+    shape.only_keys({"type", "name", "file", "object", "vertices", "positions", "indices", "normals", "uvs",
+                     "material", "transform", "emission", "two_sided"});
     TriangleMesh mesh = mesh_of(shape, type, context);
     mesh.transform(parse_transform(shape));
     scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
@@ -147,8 +147,8 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
     for (size_t i = 0; i < shapes.size(); ++i) {
       const JsonCursor shape = shapes.at(i);
       const std::string type = shape.at("type").choice({"mesh", "triangles", "quad"});
-      shape.only_keys({"type", "name", "file", "vertices", "positions", "indices", "normals", "uvs", "material",
-                       "transform"});
+      shape.only_keys({"type", "name", "file", "object", "vertices", "positions", "indices", "normals", "uvs",
+                       "material", "transform"});
       TriangleMesh mesh = mesh_of(shape, type, context);
       mesh.transform(parse_transform(shape));
       context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
