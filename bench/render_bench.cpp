@@ -15,6 +15,7 @@
 //     answers must all match the recorded ones (checked: the replay traces the same rays).
 // renderer rays/s = rays / (1)'s seconds; ceiling = rays / (3)'s seconds; their ratio is therefore the share of
 // the render's wall time that ray queries alone would take. Exit code 2 if a check fails, 1 on bad options.
+#include <embree3/rtcore.h>
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 
@@ -102,6 +103,19 @@ std::string cpu_model() {
   for (std::string line; std::getline(in, line);)
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown";
+}
+
+// The vector extensions Embree can choose from at run time (it picks the widest the CPU has).
+std::string vector_isas() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("flags", 0) != 0) continue;
+    std::string found;
+    for (const char* isa : {"sse4_2", "avx", "avx2", "avx512f"})
+      if ((line + " ").find(" " + std::string(isa) + " ") != std::string::npos) found += std::string(" ") + isa;
+    return found.empty() ? " (none of sse4_2 avx avx2 avx512f)" : found;
+  }
+  return " (unknown)";
 }
 
 std::string load_average() {
@@ -205,16 +219,18 @@ void print_row(const Row& r) {
   const double samples = double(r.plain.camera_samples);
   const double rays = double(r.rays.total());
   const double rays_per_s = rays / r.plain.seconds;
-  std::printf("| %4d | %8.3f | %7.3f | %5.2f (%4.2f + %4.2f) | %7.2f |", r.spp, r.plain.seconds,
-              samples / r.plain.seconds * 1e-6, rays / samples, double(r.rays.intersect) / samples,
-              double(r.rays.occluded) / samples, rays_per_s * 1e-6);
+  char per_sample[64];
+  std::snprintf(per_sample, sizeof per_sample, "%.2f (%.2f + %.2f)", rays / samples,
+                double(r.rays.intersect) / samples, double(r.rays.occluded) / samples);
+  std::printf("| %4d | %8.3f | %10.3f | %-26s | %7.2f |", r.spp, r.plain.seconds, samples / r.plain.seconds * 1e-6,
+              per_sample, rays_per_s * 1e-6);
   if (r.replay) {
     const double ceiling = double(r.replay->rays) / r.replay->seconds;
-    std::printf(" %7.2f | %5.3f |", ceiling * 1e-6, rays_per_s / ceiling);
+    std::printf(" %15.2f | %16.3f |", ceiling * 1e-6, rays_per_s / ceiling);
   } else {
-    std::printf("     –   |   –   |");
+    std::printf(" %15s | %16s |", "not recorded", "-");
   }
-  std::printf(" %6.2f | %7.1f |\n", r.decorated_s / r.plain.seconds, r.peak_mib);
+  std::printf(" %18.2f | %8.1f |\n", r.decorated_s / r.plain.seconds, r.peak_mib);
   std::fflush(stdout);
 }
 
@@ -239,8 +255,8 @@ int main(int argc, char** argv) {
       command += argv[i];
     }
     std::printf("command: %s\n", command.c_str());
-    std::printf("machine: %s, %d logical cores\n", cpu_model().c_str(), cores);
-    std::printf("build:   %s\n", RIMU_BENCH_BUILD);
+    std::printf("machine: %s, %d logical cores, ISA:%s\n", cpu_model().c_str(), cores, vector_isas().c_str());
+    std::printf("build:   %s; Embree %s\n", RIMU_BENCH_BUILD, RTC_VERSION_STRING);
     std::printf("scene:   %s, %dx%d, seed %llu, max depth %d\n", scene_path.string().c_str(), scene->settings.width,
                 scene->settings.height, (unsigned long long)seed, scene->settings.integrator.max_depth);
     std::printf("peak memory: %s\n",

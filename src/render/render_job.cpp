@@ -70,6 +70,7 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   if (job.height) settings.height = *job.height;
   if (job.samples_per_pixel) settings.samples_per_pixel = *job.samples_per_pixel;
   if (job.seed) settings.seed = *job.seed;
+  if (job.sampler) settings.sampler = *job.sampler;
   if (job.film) apply_film_option(*job.film, settings);
 
   FilmOptions film_options{settings.width, settings.height, std::nullopt, settings.spectral_bins};
@@ -102,6 +103,7 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   options.samples_per_pixel = settings.samples_per_pixel;
   options.threads = job.threads.value_or(0);
   options.seed = settings.seed;
+  options.sampler = settings.sampler;
   options.interrupt = &interrupt;
   options.progress = &progress;
   RenderJobResult result;

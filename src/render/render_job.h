@@ -19,6 +19,7 @@ struct RenderJob {
   std::optional<std::filesystem::path> png_output;
   std::optional<int> samples_per_pixel, threads, width, height;
   std::optional<uint64_t> seed;
+  std::optional<SamplerKind> sampler;  ///< overrides the scene's "sampler"
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
   bool float_exr = false;

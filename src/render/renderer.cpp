@@ -42,7 +42,7 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
   if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
 
   const PathIntegrator integrator(transport, integrator_settings);
-  const IndependentSampler prototype_sampler(options.seed);
+  const std::unique_ptr<Sampler> prototype_sampler = make_sampler(options.sampler, options.seed);
   const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
 
   RenderStatistics stats;
@@ -54,7 +54,7 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
     std::atomic<bool> stopped{false};
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      std::unique_ptr<Sampler> sampler = prototype_sampler.clone();
+      std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
       for (size_t t = range.begin(); t != range.end(); ++t) {
         if (options.interrupt && options.interrupt->requested()) {
           stopped = true;

@@ -6,6 +6,7 @@
 #include "render/film.h"
 #include "render/pixel_filter.h"
 #include "render/scene.h"
+#include "transport/sampler.h"
 
 namespace rimu {
 
@@ -16,6 +17,7 @@ struct RenderOptions {
   int samples_per_pixel = 16;
   int threads = 0;           ///< 0 = every core
   uint64_t seed = 1;
+  SamplerKind sampler = SamplerKind::sobol;  ///< where the random numbers come from (docs/sampling.md)
   const InterruptFlag* interrupt = nullptr;  ///< polled between tiles; the image keeps only whole passes
   ProgressReporter* progress = nullptr;      ///< counts camera samples
 };

@@ -31,6 +31,7 @@ struct RenderSettings {
   int width = 256, height = 256;
   int samples_per_pixel = 16;
   uint64_t seed = 1;
+  SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer

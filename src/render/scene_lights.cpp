@@ -3,6 +3,7 @@
 
 #include "render/rgb_environment_image.h"
 #include "render/scene_load_context.h"
+#include "render/scene_light_emission.h"
 #include "transport/distant_light.h"
 #include "transport/environment_light.h"
 #include "transport/light_spectrum.h"
@@ -11,10 +12,6 @@
 
 namespace rimu::scene_loading {
 namespace {
-
-LightSpectrum spectrum_of(const JsonCursor& light, const char* key, LoadContext& context) {
-  return LightSpectrum(context.spectra.parse(light.at(key), SpectrumRole::emission), 1.0);
-}
 
 Vec3 unit_direction(const JsonCursor& c) {
   const Vec3 d = c.vec3();
@@ -25,24 +22,31 @@ Vec3 unit_direction(const JsonCursor& c) {
 std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
   const std::string type = l.at("type").choice({"point", "spot", "distant", "environment"});
   if (type == "point") {
-    l.only_keys({"type", "name", "position", "intensity"});
-    return std::make_unique<PointLight>(l.at("position").vec3(), spectrum_of(l, "intensity", context));
+    only_light_keys(l, {"type", "name", "position", "intensity"});
+    const EmitterGeometry geometry{EmitterKind::point};
+    return std::make_unique<PointLight>(l.at("position").vec3(),
+                                        parse_light_emission(l, "intensity", geometry, context));
   }
   if (type == "spot") {
-    l.only_keys({"type", "name", "position", "direction", "cone_angle_deg", "falloff_start_deg", "intensity"});
+    only_light_keys(l, {"type", "name", "position", "direction", "cone_angle_deg", "falloff_start_deg", "intensity"});
     const double outer = l.at("cone_angle_deg").number(0.01, 179.9) / 2.0;
     const double inner = l.has("falloff_start_deg") ? l.at("falloff_start_deg").number(0.0, 2.0 * outer) / 2.0 : outer;
+    const EmitterGeometry geometry{EmitterKind::spot, inner, outer, spot_power_convention(l)};
     return std::make_unique<SpotLight>(l.at("position").vec3(), unit_direction(l.at("direction")), inner, outer,
-                                       spectrum_of(l, "intensity", context));
+                                       parse_light_emission(l, "intensity", geometry, context));
   }
   if (type == "distant") {
-    l.only_keys({"type", "name", "direction", "irradiance", "angular_diameter_deg"});
-    return std::make_unique<DistantLight>(unit_direction(l.at("direction")), spectrum_of(l, "irradiance", context),
+    only_light_keys(l, {"type", "name", "direction", "irradiance", "angular_diameter_deg"});
+    const EmitterGeometry geometry{EmitterKind::distant};
+    return std::make_unique<DistantLight>(unit_direction(l.at("direction")),
+                                          parse_light_emission(l, "irradiance", geometry, context),
                                           l.number_or("angular_diameter_deg", 0.0, 0.0, 90.0));
   }
-  l.only_keys({"type", "name", "radiance", "image", "colour_space", "encoding", "scale"});
+  only_light_keys(l, {"type", "name", "radiance", "image", "colour_space", "encoding", "scale"});
   if (l.has("image")) {
     if (l.has("radiance")) l.at("radiance").fail("give either radiance or image, not both");
+    if (has_light_amount(l) || l.has("spectrum"))
+      l.fail("an image environment is scaled by 'scale' (film units), not by a photometric amount");
     const std::filesystem::path path = context.spectra.scene_directory() / l.at("image").string();
     const std::shared_ptr<const RgbImage> image = load_rgb_image(l, path);
     const std::string space = l.string_or("colour_space", "srgb-linear");
@@ -53,8 +57,9 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
                                               l.number_or("scale", 1.0, 0.0, 1e30) * context.spectra.emission_rgb_scale(),
                                               Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});
   }
-  l.only_keys({"type", "name", "radiance"});
-  return std::make_unique<EnvironmentLight>(spectrum_of(l, "radiance", context));
+  only_light_keys(l, {"type", "name", "radiance"});
+  const EmitterGeometry geometry{EmitterKind::environment};
+  return std::make_unique<EnvironmentLight>(parse_light_emission(l, "radiance", geometry, context));
 }
 
 }  // namespace
@@ -72,7 +77,15 @@ std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const st
 }
 
 void load_lights(const JsonCursor& section, LoadContext& context) {
-  for (size_t i = 0; i < section.size(); ++i) context.scene.lights.push_back(load_light(section.at(i), context));
+  for (size_t i = 0; i < section.size(); ++i) {
+    const JsonCursor light = section.at(i);
+    if (light.is_object() && light.has("include")) {
+      const nlohmann::json merged = included_light(light, context.spectra.scene_directory());
+      context.scene.lights.push_back(load_light(JsonCursor(merged, light.file(), light.path()), context));
+    } else {
+      context.scene.lights.push_back(load_light(light, context));
+    }
+  }
 }
 
 }  // namespace rimu::scene_loading

@@ -33,7 +33,10 @@ void load_camera(const JsonCursor& c, Scene& scene) {
   if (length(cross(up, to - from)) == 0.0f) c.at("up").fail("'up' is parallel to the viewing direction");
   scene.camera.camera_to_world = Transform::look_at(from, to, up);
   scene.camera.vertical_fov_deg = float(c.number_or("vertical_fov_deg", 40.0, 1e-3, 179.0));
-  if (type == "thin_lens") {
+  if (type == "pinhole") {
+    for (const char* key : {"lens_radius", "focus_distance"})
+      if (c.has(key)) c.at(key).fail(std::string(key) + " applies to \"type\": \"thin_lens\" cameras only");
+  } else {
     scene.camera.lens_radius = float(c.at("lens_radius").number(0.0, 1e6));
     scene.camera.focus_distance = float(c.at("focus_distance").number(1e-6, 1e9));
   }
@@ -53,12 +56,15 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
     f->only_keys({"type", "radius", "sigma"});
     s.filter.type = f->at("type").choice({"box", "gaussian", "blackman-harris"});
     s.filter.radius_px = float(f->number_or("radius", s.filter.type == "box" ? 0.5 : 1.5, 0.01, 16.0));
+    if (s.filter.type != "gaussian" && f->has("sigma")) f->at("sigma").fail("sigma applies to the gaussian filter only");
     s.filter.sigma_px = float(f->number_or("sigma", 0.5, 0.01, 16.0));
   }
 }
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "wavelengths", "direct_lighting"});
+  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "direct_lighting"});
+  if (const auto sampler = c.find("sampler"))
+    s.sampler = *parse_sampler_kind(sampler->choice({"sobol", "independent"}));
   if (const auto d = c.find("direct_lighting")) {
     const std::string v = d->choice({"mis", "nee_only", "bsdf_only"});
     s.integrator.direct_lighting = v == "nee_only"    ? DirectLighting::nee_only
@@ -84,7 +90,12 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   root.only_keys({"description", "camera", "film", "integrator", "spectra", "materials", "prototypes", "shapes",
                   "lights"});
   LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}};
-  if (const auto spectra = root.find("spectra")) context.spectra.set_named(*spectra);
+  if (const auto spectra = root.find("spectra")) {
+    if (!spectra->is_object()) spectra->fail("expected an object of name → spectrum");
+    context.spectra.set_named(*spectra);
+  }
+  for (const char* section : {"lights", "shapes"})
+    if (root.has(section) && !root.at(section).is_array()) root.at(section).fail("expected an array");
 
   load_camera(root.at("camera"), *scene);
   if (const auto film = root.find("film")) load_film(*film, scene->settings);

@@ -44,31 +44,41 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
     m.only_keys({"type", "metal", "n", "k", "roughness", "roughness_u", "roughness_v"});
     ComplexIorSpectra ior;
     if (m.has("metal")) {
+      for (const char* key : {"n", "k"})
+        if (m.has(key)) m.at(key).fail("give either metal or n and k, not both");
       const JsonCursor metal = m.at("metal");
       ior = with_key(metal, [&] { return conductor_ior(library, metal.string()); });
     } else {
       ior.n = context.spectra.parse(m.at("n"), SpectrumRole::ior);
-      ior.k = context.spectra.parse(m.at("k"), SpectrumRole::emission);  // ≥ 0, unbounded
+      // k ≥ 0 and unbounded, like an emission; but RGB would be upsampled (and scaled) as light, so refuse it here.
+      const JsonCursor k = m.at("k");
+      if (k.is_object() && k.has("rgb")) k.at("rgb").fail("an extinction coefficient cannot be given as RGB");
+      ior.k = context.spectra.parse(k, SpectrumRole::emission);
     }
     const float r = roughness_of(m);
-    return ConductorMaterial(ior, float(m.number_or("roughness_u", r, 0.0, 1.0)),
-                             float(m.number_or("roughness_v", r, 0.0, 1.0)));
+    const float ru = float(m.number_or("roughness_u", r, 0.0, 1.0)), rv = float(m.number_or("roughness_v", r, 0.0, 1.0));
+    return with_key(m, [&] { return Material(ConductorMaterial(ior, ru, rv)); });
   }
   if (type == "dielectric") {
     m.only_keys({"type", "ior", "glass", "roughness"});
     SpectrumPtr ior;
     if (m.has("glass")) {
+      if (m.has("ior")) m.at("ior").fail("give either glass or ior, not both");
       const JsonCursor glass = m.at("glass");
       ior = with_key(glass, [&] { return dielectric_ior(library, glass.string()); });
     } else {
       ior = context.spectra.parse(m.at("ior"), SpectrumRole::ior);
     }
-    return DielectricMaterial(ior, roughness_of(m));
+    const float roughness = roughness_of(m);
+    return with_key(m, [&] { return Material(DielectricMaterial(ior, roughness)); });
   }
   m.only_keys({"type", "reflectance", "coat_ior"});
   const SpectrumPtr coat = m.has("coat_ior") ? context.spectra.parse(m.at("coat_ior"), SpectrumRole::ior)
                                              : std::make_shared<ConstantSpectrum>(1.5);
-  return CoatedDiffuseMaterial(reflectance_texture(m.at("reflectance"), context), coat);
+  SpectralTexturePtr reflectance = reflectance_texture(m.at("reflectance"), context);
+  // The material checks that the coat index is ≥ 1 everywhere; its error is reported at coat_ior.
+  return with_key(m.has("coat_ior") ? m.at("coat_ior") : m,
+                  [&] { return Material(CoatedDiffuseMaterial(std::move(reflectance), coat)); });
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "transport/area_light.h"
 #include "transport/light_spectrum.h"
 #include "render/scene_load_context.h"
+#include "render/scene_light_emission.h"
 
 namespace rimu::scene_loading {
 namespace {
@@ -25,6 +26,25 @@ std::vector<Vec3> vec3_array(const JsonCursor& c) {
   std::vector<Vec3> out;
   for (size_t i = 0; i < c.size(); ++i) out.push_back(c.at(i).vec3());
   return out;
+}
+
+// Rejects keys that belong to another triangle shape type (a "file" on a quad would otherwise be silently ignored).
+// Emissive keys are allowed only outside prototypes: area lights are not instanced.
+void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type, bool in_prototype) {
+  if (in_prototype) {
+    for (const char* key : {"emission", "two_sided"})
+      if (shape.has(key))
+        shape.at(key).fail("prototypes cannot hold emissive geometry (area lights are not instanced); put the "
+                           "emitter in \"shapes\"");
+  }
+  if (type == "mesh") {
+    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "two_sided"});
+  } else if (type == "quad") {
+    shape.only_keys({"type", "name", "vertices", "material", "transform", "emission", "two_sided"});
+  } else {
+    shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "material", "transform", "emission",
+                     "two_sided"});
+  }
 }
 
 // The mesh a shape describes, in object space (before its transform).
@@ -63,6 +83,7 @@ Transform parse_transform(const JsonCursor& shape) {
   Transform t;
   const auto ops = shape.find("transform");
   if (!ops) return t;
+  if (!ops->is_array()) ops->fail("expected an array of steps, e.g. [{\"scale\": 2}, {\"translate\": [0, 1, 0]}]");
   for (size_t i = 0; i < ops->size(); ++i) {
     const JsonCursor op = ops->at(i);
     op.only_keys({"translate", "scale", "rotate", "matrix"});
@@ -103,6 +124,8 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     const JsonCursor shape = section.at(i);
     const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "sphere", "instance"});
     if (type == "sphere") {
+      if (shape.has("emission"))
+        shape.at("emission").fail("spheres cannot emit light; use a mesh, triangles or quad shape as an area light");
       shape.only_keys({"type", "name", "center", "radius", "material", "transform"});
       if (shape.has("transform")) shape.at("transform").fail("spheres take center and radius, not a transform");
       const Vec3 centre = shape.at("center").vec3();
@@ -118,22 +141,26 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       scene.geometry.add_instance(it->second, parse_transform(shape));
       continue;
     }
-    shape.only_keys({"type", "name", "file", "object", "vertices", "positions", "indices", "normals", "uvs",
-                     "material", "transform", "emission", "two_sided"});
+    check_triangle_shape_keys(shape, type, false);
     TriangleMesh mesh = mesh_of(shape, type, context);
     mesh.transform(parse_transform(shape));
+    // Every key is checked before a shape of only degenerate triangles is dropped, so such a shape cannot hide a
+    // typo in its material or emission.
+    const int material = material_of(shape, context);
+    const auto emission = shape.find("emission");
+    const bool two_sided = emission ? shape.boolean_or("two_sided", false) : false;
+    // An amount in lm is spread over the area after the transform (scene_light_emission.h).
+    const std::optional<LightSpectrum> radiance =
+        emission ? std::optional(area_light_emission(*emission, mesh, two_sided, context)) : std::nullopt;
+    if (!emission && shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
     scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
     if (mesh.triangle_count() == 0) continue;  // only degenerate triangles (counted above)
-    const int material = material_of(shape, context);
-    if (const auto emission = shape.find("emission")) {
+    if (radiance) {
       // Lights were loaded first, so area lights take the indices after them, in the order of the shapes.
-      LightSpectrum radiance(context.spectra.parse(*emission, SpectrumRole::emission), 1.0);
-      auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, std::move(radiance),
-                                               shape.boolean_or("two_sided", false));
+      auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
       scene.lights.push_back(std::move(light));
       scene.geometry.add_mesh(mesh, material, int(scene.lights.size()) - 1);
     } else {
-      if (shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
       scene.geometry.add_mesh(mesh, material, -1);
     }
   }
@@ -147,12 +174,12 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
     for (size_t i = 0; i < shapes.size(); ++i) {
       const JsonCursor shape = shapes.at(i);
       const std::string type = shape.at("type").choice({"mesh", "triangles", "quad"});
-      shape.only_keys({"type", "name", "file", "object", "vertices", "positions", "indices", "normals", "uvs",
-                       "material", "transform"});
+      check_triangle_shape_keys(shape, type, true);
       TriangleMesh mesh = mesh_of(shape, type, context);
       mesh.transform(parse_transform(shape));
+      const int material = material_of(shape, context);
       context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
-      if (mesh.triangle_count() > 0) meshes.emplace_back(std::move(mesh), material_of(shape, context));
+      if (mesh.triangle_count() > 0) meshes.emplace_back(std::move(mesh), material);
     }
     context.prototype_index[name] = context.scene.geometry.add_prototype(meshes);
   }

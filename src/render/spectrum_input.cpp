@@ -37,6 +37,10 @@ void check_range(const JsonCursor& where, const Spectrum& s, SpectrumRole role) 
       where.fail("an index of refraction must be positive; it is " + std::to_string(v) + " at " + std::to_string(nm) + " nm");
     if (role != SpectrumRole::ior && v < 0.0)
       where.fail("the spectrum is negative (" + std::to_string(v) + ") at " + std::to_string(nm) + " nm");
+    // Materials would clamp a reflectance above 1 (it would create energy); say so instead of changing the input.
+    // The 1e-6 allows a product such as 0.5 × 2 rounded in float.
+    if (role == SpectrumRole::reflectance && v > 1.0 + 1e-6)
+      where.fail("a reflectance cannot exceed 1; it is " + std::to_string(v) + " at " + std::to_string(nm) + " nm");
   }
 }
 

@@ -3,6 +3,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string_view>
 
 #include "transport/vector.h"
 
@@ -39,6 +41,19 @@ class IndependentSampler final : public Sampler {
   uint64_t seed_;
   uint64_t state_ = 0, increment_ = 1;
 };
+
+/// Which sampler a render uses (docs/sampling.md compares them).
+enum class SamplerKind {
+  independent,  ///< IndependentSampler: the baseline
+  sobol,        ///< SobolSampler (transport/sobol_sampler.h): padded Owen-scrambled Sobol' pairs, the default
+};
+
+/// A sampler of the given kind and seed (the prototype the render loop clones per thread).
+std::unique_ptr<Sampler> make_sampler(SamplerKind kind, uint64_t seed);
+/// "independent" or "sobol".
+const char* sampler_kind_name(SamplerKind kind);
+/// The kind named "independent" or "sobol"; nullopt for anything else.
+std::optional<SamplerKind> parse_sampler_kind(std::string_view name);
 
 /// A 64-bit mix (Stafford's "Mix13" variant of the MurmurHash3 finaliser), for seeding and decorrelation.
 uint64_t mix_bits(uint64_t v);

@@ -122,13 +122,13 @@ TEST_CASE("A Cornell box render through RecordingRayQueries is bit-identical to 
   options.samples_per_pixel = 2;
   options.threads = 2;
 
-  Film plain(FilmOptions{16, 16}, SpectralResponse::from_spec(library, "xyz"));
+  Film plain(FilmOptions{16, 16, std::nullopt, 0}, SpectralResponse::from_spec(library, "xyz"));
   render(*scene, filter, plain, options);
 
   RecordingRayQueries recorder(scene->geometry, RecordingRayQueries::Mode::record);
   TransportScene view = scene->transport_view();
   view.geometry = &recorder;
-  Film counted(FilmOptions{16, 16}, SpectralResponse::from_spec(library, "xyz"));
+  Film counted(FilmOptions{16, 16, std::nullopt, 0}, SpectralResponse::from_spec(library, "xyz"));
   render(view, scene->settings.integrator, Camera(scene->camera, 16, 16), filter, counted, options);
 
   int differing_pixels = 0;

@@ -1,0 +1,208 @@
+#include "render/light_definition.h"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "render/json_cursor.h"
+#include "render/render_error.h"
+#include "render/spectrum_input.h"
+#include "spectral/spectrum_report.h"
+
+namespace rimu {
+namespace {
+
+struct KeyUnit {
+  const char* key;
+  LightUnit unit;
+};
+// The scene's amount keys (render/scene_light_emission.h), in the order definitions are written.
+constexpr std::array kKeys{
+    KeyUnit{"luminous_power_lm", LightUnit::lumen},       KeyUnit{"radiant_power_w", LightUnit::watt},
+    KeyUnit{"luminous_intensity_cd", LightUnit::candela}, KeyUnit{"radiant_intensity_w_sr", LightUnit::watt_per_sr},
+    KeyUnit{"illuminance_lx", LightUnit::lux},            KeyUnit{"irradiance_w_m2", LightUnit::watt_per_m2},
+    KeyUnit{"luminance_nt", LightUnit::nit},              KeyUnit{"radiance_w_m2_sr", LightUnit::watt_per_m2_sr},
+    KeyUnit{"ev100", LightUnit::ev100},
+};
+
+std::string fmt(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+ShapeIntegrals integrals(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
+  return shape_integrals(*light_shape(light, library, dir), library.photopic_v());
+}
+
+}  // namespace
+
+nlohmann::json cct_spectrum(double cct_k, bool daylight, const SourceLocation& where) {
+  const double lo = daylight ? 4000.0 : 1000.0;
+  if (!(cct_k >= lo && cct_k <= 25000.0))
+    throw InputError(where, std::string(daylight ? "a daylight" : "a blackbody") + " CCT must be in " +
+                                (daylight ? "4000" : "1000") + "-25000 K; got " + fmt("%g", cct_k) + " K");
+  return daylight ? nlohmann::json{{"daylight", cct_k}} : nlohmann::json{{"blackbody", cct_k}};
+}
+
+SpectrumPtr light_shape(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
+  SpectrumInputContext context(library, dir);
+  return context.parse(JsonCursor(light.spectrum, "light", "/spectrum"), SpectrumRole::emission);
+}
+
+void validate_light_definition(const LightDefinition& light, SpectralLibrary& library,
+                               const std::filesystem::path& dir, const SourceLocation& where) {
+  const EmitterGeometry& g = light.geometry;
+  if (light.amount.unit != LightUnit::ev100 && !(light.amount.value > 0.0))
+    throw InputError(where, "the amount must be positive; got " + format_light_amount(light.amount));
+  if (g.kind == EmitterKind::spot && !(g.outer_half_angle_deg > 0.0 && g.outer_half_angle_deg < 90.0))
+    throw InputError(where, "the cone angle must be in (0, 180) degrees; got " + fmt("%g", 2.0 * g.outer_half_angle_deg));
+  if (g.kind == EmitterKind::spot && !(g.inner_half_angle_deg >= 0.0 && g.inner_half_angle_deg <= g.outer_half_angle_deg))
+    throw InputError(where, "the softness must be between 0 and half the cone angle");
+  try {
+    shape_scale(light.amount, g, integrals(light, library, dir), where);
+  } catch (const InputError& e) {
+    throw InputError(where, e.explanation());
+  }
+}
+
+nlohmann::json light_definition_json(const LightDefinition& light) {
+  nlohmann::ordered_json j;
+  j["type"] = light.geometry.kind_name();
+  j["spectrum"] = light.spectrum;
+  for (const KeyUnit& k : kKeys)
+    if (k.unit == light.amount.unit) j[k.key] = light.amount.value;
+  if (light.geometry.kind == EmitterKind::spot) {
+    j["cone_angle_deg"] = 2.0 * light.geometry.outer_half_angle_deg;
+    j["falloff_start_deg"] = 2.0 * light.geometry.inner_half_angle_deg;
+    j["power_convention"] = light.geometry.spot_power == SpotPowerConvention::cone ? "cone" : "point";
+  }
+  return nlohmann::json::parse(j.dump());
+}
+
+LightDefinition read_light_definition(const nlohmann::json& document, const std::string& file) {
+  const JsonCursor root(document, file);
+  LightDefinition light;
+  const std::string type = root.at("type").choice({"point", "spot", "distant", "environment"});
+  light.geometry.kind = type == "point" ? EmitterKind::point
+                        : type == "spot" ? EmitterKind::spot
+                        : type == "distant" ? EmitterKind::distant
+                                            : EmitterKind::environment;
+  if (light.geometry.kind == EmitterKind::spot) {
+    light.geometry.outer_half_angle_deg = root.at("cone_angle_deg").number(0.01, 179.9) / 2.0;
+    light.geometry.inner_half_angle_deg =
+        root.number_or("falloff_start_deg", 2.0 * light.geometry.outer_half_angle_deg, 0.0, 179.9) / 2.0;
+    if (root.has("power_convention") && root.at("power_convention").choice({"cone", "point"}) == "point")
+      light.geometry.spot_power = SpotPowerConvention::point;
+  }
+  light.spectrum = root.at("spectrum").value();
+  bool found = false;
+  for (const KeyUnit& k : kKeys) {
+    if (!root.has(k.key)) continue;
+    if (found) root.at(k.key).fail("a light takes one amount");
+    light.amount = {root.at(k.key).number(k.unit == LightUnit::ev100 ? -50.0 : 1e-30, 1e30), k.unit};
+    found = true;
+  }
+  if (!found) root.fail("no amount: expected luminous_power_lm, luminous_intensity_cd, illuminance_lx, luminance_nt, "
+                        "ev100 or a radiometric twin");
+  return light;
+}
+
+double convert_light_amount(const LightDefinition& light, LightUnit to, SpectralLibrary& library,
+                            const std::filesystem::path& dir, double distance_m, const SourceLocation& where) {
+  const ShapeIntegrals s = integrals(light, library, dir);
+  const EmitterOutput out = emitter_output(light.geometry, shape_scale(light.amount, light.geometry, s, where), s);
+  const EmitterKind kind = light.geometry.kind;
+  const bool delta = kind == EmitterKind::point || kind == EmitterKind::spot;
+  double value = 0.0;
+  switch (to) {
+    case LightUnit::lumen: value = out.luminous_power_lm; break;
+    case LightUnit::watt: value = out.radiant_power_w; break;
+    case LightUnit::candela: value = out.luminous_intensity_cd; break;
+    case LightUnit::watt_per_sr: value = out.radiant_intensity_w_sr; break;
+    case LightUnit::lux: value = delta ? out.luminous_intensity_cd / (distance_m * distance_m) : out.illuminance_lx; break;
+    case LightUnit::watt_per_m2: value = delta ? out.radiant_intensity_w_sr / (distance_m * distance_m) : out.irradiance_w_m2; break;
+    case LightUnit::nit: value = out.luminance_nt; break;
+    case LightUnit::watt_per_m2_sr: value = out.radiance_w_m2_sr; break;
+    case LightUnit::ev100: return kind == EmitterKind::distant || kind == EmitterKind::environment || kind == EmitterKind::area
+                                      ? out.ev100
+                                      : throw InputError(where, "EV applies to distant, area and environment lights");
+  }
+  if (!(value > 0.0))
+    throw InputError(where, std::string("a ") + light.geometry.kind_name() + " light has no " + unit_symbol(to) +
+                                " value (it is not one of the quantities this kind of light has)");
+  return value;
+}
+
+LightDefinition recolor_light(const LightDefinition& light, nlohmann::json new_spectrum, SpectralLibrary& library,
+                              const std::filesystem::path& dir) {
+  LightDefinition out = light;
+  if (!is_photometric(light.amount.unit)) {
+    // Keep the lumens, not the watts: restate the amount photometrically with the old shape first.
+    const LightUnit twin = unit_of(quantity_of(light.amount.unit), true);
+    out.amount = {light.amount.value * integrals(light, library, dir).efficacy_lm_W(), twin};
+  }
+  out.spectrum = std::move(new_spectrum);
+  validate_light_definition(out, library, dir, {"", 0, "recolor"});
+  return out;
+}
+
+std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir,
+                               double distance_m, double off_axis_deg, std::optional<double> electrical_w) {
+  const SpectrumPtr shape = light_shape(light, library, dir);
+  const ShapeIntegrals s = shape_integrals(*shape, library.photopic_v());
+  const EmitterGeometry& g = light.geometry;
+  const EmitterOutput o = emitter_output(g, shape_scale(light.amount, g, s, {}), s);
+  std::ostringstream out;
+  out << "light              " << g.kind_name() << ", " << format_light_amount(light.amount);
+  if (g.kind == EmitterKind::spot)
+    out << ", cone " << 2.0 * g.outer_half_angle_deg << "° (full from " << 2.0 * g.inner_half_angle_deg << "°), lumens "
+        << (g.spot_power == SpotPowerConvention::cone ? "over the cone" : "as if a point light");
+  out << "\n";
+  out << report_text(analyse_spectrum(*shape, shape->describe(), library));
+  out << fmt("efficacy           %.2f lm/W of radiation (360-830 nm)", o.efficacy_lm_W);
+  if (electrical_w && o.luminous_power_lm > 0.0)
+    out << fmt(", %.2f lm/W of the source", o.luminous_power_lm / *electrical_w)
+        << fmt(" (%.1f %% wall-plug efficiency)", 100.0 * o.radiant_power_w / *electrical_w);
+  out << "\n";
+  if (o.luminous_power_lm > 0.0)
+    out << fmt("power              %.6g lm", o.luminous_power_lm) << fmt(" = %.6g W (radiant)\n", o.radiant_power_w);
+  if (o.luminous_intensity_cd > 0.0) {
+    out << fmt("peak intensity     %.6g cd", o.luminous_intensity_cd) << fmt(" = %.6g W/sr\n", o.radiant_intensity_w_sr);
+    out << fmt("illuminance        %.6g lx", illuminance_at_lx(g, o, distance_m, off_axis_deg))
+        << fmt(" at %g m", distance_m) << fmt(", %g° off axis, on a surface facing the light\n", off_axis_deg);
+  }
+  if (o.illuminance_lx > 0.0)
+    out << fmt("illuminance        %.6g lx", o.illuminance_lx) << fmt(" = %.6g W/m² at normal incidence", o.irradiance_w_m2)
+        << fmt(" (EV %.2f at ISO 100, incident meter C = 250)\n", o.ev100)
+        << fmt("white Lambertian   %.6g nt\n", o.illuminance_lx / 3.14159265358979);
+  if (o.luminance_nt > 0.0)
+    out << fmt("luminance          %.6g nt", o.luminance_nt) << fmt(" = %.6g W/(m²·sr)", o.radiance_w_m2_sr)
+        << fmt(" (EV %.2f at ISO 100, reflected meter K = 12.5)\n", o.ev100);
+  return out.str();
+}
+
+void plot_spectrum_png(const Spectrum& shape, double scale, const std::string& y_label, const std::string& title,
+                       const std::filesystem::path& png) {
+  const char* env = std::getenv("RIMU_GNUPLOT");
+  const std::string gnuplot = env ? env : "/usr/bin/gnuplot";
+  if (!std::filesystem::exists(gnuplot)) throw RenderError("cannot plot: gnuplot not found at " + gnuplot);
+  const std::filesystem::path data = png.string() + ".dat", script = png.string() + ".gp";
+  {
+    std::ofstream d(data);
+    for (int nm = 360; nm <= 830; ++nm) d << nm << ' ' << scale * shape.value(nm) << '\n';
+    std::ofstream g(script);
+    g << "set terminal pngcairo size 800,500\nset output '" << png.string() << "'\n"
+      << "set xlabel 'wavelength (nm)'\nset ylabel '" << y_label << "'\nset title \"" << title << "\"\n"
+      << "set xrange [360:830]\nset grid\nplot '" << data.string() << "' using 1:2 with lines lw 2 title ''\n";
+  }
+  const int status = std::system(("'" + gnuplot + "' '" + script.string() + "' 2>&1").c_str());
+  std::filesystem::remove(data);
+  std::filesystem::remove(script);
+  if (status != 0) throw RenderError("gnuplot failed writing " + png.string());
+}
+
+}  // namespace rimu

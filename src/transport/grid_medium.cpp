@@ -1,0 +1,107 @@
+#include "transport/grid_medium.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <random>
+
+#include "spectral/error.h"
+
+namespace rimu {
+
+GridMedium::GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec3 bounds_min, Vec3 bounds_max,
+                       SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g)
+    : nx_(nx), ny_(ny), nz_(nz), density_(std::move(densities)), min_(bounds_min), max_(bounds_max),
+      unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g) {
+  if (nx < 1 || ny < 1 || nz < 1) throw InputError({}, "a voxel grid needs at least one voxel per axis");
+  if (density_.size() != size_t(nx) * size_t(ny) * size_t(nz))
+    throw InputError({}, "the voxel grid holds " + std::to_string(density_.size()) + " values, expected nx*ny*nz");
+  for (float d : density_)
+    if (!(d >= 0.0f) || !std::isfinite(d)) throw InputError({}, "voxel densities must be finite and >= 0");
+  const Vec3 extent = max_ - min_;
+  if (!(extent.x > 0.0f && extent.y > 0.0f && extent.z > 0.0f)) throw InputError({}, "the medium's box is empty");
+  voxel_size_ = {extent.x / float(nx), extent.y / float(ny), extent.z / float(nz)};
+  mx_ = (nx + kBlock - 1) / kBlock;
+  my_ = (ny + kBlock - 1) / kBlock;
+  mz_ = (nz + kBlock - 1) / kBlock;
+  majorant_.assign(size_t(mx_) * size_t(my_) * size_t(mz_), 0.0f);
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) {
+        float& m = majorant_[size_t(((z / kBlock) * my_ + y / kBlock) * mx_ + x / kBlock)];
+        m = std::fmax(m, density_[size_t((z * ny + y) * nx + x)]);
+      }
+}
+
+float GridMedium::density(Vec3 p) const {
+  const Vec3 local = p - min_;
+  const int x = int(std::floor(local.x / voxel_size_.x)), y = int(std::floor(local.y / voxel_size_.y)),
+            z = int(std::floor(local.z / voxel_size_.z));
+  if (x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_) return 0.0f;
+  return density_[size_t((z * ny_ + y) * nx_ + x)];
+}
+
+bool GridMedium::clip(const Ray& ray, float t_max, float& t0, float& t1) const {
+  // Slab test (Kay & Kajiya 1986): intersect the three pairs of planes.
+  t0 = ray.t_min;
+  t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.0f / ray.direction[a];
+    float near = (min_[a] - ray.origin[a]) * inv, far = (max_[a] - ray.origin[a]) * inv;
+    if (near > far) std::swap(near, far);
+    if (std::isnan(near)) continue;  // direction 0 with the origin on a plane: inside along this axis
+    t0 = std::fmax(t0, near);
+    t1 = std::fmin(t1, far);
+  }
+  return t0 < t1;
+}
+
+void read_grid_file(const std::filesystem::path& path, int& nx, int& ny, int& nz, std::vector<float>& densities) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path.string()}, "cannot open the voxel grid");
+  char magic[8];
+  int32_t n[3];
+  in.read(magic, 8);
+  in.read(reinterpret_cast<char*>(n), sizeof n);
+  if (!in || std::memcmp(magic, "RIMUVOL1", 8) != 0) throw InputError({path.string()}, "not a RIMUVOL1 file");
+  for (int32_t v : n)
+    if (v < 1 || v > 4096) throw InputError({path.string()}, "grid sizes must be 1..4096");
+  nx = n[0], ny = n[1], nz = n[2];
+  densities.resize(size_t(nx) * size_t(ny) * size_t(nz));
+  in.read(reinterpret_cast<char*>(densities.data()), std::streamsize(densities.size() * sizeof(float)));
+  if (!in) throw InputError({path.string()}, "the file ends before nx*ny*nz densities");
+}
+
+void write_grid_file(const std::filesystem::path& path, int nx, int ny, int nz, const std::vector<float>& densities) {
+  std::ofstream out(path, std::ios::binary);
+  const int32_t n[3] = {nx, ny, nz};
+  out.write("RIMUVOL1", 8);
+  out.write(reinterpret_cast<const char*>(n), sizeof n);
+  out.write(reinterpret_cast<const char*>(densities.data()), std::streamsize(densities.size() * sizeof(float)));
+}
+
+std::vector<float> procedural_cloud_density(int n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> centre(0.3f, 0.7f), radius(0.12f, 0.25f);
+  struct Blob {
+    Vec3 c;
+    float r;
+  };
+  std::vector<Blob> blobs;
+  for (int i = 0; i < 12; ++i) blobs.push_back({{centre(rng), centre(rng) * 0.8f + 0.05f, centre(rng)}, radius(rng)});
+  std::vector<float> d(size_t(n) * size_t(n) * size_t(n));
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const Vec3 p{(float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n), (float(z) + 0.5f) / float(n)};
+        float v = 0.0f;
+        for (const Blob& b : blobs) {
+          const float s = std::clamp(1.0f - length(p - b.c) / b.r, 0.0f, 1.0f);
+          v = std::fmax(v, s * s * (3.0f - 2.0f * s));  // smoothstep: soft edges
+        }
+        d[size_t((z * n + y) * n + x)] = v;
+      }
+  return d;
+}
+
+}  // namespace rimu

@@ -1,0 +1,66 @@
+// The path tracer for scenes with participating media: surfaces as in PathIntegrator, plus free flights,
+// scattering and next-event estimation inside homogeneous and voxel-grid media (docs/media.md).
+#pragma once
+
+#include <vector>
+
+#include "transport/medium.h"
+#include "transport/path_integrator.h"
+#include "transport/spectral_distance_sampling.h"
+
+namespace rimu {
+
+/// A TransportScene plus its media. Non-owning, like TransportScene.
+struct VolumetricScene {
+  TransportScene surfaces;
+  const std::vector<Medium>* media = nullptr;
+  /// Indexed by material: the medium a shape of that material encloses, and whether its surface is index-matched.
+  /// Materials beyond the end have no medium and a real surface.
+  const std::vector<MediumBoundary>* boundaries = nullptr;
+};
+
+struct VolumetricIntegratorSettings {
+  PathIntegratorSettings path;  ///< max_depth counts surface interactions only; RR counts all vertices
+  DistanceSampling distance = DistanceSampling::spectral_mis;
+  /// A safety bound on scattering events per path (stuck-path guard; Russian roulette ends paths long before in
+  /// any medium with albedo < 1). Paths reaching it end, which truncates at most the 10⁶th-order scattering.
+  int max_medium_events = 1000000;
+};
+
+/// Radiance along camera rays in scenes with media, per lane, with the same output contract as
+/// PathIntegrator::radiance (lane j: this path's spectral-MIS-weighted estimate for λ_j).
+///
+/// Estimator (docs/transport.md and docs/media.md): throughput β = f/p(x̄|hero), ratios R_k = p(x̄|λ_k)/p(x̄|hero);
+/// each free flight multiplies β by FreeFlight::weight and R_k by FreeFlight::pdf_ratio; lights are found by NEE
+/// (with transmittance along the shadow ray, through index-matched boundaries) and by direction sampling, combined
+/// by the power heuristic with S_dir = q_dir · Σ_k R_k · pass_k. β and R are rescaled together so that ΣR = 4 at
+/// every vertex (the lane estimate 4β/ΣR is invariant), which keeps thousands of bounces in float range.
+///
+/// Random numbers per vertex: light choice (1), light position (2), lobe (1; unused in media), direction (2),
+/// Russian roulette (1); free flights take a variable number (spectral_distance_sampling.h).
+class VolumetricPathIntegrator {
+ public:
+  VolumetricPathIntegrator(const VolumetricScene& scene, VolumetricIntegratorSettings settings)
+      : scene_(scene), settings_(settings) {}
+
+  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const;
+
+ private:
+  struct ShadowResult {
+    SampledSpectrum transmittance;
+    SampledSpectrum pass_probability;
+  };
+  /// Transmittance from `origin` along `direction` over `distance`, crossing index-matched boundaries (and the
+  /// media behind them); std::nullopt if a real surface blocks the way.
+  std::optional<ShadowResult> shadow(Vec3 origin, Vec3 direction, float distance, MediumStack stack,
+                                     const SampledWavelengths& lambda, Sampler& sampler) const;
+  MediumBoundary boundary(int material) const {
+    return material >= 0 && size_t(material) < scene_.boundaries->size() ? (*scene_.boundaries)[size_t(material)]
+                                                                         : MediumBoundary{};
+  }
+
+  const VolumetricScene& scene_;
+  VolumetricIntegratorSettings settings_;
+};
+
+}  // namespace rimu

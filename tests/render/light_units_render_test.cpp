@@ -1,0 +1,191 @@
+// Photometric lights measured in renders: what the scene asks for (lm, cd, lx, nt, EV) is what the meter and the
+// camera read. Every tolerance is five standard errors of the Monte Carlo estimate (a false alarm below 1e-6 under
+// the normal approximation), and each test also checks that the standard error is small enough to mean something.
+// The conversions use CIE 15's 1 nm rectangle sum of S·V while the renderer's estimators converge to the exact
+// integral of the piecewise-linear tables; for these smooth spectra the two differ by < 1e-5, far below the noise.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "render/film.h"
+#include "render/light_meter.h"
+#include "render/pixel_filter.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "spectral/blackbody_spectrum.h"
+#include "spectral/emitter_photometry.h"
+#include "test_support.h"
+
+using namespace rimu;
+using nlohmann::json;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+double cos_deg(double d) { return std::cos(d * kPi / 180.0); }
+
+// A scene with the given lights and shapes, a camera at `from` looking at the origin, and a grey and a black material.
+json scene_with(json lights, json shapes = json::array(), std::vector<float> from = {0.0f, 0.5f, 3.0f}) {
+  return json{{"camera", {{"from", from}, {"to", {0, 0, 0}}, {"up", {0, 1, 0}}, {"vertical_fov_deg", 20}}},
+              {"integrator", {{"max_depth", 2}}},
+              {"materials",
+               {{"half", {{"type", "diffuse"}, {"reflectance", 0.5}}}, {"black", {{"type", "diffuse"}, {"reflectance", 0.0}}}}},
+              {"lights", std::move(lights)},
+              {"shapes", std::move(shapes)}};
+}
+
+std::unique_ptr<Scene> load(const json& document) {
+  return load_scene(document, "test scene", std::filesystem::current_path(), test::library());
+}
+
+MeterReading meter(const Scene& scene, Vec3 position, Vec3 normal, int samples = 4000) {
+  return measure_illuminance_lx(scene.transport_view(), position, normal, test::library().photopic_v(), samples, 7);
+}
+
+// Renders a 12x12 image at `spp` and reads the luminance over all of it.
+MeterReading camera_luminance(const Scene& scene, int spp = 8) {
+  Film film(FilmOptions{12, 12, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
+  RenderOptions options;
+  options.samples_per_pixel = spp;
+  options.threads = 1;
+  render(scene.transport_view(), scene.settings.integrator, Camera(scene.camera, 12, 12), PixelFilter::box(), film,
+         options);
+  return measure_luminance_nt(film, film.pixel_bounds());
+}
+
+void check_reading(const MeterReading& r, double expected, double max_relative_error = 0.01) {
+  CAPTURE(r.value);
+  CAPTURE(r.standard_error);
+  CAPTURE(expected);
+  CHECK(r.standard_error < max_relative_error * expected);  // the test can tell a 5 % error apart
+  CHECK(std::abs(r.value - expected) <= 5.0 * r.standard_error + 1e-9 * expected);
+}
+
+json light_quad(json emission, float half_size, bool two_sided = false) {
+  // A square in the plane z = 0, facing +z, of side 2·half_size (before a transform that doubles it).
+  return json{{"type", "quad"},
+              {"vertices", {{-half_size, -half_size, 0}, {half_size, -half_size, 0}, {half_size, half_size, 0}, {-half_size, half_size, 0}}},
+              {"material", "black"},
+              {"emission", std::move(emission)},
+              {"two_sided", two_sided},
+              {"transform", {{{"scale", 2.0}}}}};
+}
+
+}  // namespace
+
+TEST_CASE("a 1000 lm point light at 2 m gives 1000/(16π) lx on a facing sensor") {
+  const auto scene = load(scene_with(json::array(
+      {{{"type", "point"}, {"position", {0, 0, 2}}, {"spectrum", {{"blackbody", 2856}}}, {"luminous_power_lm", 1000}}})));
+  check_reading(meter(*scene, {0, 0, 0}, {0, 0, 1}), 1000.0 / (16.0 * kPi));
+  SUBCASE("the same lamp given in candela") {
+    const auto cd = load(scene_with(json::array({{{"type", "point"}, {"position", {0, 0, 2}},
+                                                  {"spectrum", {{"blackbody", 2856}}},
+                                                  {"luminous_intensity_cd", 1000.0 / (4.0 * kPi)}}})));
+    check_reading(meter(*cd, {0, 0, 0}, {0, 0, 1}), 1000.0 / (16.0 * kPi));
+  }
+}
+
+TEST_CASE("a 10000 lx sun on a Lambertian plane of albedo 0.5 has luminance 5000/π nt in the camera") {
+  // L = ρ E / π for a Lambertian reflector under irradiance E at normal incidence.
+  const auto scene = load(scene_with(
+      json::array({{{"type", "distant"}, {"direction", {0, 0, 1}}, {"spectrum", {{"daylight", 5500}}}, {"illuminance_lx", 10000}}}),
+      json::array({{{"type", "quad"}, {"vertices", {{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}}}, {"material", "half"}}})));
+  check_reading(meter(*scene, {0, 0, 0.001f}, {0, 0, 1}), 10000.0);
+  check_reading(camera_luminance(*scene), 5000.0 / kPi);
+}
+
+TEST_CASE("a spot light's lux on and off its axis follow the chosen power convention") {
+  // 800 lm, cone 40°, full intensity to 30° (half-angles 20° and 15°), 3 m above the sensor.
+  const double cone_sr = 2.0 * kPi * (1.0 - 0.5 * (cos_deg(15.0) + cos_deg(20.0)));
+  for (const char* convention : {"cone", "point"}) {
+    CAPTURE(convention);
+    const auto scene = load(scene_with(json::array(
+        {{{"type", "spot"}, {"position", {0, 0, 3}}, {"direction", {0, 0, -1}}, {"cone_angle_deg", 40},
+          {"falloff_start_deg", 30}, {"spectrum", {{"blackbody", 3000}}}, {"luminous_power_lm", 800},
+          {"power_convention", convention}}})));
+    const double intensity_cd = 800.0 / (std::string(convention) == "cone" ? cone_sr : 4.0 * kPi);
+    check_reading(meter(*scene, {0, 0, 0}, {0, 0, 1}), intensity_cd / 9.0);
+    // 17.5° off the axis, 3 m away, facing the lamp: E = I s(θ)/d².
+    const double t = (cos_deg(17.5) - cos_deg(20.0)) / (cos_deg(15.0) - cos_deg(20.0));
+    const Vec3 p{0.0f, float(3.0 * std::sin(17.5 * kPi / 180.0)), float(3.0 - 3.0 * cos_deg(17.5))};
+    const Vec3 to_light = normalize(Vec3{0, 0, 3} - p);
+    check_reading(meter(*scene, p, to_light), intensity_cd * t * t * (3.0 - 2.0 * t) / 9.0);
+  }
+}
+
+TEST_CASE("recolouring an 800 lm light from 2700 K to 6500 K keeps its lux and changes its watts") {
+  auto lamp = [](double cct_k) {
+    return load(scene_with(json::array(
+        {{{"type", "point"}, {"position", {0, 0, 2}}, {"spectrum", {{"blackbody", cct_k}}}, {"luminous_power_lm", 800}}})));
+  };
+  const auto warm = lamp(2700), cool = lamp(6500);
+  const MeterReading a = meter(*warm, {0, 0, 0}, {0, 0, 1}), b = meter(*cool, {0, 0, 0}, {0, 0, 1});
+  check_reading(a, 800.0 / (16.0 * kPi));
+  check_reading(b, 800.0 / (16.0 * kPi));
+  // The radiant power is 800/K(T) W: the efficacies of the two shapes (computed independently here).
+  const auto efficacy = [](double t) {
+    return shape_integrals(BlackbodySpectrum(t, BlackbodySpectrum::Scale::peak_one), test::library().photopic_v())
+        .efficacy_lm_W();
+  };
+  CHECK(warm->lights[0]->total_power_w(1.0) == doctest::Approx(800.0 / efficacy(2700)).epsilon(1e-6));
+  CHECK(cool->lights[0]->total_power_w(1.0) == doctest::Approx(800.0 / efficacy(6500)).epsilon(1e-6));
+  CHECK(std::abs(warm->lights[0]->total_power_w(1.0) / cool->lights[0]->total_power_w(1.0) - 1.0) > 0.2);
+
+  SUBCASE("keep radiometric keeps the watts of the reference colour instead") {
+    const auto kept = load(scene_with(json::array(
+        {{{"type", "point"}, {"position", {0, 0, 2}}, {"spectrum", {{"blackbody", 6500}}}, {"luminous_power_lm", 800},
+          {"keep", "radiometric"}, {"reference_spectrum", {{"blackbody", 2700}}}}})));
+    CHECK(kept->lights[0]->total_power_w(1.0) == doctest::Approx(800.0 / efficacy(2700)).epsilon(1e-6));
+    check_reading(meter(*kept, {0, 0, 0}, {0, 0, 1}), 800.0 / (16.0 * kPi) * efficacy(6500) / efficacy(2700));
+  }
+}
+
+TEST_CASE("area lights: lumens over the area after the transform, one- and two-sided, seen by the camera") {
+  // A 0.5 m square scaled by 2: 1 m². One-sided: L = Φ/(πA) = 1000/π nt; two-sided: half that. The camera at z = 3
+  // looks at its front and sees only the emitter (fov 20° covers 1.06 m at 3 m: the 1 m square fills the middle).
+  for (bool two_sided : {false, true}) {
+    CAPTURE(two_sided);
+    const auto scene = load(scene_with(
+        json::array(),
+        json::array({light_quad({{"spectrum", {{"illuminant", "D65"}}}, {"luminous_power_lm", 1000}}, 0.25f, two_sided)}),
+        {0, 0, 3}));
+    Film film(FilmOptions{12, 12, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
+    RenderOptions options;
+    options.samples_per_pixel = 4;
+    options.threads = 1;
+    render(scene->transport_view(), scene->settings.integrator, Camera(scene->camera, 12, 12), PixelFilter::box(), film,
+           options);
+    check_reading(measure_luminance_nt(film, PixelBounds{3, 3, 9, 9}), 1000.0 / kPi / (two_sided ? 2.0 : 1.0));
+    CHECK(scene->lights[0]->total_power_w(1.0) ==
+          doctest::Approx(1000.0 / shape_integrals(*test::library().illuminant("D65"), test::library().photopic_v())
+                                       .efficacy_lm_W()).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("environment light in nits and in EV at ISO 100") {
+  // Seen directly, a constant environment's luminance is the authored one; EV 10 is 0.125·2^10 = 128 nt (K = 12.5).
+  const auto nits = load(scene_with(json::array({{{"type", "environment"}, {"spectrum", {{"illuminant", "D65"}}}, {"luminance_nt", 1000}}})));
+  check_reading(camera_luminance(*nits, 2), 1000.0);
+  const auto ev = load(scene_with(json::array({{{"type", "environment"}, {"spectrum", {{"illuminant", "D65"}}}, {"ev100", 10}}})));
+  check_reading(camera_luminance(*ev, 2), 128.0);
+}
+
+TEST_CASE("photometric light keys: errors name the key and the units that apply") {
+  auto fails_with = [](json light, const std::string& message) {
+    CAPTURE(message);
+    CHECK_THROWS_WITH_AS(load(scene_with(json::array({std::move(light)}))), doctest::Contains(message), InputError);
+  };
+  fails_with({{"type", "point"}, {"position", {0, 0, 1}}, {"spectrum", 1.0}, {"illuminance_lx", 100}},
+             "/lights/0/illuminance_lx: a point light cannot be given in lx; use lm or W");
+  fails_with({{"type", "point"}, {"position", {0, 0, 1}}, {"spectrum", 1.0}, {"luminous_power_lm", 100}, {"luminous_intensity_cd", 5}},
+             "takes one amount");
+  fails_with({{"type", "point"}, {"position", {0, 0, 1}}, {"luminous_power_lm", 100}}, "needs 'spectrum'");
+  fails_with({{"type", "point"}, {"position", {0, 0, 1}}, {"spectrum", 1.0}, {"luminous_power_lm", -5}}, "/lights/0/luminous_power_lm");
+  fails_with({{"type", "point"}, {"position", {0, 0, 1}}, {"spectrum", 1.0}, {"intensity", 1.0}, {"luminous_power_lm", 5}},
+             "give either 'intensity'");
+  fails_with({{"type", "point"}, {"position", {0, 0, 1}}, {"spectrum", 0.0}, {"luminous_power_lm", 5}}, "/lights/0/spectrum");
+  fails_with({{"type", "distant"}, {"direction", {0, 0, 1}}, {"spectrum", 1.0}, {"illuminance_lx", 5}, {"keep", "radiometric"}},
+             "needs 'reference_spectrum'");
+}
