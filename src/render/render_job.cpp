@@ -82,6 +82,11 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   }
   SpectralResponse response = [&] {
     try {
+      // Rgb transport's lanes are linear sRGB, not wavelengths: its film converts them with the sRGB matrix.
+      if (settings.integrator.wavelengths == WavelengthMode::rgb) {
+        if (settings.film_response != "xyz") throw InputError({}, "rgb transport renders to an XYZ film only");
+        return SpectralResponse::rgb_transport(library);
+      }
       return SpectralResponse::from_spec(library, settings.film_response);
     } catch (const InputError& e) {
       throw InputError({"", 0, job.film ? "--film" : scene_path.string() + ": /film/response"}, e.explanation());

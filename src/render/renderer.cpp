@@ -13,6 +13,7 @@
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
 #include "transport/path_integrator.h"
+#include "transport/wavelength_modes.h"
 
 namespace rimu {
 namespace {
@@ -66,10 +67,10 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
           for (int x = b.x0; x < b.x1; ++x) {
             for (int s = first; s < first + count; ++s) {
               sampler->start_pixel_sample(x, y, uint32_t(s));
-              // Dimension order: film (2), lens (2), wavelength (1); then the integrator's per-bounce dimensions.
+              // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4); then per-bounce ones.
               const FilterSample fs = filter.sample(sampler->next_2d());
               const Vec2 lens = sampler->next_2d();
-              const SampledWavelengths lambda = SampledWavelengths::sample_visible(sampler->next_1d());
+              const SampledWavelengths lambda = sample_path_wavelengths(integrator_settings.wavelengths, *sampler);
               const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset_px.x, float(y) + 0.5f + fs.offset_px.y, lens);
               const SampledSpectrum radiance = integrator.radiance(ray, lambda, *sampler);
               tile->add_sample(x, y, radiance, lambda, fs.weight);

@@ -2,6 +2,7 @@
 
 #include "render/scene.h"
 #include "render/scene_load_context.h"
+#include "transport/wavelength_modes.h"
 
 namespace rimu {
 
@@ -72,7 +73,7 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
                                                       : DirectLighting::mis;
   }
   if (const auto mode = c.find("wavelengths"))
-    s.integrator.wavelengths = mode->choice({"hero", "single"}) == "single" ? WavelengthMode::single : WavelengthMode::hero;
+    s.integrator.wavelengths = *parse_wavelength_mode(mode->choice({"hero", "single", "independent", "rgb"}));
   s.samples_per_pixel = c.integer_or("spp", s.samples_per_pixel, 1, 1 << 24);
   s.integrator.max_depth = c.integer_or("max_depth", s.integrator.max_depth, 0, 100000);
   s.integrator.russian_roulette_depth =
@@ -100,6 +101,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   load_camera(root.at("camera"), *scene);
   if (const auto film = root.find("film")) load_film(*film, scene->settings);
   if (const auto integrator = root.find("integrator")) load_integrator(*integrator, scene->settings);
+  context.spectra.set_rgb_transport(scene->settings.integrator.wavelengths == WavelengthMode::rgb);
   if (const auto materials = root.find("materials")) scene_loading::load_materials(*materials, context);
   if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);

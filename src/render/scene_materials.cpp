@@ -1,5 +1,6 @@
 // The "materials" section of the JSON scene format.
 #include "render/image_texture.h"
+#include "render/rgb_transport_inputs.h"
 #include "render/scene_load_context.h"
 #include "spectral/optical_constants.h"
 #include "transport/spectral_texture.h"
@@ -14,6 +15,9 @@ SpectralTexturePtr reflectance_texture(const JsonCursor& value, LoadContext& con
     const std::filesystem::path path = context.spectra.scene_directory() / value.at("texture").string();
     const std::shared_ptr<const RgbImage> image = load_rgb_image(value, path);
     const std::string space = value.string_or("colour_space", "srgb-linear");
+    if (context.spectra.rgb_transport())
+      return std::make_shared<RgbLaneImageTexture>(image, RgbColourSpace::named(space),
+                                                   float(value.number_or("scale", 1.0, 0.0, 1.0)));
     const auto upsampler = context.spectra.upsampler(space, value.has("colour_space") ? value.at("colour_space") : value);
     return std::make_shared<ImageTexture>(image, upsampler, float(value.number_or("scale", 1.0, 0.0, 1.0)));
   }
@@ -49,11 +53,12 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
       const JsonCursor metal = m.at("metal");
       ior = with_key(metal, [&] { return conductor_ior(library, metal.string()); });
     } else {
-      ior.n = context.spectra.parse(m.at("n"), SpectrumRole::ior);
+      // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/rgb_transport_inputs.h).
+      ior.n = context.spectra.parse_spectral(m.at("n"), SpectrumRole::ior);
       // k ≥ 0 and unbounded, like an emission; but RGB would be upsampled (and scaled) as light, so refuse it here.
       const JsonCursor k = m.at("k");
       if (k.is_object() && k.has("rgb")) k.at("rgb").fail("an extinction coefficient cannot be given as RGB");
-      ior.k = context.spectra.parse(k, SpectrumRole::emission);
+      ior.k = context.spectra.parse_spectral(k, SpectrumRole::emission);
     }
     const float r = roughness_of(m);
     const float ru = float(m.number_or("roughness_u", r, 0.0, 1.0)), rv = float(m.number_or("roughness_v", r, 0.0, 1.0));
@@ -65,7 +70,8 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
     if (m.has("glass")) {
       if (m.has("ior")) m.at("ior").fail("give either glass or ior, not both");
       const JsonCursor glass = m.at("glass");
-      ior = with_key(glass, [&] { return dielectric_ior(library, glass.string()); });
+      ior = context.spectra.transport_form(with_key(glass, [&] { return dielectric_ior(library, glass.string()); }),
+                                           SpectrumRole::ior);
     } else {
       ior = context.spectra.parse(m.at("ior"), SpectrumRole::ior);
     }

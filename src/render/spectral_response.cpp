@@ -6,6 +6,7 @@
 
 #include "spectral/error.h"
 #include "spectral/photometry_constants.h"
+#include "spectral/rgb_colour_space.h"
 #include "spectral/wavelength_range.h"
 
 namespace rimu {
@@ -65,6 +66,17 @@ SpectralResponse SpectralResponse::cie_xyz(SpectralLibrary& library, StandardObs
   Observer normalised{o.name, scaled(o.x_bar, y_integral_nm), scaled(o.y_bar, y_integral_nm),
                       scaled(o.z_bar, y_integral_nm)};
   return SpectralResponse(ResponseKind::cie_xyz, std::move(normalised), y_integral_nm, o.name, "");
+}
+
+SpectralResponse SpectralResponse::rgb_transport(SpectralLibrary& library) {
+  SpectralResponse response = cie_xyz(library);
+  const Matrix3& m = RgbColourSpace::named("srgb-linear").rgb_to_xyz();
+  // Row k of M gives channel k from (R, G, B): lane j's weight is M[k][j]; the dead lane 3 weighs 0.
+  auto row = [&](int k) { return Float4(float(m(k, 0)), float(m(k, 1)), float(m(k, 2)), 0.0f); };
+  response.rgb_lane_matrix_ = {row(0), row(1), row(2)};
+  response.lanes_are_rgb_ = true;
+  response.description_ = "linear sRGB lanes to CIE 1931 XYZ (rgb transport baseline)";
+  return response;
 }
 
 std::string SpectralResponse::camera_short_name(std::string_view file_stem) {

@@ -37,6 +37,9 @@ class SpectralResponse {
   /// without its source prefix and step suffix ("nikon_d850"). Throws InputError listing the known names when the
   /// name is unknown or the short name is ambiguous (e.g. "nikon_d5100" is measured by both NPL and rawtoaces).
   static SpectralResponse camera_rgb(SpectralLibrary& library, std::string_view name);
+  /// The film of the rgb transport baseline (WavelengthMode::rgb): lanes 0-2 carry linear sRGB, and the film turns
+  /// them into CIE 1931 XYZ with the sRGB matrix (IEC 61966-2-1) instead of response curves. kind() is cie_xyz.
+  static SpectralResponse rgb_transport(SpectralLibrary& library);
   /// A film response from the CLI's spelling: "xyz" (1931 2°), "xyz10" (1964 10°) or "camera:<name>".
   static SpectralResponse from_spec(SpectralLibrary& library, std::string_view spec);
   /// Every camera file stem in data/spectra/cameras, sorted.
@@ -45,7 +48,12 @@ class SpectralResponse {
   static std::string camera_short_name(std::string_view file_stem);
 
   /// The three normalised responses at the four wavelengths (per-sample path; no allocation).
-  Response4 evaluate(const SampledWavelengths& lambda) const { return curves_.sample(lambda); }
+  /// For an rgb-transport film the lanes are not wavelengths: cₖ(lane j) = M_sRGB→XYZ[k][j] (lane 3 is 0).
+  Response4 evaluate(const SampledWavelengths& lambda) const {
+    return lanes_are_rgb_ ? rgb_lane_matrix_ : curves_.sample(lambda);
+  }
+  /// True for rgb_transport(): the lanes carry linear sRGB (transport/wavelength_modes.h).
+  bool lanes_are_rgb() const { return lanes_are_rgb_; }
   /// One normalised response at one wavelength (setup and tests).
   double value(int channel, double lambda_nm) const;
 
@@ -71,6 +79,8 @@ class SpectralResponse {
   std::string description_;
   std::string camera_name_;
   std::array<std::string, 3> channel_names_;
+  bool lanes_are_rgb_ = false;
+  Response4 rgb_lane_matrix_{};
 };
 
 /// The exact integral over 360-830 nm, in nm × curve units, of the piecewise-linear function a TabulatedSpectrum is.

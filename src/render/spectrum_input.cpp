@@ -9,6 +9,7 @@
 #include "spectral/csv_table.h"
 #include "spectral/daylight.h"
 #include "spectral/tabulated_spectrum.h"
+#include "render/rgb_transport_inputs.h"
 
 namespace rimu {
 namespace {
@@ -73,10 +74,33 @@ std::shared_ptr<const RgbUpsampler> SpectrumInputContext::upsampler(const std::s
   }
 }
 
+SpectrumPtr SpectrumInputContext::transport_form(SpectrumPtr spectrum, SpectrumRole role) {
+  return rgb_transport_ ? rgb_transport_form(spectrum, role, library_) : spectrum;
+}
+
+SpectrumPtr SpectrumInputContext::parse_spectral(const JsonCursor& value, SpectrumRole role) {
+  const bool was_converting = converting_;
+  converting_ = false;
+  try {
+    SpectrumPtr s = parse(value, role);
+    converting_ = was_converting;
+    return s;
+  } catch (...) {
+    converting_ = was_converting;
+    throw;
+  }
+}
+
 SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole role) {
+  // Rgb transport: the result is converted at the end unless an RGB was given (used as is) or a named spectrum
+  // was parsed (already converted by the recursive call).
+  const bool convert = rgb_transport_ && converting_;
+  std::optional<Rgb> given_rgb;
+  bool converted = false;
   if (value.is_number()) {
-    const double c = value.number(role == SpectrumRole::ior ? 1e-6 : 0.0, 1e30);
-    return std::make_shared<ConstantSpectrum>(c);
+    const double c = value.number(role == SpectrumRole::ior ? 1e-6 : 0.0, role == SpectrumRole::reflectance ? 1.0 : 1e30);
+    const SpectrumPtr constant = std::make_shared<ConstantSpectrum>(c);
+    return convert ? rgb_transport_form(constant, role, library_) : constant;
   }
   if (!value.is_object())
     value.fail("expected a spectrum: a number, or an object with one of constant, illuminant, csv, blackbody, "
@@ -115,6 +139,7 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
     const std::string space = value.string_or("space", "srgb-linear");
     const RgbUpsampler& up = *upsampler(space, value.has("space") ? value.at("space") : value);
     const Rgb colour{rgb.x, rgb.y, rgb.z};
+    if (convert) given_rgb = to_linear_srgb(colour, RgbColourSpace::named(space));
     if (role == SpectrumRole::reflectance) {
       base = std::make_shared<ReflectanceSpectrum>(up.upsample_reflectance(colour, value.where()).spectrum);
     } else {
@@ -129,14 +154,17 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
     if (++named_depth_ > 8) value.fail("named spectra refer to each other in a cycle");
     base = parse(named_->at(name), role);
     --named_depth_;
+    converted = convert;
   } else {
     value.fail("expected one of the keys constant, illuminant, csv, blackbody, daylight, rgb, spectrum");
   }
   if (value.has("scale")) {
     const double scale = value.at("scale").number(0.0, 1e30);
     base = std::make_shared<ScaledSpectrum>(std::move(base), scale);
+    if (given_rgb) given_rgb = Rgb{given_rgb->r * scale, given_rgb->g * scale, given_rgb->b * scale};
   }
   check_range(value, *base, role);
+  if (convert && !converted) base = rgb_transport_form(base, role, library_, given_rgb ? &*given_rgb : nullptr);
   return base;
 }
 

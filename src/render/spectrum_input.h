@@ -38,6 +38,16 @@ class SpectrumInputContext {
   ///   {"spectrum": "name"}                  a spectrum defined in the scene's "spectra" section
   /// Errors name the key path.
   SpectrumPtr parse(const JsonCursor& value, SpectrumRole role);
+  /// parse() without the rgb-transport conversion: for inputs that rgb transport point-samples (a conductor's n, k).
+  SpectrumPtr parse_spectral(const JsonCursor& value, SpectrumRole role);
+
+  /// Rgb transport (WavelengthMode::rgb): from now on parse() returns every input in its RGB form
+  /// (render/rgb_transport_inputs.h). Set by the loader from the scene's "integrator" section, before materials.
+  void set_rgb_transport(bool on) { rgb_transport_ = on; }
+  bool rgb_transport() const { return rgb_transport_; }
+  /// `spectrum` as the current mode carries it: unchanged, or its rgb-transport form (for spectra built outside
+  /// parse(), e.g. a named glass).
+  SpectrumPtr transport_form(SpectrumPtr spectrum, SpectrumRole role);
 
   /// Registers the scene's "spectra" section (an object of name → spectral value, parsed lazily by role).
   void set_named(const JsonCursor& section) { named_.emplace(section); }
@@ -58,6 +68,8 @@ class SpectrumInputContext {
   std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;
   int named_depth_ = 0;
   double emission_rgb_scale_ = 0.0;
+  bool rgb_transport_ = false;
+  bool converting_ = true;  // false inside parse_spectral()
 };
 
 /// A spectrum multiplied by a constant.

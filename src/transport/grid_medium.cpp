@@ -58,18 +58,18 @@ bool GridMedium::clip(const Ray& ray, float t_max, float& t0, float& t1) const {
 
 void read_grid_file(const std::filesystem::path& path, int& nx, int& ny, int& nz, std::vector<float>& densities) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path.string()}, "cannot open the voxel grid");
+  if (!in) throw InputError({path.string(), 0, ""}, "cannot open the voxel grid");
   char magic[8];
   int32_t n[3];
   in.read(magic, 8);
   in.read(reinterpret_cast<char*>(n), sizeof n);
-  if (!in || std::memcmp(magic, "RIMUVOL1", 8) != 0) throw InputError({path.string()}, "not a RIMUVOL1 file");
+  if (!in || std::memcmp(magic, "RIMUVOL1", 8) != 0) throw InputError({path.string(), 0, ""}, "not a RIMUVOL1 file");
   for (int32_t v : n)
-    if (v < 1 || v > 4096) throw InputError({path.string()}, "grid sizes must be 1..4096");
+    if (v < 1 || v > 4096) throw InputError({path.string(), 0, ""}, "grid sizes must be 1..4096");
   nx = n[0], ny = n[1], nz = n[2];
   densities.resize(size_t(nx) * size_t(ny) * size_t(nz));
   in.read(reinterpret_cast<char*>(densities.data()), std::streamsize(densities.size() * sizeof(float)));
-  if (!in) throw InputError({path.string()}, "the file ends before nx*ny*nz densities");
+  if (!in) throw InputError({path.string(), 0, ""}, "the file ends before nx*ny*nz densities");
 }
 
 void write_grid_file(const std::filesystem::path& path, int nx, int ny, int nz, const std::vector<float>& densities) {

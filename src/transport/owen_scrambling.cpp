@@ -1,5 +1,7 @@
 #include "transport/owen_scrambling.h"
 
+#include "transport/sampler.h"  // mix_bits
+
 namespace rimu {
 
 uint32_t scramble_reversed_digits(uint32_t x, uint32_t seed) {
@@ -8,15 +10,17 @@ uint32_t scramble_reversed_digits(uint32_t x, uint32_t seed) {
   // whose partial products x_i·m_{j−i} make the flip of digit j a seed-dependent function of the whole prefix:
   // two prefixes then receive (nearly) independent flips, which is what distinguishes Owen's scramble from a
   // random digital shift. The fixed even multipliers carry low bits upwards once more between the seeded steps.
-  // (Constants: arbitrary odd/even 32-bit values; the quality test checks the result, not the constants.)
-  const uint32_t multiplier_a = (seed * 0x2c1b3c6du) | 1u;
-  const uint32_t multiplier_b = ((seed >> 16 | seed << 16) * 0x297a2d39u) | 1u;
+  // The three seeded values must be independent: two additions of related values would cancel (a first version
+  // added seed and seed ^ const, and digit 1 lost its coin). Constants: arbitrary; the quality test checks the
+  // result, not the constants.
+  const uint64_t h = mix_bits(seed);
+  const uint32_t multiplier = uint32_t(h) | 1u, offset = uint32_t(h >> 32);
   x += seed;
   x ^= x * 0x6c50b47cu;
-  x *= multiplier_a;
+  x *= multiplier;
   x ^= x * 0xb82f1e52u;
-  x += seed ^ 0x5bd1e995u;
-  x *= multiplier_b;
+  x += offset;
+  x *= offset | 1u;
   x ^= x * 0xc7afe638u;
   return x;
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "transport/frame.h"
+#include "transport/wavelength_modes.h"
 
 namespace rimu {
 namespace {
@@ -42,8 +43,10 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
   SampledSpectrum radiance(0.0f);
   // R_k = p(x̄ | λ_k) / p(x̄ | hero). Single-wavelength mode makes the partners' techniques absent (R_k = 0), so
   // the hero's estimate is 4·β·L (the film averages four lanes) and the partners' outputs are masked to zero.
+  // Independent and rgb modes keep R_k = 1 (every lane weighted by the hero's density; transport/wavelength_modes.h).
+  const LaneTechniques lanes{settings_.wavelengths};
   const bool single = settings_.wavelengths == WavelengthMode::single;
-  SampledSpectrum pdf_ratio = single ? Float4(1.0f, 0.0f, 0.0f, 0.0f) : Float4(1.0f);
+  SampledSpectrum pdf_ratio = lanes.initial_ratios();
   SampledSpectrum beta = pdf_ratio;  // f / p(x̄ | hero), per lane
   Ray ray = camera_ray;
 
@@ -123,7 +126,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
               const float q_light = pick->probability * ls->pdf_solid_angle;
               const float s_light = q_light * sum_ratio;
               const float s_bsdf =
-                  ls->is_delta || strategy == DirectLighting::nee_only ? 0.0f : sum(pdf_ratio * bsdf.pdf(wo, wi));
+                  ls->is_delta || strategy == DirectLighting::nee_only ? 0.0f : sum(pdf_ratio * lanes.densities(bsdf.pdf(wo, wi)));
               const float weight = s_light / (s_light * s_light + s_bsdf * s_bsdf);
               radiance += beta * f * ls->radiance * Float4(kLanes * weight);
             }
@@ -144,11 +147,17 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     previous_specular = bs->is_delta;
     previous_hero_pdf = bs->pdf[0];
     previous_sum_ratio = sum_ratio;
-    previous_bsdf_sum = sum(pdf_ratio * bs->pdf);
+    const SampledSpectrum bsdf_densities = lanes.densities(bs->pdf);
+    previous_bsdf_sum = sum(pdf_ratio * bsdf_densities);
     previous_reference = reference;
 
     beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
-    pdf_ratio *= bs->pdf / Float4(bs->pdf[0]);
+    pdf_ratio *= bsdf_densities / Float4(bs->pdf[0]);
+    if (bs->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
+      const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
+      pdf_ratio *= hero_only;
+      beta *= hero_only;
+    }
 
     // Russian roulette on the effective throughput (what the film will see), after a few bounces.
     const float u_roulette = sampler.next_1d();

@@ -30,6 +30,8 @@ struct TransportScene {
 enum class WavelengthMode {
   hero,    ///< hero + three partners, combined by spectral MIS (the default)
   single,  ///< the hero alone: partners carry nothing (a baseline, and a reference for unbiasedness tests)
+  independent,  ///< four independently drawn wavelengths, each weighted by the hero's path density (no spectral MIS)
+  rgb,     ///< RGB transport baseline: lanes carry linear sRGB (transport/wavelength_modes.h, docs/transport.md)
 };
 
 /// How light sources are found (the default combines both; the others exist to check the combination).

@@ -38,7 +38,8 @@ struct CollisionProbabilities {
   Float4 scatter_lane = Float4(1.0f), null_lane = Float4(1.0f);  // lane k as hero (spectral_mis), else = as run
 };
 
-CollisionProbabilities collision_probabilities(DistanceSampling mode, Float4 sigma_s, Float4 sigma_n) {
+CollisionProbabilities collision_probabilities(DistanceSampling mode, Float4 sigma_s, Float4 sigma_n,
+                                               Float4 throughput) {
   CollisionProbabilities p;
   if (mode == DistanceSampling::spectral_mis || mode == DistanceSampling::hero_only) {
     const Float4 total = sigma_s + sigma_n;
@@ -54,7 +55,9 @@ CollisionProbabilities collision_probabilities(DistanceSampling mode, Float4 sig
     }
     return p;
   }
-  const float s = mean_lane(sigma_s), n = mean_lane(sigma_n);
+  // averaged: the lanes' mean coefficients; spectral_tracking: weighted by the throughput (history-aware).
+  const Float4 w = mode == DistanceSampling::spectral_tracking ? abs(throughput) : Float4(1.0f);
+  const float s = mean_lane(sigma_s * w), n = mean_lane(sigma_n * w);
   p.scatter = s + n > 0.0f ? s / (s + n) : 0.0f;
   p.null = s + n > 0.0f ? n / (s + n) : 0.0f;
   p.scatter_lane = Float4(p.scatter);
@@ -99,7 +102,7 @@ FreeFlight homogeneous_free_flight(const HomogeneousMedium& medium, const Ray& r
 }  // namespace
 
 FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
-                              DistanceSampling mode, Sampler& sampler) {
+                              DistanceSampling mode, Sampler& sampler, SampledSpectrum& throughput) {
   if (!uses_tracking(medium, mode)) return homogeneous_free_flight(*medium.homogeneous(), ray, t_max, lambda, mode, sampler);
 
   // Null-collision tracking: tentative collisions at rate μ̄ (lane-independent); at each, scatter or null by
@@ -114,7 +117,7 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
       if (t >= t1) return true;
       const MediumCoefficients c = coefficients_at(ray.origin + ray.direction * t);
       const Float4 sigma_n = max(Float4(majorant) - c.sigma_t_per_m(), Float4(0.0f));
-      const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n);
+      const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
       const float u = sampler.next_1d();
       if (p.scatter + p.null <= 0.0f) {  // the hero (or the mean) only absorbs here: the path ends
         flight.weight = Float4(0.0f);
@@ -129,7 +132,9 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
         done = true;
         return false;
       }
-      flight.weight *= sigma_n / Float4(majorant * p.null);
+      const Float4 null_weight = sigma_n / Float4(majorant * p.null);
+      flight.weight *= null_weight;
+      throughput *= null_weight;
       flight.pdf_ratio *= p.null_lane / Float4(p.null);
       flight.pass_probability *= p.null;
     }
@@ -139,7 +144,8 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
 }
 
 SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
-                                            const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler) {
+                                            const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler,
+                                            SampledSpectrum& throughput) {
   SegmentTransmittance out;
   if (!uses_tracking(medium, mode)) {
     const MediumCoefficients c = medium.homogeneous()->coefficients(lambda);
@@ -160,7 +166,10 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
       const MediumCoefficients c = coefficients_at(ray.origin + ray.direction * t);
       const Float4 sigma_n = max(Float4(majorant) - c.sigma_t_per_m(), Float4(0.0f));
       out.transmittance *= sigma_n / Float4(majorant);
-      out.pass_probability *= collision_probabilities(mode, c.sigma_s_per_m, sigma_n).null_lane;
+      const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
+      out.pass_probability *= p.null_lane;
+      // The free-flight technique would have carried this throughput through the same null collision.
+      if (p.null > 0.0f) throughput *= sigma_n / Float4(majorant * p.null);
       if (max_lane(out.transmittance) <= 0.0f) return false;
     }
   });

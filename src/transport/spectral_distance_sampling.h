@@ -18,8 +18,9 @@ enum class DistanceSampling {
   /// One density for all lanes from the lanes' mean σ_t (homogeneous: exact; grids: null-collision tracking with
   /// collision probabilities from the lanes' mean coefficients). Lane-independent, so R_k is unchanged.
   averaged,
-  /// Null-collision tracking for every medium, homogeneous ones included, with the mean-coefficient collision
-  /// probabilities of spectral tracking (Kutz, Habel, Li, Novák 2017, §5, history-free average variant).
+  /// Null-collision tracking for every medium, homogeneous ones included, with the history-aware collision
+  /// probabilities of spectral tracking (Kutz, Habel, Li, Novák 2017, §5.2): P_s ∝ mean_k(σ_s,k·|β̂_k|),
+  /// P_n ∝ mean_k(σ_n,k·|β̂_k|), β̂ the path's effective per-lane throughput. Lane-independent: R_k is unchanged.
   spectral_tracking,
 };
 
@@ -48,12 +49,17 @@ struct SegmentTransmittance {
 
 /// Samples a free flight from ray.origin along ray.direction (unit) until t_max (the next surface) in `medium`.
 /// Consumes one uniform number (homogeneous analytic modes) or two per tentative collision (trackers).
+/// `throughput` is the path's effective per-lane throughput (only spectral_tracking reads it; any positive
+/// multiple will do); it is updated along the flight's null collisions for the next segment.
 FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
-                              DistanceSampling mode, Sampler& sampler);
+                              DistanceSampling mode, Sampler& sampler, SampledSpectrum& throughput);
 
 /// The transmittance over [ray.t_min, t_max): exp(−σ_t d) for homogeneous media (analytic modes), else ratio
 /// tracking (Novák, Selle, Jarosz 2014) against the majorant grid. Consumes one number per tentative collision.
+/// `throughput` is what the free-flight technique's throughput would be on this segment (spectral_tracking's
+/// probabilities depend on it, and so do the pass probabilities); updated along the null collisions.
 SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
-                                            const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler);
+                                            const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler,
+                                            SampledSpectrum& throughput);
 
 }  // namespace rimu

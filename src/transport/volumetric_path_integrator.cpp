@@ -57,7 +57,7 @@ std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe
 
 std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::shadow(
     Vec3 origin, Vec3 direction, float distance, MediumStack stack, const SampledWavelengths& lambda,
-    Sampler& sampler) const {
+    Sampler& sampler, SampledSpectrum throughput) const {
   ShadowResult out{Float4(1.0f), Float4(1.0f)};
   const auto& media = *scene_.media;
   float remaining = std::isinf(distance) ? INFINITY : distance * (1.0f - 0x1p-12f);
@@ -69,7 +69,7 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
       // A medium reaching infinity (an open mesh) absorbs everything with σ_t > 0; 1e30 m keeps e^{−σd} defined.
       const float end = hit ? hit->t : std::fmin(remaining, 1e30f);
       const SegmentTransmittance tr =
-          estimate_transmittance(media[size_t(medium)], ray, end, lambda, settings_.distance, sampler);
+          estimate_transmittance(media[size_t(medium)], ray, end, lambda, settings_.distance, sampler, throughput);
       out.transmittance *= tr.transmittance;
       out.pass_probability *= tr.pass_probability;
       if (max_lane(out.transmittance) <= 0.0f) return std::nullopt;
@@ -133,8 +133,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     std::optional<Vec3> scatter_point;
     const int medium_index = stack.current(media);
     if (medium_index >= 0) {
+      SampledSpectrum throughput = beta;  // β ∝ the effective throughput while R is lane-independent
       const FreeFlight flight = sample_free_flight(media[size_t(medium_index)], ray, std::fmin(t_surface, 1e30f),
-                                                   lambda, settings_.distance, sampler);
+                                                   lambda, settings_.distance, sampler, throughput);
       beta *= flight.weight;
       pdf_ratio *= flight.pdf_ratio;
       if (flight.terminated()) break;
@@ -230,12 +231,16 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
           const SampledSpectrum f = scatterer.eval(ls->wi);
           const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
           if (!wrong_side && max_lane(f) > 0.0f) {
+            // The effective throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi).
+            const SampledSpectrum q_dir = scatterer.pdf(ls->wi);
+            const float sum_dir = sum(pdf_ratio * q_dir);
+            const SampledSpectrum throughput = sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f;
             if (const auto tr = shadow(origin_towards(ls->wi), ls->wi, ls->distance, stack_towards(ls->wi), lambda,
-                                       sampler)) {
+                                       sampler, throughput)) {
               const float s_light = pick->probability * ls->pdf_solid_angle * sum_ratio;
               const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only
                                       ? 0.0f
-                                      : sum(pdf_ratio * scatterer.pdf(ls->wi) * tr->pass_probability);
+                                      : sum(pdf_ratio * q_dir * tr->pass_probability);
               const float weight = s_light / (s_light * s_light + s_dir * s_dir);
               radiance += beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight);
             }

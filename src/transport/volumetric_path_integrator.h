@@ -52,8 +52,10 @@ class VolumetricPathIntegrator {
   };
   /// Transmittance from `origin` along `direction` over `distance`, crossing index-matched boundaries (and the
   /// media behind them); std::nullopt if a real surface blocks the way.
+  /// `throughput`: the direction-sampling technique's throughput along this direction (spectral tracking).
   std::optional<ShadowResult> shadow(Vec3 origin, Vec3 direction, float distance, MediumStack stack,
-                                     const SampledWavelengths& lambda, Sampler& sampler) const;
+                                     const SampledWavelengths& lambda, Sampler& sampler,
+                                     SampledSpectrum throughput) const;
   MediumBoundary boundary(int material) const {
     return material >= 0 && size_t(material) < scene_.boundaries->size() ? (*scene_.boundaries)[size_t(material)]
                                                                          : MediumBoundary{};

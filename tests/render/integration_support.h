@@ -1,15 +1,19 @@
 // Helpers of the integration tests (tests/render/integration_*_test.cpp): load a scene from JSON text, render it
 // with the real render loop, and the statistics that turn pixel values into error bars.
 //
-// Why pixels are independent samples: the render loop seeds every (pixel, sample index) on its own
-// (transport/sampler.h), so two pixels' estimates share no random numbers. In a region whose expected value is
+// Why pixels are independent samples: the render loop's samplers are pure functions of (seed, pixel, sample
+// index, dimension), and different pixels get independent randomisations (PCG seeds for the independent sampler,
+// Owen scrambles of the same nets for Sobol', transport/sobol_sampler.h), so two pixels' estimates are
+// independent; within a pixel, Sobol' stratification only lowers the variance of that pixel's mean. In a region whose expected value is
 // the same everywhere, the pixel values are therefore i.i.d. and their spread gives the standard error of their
 // mean without any assumption on the integrand.
 #pragma once
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -21,6 +25,8 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "test_support.h"
+#include "transport/path_integrator.h"
+#include "transport/sampler.h"
 
 namespace rimu::test {
 
@@ -42,6 +48,44 @@ inline PixelFilter filter_of(const Scene& scene) {
   return PixelFilter::gaussian(f.radius_px, f.sigma_px);
 }
 
+/// A mean with its standard error.
+struct Estimate {
+  double mean = 0.0;
+  double standard_error = 0.0;
+};
+
+/// Mean and standard error (sample standard deviation/√n) of i.i.d. values.
+inline Estimate estimate_of(const std::vector<double>& values);
+
+/// Four fixed wavelengths across the visible, for checks lane by lane (their pdf is irrelevant to the integrator).
+inline SampledWavelengths fixed_wavelengths() { return {Float4(400.0f, 500.0f, 600.0f, 700.0f), Float4(1.0f / 470.0f)}; }
+
+/// The scene's own path integrator run directly on `count` camera rays (ray i = `ray_of(i)`), at fixed_wavelengths():
+/// lane j's `count` values are i.i.d. estimates of L(λ_j) averaged over the rays; returns their means and errors.
+inline std::array<Estimate, 4> lane_radiance(const Scene& scene, const std::function<Ray(int)>& ray_of, int count,
+                                             uint64_t seed = 11) {
+  const TransportScene view = scene.transport_view();
+  const PathIntegrator integrator(view, scene.settings.integrator);
+  IndependentSampler sampler(seed);
+  std::array<std::vector<double>, 4> lanes;
+  for (int i = 0; i < count; ++i) {
+    sampler.start_pixel_sample(i, 0, uint32_t(i));
+    const SampledSpectrum l = integrator.radiance(ray_of(i), fixed_wavelengths(), sampler);
+    for (int j = 0; j < 4; ++j) lanes[size_t(j)].push_back(l[j]);
+  }
+  std::array<Estimate, 4> out;
+  for (int j = 0; j < 4; ++j) out[size_t(j)] = estimate_of(lanes[size_t(j)]);
+  return out;
+}
+
+/// A ray from `from` towards `to`.
+inline Ray ray_between(Vec3 from, Vec3 to) {
+  Ray ray;
+  ray.origin = from;
+  ray.direction = normalize(to - from);
+  return ray;
+}
+
 struct RenderedFilm {
   std::unique_ptr<Film> film;
   RenderStatistics statistics;
@@ -57,6 +101,7 @@ inline RenderedFilm render_xyz(const Scene& scene, int spp, uint64_t seed, int t
   RenderOptions render_options;
   render_options.samples_per_pixel = spp;
   render_options.seed = seed;
+  render_options.sampler = scene.settings.sampler;
   render_options.threads = threads;
   render_options.interrupt = interrupt;
   out.statistics = render(scene, filter_of(scene), *out.film, render_options);
@@ -72,13 +117,7 @@ inline std::vector<double> luminance_values(const Film& film) {
   return y;
 }
 
-/// A mean with its standard error.
-struct Estimate {
-  double mean = 0.0;
-  double standard_error = 0.0;
-};
 
-/// Mean and standard error (sample standard deviation/√n) of i.i.d. values.
 inline Estimate estimate_of(const std::vector<double>& values) {
   double mean = 0.0;
   for (double v : values) mean += v;

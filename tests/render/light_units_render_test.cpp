@@ -175,7 +175,7 @@ TEST_CASE("environment light in nits and in EV at ISO 100") {
 TEST_CASE("photometric light keys: errors name the key and the units that apply") {
   auto fails_with = [](json light, const std::string& message) {
     CAPTURE(message);
-    CHECK_THROWS_WITH_AS(load(scene_with(json::array({std::move(light)}))), doctest::Contains(message), InputError);
+    CHECK_THROWS_WITH_AS(load(scene_with(json::array({std::move(light)}))), doctest::Contains(message.c_str()), InputError);
   };
   fails_with({{"type", "point"}, {"position", {0, 0, 1}}, {"spectrum", 1.0}, {"illuminance_lx", 100}},
              "/lights/0/illuminance_lx: a point light cannot be given in lx; use lm or W");

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "transport/owen_scrambling.h"
@@ -20,14 +19,16 @@ constexpr int kSeeds = 4096;
 
 // The flip that `scramble` applies to digit j (0 = most significant) of inputs whose first j digits are `prefix`
 // (and whose later digits are zero), for seed s.
-int flip(const std::function<uint32_t(uint32_t, uint32_t)>& scramble, int j, uint32_t prefix, uint32_t seed) {
+template <class Scramble>
+int flip(const Scramble& scramble, int j, uint32_t prefix, uint32_t seed) {
   const uint32_t x = j == 0 ? 0u : prefix << (32 - j);
   return int(scramble(x, seed) >> (31 - j) & 1u);
 }
 
 // Over kSeeds seeds: the largest |P(flip) − ½| of single prefixes and |P(flip(p) = flip(p')) − ½| of prefix
 // pairs differing in one digit, for digits 0..8 (all prefixes) and digits 16 and 23 (64 random prefixes each).
-double worst_deviation(const std::function<uint32_t(uint32_t, uint32_t)>& scramble) {
+template <class Scramble>
+double worst_deviation(const Scramble& scramble) {
   std::vector<uint32_t> seeds(kSeeds);
   for (int s = 0; s < kSeeds; ++s) seeds[size_t(s)] = uint32_t(mix_bits(uint64_t(s) + 0xabcdefULL));
   double worst = 0;

@@ -1,0 +1,315 @@
+// Independent vs low-discrepancy sampling on a scene (issue 8; default: the measured Cornell box): error against
+// a converged reference along an spp ladder, wall time, the MSE ratio at 64 spp and at equal time, and the time
+// per sample ratio. Prints a markdown table for docs/benchmarks.md; optionally writes a gnuplot error-vs-time plot.
+// A plain main(): whole renders, not Google Benchmark loops.
+//
+//   build/bin/rimu-sampling-bench [--scene s.json] [--resolution WxH] [--max-spp 1024] [--reference-spp 4096]
+//                                 [--threads N] [--timing-repeats 3] [--cache DIR] [--plot out.png]
+//
+// The reference is rendered with the Sobol' sampler in two independent halves (seeds 1000003 and 1000033, never
+// used by the ladder, whose seed is 1), and cached in DIR (default: <build>/sampling_reference, beside bin/;
+// delete it after changing the renderer). Its own squared error is estimated from the halves: for independent
+// halves A and B, E|A − B|² = 2σ²_half and the reference (A+B)/2 has σ² = E|A − B|²/4; that floor is printed.
+//
+// Error measures, over all pixels and the three film channels (CIE XYZ for the default scene):
+//   MSE    = mean (x − r)²
+//   relMSE = mean (x − r)² / (r² + ε),  ε = 10⁻²·(mean r)²   (Rousselle et al. 2011's relative MSE; the ε keeps
+//                                                              dark pixels from dominating)
+// Equal time: log MSE is interpolated linearly in log time along the Sobol' ladder at the wall time of the
+// independent 64-spp render. Time per sample: the 64-spp renders are repeated, alternating samplers, and the
+// median of the per-pair ratios is reported (the machine is shared: alternation cancels slow drifts of its load).
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/film.h"
+#include "render/pixel_filter.h"
+#include "render/render_job.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "spectral/error.h"
+
+#ifndef RIMU_BENCH_BUILD
+#define RIMU_BENCH_BUILD "(unknown: not built through bench/CMakeLists.txt)"
+#endif
+
+using namespace rimu;
+
+namespace {
+
+struct Options {
+  std::optional<std::filesystem::path> scene, cache, plot;
+  std::optional<std::pair<int, int>> resolution;
+  int max_spp = 1024, reference_spp = 4096, threads = 0, timing_repeats = 3;
+};
+
+const char* const kUsage =
+    "usage: rimu-sampling-bench [--scene FILE] [--resolution WxH] [--max-spp N] [--reference-spp N] [--threads N]\n"
+    "                           [--timing-repeats N] [--cache DIR] [--plot OUT.png]\n";
+
+int parse_positive(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || v < 1 || v > 1 << 24)
+    throw InputError({"", 0, option}, "expected a positive integer, got '" + text + "'");
+  return int(v);
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    }
+    if (i + 1 >= argc) throw InputError({"", 0, arg}, "unknown option or missing value\n" + std::string(kUsage));
+    const std::string value = argv[++i];
+    if (arg == "--scene") o.scene = value;
+    else if (arg == "--resolution") o.resolution = parse_resolution(value, arg);
+    else if (arg == "--max-spp") o.max_spp = parse_positive(value, arg);
+    else if (arg == "--reference-spp") o.reference_spp = parse_positive(value, arg);
+    else if (arg == "--threads") o.threads = parse_positive(value, arg);
+    else if (arg == "--timing-repeats") o.timing_repeats = parse_positive(value, arg);
+    else if (arg == "--cache") o.cache = value;
+    else if (arg == "--plot") o.plot = value;
+    else throw InputError({"", 0, arg}, "unknown option\n" + std::string(kUsage));
+  }
+  return o;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  in >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+PixelFilter make_filter(const FilterSettings& f) {
+  if (f.type == "box") return PixelFilter::box(f.radius_px);
+  if (f.type == "blackman-harris") return PixelFilter::blackman_harris(f.radius_px);
+  return PixelFilter::gaussian(f.radius_px, f.sigma_px);
+}
+
+// An image: the film's three channels per pixel, row-major.
+using Image = std::vector<double>;
+
+struct Render {
+  Image image;
+  double seconds = 0;
+};
+
+Render render_image(SpectralLibrary& library, const Scene& scene, const PixelFilter& filter, SamplerKind sampler,
+                    int spp, uint64_t seed, int threads) {
+  const RenderSettings& s = scene.settings;
+  Film film(FilmOptions{s.width, s.height, std::nullopt, 0}, SpectralResponse::from_spec(library, s.film_response));
+  RenderOptions options;
+  options.samples_per_pixel = spp;
+  options.seed = seed;
+  options.threads = threads;
+  options.sampler = sampler;
+  Render r;
+  r.seconds = render(scene, filter, film, options).seconds;
+  r.image.reserve(size_t(s.width) * size_t(s.height) * 3);
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x)
+      for (double c : film.pixel_value(x, y)) r.image.push_back(c);
+  return r;
+}
+
+struct Reference {
+  Image image;
+  double own_mse = 0;  // the reference's estimated squared error (see the file comment)
+};
+
+double mse(const Image& a, const Image& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+  return sum / double(a.size());
+}
+
+double rel_mse(const Image& x, const Image& r) {
+  double mean_r = 0;
+  for (double v : r) mean_r += v / double(r.size());
+  const double epsilon = 1e-2 * mean_r * mean_r;
+  double sum = 0;
+  for (size_t i = 0; i < x.size(); ++i) sum += (x[i] - r[i]) * (x[i] - r[i]) / (r[i] * r[i] + epsilon);
+  return sum / double(x.size());
+}
+
+Reference load_or_render_reference(SpectralLibrary& library, const Scene& scene, const PixelFilter& filter,
+                                   const Options& o, const std::filesystem::path& cache_dir, const std::string& stem) {
+  const RenderSettings& s = scene.settings;
+  const std::filesystem::path file = cache_dir / (stem + "_" + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                                                  "_" + std::to_string(o.reference_spp) + "spp.bin");
+  const size_t count = size_t(s.width) * size_t(s.height) * 3;
+  Reference ref;
+  if (std::ifstream in{file, std::ios::binary}) {
+    ref.image.resize(count);
+    in.read(reinterpret_cast<char*>(&ref.own_mse), sizeof(double));
+    in.read(reinterpret_cast<char*>(ref.image.data()), std::streamsize(count * sizeof(double)));
+    if (in) {
+      std::printf("reference: %s (cached)\n", file.string().c_str());
+      return ref;
+    }
+  }
+  const int half = std::max(1, o.reference_spp / 2);
+  const Render a = render_image(library, scene, filter, SamplerKind::sobol, half, 1000003, o.threads);
+  const Render b = render_image(library, scene, filter, SamplerKind::sobol, half, 1000033, o.threads);
+  ref.image.resize(count);
+  for (size_t i = 0; i < count; ++i) ref.image[i] = 0.5 * (a.image[i] + b.image[i]);
+  ref.own_mse = mse(a.image, b.image) / 4.0;
+  std::filesystem::create_directories(cache_dir);
+  std::ofstream out(file, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(&ref.own_mse), sizeof(double));
+  out.write(reinterpret_cast<const char*>(ref.image.data()), std::streamsize(count * sizeof(double)));
+  std::printf("reference: %s (rendered in %.1f s, cached)\n", file.string().c_str(), a.seconds + b.seconds);
+  return ref;
+}
+
+struct LadderRow {
+  int spp = 0;
+  double seconds[2] = {0, 0}, mse[2] = {0, 0}, rel_mse[2] = {0, 0};
+};
+
+// log MSE interpolated linearly in log time along a ladder (clamped to its ends; nullopt outside).
+std::optional<double> mse_at_time(const std::vector<LadderRow>& rows, int k, double seconds) {
+  for (size_t i = 0; i + 1 < rows.size(); ++i) {
+    const double t0 = rows[i].seconds[k], t1 = rows[i + 1].seconds[k];
+    if (seconds >= t0 && seconds <= t1) {
+      const double f = (std::log(seconds) - std::log(t0)) / (std::log(t1) - std::log(t0));
+      return std::exp((1 - f) * std::log(rows[i].mse[k]) + f * std::log(rows[i + 1].mse[k]));
+    }
+  }
+  return std::nullopt;
+}
+
+void write_plot(const std::vector<LadderRow>& rows, const std::filesystem::path& png, const std::string& title) {
+  const std::filesystem::path data = std::filesystem::path(png).replace_extension(".dat");
+  const std::filesystem::path script = std::filesystem::path(png).replace_extension(".gp");
+  {
+    std::ofstream out(data);
+    out << "# spp  independent_s  independent_relmse  sobol_s  sobol_relmse\n";
+    for (const LadderRow& r : rows)
+      out << r.spp << ' ' << r.seconds[0] << ' ' << r.rel_mse[0] << ' ' << r.seconds[1] << ' ' << r.rel_mse[1] << '\n';
+  }
+  {
+    std::ofstream out(script);
+    out << "set terminal pngcairo size 800,560 font ',11'\n"
+        << "set output '" << png.string() << "'\n"
+        << "set title '" << title << "'\n"
+        << "set logscale xy\nset grid\nset key top right\n"
+        << "set xlabel 'wall time (s)'\nset ylabel 'relMSE vs reference'\n"
+        << "plot '" << data.string() << "' using 2:3 with linespoints title 'independent', \\\n"
+        << "     '" << data.string() << "' using 4:5 with linespoints title 'Sobol (Owen-scrambled, padded)'\n";
+  }
+  const std::string command = "/usr/bin/gnuplot '" + script.string() + "'";
+  if (std::system(command.c_str()) != 0) std::fprintf(stderr, "gnuplot failed: %s\n", command.c_str());
+  else std::printf("plot: %s (data %s, script %s)\n", png.string().c_str(), data.string().c_str(), script.string().c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse_options(argc, argv);
+    SpectralLibrary library = SpectralLibrary::at_default_location();
+    const std::filesystem::path scene_path = o.scene ? *o.scene : default_scene_path(library);
+    std::unique_ptr<Scene> scene = load_scene(scene_path, library);
+    if (o.resolution) std::tie(scene->settings.width, scene->settings.height) = *o.resolution;
+    const PixelFilter filter = make_filter(scene->settings.filter);
+    const std::filesystem::path exe_dir = std::filesystem::canonical("/proc/self/exe").parent_path();
+    const std::filesystem::path cache_dir = o.cache ? *o.cache : exe_dir.parent_path() / "sampling_reference";
+
+    std::string command;
+    for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+    std::printf("command: %s\n", command.c_str());
+    std::printf("machine: %s, %u logical cores; threads %d (0 = all); load average %s\n", cpu_model().c_str(),
+                std::thread::hardware_concurrency(), o.threads, load_average().c_str());
+    std::printf("build:   %s\n", RIMU_BENCH_BUILD);
+    std::printf("scene:   %s, %dx%d, max depth %d\n", scene_path.string().c_str(), scene->settings.width,
+                scene->settings.height, scene->settings.integrator.max_depth);
+
+    const Reference ref =
+        load_or_render_reference(library, *scene, filter, o, cache_dir, scene_path.stem().string() + "_" +
+                                                                            scene_path.parent_path().filename().string());
+    double mean_r2 = 0;
+    for (double v : ref.image) mean_r2 += v * v / double(ref.image.size());
+    std::printf("reference: %d spp (Sobol'), own MSE estimate %.3g (relative to mean r^2: %.3g)\n\n", o.reference_spp,
+                ref.own_mse, ref.own_mse / mean_r2);
+
+    // Warm-up: thread pool, page faults, first touches.
+    render_image(library, *scene, filter, SamplerKind::sobol, 1, 1, o.threads);
+
+    const SamplerKind kinds[2] = {SamplerKind::independent, SamplerKind::sobol};
+    std::vector<LadderRow> rows;
+    std::printf("|  spp | independent s | Sobol s | independent MSE | Sobol MSE | MSE ratio | independent relMSE | "
+                "Sobol relMSE | relMSE ratio |\n");
+    std::printf("|-----:|--------------:|--------:|----------------:|----------:|----------:|-------------------:|"
+                "-------------:|-------------:|\n");
+    for (int spp = 1; spp <= o.max_spp; spp *= 2) {
+      LadderRow row;
+      row.spp = spp;
+      for (int k = 0; k < 2; ++k) {
+        const Render r = render_image(library, *scene, filter, kinds[k], spp, 1, o.threads);
+        row.seconds[k] = r.seconds;
+        row.mse[k] = mse(r.image, ref.image);
+        row.rel_mse[k] = rel_mse(r.image, ref.image);
+      }
+      std::printf("| %4d | %13.3f | %7.3f | %15.4g | %9.4g | %9.3f | %18.4g | %12.4g | %12.3f |\n", spp, row.seconds[0],
+                  row.seconds[1], row.mse[0], row.mse[1], row.mse[1] / row.mse[0], row.rel_mse[0], row.rel_mse[1],
+                  row.rel_mse[1] / row.rel_mse[0]);
+      std::fflush(stdout);
+      rows.push_back(row);
+    }
+
+    // The two targets of issue 8 at 64 spp.
+    const auto at64 = std::find_if(rows.begin(), rows.end(), [](const LadderRow& r) { return r.spp == 64; });
+    if (at64 != rows.end()) {
+      std::vector<double> ratios;
+      for (int rep = 0; rep < o.timing_repeats; ++rep) {
+        const double ti = render_image(library, *scene, filter, SamplerKind::independent, 64, 1, o.threads).seconds;
+        const double ts = render_image(library, *scene, filter, SamplerKind::sobol, 64, 1, o.threads).seconds;
+        ratios.push_back(ts / ti);
+      }
+      std::sort(ratios.begin(), ratios.end());
+      const double time_ratio = ratios[ratios.size() / 2];
+      const double mse_ratio = at64->mse[1] / at64->mse[0];
+      std::printf("\nat 64 spp: MSE ratio Sobol/independent %.3f (target <= 0.2: %s); relMSE ratio %.3f\n", mse_ratio,
+                  mse_ratio <= 0.2 ? "met" : "not met", at64->rel_mse[1] / at64->rel_mse[0]);
+      std::printf("time per sample ratio Sobol/independent: median of %d alternating 64-spp pairs %.3f "
+                  "(min %.3f, max %.3f; target <= 1.15: %s)\n",
+                  o.timing_repeats, time_ratio, ratios.front(), ratios.back(), time_ratio <= 1.15 ? "met" : "not met");
+      if (const auto m = mse_at_time(rows, 1, at64->seconds[0]))
+        std::printf("equal time (independent 64 spp, %.3f s): Sobol MSE %.4g, ratio %.3f\n", at64->seconds[0], *m,
+                    *m / at64->mse[0]);
+    }
+    std::printf("load average after: %s\n", load_average().c_str());
+    if (o.plot) write_plot(rows, *o.plot, "relMSE vs wall time, " + scene_path.parent_path().filename().string());
+    return 0;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "rimu-sampling-bench: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rimu-sampling-bench: %s\n", e.what());
+    return 2;
+  }
+}

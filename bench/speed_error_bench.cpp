@@ -1,0 +1,394 @@
+// The speed-against-error report of issue 7, from one command:
+//
+//   cmake --build build -j2 --target rimu-speed-error-bench && build/bin/rimu-speed-error-bench
+//
+// Per scene: a converged hero reference (cached in <build>/speed_report, not committed), then every wavelength mode
+// (hero, single, independent, rgb) at a ladder of spp; it prints and writes a CSV (mode, spp, wall s, samples/s,
+// relative MSE, RMSE in XYZ, mean and 95th-percentile ΔE2000, worst ColorChecker patch ΔE2000), gnuplot log-log
+// error-vs-time plots (PNG), and the section "Speed against error (issue 7)" of docs/benchmarks.md (between its
+// markers; the rest of the file is left alone). Options: --quick (tiny ladder, for checking the driver),
+// --threads N (default 2), --out DIR, --no-docs.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/image_error.h"
+#include "render/json_cursor.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "spectral/colorimetry.h"
+#include "spectral/csv_table.h"
+#include "spectral/tabulated_spectrum.h"
+#include "transport/wavelength_modes.h"
+
+#ifndef RIMU_BENCH_BUILD
+#define RIMU_BENCH_BUILD "unknown"
+#endif
+
+namespace fs = std::filesystem;
+using namespace rimu;
+
+namespace {
+
+// One benchmark scene: its file (relative to the data folder), the light that defines its CIELAB white, and the
+// resolution it is rendered at (smaller than the scene's own where that keeps the whole report ≤ ~15 minutes).
+struct SceneCase {
+  std::string id;
+  std::string file;
+  std::string white_illuminant;  // a CIE illuminant name, or "csv:<file>:<column>" relative to the scene
+  int width, height;
+};
+
+const std::vector<SceneCase> kScenes = {
+    {"cornell", "scenes/cornell_box/scene.json", "csv:light_emission.csv:radiance_relative", 128, 128},
+    {"colorchecker_d65", "scenes/colorchecker_room/colorchecker_d65.json", "D65", 160, 120},
+    {"colorchecker_f11", "scenes/colorchecker_room/colorchecker_f11.json", "F11", 160, 120},
+    {"colorchecker_a", "scenes/colorchecker_room/colorchecker_a.json", "A", 160, 120},
+    {"colour_bleeding", "scenes/colour_bleeding/scene.json", "D65", 160, 120},
+    {"dispersion", "scenes/dispersion/scene.json", "D65", 160, 120},
+    {"textured", "scenes/textured/scene.json", "F11", 160, 120},
+};
+const std::vector<WavelengthMode> kModes = {WavelengthMode::hero, WavelengthMode::single, WavelengthMode::independent,
+                                            WavelengthMode::rgb};
+
+struct Settings {
+  std::vector<int> ladder = {4, 16, 64};
+  int reference_spp = 1024;
+  int threads = 2;
+  fs::path out;
+  bool docs = true;
+};
+
+struct Row {
+  std::string scene, mode;
+  int spp = 0;
+  double seconds = 0, samples_per_s = 0;
+  ImageError error;
+  double worst_patch_de = -1;  // < 0: the scene has no ColorChecker patches
+  std::string worst_patch;
+};
+
+PixelFilter filter_of(const FilterSettings& f) {
+  if (f.type == "box") return PixelFilter::box(f.radius_px);
+  if (f.type == "blackman-harris") return PixelFilter::blackman_harris(f.radius_px);
+  return PixelFilter::gaussian(f.radius_px, f.sigma_px);
+}
+
+std::unique_ptr<Scene> load_case(const SceneCase& c, WavelengthMode mode, SpectralLibrary& library) {
+  const fs::path path = library.root() / c.file;
+  nlohmann::json document = parse_json_file(path);
+  document["integrator"]["wavelengths"] = wavelength_mode_name(mode);
+  auto scene = load_scene(document, path.string(), path.parent_path(), library);
+  scene->settings.width = c.width;
+  scene->settings.height = c.height;
+  return scene;
+}
+
+XyzImage render_case(const Scene& scene, int spp, uint64_t seed, int threads, SpectralLibrary& library,
+                     RenderStatistics* statistics) {
+  const bool rgb = scene.settings.integrator.wavelengths == WavelengthMode::rgb;
+  Film film(FilmOptions{scene.settings.width, scene.settings.height, std::nullopt, 0},
+            rgb ? SpectralResponse::rgb_transport(library) : SpectralResponse::cie_xyz(library));
+  RenderOptions options;
+  options.samples_per_pixel = spp;
+  options.seed = seed;
+  options.threads = threads;
+  options.sampler = scene.settings.sampler;
+  const RenderStatistics s = render(scene, filter_of(scene.settings.filter), film, options);
+  if (statistics) *statistics = s;
+  return XyzImage::from_film(film);
+}
+
+Xyz white_of(const SceneCase& c, SpectralLibrary& library) {
+  const Observer& observer = library.observer(StandardObserver::cie1931_2deg);
+  if (c.white_illuminant.rfind("csv:", 0) == 0) {
+    const std::string rest = c.white_illuminant.substr(4);
+    const std::string file = rest.substr(0, rest.find(':')), column = rest.substr(rest.find(':') + 1);
+    const CsvTable table = CsvTable::read(library.root() / fs::path(c.file).parent_path() / file);
+    return illuminant_xyz(TabulatedSpectrum::from_csv(table, column, Extrapolation::zero), observer);
+  }
+  return illuminant_xyz(*library.illuminant(c.white_illuminant), observer);
+}
+
+// Per pixel, the ColorChecker patch its centre sees directly (material index), or −1.
+std::vector<int> patch_groups(const Scene& scene) {
+  const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
+  const TransportScene view = scene.transport_view();
+  std::vector<int> groups;
+  for (int y = 0; y < scene.settings.height; ++y)
+    for (int x = 0; x < scene.settings.width; ++x) {
+      const auto hit = view.geometry->intersect(camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f, {0.5f, 0.5f}));
+      const bool patch = hit && hit->material >= 0 && scene.material_names[size_t(hit->material)].rfind("patch", 0) == 0;
+      groups.push_back(patch ? hit->material : -1);
+    }
+  return groups;
+}
+
+// The worst patch's CIEDE2000 between the patch means of two images (each patch averaged first, which removes
+// most of the noise: a patch covers ~150 pixels).
+std::pair<double, std::string> worst_patch(const XyzImage& image, const XyzImage& reference, const Xyz& white,
+                                           const std::vector<int>& groups, const Scene& scene) {
+  const auto a = group_means(image, groups), r = group_means(reference, groups);
+  double worst = -1;
+  std::string name;
+  for (const auto& [group, xyz] : r) {
+    const double de = delta_e_2000(lab_of(a.at(group), white), lab_of(xyz, white));
+    if (de > worst) {
+      worst = de;
+      name = scene.material_names[size_t(group)];
+    }
+  }
+  return {worst, name};
+}
+
+// log-log interpolation of error against time; outside the measured times, extrapolates with slope −1 (error ∝ 1/t).
+double error_at_time(const std::vector<Row>& rows, double t) {
+  if (rows.empty()) return NAN;
+  if (t <= rows.front().seconds) return rows.front().error.relative_mse * rows.front().seconds / t;
+  for (size_t i = 1; i < rows.size(); ++i)
+    if (t <= rows[i].seconds) {
+      const double x0 = std::log(rows[i - 1].seconds), x1 = std::log(rows[i].seconds);
+      const double y0 = std::log(rows[i - 1].error.relative_mse), y1 = std::log(rows[i].error.relative_mse);
+      return std::exp(y0 + (y1 - y0) * (std::log(t) - x0) / (x1 - x0));
+    }
+  return rows.back().error.relative_mse * rows.back().seconds / t;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, f, v);
+  return buffer;
+}
+
+void write_plot(const fs::path& dir, const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode,
+                const fs::path& png) {
+  const fs::path script = dir / (id + ".gp");
+  std::ofstream gp(script);
+  gp << "set terminal pngcairo size 640,440\nset output '" << png.string() << "'\n"
+     << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
+     << "set title 'issue 7: " << id << "'\nset key top right\nset grid\nplot ";
+  bool first = true;
+  for (const auto& [mode, rows] : by_mode) {
+    const fs::path dat = dir / (id + "_" + mode + ".dat");
+    std::ofstream d(dat);
+    for (const Row& r : rows) d << r.seconds << " " << r.error.relative_mse << " " << r.spp << "\n";
+    gp << (first ? "" : ", ") << "'" << dat.string() << "' using 1:2 with linespoints title '" << mode << "'";
+    first = false;
+  }
+  gp << "\n";
+  gp.close();
+  const std::string command = "/usr/bin/gnuplot '" + script.string() + "'";
+  if (std::system(command.c_str()) != 0) std::cerr << "gnuplot failed for " << id << "\n";
+}
+
+// Replaces the text between the markers in `path` (or appends the section; creates the file if missing).
+void update_docs(const fs::path& path, const std::string& section) {
+  const std::string begin = "<!-- issue7-speed-error:begin -->", end = "<!-- issue7-speed-error:end -->";
+  std::string text;
+  if (std::ifstream in(path); in) text.assign(std::istreambuf_iterator<char>(in), {});
+  if (text.empty()) text = "# Benchmarks\n\n";
+  const std::string block = begin + "\n" + section + end;
+  const size_t b = text.find(begin), e = text.find(end);
+  if (b != std::string::npos && e != std::string::npos && e > b)
+    text.replace(b, e + end.size() - b, block);
+  else
+    text += "\n## Speed against error (issue 7)\n\n" + block + "\n";
+  std::ofstream(path) << text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Settings settings;
+  std::string command = "rimu-speed-error-bench";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    command += " " + a;
+    if (a == "--quick") {
+      settings.ladder = {1, 4};
+      settings.reference_spp = 16;
+    } else if (a == "--threads" && i + 1 < argc) {
+      settings.threads = std::atoi(argv[++i]);
+      command += std::string(" ") + argv[i];
+    } else if (a == "--out" && i + 1 < argc) {
+      settings.out = argv[++i];
+      command += std::string(" ") + argv[i];
+    } else if (a == "--no-docs") {
+      settings.docs = false;
+    } else {
+      std::cerr << "usage: rimu-speed-error-bench [--quick] [--threads N] [--out DIR] [--no-docs]\n";
+      return 2;
+    }
+  }
+  if (settings.out.empty()) settings.out = fs::canonical("/proc/self/exe").parent_path().parent_path() / "speed_report";
+  fs::create_directories(settings.out);
+  const bool quick = settings.reference_spp < 64;
+
+  SpectralLibrary library = SpectralLibrary::at_default_location();
+  const fs::path docs_dir = library.root().parent_path() / "docs";
+  const fs::path plot_dir = quick ? settings.out : docs_dir / "benchmarks";
+  fs::create_directories(plot_dir);
+  const auto report_start = std::chrono::steady_clock::now();
+
+  std::ofstream csv(settings.out / "speed_error.csv");
+  csv << "scene,mode,spp,wall_s,samples_per_s,rel_mse,rmse_xyz,mean_de2000,p95_de2000,worst_patch_de2000\n";
+  std::printf("%-17s %-11s %5s %8s %11s %10s %10s %8s %8s %8s\n", "scene", "mode", "spp", "wall_s", "samples/s",
+              "relMSE", "RMSE_XYZ", "meanDE", "p95DE", "patchDE");
+
+  std::ostringstream md;
+  md << "Reproduce with one command (from the repository root; about 15 minutes on the machine below):\n\n"
+     << "    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2 --target rimu-speed-error-bench"
+        " && build/bin/" << command << "\n\n"
+     << "- Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads; "
+     << settings.threads << " render threads. Shared with other jobs while measured: wall times carry a few % noise.\n"
+     << "- Build: " << RIMU_BENCH_BUILD << "\n"
+     << "- Reference: hero mode, " << settings.reference_spp << " spp, seed 1000 (cached in <build>/speed_report); "
+     << "ladder: spp ∈ {";
+  for (size_t i = 0; i < settings.ladder.size(); ++i) md << (i ? ", " : "") << settings.ladder[i];
+  md << "}, seed 1, Sobol sampler, every mode on the same scene file (\"wavelengths\" set by the driver).\n"
+     << "- relMSE: mean over pixels and X, Y, Z of (v − r)²/(r² + ε²), ε = 0.01·mean reference Y. ΔE2000: per pixel, "
+        "CIELAB under the scene's white (its light's chromaticity at the 95th-percentile reference luminance). "
+        "Worst patch: CIEDE2000 of the worst ColorChecker patch's mean XYZ (pixels whose centre sees it directly).\n\n";
+
+  struct Summary {
+    double hero_time_per_sample = 0, rgb_time_per_sample = 0, t64 = 0;
+    std::map<std::string, double> equal_time;
+    double rgb_bias_rel_mse = 0, rgb_worst_patch = -1, hero_worst_patch = -1;
+    std::string rgb_worst_patch_name;
+    double rgb_mean_de = 0, hero_mean_de = 0;
+  };
+  std::map<std::string, Summary> summaries;
+
+  for (const SceneCase& c : kScenes) {
+    std::unique_ptr<Scene> spectral = load_case(c, WavelengthMode::hero, library);
+    std::unique_ptr<Scene> rgb_scene = load_case(c, WavelengthMode::rgb, library);
+    const std::vector<int> groups = patch_groups(*spectral);
+    const bool has_patches = std::any_of(groups.begin(), groups.end(), [](int g) { return g >= 0; });
+
+    const fs::path cache = settings.out / ("reference_" + c.id + "_" + std::to_string(c.width) + "x" +
+                                           std::to_string(c.height) + "_" + std::to_string(settings.reference_spp) + "spp.raw");
+    XyzImage reference;
+    if (!reference.read_raw(cache.string()) || reference.width != c.width || reference.height != c.height) {
+      RenderStatistics s;
+      reference = render_case(*spectral, settings.reference_spp, 1000, settings.threads, library, &s);
+      reference.write_raw(cache.string());
+      std::fprintf(stderr, "%s: reference %d spp in %.1f s\n", c.id.c_str(), settings.reference_spp, s.seconds);
+    }
+    const Xyz white = scene_white(reference, white_of(c, library));
+
+    std::map<std::string, std::vector<Row>> by_mode;
+    for (WavelengthMode mode : kModes) {
+      Scene& scene = mode == WavelengthMode::rgb ? *rgb_scene : *spectral;
+      scene.settings.integrator.wavelengths = mode;
+      for (int spp : settings.ladder) {
+        RenderStatistics s;
+        const XyzImage image = render_case(scene, spp, 1, settings.threads, library, &s);
+        Row row{c.id, wavelength_mode_name(mode), spp, s.seconds,
+                s.seconds > 0 ? double(s.camera_samples) / s.seconds : 0.0, image_error(image, reference, white)};
+        if (has_patches) std::tie(row.worst_patch_de, row.worst_patch) = worst_patch(image, reference, white, groups, scene);
+        std::printf("%-17s %-11s %5d %8.3f %11.4g %10.4g %10.4g %8.3f %8.3f %8.3f\n", c.id.c_str(), row.mode.c_str(),
+                    spp, row.seconds, row.samples_per_s, row.error.relative_mse, row.error.rmse_xyz,
+                    row.error.mean_delta_e2000, row.error.p95_delta_e2000, row.worst_patch_de);
+        std::fflush(stdout);
+        csv << c.id << "," << row.mode << "," << spp << "," << row.seconds << "," << row.samples_per_s << ","
+            << row.error.relative_mse << "," << row.error.rmse_xyz << "," << row.error.mean_delta_e2000 << ","
+            << row.error.p95_delta_e2000 << "," << row.worst_patch_de << "\n";
+        by_mode[row.mode].push_back(row);
+      }
+    }
+
+    // Summary figures: time per sample over the whole ladder; equal-time error at hero's 64-spp time (or its
+    // largest ladder point); the rgb bias as the spp-independent term B of relMSE = B + V/spp fitted to the two
+    // largest ladder points.
+    Summary& sum = summaries[c.id];
+    auto time_per_sample = [&](const std::string& mode) {
+      double t = 0, n = 0;
+      for (const Row& r : by_mode[mode]) t += r.seconds, n += double(r.spp);
+      return t / n;
+    };
+    sum.hero_time_per_sample = time_per_sample("hero");
+    sum.rgb_time_per_sample = time_per_sample("rgb");
+    const auto& hero_rows = by_mode["hero"];
+    const auto hero64 = std::find_if(hero_rows.begin(), hero_rows.end(), [](const Row& r) { return r.spp == 64; });
+    sum.t64 = hero64 != hero_rows.end() ? hero64->seconds : hero_rows.back().seconds;
+    for (const auto& [mode, rows] : by_mode) sum.equal_time[mode] = error_at_time(rows, sum.t64);
+    const auto& rgb_rows = by_mode["rgb"];
+    if (rgb_rows.size() >= 2) {
+      const Row &a = rgb_rows[rgb_rows.size() - 2], &b = rgb_rows.back();
+      const double v = (a.error.relative_mse - b.error.relative_mse) / (1.0 / a.spp - 1.0 / b.spp);
+      sum.rgb_bias_rel_mse = std::max(0.0, b.error.relative_mse - v / b.spp);
+    }
+    sum.rgb_worst_patch = rgb_rows.back().worst_patch_de;
+    sum.rgb_worst_patch_name = rgb_rows.back().worst_patch;
+    sum.hero_worst_patch = hero_rows.back().worst_patch_de;
+    sum.rgb_mean_de = rgb_rows.back().error.mean_delta_e2000;
+    sum.hero_mean_de = hero_rows.back().error.mean_delta_e2000;
+
+    const fs::path png = plot_dir / ("issue7_" + c.id + ".png");
+    write_plot(settings.out, c.id, by_mode, png);
+
+    md << "### " << c.id << " (" << c.file << ", " << c.width << "×" << c.height << ")\n\n"
+       << "![relative MSE against wall time, " << c.id << "](benchmarks/issue7_" << c.id << ".png)\n\n"
+       << "| mode | spp | wall s | samples/s | relMSE | RMSE XYZ | mean ΔE00 | p95 ΔE00 |"
+       << (has_patches ? " worst patch ΔE00 |" : "") << "\n|---|---|---|---|---|---|---|---|"
+       << (has_patches ? "---|" : "") << "\n";
+    for (const auto& mode : kModes)
+      for (const Row& r : by_mode[wavelength_mode_name(mode)]) {
+        md << "| " << r.mode << " | " << r.spp << " | " << fmt(r.seconds, "%.3f") << " | " << fmt(r.samples_per_s, "%.3g")
+           << " | " << fmt(r.error.relative_mse) << " | " << fmt(r.error.rmse_xyz) << " | "
+           << fmt(r.error.mean_delta_e2000, "%.3f") << " | " << fmt(r.error.p95_delta_e2000, "%.3f") << " |";
+        if (has_patches) md << " " << fmt(r.worst_patch_de, "%.2f") << " |";
+        md << "\n";
+      }
+    md << "\nEqual time (" << fmt(sum.t64, "%.3f") << " s, hero at 64 spp): relMSE ";
+    for (const auto& mode : kModes) md << wavelength_mode_name(mode) << " " << fmt(sum.equal_time[wavelength_mode_name(mode)]) << "; ";
+    md << "rgb bias (spp-independent relMSE) " << fmt(sum.rgb_bias_rel_mse) << "; mean ΔE00 at the top of the ladder: rgb "
+       << fmt(sum.rgb_mean_de, "%.3f") << " vs hero " << fmt(sum.hero_mean_de, "%.3f") << " (hero's is noise only).\n\n";
+  }
+
+  // The three targets of issue 7.
+  const Summary& cornell = summaries["cornell"];
+  const double cost_ratio = cornell.hero_time_per_sample / cornell.rgb_time_per_sample;
+  md << "### Targets\n\n| target | measured | met? |\n|---|---|---|\n"
+     << "| hero time per sample ≤ 1.15 × rgb (Cornell box) | " << fmt(cost_ratio, "%.3f") << "× ("
+     << fmt(cornell.hero_time_per_sample * 1e3, "%.3g") << " vs " << fmt(cornell.rgb_time_per_sample * 1e3, "%.3g")
+     << " ms per spp of the whole image) | " << (cost_ratio <= 1.15 ? "met" : "not met") << " |\n";
+  for (const char* id : {"cornell", "colorchecker_d65", "colorchecker_f11", "colorchecker_a"}) {
+    const Summary& s = summaries[id];
+    const double ratio = s.equal_time.at("hero") / s.equal_time.at("single");
+    md << "| equal-time relMSE hero ≤ 0.5 × single (" << id << ") | " << fmt(ratio, "%.3f") << " ("
+       << fmt(s.equal_time.at("hero")) << " vs " << fmt(s.equal_time.at("single")) << ") | "
+       << (ratio <= 0.5 ? "met" : "not met") << " |\n";
+  }
+  const Summary& f11 = summaries["colorchecker_f11"];
+  md << "| rgb bias ≥ 3 ΔE00 on some patch (ColorChecker under F11) | worst patch " << fmt(f11.rgb_worst_patch, "%.2f")
+     << " ΔE00 (" << f11.rgb_worst_patch_name << "; hero at the same spp: " << fmt(f11.hero_worst_patch, "%.2f")
+     << ") | " << (f11.rgb_worst_patch >= 3.0 ? "met" : "not met") << " |\n\n";
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - report_start).count();
+  md << "Whole report: " << fmt(total, "%.0f") << " s (references " << (quick ? "rendered" : "rendered or cached") << ").\n";
+
+  std::ofstream(settings.out / "speed_error.md") << md.str();
+  std::printf("\n%s", md.str().c_str());
+  if (settings.docs && !quick) update_docs(docs_dir / "benchmarks.md", md.str());
+  std::fprintf(stderr, "wrote %s (CSV, plots, markdown)%s\n", settings.out.string().c_str(),
+               settings.docs && !quick ? " and docs/benchmarks.md" : "");
+  return 0;
+}

@@ -1,0 +1,84 @@
+#include "render/rgb_transport_inputs.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "render/spectral_response.h"
+#include "spectral/colorimetry.h"
+
+namespace rimu {
+namespace {
+
+const RgbColourSpace& srgb() { return RgbColourSpace::named("srgb-linear"); }
+
+Rgb clipped(Rgb c, double high) {
+  return {std::clamp(c.r, 0.0, high), std::clamp(c.g, 0.0, high), std::clamp(c.b, 0.0, high)};
+}
+
+}  // namespace
+
+RgbLaneSpectrum::RgbLaneSpectrum(SpectrumPtr original, Rgb linear_srgb)
+    : original_(std::move(original)),
+      rgb_(linear_srgb),
+      lanes_(float(linear_srgb.r), float(linear_srgb.g), float(linear_srgb.b), float(linear_srgb.g)) {}
+
+std::string RgbLaneSpectrum::describe() const {
+  std::ostringstream out;
+  out << "linear sRGB (" << rgb_.r << ", " << rgb_.g << ", " << rgb_.b << ") for rgb transport of "
+      << original_->describe();
+  return out.str();
+}
+
+Rgb reflectance_linear_srgb(const Spectrum& reflectance, SpectralLibrary& library) {
+  const Observer& observer = library.observer(StandardObserver::cie1931_2deg);
+  const SpectrumPtr d65 = library.illuminant("D65");
+  // Both XYZ have the perfect diffuser at Y = 100 (CIE 15:2004 eq. 7.2); the per-channel division removes the
+  // small mismatch between the tabulated D65 white and the sRGB matrix's (x, y) = (0.3127, 0.3290).
+  const Rgb sample = srgb().from_xyz(reflectance_xyz(reflectance, *d65, observer));
+  const Rgb white = srgb().from_xyz(illuminant_xyz(*d65, observer));
+  return clipped({sample.r / white.r, sample.g / white.g, sample.b / white.b}, 1.0);
+}
+
+Rgb emission_linear_srgb(const Spectrum& emission, SpectralLibrary& library) {
+  const SpectralResponse film = SpectralResponse::cie_xyz(library);
+  Xyz xyz;
+  xyz.x = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) { return emission.value(l) * film.value(0, l); });
+  xyz.y = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) { return emission.value(l) * film.value(1, l); });
+  xyz.z = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) { return emission.value(l) * film.value(2, l); });
+  return clipped(srgb().from_xyz(xyz), 1e30);
+}
+
+Rgb to_linear_srgb(const Rgb& rgb, const RgbColourSpace& space) {
+  if (space.name() == srgb().name()) return rgb;
+  return srgb().from_xyz(space.to_xyz(rgb));
+}
+
+SpectrumPtr rgb_transport_form(const SpectrumPtr& spectrum, SpectrumRole role, SpectralLibrary& library,
+                               const Rgb* given_linear_srgb) {
+  if (given_linear_srgb) {
+    const Rgb given = role == SpectrumRole::reflectance ? clipped(*given_linear_srgb, 1.0) : clipped(*given_linear_srgb, 1e30);
+    return std::make_shared<RgbLaneSpectrum>(spectrum, given);
+  }
+  switch (role) {
+    case SpectrumRole::reflectance:
+      return std::make_shared<RgbLaneSpectrum>(spectrum, reflectance_linear_srgb(*spectrum, library));
+    case SpectrumRole::emission:
+      return std::make_shared<RgbLaneSpectrum>(spectrum, emission_linear_srgb(*spectrum, library));
+    case SpectrumRole::ior:
+      return std::make_shared<ConstantSpectrum>(spectrum->value(550.0));
+  }
+  return spectrum;
+}
+
+RgbLaneImageTexture::RgbLaneImageTexture(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space,
+                                         float scale)
+    : image_(std::move(image)), to_srgb_(srgb().xyz_to_rgb() * space.rgb_to_xyz()), scale_(scale) {}
+
+SampledSpectrum RgbLaneImageTexture::evaluate(Vec2 uv, const SampledWavelengths&) const {
+  const Rgb texel = image_->bilinear(uv);
+  const std::array<double, 3> c = to_srgb_.apply({texel.r, texel.g, texel.b});
+  const Rgb rgb = clipped({c[0], c[1], c[2]}, 1.0);
+  return Float4(float(rgb.r), float(rgb.g), float(rgb.b), float(rgb.g)) * Float4(scale_);
+}
+
+}  // namespace rimu
