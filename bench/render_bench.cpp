@@ -4,7 +4,7 @@
 // same rays traced through Embree alone. A plain main(): the figures are whole renders, not Google Benchmark loops.
 //
 //   build/bin/rimu-render-bench [--scene s.json] [--resolution WxH] [--spp 1,4,16,64] [--threads 1,2]
-//                               [--seed S] [--record-max-spp N]
+//                               [--seed S] [--sampler independent|sobol] [--record-max-spp N]
 //
 // Each row renders three times with the same seed:
 //  1. plainly, timed: wall seconds, samples/s and peak memory come from this run alone;
@@ -36,6 +36,8 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "spectral/error.h"
+#include "transport/sampler.h"
+#include "transport/volumetric_path_integrator.h"
 
 #ifndef RIMU_BENCH_BUILD
 #define RIMU_BENCH_BUILD "(unknown: not built through bench/CMakeLists.txt)"
@@ -51,12 +53,13 @@ struct Options {
   std::vector<int> spp = {1, 4, 16, 64};
   std::vector<int> threads;  // empty: 1 and every core
   std::optional<uint64_t> seed;
+  std::optional<SamplerKind> sampler;
   int record_max_spp = 64;
 };
 
 const char* const kUsage =
     "usage: rimu-render-bench [--scene FILE] [--resolution WxH] [--spp LIST] [--threads LIST] [--seed S]\n"
-    "                         [--record-max-spp N]\n"
+    "                         [--sampler independent|sobol] [--record-max-spp N]\n"
     "  LIST is comma-separated, e.g. --spp 1,4,16,64 --threads 1,2 (the defaults: 1 and every core).\n"
     "  Rays are recorded and replayed through Embree alone for rows with spp <= N (default 64; 36 bytes/ray).\n";
 
@@ -90,6 +93,10 @@ Options parse_options(int argc, char** argv) {
     else if (arg == "--spp") o.spp = parse_list(value, arg);
     else if (arg == "--threads") o.threads = parse_list(value, arg);
     else if (arg == "--seed") o.seed = std::stoull(value);
+    else if (arg == "--sampler") {
+      o.sampler = parse_sampler_kind(value);
+      if (!o.sampler) throw InputError({"", 0, arg}, "expected independent or sobol, got '" + value + "'");
+    }
     else if (arg == "--record-max-spp") o.record_max_spp = parse_list(value, arg).at(0);
     else throw InputError({"", 0, arg}, "unknown option\n" + std::string(kUsage));
   }
@@ -182,6 +189,7 @@ bool run_row(SpectralLibrary& library, const Scene& scene, const PixelFilter& fi
   options.samples_per_pixel = spp;
   options.threads = threads;
   options.seed = seed;
+  options.sampler = scene.settings.sampler;
   row.spp = spp;
 
   auto plain_film = make_film(library, scene.settings);
@@ -195,7 +203,15 @@ bool run_row(SpectralLibrary& library, const Scene& scene, const PixelFilter& fi
   view.geometry = &recorder;
   const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
   auto counted_film = make_film(library, scene.settings);
-  row.decorated_s = render(view, scene.settings.integrator, camera, filter, *counted_film, options).seconds;
+  if (scene.has_media()) {  // the same dispatch as render(const Scene&, ...): media take the volumetric integrator
+    VolumetricIntegratorSettings settings;
+    settings.path = scene.settings.integrator;
+    settings.distance = scene.settings.distance_sampling;
+    const VolumetricScene volumetric{view, &scene.media, &scene.medium_boundaries};
+    row.decorated_s = render(volumetric, settings, camera, filter, *counted_film, options).seconds;
+  } else {
+    row.decorated_s = render(view, scene.settings.integrator, camera, filter, *counted_film, options).seconds;
+  }
   row.rays = recorder.counts();
   if (!same_image(*plain_film, *counted_film)) {
     std::fprintf(stderr, "FAILED: at %d spp the render through RecordingRayQueries differs from the plain render\n", spp);
@@ -244,6 +260,7 @@ int main(int argc, char** argv) {
     std::unique_ptr<Scene> scene = load_scene(scene_path, library);
     if (options.resolution) std::tie(scene->settings.width, scene->settings.height) = *options.resolution;
     const uint64_t seed = options.seed.value_or(scene->settings.seed);
+    if (options.sampler) scene->settings.sampler = *options.sampler;
     const PixelFilter filter = make_filter(scene->settings.filter);
     const int cores = int(std::thread::hardware_concurrency());
     std::vector<int> thread_counts = options.threads;
@@ -257,8 +274,9 @@ int main(int argc, char** argv) {
     std::printf("command: %s\n", command.c_str());
     std::printf("machine: %s, %d logical cores, ISA:%s\n", cpu_model().c_str(), cores, vector_isas().c_str());
     std::printf("build:   %s; Embree %s\n", RIMU_BENCH_BUILD, RTC_VERSION_STRING);
-    std::printf("scene:   %s, %dx%d, seed %llu, max depth %d\n", scene_path.string().c_str(), scene->settings.width,
-                scene->settings.height, (unsigned long long)seed, scene->settings.integrator.max_depth);
+    std::printf("scene:   %s, %dx%d, seed %llu, %s sampler, max depth %d\n", scene_path.string().c_str(),
+                scene->settings.width, scene->settings.height, (unsigned long long)seed,
+                sampler_kind_name(scene->settings.sampler), scene->settings.integrator.max_depth);
     std::printf("peak memory: %s\n",
                 reset_peak_memory() ? "VmHWM of each row's plain render (reset through /proc/self/clear_refs)"
                                     : "VmHWM since the process started (could not reset it)");

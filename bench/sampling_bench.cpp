@@ -12,9 +12,12 @@
 // halves A and B, E|A − B|² = 2σ²_half and the reference (A+B)/2 has σ² = E|A − B|²/4; that floor is printed.
 //
 // Error measures, over all pixels and the three film channels (CIE XYZ for the default scene):
-//   MSE    = mean (x − r)²
+//   MSE    = mean (x − r)² − (the reference's own MSE): the reference's error is independent of the render's
+//            (different seeds), so it adds its own MSE to the measured one; subtracting it removes that floor
 //   relMSE = mean (x − r)² / (r² + ε),  ε = 10⁻²·(mean r)²   (Rousselle et al. 2011's relative MSE; the ε keeps
 //                                                              dark pixels from dominating)
+// A single image's MSE is dominated by a few firefly pixels at low spp, so rows below 64 spp average
+// 64/spp renders with seeds 1, 2, …; their wall time is that of one render (the mean).
 // Equal time: log MSE is interpolated linearly in log time along the Sobol' ladder at the wall time of the
 // independent 64-spp render. Time per sample: the 64-spp renders are repeated, alternating samplers, and the
 // median of the per-pair ratios is reported (the machine is shared: alternation cancels slow drifts of its load).
@@ -240,7 +243,10 @@ int main(int argc, char** argv) {
     const std::filesystem::path cache_dir = o.cache ? *o.cache : exe_dir.parent_path() / "sampling_reference";
 
     std::string command;
-    for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+    for (int i = 0; i < argc; ++i) {
+      if (i > 0) command += ' ';
+      command += argv[i];
+    }
     std::printf("command: %s\n", command.c_str());
     std::printf("machine: %s, %u logical cores; threads %d (0 = all); load average %s\n", cpu_model().c_str(),
                 std::thread::hardware_concurrency(), o.threads, load_average().c_str());
@@ -253,7 +259,8 @@ int main(int argc, char** argv) {
                                                                             scene_path.parent_path().filename().string());
     double mean_r2 = 0;
     for (double v : ref.image) mean_r2 += v * v / double(ref.image.size());
-    std::printf("reference: %d spp (Sobol'), own MSE estimate %.3g (relative to mean r^2: %.3g)\n\n", o.reference_spp,
+    std::printf("reference: %d spp (Sobol'), own MSE estimate %.3g (relative to mean r^2: %.3g), subtracted from "
+                "every MSE below (not from relMSE)\n\n", o.reference_spp,
                 ref.own_mse, ref.own_mse / mean_r2);
 
     // Warm-up: thread pool, page faults, first touches.
@@ -268,12 +275,14 @@ int main(int argc, char** argv) {
     for (int spp = 1; spp <= o.max_spp; spp *= 2) {
       LadderRow row;
       row.spp = spp;
-      for (int k = 0; k < 2; ++k) {
-        const Render r = render_image(library, *scene, filter, kinds[k], spp, 1, o.threads);
-        row.seconds[k] = r.seconds;
-        row.mse[k] = mse(r.image, ref.image);
-        row.rel_mse[k] = rel_mse(r.image, ref.image);
-      }
+      const int repeats = std::max(1, 64 / spp);
+      for (int rep = 0; rep < repeats; ++rep)
+        for (int k = 0; k < 2; ++k) {
+          const Render r = render_image(library, *scene, filter, kinds[k], spp, uint64_t(1 + rep), o.threads);
+          row.seconds[k] += r.seconds / repeats;
+          row.mse[k] += (mse(r.image, ref.image) - ref.own_mse) / repeats;
+          row.rel_mse[k] += rel_mse(r.image, ref.image) / repeats;
+        }
       std::printf("| %4d | %13.3f | %7.3f | %15.4g | %9.4g | %9.3f | %18.4g | %12.4g | %12.3f |\n", spp, row.seconds[0],
                   row.seconds[1], row.mse[0], row.mse[1], row.mse[1] / row.mse[0], row.rel_mse[0], row.rel_mse[1],
                   row.rel_mse[1] / row.rel_mse[0]);

@@ -26,7 +26,9 @@
 #include "render/json_cursor.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "spectral/cielab.h"
 #include "spectral/colorimetry.h"
+#include "spectral/delta_e.h"
 #include "spectral/csv_table.h"
 #include "spectral/tabulated_spectrum.h"
 #include "transport/wavelength_modes.h"
@@ -63,7 +65,7 @@ const std::vector<WavelengthMode> kModes = {WavelengthMode::hero, WavelengthMode
 
 struct Settings {
   std::vector<int> ladder = {4, 16, 64};
-  int reference_spp = 1024;
+  int reference_spp = 512;
   int threads = 2;
   fs::path out;
   bool docs = true;
@@ -301,8 +303,13 @@ int main(int argc, char** argv) {
       for (int spp : settings.ladder) {
         RenderStatistics s;
         const XyzImage image = render_case(scene, spp, 1, settings.threads, library, &s);
-        Row row{c.id, wavelength_mode_name(mode), spp, s.seconds,
-                s.seconds > 0 ? double(s.camera_samples) / s.seconds : 0.0, image_error(image, reference, white)};
+        Row row;
+        row.scene = c.id;
+        row.mode = wavelength_mode_name(mode);
+        row.spp = spp;
+        row.seconds = s.seconds;
+        row.samples_per_s = s.seconds > 0 ? double(s.camera_samples) / s.seconds : 0.0;
+        row.error = image_error(image, reference, white);
         if (has_patches) std::tie(row.worst_patch_de, row.worst_patch) = worst_patch(image, reference, white, groups, scene);
         std::printf("%-17s %-11s %5d %8.3f %11.4g %10.4g %10.4g %8.3f %8.3f %8.3f\n", c.id.c_str(), row.mode.c_str(),
                     spp, row.seconds, row.samples_per_s, row.error.relative_mse, row.error.rmse_xyz,

@@ -82,8 +82,8 @@ def colour_bleeding():
                    "radius": 0.3})
     # A light facing UP (towards the orange ceiling) above everything the camera sees: the scene is lit only
     # through the coloured ceiling and walls.
-    shapes.append(quad("light", "white", [[-0.3, 1.7, 1.0], [-0.3, 1.7, 1.6], [0.3, 1.7, 1.6], [0.3, 1.7, 1.0]],
-                       emission={"illuminant": "D65", "scale": 0.3}))
+    shapes.append(quad("light", "white", [[-0.5, 1.7, 0.8], [-0.5, 1.7, 1.8], [0.5, 1.7, 1.8], [0.5, 1.7, 0.8]],
+                       emission={"illuminant": "D65", "scale": 0.5}))
     return {
         "description": "Indirect-only colour bleeding: a D65 light faces an orange ceiling; red, green and blue "
                        "walls (ColorChecker patches) light a white sphere and a white panel. Issue 7.",
@@ -99,7 +99,7 @@ def dispersion():
         quad("table", "white", [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]]),
         quad("back wall", "dark", [[-2, 0, 1.5], [2, 0, 1.5], [2, 2, 1.5], [-2, 2, 1.5]]),
         {"type": "sphere", "name": "flint glass sphere", "material": "flint", "center": [0.0, 0.25, 0.3], "radius": 0.25},
-        ceiling_light(-0.45, 1.2, 0.0, 0.06, {"illuminant": "D65", "scale": 4.0}),
+        ceiling_light(-0.45, 1.2, 0.0, 0.1, {"illuminant": "D65", "scale": 2.0}),
     ]
     return {
         "description": "Dispersion: an N-SF11 flint glass sphere on a white table under a small D65 light; the caustic "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 
 #include "spectral/cielab.h"
@@ -24,19 +25,19 @@ XyzImage XyzImage::from_film(const Film& film) {
 
 void XyzImage::write_raw(const std::string& path) const {
   std::ofstream out(path, std::ios::binary);
-  const int32_t size[2] = {width, height};
-  out.write(reinterpret_cast<const char*>(size), sizeof size);
+  const int32_t dims[2] = {width, height};
+  out.write(reinterpret_cast<const char*>(dims), sizeof dims);
   out.write(reinterpret_cast<const char*>(pixels.data()), std::streamsize(pixels.size() * sizeof(Xyz)));
 }
 
 bool XyzImage::read_raw(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  int32_t size[2] = {0, 0};
-  if (!in.read(reinterpret_cast<char*>(size), sizeof size) || size[0] <= 0 || size[1] <= 0) return false;
-  std::vector<Xyz> data(size_t(size[0]) * size_t(size[1]));
+  int32_t dims[2] = {0, 0};
+  if (!in.read(reinterpret_cast<char*>(dims), sizeof dims) || dims[0] <= 0 || dims[1] <= 0) return false;
+  std::vector<Xyz> data(static_cast<size_t>(dims[0]) * static_cast<size_t>(dims[1]));
   if (!in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * sizeof(Xyz)))) return false;
-  width = size[0];
-  height = size[1];
+  width = dims[0];
+  height = dims[1];
   pixels = std::move(data);
   return true;
 }

@@ -35,6 +35,17 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& name)
     // keep only the explanation after the last ": " prefix of the position.
     if (const size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
     throw InputError({name, line, ""}, "column " + std::to_string(column) + ": malformed JSON: " + what);
+  } catch (const nlohmann::json::exception& e) {
+    // Out-of-range numbers (1e400) are reported without a position; find the quoted token to give its line.
+    std::string what = e.what();
+    int line = 0;
+    const size_t open = what.find('\''), close = what.rfind('\'');
+    if (open != std::string::npos && close > open + 1) {
+      const size_t at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) line = line_and_column(text, at).first;
+    }
+    if (const size_t bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+    throw InputError({name, line, ""}, "invalid JSON value: " + what + " (numbers must fit in a double)");
   }
 }
 

@@ -65,6 +65,7 @@ void validate_light_definition(const LightDefinition& light, SpectralLibrary& li
   try {
     shape_scale(light.amount, g, integrals(light, library, dir), where);
   } catch (const InputError& e) {
+    if (!e.where().file.empty() || !e.where().key.empty()) throw;  // already says where (a CSV's line, a key)
     throw InputError(where, e.explanation());
   }
 }
@@ -163,7 +164,7 @@ std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& li
         << (g.spot_power == SpotPowerConvention::cone ? "over the cone" : "as if a point light");
   out << "\n";
   out << report_text(analyse_spectrum(*shape, shape->describe(), library));
-  out << fmt("efficacy           %.2f lm/W of radiation (360-830 nm)", o.efficacy_lm_W);
+  out << fmt("efficacy           %.2f lm/W of radiation as lights count watts (trapezoid over 360-830 nm)", o.efficacy_lm_W);
   if (electrical_w && o.luminous_power_lm > 0.0)
     out << fmt(", %.2f lm/W of the source", o.luminous_power_lm / *electrical_w)
         << fmt(" (%.1f %% wall-plug efficiency)", 100.0 * o.radiant_power_w / *electrical_w);

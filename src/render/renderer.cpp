@@ -13,6 +13,7 @@
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
 #include "transport/path_integrator.h"
+#include "transport/volumetric_path_integrator.h"
 #include "transport/wavelength_modes.h"
 
 namespace rimu {
@@ -33,16 +34,27 @@ std::vector<PixelBounds> make_tiles(const PixelBounds& b) {
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const TransportScene view = scene.transport_view();
   const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
+  // Scenes without media keep the surface integrator: they pay nothing for volumetric transport.
+  if (scene.has_media()) {
+    const VolumetricScene volumetric{view, &scene.media, &scene.medium_boundaries};
+    VolumetricIntegratorSettings settings;
+    settings.path = scene.settings.integrator;
+    settings.distance = scene.settings.distance_sampling;
+    return render(volumetric, settings, camera, filter, film, options);
+  }
   return render(view, scene.settings.integrator, camera, filter, film, options);
 }
 
-RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
-                        const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
+namespace {
+
+// The render loop over tiles and passes, for any integrator with radiance(ray, lambda, sampler).
+template <typename Integrator>
+RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorSettings& integrator_settings,
+                             const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
 
-  const PathIntegrator integrator(transport, integrator_settings);
   const std::unique_ptr<Sampler> prototype_sampler = make_sampler(options.sampler, options.seed);
   const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
 
@@ -96,6 +108,20 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
+}
+
+}  // namespace
+
+RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
+                        const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
+  const PathIntegrator integrator(transport, integrator_settings);
+  return render_loop(integrator, integrator_settings, camera, filter, film, options);
+}
+
+RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegratorSettings& integrator_settings,
+                        const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
+  const VolumetricPathIntegrator integrator(scene, integrator_settings);
+  return render_loop(integrator, integrator_settings.path, camera, filter, film, options);
 }
 
 }  // namespace rimu

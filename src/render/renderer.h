@@ -42,5 +42,8 @@ RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& fil
 /// scene.transport_view(), scene.settings.integrator and the scene's camera at its settings' resolution.
 RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options);
+/// The same for a scene with participating media (transport/volumetric_path_integrator.h).
+RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegratorSettings& integrator_settings,
+                        const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options);
 
 }  // namespace rimu

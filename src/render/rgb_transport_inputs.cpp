@@ -76,7 +76,7 @@ RgbLaneImageTexture::RgbLaneImageTexture(std::shared_ptr<const RgbImage> image, 
 
 SampledSpectrum RgbLaneImageTexture::evaluate(Vec2 uv, const SampledWavelengths&) const {
   const Rgb texel = image_->bilinear(uv);
-  const std::array<double, 3> c = to_srgb_.apply({texel.r, texel.g, texel.b});
+  const std::array<double, 3> c = to_srgb_.apply(std::array<double, 3>{texel.r, texel.g, texel.b});
   const Rgb rgb = clipped({c[0], c[1], c[2]}, 1.0);
   return Float4(float(rgb.r), float(rgb.g), float(rgb.b), float(rgb.g)) * Float4(scale_);
 }

@@ -16,6 +16,7 @@
 #include "transport/light_sampler.h"
 #include "transport/material.h"
 #include "transport/path_integrator.h"
+#include "transport/volumetric_path_integrator.h"
 
 namespace rimu {
 
@@ -33,6 +34,7 @@ struct RenderSettings {
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
+  DistanceSampling distance_sampling = DistanceSampling::spectral_mis;  ///< media only (integrator.distance_sampling)
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
   FilterSettings filter;
@@ -51,6 +53,9 @@ struct Scene {
   RenderSettings settings;
   float scene_scale = 1.0f;              ///< bounding-box diagonal (m)
   size_t degenerate_triangles_removed = 0;
+  std::vector<Medium> media;                      ///< the "media" section (empty: the surface integrator is used)
+  std::vector<MediumBoundary> medium_boundaries;  ///< per material: the medium its shapes enclose
+  bool has_media() const { return !media.empty(); }
 
   /// The non-owning view the integrator works on.
   TransportScene transport_view() const;

@@ -27,6 +27,8 @@ Transform parse_transform(const JsonCursor& shape);
 /// linear) or "linear"; by default integer files are sRGB-encoded and float files (EXR, HDR) linear.
 std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const std::filesystem::path& path);
 void load_materials(const JsonCursor& section, LoadContext& context);
+/// Loads the "media" section (render/scene_media.cpp); runs after the materials, which media name as boundaries.
+void load_media(const JsonCursor& section, LoadContext& context);
 void load_shapes(const JsonCursor& section, LoadContext& context);
 void load_prototypes(const JsonCursor& section, LoadContext& context);
 /// Loads the "lights" section. Runs before load_shapes, which appends an AreaLight per emissive shape.

@@ -63,7 +63,15 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 }
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "direct_lighting"});
+  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "direct_lighting",
+               "distance_sampling"});
+  if (const auto d = c.find("distance_sampling")) {
+    const std::string v = d->choice({"spectral_mis", "hero_only", "averaged", "spectral_tracking"});
+    s.distance_sampling = v == "hero_only"           ? DistanceSampling::hero_only
+                          : v == "averaged"          ? DistanceSampling::averaged
+                          : v == "spectral_tracking" ? DistanceSampling::spectral_tracking
+                                                     : DistanceSampling::spectral_mis;
+  }
   if (const auto sampler = c.find("sampler"))
     s.sampler = *parse_sampler_kind(sampler->choice({"sobol", "independent"}));
   if (const auto d = c.find("direct_lighting")) {
@@ -89,7 +97,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   scene->source = name;
   const JsonCursor root(document, name);
   root.only_keys({"description", "camera", "film", "integrator", "spectra", "materials", "prototypes", "shapes",
-                  "lights"});
+                  "lights", "media"});
   LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}};
   if (const auto spectra = root.find("spectra")) {
     if (!spectra->is_object()) spectra->fail("expected an object of name → spectrum");
@@ -103,6 +111,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto integrator = root.find("integrator")) load_integrator(*integrator, scene->settings);
   context.spectra.set_rgb_transport(scene->settings.integrator.wavelengths == WavelengthMode::rgb);
   if (const auto materials = root.find("materials")) scene_loading::load_materials(*materials, context);
+  if (const auto media = root.find("media")) scene_loading::load_media(*media, context);
   if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);

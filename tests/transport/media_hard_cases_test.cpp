@@ -77,18 +77,20 @@ TEST_CASE("A lane with sigma_t 0 or 1e-9 next to lanes with sigma_t 10: finite, 
   // are then carried by spectral MIS (their own techniques take the weight). Bounded variance: the balance
   // heuristic keeps each lane's estimate within 4× its own technique's. Checked the way heavy tails show: no single
   // sample may carry more than 1% of a lane's sum (an infinite-variance estimator puts a growing share of its sum
-  // into its largest sample; here the largest is ~10 against a sum of ~8000). (Spectral tracking with the
-  // history-free mean probabilities is NOT bounded here: the empty lane survives only through runs of null
-  // collisions of probability 1/4 each, weight 4ⁿ — docs/media.md; it is not asserted.)
+  // into its largest sample; here the largest is ~10 against a sum of ~6000). Spectral tracking is not asserted
+  // here: it produced non-finite samples in this case (open, docs/media.md).
   for (float empty : {0.0f, 1e-9f}) {
     CAPTURE(empty);
     const test::SlabScene slab(1.0f, homogeneous(Float4(0.0f), Float4(empty, 10.0f, 10.0f, 10.0f)),
                                std::make_unique<test::UniformSky>(1.0f));
     const Ray ray{{0.0f, 0.0f, -1.0f}, normalize(Vec3{0.3f, 0.1f, 1.0f})};
-    const int count = 8000;
-    const LaneStatistics s = render_ray(slab, settings(DistanceSampling::spectral_mis), ray, count);
-    check_lanes(s, Float4(1.0f));
-    for (int k = 0; k < 4; ++k) CHECK(s.max_value[k] < 0.01 * s.mean[k] * count);
+    for (DistanceSampling mode : {DistanceSampling::spectral_mis}) {
+      CAPTURE(int(mode));
+      const int count = 6000;
+      const LaneStatistics s = render_ray(slab, settings(mode), ray, count);
+      check_lanes(s, Float4(1.0f));
+      for (int k = 0; k < 4; ++k) CHECK(s.max_value[k] < 0.01 * s.mean[k] * count);
+    }
   }
 }
 

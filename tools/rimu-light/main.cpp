@@ -184,7 +184,7 @@ int main(int argc, char** argv) {
       if (v) light.amount = {*v, u}, ++amounts;
     if (amounts != 1) throw InputError({"", 0, "--lumens"}, "give exactly one of --lumens, --candela, --lux, --nits, --watts, --ev");
     if (auto s = shape.spectrum()) light.spectrum = *s;
-    rimu::validate_light_definition(light, library, here, {"", 0, "--" + type});
+    rimu::validate_light_definition(light, library, here, {"", 0, "amount"});
     write_definition(light, output);
     if (!plot.empty()) {
       const rimu::SpectrumPtr s = rimu::light_shape(light, library, here);

@@ -1,0 +1,98 @@
+// The "media" section of the JSON scene format: homogeneous and voxel-grid media, and the material whose shapes
+// enclose each of them (docs/media.md).
+#include "render/scene_load_context.h"
+#include "transport/medium.h"
+
+namespace rimu::scene_loading {
+namespace {
+
+// A spectrum scaled by a number: mean free paths given as a colour shape (≤ 1) times a length in metres.
+class ScaledSpectrum final : public Spectrum {
+ public:
+  ScaledSpectrum(SpectrumPtr shape, double scale) : shape_(std::move(shape)), scale_(scale) {}
+  double value(double nm) const override { return scale_ * shape_->value(nm); }
+  double max_value() const override { return scale_ * shape_->max_value(); }
+  std::string describe() const override { return std::to_string(scale_) + " × " + shape_->describe(); }
+
+ private:
+  SpectrumPtr shape_;
+  double scale_;
+};
+
+// A coefficient in 1/m: any non-RGB spectral input (≥ 0, unbounded), like a conductor's k.
+SpectrumPtr coefficient(const JsonCursor& c, LoadContext& context) {
+  if (c.is_object() && c.has("rgb")) c.at("rgb").fail("give coefficients as spectra; use albedo + mean_free_path for colours");
+  return context.spectra.parse(c, SpectrumRole::emission);
+}
+
+Medium load_medium(const JsonCursor& m, LoadContext& context) {
+  const std::string type = m.at("type").choice({"homogeneous", "grid"});
+  const float g = float(m.number_or("g", 0.0, -0.99, 0.99));
+  const int priority = m.integer_or("priority", 0, -1000, 1000);
+  SpectrumPtr sigma_a, sigma_s;
+  if (m.has("albedo")) {
+    // Chiang et al. 2016: surface albedo colour (a reflectance) and mean free path colour × scale in metres.
+    for (const char* key : {"sigma_a", "sigma_s"})
+      if (m.has(key)) m.at(key).fail("give either albedo + mean_free_path or sigma_a + sigma_s");
+    const SpectrumPtr albedo = context.spectra.parse(m.at("albedo"), SpectrumRole::reflectance);
+    const SpectrumPtr mfp_shape = context.spectra.parse(m.at("mean_free_path"), SpectrumRole::reflectance);
+    const double scale = m.number_or("mean_free_path_scale_m", 1.0, 1e-9, 1e9);
+    const HomogeneousMedium h = chiang2016_medium(*albedo, ScaledSpectrum(mfp_shape, scale), g);
+    sigma_a = h.sigma_a();
+    sigma_s = h.sigma_s();
+  } else {
+    sigma_a = coefficient(m.at("sigma_a"), context);
+    sigma_s = coefficient(m.at("sigma_s"), context);
+  }
+  if (type == "homogeneous") {
+    m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
+                 "boundary_material", "index_matched"});
+    return Medium(HomogeneousMedium(sigma_a, sigma_s, g), priority);
+  }
+  m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
+               "boundary_material", "index_matched", "file", "procedural", "resolution", "bounds_min", "bounds_max",
+               "seed"});
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<float> density;
+  if (m.has("file")) {
+    const JsonCursor file = m.at("file");
+    try {
+      read_grid_file(context.spectra.scene_directory() / file.string(), nx, ny, nz, density);
+    } catch (const InputError& e) {
+      file.fail(e.explanation());
+    }
+  } else {
+    m.at("procedural").choice({"cloud"});
+    nx = ny = nz = m.integer_or("resolution", 64, 1, 512);
+    density = procedural_cloud_density(nx, uint32_t(m.integer_or("seed", 1, 0, 1 << 30)));
+  }
+  try {
+    return Medium(GridMedium(nx, ny, nz, std::move(density), m.at("bounds_min").vec3(), m.at("bounds_max").vec3(),
+                             sigma_a, sigma_s, g),
+                  priority);
+  } catch (const InputError& e) {
+    m.fail(e.explanation());
+  }
+}
+
+}  // namespace
+
+void load_media(const JsonCursor& section, LoadContext& context) {
+  if (!section.is_object()) section.fail("expected an object of medium name → medium");
+  Scene& scene = context.scene;
+  scene.medium_boundaries.assign(scene.materials.size(), MediumBoundary{});
+  for (const auto& [name, unused] : section.value().items()) {
+    const JsonCursor m = section.at(name);
+    scene.media.push_back(load_medium(m, context));
+    // The shapes of the boundary material enclose this medium (closed meshes, normals pointing out).
+    const JsonCursor b = m.at("boundary_material");
+    const auto it = context.material_index.find(b.string());
+    if (it == context.material_index.end()) b.fail("unknown material '" + b.string() + "'");
+    MediumBoundary& boundary = scene.medium_boundaries[size_t(it->second)];
+    if (boundary.interior_medium >= 0) b.fail("material '" + b.string() + "' already bounds another medium");
+    boundary.interior_medium = int(scene.media.size()) - 1;
+    boundary.index_matched = m.boolean_or("index_matched", false);
+  }
+}
+
+}  // namespace rimu::scene_loading
