@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <fstream>
 #include <limits>
 
@@ -101,15 +102,29 @@ TEST_CASE("bad scene: unknown material, negative radius, unknown key, missing me
 }
 
 TEST_CASE("bad scene: non-finite and huge numbers in a transform") {
-  // JSON has no NaN or Infinity literals. nlohmann parses an overflowing literal such as 1e400 to +inf (strtod's
-  // HUGE_VAL) without complaint; the loader must reject it as not finite.
-  const nlohmann::json overflow = nlohmann::json::parse("1e400");
-  REQUIRE(overflow.is_number());
-  CHECK(overflow.get<double>() == std::numeric_limits<double>::infinity());
+  // JSON has no NaN or Infinity literals. nlohmann refuses an overflowing literal such as 1e400 with an
+  // out_of_range exception (406, "number overflow") that carries no position; the loader turns it into an
+  // InputError with the line of the literal.
+  CHECK_THROWS_AS(nlohmann::json::parse("[1e400]"), nlohmann::json::out_of_range);
+  try {
+    parse_json_text("{\n  \"shapes\": [\n    {\"transform\": [{\"translate\": [0, 1e400, 0]}]}\n  ]\n}\n", "overflow.json");
+    FAIL("1e400 parsed");
+  } catch (const InputError& e) {
+    CAPTURE(e.what());
+    CHECK(e.where().file == "overflow.json");
+    CHECK(e.where().line == 3);
+    CHECK(std::string(e.what()).find("1e400") != std::string::npos);
+  }
 
+  // A document built in code can hold ±inf and NaN (a script's output, or an API user): rejected at the key.
+  const double inf = std::numeric_limits<double>::infinity();
   nlohmann::json s = valid_scene();
-  s["shapes"][1]["transform"] = nlohmann::json::parse(R"([{"translate": [0, 1e400, 0]}])");
+  s["shapes"][1]["transform"] = {{{"translate", {0.0, inf, 0.0}}}};
   check_error(s, "/shapes/1/transform/0/translate/1", "finite");
+
+  s = valid_scene();
+  s["shapes"][1]["transform"] = {{{"rotate", {{"angle_deg", std::nan("")}, {"axis", {0, 1, 0}}}}}};
+  check_error(s, "/shapes/1/transform/0/rotate/angle_deg", "finite");
 
   // A NaN written as a string (what a script dumping NaN might produce) is a type error at the same place.
   s = valid_scene();
@@ -121,9 +136,9 @@ TEST_CASE("bad scene: non-finite and huge numbers in a transform") {
   s["shapes"][1]["transform"] = nlohmann::json::parse(R"([{"scale": 1e25}, {"scale": 1e25}])");
   check_error(s, "/shapes/1/transform", "not finite");
 
-  // A sphere centre at 1e400.
+  // A sphere centre at infinity.
   s = valid_scene();
-  s["shapes"][0]["center"] = nlohmann::json::parse("[0, 0, 1e400]");
+  s["shapes"][0]["center"] = {0.0, 0.0, -inf};
   check_error(s, "/shapes/0/center/2", "finite");
 }
 

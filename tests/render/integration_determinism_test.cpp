@@ -2,7 +2,7 @@
 // - the same scene, seed and sample count give a bit-identical film on 1 and on 2 threads (every pixel's samples
 //   come from (seed, pixel, sample index) and are summed in sample order by one thread);
 // - a render interrupted before or during its passes keeps whole passes only (every pixel has the same sample
-//   count, one of the pass boundaries 1, 2, 4, 8, 16, 32, 48, ...), reports interrupted, and run_render_job
+//   count, one of the pass boundaries 1, 3, 7, 15, 31, 47, ...), reports interrupted, and run_render_job
 //   (what `rimu` runs) still writes the EXR, marked "rimu:interrupted" with the spp reached.
 #include <doctest/doctest.h>
 
@@ -45,7 +45,8 @@ std::vector<double> film_bits(const Film& film) {
   return out;
 }
 
-// The pass boundaries of render(): passes of 1, 1, 2, 4, 8, 16, 16, ... samples per pixel.
+// The pass boundaries of render(): passes of 1, 2, 4, 8, 16, 16, ... samples per pixel (renderer.cpp doubles the
+// pass after each one, capped at 16), so whole-pass sample counts are 1, 3, 7, 15, 31, 47, ...
 bool is_pass_boundary(int spp) {
   int done = 0, pass = 1;
   while (done < spp) {
@@ -116,8 +117,9 @@ TEST_CASE("interrupt: a stop requested while rendering keeps whole passes only")
   InterruptFlag flag;
   std::FILE* quiet = std::tmpfile();
   ProgressReporter progress(uint64_t(64 * 64) << 20, "rendering", {quiet, 0, 3600.0});
-  // Stop once at least 3 passes' worth of samples (1 + 1 + 2 spp over the image) were rendered: a pass is then in
-  // flight, and the render must throw its partial tiles away.
+  // Stop once 4 spp over the image were rendered: the first two passes (1 + 2 spp) are merged and the third
+  // (4 spp) is in flight, so the render must throw its finished tiles of that pass away (or, if the request
+  // comes late, stop after a later pass).
   std::thread stopper([&] {
     while (progress.done() < uint64_t(64 * 64 * 4)) std::this_thread::sleep_for(std::chrono::microseconds(200));
     flag.request();
@@ -135,7 +137,7 @@ TEST_CASE("interrupt: a stop requested while rendering keeps whole passes only")
   std::fclose(quiet);
   CAPTURE(stats.samples_per_pixel_done);
   CHECK(stats.interrupted);
-  CHECK(stats.samples_per_pixel_done >= 4);
+  CHECK(stats.samples_per_pixel_done >= 3);
   CHECK(stats.samples_per_pixel_done < (1 << 20));
   CHECK(is_pass_boundary(stats.samples_per_pixel_done));
   CHECK(every_pixel_has(film, stats.samples_per_pixel_done));

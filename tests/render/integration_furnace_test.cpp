@@ -1,12 +1,20 @@
 // White furnace: an object that neither absorbs nor emits, inside a uniform environment of radiance 1, is
 // invisible. Every camera ray must see radiance 1 at every wavelength, whatever the object scatters, because in a
-// closed radiance-1 world L = Le + ∫ f L cos = 1 + (albedo − 1)·... is solved by L ≡ 1 exactly when albedo ≡ 1.
+// world where every direction brings radiance 1, L = ∫ f L cos dω = albedo, so L ≡ 1 exactly when the albedo is 1.
 // The only allowed departure is physical: single-scattering microfacet models lose the light that would bounce
 // between facets (Kulla & Conty, "Revisiting Physically Based Shading at Imageworks", SIGGRAPH 2017 course), so
-// rough surfaces may render slightly below 1 (never above: that would create energy).
+// rough surfaces render below 1 (never above: that would create energy). For those, the expected value including
+// the loss is computed independently, by a plain BSDF random walk in the test (reference_walk below: analytic
+// sphere, BSDF sampling only, no NEE, MIS, Russian roulette or spectral MIS), and the renderer must match it: the
+// renderer may not add a loss (or gain) of its own on top of the BSDF's.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <random>
+
 #include "integration_support.h"
+#include "render/camera.h"
+#include "transport/frame.h"
 
 using namespace rimu;
 using namespace rimu::test;
@@ -35,51 +43,127 @@ Ray furnace_ray(int i) {
   return ray_between({0.0f, 0.0f, -4.0f}, {0.9f * u, 0.9f * v, 0.0f});
 }
 
-// Checks the film's Y over all pixels and each lane of the integrator against 1 − loss ≤ L ≤ 1 (within kSigmas
-// standard errors); `loss` is the physically expected energy loss of the material (0 for exact ones).
-void check_furnace(const nlohmann::json& material, double loss) {
+// Nearest t > 0 where the ray meets the unit sphere at the origin (from outside or inside), or −1.
+float unit_sphere_hit(const Ray& ray) {
+  const float b = dot(ray.origin, ray.direction), c = dot(ray.origin, ray.origin) - 1.0f;
+  const float discriminant = b * b - c;
+  if (discriminant < 0.0f) return -1.0f;
+  const float root = std::sqrt(discriminant);
+  if (-b - root > 0.0f) return -b - root;
+  return -b + root > 0.0f ? -b + root : -1.0f;
+}
+
+// The furnace radiance along `ray` by the simplest estimator there is: follow BSDF samples (hero lane weight
+// f·|cos|/pdf) until the path leaves the unit sphere, where the environment gives 1. Up to 64 bounces, as the
+// scene's max_depth. Independent of the renderer's NEE, MIS, roulette, ray offsets and wavelength handling.
+double reference_walk(const Material& material, Ray ray, std::mt19937_64& rng) {
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  double weight = 1.0;
+  for (int depth = 0; depth <= 64; ++depth) {
+    const float t = unit_sphere_hit(ray);
+    if (t < 0.0f) return weight;
+    if (depth == 64) return 0.0;
+    const Vec3 p = ray.origin + ray.direction * t;
+    const Frame frame = Frame::from_normal(normalize(p));
+    const Bsdf bsdf = material.bsdf({0.0f, 0.0f}, fixed_wavelengths());
+    const float u_lobe = uniform(rng), u1 = uniform(rng), u2 = uniform(rng);
+    const auto s = bsdf.sample(frame.to_local(-ray.direction), u_lobe, {u1, u2});
+    if (!s || !(s->pdf[0] > 0.0f)) return 0.0;
+    weight *= double(s->hero_weight()[0]);
+    ray.direction = frame.to_world(s->wi);
+    // Step off the surface to the side the new direction leaves on.
+    ray.origin = p + normalize(p) * (dot(ray.direction, p) > 0.0f ? 1e-4f : -1e-4f);
+  }
+  return 0.0;
+}
+
+// The reference's mean over `count` rays drawn by `ray_of`, with its standard error.
+Estimate reference_radiance(const Scene& scene, const std::function<Ray(int)>& ray_of, int count) {
+  std::mt19937_64 rng(5);
+  std::vector<double> values;
+  for (int i = 0; i < count; ++i) values.push_back(reference_walk(scene.materials[0], ray_of(i), rng));
+  return estimate_of(values);
+}
+
+// |a − b| within kSigmas combined standard errors (plus float rounding for zero-variance estimators).
+void check_same(const Estimate& a, const Estimate& b, const char* what) {
+  CAPTURE(what);
+  CAPTURE(a.mean);
+  CAPTURE(a.standard_error);
+  CAPTURE(b.mean);
+  CAPTURE(b.standard_error);
+  CHECK(std::abs(a.mean - b.mean) <= kSigmas * std::hypot(a.standard_error, b.standard_error) + 1e-5);
+}
+
+// Checks the film's Y over all pixels, and each lane of the integrator on furnace_ray(), against the expected
+// radiance. `exact`: the material conserves energy exactly, so the expectation is 1; otherwise it is the reference
+// walk's, which must itself be ≤ 1 (the BSDF may lose energy, never create it). Returns the film's estimate.
+Estimate check_furnace(const nlohmann::json& material, bool exact) {
   const auto scene = scene_from_json(furnace(material));
   const RenderedFilm rendered = render_xyz(*scene, kSpp, 3);
   CHECK(rendered.film->sample_counts().discarded() == 0);
   const Estimate y = estimate_of(luminance_values(*rendered.film));
-  CAPTURE(y.mean);
-  CAPTURE(y.standard_error);
-  CHECK(y.mean <= 1.0 + kSigmas * y.standard_error);
-  CHECK(y.mean >= 1.0 - loss - kSigmas * y.standard_error);
-
   const std::array<Estimate, 4> lanes = lane_radiance(*scene, furnace_ray, 4096);
+
+  // The film's expectation: camera rays uniform over the image (box filter: uniform in every pixel).
+  const Camera camera(scene->camera, 16, 16);
+  std::mt19937_64 film_rng(8);
+  std::uniform_real_distribution<float> uniform(0.0f, 16.0f);
+  const auto film_ray = [&](int) { return camera.generate_ray(uniform(film_rng), uniform(film_rng), {0.5f, 0.5f}); };
+  const Estimate film_expected = exact ? Estimate{1.0, 0.0} : reference_radiance(*scene, film_ray, 16384);
+  const Estimate lane_expected = exact ? Estimate{1.0, 0.0} : reference_radiance(*scene, furnace_ray, 16384);
+  check_same(y, film_expected, "film Y");
   for (int j = 0; j < 4; ++j) {
     CAPTURE(j);
-    CAPTURE(lanes[size_t(j)].mean);
-    CAPTURE(lanes[size_t(j)].standard_error);
-    // A lane of an exact estimator may have zero variance: allow float rounding (1e-5) on top of the MC bound.
-    CHECK(lanes[size_t(j)].mean <= 1.0 + kSigmas * lanes[size_t(j)].standard_error + 1e-5);
-    CHECK(lanes[size_t(j)].mean >= 1.0 - loss - kSigmas * lanes[size_t(j)].standard_error - 1e-5);
+    check_same(lanes[size_t(j)], lane_expected, "integrator lane");
   }
-  MESSAGE("Y ", y.mean, " ± ", y.standard_error, "; lane 0 ", lanes[0].mean, " ± ", lanes[0].standard_error);
+  if (!exact) {
+    CHECK(film_expected.mean <= 1.0 + kSigmas * film_expected.standard_error);
+    CHECK(lane_expected.mean <= 1.0 + kSigmas * lane_expected.standard_error);
+  }
+  MESSAGE("film Y ", y.mean, " ± ", y.standard_error, " (expected ", film_expected.mean, " ± ",
+          film_expected.standard_error, "); lane 0 ", lanes[0].mean, " ± ", lanes[0].standard_error, " (expected ",
+          lane_expected.mean, ")");
+  return y;
 }
 
 }  // namespace
 
 TEST_CASE("furnace: a white Lambertian sphere is invisible, on the film and in every lane") {
-  check_furnace(nlohmann::json::parse(R"({"type": "diffuse", "reflectance": 1})"), 0.0);
+  check_furnace(nlohmann::json::parse(R"({"type": "diffuse", "reflectance": 1})"), true);
 }
 
 TEST_CASE("furnace: a smooth conductor with F = 1 is invisible, exactly in every lane") {
   // The issue asks for "a conductor with k = 0 and n = 1": that is vacuum, whose Fresnel reflectance is
   // ((n−1)² + k²)/((n+1)² + k²) = 0 at normal incidence, so it reflects nothing (a black sphere, not a furnace
   // test). A perfect mirror needs |n + ik| → ∞: n = 1, k = 1e4 gives R = 1 − 4n/((n+1)² + k²) = 1 − 4e-8.
-  check_furnace(nlohmann::json::parse(R"({"type": "conductor", "n": 1, "k": 10000})"), 0.0);
-}
-
-TEST_CASE("furnace: a rough conductor with F = 1 loses only the multiple-scattering energy") {
-  check_furnace(nlohmann::json::parse(R"({"type": "conductor", "n": 1, "k": 10000, "roughness": 0.3})"), 0.0);
-}
-
-TEST_CASE("furnace: a rough dielectric sphere of index 1.5 is invisible but for multiple-scattering loss") {
-  check_furnace(nlohmann::json::parse(R"({"type": "dielectric", "ior": 1.5, "roughness": 0.3})"), 0.0);
+  check_furnace(nlohmann::json::parse(R"({"type": "conductor", "n": 1, "k": 10000})"), true);
 }
 
 TEST_CASE("furnace: a smooth dielectric sphere of index 1.5 is invisible") {
-  check_furnace(nlohmann::json::parse(R"({"type": "dielectric", "ior": 1.5})"), 0.0);
+  // R + T = 1 at every interface (radiance scaled by 1/η² in and η² out), so every escaping path carries 1; paths
+  // still inside after 64 bounces (total internal reflection cannot trap light in a sphere) are negligible.
+  check_furnace(nlohmann::json::parse(R"({"type": "dielectric", "ior": 1.5})"), true);
+}
+
+TEST_CASE("furnace: nearly smooth rough conductor and dielectric (roughness 0.1, alpha 0.01) are invisible within the MC bound") {
+  // At α = 0.01 the single-scattering loss is far below the ≈0.5 % error bars (it vanishes as α → 0, Kulla &
+  // Conty 2017; bsdf_energy_test bounds it below 1 % already at α = 0.05), so the expectation 1 is used as is.
+  check_furnace(nlohmann::json::parse(R"({"type": "conductor", "n": 1, "k": 10000, "roughness": 0.1})"), true);
+  check_furnace(nlohmann::json::parse(R"({"type": "dielectric", "ior": 1.5, "roughness": 0.1})"), true);
+}
+
+TEST_CASE("furnace: rough conductor and dielectric (roughness 0.3, alpha 0.09) render their BSDF's own energy loss") {
+  // Measured with this seed: the film sees 1.3 % less than 1 for the conductor (F = 1) and 3 % less for the
+  // dielectric sphere: the multiple-scattering energy missing from single-scattering GGX (larger at the
+  // sphere's grazing rim; the dielectric loses it at every one of its ≥ 2 interface crossings). The renderer
+  // must reproduce exactly that loss: the reference walk's value, not 1.
+  const Estimate conductor =
+      check_furnace(nlohmann::json::parse(R"({"type": "conductor", "n": 1, "k": 10000, "roughness": 0.3})"), false);
+  const Estimate dielectric =
+      check_furnace(nlohmann::json::parse(R"({"type": "dielectric", "ior": 1.5, "roughness": 0.3})"), false);
+  // The loss is real (detectable), and small: below 5 % for both at α = 0.09.
+  CHECK(conductor.mean < 1.0 - kSigmas * conductor.standard_error);
+  CHECK(conductor.mean > 0.95);
+  CHECK(dielectric.mean > 0.95);
 }

@@ -38,7 +38,7 @@ StrategyImages render_strategies(nlohmann::json scene_json, int spp, int bsdf_on
   return out;
 }
 
-void check_agree(const std::vector<double>& a, const std::vector<double>& b, const char* what) {
+void check_agree(const std::vector<double>& a, const std::vector<double>& b, const std::string& what) {
   const Estimate difference = paired_difference(a, b);
   const double image_mean = mean_of(a);
   CAPTURE(what);
