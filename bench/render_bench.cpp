@@ -117,9 +117,13 @@ std::string vector_isas() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("flags", 0) != 0) continue;
+    line += ' ';
     std::string found;
-    for (const char* isa : {"sse4_2", "avx", "avx2", "avx512f"})
-      if ((line + " ").find(" " + std::string(isa) + " ") != std::string::npos) found += std::string(" ") + isa;
+    for (const char* isa : {"sse4_2", "avx", "avx2", "avx512f"}) {
+      std::string word = " ";
+      word += isa;
+      if (line.find(word + ' ') != std::string::npos) found += word;
+    }
     return found.empty() ? " (none of sse4_2 avx avx2 avx512f)" : found;
   }
   return " (unknown)";

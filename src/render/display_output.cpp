@@ -19,7 +19,7 @@ std::vector<uint8_t> display_pixels(const Film& film, const DisplayOptions& opti
   rgb.reserve(pixel_count * 3);
   for (int y = b.y0; y < b.y1; ++y) {
     for (int x = b.x0; x < b.x1; ++x) {
-      const auto v = film.pixel_value(x, y);
+      const auto v = film.output_value(x, y);
       rgb.insert(rgb.end(), {float(v[0]), float(v[1]), float(v[2])});
     }
   }

@@ -48,7 +48,9 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
     // three channels these are the chromaticities of pure X, pure Y, pure Z and equal XYZ.
     Imf::addChromaticities(h, Imf::Chromaticities(Imath::V2f(1.0f, 0.0f), Imath::V2f(0.0f, 1.0f),
                                                   Imath::V2f(0.0f, 0.0f), Imath::V2f(1.0f / 3.0f, 1.0f / 3.0f)));
-    h.insert("rimu:luminanceNitsPerUnitY", Imf::DoubleAttribute(response.luminance_nits_per_unit_y()));
+    // Of the written Y: an exposed film (Film::output_transform) has Y scaled by the exposure.
+    h.insert("rimu:luminanceNitsPerUnitY",
+             Imf::DoubleAttribute(response.luminance_nits_per_unit_y() / film.output_transform().scale));
   } else {
     add_string(h, "rimu:camera", response.camera_name());
   }
@@ -103,7 +105,7 @@ void write_exr(const std::filesystem::path& path, const Film& film, const ExrOpt
     values.reserve(pixel_count);
     for (int y = b.y0; y < b.y1; ++y)
       for (int x = b.x0; x < b.x1; ++x)
-        values.push_back(float(c < 3 ? film.pixel_value(x, y)[c] : film.spectral_value(x, y, int(c) - 3)));
+        values.push_back(float(c < 3 ? film.output_value(x, y)[c] : film.spectral_value(x, y, int(c) - 3)));
     if (use_half) {
       channels[c].halves.reserve(pixel_count);
       for (float v : values) channels[c].halves.emplace_back(std::clamp(v, -kHalfMax, kHalfMax));

@@ -31,7 +31,8 @@ struct ExrOptions {
 };
 
 /// Writes the film's crop window as the EXR data window (display window = the full image); pixels without samples
-/// are 0. Channels:
+/// are 0. The X, Y, Z / R, G, B channels are Film::output_value() (exposure and white balance applied); spectral
+/// bins stay in radiance units. Channels:
 /// - XYZ film: X, Y, Z, and the `chromaticities` attribute for XYZ: the chromaticities of the RGB triples
 ///   (1,0,0), (0,1,0), (0,0,1), (1,1,1) as ImfChromaticities.h defines them, which for X, Y, Z stored as
 ///   R, G, B are red (1, 0), green (0, 1), blue (0, 0), white (1/3, 1/3).

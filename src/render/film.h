@@ -5,6 +5,7 @@
 #include <atomic>
 #include <optional>
 
+#include "render/film_output_transform.h"
 #include "render/film_tile.h"
 #include "render/spectral_response.h"
 
@@ -54,6 +55,11 @@ class Film {
 
   /// The mean channel values of pixel (x, y) (full-image coordinates inside pixel_bounds()); 0 without samples.
   std::array<double, 3> pixel_value(int x, int y) const;
+  /// The value written to output files: output_transform() applied to pixel_value() (exposure, white balance).
+  std::array<double, 3> output_value(int x, int y) const { return output_.apply(pixel_value(x, y)); }
+  /// Sets the exposure and white balance applied when the film is written (identity by default).
+  void set_output_transform(const FilmOutputTransform& transform) { output_ = transform; }
+  const FilmOutputTransform& output_transform() const { return output_; }
   /// The mean spectral radiance (W/(m²·sr·nm) if the input was) estimated in bin `bin` of pixel (x, y).
   double spectral_value(int x, int y, int bin) const;
   /// The sum of filter weights of pixel (x, y) (its sample count with weight-1 filters).
@@ -65,6 +71,7 @@ class Film {
   int width_, height_;
   SpectralResponse response_;
   FilmTile pixels_;  // the whole crop window, in the tile layout
+  FilmOutputTransform output_;
   std::atomic<uint64_t> accepted_{0}, nan_{0}, infinite_{0}, negative_{0};
 };
 

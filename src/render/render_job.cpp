@@ -1,9 +1,11 @@
 #include "render/render_job.h"
 
+#include <cmath>
 #include <cstdio>
 #include <ostream>
 #include <sstream>
 
+#include "render/camera_exposure.h"
 #include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
@@ -40,6 +42,23 @@ void apply_film_option(const std::string& film, RenderSettings& settings) {
   settings.film_response = film;
 }
 
+// --iso, --shutter, --f-number, --ev, --white-balance over the scene camera's exposure and white balance.
+void apply_camera_options(const RenderJob& job, CameraExposureSettings& camera, SpectralLibrary& library) {
+  if (job.iso || job.shutter_s || job.f_number || job.compensation_ev) {
+    PhysicalCameraSettings e = camera.exposure.value_or(PhysicalCameraSettings{});
+    if (job.iso) e.iso = *job.iso;
+    if (job.shutter_s) e.shutter_s = *job.shutter_s;
+    if (job.f_number) e.f_number = *job.f_number;
+    if (job.compensation_ev) e.exposure_compensation_ev = *job.compensation_ev;
+    if (!(e.iso > 0.0) || !(e.shutter_s > 0.0) || !(e.f_number > 0.0) || !std::isfinite(e.exposure_compensation_ev))
+      throw InputError({"", 0, "--iso/--shutter/--f-number/--ev"},
+                       "the physical camera needs a positive ISO, shutter time and f-number and a finite --ev");
+    camera.exposure = e;
+  }
+  if (job.white_balance)
+    camera.white_balance = parse_white_balance_option(*job.white_balance, library, "--white-balance");
+}
+
 }  // namespace
 
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& option) {
@@ -72,6 +91,7 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   if (job.seed) settings.seed = *job.seed;
   if (job.sampler) settings.sampler = *job.sampler;
   if (job.film) apply_film_option(*job.film, settings);
+  apply_camera_options(job, settings.camera_exposure, library);
 
   FilmOptions film_options{settings.width, settings.height, std::nullopt, settings.spectral_bins};
   if (job.crop) {
@@ -93,6 +113,16 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
     }
   }();
   Film film(film_options, std::move(response));
+  // Exposure and white balance reach the EXR and the PNG through the film's output transform (one place).
+  const FilmOutputTransform output_transform = [&] {
+    try {
+      return film_output_transform(settings.camera_exposure, film.response(), library);
+    } catch (const InputError& e) {
+      throw InputError({"", 0, job.white_balance ? "--white-balance" : scene_path.string() + ": /camera/white_balance"},
+                       e.explanation());
+    }
+  }();
+  film.set_output_transform(output_transform);
   const PixelFilter filter = make_filter(settings.filter);
   // Check the outputs before spending the render time on an image that cannot be written.
   check_output_path(job.exr_output);
@@ -124,6 +154,8 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   exr.metadata.interrupted = result.statistics.interrupted;
   exr.metadata.scene = scene_path.string();
   exr.metadata.extra["degenerateTrianglesRemoved"] = std::to_string(scene->degenerate_triangles_removed);
+  for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, output_transform))
+    exr.metadata.extra[key] = value;
   write_exr(job.exr_output, film, exr);
   if (job.png_output) {
     DisplayOptions display;

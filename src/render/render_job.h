@@ -23,7 +23,12 @@ struct RenderJob {
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
   bool float_exr = false;
-  double exposure_ev = 0.0;
+  double exposure_ev = 0.0;  ///< display exposure of the PNG only (see also compensation_ev)
+  /// The physical camera (render/camera_exposure.h); each overrides the scene camera's "exposure" field. Giving any
+  /// of them to a scene without "exposure" turns the physical camera on, the others taking sunny-16 values
+  /// (ISO 100, 1/100 s, f/16, 0 EV).
+  std::optional<double> iso, shutter_s, f_number, compensation_ev;
+  std::optional<std::string> white_balance;  ///< none | a temperature (2700, 2700K) | an illuminant name
   std::string view = "Standard";
   bool quiet = false;  ///< no progress bar (it is also off when stderr is not a terminal)
 };

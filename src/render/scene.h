@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/camera_exposure.h"
 #include "render/embree_scene.h"
 #include "spectral/spectral_library.h"
 #include "transport/light.h"
@@ -38,6 +39,7 @@ struct RenderSettings {
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
   FilterSettings filter;
+  CameraExposureSettings camera_exposure;  ///< the camera's "exposure" and "white_balance" (film units if absent)
 };
 
 /// Everything the renderer needs, owned in one place. Immutable after loading; shared by all render threads.

@@ -3,6 +3,7 @@
 
 #include "render/rgb_environment_image.h"
 #include "render/scene_load_context.h"
+#include "render/scene_ies_light.h"
 #include "render/scene_light_emission.h"
 #include "transport/distant_light.h"
 #include "transport/environment_light.h"
@@ -20,7 +21,8 @@ Vec3 unit_direction(const JsonCursor& c) {
 }
 
 std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
-  const std::string type = l.at("type").choice({"point", "spot", "distant", "environment"});
+  const std::string type = l.at("type").choice({"point", "spot", "distant", "environment", "ies"});
+  if (type == "ies") return load_ies_light(l, context);
   if (type == "point") {
     only_light_keys(l, {"type", "name", "position", "intensity"});
     const EmitterGeometry geometry{EmitterKind::point};

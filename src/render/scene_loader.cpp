@@ -1,5 +1,6 @@
 #include <cmath>
 
+#include "render/camera_exposure.h"
 #include "render/scene.h"
 #include "render/scene_load_context.h"
 #include "transport/wavelength_modes.h"
@@ -25,8 +26,13 @@ std::filesystem::path default_scene_path(const SpectralLibrary& library) {
 
 namespace {
 
-void load_camera(const JsonCursor& c, Scene& scene) {
-  c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance"});
+void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
+  c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance", "exposure",
+               "white_balance"});
+  // The physical camera (render/camera_exposure.h): applied when the film is written.
+  if (const auto exposure = c.find("exposure")) scene.settings.camera_exposure.exposure = parse_exposure(*exposure);
+  if (const auto wb = c.find("white_balance"))
+    scene.settings.camera_exposure.white_balance = parse_white_balance(*wb, library);
   const std::string type = c.has("type") ? c.at("type").choice({"pinhole", "thin_lens"}) : "pinhole";
   const Vec3 from = c.at("from").vec3(), to = c.at("to").vec3();
   const Vec3 up = c.has("up") ? c.at("up").vec3() : Vec3{0, 1, 0};
@@ -106,7 +112,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   for (const char* section : {"lights", "shapes"})
     if (root.has(section) && !root.at(section).is_array()) root.at(section).fail("expected an array");
 
-  load_camera(root.at("camera"), *scene);
+  load_camera(root.at("camera"), *scene, library);
   if (const auto film = root.find("film")) load_film(*film, scene->settings);
   if (const auto integrator = root.find("integrator")) load_integrator(*integrator, scene->settings);
   context.spectra.set_rgb_transport(scene->settings.integrator.wavelengths == WavelengthMode::rgb);

@@ -48,6 +48,9 @@ class Light {
 
   /// True if sample_li returns delta samples (point, spot, distant of zero diameter): no MIS with BSDF sampling.
   virtual bool is_delta() const { return false; }
+  /// The position of a light that emits from one point (point, spot), else std::nullopt. Media use it for
+  /// equiangular sampling along a ray towards the light (transport/equiangular_sampling.h).
+  virtual std::optional<Vec3> delta_position_m() const { return std::nullopt; }
   /// True if the light is at infinity (radiance_escaped may be nonzero).
   virtual bool is_infinite() const { return false; }
 };

@@ -29,6 +29,7 @@ class SpotLight final : public Light {
   /// Φ = 2π (1 − (cos θ_inner + cos θ_outer)/2) ∫I(λ) dλ (derivation above).
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
+  std::optional<Vec3> delta_position_m() const override { return position_m_; }
 
   /// s(cos θ) for the direction `w_emitted` (unit, from the light outwards).
   float falloff(Vec3 w_emitted) const;

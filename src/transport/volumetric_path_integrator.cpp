@@ -131,8 +131,16 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
 
     // Free flight through the current medium up to the surface.
     std::optional<Vec3> scatter_point;
+    std::optional<EquiangularSegment> equiangular;  // set when the equiangular technique ran on this segment
+    const SampledSpectrum ratios_before_flight = pdf_ratio;
+    float flight_t = 0.0f;
     const int medium_index = stack.current(media);
     if (medium_index >= 0) {
+      const Medium& medium = media[size_t(medium_index)];
+      if (uses_equiangular(medium)) {
+        equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}};
+        radiance += equiangular_direct(*equiangular, medium, beta, pdf_ratio, stack, lambda, sampler);
+      }
       SampledSpectrum throughput = beta;  // β ∝ the effective throughput while R is lane-independent
       const FreeFlight flight = sample_free_flight(media[size_t(medium_index)], ray, std::fmin(t_surface, 1e30f),
                                                    lambda, settings_.distance, sampler, throughput);
@@ -140,6 +148,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       pdf_ratio *= flight.pdf_ratio;
       if (flight.terminated()) break;
       if (flight.scattered) {
+        flight_t = flight.t;
         scatter_point = ray.origin + ray.direction * flight.t;
       } else {
         pass_product *= flight.pass_probability;
@@ -241,7 +250,11 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
               const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only
                                       ? 0.0f
                                       : sum(pdf_ratio * q_dir * tr->pass_probability);
-              const float weight = s_light / (s_light * s_light + s_dir * s_dir);
+              float weight = s_light / (s_light * s_light + s_dir * s_dir);
+              if (equiangular && scatter_point)
+                if (const auto light_m = light.delta_position_m())
+                  weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *light_m,
+                                                      ratios_before_flight, lambda);
               radiance += beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight);
             }
           }

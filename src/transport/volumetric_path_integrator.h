@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "transport/equiangular_sampling.h"
 #include "transport/medium.h"
 #include "transport/path_integrator.h"
 #include "transport/spectral_distance_sampling.h"
@@ -25,6 +26,10 @@ struct VolumetricIntegratorSettings {
   /// A safety bound on scattering events per path (stuck-path guard; Russian roulette ends paths long before in
   /// any medium with albedo < 1). Paths reaching it end, which truncates at most the 10⁶th-order scattering.
   int max_medium_events = 1000000;
+  /// Equiangular sampling towards point and spot lights on every homogeneous segment, combined with free-flight
+  /// sampling + NEE by the balance heuristic (Kulla & Fajardo 2012; docs/media.md). Not used with
+  /// spectral_tracking, in grid media, or with direct_lighting = bsdf_only.
+  bool equiangular = true;
 };
 
 /// Radiance along camera rays in scenes with media, per lane, with the same output contract as
@@ -40,8 +45,7 @@ struct VolumetricIntegratorSettings {
 /// Russian roulette (1); free flights take a variable number (spectral_distance_sampling.h).
 class VolumetricPathIntegrator {
  public:
-  VolumetricPathIntegrator(const VolumetricScene& scene, VolumetricIntegratorSettings settings)
-      : scene_(scene), settings_(settings) {}
+  VolumetricPathIntegrator(const VolumetricScene& scene, VolumetricIntegratorSettings settings);
 
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const;
 
@@ -56,6 +60,19 @@ class VolumetricPathIntegrator {
   std::optional<ShadowResult> shadow(Vec3 origin, Vec3 direction, float distance, MediumStack stack,
                                      const SampledWavelengths& lambda, Sampler& sampler,
                                      SampledSpectrum throughput) const;
+  /// Whether the equiangular technique runs on segments through `medium` (see the setting).
+  bool uses_equiangular(const Medium& medium) const;
+  /// The equiangular technique on one homogeneous segment (volumetric_equiangular.cpp): picks a light as NEE
+  /// does; for a point or spot light, samples t equiangularly and connects to the light. `beta`, `ratios`: the
+  /// path's β and R_k before the segment's free flight. Returns the MIS-weighted radiance per lane.
+  /// Consumes two uniform numbers (light choice, t) plus the shadow ray's.
+  SampledSpectrum equiangular_direct(EquiangularSegment segment, const Medium& medium, const SampledSpectrum& beta,
+                                     const SampledSpectrum& ratios, const MediumStack& stack,
+                                     const SampledWavelengths& lambda, Sampler& sampler) const;
+  /// The balance-heuristic weight of free-flight sampling + NEE to a light at `light_m` for a scattering event at
+  /// `t` of `segment`, against the equiangular technique: S_dist / (S_dist + S_equi) (docs/media.md).
+  float distance_technique_weight(EquiangularSegment segment, const Medium& medium, float t, Vec3 light_m,
+                                  const SampledSpectrum& ratios, const SampledWavelengths& lambda) const;
   MediumBoundary boundary(int material) const {
     return material >= 0 && size_t(material) < scene_.boundaries->size() ? (*scene_.boundaries)[size_t(material)]
                                                                          : MediumBoundary{};
@@ -63,6 +80,7 @@ class VolumetricPathIntegrator {
 
   const VolumetricScene& scene_;
   VolumetricIntegratorSettings settings_;
+  bool has_point_lights_ = false;  ///< any light with a delta position (point, spot)
 };
 
 }  // namespace rimu

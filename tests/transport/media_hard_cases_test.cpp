@@ -84,7 +84,7 @@ TEST_CASE("A lane with sigma_t 0 or 1e-9 next to lanes with sigma_t 10: finite, 
     const test::SlabScene slab(1.0f, homogeneous(Float4(0.0f), Float4(empty, 10.0f, 10.0f, 10.0f)),
                                std::make_unique<test::UniformSky>(1.0f));
     const Ray ray{{0.0f, 0.0f, -1.0f}, normalize(Vec3{0.3f, 0.1f, 1.0f})};
-    for (DistanceSampling mode : {DistanceSampling::spectral_mis}) {
+    for (DistanceSampling mode : {DistanceSampling::spectral_mis, DistanceSampling::spectral_tracking}) {
       CAPTURE(int(mode));
       const int count = 6000;
       const LaneStatistics s = render_ray(slab, settings(mode), ray, count);

@@ -4,10 +4,12 @@
 // Exit codes: 0 ok, 1 bad input (the message names the file/option), 2 runtime failure (e.g. gnuplot missing).
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <fstream>
 #include <iostream>
 #include <optional>
 
+#include "render/ies_report.h"
 #include "render/json_cursor.h"
 #include "render/light_definition.h"
 #include "render/render_error.h"
@@ -93,11 +95,13 @@ int main(int argc, char** argv) {
   double distance_m = 1.0, angle_deg = 0.0;
   std::optional<double> electrical_w;
   std::string inspect_plot;
-  inspect->add_option("file", inspect_file, "light definition (.json) or spectrum (.csv)")->required();
+  inspect->add_option("file", inspect_file, "light definition (.json), spectrum (.csv) or IES photometric file (.ies)")->required();
   inspect->add_option("--distance", distance_m, "for the illuminance of a point or spot light, m");
   inspect->add_option("--angle", angle_deg, "off the spot's axis, degrees");
   inspect->add_option("--electrical-watts", electrical_w, "the lamp's electrical power, W (source efficacy)");
   inspect->add_option("--plot", inspect_plot, "draw the spectral power distribution to this PNG (gnuplot)");
+  std::string inspect_polar;
+  inspect->add_option("--plot-polar", inspect_polar, "IES files: draw the candela distribution to this PNG (gnuplot)");
 
   CLI::App* convert = app.add_subcommand("convert", "convert an amount, e.g. --from \"1600 lm\" --to cd --type point");
   std::string from, to, convert_type = "point";
@@ -139,6 +143,16 @@ int main(int argc, char** argv) {
       return g;
     };
     if (*inspect) {
+      std::string extension = std::filesystem::path(inspect_file).extension().string();
+      for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+      if (extension == ".ies") {
+        const rimu::IesPhotometry ies = rimu::read_ies_file(inspect_file);
+        std::cout << rimu::inspect_ies_text(ies, distance_m, angle_deg, electrical_w);
+        if (!inspect_polar.empty()) rimu::plot_ies_polar_png(ies, inspect_polar);
+        return 0;
+      }
+      if (!inspect_polar.empty())
+        throw InputError({"", 0, "--plot-polar"}, "a polar candela plot needs an IES file (.ies)");
       rimu::LightDefinition light;
       if (std::filesystem::path(inspect_file).extension() == ".csv") {
         light.spectrum = {{"csv", std::filesystem::absolute(inspect_file).string()}};

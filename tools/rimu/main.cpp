@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "render/render_error.h"
+#include "render/camera_exposure.h"
 #include "render/render_job.h"
 #include "spectral/error.h"
 
@@ -33,6 +34,12 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", job.exposure_ev, "exposure of the PNG in stops (EV)");
   app.add_option("--view", job.view, "OpenColorIO view of the PNG: Standard, \"ACES 1.0 SDR\" or Raw");
   app.add_flag("-q,--quiet", job.quiet, "no progress bar");
+  std::string shutter;
+  app.add_option("--iso", job.iso, "physical camera: ISO speed (turns the physical camera on; see docs/light-units.md)");
+  app.add_option("--shutter", shutter, "physical camera: shutter time in seconds, e.g. 0.01 or 1/100");
+  app.add_option("--f-number", job.f_number, "physical camera: f-number, e.g. 16");
+  app.add_option("--ev", job.compensation_ev, "physical camera: exposure compensation in stops");
+  app.add_option("--white-balance", job.white_balance, "none, a temperature (2700 or 2700K) or an illuminant (A, D50...)");
   (void)spp;
 
   try {
@@ -52,6 +59,7 @@ int main(int argc, char** argv) {
       job.height = h;
     }
     if (!crop.empty()) job.crop = rimu::parse_crop(crop, "--crop");
+    if (!shutter.empty()) job.shutter_s = rimu::parse_shutter_time_s(shutter, "--shutter");
     rimu::run_render_job(job, std::cerr);
     return 0;
   } catch (const rimu::InputError& e) {
