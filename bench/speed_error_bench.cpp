@@ -186,7 +186,7 @@ void write_plot(const fs::path& dir, const std::string& id, const std::map<std::
   std::ofstream gp(script);
   gp << "set terminal pngcairo size 640,440\nset output '" << png.string() << "'\n"
      << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
-     << "set title 'issue 7: " << id << "'\nset key top right\nset grid\nplot ";
+     << "set title 'issue 7: " << id << "' noenhanced\nset key top right noenhanced\nset grid\nplot ";
   bool first = true;
   for (const auto& [mode, rows] : by_mode) {
     const fs::path dat = dir / (id + "_" + mode + ".dat");

@@ -56,13 +56,31 @@ CollisionProbabilities collision_probabilities(DistanceSampling mode, Float4 sig
     return p;
   }
   // averaged: the lanes' mean coefficients; spectral_tracking: weighted by the throughput (history-aware).
-  const Float4 w = mode == DistanceSampling::spectral_tracking ? abs(throughput) : Float4(1.0f);
+  Float4 w = Float4(1.0f);
+  if (mode == DistanceSampling::spectral_tracking) {
+    w = abs(throughput);  // scale-free: normalised so that large or tiny throughputs cannot overflow the means
+    const float largest = max_lane(w);
+    if (largest > 0.0f && std::isfinite(largest)) w = w / Float4(largest);
+  }
   const float s = mean_lane(sigma_s * w), n = mean_lane(sigma_n * w);
   p.scatter = s + n > 0.0f ? s / (s + n) : 0.0f;
   p.null = s + n > 0.0f ? n / (s + n) : 0.0f;
   p.scatter_lane = Float4(p.scatter);
   p.null_lane = Float4(p.null);
   return p;
+}
+
+// The spectral-tracking weights after a null collision: throughput ⊙ σ_n, rescaled so that its largest lane is 1.
+// The collision probabilities are ratios of weighted means, so any positive multiple gives the same ones; dropping
+// the common factor 1/(μ̄ P_n) matters: in ratio tracking it is applied at every tentative collision, not only at
+// sampled ones, and a lane carrying ~1e-40 of the throughput (σ_s = 1e-9 after a few scattering events) makes P_n
+// denormal, 1/P_n overflow to inf and the next probabilities inf/inf = NaN (the non-finite samples of the
+// σ_t ≈ 0-next-to-10 case). Lanes below ~1e-38 of the largest flush to 0: their expected share of the estimate
+// is of that order.
+Float4 tracking_weights_after_null(Float4 throughput, Float4 sigma_n) {
+  const Float4 w = abs(throughput * sigma_n);
+  const float largest = max_lane(w);
+  return largest > 0.0f && std::isfinite(largest) ? w / Float4(largest) : w;
 }
 
 bool uses_tracking(const Medium& medium, DistanceSampling mode) {
@@ -134,7 +152,7 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
       }
       const Float4 null_weight = sigma_n / Float4(majorant * p.null);
       flight.weight *= null_weight;
-      throughput *= null_weight;
+      throughput = tracking_weights_after_null(throughput, sigma_n);
       flight.pdf_ratio *= p.null_lane / Float4(p.null);
       flight.pass_probability *= p.null;
     }
@@ -169,7 +187,7 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
       const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
       out.pass_probability *= p.null_lane;
       // The free-flight technique would have carried this throughput through the same null collision.
-      if (p.null > 0.0f) throughput *= sigma_n / Float4(majorant * p.null);
+      throughput = tracking_weights_after_null(throughput, sigma_n);
       if (max_lane(out.transmittance) <= 0.0f) return false;
     }
   });

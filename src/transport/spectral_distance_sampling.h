@@ -50,14 +50,16 @@ struct SegmentTransmittance {
 /// Samples a free flight from ray.origin along ray.direction (unit) until t_max (the next surface) in `medium`.
 /// Consumes one uniform number (homogeneous analytic modes) or two per tentative collision (trackers).
 /// `throughput` is the path's effective per-lane throughput (only spectral_tracking reads it; any positive
-/// multiple will do); it is updated along the flight's null collisions for the next segment.
+/// multiple will do); it is updated along the flight's null collisions for the next segment, as a multiple
+/// rescaled so that its largest lane is 1.
 FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
                               DistanceSampling mode, Sampler& sampler, SampledSpectrum& throughput);
 
 /// The transmittance over [ray.t_min, t_max): exp(−σ_t d) for homogeneous media (analytic modes), else ratio
 /// tracking (Novák, Selle, Jarosz 2014) against the majorant grid. Consumes one number per tentative collision.
 /// `throughput` is what the free-flight technique's throughput would be on this segment (spectral_tracking's
-/// probabilities depend on it, and so do the pass probabilities); updated along the null collisions.
+/// probabilities depend on it, and so do the pass probabilities); updated along the null collisions (rescaled so
+/// that its largest lane is 1: only its direction matters, and this keeps it finite).
 SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
                                             const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler,
                                             SampledSpectrum& throughput);

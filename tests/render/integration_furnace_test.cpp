@@ -121,9 +121,6 @@ Estimate check_furnace(const nlohmann::json& material, bool exact) {
     CHECK(film_expected.mean <= 1.0 + kSigmas * film_expected.standard_error);
     CHECK(lane_expected.mean <= 1.0 + kSigmas * lane_expected.standard_error);
   }
-  MESSAGE("film Y ", y.mean, " ± ", y.standard_error, " (expected ", film_expected.mean, " ± ",
-          film_expected.standard_error, "); lane 0 ", lanes[0].mean, " ± ", lanes[0].standard_error, " (expected ",
-          lane_expected.mean, ")");
   return y;
 }
 

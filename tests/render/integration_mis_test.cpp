@@ -47,7 +47,6 @@ void check_agree(const std::vector<double>& a, const std::vector<double>& b, con
   CAPTURE(difference.standard_error);
   CHECK(std::abs(difference.mean) <= kSigmas * difference.standard_error);
   CHECK(kSigmas * difference.standard_error < 0.05 * image_mean);
-  MESSAGE(what, ": mean ", image_mean, ", difference ", difference.mean, " ± ", difference.standard_error);
 }
 
 void check_all_agree(const StrategyImages& images) {

@@ -55,7 +55,14 @@ struct Estimate {
 };
 
 /// Mean and standard error (sample standard deviation/√n) of i.i.d. values.
-inline Estimate estimate_of(const std::vector<double>& values);
+inline Estimate estimate_of(const std::vector<double>& values) {
+  double mean = 0.0;
+  for (double v : values) mean += v;
+  mean /= double(values.size());
+  double squares = 0.0;
+  for (double v : values) squares += (v - mean) * (v - mean);
+  return {mean, std::sqrt(squares / double(values.size() - 1) / double(values.size()))};
+}
 
 /// Four fixed wavelengths across the visible, for checks lane by lane (their pdf is irrelevant to the integrator).
 inline SampledWavelengths fixed_wavelengths() { return {Float4(400.0f, 500.0f, 600.0f, 700.0f), Float4(1.0f / 470.0f)}; }
@@ -117,15 +124,6 @@ inline std::vector<double> luminance_values(const Film& film) {
   return y;
 }
 
-
-inline Estimate estimate_of(const std::vector<double>& values) {
-  double mean = 0.0;
-  for (double v : values) mean += v;
-  mean /= double(values.size());
-  double squares = 0.0;
-  for (double v : values) squares += (v - mean) * (v - mean);
-  return {mean, std::sqrt(squares / double(values.size() - 1) / double(values.size()))};
-}
 
 /// The mean of the differences a_i − b_i of two renders of the same pixels (independent across pixels, each pair
 /// with mean 0 if the two estimators agree) and its standard error. The pixels need not share an expected value:
