@@ -210,19 +210,22 @@ void write_plot(const std::vector<LadderRow>& rows, const std::filesystem::path&
   const std::filesystem::path script = std::filesystem::path(png).replace_extension(".gp");
   {
     std::ofstream out(data);
-    out << "# spp  independent_s  independent_relmse  sobol_s  sobol_relmse\n";
+    out << "# spp  independent_s  independent_mse  independent_relmse  sobol_s  sobol_mse  sobol_relmse\n";
     for (const LadderRow& r : rows)
-      out << r.spp << ' ' << r.seconds[0] << ' ' << r.rel_mse[0] << ' ' << r.seconds[1] << ' ' << r.rel_mse[1] << '\n';
+      out << r.spp << ' ' << r.seconds[0] << ' ' << r.mse[0] << ' ' << r.rel_mse[0] << ' ' << r.seconds[1] << ' '
+          << r.mse[1] << ' ' << r.rel_mse[1] << '\n';
   }
   {
     std::ofstream out(script);
     out << "set terminal pngcairo size 800,560 font ',11'\n"
         << "set output '" << png.string() << "'\n"
-        << "set title '" << title << "'\n"
-        << "set logscale xy\nset grid\nset key top right\n"
-        << "set xlabel 'wall time (s)'\nset ylabel 'relMSE vs reference'\n"
-        << "plot '" << data.string() << "' using 2:3 with linespoints title 'independent', \\\n"
-        << "     '" << data.string() << "' using 4:5 with linespoints title 'Sobol (Owen-scrambled, padded)'\n";
+        << "set title '" << title << "' noenhanced\n"
+        << "set logscale xy\nset format y '%g'\nset grid\nset key bottom left\n"
+        << "set xlabel 'wall time (s)'\nset ylabel 'error vs reference'\n"
+        << "plot '" << data.string() << "' using 2:3 with linespoints lc 1 title 'independent MSE', \\\n"
+        << "     '" << data.string() << "' using 5:6 with linespoints lc 2 title 'Sobol MSE', \\\n"
+        << "     '" << data.string() << "' using 2:4 with linespoints lc 1 dt 2 title 'independent relMSE', \\\n"
+        << "     '" << data.string() << "' using 5:7 with linespoints lc 2 dt 2 title 'Sobol relMSE'\n";
   }
   const std::string command = "/usr/bin/gnuplot '" + script.string() + "'";
   if (std::system(command.c_str()) != 0) std::fprintf(stderr, "gnuplot failed: %s\n", command.c_str());
@@ -312,7 +315,7 @@ int main(int argc, char** argv) {
                     *m / at64->mse[0]);
     }
     std::printf("load average after: %s\n", load_average().c_str());
-    if (o.plot) write_plot(rows, *o.plot, "relMSE vs wall time, " + scene_path.parent_path().filename().string());
+    if (o.plot) write_plot(rows, *o.plot, "MSE and relMSE vs wall time, " + scene_path.parent_path().filename().string());
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "rimu-sampling-bench: %s\n", e.what());

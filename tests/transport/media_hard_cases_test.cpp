@@ -77,8 +77,8 @@ TEST_CASE("A lane with sigma_t 0 or 1e-9 next to lanes with sigma_t 10: finite, 
   // are then carried by spectral MIS (their own techniques take the weight). Bounded variance: the balance
   // heuristic keeps each lane's estimate within 4× its own technique's. Checked the way heavy tails show: no single
   // sample may carry more than 1% of a lane's sum (an infinite-variance estimator puts a growing share of its sum
-  // into its largest sample; here the largest is ~10 against a sum of ~6000). Spectral tracking is not asserted
-  // here: it produced non-finite samples in this case (open, docs/media.md).
+  // into its largest sample; here the largest is ~10 against a sum of ~6000). Spectral tracking is asserted too:
+  // its throughput-weighted probabilities once overflowed here (inf/inf = NaN; docs/media.md, "Fixed").
   for (float empty : {0.0f, 1e-9f}) {
     CAPTURE(empty);
     const test::SlabScene slab(1.0f, homogeneous(Float4(0.0f), Float4(empty, 10.0f, 10.0f, 10.0f)),
