@@ -44,9 +44,9 @@ struct SceneCase {
   int width, height;
 };
 const std::vector<SceneCase> kScenes = {
-    {"chromatic_slab", "scenes/media/chromatic_slab.json", 64, 48},
-    {"skin", "scenes/media/skin.json", 48, 48},
-    {"cloud", "scenes/media/cloud.json", 48, 36},
+    {"chromatic_slab", "scenes/media/chromatic_slab.json", 128, 96},
+    {"skin", "scenes/media/skin.json", 64, 64},
+    {"cloud", "scenes/media/cloud.json", 96, 72},
 };
 
 // One estimator: the scene keys it sets.
@@ -61,8 +61,8 @@ const std::vector<ModeCase> kModes = {
 };
 
 struct Settings {
-  std::vector<int> ladder = {2, 8, 32};
-  int reference_spp = 512;
+  std::vector<int> ladder = {4, 16, 64};
+  int reference_spp = 1024;
   int threads = 2;
   fs::path out;
   bool docs = true;

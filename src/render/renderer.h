@@ -33,7 +33,7 @@ struct RenderStatistics {
 /// scene, the seed and the sample count: not on the thread count or the order in which tiles finish, because
 /// every pixel's samples are drawn from (seed, pixel, sample index) and summed in sample order by one thread.
 ///
-/// Samples are taken in passes (1, 1, 2, 4, 8, 16, 16, ... per pixel); an interrupt stops after the current
+/// Samples are taken in passes of 1, 2, 4, 8, 16, 16, ... per pixel; an interrupt stops after the current
 /// tile and throws away the unfinished pass, so every pixel of the result has the same number of samples.
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options);
 
