@@ -117,7 +117,7 @@ void write_plot(const fs::path& dir, const std::string& id, const std::map<std::
                 const fs::path& png) {
   const fs::path script = dir / (id + ".gp");
   std::ofstream gp(script);
-  gp << "set terminal pngcairo size 640,440\nset output '" << png.string() << "'\n"
+  gp << "set terminal pngcairo size 640,440 noenhanced\nset output '" << png.string() << "'\n"
      << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
      << "set title 'issue 6 media: " << id << "'\nset key top right\nset grid\nplot ";
   bool first = true;

@@ -256,11 +256,13 @@ int main(int argc, char** argv) {
               "relMSE", "RMSE_XYZ", "meanDE", "p95DE", "patchDE");
 
   std::ostringstream md;
-  md << "Reproduce with one command (from the repository root; about 15 minutes on the machine below):\n\n"
+  md << "Reproduce with one command (from the repository root; the run of record took 8 min of CPU time, i.e. ~5 min "
+        "wall on an idle 2-core machine, 32 min wall on the shared one; cached references make re-runs shorter):\n\n"
      << "    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2 --target rimu-speed-error-bench"
         " && build/bin/" << command << "\n\n"
      << "- Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads; "
-     << settings.threads << " render threads. Shared with other jobs while measured: wall times carry a few % noise.\n"
+     << settings.threads << " render threads. Shared with other jobs while measured (load average 10-15): wall times, and so the time-per-sample "
+        "and equal-time figures, carry tens of % of noise.\n"
      << "- Build: " << RIMU_BENCH_BUILD << "\n"
      << "- Reference: hero mode, " << settings.reference_spp << " spp, seed 1000 (cached in <build>/speed_report); "
      << "ladder: spp ∈ {";

@@ -54,7 +54,7 @@ struct LaneTechniques {
     return mode == WavelengthMode::single ? Float4(1.0f, 0.0f, 0.0f, 0.0f) : Float4(1.0f);
   }
   /// Independent mode keeps only the hero after a wavelength-dependent direction (see above).
-  bool drops_partners_at_dispersion() const { return false && mode == WavelengthMode::independent; }
+  bool drops_partners_at_dispersion() const { return mode == WavelengthMode::independent; }
 };
 
 }  // namespace rimu

@@ -53,7 +53,7 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
 
 }  // namespace
 
-TEST_CASE("SobolSampler values lie in [0,1) and dimensions advance as documented") {
+TEST_CASE("SobolSampler values lie in 0 to 1, excluding 1, and dimensions advance as documented") {
   SobolSampler sampler(7);
   for (int p = 0; p < 64; ++p)
     for (uint32_t i = 0; i < 64; ++i) {
