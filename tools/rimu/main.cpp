@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene, "scene file (.json); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "OpenEXR output (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO)");
-  auto* spp = app.add_option("--spp", job.samples_per_pixel, "samples per pixel (overrides the scene)")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--spp", job.samples_per_pixel, "samples per pixel (overrides the scene)")->check(CLI::Range(1, 1 << 24));
   app.add_option("--threads", job.threads, "worker threads (default: every core)")->check(CLI::Range(1, 1024));
   app.add_option("--seed", job.seed, "random seed (the image is identical for the same seed and spp)");
   app.add_option("--sampler", sampler, "sobol (Owen-scrambled Sobol', the default) or independent (overrides the scene)")
@@ -40,7 +40,6 @@ int main(int argc, char** argv) {
   app.add_option("--f-number", job.f_number, "physical camera: f-number, e.g. 16");
   app.add_option("--ev", job.compensation_ev, "physical camera: exposure compensation in stops");
   app.add_option("--white-balance", job.white_balance, "none, a temperature (2700 or 2700K) or an illuminant (A, D50...)");
-  (void)spp;
 
   try {
     app.parse(argc, argv);
