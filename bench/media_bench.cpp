@@ -24,17 +24,15 @@
 #include <thread>
 #include <vector>
 
+#include "bench_support.h"
 #include "render/image_error.h"
 #include "render/json_cursor.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 
-#ifndef RIMU_BENCH_BUILD
-#define RIMU_BENCH_BUILD "unknown"
-#endif
-
 namespace fs = std::filesystem;
 using namespace rimu;
+using bench::format;
 
 namespace {
 
@@ -99,20 +97,6 @@ XyzImage render_case(const Scene& scene, int spp, uint64_t seed, int threads, Sp
   return XyzImage::from_film(film);
 }
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-std::string fmt(double v, const char* f = "%.4g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, f, v);
-  return buffer;
-}
-
 void write_plot(const fs::path& dir, const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode,
                 const fs::path& png) {
   const fs::path script = dir / (id + ".gp");
@@ -130,23 +114,7 @@ void write_plot(const fs::path& dir, const std::string& id, const std::map<std::
   }
   gp << "\n";
   gp.close();
-  const std::string command = "/usr/bin/gnuplot '" + script.string() + "'";
-  if (std::system(command.c_str()) != 0) std::cerr << "gnuplot failed for " << id << "\n";
-}
-
-// Replaces the text between this report's markers in `path`, or appends the section (creating the file).
-void update_docs(const fs::path& path, const std::string& section) {
-  const std::string begin = "<!-- issue6-media:begin -->", end = "<!-- issue6-media:end -->";
-  std::string text;
-  if (std::ifstream in(path); in) text.assign(std::istreambuf_iterator<char>(in), {});
-  if (text.empty()) text = "# Benchmarks\n\n";
-  const std::string block = begin + "\n" + section + end;
-  const size_t b = text.find(begin), e = text.find(end);
-  if (b != std::string::npos && e != std::string::npos && e > b)
-    text.replace(b, e + end.size() - b, block);
-  else
-    text += "\n## Participating media (issue 6)\n\n" + block + "\n";
-  std::ofstream(path) << text;
+  bench::run_gnuplot(script);
 }
 
 }  // namespace
@@ -192,9 +160,10 @@ int main(int argc, char** argv) {
         "included):\n\n"
      << "    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2 --target rimu-media-bench"
         " && build/bin/" << command << "\n\n"
-     << "- Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency() << " hardware threads; "
-     << settings.threads << " render threads, shared with other jobs while measured (wall times carry that noise).\n"
-     << "- Build: " << RIMU_BENCH_BUILD << "\n"
+     << "- Machine: " << bench::machine_description() << "; "
+     << settings.threads << " render threads; load average (1, 5, 15 min) at the start " << bench::load_average()
+     << " (a 2-core machine is idle below ~0.5; above ~2 other jobs share it and wall times carry that noise).\n"
+     << "- Build: " << bench::build_description() << "\n"
      << "- Modes: `single` = `integrator.wavelengths: single` (one wavelength per path); `hero_only`, "
         "`spectral_mis`, `tracking` = `integrator.distance_sampling: hero_only | spectral_mis | spectral_tracking` "
         "with four hero-rotated lanes (docs/media.md). Everything else is the scene file's.\n"
@@ -243,17 +212,18 @@ int main(int argc, char** argv) {
        << "| mode | spp | wall s | relMSE | relMSE × time |\n|---|---|---|---|---|\n";
     for (const ModeCase& mode : kModes)
       for (const Row& r : by_mode[mode.id])
-        md << "| " << mode.id << " | " << r.spp << " | " << fmt(r.seconds, "%.3f") << " | " << fmt(r.relative_mse)
-           << " | " << fmt(r.relative_mse * r.seconds) << " |\n";
+        md << "| " << mode.id << " | " << r.spp << " | " << format(r.seconds, "%.3f") << " | " << format(r.relative_mse)
+           << " | " << format(r.relative_mse * r.seconds) << " |\n";
     md << "\n";
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - report_start).count();
   md << "relMSE × time is the inverse efficiency (lower is better) while the error is variance-dominated. "
-        "Whole report: " << fmt(total, "%.0f") << " s.\n";
+        "Whole report: " << format(total, "%.0f") << " s; load average at the end "
+     << bench::load_average() << ".\n";
 
   std::ofstream(settings.out / "media_error.md") << md.str();
   std::printf("\n%s", md.str().c_str());
-  if (settings.docs) update_docs(docs_dir / "benchmarks.md", md.str());
+  if (settings.docs) bench::update_docs_section(docs_dir / "benchmarks.md", "issue6-media", "## Participating media (issue 6)", md.str());
   std::fprintf(stderr, "wrote %s (CSV, plots, markdown)%s\n", settings.out.string().c_str(),
                settings.docs ? " and docs/benchmarks.md" : "");
   return 0;

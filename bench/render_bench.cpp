@@ -29,6 +29,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_support.h"
 #include "render/film.h"
 #include "render/pixel_filter.h"
 #include "render/ray_recorder.h"
@@ -38,10 +39,6 @@
 #include "spectral/error.h"
 #include "transport/sampler.h"
 #include "transport/volumetric_path_integrator.h"
-
-#ifndef RIMU_BENCH_BUILD
-#define RIMU_BENCH_BUILD "(unknown: not built through bench/CMakeLists.txt)"
-#endif
 
 using namespace rimu;
 
@@ -105,13 +102,6 @@ Options parse_options(int argc, char** argv) {
 
 // --- the machine --------------------------------------------------------------------------------------------
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
 // The vector extensions Embree can choose from at run time (it picks the widest the CPU has).
 std::string vector_isas() {
   std::ifstream in("/proc/cpuinfo");
@@ -127,13 +117,6 @@ std::string vector_isas() {
     return found.empty() ? " (none of sse4_2 avx avx2 avx512f)" : found;
   }
   return " (unknown)";
-}
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen + " (1, 5, 15 min)";
 }
 
 // Peak resident memory. Linux resets VmHWM to the current RSS when "5" is written to /proc/self/clear_refs
@@ -155,12 +138,6 @@ double peak_memory_mib() {
 }
 
 // --- rendering ----------------------------------------------------------------------------------------------
-
-PixelFilter make_filter(const FilterSettings& f) {
-  if (f.type == "box") return PixelFilter::box(f.radius_px);
-  if (f.type == "blackman-harris") return PixelFilter::blackman_harris(f.radius_px);
-  return PixelFilter::gaussian(f.radius_px, f.sigma_px);
-}
 
 std::unique_ptr<Film> make_film(SpectralLibrary& library, const RenderSettings& settings) {
   return std::make_unique<Film>(FilmOptions{settings.width, settings.height, std::nullopt, settings.spectral_bins},
@@ -265,7 +242,7 @@ int main(int argc, char** argv) {
     if (options.resolution) std::tie(scene->settings.width, scene->settings.height) = *options.resolution;
     const uint64_t seed = options.seed.value_or(scene->settings.seed);
     if (options.sampler) scene->settings.sampler = *options.sampler;
-    const PixelFilter filter = make_filter(scene->settings.filter);
+    const PixelFilter filter = bench::make_filter(scene->settings.filter);
     const int cores = int(std::thread::hardware_concurrency());
     std::vector<int> thread_counts = options.threads;
     if (thread_counts.empty()) thread_counts = cores > 1 ? std::vector<int>{1, cores} : std::vector<int>{1};
@@ -276,7 +253,7 @@ int main(int argc, char** argv) {
       command += argv[i];
     }
     std::printf("command: %s\n", command.c_str());
-    std::printf("machine: %s, %d logical cores, ISA:%s\n", cpu_model().c_str(), cores, vector_isas().c_str());
+    std::printf("machine: %s, %d logical cores, ISA:%s\n", bench::cpu_model().c_str(), cores, vector_isas().c_str());
     std::printf("build:   %s; Embree %s\n", RIMU_BENCH_BUILD, RTC_VERSION_STRING);
     std::printf("scene:   %s, %dx%d, seed %llu, %s sampler, max depth %d\n", scene_path.string().c_str(),
                 scene->settings.width, scene->settings.height, (unsigned long long)seed,
@@ -291,7 +268,7 @@ int main(int argc, char** argv) {
         Row warm;
         ok &= run_row(library, *scene, filter, 1, threads, seed, false, warm);
       }
-      std::printf("\nthreads %d; load average before: %s\n\n", threads, load_average().c_str());
+      std::printf("\nthreads %d; load average before: %s\n\n", threads, bench::load_average().c_str());
       std::printf("|  spp |   wall s | Msamples/s | rays/sample (isect + occl) | Mrays/s | ceiling Mrays/s | "
                   "renderer/ceiling | counted/plain time | peak MiB |\n");
       std::printf("|-----:|---------:|-----------:|:---------------------------|--------:|----------------:|"
@@ -301,7 +278,7 @@ int main(int argc, char** argv) {
         ok &= run_row(library, *scene, filter, spp, threads, seed, spp <= options.record_max_spp, row);
         print_row(row);
       }
-      std::printf("\nload average after: %s\n", load_average().c_str());
+      std::printf("\nload average after: %s\n", bench::load_average().c_str());
     }
     return ok ? 0 : 2;
   } catch (const InputError& e) {

@@ -1,10 +1,11 @@
-// Independent vs low-discrepancy sampling on a scene (issue 8; default: the measured Cornell box): error against
-// a converged reference along an spp ladder, wall time, the MSE ratio at 64 spp and at equal time, and the time
-// per sample ratio. Prints a markdown table for docs/benchmarks.md; optionally writes a gnuplot error-vs-time plot.
-// A plain main(): whole renders, not Google Benchmark loops.
+// Independent vs low-discrepancy sampling (issue 8): error against a converged reference along an spp ladder,
+// wall time, the MSE ratio at 64 spp and at equal time, and the time per sample ratio, on the measured Cornell box
+// (128×128) and the ColorChecker room under D65 (160×120) by default. Prints markdown tables, writes a gnuplot
+// error-vs-time plot per scene (docs/benchmarks/issue8_<scene>.png) and replaces the section between the
+// "issue8-sampling" markers of docs/benchmarks.md (--no-docs: print only). A plain main(): whole renders.
 //
-//   build/bin/rimu-sampling-bench [--scene s.json] [--resolution WxH] [--max-spp 1024] [--reference-spp 4096]
-//                                 [--threads N] [--timing-repeats 3] [--cache DIR] [--plot out.png]
+//   build/bin/rimu-sampling-bench [--scene s.json ...] [--resolution WxH] [--max-spp 1024] [--reference-spp 4096]
+//                                 [--threads N] [--timing-repeats 3] [--cache DIR] [--no-docs]
 //
 // The reference is rendered with the Sobol' sampler in two independent halves (seeds 1000003 and 1000033, never
 // used by the ladder, whose seed is 1), and cached in DIR (default: <build>/sampling_reference, beside bin/;
@@ -24,6 +25,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,10 +34,12 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench_support.h"
 #include "render/film.h"
 #include "render/pixel_filter.h"
 #include "render/render_job.h"
@@ -43,23 +47,27 @@
 #include "render/scene.h"
 #include "spectral/error.h"
 
-#ifndef RIMU_BENCH_BUILD
-#define RIMU_BENCH_BUILD "(unknown: not built through bench/CMakeLists.txt)"
-#endif
-
 using namespace rimu;
 
 namespace {
 
+// A scene to benchmark and its resolution (0 = the scene's own).
+struct SceneCase {
+  std::filesystem::path file;
+  int width = 0, height = 0;
+};
+
 struct Options {
-  std::optional<std::filesystem::path> scene, cache, plot;
+  std::vector<SceneCase> scenes;  // empty: the two default scenes
+  std::optional<std::filesystem::path> cache;
   std::optional<std::pair<int, int>> resolution;
   int max_spp = 1024, reference_spp = 4096, threads = 0, timing_repeats = 3;
+  bool docs = true;
 };
 
 const char* const kUsage =
-    "usage: rimu-sampling-bench [--scene FILE] [--resolution WxH] [--max-spp N] [--reference-spp N] [--threads N]\n"
-    "                           [--timing-repeats N] [--cache DIR] [--plot OUT.png]\n";
+    "usage: rimu-sampling-bench [--scene FILE]... [--resolution WxH] [--max-spp N] [--reference-spp N] [--threads N]\n"
+    "                           [--timing-repeats N] [--cache DIR] [--no-docs]\n";
 
 int parse_positive(const std::string& text, const std::string& option) {
   char* end = nullptr;
@@ -77,39 +85,22 @@ Options parse_options(int argc, char** argv) {
       std::cout << kUsage;
       std::exit(0);
     }
+    if (arg == "--no-docs") {
+      o.docs = false;
+      continue;
+    }
     if (i + 1 >= argc) throw InputError({"", 0, arg}, "unknown option or missing value\n" + std::string(kUsage));
     const std::string value = argv[++i];
-    if (arg == "--scene") o.scene = value;
+    if (arg == "--scene") o.scenes.push_back({value, 0, 0});
     else if (arg == "--resolution") o.resolution = parse_resolution(value, arg);
     else if (arg == "--max-spp") o.max_spp = parse_positive(value, arg);
     else if (arg == "--reference-spp") o.reference_spp = parse_positive(value, arg);
     else if (arg == "--threads") o.threads = parse_positive(value, arg);
     else if (arg == "--timing-repeats") o.timing_repeats = parse_positive(value, arg);
     else if (arg == "--cache") o.cache = value;
-    else if (arg == "--plot") o.plot = value;
     else throw InputError({"", 0, arg}, "unknown option\n" + std::string(kUsage));
   }
   return o;
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one, five, fifteen;
-  in >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
-
-PixelFilter make_filter(const FilterSettings& f) {
-  if (f.type == "box") return PixelFilter::box(f.radius_px);
-  if (f.type == "blackman-harris") return PixelFilter::blackman_harris(f.radius_px);
-  return PixelFilter::gaussian(f.radius_px, f.sigma_px);
 }
 
 // An image: the film's three channels per pixel, row-major.
@@ -205,9 +196,11 @@ std::optional<double> mse_at_time(const std::vector<LadderRow>& rows, int k, dou
   return std::nullopt;
 }
 
-void write_plot(const std::vector<LadderRow>& rows, const std::filesystem::path& png, const std::string& title) {
-  const std::filesystem::path data = std::filesystem::path(png).replace_extension(".dat");
-  const std::filesystem::path script = std::filesystem::path(png).replace_extension(".gp");
+// A log-log plot of MSE and relMSE against wall time for both samplers (data and gnuplot script beside the PNG,
+// in the cache directory).
+void write_plot(const std::vector<LadderRow>& rows, const std::filesystem::path& work_dir, const std::string& id,
+                const std::filesystem::path& png) {
+  const std::filesystem::path data = work_dir / (id + ".dat"), script = work_dir / (id + ".gp");
   {
     std::ofstream out(data);
     out << "# spp  independent_s  independent_mse  independent_relmse  sobol_s  sobol_mse  sobol_relmse\n";
@@ -219,7 +212,7 @@ void write_plot(const std::vector<LadderRow>& rows, const std::filesystem::path&
     std::ofstream out(script);
     out << "set terminal pngcairo size 800,560 font ',11'\n"
         << "set output '" << png.string() << "'\n"
-        << "set title '" << title << "' noenhanced\n"
+        << "set title 'issue 8: MSE and relMSE vs wall time, " << id << "' noenhanced\n"
         << "set logscale xy\nset format y '%g'\nset grid\nset key bottom left\n"
         << "set xlabel 'wall time (s)'\nset ylabel 'error vs reference'\n"
         << "plot '" << data.string() << "' using 2:3 with linespoints lc 1 title 'independent MSE', \\\n"
@@ -227,95 +220,126 @@ void write_plot(const std::vector<LadderRow>& rows, const std::filesystem::path&
         << "     '" << data.string() << "' using 2:4 with linespoints lc 1 dt 2 title 'independent relMSE', \\\n"
         << "     '" << data.string() << "' using 5:7 with linespoints lc 2 dt 2 title 'Sobol relMSE'\n";
   }
-  const std::string command = "/usr/bin/gnuplot '" + script.string() + "'";
-  if (std::system(command.c_str()) != 0) std::fprintf(stderr, "gnuplot failed: %s\n", command.c_str());
-  else std::printf("plot: %s (data %s, script %s)\n", png.string().c_str(), data.string().c_str(), script.string().c_str());
+  bench::run_gnuplot(script);
+}
+
+// The ladder, the 64-spp figures and the timing pairs of one scene, printed and appended to `md`.
+void benchmark_scene(SpectralLibrary& library, const SceneCase& c, const Options& o,
+                     const std::filesystem::path& cache_dir, const std::filesystem::path& plot_dir, std::ostream& md) {
+  std::unique_ptr<Scene> scene = load_scene(c.file, library);
+  if (o.resolution) std::tie(scene->settings.width, scene->settings.height) = *o.resolution;
+  else if (c.width > 0) scene->settings.width = c.width, scene->settings.height = c.height;
+  const PixelFilter filter = bench::make_filter(scene->settings.filter);
+  const std::string id = c.file.stem().string() == "scene" ? c.file.parent_path().filename().string()
+                                                             : c.file.stem().string();
+  std::printf("\nscene:   %s, %dx%d, max depth %d\n", c.file.string().c_str(), scene->settings.width,
+              scene->settings.height, scene->settings.integrator.max_depth);
+  const Reference ref = load_or_render_reference(library, *scene, filter, o, cache_dir, id);
+  double mean_r2 = 0;
+  for (double v : ref.image) mean_r2 += v * v / double(ref.image.size());
+
+  // Warm-up: thread pool, page faults, first touches.
+  render_image(library, *scene, filter, SamplerKind::sobol, 1, 1, o.threads);
+
+  md << "### " << id << " (" << std::filesystem::relative(c.file, library.root()).string() << ", "
+     << scene->settings.width << "×" << scene->settings.height << ")\n\n"
+     << "Reference: " << o.reference_spp << " spp (Sobol'), own MSE " << bench::format(ref.own_mse, "%.3g") << " ("
+     << bench::format(ref.own_mse / mean_r2, "%.3g") << " of the mean r²), subtracted from every MSE below.\n\n"
+     << "|  spp | independent s | Sobol s | independent MSE | Sobol MSE | MSE ratio | independent relMSE | "
+        "Sobol relMSE | relMSE ratio |\n"
+     << "|-----:|--------------:|--------:|----------------:|----------:|----------:|-------------------:|"
+        "-------------:|-------------:|\n";
+  const SamplerKind kinds[2] = {SamplerKind::independent, SamplerKind::sobol};
+  std::vector<LadderRow> rows;
+  for (int spp = 1; spp <= o.max_spp; spp *= 2) {
+    LadderRow row;
+    row.spp = spp;
+    const int repeats = std::max(1, 64 / spp);
+    for (int rep = 0; rep < repeats; ++rep)
+      for (int k = 0; k < 2; ++k) {
+        const Render r = render_image(library, *scene, filter, kinds[k], spp, uint64_t(1 + rep), o.threads);
+        row.seconds[k] += r.seconds / repeats;
+        row.mse[k] += (mse(r.image, ref.image) - ref.own_mse) / repeats;
+        row.rel_mse[k] += rel_mse(r.image, ref.image) / repeats;
+      }
+    char line[256];
+    std::snprintf(line, sizeof line, "| %4d | %13.3f | %7.3f | %15.4g | %9.4g | %9.3f | %18.4g | %12.4g | %12.3f |\n",
+                  spp, row.seconds[0], row.seconds[1], row.mse[0], row.mse[1], row.mse[1] / row.mse[0],
+                  row.rel_mse[0], row.rel_mse[1], row.rel_mse[1] / row.rel_mse[0]);
+    std::fputs(line, stdout);
+    std::fflush(stdout);
+    md << line;
+    rows.push_back(row);
+  }
+  md << "\n";
+
+  // The two targets of issue 8 at 64 spp, and the equal-time ratio.
+  const auto at64 = std::find_if(rows.begin(), rows.end(), [](const LadderRow& r) { return r.spp == 64; });
+  if (at64 != rows.end()) {
+    std::vector<double> ratios;
+    for (int rep = 0; rep < o.timing_repeats; ++rep) {
+      const double ti = render_image(library, *scene, filter, SamplerKind::independent, 64, 1, o.threads).seconds;
+      const double ts = render_image(library, *scene, filter, SamplerKind::sobol, 64, 1, o.threads).seconds;
+      ratios.push_back(ts / ti);
+    }
+    std::sort(ratios.begin(), ratios.end());
+    const double time_ratio = ratios[ratios.size() / 2];
+    const double mse_ratio = at64->mse[1] / at64->mse[0];
+    md << "* **At 64 spp: MSE Sobol'/independent " << bench::format(mse_ratio, "%.3f")
+       << " (target ≤ 0.2: " << (mse_ratio <= 0.2 ? "met" : "not met") << ")**; relMSE ratio "
+       << bench::format(at64->rel_mse[1] / at64->rel_mse[0], "%.3f") << ".\n"
+       << "* **Time per sample Sobol'/independent " << bench::format(time_ratio, "%.3f") << "** (median of "
+       << ratios.size() << " alternating 64-spp pairs; min " << bench::format(ratios.front(), "%.3f") << ", max "
+       << bench::format(ratios.back(), "%.3f") << "; target ≤ 1.15: " << (time_ratio <= 1.15 ? "met" : "not met")
+       << ").\n";
+    if (const auto m = mse_at_time(rows, 1, at64->seconds[0]))
+      md << "* Equal time (the independent 64-spp wall time, " << bench::format(at64->seconds[0], "%.3f")
+         << " s, on the Sobol' ladder interpolated in log–log): MSE ratio " << bench::format(*m / at64->mse[0], "%.3f")
+         << ".\n";
+  }
+  const std::filesystem::path png = plot_dir / ("issue8_" + id + ".png");
+  write_plot(rows, cache_dir, id, png);
+  md << "\n![MSE and relMSE vs wall time, " << id << "](benchmarks/issue8_" << id << ".png)\n\n";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
-    const Options o = parse_options(argc, argv);
+    Options o = parse_options(argc, argv);
     SpectralLibrary library = SpectralLibrary::at_default_location();
-    const std::filesystem::path scene_path = o.scene ? *o.scene : default_scene_path(library);
-    std::unique_ptr<Scene> scene = load_scene(scene_path, library);
-    if (o.resolution) std::tie(scene->settings.width, scene->settings.height) = *o.resolution;
-    const PixelFilter filter = make_filter(scene->settings.filter);
+    if (o.scenes.empty())
+      o.scenes = {{library.root() / "scenes/cornell_box/scene.json", 128, 128},
+                  {library.root() / "scenes/colorchecker_room/colorchecker_d65.json", 160, 120}};
     const std::filesystem::path exe_dir = std::filesystem::canonical("/proc/self/exe").parent_path();
     const std::filesystem::path cache_dir = o.cache ? *o.cache : exe_dir.parent_path() / "sampling_reference";
+    const std::filesystem::path docs_dir = library.root().parent_path() / "docs";
+    const std::filesystem::path plot_dir = o.docs ? docs_dir / "benchmarks" : cache_dir;
+    std::filesystem::create_directories(cache_dir);
+    std::filesystem::create_directories(plot_dir);
+    const auto start = std::chrono::steady_clock::now();
 
-    std::string command;
-    for (int i = 0; i < argc; ++i) {
-      if (i > 0) command += ' ';
-      command += argv[i];
-    }
-    std::printf("command: %s\n", command.c_str());
-    std::printf("machine: %s, %u logical cores; threads %d (0 = all); load average %s\n", cpu_model().c_str(),
-                std::thread::hardware_concurrency(), o.threads, load_average().c_str());
-    std::printf("build:   %s\n", RIMU_BENCH_BUILD);
-    std::printf("scene:   %s, %dx%d, max depth %d\n", scene_path.string().c_str(), scene->settings.width,
-                scene->settings.height, scene->settings.integrator.max_depth);
-
-    const Reference ref =
-        load_or_render_reference(library, *scene, filter, o, cache_dir, scene_path.stem().string() + "_" +
-                                                                            scene_path.parent_path().filename().string());
-    double mean_r2 = 0;
-    for (double v : ref.image) mean_r2 += v * v / double(ref.image.size());
-    std::printf("reference: %d spp (Sobol'), own MSE estimate %.3g (relative to mean r^2: %.3g), subtracted from "
-                "every MSE below (not from relMSE)\n\n", o.reference_spp,
-                ref.own_mse, ref.own_mse / mean_r2);
-
-    // Warm-up: thread pool, page faults, first touches.
-    render_image(library, *scene, filter, SamplerKind::sobol, 1, 1, o.threads);
-
-    const SamplerKind kinds[2] = {SamplerKind::independent, SamplerKind::sobol};
-    std::vector<LadderRow> rows;
-    std::printf("|  spp | independent s | Sobol s | independent MSE | Sobol MSE | MSE ratio | independent relMSE | "
-                "Sobol relMSE | relMSE ratio |\n");
-    std::printf("|-----:|--------------:|--------:|----------------:|----------:|----------:|-------------------:|"
-                "-------------:|-------------:|\n");
-    for (int spp = 1; spp <= o.max_spp; spp *= 2) {
-      LadderRow row;
-      row.spp = spp;
-      const int repeats = std::max(1, 64 / spp);
-      for (int rep = 0; rep < repeats; ++rep)
-        for (int k = 0; k < 2; ++k) {
-          const Render r = render_image(library, *scene, filter, kinds[k], spp, uint64_t(1 + rep), o.threads);
-          row.seconds[k] += r.seconds / repeats;
-          row.mse[k] += (mse(r.image, ref.image) - ref.own_mse) / repeats;
-          row.rel_mse[k] += rel_mse(r.image, ref.image) / repeats;
-        }
-      std::printf("| %4d | %13.3f | %7.3f | %15.4g | %9.4g | %9.3f | %18.4g | %12.4g | %12.3f |\n", spp, row.seconds[0],
-                  row.seconds[1], row.mse[0], row.mse[1], row.mse[1] / row.mse[0], row.rel_mse[0], row.rel_mse[1],
-                  row.rel_mse[1] / row.rel_mse[0]);
-      std::fflush(stdout);
-      rows.push_back(row);
-    }
-
-    // The two targets of issue 8 at 64 spp.
-    const auto at64 = std::find_if(rows.begin(), rows.end(), [](const LadderRow& r) { return r.spp == 64; });
-    if (at64 != rows.end()) {
-      std::vector<double> ratios;
-      for (int rep = 0; rep < o.timing_repeats; ++rep) {
-        const double ti = render_image(library, *scene, filter, SamplerKind::independent, 64, 1, o.threads).seconds;
-        const double ts = render_image(library, *scene, filter, SamplerKind::sobol, 64, 1, o.threads).seconds;
-        ratios.push_back(ts / ti);
-      }
-      std::sort(ratios.begin(), ratios.end());
-      const double time_ratio = ratios[ratios.size() / 2];
-      const double mse_ratio = at64->mse[1] / at64->mse[0];
-      std::printf("\nat 64 spp: MSE ratio Sobol/independent %.3f (target <= 0.2: %s); relMSE ratio %.3f\n", mse_ratio,
-                  mse_ratio <= 0.2 ? "met" : "not met", at64->rel_mse[1] / at64->rel_mse[0]);
-      std::printf("time per sample ratio Sobol/independent: median of %d alternating 64-spp pairs %.3f "
-                  "(min %.3f, max %.3f; target <= 1.15: %s)\n",
-                  o.timing_repeats, time_ratio, ratios.front(), ratios.back(), time_ratio <= 1.15 ? "met" : "not met");
-      if (const auto m = mse_at_time(rows, 1, at64->seconds[0]))
-        std::printf("equal time (independent 64 spp, %.3f s): Sobol MSE %.4g, ratio %.3f\n", at64->seconds[0], *m,
-                    *m / at64->mse[0]);
-    }
-    std::printf("load average after: %s\n", load_average().c_str());
-    if (o.plot) write_plot(rows, *o.plot, "MSE and relMSE vs wall time, " + scene_path.parent_path().filename().string());
+    std::string command = "rimu-sampling-bench";
+    for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+    std::ostringstream md;
+    md << "Reproduce (from the repository root):\n\n"
+       << "    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRIMU_BUILD_BENCHMARKS=ON && "
+          "cmake --build build -j2 --target rimu-sampling-bench && build/bin/" << command << "\n\n"
+       << "* Machine: " << bench::machine_description() << "; render threads " << o.threads
+       << " (0 = all); load average (1, 5, 15 min) at the start " << bench::load_average() << ".\n"
+       << "* Build: " << bench::build_description() << " (the portable default; no `-march=native`).\n"
+       << "* Reference per scene: " << o.reference_spp << " spp with the Sobol' sampler, two halves with seeds "
+          "1000003/1000033 (never used by the ladder), cached in <build>/sampling_reference; its own MSE, estimated "
+          "from the halves (|A−B|²/4), is subtracted from every MSE.\n"
+       << "* MSE = mean over pixels and the XYZ channels of (x − r)²; relMSE = mean (x − r)²/(r² + 10⁻²·mean(r)²). "
+          "Rows below 64 spp average 64/spp renders (seeds 1, 2, …) and report their mean wall time.\n\n";
+    std::printf("%s", md.str().c_str());
+    for (const SceneCase& c : o.scenes) benchmark_scene(library, c, o, cache_dir, plot_dir, md);
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    md << "Whole run: " << bench::format(total, "%.0f") << " s (references rendered or cached); load average at the "
+       << "end " << bench::load_average() << ".\n";
+    std::printf("\n%s", md.str().c_str());
+    if (o.docs) bench::update_docs_section(docs_dir / "benchmarks.md", "issue8-sampling", "## Sampling (issue 8)", md.str());
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "rimu-sampling-bench: %s\n", e.what());

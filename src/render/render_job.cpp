@@ -11,6 +11,7 @@
 #include "render/output_file.h"
 #include "spectral/error.h"
 #include "render/interrupt_flag.h"
+#include "render/json_cursor.h"
 #include "render/progress_reporter.h"
 #include "render/scene.h"
 
@@ -82,7 +83,14 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
 RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
-  std::unique_ptr<Scene> scene = load_scene(scene_path, library);
+  std::unique_ptr<Scene> scene;
+  if (job.wavelengths) {
+    nlohmann::json document = parse_json_file(scene_path);
+    document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
+    scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
+  } else {
+    scene = load_scene(scene_path, library);
+  }
 
   RenderSettings& settings = scene->settings;
   if (job.width) settings.width = *job.width;

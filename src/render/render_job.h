@@ -10,6 +10,7 @@
 
 #include "render/film.h"
 #include "render/renderer.h"
+#include "transport/wavelength_modes.h"
 
 namespace rimu {
 
@@ -20,6 +21,9 @@ struct RenderJob {
   std::optional<int> samples_per_pixel, threads, width, height;
   std::optional<uint64_t> seed;
   std::optional<SamplerKind> sampler;  ///< overrides the scene's "sampler"
+  /// Overrides the scene's "integrator.wavelengths" (hero, single, independent, rgb). Applied before the scene is
+  /// loaded, because rgb mode loads colours and lights as RGB rather than upsampling them.
+  std::optional<WavelengthMode> wavelengths;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
   bool float_exr = false;

@@ -2,15 +2,6 @@
 
 namespace rimu {
 
-uint64_t mix_bits(uint64_t v) {
-  v ^= v >> 31;
-  v *= 0x7fb5d329728ea185ULL;
-  v ^= v >> 27;
-  v *= 0x81dadef4bc2dd44dULL;
-  v ^= v >> 33;
-  return v;
-}
-
 void IndependentSampler::start_pixel_sample(int x, int y, uint32_t sample_index) {
   // PCG32 (O'Neill 2014): the stream (increment) comes from the pixel, the state from the sample index, so
   // neighbouring pixels and successive samples get unrelated sequences.

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string_view>
 
+#include "transport/bit_mixing.h"  // mix_bits, used with samplers for seeding
 #include "transport/vector.h"
 
 namespace rimu {
@@ -54,8 +55,5 @@ std::unique_ptr<Sampler> make_sampler(SamplerKind kind, uint64_t seed);
 const char* sampler_kind_name(SamplerKind kind);
 /// The kind named "independent" or "sobol"; nullopt for anything else.
 std::optional<SamplerKind> parse_sampler_kind(std::string_view name);
-
-/// A 64-bit mix (Stafford's "Mix13" variant of the MurmurHash3 finaliser), for seeding and decorrelation.
-uint64_t mix_bits(uint64_t v);
 
 }  // namespace rimu

@@ -11,8 +11,9 @@
 //    Sobol's recurrence for degree 1 is m_k = 2·m_{k−1} ⊕ m_{k−1}, giving m = 1, 3, 5, 15, 17, 51, …; as fractions
 //    v_{1,k} = m_k / 2ᵏ, i.e. v_{1,k} = v_{1,k−1} ⊕ (v_{1,k−1} / 2): the columns of Pascal's triangle mod 2.
 //
-// These two need no table from the published file (the recurrence above is all of it); the sampler pads higher
-// dimensions with independently scrambled and shuffled copies of this pair (docs/sampling.md explains why).
+// These two need no table from the published file (the recurrence above is all of it), and no table at run time
+// either (see sobol_dimension1_reversed); the sampler pads higher dimensions with independently scrambled and
+// shuffled copies of this pair (docs/sampling.md explains why).
 #pragma once
 
 #include <array>
@@ -25,9 +26,27 @@ namespace rimu {
 /// Sobol' dimension 0 (van der Corput): the index's bits mirrored behind the binary point.
 constexpr uint32_t sobol_dimension0(uint32_t index) { return reverse_bits(index); }
 
+/// reverse_bits(sobol_dimension1(index)), without a table. With the fraction's digits bit-reversed, bit m of
+/// x₁(i) is ⊕ of the index bits k whose position is a superset of m's (k & m = m): v_{1,k} has digit m + 1 set
+/// iff C(k, m) is odd, which by Lucas' theorem means m ⊆ k. That superset-XOR over the five bits of a position is
+/// five butterfly steps (a GF(2) zeta transform), 15 integer operations that vectorise.
+constexpr uint32_t sobol_dimension1_reversed(uint32_t index) {
+  uint32_t y = index;
+  y ^= (y >> 1) & 0x55555555u;   // positions with bit 0 clear take their bit-0 superset
+  y ^= (y >> 2) & 0x33333333u;   // … bit 1
+  y ^= (y >> 4) & 0x0f0f0f0fu;   // … bit 2
+  y ^= (y >> 8) & 0x00ff00ffu;   // … bit 3
+  y ^= (y >> 16) & 0x0000ffffu;  // … bit 4
+  return y;
+}
+
+/// Sobol' dimension 1 (polynomial x + 1, m₁ = 1) of point `index`, natural order.
+constexpr uint32_t sobol_dimension1(uint32_t index) { return reverse_bits(sobol_dimension1_reversed(index)); }
+
 namespace sobol_detail {
 
-/// v_{1,k} for k = 1..32 as 32-bit fractions (element k−1), from the recurrence in the file comment.
+/// v_{1,k} for k = 1..32 as 32-bit fractions (element k−1), from the recurrence in the file comment; tests check
+/// sobol_dimension1 against the XOR of these.
 constexpr std::array<uint32_t, 32> dimension1_directions() {
   std::array<uint32_t, 32> v{};
   v[0] = 1u << 31;  // m₁ = 1: v₁ = 1/2
@@ -35,29 +54,6 @@ constexpr std::array<uint32_t, 32> dimension1_directions() {
   return v;
 }
 
-/// XOR-linearity lets the 32-bit product be split by bytes: table[b][byte] = ⊕ of the directions selected by
-/// the byte's bits at index positions 8b..8b+7 (4 KiB, computed at compile time).
-constexpr std::array<std::array<uint32_t, 256>, 4> dimension1_byte_tables() {
-  const std::array<uint32_t, 32> v = dimension1_directions();
-  std::array<std::array<uint32_t, 256>, 4> table{};
-  for (int b = 0; b < 4; ++b)
-    for (int byte = 0; byte < 256; ++byte) {
-      uint32_t x = 0;
-      for (int bit = 0; bit < 8; ++bit)
-        if (byte >> bit & 1) x ^= v[size_t(8 * b + bit)];
-      table[size_t(b)][size_t(byte)] = x;
-    }
-  return table;
-}
-
-inline constexpr std::array<std::array<uint32_t, 256>, 4> kDimension1Tables = dimension1_byte_tables();
-
 }  // namespace sobol_detail
-
-/// Sobol' dimension 1 (polynomial x + 1, m₁ = 1) of point `index`, natural order. Four table look-ups.
-constexpr uint32_t sobol_dimension1(uint32_t index) {
-  const auto& t = sobol_detail::kDimension1Tables;
-  return t[0][index & 0xffu] ^ t[1][index >> 8 & 0xffu] ^ t[2][index >> 16 & 0xffu] ^ t[3][index >> 24];
-}
 
 }  // namespace rimu

@@ -1,38 +1,70 @@
 #include "transport/sobol_sampler.h"
 
-#include "transport/owen_scrambling.h"
-#include "transport/sobol.h"
-
 namespace rimu {
+namespace {
+
+// Salts of the nine key words of a draw (arbitrary distinct odd constants: each word hashes the draw's hash XOR
+// its salt, so the words are as unrelated as hash32's outputs for different inputs).
+constexpr uint32_t kWordSalt[9] = {0x9e3779b9u, 0x3c6ef372u, 0xdaa66d2bu, 0x78dde6e4u, 0x1715609du,
+                                   0xb54cda56u, 0x5384540fu, 0xf1bbcdc8u, 0x8ff34781u};
+
+// The hash of draw `draw` under pixel key (key0, key1): a Weyl step over the draws, hashed, then the second key
+// word mixed in, so (pixel, draw) pairs differ in 64 bits of key even where 32-bit sums collide.
+constexpr uint32_t draw_hash(uint32_t key0, uint32_t key1, uint32_t draw) {
+  return hash32(key0 + (draw + 1u) * 0x9e3779b9u) ^ key1;
+}
+
+// One multiply-xorshift round is enough here: the input is already a full hash32 output (draw_hash), the round
+// only has to make the nine salted copies unrelated (sobol_owen_test checks the resulting scrambles).
+constexpr uint32_t key_word(uint32_t hash, int word) {
+  const uint32_t x = (hash ^ kWordSalt[word]) * 0x7feb352du;
+  return x ^ (x >> 16);  // the xorshift carries high bits down: low bits of a product see only low bits
+}
+
+}  // namespace
+
+DrawKeys sobol_draw_keys(uint32_t key0, uint32_t key1, uint32_t draw) {
+  const uint32_t h = draw_hash(key0, key1, draw);
+  return {{key_word(h, 0), key_word(h, 1), key_word(h, 2)},
+          {key_word(h, 3), key_word(h, 4), key_word(h, 5)},
+          {key_word(h, 6), key_word(h, 7), key_word(h, 8)}};
+}
 
 void SobolSampler::start_pixel_sample(int x, int y, uint32_t sample_index) {
   // Per-pixel scrambling seeds (the pixel decorrelation): every pixel owns an independent Owen scramble and
   // shuffle of every draw; the seed enters hashed so that seeds 1, 2, 3 are as unrelated as any.
   const uint64_t pixel = (uint64_t(uint32_t(x)) << 32) | uint32_t(y);
-  pixel_key_ = mix_bits(pixel ^ mix_bits(seed_ + 0x632be59bd9b4e019ULL));
-  sample_index_ = sample_index;
+  const uint64_t key = mix_bits(pixel ^ mix_bits(seed_ + 0x632be59bd9b4e019ULL));
+  pixel_key_[0] = uint32_t(key);
+  pixel_key_[1] = uint32_t(key >> 32);
+  reversed_index_ = reverse_bits(sample_index);
+  draw_ = 0;
   dimension_ = 0;
+  batch_first_draw_ = ~0u - kBatch;  // no batch yet: lane_of_next_draw() computes one
 }
 
-uint64_t SobolSampler::draw_key() const {
-  // The golden-ratio step spreads consecutive dimensions over the whole 64-bit range before mixing.
-  return mix_bits(pixel_key_ + (uint64_t(dimension_) + 1) * 0x9e3779b97f4a7c15ULL);
-}
-
-float SobolSampler::next_1d() {
-  const uint64_t key = draw_key();
-  const uint32_t index = shuffle_index(sample_index_, uint32_t(key));
-  dimension_ += 1;
-  return bits_to_unit_float(owen_scramble(sobol_dimension0(index), uint32_t(key >> 32)));
-}
-
-Vec2 SobolSampler::next_2d() {
-  const uint64_t key = draw_key();
-  const uint64_t key_v = mix_bits(key);  // a second, independent 32-bit seed for the second coordinate
-  const uint32_t index = shuffle_index(sample_index_, uint32_t(key));
-  dimension_ += 2;
-  return {bits_to_unit_float(owen_scramble(sobol_dimension0(index), uint32_t(key >> 32))),
-          bits_to_unit_float(owen_scramble(sobol_dimension1(index), uint32_t(key_v)))};
+__attribute__((target_clones("avx2", "default"))) void SobolSampler::compute_batch(uint32_t first_draw) {
+  // Plain loops over the four lanes, each step for all lanes before the next: GCC and Clang vectorise them
+  // (32-bit multiplies, shifts, xors, byte swaps). The same formulas as sobol_draw_keys, lane by lane.
+  uint32_t hash[kBatch], word[9][kBatch], u[kBatch], v[kBatch];
+  for (int lane = 0; lane < kBatch; ++lane)
+    hash[lane] = draw_hash(pixel_key_[0], pixel_key_[1], first_draw + uint32_t(lane));
+  for (int w = 0; w < 9; ++w)
+    for (int lane = 0; lane < kBatch; ++lane) word[w][lane] = key_word(hash[lane], w);
+  for (int lane = 0; lane < kBatch; ++lane) {
+    // In the bit-reversed domain where the scramble works: shuffle_index(i) = reverse(scramble(reverse(i))),
+    // sobol_dimension0 = reverse, so u = reverse(scramble(i')), and dimension 1 comes out reversed directly.
+    const uint32_t shuffled =
+        reverse_bits(scramble_reversed_digits(reversed_index_, {word[0][lane], word[1][lane], word[2][lane]}));
+    u[lane] = reverse_bits(scramble_reversed_digits(shuffled, {word[3][lane], word[4][lane], word[5][lane]}));
+    v[lane] = reverse_bits(scramble_reversed_digits(sobol_dimension1_reversed(shuffled),
+                                                    {word[6][lane], word[7][lane], word[8][lane]}));
+  }
+  for (int lane = 0; lane < kBatch; ++lane) {
+    u_[lane] = bits_to_unit_float(u[lane]);
+    v_[lane] = bits_to_unit_float(v[lane]);
+  }
+  batch_first_draw_ = first_draw;
 }
 
 }  // namespace rimu

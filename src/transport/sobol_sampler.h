@@ -4,41 +4,72 @@
 #include <cstdint>
 #include <memory>
 
+#include "transport/owen_scrambling.h"
 #include "transport/sampler.h"
+#include "transport/sobol.h"
 
 namespace rimu {
 
 /// Every draw (one next_1d() or next_2d() call, i.e. one decision of the path) gets its own randomised copy of the
-/// first Sobol' dimension (1D) or of the first two (2D), indexed by the pixel's sample index:
+/// first Sobol' dimension (1D) or of the first two (2D), indexed by the pixel's sample index i:
 ///
-///   index' = shuffle_index(i, seed_shuffle(p, d))            nested uniform shuffle (Burley 2020, §4)
-///   u      = owen_scramble(sobol_dimension0(index'), seed_0(p, d))
-///   v      = owen_scramble(sobol_dimension1(index'), seed_1(p, d))   (2D draws)
+///   i' = shuffle_index(i, K_shuffle(p, t))                   nested uniform shuffle (Burley 2020, §4)
+///   u  = owen_scramble(sobol_dimension0(i'), K_u(p, t))
+///   v  = owen_scramble(sobol_dimension1(i'), K_v(p, t))   (2D draws)
 ///
-/// where p is the pixel and d the draw's first dimension. So the first 2ᵏ samples of a pixel stratify every 2D
-/// decision as a (0,k,2)-net and every 1D decision into 2ᵏ equal intervals; different draws are paired at random
-/// (padding), and different pixels are independent Owen scrambles of the same nets (no structured correlation
-/// between neighbours). A pure function of (seed, pixel, sample index, dimension): thread- and order-independent.
-/// Cost per draw: two 64-bit hashes, one shuffle, one or two scrambles; no tables beyond 4 KiB (sobol.h).
+/// where p is the pixel, t the draw's number within the pixel sample (0, 1, 2, …) and the K three ScrambleKeys
+/// (sobol_draw_keys). So the first 2ᵏ samples of a pixel stratify every 2D decision as a (0,k,2)-net and every 1D
+/// decision into 2ᵏ equal intervals; different draws are paired at random (padding), and different pixels are
+/// independent Owen scrambles of the same nets (no structured correlation between neighbours). A pure function of
+/// (seed, pixel, sample index, draw number): thread- and order-independent.
+///
+/// Cost. Draws are computed four at a time (draws t … t+3, both coordinates), lane by lane in loops the compiler
+/// turns into SSE: the per-draw work has no branches and only 32-bit integer operations (hashes, scrambles, bit
+/// reversals, the table-free sobol_dimension1_reversed). A 1D draw wastes its batch lane's second coordinate;
+/// that is cheaper than a separate 1D path. docs/sampling.md ("Cost") has the measurements.
 class SobolSampler final : public Sampler {
  public:
+  static constexpr int kBatch = 8;
+
   explicit SobolSampler(uint64_t seed) : seed_(seed) {}
   void start_pixel_sample(int x, int y, uint32_t sample_index) override;
-  float next_1d() override;
-  Vec2 next_2d() override;
+  float next_1d() override {
+    const uint32_t lane = lane_of_next_draw();
+    ++draw_;
+    dimension_ += 1;
+    return u_[lane];
+  }
+  Vec2 next_2d() override {
+    const uint32_t lane = lane_of_next_draw();
+    ++draw_;
+    dimension_ += 2;
+    return {u_[lane], v_[lane]};
+  }
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(seed_); }
 
   /// The current dimension (the number of dimensions drawn since start_pixel_sample), for tests.
   uint32_t dimension() const { return dimension_; }
 
  private:
-  // The 64-bit key of the current draw: a hash of (seed, pixel, dimension).
-  uint64_t draw_key() const;
+  // The batch lane that holds draw draw_, computing the next batch when draw_ lies outside the current one.
+  uint32_t lane_of_next_draw() {
+    const uint32_t lane = draw_ - batch_first_draw_;  // wraps to a huge value before the first batch
+    if (lane < uint32_t(kBatch)) return lane;
+    compute_batch(draw_);
+    return 0;
+  }
+  void compute_batch(uint32_t first_draw);
 
   uint64_t seed_;
-  uint64_t pixel_key_ = 0;
-  uint32_t sample_index_ = 0;
-  uint32_t dimension_ = 0;
+  uint32_t pixel_key_[2] = {0, 0};
+  uint32_t reversed_index_ = 0;
+  uint32_t draw_ = 0, dimension_ = 0;
+  uint32_t batch_first_draw_ = 0;
+  alignas(16) float u_[kBatch] = {}, v_[kBatch] = {};
 };
+
+/// The three scramble keys of draw `draw` of a pixel sample whose pixel key is (key0, key1): nine 32-bit words,
+/// each a hash of the draw's hash with its own salt. Public for the scramble-quality test.
+DrawKeys sobol_draw_keys(uint32_t key0, uint32_t key1, uint32_t draw);
 
 }  // namespace rimu

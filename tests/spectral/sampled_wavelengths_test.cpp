@@ -9,81 +9,17 @@
 #include "spectral/colorimetry.h"
 #include "spectral/sampled_wavelengths.h"
 #include "spectral/wavelength_range.h"
+#include "statistics.h"
 #include "test_support.h"
 
 using namespace rimu;
+using test::chi_square_p_value;
+using test::simpson;
+using test::uniform01;
 
 namespace {
 
-// Simpson's rule for ∫_lo^hi f with n (even) intervals.
-template <typename F>
-double simpson(F&& f, double lo, double hi, int n) {
-  const double h = (hi - lo) / n;
-  double sum = f(lo) + f(hi);
-  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * f(lo + i * h);
-  return sum * h / 3.0;
-}
-
 double pdf(double lambda_nm) { return visible_wavelength_pdf(float(lambda_nm)); }
-
-// A uniform float in [0, 1) from 24 random bits (std::generate_canonical<float> may return 1.0: LWG 2524).
-float uniform01(std::mt19937& rng) { return float(rng() >> 8) * 0x1p-24f; }
-
-// Regularised upper incomplete gamma Q(a, x) = Γ(a, x)/Γ(a), so that the chi-square survival function (the
-// p-value of a statistic x with k degrees of freedom) is Q(k/2, x/2).
-// For x < a + 1 the power series P(a, x) = e^(−x) xᵃ Σₙ xⁿ / Γ(a + n + 1) converges fast and Q = 1 − P; otherwise
-// the continued fraction Γ(a, x) = e^(−x) xᵃ · 1/(x + 1 − a − 1(1 − a)/(x + 3 − a − 2(2 − a)/(x + 5 − a − ...)))
-// does, evaluated front to back with Lentz's method (Abramowitz & Stegun 6.5.29 and 6.5.31; the split at a + 1
-// is the usual one).
-double regularized_gamma_q(double a, double x) {
-  if (x <= 0.0) return 1.0;
-  const double log_prefactor = -x + a * std::log(x) - std::lgamma(a);
-  if (x < a + 1.0) {
-    double term = 1.0 / a, series = term;
-    for (int n = 1; n < 1000 && std::abs(term) > 1e-17 * std::abs(series); ++n) {
-      term *= x / (a + n);
-      series += term;
-    }
-    return 1.0 - std::exp(log_prefactor) * series;
-  }
-  const double tiny = 1e-300;
-  double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, fraction = d;
-  for (int n = 1; n < 1000; ++n) {
-    const double an = -n * (n - a);
-    b += 2.0;
-    d = an * d + b;
-    if (std::abs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1.0 / d;
-    const double step = d * c;
-    fraction *= step;
-    if (std::abs(step - 1.0) < 1e-16) break;
-  }
-  return std::exp(log_prefactor) * fraction;
-}
-
-double chi_square_p_value(double statistic, int degrees_of_freedom) {
-  return regularized_gamma_q(0.5 * degrees_of_freedom, 0.5 * statistic);
-}
-
-// Pearson's statistic of `observed` against `expected`, after pooling adjacent bins until each expected count is
-// at least 5 (the usual validity condition for the chi-square approximation). Returns {statistic, dof}.
-std::pair<double, int> pearson_chi_square(const std::vector<double>& observed, const std::vector<double>& expected) {
-  double statistic = 0.0, obs = 0.0, exp = 0.0;
-  int bins = 0;
-  for (size_t i = 0; i < observed.size(); ++i) {
-    obs += observed[i];
-    exp += expected[i];
-    const bool last = i + 1 == observed.size();
-    if (exp >= 5.0 || last) {
-      statistic += (obs - exp) * (obs - exp) / exp;
-      ++bins;
-      obs = exp = 0.0;
-    }
-  }
-  return {statistic, bins - 1};
-}
 
 }  // namespace
 
@@ -126,8 +62,10 @@ TEST_CASE("the visible pdf integrates to 1 over 360-830 nm and vanishes outside"
 }
 
 TEST_CASE("the inverse CDF is consistent with the pdf") {
-  // ∫_360^λ(u) p dλ = u. Error budget: float pdf (6e-8), float λ (p_max · ulp(λ) ≤ 0.004 · 6.1e-5 = 2.5e-7),
-  // Simpson (negligible, as above): 1e-6.
+  // ∫_360^λ(u) p dλ = u. Error budget, all in float: the pdf through expf and three roundings (≤ 4 ulp, 2.4e-7
+  // relative, so ≤ 2.4e-7 on the integral), λ through logf (≤ 1 ulp of a log ≤ 4.3: 3.6e-5 nm, times p_max 0.004
+  // = 1.4e-7), λ's own rounding (p_max · ulp(λ)/2 ≤ 0.004 · 3.1e-5 = 1.2e-7), t = tanh_low + u·N (3e-8); Simpson
+  // negligible (as above). Sum 5.4e-7; bound 1e-6.
   float previous = 0.0f;
   for (int i = 0; i <= 100; ++i) {
     const float u = i < 100 ? float(i) / 100.0f : std::nextafter(1.0f, 0.0f);
@@ -198,12 +136,14 @@ TEST_CASE("chi-square: each lane of sample_visible follows the visible pdf") {
   }
   for (int j = 0; j < kLaneCount; ++j) {
     CAPTURE(j);
-    const auto [statistic, dof] = pearson_chi_square(observed[j], expected);
+    const auto [statistic, dof, p_value] = test::pearson_chi_square(observed[j], expected, test::Pooling::adjacent);
     CAPTURE(statistic);
     CHECK(dof == kBins - 1);  // no bin needed pooling: the smallest expected count is ~200
-    CHECK(chi_square_p_value(statistic, dof) > 1e-3);
+    CHECK(p_value > 1e-3);
     // The test has teeth: the same counts are wildly inconsistent with uniform sampling.
-    CHECK(chi_square_p_value(pearson_chi_square(observed[j], uniform_expected).first, kBins - 1) < 1e-12);
+    const double uniform_statistic =
+        test::pearson_chi_square(observed[j], uniform_expected, test::Pooling::adjacent).statistic;
+    CHECK(chi_square_p_value(uniform_statistic, kBins - 1) < 1e-12);
   }
 }
 

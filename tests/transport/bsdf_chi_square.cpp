@@ -6,11 +6,12 @@
 #include <random>
 #include <vector>
 
+#include "statistics.h"
+
 namespace rimu::test {
 namespace {
 
 constexpr int kCosBins = 20, kPhiBins = 20, kPieces = 2;
-constexpr double kMinExpected = 5.0;
 constexpr double kPi = std::numbers::pi;
 
 int cell_of(Vec3 wi) {
@@ -69,39 +70,6 @@ double integrate_cell(const Bsdf& bsdf, Vec3 wo, int cos_bin, int phi_bin) {
 
 }  // namespace
 
-double chi_square_p_value(double chi_square, int dof) {
-  // Q(a, x) = Γ(a, x)/Γ(a): the series for P = 1 − Q when x < a + 1, else Legendre's continued fraction for Q
-  // evaluated by the modified Lentz method (both standard; e.g. Abramowitz & Stegun 6.5.29 and 6.5.31).
-  const double a = 0.5 * dof, x = 0.5 * chi_square;
-  if (x <= 0) return 1.0;
-  const double log_prefactor = a * std::log(x) - x - std::lgamma(a);
-  if (x < a + 1) {
-    double term = 1.0 / a, sum = term;
-    for (int n = 1; n < 1000 && std::fabs(term) > 1e-15 * std::fabs(sum); ++n) {
-      term *= x / (a + n);
-      sum += term;
-    }
-    return 1.0 - sum * std::exp(log_prefactor);
-  }
-  const double tiny = 1e-300;
-  double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
-  for (int i = 1; i < 1000; ++i) {
-    const double an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double delta = d * c;
-    h *= delta;
-    if (std::fabs(delta - 1) < 1e-15) break;
-  }
-  return std::exp(log_prefactor) * h;
-}
-
-double sidak_threshold(double alpha, int test_count) { return 1.0 - std::pow(1.0 - alpha, 1.0 / test_count); }
-
 ChiSquareOutcome bsdf_chi_square(const Bsdf& bsdf, Vec3 wo, int sample_count, uint64_t seed) {
   ChiSquareOutcome out;
   constexpr int kDirectional = kCosBins * kPhiBins;
@@ -154,7 +122,7 @@ ChiSquareOutcome bsdf_chi_square(const Bsdf& bsdf, Vec3 wo, int sample_count, ui
     }
     pooled_observed += observed[i];
     pooled_expected += expected[i];
-    if (pooled_expected < kMinExpected) continue;
+    if (pooled_expected < kPearsonMinExpected) continue;
     const double diff = pooled_observed - pooled_expected;
     out.chi_square += diff * diff / pooled_expected;
     ++cells;

@@ -21,14 +21,7 @@ struct ChiSquareOutcome {
 /// adaptive Simpson quadrature in θ and φ, so that narrow lobes near the pole or the horizon are resolved), and
 /// for delta samples the discrete probability they report (which must be the same for every delta sample on
 /// that side). Cells with an expected count below 5 are pooled, smallest first (the usual validity condition of
-/// Pearson's test).
+/// Pearson's test). The p-value is test::chi_square_p_value() (tests/statistics.h).
 ChiSquareOutcome bsdf_chi_square(const Bsdf& bsdf, Vec3 wo, int sample_count, uint64_t seed);
-
-/// P(X ≥ chi_square) for X ~ χ²(dof): the regularised upper incomplete gamma function Q(dof/2, chi_square/2).
-double chi_square_p_value(double chi_square, int dof);
-
-/// The per-test significance for `test_count` independent tests at family-wise level `alpha` (Šidák 1967):
-/// 1 − (1 − alpha)^(1/test_count).
-double sidak_threshold(double alpha, int test_count);
 
 }  // namespace rimu::test

@@ -8,6 +8,7 @@
 
 #include "bsdf_chi_square.h"
 #include "spectral/optical_constants.h"
+#include "statistics.h"
 #include "transport/fresnel.h"
 #include "test_support.h"
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "bsdf_test_fixtures.h"
 #include "spectral/optical_constants.h"
 #include "test_support.h"
 #include "transport/bsdf.h"
@@ -90,9 +91,8 @@ TEST_CASE("energy: a smooth mirror reflects F exactly, and a conductor with F = 
 }
 
 TEST_CASE("energy: rough BK7 scatters at most all flux by reflection plus transmission, nearly all when smooth") {
-  const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
   const SampledWavelengths lambda(Float4(550.0f, 650.0f, 450.0f, 750.0f), Float4(1.0f));
-  const Float4 eta = bk7->sample(lambda);
+  const Float4 eta = test::bk7_eta(lambda);
   // Smooth: R + T = 1 exactly (flux), both sides, including total internal reflection.
   for (float c : {0.9f, 0.3f, -0.9f, -0.3f}) {
     const Albedo a = albedo(DielectricBsdf(eta, TrowbridgeReitz(0, 0)), direction(c), 20000, eta[0]);
@@ -125,16 +125,8 @@ TEST_CASE("energy: coated diffuse with a white base conserves energy exactly, an
 }
 
 TEST_CASE("sample weights: f and pdf of non-delta samples are what eval() and pdf() return, in every lane") {
-  const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
-  const ComplexIorSpectra gold = conductor_ior(test::library(), "gold");
-  const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f));
-  const Float4 eta = bk7->sample(lambda);
-  const Bsdf bsdfs[] = {
-      DiffuseBsdf(Float4(0.9f, 0.5f, 0.2f, 0.1f)),
-      ConductorBsdf(gold.n->sample(lambda), gold.k->sample(lambda), TrowbridgeReitz(0.3f, 0.1f)),
-      DielectricBsdf(eta, TrowbridgeReitz(0.3f, 0.3f)),
-      CoatedDiffuseBsdf(Float4(0.9f, 0.5f, 0.2f, 0.1f), eta, Float4(0.09f)),
-  };
+  const SampledWavelengths lambda = test::four_visible_wavelengths();
+  const auto bsdfs = test::one_bsdf_of_each_kind("gold", lambda, test::bk7_eta(lambda));
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (const Bsdf& bsdf : bsdfs) {
@@ -177,9 +169,7 @@ TEST_CASE("spectral MIS: lane k's pdf is the pdf of the same BSDF with lane k as
 }
 
 TEST_CASE("robustness: grazing and degenerate directions never give NaN or Inf") {
-  const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
-  const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f));
-  const Float4 eta = bk7->sample(lambda);
+  const Float4 eta = test::bk7_eta(test::four_visible_wavelengths());
   const Bsdf bsdfs[] = {
       DiffuseBsdf(Float4(0.5f)),
       ConductorBsdf(Float4(0.2f), Float4(3.0f), TrowbridgeReitz(0.0f, 0.0f)),

@@ -4,8 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "spectral/optical_constants.h"
-#include "test_support.h"
+#include "bsdf_test_fixtures.h"
 #include "transport/bsdf.h"
 
 using namespace rimu;
@@ -22,16 +21,8 @@ Vec3 random_direction(std::mt19937_64& rng, bool upper) {
 
 TEST_CASE("reciprocity: reflection is symmetric, f(wo, wi) = f(wi, wo), for every reflecting BSDF") {
   // Float rounding in D, G and Fresnel (a few tens of operations): 1e-4 relative.
-  const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
-  const ComplexIorSpectra copper = conductor_ior(test::library(), "copper");
-  const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f));
-  const Float4 eta = bk7->sample(lambda);
-  const Bsdf bsdfs[] = {
-      DiffuseBsdf(Float4(0.9f, 0.5f, 0.2f, 0.1f)),
-      ConductorBsdf(copper.n->sample(lambda), copper.k->sample(lambda), TrowbridgeReitz(0.3f, 0.1f)),
-      DielectricBsdf(eta, TrowbridgeReitz(0.3f, 0.3f)),
-      CoatedDiffuseBsdf(Float4(0.9f, 0.5f, 0.2f, 0.1f), eta, Float4(0.09f)),
-  };
+  const SampledWavelengths lambda = test::four_visible_wavelengths();
+  const auto bsdfs = test::one_bsdf_of_each_kind("copper", lambda, test::bk7_eta(lambda));
   std::mt19937_64 rng(5);
   for (const Bsdf& bsdf : bsdfs) {
     for (int i = 0; i < 200; ++i) {
@@ -45,9 +36,7 @@ TEST_CASE("reciprocity: reflection is symmetric, f(wo, wi) = f(wi, wo), for ever
 
 TEST_CASE("reciprocity: rough refraction satisfies f(wo, wi)/n_o^2 = f(wi, wo)/n_i^2 for radiance") {
   // Veach 1997, Eq. 5.14: the radiance BTDF is not symmetric; f/n² of the side the first argument is on is.
-  const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
-  const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f));
-  const Float4 eta = bk7->sample(lambda);
+  const Float4 eta = test::bk7_eta(test::four_visible_wavelengths());
   std::mt19937_64 rng(9);
   for (float alpha : {0.05f, 0.3f, 0.8f}) {
     const DielectricBsdf glass(eta, TrowbridgeReitz(alpha, alpha));

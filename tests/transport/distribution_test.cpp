@@ -29,7 +29,7 @@ TEST_CASE("Distribution1D discrete sampling follows the weights and never picks 
     CHECK(pick.probability == doctest::Approx(weights[pick.index] / 14.0));
     observed[pick.index] += 1;
   }
-  const auto chi = test::chi_square(observed, expected);
+  const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
   CAPTURE(chi.statistic);
   CHECK(chi.p_value > test::kChiSquareAlpha);
 
@@ -51,7 +51,7 @@ TEST_CASE("Distribution1D remapped u is uniform in the chosen bin") {
   std::mt19937 rng(2);
   std::vector<double> observed(bins, 0.0), expected(bins, double(n) / bins);
   for (int s = 0; s < n; ++s) observed[int(d.sample_discrete(test::uniform01(rng)).u_remapped * bins)] += 1;
-  CHECK(test::chi_square(observed, expected).p_value > test::kChiSquareAlpha);
+  CHECK(test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one).p_value > test::kChiSquareAlpha);
 }
 
 TEST_CASE("Distribution1D continuous sampling matches its pdf") {
@@ -76,7 +76,7 @@ TEST_CASE("Distribution1D continuous sampling matches its pdf") {
     REQUIRE(x.pdf == d.pdf(x.x));
     observed[int(x.x * cells)] += 1;
   }
-  const auto chi = test::chi_square(observed, expected);
+  const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
   CAPTURE(chi.statistic);
   CHECK(chi.p_value > test::kChiSquareAlpha);
 }
@@ -129,7 +129,7 @@ TEST_CASE("Distribution2D sampling matches its pdf, with empty rows and columns"
     REQUIRE(p.pdf == doctest::Approx(d.pdf(p.uv)).epsilon(1e-6));
     observed[int(p.uv.y * h * sub) * w * sub + int(p.uv.x * w * sub)] += 1;
   }
-  const auto chi = test::chi_square(observed, expected);
+  const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
   CAPTURE(chi.statistic);
   CHECK(chi.p_value > test::kChiSquareAlpha);
 }

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "bsdf_chi_square.h"
+#include "statistics.h"
 #include "transport/frame.h"
 #include "transport/henyey_greenstein.h"
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "bsdf_chi_square.h"
 #include "media_test_scene.h"
+#include "statistics.h"
 #include "transport/point_light.h"
 #include "transport/sampler.h"
 #include "transport/spot_light.h"

@@ -10,6 +10,7 @@
 
 #include "transport/owen_scrambling.h"
 #include "transport/sampler.h"
+#include "transport/sobol_sampler.h"
 
 using namespace rimu;
 
@@ -59,6 +60,16 @@ TEST_CASE("Owen scramble flips are fair and independent between sibling prefixes
   const double owen = worst_deviation([](uint32_t x, uint32_t seed) { return owen_scramble(x, seed); });
   MESSAGE("worst deviation from 1/2: ", owen, " (bound ", bound, ")");
   CHECK(owen < bound);
+  // The sampler's keys come from sobol_draw_keys (32-bit hashes of pixel key and draw), not from scramble_key:
+  // each of its three keys must pass on its own. The seed plays the pixel key; draws 0 and 7 are both checked.
+  const auto keys = [](uint32_t seed) { return sobol_draw_keys(seed, seed ^ 0x5bd1e995u, seed & 1u ? 0u : 7u); };
+  const double shuffle = worst_deviation([&](uint32_t x, uint32_t seed) { return owen_scramble(x, keys(seed).shuffle); });
+  const double u = worst_deviation([&](uint32_t x, uint32_t seed) { return owen_scramble(x, keys(seed).u); });
+  const double v = worst_deviation([&](uint32_t x, uint32_t seed) { return owen_scramble(x, keys(seed).v); });
+  MESSAGE("sampler keys: worst deviation shuffle ", shuffle, ", u ", u, ", v ", v);
+  CHECK(shuffle < bound);
+  CHECK(u < bound);
+  CHECK(v < bound);
   // The check can fail: a random digital shift flips every prefix alike (agreement 1, deviation 0.5).
   const double shift = worst_deviation([](uint32_t x, uint32_t seed) { return x ^ seed; });
   CHECK(shift > bound);

@@ -36,14 +36,26 @@ TEST_CASE("Sobol dimension 1 matches the points derived from polynomial x+1, m1 
   for (uint32_t i = 0; i < 17; ++i) CHECK(fraction(sobol_dimension1(i)) == expected[i]);
   // m_6 = 2·17 ^ 17 = 51: v_6 = 51/64, the point at index 32.
   CHECK(fraction(sobol_dimension1(32)) == 51 / 64.);
-  // The byte tables agree with the bit-by-bit XOR for indices that use all four bytes.
+  // The table-free butterfly (sobol_dimension1_reversed) agrees with the bit-by-bit XOR of the directions, for
+  // the first 4096 indices and for indices that use all 32 bits.
   constexpr auto v = sobol_detail::dimension1_directions();
-  for (uint32_t i : {0x12345678u, 0xffffffffu, 0x80000001u, 0x00ff00ffu}) {
+  auto by_directions = [&](uint32_t i) {
     uint32_t x = 0;
     for (int k = 0; k < 32; ++k)
       if (i >> k & 1) x ^= v[size_t(k)];
-    CHECK(sobol_dimension1(i) == x);
+    return x;
+  };
+  for (uint32_t i = 0; i < 4096; ++i) CHECK(sobol_dimension1(i) == by_directions(i));
+  for (uint32_t i : {0x12345678u, 0xffffffffu, 0x80000001u, 0x00ff00ffu, 0xdeadbeefu}) {
+    CHECK(sobol_dimension1(i) == by_directions(i));
+    CHECK(sobol_dimension1_reversed(i) == reverse_bits(by_directions(i)));
   }
+}
+
+TEST_CASE("reverse_bits mirrors every bit") {
+  for (int k = 0; k < 32; ++k) CHECK(reverse_bits(1u << k) == 1u << (31 - k));
+  CHECK(reverse_bits(0x12345678u) == 0x1e6a2c48u);
+  CHECK(reverse_bits(reverse_bits(0xdeadbeefu)) == 0xdeadbeefu);
 }
 
 TEST_CASE("The first two Sobol dimensions form a (0,2)-sequence, unscrambled and Owen-scrambled") {
