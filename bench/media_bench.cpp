@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
         " && build/bin/" << command << "\n\n"
      << "- Machine: " << bench::machine_description() << "; "
      << settings.threads << " render threads; load average (1, 5, 15 min) at the start " << bench::load_average()
-     << " (a 2-core machine is idle below ~0.5; above ~2 other jobs share it and wall times carry that noise).\n"
+     << " (the benchmark's own render threads add about their number; other jobs show as the excess).\n"
      << "- Build: " << bench::build_description() << "\n"
      << "- Modes: `single` = `integrator.wavelengths: single` (one wavelength per path); `hero_only`, "
         "`spectral_mis`, `tracking` = `integrator.distance_sampling: hero_only | spectral_mis | spectral_tracking` "

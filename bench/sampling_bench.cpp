@@ -326,7 +326,8 @@ int main(int argc, char** argv) {
        << "    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRIMU_BUILD_BENCHMARKS=ON && "
           "cmake --build build -j2 --target rimu-sampling-bench && build/bin/" << command << "\n\n"
        << "* Machine: " << bench::machine_description() << "; render threads " << o.threads
-       << " (0 = all); load average (1, 5, 15 min) at the start " << bench::load_average() << ".\n"
+       << " (0 = all); load average (1, 5, 15 min) at the start " << bench::load_average()
+       << " (the benchmark's own render threads add about their number; other jobs show as the excess).\n"
        << "* Build: " << bench::build_description() << " (the portable default; no `-march=native`).\n"
        << "* Reference per scene: " << o.reference_spp << " spp with the Sobol' sampler, two halves with seeds "
           "1000003/1000033 (never used by the ladder), cached in <build>/sampling_reference; its own MSE, estimated "

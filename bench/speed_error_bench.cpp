@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
         " && build/bin/" << command << "\n\n"
      << "- Machine: " << bench::machine_description() << "; " << settings.threads
      << " render threads; load average (1, 5, 15 min) at the start " << bench::load_average()
-     << " (a 2-core machine is idle below ~0.5).\n"
+     << " (the benchmark's own render threads add about their number; other jobs show as the excess).\n"
      << "- Build: " << bench::build_description() << "\n"
      << "- Reference: hero mode, " << settings.reference_spp << " spp as two halves (seeds 1000, 1001; cached in "
         "<build>/speed_report); its own relMSE, estimated from the halves, is subtracted from every relMSE below. "
