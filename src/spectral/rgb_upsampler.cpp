@@ -78,6 +78,21 @@ KnotValues RgbUpsampler::smooth_shape(Chromaticity xy, bool* moved) const {
   return s;
 }
 
+KnotValues RgbUpsampler::reflectance_knots(const Xyz& xyz, bool* moved) const {
+  KnotValues s = smooth_shape(chromaticity_of(xyz), moved);
+  // Brightness limit (Manuka notes Eq. 12: every value ≤ 1): Y_max = 1 / max s for the Y = 1 shape.
+  const double peak = *std::max_element(s.begin(), s.end());
+  double luminance = xyz.y;
+  // The tolerance keeps white and greys (peak 1 ± 1e-15 after the correction) from counting as clipped; the
+  // min(·, 1) below removes that rounding from the stored values.
+  if (luminance * peak > 1.0 + 1e-12) {
+    luminance = 1.0 / peak;
+    *moved = true;
+  }
+  for (double& v : s) v = std::fmin(v * luminance, 1.0);
+  return s;
+}
+
 UpsampledReflectance RgbUpsampler::upsample_reflectance(const Rgb& rgb, const SourceLocation& where) const {
   check_finite(rgb, space_.name(), where);
   UpsampledReflectance out;
@@ -90,21 +105,19 @@ UpsampledReflectance RgbUpsampler::upsample_reflectance(const Rgb& rgb, const So
     return out;
   }
   bool moved = false;
-  KnotValues s = smooth_shape(chromaticity_of(xyz), &moved);
-  // Brightness limit (Manuka notes Eq. 12: every value ≤ 1): Y_max = 1 / max s for the Y = 1 shape.
-  const double peak = *std::max_element(s.begin(), s.end());
-  double luminance = xyz.y;
-  // The tolerance keeps white and greys (peak 1 ± 1e-15 after the correction) from counting as clipped; the
-  // min(·, 1) below removes that rounding from the stored values.
-  if (luminance * peak > 1.0 + 1e-12) {
-    luminance = 1.0 / peak;
-    moved = true;
-  }
-  for (double& v : s) v = std::fmin(v * luminance, 1.0);
-  out.spectrum = ReflectanceSpectrum(s);
+  out.spectrum = ReflectanceSpectrum(reflectance_knots(xyz, &moved));
   out.gamut_mapped = moved;
   out.delta_e2000 = delta_e(xyz, xyz_of(out.spectrum.samples()), white);
   return out;
+}
+
+ReflectanceSpectrum RgbUpsampler::reflectance_spectrum(const Rgb& rgb, const SourceLocation& where) const {
+  check_finite(rgb, space_.name(), where);
+  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) return {};
+  const Xyz xyz = space_.to_xyz(rgb);
+  if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) return {};
+  bool moved = false;
+  return ReflectanceSpectrum(reflectance_knots(xyz, &moved));
 }
 
 UpsampledEmission RgbUpsampler::upsample_emission(const Rgb& rgb, const SourceLocation& where) const {

@@ -53,6 +53,11 @@ class RgbUpsampler {
   /// brightness limit Y_max(xy) = Y of the smooth spectrum scaled to peak 1. Cost ~1-2 µs.
   UpsampledReflectance upsample_reflectance(const Rgb& rgb, const SourceLocation& where = {}) const;
 
+  /// The spectrum of upsample_reflectance alone, without its diagnostics (gamut_mapped, ΔE2000 of the round
+  /// trip, which cost another colorimetric integral and a CIEDE2000): the per-lookup path of image textures, which
+  /// discard them. Same spectrum, bit for bit (tested).
+  ReflectanceSpectrum reflectance_spectrum(const Rgb& rgb, const SourceLocation& where = {}) const;
+
   /// An emission spectrum whose absolute colour (emission_xyz) is `rgb`'s XYZ read in cd/m², up to the
   /// illuminant-vs-rounded-white difference of KnotColorimetry (≤ 1e-4): the white illuminant W times the smooth
   /// spectrum of the input chromaticity, scaled so Y matches. No upper limit; RGB (1,1,1) gives W itself.
@@ -75,6 +80,10 @@ class RgbUpsampler {
   const std::shared_ptr<const TabulatedSpectrum>& illuminant() const { return illuminant_; }
 
  private:
+  // The knots of upsample_reflectance's spectrum for a finite, non-black `xyz` with Y > 0; `moved` tells whether
+  // gamut mapping or the brightness limit changed the colour.
+  KnotValues reflectance_knots(const Xyz& xyz, bool* moved) const;
+
   RgbColourSpace space_;
   std::shared_ptr<const TabulatedSpectrum> illuminant_;
   KnotColorimetry colorimetry_;
