@@ -33,23 +33,33 @@ float camera_sample(Sampler& sampler, int x, int y, uint32_t index) {
   return sum;
 }
 
-void run_camera_samples(benchmark::State& state, SamplerKind kind) {
+// Visits 64×64 pixels, `samples_per_pixel` consecutive samples of each pixel before the next pixel: 1 is the
+// worst case for per-pixel caching, 16 is the render loop's order from its sixth pass on (renderer.cpp).
+void run_camera_samples(benchmark::State& state, SamplerKind kind, uint32_t samples_per_pixel) {
   const std::unique_ptr<Sampler> sampler = make_sampler(kind, 1);
-  uint32_t index = 0;
+  uint32_t index = 0, first_index = 0;
   int x = 0, y = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(camera_sample(*sampler, x, y, index));
+    if (++index - first_index < samples_per_pixel) continue;
+    index = first_index;
     if (++x == 64) x = 0, ++y;
-    if (y == 64) y = 0, ++index;
+    if (y == 64) y = 0, first_index += samples_per_pixel, index = first_index;
   }
   state.SetItemsProcessed(state.iterations());
   state.SetLabel("items = camera samples of 34 dimensions (16 calls)");
 }
 
-void BM_CameraSample_Independent(benchmark::State& state) { run_camera_samples(state, SamplerKind::independent); }
+void BM_CameraSample_Independent(benchmark::State& state) { run_camera_samples(state, SamplerKind::independent, 1); }
 BENCHMARK(BM_CameraSample_Independent);
-void BM_CameraSample_Sobol(benchmark::State& state) { run_camera_samples(state, SamplerKind::sobol); }
+void BM_CameraSample_Sobol(benchmark::State& state) { run_camera_samples(state, SamplerKind::sobol, 1); }
 BENCHMARK(BM_CameraSample_Sobol);
+void BM_CameraSample16PerPixel_Independent(benchmark::State& state) {
+  run_camera_samples(state, SamplerKind::independent, 16);
+}
+BENCHMARK(BM_CameraSample16PerPixel_Independent);
+void BM_CameraSample16PerPixel_Sobol(benchmark::State& state) { run_camera_samples(state, SamplerKind::sobol, 16); }
+BENCHMARK(BM_CameraSample16PerPixel_Sobol);
 
 // A single 2D draw after a start (the per-draw cost without the start's hashing).
 void run_draw_2d(benchmark::State& state, SamplerKind kind) {

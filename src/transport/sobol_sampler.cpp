@@ -31,26 +31,49 @@ DrawKeys sobol_draw_keys(uint32_t key0, uint32_t key1, uint32_t draw) {
 }
 
 void SobolSampler::start_pixel_sample(int x, int y, uint32_t sample_index) {
-  // Per-pixel scrambling seeds (the pixel decorrelation): every pixel owns an independent Owen scramble and
-  // shuffle of every draw; the seed enters hashed so that seeds 1, 2, 3 are as unrelated as any.
-  const uint64_t pixel = (uint64_t(uint32_t(x)) << 32) | uint32_t(y);
-  const uint64_t key = mix_bits(pixel ^ mix_bits(seed_ + 0x632be59bd9b4e019ULL));
-  pixel_key_[0] = uint32_t(key);
-  pixel_key_[1] = uint32_t(key >> 32);
+  if (!has_pixel_ || x != pixel_x_ || y != pixel_y_) {
+    // Per-pixel scrambling seeds (the pixel decorrelation): every pixel owns an independent Owen scramble and
+    // shuffle of every draw; the seed enters hashed so that seeds 1, 2, 3 are as unrelated as any.
+    const uint64_t pixel = (uint64_t(uint32_t(x)) << 32) | uint32_t(y);
+    const uint64_t key = mix_bits(pixel ^ mix_bits(seed_ + 0x632be59bd9b4e019ULL));
+    pixel_key_[0] = uint32_t(key);
+    pixel_key_[1] = uint32_t(key >> 32);
+    pixel_x_ = x;
+    pixel_y_ = y;
+    has_pixel_ = true;
+    cached_batches_ = 0;
+  }
   reversed_index_ = reverse_bits(sample_index);
   draw_ = 0;
   dimension_ = 0;
   batch_first_draw_ = ~0u - kBatch;  // no batch yet: lane_of_next_draw() computes one
 }
 
-__attribute__((target_clones("avx2", "default"))) void SobolSampler::compute_batch(uint32_t first_draw) {
-  // Plain loops over the four lanes, each step for all lanes before the next: GCC and Clang vectorise them
-  // (32-bit multiplies, shifts, xors, byte swaps). The same formulas as sobol_draw_keys, lane by lane.
-  uint32_t hash[kBatch], word[9][kBatch], u[kBatch], v[kBatch];
-  for (int lane = 0; lane < kBatch; ++lane)
-    hash[lane] = draw_hash(pixel_key_[0], pixel_key_[1], first_draw + uint32_t(lane));
+__attribute__((target_clones("avx2", "default"))) void SobolSampler::compute_key_words(
+    const uint32_t pixel_key[2], uint32_t first_draw, uint32_t (&words)[9][kBatch]) {
+  // The same formulas as sobol_draw_keys, lane by lane, in loops the compiler vectorises.
+  uint32_t hash[kBatch];
+  for (int lane = 0; lane < kBatch; ++lane) hash[lane] = draw_hash(pixel_key[0], pixel_key[1], first_draw + uint32_t(lane));
   for (int w = 0; w < 9; ++w)
-    for (int lane = 0; lane < kBatch; ++lane) word[w][lane] = key_word(hash[lane], w);
+    for (int lane = 0; lane < kBatch; ++lane) words[w][lane] = key_word(hash[lane], w);
+}
+
+__attribute__((target_clones("avx2", "default"))) void SobolSampler::compute_batch(uint32_t first_draw) {
+  // Draws are consumed in order, so batches start at multiples of kBatch and batch b follows batch b − 1: the
+  // words of batch b are either cached or about to be (b == cached_batches_), or b lies beyond the cache.
+  const uint32_t batch = first_draw / uint32_t(kBatch);
+  uint32_t uncached[9][kBatch];
+  const uint32_t(*word)[kBatch] = uncached;
+  if (batch < uint32_t(kCachedBatches)) {
+    if (batch >= cached_batches_) {
+      compute_key_words(pixel_key_, first_draw, key_words_[batch]);
+      cached_batches_ = batch + 1;
+    }
+    word = key_words_[batch];
+  } else {
+    compute_key_words(pixel_key_, first_draw, uncached);
+  }
+  uint32_t u[kBatch], v[kBatch];
   for (int lane = 0; lane < kBatch; ++lane) {
     // In the bit-reversed domain where the scramble works: shuffle_index(i) = reverse(scramble(reverse(i))),
     // sobol_dimension0 = reverse, so u = reverse(scramble(i')), and dimension 1 comes out reversed directly.

@@ -23,13 +23,19 @@ namespace rimu {
 /// independent Owen scrambles of the same nets (no structured correlation between neighbours). A pure function of
 /// (seed, pixel, sample index, draw number): thread- and order-independent.
 ///
-/// Cost. Draws are computed four at a time (draws t … t+3, both coordinates), lane by lane in loops the compiler
-/// turns into SSE: the per-draw work has no branches and only 32-bit integer operations (hashes, scrambles, bit
+/// Cost. Draws are computed eight at a time (draws t … t+7, both coordinates), lane by lane in loops the compiler
+/// turns into SIMD: the per-draw work has no branches and only 32-bit integer operations (hashes, scrambles, bit
 /// reversals, the table-free sobol_dimension1_reversed). A 1D draw wastes its batch lane's second coordinate;
-/// that is cheaper than a separate 1D path. docs/sampling.md ("Cost") has the measurements.
+/// that is cheaper than a separate 1D path. The nine scramble-key words of a draw depend on (pixel, draw) only,
+/// not on the sample index, and the render loop takes a pass's samples of one pixel in a row (up to 16): so the
+/// words of the first kCachedBatches batches are kept while the pixel stays the same, and each pixel sample after
+/// the first pays only for its shuffle and scrambles. docs/sampling.md ("Cost") has the measurements.
 class SobolSampler final : public Sampler {
  public:
   static constexpr int kBatch = 8;
+  /// Batches whose key words are cached per pixel: 16 × 8 = 128 draws, more than a path of the default depth
+  /// makes (3 camera draws + 5 per bounce); later draws recompute their words every time.
+  static constexpr int kCachedBatches = 16;
 
   explicit SobolSampler(uint64_t seed) : seed_(seed) {}
   void start_pixel_sample(int x, int y, uint32_t sample_index) override;
@@ -59,13 +65,19 @@ class SobolSampler final : public Sampler {
     return 0;
   }
   void compute_batch(uint32_t first_draw);
+  // The nine key words of each lane of the batch starting at draw `first_draw` (sobol_draw_keys, lane by lane).
+  static void compute_key_words(const uint32_t pixel_key[2], uint32_t first_draw, uint32_t (&words)[9][kBatch]);
 
   uint64_t seed_;
+  int pixel_x_ = 0, pixel_y_ = 0;
+  bool has_pixel_ = false;        // pixel_x_, pixel_y_ and pixel_key_ describe the last started pixel
+  uint32_t cached_batches_ = 0;   // key words of batches 0 … cached_batches_ − 1 of that pixel are in key_words_
   uint32_t pixel_key_[2] = {0, 0};
   uint32_t reversed_index_ = 0;
   uint32_t draw_ = 0, dimension_ = 0;
   uint32_t batch_first_draw_ = 0;
   alignas(16) float u_[kBatch] = {}, v_[kBatch] = {};
+  alignas(32) uint32_t key_words_[kCachedBatches][9][kBatch] = {};
 };
 
 /// The three scramble keys of draw `draw` of a pixel sample whose pixel key is (key0, key1): nine 32-bit words,
