@@ -27,6 +27,7 @@
 #include "render/json_cursor.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "spectral/blackbody_spectrum.h"
 #include "spectral/cielab.h"
 #include "spectral/colorimetry.h"
 #include "spectral/delta_e.h"
@@ -45,7 +46,7 @@ namespace {
 struct SceneCase {
   std::string id;
   std::string file;
-  std::string white_illuminant;  // a CIE illuminant name, or "csv:<file>:<column>" relative to the scene
+  std::string white_illuminant;  // a CIE illuminant name, "blackbody:<kelvin>", or "csv:<file>:<column>" relative to the scene
   int width, height;
 };
 
@@ -57,6 +58,10 @@ const std::vector<SceneCase> kScenes = {
     {"colour_bleeding", "scenes/colour_bleeding/scene.json", "D65", 160, 120},
     {"dispersion", "scenes/dispersion/scene.json", "D65", 160, 120},
     {"textured", "scenes/textured/scene.json", "F11", 160, 120},
+    // Media (issue 6 scenes, data/scenes/README.md); rgb mode runs them with spectral tracking (docs/media.md).
+    {"chromatic_slab", "scenes/media/chromatic_slab.json", "blackbody:6500", 128, 96},
+    {"skin", "scenes/media/skin.json", "blackbody:4000", 96, 96},
+    {"cloud", "scenes/media/cloud.json", "blackbody:5500", 96, 72},
 };
 const std::vector<WavelengthMode> kModes = {WavelengthMode::hero, WavelengthMode::single, WavelengthMode::independent,
                                             WavelengthMode::rgb};
@@ -118,6 +123,9 @@ Xyz white_of(const SceneCase& c, SpectralLibrary& library) {
     const CsvTable table = CsvTable::read(library.root() / fs::path(c.file).parent_path() / file);
     return illuminant_xyz(TabulatedSpectrum::from_csv(table, column, Extrapolation::zero), observer);
   }
+  if (c.white_illuminant.rfind("blackbody:", 0) == 0)
+    return illuminant_xyz(BlackbodySpectrum(std::stod(c.white_illuminant.substr(10)), BlackbodySpectrum::Scale::peak_one),
+                          observer);
   return illuminant_xyz(*library.illuminant(c.white_illuminant), observer);
 }
 

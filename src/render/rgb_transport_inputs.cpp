@@ -15,6 +15,17 @@ Rgb clipped(Rgb c, double high) {
   return {std::clamp(c.r, 0.0, high), std::clamp(c.g, 0.0, high), std::clamp(c.b, 0.0, high)};
 }
 
+// Linear sRGB of a spectrum read as a reflectance under D65, relative to the perfect diffuser (before clipping).
+Rgb relative_linear_srgb(const Spectrum& spectrum, SpectralLibrary& library) {
+  const Observer& observer = library.observer(StandardObserver::cie1931_2deg);
+  const SpectrumPtr d65 = library.illuminant("D65");
+  // Both XYZ have the perfect diffuser at Y = 100 (CIE 15:2004 eq. 7.2); the per-channel division removes the
+  // small mismatch between the tabulated D65 white and the sRGB matrix's (x, y) = (0.3127, 0.3290).
+  const Rgb sample = srgb().from_xyz(reflectance_xyz(spectrum, *d65, observer));
+  const Rgb white = srgb().from_xyz(illuminant_xyz(*d65, observer));
+  return {sample.r / white.r, sample.g / white.g, sample.b / white.b};
+}
+
 }  // namespace
 
 RgbLaneSpectrum::RgbLaneSpectrum(SpectrumPtr original, Rgb linear_srgb)
@@ -30,13 +41,27 @@ std::string RgbLaneSpectrum::describe() const {
 }
 
 Rgb reflectance_linear_srgb(const Spectrum& reflectance, SpectralLibrary& library) {
-  const Observer& observer = library.observer(StandardObserver::cie1931_2deg);
-  const SpectrumPtr d65 = library.illuminant("D65");
-  // Both XYZ have the perfect diffuser at Y = 100 (CIE 15:2004 eq. 7.2); the per-channel division removes the
-  // small mismatch between the tabulated D65 white and the sRGB matrix's (x, y) = (0.3127, 0.3290).
-  const Rgb sample = srgb().from_xyz(reflectance_xyz(reflectance, *d65, observer));
-  const Rgb white = srgb().from_xyz(illuminant_xyz(*d65, observer));
-  return clipped({sample.r / white.r, sample.g / white.g, sample.b / white.b}, 1.0);
+  return clipped(relative_linear_srgb(reflectance, library), 1.0);
+}
+
+Rgb coefficient_linear_srgb(const Spectrum& coefficient, SpectralLibrary& library) {
+  return clipped(relative_linear_srgb(coefficient, library), 1e30);
+}
+
+RgbMediumCoefficients chiang2016_rgb_coefficients(const HomogeneousMedium& spectral, Rgb surface_albedo,
+                                                  Rgb mean_free_path_m) {
+  Rgb sigma_a, sigma_s;
+  auto channel = [](double albedo, double mfp_m, double& a, double& s) {
+    const double sigma_t = 1.0 / std::max(mfp_m, 1e-9);
+    const double single_scattering = chiang2016_single_scattering_albedo(albedo);
+    s = single_scattering * sigma_t;
+    a = (1.0 - single_scattering) * sigma_t;
+  };
+  channel(surface_albedo.r, mean_free_path_m.r, sigma_a.r, sigma_s.r);
+  channel(surface_albedo.g, mean_free_path_m.g, sigma_a.g, sigma_s.g);
+  channel(surface_albedo.b, mean_free_path_m.b, sigma_a.b, sigma_s.b);
+  return {std::make_shared<RgbLaneSpectrum>(spectral.sigma_a(), sigma_a),
+          std::make_shared<RgbLaneSpectrum>(spectral.sigma_s(), sigma_s)};
 }
 
 Rgb emission_linear_srgb(const Spectrum& emission, SpectralLibrary& library) {
@@ -66,6 +91,8 @@ SpectrumPtr rgb_transport_form(const SpectrumPtr& spectrum, SpectrumRole role, S
       return std::make_shared<RgbLaneSpectrum>(spectrum, emission_linear_srgb(*spectrum, library));
     case SpectrumRole::ior:
       return std::make_shared<ConstantSpectrum>(spectrum->value(550.0));
+    case SpectrumRole::coefficient:
+      return std::make_shared<RgbLaneSpectrum>(spectrum, coefficient_linear_srgb(*spectrum, library));
   }
   return spectrum;
 }

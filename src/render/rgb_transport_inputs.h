@@ -8,6 +8,10 @@
 //                linear sRGB, negative channels (outside the sRGB gamut) clipped to 0: a light seen directly gives
 //                the same film XYZ as in spectral mode whenever it is inside the gamut;
 //   IOR:         its value at 550 nm in every lane, so nothing disperses;
+//   coefficient: (a medium's σ_a, σ_s) converted like a reflectance but not clipped above, so a constant c is
+//                exactly (c, c, c): the D65-weighted band averages an RGB renderer's user would type in;
+//   Chiang 2016 albedo and mean free path: converted as reflectances, then σ_a, σ_s computed per channel
+//                (chiang2016_rgb_coefficients), as an RGB renderer applies that parameterisation;
 //   RGB inputs and image textures: used as given (converted to linear sRGB if given in another space), never
 //                upsampled.
 // Inputs the loader leaves spectral (a named metal's n and k) are point-sampled at the nominal lane wavelengths
@@ -19,6 +23,7 @@
 #include "render/rgb_image.h"
 #include "render/spectrum_input.h"
 #include "spectral/rgb_colour_space.h"
+#include "transport/homogeneous_medium.h"
 #include "transport/spectral_texture.h"
 
 namespace rimu {
@@ -43,6 +48,8 @@ class RgbLaneSpectrum final : public Spectrum {
 
 /// Linear sRGB of a reflectance (D65, perfect diffuser = 1, clipped to [0, 1]). Cost: two 1 nm integrations.
 Rgb reflectance_linear_srgb(const Spectrum& reflectance, SpectralLibrary& library);
+/// Linear sRGB of a coefficient: as reflectance_linear_srgb, clipped to ≥ 0 only (a constant c gives (c, c, c)).
+Rgb coefficient_linear_srgb(const Spectrum& coefficient, SpectralLibrary& library);
 /// Linear sRGB of an emission from its film XYZ (negative channels clipped to 0). Cost: one 1 nm integration.
 Rgb emission_linear_srgb(const Spectrum& emission, SpectralLibrary& library);
 /// Linear RGB of colour space `space` expressed in linear sRGB (through XYZ, no chromatic adaptation).
@@ -52,6 +59,15 @@ Rgb to_linear_srgb(const Rgb& rgb, const RgbColourSpace& space);
 /// the RGB the user wrote (already in linear sRGB, scale applied): it is used as is instead of converting.
 SpectrumPtr rgb_transport_form(const SpectrumPtr& spectrum, SpectrumRole role, SpectralLibrary& library,
                                const Rgb* given_linear_srgb = nullptr);
+
+/// A medium's coefficients in rgb transport (RgbLaneSpectrum; the spectral originals answer value()).
+struct RgbMediumCoefficients {
+  SpectrumPtr sigma_a, sigma_s;
+};
+/// Chiang et al. 2016's parameterisation applied per channel: σ_t,c = 1/d_c, σ_s,c = α(A_c)·σ_t,c, σ_a,c = σ_t,c −
+/// σ_s,c (d in metres, clamped to ≥ 1e-9 m as chiang2016_medium does). `spectral` gives the originals.
+RgbMediumCoefficients chiang2016_rgb_coefficients(const HomogeneousMedium& spectral, Rgb surface_albedo,
+                                                  Rgb mean_free_path_m);
 
 /// An image reflectance texture in rgb transport: bilinear RGB, converted to linear sRGB, clipped to [0, 1] and
 /// scaled; no upsampling (compare render/image_texture.h).

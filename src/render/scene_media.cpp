@@ -1,6 +1,8 @@
 // The "media" section of the JSON scene format: homogeneous and voxel-grid media, and the material whose shapes
 // enclose each of them (docs/media.md).
+#include "render/rgb_transport_inputs.h"
 #include "render/scene_load_context.h"
+#include "transport/wavelength_modes.h"
 #include "transport/medium.h"
 
 namespace rimu::scene_loading {
@@ -21,8 +23,14 @@ class ScaledSpectrum final : public Spectrum {
 
 // A coefficient in 1/m: any non-RGB spectral input (≥ 0, unbounded), like a conductor's k.
 SpectrumPtr coefficient(const JsonCursor& c, LoadContext& context) {
-  if (c.is_object() && c.has("rgb")) c.at("rgb").fail("give coefficients as spectra; use albedo + mean_free_path for colours");
-  return context.spectra.parse(c, SpectrumRole::emission);
+  return context.spectra.parse(c, SpectrumRole::coefficient);
+}
+
+// The linear sRGB that a spectral input carries in rgb transport (lanes 0-2 of its rgb-transport form, whatever
+// wraps it, e.g. a scale).
+Rgb rgb_lanes(const Spectrum& rgb_transport_form) {
+  const SampledSpectrum lanes = rgb_transport_form.sample(rgb_transport_lanes());
+  return {lanes[0], lanes[1], lanes[2]};
 }
 
 Medium load_medium(const JsonCursor& m, LoadContext& context) {
@@ -37,9 +45,18 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
     const SpectrumPtr albedo = context.spectra.parse(m.at("albedo"), SpectrumRole::reflectance);
     const SpectrumPtr mfp_shape = context.spectra.parse(m.at("mean_free_path"), SpectrumRole::reflectance);
     const double scale = m.number_or("mean_free_path_scale_m", 1.0, 1e-9, 1e9);
+    // value() of an rgb-transport form is the original spectrum's, so this is the spectral medium in every mode.
     const HomogeneousMedium h = chiang2016_medium(*albedo, ScaledSpectrum(mfp_shape, scale), g);
     sigma_a = h.sigma_a();
     sigma_s = h.sigma_s();
+    if (context.spectra.rgb_transport()) {
+      // An RGB renderer applies the parameterisation per channel to the RGB albedo and mean free path.
+      const Rgb mfp = rgb_lanes(*mfp_shape);
+      const RgbMediumCoefficients c =
+          chiang2016_rgb_coefficients(h, rgb_lanes(*albedo), {mfp.r * scale, mfp.g * scale, mfp.b * scale});
+      sigma_a = c.sigma_a;
+      sigma_s = c.sigma_s;
+    }
   } else {
     sigma_a = coefficient(m.at("sigma_a"), context);
     sigma_s = coefficient(m.at("sigma_s"), context);

@@ -117,6 +117,7 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
     value.only_keys({"csv", "column", "scale"});
     const std::filesystem::path path = scene_directory_ / value.at("csv").string();
     const std::string column = value.string_or("column", "");
+    // Light outside a measured emission table is absent; a reflectance, index or coefficient keeps its end value.
     const Extrapolation extrapolation = role == SpectrumRole::emission ? Extrapolation::zero : Extrapolation::clamp;
     base = at_key(value.at("csv"), [&] {
       const CsvTable table = CsvTable::read(path);
@@ -135,6 +136,8 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
   } else if (value.has("rgb")) {
     value.only_keys({"rgb", "space", "scale"});
     if (role == SpectrumRole::ior) value.at("rgb").fail("an index of refraction cannot be given as RGB");
+    if (role == SpectrumRole::coefficient)
+      value.at("rgb").fail("give coefficients as spectra; use albedo + mean_free_path for colours");
     const Vec3 rgb = value.at("rgb").vec3();
     const std::string space = value.string_or("space", "srgb-linear");
     const RgbUpsampler& up = *upsampler(space, value.has("space") ? value.at("space") : value);

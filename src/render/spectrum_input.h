@@ -18,6 +18,8 @@ enum class SpectrumRole {
   reflectance,  ///< [0, 1]: RGB is upsampled with gamut mapping (RgbUpsampler::upsample_reflectance)
   emission,     ///< ≥ 0, unbounded: RGB is upsampled as the colour space's white shaped (upsample_emission)
   ior,          ///< > 0: index of refraction; RGB is not accepted
+  coefficient,  ///< ≥ 0, unbounded, per metre (a medium's σ_a, σ_s): RGB is not accepted (a coefficient is not a
+                ///< colour); tables are clamped beyond their ends
 };
 
 /// Shared state while a scene loads: the data library, the scene's folder (CSV paths are relative to it),

@@ -21,6 +21,7 @@ namespace rimu {
 
 VolumetricPathIntegrator::VolumetricPathIntegrator(const VolumetricScene& scene, VolumetricIntegratorSettings settings)
     : scene_(scene), settings_(settings) {
+  settings_.distance = distance_sampling_for(settings.distance, settings.path.wavelengths);
   for (const auto& light : *scene_.surfaces.lights)
     if (light->delta_position_m()) has_point_lights_ = true;
 }

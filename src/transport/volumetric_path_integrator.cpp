@@ -39,6 +39,7 @@ struct DirectionSample {
   SampledSpectrum f_cos;  // f·|cos θi| or phase
   SampledSpectrum pdf;
   bool is_delta = false;
+  bool wavelength_dependent_direction = false;  // a dispersive refraction: only the hero can follow it
 };
 
 std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe, Vec2 u) {
@@ -50,10 +51,24 @@ std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe
   if (!bs || !(bs->pdf[0] > 0.0f)) return std::nullopt;
   const Vec3 wi_world = s.frame.to_world(bs->wi);
   if (s.opaque() && dot(wi_world, s.geometric_normal) <= 0.0f) return std::nullopt;
-  return DirectionSample{wi_world, bs->f * Float4(std::fabs(bs->wi.z)), bs->pdf, bs->is_delta};
+  return DirectionSample{wi_world, bs->f * Float4(std::fabs(bs->wi.z)), bs->pdf, bs->is_delta,
+                         bs->wavelength_dependent_direction};
 }
 
 }  // namespace
+
+DistanceSampling distance_sampling_for(DistanceSampling requested, WavelengthMode mode) {
+  switch (mode) {
+    case WavelengthMode::hero:
+    case WavelengthMode::single:
+      return requested;
+    case WavelengthMode::independent:
+      return requested == DistanceSampling::spectral_mis ? DistanceSampling::hero_only : requested;
+    case WavelengthMode::rgb:
+      return requested == DistanceSampling::averaged ? requested : DistanceSampling::spectral_tracking;
+  }
+  return requested;
+}
 
 std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::shadow(
     Vec3 origin, Vec3 direction, float distance, MediumStack stack, const SampledWavelengths& lambda,
@@ -95,8 +110,11 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   const DirectLighting strategy = path.direct_lighting;
 
   SampledSpectrum radiance(0.0f);
+  // How each decision's per-lane densities enter (transport/wavelength_modes.h); free flights follow the mode
+  // through settings_.distance (distance_sampling_for).
+  const LaneTechniques lanes{path.wavelengths};
   const bool single = path.wavelengths == WavelengthMode::single;
-  SampledSpectrum pdf_ratio = single ? Float4(1.0f, 0.0f, 0.0f, 0.0f) : Float4(1.0f);
+  SampledSpectrum pdf_ratio = lanes.initial_ratios();
   SampledSpectrum beta = pdf_ratio;
   Ray ray = camera_ray;
   MediumStack stack;
@@ -241,7 +259,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
           const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
           if (!wrong_side && max_lane(f) > 0.0f) {
             // The effective throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi).
-            const SampledSpectrum q_dir = scatterer.pdf(ls->wi);
+            const SampledSpectrum q_dir = lanes.densities(scatterer.pdf(ls->wi));
             const float sum_dir = sum(pdf_ratio * q_dir);
             const SampledSpectrum throughput = sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f;
             if (const auto tr = shadow(origin_towards(ls->wi), ls->wi, ls->distance, stack_towards(ls->wi), lambda,
@@ -273,7 +291,12 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     pass_product = 1.0f;
     previous_reference = reference;
     beta *= ds->f_cos / Float4(ds->pdf[0]);
-    pdf_ratio *= ds->pdf / Float4(ds->pdf[0]);
+    pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
+    if (ds->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
+      // Independent mode: the partners' own directions were not followed (see LaneTechniques).
+      beta *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
+      pdf_ratio *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
+    }
 
     const float u_roulette = sampler.next_1d();
     if (vertex_count >= path.russian_roulette_depth) {

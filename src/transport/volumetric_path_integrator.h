@@ -8,6 +8,7 @@
 #include "transport/medium.h"
 #include "transport/path_integrator.h"
 #include "transport/spectral_distance_sampling.h"
+#include "transport/wavelength_modes.h"
 
 namespace rimu {
 
@@ -31,6 +32,15 @@ struct VolumetricIntegratorSettings {
   /// spectral_tracking, in grid media, or with direct_lighting = bsdf_only.
   bool equiangular = true;
 };
+
+/// The free-flight technique a wavelength mode runs when the scene asks for `requested` (docs/media.md,
+/// "Wavelength modes in media"). Spectral MIS over the lanes needs the hero to be a uniformly random member of a
+/// symmetric lane set, which independent and rgb modes do not provide:
+///   independent: spectral_mis → hero_only (no spectral MIS, like its surfaces); the other techniques unchanged;
+///   rgb:         spectral_mis, hero_only → spectral_tracking. Lane 0 is always red there, so a hero density would
+///                sample every path by red's σ_t; spectral tracking (Kutz et al. 2017, made for RGB media) is
+///                lane-independent and bounded. averaged is lane-independent too and stays.
+DistanceSampling distance_sampling_for(DistanceSampling requested, WavelengthMode mode);
 
 /// Radiance along camera rays in scenes with media, per lane, with the same output contract as
 /// PathIntegrator::radiance (lane j: this path's spectral-MIS-weighted estimate for λ_j).

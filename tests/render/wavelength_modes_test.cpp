@@ -163,3 +163,86 @@ TEST_CASE("rgb transport inputs: the perfect diffuser is exactly white, IOR does
 }
 
 }  // namespace rimu::test
+
+namespace rimu::test {
+namespace {
+
+// The grey room above with a sphere of homogeneous medium (index-matched boundary) in front of the camera.
+nlohmann::json foggy_room(const std::string& mode, const nlohmann::json& medium) {
+  const nlohmann::json d65 = {{"illuminant", "D65"}, {"scale", 0.2}};
+  nlohmann::json s = room(mode, d65, 0.4);
+  s["materials"]["fog boundary"] = {{"type", "dielectric"}, {"ior", 1.0}};
+  nlohmann::json m = medium;
+  m["boundary_material"] = "fog boundary";
+  m["index_matched"] = true;
+  s["media"] = {{"fog", m}};
+  s["shapes"].push_back({{"type", "sphere"}, {"material", "fog boundary"}, {"center", {0.6, 0.45, 0.45}}, {"radius", 0.3}});
+  return s;
+}
+
+Rgb rgb_lanes_of(const Spectrum& s) {
+  const SampledSpectrum lanes = s.sample(rgb_transport_lanes());
+  return {lanes[0], lanes[1], lanes[2]};
+}
+
+}  // namespace
+
+TEST_CASE("rgb transport of media: constant coefficients stay constant, Chiang inputs per channel, RGB refused") {
+  const Rgb c = coefficient_linear_srgb(ConstantSpectrum(37.5), library());
+  CHECK(c.r == doctest::Approx(37.5).epsilon(1e-12));
+  CHECK(c.g == doctest::Approx(37.5).epsilon(1e-12));
+  CHECK(c.b == doctest::Approx(37.5).epsilon(1e-12));
+  // Unlike a reflectance, a coefficient is not clipped at 1 (and a saturated one keeps its hue).
+  CHECK(coefficient_linear_srgb(ConstantSpectrum(1e4), library()).g == doctest::Approx(1e4).epsilon(1e-12));
+
+  const auto constant = scene_from_json(foggy_room("rgb", {{"type", "homogeneous"}, {"sigma_a", 0.5}, {"sigma_s", 3.0}}));
+  REQUIRE(constant->media.size() == 1);
+  const HomogeneousMedium& h = *constant->media[0].homogeneous();
+  const Rgb sa = rgb_lanes_of(*h.sigma_a()), ss = rgb_lanes_of(*h.sigma_s());
+  CHECK(sa.r == doctest::Approx(0.5).epsilon(1e-6));
+  CHECK(sa.b == doctest::Approx(0.5).epsilon(1e-6));
+  CHECK(ss.g == doctest::Approx(3.0).epsilon(1e-6));
+
+  // Chiang 2016 with RGB inputs given in linear sRGB: per channel σ_t = 1/d, σ_s = α(A)σ_t (their Eq. 2).
+  const auto artist = scene_from_json(foggy_room("rgb", {{"type", "homogeneous"},
+                                                         {"albedo", {{"rgb", {0.85, 0.55, 0.45}}}},
+                                                         {"mean_free_path", {{"rgb", {1.0, 0.35, 0.2}}}},
+                                                         {"mean_free_path_scale_m", 0.008}}));
+  const HomogeneousMedium& a = *artist->media[0].homogeneous();
+  const Rgb s = rgb_lanes_of(*a.sigma_s()), t_minus_s = rgb_lanes_of(*a.sigma_a());
+  const double albedo[3] = {0.85, 0.55, 0.45}, mfp[3] = {0.008, 0.0028, 0.0016};
+  const double scattering[3] = {s.r, s.g, s.b}, absorption[3] = {t_minus_s.r, t_minus_s.g, t_minus_s.b};
+  for (int k = 0; k < 3; ++k) {
+    CAPTURE(k);
+    const double alpha = 1.0 - std::exp(-11.43 * albedo[k] + 15.38 * albedo[k] * albedo[k] - 13.91 * std::pow(albedo[k], 3));
+    CHECK(scattering[k] == doctest::Approx(alpha / mfp[k]).epsilon(1e-6));
+    CHECK(absorption[k] == doctest::Approx((1.0 - alpha) / mfp[k]).epsilon(1e-5));
+  }
+  // Spectral mode keeps its 1 nm tables (no RGB lanes): the same scene's σ_s differs between red and blue.
+  const auto spectral = scene_from_json(foggy_room("hero", {{"type", "homogeneous"},
+                                                            {"albedo", {{"rgb", {0.85, 0.55, 0.45}}}},
+                                                            {"mean_free_path", {{"rgb", {1.0, 0.35, 0.2}}}},
+                                                            {"mean_free_path_scale_m", 0.008}}));
+  CHECK(spectral->media[0].homogeneous()->sigma_s()->value(650.0) <
+        spectral->media[0].homogeneous()->sigma_s()->value(450.0));
+
+  nlohmann::json named = foggy_room("rgb", {{"type", "homogeneous"}, {"sigma_a", 0.5}, {"sigma_s", {{"spectrum", "fog"}}}});
+  named["spectra"] = {{"fog", {{"rgb", {1.0, 2.0, 3.0}}}}};
+  CHECK_THROWS_WITH_AS(scene_from_json(named), doctest::Contains("give coefficients as spectra"), InputError);
+}
+
+TEST_CASE("rgb transport equals spectral transport in a grey medium under D65") {
+  // A wavelength-independent medium in the grey room: as for surfaces, rgb (with its spectral-tracking flights) and
+  // hero (spectral MIS flights) estimate the same image.
+  const nlohmann::json fog = {{"type", "homogeneous"}, {"sigma_a", 0.8}, {"sigma_s", 4.0}, {"g", 0.3}};
+  const auto hero = render_mode(*scene_from_json(foggy_room("hero", fog)), 32, 1);
+  const auto rgb = render_mode(*scene_from_json(foggy_room("rgb", fog)), 32, 2);
+  for (int c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    const Estimate d = paired_difference(channel_values(*rgb.film, c), channel_values(*hero.film, c));
+    // The 1e-3 relative allowance of the surface-only test above (D65 white vs the sRGB white, 1 nm sums).
+    CHECK(std::fabs(d.mean) <= kSigmas * d.standard_error + 1e-3 * mean_of(channel_values(*hero.film, c)));
+  }
+}
+
+}  // namespace rimu::test

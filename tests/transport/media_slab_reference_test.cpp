@@ -77,8 +77,9 @@ const Float4 kAlbedo(0.9f, 0.5f, 0.99f, 0.7f);
 
 // Reflectance (above) and transmittance (below) by the path tracer: camera rays with cosine-weighted directions
 // looking at the slab, a distant light of irradiance 1 straight above. R = (1/E) ∫ L cos θ dω = π · E_cos[L].
-void path_traced_slab(float g, const VolumetricIntegratorSettings& settings, int count, test::LaneStatistics& r,
-                      test::LaneStatistics& t) {
+// `fixed_lanes`: every sample has the same hero (rgb transport's lanes never rotate) instead of rotating it.
+void path_traced_slab(float g, const VolumetricIntegratorSettings& settings, int count, bool fixed_lanes,
+                      test::LaneStatistics& r, test::LaneStatistics& t) {
   const test::SlabScene slab(
       1.0f, Medium(HomogeneousMedium(test::bands(kSigmaT * (Float4(1.0f) - kAlbedo)), test::bands(kSigmaT * kAlbedo), g)),
       std::make_unique<DistantLight>(Vec3{0, 0, 1}, LightSpectrum(std::make_shared<ConstantSpectrum>(1.0), 1.0)));
@@ -90,12 +91,12 @@ void path_traced_slab(float g, const VolumetricIntegratorSettings& settings, int
   r = test::lane_statistics(count, [&](int i) {
     sampler.start_pixel_sample(i, 1, 0);
     const Ray ray{{0, 0, 2}, test::cosine_direction({u(rng), u(rng)}, -1.0f)};
-    return test::rotated_radiance(integrator, ray, sampler, i) * Float4(pi);
+    return test::rotated_radiance(integrator, ray, sampler, fixed_lanes ? 0 : i) * Float4(pi);
   });
   t = test::lane_statistics(count, [&](int i) {
     sampler.start_pixel_sample(i, 2, 0);
     const Ray ray{{0, 0, -1}, test::cosine_direction({u(rng), u(rng)}, 1.0f)};
-    return test::rotated_radiance(integrator, ray, sampler, i) * Float4(pi);
+    return test::rotated_radiance(integrator, ray, sampler, fixed_lanes ? 0 : i) * Float4(pi);
   });
 }
 
@@ -106,20 +107,26 @@ void compare_with_analog(float g) {
     std::string name;
     DistanceSampling distance;
     WavelengthMode wavelengths;
+    bool fixed_lanes = false;
   };
-  // (a) single wavelength, (b) hero + spectral MIS, (c) averaged σ_t, plus hero without MIS and spectral tracking.
+  // (a) single wavelength, (b) hero + spectral MIS, (c) averaged σ_t, plus hero without MIS and spectral tracking;
+  // and the other wavelength modes' own techniques (distance_sampling_for): independent mode (no spectral MIS at
+  // all, so hero-only flights) and rgb mode (spectral tracking, densities of the hero broadcast), whose integrator
+  // bookkeeping must be just as unbiased whatever the lanes carry; rgb with its lanes fixed, as it runs.
   const Variant variants[] = {{"single", DistanceSampling::spectral_mis, WavelengthMode::single},
                               {"hero+MIS", DistanceSampling::spectral_mis, WavelengthMode::hero},
                               {"averaged", DistanceSampling::averaged, WavelengthMode::hero},
                               {"hero only", DistanceSampling::hero_only, WavelengthMode::hero},
-                              {"spectral tracking", DistanceSampling::spectral_tracking, WavelengthMode::hero}};
+                              {"spectral tracking", DistanceSampling::spectral_tracking, WavelengthMode::hero},
+                              {"independent mode", DistanceSampling::spectral_mis, WavelengthMode::independent},
+                              {"rgb mode", DistanceSampling::spectral_mis, WavelengthMode::rgb, true}};
   for (const Variant& v : variants) {
     VolumetricIntegratorSettings s;
     s.distance = v.distance;
     s.path.wavelengths = v.wavelengths;
     s.path.max_depth = 64;
     test::LaneStatistics r, t;
-    path_traced_slab(g, s, 4000, r, t);
+    path_traced_slab(g, s, 4000, v.fixed_lanes, r, t);
     for (int k = 0; k < 4; ++k) {
       CAPTURE(v.name);
       CAPTURE(k);
