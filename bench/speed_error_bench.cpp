@@ -3,8 +3,9 @@
 //   cmake --build build -j2 --target rimu-speed-error-bench && build/bin/rimu-speed-error-bench
 //
 // Per scene: a converged hero reference (cached in <build>/speed_report, not committed), then every wavelength mode
-// (hero, single, independent, rgb) at a ladder of spp; it prints and writes a CSV (mode, spp, wall s, samples/s,
-// relative MSE, RMSE in XYZ, mean and 95th-percentile ΔE2000, worst ColorChecker patch ΔE2000), gnuplot log-log
+// (hero, single, independent, rgb; hero and single also with the emission wavelength density, "+lights") at a
+// ladder of spp; it prints and writes a CSV (mode, spp, wall s, samples/s, relative MSE, RMSE in XYZ, mean and
+// 95th-percentile ΔE2000, worst ColorChecker patch ΔE2000), gnuplot log-log
 // error-vs-time plots (PNG), and the section "Speed against error (issue 7)" of docs/benchmarks.md (between its
 // markers; the rest of the file is left alone). Options: --quick (tiny ladder, for checking the driver),
 // --threads N (default 2), --out DIR, --no-docs.
@@ -63,8 +64,21 @@ const std::vector<SceneCase> kScenes = {
     {"skin", "scenes/media/skin.json", "blackbody:4000", 96, 96},
     {"cloud", "scenes/media/cloud.json", "blackbody:5500", 96, 72},
 };
-const std::vector<WavelengthMode> kModes = {WavelengthMode::hero, WavelengthMode::single, WavelengthMode::independent,
-                                            WavelengthMode::rgb};
+// What is compared: each wavelength mode with the visible wavelength density (the default), and hero and single
+// also with the scene's emission density ("integrator.wavelength_density": "lights", docs/sampling.md).
+struct Variant {
+  WavelengthMode mode;
+  WavelengthDensityKind density;
+  std::string name() const {
+    return std::string(wavelength_mode_name(mode)) + (density == WavelengthDensityKind::lights ? "+lights" : "");
+  }
+};
+const std::vector<Variant> kVariants = {{WavelengthMode::hero, WavelengthDensityKind::visible},
+                                        {WavelengthMode::single, WavelengthDensityKind::visible},
+                                        {WavelengthMode::independent, WavelengthDensityKind::visible},
+                                        {WavelengthMode::rgb, WavelengthDensityKind::visible},
+                                        {WavelengthMode::hero, WavelengthDensityKind::lights},
+                                        {WavelengthMode::single, WavelengthDensityKind::lights}};
 
 struct Settings {
   std::vector<int> ladder = {1, 4, 16, 64, 256};
@@ -90,10 +104,12 @@ PixelFilter filter_of(const FilterSettings& f) {
   return PixelFilter::gaussian(f.radius_px, f.sigma_px);
 }
 
-std::unique_ptr<Scene> load_case(const SceneCase& c, WavelengthMode mode, SpectralLibrary& library) {
+std::unique_ptr<Scene> load_case(const SceneCase& c, WavelengthMode mode, SpectralLibrary& library,
+                                 WavelengthDensityKind density = WavelengthDensityKind::visible) {
   const fs::path path = library.root() / c.file;
   nlohmann::json document = parse_json_file(path);
   document["integrator"]["wavelengths"] = wavelength_mode_name(mode);
+  document["integrator"]["wavelength_density"] = density == WavelengthDensityKind::lights ? "lights" : "visible";
   auto scene = load_scene(document, path.string(), path.parent_path(), library);
   scene->settings.width = c.width;
   scene->settings.height = c.height;
@@ -266,6 +282,7 @@ int main(int argc, char** argv) {
   for (const SceneCase& c : kScenes) {
     std::unique_ptr<Scene> spectral = load_case(c, WavelengthMode::hero, library);
     std::unique_ptr<Scene> rgb_scene = load_case(c, WavelengthMode::rgb, library);
+    std::unique_ptr<Scene> lights_scene = load_case(c, WavelengthMode::hero, library, WavelengthDensityKind::lights);
     const std::vector<int> groups = patch_groups(*spectral);
     const bool has_patches = std::any_of(groups.begin(), groups.end(), [](int g) { return g >= 0; });
 
@@ -296,15 +313,18 @@ int main(int argc, char** argv) {
     const double reference_rel_mse = image_error(half[0], half[1], white).relative_mse / 4.0;
 
     std::map<std::string, std::vector<Row>> by_mode;
-    for (WavelengthMode mode : kModes) {
-      Scene& scene = mode == WavelengthMode::rgb ? *rgb_scene : *spectral;
+    for (const Variant& variant : kVariants) {
+      const WavelengthMode mode = variant.mode;
+      Scene& scene = mode == WavelengthMode::rgb                              ? *rgb_scene
+                     : variant.density == WavelengthDensityKind::lights ? *lights_scene
+                                                                         : *spectral;
       scene.settings.integrator.wavelengths = mode;
       for (int spp : settings.ladder) {
         RenderStatistics s;
         const XyzImage image = render_case(scene, spp, 1, settings.threads, library, &s);
         Row row;
         row.scene = c.id;
-        row.mode = wavelength_mode_name(mode);
+        row.mode = variant.name();
         row.spp = spp;
         row.seconds = s.seconds;
         row.samples_per_s = s.seconds > 0 ? double(s.camera_samples) / s.seconds : 0.0;
@@ -357,8 +377,8 @@ int main(int argc, char** argv) {
        << "| mode | spp | wall s | samples/s | relMSE | RMSE XYZ | mean ΔE00 | p95 ΔE00 |"
        << (has_patches ? " worst patch ΔE00 |" : "") << "\n|---|---|---|---|---|---|---|---|"
        << (has_patches ? "---|" : "") << "\n";
-    for (const auto& mode : kModes)
-      for (const Row& r : by_mode[wavelength_mode_name(mode)]) {
+    for (const Variant& variant : kVariants)
+      for (const Row& r : by_mode[variant.name()]) {
         md << "| " << r.mode << " | " << r.spp << " | " << format(r.seconds, "%.3f") << " | " << format(r.samples_per_s, "%.3g")
            << " | " << format(r.error.relative_mse) << " | " << format(r.error.rmse_xyz) << " | "
            << format(r.error.mean_delta_e2000, "%.3f") << " | " << format(r.error.p95_delta_e2000, "%.3f") << " |";
@@ -366,7 +386,7 @@ int main(int argc, char** argv) {
         md << "\n";
       }
     md << "\nReference's own relMSE (subtracted): " << format(reference_rel_mse) << ". Equal time (" << format(sum.t64, "%.3f") << " s, hero at 64 spp): relMSE ";
-    for (const auto& mode : kModes) md << wavelength_mode_name(mode) << " " << format(sum.equal_time[wavelength_mode_name(mode)]) << "; ";
+    for (const Variant& variant : kVariants) md << variant.name() << " " << format(sum.equal_time[variant.name()]) << "; ";
     md << "rgb bias (spp-independent relMSE) " << format(sum.rgb_bias_rel_mse) << "; mean ΔE00 at the top of the ladder: rgb "
        << format(sum.rgb_mean_de, "%.3f") << " vs hero " << format(sum.hero_mean_de, "%.3f") << " (hero's is noise only).\n\n";
   }
@@ -403,6 +423,18 @@ int main(int argc, char** argv) {
   md << "| rgb bias ≥ 3 ΔE00 on some patch (ColorChecker under F11) | worst patch " << format(f11.rgb_worst_patch, "%.2f")
      << " ΔE00 (" << f11.rgb_worst_patch_name << "; hero at the same spp: " << format(f11.hero_worst_patch, "%.2f")
      << ") | " << (f11.rgb_worst_patch >= 3.0 ? "met" : "not met") << " |\n\n";
+  // The wavelength density's effect, at the same equal time (hero-visible's 64-spp wall time of each scene).
+  md << "### Wavelength density: visible vs lights\n\n"
+        "Equal-time relMSE ratios at each scene's hero 64-spp wall time (< 1: the emission density is better; "
+        "docs/sampling.md, \"Wavelength density\").\n\n"
+        "| scene | hero+lights / hero | single+lights / single | hero+lights / single+lights |\n|---|---|---|---|\n";
+  for (const SceneCase& c : kScenes) {
+    const auto& e = summaries[c.id].equal_time;
+    md << "| " << c.id << " | " << format(e.at("hero+lights") / e.at("hero"), "%.3f") << " | "
+       << format(e.at("single+lights") / e.at("single"), "%.3f") << " | "
+       << format(e.at("hero+lights") / e.at("single+lights"), "%.3f") << " |\n";
+  }
+  md << "\n";
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - report_start).count();
   md << "Whole report: " << format(total, "%.0f") << " s (references " << (quick ? "rendered" : "rendered or cached")
      << "); load average at the end " << bench::load_average() << ".\n";

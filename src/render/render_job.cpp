@@ -84,9 +84,12 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
   std::unique_ptr<Scene> scene;
-  if (job.wavelengths) {
+  if (job.wavelengths || job.wavelength_density) {
     nlohmann::json document = parse_json_file(scene_path);
-    document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
+    if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
+    if (job.wavelength_density)
+      document["integrator"]["wavelength_density"] =
+          *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
     scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
   } else {
     scene = load_scene(scene_path, library);
@@ -162,6 +165,9 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   exr.metadata.interrupted = result.statistics.interrupted;
   exr.metadata.scene = scene_path.string();
   exr.metadata.extra["degenerateTrianglesRemoved"] = std::to_string(scene->degenerate_triangles_removed);
+  exr.metadata.extra["wavelengths"] = wavelength_mode_name(settings.integrator.wavelengths);
+  exr.metadata.extra["wavelengthDensity"] = scene->wavelength_density ? "lights" : "visible";
+  exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
   for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, output_transform))
     exr.metadata.extra[key] = value;
   write_exr(job.exr_output, film, exr);

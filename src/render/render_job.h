@@ -24,6 +24,8 @@ struct RenderJob {
   /// Overrides the scene's "integrator.wavelengths" (hero, single, independent, rgb). Applied before the scene is
   /// loaded, because rgb mode loads colours and lights as RGB rather than upsampling them.
   std::optional<WavelengthMode> wavelengths;
+  /// Overrides "integrator.wavelength_density" (visible, lights); applied before loading, which builds the density.
+  std::optional<WavelengthDensityKind> wavelength_density;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
   bool float_exr = false;

@@ -50,6 +50,7 @@ namespace {
 // The render loop over tiles and passes, for any integrator with radiance(ray, lambda, sampler).
 template <typename Integrator>
 RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorSettings& integrator_settings,
+                             const TabulatedWavelengthDensity* wavelength_density,
                              const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::optional<tbb::global_control> thread_limit;
@@ -82,7 +83,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4); then per-bounce ones.
               const FilterSample fs = filter.sample(sampler->next_2d());
               const Vec2 lens = sampler->next_2d();
-              const SampledWavelengths lambda = sample_path_wavelengths(integrator_settings.wavelengths, *sampler);
+              const SampledWavelengths lambda =
+                  sample_path_wavelengths(integrator_settings.wavelengths, *sampler, wavelength_density);
               const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset_px.x, float(y) + 0.5f + fs.offset_px.y, lens);
               const SampledSpectrum radiance = integrator.radiance(ray, lambda, *sampler);
               tile->add_sample(x, y, radiance, lambda, fs.weight);
@@ -115,13 +117,14 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const PathIntegrator integrator(transport, integrator_settings);
-  return render_loop(integrator, integrator_settings, camera, filter, film, options);
+  return render_loop(integrator, integrator_settings, transport.wavelength_density, camera, filter, film, options);
 }
 
 RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const VolumetricPathIntegrator integrator(scene, integrator_settings);
-  return render_loop(integrator, integrator_settings.path, camera, filter, film, options);
+  return render_loop(integrator, integrator_settings.path, scene.surfaces.wavelength_density, camera, filter, film,
+                     options);
 }
 
 }  // namespace rimu

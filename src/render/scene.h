@@ -28,6 +28,12 @@ struct FilterSettings {
   float sigma_px = 0.5f;
 };
 
+/// Which density camera paths draw their wavelengths from (the "integrator" section's "wavelength_density").
+enum class WavelengthDensityKind {
+  visible,  ///< the closed-form visible density, ≈ the sum of the CIE colour-matching functions (the default)
+  lights,   ///< the scene's emission × the visible density, with a defensive share (transport/emission_wavelength_density.h)
+};
+
 /// How to render: what the scene's "film" and "integrator" sections say, before command-line overrides.
 struct RenderSettings {
   int width = 256, height = 256;
@@ -36,6 +42,7 @@ struct RenderSettings {
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
   DistanceSampling distance_sampling = DistanceSampling::spectral_mis;  ///< media only (integrator.distance_sampling)
+  WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
   FilterSettings filter;
@@ -58,6 +65,8 @@ struct Scene {
   std::vector<Medium> media;                      ///< the "media" section (empty: the surface integrator is used)
   std::vector<MediumBoundary> medium_boundaries;  ///< per material: the medium its shapes enclose
   bool has_media() const { return !media.empty(); }
+  /// Built at load for WavelengthDensityKind::lights (not in rgb mode, whose lanes are fixed); null otherwise.
+  std::shared_ptr<const TabulatedWavelengthDensity> wavelength_density;
 
   /// The non-owning view the integrator works on.
   TransportScene transport_view() const;

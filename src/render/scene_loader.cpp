@@ -3,6 +3,7 @@
 #include "render/camera_exposure.h"
 #include "render/scene.h"
 #include "render/scene_load_context.h"
+#include "transport/emission_wavelength_density.h"
 #include "transport/wavelength_modes.h"
 
 namespace rimu {
@@ -17,6 +18,7 @@ TransportScene Scene::transport_view() const {
   view.light_sampler = light_sampler.get();
   view.infinite_lights = infinite_lights;
   view.scene_scale = scene_scale;
+  view.wavelength_density = wavelength_density.get();
   return view;
 }
 
@@ -69,8 +71,11 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 }
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "direct_lighting",
-               "distance_sampling"});
+  c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
+               "direct_lighting", "distance_sampling"});
+  if (const auto d = c.find("wavelength_density"))
+    s.wavelength_density = d->choice({"visible", "lights"}) == "lights" ? WavelengthDensityKind::lights
+                                                                        : WavelengthDensityKind::visible;
   if (const auto d = c.find("distance_sampling")) {
     const std::string v = d->choice({"spectral_mis", "hero_only", "averaged", "spectral_tracking"});
     s.distance_sampling = v == "hero_only"           ? DistanceSampling::hero_only
@@ -132,6 +137,10 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
     if (scene->lights[i]->is_infinite()) scene->infinite_lights.push_back(int(i));
   }
   scene->light_sampler = std::make_unique<LightSampler>(light_pointers, 0.5 * double(scene->scene_scale));
+  if (scene->settings.wavelength_density == WavelengthDensityKind::lights &&
+      scene->settings.integrator.wavelengths != WavelengthMode::rgb)
+    scene->wavelength_density =
+        std::make_shared<const TabulatedWavelengthDensity>(emission_wavelength_density(scene->lights, *scene->light_sampler));
   return scene;
 }
 

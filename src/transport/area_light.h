@@ -50,6 +50,8 @@ class AreaLight final : public Light {
   double area_m2() const { return area_m2_; }
   bool two_sided() const { return two_sided_; }
 
+  const Spectrum* emitted_spectrum_shape() const override { return radiance_.shape().get(); }
+
  private:
   struct Triangle {
     Vec3 v0, v1, v2;

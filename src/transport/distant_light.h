@@ -42,6 +42,8 @@ class DistantLight final : public Light {
   /// Ω = 2π(1 − cos α), sr.
   double cone_solid_angle_sr() const;
 
+  const Spectrum* emitted_spectrum_shape() const override { return irradiance_.shape().get(); }
+
  private:
   bool inside_cone(Vec3 direction) const;
 

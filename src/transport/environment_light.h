@@ -58,6 +58,9 @@ class EnvironmentLight final : public Light {
   Vec2 direction_to_uv(Vec3 direction) const;
   Vec3 uv_to_direction(Vec2 uv) const;
 
+  /// The constant environment's spectrum; nullptr for an image (its spectrum varies with direction).
+  const Spectrum* emitted_spectrum_shape() const override { return constant_ ? constant_->shape().get() : nullptr; }
+
  private:
   float solid_angle_pdf(Vec3 local_direction) const;
   SampledSpectrum lookup(Vec2 uv, const SampledWavelengths& lambda) const;

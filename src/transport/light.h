@@ -13,6 +13,7 @@
 
 #include <optional>
 
+#include "spectral/spectrum.h"
 #include "transport/light_sample.h"
 #include "transport/surface_hit.h"
 
@@ -45,6 +46,11 @@ class Light {
   /// power that crosses a disc (distant) or enters a sphere (environment) of radius `scene_radius_m` around the
   /// scene; finite lights ignore the radius.
   virtual double total_power_w(double scene_radius_m) const = 0;
+
+  /// The relative spectral distribution of all the light emits (its spectral power is this shape times a factor
+  /// independent of λ), or nullptr when the spectrum varies over the light (an environment image). The scene's
+  /// wavelength density (spectral/wavelength_density.h) is built from it. The pointer lives as long as the light.
+  virtual const Spectrum* emitted_spectrum_shape() const { return nullptr; }
 
   /// True if sample_li returns delta samples (point, spot, distant of zero diameter): no MIS with BSDF sampling.
   virtual bool is_delta() const { return false; }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "spectral/sampled_wavelengths.h"
+#include "spectral/wavelength_density.h"
 #include "transport/light.h"
 #include "transport/light_sampler.h"
 #include "transport/material.h"
@@ -24,6 +25,8 @@ struct TransportScene {
   const LightSampler* light_sampler = nullptr;
   std::vector<int> infinite_lights;  ///< indices of lights with is_infinite(): seen by escaping rays
   float scene_scale = 1.0f;          ///< bounding-box diagonal, for scale-aware ray offsets
+  /// The density camera paths draw wavelengths from (spectral/wavelength_density.h); nullptr: the visible density.
+  const TabulatedWavelengthDensity* wavelength_density = nullptr;
 };
 
 /// How the four lanes are used.

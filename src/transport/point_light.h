@@ -24,6 +24,8 @@ class PointLight final : public Light {
 
   Vec3 position_m() const { return position_m_; }
 
+  const Spectrum* emitted_spectrum_shape() const override { return intensity_.shape().get(); }
+
  private:
   Vec3 position_m_;
   LightSpectrum intensity_;

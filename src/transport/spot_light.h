@@ -34,6 +34,8 @@ class SpotLight final : public Light {
   /// s(cos θ) for the direction `w_emitted` (unit, from the light outwards).
   float falloff(Vec3 w_emitted) const;
 
+  const Spectrum* emitted_spectrum_shape() const override { return intensity_.shape().get(); }
+
  private:
   Vec3 position_m_;
   Vec3 axis_;

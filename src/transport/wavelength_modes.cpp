@@ -8,16 +8,19 @@ SampledWavelengths rgb_transport_lanes() {
   return SampledWavelengths(Float4(612.0f, 549.0f, 465.0f, 549.0f), Float4(0.25f, 0.25f, 0.25f, 0.0f));
 }
 
-SampledWavelengths sample_path_wavelengths(WavelengthMode mode, Sampler& sampler) {
+SampledWavelengths sample_path_wavelengths(WavelengthMode mode, Sampler& sampler,
+                                          const TabulatedWavelengthDensity* density) {
   switch (mode) {
     case WavelengthMode::hero:
     case WavelengthMode::single:
-      return SampledWavelengths::sample_visible(sampler.next_1d());
+      return density ? density->sample_wavelengths(sampler.next_1d())
+                     : SampledWavelengths::sample_visible(sampler.next_1d());
     case WavelengthMode::independent: {
       alignas(16) float lambda_nm[kLaneCount], pdf[kLaneCount];
       for (int lane = 0; lane < kLaneCount; ++lane) {
-        lambda_nm[lane] = sample_visible_wavelength(sampler.next_1d());
-        pdf[lane] = visible_wavelength_pdf(lambda_nm[lane]);
+        const float u = sampler.next_1d();
+        lambda_nm[lane] = density ? density->sample(u) : sample_visible_wavelength(u);
+        pdf[lane] = density ? density->pdf(lambda_nm[lane]) : visible_wavelength_pdf(lambda_nm[lane]);
       }
       return SampledWavelengths(Float4::load(lambda_nm), Float4::load(pdf));
     }

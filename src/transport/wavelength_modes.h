@@ -22,12 +22,14 @@ namespace rimu {
 /// Σⱼ Lⱼ cₖⱼ, which with the rgb-transport response cₖⱼ = M_sRGB→XYZ[k][j] is the film XYZ of the lane RGB.
 SampledWavelengths rgb_transport_lanes();
 
-/// Draws the four lanes for `mode` from `sampler` (called by the render loop after film and lens dimensions):
-///   hero, single: hero + three rotated partners from one dimension (SampledWavelengths::sample_visible);
+/// Draws the four lanes for `mode` from `sampler` (called by the render loop after film and lens dimensions), with
+/// density p(λ) = `density` (the scene's, spectral/wavelength_density.h), or the visible density if it is null:
+///   hero, single: hero + three rotated partners from one dimension;
 ///   independent: four wavelengths each from its own dimension, each with density p(λ) (four dimensions);
 ///   rgb: one dimension is drawn and discarded (so later dimensions line up with hero mode) and the fixed lanes
 ///        of rgb_transport_lanes() are returned.
-SampledWavelengths sample_path_wavelengths(WavelengthMode mode, Sampler& sampler);
+SampledWavelengths sample_path_wavelengths(WavelengthMode mode, Sampler& sampler,
+                                          const TabulatedWavelengthDensity* density = nullptr);
 
 /// Parses a mode's name as scenes spell it ("hero", "single", "independent", "rgb"); nullopt if unknown.
 std::optional<WavelengthMode> parse_wavelength_mode(std::string_view name);

@@ -246,3 +246,31 @@ TEST_CASE("rgb transport equals spectral transport in a grey medium under D65") 
 }
 
 }  // namespace rimu::test
+
+namespace rimu::test {
+
+TEST_CASE("the lights wavelength density renders the visible density's image (F11 room, hero and independent)") {
+  // Only the noise may differ: every lane stays an unbiased estimate under any positive density.
+  const nlohmann::json red = {{"csv", "spectra/reflectances/colorchecker_classic_babelcolor_avg_10nm.csv"}, {"column", "red"}};
+  const nlohmann::json f11 = {{"illuminant", "F11"}, {"scale", 0.2}};
+  for (const char* mode : {"hero", "independent"}) {
+    CAPTURE(mode);
+    nlohmann::json lights_room = room(mode, f11, red);
+    lights_room["integrator"]["wavelength_density"] = "lights";
+    const auto lights_scene = scene_from_json(lights_room);
+    REQUIRE(lights_scene->wavelength_density);
+    const auto visible = render_mode(*scene_from_json(room(mode, f11, red)), 16, 1);
+    const auto lights = render_mode(*lights_scene, 16, 2);
+    for (int c = 0; c < 3; ++c) {
+      CAPTURE(c);
+      const Estimate d = paired_difference(channel_values(*lights.film, c), channel_values(*visible.film, c));
+      CHECK(std::fabs(d.mean) <= kSigmas * d.standard_error);
+    }
+  }
+  // Rgb mode has fixed lanes: no density is built.
+  nlohmann::json rgb_room = room("rgb", f11, red);
+  rgb_room["integrator"]["wavelength_density"] = "lights";
+  CHECK_FALSE(scene_from_json(rgb_room)->wavelength_density);
+}
+
+}  // namespace rimu::test

@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
       "of CIE XYZ (or camera RGB) and optionally a PNG for display. Ctrl-C stops early and still writes the image.\n"
       "Example: rimu -o box.exr --png box.png --spp 64"};
   rimu::RenderJob job;
-  std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths;
+  std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density;
   app.add_option("scene", scene, "scene file (.json); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "OpenEXR output (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO)");
@@ -30,6 +30,11 @@ int main(int argc, char** argv) {
                  "hero (4 lanes with spectral MIS, the default), single, independent (4 lanes, no MIS) or rgb "
                  "(RGB transport, a baseline only; see docs/transport.md) (overrides the scene)")
       ->check(CLI::IsMember({"hero", "single", "independent", "rgb"}));
+  app.add_option("--wavelength-density", wavelength_density,
+                 "visible (follows the colour-matching functions, the default) or lights (follows the scene's "
+                 "emission too: less colour noise under line spectra such as F11; see docs/sampling.md) "
+                 "(overrides the scene)")
+      ->check(CLI::IsMember({"visible", "lights"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");
@@ -57,6 +62,9 @@ int main(int argc, char** argv) {
     if (!film.empty()) job.film = film;
     if (!sampler.empty()) job.sampler = rimu::parse_sampler_kind(sampler);
     if (!wavelengths.empty()) job.wavelengths = rimu::parse_wavelength_mode(wavelengths);
+    if (!wavelength_density.empty())
+      job.wavelength_density = wavelength_density == "lights" ? rimu::WavelengthDensityKind::lights
+                                                              : rimu::WavelengthDensityKind::visible;
     if (!resolution.empty()) {
       const auto [w, h] = rimu::parse_resolution(resolution, "--resolution");
       job.width = w;
