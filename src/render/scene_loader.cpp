@@ -140,7 +140,8 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (scene->settings.wavelength_density == WavelengthDensityKind::lights &&
       scene->settings.integrator.wavelengths != WavelengthMode::rgb)
     scene->wavelength_density =
-        std::make_shared<const TabulatedWavelengthDensity>(emission_wavelength_density(scene->lights, *scene->light_sampler));
+        std::make_shared<const TabulatedWavelengthDensity>(emission_wavelength_density(
+            scene->lights, *scene->light_sampler, library.observer(StandardObserver::cie1931_2deg)));
   return scene;
 }
 

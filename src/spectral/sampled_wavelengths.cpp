@@ -54,9 +54,7 @@ float sample_visible_wavelength(float u) {
 SampledWavelengths SampledWavelengths::sample_visible(float u) {
   Float4 lambda, pdf;
   for (int lane = 0; lane < kLaneCount; ++lane) {
-    float u_lane = u + float(lane) / kLaneCount;
-    if (u_lane >= 1.0f) u_lane -= 1.0f;
-    const float l = sample_visible_wavelength(u_lane);
+    const float l = sample_visible_wavelength(rotated_primary_sample(u, lane));
     lambda.set(lane, l);
     pdf.set(lane, visible_wavelength_pdf(l));
   }
@@ -66,11 +64,7 @@ SampledWavelengths SampledWavelengths::sample_visible(float u) {
 SampledWavelengths SampledWavelengths::sample_uniform(float u, float min_nm, float max_nm) {
   const float span = max_nm - min_nm;
   Float4 lambda;
-  for (int lane = 0; lane < kLaneCount; ++lane) {
-    float u_lane = u + float(lane) / kLaneCount;
-    if (u_lane >= 1.0f) u_lane -= 1.0f;
-    lambda.set(lane, min_nm + u_lane * span);
-  }
+  for (int lane = 0; lane < kLaneCount; ++lane) lambda.set(lane, min_nm + rotated_primary_sample(u, lane) * span);
   return SampledWavelengths(lambda, Float4(1.0f / span));
 }
 

@@ -42,6 +42,13 @@ class SampledWavelengths {
   Float4 pdf_;
 };
 
+/// The primary sample of lane `lane` when the hero's is u: u + lane/kLaneCount, wrapped into [0, 1). Every
+/// hero-wavelength sampler rotates its partners this way.
+inline float rotated_primary_sample(float u, int lane) {
+  const float u_lane = u + float(lane) / kLaneCount;
+  return u_lane >= 1.0f ? u_lane - 1.0f : u_lane;
+}
+
 /// The visible importance density: p(λ) ∝ 1/cosh²(a(λ − 538 nm)) with a = 0.0072/nm, normalised over
 /// 360-830 nm. It follows the sum of the CIE colour-matching functions closely and has a closed-form
 /// inverse CDF (Radziszewski et al. 2009 use the same shape; the constants are those popularised by pbrt-v4).

@@ -1,6 +1,7 @@
 #include "spectral/wavelength_density.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 
@@ -57,9 +58,7 @@ float TabulatedWavelengthDensity::sample(float u) const {
 SampledWavelengths TabulatedWavelengthDensity::sample_wavelengths(float u) const {
   Float4 lambda, pdf;
   for (int lane = 0; lane < kLaneCount; ++lane) {
-    float u_lane = u + float(lane) / kLaneCount;
-    if (u_lane >= 1.0f) u_lane -= 1.0f;
-    const float l = sample(u_lane);
+    const float l = sample(rotated_primary_sample(u, lane));
     lambda.set(lane, l);
     pdf.set(lane, pdf_[size_t(std::min(int(l - float(kLambdaMinNm)), kBins - 1))]);
   }
@@ -67,30 +66,36 @@ SampledWavelengths TabulatedWavelengthDensity::sample_wavelengths(float u) const
 }
 
 TabulatedWavelengthDensity light_weighted_wavelength_density(const std::function<double(double)>& relative_power,
-                                                             double defensive_fraction) {
+                                                             const Observer& response, double defensive_fraction) {
   assert(defensive_fraction > 0.0 && defensive_fraction <= 1.0);
+  constexpr int kBins = TabulatedWavelengthDensity::kBins;
   constexpr int kSteps = 4;  // the bin mean from its four quarter-centres
-  std::vector<double> visible(TabulatedWavelengthDensity::kBins), weighted(TabulatedWavelengthDensity::kBins);
-  double visible_total = 0.0, weighted_total = 0.0;
-  for (int i = 0; i < TabulatedWavelengthDensity::kBins; ++i) {
-    double v = 0.0, w = 0.0;
+  const TabulatedSpectrum* curves[3] = {&response.x_bar, &response.y_bar, &response.z_bar};
+  std::vector<double> visible(kBins);
+  std::vector<std::array<double, 3>> channel(kBins, {0.0, 0.0, 0.0});
+  double visible_total = 0.0;
+  std::array<double, 3> channel_total = {0.0, 0.0, 0.0};
+  for (int i = 0; i < kBins; ++i) {
     for (int s = 0; s < kSteps; ++s) {
       const double nm = kLambdaMinNm + i + (s + 0.5) / kSteps;
-      const double p = visible_wavelength_pdf(float(nm));
+      visible[size_t(i)] += visible_wavelength_pdf(float(nm));
       const double power = relative_power(nm);
-      v += p;
-      if (std::isfinite(power) && power > 0.0) w += power * p;
+      if (!(std::isfinite(power) && power > 0.0)) continue;  // NaN, ∞ and negative emission count as none
+      for (int c = 0; c < 3; ++c) channel[size_t(i)][size_t(c)] += power * std::max(curves[c]->value(nm), 0.0);
     }
-    visible[size_t(i)] = v;
-    weighted[size_t(i)] = w;
-    visible_total += v;
-    weighted_total += w;
+    visible_total += visible[size_t(i)];
+    for (int c = 0; c < 3; ++c) channel_total[size_t(c)] += channel[size_t(i)][size_t(c)];
   }
+  int live_channels = 0;
+  for (double w : channel_total) live_channels += w > 0.0 && std::isfinite(w);
   // No usable emission (a black scene): the visible density alone.
-  const double m = weighted_total > 0.0 && std::isfinite(weighted_total) ? defensive_fraction : 1.0;
-  std::vector<double> bins(TabulatedWavelengthDensity::kBins);
-  for (int i = 0; i < TabulatedWavelengthDensity::kBins; ++i) {
-    const double light_part = m < 1.0 ? weighted[size_t(i)] / weighted_total : 0.0;
+  const double m = live_channels > 0 ? defensive_fraction : 1.0;
+  std::vector<double> bins(kBins);
+  for (int i = 0; i < kBins; ++i) {
+    double light_part = 0.0;
+    for (int c = 0; c < 3; ++c)
+      if (channel_total[size_t(c)] > 0.0 && std::isfinite(channel_total[size_t(c)]))
+        light_part += channel[size_t(i)][size_t(c)] / channel_total[size_t(c)] / live_channels;
     bins[size_t(i)] = (1.0 - m) * light_part + m * visible[size_t(i)] / visible_total;
   }
   return TabulatedWavelengthDensity(bins);

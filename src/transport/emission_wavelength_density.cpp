@@ -7,7 +7,8 @@
 namespace rimu {
 
 TabulatedWavelengthDensity emission_wavelength_density(const std::vector<std::unique_ptr<Light>>& lights,
-                                                       const LightSampler& light_sampler, double defensive_fraction) {
+                                                       const LightSampler& light_sampler, const Observer& response,
+                                                       double defensive_fraction) {
   struct Term {
     const Spectrum* shape;  // nullptr: flat
     double weight;          // Pᵢ / ∫sᵢ (or Pᵢ / 470 nm for a flat term)
@@ -33,7 +34,7 @@ TabulatedWavelengthDensity emission_wavelength_density(const std::vector<std::un
         for (const Term& t : terms) s += t.weight * (t.shape ? t.shape->value(nm) : 1.0);
         return s;
       },
-      defensive_fraction);
+      response, defensive_fraction);
 }
 
 }  // namespace rimu

@@ -18,8 +18,9 @@ inline constexpr double kEmissionDensityDefensiveFraction = 0.25;
 /// (Light::emitted_spectrum_shape), normalised, weighted by the probability Pᵢ with which next-event estimation
 /// picks it (∝ its radiant power). A light without one shape (an environment image) contributes Pᵢ as a flat
 /// spectrum, i.e. the visible density. Cost: one 1 nm integral per light plus 1880 evaluations of S.
+/// `response`: the three channel curves the density balances (the loader passes CIE 1931 x̄, ȳ, z̄).
 TabulatedWavelengthDensity emission_wavelength_density(const std::vector<std::unique_ptr<Light>>& lights,
-                                                       const LightSampler& light_sampler,
+                                                       const LightSampler& light_sampler, const Observer& response,
                                                        double defensive_fraction = kEmissionDensityDefensiveFraction);
 
 }  // namespace rimu

@@ -20,10 +20,43 @@ namespace {
 
 constexpr int kBins = TabulatedWavelengthDensity::kBins;
 
-// F11 × the visible density with the default-like defensive share: three narrow lines and a low floor.
+const Observer& cie1931() { return test::library().observer(StandardObserver::cie1931_2deg); }
+
+// F11 through the CIE 1931 curves with the default defensive share: three narrow lines and a low floor.
 TabulatedWavelengthDensity f11_density(double defensive) {
   const SpectrumPtr f11 = test::library().illuminant("F11");
-  return light_weighted_wavelength_density([&](double nm) { return f11->value(nm); }, defensive);
+  return light_weighted_wavelength_density([&](double nm) { return f11->value(nm); }, cie1931(), defensive);
+}
+
+// The emission part of light_weighted_wavelength_density written out independently: over 1 nm bin means at
+// quarter-nm points, (1/3) Σ_c S r_c / ∫ S r_c.
+std::vector<double> emission_part(const Spectrum& s) {
+  const TabulatedSpectrum* curves[3] = {&cie1931().x_bar, &cie1931().y_bar, &cie1931().z_bar};
+  std::vector<std::vector<double>> per_channel(3, std::vector<double>(kBins, 0.0));
+  double totals[3] = {0, 0, 0};
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < kBins; ++i) {
+      for (int q = 0; q < 4; ++q) {
+        const double nm = kLambdaMinNm + i + (q + 0.5) / 4.0;
+        per_channel[size_t(c)][size_t(i)] += s.value(nm) * curves[c]->value(nm);
+      }
+      totals[c] += per_channel[size_t(c)][size_t(i)];
+    }
+  std::vector<double> part(kBins, 0.0);
+  for (int i = 0; i < kBins; ++i)
+    for (int c = 0; c < 3; ++c) part[size_t(i)] += per_channel[size_t(c)][size_t(i)] / totals[c] / 3.0;
+  return part;
+}
+
+double visible_bin_mass(int i) {
+  double v = 0.0, total = 0.0;
+  for (int b = 0; b < kBins; ++b)
+    for (int q = 0; q < 4; ++q) {
+      const double p = visible_wavelength_pdf(float(kLambdaMinNm + b + (q + 0.5) / 4.0));
+      total += p;
+      if (b == i) v += p;
+    }
+  return v / total;
 }
 
 }  // namespace
@@ -67,7 +100,7 @@ TEST_CASE("tabulated wavelength density: samples follow the pdf (chi-square per 
     const float u = uniform01(rng);
     const SampledWavelengths w = d.sample_wavelengths(u);
     for (int j = 0; j < kLaneCount; ++j) {
-      float u_lane = u + float(j) / kLaneCount;
+      float u_lane = u + float(j) / kLaneCount;  // written out, not rotated_primary_sample: the test's own copy
       if (u_lane >= 1.0f) u_lane -= 1.0f;
       REQUIRE(w.lambda_nm(j) == d.sample(u_lane));
       REQUIRE(w.pdf()[j] == d.pdf(w.lambda_nm(j)));
@@ -88,32 +121,40 @@ TEST_CASE("tabulated wavelength density: samples follow the pdf (chi-square per 
 TEST_CASE("light-weighted density: the mixture formula, the visible limit, black and bad emission") {
   // m = 1 is the visible density, up to averaging it over each 1 nm bin: its relative curvature is ≤ 4a² ≈ 2e-4
   // per nm² (a = 0.0072/nm), so a bin mean differs from the centre value by < 1e-5 relative; 1e-4 allows float.
-  const TabulatedWavelengthDensity visible = light_weighted_wavelength_density([](double) { return 1.0; }, 1.0);
+  const TabulatedWavelengthDensity visible =
+      light_weighted_wavelength_density([](double) { return 1.0; }, cie1931(), 1.0);
   for (float nm : {360.5f, 420.5f, 538.5f, 700.5f, 829.5f})
     CHECK(visible.pdf(nm) == doctest::Approx(visible_wavelength_pdf(nm)).epsilon(1e-4));
-  // A flat emission with any m is the visible density too: S·p_vis/∫ = p_vis.
-  const TabulatedWavelengthDensity flat = light_weighted_wavelength_density([](double) { return 3.0; }, 0.25);
-  CHECK(flat.pdf(450.5f) == doctest::Approx(visible.pdf(450.5f)).epsilon(1e-5));
-  // The mixture at a line: (1 − m)·S p_vis/∫S p_vis + m·p_vis, computed here from the table independently.
-  const SpectrumPtr f11 = test::library().illuminant("F11");
-  const TabulatedWavelengthDensity d = f11_density(0.25);
-  double integral = 0.0;
-  for (int i = 0; i < kBins; ++i)
-    for (int s = 0; s < 4; ++s) {
-      const double nm = kLambdaMinNm + i + (s + 0.5) / 4.0;
-      integral += f11->value(nm) * visible_wavelength_pdf(float(nm)) / 4.0;
+  // The mixture, (1 − m)·(1/3)Σ_c S r_c/∫S r_c + m·p_vis, against the formula written out here; under F11 (lines)
+  // and under CIE A, whose Z integrand is small and blue but still gets a third of the emission part.
+  for (const char* name : {"F11", "A"}) {
+    CAPTURE(name);
+    const SpectrumPtr light = test::library().illuminant(name);
+    const TabulatedWavelengthDensity d =
+        light_weighted_wavelength_density([&](double nm) { return light->value(nm); }, cie1931(), 0.25);
+    const std::vector<double> part = emission_part(*light);
+    for (int bin : {40, 75, 184, 251, 340, 460}) {
+      CAPTURE(bin);
+      CHECK(d.pdf(float(kLambdaMinNm) + float(bin) + 0.5f) ==
+            doctest::Approx(0.75 * part[size_t(bin)] + 0.25 * visible_bin_mass(bin)).epsilon(1e-5));
     }
-  for (double bin_start : {400.0, 544.0, 611.0, 700.0}) {
-    double light_mean = 0.0, visible_mean = 0.0;
-    for (int s = 0; s < 4; ++s) {
-      const double nm = bin_start + (s + 0.5) / 4.0;
-      light_mean += f11->value(nm) * visible_wavelength_pdf(float(nm)) / 4.0;
-      visible_mean += visible_wavelength_pdf(float(nm)) / 4.0;
-    }
-    CAPTURE(bin_start);
-    // The visible part's normalisation over the bins differs from 1 by the bin-averaging error only (< 1e-5).
-    CHECK(d.pdf(float(bin_start) + 0.5f) == doctest::Approx(0.75 * light_mean / integral + 0.25 * visible_mean).epsilon(1e-4));
   }
+  // Under A the emission part puts a third of its mass in Z's integrand: more density at 450 nm than S·(x̄+ȳ+z̄)
+  // alone would, whose blue share A's red-heavy spectrum shrinks.
+  {
+    const SpectrumPtr a = test::library().illuminant("A");
+    const std::vector<double> part = emission_part(*a);
+    double z_share = 0.0, unbalanced_z = 0.0, unbalanced_total = 0.0;
+    for (int i = 0; i < kBins; ++i) {
+      const double nm = kLambdaMinNm + i + 0.5;
+      if (nm < 500.0) z_share += part[size_t(i)];
+      const double u = a->value(nm) * (cie1931().x_bar.value(nm) + cie1931().y_bar.value(nm) + cie1931().z_bar.value(nm));
+      unbalanced_total += u;
+      if (nm < 500.0) unbalanced_z += u;
+    }
+    CHECK(z_share > 1.3 * unbalanced_z / unbalanced_total);
+  }
+  const TabulatedWavelengthDensity d = f11_density(0.25);
   // Nowhere below the defensive share of the visible density.
   for (int i = 0; i < kBins; ++i) {
     const float nm = float(kLambdaMinNm) + float(i) + 0.5f;
@@ -123,7 +164,8 @@ TEST_CASE("light-weighted density: the mixture formula, the visible limit, black
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   for (double bad : {0.0, nan, inf, -1.0}) {
     CAPTURE(bad);
-    const TabulatedWavelengthDensity b = light_weighted_wavelength_density([&](double) { return bad; }, 0.25);
+    const TabulatedWavelengthDensity b =
+        light_weighted_wavelength_density([&](double) { return bad; }, cie1931(), 0.25);
     CHECK(b.pdf(500.5f) == doctest::Approx(visible.pdf(500.5f)).epsilon(1e-6));
   }
 }
