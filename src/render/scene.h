@@ -31,7 +31,7 @@ struct FilterSettings {
 /// Which density camera paths draw their wavelengths from (the "integrator" section's "wavelength_density").
 enum class WavelengthDensityKind {
   visible,  ///< the closed-form visible density, ≈ the sum of the CIE colour-matching functions (the default)
-  lights,   ///< the scene's emission × the visible density, with a defensive share (transport/emission_wavelength_density.h)
+  lights,   ///< the scene's emission through each CIE curve, with a defensive share (transport/emission_wavelength_density.h)
 };
 
 /// How to render: what the scene's "film" and "integrator" sections say, before command-line overrides.
