@@ -28,10 +28,15 @@ constexpr std::array kKeys{
     KeyUnit{"ev100", LightUnit::ev100},
 };
 
+// printf-style formatting of one number into a string of whatever length the format needs (a fixed buffer once
+// cut the efficacy line of `rimu-light inspect` short).
 std::string fmt(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
+  const int length = std::snprintf(nullptr, 0, format, value);
+  if (length <= 0) return {};
+  std::string out(size_t(length) + 1, '\0');
+  std::snprintf(out.data(), out.size(), format, value);
+  out.pop_back();
+  return out;
 }
 
 ShapeIntegrals integrals(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
