@@ -1,6 +1,7 @@
 #include "render/rgb_transport_inputs.h"
 
 #include <algorithm>
+#include <array>
 #include <sstream>
 
 #include "render/spectral_response.h"
@@ -95,6 +96,21 @@ SpectrumPtr rgb_transport_form(const SpectrumPtr& spectrum, SpectrumRole role, S
       return std::make_shared<RgbLaneSpectrum>(spectrum, coefficient_linear_srgb(*spectrum, library));
   }
   return spectrum;
+}
+
+RgbLaneEnvironmentImage::RgbLaneEnvironmentImage(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space)
+    : image_(std::move(image)), space_(space), to_srgb_(srgb().xyz_to_rgb() * space.rgb_to_xyz()) {}
+
+SampledSpectrum RgbLaneEnvironmentImage::radiance(int x, int y, const SampledWavelengths&) const {
+  const Rgb texel = image_->pixel(x, y);
+  const std::array<double, 3> c = to_srgb_.apply(std::array<double, 3>{texel.r, texel.g, texel.b});
+  const Rgb rgb = clipped({c[0], c[1], c[2]}, 1e30);
+  return SampledSpectrum(float(rgb.r), float(rgb.g), float(rgb.b), float(rgb.g));
+}
+
+float RgbLaneEnvironmentImage::luminance(int x, int y) const {
+  const double y_value = space_.to_xyz(image_->pixel(x, y)).y;
+  return y_value > 0.0 ? float(y_value) : 0.0f;
 }
 
 RgbLaneImageTexture::RgbLaneImageTexture(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space,

@@ -12,8 +12,8 @@
 //                exactly (c, c, c): the D65-weighted band averages an RGB renderer's user would type in;
 //   Chiang 2016 albedo and mean free path: converted as reflectances, then σ_a, σ_s computed per channel
 //                (chiang2016_rgb_coefficients), as an RGB renderer applies that parameterisation;
-//   RGB inputs and image textures: used as given (converted to linear sRGB if given in another space), never
-//                upsampled.
+//   RGB inputs, image textures and environment images: used as given (converted to linear sRGB if given in another
+//                space), never upsampled.
 // Inputs the loader leaves spectral (a named metal's n and k) are point-sampled at the nominal lane wavelengths
 // (transport/wavelength_modes.h).
 #pragma once
@@ -23,6 +23,7 @@
 #include "render/rgb_image.h"
 #include "render/spectrum_input.h"
 #include "spectral/rgb_colour_space.h"
+#include "transport/environment_image.h"
 #include "transport/homogeneous_medium.h"
 #include "transport/spectral_texture.h"
 
@@ -68,6 +69,24 @@ struct RgbMediumCoefficients {
 /// σ_s,c (d in metres, clamped to ≥ 1e-9 m as chiang2016_medium does). `spectral` gives the originals.
 RgbMediumCoefficients chiang2016_rgb_coefficients(const HomogeneousMedium& spectral, Rgb surface_albedo,
                                                   Rgb mean_free_path_m);
+
+/// An environment image in rgb transport: each pixel's linear sRGB in lanes 0-2 (lane 3 repeats G), negative
+/// channels clipped to 0, no upsampling. Pixel values are film units as in spectral mode (an RGB of luminance Y
+/// renders with film Y), so the light's scale is the user's alone (no cd/m² conversion). Luminance for importance
+/// sampling is the pixel's Y, as RgbEnvironmentImage's.
+class RgbLaneEnvironmentImage final : public EnvironmentImage {
+ public:
+  RgbLaneEnvironmentImage(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space);
+  int width() const override { return image_->width(); }
+  int height() const override { return image_->height(); }
+  SampledSpectrum radiance(int x, int y, const SampledWavelengths& lambda) const override;
+  float luminance(int x, int y) const override;
+
+ private:
+  std::shared_ptr<const RgbImage> image_;
+  const RgbColourSpace& space_;
+  Matrix3 to_srgb_;  // the image's space → linear sRGB
+};
 
 /// An image reflectance texture in rgb transport: bilinear RGB, converted to linear sRGB, clipped to [0, 1] and
 /// scaled; no upsampling (compare render/image_texture.h).

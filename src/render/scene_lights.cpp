@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "render/rgb_environment_image.h"
+#include "render/rgb_transport_inputs.h"
 #include "render/scene_load_context.h"
 #include "render/scene_ies_light.h"
 #include "render/scene_light_emission.h"
@@ -53,10 +54,15 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
     const std::shared_ptr<const RgbImage> image = load_rgb_image(l, path);
     const std::string space = l.string_or("colour_space", "srgb-linear");
     const auto upsampler = context.spectra.upsampler(space, l.has("colour_space") ? l.at("colour_space") : l);
+    const double scale = l.number_or("scale", 1.0, 0.0, 1e30);
+    if (context.spectra.rgb_transport())  // the pixels as given, in film units (render/rgb_transport_inputs.h)
+      return std::make_unique<EnvironmentLight>(
+          std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale,
+          Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});
     // Scenes are y-up: the image's top row is +y and its left edge looks along +x (environment_light.h). Pixel
     // values are in film units, like every RGB emission (SpectrumInputContext::emission_rgb_scale).
     return std::make_unique<EnvironmentLight>(std::make_shared<RgbEnvironmentImage>(image, upsampler),
-                                              l.number_or("scale", 1.0, 0.0, 1e30) * context.spectra.emission_rgb_scale(),
+                                              scale * context.spectra.emission_rgb_scale(),
                                               Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});
   }
   only_light_keys(l, {"type", "name", "radiance"});

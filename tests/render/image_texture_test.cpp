@@ -12,32 +12,13 @@
 #include "render/rgb_environment_image.h"
 #include "render/rgb_image.h"
 #include "spectral/error.h"
+#include "test_image_files.h"
 #include "test_support.h"
 
 using namespace rimu;
 
-namespace {
-
-// A binary PPM (8-bit, sRGB-encoded by convention) with the given rows, top row first.
-std::filesystem::path write_ppm(const std::string& name, int w, int h, const std::vector<uint8_t>& rgb) {
-  const auto path = std::filesystem::temp_directory_path() / ("rimu_test_" + name + ".ppm");
-  std::ofstream out(path, std::ios::binary);
-  out << "P6 " << w << " " << h << " 255\n";
-  out.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size()));
-  return path;
-}
-
-// A little-endian PFM (float, linear), rows written bottom to top as the format requires.
-std::filesystem::path write_pfm(const std::string& name, int w, int h, const std::vector<float>& rgb_top_first) {
-  const auto path = std::filesystem::temp_directory_path() / ("rimu_test_" + name + ".pfm");
-  std::ofstream out(path, std::ios::binary);
-  out << "PF\n" << w << " " << h << "\n-1.0\n";
-  for (int y = h - 1; y >= 0; --y)
-    out.write(reinterpret_cast<const char*>(&rgb_top_first[size_t(y) * size_t(w) * 3]), std::streamsize(w * 3 * 4));
-  return path;
-}
-
-}  // namespace
+using test::write_pfm;
+using test::write_ppm;
 
 TEST_CASE("8-bit images are sRGB-decoded to linear, row 0 is the top, v = 0 is the bottom") {
   // 2x2: top row red (255,0,0) and 128 grey; bottom row black and white.

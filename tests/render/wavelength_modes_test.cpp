@@ -3,12 +3,15 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <vector>
 
 #include "integration_support.h"
 #include "render/rgb_transport_inputs.h"
 #include "render/json_cursor.h"
 #include "spectral/colorimetry.h"
 #include "spectral/tabulated_spectrum.h"
+#include "test_image_files.h"
 #include "transport/wavelength_modes.h"
 
 namespace rimu::test {
@@ -271,6 +274,45 @@ TEST_CASE("the lights wavelength density renders the visible density's image (F1
   nlohmann::json rgb_room = room("rgb", f11, red);
   rgb_room["integrator"]["wavelength_density"] = "lights";
   CHECK_FALSE(scene_from_json(rgb_room)->wavelength_density);
+}
+
+}  // namespace rimu::test
+
+namespace rimu::test {
+
+TEST_CASE("rgb transport of an environment image: pixels used as given, same image as spectral when grey") {
+  // A 16×8 grey environment (linear sRGB 0.3, with one brighter row to exercise importance sampling) around a grey
+  // sphere. Grey pixels upsample to the sRGB white (D65-shaped) in spectral mode, and are (c, c, c) in rgb mode:
+  // both carry the same film XYZ, and a grey sphere keeps it, so the two modes estimate the same image.
+  std::vector<float> pixels(16 * 8 * 3, 0.3f);
+  for (int x = 0; x < 16; ++x)
+    for (int c = 0; c < 3; ++c) pixels[size_t((2 * 16 + x) * 3 + c)] = 1.2f;
+  const std::filesystem::path image = write_pfm("rgb_mode_environment", 16, 8, pixels);
+  auto scene = [&](const std::string& mode) {
+    nlohmann::json s = nlohmann::json::parse(R"({
+      "camera": {"from": [0, 0, -3], "to": [0, 0, 0], "vertical_fov_deg": 40},
+      "film": {"resolution": [16, 16], "filter": {"type": "box", "radius": 0.5}},
+      "integrator": {"max_depth": 4},
+      "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
+      "shapes": [{"type": "sphere", "material": "grey", "center": [0, 0, 0], "radius": 0.8}]})");
+    s["lights"] = {{{"type", "environment"}, {"image", image.string()}, {"scale", 2.0}}};
+    s["integrator"]["wavelengths"] = mode;
+    return scene_from_json(s);
+  };
+  const auto rgb_scene = scene("rgb");
+  // The rgb form returns the pixel itself (× scale), not an upsampled spectrum point-sampled at 612/549/465 nm.
+  const Light& light = *rgb_scene->lights[0];
+  const SampledSpectrum seen = light.radiance_escaped({0, 0, 1}, rgb_transport_lanes());
+  CHECK(seen[0] == doctest::Approx(0.6f).epsilon(1e-6));
+  CHECK(seen[2] == doctest::Approx(0.6f).epsilon(1e-6));
+  const auto hero = render_mode(*scene("hero"), 32, 1);
+  const auto rgb = render_mode(*rgb_scene, 32, 2);
+  for (int c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    const Estimate d = paired_difference(channel_values(*rgb.film, c), channel_values(*hero.film, c));
+    // The 1e-3 relative allowance of the grey-room test (D65 white vs the sRGB white, 1 nm sums).
+    CHECK(std::fabs(d.mean) <= kSigmas * d.standard_error + 1e-3 * mean_of(channel_values(*hero.film, c)));
+  }
 }
 
 }  // namespace rimu::test
