@@ -14,6 +14,7 @@
 #include "spectral/sampled_wavelengths.h"
 #include "spectral/spectral_library.h"
 #include "spectral/tabulated_spectrum.h"
+#include "spectral/wavelength_density.h"
 
 namespace {
 
@@ -85,6 +86,24 @@ void BM_SampleVisible(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_SampleVisible);
+
+// The same from the emission density of an F11-lit scene (spectral/wavelength_density.h): guide table + scan.
+void BM_SampleLightsDensity(benchmark::State& state) {
+  static const TabulatedWavelengthDensity density = [] {
+    const SpectrumPtr f11 = library().illuminant("F11");
+    return light_weighted_wavelength_density([&](double nm) { return f11->value(nm); },
+                                             library().observer(StandardObserver::cie1931_2deg), 0.25);
+  }();
+  float u = 0.0f;
+  for (auto _ : state) {
+    SampledWavelengths w = density.sample_wavelengths(u);
+    benchmark::DoNotOptimize(w);
+    u += 0.6180339887f;
+    if (u >= 1.0f) u -= 1.0f;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SampleLightsDensity);
 
 // A ColorChecker patch under D65, 1 nm over 360-830 nm (CIE 15 recommended practice), cycling the 24 patches.
 void BM_ReflectanceXyz_1nm(benchmark::State& state) {
