@@ -337,13 +337,17 @@ int main(int argc, char** argv) {
     const Xyz white = scene_white(reference, white_of(c, library));
     const double reference_rel_mse = image_error(half[0], half[1], white).relative_mse / 4.0;
 
-    std::map<std::string, std::vector<Row>> by_mode;
-    for (const Variant& variant : kVariants) {
-      const WavelengthMode mode = variant.mode;
-      Scene& scene = mode == WavelengthMode::rgb                              ? *rgb_scene
+    // The loaded scene a variant renders (rgb mode and the emission density change what the loader builds).
+    auto scene_of = [&](const Variant& variant) -> Scene& {
+      Scene& scene = variant.mode == WavelengthMode::rgb                 ? *rgb_scene
                      : variant.density == WavelengthDensityKind::lights ? *lights_scene
                                                                          : *spectral;
-      scene.settings.integrator.wavelengths = mode;
+      scene.settings.integrator.wavelengths = variant.mode;
+      return scene;
+    };
+    std::map<std::string, std::vector<Row>> by_mode;
+    for (const Variant& variant : kVariants) {
+      Scene& scene = scene_of(variant);
       for (int spp : settings.ladder) {
         RenderStatistics s;
         const XyzImage image = render_case(scene, spp, 1, settings.threads, library, &s);
@@ -381,12 +385,8 @@ int main(int argc, char** argv) {
     const auto& hero_rows = by_mode["hero"];
     for (int rep = 0; rep < settings.timing_repeats; ++rep)
       for (const Variant& variant : kVariants) {
-        Scene& scene = variant.mode == WavelengthMode::rgb                 ? *rgb_scene
-                       : variant.density == WavelengthDensityKind::lights ? *lights_scene
-                                                                           : *spectral;
-        scene.settings.integrator.wavelengths = variant.mode;
         RenderStatistics s;
-        render_case(scene, timing_spp, 1, settings.threads, library, &s);
+        render_case(scene_of(variant), timing_spp, 1, settings.threads, library, &s);
         sum.seconds_64[variant.name()].push_back(s.seconds);
       }
     sum.t64 = median(sum.seconds_64["hero"]);

@@ -16,6 +16,15 @@ Rgb clipped(Rgb c, double high) {
   return {std::clamp(c.r, 0.0, high), std::clamp(c.g, 0.0, high), std::clamp(c.b, 0.0, high)};
 }
 
+// The lanes rgb transport carries for a linear sRGB: R, G, B, and G again in the dead lane 3 (it stays finite).
+SampledSpectrum srgb_lanes(Rgb c) { return SampledSpectrum(float(c.r), float(c.g), float(c.b), float(c.g)); }
+
+// An image value in its own space, as linear sRGB clipped to [0, high].
+Rgb image_value_in_srgb(const Matrix3& to_srgb, Rgb texel, double high) {
+  const std::array<double, 3> c = to_srgb.apply(std::array<double, 3>{texel.r, texel.g, texel.b});
+  return clipped({c[0], c[1], c[2]}, high);
+}
+
 // Linear sRGB of a spectrum read as a reflectance under D65, relative to the perfect diffuser (before clipping).
 Rgb relative_linear_srgb(const Spectrum& spectrum, SpectralLibrary& library) {
   const Observer& observer = library.observer(StandardObserver::cie1931_2deg);
@@ -32,7 +41,7 @@ Rgb relative_linear_srgb(const Spectrum& spectrum, SpectralLibrary& library) {
 RgbLaneSpectrum::RgbLaneSpectrum(SpectrumPtr original, Rgb linear_srgb)
     : original_(std::move(original)),
       rgb_(linear_srgb),
-      lanes_(float(linear_srgb.r), float(linear_srgb.g), float(linear_srgb.b), float(linear_srgb.g)) {}
+      lanes_(srgb_lanes(linear_srgb)) {}
 
 std::string RgbLaneSpectrum::describe() const {
   std::ostringstream out;
@@ -51,16 +60,11 @@ Rgb coefficient_linear_srgb(const Spectrum& coefficient, SpectralLibrary& librar
 
 RgbMediumCoefficients chiang2016_rgb_coefficients(const HomogeneousMedium& spectral, Rgb surface_albedo,
                                                   Rgb mean_free_path_m) {
-  Rgb sigma_a, sigma_s;
-  auto channel = [](double albedo, double mfp_m, double& a, double& s) {
-    const double sigma_t = 1.0 / std::max(mfp_m, 1e-9);
-    const double single_scattering = chiang2016_single_scattering_albedo(albedo);
-    s = single_scattering * sigma_t;
-    a = (1.0 - single_scattering) * sigma_t;
-  };
-  channel(surface_albedo.r, mean_free_path_m.r, sigma_a.r, sigma_s.r);
-  channel(surface_albedo.g, mean_free_path_m.g, sigma_a.g, sigma_s.g);
-  channel(surface_albedo.b, mean_free_path_m.b, sigma_a.b, sigma_s.b);
+  const Chiang2016Coefficients r = chiang2016_coefficients(surface_albedo.r, mean_free_path_m.r),
+                               g = chiang2016_coefficients(surface_albedo.g, mean_free_path_m.g),
+                               b = chiang2016_coefficients(surface_albedo.b, mean_free_path_m.b);
+  const Rgb sigma_a{r.sigma_a_per_m, g.sigma_a_per_m, b.sigma_a_per_m};
+  const Rgb sigma_s{r.sigma_s_per_m, g.sigma_s_per_m, b.sigma_s_per_m};
   return {std::make_shared<RgbLaneSpectrum>(spectral.sigma_a(), sigma_a),
           std::make_shared<RgbLaneSpectrum>(spectral.sigma_s(), sigma_s)};
 }
@@ -102,10 +106,7 @@ RgbLaneEnvironmentImage::RgbLaneEnvironmentImage(std::shared_ptr<const RgbImage>
     : image_(std::move(image)), space_(space), to_srgb_(srgb().xyz_to_rgb() * space.rgb_to_xyz()) {}
 
 SampledSpectrum RgbLaneEnvironmentImage::radiance(int x, int y, const SampledWavelengths&) const {
-  const Rgb texel = image_->pixel(x, y);
-  const std::array<double, 3> c = to_srgb_.apply(std::array<double, 3>{texel.r, texel.g, texel.b});
-  const Rgb rgb = clipped({c[0], c[1], c[2]}, 1e30);
-  return SampledSpectrum(float(rgb.r), float(rgb.g), float(rgb.b), float(rgb.g));
+  return srgb_lanes(image_value_in_srgb(to_srgb_, image_->pixel(x, y), 1e30));
 }
 
 float RgbLaneEnvironmentImage::luminance(int x, int y) const {
@@ -118,10 +119,7 @@ RgbLaneImageTexture::RgbLaneImageTexture(std::shared_ptr<const RgbImage> image, 
     : image_(std::move(image)), to_srgb_(srgb().xyz_to_rgb() * space.rgb_to_xyz()), scale_(scale) {}
 
 SampledSpectrum RgbLaneImageTexture::evaluate(Vec2 uv, const SampledWavelengths&) const {
-  const Rgb texel = image_->bilinear(uv);
-  const std::array<double, 3> c = to_srgb_.apply(std::array<double, 3>{texel.r, texel.g, texel.b});
-  const Rgb rgb = clipped({c[0], c[1], c[2]}, 1.0);
-  return Float4(float(rgb.r), float(rgb.g), float(rgb.b), float(rgb.g)) * Float4(scale_);
+  return srgb_lanes(image_value_in_srgb(to_srgb_, image_->bilinear(uv), 1.0)) * Float4(scale_);
 }
 
 }  // namespace rimu

@@ -65,8 +65,8 @@ SpectrumPtr rgb_transport_form(const SpectrumPtr& spectrum, SpectrumRole role, S
 struct RgbMediumCoefficients {
   SpectrumPtr sigma_a, sigma_s;
 };
-/// Chiang et al. 2016's parameterisation applied per channel: σ_t,c = 1/d_c, σ_s,c = α(A_c)·σ_t,c, σ_a,c = σ_t,c −
-/// σ_s,c (d in metres, clamped to ≥ 1e-9 m as chiang2016_medium does). `spectral` gives the originals.
+/// Chiang et al. 2016's parameterisation applied per channel (chiang2016_coefficients on each of R, G, B; d in
+/// metres). `spectral` gives the originals.
 RgbMediumCoefficients chiang2016_rgb_coefficients(const HomogeneousMedium& spectral, Rgb surface_albedo,
                                                   Rgb mean_free_path_m);
 

@@ -55,15 +55,14 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
     const std::string space = l.string_or("colour_space", "srgb-linear");
     const auto upsampler = context.spectra.upsampler(space, l.has("colour_space") ? l.at("colour_space") : l);
     const double scale = l.number_or("scale", 1.0, 0.0, 1e30);
-    if (context.spectra.rgb_transport())  // the pixels as given, in film units (render/rgb_transport_inputs.h)
-      return std::make_unique<EnvironmentLight>(
-          std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale,
-          Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});
     // Scenes are y-up: the image's top row is +y and its left edge looks along +x (environment_light.h). Pixel
     // values are in film units, like every RGB emission (SpectrumInputContext::emission_rgb_scale).
+    const Frame y_up{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
+    if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/rgb_transport_inputs.h)
+      return std::make_unique<EnvironmentLight>(
+          std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale, y_up);
     return std::make_unique<EnvironmentLight>(std::make_shared<RgbEnvironmentImage>(image, upsampler),
-                                              scale * context.spectra.emission_rgb_scale(),
-                                              Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});
+                                              scale * context.spectra.emission_rgb_scale(), y_up);
   }
   only_light_keys(l, {"type", "name", "radiance"});
   const EmitterGeometry geometry{EmitterKind::environment};

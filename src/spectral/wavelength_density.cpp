@@ -60,7 +60,7 @@ SampledWavelengths TabulatedWavelengthDensity::sample_wavelengths(float u) const
   for (int lane = 0; lane < kLaneCount; ++lane) {
     const float l = sample(rotated_primary_sample(u, lane));
     lambda.set(lane, l);
-    pdf.set(lane, pdf_[size_t(std::min(int(l - float(kLambdaMinNm)), kBins - 1))]);
+    pdf.set(lane, this->pdf(l));
   }
   return SampledWavelengths(lambda, pdf);
 }
@@ -86,16 +86,19 @@ TabulatedWavelengthDensity light_weighted_wavelength_density(const std::function
     visible_total += visible[size_t(i)];
     for (int c = 0; c < 3; ++c) channel_total[size_t(c)] += channel[size_t(i)][size_t(c)];
   }
+  std::array<bool, 3> live{};
   int live_channels = 0;
-  for (double w : channel_total) live_channels += w > 0.0 && std::isfinite(w);
+  for (int c = 0; c < 3; ++c) {
+    live[size_t(c)] = channel_total[size_t(c)] > 0.0 && std::isfinite(channel_total[size_t(c)]);
+    live_channels += live[size_t(c)];
+  }
   // No usable emission (a black scene): the visible density alone.
   const double m = live_channels > 0 ? defensive_fraction : 1.0;
   std::vector<double> bins(kBins);
   for (int i = 0; i < kBins; ++i) {
     double light_part = 0.0;
     for (int c = 0; c < 3; ++c)
-      if (channel_total[size_t(c)] > 0.0 && std::isfinite(channel_total[size_t(c)]))
-        light_part += channel[size_t(i)][size_t(c)] / channel_total[size_t(c)] / live_channels;
+      if (live[size_t(c)]) light_part += channel[size_t(i)][size_t(c)] / channel_total[size_t(c)] / live_channels;
     bins[size_t(i)] = (1.0 - m) * light_part + m * visible[size_t(i)] / visible_total;
   }
   return TabulatedWavelengthDensity(bins);

@@ -50,7 +50,7 @@ class AreaLight final : public Light {
   double area_m2() const { return area_m2_; }
   bool two_sided() const { return two_sided_; }
 
-  const Spectrum* emitted_spectrum_shape() const override { return radiance_.shape().get(); }
+  const LightSpectrum* emitted_spectrum() const override { return &radiance_; }
 
  private:
   struct Triangle {

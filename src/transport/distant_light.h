@@ -42,7 +42,7 @@ class DistantLight final : public Light {
   /// Ω = 2π(1 − cos α), sr.
   double cone_solid_angle_sr() const;
 
-  const Spectrum* emitted_spectrum_shape() const override { return irradiance_.shape().get(); }
+  const LightSpectrum* emitted_spectrum() const override { return &irradiance_; }
 
  private:
   bool inside_cone(Vec3 direction) const;

@@ -15,7 +15,7 @@ namespace rimu {
 inline constexpr double kEmissionDensityDefensiveFraction = 0.25;
 
 /// light_weighted_wavelength_density with S(λ) = Σᵢ Pᵢ sᵢ(λ)/∫sᵢ dλ: each light's emitted spectrum shape
-/// (Light::emitted_spectrum_shape), normalised, weighted by the probability Pᵢ with which next-event estimation
+/// (Light::emitted_spectrum), normalised, weighted by the probability Pᵢ with which next-event estimation
 /// picks it (∝ its radiant power). A light without one shape (an environment image) contributes Pᵢ as a flat
 /// spectrum, i.e. the visible density. Cost: one 1 nm integral per light plus 1880 evaluations of S.
 /// `response`: the three channel curves the density balances (the loader passes CIE 1931 x̄, ȳ, z̄).

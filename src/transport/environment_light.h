@@ -59,7 +59,7 @@ class EnvironmentLight final : public Light {
   Vec3 uv_to_direction(Vec2 uv) const;
 
   /// The constant environment's spectrum; nullptr for an image (its spectrum varies with direction).
-  const Spectrum* emitted_spectrum_shape() const override { return constant_ ? constant_->shape().get() : nullptr; }
+  const LightSpectrum* emitted_spectrum() const override { return constant_ ? &*constant_ : nullptr; }
 
  private:
   float solid_angle_pdf(Vec3 local_direction) const;

@@ -38,7 +38,7 @@ class GoniometricLight final : public Light {
   double table_value(Vec3 w_out) const { return table_->intensity(frame_.to_local(w_out)); }
   const CandelaDistribution& table() const { return *table_; }
 
-  const Spectrum* emitted_spectrum_shape() const override { return per_unit_intensity_.shape().get(); }
+  const LightSpectrum* emitted_spectrum() const override { return &per_unit_intensity_; }
 
  private:
   Vec3 position_m_;

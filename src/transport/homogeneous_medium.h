@@ -38,6 +38,13 @@ class HomogeneousMedium {
 /// fit to brute-force path-traced slabs, for isotropic scattering).
 double chiang2016_single_scattering_albedo(double multiple_scattering_albedo);
 
+/// Chiang et al. 2016 at one wavelength (or one RGB channel): σ_t = 1/d with the mean free path d in metres
+/// (clamped to ≥ 1e-9 m: a zero mean free path would be an infinite coefficient), σ_s = α(A)·σ_t, σ_a = σ_t − σ_s.
+struct Chiang2016Coefficients {
+  double sigma_a_per_m, sigma_s_per_m;
+};
+Chiang2016Coefficients chiang2016_coefficients(double surface_albedo, double mean_free_path_m);
+
 /// The artist parameterisation of Chiang et al. 2016: a surface albedo A(λ) ∈ [0, 1] and a mean free path d(λ)
 /// in metres give σ_t = 1/d, σ_s = α(A)·σ_t, σ_a = σ_t − σ_s. Tabulated at 1 nm over 360-830 nm at load time.
 HomogeneousMedium chiang2016_medium(const Spectrum& surface_albedo, const Spectrum& mean_free_path_m, float g);

@@ -13,7 +13,7 @@
 
 #include <optional>
 
-#include "spectral/spectrum.h"
+#include "transport/light_spectrum.h"
 #include "transport/light_sample.h"
 #include "transport/surface_hit.h"
 
@@ -47,10 +47,10 @@ class Light {
   /// scene; finite lights ignore the radius.
   virtual double total_power_w(double scene_radius_m) const = 0;
 
-  /// The relative spectral distribution of all the light emits (its spectral power is this shape times a factor
-  /// independent of λ), or nullptr when the spectrum varies over the light (an environment image). The scene's
-  /// wavelength density (spectral/wavelength_density.h) is built from it. The pointer lives as long as the light.
-  virtual const Spectrum* emitted_spectrum_shape() const { return nullptr; }
+  /// The one spectrum everything the light emits has (its spectral power is this times a factor independent of λ),
+  /// or nullptr when the spectrum varies over the light (an environment image). The scene's wavelength density
+  /// (transport/emission_wavelength_density.h) is built from it. The pointer lives as long as the light.
+  virtual const LightSpectrum* emitted_spectrum() const { return nullptr; }
 
   /// True if sample_li returns delta samples (point, spot, distant of zero diameter): no MIS with BSDF sampling.
   virtual bool is_delta() const { return false; }

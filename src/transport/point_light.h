@@ -24,7 +24,7 @@ class PointLight final : public Light {
 
   Vec3 position_m() const { return position_m_; }
 
-  const Spectrum* emitted_spectrum_shape() const override { return intensity_.shape().get(); }
+  const LightSpectrum* emitted_spectrum() const override { return &intensity_; }
 
  private:
   Vec3 position_m_;

@@ -34,7 +34,7 @@ class SpotLight final : public Light {
   /// s(cos θ) for the direction `w_emitted` (unit, from the light outwards).
   float falloff(Vec3 w_emitted) const;
 
-  const Spectrum* emitted_spectrum_shape() const override { return intensity_.shape().get(); }
+  const LightSpectrum* emitted_spectrum() const override { return &intensity_; }
 
  private:
   Vec3 position_m_;
