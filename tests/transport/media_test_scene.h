@@ -3,7 +3,6 @@
 #pragma once
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -121,7 +120,6 @@ struct SlabScene {
 struct LaneStatistics {
   double mean[4] = {}, standard_error[4] = {}, max_value[4] = {};
   int non_finite = 0;
-  double seconds = 0;
 };
 
 /// Averages `count` estimates produced by estimate(i) (returns a Float4) per lane.
@@ -129,7 +127,6 @@ template <typename F>
 LaneStatistics lane_statistics(int count, F&& estimate) {
   LaneStatistics s;
   double sum[4] = {}, sum2[4] = {};
-  const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < count; ++i) {
     const Float4 v = estimate(i);
     for (int k = 0; k < 4; ++k) {
@@ -142,7 +139,6 @@ LaneStatistics lane_statistics(int count, F&& estimate) {
       s.max_value[k] = std::max(s.max_value[k], double(v[k]));
     }
   }
-  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (int k = 0; k < 4; ++k) {
     s.mean[k] = sum[k] / count;
     const double variance = std::max(0.0, sum2[k] / count - s.mean[k] * s.mean[k]);
