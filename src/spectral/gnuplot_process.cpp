@@ -161,7 +161,7 @@ std::string gnuplot_text(std::string_view text) {
 std::string plot_file_name(const std::filesystem::path& path) { return path.filename().string(); }
 
 void run_gnuplot(const GnuplotJob& job, const std::filesystem::path& png) {
-  check_plot_destination(png, {png.string(), 0, ""});
+  check_plot_destination(png, {});
   const std::filesystem::path binary = gnuplot_binary();
   const PrivateFolder folder;
   for (const auto& [name, contents] : job.data_files) {

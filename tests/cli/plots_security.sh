@@ -8,6 +8,7 @@
 #   - no .gp, .dat or .log file is left in the folder, and nothing at all in $TMPDIR.
 set -u
 case_name=$1 light=$2 colour=$3
+here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/rimu-plots-test-XXXXXX")
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/tmp"
@@ -62,6 +63,10 @@ case "$case_name" in
     printf '{"type": "point", "luminous_power_lm": 100, "spectrum": {"csv": "%s"}}\n' "$csv" > lamp.json
     run p.png "$light" inspect lamp.json --plot p.png
     run q.png "$light" inspect "$csv" --plot q.png
+    # An IES file with such a name: its name is the polar plot's title.
+    ies="down\`touch \$MARK\`'\$(touch \$MARK)'.ies"
+    cp "$here/downlight.ies" "$ies"
+    run polar.png "$light" inspect "$ies" --plot-polar polar.png
     ;;
   bad-folder)
     # A plot that cannot be written is refused before anything else is: no light file, exit 1, the folder named.
