@@ -77,6 +77,8 @@ std::vector<GamutFigureBin> gamut_figure_bins(SpectralLibrary& library, const Rg
 void write_gamut_figure(SpectralLibrary& library, const RgbUpsampler& upsampler, const std::filesystem::path& png,
                         const std::filesystem::path& csv) {
   check_plot_destination(png, {"", 0, "--out"});
+  if (const auto folder = csv.parent_path(); !csv.empty() && !folder.empty() && !std::filesystem::is_directory(folder))
+    throw InputError({csv.string(), 0, "--csv"}, "the folder '" + folder.string() + "' does not exist");
   const double bin_size = 0.005;
   const auto bins = gamut_figure_bins(library, upsampler, bin_size);
   if (!csv.empty()) {

@@ -82,15 +82,20 @@ std::string read_text(const std::filesystem::path& path, size_t max_chars) {
 int spawn_and_wait(const std::filesystem::path& binary, const std::filesystem::path& folder,
                    const std::filesystem::path& output) {
   posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
+  if (const int e = posix_spawn_file_actions_init(&actions); e != 0)
+    throw PlotError("cannot plot: cannot prepare the gnuplot process: " + std::string(std::strerror(e)));
+  // Each action returns 0 or an errno value; the first failure is kept.
+  int setup_error = posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  if (!setup_error)
+    setup_error = posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(),
+                                                   O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  if (!setup_error) setup_error = posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  if (!setup_error) setup_error = posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
   std::string program = binary.string(), script = kScriptName;
   char* argv[] = {program.data(), script.data(), nullptr};
   pid_t pid = 0;
-  const int spawn_error = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv, environ);
+  const int spawn_error =
+      setup_error ? setup_error : posix_spawn(&pid, program.c_str(), &actions, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawn_error != 0)
     throw PlotError("cannot plot: cannot start gnuplot (" + program + "): " + std::strerror(spawn_error));
