@@ -194,10 +194,10 @@ std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& li
 
 std::string spectrum_plot_title(const std::string& description) {
   // A CSV spectrum describes itself as "<path>" or "<path> [column]": keep the column, show the file by its name.
-  const size_t column = description.size() > 2 && description.back() == ']' ? description.rfind(" [") : std::string::npos;
-  const std::string source = description.substr(0, column), rest = column == std::string::npos ? "" : description.substr(column);
+  const size_t column = !description.empty() && description.back() == ']' ? description.rfind(" [") : std::string::npos;
+  const std::string source = description.substr(0, column);
   if (source.find('/') == std::string::npos) return description;
-  return plot_file_name(source) + rest;
+  return plot_file_name(source) + (column == std::string::npos ? "" : description.substr(column));
 }
 
 void plot_spectrum_png(const Spectrum& shape, double scale, const std::string& y_label, const std::string& title,
