@@ -1,5 +1,5 @@
 // What every whole-render benchmark needs besides the renderer: a description of the machine it ran on, the
-// scene's pixel filter, number formatting, gnuplot, and the replacement of its own section of docs/benchmarks.md.
+// scene's pixel filter, number formatting, plots, and the replacement of its own section of docs/benchmarks.md.
 // Header-only and bench-only (the benchmarks are separate executables; nothing in src/ depends on this).
 #pragma once
 
@@ -14,6 +14,7 @@
 
 #include "render/pixel_filter.h"
 #include "render/scene.h"
+#include "spectral/gnuplot_process.h"
 
 #ifndef RIMU_BENCH_BUILD
 #define RIMU_BENCH_BUILD "(unknown: not built through bench/CMakeLists.txt)"
@@ -59,13 +60,17 @@ inline std::string format(double v, const char* f = "%.4g") {
   return buffer;
 }
 
-/// Runs gnuplot on a script; reports (does not throw) when gnuplot is missing or fails: the figures are already
+/// Draws `job` to `png` with Rimu's plotting runner (spectral/gnuplot_process.h: no shell, data and script in a
+/// private temporary folder); reports (does not throw) when gnuplot is missing or fails: the figures are already
 /// printed and written as tables, the plot is an addition.
-inline bool run_gnuplot(const std::filesystem::path& script) {
-  const std::string command = "gnuplot '" + script.string() + "'";
-  if (std::system(command.c_str()) == 0) return true;
-  std::cerr << "gnuplot failed (is it installed?): " << command << "\n";
-  return false;
+inline bool draw_plot(const GnuplotJob& job, const std::filesystem::path& png) {
+  try {
+    run_gnuplot(job, png);
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "plot not drawn: " << e.what() << "\n";
+    return false;
+  }
 }
 
 /// Replaces the text between `<!-- <marker>:begin -->` and `<!-- <marker>:end -->` in `path` with `section`;

@@ -1,4 +1,4 @@
-// The speed-against-error report of issue 6 (participating media), from one command:
+// The speed-against-error report of participating media, from one command:
 //
 //   cmake --build build -j2 --target rimu-media-bench && build/bin/rimu-media-bench
 //
@@ -8,8 +8,8 @@
 //   spectral_mis   four lanes, the hero's distance density, balance heuristic over the lanes' densities
 //   tracking       spectral tracking (Kutz et al. 2017 null-collision tracking with history-aware probabilities)
 // at a ladder of spp, against a converged spectral_mis reference (cached in <build>/media_report, not committed),
-// and prints and writes wall time and relative MSE per (scene, mode, spp), a gnuplot log-log error-vs-time PNG per
-// scene (docs/benchmarks/issue6_<scene>.png) and the section "Participating media (issue 6)" of
+// and prints and writes wall time and relative MSE per (scene, mode, spp), a log-log error-vs-time PNG per
+// scene (docs/benchmarks/media_<scene>.png) and the section "Participating media: distance sampling" of
 // docs/benchmarks.md (between its markers; the rest of the file is left alone).
 // Options: --quick (tiny ladder, no docs), --threads N (default 2), --out DIR, --no-docs.
 #include <chrono>
@@ -97,24 +97,23 @@ XyzImage render_case(const Scene& scene, int spp, uint64_t seed, int threads, Sp
   return XyzImage::from_film(film);
 }
 
-void write_plot(const fs::path& dir, const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode,
-                const fs::path& png) {
-  const fs::path script = dir / (id + ".gp");
-  std::ofstream gp(script);
-  gp << "set terminal pngcairo size 640,440 noenhanced\nset output '" << png.string() << "'\n"
-     << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
-     << "set title 'issue 6 media: " << id << "'\nset key top right\nset grid\nplot ";
-  bool first = true;
+void write_plot(const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode, const fs::path& png) {
+  GnuplotJob job;
+  job.terminal = "pngcairo size 640,440 noenhanced";
+  std::ostringstream gp;
+  gp << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
+     << "set title " << gnuplot_text("Participating media, distance sampling: " + id)
+     << " noenhanced\nset key top right noenhanced\nset grid\nplot ";
+  int index = 0;
   for (const auto& [mode, rows] : by_mode) {
-    const fs::path dat = dir / (id + "_" + mode + ".dat");
-    std::ofstream d(dat);
+    std::ostringstream d;
     for (const Row& r : rows) d << r.seconds << " " << r.relative_mse << " " << r.spp << "\n";
-    gp << (first ? "" : ", ") << "'" << dat.string() << "' using 1:2 with linespoints title '" << mode << "'";
-    first = false;
+    const std::string name = "mode" + std::to_string(index) + ".dat";
+    job.data_files.emplace_back(name, d.str());
+    gp << (index++ ? ", " : "") << "'" << name << "' using 1:2 with linespoints title " << gnuplot_text(mode);
   }
-  gp << "\n";
-  gp.close();
-  bench::run_gnuplot(script);
+  job.commands = gp.str();
+  bench::draw_plot(job, png);
 }
 
 }  // namespace
@@ -204,11 +203,11 @@ int main(int argc, char** argv) {
         by_mode[mode.id].push_back(row);
       }
     }
-    const fs::path png = plot_dir / ("issue6_" + c.id + ".png");
-    write_plot(settings.out, c.id, by_mode, png);
+    const fs::path png = plot_dir / ("media_" + c.id + ".png");
+    write_plot(c.id, by_mode, png);
 
     md << "### " << c.id << " (" << c.file << ", " << c.width << "×" << c.height << ")\n\n"
-       << "![relative MSE against wall time, " << c.id << "](benchmarks/issue6_" << c.id << ".png)\n\n"
+       << "![relative MSE against wall time, " << c.id << "](benchmarks/media_" << c.id << ".png)\n\n"
        << "| mode | spp | wall s | relMSE | relMSE × time |\n|---|---|---|---|---|\n";
     for (const ModeCase& mode : kModes)
       for (const Row& r : by_mode[mode.id])
@@ -223,7 +222,7 @@ int main(int argc, char** argv) {
 
   std::ofstream(settings.out / "media_error.md") << md.str();
   std::printf("\n%s", md.str().c_str());
-  if (settings.docs) bench::update_docs_section(docs_dir / "benchmarks.md", "issue6-media", "## Participating media (issue 6)", md.str());
+  if (settings.docs) bench::update_docs_section(docs_dir / "benchmarks.md", "media", "## Participating media: distance sampling in the slab, skin and cloud", md.str());
   std::fprintf(stderr, "wrote %s (CSV, plots, markdown)%s\n", settings.out.string().c_str(),
                settings.docs ? " and docs/benchmarks.md" : "");
   return 0;

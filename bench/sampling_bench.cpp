@@ -1,8 +1,8 @@
-// Independent vs low-discrepancy sampling (issue 8): error against a converged reference along an spp ladder,
+// Independent vs low-discrepancy sampling: error against a converged reference along an spp ladder,
 // wall time, the MSE ratio at 64 spp and at equal time, and the time per sample ratio, on the measured Cornell box
-// (128×128) and the ColorChecker room under D65 (160×120) by default. Prints markdown tables, writes a gnuplot
-// error-vs-time plot per scene (docs/benchmarks/issue8_<scene>.png) and replaces the section between the
-// "issue8-sampling" markers of docs/benchmarks.md (--no-docs: print only). A plain main(): whole renders.
+// (128×128) and the ColorChecker room under D65 (160×120) by default. Prints markdown tables, writes an
+// error-vs-time plot per scene (docs/benchmarks/sampling_<scene>.png) and replaces the section between the
+// "sampling" markers of docs/benchmarks.md (--no-docs: print only). A plain main(): whole renders.
 //
 //   build/bin/rimu-sampling-bench [--scene s.json ...] [--resolution WxH] [--max-spp 1024] [--reference-spp 4096]
 //                                 [--threads N] [--timing-repeats 3] [--cache DIR] [--no-docs]
@@ -196,31 +196,24 @@ std::optional<double> mse_at_time(const std::vector<LadderRow>& rows, int k, dou
   return std::nullopt;
 }
 
-// A log-log plot of MSE and relMSE against wall time for both samplers (data and gnuplot script beside the PNG,
-// in the cache directory).
-void write_plot(const std::vector<LadderRow>& rows, const std::filesystem::path& work_dir, const std::string& id,
-                const std::filesystem::path& png) {
-  const std::filesystem::path data = work_dir / (id + ".dat"), script = work_dir / (id + ".gp");
-  {
-    std::ofstream out(data);
-    out << "# spp  independent_s  independent_mse  independent_relmse  sobol_s  sobol_mse  sobol_relmse\n";
-    for (const LadderRow& r : rows)
-      out << r.spp << ' ' << r.seconds[0] << ' ' << r.mse[0] << ' ' << r.rel_mse[0] << ' ' << r.seconds[1] << ' '
-          << r.mse[1] << ' ' << r.rel_mse[1] << '\n';
-  }
-  {
-    std::ofstream out(script);
-    out << "set terminal pngcairo size 800,560 font ',11'\n"
-        << "set output '" << png.string() << "'\n"
-        << "set title 'issue 8: MSE and relMSE vs wall time, " << id << "' noenhanced\n"
-        << "set logscale xy\nset format y '%g'\nset grid\nset key bottom left\n"
-        << "set xlabel 'wall time (s)'\nset ylabel 'error vs reference'\n"
-        << "plot '" << data.string() << "' using 2:3 with linespoints lc 1 title 'independent MSE', \\\n"
-        << "     '" << data.string() << "' using 5:6 with linespoints lc 2 title 'Sobol MSE', \\\n"
-        << "     '" << data.string() << "' using 2:4 with linespoints lc 1 dt 2 title 'independent relMSE', \\\n"
-        << "     '" << data.string() << "' using 5:7 with linespoints lc 2 dt 2 title 'Sobol relMSE'\n";
-  }
-  bench::run_gnuplot(script);
+// A log-log plot of MSE and relMSE against wall time for both samplers.
+void write_plot(const std::vector<LadderRow>& rows, const std::string& id, const std::filesystem::path& png) {
+  std::ostringstream data;
+  data << "# spp  independent_s  independent_mse  independent_relmse  sobol_s  sobol_mse  sobol_relmse\n";
+  for (const LadderRow& r : rows)
+    data << r.spp << ' ' << r.seconds[0] << ' ' << r.mse[0] << ' ' << r.rel_mse[0] << ' ' << r.seconds[1] << ' '
+         << r.mse[1] << ' ' << r.rel_mse[1] << '\n';
+  GnuplotJob job;
+  job.terminal = "pngcairo size 800,560 font ',11'";
+  job.data_files = {{"ladder.dat", data.str()}};
+  job.commands = "set title " + gnuplot_text("Sampling, MSE and relMSE vs wall time: " + id) + " noenhanced\n"
+                 "set logscale xy\nset format y '%g'\nset grid\nset key bottom left\n"
+                 "set xlabel 'wall time (s)'\nset ylabel 'error vs reference'\n"
+                 "plot 'ladder.dat' using 2:3 with linespoints lc 1 title 'independent MSE', \\\n"
+                 "     'ladder.dat' using 5:6 with linespoints lc 2 title 'Sobol MSE', \\\n"
+                 "     'ladder.dat' using 2:4 with linespoints lc 1 dt 2 title 'independent relMSE', \\\n"
+                 "     'ladder.dat' using 5:7 with linespoints lc 2 dt 2 title 'Sobol relMSE'";
+  bench::draw_plot(job, png);
 }
 
 // The ladder, the 64-spp figures and the timing pairs of one scene, printed and appended to `md`.
@@ -273,7 +266,7 @@ void benchmark_scene(SpectralLibrary& library, const SceneCase& c, const Options
   }
   md << "\n";
 
-  // The two targets of issue 8 at 64 spp, and the equal-time ratio.
+  // The two sampling targets at 64 spp, and the equal-time ratio.
   const auto at64 = std::find_if(rows.begin(), rows.end(), [](const LadderRow& r) { return r.spp == 64; });
   if (at64 != rows.end()) {
     std::vector<double> ratios;
@@ -297,9 +290,9 @@ void benchmark_scene(SpectralLibrary& library, const SceneCase& c, const Options
          << " s, on the Sobol' ladder interpolated in log–log): MSE ratio " << bench::format(*m / at64->mse[0], "%.3f")
          << ".\n";
   }
-  const std::filesystem::path png = plot_dir / ("issue8_" + id + ".png");
-  write_plot(rows, cache_dir, id, png);
-  md << "\n![MSE and relMSE vs wall time, " << id << "](benchmarks/issue8_" << id << ".png)\n\n";
+  const std::filesystem::path png = plot_dir / ("sampling_" + id + ".png");
+  write_plot(rows, id, png);
+  md << "\n![MSE and relMSE vs wall time, " << id << "](benchmarks/sampling_" << id << ".png)\n\n";
 }
 
 }  // namespace
@@ -340,7 +333,7 @@ int main(int argc, char** argv) {
     md << "Whole run: " << bench::format(total, "%.0f") << " s (references rendered or cached); load average at the "
        << "end " << bench::load_average() << ".\n";
     std::printf("\n%s", md.str().c_str());
-    if (o.docs) bench::update_docs_section(docs_dir / "benchmarks.md", "issue8-sampling", "## Sampling (issue 8)", md.str());
+    if (o.docs) bench::update_docs_section(docs_dir / "benchmarks.md", "sampling", "## Sampling: independent vs Sobol' on the Cornell box and the ColorChecker room", md.str());
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "rimu-sampling-bench: %s\n", e.what());

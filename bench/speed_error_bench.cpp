@@ -1,12 +1,13 @@
-// The speed-against-error report of issue 7, from one command:
+// The speed-against-error report of the wavelength modes, from one command:
 //
 //   cmake --build build -j2 --target rimu-speed-error-bench && build/bin/rimu-speed-error-bench
 //
 // Per scene: a converged hero reference (cached in <build>/speed_report, not committed), then every wavelength mode
 // (hero, single, independent, rgb; hero and single also with the emission wavelength density, "+lights") at a
 // ladder of spp; it prints and writes a CSV (mode, spp, wall s, samples/s, relative MSE, RMSE in XYZ, mean and
-// 95th-percentile ΔE2000, worst ColorChecker patch ΔE2000), gnuplot log-log
-// error-vs-time plots (PNG), and the section "Speed against error (issue 7)" of docs/benchmarks.md (between its
+// 95th-percentile ΔE2000, worst ColorChecker patch ΔE2000), log-log error-vs-time plots
+// (docs/benchmarks/speed_error_<scene>.png), and the section "Speed against error" of
+// docs/benchmarks.md (between its
 // markers; the rest of the file is left alone). Options: --quick (tiny ladder, for checking the driver),
 // --threads N (default 2), --out DIR, --no-docs.
 #include <algorithm>
@@ -198,24 +199,23 @@ double median(std::vector<double> v) {
   return v.empty() ? NAN : v[v.size() / 2];
 }
 
-void write_plot(const fs::path& dir, const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode,
-                const fs::path& png) {
-  const fs::path script = dir / (id + ".gp");
-  std::ofstream gp(script);
-  gp << "set terminal pngcairo size 640,440\nset output '" << png.string() << "'\n"
-     << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
-     << "set title 'issue 7: " << id << "' noenhanced\nset key top right noenhanced\nset grid\nplot ";
-  bool first = true;
+void write_plot(const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode, const fs::path& png) {
+  GnuplotJob job;
+  job.terminal = "pngcairo size 640,440";
+  std::ostringstream gp;
+  gp << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
+     << "set title " << gnuplot_text("Wavelength modes, speed against error: " + id)
+     << " noenhanced\nset key top right noenhanced\nset grid\nplot ";
+  int index = 0;
   for (const auto& [mode, rows] : by_mode) {
-    const fs::path dat = dir / (id + "_" + mode + ".dat");
-    std::ofstream d(dat);
+    std::ostringstream d;
     for (const Row& r : rows) d << r.seconds << " " << r.error.relative_mse << " " << r.spp << "\n";
-    gp << (first ? "" : ", ") << "'" << dat.string() << "' using 1:2 with linespoints title '" << mode << "'";
-    first = false;
+    const std::string name = "mode" + std::to_string(index) + ".dat";
+    job.data_files.emplace_back(name, d.str());
+    gp << (index++ ? ", " : "") << "'" << name << "' using 1:2 with linespoints title " << gnuplot_text(mode);
   }
-  gp << "\n";
-  gp.close();
-  bench::run_gnuplot(script);
+  job.commands = gp.str();
+  bench::draw_plot(job, png);
 }
 
 }  // namespace
@@ -404,11 +404,11 @@ int main(int argc, char** argv) {
     sum.rgb_mean_de = rgb_rows.back().error.mean_delta_e2000;
     sum.hero_mean_de = hero_rows.back().error.mean_delta_e2000;
 
-    const fs::path png = plot_dir / ("issue7_" + c.id + ".png");
-    write_plot(settings.out, c.id, by_mode, png);
+    const fs::path png = plot_dir / ("speed_error_" + c.id + ".png");
+    write_plot(c.id, by_mode, png);
 
     md << "### " << c.id << " (" << c.file << ", " << c.width << "×" << c.height << ")\n\n"
-       << "![relative MSE against wall time, " << c.id << "](benchmarks/issue7_" << c.id << ".png)\n\n"
+       << "![relative MSE against wall time, " << c.id << "](benchmarks/speed_error_" << c.id << ".png)\n\n"
        << "| mode | spp | wall s | samples/s | relMSE | RMSE XYZ | mean ΔE00 | p95 ΔE00 |"
        << (has_patches ? " worst patch ΔE00 |" : "") << "\n|---|---|---|---|---|---|---|---|"
        << (has_patches ? "---|" : "") << "\n";
@@ -429,7 +429,7 @@ int main(int argc, char** argv) {
        << format(sum.rgb_mean_de, "%.3f") << " vs hero " << format(sum.hero_mean_de, "%.3f") << " (hero's is noise only).\n\n";
   }
 
-  // The three targets of issue 7 (complete only when every scene ran: a --scenes subset leaves rows "not run").
+  // The three targets of the wavelength modes (complete only when every scene ran: a --scenes subset leaves rows "not run").
   auto ran = [&](const std::string& id) {
     return summaries.count(id) && summaries.at(id).equal_time.count("hero") && summaries.at(id).equal_time.count("single");
   };
@@ -481,7 +481,7 @@ int main(int argc, char** argv) {
 
   std::ofstream(settings.out / "speed_error.md") << md.str();
   std::printf("\n%s", md.str().c_str());
-  if (settings.docs && !quick) bench::update_docs_section(docs_dir / "benchmarks.md", "issue7-speed-error", "## Speed against error (issue 7)", md.str());
+  if (settings.docs && !quick) bench::update_docs_section(docs_dir / "benchmarks.md", "speed-error", "## Speed against error: wavelength modes on ten scenes", md.str());
   std::fprintf(stderr, "wrote %s (CSV, plots, markdown)%s\n", settings.out.string().c_str(),
                settings.docs && !quick ? " and docs/benchmarks.md" : "");
   return 0;

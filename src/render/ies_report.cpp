@@ -2,12 +2,10 @@
 
 #include <cmath>
 #include <numbers>
-#include <cstdlib>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
-#include "render/render_error.h"
+#include "render/plot_output.h"
 
 namespace rimu {
 namespace {
@@ -59,33 +57,57 @@ std::string inspect_ies_text(const IesPhotometry& ies, double distance_m, double
 }
 
 void plot_ies_polar_png(const IesPhotometry& ies, const std::filesystem::path& png) {
-  const char* env = std::getenv("RIMU_GNUPLOT");
-  const std::string gnuplot = env ? env : "/usr/bin/gnuplot";
-  if (!std::filesystem::exists(gnuplot)) throw RenderError("cannot plot: gnuplot not found at " + gnuplot);
+  check_plot_png(png, {"", 0, "--plot-polar"});
   const auto table = candela_distribution(ies);
-  const std::filesystem::path data = png.string() + ".dat", script = png.string() + ".gp";
-  {
-    std::ofstream d(data);
-    // Two blocks: the C 0/180° plane and the C 90/270° plane. Plot angle: nadir (γ = 0) at −90°, the C 0° (90°)
-    // half to the right, the C 180° (270°) half to the left.
-    for (double c : {0.0, 90.0}) {
-      for (double g = -180.0; g <= 180.0; g += 0.5) {
-        const double value = g >= 0 ? table->intensity_deg(g, c) : table->intensity_deg(-g, c + 180.0);
-        d << g - 90.0 << ' ' << value << '\n';
-      }
-      d << "\n\n";
+  // Relative photometry is drawn per 1000 lamp lumens (cd/klm), the usual way to compare luminaires; absolute
+  // photometry (lumens per lamp −1) in candela.
+  const double lamp_lumens = ies.rated_lamp_lumens();
+  const double scale = lamp_lumens > 0 ? 1000.0 / lamp_lumens : 1.0;
+  const std::string unit = lamp_lumens > 0 ? "cd/klm" : "cd";
+  std::ostringstream data;
+  double peak = 0;
+  // Two blocks: the C 0/180° plane and the C 90/270° plane. The polar angle is γ with γ = 0 (nadir) at the
+  // bottom, counterclockwise: the C 0° (90°) half to the right at +γ, the C 180° (270°) half to the left at −γ.
+  for (double c : {0.0, 90.0}) {
+    for (double g = -180.0; g <= 180.0; g += 0.5) {
+      const double value = g >= 0 ? table->intensity_deg(g, c) : table->intensity_deg(-g, c + 180.0);
+      data << g << ' ' << scale * value << '\n';
+      peak = std::fmax(peak, scale * value);
     }
-    std::ofstream s(script);
-    s << "set terminal pngcairo size 700,700\nset output '" << png.string() << "'\n"
-      << "set polar\nset angles degrees\nset size square\nset grid polar 30\nunset xtics\nunset ytics\n"
-      << "set border 0\nset title \"" << ies.name << " (cd)\"\nset rtics\n"
-      << "plot '" << data.string() << "' index 0 using 1:2 with lines lw 2 title 'C 0-180°', "
-      << "'' index 1 using 1:2 with lines lw 2 dt 2 title 'C 90-270°'\n";
+    data << "\n\n";
   }
-  const int status = std::system(("'" + gnuplot + "' '" + script.string() + "' 2>&1").c_str());
-  std::filesystem::remove(data);
-  std::filesystem::remove(script);
-  if (status != 0) throw RenderError("gnuplot failed writing " + png.string());
+  // γ labelled on both halves: 0° at the nadir, 90° at the horizon, 180° at the zenith.
+  std::string ttics;
+  for (int t = 0; t < 360; t += 30)
+    ttics += (t ? ", " : "") + std::string("\"") + std::to_string(t <= 180 ? t : 360 - t) + "°\" " + std::to_string(t);
+  // gnuplot labels the angles on the outer circle only when the radial range ends on a tic: end it on the next
+  // round number above the peak, with 3-6 rings at a round step.
+  const double decade = std::pow(10.0, std::floor(std::log10(peak > 0 ? peak : 1.0)));
+  double r_max = 10.0 * decade, ring = 2.0 * decade;
+  for (double m : {1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0})
+    if (peak <= m * decade * (1.0 + 1e-9)) {
+      r_max = m * decade;
+      break;
+    }
+  for (double step : {0.1, 0.2, 0.25, 0.5, 1.0, 2.0}) {
+    const double rings = r_max / (step * decade);
+    if (rings <= 6.0 + 1e-9 && std::abs(rings - std::round(rings)) < 1e-6) {
+      ring = step * decade;
+      break;
+    }
+  }
+  GnuplotJob job;
+  job.terminal = "pngcairo size 700,760";
+  job.data_files = {{"candela.dat", data.str()}};
+  job.commands = "set polar\nset angles degrees\nset theta bottom counterclockwise\nset size square\n"
+                 "set grid polar 30\nunset xtics\nunset ytics\nset border 0\nset rrange [0:" + std::to_string(r_max) +
+                 "]\nset rtics " + std::to_string(ring) + "\nset ttics (" + ttics + ")\n"
+                 "set rlabel '" + unit + "'\nset title " +
+                 gnuplot_text(plot_file_name(ies.name) + ": luminous intensity (" + unit + ") against γ") +
+                 " noenhanced\nset key below noenhanced\n"
+                 "plot 'candela.dat' index 0 using 1:2 with lines lw 2 title 'C 0° (right) and 180° (left)', "
+                 "'' index 1 using 1:2 with lines lw 2 dt 2 title 'C 90° (right) and 270° (left)'";
+  draw_plot_png(job, png);
 }
 
 }  // namespace rimu

@@ -16,8 +16,9 @@ namespace rimu {
 std::string inspect_ies_text(const IesPhotometry& ies, double distance_m, double angle_deg,
                              std::optional<double> electrical_w);
 
-/// Draws the candela distribution in the C 0-180° and C 90-270° planes as a polar plot (nadir down) to a PNG with
-/// gnuplot (/usr/bin/gnuplot, or $RIMU_GNUPLOT). Throws RenderError if gnuplot is missing or fails.
+/// Draws the candela distribution in the C 0-180° and C 90-270° planes as a polar plot against γ (nadir down,
+/// angles labelled) in cd/klm (cd for absolute photometry) to a PNG (render/plot_output.h), titled with the file's
+/// name. Throws InputError if `png` cannot be written (checked first), RenderError if gnuplot is missing or fails.
 void plot_ies_polar_png(const IesPhotometry& ies, const std::filesystem::path& png);
 
 }  // namespace rimu

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "render/json_cursor.h"
+#include "render/plot_output.h"
 #include "render/render_error.h"
 #include "render/spectrum_input.h"
 #include "spectral/spectrum_report.h"
@@ -191,24 +192,26 @@ std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& li
   return out.str();
 }
 
+std::string spectrum_plot_title(const std::string& description) {
+  // A CSV spectrum describes itself as "<path>" or "<path> [column]": keep the column, show the file by its name.
+  const size_t column = !description.empty() && description.back() == ']' ? description.rfind(" [") : std::string::npos;
+  const std::string source = description.substr(0, column);
+  if (source.find('/') == std::string::npos) return description;
+  return plot_file_name(source) + (column == std::string::npos ? "" : description.substr(column));
+}
+
 void plot_spectrum_png(const Spectrum& shape, double scale, const std::string& y_label, const std::string& title,
                        const std::filesystem::path& png) {
-  const char* env = std::getenv("RIMU_GNUPLOT");
-  const std::string gnuplot = env ? env : "/usr/bin/gnuplot";
-  if (!std::filesystem::exists(gnuplot)) throw RenderError("cannot plot: gnuplot not found at " + gnuplot);
-  const std::filesystem::path data = png.string() + ".dat", script = png.string() + ".gp";
-  {
-    std::ofstream d(data);
-    for (int nm = 360; nm <= 830; ++nm) d << nm << ' ' << scale * shape.value(nm) << '\n';
-    std::ofstream g(script);
-    g << "set terminal pngcairo size 800,500\nset output '" << png.string() << "'\n"
-      << "set xlabel 'wavelength (nm)'\nset ylabel '" << y_label << "'\nset title \"" << title << "\"\n"
-      << "set xrange [360:830]\nset grid\nplot '" << data.string() << "' using 1:2 with lines lw 2 title ''\n";
-  }
-  const int status = std::system(("'" + gnuplot + "' '" + script.string() + "' 2>&1").c_str());
-  std::filesystem::remove(data);
-  std::filesystem::remove(script);
-  if (status != 0) throw RenderError("gnuplot failed writing " + png.string());
+  check_plot_png(png, {"", 0, "--plot"});
+  std::ostringstream data;
+  for (int nm = 360; nm <= 830; ++nm) data << nm << ' ' << scale * shape.value(nm) << '\n';
+  GnuplotJob job;
+  job.terminal = "pngcairo size 800,500";
+  job.data_files = {{"spectrum.dat", data.str()}};
+  job.commands = "set xlabel 'wavelength (nm)'\nset ylabel " + gnuplot_text(y_label) + " noenhanced\nset title " +
+                 gnuplot_text(spectrum_plot_title(title)) + " noenhanced\nset xrange [360:830]\nset grid\n"
+                 "plot 'spectrum.dat' using 1:2 with lines lw 2 notitle";
+  draw_plot_png(job, png);
 }
 
 }  // namespace rimu

@@ -53,8 +53,12 @@ std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& li
                                const std::filesystem::path& directory, double distance_m, double off_axis_deg,
                                std::optional<double> electrical_w);
 
-/// Draws scale × shape over 360-830 nm to a PNG with gnuplot (/usr/bin/gnuplot, or $RIMU_GNUPLOT). Throws
-/// RenderError if gnuplot is missing or fails.
+/// A spectrum's description as a plot title: a CSV spectrum ("<path> [column]") shown by its file name.
+std::string spectrum_plot_title(const std::string& description);
+
+/// Draws scale × shape over 360-830 nm to a PNG (render/plot_output.h: gnuplot without a shell, $RIMU_GNUPLOT or
+/// /usr/bin/gnuplot), titled spectrum_plot_title(title). Throws InputError if `png` cannot be written (checked
+/// first), RenderError if gnuplot is missing or fails.
 void plot_spectrum_png(const Spectrum& shape, double scale, const std::string& y_label, const std::string& title,
                        const std::filesystem::path& png);
 

@@ -1,11 +1,12 @@
 #include "spectral/gamut_figure.h"
 
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
+#include "spectral/gnuplot_process.h"
 
 namespace rimu {
 namespace {
@@ -75,60 +76,58 @@ std::vector<GamutFigureBin> gamut_figure_bins(SpectralLibrary& library, const Rg
 
 void write_gamut_figure(SpectralLibrary& library, const RgbUpsampler& upsampler, const std::filesystem::path& png,
                         const std::filesystem::path& csv) {
+  check_plot_destination(png, {"", 0, "--out"});
+  if (const auto folder = csv.parent_path(); !csv.empty() && !folder.empty() && !std::filesystem::is_directory(folder))
+    throw InputError({csv.string(), 0, "--csv"}, "the folder '" + folder.string() + "' does not exist");
   const double bin_size = 0.005;
   const auto bins = gamut_figure_bins(library, upsampler, bin_size);
-  {
+  if (!csv.empty()) {
     std::ofstream out(csv);
-    if (!out) throw InputError({csv.string(), 0, ""}, "cannot write the gamut CSV");
     out << "# brightest reflectance per xy bin, X+Y+Z with white Y = 1, under the white of " << upsampler.space().name()
         << "; -1 = none\nx,y,optimal_xyz_sum,smooth_xyz_sum\n";
     for (const auto& b : bins) out << b.xy.x << ',' << b.xy.y << ',' << b.optimal_xyz_sum << ',' << b.smooth_xyz_sum << '\n';
+    if (!out.flush()) throw InputError({csv.string(), 0, "--csv"}, "cannot write the gamut CSV");
   }
   // gnuplot inputs: a grid file (blank line between rows, NaN for empty bins), the locus, the triangle.
-  const std::filesystem::path base = png.parent_path() / png.stem();
-  const std::string grid = base.string() + "_grid.dat", locus = base.string() + "_locus.dat",
-                    triangle = base.string() + "_triangle.dat", script = base.string() + ".gp";
-  {
-    std::ofstream out(grid);
-    const int nx = int(std::lround(kMaxX / bin_size));
-    for (size_t k = 0; k < bins.size(); ++k) {
-      if (k > 0 && k % nx == 0) out << '\n';
-      auto value = [](double v) { return v < 0 ? std::string("NaN") : std::to_string(v); };
-      out << bins[k].xy.x << ' ' << bins[k].xy.y << ' ' << value(bins[k].optimal_xyz_sum) << ' '
-          << value(bins[k].smooth_xyz_sum) << '\n';
-    }
-    std::ofstream l(locus);
-    const Observer& o = library.observer(StandardObserver::cie1931_2deg);
-    for (int nm = 380; nm <= 700; ++nm) {
-      const Chromaticity c = chromaticity_of(Xyz{o.x_bar.value(nm), o.y_bar.value(nm), o.z_bar.value(nm)});
-      l << c.x << ' ' << c.y << '\n';
-    }
-    const Chromaticity first = chromaticity_of(Xyz{o.x_bar.value(380), o.y_bar.value(380), o.z_bar.value(380)});
-    l << first.x << ' ' << first.y << '\n';
-    std::ofstream t(triangle);
-    const RgbColourSpace& s = upsampler.space();
-    for (Chromaticity c : {s.red(), s.green(), s.blue(), s.red()}) t << c.x << ' ' << c.y << '\n';
+  std::ostringstream grid, locus, triangle;
+  const int nx = int(std::lround(kMaxX / bin_size));
+  for (size_t k = 0; k < bins.size(); ++k) {
+    if (k > 0 && k % nx == 0) grid << '\n';
+    auto value = [](double v) { return v < 0 ? std::string("NaN") : std::to_string(v); };
+    grid << bins[k].xy.x << ' ' << bins[k].xy.y << ' ' << value(bins[k].optimal_xyz_sum) << ' '
+         << value(bins[k].smooth_xyz_sum) << '\n';
   }
-  {
-    std::ofstream g(script);
-    g << "set terminal pngcairo size 1600,760 font ',11'\nset output '" << png.string() << "'\n"
-      << "set multiplot layout 1,2\nset view map\nset size ratio -1\nset xrange [0:0.75]\nset yrange [0:0.85]\n"
-      << "set xlabel 'x'\nset ylabel 'y'\nset cbrange [0:3.1]\nset cblabel 'max X+Y+Z (white Y = 1)'\n"
-      << "set palette rgbformulae 33,13,10\nset contour base\nset cntrparam levels incremental 0.25,0.25,3\n"
-      << "unset clabel\nset style increment default\n";
-    for (int panel = 0; panel < 2; ++panel) {
-      g << "set title '" << (panel == 0 ? "optimal (MacAdam) reflectances" : "smooth upsampled reflectances")
-        << " under " << upsampler.table().white_name << "'\n"
-        << "splot '" << grid << "' using 1:2:" << (panel == 0 ? 3 : 4) << " with pm3d notitle, '" << grid
-        << "' using 1:2:" << (panel == 0 ? 3 : 4) << " with lines lc rgb 'black' nosurface notitle, '" << locus
-        << "' using 1:2:(0) with lines lw 2 lc rgb 'black' nocontour notitle, '" << triangle
-        << "' using 1:2:(0) with lines lw 2 lc rgb 'white' nocontour title '" << upsampler.space().name() << "'\n";
-    }
-    g << "unset multiplot\n";
+  const Observer& o = library.observer(StandardObserver::cie1931_2deg);
+  for (int nm = 380; nm <= 700; ++nm) {
+    const Chromaticity c = chromaticity_of(Xyz{o.x_bar.value(nm), o.y_bar.value(nm), o.z_bar.value(nm)});
+    locus << c.x << ' ' << c.y << '\n';
   }
-  const std::string command = "/usr/bin/gnuplot '" + script + "' 2>'" + base.string() + "_gnuplot.log'";
-  if (std::system(command.c_str()) != 0)
-    throw InputError({script, 0, ""}, "gnuplot failed; see " + base.string() + "_gnuplot.log");
+  const Chromaticity first = chromaticity_of(Xyz{o.x_bar.value(380), o.y_bar.value(380), o.z_bar.value(380)});
+  locus << first.x << ' ' << first.y << '\n';
+  const RgbColourSpace& s = upsampler.space();
+  for (Chromaticity c : {s.red(), s.green(), s.blue(), s.red()}) triangle << c.x << ' ' << c.y << '\n';
+
+  GnuplotJob job;
+  job.terminal = "pngcairo size 1600,760 font ',11'";
+  job.data_files = {{"grid.dat", grid.str()}, {"locus.dat", locus.str()}, {"triangle.dat", triangle.str()}};
+  std::ostringstream g;
+  g << "set multiplot layout 1,2\nset view map\nset size ratio -1\nset xrange [0:0.75]\nset yrange [0:0.85]\n"
+    << "set xlabel 'x'\nset ylabel 'y'\nset cbrange [0:3.1]\nset cblabel 'max X+Y+Z (white Y = 1)'\n"
+    << "set palette rgbformulae 33,13,10\nset contour base\nset cntrparam levels incremental 0.25,0.25,3\n"
+    << "unset clabel\nset style increment default\nset key noenhanced\n";
+  for (int panel = 0; panel < 2; ++panel) {
+    const std::string title = std::string(panel == 0 ? "optimal (MacAdam) reflectances" : "smooth upsampled reflectances") +
+                              " under " + upsampler.table().white_name;
+    const char* column = panel == 0 ? "3" : "4";
+    g << "set title " << gnuplot_text(title) << " noenhanced\n"
+      << "splot 'grid.dat' using 1:2:" << column << " with pm3d notitle, 'grid.dat' using 1:2:" << column
+      << " with lines lc rgb 'black' nosurface notitle, 'locus.dat' using 1:2:(0) with lines lw 2 lc rgb 'black'"
+      << " nocontour notitle, 'triangle.dat' using 1:2:(0) with lines lw 2 lc rgb 'white' nocontour title "
+      << gnuplot_text(s.name()) << "\n";
+  }
+  g << "unset multiplot";
+  job.commands = g.str();
+  run_gnuplot(job, png);
 }
 
 }  // namespace rimu

@@ -23,9 +23,10 @@ struct GamutFigureBin {
 std::vector<GamutFigureBin> gamut_figure_bins(SpectralLibrary& library, const RgbUpsampler& upsampler,
                                               double bin_size = 0.005);
 
-/// Writes `csv` (x, y, optimal, smooth) and, with gnuplot (/usr/bin/gnuplot, via a generated script next to
-/// `png`), the two colour maps side by side with iso-lines, the spectral locus and the space's RGB triangle.
-/// Throws InputError if a file cannot be written or gnuplot fails.
+/// Draws the two colour maps side by side with iso-lines, the spectral locus and the space's RGB triangle to `png`
+/// (gnuplot_process.h: nothing but `png` is left behind) and, if `csv` is not empty, writes the values there
+/// (x, y, optimal, smooth). The plot destination and gnuplot are checked before the ~3 s computation. Throws
+/// InputError if a file cannot be written, PlotError if gnuplot is missing or fails.
 void write_gamut_figure(SpectralLibrary& library, const RgbUpsampler& upsampler, const std::filesystem::path& png,
                         const std::filesystem::path& csv);
 

@@ -1,15 +1,17 @@
 #include "spectral/upsample_report.h"
 
-#include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "spectral/error.h"
+#include "spectral/gnuplot_process.h"
 
 namespace rimu {
 
 void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, const Rgb& rgb,
                            const UpsampleReportOptions& options) {
+  // A plot that cannot be drawn is refused before the report is printed.
+  if (!options.plot_png.empty()) check_plot_destination(options.plot_png, {"", 0, "--plot"});
   std::vector<double> values(kUpsampleKnotCount);
   bool mapped = false;
   double delta_e = 0;
@@ -42,18 +44,17 @@ void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, con
     for (int i = 0; i < kUpsampleKnotCount; ++i) out << "    " << upsample_knot_nm(i) << " nm  " << values[i] << '\n';
   }
   if (!options.plot_png.empty()) {
-    const std::string data = options.plot_png.string() + ".dat", script = options.plot_png.string() + ".gp";
-    {
-      std::ofstream d(data);
-      for (int i = 0; i < kUpsampleKnotCount; ++i) d << upsample_knot_nm(i) << ' ' << values[i] << '\n';
-      std::ofstream g(script);
-      g << "set terminal pngcairo size 900,500\nset output '" << options.plot_png.string() << "'\n"
-        << "set xlabel 'wavelength (nm)'\nset ylabel '" << unit << "'\nset xrange [360:830]\nset grid\n"
-        << "plot '" << data << "' with lines lw 2 title '" << upsampler.space().name() << " (" << rgb.r << ", "
-        << rgb.g << ", " << rgb.b << ")" << (mapped ? ", gamut-mapped" : "") << "'\n";
-    }
-    if (std::system(("/usr/bin/gnuplot '" + script + "'").c_str()) != 0)
-      throw InputError({script, 0, ""}, "gnuplot failed to plot the spectrum");
+    std::ostringstream data, title;
+    for (int i = 0; i < kUpsampleKnotCount; ++i) data << upsample_knot_nm(i) << ' ' << values[i] << '\n';
+    title << upsampler.space().name() << " (" << rgb.r << ", " << rgb.g << ", " << rgb.b << ")"
+          << (mapped ? ", gamut-mapped" : "");
+    GnuplotJob job;
+    job.terminal = "pngcairo size 900,500";
+    job.data_files = {{"spectrum.dat", data.str()}};
+    job.commands = "set xlabel 'wavelength (nm)'\nset ylabel " + gnuplot_text(unit) +
+                   " noenhanced\nset xrange [360:830]\nset grid\nset key noenhanced\n"
+                   "plot 'spectrum.dat' using 1:2 with lines lw 2 title " + gnuplot_text(title.str()) + "\n";
+    run_gnuplot(job, options.plot_png);
   }
 }
 

@@ -12,11 +12,12 @@ namespace rimu {
 struct UpsampleReportOptions {
   bool emission = false;               ///< upsample as a light (no ≤ 1 limit) instead of a reflectance
   bool csv = false;                    ///< the spectrum as "wavelength_nm,value" CSV only
-  std::filesystem::path plot_png;      ///< if set, also plot the spectrum there with gnuplot
+  std::filesystem::path plot_png;      ///< if set, also plot the spectrum there (gnuplot_process.h)
 };
 
 /// Upsamples `rgb` and writes the spectrum at every 5 nm knot, the round-trip RGB (under the space's white), the
-/// CIEDE2000 distance and whether gamut mapping acted. Throws InputError for non-finite RGB or a failed plot.
+/// CIEDE2000 distance and whether gamut mapping acted. Throws InputError for non-finite RGB or a plot path that
+/// cannot be written (checked before anything is printed), PlotError if gnuplot is missing or fails.
 void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, const Rgb& rgb,
                            const UpsampleReportOptions& options = {});
 

@@ -7,6 +7,7 @@
 
 #include "spectral/error.h"
 #include "spectral/gamut_figure.h"
+#include "spectral/gnuplot_process.h"
 #include "spectral/rgb_upsampler.h"
 #include "spectral/upsample_report.h"
 #include "spectral/spectrum_report.h"
@@ -71,8 +72,8 @@ int main(int argc, char** argv) {
   std::string gamut_png = "gamut.png", gamut_csv, gamut_space = "srgb-linear";
   CLI::App* gamut_cmd = app.add_subcommand(
       "gamut", "plot the brightest reflectance per chromaticity: MacAdam's optimal colours vs the upsampler's smooth spectra");
-  gamut_cmd->add_option("--out", gamut_png, "PNG to write (default gamut.png); gnuplot script and data go beside it");
-  gamut_cmd->add_option("--csv", gamut_csv, "also write the values per chromaticity bin as CSV (default: beside the PNG)");
+  gamut_cmd->add_option("--out", gamut_png, "PNG to write (default gamut.png)");
+  gamut_cmd->add_option("--csv", gamut_csv, "also write the values per chromaticity bin to this CSV file");
   gamut_cmd->add_option("--space", gamut_space, "colour space whose white and triangle are used (default srgb-linear)");
 
   std::vector<double> upsample_rgb;
@@ -102,11 +103,8 @@ int main(int argc, char** argv) {
       std::cout << (report.json ? rimu::report_json(r) : rimu::report_text(r)) << std::flush;
     } else if (*gamut_cmd) {
       const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(gamut_space));
-      const std::filesystem::path png = gamut_png;
-      const std::filesystem::path csv = gamut_csv.empty() ? std::filesystem::path(png).replace_extension(".csv")
-                                                          : std::filesystem::path(gamut_csv);
-      rimu::write_gamut_figure(library, upsampler, png, csv);
-      std::cout << "wrote " << png.string() << " and " << csv.string() << "\n";
+      rimu::write_gamut_figure(library, upsampler, gamut_png, gamut_csv);
+      std::cout << "wrote " << gamut_png << (gamut_csv.empty() ? "" : " and " + gamut_csv) << "\n";
     } else if (*upsample_cmd) {
       const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(upsample_space));
       rimu::UpsampleReportOptions options;
@@ -119,6 +117,9 @@ int main(int argc, char** argv) {
   } catch (const rimu::InputError& e) {
     std::cerr << "rimu-colour: " << e.what() << "\n";
     return 1;
+  } catch (const rimu::PlotError& e) {  // gnuplot missing or failing: the machine, not the input
+    std::cerr << "rimu-colour: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "rimu-colour: internal error: " << e.what() << "\n";
     return 2;

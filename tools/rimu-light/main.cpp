@@ -12,6 +12,7 @@
 #include "render/ies_report.h"
 #include "render/json_cursor.h"
 #include "render/light_definition.h"
+#include "render/plot_output.h"
 #include "render/render_error.h"
 #include "spectral/error.h"
 
@@ -128,6 +129,9 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    // A plot that cannot be drawn is refused before anything is printed or written.
+    for (const auto& [png, key] : {std::pair{plot, "--plot"}, {inspect_plot, "--plot"}, {inspect_polar, "--plot-polar"}})
+      if (!png.empty()) rimu::check_plot_png(png, {"", 0, key});
     const auto geometry_from = [&](const std::string& t, double cone, double soft) {
       rimu::EmitterGeometry g;
       g.kind = kind_of(t);
