@@ -136,7 +136,7 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   DisplayOptions display;
   display.exposure_ev = job.exposure_ev;
   display.view = job.view;
-  DisplayTransform(ResponseKind::cie_xyz, display);  // checks the view, the exposure and the config
+  const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
   nlohmann::json document = parse_json_file(scene_path);

@@ -16,6 +16,7 @@
 #include <map>
 #include <unistd.h>
 
+#include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
 #include "spectral/error.h"
@@ -241,4 +242,15 @@ TEST_CASE("no NaN or Inf reaches an image: an overflowing output transform is wr
   CHECK(write_exr(folder.path / "nan.exr", film, options) == 2);  // X of both pixels
   Imath::Box2i window;
   CHECK(read_channels(folder.path / "nan.exr", window).at("X")[0] == 0.0f);
+
+  // The display image: Inf clamps to white, NaN to 0 (the Raw view shows the film's numbers, so each channel is
+  // its own: X NaN → 0; Y, Z of ~1e300 → 255).
+  film.set_output_transform(FilmOutputTransform{nan_matrix, 1e300});
+  DisplayOptions raw;
+  raw.view = "Raw";
+  const std::vector<uint8_t> pixels = display_pixels(film, raw);
+  REQUIRE(pixels.size() == 6);
+  CHECK(pixels[0] == 0);
+  CHECK(pixels[1] == 255);
+  CHECK(pixels[2] == 255);
 }
