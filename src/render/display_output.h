@@ -37,9 +37,10 @@ DisplayLevels display_levels(const std::vector<uint8_t>& rgb);
 std::string display_image_format(const std::filesystem::path& path, const std::string& option = "--png");
 
 /// Writes display_pixels() as a PNG, JPEG or TIFF (display_image_format()) of the crop window's size through
-/// OpenImageIO, via a temporary file and a rename (write_atomically). The file says it is sRGB unless the view is
-/// "Raw" (PNG: the sRGB chunk with the gAMA/cHRM fallback; JPEG/TIFF: the Exif colour space, whatever OpenImageIO
-/// writes for "oiio:ColorSpace" = "sRGB"). OpenImageIO's bool + geterror() failures become OutputError naming
+/// OpenImageIO, via a temporary file and a rename (write_atomically). Unless the view is "Raw", the file is marked
+/// "oiio:ColorSpace" = "sRGB", which OpenImageIO 2.4 writes as the PNG sRGB chunk (with gAMA; tested) and, for
+/// JPEG, in its Exif block; its TIFF writer records nothing for it. OpenImageIO's bool + geterror() failures become
+/// OutputError naming
 /// `path`; a missing folder, an unknown extension or a bad view is an InputError. Returns the image's levels.
 DisplayLevels write_display_image(const std::filesystem::path& path, const Film& film,
                                   const DisplayOptions& options = {});
