@@ -6,6 +6,7 @@
 #include "spectral/chromaticity.h"
 #include "spectral/cielab.h"
 #include "spectral/delta_e.h"
+#include "spectral/tabulated_spectrum.h"
 #include "test_support.h"
 
 using namespace rimu;
@@ -77,4 +78,41 @@ TEST_CASE("through a white balance, the balanced neutral is displayed with D65's
   CHECK(xy.y == doctest::Approx(0.32903).epsilon(0.01 / 0.32903));
   const Matrix3 unbalanced = display_camera_to_xyz(fit, false);
   CHECK(unbalanced(1, 1) == fit.camera_to_xyz(1, 1));
+}
+
+TEST_CASE("the fit holds on surfaces it was not trained on: the 14 CIE test colour samples") {
+  // Validation on CIE 13.3's TCS01-14 (data/spectra/reflectances), a set independent of the ColorChecker, under
+  // the same D65. A least-squares matrix generalises to similar smooth reflectances with errors of the training
+  // set's order, so the held-out mean must stay within twice the training mean and below 3 ΔE00.
+  SpectralLibrary& library = test::library();
+  const SpectralResponse camera = SpectralResponse::camera_rgb(library, "nikon_d850");
+  const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
+  const CameraColourFit fit = fit_camera_to_xyz(camera, library);
+  const SpectrumPtr d65 = library.illuminant("D65");
+  const auto channels = [&](const SpectralResponse& r, const Spectrum* patch) {
+    std::array<double, 3> s{};
+    for (int nm = 360; nm <= 830; ++nm) {
+      const double w = (nm == 360 || nm == 830) ? 0.5 : 1.0;
+      const double e = d65->value(nm) * (patch ? patch->value(nm) : 1.0);
+      for (int c = 0; c < 3; ++c) s[size_t(c)] += w * e * r.value(c, nm);
+    }
+    return s;
+  };
+  const auto w = channels(xyz, nullptr);
+  const Xyz white{w[0], w[1], w[2]};
+  const CsvTable& tcs = library.table("spectra/reflectances/cie_13_3_tcs_5nm.csv");
+  double mean = 0.0, worst = 0.0;
+  for (size_t column = 1; column < tcs.column_count(); ++column) {
+    const TabulatedSpectrum sample = TabulatedSpectrum::from_csv(tcs, tcs.header()[column], Extrapolation::clamp);
+    const auto raw = channels(camera, &sample);
+    const auto x = channels(xyz, &sample);
+    const double de = delta_e_2000(lab_of(fit.camera_to_xyz.apply(Xyz{raw[0], raw[1], raw[2]}), white),
+                                   lab_of(Xyz{x[0], x[1], x[2]}, white));
+    mean += de / double(tcs.column_count() - 1);
+    worst = std::max(worst, de);
+  }
+  MESSAGE("nikon_d850 on CIE TCS01-14: mean ΔE00 " << mean << ", max " << worst << " (training mean "
+                                                    << fit.mean_delta_e2000 << ")");
+  CHECK(mean < 2.0 * fit.mean_delta_e2000);
+  CHECK(mean < 3.0);
 }
