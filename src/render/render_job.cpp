@@ -1,15 +1,14 @@
 #include "render/render_job.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <iomanip>
 #include <ostream>
 #include <sstream>
 
 #include "render/camera_colour_matrix.h"
 #include "render/camera_exposure.h"
+#include "render/display_image_policy.h"
 #include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
@@ -82,32 +81,6 @@ void check_outputs(const RenderJob& job) {
   }
   check_output_path(job.exr_output);
   if (job.png_output) check_output_path(*job.png_output);
-}
-
-// Any light given in photometric units (lm, cd, lx, nt, or an IES file)? Such scenes are in the thousands of nits,
-// which film units (Y = 1 ↔ 72 983 nt) show as black without a camera exposure.
-bool uses_photometric_units(const nlohmann::json& value) {
-  if (value.is_object()) {
-    for (const char* key : {"luminous_power_lm", "luminous_intensity_cd", "illuminance_lx", "luminance_nt"})
-      if (value.contains(key)) return true;
-    if (const auto type = value.find("type"); type != value.end() && *type == "ies") return true;
-  }
-  if (value.is_object() || value.is_array())
-    for (const auto& item : value)
-      if (uses_photometric_units(item)) return true;
-  return false;
-}
-
-std::string percent(double fraction) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(0) << fraction * 100.0 << " %";
-  return s.str();
-}
-
-std::string stops_text(double ev) {
-  std::ostringstream s;
-  s << std::showpos << std::fixed << std::setprecision(2) << ev;
-  return s.str();
 }
 
 }  // namespace
@@ -243,41 +216,13 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
         << " were NaN or beyond the largest float and were written as 0 or the largest value (see "
            "rimu:nonFiniteValuesReplaced); lower the exposure\n";
   if (job.png_output) {
-    if (colour_fit) {
-      display.camera_to_xyz = display_camera_to_xyz(*colour_fit, settings.camera_exposure.white_balance.kind !=
-                                                                     WhiteBalanceSettings::Kind::none);
-      log << "rimu: " << film.response().description() << ": the display image shows the camera's R, G, B through "
-          << "a camera-to-XYZ matrix fitted to the " << colour_fit->patch_count
-          << " ColorChecker patches under D65 (mean CIEDE2000 " << std::setprecision(3) << colour_fit->mean_delta_e2000
-          << ", max " << colour_fit->max_delta_e2000 << " on " << colour_fit->worst_patch
-          << "); the EXR keeps the raw R, G, B with the matrix in 'cameraToXYZ'\n";
-    }
-    if (metered_display) {
-      // No camera exposure for a photometric scene: meter the display like a reflected-light meter does, putting
-      // the mean luminance at 18 % grey (physical_camera.h), with --exposure as compensation on top.
-      const double mean_y = mean_display_luminance(film, display);
-      if (mean_y > 0.0 && std::isfinite(mean_y)) {
-        const double metered_ev = std::log2(kMeterMidGrey / mean_y);
-        display.exposure_ev = std::clamp(job.exposure_ev + metered_ev, -kMaxDisplayExposure_ev, kMaxDisplayExposure_ev);
-        log << "rimu: photometric lights and no camera \"exposure\": the display image is metered, its mean "
-               "luminance ("
-            << std::setprecision(4)
-            << mean_y * (colour_fit ? SpectralResponse::cie_xyz(library) : film.response()).luminance_nits_per_unit_y()
-            << " nt) shown as 18 % grey (display exposure " << stops_text(display.exposure_ev)
-            << " EV); the EXR stays in film units. Set the camera's \"exposure\" or --iso/--shutter/--f-number for "
-               "a physical exposure (docs/light-units.md)\n";
-      }
-    }
-    const DisplayLevels levels = write_display_image(*job.png_output, film, display);
-    constexpr double kNearlyAll = 0.9;
-    if (levels.black_fraction >= kNearlyAll)
-      log << "rimu: warning: " << percent(levels.black_fraction) << " of " << job.png_output->string()
-          << " is nearly black (every channel at most " << kNearlyBlackCode
-          << "/255): raise it with --exposure <stops>, or give the camera an \"exposure\" block (docs/light-units.md)\n";
-    if (levels.clipped_fraction >= kNearlyAll)
-      log << "rimu: warning: " << percent(levels.clipped_fraction) << " of " << job.png_output->string()
-          << " is clipped (some channel at 255): lower it with --exposure -<stops>, or give the camera an "
-             "\"exposure\" block (docs/light-units.md)\n";
+    DisplayImagePolicy policy;
+    policy.camera_fit = colour_fit;
+    policy.white_balanced = settings.camera_exposure.white_balance.kind != WhiteBalanceSettings::Kind::none;
+    policy.metered = metered_display;
+    policy.nits_per_unit_y =
+        (colour_fit ? SpectralResponse::cie_xyz(library) : film.response()).luminance_nits_per_unit_y();
+    write_policy_display_image(*job.png_output, film, display, policy, log);
   }
 
   const FilmSampleCounts& c = result.sample_counts;
