@@ -31,13 +31,20 @@ std::string WhiteBalanceSettings::describe() const {
   return "none";
 }
 
+void check_camera_option(double value, const PhysicalCameraRange& range, const std::string& option) {
+  if (value >= range.min && value <= range.max) return;
+  throw InputError({"", 0, option}, std::string("expected ") + range.what + " in " + number_text(range.min) + " to " +
+                                        number_text(range.max) + ", got " + number_text(value));
+}
+
 PhysicalCameraSettings parse_exposure(const JsonCursor& c) {
   c.only_keys({"iso", "shutter_s", "f_number", "compensation_ev"});
   PhysicalCameraSettings s;
-  s.iso = c.at("iso").number(1e-3, 1e7);
-  s.shutter_s = c.at("shutter_s").number(1e-9, 1e6);
-  s.f_number = c.at("f_number").number(0.1, 1000.0);
-  s.exposure_compensation_ev = c.number_or("compensation_ev", 0.0, -30.0, 30.0);
+  s.iso = c.at("iso").number(kIsoRange.min, kIsoRange.max);
+  s.shutter_s = c.at("shutter_s").number(kShutterRange_s.min, kShutterRange_s.max);
+  s.f_number = c.at("f_number").number(kFNumberRange.min, kFNumberRange.max);
+  s.exposure_compensation_ev =
+      c.number_or("compensation_ev", 0.0, kCompensationRange_ev.min, kCompensationRange_ev.max);
   return s;
 }
 

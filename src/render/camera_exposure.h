@@ -39,6 +39,21 @@ struct CameraExposureSettings {
   WhiteBalanceSettings white_balance;
 };
 
+/// The physical camera's accepted ranges, the same for the scene's "exposure" keys and the command line's options:
+/// ISO 0.001-10 000 000, shutter 1 ns-10⁶ s, f/0.1-f/1000, compensation ±30 EV. Inside them the imaging ratio
+/// (physical_camera.h) stays within about 10^±30, far inside a double and a float.
+struct PhysicalCameraRange {
+  const char* what;
+  double min, max;
+};
+inline constexpr PhysicalCameraRange kIsoRange{"an ISO speed", 1e-3, 1e7};
+inline constexpr PhysicalCameraRange kShutterRange_s{"a shutter time in seconds", 1e-9, 1e6};
+inline constexpr PhysicalCameraRange kFNumberRange{"an f-number", 0.1, 1000.0};
+inline constexpr PhysicalCameraRange kCompensationRange_ev{"an exposure compensation in stops", -30.0, 30.0};
+
+/// Throws InputError naming `option` unless min <= value <= max (so NaN and ±Inf fail too).
+void check_camera_option(double value, const PhysicalCameraRange& range, const std::string& option);
+
 /// Parses a scene camera's "exposure" object: iso, shutter_s, f_number required, compensation_ev optional (0).
 PhysicalCameraSettings parse_exposure(const JsonCursor& exposure);
 /// Parses "white_balance": {"cct": K}, {"illuminant": name} or "none"; unknown illuminants fail at the key.

@@ -3,6 +3,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "spectral/data_directory.h"
 #include "spectral/error.h"
@@ -22,8 +23,14 @@ const char* film_colour_space(ResponseKind kind) {
 DisplayTransform::DisplayTransform(ResponseKind film_kind, const DisplayOptions& options)
     : config_path_(options.ocio_config.empty() ? data_file("ocio/config.ocio") : options.ocio_config),
       exposure_scale_(float(std::exp2(options.exposure_ev))) {
-  if (!std::isfinite(options.exposure_ev))
-    throw InputError({"", 0, "--exposure"}, "the exposure must be a finite number of stops");
+  if (!(std::abs(options.exposure_ev) <= kMaxDisplayExposure_ev))
+    throw InputError({"", 0, "--exposure"}, [&] {
+                                                  std::ostringstream m;
+                                                  m << "the display exposure must be a number of stops in -"
+                                                    << kMaxDisplayExposure_ev << " to " << kMaxDisplayExposure_ev
+                                                    << ", got " << options.exposure_ev;
+                                                  return m.str();
+                                                }());
   OCIO::ConstConfigRcPtr config;
   try {
     config = OCIO::Config::CreateFromFile(config_path_.c_str());

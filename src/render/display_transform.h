@@ -3,10 +3,12 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "render/spectral_response.h"
+#include "spectral/matrix3.h"
 
 namespace rimu {
 
@@ -16,7 +18,14 @@ struct DisplayOptions {
   std::string view = "Standard";  ///< a view of data/ocio/config.ocio: "Standard", "ACES 1.0 SDR" or "Raw"
   std::string display = "sRGB";
   std::filesystem::path ocio_config;  ///< empty: <data>/ocio/config.ocio (find_data_directory())
+  /// For camera films: the camera-to-XYZ matrix (render/camera_colour_matrix.h) that turns the written R, G, B into
+  /// XYZ before the view transform. Unset: the raw sensor R, G, B are shown as if they were linear Rec.709.
+  std::optional<Matrix3> camera_to_xyz;
 };
+
+/// The display exposure accepted, ±kMaxDisplayExposure_ev stops: beyond it 2^EV leaves the range of a float
+/// (2^±126) for ordinary film values and the image is all black or all white.
+inline constexpr double kMaxDisplayExposure_ev = 60.0;
 
 /// A CPU colour processor from a film's scene-linear channels to the display's encoded RGB.
 ///

@@ -7,6 +7,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfIntAttribute.h>
+#include <ImfMatrixAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
@@ -14,6 +15,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "render/output_file.h"
@@ -35,6 +38,29 @@ void add_string(Imf::Header& h, const std::string& name, const std::string& valu
   h.insert(name, Imf::StringAttribute(value));
 }
 
+// OpenEXR's capDate ("YYYY:MM:DD hh:mm:ss", local time) and utcOffset (seconds, UTC minus local time).
+void add_capture_time(Imf::Header& h, std::time_t when) {
+  std::tm local{};
+  if (!localtime_r(&when, &local)) return;
+  char text[32];
+  if (std::strftime(text, sizeof(text), "%Y:%m:%d %H:%M:%S", &local) == 0) return;
+  Imf::addCapDate(h, text);
+  Imf::addUtcOffset(h, float(-local.tm_gmtoff));
+}
+
+// The value written for `v`: finite and inside the type's range (NaN → 0, ±Inf or beyond → ± the largest).
+float writable(double v, float largest, size_t& replaced) {
+  if (std::isnan(v)) {
+    ++replaced;
+    return 0.0f;
+  }
+  if (std::abs(v) > double(largest)) {
+    if (std::isinf(v) || largest == std::numeric_limits<float>::max()) ++replaced;
+    return v > 0 ? largest : -largest;
+  }
+  return float(v);
+}
+
 Imf::Header make_header(const Film& film, const ExrOptions& options) {
   const PixelBounds& b = film.pixel_bounds();
   const Imath::Box2i display_window(Imath::V2i(0, 0), Imath::V2i(film.width() - 1, film.height() - 1));
@@ -49,12 +75,29 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
     Imf::addChromaticities(h, Imf::Chromaticities(Imath::V2f(1.0f, 0.0f), Imath::V2f(0.0f, 1.0f),
                                                   Imath::V2f(0.0f, 0.0f), Imath::V2f(1.0f / 3.0f, 1.0f / 3.0f)));
     // Of the written Y: an exposed film (Film::output_transform) has Y scaled by the exposure.
-    h.insert("rimu:luminanceNitsPerUnitY",
-             Imf::DoubleAttribute(response.luminance_nits_per_unit_y() / film.output_transform().scale));
+    const double nits_per_y = response.luminance_nits_per_unit_y() / film.output_transform().scale;
+    h.insert("rimu:luminanceNitsPerUnitY", Imf::DoubleAttribute(nits_per_y));
+    Imf::addWhiteLuminance(h, float(nits_per_y));  // the luminance of the written (1, 1, 1), i.e. of Y = 1
   } else {
     add_string(h, "rimu:camera", response.camera_name());
+    if (options.metadata.camera_to_xyz) {
+      Imath::M33f m;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m[r][c] = float((*options.metadata.camera_to_xyz)(r, c));
+      h.insert("cameraToXYZ", Imf::M33fAttribute(m));
+      h.insert("rimu:cameraToXYZMeanDeltaE2000", Imf::DoubleAttribute(options.metadata.camera_to_xyz_mean_delta_e2000));
+    }
   }
   add_string(h, "rimu:version", rimu_version());
+  add_string(h, "software", std::string("Rimu ") + rimu_version());
+  Imf::addComments(h, std::string("Rendered by Rimu ") + rimu_version() +
+                          (options.metadata.scene.empty() ? std::string() : " from " + options.metadata.scene));
+  if (options.metadata.camera) {
+    Imf::addIsoSpeed(h, float(options.metadata.camera->iso));
+    Imf::addExpTime(h, float(options.metadata.camera->shutter_s));
+    Imf::addAperture(h, float(options.metadata.camera->f_number));
+  }
+  if (options.metadata.finished_at != 0) add_capture_time(h, options.metadata.finished_at);
   add_string(h, "rimu:filmResponse", response.description());
 
   const RenderMetadata& m = options.metadata;
@@ -71,7 +114,8 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
   for (const auto& [key, value] : m.extra) add_string(h, "rimu:" + key, value);
   if (film.binning().count > 0) {
     add_string(h, "spectralLayoutVersion", "1.0");
-    add_string(h, "rimu:spectralUnits", "W.m^-2.sr^-1.nm^-1 (mean over each bin)");
+    // Fichet et al. 2021's emissive layout: S0 channels of spectral radiance (per nm: the mean over each bin).
+    add_string(h, "emissiveUnits", "W.m^-2.sr^-1");
   }
   return h;
 }
@@ -86,7 +130,7 @@ std::string spectral_channel_name(const SpectralBinning& binning, int bin) {
   return "S0." + centre + "nm";
 }
 
-void write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options) {
+size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options) {
   const PixelBounds& b = film.pixel_bounds();
   const bool use_half = options.pixel_type == ExrPixelType::half;
   const SpectralResponse& response = film.response();
@@ -100,21 +144,25 @@ void write_exr(const std::filesystem::path& path, const Film& film, const ExrOpt
     channels.push_back({spectral_channel_name(film.binning(), bin), {}, {}});
 
   const size_t pixel_count = size_t(b.area());
+  const float largest = use_half ? kHalfMax : std::numeric_limits<float>::max();
+  size_t replaced = 0;
   for (size_t c = 0; c < channels.size(); ++c) {
     std::vector<float> values;
     values.reserve(pixel_count);
     for (int y = b.y0; y < b.y1; ++y)
       for (int x = b.x0; x < b.x1; ++x)
-        values.push_back(float(c < 3 ? film.output_value(x, y)[c] : film.spectral_value(x, y, int(c) - 3)));
+        values.push_back(writable(c < 3 ? film.output_value(x, y)[c] : film.spectral_value(x, y, int(c) - 3),
+                                  largest, replaced));
     if (use_half) {
       channels[c].halves.reserve(pixel_count);
-      for (float v : values) channels[c].halves.emplace_back(std::clamp(v, -kHalfMax, kHalfMax));
+      for (float v : values) channels[c].halves.emplace_back(v);
     } else {
       channels[c].floats = std::move(values);
     }
   }
 
   Imf::Header header = make_header(film, options);
+  if (replaced > 0) header.insert("rimu:nonFiniteValuesReplaced", Imf::DoubleAttribute(double(replaced)));
   const Imf::PixelType type = use_half ? Imf::HALF : Imf::FLOAT;
   for (const auto& channel : channels) header.channels().insert(channel.name, Imf::Channel(type));
 
@@ -131,6 +179,7 @@ void write_exr(const std::filesystem::path& path, const Film& film, const ExrOpt
     file.setFrameBuffer(frame_buffer);
     file.writePixels(b.height());
   });
+  return replaced;
 }
 
 }  // namespace rimu

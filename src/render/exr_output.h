@@ -2,11 +2,15 @@
 #pragma once
 
 #include <cstdint>
+#include <ctime>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "render/film.h"
+#include "render/physical_camera.h"
+#include "spectral/matrix3.h"
 
 namespace rimu {
 
@@ -18,6 +22,14 @@ struct RenderMetadata {
   bool interrupted = false;   ///< adds "rimu:interrupted" = "interrupted at N spp"
   std::string scene;          ///< scene file, if any
   std::map<std::string, std::string> extra;  ///< more string attributes, written as "rimu:<key>"
+  /// The physical camera's settings, if any: written as the standard isoSpeed, expTime and aperture too.
+  std::optional<PhysicalCameraSettings> camera;
+  /// When the image was made (seconds since the epoch; 0: unknown): the standard capDate and utcOffset.
+  std::time_t finished_at = 0;
+  /// For camera films: the matrix from the written R, G, B to CIE XYZ (render/camera_colour_matrix.h with the
+  /// white balance undone), written as the m33f attribute "cameraToXYZ" (row-major, acting on column vectors).
+  std::optional<Matrix3> camera_to_xyz;
+  double camera_to_xyz_mean_delta_e2000 = 0;  ///< its fit's residual, "rimu:cameraToXYZMeanDeltaE2000"
 };
 
 enum class ExrPixelType { half, float32 };
@@ -36,19 +48,27 @@ struct ExrOptions {
 /// - XYZ film: X, Y, Z, and the `chromaticities` attribute for XYZ: the chromaticities of the RGB triples
 ///   (1,0,0), (0,1,0), (0,0,1), (1,1,1) as ImfChromaticities.h defines them, which for X, Y, Z stored as
 ///   R, G, B are red (1, 0), green (0, 1), blue (0, 0), white (1/3, 1/3).
-/// - camera film: R, G, B (raw sensor, no chromaticities; the camera is named in "rimu:camera").
+/// - camera film: R, G, B (raw sensor, no chromaticities; the camera is named in "rimu:camera"; with
+///   metadata.camera_to_xyz, the m33f "cameraToXYZ" that turns them into XYZ).
 /// - spectral bins (when the film has them): one channel per bin named "S0.<centre>nm" with a comma as the
 ///   decimal separator, e.g. "S0.362,35nm", following Fichet, Pacanowski & Wilkie, "An OpenEXR Layout for
 ///   Spectral Images", JCGT 10(3), 2021 (S0 = unpolarised emission), plus "spectralLayoutVersion" = "1.0".
-///   Values are the mean spectral radiance over the bin (W/(m²·sr·nm) for radiance inputs).
-/// Half values are clamped to ±65504 (the largest half) rather than overflowing to Inf.
+///   Values are the mean spectral radiance over the bin (W/(m²·sr·nm) for radiance inputs), and the layout's
+///   "emissiveUnits" attribute says so: "W.m^-2.sr^-1" (the layout's spelling for spectral radiance, per nm).
+/// Half values are clamped to ±65504 (the largest half) rather than overflowing to Inf. No non-finite value is ever
+/// written: NaN becomes 0 and ±Inf the largest finite value of the type (an exposure scale times a bright pixel can
+/// overflow a float); their number is returned and, when not 0, written as "rimu:nonFiniteValuesReplaced".
+/// Standard attributes (OpenEXR's ImfStandardAttributes.h), besides Rimu's own: chromaticities (XYZ films),
+/// whiteLuminance (XYZ films: cd/m² of the written Y = 1), isoSpeed, expTime, aperture (with a physical camera),
+/// capDate and utcOffset (metadata.finished_at), comments; and "software" = "Rimu <version>" (no standard key).
 /// Attributes: rimu:version, rimu:filmResponse, rimu:camera, rimu:spp (int), rimu:seed (string: 64 bits),
 /// rimu:renderTimeSeconds (double), rimu:samplesAccepted / rimu:discardedNaN / rimu:discardedInf /
 /// rimu:discardedNegative (double: exact to 2⁵³), rimu:luminanceNitsPerUnitY (XYZ films), rimu:scene,
 /// rimu:interrupted, rimu:<extra keys>.
 /// Written to a temporary file in the same folder and renamed (write_atomically): on failure no file is left at
-/// `path`. Throws InputError for a missing folder, OutputError for anything else.
-void write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options = {});
+/// `path`. Throws InputError for a missing folder, OutputError for anything else. Returns the number of non-finite
+/// values replaced (see above).
+size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options = {});
 
 /// The EXR channel name of spectral bin `bin` (see write_exr).
 std::string spectral_channel_name(const SpectralBinning& binning, int bin);

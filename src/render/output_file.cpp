@@ -1,8 +1,14 @@
 #include "render/output_file.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
 
 #include "spectral/error.h"
 
@@ -14,10 +20,64 @@ std::filesystem::path folder_of(const std::filesystem::path& path) {
   return parent.empty() ? std::filesystem::path(".") : parent;
 }
 
+// True if process `pid` exists (kill with signal 0 only checks; EPERM means it exists but is someone else's).
+bool process_alive(long pid) {
+  if (pid <= 0 || pid != long(pid_t(pid))) return false;
+  return ::kill(pid_t(pid), 0) == 0 || errno == EPERM;
+}
+
+// If `name` is `prefix` + "<pid>-<n>" + `suffix`, the pid; otherwise -1.
+long pid_in_name(const std::string& name, const std::string& prefix, const std::string& suffix) {
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return -1;
+  const std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  const size_t dash = middle.find('-');
+  if (dash == 0 || dash == std::string::npos || dash + 1 == middle.size() || dash > 9) return -1;
+  const auto digits = [](const std::string& s) {
+    return std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+  };
+  if (!digits(middle.substr(0, dash)) || !digits(middle.substr(dash + 1))) return -1;
+  return std::stol(middle.substr(0, dash));
+}
+
+// `text` with every occurrence of `from` replaced by `to`.
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
 }  // namespace
 
 OutputError::OutputError(std::filesystem::path path, const std::string& what)
     : RenderError("cannot write '" + path.string() + "': " + what), path_(std::move(path)) {}
+
+std::filesystem::path temporary_output_path(const std::filesystem::path& path) {
+  static std::atomic<unsigned> counter{0};
+  const std::string name = "." + path.filename().string() + ".rimu-incomplete-" + std::to_string(::getpid()) + "-" +
+                           std::to_string(counter.fetch_add(1)) + path.extension().string();
+  return folder_of(path) / name;
+}
+
+int remove_stale_temporaries(const std::filesystem::path& path) {
+  const std::string extension = path.extension().string();
+  const std::string current_prefix = "." + path.filename().string() + ".rimu-incomplete-";
+  const std::string legacy_prefix = "." + path.stem().string() + ".rimu-tmp-";
+  std::error_code error;
+  std::filesystem::directory_iterator it(folder_of(path), error), end;
+  int removed = 0;
+  for (; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    long pid = pid_in_name(name, current_prefix, extension);
+    if (pid < 0) pid = pid_in_name(name, legacy_prefix, extension);
+    if (pid < 0 || process_alive(pid)) continue;
+    std::error_code ignored;
+    if (it->is_regular_file(ignored) && std::filesystem::remove(it->path(), ignored)) ++removed;
+  }
+  return removed;
+}
 
 void check_output_path(const std::filesystem::path& path) {
   if (path.empty() || !path.has_filename()) throw InputError({path.string(), 0, ""}, "the output path names no file");
@@ -27,13 +87,39 @@ void check_output_path(const std::filesystem::path& path) {
     throw InputError({path.string(), 0, ""}, "the output folder '" + folder.string() + "' does not exist");
   if (std::filesystem::is_directory(path, error))
     throw InputError({path.string(), 0, ""}, "the output path is a folder, not a file");
+  remove_stale_temporaries(path);
+  // Create (and remove) the very temporary a writer would create: permissions, read-only or pseudo file systems
+  // (/proc) and full inode tables all show up here, before the render rather than after it.
+  const std::filesystem::path probe = temporary_output_path(path);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int saved = errno;
+    throw InputError({path.string(), 0, ""},
+                     "cannot create a file in the output folder '" + folder.string() + "': " + std::strerror(saved));
+  }
+  ::close(fd);
+  std::filesystem::remove(probe, error);
 }
 
-std::filesystem::path temporary_output_path(const std::filesystem::path& path) {
-  static std::atomic<unsigned> counter{0};
-  const std::string name = "." + path.stem().string() + ".rimu-tmp-" + std::to_string(::getpid()) + "-" +
-                           std::to_string(counter.fetch_add(1)) + path.extension().string();
-  return folder_of(path) / name;
+bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code error;
+  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error) &&
+      std::filesystem::equivalent(a, b, error))
+    return true;
+  const auto normal = [](const std::filesystem::path& p) {
+    std::error_code e;
+    const std::filesystem::path absolute = std::filesystem::absolute(p, e);
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, e);
+    return (e ? absolute : canonical).lexically_normal();
+  };
+  return normal(a) == normal(b);
+}
+
+std::string lower_case_extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  if (!extension.empty()) extension.erase(0, 1);
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
 }
 
 void write_atomically(const std::filesystem::path& path,
@@ -41,6 +127,11 @@ void write_atomically(const std::filesystem::path& path,
   check_output_path(path);
   const std::filesystem::path temporary = temporary_output_path(path);
   std::error_code ignored;
+  // A library's message names the file it was given, the temporary: the user knows only `path`.
+  const auto user_message = [&](const std::string& what) {
+    return replace_all(replace_all(what, temporary.string(), path.string()), temporary.filename().string(),
+                       path.filename().string());
+  };
   try {
     write(temporary);
   } catch (const InputError&) {
@@ -48,7 +139,7 @@ void write_atomically(const std::filesystem::path& path,
     throw;
   } catch (const std::exception& e) {
     std::filesystem::remove(temporary, ignored);
-    throw OutputError(path, e.what());
+    throw OutputError(path, user_message(e.what()));
   }
   std::error_code error;
   std::filesystem::rename(temporary, path, error);

@@ -1,4 +1,5 @@
-// Writing an output file so that it either appears complete at its destination or not at all.
+// Writing an output file so that it either appears complete at its destination or not at all, and checking a
+// destination before a render spends time on an image that could not be written there.
 #pragma once
 
 #include <filesystem>
@@ -21,20 +22,36 @@ class OutputError : public RenderError {
   std::filesystem::path path_;
 };
 
-/// Throws InputError (naming the path) if the folder `path` would be written in does not exist or is not a folder.
+/// Throws InputError (naming `path`, never a temporary) if `path` names no file, is a folder, or its folder does
+/// not exist or does not let this process create a file in it (checked by creating and removing the temporary
+/// file write_atomically() would use). Also removes stale temporaries of `path` (remove_stale_temporaries()).
 /// Cheap: callers run it before rendering so that a typo in -o does not cost a render.
 void check_output_path(const std::filesystem::path& path);
 
-/// The temporary name write_atomically() uses for `path`: a hidden file in the same folder (so the final rename
-/// stays on one file system and is atomic), unique per process and call, ending in the destination's extension
-/// (OpenImageIO picks the format by extension).
+/// The temporary name write_atomically() uses for `path`: in the same folder (so the final rename stays on one file
+/// system and is atomic), hidden, named after the whole destination so a user recognises it, unique per process
+/// and call, and ending in the destination's extension (OpenImageIO picks a format by extension):
+/// ".<file name>.rimu-incomplete-<pid>-<n><extension>", e.g. ".out.exr.rimu-incomplete-4242-0.exr".
 std::filesystem::path temporary_output_path(const std::filesystem::path& path);
+
+/// Removes the temporaries of `path` left by writers that were killed (SIGKILL, power loss) before they could
+/// clean up: files in its folder named as temporary_output_path() names them (or as earlier Rimu versions did,
+/// ".<stem>.rimu-tmp-<pid>-<n><extension>") whose process <pid> no longer exists. Temporaries of other outputs and
+/// of live processes are left alone. Returns how many were removed; failures to remove are ignored (best effort).
+int remove_stale_temporaries(const std::filesystem::path& path);
+
+/// True if `a` and `b` name the same file (compared as weakly canonical absolute paths, so "out.exr",
+/// "./out.exr" and "sub/../out.exr" are the same, as are two names of one existing file through a symbolic link).
+bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+/// The extension of `path` in lower case, without the dot ("exr", "png"; empty if none).
+std::string lower_case_extension(const std::filesystem::path& path);
 
 /// Runs `write(temporary)` and renames the temporary file to `path` (replacing an existing file atomically).
 /// Every library's error style ends here: any exception thrown by `write` (OpenEXR's Iex exceptions, OpenColorIO's,
-/// a runtime_error built from OpenImageIO's geterror()) becomes an OutputError naming `path`, and the temporary
-/// file is removed, so a failed write leaves neither the destination nor a temporary behind. InputError from
-/// check_output_path() passes through unchanged.
+/// a runtime_error built from OpenImageIO's geterror()) becomes an OutputError naming `path` (a library message
+/// that names the temporary has it replaced by `path`), and the temporary file is removed, so a failed write
+/// leaves neither the destination nor a temporary behind. InputError from check_output_path() passes through.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& temporary)>& write);
 

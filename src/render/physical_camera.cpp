@@ -36,7 +36,13 @@ double film_exposure_scale(const PhysicalCameraSettings& c, const SpectralRespon
   // Camera films have no photometric unit; their G channel is normalised like Y (spectral_response.h), so the
   // same factor exposes them as an XYZ film of the same scene would be exposed.
   const double per_unit = nits_per_y > 0.0 ? nits_per_y : kMaxLuminousEfficacy_lm_W * response.normalisation_nm();
-  return imaging_ratio_per_nit(c) * per_unit;
+  const double scale = imaging_ratio_per_nit(c) * per_unit;
+  // Settings far outside a camera's (ISO 1e-300 with f/1e-300…) can underflow N²/(tS) to 0/0 or overflow it: an
+  // image of NaN, Inf or zeros is never what was meant.
+  if (!std::isfinite(scale) || !(scale > 0.0))
+    throw InputError({}, "these physical camera settings (ISO, shutter time, f-number, compensation) give an "
+                         "exposure scale of " + std::to_string(scale) + ", outside what an image can hold");
+  return scale;
 }
 
 std::array<double, 3> film_channels(const Spectrum& spectrum, const SpectralResponse& response) {

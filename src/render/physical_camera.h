@@ -43,6 +43,7 @@ double exposure_value(const PhysicalCameraSettings& camera);
 /// time or f-number.
 double imaging_ratio_per_nit(const PhysicalCameraSettings& camera);
 /// The factor to apply to an XYZ film's values (Y = 1 ↔ luminance_nits_per_unit_y nt) to get the exposed image.
+/// Throws InputError if it is not a positive finite number (settings far outside a camera's underflow or overflow).
 double film_exposure_scale(const PhysicalCameraSettings& camera, const SpectralResponse& response);
 
 /// The 3×3 matrix to apply to the film's channels that white-balances to `illuminant` (see above); `library` gives

@@ -2,10 +2,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <ostream>
 #include <sstream>
 
+#include "render/camera_colour_matrix.h"
 #include "render/camera_exposure.h"
+#include "render/display_image_policy.h"
 #include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
@@ -43,21 +46,41 @@ void apply_film_option(const std::string& film, RenderSettings& settings) {
   settings.film_response = film;
 }
 
-// --iso, --shutter, --f-number, --ev, --white-balance over the scene camera's exposure and white balance.
+bool has_camera_options(const RenderJob& job) {
+  return job.iso || job.shutter_s || job.f_number || job.compensation_ev;
+}
+
+// --iso, --shutter, --f-number, --ev, --white-balance over the scene camera's exposure and white balance. Each is
+// held to the range the scene's key accepts (camera_exposure.h).
 void apply_camera_options(const RenderJob& job, CameraExposureSettings& camera, SpectralLibrary& library) {
-  if (job.iso || job.shutter_s || job.f_number || job.compensation_ev) {
+  if (has_camera_options(job)) {
     PhysicalCameraSettings e = camera.exposure.value_or(PhysicalCameraSettings{});
-    if (job.iso) e.iso = *job.iso;
-    if (job.shutter_s) e.shutter_s = *job.shutter_s;
-    if (job.f_number) e.f_number = *job.f_number;
-    if (job.compensation_ev) e.exposure_compensation_ev = *job.compensation_ev;
-    if (!(e.iso > 0.0) || !(e.shutter_s > 0.0) || !(e.f_number > 0.0) || !std::isfinite(e.exposure_compensation_ev))
-      throw InputError({"", 0, "--iso/--shutter/--f-number/--ev"},
-                       "the physical camera needs a positive ISO, shutter time and f-number and a finite --ev");
+    if (job.iso) check_camera_option(e.iso = *job.iso, kIsoRange, "--iso");
+    if (job.shutter_s) check_camera_option(e.shutter_s = *job.shutter_s, kShutterRange_s, "--shutter");
+    if (job.f_number) check_camera_option(e.f_number = *job.f_number, kFNumberRange, "--f-number");
+    if (job.compensation_ev)
+      check_camera_option(e.exposure_compensation_ev = *job.compensation_ev, kCompensationRange_ev, "--ev");
     camera.exposure = e;
   }
   if (job.white_balance)
     camera.white_balance = parse_white_balance_option(*job.white_balance, library, "--white-balance");
+}
+
+// The outputs, checked before anything slow happens: -o is OpenEXR and must say so, --png picks its format by its
+// extension, the two are different files, and a file can be created in each folder.
+void check_outputs(const RenderJob& job) {
+  if (lower_case_extension(job.exr_output) != "exr")
+    throw InputError({job.exr_output.string(), 0, "-o"},
+                     "the scene-referred OpenEXR image needs a name ending in .exr (got '" +
+                         job.exr_output.extension().string() + "'); a display image (.png, .jpg, .tif) is --png");
+  if (job.png_output) {
+    if (same_output_file(job.exr_output, *job.png_output))
+      throw InputError({job.png_output->string(), 0, "--png"},
+                       "-o and --png name the same file; the display image would replace the OpenEXR image");
+    display_image_format(*job.png_output, "--png");
+  }
+  check_output_path(job.exr_output);
+  if (job.png_output) check_output_path(*job.png_output);
 }
 
 }  // namespace
@@ -81,19 +104,20 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
 }
 
 RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
+  // Everything that can be checked without the scene is checked first: a typo costs nothing.
+  check_outputs(job);
+  DisplayOptions display;
+  display.exposure_ev = job.exposure_ev;
+  display.view = job.view;
+  const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
-  std::unique_ptr<Scene> scene;
-  if (job.wavelengths || job.wavelength_density) {
-    nlohmann::json document = parse_json_file(scene_path);
-    if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
-    if (job.wavelength_density)
-      document["integrator"]["wavelength_density"] =
-          *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
-    scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
-  } else {
-    scene = load_scene(scene_path, library);
-  }
+  nlohmann::json document = parse_json_file(scene_path);
+  if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
+  if (job.wavelength_density)
+    document["integrator"]["wavelength_density"] =
+        *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
+  const std::unique_ptr<Scene> scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
 
   RenderSettings& settings = scene->settings;
   if (job.width) settings.width = *job.width;
@@ -124,6 +148,15 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
     }
   }();
   Film film(film_options, std::move(response));
+  if (settings.camera_exposure.exposure) {
+    try {
+      film_exposure_scale(*settings.camera_exposure.exposure, film.response());
+    } catch (const InputError& e) {
+      throw InputError({"", 0, has_camera_options(job) ? "--iso/--shutter/--f-number/--ev"
+                                                       : scene_path.string() + ": /camera/exposure"},
+                       e.explanation());
+    }
+  }
   // Exposure and white balance reach the EXR and the PNG through the film's output transform (one place).
   const FilmOutputTransform output_transform = [&] {
     try {
@@ -135,9 +168,9 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   }();
   film.set_output_transform(output_transform);
   const PixelFilter filter = make_filter(settings.filter);
-  // Check the outputs before spending the render time on an image that cannot be written.
-  check_output_path(job.exr_output);
-  if (job.png_output) check_output_path(*job.png_output);
+  std::optional<CameraColourFit> colour_fit;
+  if (film.response().kind() == ResponseKind::camera_rgb) colour_fit = fit_camera_to_xyz(film.response(), library);
+  const bool metered_display = !settings.camera_exposure.exposure && uses_photometric_units(document);
 
   InterruptFlag interrupt;
   const uint64_t total = uint64_t(film.pixel_bounds().area()) * uint64_t(settings.samples_per_pixel);
@@ -170,12 +203,26 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
   for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, output_transform))
     exr.metadata.extra[key] = value;
-  write_exr(job.exr_output, film, exr);
+  exr.metadata.camera = settings.camera_exposure.exposure;
+  exr.metadata.finished_at = std::time(nullptr);
+  if (colour_fit) {
+    // The written R, G, B are M_wb · raw (times the exposure): undo the white balance to reach the fit's raw input.
+    exr.metadata.camera_to_xyz = colour_fit->camera_to_xyz * output_transform.channel_matrix.inverse();
+    exr.metadata.camera_to_xyz_mean_delta_e2000 = colour_fit->mean_delta_e2000;
+  }
+  const size_t replaced = write_exr(job.exr_output, film, exr);
+  if (replaced > 0)
+    log << "rimu: warning: " << replaced << " values of " << job.exr_output.string()
+        << " were NaN or beyond the largest float and were written as 0 or the largest value (see "
+           "rimu:nonFiniteValuesReplaced); lower the exposure\n";
   if (job.png_output) {
-    DisplayOptions display;
-    display.exposure_ev = job.exposure_ev;
-    display.view = job.view;
-    write_display_png(*job.png_output, film, display);
+    DisplayImagePolicy policy;
+    policy.camera_fit = colour_fit;
+    policy.white_balanced = settings.camera_exposure.white_balance.kind != WhiteBalanceSettings::Kind::none;
+    policy.metered = metered_display;
+    policy.nits_per_unit_y =
+        (colour_fit ? SpectralResponse::cie_xyz(library) : film.response()).luminance_nits_per_unit_y();
+    write_policy_display_image(*job.png_output, film, display, policy, log);
   }
 
   const FilmSampleCounts& c = result.sample_counts;

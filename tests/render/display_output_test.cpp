@@ -56,7 +56,7 @@ TEST_CASE("Standard view: plain sRGB encoding of XYZ, with exposure") {
   for (int c = 0; c < 3; ++c) CHECK(std::abs(rgb[c] - srgb_encode(linear[c])) <= 1e-3);
 
   // +1 EV doubles the scene values: 0.09 shown at +1 EV is 0.18 shown at 0 EV.
-  const DisplayTransform brighter(ResponseKind::cie_xyz, DisplayOptions{1.0, "Standard", "sRGB", {}});
+  const DisplayTransform brighter(ResponseKind::cie_xyz, DisplayOptions{1.0, "Standard", "sRGB", {}, {}});
   const auto half_grey = d65_grey(0.09);
   std::vector<float> g = {float(half_grey[0]), float(half_grey[1]), float(half_grey[2])};
   brighter.apply(g, 1);
@@ -66,7 +66,7 @@ TEST_CASE("Standard view: plain sRGB encoding of XYZ, with exposure") {
 TEST_CASE("ACES 1.0 SDR view keeps D65 grey neutral and compresses highlights") {
   // The inverse Bradford (XYZ D65 → ACES white) and the ODT's D60 → D65 adaptation cancel on neutrals: R = G = B to
   // within OCIO's float pipeline (1e-3). The tone curve maps scene white (Y = 1) below display white.
-  const DisplayTransform aces(ResponseKind::cie_xyz, DisplayOptions{0.0, "ACES 1.0 SDR", "sRGB", {}});
+  const DisplayTransform aces(ResponseKind::cie_xyz, DisplayOptions{0.0, "ACES 1.0 SDR", "sRGB", {}, {}});
   for (const double y : {0.18, 1.0, 16.0}) {
     CAPTURE(y);
     const auto xyz = d65_grey(y);
@@ -80,9 +80,9 @@ TEST_CASE("ACES 1.0 SDR view keeps D65 grey neutral and compresses highlights") 
 }
 
 TEST_CASE("unknown views and configs are InputErrors naming what exists") {
-  CHECK_THROWS_WITH_AS(DisplayTransform(ResponseKind::cie_xyz, DisplayOptions{0.0, "Filmic", "sRGB", {}}),
+  CHECK_THROWS_WITH_AS(DisplayTransform(ResponseKind::cie_xyz, DisplayOptions{0.0, "Filmic", "sRGB", {}, {}}),
                        doctest::Contains("Standard, ACES 1.0 SDR"), InputError);
-  CHECK_THROWS_WITH_AS(DisplayTransform(ResponseKind::cie_xyz, DisplayOptions{0.0, "Standard", "sRGB", "/nope.ocio"}),
+  CHECK_THROWS_WITH_AS(DisplayTransform(ResponseKind::cie_xyz, DisplayOptions{0.0, "Standard", "sRGB", "/nope.ocio", {}}),
                        doctest::Contains("/nope.ocio"), InputError);
 }
 
@@ -97,7 +97,7 @@ TEST_CASE("PNG is written, readable, of the crop window's size, with the expecte
       film.add_sample(x, y, Float4(0.02f * float(x) / 7.0f),
                       SampledWavelengths(Float4(540.0f, 550.0f, 560.0f, 570.0f), Float4(0.01f)));
   const fs::path path = folder / "display.png";
-  write_display_png(path, film);
+  write_display_image(path, film);
 
   auto in = OIIO::ImageInput::open(path.string());
   REQUIRE(in);
@@ -121,6 +121,6 @@ TEST_CASE("PNG is written, readable, of the crop window's size, with the expecte
     }
   }
   CHECK(std::distance(fs::directory_iterator(folder), fs::directory_iterator()) == 1);  // no temporary left
-  CHECK_THROWS_AS(write_display_png(folder / "missing" / "x.png", film), InputError);
+  CHECK_THROWS_AS(write_display_image(folder / "missing" / "x.png", film), InputError);
   fs::remove_all(folder);
 }

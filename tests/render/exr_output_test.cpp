@@ -16,6 +16,7 @@
 #include <map>
 #include <unistd.h>
 
+#include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
 #include "spectral/error.h"
@@ -205,4 +206,51 @@ TEST_CASE("half output clamps instead of overflowing to Inf") {
   Imath::Box2i window;
   const auto channels = read_channels(path, window);
   CHECK(channels.at("Y")[0] == 65504.0f);
+}
+
+TEST_CASE("no NaN or Inf reaches an image: an overflowing output transform is written finite and counted") {
+  // An exposure scale of 1e300 times a film value of ~1 overflows a float (3.4e38) to Inf; a NaN in the white
+  // balance matrix makes NaN. The EXR writer replaces them (NaN → 0, ±Inf → ± the largest value of the type) and
+  // says how many; the display image clamps (NaN → 0, Inf → 255).
+  ScratchFolder folder("finite");
+  Film film(FilmOptions{2, 1, {}, 0}, SpectralResponse::cie_xyz(test::library()));
+  film.add_sample(0, 0, Float4(1.0f), SampledWavelengths::sample_visible(0.4f));
+  film.add_sample(1, 0, Float4(1.0f), SampledWavelengths::sample_visible(0.6f));
+  film.set_output_transform(FilmOutputTransform{Matrix3::identity(), 1e300});
+  for (const auto type : {ExrPixelType::float32, ExrPixelType::half}) {
+    const fs::path path = folder.path / (type == ExrPixelType::half ? "half.exr" : "float.exr");
+    ExrOptions options;
+    options.pixel_type = type;
+    const size_t replaced = write_exr(path, film, options);
+    Imath::Box2i window;
+    for (const auto& [name, values] : read_channels(path, window))
+      for (float v : values) {
+        CAPTURE(name);
+        CHECK(std::isfinite(v));
+      }
+    if (type == ExrPixelType::float32) {
+      CHECK(replaced == 6);  // X, Y, Z of both pixels
+      Imf::InputFile file(path.c_str());
+      CHECK(file.header().typedAttribute<Imf::DoubleAttribute>("rimu:nonFiniteValuesReplaced").value() == 6.0);
+    }
+  }
+  Matrix3 nan_matrix = Matrix3::identity();
+  nan_matrix(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  film.set_output_transform(FilmOutputTransform{nan_matrix, 1.0});
+  ExrOptions options;
+  options.pixel_type = ExrPixelType::float32;
+  CHECK(write_exr(folder.path / "nan.exr", film, options) == 2);  // X of both pixels
+  Imath::Box2i window;
+  CHECK(read_channels(folder.path / "nan.exr", window).at("X")[0] == 0.0f);
+
+  // The display image: Inf clamps to white, NaN to 0 (the Raw view shows the film's numbers, so each channel is
+  // its own: X NaN → 0; Y, Z of ~1e300 → 255).
+  film.set_output_transform(FilmOutputTransform{nan_matrix, 1e300});
+  DisplayOptions raw;
+  raw.view = "Raw";
+  const std::vector<uint8_t> pixels = display_pixels(film, raw);
+  REQUIRE(pixels.size() == 6);
+  CHECK(pixels[0] == 0);
+  CHECK(pixels[1] == 255);
+  CHECK(pixels[2] == 255);
 }

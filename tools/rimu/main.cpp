@@ -19,8 +19,10 @@ int main(int argc, char** argv) {
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density;
   app.add_option("scene", scene, "scene file (.json); omit for the embedded Cornell box");
-  app.add_option("-o,--output", output, "OpenEXR output (default rimu.exr)");
-  app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO)");
+  app.add_option("-o,--output", output, "scene-referred OpenEXR output, a name ending in .exr (default rimu.exr)");
+  app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
+                               "by the extension (.png, .jpg, .tif); a photometric scene without a camera exposure "
+                               "is metered to 18 % grey");
   app.add_option("--spp", job.samples_per_pixel, "samples per pixel (overrides the scene)")->check(CLI::Range(1, 1 << 24));
   app.add_option("--threads", job.threads, "worker threads (default: every core)")->check(CLI::Range(1, 1024));
   app.add_option("--seed", job.seed, "random seed (the image is identical for the same seed and spp)");
@@ -40,7 +42,7 @@ int main(int argc, char** argv) {
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");
   app.add_option("--crop", crop, "x0,y0,x1,y1: render only this window (pixels, end exclusive)");
   app.add_flag("--float", job.float_exr, "write 32-bit float EXR channels (default: half)");
-  app.add_option("--exposure", job.exposure_ev, "exposure of the PNG in stops (EV)");
+  app.add_option("--exposure", job.exposure_ev, "exposure of the display image in stops (EV), -60 to 60");
   app.add_option("--view", job.view, "OpenColorIO view of the PNG: Standard, \"ACES 1.0 SDR\" or Raw");
   app.add_flag("-q,--quiet", job.quiet, "no progress bar");
   std::string shutter;
