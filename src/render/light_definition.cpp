@@ -55,7 +55,8 @@ nlohmann::json cct_spectrum(double cct_k, bool daylight, const SourceLocation& w
 
 SpectrumPtr light_shape(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
   SpectrumInputContext context(library, dir);
-  return context.parse(JsonCursor(light.spectrum, "light", "/spectrum"), SpectrumRole::emission);
+  return context.parse(JsonCursor(light.spectrum, light.source.empty() ? "light" : light.source, "/spectrum"),
+                       SpectrumRole::emission);
 }
 
 void validate_light_definition(const LightDefinition& light, SpectralLibrary& library,
@@ -92,6 +93,7 @@ nlohmann::json light_definition_json(const LightDefinition& light) {
 LightDefinition read_light_definition(const nlohmann::json& document, const std::string& file) {
   const JsonCursor root(document, file);
   LightDefinition light;
+  light.source = file;
   const std::string type = root.at("type").choice({"point", "spot", "distant", "environment"});
   light.geometry.kind = type == "point" ? EmitterKind::point
                         : type == "spot" ? EmitterKind::spot
