@@ -300,4 +300,15 @@ TEST_CASE("input limits: a light definition's spectrum errors name its file") {
   const LightDefinition light = read_light_definition(document, "lamp.json");
   const InputError e = input_error([&] { light_shape(light, test::library(), dir.path); }, {"lamp.json: /spectrum"});
   CHECK(e.where().file == "lamp.json");
+
+  // A light made from options with a CSV spectrum (rimu-light --csv): errors name the CSV, not "light: /spectrum".
+  LightDefinition from_csv;
+  from_csv.spectrum = {{"csv", dir.write("dip.csv", "wavelength_nm,power\n400,1\n500,-1\n").string()}};
+  const InputError negative = input_error([&] { light_shape(from_csv, test::library(), dir.path); }, {"negative"});
+  CHECK(negative.where().file == (dir.path / "dip.csv").string());
+  CHECK(negative.where().key.empty());
+  from_csv.spectrum = {{"csv", dir.write("infrared.csv", "wavelength_nm,power\n900,1\n1000,2\n").string()}};
+  const InputError dark = input_error(
+      [&] { validate_light_definition(from_csv, test::library(), dir.path, {"", 0, "--lumens"}); }, {"no power"});
+  CHECK(dark.where().file == (dir.path / "infrared.csv").string());
 }
