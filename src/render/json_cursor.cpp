@@ -24,6 +24,12 @@ std::pair<int, int> line_and_column(const std::string& text, size_t byte) {
   return {line, column};
 }
 
+// Appends `text` to `out`, cut with "..." where `out` would pass `limit` characters.
+void append_cut(const std::string& text, size_t limit, std::string& out) {
+  const size_t room = out.size() < limit ? limit - out.size() : 0;
+  out += text.size() <= room ? text : text.substr(0, room) + "...";
+}
+
 // Appends a JSON value to `out`, at most kDepth levels deep and stopping near `limit` characters: enough to show
 // the user what was found, without printing (or recursing through) a whole document.
 void append_preview(const nlohmann::json& v, int depth, size_t limit, std::string& out) {
@@ -44,19 +50,21 @@ void append_preview(const nlohmann::json& v, int depth, size_t limit, std::strin
         out += "...";
         break;
       }
-      if (!array) out += nlohmann::json(it.key()).dump() + ": ";
+      if (!array) {
+        append_cut(nlohmann::json(it.key()).dump(), limit, out);
+        out += ": ";
+      }
       append_preview(*it, depth + 1, limit, out);
     }
     out += array ? ']' : '}';
     return;
   }
-  const std::string scalar = v.dump();
-  out += scalar.size() <= limit - out.size() ? scalar : scalar.substr(0, limit - out.size()) + "...";
+  append_cut(v.dump(), limit, out);
 }
 
-// The deepest nesting of arrays and objects in JSON text, found by a scan that skips strings; throws at the first
-// bracket past the limit. nlohmann's parser does not recurse, but copying, comparing or printing a parsed value
-// does, so a 100 000-deep array would overflow the stack later.
+// Throws at the first bracket of JSON text nested deeper than kMaxJsonNesting (a scan that skips strings).
+// nlohmann's parser and destructor do not recurse (a 1 000 000-deep array parses), but copying, comparing or
+// printing a parsed value does: copying that array overflowed an 8 MiB stack.
 void check_nesting(const std::string& text, const std::string& name) {
   int depth = 0, line = 1;
   bool in_string = false, escaped = false;

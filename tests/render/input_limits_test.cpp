@@ -157,6 +157,7 @@ TEST_CASE("input limits: deep JSON nesting is refused before parsing, and error 
   for (int i = 0; i < 100000; ++i) wide.push_back(i);
   CHECK(json_preview(wide).size() < 100);
   CHECK(json_preview(json(std::string(100000, 'x'))).size() < 100);
+  CHECK(json_preview(json{{std::string(100000, 'k'), 1}}).size() < 100);
   CHECK(json_preview(json::parse(R"({"a": [1, 2], "b": "c"})")) == R"({"a": [1, 2], "b": "c"})");
 }
 
