@@ -153,7 +153,8 @@ size_t JsonCursor::size() const {
 }
 
 double JsonCursor::number(double min, double max) const {
-  if (!value_->is_number()) fail(std::string("expected a number, found ") + type_name(*value_) + " " + json_preview(*value_));
+  if (!value_->is_number())
+    fail(std::string("expected a number, found ") + type_name(*value_) + " " + json_preview(*value_));
   const double v = value_->get<double>();
   if (!std::isfinite(v)) fail("expected a finite number");
   if (v < min || v > max) {
@@ -210,12 +211,14 @@ std::string JsonCursor::choice(std::initializer_list<const char*> choices) const
 }
 
 Vec3 JsonCursor::vec3() const {
-  if (!value_->is_array() || value_->size() != 3) fail("expected an array of 3 numbers, found " + json_preview(*value_));
+  if (!value_->is_array() || value_->size() != 3)
+    fail("expected an array of 3 numbers, found " + json_preview(*value_));
   return {float(at(size_t(0)).number()), float(at(size_t(1)).number()), float(at(size_t(2)).number())};
 }
 
 Vec2 JsonCursor::vec2() const {
-  if (!value_->is_array() || value_->size() != 2) fail("expected an array of 2 numbers, found " + json_preview(*value_));
+  if (!value_->is_array() || value_->size() != 2)
+    fail("expected an array of 2 numbers, found " + json_preview(*value_));
   return {float(at(size_t(0)).number()), float(at(size_t(1)).number())};
 }
 

@@ -38,7 +38,9 @@ bool parse_finite_number(std::string_view text, double& value) {
   return error == std::errc() && end == text.data() + text.size() && std::isfinite(value);
 }
 
-CsvTable CsvTable::read(const std::filesystem::path& path) { return parse(read_input_file(path, kMaxTableFileBytes), path.string()); }
+CsvTable CsvTable::read(const std::filesystem::path& path) {
+  return parse(read_input_file(path, kMaxTableFileBytes), path.string());
+}
 
 CsvTable CsvTable::parse(std::string_view text, const std::string& name) {
   reject_nul_bytes(text, name);
