@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 namespace {
@@ -95,6 +96,7 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 }  // namespace
 
 IesPhotometry parse_ies(const std::string& text, const std::string& name) {
+  reject_nul_bytes(text, name);
   std::vector<std::string> lines;
   {
     std::istringstream in(text);
@@ -180,6 +182,7 @@ IesPhotometry parse_ies(const std::string& text, const std::string& name) {
 
   const double factor = ies.candela_multiplier * ies.ballast_factor * ies.ballast_lamp_factor * ies.tilt_factor;
   const size_t expected = size_t(vertical_count) * size_t(horizontal_count);
+  const int table_line = in.line();
   for (size_t i = 0; i < expected; ++i) {
     if (in.at_end())
       in.fail(in.line(), "the candela table ends after " + std::to_string(i) + " of " + std::to_string(expected) +
@@ -188,21 +191,26 @@ IesPhotometry parse_ies(const std::string& text, const std::string& name) {
     const double cd = in.number("candela value " + std::to_string(i + 1));
     if (cd < 0.0) in.fail(in.last_read_line(), "candela value " + std::to_string(i + 1) + " is negative (" +
                                                    NumberReader::format(cd) + ")");
+    if (!std::isfinite(cd * factor))
+      in.fail(in.last_read_line(), "candela value " + std::to_string(i + 1) + " (" + NumberReader::format(cd) +
+                                       ") times the multipliers (" + NumberReader::format(factor) +
+                                       ") overflows a double");
     ies.candela.push_back(cd * factor);
   }
   if (!in.at_end())
     in.fail(in.line(), "more values than the " + std::to_string(expected) + " the counts announce (" +
                            std::to_string(horizontal_count) + " horizontal × " + std::to_string(vertical_count) +
                            " vertical angles)");
+  // Values that are each finite can still sum to infinity; a lamp of infinite flux is not a measurement.
+  const double flux_lm = candela_distribution(ies)->integral_sr();
+  if (!std::isfinite(flux_lm))
+    in.fail(table_line, "the candela values are too large: the total luminous flux they give overflows a double "
+                        "(check the candela multiplier and the values' units)");
   return ies;
 }
 
 IesPhotometry read_ies_file(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError({path.string(), 0, ""}, "cannot open the IES file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_ies(text.str(), path.string());
+  return parse_ies(read_input_file(path, kMaxTableFileBytes), path.string());
 }
 
 std::shared_ptr<const CandelaDistribution> candela_distribution(const IesPhotometry& ies, double scale) {

@@ -1,8 +1,9 @@
 #include "render/json_cursor.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
+
+#include "spectral/input_file.h"
 
 namespace rimu {
 namespace {
@@ -23,9 +24,77 @@ std::pair<int, int> line_and_column(const std::string& text, size_t byte) {
   return {line, column};
 }
 
+// Appends `text` to `out`, cut with "..." where `out` would pass `limit` characters.
+void append_cut(const std::string& text, size_t limit, std::string& out) {
+  const size_t room = out.size() < limit ? limit - out.size() : 0;
+  out += text.size() <= room ? text : text.substr(0, room) + "...";
+}
+
+// Appends a JSON value to `out`, at most kDepth levels deep and stopping near `limit` characters: enough to show
+// the user what was found, without printing (or recursing through) a whole document.
+void append_preview(const nlohmann::json& v, int depth, size_t limit, std::string& out) {
+  constexpr int kDepth = 3;
+  if (out.size() >= limit) return;
+  if (v.is_array() || v.is_object()) {
+    const bool array = v.is_array();
+    if (v.empty() || depth >= kDepth) {
+      out += v.empty() ? (array ? "[]" : "{}") : (array ? "[...]" : "{...}");
+      return;
+    }
+    out += array ? '[' : '{';
+    bool first = true;
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      if (!first) out += ", ";
+      first = false;
+      if (out.size() >= limit) {
+        out += "...";
+        break;
+      }
+      if (!array) {
+        append_cut(nlohmann::json(it.key()).dump(), limit, out);
+        out += ": ";
+      }
+      append_preview(*it, depth + 1, limit, out);
+    }
+    out += array ? ']' : '}';
+    return;
+  }
+  append_cut(v.dump(), limit, out);
+}
+
+// Throws at the first bracket of JSON text nested deeper than kMaxJsonNesting (a scan that skips strings).
+// nlohmann's parser and destructor do not recurse (a 1 000 000-deep array parses), but copying, comparing or
+// printing a parsed value does: copying that array overflowed an 8 MiB stack.
+void check_nesting(const std::string& text, const std::string& name) {
+  int depth = 0, line = 1;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == ']' || c == '}') --depth;
+    else if ((c == '[' || c == '{') && ++depth > kMaxJsonNesting)
+      throw InputError({name, line, ""}, "arrays and objects are nested more than " +
+                                             std::to_string(kMaxJsonNesting) + " deep; a scene needs fewer than 10");
+  }
+}
+
 }  // namespace
 
+std::string json_preview(const nlohmann::json& value, size_t max_chars) {
+  std::string out;
+  append_preview(value, 0, max_chars, out);
+  return out;
+}
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& name) {
+  reject_nul_bytes(text, name);
+  check_nesting(text, name);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -34,6 +103,8 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& name)
     // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line L, column C: ";
     // keep only the explanation after the last ": " prefix of the position.
     if (const size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+    // The message quotes the last token read, which can be a whole megabyte-long string.
+    if (what.size() > 200) what = what.substr(0, 200) + "...";
     throw InputError({name, line, ""}, "column " + std::to_string(column) + ": malformed JSON: " + what);
   } catch (const nlohmann::json::exception& e) {
     // Out-of-range numbers (1e400) are reported without a position; find the quoted token to give its line.
@@ -50,11 +121,7 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& name)
 }
 
 nlohmann::json parse_json_file(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError({path.string(), 0, ""}, "cannot open the scene file (does it exist and is it readable?)");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_json_text(text.str(), path.string());
+  return parse_json_text(read_input_file(path, kMaxJsonFileBytes), path.string());
 }
 
 void JsonCursor::fail(const std::string& what) const { throw InputError(where(), what); }
@@ -86,7 +153,8 @@ size_t JsonCursor::size() const {
 }
 
 double JsonCursor::number(double min, double max) const {
-  if (!value_->is_number()) fail(std::string("expected a number, found ") + type_name(*value_) + " " + value_->dump());
+  if (!value_->is_number())
+    fail(std::string("expected a number, found ") + type_name(*value_) + " " + json_preview(*value_));
   const double v = value_->get<double>();
   if (!std::isfinite(v)) fail("expected a finite number");
   if (v < min || v > max) {
@@ -102,7 +170,7 @@ double JsonCursor::number_or(const std::string& key, double fallback, double min
 }
 
 int JsonCursor::integer(int min, int max) const {
-  if (!value_->is_number_integer()) fail(std::string("expected an integer, found ") + value_->dump());
+  if (!value_->is_number_integer()) fail(std::string("expected an integer, found ") + json_preview(*value_));
   const long long v = value_->get<long long>();
   if (v < min || v > max)
     fail("expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], found " +
@@ -115,7 +183,7 @@ int JsonCursor::integer_or(const std::string& key, int fallback, int min, int ma
 }
 
 bool JsonCursor::boolean() const {
-  if (!value_->is_boolean()) fail(std::string("expected true or false, found ") + value_->dump());
+  if (!value_->is_boolean()) fail(std::string("expected true or false, found ") + json_preview(*value_));
   return value_->get<bool>();
 }
 
@@ -143,12 +211,14 @@ std::string JsonCursor::choice(std::initializer_list<const char*> choices) const
 }
 
 Vec3 JsonCursor::vec3() const {
-  if (!value_->is_array() || value_->size() != 3) fail("expected an array of 3 numbers, found " + value_->dump());
+  if (!value_->is_array() || value_->size() != 3)
+    fail("expected an array of 3 numbers, found " + json_preview(*value_));
   return {float(at(size_t(0)).number()), float(at(size_t(1)).number()), float(at(size_t(2)).number())};
 }
 
 Vec2 JsonCursor::vec2() const {
-  if (!value_->is_array() || value_->size() != 2) fail("expected an array of 2 numbers, found " + value_->dump());
+  if (!value_->is_array() || value_->size() != 2)
+    fail("expected an array of 2 numbers, found " + json_preview(*value_));
   return {float(at(size_t(0)).number()), float(at(size_t(1)).number())};
 }
 

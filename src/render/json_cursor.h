@@ -11,9 +11,18 @@
 
 namespace rimu {
 
+/// Arrays and objects nested deeper than this are refused before parsing (docs/scene-format.md, "Limits"): copying
+/// or printing a parsed value recurses, so a 100 000-deep array would overflow the stack.
+inline constexpr int kMaxJsonNesting = 256;
+
 /// Parses JSON text; a syntax error becomes an InputError with the file and line (and column) where it was found.
-nlohmann::json parse_json_file(const std::filesystem::path& path);
+/// A NUL byte, or nesting deeper than kMaxJsonNesting, is an InputError with its line.
 nlohmann::json parse_json_text(const std::string& text, const std::string& name);
+/// parse_json_text on a file read by read_input_file (a regular file of at most kMaxJsonFileBytes, input_file.h).
+nlohmann::json parse_json_file(const std::filesystem::path& path);
+
+/// The value as JSON text for an error message: at most 3 levels deep ("[...]" below) and about `max_chars` long.
+std::string json_preview(const nlohmann::json& value, size_t max_chars = 80);
 
 /// A position in a parsed JSON document: the value, its key path ("/materials/white/reflectance") and the file.
 /// Every accessor checks the type and range it expects and otherwise throws an InputError naming the path.

@@ -40,8 +40,32 @@ std::string fmt(const char* format, double value) {
   return out;
 }
 
+// The CSV file a light made from options takes its spectrum from ({"csv": path}), or "".
+std::string spectrum_csv(const LightDefinition& light) {
+  if (!light.source.empty() || !light.spectrum.is_object()) return "";
+  const auto it = light.spectrum.find("csv");
+  return it != light.spectrum.end() && it->is_string() ? it->get<std::string>() : "";
+}
+
+// A spectrum error of a light without a file of its own that comes from a CSV (--csv, inspect lamp.csv): the CSV
+// is what the user named, so the error names it (with its line, if it has one) and not a JSON key of no file.
+[[noreturn]] void rethrow_at_spectrum_origin(const LightDefinition& light, const InputError& e) {
+  const std::string csv = spectrum_csv(light);
+  if (csv.empty()) throw e;
+  SourceLocation where = e.where();
+  if (where.file.empty() || where.file == "light") where = {csv, 0, ""};
+  where.key.clear();
+  throw InputError(where, e.explanation());
+}
+
 ShapeIntegrals integrals(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
-  return shape_integrals(*light_shape(light, library, dir), library.photopic_v());
+  const SpectrumPtr shape = light_shape(light, library, dir);
+  try {
+    return shape_integrals(*shape, library.photopic_v());
+  } catch (const InputError& e) {
+    if (!light.source.empty()) throw InputError({light.source, 0, "/spectrum"}, e.explanation());
+    rethrow_at_spectrum_origin(light, e);
+  }
 }
 
 }  // namespace
@@ -56,7 +80,12 @@ nlohmann::json cct_spectrum(double cct_k, bool daylight, const SourceLocation& w
 
 SpectrumPtr light_shape(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
   SpectrumInputContext context(library, dir);
-  return context.parse(JsonCursor(light.spectrum, "light", "/spectrum"), SpectrumRole::emission);
+  try {
+    return context.parse(JsonCursor(light.spectrum, light.source.empty() ? "light" : light.source, "/spectrum"),
+                         SpectrumRole::emission);
+  } catch (const InputError& e) {
+    rethrow_at_spectrum_origin(light, e);
+  }
 }
 
 void validate_light_definition(const LightDefinition& light, SpectralLibrary& library,
@@ -93,6 +122,7 @@ nlohmann::json light_definition_json(const LightDefinition& light) {
 LightDefinition read_light_definition(const nlohmann::json& document, const std::string& file) {
   const JsonCursor root(document, file);
   LightDefinition light;
+  light.source = file;
   const std::string type = root.at("type").choice({"point", "spot", "distant", "environment"});
   light.geometry.kind = type == "point" ? EmitterKind::point
                         : type == "spot" ? EmitterKind::spot

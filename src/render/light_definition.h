@@ -17,6 +17,7 @@ struct LightDefinition {
   EmitterGeometry geometry;
   nlohmann::json spectrum = nlohmann::json{{"illuminant", "E"}};  ///< a scene spectral value (docs/scene-format.md)
   LightAmount amount{1000.0, LightUnit::lumen};
+  std::string source;  ///< the file it was read from, for messages ("" when made from options)
 };
 
 /// The spectral value of a CCT: {"blackbody": T} (1000-25000 K) or {"daylight": T} (4000-25000 K, CIE daylight's

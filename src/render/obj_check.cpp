@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu::obj {
 
@@ -79,14 +80,20 @@ void check_index(std::string_view part, const char* what, const char* what_plura
   if (index > total)
     throw InputError(where, "face corner '" + std::string(corner) + "' refers to " + what + " " +
                                 std::to_string(index) + " but the file has " + std::to_string(total));
-  if (index < 0 && so_far + index < 0)
-    throw InputError(where, "face corner '" + std::string(corner) + "' refers " + std::to_string(-index) + " " +
+  // Compared as index < -so_far: negating the index itself overflows for -9223372036854775808.
+  if (index < 0 && index < -so_far)
+    throw InputError(where, "face corner '" + std::string(corner) + "' refers " + std::string(part.substr(1)) + " " +
                                 what_plural + " back but only " + std::to_string(so_far) + " come before this line");
 }
 
 void check_face(const Words& words, const Counts& so_far, const Counts& total, const SourceLocation& where) {
   if (words.size() < 4)
     throw InputError(where, "a face needs at least 3 corners, found " + std::to_string(words.size() - 1));
+  if (words.size() - 1 > kMaxFaceCorners)
+    throw InputError(where, "a face has " + std::to_string(words.size() - 1) + " corners; Rimu reads faces of at most " +
+                                std::to_string(kMaxFaceCorners) +
+                                " (triangulating one takes time growing with the square of its corners): split it, "
+                                "or triangulate the mesh when exporting it");
   for (size_t w = 1; w < words.size(); ++w) {
     const std::string_view corner = words[w];
     // "p", "p/t", "p//n" or "p/t/n".
@@ -111,6 +118,7 @@ void check_face(const Words& words, const Counts& so_far, const Counts& total, c
 }  // namespace
 
 StatementLines check_obj_text(std::string_view text, const std::string& file) {
+  reject_nul_bytes(text, file);
   Counts total;
   for_each_line(text, 1, [&](int, const Words& words) {
     total.positions += words[0] == "v";

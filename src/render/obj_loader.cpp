@@ -12,6 +12,7 @@
 
 #include "render/obj_check.h"
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 
@@ -157,12 +158,7 @@ TriangleMesh parse_obj(std::string_view text, const std::string& file, const std
 }
 
 TriangleMesh load_obj(const std::filesystem::path& path, const std::string& object) {
-  const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({file, 0, ""}, "cannot open the file (does it exist and is it readable?)");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw InputError({file, 0, ""}, "reading the file failed");
-  return parse_obj(text, file, object);
+  return parse_obj(read_input_file(path, kMaxBinaryFileBytes), path.string(), object);
 }
 
 }  // namespace rimu

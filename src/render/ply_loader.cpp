@@ -11,6 +11,7 @@
 
 #include "render/ply_format.h"
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 
@@ -200,12 +201,7 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& file) {
 }
 
 TriangleMesh load_ply(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({file, 0, ""}, "cannot open the file (does it exist and is it readable?)");
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw InputError({file, 0, ""}, "reading the file failed");
-  return parse_ply(bytes, file);
+  return parse_ply(read_input_file(path, kMaxBinaryFileBytes), path.string());
 }
 
 }  // namespace rimu

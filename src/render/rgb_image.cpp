@@ -5,10 +5,12 @@
 #include <cmath>
 
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 
 ImageEncoding default_encoding_for(const std::filesystem::path& path) {
+  check_input_file(path, kMaxBinaryFileBytes);  // OpenImageIO would block on a FIFO
   auto input = OIIO::ImageInput::open(path.string());
   ImageEncoding encoding;
   if (!input) return encoding;
@@ -20,6 +22,7 @@ ImageEncoding default_encoding_for(const std::filesystem::path& path) {
 }
 
 RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
+  check_input_file(path, kMaxBinaryFileBytes);
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) throw InputError({path.string(), 0, ""}, "cannot read the image: " + OIIO::geterror());
   const OIIO::ImageSpec spec = input->spec();

@@ -1,12 +1,22 @@
 #include "render/scene_ies_light.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "render/ies_file.h"
 #include "spectral/light_units.h"
 #include "transport/goniometric_light.h"
 
 namespace rimu::scene_loading {
+namespace {
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
 
 std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context) {
   l.only_keys({"type", "name", "file", "position", "direction", "c0_direction", "spectrum", "luminous_power_lm",
@@ -43,10 +53,24 @@ std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context)
   if (const auto s = l.find("candela_scale")) table_scale = s->number(1e-30, 1e30);
   std::shared_ptr<const CandelaDistribution> table = candela_distribution(ies, table_scale);
   if (!(table->integral_sr() > 0.0)) file.fail("the IES file's candela table is all zero");
-  if (const auto lm = l.find("luminous_power_lm"))
-    table = candela_distribution(ies, lm->number(1e-30, 1e30) / table->integral_sr());
+  // The lamp's flux bounds what reaches the film; the scene's amounts stop at 1e30 lm, and so does this one (beyond,
+  // single-precision radiance overflows and every sample of the lamp would be discarded).
+  const JsonCursor amount_key = l.has("candela_scale") ? l.at("candela_scale") : file;
+  if (!l.has("luminous_power_lm") && !(table->integral_sr() <= 1e30))
+    amount_key.fail("the IES table gives " + format_number(table->integral_sr()) +
+                    " lm; a lamp may give at most 1e30 lm");
+  if (const auto lm = l.find("luminous_power_lm")) {
+    const double scale = lm->number(1e-30, 1e30) / table->integral_sr();
+    if (!std::isfinite(scale) || !(scale > 0.0))
+      lm->fail("scaling the IES table (" + format_number(table->integral_sr()) + " lm) to this flux gives a "
+               "factor of " + format_number(scale));
+    table = candela_distribution(ies, scale);
+  }
 
   // One table unit = 1 cd: the shape scaled so that K_m Σ S V Δλ = 1 (lm/sr per W/sr of the scaled shape).
+  if (!std::isfinite(1.0 / integrals.luminous) || !(integrals.luminous > 0.0))
+    spectrum_key.fail("the spectrum's luminous integral (" + format_number(integrals.luminous) +
+                      ") cannot be normalised to 1 cd");
   LightSpectrum per_candela(std::move(shape), 1.0 / integrals.luminous);
   return std::make_unique<GoniometricLight>(l.at("position").vec3(), n, c0, std::move(per_candela), std::move(table));
 }

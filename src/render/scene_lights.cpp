@@ -72,9 +72,11 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
 }  // namespace
 
 std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const std::filesystem::path& path) {
-  ImageEncoding encoding = default_encoding_for(path);
-  if (const auto e = value.find("encoding")) encoding.srgb_transfer = e->choice({"srgb", "linear"}) == "srgb";
+  const auto given = value.find("encoding");
+  const bool given_srgb = given && given->choice({"srgb", "linear"}) == "srgb";
   try {
+    ImageEncoding encoding = default_encoding_for(path);
+    if (given) encoding.srgb_transfer = given_srgb;
     return std::make_shared<const RgbImage>(RgbImage::read(path, encoding));
   } catch (const InputError& error) {
     SourceLocation where = error.where();

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "render/coordinate_limit.h"
 #include "render/json_cursor.h"
 #include "render/rgb_image.h"
 #include "render/scene.h"
@@ -18,6 +19,9 @@ struct LoadContext {
   SpectrumInputContext spectra;
   std::map<std::string, int> material_index;
   std::map<std::string, int> prototype_index;
+  std::map<int, BoundsD> prototype_bounds;  ///< object-space bounds of each prototype, to check its instances
+  /// Every instance's transform and its key, checked against the whole scene's extent once it is known.
+  std::vector<std::pair<Transform, JsonCursor>> instance_transforms;
 };
 
 /// "transform": an array of operations applied in order to the object ({"translate": v}, {"scale": v or s},

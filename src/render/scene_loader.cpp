@@ -38,6 +38,8 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
   const std::string type = c.has("type") ? c.at("type").choice({"pinhole", "thin_lens"}) : "pinhole";
   const Vec3 from = c.at("from").vec3(), to = c.at("to").vec3();
   const Vec3 up = c.has("up") ? c.at("up").vec3() : Vec3{0, 1, 0};
+  check_coordinates(from, c.at("from"), "the camera position");
+  check_coordinates(to, c.at("to"), "the point the camera looks at");
   if (length(to - from) == 0.0f) c.at("to").fail("'to' equals 'from': the camera has no viewing direction");
   if (length(cross(up, to - from)) == 0.0f) c.at("up").fail("'up' is parallel to the viewing direction");
   scene.camera.camera_to_world = Transform::look_at(from, to, up);
@@ -109,7 +111,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   const JsonCursor root(document, name);
   root.only_keys({"description", "camera", "film", "integrator", "spectra", "materials", "prototypes", "shapes",
                   "lights", "media"});
-  LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}};
+  LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}, {}, {}};
   if (const auto spectra = root.find("spectra")) {
     if (!spectra->is_object()) spectra->fail("expected an object of name → spectrum");
     context.spectra.set_named(*spectra);
@@ -128,6 +130,18 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
 
   scene->geometry.commit();
+  if (!context.instance_transforms.empty()) {
+    // Every ray starts at the camera's lens or on a surface: the box of those is what instances must see in range.
+    BoundsD world;
+    const Vec3 lo = scene->geometry.bounds_min(), hi = scene->geometry.bounds_max();
+    if (is_finite(lo) && is_finite(hi) && lo.x <= hi.x) world.extend(lo), world.extend(hi);
+    const Vec3 eye = scene->camera.camera_to_world.point(Vec3{0, 0, 0});
+    const float lens = scene->camera.lens_radius;
+    world.extend(eye - Vec3{lens, lens, lens});
+    world.extend(eye + Vec3{lens, lens, lens});
+    for (const auto& [object_to_world, where] : context.instance_transforms)
+      check_instance_ray_space(world, object_to_world, where);
+  }
   const Vec3 extent = scene->geometry.bounds_max() - scene->geometry.bounds_min();
   scene->scene_scale = is_finite(extent) && length(extent) > 0.0f ? length(extent) : 1.0f;
 

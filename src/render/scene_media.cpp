@@ -76,7 +76,7 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
     try {
       read_grid_file(context.spectra.scene_directory() / file.string(), nx, ny, nz, density);
     } catch (const InputError& e) {
-      file.fail(e.explanation());
+      file.fail(e.what());  // "cloud.rvol: ..." under the key that named the file
     }
   } else {
     m.at("procedural").choice({"cloud"});

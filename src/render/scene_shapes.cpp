@@ -1,5 +1,6 @@
 // Shapes, transforms and instancing of the JSON scene format.
 #include <cmath>
+#include <sstream>
 
 #include "render/mesh_loader.h"
 #include "transport/area_light.h"
@@ -113,8 +114,14 @@ Transform parse_transform(const JsonCursor& shape) {
     }
     t = step * t;  // later steps apply after earlier ones
   }
-  if (!t.is_finite() || !std::isfinite(t.determinant()) || t.determinant() == 0.0f)
-    ops->fail("the combined transform is singular or not finite");
+  // Transform inverts only matrices whose determinant exceeds 1e-30 in magnitude (below, its inverse would be left
+  // as the identity while Embree inverts the matrix itself): nearer-singular ones are refused as singular.
+  if (!t.is_finite() || !std::isfinite(t.determinant()) || !(std::fabs(t.determinant()) > 1e-30f)) {
+    std::ostringstream msg;
+    msg << "the combined transform is singular or not finite (determinant " << t.determinant()
+        << "; it must be finite and exceed 1e-30 in magnitude)";
+    ops->fail(msg.str());
+  }
   return t;
 }
 
@@ -130,6 +137,10 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       if (shape.has("transform")) shape.at("transform").fail("spheres take center and radius, not a transform");
       const Vec3 centre = shape.at("center").vec3();
       const float radius = float(shape.at("radius").number(1e-30, 1e30));
+      check_coordinates(centre, shape.at("center"), "the sphere's centre");
+      for (const float sign : {-1.0f, 1.0f})
+        check_coordinates(centre + Vec3{sign * radius, sign * radius, sign * radius}, shape.at("radius"),
+                          "a corner of the sphere's bounding box (centre ± radius)");
       scene.geometry.add_sphere(centre, radius, material_of(shape, context));
       continue;
     }
@@ -138,12 +149,17 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       const JsonCursor p = shape.at("prototype");
       const auto it = context.prototype_index.find(p.string());
       if (it == context.prototype_index.end()) p.fail("unknown prototype '" + p.string() + "'");
-      scene.geometry.add_instance(it->second, parse_transform(shape));
+      const Transform object_to_world = parse_transform(shape);
+      check_instance_coordinates(context.prototype_bounds[it->second], object_to_world,
+                                 shape.has("transform") ? shape.at("transform") : shape);
+      scene.geometry.add_instance(it->second, object_to_world);
+      context.instance_transforms.emplace_back(object_to_world, shape.has("transform") ? shape.at("transform") : shape);
       continue;
     }
     check_triangle_shape_keys(shape, type, false);
     TriangleMesh mesh = mesh_of(shape, type, context);
     mesh.transform(parse_transform(shape));
+    check_mesh_coordinates(mesh, shape);
     // Every key is checked before a shape of only degenerate triangles is dropped, so such a shape cannot hide a
     // typo in its material or emission.
     const int material = material_of(shape, context);
@@ -171,6 +187,7 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
   for (const auto& [name, unused] : section.value().items()) {
     const JsonCursor shapes = section.at(name);
     std::vector<std::pair<TriangleMesh, int>> meshes;
+    BoundsD bounds;
     for (size_t i = 0; i < shapes.size(); ++i) {
       const JsonCursor shape = shapes.at(i);
       const std::string type = shape.at("type").choice({"mesh", "triangles", "quad"});
@@ -178,10 +195,14 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
       TriangleMesh mesh = mesh_of(shape, type, context);
       mesh.transform(parse_transform(shape));
       const int material = material_of(shape, context);
+      check_mesh_coordinates(mesh, shape);  // the prototype's own space is a scene too (Embree checks it alike)
       context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
+      for (const Vec3& p : mesh.positions) bounds.extend(p);
       if (mesh.triangle_count() > 0) meshes.emplace_back(std::move(mesh), material);
     }
-    context.prototype_index[name] = context.scene.geometry.add_prototype(meshes);
+    const int index = context.scene.geometry.add_prototype(meshes);
+    context.prototype_index[name] = index;
+    context.prototype_bounds[index] = bounds;
   }
 }
 

@@ -1,5 +1,6 @@
 #include "render/spectrum_input.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -154,9 +155,23 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
     const std::string name = value.at("spectrum").string();
     if (!named_ || !named_->has(name))
       value.at("spectrum").fail("no spectrum named '" + name + "' in the scene's \"spectra\" section");
-    if (++named_depth_ > 8) value.fail("named spectra refer to each other in a cycle");
+    const auto repeat = std::find(named_chain_.begin(), named_chain_.end(), name);
+    if (repeat != named_chain_.end()) {
+      std::string cycle;
+      for (auto it = repeat; it != named_chain_.end(); ++it) cycle += "'" + *it + "' → ";
+      value.at("spectrum").fail("named spectra refer to each other in a cycle: " + cycle + "'" + name + "'");
+    }
+    if (named_chain_.size() >= kMaxNamedSpectrumDepth)
+      value.at("spectrum").fail("named spectra refer to each other more than " +
+                                std::to_string(kMaxNamedSpectrumDepth) + " deep (from '" + named_chain_.front() +
+                                "'); give one of them its value directly");
+    named_chain_.push_back(name);
+    // Popped on every way out, so an error caught above (a test, a tool trying the next form) leaves no stale name.
+    struct Pop {
+      std::vector<std::string>& chain;
+      ~Pop() { chain.pop_back(); }
+    } pop{named_chain_};
     base = parse(named_->at(name), role);
-    --named_depth_;
     converted = convert;
   } else {
     value.fail("expected one of the keys constant, illuminant, csv, blackbody, daylight, rgb, spectrum");

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "render/json_cursor.h"
 #include "spectral/rgb_upsampler.h"
@@ -51,7 +52,11 @@ class SpectrumInputContext {
   /// parse(), e.g. a named glass).
   SpectrumPtr transport_form(SpectrumPtr spectrum, SpectrumRole role);
 
+  /// A named spectrum may refer to another, and so on, at most this deep (each level is a recursive parse).
+  static constexpr size_t kMaxNamedSpectrumDepth = 64;
+
   /// Registers the scene's "spectra" section (an object of name → spectral value, parsed lazily by role).
+  /// References between them are resolved when parsed; a cycle is an error that names it.
   void set_named(const JsonCursor& section) { named_.emplace(section); }
 
   SpectralLibrary& library() { return library_; }
@@ -68,7 +73,7 @@ class SpectrumInputContext {
   std::filesystem::path scene_directory_;
   std::optional<JsonCursor> named_;
   std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;
-  int named_depth_ = 0;
+  std::vector<std::string> named_chain_;  // the named spectra being parsed, outermost first
   double emission_rgb_scale_ = 0.0;
   bool rgb_transport_ = false;
   bool converting_ = true;  // false inside parse_spectral()

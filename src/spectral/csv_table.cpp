@@ -1,11 +1,11 @@
 #include "spectral/csv_table.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 namespace {
@@ -39,14 +39,11 @@ bool parse_finite_number(std::string_view text, double& value) {
 }
 
 CsvTable CsvTable::read(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError({path.string(), 0, ""}, "cannot open the file (does it exist and is it readable?)");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse(text.str(), path.string());
+  return parse(read_input_file(path, kMaxTableFileBytes), path.string());
 }
 
 CsvTable CsvTable::parse(std::string_view text, const std::string& name) {
+  reject_nul_bytes(text, name);
   CsvTable table;
   table.name_ = name;
   int line_number = 0;
@@ -58,20 +55,40 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& name) {
     ++line_number;
     start = newline == std::string_view::npos ? text.size() + 1 : newline + 1;
     if (line.empty() || line.front() == '#') continue;
+    // Another separator than the comma would make every line one cell, or split "0,5" decimals wrongly.
+    const bool semicolons = line.find(';') != std::string_view::npos;
+    if (semicolons || (line.find(',') == std::string_view::npos && line.find('\t') != std::string_view::npos))
+      throw InputError({name, line_number, ""}, std::string("cells are separated by ") +
+                                                    (semicolons ? "semicolons" : "tabs") + "; expected " +
+                                                    kExpectedCsvLayout);
     std::vector<std::string> cells = split_cells(line);
-    if (table.header_.empty()) {
-      table.header_ = std::move(cells);
-      continue;
+    if (table.header_.empty() && !table.headerless_) {
+      // A first line of numbers is data: a table written without a header keeps its first row, and its columns
+      // get the names a spectrum table's columns have.
+      const bool numeric = std::all_of(cells.begin(), cells.end(), [](const std::string& c) {
+        double unused = 0.0;
+        return parse_finite_number(c, unused);
+      });
+      if (!numeric) {
+        table.header_ = std::move(cells);
+        continue;
+      }
+      table.headerless_ = true;
+      table.header_.push_back("wavelength_nm");
+      for (size_t c = 1; c < cells.size(); ++c)
+        table.header_.push_back(cells.size() == 2 ? "value" : "column_" + std::to_string(c + 1));
     }
     if (cells.size() != table.header_.size()) {
       throw InputError({name, line_number, ""}, "expected " + std::to_string(table.header_.size()) +
-                                                     " comma-separated cells (as in the header), found " +
+                                                     " comma-separated cells (as in the " +
+                                                     (table.headerless_ ? "first row" : "header") + "), found " +
                                                      std::to_string(cells.size()));
     }
     table.rows_.push_back(std::move(cells));
     table.lines_.push_back(line_number);
   }
-  if (table.header_.empty()) throw InputError({name, 0, ""}, "the file is empty: expected a header line");
+  if (table.header_.empty())
+    throw InputError({name, 0, ""}, std::string("the file is empty: expected ") + kExpectedCsvLayout);
   if (table.rows_.empty()) throw InputError({name, 0, ""}, "the file has a header but no data rows");
   return table;
 }
@@ -81,7 +98,9 @@ size_t CsvTable::column_index(std::string_view column_name) const {
     if (header_[i] == column_name) return i;
   std::string known;
   for (const auto& h : header_) known += (known.empty() ? "" : ", ") + h;
-  throw InputError({name_, 1, ""}, "no column '" + std::string(column_name) + "'; the columns are: " + known);
+  throw InputError({name_, headerless_ ? 0 : 1, ""},
+                   "no column '" + std::string(column_name) + "'; the columns are: " + known +
+                       (headerless_ ? " (the file has no header line, so its columns have these default names)" : ""));
 }
 
 std::vector<double> CsvTable::numbers(size_t column) const {

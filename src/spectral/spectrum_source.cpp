@@ -75,7 +75,9 @@ SpectrumPtr make_emission_spectrum(const SpectrumSource& source, SpectralLibrary
     const Observer& o = library.observer(StandardObserver::cie1931_2deg);
     const Xyz raw = emission_xyz(*spectrum, o);
     if (!(raw.x + raw.y + raw.z > 0.0))
-      throw InputError({}, "the spectrum has no power in 360-830 nm, so it has no colour or luminous value");
+      throw InputError({source.kind == SpectrumSource::Kind::csv_file ? source.name : "", 0, ""},
+                       "the spectrum " + spectrum->describe() +
+                           " has no power in 360-830 nm, so it has no colour or luminous value");
   } catch (const InputError& error) {
     rethrow_at(source.where, error);
   }

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 
@@ -56,20 +57,35 @@ bool GridMedium::clip(const Ray& ray, float t_max, float& t0, float& t1) const {
   return t0 < t1;
 }
 
-void read_grid_file(const std::filesystem::path& path, int& nx, int& ny, int& nz, std::vector<float>& densities) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path.string(), 0, ""}, "cannot open the voxel grid");
-  char magic[8];
+void parse_grid_bytes(std::string_view bytes, const std::string& name, int& nx, int& ny, int& nz,
+                      std::vector<float>& densities) {
+  constexpr size_t kHeaderBytes = 8 + 3 * sizeof(int32_t);
+  if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), "RIMUVOL1", 8) != 0)
+    throw InputError({name, 0, ""}, "not a RIMUVOL1 voxel grid: expected the 8 bytes \"RIMUVOL1\" and three int32 "
+                                    "sizes, then the densities");
   int32_t n[3];
-  in.read(magic, 8);
-  in.read(reinterpret_cast<char*>(n), sizeof n);
-  if (!in || std::memcmp(magic, "RIMUVOL1", 8) != 0) throw InputError({path.string(), 0, ""}, "not a RIMUVOL1 file");
+  std::memcpy(n, bytes.data() + 8, sizeof n);
   for (int32_t v : n)
-    if (v < 1 || v > 4096) throw InputError({path.string(), 0, ""}, "grid sizes must be 1..4096");
+    if (v < 1 || v > 4096)
+      throw InputError({name, 0, ""}, "the header's grid sizes are " + std::to_string(n[0]) + " × " +
+                                          std::to_string(n[1]) + " × " + std::to_string(n[2]) +
+                                          "; each must be 1..4096");
+  // The sizes are checked against the bytes present before anything is allocated: a damaged header must not
+  // allocate gigabytes for a file of a few bytes.
+  const uint64_t count = uint64_t(n[0]) * uint64_t(n[1]) * uint64_t(n[2]);
+  const uint64_t expected_bytes = kHeaderBytes + count * sizeof(float);
+  if (bytes.size() != expected_bytes)
+    throw InputError({name, 0, ""}, "the header announces " + std::to_string(n[0]) + " × " + std::to_string(n[1]) +
+                                        " × " + std::to_string(n[2]) + " voxels, which take " +
+                                        std::to_string(expected_bytes) + " bytes with the header, but the file has " +
+                                        std::to_string(bytes.size()) + " bytes");
   nx = n[0], ny = n[1], nz = n[2];
-  densities.resize(size_t(nx) * size_t(ny) * size_t(nz));
-  in.read(reinterpret_cast<char*>(densities.data()), std::streamsize(densities.size() * sizeof(float)));
-  if (!in) throw InputError({path.string(), 0, ""}, "the file ends before nx*ny*nz densities");
+  densities.resize(size_t(count));
+  std::memcpy(densities.data(), bytes.data() + kHeaderBytes, size_t(count) * sizeof(float));
+}
+
+void read_grid_file(const std::filesystem::path& path, int& nx, int& ny, int& nz, std::vector<float>& densities) {
+  parse_grid_bytes(read_input_file(path, kMaxBinaryFileBytes), path.string(), nx, ny, nz, densities);
 }
 
 void write_grid_file(const std::filesystem::path& path, int nx, int ny, int nz, const std::vector<float>& densities) {

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "transport/homogeneous_medium.h"
@@ -58,7 +60,12 @@ class GridMedium {
   HomogeneousMedium unit_;
 };
 
-/// Reads an .rvol file (format above) into nx, ny, nz and densities. Throws InputError naming the file.
+/// Parses the bytes of an .rvol file (format above) into nx, ny, nz and densities. Throws InputError naming `name`
+/// if the magic is wrong, a size is outside 1..4096, or the byte count is not exactly the header's (checked before
+/// the densities are allocated).
+void parse_grid_bytes(std::string_view bytes, const std::string& name, int& nx, int& ny, int& nz,
+                      std::vector<float>& densities);
+/// parse_grid_bytes on a file read by read_input_file (a regular file of at most kMaxBinaryFileBytes).
 void read_grid_file(const std::filesystem::path& path, int& nx, int& ny, int& nz, std::vector<float>& densities);
 /// Writes an .rvol file.
 void write_grid_file(const std::filesystem::path& path, int nx, int ny, int nz, const std::vector<float>& densities);

@@ -116,3 +116,50 @@ TEST_CASE("non-monotonic wavelengths are reported at the offending row") {
   const CsvTable bad_value = CsvTable::parse("wavelength_nm,v\n410,1\n420,x\n", "value.csv");
   expect_error_at([&] { (void)TabulatedSpectrum::from_csv(bad_value, "v", Extrapolation::zero); }, "value.csv", 3);
 }
+
+TEST_CASE("a first line of numbers is data, not a header") {
+  // A header-less table used to lose its first row to the header.
+  const CsvTable t = CsvTable::parse("400,0.5\n410,0.6\n420,0.7\n", "bare.csv");
+  CHECK(t.headerless());
+  REQUIRE(t.row_count() == 3);
+  CHECK(t.line_of_row(0) == 1);
+  CHECK(t.header() == std::vector<std::string>{"wavelength_nm", "value"});
+  CHECK(t.numbers(t.column_index("value"))[0] == 0.5);
+  const TabulatedSpectrum s = TabulatedSpectrum::from_csv(t, "value", Extrapolation::zero);
+  CHECK(s.value(400.0) == 0.5);
+  const CsvTable wide = CsvTable::parse("# no header\n400,1,2,3\n410,1,2,3\n", "wide.csv");
+  CHECK(wide.header() == std::vector<std::string>{"wavelength_nm", "column_2", "column_3", "column_4"});
+  CHECK(wide.line_of_row(0) == 2);
+  // A header with one numeric cell is still a header.
+  CHECK_FALSE(CsvTable::parse("wavelength_nm,5\n400,1\n", "h.csv").headerless());
+  const std::string what = expect_error_at([&] { (void)t.column_index("red"); }, "bare.csv", 0);
+  CHECK(contains(what, "no header line"));
+}
+
+TEST_CASE("semicolons, tabs and micrometres get a message that says what a spectrum CSV is") {
+  for (const char* text : {"wavelength_nm;value\n400;0,5\n", "400;0.5\n410;0.6\n", "wavelength_nm\tvalue\n400\t1\n"}) {
+    CAPTURE(text);
+    const std::string what = expect_error_at([&] { (void)CsvTable::parse(text, "sep.csv"); }, "sep.csv", 1);
+    CHECK(contains(what, "separated by"));
+    CHECK(contains(what, "wavelength_nm,value"));
+    CHECK(contains(what, "nanometres"));
+    CHECK(contains(what, "commas"));
+  }
+  // The same table in micrometres (as optics databases publish n and k).
+  const CsvTable um = CsvTable::parse("wavelength_um,n\n0.38,1.5\n0.58,1.49\n0.78,1.48\n", "um.csv");
+  const std::string what =
+      expect_error_at([&] { (void)TabulatedSpectrum::from_csv(um, "n", Extrapolation::clamp); }, "um.csv", 4);
+  CHECK(contains(what, "micrometres"));
+  CHECK(contains(what, "nanometres"));
+  CHECK_NOTHROW(TabulatedSpectrum::from_csv(CsvTable::parse("l,n\n50,1\n380,1.5\n", "nm.csv"), "n", Extrapolation::clamp));
+}
+
+TEST_CASE("a CSV that is not a regular file, or holds a NUL byte, is refused by name") {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  const std::string what = expect_error_at([&] { (void)CsvTable::read(dir); }, dir, 0);
+  CHECK(contains(what, "is a directory"));
+  CHECK(contains(expect_error_at([] { (void)CsvTable::read("/dev/urandom"); }, "/dev/urandom", 0), "device"));
+  CHECK(contains(expect_error_at([] { (void)CsvTable::parse(std::string("l,v\n400,1\n4\0" "10,2\n", 17), "nul.csv"); },
+                                 "nul.csv", 3),
+                 "NUL"));
+}

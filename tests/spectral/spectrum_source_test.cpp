@@ -80,7 +80,10 @@ TEST_CASE("bad CSV spectra name the file and the line") {
   }
   SUBCASE("no visible power") {
     const auto path = write_temp_csv("infrared", "wavelength_nm,power\n900,1\n1000,2\n");
-    CHECK(error_of(csv_source(path)).find("no power in 360-830 nm") != std::string::npos);
+    const std::string msg = error_of(csv_source(path));
+    CHECK(msg.find("no power in 360-830 nm") != std::string::npos);
+    // The message leads with the file (it named none).
+    CHECK(msg.rfind(path.string() + ": ", 0) == 0);
   }
 }
 
