@@ -11,6 +11,7 @@
 #include "spectral/upsample_report.h"
 #include "spectral/spectrum_report.h"
 #include "spectral/spectrum_source.h"
+#include "spectral/tristimulus_method.h"
 
 namespace {
 
@@ -23,8 +24,16 @@ struct ReportOptions {
   std::string illuminant;
   double blackbody_k = 0, daylight_k = 0;
   std::string csv, column;
+  std::string method;
   bool json = false;
 };
+
+/// --method NAME as a TristimulusMethod; empty when not given.
+std::optional<rimu::TristimulusMethod> method_option(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  if (auto m = rimu::parse_tristimulus_method(text)) return m;
+  throw rimu::InputError({"", 0, "--method"}, "unknown tristimulus method '" + text + "'; use native, 1nm or astm-e308");
+}
 
 rimu::SpectrumSource source_from(const ReportOptions& o, int given) {
   if (given != 1)
@@ -67,6 +76,9 @@ int main(int argc, char** argv) {
   auto* csv_opt = report_cmd->add_option("--csv", report.csv, "a CSV file: wavelength_nm, then spectral power columns");
   report_cmd->add_option("--column", report.column, "which power column of --csv (default: the second column)");
   report_cmd->add_flag("--json", report.json, "print JSON instead of text");
+  report_cmd->add_option("--method", report.method,
+                         "tristimulus summation: native (the data's own 1/5 nm wavelengths), 1nm (interpolate to "
+                         "1 nm) or astm-e308 (10/20 nm data); default from the data's spacing");
 
   std::string gamut_png = "gamut.png", gamut_csv, gamut_space = "srgb-linear";
   CLI::App* gamut_cmd = app.add_subcommand(
@@ -98,7 +110,7 @@ int main(int argc, char** argv) {
     if (*report_cmd) {
       const int given = int(name_opt->count() + bb_opt->count() + dl_opt->count() + csv_opt->count());
       const rimu::SpectrumSource source = source_from(report, given);
-      const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library);
+      const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(report.method));
       std::cout << (report.json ? rimu::report_json(r) : rimu::report_text(r)) << std::flush;
     } else if (*gamut_cmd) {
       const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(gamut_space));

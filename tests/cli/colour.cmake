@@ -1,0 +1,23 @@
+# rimu-colour: tristimulus methods, reflectance colorimetry and colour fidelity (contracts and published values).
+set(colour_csv_dir ${CMAKE_CURRENT_SOURCE_DIR}/cli/colour)
+
+# CIE 15:2004 Table T.8 xy (2°), 4 decimals: F2 (0.3721, 0.3751), F7 (0.3129, 0.3292), F11 (0.3805, 0.3769). The
+# text report prints 5 decimals; the patterns accept exactly the 5-decimal values that round to the published 4.
+rimu_cli_test("rimu-colour F2 native matches CIE 15 Table T.8" 0
+              "xy  \\(2°\\) +0\\.372(0[5-9]|1[0-4]) 0\\.375(0[5-9]|1[0-4])"
+              $<TARGET_FILE:rimu-colour> report F2)
+rimu_cli_test("rimu-colour F7 native matches CIE 15 Table T.8" 0
+              "xy  \\(2°\\) +0\\.312(8[5-9]|9[0-4]) 0\\.329(1[5-9]|2[0-4])" $<TARGET_FILE:rimu-colour> report F7)
+rimu_cli_test("rimu-colour F11 native matches CIE 15 Table T.8" 0
+              "xy  \\(2°\\) +0\\.380(4[5-9]|5[0-4]) 0\\.376(8[5-9]|9[0-4])" $<TARGET_FILE:rimu-colour> report F11)
+rimu_cli_test("rimu-colour names the method of 5 nm data native" 0 "^tristimulus method native$"
+              $<TARGET_FILE:rimu-colour> report F2)
+rimu_cli_test("rimu-colour --method 1nm is named in the JSON" 0 "\"tristimulus_method\": \"1nm\""
+              $<TARGET_FILE:rimu-colour> report F2 --method 1nm --json)
+rimu_cli_test("rimu-colour unknown method" 1 "--method: unknown tristimulus method 'trapezoid'"
+              $<TARGET_FILE:rimu-colour> report F2 --method trapezoid)
+rimu_cli_test("rimu-colour native needs a table" 1 "continuous spectrum.*--method 1nm"
+              $<TARGET_FILE:rimu-colour> report --blackbody 3000 --method native)
+rimu_cli_test("rimu-colour E308 needs the short-wavelength tail" 1
+              "ten_nm_from_400.csv.*ASTM E308 needs data from 380 nm or below|ASTM E308 needs data from 380 nm or below.*ten_nm_from_400.csv"
+              $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/ten_nm_from_400.csv)
