@@ -21,3 +21,22 @@ rimu_cli_test("rimu-colour native needs a table" 1 "continuous spectrum.*--metho
 rimu_cli_test("rimu-colour E308 needs the short-wavelength tail" 1
               "ten_nm_from_400.csv.*ASTM E308 needs data from 380 nm or below|ASTM E308 needs data from 380 nm or below.*ten_nm_from_400.csv"
               $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/ten_nm_from_400.csv)
+
+# Reflectance colorimetry.
+rimu_cli_test("rimu-colour reflectance of a ColorChecker patch uses E308 at 10 nm" 0
+              "\"tristimulus_method\": \"astm-e308\"" $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --json)
+rimu_cli_test("rimu-colour reflectance prints CIELAB" 0 "CIELAB +76\\.069 0\\.000 0\\.000"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/grey_50_10nm.csv)
+rimu_cli_test("rimu-colour reflectance against itself has dE00 0" 0 "ΔE00 \\(CIEDE2000\\) +0\\.000"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/grey_50_10nm.csv
+              --reference ${colour_csv_dir}/grey_50_10nm.csv --illuminant D65 --observer 10)
+rimu_cli_test("rimu-colour reflectance unknown illuminant" 1 "unknown illuminant 'D66'"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant D66)
+rimu_cli_test("rimu-colour reflectance above 1.5" 1 "percent_reflectance.csv:3: r: reflectance factor 45 is above 1.5"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/percent_reflectance.csv)
+rimu_cli_test("rimu-colour reflectance E308 needs data from 380 nm" 1 "ASTM E308 needs data from 380 nm or below"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/ten_nm_from_400.csv)
+rimu_cli_test("rimu-colour reflectance unknown patch" 1 "unknown ColorChecker patch 'dark skinn'.*bluish green"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skinn")
+rimu_cli_test("rimu-colour reflectance bad observer" 1 "--observer: expected 2 or 10"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --observer 4)
