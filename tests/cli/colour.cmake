@@ -40,3 +40,11 @@ rimu_cli_test("rimu-colour reflectance unknown patch" 1 "unknown ColorChecker pa
               $<TARGET_FILE:rimu-colour> reflectance --patch "dark skinn")
 rimu_cli_test("rimu-colour reflectance bad observer" 1 "--observer: expected 2 or 10"
               $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --observer 4)
+
+# Colour fidelity (CIE 224:2017 / TM-30-20). CIE 2017 calculator: F2 Rf 70.1; TM-30-18 calculator: F2 Rg 86.
+rimu_cli_test("rimu-colour fidelity of F2" 0 "Rf \\(CIE 224:2017\\) +70\\.1" $<TARGET_FILE:rimu-colour> fidelity F2)
+rimu_cli_test("rimu-colour fidelity of F2 gamut" 0 "Rg \\(TM-30-20\\) +8[56]\\.[0-9]" $<TARGET_FILE:rimu-colour> fidelity F2)
+rimu_cli_test("rimu-colour fidelity JSON has 16 bins" 0 "\"hue_bins\"" $<TARGET_FILE:rimu-colour> fidelity LED-B3 --json)
+rimu_cli_test("rimu-colour fidelity needs 380-780 nm" 1 "380 to 780 nm"
+              $<TARGET_FILE:rimu-colour> fidelity --csv ${colour_csv_dir}/ten_nm_from_400.csv)
+rimu_cli_test("rimu-colour fidelity unknown illuminant" 1 "unknown illuminant 'F13'" $<TARGET_FILE:rimu-colour> fidelity F13)

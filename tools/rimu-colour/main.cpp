@@ -5,6 +5,7 @@
 
 #include <iostream>
 
+#include "spectral/colour_fidelity.h"
 #include "spectral/error.h"
 #include "spectral/gamut_figure.h"
 #include "spectral/reflectance_report.h"
@@ -99,6 +100,14 @@ int main(int argc, char** argv) {
   refl_cmd->add_option("--reference-column", refl.reference_column, "which column of --reference");
   refl_cmd->add_flag("--json", refl.json, "print JSON instead of text");
 
+  ReportOptions fidelity;
+  CLI::App* fidelity_cmd = app.add_subcommand(
+      "fidelity", "colour fidelity Rf (CIE 224:2017 / TM-30-20), gamut index Rg and the 16 hue bins of a light");
+  auto* fid_name = fidelity_cmd->add_option("illuminant", fidelity.illuminant, "a CIE illuminant, e.g. F2 or LED-B3");
+  auto* fid_csv = fidelity_cmd->add_option("--csv", fidelity.csv, "a CSV file: wavelength_nm, then spectral power");
+  fidelity_cmd->add_option("--column", fidelity.column, "which power column of --csv (default: the second column)");
+  fidelity_cmd->add_flag("--json", fidelity.json, "print JSON instead of text");
+
   std::string gamut_png = "gamut.png", gamut_csv, gamut_space = "srgb-linear";
   CLI::App* gamut_cmd = app.add_subcommand(
       "gamut", "plot the brightest reflectance per chromaticity: MacAdam's optimal colours vs the upsampler's smooth spectra");
@@ -131,6 +140,13 @@ int main(int argc, char** argv) {
       const rimu::SpectrumSource source = source_from(report, given);
       const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(report.method));
       std::cout << (report.json ? rimu::report_json(r) : rimu::report_text(r)) << std::flush;
+    } else if (*fidelity_cmd) {
+      const rimu::SpectrumSource source = source_from(fidelity, int(fid_name->count() + fid_csv->count()));
+      const rimu::SpectrumPtr spectrum = rimu::make_emission_spectrum(source, library);
+      const rimu::ColourFidelity f = rimu::ColourFidelityEvaluator(library).evaluate(*spectrum);
+      std::cout << (fidelity.json ? rimu::colour_fidelity_json(f, source.describe())
+                                  : rimu::colour_fidelity_text(f, source.describe()))
+                << std::flush;
     } else if (*refl_cmd) {
       if (refl_csv->count() + refl_patch->count() != 1)
         throw rimu::InputError({"", 0, "reflectance"}, "give exactly one sample: --csv FILE or --patch NAME");
