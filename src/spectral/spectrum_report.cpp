@@ -8,7 +8,6 @@
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/photometry.h"
-#include "spectral/photometry_constants.h"
 #include "spectral/tabulated_colorimetry.h"
 
 namespace rimu {
