@@ -48,3 +48,10 @@ rimu_cli_test("rimu-colour fidelity JSON has 16 bins" 0 "\"hue_bins\"" $<TARGET_
 rimu_cli_test("rimu-colour fidelity needs 380-780 nm" 1 "380 to 780 nm"
               $<TARGET_FILE:rimu-colour> fidelity --csv ${colour_csv_dir}/ten_nm_from_400.csv)
 rimu_cli_test("rimu-colour fidelity unknown illuminant" 1 "unknown illuminant 'F13'" $<TARGET_FILE:rimu-colour> fidelity F13)
+
+# A flat 10 nm light is summed with the E308 weights of illuminant E: its chromaticity is E's, (1/3, 1/3) to the
+# 1e-4 that the CMFs' own rounding gives (CIE 15: E at 1 nm is (0.33331, 0.33329)).
+rimu_cli_test("rimu-colour 10 nm light uses E308" 0 "^tristimulus method astm-e308$"
+              $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)
+rimu_cli_test("rimu-colour 10 nm flat light is white E" 0 "xy  \\(2°\\) +0\\.333[23][0-9] 0\\.333[23][0-9]"
+              $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)
