@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
     bool json = false;
   } refl;
   CLI::App* refl_cmd = app.add_subcommand(
-      "reflectance", "XYZ, xyY, CIELAB, encoded sRGB (and ΔE76/ΔE2000 against --reference) of a reflectance factor");
+      "reflectance", "XYZ, xyY, CIELAB, encoded sRGB (and ΔE76/ΔE2000 against --reference) of a reflectance or "
+                     "transmittance factor under a CIE illuminant");
   auto* refl_csv = refl_cmd->add_option("--csv", refl.csv, "a CSV file: wavelength_nm, then reflectance factors (0-1)");
   refl_cmd->add_option("--column", refl.column, "which column of --csv (default: the second column)");
   auto* refl_patch = refl_cmd->add_option("--patch", refl.patch,
