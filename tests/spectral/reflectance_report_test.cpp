@@ -12,7 +12,7 @@
 
 using namespace rimu;
 
-TEST_CASE("ColorChecker CIELAB under D50 from BabelColor's 10 nm average is within 0.1 dE00 of BabelColor's values") {
+TEST_CASE("ColorChecker CIELAB under D50 from BabelColor's 10 nm average is within 0.1 dE00 of BabelColor's values (0.2 for dark skin and black)") {
   // BabelColor (D. Pascale), "ColorChecker_RGB_and_spectra.xls" (2012): xyY of the 30-chart average under D50,
   // 2°, 4 decimals, as carried by colour-science (colour/characterisation/datasets/colour_checkers/
   // chromaticity_coordinates.py @ 03b537d7, DATA_BABELCOLOR_AVERAGE). Converted to CIELAB with the same white as
