@@ -1,5 +1,9 @@
 #include "spectral/spectral_library.h"
 
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
 #include "spectral/csv_table.h"
 #include "spectral/data_directory.h"
 #include "spectral/error.h"
@@ -142,6 +146,37 @@ SpectrumPtr SpectralLibrary::colorchecker_patch(std::string_view name) {
       TabulatedSpectrum::from_csv(table_unlocked(kColorChecker), std::string(name), Extrapolation::clamp));
   spectra_.emplace(key, s);
   return s;
+}
+
+std::vector<std::string> SpectralLibrary::e308_illuminant_names() { return {"A", "D50", "D65", "E"}; }
+
+const E308WeightTable& SpectralLibrary::e308_weights(std::string_view illuminant, StandardObserver observer,
+                                                     double interval_nm) {
+  const bool ten = observer == StandardObserver::cie1964_10deg;
+  const int interval = int(std::lround(interval_nm));
+  bool known = false;
+  for (const auto& n : e308_illuminant_names()) known = known || n == illuminant;
+  if (!known || (interval != 10 && interval != 20) || std::abs(interval - interval_nm) > 1e-6) {
+    std::string names;
+    for (const auto& n : e308_illuminant_names()) names += (names.empty() ? "" : ", ") + n;
+    char step[32];
+    std::snprintf(step, sizeof step, "%g", interval_nm);
+    throw InputError({}, "no ASTM E308 weights for illuminant '" + std::string(illuminant) + "' at " + step +
+                             " nm; weights exist for " + names + " at 10 and 20 nm (2° and 10°); use --method "
+                             "native or 1nm");
+  }
+  std::string lower(illuminant);
+  for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string file = "e308/astm_e308_" + lower + "_" + (ten ? "10" : "2") + "deg_" +
+                           std::to_string(interval) + "nm.csv";
+  std::lock_guard lock(mutex_);
+  auto& slot = e308_tables_[file];
+  if (!slot) {
+    const std::string observer_name = ten ? "CIE 1964 10°" : "CIE 1931 2°";
+    slot = std::make_unique<E308WeightTable>(
+        e308_weights_from_csv(table_unlocked(file), std::string(illuminant), observer_name));
+  }
+  return *slot;
 }
 
 }  // namespace rimu

@@ -1,5 +1,6 @@
 #include "spectral/spectrum_report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -7,6 +8,7 @@
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/photometry.h"
+#include "spectral/tabulated_colorimetry.h"
 
 namespace rimu {
 namespace {
@@ -34,22 +36,43 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
 
 }  // namespace
 
-SpectrumReport analyse_spectrum(const SpectrumSource& source, SpectralLibrary& library) {
+SpectrumReport analyse_spectrum(const SpectrumSource& source, SpectralLibrary& library,
+                                std::optional<TristimulusMethod> method) {
   const SpectrumPtr spectrum = make_emission_spectrum(source, library);
-  return analyse_spectrum(*spectrum, source.describe(), library);
+  return analyse_spectrum(*spectrum, source.describe(), library, method);
 }
 
-SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& description, SpectralLibrary& library) {
+SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& description, SpectralLibrary& library,
+                                std::optional<TristimulusMethod> method) {
   SpectrumReport r;
   r.description = description;
   const Observer& two = library.observer(StandardObserver::cie1931_2deg);
   const Observer& ten = library.observer(StandardObserver::cie1964_10deg);
-  r.xyz_2deg = illuminant_xyz(spectrum, two);
+  const auto* table = dynamic_cast<const TabulatedSpectrum*>(&spectrum);
+  if (!table && method && *method != TristimulusMethod::interpolate_1nm)
+    throw InputError({"", 0, "--method"}, "'" + description + "' is a continuous spectrum, not a table: only "
+                                          "--method 1nm applies to it");
+  const TristimulusMethod used =
+      table ? method.value_or(default_tristimulus_method(*table)) : TristimulusMethod::interpolate_1nm;
+  r.tristimulus_method = std::string(method_name(used));
+  if (table) {
+    r.xyz_2deg = light_xyz(*table, StandardObserver::cie1931_2deg, used, library);
+    r.xyz_10deg = light_xyz(*table, StandardObserver::cie1964_10deg, used, library);
+  } else {
+    r.xyz_2deg = illuminant_xyz(spectrum, two);
+    r.xyz_10deg = illuminant_xyz(spectrum, ten);
+  }
   r.xy_2deg = chromaticity_of(r.xyz_2deg);
   r.uv_prime_2deg = uv1976_of(r.xyz_2deg);
-  r.xyz_10deg = illuminant_xyz(spectrum, ten);
   r.xy_10deg = chromaticity_of(r.xyz_10deg);
-  r.absolute_xyz = emission_xyz(spectrum, two);
+  if (table && used == TristimulusMethod::native) {
+    const double step_nm = *uniform_interval_nm(*table);
+    const IntegrationGrid grid{std::max(table->wavelengths_nm().front(), kCmfFirst_nm),
+                               std::min(table->wavelengths_nm().back(), kCmfLast_nm), step_nm};
+    r.absolute_xyz = emission_xyz(spectrum, two, grid);
+  } else {
+    r.absolute_xyz = emission_xyz(spectrum, two);
+  }
   r.cct = PlanckianLocus(two).cct_duv(uv1960_of(r.xyz_2deg));
   r.luminous_efficacy_lm_w = luminous_efficacy_of_radiation_lm_W(spectrum, library.photopic_v()).lm_W;
   r.scotopic_luminous_efficacy_lm_w = scotopic_luminous_efficacy_lm_W(spectrum, library.scotopic_v_prime()).lm_W;
@@ -66,6 +89,7 @@ SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& des
 std::string report_text(const SpectrumReport& r) {
   std::ostringstream out;
   out << "spectrum           " << r.description << "\n";
+  out << "tristimulus method " << r.tristimulus_method << "\n";
   out << format("XYZ (2°, Y=100)    %.4f %.4f %.4f\n", r.xyz_2deg.x, r.xyz_2deg.y, r.xyz_2deg.z);
   out << format("xy  (2°)           %.5f %.5f\n", r.xy_2deg.x, r.xy_2deg.y);
   out << format("u'v' (2°)          %.5f %.5f\n", r.uv_prime_2deg.u, r.uv_prime_2deg.v);
@@ -93,6 +117,7 @@ std::string report_text(const SpectrumReport& r) {
 std::string report_json(const SpectrumReport& r) {
   nlohmann::ordered_json j;
   j["spectrum"] = r.description;
+  j["tristimulus_method"] = r.tristimulus_method;
   j["xyz_2deg"] = {r.xyz_2deg.x, r.xyz_2deg.y, r.xyz_2deg.z};
   j["xy_2deg"] = {r.xy_2deg.x, r.xy_2deg.y};
   j["uv_prime_2deg"] = {r.uv_prime_2deg.u, r.uv_prime_2deg.v};

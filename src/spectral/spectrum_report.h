@@ -10,18 +10,23 @@
 #include "spectral/planckian_locus.h"
 #include "spectral/rgb_colour_space.h"
 #include "spectral/spectrum_source.h"
+#include "spectral/tristimulus_method.h"
 
 namespace rimu {
 
 /// The colorimetry and photometry of one emission spectrum.
 struct SpectrumReport {
   std::string description;
-  Xyz xyz_2deg;        ///< relative, Y = 100 (CIE 1931 2°, 1 nm over 360-830 nm)
+  /// How XYZ was summed: "native" (the table's own 1 or 5 nm wavelengths, CIE 15:2004 §7.1), "astm-e308"
+  /// (10/20 nm data) or "1nm" (interpolated to 1 nm; also every continuous spectrum: blackbody, daylight).
+  std::string tristimulus_method;
+  Xyz xyz_2deg;        ///< relative, Y = 100 (CIE 1931 2°), by tristimulus_method
   Chromaticity xy_2deg;
   Uv1976 uv_prime_2deg;
   Xyz xyz_10deg;       ///< relative, Y = 100 (CIE 1964 10°)
   Chromaticity xy_10deg;
-  Xyz absolute_xyz;    ///< K_m ∫ S x̄ dλ ...: cd/m² if S is a spectral radiance in W/(m²·sr·nm)
+  Xyz absolute_xyz;    ///< K_m ∫ S x̄ dλ ...: cd/m² if S is a spectral radiance in W/(m²·sr·nm) (native sum for
+                       ///< native data, else 1 nm)
   CctDuv cct;          ///< CCT and Duv (Ohno 2013), 2° observer
   double luminous_efficacy_lm_w = 0;           ///< of radiation, photopic, 360-830 nm
   double scotopic_luminous_efficacy_lm_w = 0;  ///< of radiation, scotopic (K'_m = 1700 lm/W)
@@ -31,10 +36,14 @@ struct SpectrumReport {
   Rgb acescg;          ///< the same in ACEScg
 };
 
-/// Builds the spectrum described by `source` and analyses it. Throws InputError for bad input.
-SpectrumReport analyse_spectrum(const SpectrumSource& source, SpectralLibrary& library);
-/// Analyses an existing spectrum.
-SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& description, SpectralLibrary& library);
+/// Builds the spectrum described by `source` and analyses it. `method` overrides the tristimulus method chosen
+/// from the data's spacing (default_tristimulus_method()). Throws InputError for bad input.
+SpectrumReport analyse_spectrum(const SpectrumSource& source, SpectralLibrary& library,
+                                std::optional<TristimulusMethod> method = std::nullopt);
+/// Analyses an existing spectrum. Continuous spectra (not tables) are always summed at 1 nm; asking for another
+/// method for them is an InputError.
+SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& description, SpectralLibrary& library,
+                                std::optional<TristimulusMethod> method = std::nullopt);
 
 /// A human-readable report (several lines, ending with a newline).
 std::string report_text(const SpectrumReport& report);

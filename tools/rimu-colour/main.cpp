@@ -5,13 +5,16 @@
 
 #include <iostream>
 
+#include "spectral/colour_fidelity.h"
 #include "spectral/error.h"
 #include "spectral/gamut_figure.h"
 #include "spectral/gnuplot_process.h"
+#include "spectral/reflectance_report.h"
 #include "spectral/rgb_upsampler.h"
 #include "spectral/upsample_report.h"
 #include "spectral/spectrum_report.h"
 #include "spectral/spectrum_source.h"
+#include "spectral/tristimulus_method.h"
 
 namespace {
 
@@ -24,8 +27,16 @@ struct ReportOptions {
   std::string illuminant;
   double blackbody_k = 0, daylight_k = 0;
   std::string csv, column;
+  std::string method;
   bool json = false;
 };
+
+/// --method NAME as a TristimulusMethod; empty when not given.
+std::optional<rimu::TristimulusMethod> method_option(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  if (auto m = rimu::parse_tristimulus_method(text)) return m;
+  throw rimu::InputError({"", 0, "--method"}, "unknown tristimulus method '" + text + "'; use native, 1nm or astm-e308");
+}
 
 rimu::SpectrumSource source_from(const ReportOptions& o, int given) {
   if (given != 1)
@@ -68,6 +79,36 @@ int main(int argc, char** argv) {
   auto* csv_opt = report_cmd->add_option("--csv", report.csv, "a CSV file: wavelength_nm, then spectral power columns");
   report_cmd->add_option("--column", report.column, "which power column of --csv (default: the second column)");
   report_cmd->add_flag("--json", report.json, "print JSON instead of text");
+  report_cmd->add_option("--method", report.method,
+                         "tristimulus summation: native (the data's own 1/5 nm wavelengths), 1nm (interpolate to "
+                         "1 nm) or astm-e308 (10/20 nm data); default from the data's spacing");
+
+  struct ReflectanceOptions {
+    std::string csv, column, patch, illuminant = "D50", method, reference, reference_column;
+    int observer = 2;
+    bool json = false;
+  } refl;
+  CLI::App* refl_cmd = app.add_subcommand(
+      "reflectance", "XYZ, xyY, CIELAB, encoded sRGB (and ΔE76/ΔE2000 against --reference) of a reflectance or "
+                     "transmittance factor under a CIE illuminant");
+  auto* refl_csv = refl_cmd->add_option("--csv", refl.csv, "a CSV file: wavelength_nm, then reflectance factors (0-1)");
+  refl_cmd->add_option("--column", refl.column, "which column of --csv (default: the second column)");
+  auto* refl_patch = refl_cmd->add_option("--patch", refl.patch,
+                                          "a ColorChecker Classic patch (BabelColor average), e.g. \"dark skin\"");
+  refl_cmd->add_option("--illuminant", refl.illuminant, "CIE illuminant the sample is seen under (default D50)");
+  refl_cmd->add_option("--observer", refl.observer, "2 (CIE 1931, default) or 10 (CIE 1964)");
+  refl_cmd->add_option("--method", refl.method, "native, 1nm or astm-e308 (default from the data's spacing)");
+  refl_cmd->add_option("--reference", refl.reference, "a second reflectance CSV to compare against (ΔE)");
+  refl_cmd->add_option("--reference-column", refl.reference_column, "which column of --reference");
+  refl_cmd->add_flag("--json", refl.json, "print JSON instead of text");
+
+  ReportOptions fidelity;
+  CLI::App* fidelity_cmd = app.add_subcommand(
+      "fidelity", "colour fidelity Rf (CIE 224:2017 / TM-30-20), gamut index Rg and the 16 hue bins of a light");
+  auto* fid_name = fidelity_cmd->add_option("illuminant", fidelity.illuminant, "a CIE illuminant, e.g. F2 or LED-B3");
+  auto* fid_csv = fidelity_cmd->add_option("--csv", fidelity.csv, "a CSV file: wavelength_nm, then spectral power");
+  fidelity_cmd->add_option("--column", fidelity.column, "which power column of --csv (default: the second column)");
+  fidelity_cmd->add_flag("--json", fidelity.json, "print JSON instead of text");
 
   std::string gamut_png = "gamut.png", gamut_csv, gamut_space = "srgb-linear";
   CLI::App* gamut_cmd = app.add_subcommand(
@@ -99,8 +140,32 @@ int main(int argc, char** argv) {
     if (*report_cmd) {
       const int given = int(name_opt->count() + bb_opt->count() + dl_opt->count() + csv_opt->count());
       const rimu::SpectrumSource source = source_from(report, given);
-      const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library);
+      const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(report.method));
       std::cout << (report.json ? rimu::report_json(r) : rimu::report_text(r)) << std::flush;
+    } else if (*fidelity_cmd) {
+      const rimu::SpectrumSource source = source_from(fidelity, int(fid_name->count() + fid_csv->count()));
+      const rimu::SpectrumPtr spectrum = rimu::make_emission_spectrum(source, library);
+      const rimu::ColourFidelity f = rimu::ColourFidelityEvaluator(library).evaluate(*spectrum);
+      std::cout << (fidelity.json ? rimu::colour_fidelity_json(f, source.describe())
+                                  : rimu::colour_fidelity_text(f, source.describe()))
+                << std::flush;
+    } else if (*refl_cmd) {
+      if (refl_csv->count() + refl_patch->count() != 1)
+        throw rimu::InputError({"", 0, "reflectance"}, "give exactly one sample: --csv FILE or --patch NAME");
+      if (refl.observer != 2 && refl.observer != 10)
+        throw rimu::InputError({"", 0, "--observer"}, "expected 2 or 10, got " + std::to_string(refl.observer));
+      rimu::ReflectanceConditions conditions;
+      conditions.illuminant = refl.illuminant;
+      conditions.observer = refl.observer == 10 ? rimu::StandardObserver::cie1964_10deg
+                                                : rimu::StandardObserver::cie1931_2deg;
+      conditions.method = method_option(refl.method);
+      const rimu::TabulatedSpectrum sample = refl.csv.empty() ? rimu::colorchecker_patch(library, refl.patch)
+                                                              : rimu::load_reflectance_csv(refl.csv, refl.column);
+      std::optional<rimu::TabulatedSpectrum> reference;
+      if (!refl.reference.empty()) reference = rimu::load_reflectance_csv(refl.reference, refl.reference_column);
+      const rimu::ReflectanceReport r =
+          rimu::analyse_reflectance(sample, reference ? &*reference : nullptr, conditions, library);
+      std::cout << (refl.json ? rimu::reflectance_report_json(r) : rimu::reflectance_report_text(r)) << std::flush;
     } else if (*gamut_cmd) {
       const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(gamut_space));
       rimu::write_gamut_figure(library, upsampler, gamut_png, gamut_csv);

@@ -1,0 +1,67 @@
+// rimu.Library.render: a scene file rendered into a numpy array (height × width × 3, the film's channels: CIE XYZ
+// for the default "xyz" response, camera RGB for a camera film), with the scene's exposure and white balance.
+#include <pybind11/stl.h>
+
+#include <optional>
+
+#include "bindings.h"
+#include "render/camera_exposure.h"
+#include "render/film.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "spectral/error.h"
+
+namespace rimu::python {
+namespace {
+
+// The scene's "film.filter" as the renderer's pixel filter (the same mapping rimu's render job uses).
+PixelFilter filter_of(const FilterSettings& f) {
+  if (f.type == "box") return PixelFilter::box(f.radius_px);
+  if (f.type == "blackman-harris") return PixelFilter::blackman_harris(f.radius_px);
+  return PixelFilter::gaussian(f.radius_px, f.sigma_px);
+}
+
+py::array_t<float> render_scene(SpectralLibrary& library, const std::string& scene_path, std::optional<int> width,
+                                std::optional<int> height, std::optional<int> samples_per_pixel,
+                                std::optional<uint64_t> seed, int threads) {
+  const std::unique_ptr<Scene> scene = load_scene(scene_path.empty() ? default_scene_path(library) : std::filesystem::path(scene_path), library);
+  RenderSettings& s = scene->settings;
+  if (width) s.width = *width;
+  if (height) s.height = *height;
+  if (samples_per_pixel) s.samples_per_pixel = *samples_per_pixel;
+  if (seed) s.seed = *seed;
+  if (s.width < 1 || s.height < 1 || s.samples_per_pixel < 1)
+    throw InputError({}, "width, height and samples_per_pixel must be at least 1");
+  Film film({s.width, s.height, std::nullopt, 0}, SpectralResponse::from_spec(library, s.film_response));
+  film.set_output_transform(film_output_transform(s.camera_exposure, film.response(), library));
+  RenderOptions options;
+  options.samples_per_pixel = s.samples_per_pixel;
+  options.threads = threads;
+  options.seed = s.seed;
+  options.sampler = s.sampler;
+  {
+    py::gil_scoped_release release;  // other Python threads may run while the tiles render
+    render(*scene, filter_of(s.filter), film, options);
+  }
+  py::array_t<float> image({s.height, s.width, 3});
+  auto out = image.mutable_unchecked<3>();
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const std::array<double, 3> v = film.output_value(x, y);
+      for (int c = 0; c < 3; ++c) out(y, x, c) = float(v[size_t(c)]);
+    }
+  return image;
+}
+
+}  // namespace
+
+void bind_render(py::module_& m) {
+  auto lib = py::reinterpret_borrow<py::class_<SpectralLibrary>>(m.attr("Library"));
+  lib.def("render", &render_scene, py::arg("scene") = "", py::arg("width") = py::none(), py::arg("height") = py::none(),
+          py::arg("samples_per_pixel") = py::none(), py::arg("seed") = py::none(), py::arg("threads") = 0,
+          "Renders a scene file (default: the Cornell box) and returns the film as a float32 array of shape "
+          "(height, width, 3): CIE XYZ for the default film, after the scene's exposure and white balance. "
+          "Deterministic for a given seed and sample count.");
+}
+
+}  // namespace rimu::python

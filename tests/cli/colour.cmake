@@ -1,0 +1,57 @@
+# rimu-colour: tristimulus methods, reflectance colorimetry and colour fidelity (contracts and published values).
+set(colour_csv_dir ${CMAKE_CURRENT_SOURCE_DIR}/cli/colour)
+
+# CIE 15:2004 Table T.8 xy (2°), 4 decimals: F2 (0.3721, 0.3751), F7 (0.3129, 0.3292), F11 (0.3805, 0.3769). The
+# text report prints 5 decimals; the patterns accept exactly the 5-decimal values that round to the published 4.
+rimu_cli_test("rimu-colour F2 native matches CIE 15 Table T.8" 0
+              "xy  \\(2°\\) +0\\.372(0[5-9]|1[0-4]) 0\\.375(0[5-9]|1[0-4])"
+              $<TARGET_FILE:rimu-colour> report F2)
+rimu_cli_test("rimu-colour F7 native matches CIE 15 Table T.8" 0
+              "xy  \\(2°\\) +0\\.312(8[5-9]|9[0-4]) 0\\.329(1[5-9]|2[0-4])" $<TARGET_FILE:rimu-colour> report F7)
+rimu_cli_test("rimu-colour F11 native matches CIE 15 Table T.8" 0
+              "xy  \\(2°\\) +0\\.380(4[5-9]|5[0-4]) 0\\.376(8[5-9]|9[0-4])" $<TARGET_FILE:rimu-colour> report F11)
+rimu_cli_test("rimu-colour names the method of 5 nm data native" 0 "^tristimulus method native$"
+              $<TARGET_FILE:rimu-colour> report F2)
+rimu_cli_test("rimu-colour --method 1nm is named in the JSON" 0 "\"tristimulus_method\": \"1nm\""
+              $<TARGET_FILE:rimu-colour> report F2 --method 1nm --json)
+rimu_cli_test("rimu-colour unknown method" 1 "--method: unknown tristimulus method 'trapezoid'"
+              $<TARGET_FILE:rimu-colour> report F2 --method trapezoid)
+rimu_cli_test("rimu-colour native needs a table" 1 "continuous spectrum.*--method 1nm"
+              $<TARGET_FILE:rimu-colour> report --blackbody 3000 --method native)
+rimu_cli_test("rimu-colour E308 needs the short-wavelength tail" 1
+              "ten_nm_from_400.csv.*ASTM E308 needs data from 380 nm or below|ASTM E308 needs data from 380 nm or below.*ten_nm_from_400.csv"
+              $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/ten_nm_from_400.csv)
+
+# Reflectance colorimetry.
+rimu_cli_test("rimu-colour reflectance of a ColorChecker patch uses E308 at 10 nm" 0
+              "\"tristimulus_method\": \"astm-e308\"" $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --json)
+rimu_cli_test("rimu-colour reflectance prints CIELAB" 0 "CIELAB +76\\.069 0\\.000 0\\.000"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/grey_50_10nm.csv)
+rimu_cli_test("rimu-colour reflectance against itself has dE00 0" 0 "ΔE00 \\(CIEDE2000\\) +0\\.000"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/grey_50_10nm.csv
+              --reference ${colour_csv_dir}/grey_50_10nm.csv --illuminant D65 --observer 10)
+rimu_cli_test("rimu-colour reflectance unknown illuminant" 1 "unknown illuminant 'D66'"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant D66)
+rimu_cli_test("rimu-colour reflectance above 1.5" 1 "percent_reflectance.csv:3: r: reflectance factor 45 is above 1.5"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/percent_reflectance.csv)
+rimu_cli_test("rimu-colour reflectance E308 needs data from 380 nm" 1 "ASTM E308 needs data from 380 nm or below"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/ten_nm_from_400.csv)
+rimu_cli_test("rimu-colour reflectance unknown patch" 1 "unknown ColorChecker patch 'dark skinn'.*bluish green"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skinn")
+rimu_cli_test("rimu-colour reflectance bad observer" 1 "--observer: expected 2 or 10"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --observer 4)
+
+# Colour fidelity (CIE 224:2017 / TM-30-20). CIE 2017 calculator: F2 Rf 70.1; TM-30-18 calculator: F2 Rg 86.
+rimu_cli_test("rimu-colour fidelity of F2" 0 "Rf \\(CIE 224:2017\\) +70\\.1" $<TARGET_FILE:rimu-colour> fidelity F2)
+rimu_cli_test("rimu-colour fidelity of F2 gamut" 0 "Rg \\(TM-30-20\\) +8[56]\\.[0-9]" $<TARGET_FILE:rimu-colour> fidelity F2)
+rimu_cli_test("rimu-colour fidelity JSON has 16 bins" 0 "\"hue_bins\"" $<TARGET_FILE:rimu-colour> fidelity LED-B3 --json)
+rimu_cli_test("rimu-colour fidelity needs 380-780 nm" 1 "380 to 780 nm"
+              $<TARGET_FILE:rimu-colour> fidelity --csv ${colour_csv_dir}/ten_nm_from_400.csv)
+rimu_cli_test("rimu-colour fidelity unknown illuminant" 1 "unknown illuminant 'F13'" $<TARGET_FILE:rimu-colour> fidelity F13)
+
+# A flat 10 nm light is summed with the E308 weights of illuminant E: its chromaticity is E's, (1/3, 1/3) to the
+# 1e-4 that the CMFs' own rounding gives (CIE 15: E at 1 nm is (0.33331, 0.33329)).
+rimu_cli_test("rimu-colour 10 nm light uses E308" 0 "^tristimulus method astm-e308$"
+              $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)
+rimu_cli_test("rimu-colour 10 nm flat light is white E" 0 "xy  \\(2°\\) +0\\.333[23][0-9] 0\\.333[23][0-9]"
+              $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)

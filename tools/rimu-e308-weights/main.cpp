@@ -1,0 +1,66 @@
+// rimu-e308-weights: computes the ASTM E308 weighting factors of data/e308/ from the CIE 1 nm tables.
+//
+//   rimu-e308-weights --data <data root> --out <folder>
+//
+// For each illuminant of SpectralLibrary::e308_illuminant_names(), both standard observers and 10 and 20 nm,
+// runs compute_e308_weights() (src/spectral/astm_e308.h) over 360-830 nm and writes
+// astm_e308_<illuminant>_<2|10>deg_<10|20>nm.csv with the command in its first lines.
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "spectral/astm_e308.h"
+#include "spectral/error.h"
+#include "spectral/spectral_library.h"
+
+using namespace rimu;
+
+int main(int argc, char** argv) {
+  std::filesystem::path data, out;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--data") == 0) data = argv[i + 1];
+    else if (std::strcmp(argv[i], "--out") == 0) out = argv[i + 1];
+  }
+  if (data.empty() || out.empty()) {
+    std::cerr << "usage: rimu-e308-weights --data <data root> --out <folder>\n";
+    return 1;
+  }
+  try {
+    SpectralLibrary library(data);
+    std::filesystem::create_directories(out);
+    for (const std::string& name : SpectralLibrary::e308_illuminant_names()) {
+      const SpectrumPtr illuminant = library.illuminant(name);
+      for (StandardObserver observer : {StandardObserver::cie1931_2deg, StandardObserver::cie1964_10deg}) {
+        const Observer& o = library.observer(observer);
+        const bool ten = observer == StandardObserver::cie1964_10deg;
+        for (int interval : {10, 20}) {
+          const E308WeightTable table = compute_e308_weights(*illuminant, o, interval, name);
+          std::string lower = name;
+          for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+          const std::filesystem::path file =
+              out / ("astm_e308_" + lower + "_" + (ten ? "10" : "2") + "deg_" + std::to_string(interval) + "nm.csv");
+          const std::string comment =
+              "ASTM E308-15 Table 6 practice (E2022-11 Lagrange weights, no bandpass correction): CIE " + name +
+              ", " + o.name + ", " + std::to_string(interval) + " nm, 360-830 nm, sum of Wy = 100.\n"
+              "Generated from the CIE 1 nm tables in data/ by: build/bin/rimu-e308-weights --data data --out data/e308";
+          std::ofstream f(file);
+          f << e308_weights_csv(table, comment);
+          f.close();
+          if (!f) {
+            std::cerr << "rimu-e308-weights: cannot write " << file.string() << "\n";
+            return 2;
+          }
+          std::cout << "wrote " << file.string() << "\n";
+        }
+      }
+    }
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << "rimu-e308-weights: " << e.what() << "\n";
+    return 1;
+  }
+}
