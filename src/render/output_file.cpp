@@ -39,6 +39,20 @@ std::filesystem::path temporary_output_path(const std::filesystem::path& path) {
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& temporary)>& write) {
   check_output_path(path);
+  // A destination that is not a plain file (/dev/stdout, /dev/full, a FIFO, a symbolic link) is written in place:
+  // renaming a temporary file over it would replace the device or the link itself.
+  std::error_code status_error;
+  const auto status = std::filesystem::symlink_status(path, status_error);
+  if (!status_error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    try {
+      write(path);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw OutputError(path, e.what());
+    }
+    return;
+  }
   const std::filesystem::path temporary = temporary_output_path(path);
   std::error_code ignored;
   try {

@@ -99,7 +99,18 @@ LightAmount parse_light_amount(std::string_view text, const SourceLocation& wher
   const LightAmount amount{value, parse_light_unit(rest, where)};
   if (amount.unit != LightUnit::ev100 && !(value > 0.0))
     throw InputError(where, "a light's amount must be positive; got '" + s + "'");
+  check_light_amount_range(amount, where);
   return amount;
+}
+
+void check_light_amount_range(LightAmount amount, const SourceLocation& where) {
+  const bool ev = amount.unit == LightUnit::ev100;
+  const double lo = ev ? kMinEv100 : kMinLightAmount, hi = ev ? kMaxEv100 : kMaxLightAmount;
+  if (amount.value >= lo && amount.value <= hi) return;
+  std::ostringstream message;
+  message << (ev ? "an exposure value" : "a light's amount") << " must be in [" << lo << ", " << hi << "] "
+          << unit_symbol(amount.unit) << "; got " << amount.value;
+  throw InputError(where, message.str());
 }
 
 std::string format_light_amount(LightAmount amount) {
