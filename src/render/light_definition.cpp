@@ -30,17 +30,21 @@ constexpr std::array kKeys{
 
 // printf-style formatting of one number into a string of whatever length the format needs (a fixed buffer once
 // cut the efficacy line of `rimu-light inspect` short).
-// A result that is not finite (an overflow the input ranges did not prevent) is refused rather than printed.
 std::string fmt(const char* format, double value) {
-  if (!std::isfinite(value))
-    throw InputError({}, "a result overflows (" + std::string(format) + " of a value that is not a finite number); "
-                         "the light's amount or the inspection options are too extreme");
   const int length = std::snprintf(nullptr, 0, format, value);
   if (length <= 0) return {};
   std::string out(size_t(length) + 1, '\0');
   std::snprintf(out.data(), out.size(), format, value);
   out.pop_back();
   return out;
+}
+
+// A report value: one that is not finite (an overflow the input ranges did not prevent) is refused, never printed.
+std::string report_fmt(const char* format, double value) {
+  if (!std::isfinite(value))
+    throw InputError({}, "a result overflows (" + std::string(format) + " of a value that is not a finite number); "
+                         "the light's amount or the inspection options are too extreme");
+  return fmt(format, value);
 }
 
 ShapeIntegrals integrals(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
@@ -72,7 +76,7 @@ void validate_light_definition(const LightDefinition& light, SpectralLibrary& li
   const double cone_deg = 2.0 * g.outer_half_angle_deg;
   if (g.kind == EmitterKind::spot && !(cone_deg >= kMinConeAngleDeg && cone_deg <= kMaxConeAngleDeg))
     throw InputError(where, "the cone angle must be in [" + fmt("%g", kMinConeAngleDeg) + ", " +
-                                fmt("%g", kMaxConeAngleDeg) + "] degrees; got " + std::to_string(cone_deg));
+                                fmt("%g", kMaxConeAngleDeg) + "] degrees; got " + fmt("%g", cone_deg));
   if (g.kind == EmitterKind::spot && !(g.inner_half_angle_deg >= 0.0 && g.inner_half_angle_deg <= g.outer_half_angle_deg))
     throw InputError(where, "the softness must be between 0 and half the cone angle");
   try {
@@ -212,25 +216,30 @@ std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& li
         << (g.spot_power == SpotPowerConvention::cone ? "over the cone" : "as if a point light");
   out << "\n";
   out << report_text(i.report);
-  out << fmt("efficacy           %.2f lm/W of radiation as lights count watts (trapezoid over 360-830 nm)", o.efficacy_lm_W);
+  out << report_fmt("efficacy           %.2f lm/W of radiation as lights count watts (trapezoid over 360-830 nm)",
+                    o.efficacy_lm_W);
   if (point.electrical_w && o.luminous_power_lm > 0.0)
-    out << fmt(", %.2f lm/W of the source", o.luminous_power_lm / *point.electrical_w)
-        << fmt(" (%.1f %% wall-plug efficiency)", 100.0 * o.radiant_power_w / *point.electrical_w);
+    out << report_fmt(", %.2f lm/W of the source", o.luminous_power_lm / *point.electrical_w)
+        << report_fmt(" (%.1f %% wall-plug efficiency)", 100.0 * o.radiant_power_w / *point.electrical_w);
   out << "\n";
   if (o.luminous_power_lm > 0.0)
-    out << fmt("power              %.6g lm", o.luminous_power_lm) << fmt(" = %.6g W (radiant)\n", o.radiant_power_w);
+    out << report_fmt("power              %.6g lm", o.luminous_power_lm)
+        << report_fmt(" = %.6g W (radiant)\n", o.radiant_power_w);
   if (o.luminous_intensity_cd > 0.0) {
-    out << fmt("peak intensity     %.6g cd", o.luminous_intensity_cd) << fmt(" = %.6g W/sr\n", o.radiant_intensity_w_sr);
-    out << fmt("illuminance        %.6g lx", i.illuminance_at_point_lx) << fmt(" at %g m", point.distance_m)
-        << fmt(", %g° off axis, on a surface facing the light\n", point.off_axis_deg);
+    out << report_fmt("peak intensity     %.6g cd", o.luminous_intensity_cd)
+        << report_fmt(" = %.6g W/sr\n", o.radiant_intensity_w_sr);
+    out << report_fmt("illuminance        %.6g lx", i.illuminance_at_point_lx) << report_fmt(" at %g m", point.distance_m)
+        << report_fmt(", %g° off axis, on a surface facing the light\n", point.off_axis_deg);
   }
   if (o.illuminance_lx > 0.0)
-    out << fmt("illuminance        %.6g lx", o.illuminance_lx) << fmt(" = %.6g W/m² at normal incidence", o.irradiance_w_m2)
-        << fmt(" (EV %.2f at ISO 100, incident meter C = 250)\n", o.ev100)
-        << fmt("white Lambertian   %.6g nt\n", o.illuminance_lx / 3.14159265358979);
+    out << report_fmt("illuminance        %.6g lx", o.illuminance_lx)
+        << report_fmt(" = %.6g W/m² at normal incidence", o.irradiance_w_m2)
+        << report_fmt(" (EV %.2f at ISO 100, incident meter C = 250)\n", o.ev100)
+        << report_fmt("white Lambertian   %.6g nt\n", o.illuminance_lx / 3.14159265358979);
   if (o.luminance_nt > 0.0)
-    out << fmt("luminance          %.6g nt", o.luminance_nt) << fmt(" = %.6g W/(m²·sr)", o.radiance_w_m2_sr)
-        << fmt(" (EV %.2f at ISO 100, reflected meter K = 12.5)\n", o.ev100);
+    out << report_fmt("luminance          %.6g nt", o.luminance_nt)
+        << report_fmt(" = %.6g W/(m²·sr)", o.radiance_w_m2_sr)
+        << report_fmt(" (EV %.2f at ISO 100, reflected meter K = 12.5)\n", o.ev100);
   return out.str();
 }
 
@@ -243,7 +252,7 @@ nlohmann::json inspect_light_json(const LightDefinition& light, SpectralLibrary&
   j["spectrum_report"] = nlohmann::ordered_json::parse(report_json(i.report));
   // Only the quantities this kind of light has (the others are 0 in EmitterOutput), each checked finite.
   const auto put = [&](const char* key, double value) {
-    fmt("%g", value);  // throws on an overflow, as the text form does
+    report_fmt("%g", value);  // throws on an overflow, as the text form does
     j[key] = value;
   };
   put("efficacy_lm_w", o.efficacy_lm_W);

@@ -155,10 +155,15 @@ std::string convert_light_text(const ConvertRequest& request, SpectralLibrary& l
   const bool geometry_matters = measured(light.amount.unit, kind) != measured(to, kind);
   const bool delta = kind == EmitterKind::point || kind == EmitterKind::spot;
   if (!request.type_given && geometry_matters) out << "assuming a point light (--type)\n";
-  if (kind == EmitterKind::spot && geometry_matters && !request.cone_given)
-    out << "assuming a " << request.spot.cone_deg << "° cone, soft over the outer " << request.spot.softness_deg
-        << "°, lumens counted " << (request.spot.power_convention == "cone" ? "over the cone" : "as a point light")
+  if (kind == EmitterKind::spot && geometry_matters && !request.cone_given) {
+    out << "assuming a " << request.spot.cone_deg << "° cone";
+    if (request.spot.softness_deg > 0.0)
+      out << " soft over its outer " << request.spot.softness_deg << "°";
+    else
+      out << " with a hard edge";
+    out << ", lumens counted " << (request.spot.power_convention == "cone" ? "over the cone" : "as for a point light")
         << " (--cone, --softness, --power-convention)\n";
+  }
   if (kind == EmitterKind::area && geometry_matters && !request.area_given)
     out << "assuming " << request.area_m2 << " m² emitting from " << (request.two_sided ? "both faces" : "one face")
         << " (--area, --two-sided)\n";
