@@ -63,7 +63,7 @@ nlohmann::json cct_spectrum(double cct_k, bool daylight, const SourceLocation& w
 
 SpectrumPtr light_shape(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
   SpectrumInputContext context(library, dir);
-  return context.parse(JsonCursor(light.spectrum, "light", "/spectrum"), SpectrumRole::emission);
+  return context.parse(JsonCursor(light.spectrum, light.origin, "/spectrum"), SpectrumRole::emission);
 }
 
 void validate_light_definition(const LightDefinition& light, SpectralLibrary& library,
@@ -104,6 +104,7 @@ nlohmann::json light_definition_json(const LightDefinition& light) {
 LightDefinition read_light_definition(const nlohmann::json& document, const std::string& file) {
   const JsonCursor root(document, file);
   LightDefinition light;
+  light.origin = file;
   const std::string type = root.at("type").choice({"point", "spot", "distant", "environment"});
   light.geometry.kind = type == "point" ? EmitterKind::point
                         : type == "spot" ? EmitterKind::spot
@@ -175,6 +176,7 @@ LightDefinition recolor_light(const LightDefinition& light, nlohmann::json new_s
     out.amount = {light.amount.value * integrals(light, library, dir).efficacy_lm_W(), twin};
   }
   out.spectrum = std::move(new_spectrum);
+  out.origin = "";  // the new spectrum comes from the caller, not from the light's file
   validate_light_definition(out, library, dir, {"", 0, "recolor"});
   return out;
 }

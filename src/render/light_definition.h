@@ -22,6 +22,9 @@ struct LightDefinition {
   EmitterGeometry geometry;
   nlohmann::json spectrum = nlohmann::json{{"illuminant", "E"}};  ///< a scene spectral value (docs/scene-format.md)
   LightAmount amount{1000.0, LightUnit::lumen};
+  /// Where the definition came from, for messages about its spectrum: its file, or "" for command-line options.
+  /// Not part of the written JSON.
+  std::string origin;
 };
 
 /// The spectral value of a CCT: {"blackbody": T} (1000-25000 K) or {"daylight": T} (4000-25000 K, CIE daylight's

@@ -85,6 +85,21 @@ EmitterGeometry light_geometry(EmitterKind kind, const SpotOptions& spot, double
   return g;
 }
 
+void naming_shape_option(const LightShapeOptions& shape, const std::function<void()>& step) {
+  try {
+    step();
+  } catch (const InputError& e) {
+    // The options' spectrum is JSON without a file, or the CSV file they named (whose file and line are kept).
+    const std::string option = shape.given_option();
+    const SourceLocation& where = e.where();
+    const bool from_options =
+        where.file.empty() || (!shape.csv.empty() && where.file == std::filesystem::absolute(shape.csv).string());
+    if (!option.empty() && from_options && where.key.rfind("/spectrum", 0) == 0)
+      throw InputError({where.file, where.line, option.substr(0, option.find(' '))}, e.explanation());
+    throw;
+  }
+}
+
 LightAmount LightAmountOptions::amount() const {
   struct Flag {
     const std::optional<double>& value;
@@ -118,8 +133,9 @@ LightDefinition light_from_options(const std::string& type, const SpotOptions& s
   LightDefinition light;
   light.geometry = light_geometry(parse_light_type(type, LightTypeUse::definition, "--type"), spot, 0.0, false);
   light.amount = amounts.amount();
-  if (auto s = shape.spectrum()) light.spectrum = *s;
-  validate_light_definition(light, library, directory, {"", 0, "amount"});
+  const std::optional<nlohmann::json> spectrum = shape.spectrum();
+  if (spectrum) light.spectrum = *spectrum;
+  naming_shape_option(shape, [&] { validate_light_definition(light, library, directory, {"", 0, "amount"}); });
   return light;
 }
 
@@ -147,7 +163,10 @@ std::string convert_light_text(const ConvertRequest& request, SpectralLibrary& l
   const std::optional<nlohmann::json> shape = request.shape.spectrum();
   if (shape) light.spectrum = *shape;
   const LightUnit to = parse_light_unit(request.to, {"", 0, "--to"});
-  const double value = convert_light_amount(light, to, library, directory, request.distance_m, {"", 0, "--to"});
+  double value = 0.0;
+  naming_shape_option(request.shape, [&] {
+    value = convert_light_amount(light, to, library, directory, request.distance_m, {"", 0, "--to"});
+  });
 
   std::ostringstream out;
   out << format_light_amount(light.amount) << " = " << format_light_amount({value, to}) << "\n";

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -23,6 +24,10 @@ struct LightShapeOptions {
   /// "--cct 2700" etc. for the one given, or "" when none is.
   std::string given_option() const;
 };
+
+/// Runs `step` on a light whose spectrum came from `shape` (its origin ""): an InputError about the spectrum
+/// ("/spectrum/illuminant: unknown illuminant") is raised again naming the option that gave it (--illuminant).
+void naming_shape_option(const LightShapeOptions& shape, const std::function<void()>& step);
 
 /// Which light types a command accepts: a definition file (point, spot, distant, environment; an area light is a
 /// shape with an "emission" in a scene, so it has no definition file) or a unit conversion (all five).

@@ -1,12 +1,7 @@
 #include "spectral/version.h"
 
-// Both come from the build (src/spectral/CMakeLists.txt); the fallbacks keep a stray compile honest.
-#ifndef RIMU_VERSION
-#define RIMU_VERSION "unknown"
-#endif
-#ifndef RIMU_GIT_COMMIT
-#define RIMU_GIT_COMMIT "unknown"
-#endif
+// RIMU_VERSION and RIMU_GIT_COMMIT, written by the build (src/spectral/CMakeLists.txt).
+#include "rimu_build_info.h"
 
 namespace rimu {
 

@@ -104,3 +104,12 @@ rimu_cli_test("rimu-light inspect IES --json" 0 "\"total_luminous_flux_lm\": 189
 # A new user's first hour: every build/bin command in README.md, in order, from a scratch copy of the repository.
 add_test(NAME "cli: README commands run as written"
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/readme_commands.sh ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+
+# A spectrum error names where the spectrum came from: the option that gave it, or the definition file.
+rimu_cli_test("rimu-light spectrum error names the option" 1 "rimu-light: --illuminant: unknown illuminant 'D66'"
+              $<TARGET_FILE:rimu-light> --type point --lumens 800 --illuminant D66)
+rimu_cli_test("rimu-light convert spectrum error names the option" 1 "rimu-light: --illuminant: unknown illuminant"
+              $<TARGET_FILE:rimu-light> convert --from "800 lm" --to W --illuminant D66)
+rimu_cli_test("rimu-light spectrum error names the file" 1
+              "rimu-light: [^ ]*bad_illuminant_light.json: /spectrum/illuminant: unknown illuminant 'D66'"
+              $<TARGET_FILE:rimu-light> inspect ${cli_data}/bad_illuminant_light.json)

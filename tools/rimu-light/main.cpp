@@ -132,6 +132,7 @@ void inspect(const Options& o, rimu::SpectralLibrary& library, const std::filesy
   if (extension == ".csv") {
     light.spectrum = {{"csv", std::filesystem::absolute(o.inspect_file).string()}};
     light.amount = {1.0, rimu::LightUnit::watt};  // the file's own scale: 1 W per unit of its integral
+    light.origin = o.inspect_file;
   } else {
     light = read_definition(o.inspect_file);
   }
@@ -171,7 +172,10 @@ void run(Options& o) {
     const auto s = o.recolor_shape.spectrum();
     if (!s) throw InputError({"", 0, "recolor"}, "give the new colour: --cct, --daylight, --illuminant or --csv");
     if (!o.recolor_output.empty() && o.recolor_output != "-") rimu::check_output_path(o.recolor_output);
-    write_definition(rimu::recolor_light(read_definition(o.recolor_file), *s, library, here), o.recolor_output);
+    const rimu::LightDefinition light = read_definition(o.recolor_file);
+    rimu::naming_shape_option(o.recolor_shape, [&] {
+      write_definition(rimu::recolor_light(light, *s, library, here), o.recolor_output);
+    });
     return;
   }
   author(o, library, here);
