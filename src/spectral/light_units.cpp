@@ -127,7 +127,10 @@ ShapeIntegrals shape_integrals(const Spectrum& shape, const TabulatedSpectrum& v
   result.radiant = trapezoid;  // × 1 nm
   result.luminous = kMaxLuminousEfficacy_lm_W *
                     integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) { return shape.value(l) * v.value(l); });
-  if (!(result.radiant > 0.0) || !std::isfinite(result.radiant))
+  if (!std::isfinite(result.radiant) || !std::isfinite(result.luminous))
+    throw InputError({}, "the spectrum '" + shape.describe() + "' overflows: its integral over 360-830 nm is not a "
+                         "finite number; give its values in a smaller unit");
+  if (!(result.radiant > 0.0))
     throw InputError({}, "the spectrum '" + shape.describe() + "' has no power in 360-830 nm, so no amount can scale it");
   if (!(result.luminous > 0.0))
     throw InputError({}, "the spectrum '" + shape.describe() +
