@@ -1,16 +1,19 @@
 // rimu-light writes only light definitions it reads back: a property test over random and extreme option values.
 // Whatever light_from_options() accepts, light_definition_json() writes and read_light_definition() reads back to the
 // same definition (bit-identical numbers: JSON numbers are printed in the shortest form that round-trips), which
-// validates again. What it refuses is refused with an InputError naming the option, never written.
+// validates again and which a scene includes. What it refuses is refused with an InputError naming the option, never written.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
+#include <fstream>
 #include <random>
 #include <regex>
+#include <unistd.h>
 
 #include "render/json_cursor.h"
 #include "render/light_options.h"
+#include "render/scene.h"
 #include "test_support.h"
 
 using namespace rimu;
@@ -95,6 +98,25 @@ TEST_CASE("rimu-light definitions: whatever is written is read back unchanged, w
       CHECK(back.geometry.spot_power == light.geometry.spot_power);
     }
     CHECK_NOTHROW(validate_light_definition(back, library, here, {"lamp.json", 0, ""}));
+    // A scene includes what rimu-light writes, too (the first accepted cases: a scene load builds Embree geometry).
+    if (written <= 60) {
+      const std::filesystem::path folder =
+          std::filesystem::temp_directory_path() / ("rimu-light-round-trip-" + std::to_string(::getpid()));
+      std::filesystem::create_directories(folder);
+      std::ofstream(folder / "lamp.json") << text;
+      nlohmann::json placed = {{"include", "lamp.json"}};
+      if (light.geometry.kind == EmitterKind::point || light.geometry.kind == EmitterKind::spot)
+        placed["position"] = {0, 2, 0};
+      if (light.geometry.kind == EmitterKind::spot || light.geometry.kind == EmitterKind::distant)
+        placed["direction"] = {0, -1, 0};
+      const nlohmann::json scene = {
+          {"camera", {{"from", {0, 1, 3}}, {"to", {0, 0, 0}}, {"up", {0, 1, 0}}, {"vertical_fov_deg", 30}}},
+          {"materials", {{"grey", {{"type", "diffuse"}, {"reflectance", 0.5}}}}},
+          {"lights", {placed}},
+          {"shapes", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 0.5}, {"material", "grey"}}}}};
+      CHECK_NOTHROW(load_scene(scene, "round trip scene", folder, library));
+      std::filesystem::remove_all(folder);
+    }
   }
   // Both outcomes happen often, so the property was exercised on both sides.
   CHECK(written > 300);
