@@ -7,14 +7,19 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "render/ies_file.h"
+#include "render/inspect_point.h"
 
 namespace rimu {
 
-/// A text report of `ies`; the illuminance is on a surface facing the lamp at `distance_m`, `angle_deg` from the
-/// axis in the C = 0° plane (E = I/d²). With `electrical_w` (else the file's input watts) the luminaire efficacy.
-std::string inspect_ies_text(const IesPhotometry& ies, double distance_m, double angle_deg,
-                             std::optional<double> electrical_w);
+/// A text report of `ies`; the illuminance is on a surface facing the lamp at the point's distance and angle from
+/// the axis in the C = 0° plane (E = I/d²). With the electrical power (else the file's input watts) the luminaire
+/// efficacy. Throws InputError for an invalid point or a result that is not finite (nothing prints NaN or inf).
+std::string inspect_ies_text(const IesPhotometry& ies, const InspectPoint& point);
+/// The same numbers as a JSON object (keys carry their units).
+nlohmann::json inspect_ies_json(const IesPhotometry& ies, const InspectPoint& point);
 
 /// Draws the candela distribution in the C 0-180° and C 90-270° planes as a polar plot against γ (nadir down,
 /// angles labelled) in cd/klm (cd for absolute photometry) to a PNG (render/plot_output.h), titled with the file's

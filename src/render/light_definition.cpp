@@ -56,6 +56,12 @@ std::string spectrum_csv(const LightDefinition& light) {
   if (where.file.empty() || where.file == "light") where = {csv, 0, ""};
   where.key.clear();
   throw InputError(where, e.explanation());
+// A report value: one that is not finite (an overflow the input ranges did not prevent) is refused, never printed.
+std::string report_fmt(const char* format, double value) {
+  if (!std::isfinite(value))
+    throw InputError({}, "a result overflows (" + std::string(format) + " of a value that is not a finite number); "
+                         "the light's amount or the inspection options are too extreme");
+  return fmt(format, value);
 }
 
 ShapeIntegrals integrals(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
@@ -93,8 +99,12 @@ void validate_light_definition(const LightDefinition& light, SpectralLibrary& li
   const EmitterGeometry& g = light.geometry;
   if (light.amount.unit != LightUnit::ev100 && !(light.amount.value > 0.0))
     throw InputError(where, "the amount must be positive; got " + format_light_amount(light.amount));
-  if (g.kind == EmitterKind::spot && !(g.outer_half_angle_deg > 0.0 && g.outer_half_angle_deg < 90.0))
-    throw InputError(where, "the cone angle must be in (0, 180) degrees; got " + fmt("%g", 2.0 * g.outer_half_angle_deg));
+  check_light_amount_range(light.amount, where);
+  // The same limits read_light_definition() applies, so that whatever passes here is read back.
+  const double cone_deg = 2.0 * g.outer_half_angle_deg;
+  if (g.kind == EmitterKind::spot && !(cone_deg >= kMinConeAngleDeg && cone_deg <= kMaxConeAngleDeg))
+    throw InputError(where, "the cone angle must be in [" + fmt("%g", kMinConeAngleDeg) + ", " +
+                                fmt("%g", kMaxConeAngleDeg) + "] degrees; got " + fmt("%g", cone_deg));
   if (g.kind == EmitterKind::spot && !(g.inner_half_angle_deg >= 0.0 && g.inner_half_angle_deg <= g.outer_half_angle_deg))
     throw InputError(where, "the softness must be between 0 and half the cone angle");
   try {
@@ -129,9 +139,11 @@ LightDefinition read_light_definition(const nlohmann::json& document, const std:
                         : type == "distant" ? EmitterKind::distant
                                             : EmitterKind::environment;
   if (light.geometry.kind == EmitterKind::spot) {
-    light.geometry.outer_half_angle_deg = root.at("cone_angle_deg").number(0.01, 179.9) / 2.0;
+    light.geometry.outer_half_angle_deg = root.at("cone_angle_deg").number(kMinConeAngleDeg, kMaxConeAngleDeg) / 2.0;
     light.geometry.inner_half_angle_deg =
-        root.number_or("falloff_start_deg", 2.0 * light.geometry.outer_half_angle_deg, 0.0, 179.9) / 2.0;
+        root.number_or("falloff_start_deg", 2.0 * light.geometry.outer_half_angle_deg, 0.0, kMaxConeAngleDeg) / 2.0;
+    if (light.geometry.inner_half_angle_deg > light.geometry.outer_half_angle_deg)
+      root.at("falloff_start_deg").fail("the falloff must start inside the cone (at most cone_angle_deg)");
     if (root.has("power_convention") && root.at("power_convention").choice({"cone", "point"}) == "point")
       light.geometry.spot_power = SpotPowerConvention::point;
   }
@@ -140,7 +152,9 @@ LightDefinition read_light_definition(const nlohmann::json& document, const std:
   for (const KeyUnit& k : kKeys) {
     if (!root.has(k.key)) continue;
     if (found) root.at(k.key).fail("a light takes one amount");
-    light.amount = {root.at(k.key).number(k.unit == LightUnit::ev100 ? -50.0 : 1e-30, 1e30), k.unit};
+    light.amount = {k.unit == LightUnit::ev100 ? root.at(k.key).number(kMinEv100, kMaxEv100)
+                                               : root.at(k.key).number(kMinLightAmount, kMaxLightAmount),
+                    k.unit};
     found = true;
   }
   if (!found) root.fail("no amount: expected luminous_power_lm, luminous_intensity_cd, illuminance_lx, luminance_nt, "
@@ -164,13 +178,20 @@ double convert_light_amount(const LightDefinition& light, LightUnit to, Spectral
     case LightUnit::watt_per_m2: value = delta ? out.radiant_intensity_w_sr / (distance_m * distance_m) : out.irradiance_w_m2; break;
     case LightUnit::nit: value = out.luminance_nt; break;
     case LightUnit::watt_per_m2_sr: value = out.radiance_w_m2_sr; break;
-    case LightUnit::ev100: return kind == EmitterKind::distant || kind == EmitterKind::environment || kind == EmitterKind::area
-                                      ? out.ev100
-                                      : throw InputError(where, "EV applies to distant, area and environment lights");
+    case LightUnit::ev100:
+      if (kind != EmitterKind::distant && kind != EmitterKind::environment && kind != EmitterKind::area)
+        throw InputError(where, "EV applies to distant, area and environment lights");
+      if (!std::isfinite(out.ev100))
+        throw InputError(where, "the result is not a finite EV: " + format_light_amount(light.amount) +
+                                    " is out of the range a meter reads (check the amount and --area)");
+      return out.ev100;
   }
   if (!(value > 0.0))
     throw InputError(where, std::string("a ") + light.geometry.kind_name() + " light has no " + unit_symbol(to) +
                                 " value (it is not one of the quantities this kind of light has)");
+  if (!std::isfinite(value))
+    throw InputError(where, "the result overflows: " + format_light_amount(light.amount) + " is more than " +
+                                unit_symbol(to) + " can express here (check the amount, --area and --distance)");
   return value;
 }
 
@@ -183,42 +204,72 @@ LightDefinition recolor_light(const LightDefinition& light, nlohmann::json new_s
     out.amount = {light.amount.value * integrals(light, library, dir).efficacy_lm_W(), twin};
   }
   out.spectrum = std::move(new_spectrum);
+  out.origin = "";  // the new spectrum comes from the caller, not from the light's file
   validate_light_definition(out, library, dir, {"", 0, "recolor"});
   return out;
 }
 
+namespace {
+
+// Everything inspect reports about a light, computed once for the text and the JSON forms.
+struct Inspection {
+  SpectrumPtr shape;
+  SpectrumReport report;
+  EmitterOutput output;
+  double illuminance_at_point_lx = 0.0;
+};
+
+Inspection inspect(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir,
+                   const InspectPoint& point) {
+  validate_inspect_point(point);
+  Inspection i;
+  i.shape = light_shape(light, library, dir);
+  const ShapeIntegrals s = shape_integrals(*i.shape, library.photopic_v());
+  i.output = emitter_output(light.geometry, shape_scale(light.amount, light.geometry, s, {}), s);
+  i.report = analyse_spectrum(*i.shape, i.shape->describe(), library);
+  if (i.output.luminous_intensity_cd > 0.0)
+    i.illuminance_at_point_lx = illuminance_at_lx(light.geometry, i.output, point.distance_m, point.off_axis_deg);
+  return i;
+}
+
+}  // namespace
+
 std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir,
-                               double distance_m, double off_axis_deg, std::optional<double> electrical_w) {
-  const SpectrumPtr shape = light_shape(light, library, dir);
-  const ShapeIntegrals s = shape_integrals(*shape, library.photopic_v());
+                               const InspectPoint& point) {
+  const Inspection i = inspect(light, library, dir, point);
   const EmitterGeometry& g = light.geometry;
-  const EmitterOutput o = emitter_output(g, shape_scale(light.amount, g, s, {}), s);
+  const EmitterOutput& o = i.output;
   std::ostringstream out;
   out << "light              " << g.kind_name() << ", " << format_light_amount(light.amount);
   if (g.kind == EmitterKind::spot)
     out << ", cone " << 2.0 * g.outer_half_angle_deg << "° (full from " << 2.0 * g.inner_half_angle_deg << "°), lumens "
         << (g.spot_power == SpotPowerConvention::cone ? "over the cone" : "as if a point light");
   out << "\n";
-  out << report_text(analyse_spectrum(*shape, shape->describe(), library));
-  out << fmt("efficacy           %.2f lm/W of radiation as lights count watts (trapezoid over 360-830 nm)", o.efficacy_lm_W);
-  if (electrical_w && o.luminous_power_lm > 0.0)
-    out << fmt(", %.2f lm/W of the source", o.luminous_power_lm / *electrical_w)
-        << fmt(" (%.1f %% wall-plug efficiency)", 100.0 * o.radiant_power_w / *electrical_w);
+  out << report_text(i.report);
+  out << report_fmt("efficacy           %.2f lm/W of radiation as lights count watts (trapezoid over 360-830 nm)",
+                    o.efficacy_lm_W);
+  if (point.electrical_w && o.luminous_power_lm > 0.0)
+    out << report_fmt(", %.2f lm/W of the source", o.luminous_power_lm / *point.electrical_w)
+        << report_fmt(" (%.1f %% wall-plug efficiency)", 100.0 * o.radiant_power_w / *point.electrical_w);
   out << "\n";
   if (o.luminous_power_lm > 0.0)
-    out << fmt("power              %.6g lm", o.luminous_power_lm) << fmt(" = %.6g W (radiant)\n", o.radiant_power_w);
+    out << report_fmt("power              %.6g lm", o.luminous_power_lm)
+        << report_fmt(" = %.6g W (radiant)\n", o.radiant_power_w);
   if (o.luminous_intensity_cd > 0.0) {
-    out << fmt("peak intensity     %.6g cd", o.luminous_intensity_cd) << fmt(" = %.6g W/sr\n", o.radiant_intensity_w_sr);
-    out << fmt("illuminance        %.6g lx", illuminance_at_lx(g, o, distance_m, off_axis_deg))
-        << fmt(" at %g m", distance_m) << fmt(", %g° off axis, on a surface facing the light\n", off_axis_deg);
+    out << report_fmt("peak intensity     %.6g cd", o.luminous_intensity_cd)
+        << report_fmt(" = %.6g W/sr\n", o.radiant_intensity_w_sr);
+    out << report_fmt("illuminance        %.6g lx", i.illuminance_at_point_lx) << report_fmt(" at %g m", point.distance_m)
+        << report_fmt(", %g° off axis, on a surface facing the light\n", point.off_axis_deg);
   }
   if (o.illuminance_lx > 0.0)
-    out << fmt("illuminance        %.6g lx", o.illuminance_lx) << fmt(" = %.6g W/m² at normal incidence", o.irradiance_w_m2)
-        << fmt(" (EV %.2f at ISO 100, incident meter C = 250)\n", o.ev100)
-        << fmt("white Lambertian   %.6g nt\n", o.illuminance_lx / 3.14159265358979);
+    out << report_fmt("illuminance        %.6g lx", o.illuminance_lx)
+        << report_fmt(" = %.6g W/m² at normal incidence", o.irradiance_w_m2)
+        << report_fmt(" (EV %.2f at ISO 100, incident meter C = 250)\n", o.ev100)
+        << report_fmt("white Lambertian   %.6g nt\n", o.illuminance_lx / 3.14159265358979);
   if (o.luminance_nt > 0.0)
-    out << fmt("luminance          %.6g nt", o.luminance_nt) << fmt(" = %.6g W/(m²·sr)", o.radiance_w_m2_sr)
-        << fmt(" (EV %.2f at ISO 100, reflected meter K = 12.5)\n", o.ev100);
+    out << report_fmt("luminance          %.6g nt", o.luminance_nt)
+        << report_fmt(" = %.6g W/(m²·sr)", o.radiance_w_m2_sr)
+        << report_fmt(" (EV %.2f at ISO 100, reflected meter K = 12.5)\n", o.ev100);
   return out.str();
 }
 
@@ -228,6 +279,36 @@ std::string spectrum_plot_title(const std::string& description) {
   const std::string source = description.substr(0, column);
   if (source.find('/') == std::string::npos) return description;
   return plot_file_name(source) + (column == std::string::npos ? "" : description.substr(column));
+nlohmann::json inspect_light_json(const LightDefinition& light, SpectralLibrary& library,
+                                  const std::filesystem::path& dir, const InspectPoint& point) {
+  const Inspection i = inspect(light, library, dir, point);
+  const EmitterOutput& o = i.output;
+  nlohmann::ordered_json j;
+  j["light"] = nlohmann::ordered_json::parse(light_definition_json(light).dump());
+  j["spectrum_report"] = nlohmann::ordered_json::parse(report_json(i.report));
+  // Only the quantities this kind of light has (the others are 0 in EmitterOutput), each checked finite.
+  const auto put = [&](const char* key, double value) {
+    report_fmt("%g", value);  // throws on an overflow, as the text form does
+    j[key] = value;
+  };
+  put("efficacy_lm_w", o.efficacy_lm_W);
+  if (point.electrical_w && o.luminous_power_lm > 0.0) {
+    put("electrical_power_w", *point.electrical_w);
+    put("source_efficacy_lm_w", o.luminous_power_lm / *point.electrical_w);
+    put("wall_plug_efficiency", o.radiant_power_w / *point.electrical_w);
+  }
+  if (o.luminous_power_lm > 0.0) put("luminous_power_lm", o.luminous_power_lm), put("radiant_power_w", o.radiant_power_w);
+  if (o.luminous_intensity_cd > 0.0) {
+    put("luminous_intensity_cd", o.luminous_intensity_cd);
+    put("radiant_intensity_w_sr", o.radiant_intensity_w_sr);
+    put("distance_m", point.distance_m);
+    put("off_axis_deg", point.off_axis_deg);
+    put("illuminance_at_distance_lx", i.illuminance_at_point_lx);
+  }
+  if (o.illuminance_lx > 0.0) put("illuminance_lx", o.illuminance_lx), put("irradiance_w_m2", o.irradiance_w_m2);
+  if (o.luminance_nt > 0.0) put("luminance_nt", o.luminance_nt), put("radiance_w_m2_sr", o.radiance_w_m2_sr);
+  if (o.illuminance_lx > 0.0 || o.luminance_nt > 0.0) put("ev100", o.ev100);
+  return nlohmann::json::parse(j.dump());
 }
 
 void plot_spectrum_png(const Spectrum& shape, double scale, const std::string& y_label, const std::string& title,

@@ -7,11 +7,16 @@
 #include <optional>
 #include <string>
 
+#include "render/inspect_point.h"
 #include "spectral/emitter_photometry.h"
 #include "spectral/spectral_library.h"
 #include "spectral/spectrum.h"
 
 namespace rimu {
+
+/// The full cone angle a spot light may have, in degrees, wherever it is given (definition files, rimu-light).
+inline constexpr double kMinConeAngleDeg = 0.01;
+inline constexpr double kMaxConeAngleDeg = 179.9;
 
 struct LightDefinition {
   EmitterGeometry geometry;
@@ -24,8 +29,10 @@ struct LightDefinition {
 /// defined range). Throws InputError at `where` with the valid range.
 nlohmann::json cct_spectrum(double cct_k, bool daylight, const SourceLocation& where);
 
-/// Checks a definition: amount positive and of a unit the kind takes, cone 0 < falloff ≤ cone < 180°, the shape has
-/// visible power. Throws InputError at `where`.
+/// Checks a definition: amount in check_light_amount_range() and of a unit the kind takes, cone in
+/// [kMinConeAngleDeg, kMaxConeAngleDeg] with 0 ≤ falloff ≤ cone, the shape has visible power. Everything that passes
+/// is written by light_definition_json() in a form read_light_definition() reads back unchanged.
+/// Throws InputError at `where`.
 void validate_light_definition(const LightDefinition& light, SpectralLibrary& library,
                                const std::filesystem::path& directory, const SourceLocation& where);
 
@@ -49,10 +56,14 @@ LightDefinition recolor_light(const LightDefinition& light, nlohmann::json new_s
                               const std::filesystem::path& directory);
 
 /// What rimu-light inspect prints: the spectrum report (xy, u'v', CCT/Duv, CRI), the light in every unit, the
-/// illuminance at `distance_m` and `off_axis_deg`, and the source efficacy if `electrical_w` is given.
+/// illuminance at the point's distance and angle, and the source efficacy if the electrical power is given.
+/// Throws InputError if the point is invalid or a result overflows (no NaN or infinity is ever printed).
 std::string inspect_light_text(const LightDefinition& light, SpectralLibrary& library,
-                               const std::filesystem::path& directory, double distance_m, double off_axis_deg,
-                               std::optional<double> electrical_w);
+                               const std::filesystem::path& directory, const InspectPoint& point);
+/// The same as a JSON object: "light" (type, amount, unit, spectrum), "spectrum_report" (as rimu-colour report
+/// --json), and every quantity of the light with its unit in the key.
+nlohmann::json inspect_light_json(const LightDefinition& light, SpectralLibrary& library,
+                                  const std::filesystem::path& directory, const InspectPoint& point);
 
 /// A spectrum's description as a plot title: a CSV spectrum ("<path> [column]") shown by its file name.
 std::string spectrum_plot_title(const std::string& description);

@@ -52,6 +52,9 @@ std::string lower_case_extension(const std::filesystem::path& path);
 /// a runtime_error built from OpenImageIO's geterror()) becomes an OutputError naming `path` (a library message
 /// that names the temporary has it replaced by `path`), and the temporary file is removed, so a failed write
 /// leaves neither the destination nor a temporary behind. InputError from check_output_path() passes through.
+/// A destination that exists and is not a regular file (a device such as /dev/stdout or /dev/full, a FIFO, a
+/// symbolic link) is kept: the temporary file goes to the system's temporary folder and its bytes are copied into
+/// the destination with every write checked.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& temporary)>& write);
 

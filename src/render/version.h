@@ -1,9 +1,4 @@
-// The version string Rimu writes into its outputs.
+// The version string Rimu writes into its outputs (defined with the git commit in spectral/version.h).
 #pragma once
 
-namespace rimu {
-
-/// The project version from CMake (project(Rimu VERSION ...)), e.g. "0.1.0".
-const char* rimu_version();
-
-}  // namespace rimu
+#include "spectral/version.h"

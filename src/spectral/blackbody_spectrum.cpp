@@ -19,9 +19,11 @@ double planck_radiance_w_m2_sr_nm(double lambda_nm, double temperature_k) {
 }
 
 BlackbodySpectrum::BlackbodySpectrum(double temperature_k, Scale scale) : temperature_k_(temperature_k), scale_(1.0) {
-  if (!(temperature_k > 0.0 && temperature_k <= 1e6))
-    throw InputError({}, "blackbody temperature must be a finite number in (0, 1e6] K, got " +
-                             std::to_string(temperature_k));
+  if (!(temperature_k > 0.0 && temperature_k <= 1e6)) {
+    std::ostringstream message;  // %g-style: std::to_string spells 1e308 with 309 digits
+    message << "blackbody temperature must be a finite number in (0, 1e6] K, got " << temperature_k;
+    throw InputError({}, message.str());
+  }
   if (scale == Scale::peak_one) {
     // Wien's displacement law: the peak is at b/T with b = 2.897771955e-3 m·K.
     const double peak_nm = 2.897771955e-3 / temperature_k * 1e9;

@@ -86,7 +86,8 @@ void write_gamut_figure(SpectralLibrary& library, const RgbUpsampler& upsampler,
     out << "# brightest reflectance per xy bin, X+Y+Z with white Y = 1, under the white of " << upsampler.space().name()
         << "; -1 = none\nx,y,optimal_xyz_sum,smooth_xyz_sum\n";
     for (const auto& b : bins) out << b.xy.x << ',' << b.xy.y << ',' << b.optimal_xyz_sum << ',' << b.smooth_xyz_sum << '\n';
-    if (!out.flush()) throw InputError({csv.string(), 0, "--csv"}, "cannot write the gamut CSV");
+    out.close();  // the last buffer is written here: a full disk shows only now
+    if (!out) throw std::runtime_error("cannot write '" + csv.string() + "': the write failed (disk full?)");
   }
   // gnuplot inputs: a grid file (blank line between rows, NaN for empty bins), the locus, the triangle.
   std::ostringstream grid, locus, triangle;

@@ -99,7 +99,18 @@ LightAmount parse_light_amount(std::string_view text, const SourceLocation& wher
   const LightAmount amount{value, parse_light_unit(rest, where)};
   if (amount.unit != LightUnit::ev100 && !(value > 0.0))
     throw InputError(where, "a light's amount must be positive; got '" + s + "'");
+  check_light_amount_range(amount, where);
   return amount;
+}
+
+void check_light_amount_range(LightAmount amount, const SourceLocation& where) {
+  const bool ev = amount.unit == LightUnit::ev100;
+  const double lo = ev ? kMinEv100 : kMinLightAmount, hi = ev ? kMaxEv100 : kMaxLightAmount;
+  if (amount.value >= lo && amount.value <= hi) return;
+  std::ostringstream message;
+  message << (ev ? "an exposure value" : "a light's amount") << " must be in [" << lo << ", " << hi << "] "
+          << unit_symbol(amount.unit) << "; got " << amount.value;
+  throw InputError(where, message.str());
 }
 
 std::string format_light_amount(LightAmount amount) {
@@ -117,8 +128,8 @@ ShapeIntegrals shape_integrals(const Spectrum& shape, const TabulatedSpectrum& v
   result.luminous = kMaxLuminousEfficacy_lm_W *
                     integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) { return shape.value(l) * v.value(l); });
   if (!std::isfinite(result.radiant) || !std::isfinite(result.luminous))
-    throw InputError({}, "the spectrum '" + shape.describe() +
-                             "' is too large: its integral over 360-830 nm overflows a double");
+    throw InputError({}, "the spectrum '" + shape.describe() + "' overflows: its integral over 360-830 nm is not a "
+                         "finite number; give its values in a smaller unit");
   if (!(result.radiant > 0.0))
     throw InputError({}, "the spectrum '" + shape.describe() + "' has no power in 360-830 nm, so no amount can scale it");
   if (!(result.luminous > 0.0))

@@ -40,6 +40,16 @@ struct LightAmount {
   LightUnit unit = LightUnit::lumen;
 };
 
+/// The range an amount may take wherever a light is given (a scene, a light definition, a command line): positive
+/// amounts in [1e-30, 1e30] of their unit, exposure values in [-50, 50] (2^±50 covers starlight to the sun's disc
+/// many times over). Inside it every derived quantity stays a finite double.
+inline constexpr double kMinLightAmount = 1e-30;
+inline constexpr double kMaxLightAmount = 1e30;
+inline constexpr double kMinEv100 = -50.0;
+inline constexpr double kMaxEv100 = 50.0;
+/// Throws InputError at `where` (with the range) if `amount` is outside the range above or not finite.
+void check_light_amount_range(LightAmount amount, const SourceLocation& where);
+
 /// "lm", "W/sr", "EV"...
 std::string unit_symbol(LightUnit unit);
 /// True for lm, cd, lx, nt and EV (converted through V(λ)); false for the radiometric units.
@@ -53,7 +63,7 @@ LightUnit unit_of(LightQuantity quantity, bool photometric);
 /// Throws InputError at `where` listing the known symbols.
 LightUnit parse_light_unit(std::string_view symbol, const SourceLocation& where);
 /// "800 lm", "2.5W/sr", "12 EV": a finite number and a unit. Throws InputError at `where` for anything else, and for
-/// an amount that is not positive (EV may be any finite number).
+/// an amount outside check_light_amount_range().
 LightAmount parse_light_amount(std::string_view text, const SourceLocation& where);
 /// "800 lm".
 std::string format_light_amount(LightAmount amount);

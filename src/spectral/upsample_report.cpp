@@ -1,5 +1,8 @@
 #include "spectral/upsample_report.h"
 
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -12,6 +15,14 @@ void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, con
                            const UpsampleReportOptions& options) {
   // A plot that cannot be drawn is refused before the report is printed.
   if (!options.plot_png.empty()) check_plot_destination(options.plot_png, {"", 0, "--plot"});
+  // 1e30 bounds every component so that luminance and spectrum stay finite doubles (no "inf" is ever printed).
+  for (double c : {rgb.r, rgb.g, rgb.b})
+    if (!(std::abs(c) <= kMaxUpsampleComponent)) {
+      std::ostringstream m;
+      m << "expected three finite RGB components in [-1e30, 1e30]; got (" << rgb.r << ", " << rgb.g << ", " << rgb.b
+        << ")";
+      throw InputError({"", 0, "rgb"}, m.str());
+    }
   std::vector<double> values(kUpsampleKnotCount);
   bool mapped = false;
   double delta_e = 0;
@@ -30,6 +41,11 @@ void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, con
     mapped = r.gamut_mapped, delta_e = r.delta_e2000;
     back = upsampler.rgb_of(r.spectrum);
   }
+  bool finite = std::isfinite(delta_e) && std::isfinite(back.r) && std::isfinite(back.g) && std::isfinite(back.b);
+  for (double v : values) finite = finite && std::isfinite(v);
+  if (!finite)
+    throw InputError({"", 0, "rgb"}, "the upsampled spectrum or its round trip is not finite: the RGB is too extreme "
+                                     "for this colour space");
   const char* unit = options.emission ? "W/(m2 sr nm) for RGB luminance in cd/m2" : "reflectance factor";
   if (options.csv) {
     out << "wavelength_nm," << (options.emission ? "spectral_radiance" : "reflectance") << '\n';

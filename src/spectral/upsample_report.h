@@ -15,9 +15,14 @@ struct UpsampleReportOptions {
   std::filesystem::path plot_png;      ///< if set, also plot the spectrum there (gnuplot_process.h)
 };
 
+/// The largest magnitude of an RGB component write_upsample_report() accepts.
+inline constexpr double kMaxUpsampleComponent = 1e30;
+
 /// Upsamples `rgb` and writes the spectrum at every 5 nm knot, the round-trip RGB (under the space's white), the
 /// CIEDE2000 distance and whether gamut mapping acted. Throws InputError for non-finite RGB or a plot path that
 /// cannot be written (checked before anything is printed), PlotError if gnuplot is missing or fails.
+/// CIEDE2000 distance and whether gamut mapping acted. Throws InputError (at "rgb") for a component outside
+/// ±kMaxUpsampleComponent or NaN, or a result that is not finite; InputError for a failed plot.
 void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, const Rgb& rgb,
                            const UpsampleReportOptions& options = {});
 

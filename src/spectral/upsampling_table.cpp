@@ -74,7 +74,8 @@ void UpsamplingTable::write(const std::filesystem::path& path) const {
   for (const Chromaticity& v : hull) put(out, v.x), put(out, v.y);
   out.write(reinterpret_cast<const char*>(luminance_limits.data()), std::streamsize(luminance_limits.size() * sizeof(float)));
   out.write(reinterpret_cast<const char*>(shapes.data()), std::streamsize(shapes.size() * sizeof(uint16_t)));
-  if (!out) throw InputError({path.string(), 0, ""}, "writing the upsampling table failed");
+  out.close();  // the last buffer is written here: a full disk shows only now
+  if (!out) throw std::runtime_error("cannot write '" + path.string() + "': writing the upsampling table failed");
 }
 
 UpsamplingTable UpsamplingTable::read(const std::filesystem::path& path) {

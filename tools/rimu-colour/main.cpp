@@ -1,14 +1,14 @@
 // rimu-colour: the colour-science toolkit's command line. It parses options and calls src/spectral.
 //
-// Exit codes: 0 ok, 1 bad input (the message names the file/line/option), 2 runtime failure.
-#include <CLI/CLI.hpp>
-
+// Exit codes (common/tool_main.h): 0 ok, 1 bad input (the message names the file/line/option), 2 runtime failure.
 #include <iostream>
+#include <optional>
+
+#include "common/tool_main.h"
 
 #include "spectral/colour_fidelity.h"
 #include "spectral/error.h"
 #include "spectral/gamut_figure.h"
-#include "spectral/gnuplot_process.h"
 #include "spectral/reflectance_report.h"
 #include "spectral/rgb_upsampler.h"
 #include "spectral/upsample_report.h"
@@ -28,6 +28,12 @@ struct ReportOptions {
   double blackbody_k = 0, daylight_k = 0;
   std::string csv, column;
   std::string method;
+  bool json = false;
+};
+
+struct ReflectanceOptions {
+  std::string csv, column, patch, illuminant = "D50", method, reference, reference_column;
+  int observer = 2;
   bool json = false;
 };
 
@@ -63,130 +69,125 @@ rimu::SpectrumSource source_from(const ReportOptions& o, int given) {
   return s;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"rimu-colour: colorimetry of spectra (CIE 15, CIE 13.3) from Rimu's published tables"};
-  app.require_subcommand(1);
-
-  ReportOptions report;
-  CLI::App* report_cmd = app.add_subcommand(
-      "report", "XYZ, xy, u'v', CCT/Duv, luminous efficacy, CRI (Ra, R1-R14), sRGB and ACEScg of a light's spectrum");
-  auto* name_opt = report_cmd->add_option("illuminant", report.illuminant,
-                                          "a CIE illuminant: A, D50, D65, E, F1-F12, FL3.1-FL3.15, HP1-HP5, LED-B1 ...");
-  auto* bb_opt = report_cmd->add_option("--blackbody", report.blackbody_k, "Planckian radiator at this temperature (K)");
-  auto* dl_opt = report_cmd->add_option("--daylight", report.daylight_k, "CIE daylight at this CCT (K), 4000-25000");
-  auto* csv_opt = report_cmd->add_option("--csv", report.csv, "a CSV file: wavelength_nm, then spectral power columns");
-  report_cmd->add_option("--column", report.column, "which power column of --csv (default: the second column)");
-  report_cmd->add_flag("--json", report.json, "print JSON instead of text");
-  report_cmd->add_option("--method", report.method,
-                         "tristimulus summation: native (the data's own 1/5 nm wavelengths), 1nm (interpolate to "
-                         "1 nm) or astm-e308 (10/20 nm data); default from the data's spacing");
-
-  struct ReflectanceOptions {
-    std::string csv, column, patch, illuminant = "D50", method, reference, reference_column;
-    int observer = 2;
-    bool json = false;
-  } refl;
-  CLI::App* refl_cmd = app.add_subcommand(
-      "reflectance", "XYZ, xyY, CIELAB, encoded sRGB (and ΔE76/ΔE2000 against --reference) of a reflectance or "
-                     "transmittance factor under a CIE illuminant");
-  auto* refl_csv = refl_cmd->add_option("--csv", refl.csv, "a CSV file: wavelength_nm, then reflectance factors (0-1)");
-  refl_cmd->add_option("--column", refl.column, "which column of --csv (default: the second column)");
-  auto* refl_patch = refl_cmd->add_option("--patch", refl.patch,
-                                          "a ColorChecker Classic patch (BabelColor average), e.g. \"dark skin\"");
-  refl_cmd->add_option("--illuminant", refl.illuminant, "CIE illuminant the sample is seen under (default D50)");
-  refl_cmd->add_option("--observer", refl.observer, "2 (CIE 1931, default) or 10 (CIE 1964)");
-  refl_cmd->add_option("--method", refl.method, "native, 1nm or astm-e308 (default from the data's spacing)");
-  refl_cmd->add_option("--reference", refl.reference, "a second reflectance CSV to compare against (ΔE)");
-  refl_cmd->add_option("--reference-column", refl.reference_column, "which column of --reference");
-  refl_cmd->add_flag("--json", refl.json, "print JSON instead of text");
-
-  ReportOptions fidelity;
-  CLI::App* fidelity_cmd = app.add_subcommand(
-      "fidelity", "colour fidelity Rf (CIE 224:2017 / TM-30-20), gamut index Rg and the 16 hue bins of a light");
-  auto* fid_name = fidelity_cmd->add_option("illuminant", fidelity.illuminant, "a CIE illuminant, e.g. F2 or LED-B3");
-  auto* fid_csv = fidelity_cmd->add_option("--csv", fidelity.csv, "a CSV file: wavelength_nm, then spectral power");
-  fidelity_cmd->add_option("--column", fidelity.column, "which power column of --csv (default: the second column)");
-  fidelity_cmd->add_flag("--json", fidelity.json, "print JSON instead of text");
-
+struct Options {
+  ReportOptions report, fidelity;
+  ReflectanceOptions refl;
+  CLI::App *report_cmd = nullptr, *fidelity_cmd = nullptr, *refl_cmd = nullptr, *gamut_cmd = nullptr,
+           *upsample_cmd = nullptr;
+  CLI::Option *name_opt = nullptr, *bb_opt = nullptr, *dl_opt = nullptr, *csv_opt = nullptr;
+  CLI::Option *fid_name = nullptr, *fid_csv = nullptr, *refl_csv = nullptr, *refl_patch = nullptr;
   std::string gamut_png = "gamut.png", gamut_csv, gamut_space = "srgb-linear";
-  CLI::App* gamut_cmd = app.add_subcommand(
-      "gamut", "plot the brightest reflectance per chromaticity: MacAdam's optimal colours vs the upsampler's smooth spectra");
-  gamut_cmd->add_option("--out", gamut_png, "PNG to write (default gamut.png)");
-  gamut_cmd->add_option("--csv", gamut_csv, "also write the values per chromaticity bin to this CSV file");
-  gamut_cmd->add_option("--space", gamut_space, "colour space whose white and triangle are used (default srgb-linear)");
-
   std::vector<double> upsample_rgb;
   std::string upsample_space = "srgb-linear", upsample_plot;
   UpsampleFlags upsample_flags;
-  CLI::App* upsample_cmd = app.add_subcommand(
+};
+
+void declare(CLI::App& app, Options& o) {
+  app.require_subcommand(0, 1);  // none is refused in run(), so that an unknown word is named as unknown
+  ReportOptions& report = o.report;
+  o.report_cmd = app.add_subcommand(
+      "report", "XYZ, xy, u'v', CCT/Duv, luminous efficacy, CRI (Ra, R1-R14), sRGB and ACEScg of a light's spectrum");
+  o.name_opt = o.report_cmd->add_option("illuminant", report.illuminant,
+                                        "a CIE illuminant: A, D50, D65, E, F1-F12, FL3.1-FL3.15, HP1-HP5, LED-B1 ...");
+  o.bb_opt = o.report_cmd->add_option("--blackbody", report.blackbody_k, "Planckian radiator at this temperature (K)");
+  o.dl_opt = o.report_cmd->add_option("--daylight", report.daylight_k, "CIE daylight at this CCT (K), 4000-25000");
+  o.csv_opt = o.report_cmd->add_option("--csv", report.csv, "a CSV file: wavelength_nm, then spectral power columns");
+  o.report_cmd->add_option("--column", report.column, "which power column of --csv (default: the second column)");
+  o.report_cmd->add_flag("--json", report.json, "print JSON instead of text");
+  o.report_cmd->add_option("--method", report.method,
+                           "tristimulus summation: native (the data's own 1/5 nm wavelengths), 1nm (interpolate to "
+                           "1 nm) or astm-e308 (10/20 nm data); default from the data's spacing");
+
+  ReflectanceOptions& refl = o.refl;
+  o.refl_cmd = app.add_subcommand(
+      "reflectance", "XYZ, xyY, CIELAB, encoded sRGB (and ΔE76/ΔE2000 against --reference) of a reflectance or "
+                     "transmittance factor under a CIE illuminant");
+  o.refl_csv = o.refl_cmd->add_option("--csv", refl.csv, "a CSV file: wavelength_nm, then reflectance factors (0-1)");
+  o.refl_cmd->add_option("--column", refl.column, "which column of --csv (default: the second column)");
+  o.refl_patch = o.refl_cmd->add_option("--patch", refl.patch,
+                                        "a ColorChecker Classic patch (BabelColor average), e.g. \"dark skin\"");
+  o.refl_cmd->add_option("--illuminant", refl.illuminant, "CIE illuminant the sample is seen under (default D50)");
+  o.refl_cmd->add_option("--observer", refl.observer, "2 (CIE 1931, default) or 10 (CIE 1964)");
+  o.refl_cmd->add_option("--method", refl.method, "native, 1nm or astm-e308 (default from the data's spacing)");
+  o.refl_cmd->add_option("--reference", refl.reference, "a second reflectance CSV to compare against (ΔE)");
+  o.refl_cmd->add_option("--reference-column", refl.reference_column, "which column of --reference");
+  o.refl_cmd->add_flag("--json", refl.json, "print JSON instead of text");
+
+  ReportOptions& fidelity = o.fidelity;
+  o.fidelity_cmd = app.add_subcommand(
+      "fidelity", "colour fidelity Rf (CIE 224:2017 / TM-30-20), gamut index Rg and the 16 hue bins of a light");
+  o.fid_name = o.fidelity_cmd->add_option("illuminant", fidelity.illuminant, "a CIE illuminant, e.g. F2 or LED-B3");
+  o.fid_csv = o.fidelity_cmd->add_option("--csv", fidelity.csv, "a CSV file: wavelength_nm, then spectral power");
+  o.fidelity_cmd->add_option("--column", fidelity.column, "which power column of --csv (default: the second column)");
+  o.fidelity_cmd->add_flag("--json", fidelity.json, "print JSON instead of text");
+
+  o.gamut_cmd = app.add_subcommand(
+      "gamut", "plot the brightest reflectance per chromaticity: MacAdam's optimal colours vs the upsampler's smooth spectra");
+  o.gamut_cmd->add_option("--out", o.gamut_png, "PNG to write (default gamut.png)");
+  o.gamut_cmd->add_option("--csv", o.gamut_csv, "also write the values per chromaticity bin to this CSV file");
+  o.gamut_cmd->add_option("--space", o.gamut_space, "colour space whose white and triangle are used (default srgb-linear)");
+
+  o.upsample_cmd = app.add_subcommand(
       "upsample", "turn a linear RGB colour into a spectrum (Meng et al. 2015 smoothest spectra, gamut-mapped)");
-  upsample_cmd->add_option("rgb", upsample_rgb, "three linear RGB components, e.g. 0.8 0.2 0.1")->expected(3)->required();
-  upsample_cmd->add_option("--space", upsample_space,
-                           "srgb-linear, rec2020, display-p3, aces2065-1, acescg or cie-rgb (default srgb-linear)");
-  upsample_cmd->add_flag("--emission", upsample_flags.emission, "upsample as a light's colour (no reflectance limit)");
-  upsample_cmd->add_flag("--csv", upsample_flags.csv, "print the spectrum as CSV only");
-  upsample_cmd->add_option("--plot", upsample_plot, "also plot the spectrum to this PNG (gnuplot)");
+  o.upsample_cmd->add_option("rgb", o.upsample_rgb, "three linear RGB components, e.g. 0.8 0.2 0.1")->expected(3)->required();
+  o.upsample_cmd->add_option("--space", o.upsample_space,
+                             "srgb-linear, rec2020, display-p3, aces2065-1, acescg or cie-rgb (default srgb-linear)");
+  o.upsample_cmd->add_flag("--emission", o.upsample_flags.emission, "upsample as a light's colour (no reflectance limit)");
+  o.upsample_cmd->add_flag("--csv", o.upsample_flags.csv, "print the spectrum as CSV only");
+  o.upsample_cmd->add_option("--plot", o.upsample_plot, "also plot the spectrum to this PNG (gnuplot)");
+}
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;
+void run(const Options& o) {
+  if (!*o.report_cmd && !*o.fidelity_cmd && !*o.refl_cmd && !*o.gamut_cmd && !*o.upsample_cmd)
+    throw rimu::InputError({}, "give a subcommand: report, reflectance, fidelity, gamut or upsample (see --help)");
+  rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
+  if (*o.report_cmd) {
+    const int given = int(o.name_opt->count() + o.bb_opt->count() + o.dl_opt->count() + o.csv_opt->count());
+    const rimu::SpectrumSource source = source_from(o.report, given);
+    const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(o.report.method));
+    std::cout << (o.report.json ? rimu::report_json(r) : rimu::report_text(r));
+  } else if (*o.fidelity_cmd) {
+    const rimu::SpectrumSource source = source_from(o.fidelity, int(o.fid_name->count() + o.fid_csv->count()));
+    const rimu::SpectrumPtr spectrum = rimu::make_emission_spectrum(source, library);
+    const rimu::ColourFidelity f = rimu::ColourFidelityEvaluator(library).evaluate(*spectrum);
+    std::cout << (o.fidelity.json ? rimu::colour_fidelity_json(f, source.describe())
+                                  : rimu::colour_fidelity_text(f, source.describe()));
+  } else if (*o.refl_cmd) {
+    const ReflectanceOptions& refl = o.refl;
+    if (o.refl_csv->count() + o.refl_patch->count() != 1)
+      throw rimu::InputError({"", 0, "reflectance"}, "give exactly one sample: --csv FILE or --patch NAME");
+    if (refl.observer != 2 && refl.observer != 10)
+      throw rimu::InputError({"", 0, "--observer"}, "expected 2 or 10, got " + std::to_string(refl.observer));
+    rimu::ReflectanceConditions conditions;
+    conditions.illuminant = refl.illuminant;
+    conditions.observer =
+        refl.observer == 10 ? rimu::StandardObserver::cie1964_10deg : rimu::StandardObserver::cie1931_2deg;
+    conditions.method = method_option(refl.method);
+    const rimu::TabulatedSpectrum sample = refl.csv.empty() ? rimu::colorchecker_patch(library, refl.patch)
+                                                            : rimu::load_reflectance_csv(refl.csv, refl.column);
+    std::optional<rimu::TabulatedSpectrum> reference;
+    if (!refl.reference.empty()) reference = rimu::load_reflectance_csv(refl.reference, refl.reference_column);
+    const rimu::ReflectanceReport r =
+        rimu::analyse_reflectance(sample, reference ? &*reference : nullptr, conditions, library);
+    std::cout << (refl.json ? rimu::reflectance_report_json(r) : rimu::reflectance_report_text(r));
+  } else if (*o.gamut_cmd) {
+    const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(o.gamut_space));
+    rimu::write_gamut_figure(library, upsampler, o.gamut_png, o.gamut_csv);
+    std::cout << "wrote " << o.gamut_png << (o.gamut_csv.empty() ? "" : " and " + o.gamut_csv) << "\n";
+  } else if (*o.upsample_cmd) {
+    const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(o.upsample_space));
+    rimu::UpsampleReportOptions options;
+    options.emission = o.upsample_flags.emission;
+    options.csv = o.upsample_flags.csv;
+    if (!o.upsample_plot.empty()) options.plot_png = o.upsample_plot;
+    rimu::write_upsample_report(std::cout, upsampler, {o.upsample_rgb[0], o.upsample_rgb[1], o.upsample_rgb[2]}, options);
   }
+}
 
-  try {
-    rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
-    if (*report_cmd) {
-      const int given = int(name_opt->count() + bb_opt->count() + dl_opt->count() + csv_opt->count());
-      const rimu::SpectrumSource source = source_from(report, given);
-      const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(report.method));
-      std::cout << (report.json ? rimu::report_json(r) : rimu::report_text(r)) << std::flush;
-    } else if (*fidelity_cmd) {
-      const rimu::SpectrumSource source = source_from(fidelity, int(fid_name->count() + fid_csv->count()));
-      const rimu::SpectrumPtr spectrum = rimu::make_emission_spectrum(source, library);
-      const rimu::ColourFidelity f = rimu::ColourFidelityEvaluator(library).evaluate(*spectrum);
-      std::cout << (fidelity.json ? rimu::colour_fidelity_json(f, source.describe())
-                                  : rimu::colour_fidelity_text(f, source.describe()))
-                << std::flush;
-    } else if (*refl_cmd) {
-      if (refl_csv->count() + refl_patch->count() != 1)
-        throw rimu::InputError({"", 0, "reflectance"}, "give exactly one sample: --csv FILE or --patch NAME");
-      if (refl.observer != 2 && refl.observer != 10)
-        throw rimu::InputError({"", 0, "--observer"}, "expected 2 or 10, got " + std::to_string(refl.observer));
-      rimu::ReflectanceConditions conditions;
-      conditions.illuminant = refl.illuminant;
-      conditions.observer = refl.observer == 10 ? rimu::StandardObserver::cie1964_10deg
-                                                : rimu::StandardObserver::cie1931_2deg;
-      conditions.method = method_option(refl.method);
-      const rimu::TabulatedSpectrum sample = refl.csv.empty() ? rimu::colorchecker_patch(library, refl.patch)
-                                                              : rimu::load_reflectance_csv(refl.csv, refl.column);
-      std::optional<rimu::TabulatedSpectrum> reference;
-      if (!refl.reference.empty()) reference = rimu::load_reflectance_csv(refl.reference, refl.reference_column);
-      const rimu::ReflectanceReport r =
-          rimu::analyse_reflectance(sample, reference ? &*reference : nullptr, conditions, library);
-      std::cout << (refl.json ? rimu::reflectance_report_json(r) : rimu::reflectance_report_text(r)) << std::flush;
-    } else if (*gamut_cmd) {
-      const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(gamut_space));
-      rimu::write_gamut_figure(library, upsampler, gamut_png, gamut_csv);
-      std::cout << "wrote " << gamut_png << (gamut_csv.empty() ? "" : " and " + gamut_csv) << "\n";
-    } else if (*upsample_cmd) {
-      const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(upsample_space));
-      rimu::UpsampleReportOptions options;
-      options.emission = upsample_flags.emission;
-      options.csv = upsample_flags.csv;
-      if (!upsample_plot.empty()) options.plot_png = upsample_plot;
-      rimu::write_upsample_report(std::cout, upsampler, {upsample_rgb[0], upsample_rgb[1], upsample_rgb[2]}, options);
-    }
-    return 0;
-  } catch (const rimu::InputError& e) {
-    std::cerr << "rimu-colour: " << e.what() << "\n";
-    return 1;
-  } catch (const rimu::PlotError& e) {  // gnuplot missing or failing: the machine, not the input
-    std::cerr << "rimu-colour: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "rimu-colour: internal error: " << e.what() << "\n";
-    return 2;
-  }
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  return rimu::run_tool({"rimu-colour", "rimu-colour: colorimetry of spectra (CIE 15, CIE 13.3) from Rimu's published tables"},
+                        argc, argv, [&](CLI::App& app) { declare(app, options); }, [&] { run(options); });
 }

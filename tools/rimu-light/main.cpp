@@ -1,219 +1,191 @@
 // rimu-light: author lights in lumens, candela, lux or nits, inspect them, convert between units and recolour them
-// at constant lumens. It parses options and calls render/light_definition.h (docs/light-units.md).
+// at constant lumens. It declares the options and calls render/light_options.h, render/light_definition.h and
+// render/ies_report.h (docs/light-units.md).
 //
-// Exit codes: 0 ok, 1 bad input (the message names the file/option), 2 runtime failure (e.g. gnuplot missing).
-#include <CLI/CLI.hpp>
-
-#include <cctype>
-#include <fstream>
+// Exit codes (common/tool_main.h): 0 ok, 1 bad input (the message names the file/option), 2 runtime failure
+// (gnuplot missing, a write that failed).
 #include <iostream>
 #include <optional>
 
+#include "common/tool_main.h"
 #include "render/ies_report.h"
 #include "render/json_cursor.h"
 #include "render/light_definition.h"
 #include "render/plot_output.h"
 #include "render/render_error.h"
+#include "render/light_options.h"
+#include "render/output_file.h"
+#include "render/text_file_output.h"
 #include "spectral/error.h"
 
 namespace {
 
 using rimu::InputError;
 
-// The light's spectral shape from the flags: --cct (blackbody), --daylight, --illuminant or --csv.
-struct ShapeFlags {
-  double cct_k = 0, daylight_k = 0;
-  std::string illuminant, csv;
-  int given() const { return (cct_k != 0) + (daylight_k != 0) + !illuminant.empty() + !csv.empty(); }
-  std::optional<nlohmann::json> spectrum() const {
-    if (given() > 1) throw InputError({"", 0, "--cct"}, "give one of --cct, --daylight, --illuminant, --csv");
-    if (cct_k != 0) return rimu::cct_spectrum(cct_k, false, {"", 0, "--cct"});
-    if (daylight_k != 0) return rimu::cct_spectrum(daylight_k, true, {"", 0, "--daylight"});
-    if (!illuminant.empty()) return nlohmann::json{{"illuminant", illuminant}};
-    if (!csv.empty()) return nlohmann::json{{"csv", std::filesystem::absolute(csv).string()}};
-    return std::nullopt;
-  }
-  void add_to(CLI::App& app) {
-    app.add_option("--cct", cct_k, "blackbody colour temperature, K (1000-25000)");
-    app.add_option("--daylight", daylight_k, "CIE daylight at a CCT, K (4000-25000)");
-    app.add_option("--illuminant", illuminant, "a CIE illuminant: D65, A, F11, LED-B3, ...");
-    app.add_option("--csv", csv, "a spectral power distribution: wavelength_nm, value");
-  }
+struct Options {
+  // Authoring: the top-level command.
+  std::string type, output, plot;
+  rimu::LightAmountOptions amounts;
+  rimu::SpotOptions spot;
+  rimu::LightShapeOptions shape;
+  // inspect
+  CLI::App* inspect = nullptr;
+  std::string inspect_file, inspect_plot, inspect_polar;
+  rimu::InspectPoint point;
+  bool inspect_json = false;
+  // convert
+  CLI::App* convert = nullptr;
+  rimu::ConvertRequest request;
+  CLI::Option *convert_type = nullptr, *convert_cone = nullptr, *convert_area = nullptr, *convert_distance = nullptr;
+  // recolor
+  CLI::App* recolor = nullptr;
+  std::string recolor_file, recolor_output;
+  rimu::LightShapeOptions recolor_shape;
 };
 
-rimu::EmitterKind kind_of(const std::string& type) {
-  if (type == "point") return rimu::EmitterKind::point;
-  if (type == "spot") return rimu::EmitterKind::spot;
-  if (type == "distant" || type == "sun") return rimu::EmitterKind::distant;
-  if (type == "area") return rimu::EmitterKind::area;
-  if (type == "environment") return rimu::EmitterKind::environment;
-  throw InputError({"", 0, "--type"}, "unknown light type '" + type + "'; expected point, spot, distant, area, environment");
+void add_shape_options(CLI::App& app, rimu::LightShapeOptions& shape) {
+  app.add_option("--cct", shape.cct, "blackbody colour temperature, K (1000-25000; 2700 or 2700K)");
+  app.add_option("--daylight", shape.daylight, "CIE daylight at a CCT, K (4000-25000; 6500 or 6500K)");
+  app.add_option("--illuminant", shape.illuminant, "a CIE illuminant: D65, A, F11, LED-B3, ...");
+  app.add_option("--csv", shape.csv, "a spectral power distribution: wavelength_nm, value");
+}
+
+void declare(CLI::App& app, Options& o) {
+  app.add_option("--type", o.type, "point, spot, distant, environment");
+  app.add_option("--lumens", o.amounts.lumens, "luminous power, lm (point, spot)");
+  app.add_option("--candela", o.amounts.candela, "luminous intensity, cd (point, spot)");
+  app.add_option("--lux", o.amounts.lux, "illuminance at normal incidence, lx (distant)");
+  app.add_option("--nits", o.amounts.nits, "luminance, cd/m² (environment)");
+  app.add_option("--watts", o.amounts.watts, "radiant power, W (point, spot)");
+  app.add_option("--ev", o.amounts.ev, "exposure value at ISO 100 (distant: incident meter; environment: reflected meter)");
+  app.add_option("--cone", o.spot.cone_deg, "spot: full cone angle, degrees (0.01-179.9, default 40)");
+  app.add_option("--softness", o.spot.softness_deg, "spot: width of the soft edge, degrees (inside the cone)");
+  app.add_option("--power-convention", o.spot.power_convention,
+                 "spot lumens: cone (all inside the cone) or point (as if a point light)");
+  app.add_option("-o,--output", o.output, "write the definition here (default: standard output)");
+  app.add_option("--plot", o.plot, "also draw the spectral power distribution to this PNG (gnuplot)");
+  add_shape_options(app, o.shape);
+
+  o.inspect = app.add_subcommand("inspect", "everything about a light definition, a spectrum CSV or an IES file");
+  o.inspect->add_option("file", o.inspect_file, "light definition (.json), spectrum (.csv) or IES photometric file (.ies)")
+      ->required();
+  o.inspect->add_option("--distance", o.point.distance_m, "for the illuminance of a point or spot light, m (default 1)");
+  o.inspect->add_option("--angle", o.point.off_axis_deg, "off the spot's axis, degrees (default 0)");
+  o.inspect->add_option("--electrical-watts", o.point.electrical_w, "the lamp's electrical power, W (source efficacy)");
+  o.inspect->add_flag("--json", o.inspect_json, "print JSON instead of text");
+  o.inspect->add_option("--plot", o.inspect_plot, "draw the spectral power distribution to this PNG (gnuplot)");
+  o.inspect->add_option("--plot-polar", o.inspect_polar, "IES files: draw the candela distribution to this PNG (gnuplot)");
+
+  rimu::ConvertRequest& r = o.request;
+  o.convert = app.add_subcommand("convert", "convert an amount, e.g. --from \"1600 lm\" --to cd --type point; "
+                                            "every value assumed by default is printed with the result");
+  o.convert->add_option("--from", r.from, "amount and unit: \"1600 lm\", \"2 W/sr\", \"100 lx\", \"12 EV\"")->required();
+  o.convert->add_option("--to", r.to, "unit: lm, W, cd, W/sr, lx, W/m2, nt, W/m2/sr, EV")->required();
+  o.convert_type = o.convert->add_option("--type", r.type, "point (default), spot, distant, area, environment");
+  o.convert_cone = o.convert->add_option("--cone", r.spot.cone_deg, "spot: full cone angle, degrees (default 40)");
+  o.convert->add_option("--softness", r.spot.softness_deg, "spot: soft edge width, degrees (default 0)");
+  o.convert->add_option("--power-convention", r.spot.power_convention, "spot: cone (default) or point");
+  o.convert_area = o.convert->add_option("--area", r.area_m2, "area light: emitting area, m² (default 1)");
+  o.convert->add_flag("--two-sided", r.two_sided, "area light: emits from both faces");
+  o.convert_distance = o.convert->add_option("--distance", r.distance_m, "point/spot lux: distance on axis, m (default 1)");
+  add_shape_options(*o.convert, r.shape);
+
+  o.recolor = app.add_subcommand("recolor", "change a light's spectrum at constant lumens");
+  o.recolor->add_option("file", o.recolor_file, "light definition (.json)")->required();
+  o.recolor->add_option("-o,--output", o.recolor_output, "write here (default: standard output)");
+  add_shape_options(*o.recolor, o.recolor_shape);
 }
 
 rimu::LightDefinition read_definition(const std::string& path) {
   return rimu::read_light_definition(rimu::parse_json_file(path), path);
 }
 
+// A definition to standard output, or whole to a file (a failed write is reported, never half a file).
 void write_definition(const rimu::LightDefinition& light, const std::string& output) {
   const std::string text = rimu::light_definition_json(light).dump(2) + "\n";
-  if (output.empty() || output == "-") {
+  if (output.empty() || output == "-")
     std::cout << text;
+  else
+    rimu::write_text_file(output, text);
+}
+
+std::string json_text(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+void inspect(const Options& o, rimu::SpectralLibrary& library, const std::filesystem::path& here) {
+  // Every output path and every option is checked before anything is computed or written.
+  rimu::validate_inspect_point(o.point);
+  if (!o.inspect_plot.empty()) rimu::check_plot_png(o.inspect_plot, {"", 0, "--plot"});
+  if (!o.inspect_polar.empty()) rimu::check_plot_png(o.inspect_polar, {"", 0, "--plot-polar"});
+  std::string extension = std::filesystem::path(o.inspect_file).extension().string();
+  for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (extension == ".ies") {
+    if (!o.inspect_plot.empty())
+      throw InputError({"", 0, "--plot"}, "an IES file has no spectrum; use --plot-polar for its candela distribution");
+    const rimu::IesPhotometry ies = rimu::read_ies_file(o.inspect_file);
+    std::cout << (o.inspect_json ? json_text(rimu::inspect_ies_json(ies, o.point)) : rimu::inspect_ies_text(ies, o.point));
+    if (!o.inspect_polar.empty()) rimu::plot_ies_polar_png(ies, o.inspect_polar);
     return;
   }
-  std::ofstream out(output);
-  if (!(out << text)) throw InputError({output, 0, "-o"}, "cannot write the light definition");
+  if (!o.inspect_polar.empty())
+    throw InputError({"", 0, "--plot-polar"}, "a polar candela plot needs an IES file (.ies)");
+  rimu::LightDefinition light;
+  if (extension == ".csv") {
+    light.spectrum = {{"csv", std::filesystem::absolute(o.inspect_file).string()}};
+    light.amount = {1.0, rimu::LightUnit::watt};  // the file's own scale: 1 W per unit of its integral
+  } else {
+    light = read_definition(o.inspect_file);
+  }
+  rimu::validate_light_definition(light, library, here, {o.inspect_file, 0, ""});
+  std::cout << (o.inspect_json ? json_text(rimu::inspect_light_json(light, library, here, o.point))
+                               : rimu::inspect_light_text(light, library, here, o.point));
+  if (!o.inspect_plot.empty()) {
+    const rimu::SpectrumPtr s = rimu::light_shape(light, library, here);
+    rimu::plot_spectrum_png(*s, 1.0 / s->max_value(), "relative spectral power", s->describe(), o.inspect_plot);
+  }
+}
+
+void author(const Options& o, rimu::SpectralLibrary& library, const std::filesystem::path& here) {
+  if (!o.output.empty() && o.output != "-") rimu::check_output_path(o.output);
+  if (!o.plot.empty()) rimu::check_plot_png(o.plot, {"", 0, "--plot"});
+  const rimu::LightDefinition light = rimu::light_from_options(o.type, o.spot, o.amounts, o.shape, library, here);
+  write_definition(light, o.output);
+  if (!o.plot.empty()) {
+    const rimu::SpectrumPtr s = rimu::light_shape(light, library, here);
+    rimu::plot_spectrum_png(*s, 1.0 / s->max_value(), "relative spectral power", s->describe(), o.plot);
+  }
+}
+
+void run(Options& o) {
+  rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
+  const std::filesystem::path here = std::filesystem::current_path();
+  if (*o.inspect) return inspect(o, library, here);
+  if (*o.convert) {
+    o.request.type_given = o.convert_type->count() > 0;
+    o.request.cone_given = o.convert_cone->count() > 0;
+    o.request.area_given = o.convert_area->count() > 0;
+    o.request.distance_given = o.convert_distance->count() > 0;
+    std::cout << rimu::convert_light_text(o.request, library, here);
+    return;
+  }
+  if (*o.recolor) {
+    const auto s = o.recolor_shape.spectrum();
+    if (!s) throw InputError({"", 0, "recolor"}, "give the new colour: --cct, --daylight, --illuminant or --csv");
+    if (!o.recolor_output.empty() && o.recolor_output != "-") rimu::check_output_path(o.recolor_output);
+    const rimu::LightDefinition light = read_definition(o.recolor_file);
+    rimu::naming_shape_option(o.recolor_shape, [&] {
+      write_definition(rimu::recolor_light(light, *s, library, here), o.recolor_output);
+    });
+    return;
+  }
+  author(o, library, here);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"rimu-light: lights in lm, cd, lx, nt, W or EV (docs/light-units.md)"};
-  rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
-  const std::filesystem::path here = std::filesystem::current_path();
-
-  // Authoring: the top-level command.
-  std::string type, output, plot;
-  std::optional<double> lumens, candela, lux, nits, watts, ev;
-  double cone_deg = 40, softness_deg = 0;
-  std::string power_convention = "cone";
-  ShapeFlags shape;
-  app.add_option("--type", type, "point, spot, distant, environment");
-  app.add_option("--lumens", lumens, "luminous power, lm (point, spot)");
-  app.add_option("--candela", candela, "luminous intensity, cd (point, spot)");
-  app.add_option("--lux", lux, "illuminance at normal incidence, lx (distant)");
-  app.add_option("--nits", nits, "luminance, cd/m² (environment)");
-  app.add_option("--watts", watts, "radiant power, W (point, spot)");
-  app.add_option("--ev", ev, "exposure value at ISO 100 (distant: incident meter; environment: reflected meter)");
-  app.add_option("--cone", cone_deg, "spot: full cone angle, degrees");
-  app.add_option("--softness", softness_deg, "spot: width of the soft edge, degrees (inside the cone)");
-  app.add_option("--power-convention", power_convention, "spot lumens: cone (all inside the cone) or point (as if a point light)");
-  app.add_option("-o,--output", output, "write the definition here (default: standard output)");
-  app.add_option("--plot", plot, "also draw the spectral power distribution to this PNG (gnuplot)");
-  shape.add_to(app);
-
-  CLI::App* inspect = app.add_subcommand("inspect", "everything about a light definition or a spectrum CSV");
-  std::string inspect_file;
-  double distance_m = 1.0, angle_deg = 0.0;
-  std::optional<double> electrical_w;
-  std::string inspect_plot;
-  inspect->add_option("file", inspect_file, "light definition (.json), spectrum (.csv) or IES photometric file (.ies)")->required();
-  inspect->add_option("--distance", distance_m, "for the illuminance of a point or spot light, m");
-  inspect->add_option("--angle", angle_deg, "off the spot's axis, degrees");
-  inspect->add_option("--electrical-watts", electrical_w, "the lamp's electrical power, W (source efficacy)");
-  inspect->add_option("--plot", inspect_plot, "draw the spectral power distribution to this PNG (gnuplot)");
-  std::string inspect_polar;
-  inspect->add_option("--plot-polar", inspect_polar, "IES files: draw the candela distribution to this PNG (gnuplot)");
-
-  CLI::App* convert = app.add_subcommand("convert", "convert an amount, e.g. --from \"1600 lm\" --to cd --type point");
-  std::string from, to, convert_type = "point";
-  double convert_cone = 40, convert_softness = 0, area_m2 = 1.0, convert_distance = 1.0;
-  bool two_sided = false;
-  ShapeFlags convert_shape;
-  convert->add_option("--from", from, "amount and unit: \"1600 lm\", \"2 W/sr\", \"100 lx\", \"12 EV\"")->required();
-  convert->add_option("--to", to, "unit: lm, W, cd, W/sr, lx, W/m2, nt, W/m2/sr, EV")->required();
-  convert->add_option("--type", convert_type, "point, spot, distant, area, environment");
-  convert->add_option("--cone", convert_cone, "spot: full cone angle, degrees");
-  convert->add_option("--softness", convert_softness, "spot: soft edge width, degrees");
-  convert->add_option("--power-convention", power_convention, "spot: cone or point");
-  convert->add_option("--area", area_m2, "area light: emitting area, m²");
-  convert->add_flag("--two-sided", two_sided, "area light: emits from both faces");
-  convert->add_option("--distance", convert_distance, "point/spot lux: distance on axis, m");
-  convert_shape.add_to(*convert);
-
-  CLI::App* recolor = app.add_subcommand("recolor", "change a light's spectrum at constant lumens");
-  std::string recolor_file, recolor_output;
-  ShapeFlags recolor_shape;
-  recolor->add_option("file", recolor_file, "light definition (.json)")->required();
-  recolor->add_option("-o,--output", recolor_output, "write here (default: standard output)");
-  recolor_shape.add_to(*recolor);
-
-  CLI11_PARSE(app, argc, argv);
-  try {
-    // A plot that cannot be drawn is refused before anything is printed or written.
-    for (const auto& [png, key] : {std::pair{plot, "--plot"}, {inspect_plot, "--plot"}, {inspect_polar, "--plot-polar"}})
-      if (!png.empty()) rimu::check_plot_png(png, {"", 0, key});
-    const auto geometry_from = [&](const std::string& t, double cone, double soft) {
-      rimu::EmitterGeometry g;
-      g.kind = kind_of(t);
-      g.outer_half_angle_deg = cone / 2.0;
-      g.inner_half_angle_deg = cone / 2.0 - soft;
-      if (g.kind == rimu::EmitterKind::spot && !(cone > 0.0 && cone < 180.0))
-        throw InputError({"", 0, "--cone"}, "the cone angle must be in (0, 180) degrees; got " + std::to_string(cone));
-      if (g.kind == rimu::EmitterKind::spot && !(soft >= 0.0 && soft <= cone / 2.0))
-        throw InputError({"", 0, "--softness"}, "the softness must be in [0, cone/2] degrees");
-      if (power_convention != "cone" && power_convention != "point")
-        throw InputError({"", 0, "--power-convention"}, "expected cone or point");
-      g.spot_power = power_convention == "cone" ? rimu::SpotPowerConvention::cone : rimu::SpotPowerConvention::point;
-      return g;
-    };
-    if (*inspect) {
-      std::string extension = std::filesystem::path(inspect_file).extension().string();
-      for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-      if (extension == ".ies") {
-        const rimu::IesPhotometry ies = rimu::read_ies_file(inspect_file);
-        std::cout << rimu::inspect_ies_text(ies, distance_m, angle_deg, electrical_w);
-        if (!inspect_polar.empty()) rimu::plot_ies_polar_png(ies, inspect_polar);
-        return 0;
-      }
-      if (!inspect_polar.empty())
-        throw InputError({"", 0, "--plot-polar"}, "a polar candela plot needs an IES file (.ies)");
-      rimu::LightDefinition light;
-      if (std::filesystem::path(inspect_file).extension() == ".csv") {
-        light.spectrum = {{"csv", std::filesystem::absolute(inspect_file).string()}};
-        light.amount = {1.0, rimu::LightUnit::watt};  // the file's own scale: 1 W per unit of its integral
-      } else {
-        light = read_definition(inspect_file);
-      }
-      rimu::validate_light_definition(light, library, here, {inspect_file, 0, ""});
-      std::cout << rimu::inspect_light_text(light, library, here, distance_m, angle_deg, electrical_w);
-      if (!inspect_plot.empty()) {
-        const rimu::SpectrumPtr s = rimu::light_shape(light, library, here);
-        rimu::plot_spectrum_png(*s, 1.0 / s->max_value(), "relative spectral power", s->describe(), inspect_plot);
-      }
-      return 0;
-    }
-    if (*convert) {
-      rimu::LightDefinition light;
-      light.geometry = geometry_from(convert_type, convert_cone, convert_softness);
-      light.geometry.area_m2 = area_m2;
-      light.geometry.two_sided = two_sided;
-      light.amount = rimu::parse_light_amount(from, {"", 0, "--from"});
-      if (auto s = convert_shape.spectrum()) light.spectrum = *s;
-      const rimu::LightUnit unit = rimu::parse_light_unit(to, {"", 0, "--to"});
-      const double value = rimu::convert_light_amount(light, unit, library, here, convert_distance, {"", 0, "--to"});
-      std::cout << rimu::format_light_amount(light.amount) << " = " << rimu::format_light_amount({value, unit}) << "\n";
-      return 0;
-    }
-    if (*recolor) {
-      const auto s = recolor_shape.spectrum();
-      if (!s) throw InputError({"", 0, "recolor"}, "give the new colour: --cct, --daylight, --illuminant or --csv");
-      write_definition(rimu::recolor_light(read_definition(recolor_file), *s, library, here), recolor_output);
-      return 0;
-    }
-    if (type.empty()) throw InputError({"", 0, "--type"}, "give --type (point, spot, distant, environment) or a subcommand");
-    rimu::LightDefinition light;
-    light.geometry = geometry_from(type, cone_deg, softness_deg);
-    if (light.geometry.kind == rimu::EmitterKind::area)
-      throw InputError({"", 0, "--type"}, "area lights are shapes with an \"emission\"; see docs/light-units.md");
-    int amounts = 0;
-    for (auto [v, u] : {std::pair{lumens, rimu::LightUnit::lumen}, {candela, rimu::LightUnit::candela},
-                        {lux, rimu::LightUnit::lux}, {nits, rimu::LightUnit::nit}, {watts, rimu::LightUnit::watt},
-                        {ev, rimu::LightUnit::ev100}})
-      if (v) light.amount = {*v, u}, ++amounts;
-    if (amounts != 1) throw InputError({"", 0, "--lumens"}, "give exactly one of --lumens, --candela, --lux, --nits, --watts, --ev");
-    if (auto s = shape.spectrum()) light.spectrum = *s;
-    rimu::validate_light_definition(light, library, here, {"", 0, "amount"});
-    write_definition(light, output);
-    if (!plot.empty()) {
-      const rimu::SpectrumPtr s = rimu::light_shape(light, library, here);
-      rimu::plot_spectrum_png(*s, 1.0 / s->max_value(), "relative spectral power", s->describe(), plot);
-    }
-    return 0;
-  } catch (const InputError& e) {
-    std::cerr << "rimu-light: " << e.what() << "\n";
-    return 1;
-  } catch (const rimu::RenderError& e) {
-    std::cerr << "rimu-light: " << e.what() << "\n";
-    return 2;
-  }
+  Options options;
+  return rimu::run_tool({"rimu-light", "rimu-light: lights in lm, cd, lx, nt, W or EV (docs/light-units.md)"}, argc,
+                        argv, [&](CLI::App& app) { declare(app, options); }, [&] { run(options); });
 }

@@ -2,6 +2,8 @@
 //
 //   rimu-upsample-table --data <data root> --out <folder> [--angles 144] [--radii 16]
 //
+// Exit codes (common/tool_main.h): 0 ok, 1 bad input (options, data files), 2 a failure (no QP solution, a write).
+//
 // For each white (upsampling_whites.h) and each polar grid point of its knot gamut, solves the smoothness QP
 // (smoothest_spectrum.h) and stores the spectrum and its brightness limit (upsampling_table.h).
 #include <chrono>
@@ -9,7 +11,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <stdexcept>
 #include <string>
+
+#include "common/tool_main.h"
 
 #include "spectral/error.h"
 #include "spectral/smoothest_spectrum.h"
@@ -44,9 +49,10 @@ UpsamplingTable make_table(SpectralLibrary& library, const UpsamplingWhite& whit
         const Chromaticity xy = gamut.at(angle, table.radius_of_row(r) * table.usable_fraction);
         const auto solution = smoothest_knot_spectrum(colorimetry, xyz_from_xyY(xy, 1.0));
         if (!solution) {
-          std::fprintf(stderr, "no solution at white %s angle %d radius %d (x %.6f, y %.6f)\n", white.name.c_str(),
-                       a, r, xy.x, xy.y);
-          std::exit(1);
+          char where[160];
+          std::snprintf(where, sizeof where, "white %s angle %d radius %d (x %.6f, y %.6f)", white.name.c_str(), a, r,
+                        xy.x, xy.y);
+          throw std::runtime_error(std::string("the smoothness QP has no solution at ") + where);
         }
         knots = solution->knots;
         total_iterations += solution->iterations;
@@ -69,35 +75,26 @@ UpsamplingTable make_table(SpectralLibrary& library, const UpsamplingWhite& whit
 int main(int argc, char** argv) {
   std::string data, out;
   int angles = 144, radii = 16;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i];
-    if (key == "--data") data = argv[i + 1];
-    else if (key == "--out") out = argv[i + 1];
-    else if (key == "--angles") angles = std::atoi(argv[i + 1]);
-    else if (key == "--radii") radii = std::atoi(argv[i + 1]);
-    else {
-      std::fprintf(stderr, "unknown option %s\n", key.c_str());
-      return 2;
-    }
-  }
-  if (data.empty() || out.empty() || angles < 3 || radii < 2) {
-    std::fprintf(stderr, "usage: rimu-upsample-table --data <data root> --out <folder> [--angles 144] [--radii 16]\n");
-    return 2;
-  }
-  try {
-    std::filesystem::create_directories(out);
-    SpectralLibrary library(data);
-    for (const UpsamplingWhite& white : upsampling_whites()) {
-      const auto start = std::chrono::steady_clock::now();
-      const UpsamplingTable table = make_table(library, white, angles, radii);
-      const auto path = std::filesystem::path(out) / upsampling_table_file(white).filename();
-      table.write(path);
-      std::printf("  wrote %s in %.1f s\n", path.c_str(),
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    }
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  return run_tool(
+      {"rimu-upsample-table", "rimu-upsample-table: computes the smoothest-spectrum tables of data/upsampling/ "
+                              "(docs/upsampling.md)"},
+      argc, argv,
+      [&](CLI::App& app) {
+        app.add_option("--data", data, "the data root (the folder holding cmf/ and spectra/)")->required();
+        app.add_option("--out", out, "the folder to write the tables to")->required();
+        app.add_option("--angles", angles, "polar grid: angles per white (default 144)")->check(CLI::Range(3, 100000));
+        app.add_option("--radii", radii, "polar grid: radii per angle (default 16)")->check(CLI::Range(2, 100000));
+      },
+      [&] {
+        std::filesystem::create_directories(out);
+        SpectralLibrary library(data);
+        for (const UpsamplingWhite& white : upsampling_whites()) {
+          const auto start = std::chrono::steady_clock::now();
+          const UpsamplingTable table = make_table(library, white, angles, radii);
+          const auto path = std::filesystem::path(out) / upsampling_table_file(white).filename();
+          table.write(path);
+          std::printf("  wrote %s in %.1f s\n", path.c_str(),
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+      });
 }

@@ -1,9 +1,10 @@
 // rimu: renders a scene (by default the embedded spectral Cornell box) to OpenEXR, and optionally a PNG preview.
 //
-// Exit codes: 0 ok (also after Ctrl-C: the image reached so far is written), 1 bad input, 2 runtime failure.
-#include <CLI/CLI.hpp>
-
+// Exit codes (common/tool_main.h): 0 ok (also after Ctrl-C: the image reached so far is written), 1 bad input,
+// 2 runtime failure.
 #include <iostream>
+
+#include "common/tool_main.h"
 
 #include "render/render_error.h"
 #include "render/camera_exposure.h"
@@ -52,12 +53,7 @@ int main(int argc, char** argv) {
   app.add_option("--ev", job.compensation_ev, "physical camera: exposure compensation in stops");
   app.add_option("--white-balance", job.white_balance, "none, a temperature (2700 or 2700K) or an illuminant (A, D50...)");
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;
-  }
-  try {
+  return rimu::run_tool("rimu", app, argc, argv, [&] {
     if (!scene.empty()) job.scene = scene;
     job.exr_output = output;
     if (!png.empty()) job.png_output = png;
@@ -75,12 +71,5 @@ int main(int argc, char** argv) {
     if (!crop.empty()) job.crop = rimu::parse_crop(crop, "--crop");
     if (!shutter.empty()) job.shutter_s = rimu::parse_shutter_time_s(shutter, "--shutter");
     rimu::run_render_job(job, std::cerr);
-    return 0;
-  } catch (const rimu::InputError& e) {
-    std::cerr << "rimu: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "rimu: error: " << e.what() << "\n";
-    return 2;
-  }
+  });
 }
