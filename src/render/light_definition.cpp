@@ -56,6 +56,8 @@ std::string spectrum_csv(const LightDefinition& light) {
   if (where.file.empty() || where.file == "light") where = {csv, 0, ""};
   where.key.clear();
   throw InputError(where, e.explanation());
+}
+
 // A report value: one that is not finite (an overflow the input ranges did not prevent) is refused, never printed.
 std::string report_fmt(const char* format, double value) {
   if (!std::isfinite(value))
@@ -204,7 +206,7 @@ LightDefinition recolor_light(const LightDefinition& light, nlohmann::json new_s
     out.amount = {light.amount.value * integrals(light, library, dir).efficacy_lm_W(), twin};
   }
   out.spectrum = std::move(new_spectrum);
-  out.origin = "";  // the new spectrum comes from the caller, not from the light's file
+  out.source = "";  // the new spectrum comes from the caller, not from the light's file
   validate_light_definition(out, library, dir, {"", 0, "recolor"});
   return out;
 }
@@ -279,6 +281,8 @@ std::string spectrum_plot_title(const std::string& description) {
   const std::string source = description.substr(0, column);
   if (source.find('/') == std::string::npos) return description;
   return plot_file_name(source) + (column == std::string::npos ? "" : description.substr(column));
+}
+
 nlohmann::json inspect_light_json(const LightDefinition& light, SpectralLibrary& library,
                                   const std::filesystem::path& dir, const InspectPoint& point) {
   const Inspection i = inspect(light, library, dir, point);
