@@ -12,7 +12,7 @@ namespace rimu {
 
 /// Pixel RGB is read as luminance-scaled colour: RGB with Y = 1 means 1 cd/m² (RgbUpsampler::upsample_emission's
 /// convention), turned into W/(m²·sr·nm) shaped like the colour space's white. Every pixel is upsampled once, at
-/// construction (RgbUpsampler::emission_coefficients, ~0.1 µs per pixel): 64 bytes of basis coefficients per pixel
+/// construction (RgbUpsampler::emission_coefficients, 0.15-0.3 µs per pixel): 64 bytes of basis coefficients per pixel
 /// plus its luminance; a lookup is a 16-term dot product per lane times the white's table (no solve).
 class RgbEnvironmentImage final : public EnvironmentImage {
  public:

@@ -55,8 +55,8 @@ class RgbUpsampler {
   UpsampledReflectance upsample_reflectance(const Rgb& rgb, const SourceLocation& where = {}) const;
 
   /// The spectrum of upsample_reflectance alone, without its diagnostics (gamut_mapped, ΔE2000 of the round
-  /// trip, which cost another colorimetric integral and a CIEDE2000): the per-lookup path of image textures, which
-  /// discard them. Same spectrum, bit for bit (tested).
+  /// trip, which cost another colorimetric integral and a CIEDE2000), for callers that discard them. Same
+  /// spectrum, bit for bit (tested).
   ReflectanceSpectrum reflectance_spectrum(const Rgb& rgb, const SourceLocation& where = {}) const;
 
   /// An emission spectrum whose absolute colour (emission_xyz) is `rgb`'s XYZ read in cd/m², up to the
@@ -65,7 +65,8 @@ class RgbUpsampler {
   UpsampledEmission upsample_emission(const Rgb& rgb, const SourceLocation& where = {}) const;
 
   // The fast path (docs/upsampling.md, "Fast path"): the same method with the table's entries as coefficients of
-  // UpsamplingBasis, so an upsampled colour costs ~0.1 µs instead of 2-6 µs. Same gamut mapping and brightness
+  // UpsamplingBasis, so an upsampled colour costs 0.15-0.3 µs instead of 1-6 µs (the basis is built with the
+  // upsampler: ~0.1 s per colour space). Same gamut mapping and brightness
   // limit as upsample_reflectance/upsample_emission; the colour is exact up to float rounding before clamping,
   // and the spectrum differs from the exact path's by the basis truncation (docs/upsampling.md has both errors).
   // For per-texel conversion and anything that needs many colours; colorimetry and the toolkit use the exact path.
@@ -74,7 +75,7 @@ class RgbUpsampler {
   /// included). The spectrum is basis().evaluate_clamped(c, λ, 0, 1) (truncation ringing dips a few 1e-3 below 0
   /// where the exact spectrum is zero); its colour is the target's to ~1e-6. `mapped`: the colour moved — gamut
   /// mapping, the brightness limit, or a spectrum the basis cannot hold in [0, 1] (residual > 1e-4: saturated
-  /// purples of the wide spaces, docs/upsampling.md). ~80 ns, plus ~130 ns per 95-knot pass for saturated
+  /// purples of the wide spaces, docs/upsampling.md). ~150 ns, plus ~50-90 ns per 95-knot pass for saturated
   /// colours and colours near the brightness limit (1-3 passes).
   BasisCoefficients reflectance_coefficients(const Rgb& rgb, bool* mapped = nullptr, const SourceLocation& where = {}) const;
   /// reflectance_coefficients as knots, clamped to [0, 1]: a ReflectanceSpectrum (4-lane evaluation as the exact

@@ -1,5 +1,6 @@
 // The fast path of RGB upsampling: smoothest spectra as a few coefficients of a fixed basis, precomputed at the
-// table's grid points and interpolated, so an upsampled colour costs no solve and no 95-knot loop.
+// table's grid points and interpolated, so an upsampled colour costs 3×3 solves instead of the exact path's
+// 95-knot colour correction, and a texel stores 16 floats instead of 95.
 #pragma once
 
 #include <array>
@@ -27,7 +28,7 @@ struct BasisCoefficients {
 };
 
 /// What smooth_coefficients knows about the spectrum besides its coefficients, so that callers can skip a
-/// 95-knot pass (~130 ns) when it cannot matter.
+/// 95-knot pass (~50-90 ns) when it cannot matter.
 struct SmoothShapeBounds {
   std::array<BasisCoefficients, 3> directions;  ///< D: the correction directions, for fit_clamped
   float peak_bound = 0;  ///< ≥ the largest knot of Φc (interpolated corner peaks, raised by the correction)
@@ -54,23 +55,27 @@ struct SmoothShapeBounds {
 ///
 /// Clamping: the truncated basis rings (a few 1e-3 of the peak) around the exact spectrum's zero regions, and a
 /// reflectance must stay in [0, 1], so the spectrum used is clamp(Φc, 0, upper) at the knots, linear in between
-/// (evaluate_clamped). Clamping moves the colour (by up to 0.3 ΔE00 for dark saturated purples); fit_clamped
-/// re-imposes the target on the clamped spectrum with the same correction directions, as the exact path repeats
-/// its correction while clamping.
+/// (evaluate_clamped). Clamping moves the colour (by up to 0.3 ΔE00 for dark saturated purples). At each entry the
+/// coefficients are fitted so that the clamped spectrum has the entry's colour, and the offset δ = M·c −
+/// colour(clamped) is stored and blended, so the correction can aim the unclamped colour at t + δ; between
+/// entries that ring, fit_clamped re-imposes the target on the clamped spectrum with the same correction
+/// directions, as the exact path repeats its correction while clamping.
 class UpsamplingBasis {
  public:
-  /// Builds the basis and projects every table entry onto it (a few ms; once per colour space).
+  /// Builds the basis and projects every table entry onto it (~0.1 s; once per colour space).
   UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry);
 
   /// Coefficients of the spectrum with chromaticity `xy` and luminance Y = 1 (under the table's white): the four
   /// entries around (θ, ρ) interpolated bilinearly (each Y-normalised, as UpsamplingTable::interpolate), then
-  /// colour-corrected so that xyz_of() is exactly xyz(xy, Y = 1) up to float rounding. `xy` must lie inside the
-  /// usable gamut (relative radius ≤ 1: the caller maps it). Allocation-free; ~40 ns.
+  /// colour-corrected so that xyz_of() is xyz(xy, Y = 1) + δ up to float rounding, δ the blended clamping offset
+  /// (bounds->clamp_offset), so that the spectrum clamped at 0 lands near xyz(xy, 1); exactly there if no corner
+  /// rings (bounds->rings false), otherwise fit_clamped finishes the job. `xy` must lie inside the
+  /// usable gamut (relative radius ≤ 1: the caller maps it). Allocation-free; ~70 ns.
   BasisCoefficients smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
                                         SmoothShapeBounds* bounds = nullptr) const;
 
   /// Moves `c` along `directions` (smooth_coefficients's D, scaled like c) until clamp(Φc, 0, upper) has colour
-  /// `target` (relative 1e-6): quasi-Newton steps, each one 95-knot pass (~130 ns), normally 2-3 passes.
+  /// `target` (relative 1e-6): quasi-Newton steps, each one 95-knot pass, normally 2-3 passes.
   /// Returns the residual left, |ΔX| + |ΔY| + |ΔZ| relative to |X| + |Y| + |Z| of the target: above ~1e-4 the
   /// basis cannot hold this colour's spectrum at zero (saturated purples of the wide spaces, emission within
   /// ~10 % of the locus; docs/upsampling.md), and the caller reports the colour as moved.
@@ -78,8 +83,9 @@ class UpsamplingBasis {
                      float upper) const;
 
   /// R(θ)·usable_fraction: distance from the white to the usable gamut's edge (RgbUpsampler's ρ = 1), linear
-  /// interpolation in a 4096-step table (≤ 2e-7 relative to the hull's exact radius; any error only moves which
-  /// smooth shape is chosen, never the colour, which the correction fixes).
+  /// interpolation in a 4096-step table (≤ 1e-3 relative to the hull's exact radius, at the hull's vertices; the
+  /// error only moves which smooth shape is chosen and where the radial gamut move starts, by ≤ 0.1 % of the
+  /// radius, still inside the hull; the colour is corrected regardless).
   double usable_radius(double angle_rad) const;
 
   /// The spectrum clamp(Φc, lower, upper) at four wavelengths (4-lane, allocation-free): the clamped knot values
@@ -115,8 +121,8 @@ class UpsamplingBasis {
 
   /// The knot values Φ·c (double, for setup and colorimetry).
   KnotValues knots(const BasisCoefficients& c) const;
-  /// Φ·c at the 95 knots in float, four knots per step (~30 ns), into `out` (96 floats, the last a pad); returns
-  /// the largest value (the brightness limit's input).
+  /// Φ·c at the 95 knots in float (~50-90 ns: the AVX2 or the SSE build of the loop, chosen by the CPU) into
+  /// `out` (96 floats, the last a pad); returns the largest value (the brightness limit's input).
   float knots_float(const BasisCoefficients& c, float* out) const;
   /// XYZ (Y(white) = 1) of the unclamped spectrum: M·c.
   Xyz xyz_of(const BasisCoefficients& c) const;
