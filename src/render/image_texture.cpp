@@ -1,5 +1,8 @@
 #include "render/image_texture.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 
 namespace rimu {
@@ -8,10 +11,13 @@ ImageTexture::ImageTexture(std::shared_ptr<const RgbImage> image, std::shared_pt
                            float scale)
     : width_(image->width()), height_(image->height()), upsampler_(std::move(upsampler)), scale_(scale) {
   // RgbImage::read has already rejected NaN/Inf pixels (naming the file and the pixel), so this cannot throw.
+  // Rows in parallel: every texel is independent, so the result does not depend on the thread count.
   texels_.resize(size_t(width_) * size_t(height_));
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x)
-      texels_[size_t(y) * size_t(width_) + size_t(x)] = upsampler_->reflectance_coefficients(image->pixel(x, y));
+  tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < width_; ++x)
+        texels_[size_t(y) * size_t(width_) + size_t(x)] = upsampler_->reflectance_coefficients(image->pixel(x, y));
+  });
 }
 
 SampledSpectrum ImageTexture::evaluate(Vec2 uv, const SampledWavelengths& lambda) const {
