@@ -5,8 +5,6 @@
 #include <cmath>
 #include <numbers>
 
-#include <immintrin.h>  // AVX2 for the target("avx2,fma") functions below
-
 #include "spectral/matrix3.h"
 
 namespace rimu {
@@ -105,7 +103,6 @@ std::vector<Vector> eigenvectors_descending(std::vector<double>& a) {
 
 UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry)
     : angle_count_(table.angle_count), radius_count_(table.radius_count) {
-  avx2_ = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   for (int r = 0; r < radius_count_; ++r) radius_rows_.push_back(table.radius_of_row(r));
   Vector a[3];
   for (int k = 0; k < 3; ++k)
@@ -207,62 +204,6 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
   for (int s = 0; s <= kRadiusSteps; ++s)
     usable_radius_[s] =
         float(gamut.boundary_radius(-std::numbers::pi + 2 * std::numbers::pi * s / kRadiusSteps) * table.usable_fraction);
-}
-
-namespace {
-
-/// Sums of the four lanes' products of c with their basis rows at the knot below (lo) and above (hi), SSE4.1.
-void lane_dots_sse(const float* rows, const float* c, const int index[4], __m128& v0, __m128& v1) {
-  __m128 lo[4], hi[4];
-  for (int lane = 0; lane < 4; ++lane) {
-    const float* row = rows + size_t(index[lane]) * K;
-    __m128 a = _mm_setzero_ps(), b = _mm_setzero_ps();
-    for (int k = 0; k < K; k += 4) {
-      const __m128 ck = _mm_load_ps(c + k);
-      a = _mm_add_ps(a, _mm_mul_ps(ck, _mm_loadu_ps(row + k)));
-      b = _mm_add_ps(b, _mm_mul_ps(ck, _mm_loadu_ps(row + K + k)));
-    }
-    lo[lane] = a, hi[lane] = b;
-  }
-  _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
-  _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
-  v0 = _mm_add_ps(_mm_add_ps(lo[0], lo[1]), _mm_add_ps(lo[2], lo[3]));
-  v1 = _mm_add_ps(_mm_add_ps(hi[0], hi[1]), _mm_add_ps(hi[2], hi[3]));
-}
-
-/// The same with 8-wide fused multiply-adds: two per row for 16 coefficients, and horizontal adds across lanes.
-static_assert(K == 16, "lane_dots_avx2 holds a row in two 8-wide registers");
-__attribute__((target("avx2,fma"))) void lane_dots_avx2(const float* rows, const float* c, const int index[4],
-                                                        __m128& v0, __m128& v1) {
-  const __m256 c0 = _mm256_loadu_ps(c), c1 = _mm256_loadu_ps(c + 8);
-  __m256 lo[4], hi[4];
-  for (int lane = 0; lane < 4; ++lane) {
-    const float* row = rows + size_t(index[lane]) * K;
-    lo[lane] = _mm256_fmadd_ps(c1, _mm256_loadu_ps(row + 8), _mm256_mul_ps(c0, _mm256_loadu_ps(row)));
-    hi[lane] = _mm256_fmadd_ps(c1, _mm256_loadu_ps(row + 24), _mm256_mul_ps(c0, _mm256_loadu_ps(row + 16)));
-  }
-  // hadd(hadd(x0, x1), hadd(x2, x3)) = [x0, x1, x2, x3 summed over elements 0-3 | the same over 4-7].
-  const __m256 l = _mm256_hadd_ps(_mm256_hadd_ps(lo[0], lo[1]), _mm256_hadd_ps(lo[2], lo[3]));
-  const __m256 h = _mm256_hadd_ps(_mm256_hadd_ps(hi[0], hi[1]), _mm256_hadd_ps(hi[2], hi[3]));
-  v0 = _mm_add_ps(_mm256_castps256_ps128(l), _mm256_extractf128_ps(l, 1));
-  v1 = _mm_add_ps(_mm256_castps256_ps128(h), _mm256_extractf128_ps(h, 1));
-}
-
-}  // namespace
-
-Float4 UpsamplingBasis::evaluate_clamped(const BasisCoefficients& c, Float4 lambda_nm, Float4 lower, Float4 upper) const {
-  const Float4 x = clamp((lambda_nm - Float4(float(kUpsampleFirstKnotNm))) * Float4(float(1.0 / kUpsampleKnotSpacingNm)),
-                         Float4(0.0f), Float4(float(kUpsampleKnotCount - 1)));
-  const Float4 base = floor(x);
-  const Float4 t = x - base;
-  const __m128i index = _mm_cvttps_epi32(base.v);
-  const int lane_index[4] = {_mm_cvtsi128_si32(index), _mm_extract_epi32(index, 1), _mm_extract_epi32(index, 2),
-                             _mm_extract_epi32(index, 3)};
-  __m128 v0, v1;
-  if (avx2_) lane_dots_avx2(rows_.data(), c.c.data(), lane_index, v0, v1);
-  else lane_dots_sse(rows_.data(), c.c.data(), lane_index, v0, v1);
-  const Float4 lo = clamp(Float4(v0), lower, upper), hi = clamp(Float4(v1), lower, upper);
-  return mul_add(t, hi - lo, lo);
 }
 
 double UpsamplingBasis::usable_radius(double angle_rad) const {

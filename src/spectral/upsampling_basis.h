@@ -90,10 +90,34 @@ class UpsamplingBasis {
 
   /// The spectrum clamp(Φc, lower, upper) at four wavelengths (4-lane, allocation-free): the clamped knot values
   /// interpolated linearly in wavelength, so it equals KnotSamples of the clamped knots up to float rounding.
-  /// Constant beyond 360 and 830 nm. Pass ±infinity for no clamping. Per lane: the dot products of c with the
-  /// basis rows at the knot below and above (AVX2+FMA where the CPU has it, else SSE4.1; the two differ in the
-  /// last float bit), clamped, then the lerp.
-  Float4 evaluate_clamped(const BasisCoefficients& c, Float4 lambda_nm, Float4 lower, Float4 upper) const;
+  /// Constant beyond 360 and 830 nm. Pass ±infinity for no clamping.
+  Float4 evaluate_clamped(const BasisCoefficients& c, Float4 lambda_nm, Float4 lower, Float4 upper) const {
+    const Float4 x = clamp((lambda_nm - Float4(float(kUpsampleFirstKnotNm))) * Float4(float(1.0 / kUpsampleKnotSpacingNm)),
+                           Float4(0.0f), Float4(float(kUpsampleKnotCount - 1)));
+    const Float4 base = floor(x);
+    const Float4 t = x - base;
+    const __m128i index = _mm_cvttps_epi32(base.v);
+    const int lane_index[4] = {_mm_cvtsi128_si32(index), _mm_extract_epi32(index, 1), _mm_extract_epi32(index, 2),
+                               _mm_extract_epi32(index, 3)};
+    // Per lane: the dot products of c with the basis rows at the knot below and above, summed across the
+    // register by a 4×4 transpose, clamped, then linear interpolation in wavelength.
+    __m128 lo[4], hi[4];
+    for (int lane = 0; lane < 4; ++lane) {
+      const float* row = &rows_[size_t(lane_index[lane]) * kUpsamplingBasisSize];
+      __m128 a = _mm_setzero_ps(), b = _mm_setzero_ps();
+      for (int k = 0; k < kUpsamplingBasisSize; k += 4) {
+        const __m128 ck = _mm_load_ps(&c.c[k]);
+        a = _mm_add_ps(a, _mm_mul_ps(ck, _mm_loadu_ps(row + k)));
+        b = _mm_add_ps(b, _mm_mul_ps(ck, _mm_loadu_ps(row + kUpsamplingBasisSize + k)));
+      }
+      lo[lane] = a, hi[lane] = b;
+    }
+    _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
+    _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
+    const Float4 v0 = clamp(Float4(_mm_add_ps(_mm_add_ps(lo[0], lo[1]), _mm_add_ps(lo[2], lo[3]))), lower, upper);
+    const Float4 v1 = clamp(Float4(_mm_add_ps(_mm_add_ps(hi[0], hi[1]), _mm_add_ps(hi[2], hi[3]))), lower, upper);
+    return mul_add(t, v1 - v0, v0);
+  }
 
   /// The knot values Φ·c (double, for setup and colorimetry).
   KnotValues knots(const BasisCoefficients& c) const;
@@ -108,8 +132,7 @@ class UpsamplingBasis {
  private:
   int angle_count_ = 0, radius_count_ = 0;
   std::vector<double> radius_rows_;       // ρ of each table row
-  bool avx2_ = false;                     // the CPU has AVX2 and FMA: evaluate_clamped's 8-wide version
-  std::vector<float> rows_;               // (95 + 1 pad) × K, knot-major
+  std::vector<float> rows_;               // (95 + 1 pad) × K, knot-major, 16-byte aligned rows
   // Per table entry: the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z).
   std::vector<std::array<BasisCoefficients, 4>> entry_;
   // Per table entry, interpolated with the same weights: M·c (3), M·D (9, row-major), the peak of the knots of
