@@ -1,12 +1,23 @@
-// Accuracy against speed of the RGB → spectrum upsampler (issue 3). A plain main() that prints a table: it
-// reports round-trip accuracy as well as time, which Google Benchmark's counters do not fit.
+// RGB → spectrum upsampler: the exact path (table + colour-correcting solve per colour) beside the fast path
+// (basis coefficients interpolated at the table's grid points, docs/upsampling.md "Fast path").
 //
-//   build/bin/rimu-upsampler-bench        (Release build; RIMU_DATA if not run from the build tree)
+//   build/bin/rimu-upsampler-bench [--accuracy-only | --timing-only] [Google Benchmark flags]
+//
+// First a round-trip accuracy report (a plain table: Google Benchmark's counters do not fit it) on the 33³ RGB
+// grids of sRGB, ACEScg and Rec.2020: CIEDE2000 mean / p99 / max of both paths, unmapped and mapped, and the
+// spectral RMS of both against the exact smoothest spectrum (the QP optimum, smoothest_spectrum.h). Then the
+// timings through Google Benchmark: setup of one colour, one 4-lane evaluation, one bilinear texture lookup.
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <memory>
 #include <vector>
 
+#include "render/image_texture.h"
 #include "spectral/cielab.h"
 #include "spectral/colorimetry.h"
 #include "spectral/delta_e.h"
@@ -21,11 +32,11 @@ struct Stats {
   std::vector<double> values;
   void add(double v) { values.push_back(v); }
   void print(const char* label) {
-    if (values.empty()) return (void)std::printf("    %-34s (none)\n", label);
+    if (values.empty()) return (void)std::printf("    %-44s (none)\n", label);
     std::sort(values.begin(), values.end());
     double sum = 0;
     for (double v : values) sum += v;
-    std::printf("    %-34s n %6zu  mean %.2e  p99 %.2e  max %.2e\n", label, values.size(), sum / values.size(),
+    std::printf("    %-44s n %6zu  mean %.2e  p99 %.2e  max %.2e\n", label, values.size(), sum / values.size(),
                 values[size_t(0.99 * (values.size() - 1))], values.back());
   }
 };
@@ -36,73 +47,258 @@ double delta_e_xyz(const Xyz& a, const Xyz& b, const Xyz& white) {
   return delta_e_2000(lab_of(a, white), lab_of(b, white));
 }
 
-}  // namespace
+double rms(const KnotValues& a, const KnotValues& b) {
+  double s = 0;
+  for (int i = 0; i < kUpsampleKnotCount; ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(s / kUpsampleKnotCount);
+}
 
-int main() {
-  SpectralLibrary library = SpectralLibrary::at_default_location();
-  const Observer& observer = library.observer(StandardObserver::cie1931_2deg);
+SpectralLibrary& library() {
+  static SpectralLibrary l = SpectralLibrary::at_default_location();
+  return l;
+}
+
+const RgbUpsampler& upsampler(const char* space) {
+  static std::unique_ptr<RgbUpsampler> srgb, acescg, rec2020;
+  auto& slot = std::strcmp(space, "acescg") == 0 ? acescg : std::strcmp(space, "rec2020") == 0 ? rec2020 : srgb;
+  if (!slot) slot = std::make_unique<RgbUpsampler>(library(), RgbColourSpace::named(space));
+  return *slot;
+}
+
+void accuracy_report() {
   constexpr int kSteps = 33;
   for (const char* name : {"srgb-linear", "acescg", "rec2020"}) {
     const double setup_start = now_s();
-    const RgbUpsampler up(library, RgbColourSpace::named(name));
+    const RgbUpsampler up(library(), RgbColourSpace::named(name));
     const double setup_s = now_s() - setup_start;
-    Stats unmapped, unmapped_cie, mapped, rough;
-    int in_unit_range = 0, total = 0;
+    Stats exact_unmapped, exact_unmapped_cie, fast_unmapped, exact_mapped, fast_mapped, exact_rms, fast_rms,
+        fast_vs_exact_rms, ringing, rough;
+    const Observer& observer = library().observer(StandardObserver::cie1931_2deg);
+    int unmapped_count = 0, total = 0, flag_mismatch = 0;
     const Xyz white = up.colorimetry().white_xyz();
-    const double start = now_s();
-    std::vector<UpsampledReflectance> results;
-    results.reserve(kSteps * kSteps * kSteps);
-    for (int r = 0; r < kSteps; ++r)
-      for (int g = 0; g < kSteps; ++g)
-        for (int b = 0; b < kSteps; ++b)
-          results.push_back(up.upsample_reflectance({r / 32.0, g / 32.0, b / 32.0}));
-    const double per_setup_ns = (now_s() - start) / results.size() * 1e9;
     for (int r = 0, n = 0; r < kSteps; ++r)
       for (int g = 0; g < kSteps; ++g)
         for (int b = 0; b < kSteps; ++b, ++n) {
-          const UpsampledReflectance& u = results[n];
+          const Rgb rgb{r / 32.0, g / 32.0, b / 32.0};
+          const Xyz in = up.space().to_xyz(rgb);
+          const UpsampledReflectance exact = up.upsample_reflectance(rgb);
+          bool fast_moved = false;
+          const BasisCoefficients c = up.reflectance_coefficients(rgb, &fast_moved);
+          const KnotValues raw = up.basis().knots(c);
+          double most_negative = 0;
+          for (double v : raw) most_negative = std::fmin(most_negative, v);
+          const KnotValues fast = up.fast_reflectance_spectrum(rgb).samples().knots();
+          const double fast_delta_e = delta_e_xyz(in, up.colorimetry().xyz_of(fast), white);
           ++total;
-          if (u.gamut_mapped) {
-            mapped.add(u.delta_e2000);
+          flag_mismatch += fast_moved != exact.gamut_mapped;
+          if (exact.gamut_mapped) {
+            exact_mapped.add(exact.delta_e2000);
+            fast_mapped.add(fast_delta_e);
             continue;
           }
-          ++in_unit_range;
-          unmapped.add(u.delta_e2000);
-          rough.add(roughness(u.spectrum.samples().knots()));
-          // Independent path: CIE 15 1 nm sum under the illuminant's own table (colorimetry.h), subsampled 1:7.
+          ++unmapped_count;
+          exact_unmapped.add(exact.delta_e2000);
+          fast_unmapped.add(fast_delta_e);
+          ringing.add(-most_negative);
+          const KnotValues exact_knots = exact.spectrum.samples().knots();
+          rough.add(roughness(exact_knots));
+          // Independent check of the exact path: CIE 15 1 nm sum under the illuminant's own table (colorimetry.h),
+          // every 7th colour.
           if (n % 7 == 0) {
-            const Xyz in = up.space().to_xyz({r / 32.0, g / 32.0, b / 32.0});
-            const Xyz cie = reflectance_xyz(u.spectrum, *up.illuminant(), observer);
-            unmapped_cie.add(delta_e_xyz(in, {cie.x / 100, cie.y / 100, cie.z / 100}, white));
+            const Xyz cie = reflectance_xyz(exact.spectrum, *up.illuminant(), observer);
+            exact_unmapped_cie.add(delta_e_xyz(in, {cie.x / 100, cie.y / 100, cie.z / 100}, white));
+          }
+          fast_vs_exact_rms.add(rms(fast, exact_knots));
+          // The exact smoothest spectrum (QP optimum) of the same colour: every 5th colour (0.2 ms each).
+          if (n % 5 == 0 && (r + g + b) > 0) {
+            if (const auto optimum = smoothest_knot_spectrum(up.colorimetry(), in)) {
+              exact_rms.add(rms(exact_knots, optimum->knots));
+              fast_rms.add(rms(fast, optimum->knots));
+            }
           }
         }
-    std::printf("%s (33^3 = %d colours; table %s)\n", name, total, up.table().white_name.c_str());
-    std::printf("  share needing no gamut mapping (smooth spectrum within [0,1]): %.1f %%\n", 100.0 * in_unit_range / total);
-    std::printf("  round-trip CIEDE2000, RGB -> spectrum -> XYZ under the space's white -> RGB:\n");
-    unmapped.print("not mapped (knot colorimetry)");
-    unmapped_cie.print("not mapped (CIE table illuminant)");
-    mapped.print("gamut-mapped (distance moved)");
-    std::printf("  smoothness, sum (S[i+1]-S[i])^2 over 5 nm knots, not mapped:\n");
+    std::printf("%s (33^3 = %d colours; %.1f %% need no gamut mapping; upsampler setup incl. basis %.1f ms)\n", name,
+                total, 100.0 * unmapped_count / total, setup_s * 1e3);
+    std::printf("  round-trip CIEDE2000, RGB -> spectrum -> XYZ under the space's white -> RGB, not mapped:\n");
+    exact_unmapped.print("exact path (table + solve)");
+    exact_unmapped_cie.print("exact path, via the CIE table illuminant");
+    fast_unmapped.print("fast path (basis, knots clamped to [0,1])");
+    std::printf("  CIEDE2000 moved by gamut mapping:\n");
+    exact_mapped.print("exact path");
+    fast_mapped.print("fast path");
+    std::printf("  colours whose mapped flag differs between the paths: %d\n", flag_mismatch);
+    std::printf("  spectral RMS over the 95 knots (reflectance units), not mapped:\n");
+    exact_rms.print("exact path vs smoothest (QP optimum)");
+    fast_rms.print("fast path vs smoothest (QP optimum)");
+    fast_vs_exact_rms.print("fast path vs exact path");
+    ringing.print("fast path: depth of negative ringing");
+    std::printf("  smoothness of the exact path, sum (S[i+1]-S[i])^2 over 5 nm knots, not mapped:\n");
     rough.print("roughness");
-    std::printf("  setup: construct upsampler %.1f ms; one RGB -> spectrum %.0f ns\n", setup_s * 1e3, per_setup_ns);
+    std::printf("\n");
+  }
+}
 
-    // Hot path: four lanes per call, over 4096 precomputed hero-wavelength sets (as a renderer's per-sample loop
-    // would hand them over), so the time is the evaluation alone.
-    const ReflectanceSpectrum& spectrum = results[kSteps * kSteps * 20 + kSteps * 9 + 4].spectrum;
-    std::vector<SampledWavelengths> lambdas;
-    for (int i = 0; i < 4096; ++i) lambdas.push_back(SampledWavelengths::sample_uniform((i * 0.618034f) - int(i * 0.618034f), 360.0f, 830.0f));
-    const int iterations = 50'000'000;
-    Float4 sum(0.0f);
-    const double eval_start = now_s();
-    for (int i = 0; i < iterations; ++i) sum += spectrum.evaluate(lambdas[i & 4095]);
-    const double eval_ns = (now_s() - eval_start) / iterations * 1e9;
-    const UpsampledEmission emission = up.upsample_emission({0.8, 0.2, 0.1});
-    Float4 sum_e(0.0f);
-    const double emission_start = now_s();
-    for (int i = 0; i < iterations; ++i) sum_e += emission.spectrum.evaluate(lambdas[i & 4095]);
-    const double emission_ns = (now_s() - emission_start) / iterations * 1e9;
-    std::printf("  one 4-lane evaluation: reflectance %.2f ns, emission (x illuminant table) %.2f ns [checksum %g]\n\n",
-                eval_ns, emission_ns, double(sum[0] + sum_e[1]));
+// ---- timings ---------------------------------------------------------------------------------------------
+
+std::vector<Rgb> random_colours() {
+  std::vector<Rgb> out;
+  uint32_t state = 12345;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) * (1.0 / 16777216.0);
+  };
+  for (int i = 0; i < 4096; ++i) out.push_back({next(), next(), next()});
+  return out;
+}
+
+std::vector<SampledWavelengths> wavelength_sets() {
+  std::vector<SampledWavelengths> out;
+  for (int i = 0; i < 4096; ++i) out.push_back(SampledWavelengths::sample_visible((i * 0.618034f) - int(i * 0.618034f)));
+  return out;
+}
+
+void BM_Setup_Exact(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const auto colours = random_colours();
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(up.reflectance_spectrum(colours[i++ & 4095]));
+}
+BENCHMARK(BM_Setup_Exact);
+
+void BM_Setup_FastCoefficients(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const auto colours = random_colours();
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(up.reflectance_coefficients(colours[i++ & 4095]));
+}
+BENCHMARK(BM_Setup_FastCoefficients);
+
+// Muted colours (each channel in [0.25, 0.55]): no ringing, far from the brightness limit, so no 95-knot pass.
+void BM_Setup_FastCoefficients_Muted(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  auto colours = random_colours();
+  for (Rgb& c : colours) c = {0.25 + 0.3 * c.r, 0.25 + 0.3 * c.g, 0.25 + 0.3 * c.b};
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(up.reflectance_coefficients(colours[i++ & 4095]));
+}
+BENCHMARK(BM_Setup_FastCoefficients_Muted);
+
+void BM_Setup_FastKnotSpectrum(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const auto colours = random_colours();
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(up.fast_reflectance_spectrum(colours[i++ & 4095]));
+}
+BENCHMARK(BM_Setup_FastKnotSpectrum);
+
+void BM_Setup_FastEmissionCoefficients(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const auto colours = random_colours();
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(up.emission_coefficients(colours[i++ & 4095]));
+}
+BENCHMARK(BM_Setup_FastEmissionCoefficients);
+
+void BM_Eval4_KnotSpectrum(benchmark::State& state) {
+  const ReflectanceSpectrum s = upsampler("srgb-linear").reflectance_spectrum({0.6, 0.3, 0.1});
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(s.evaluate(lambdas[i++ & 4095]));
+}
+BENCHMARK(BM_Eval4_KnotSpectrum);
+
+void BM_Eval4_BasisCoefficients(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const BasisCoefficients c = up.reflectance_coefficients({0.6, 0.3, 0.1});
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        up.basis().evaluate_clamped(c, lambdas[i++ & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
+}
+BENCHMARK(BM_Eval4_BasisCoefficients);
+
+void BM_Eval4_EmissionExact(benchmark::State& state) {
+  const UpsampledEmission e = upsampler("srgb-linear").upsample_emission({0.8, 0.2, 0.1});
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(e.spectrum.evaluate(lambdas[i++ & 4095]));
+}
+BENCHMARK(BM_Eval4_EmissionExact);
+
+std::shared_ptr<const RgbImage> random_image(int size) {
+  const auto colours = random_colours();
+  std::vector<float> rgb;
+  for (int i = 0; i < size * size; ++i) {
+    const Rgb c = colours[size_t(i) & 4095];
+    rgb.insert(rgb.end(), {float(c.r), float(c.g), float(c.b)});
+  }
+  return std::make_shared<const RgbImage>(size, size, std::move(rgb));
+}
+
+std::vector<Vec2> random_uvs() {
+  std::vector<Vec2> out;
+  uint32_t state = 777;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float((state >> 8) * (1.0 / 16777216.0));
+  };
+  for (int i = 0; i < 4096; ++i) out.push_back({next(), next()});
+  return out;
+}
+
+// The texture lookup before the fast path: bilinear RGB, then the exact upsampling per lookup.
+void BM_TextureLookup_PerLookupExact(benchmark::State& state) {
+  const auto image = random_image(256);
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const auto uvs = random_uvs();
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t j = i++ & 4095;
+    benchmark::DoNotOptimize(up.reflectance_spectrum(image->bilinear(uvs[j])).evaluate(lambdas[j]));
+  }
+}
+BENCHMARK(BM_TextureLookup_PerLookupExact);
+
+void BM_TextureLookup_Basis(benchmark::State& state) {
+  auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));
+  const ImageTexture texture(random_image(int(state.range(0))), shared, 1.0f);
+  const auto uvs = random_uvs();
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t j = i++ & 4095;
+    benchmark::DoNotOptimize(texture.evaluate(uvs[j], lambdas[j]));
+  }
+}
+BENCHMARK(BM_TextureLookup_Basis)->Arg(64)->Arg(1024);
+
+void BM_TextureConversion_PerTexel(benchmark::State& state) {
+  auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));
+  const auto image = random_image(256);
+  for (auto _ : state) benchmark::DoNotOptimize(ImageTexture(image, shared, 1.0f));
+  state.SetItemsProcessed(state.iterations() * 256 * 256);
+}
+BENCHMARK(BM_TextureConversion_PerTexel)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool accuracy = true, timing = true;
+  std::vector<char*> rest = {argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--accuracy-only") == 0) timing = false;
+    else if (std::strcmp(argv[i], "--timing-only") == 0) accuracy = false;
+    else rest.push_back(argv[i]);
+  }
+  std::printf("build: %s\n\n", RIMU_BENCH_BUILD);
+  if (accuracy) accuracy_report();
+  if (timing) {
+    int count = int(rest.size());
+    benchmark::Initialize(&count, rest.data());
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
   }
   return 0;
 }

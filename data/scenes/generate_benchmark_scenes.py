@@ -109,17 +109,30 @@ def dispersion():
         "film": FILM, "integrator": INTEGRATOR, "materials": materials, "shapes": shapes}
 
 
-def textured():
+def mean_linear_colour():
+    """The mean linear sRGB of colour_bars.png (IEC 61966-2-1 decoding), rounded to 3 decimals."""
+    decode = lambda c: c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+    pixels = [colour_bars(x, y) for y in range(64) for x in range(64)]
+    return [round(sum(decode(p[k] / 255) for p in pixels) / len(pixels), 3) for k in range(3)]
+
+
+def textured(constant=False):
+    # constant: the same scene with the texture replaced by its mean colour, the untextured reference for the
+    # cost of texture lookups (docs/benchmarks.md, "RGB → spectrum upsampler").
+    poster = {"rgb": mean_linear_colour()} if constant else {"texture": "colour_bars.png"}
     materials = {"white": {"type": "diffuse", "reflectance": 0.8},
-                 "poster": {"type": "diffuse", "reflectance": {"texture": "colour_bars.png"}}}
+                 "poster": {"type": "diffuse", "reflectance": poster}}
     shapes = box_room(-1.5, 1.5, 0.0, 2.5, -1.0, 2.0, "white", "white", "white", "white", "white", "white")
     shapes.append({"type": "triangles", "name": "poster", "material": "poster",
                    "positions": [[0.9, 0.5, 1.98], [-0.9, 0.5, 1.98], [-0.9, 1.7, 1.98], [0.9, 1.7, 1.98]],
                    "indices": [0, 1, 2, 0, 2, 3], "uvs": [[0, 0], [1, 0], [1, 1], [0, 1]]})
     shapes.append(ceiling_light(0.0, 2.49, 0.9, 0.5, {"illuminant": "F11", "scale": 0.05}))
     return {
-        "description": "An sRGB image texture (colour_bars.png, made by generate_benchmark_scenes.py) on the back "
-                       "wall of a white room under CIE F11; upsampled per lookup in spectral modes. Issue 7.",
+        "description": ("The textured scene (scene.json) with the poster's texture replaced by its mean linear sRGB "
+                        "colour: the untextured reference for the cost of texture lookups." if constant else
+                        "An sRGB image texture (colour_bars.png, made by generate_benchmark_scenes.py) on the back "
+                        "wall of a white room under CIE F11; converted to spectra per texel at load in spectral "
+                        "modes. Issue 7."),
         "camera": {"type": "pinhole", "from": [0.0, 1.1, -0.9], "to": [0.0, 1.1, 2.0], "up": [0, 1, 0],
                    "vertical_fov_deg": 30},
         "film": FILM, "integrator": INTEGRATOR, "materials": materials, "shapes": shapes}
@@ -158,4 +171,5 @@ if __name__ == "__main__":
     (HERE / "colour_bleeding" / "scene.json").write_text(json.dumps(colour_bleeding(), indent=1) + "\n")
     (HERE / "dispersion" / "scene.json").write_text(json.dumps(dispersion(), indent=1) + "\n")
     (HERE / "textured" / "scene.json").write_text(json.dumps(textured(), indent=1) + "\n")
+    (HERE / "textured" / "constant_colour.json").write_text(json.dumps(textured(constant=True), indent=1) + "\n")
     write_png(HERE / "textured" / "colour_bars.png", 64, 64, colour_bars)

@@ -43,6 +43,14 @@ void correct_to(KnotValues& s, const KnotColorimetry& c, const Xyz& target) {
   }
 }
 
+// How far above 1 the fast path's unclamped peak may reach before the brightness limit moves the colour: the
+// basis truncation's overshoot at narrow peaks (≤ 1.5 % on the 33³ grids of sRGB, ACEScg, Rec.2020 away from
+// the locus; docs/upsampling.md).
+constexpr double kRingingAllowance = 1.02;
+// The fast path reports a colour as moved (gamut_mapped) when fitting its clamped spectrum leaves more than this
+// relative XYZ residual (ΔE00 ≲ 0.01): the basis cannot hold that spectrum at zero or under 1.
+constexpr double kFitTolerance = 1e-4;
+
 double delta_e(const Xyz& a, const Xyz& b, const Xyz& white) { return delta_e_2000(lab_of(a, white), lab_of(b, white)); }
 
 Xyz scaled(const Xyz& v, double k) { return {v.x * k, v.y * k, v.z * k}; }
@@ -55,7 +63,8 @@ RgbUpsampler::RgbUpsampler(SpectralLibrary& library, const RgbColourSpace& space
           upsampling_illuminant(library, upsampling_white_for(space.white())))),
       colorimetry_(library.observer(StandardObserver::cie1931_2deg), *illuminant_, upsampling_white_for(space.white()).white),
       table_(UpsamplingTable::read(library.root() / upsampling_table_file(upsampling_white_for(space.white())))),
-      gamut_(table_.gamut()) {
+      gamut_(table_.gamut()),
+      basis_(table_, colorimetry_) {
   const double white_y = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) {
     return illuminant_->value(l) * library.observer(StandardObserver::cie1931_2deg).y_bar.value(l);
   });
@@ -137,6 +146,111 @@ UpsampledEmission RgbUpsampler::upsample_emission(const Rgb& rgb, const SourceLo
   // Both at Y = 1 (L* = 100): the difference is the chromaticity shift alone.
   out.delta_e2000 = delta_e(scaled(xyz, 1.0 / xyz.y), xyz_of(out.spectrum.shape()), colorimetry_.white_xyz());
   return out;
+}
+
+BasisCoefficients RgbUpsampler::smooth_coefficients(const Xyz& xyz, bool* moved, SmoothShapeBounds* bounds) const {
+  const double sum = xyz.x + xyz.y + xyz.z;
+  Chromaticity xy{xyz.x / sum, xyz.y / sum};
+  const Chromaticity w = gamut_.white();
+  const double dx = xy.x - w.x, dy = xy.y - w.y;
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  const double angle = std::atan2(dy, dx);
+  double rho = distance == 0.0 ? 0.0 : distance / basis_.usable_radius(angle);
+  if (rho > 1.0) {  // radial move onto the usable gamut's edge, as smooth_shape
+    xy = {w.x + dx / rho, w.y + dy / rho};
+    rho = 1.0;
+    *moved = true;
+  }
+  return basis_.smooth_coefficients(xy, angle, rho, bounds);
+}
+
+BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* mapped, const SourceLocation& where) const {
+  check_finite(rgb, space_.name(), where);
+  bool moved = false;
+  BasisCoefficients c;
+  const Xyz xyz = space_.to_xyz(rgb);
+  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) {
+  } else if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+    moved = true;
+  } else {
+    SmoothShapeBounds bounds;
+    c = smooth_coefficients(xyz, &moved, &bounds);
+    double luminance = xyz.y;
+    // Brightness limit as reflectance_knots, on this representation's own (unclamped) peak; the 95-knot pass
+    // that finds it is skipped where the bound shows the limit is far. The basis rings by up to ~2 % of the
+    // peak around narrow peaks, so its peak overstates the exact path's: the limit allows that much above 1,
+    // and fit_clamped below flattens it at 1 and restores the colour. Continuous in Y, like the exact limit.
+    bool clamps_at_1 = false;
+    if (luminance * bounds.peak_bound > 1.0) {
+      alignas(16) float knots[kUpsampleKnotCount + 1];
+      const double peak = basis_.knots_float(c, knots);
+      if (luminance * peak > kRingingAllowance) {
+        luminance = kRingingAllowance / peak;
+        moved = true;
+      }
+      clamps_at_1 = luminance * peak > 1.0;
+    }
+    c *= float(luminance);
+    // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour the unclamped one
+    // was aimed at, t = M·c − δ.
+    if (bounds.rings || clamps_at_1) {
+      for (BasisCoefficients& d : bounds.directions) d *= float(luminance);
+      const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
+      const double left = basis_.fit_clamped(
+          c, bounds.directions,
+          {aimed.x - luminance * offset.x, aimed.y - luminance * offset.y, aimed.z - luminance * offset.z}, 1.0f);
+      if (left > kFitTolerance) moved = true;
+    }
+  }
+  if (mapped) *mapped = moved;
+  return c;
+}
+
+ReflectanceSpectrum RgbUpsampler::fast_reflectance_spectrum(const Rgb& rgb, const SourceLocation& where) const {
+  const BasisCoefficients c = reflectance_coefficients(rgb, nullptr, where);
+  alignas(16) float knots[kUpsampleKnotCount + 1];
+  basis_.knots_float(c, knots);
+  KnotValues clamped;
+  for (int i = 0; i < kUpsampleKnotCount; ++i) clamped[i] = std::clamp(double(knots[i]), 0.0, 1.0);
+  return ReflectanceSpectrum(clamped);
+}
+
+BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapped, const SourceLocation& where) const {
+  check_finite(rgb, space_.name(), where);
+  bool moved = false;
+  BasisCoefficients c;
+  const Xyz xyz = space_.to_xyz(rgb);
+  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) {
+  } else if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+    moved = true;
+  } else {
+    SmoothShapeBounds bounds;
+    c = smooth_coefficients(xyz, &moved, &bounds);
+    c *= float(xyz.y);
+    if (bounds.rings) {
+      for (BasisCoefficients& d : bounds.directions) d *= float(xyz.y);
+      const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
+      const double left = basis_.fit_clamped(
+          c, bounds.directions, {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
+          INFINITY);
+      if (left > kFitTolerance) moved = true;
+    }
+
+  }
+  if (mapped) *mapped = moved;
+  return c;
+}
+
+EmissionSpectrum RgbUpsampler::fast_emission_spectrum(const Rgb& rgb, const SourceLocation& where) const {
+  // The shape at Y = 1 and the luminance in the scale, as upsample_emission stores them.
+  const BasisCoefficients c = emission_coefficients(rgb, nullptr, where);
+  const double luminance = space_.to_xyz(rgb).y;
+  if (c.c[0] == 0.0f || !(luminance > 0.0)) return {};
+  alignas(16) float knots[kUpsampleKnotCount + 1];
+  basis_.knots_float(c, knots);
+  KnotValues shape;
+  for (int i = 0; i < kUpsampleKnotCount; ++i) shape[i] = std::fmax(double(knots[i]), 0.0) / luminance;
+  return EmissionSpectrum(shape, emission_scale_ * luminance, illuminant_);
 }
 
 }  // namespace rimu

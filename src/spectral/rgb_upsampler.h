@@ -7,6 +7,7 @@
 #include "spectral/rgb_colour_space.h"
 #include "spectral/spectral_library.h"
 #include "spectral/upsampled_spectrum.h"
+#include "spectral/upsampling_basis.h"
 #include "spectral/upsampling_table.h"
 
 namespace rimu {
@@ -54,14 +55,42 @@ class RgbUpsampler {
   UpsampledReflectance upsample_reflectance(const Rgb& rgb, const SourceLocation& where = {}) const;
 
   /// The spectrum of upsample_reflectance alone, without its diagnostics (gamut_mapped, ΔE2000 of the round
-  /// trip, which cost another colorimetric integral and a CIEDE2000): the per-lookup path of image textures, which
-  /// discard them. Same spectrum, bit for bit (tested).
+  /// trip, which cost another colorimetric integral and a CIEDE2000), for callers that discard them. Same
+  /// spectrum, bit for bit (tested).
   ReflectanceSpectrum reflectance_spectrum(const Rgb& rgb, const SourceLocation& where = {}) const;
 
   /// An emission spectrum whose absolute colour (emission_xyz) is `rgb`'s XYZ read in cd/m², up to the
   /// illuminant-vs-rounded-white difference of KnotColorimetry (≤ 1e-4): the white illuminant W times the smooth
   /// spectrum of the input chromaticity, scaled so Y matches. No upper limit; RGB (1,1,1) gives W itself.
   UpsampledEmission upsample_emission(const Rgb& rgb, const SourceLocation& where = {}) const;
+
+  // The fast path (docs/upsampling.md, "Fast path"): the same method with the table's entries as coefficients of
+  // UpsamplingBasis, so an upsampled colour costs 0.15-0.3 µs instead of 1-6 µs (the basis is built with the
+  // upsampler: ~0.1 s per colour space). Same gamut mapping and brightness
+  // limit as upsample_reflectance/upsample_emission; the colour is exact up to float rounding before clamping,
+  // and the spectrum differs from the exact path's by the basis truncation (docs/upsampling.md has both errors).
+  // For per-texel conversion and anything that needs many colours; colorimetry and the toolkit use the exact path.
+
+  /// Coefficients of the reflectance upsample_reflectance would give (gamut mapping and brightness limit
+  /// included). The spectrum is basis().evaluate_clamped(c, λ, 0, 1) (truncation ringing dips a few 1e-3 below 0
+  /// where the exact spectrum is zero); its colour is the target's to ~1e-6. `mapped`: the colour moved — gamut
+  /// mapping, the brightness limit, or a spectrum the basis cannot hold in [0, 1] (residual > 1e-4: saturated
+  /// purples of the wide spaces, docs/upsampling.md). ~150 ns, plus ~50-90 ns per 95-knot pass for saturated
+  /// colours and colours near the brightness limit (1-3 passes).
+  BasisCoefficients reflectance_coefficients(const Rgb& rgb, bool* mapped = nullptr, const SourceLocation& where = {}) const;
+  /// reflectance_coefficients as knots, clamped to [0, 1]: a ReflectanceSpectrum (4-lane evaluation as the exact
+  /// path's, ~3 ns). One 95-knot pass more than reflectance_coefficients.
+  ReflectanceSpectrum fast_reflectance_spectrum(const Rgb& rgb, const SourceLocation& where = {}) const;
+  /// Coefficients of upsample_emission's smooth factor s times the input luminance Y (cd/m²): the emission is
+  /// basis().evaluate_clamped(c, λ, 0, ∞) · W(λ) · emission_scale(). `mapped` as upsample_emission's
+  /// gamut_mapped, or the clamped spectrum missing the colour by more than 1e-4 (chromaticities within ~10 % of
+  /// the locus in purple-red directions). Cost as reflectance_coefficients.
+  BasisCoefficients emission_coefficients(const Rgb& rgb, bool* mapped = nullptr, const SourceLocation& where = {}) const;
+  /// emission_coefficients as an EmissionSpectrum (knots clamped at 0).
+  EmissionSpectrum fast_emission_spectrum(const Rgb& rgb, const SourceLocation& where = {}) const;
+  /// Radiance in W/(m²·sr·nm) per unit of the smooth factor times W: 1 / (K_m Σ W ȳ Δλ).
+  double emission_scale() const { return emission_scale_; }
+  const UpsamplingBasis& basis() const { return basis_; }
 
   /// The smooth spectrum of chromaticity `xy` with Y = 1 (xy moved to the gamut edge if outside), and whether it
   /// was moved. Its peak's reciprocal is the brightness limit at xy.
@@ -83,12 +112,15 @@ class RgbUpsampler {
   // The knots of upsample_reflectance's spectrum for a finite, non-black `xyz` with Y > 0; `moved` tells whether
   // gamut mapping or the brightness limit changed the colour.
   KnotValues reflectance_knots(const Xyz& xyz, bool* moved) const;
+  // The fast path's Y = 1 coefficients of chromaticity xy(xyz), moved to the usable gamut's edge if outside.
+  BasisCoefficients smooth_coefficients(const Xyz& xyz, bool* moved, SmoothShapeBounds* bounds) const;
 
   RgbColourSpace space_;
   std::shared_ptr<const TabulatedSpectrum> illuminant_;
   KnotColorimetry colorimetry_;
   UpsamplingTable table_;
   KnotGamut gamut_;
+  UpsamplingBasis basis_;
   double emission_scale_;  // 1 / (K_m Σ W ȳ Δλ): radiance per unit luminance of W
 };
 

@@ -1,4 +1,5 @@
-// Image textures and environment images: decoding, orientation, wrapping and upsampling per lookup.
+// Image textures and environment images: decoding, orientation, wrapping, and the per-texel conversion to
+// upsampled spectra at load time (lookups blend texels' basis coefficients).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -36,37 +37,97 @@ TEST_CASE("8-bit images are sRGB-decoded to linear, row 0 is the top, v = 0 is t
   CHECK(image.bilinear({1.25f, 0.75f}).r == doctest::Approx(1.0).epsilon(1e-5));
 }
 
-TEST_CASE("float images are linear and reject NaN/Inf pixels with the file named") {
+TEST_CASE("float images are linear and reject NaN/Inf pixels at load, naming the file and the first bad pixel") {
   const auto good = write_pfm("linear", 1, 1, {0.5f, 2.0f, 1e-6f});
   const RgbImage image = RgbImage::read(good, default_encoding_for(good));
   CHECK(image.pixel(0, 0).g == doctest::Approx(2.0));
-  const auto bad = write_pfm("nan", 2, 1, {0.5f, 0.5f, 0.5f, std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f});
-  try {
-    RgbImage::read(bad, default_encoding_for(bad));
-    FAIL("a NaN pixel must be rejected");
-  } catch (const InputError& e) {
-    CHECK(std::string(e.what()).find(bad.string()) != std::string::npos);
-    CHECK(std::string(e.what()).find("(1, 0)") != std::string::npos);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  // Row 0 is the top; PFM stores the bottom row first, which write_pfm takes care of. Pixel (1, 0) is the first
+  // bad one in reading order; (0, 1) is bad too and must not be the one named.
+  for (const float bad_value : {nan, inf, -inf}) {
+    CAPTURE(bad_value);
+    const auto bad = write_pfm("nonfinite", 2, 2, {0.5f, 0.5f, 0.5f, bad_value, 0.0f, 0.0f,  //
+                                                   0.0f, bad_value, 0.0f, 0.1f, 0.1f, 0.1f});
+    try {
+      RgbImage::read(bad, default_encoding_for(bad));
+      FAIL("a non-finite pixel must be rejected");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).find(bad.string()) != std::string::npos);
+      CHECK(std::string(e.what()).find("(1, 0)") != std::string::npos);
+      CHECK(std::string(e.what()).find("not a finite number") != std::string::npos);
+    }
   }
   CHECK_THROWS_AS(RgbImage::read("/nonexistent/texture.png", {}), InputError);
 }
 
-TEST_CASE("an image texture returns the upsampled reflectance of its pixel at every wavelength") {
+TEST_CASE("an image texture's lookup at a texel is that texel's fast upsampling, close to the exact one") {
   SpectralLibrary& library = test::library();
   auto upsampler = std::make_shared<const RgbUpsampler>(library, RgbColourSpace::named("srgb-linear"));
-  auto image = std::make_shared<const RgbImage>(1, 1, std::vector<float>{0.6f, 0.3f, 0.1f});
-  const ImageTexture texture(image, upsampler, 1.0f);
-  const ReflectanceSpectrum expected = upsampler->upsample_reflectance({0.6, 0.3, 0.1}).spectrum;
-  for (float u : {0.05f, 0.35f, 0.65f, 0.95f}) {
-    const SampledWavelengths lambda = SampledWavelengths::sample_visible(u);
-    const SampledSpectrum got = texture.evaluate({0.3f, 0.7f}, lambda);
-    const SampledSpectrum want = expected.evaluate(lambda);
-    for (int lane = 0; lane < kLaneCount; ++lane) CHECK(got[lane] == doctest::Approx(want[lane]).epsilon(1e-6));
+  // 2×2 texels, row 0 at the top: orange, dark purple (the basis's zero-region case), white, a light cyan.
+  const Rgb texels[4] = {{0.6, 0.3, 0.1}, {0.3, 0.0, 0.2}, {1.0, 1.0, 1.0}, {0.2, 0.7, 0.8}};
+  std::vector<float> rgb;
+  for (const Rgb& t : texels) rgb.insert(rgb.end(), {float(t.r), float(t.g), float(t.b)});
+  auto image = std::make_shared<const RgbImage>(2, 2, rgb);
+  const ImageTexture texture(image, upsampler, 0.5f);
+  // Texel (x, y) has its centre at u = (x + 0.5)/2, v = 1 − (y + 0.5)/2 (v = 0 at the bottom row).
+  for (int t = 0; t < 4; ++t) {
+    CAPTURE(t);
+    const int x = t % 2, y = t / 2;
+    const Vec2 uv{(x + 0.5f) / 2.0f, 1.0f - (y + 0.5f) / 2.0f};
+    const ReflectanceSpectrum fast = upsampler->fast_reflectance_spectrum(texels[t]);
+    const ReflectanceSpectrum exact = upsampler->upsample_reflectance(texels[t]).spectrum;
+    for (float u : {0.05f, 0.35f, 0.65f, 0.95f}) {
+      const SampledWavelengths lambda = SampledWavelengths::sample_visible(u);
+      const SampledSpectrum got = texture.evaluate(uv, lambda);
+      const SampledSpectrum want_fast = fast.evaluate(lambda) * Float4(0.5f);
+      const SampledSpectrum want_exact = exact.evaluate(lambda) * Float4(0.5f);
+      for (int lane = 0; lane < kLaneCount; ++lane) {
+        // The same representation: float rounding only.
+        CHECK(got[lane] == doctest::Approx(want_fast[lane]).epsilon(1e-5));
+        // Against the exact path: the basis's stated distance (largest knot difference ≤ 0.04, here × 0.5).
+        CHECK(std::abs(got[lane] - want_exact[lane]) <= 0.02f);
+      }
+    }
   }
-  // A white texel is the perfect diffuser: exactly 1 (the upsampler's white is flat).
+  // Halfway between the orange and the purple texel: the blend of their spectra. The spectra are linear in the
+  // coefficients, so the blend is the average of the unclamped spectra; where the purple's is clamped (its zero
+  // region, ringing ≥ −0.01) the lookup may sit up to 0.5 × 0.01 × scale below the average of the clamped ones.
+  const SampledWavelengths lambda(Float4(450.0f, 550.0f, 600.0f, 700.0f), Float4(1.0f));
+  const SampledSpectrum mid = texture.evaluate({0.5f, 0.75f}, lambda);
+  const SampledSpectrum a = upsampler->fast_reflectance_spectrum(texels[0]).evaluate(lambda);
+  const SampledSpectrum b = upsampler->fast_reflectance_spectrum(texels[1]).evaluate(lambda);
+  for (int lane = 0; lane < kLaneCount; ++lane)
+    CHECK(std::abs(mid[lane] - 0.25f * (a[lane] + b[lane])) <= 0.0025f + 1e-6f);
+  // A white texel is the perfect diffuser: 1 up to the float rounding of 16 coefficients.
   auto white = std::make_shared<const RgbImage>(1, 1, std::vector<float>{1.0f, 1.0f, 1.0f});
   const SampledSpectrum w = ImageTexture(white, upsampler, 1.0f).evaluate({0.5f, 0.5f}, SampledWavelengths::sample_visible(0.3f));
-  for (int lane = 0; lane < kLaneCount; ++lane) CHECK(w[lane] == doctest::Approx(1.0).epsilon(1e-6));
+  for (int lane = 0; lane < kLaneCount; ++lane) CHECK(w[lane] == doctest::Approx(1.0).epsilon(1e-5));
+}
+
+TEST_CASE("an environment image's pixels are converted once to the fast emission, close to the exact one") {
+  SpectralLibrary& library = test::library();
+  auto upsampler = std::make_shared<const RgbUpsampler>(library, RgbColourSpace::named("srgb-linear"));
+  const Rgb pixels[3] = {{1e4, 2e3, 5e2}, {0.02, 0.05, 0.3}, {1e-6, 1e-6, 1e-6}};
+  std::vector<float> rgb;
+  for (const Rgb& p : pixels) rgb.insert(rgb.end(), {float(p.r), float(p.g), float(p.b)});
+  const RgbEnvironmentImage environment(std::make_shared<const RgbImage>(3, 1, rgb), upsampler);
+  for (int x = 0; x < 3; ++x) {
+    CAPTURE(x);
+    const Rgb p{float(pixels[x].r), float(pixels[x].g), float(pixels[x].b)};
+    const EmissionSpectrum fast = upsampler->fast_emission_spectrum(p);
+    const EmissionSpectrum exact = upsampler->upsample_emission(p).spectrum;
+    for (float u : {0.1f, 0.4f, 0.7f}) {
+      const SampledWavelengths lambda = SampledWavelengths::sample_visible(u);
+      const SampledSpectrum got = environment.radiance(x, 0, lambda);
+      const SampledSpectrum want = fast.evaluate(lambda), want_exact = exact.evaluate(lambda);
+      const float peak = float(exact.max_value());
+      for (int lane = 0; lane < kLaneCount; ++lane) {
+        CHECK(got[lane] == doctest::Approx(want[lane]).epsilon(1e-5));
+        // Shapes agree to the basis's stated distance, relative to the spectrum's own scale.
+        CHECK(std::abs(got[lane] - want_exact[lane]) <= 0.04f * peak);
+      }
+    }
+  }
 }
 
 TEST_CASE("an environment image's luminance is its pixels' Y and black pixels emit nothing") {

@@ -1,0 +1,151 @@
+// The fast path of RGB upsampling: smoothest spectra as a few coefficients of a fixed basis, precomputed at the
+// table's grid points and interpolated, so an upsampled colour costs 3×3 solves instead of the exact path's
+// 95-knot colour correction, and a texel stores 16 floats instead of 95.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "spectral/lanes.h"
+#include "spectral/upsampling_table.h"
+
+namespace rimu {
+
+/// Number of basis functions: the 4 that span every smoothest spectrum with no zero knot (exactly), plus 12
+/// principal components of what the table's spectra with zero regions add. docs/upsampling.md ("Fast path") has
+/// the accuracy against this number; 16 floats = 64 bytes per texel.
+inline constexpr int kUpsamplingBasisSize = 16;
+
+/// A spectrum as coefficients of an UpsamplingBasis: S(λ) = Σ_k c_k φ_k(λ). Linear, so blending coefficients
+/// (bilinear texture filtering) blends the spectra, and their colours.
+struct BasisCoefficients {
+  alignas(16) std::array<float, kUpsamplingBasisSize> c{};
+
+  BasisCoefficients& operator*=(float k) {
+    for (float& v : c) v *= k;
+    return *this;
+  }
+};
+
+/// What smooth_coefficients knows about the spectrum besides its coefficients, so that callers can skip a
+/// 95-knot pass (~50-90 ns) when it cannot matter.
+struct SmoothShapeBounds {
+  std::array<BasisCoefficients, 3> directions;  ///< D: the correction directions, for fit_clamped
+  float peak_bound = 0;  ///< ≥ the largest knot of Φc (interpolated corner peaks, raised by the correction)
+  /// δ: M·c − colour(clamp(Φc, 0, ∞)) as interpolated from the entries (the colour clamping at 0 takes away).
+  Xyz clamp_offset;
+  /// True if some corner's spectrum needed clamping (δ ≠ 0): then only a fit_clamped makes the colour exact.
+  bool rings = false;
+};
+
+/// The basis, each table entry's coefficients and the colour correction, built from one white's table.
+///
+/// Basis (orthonormal over the 95 knots, each φ_k a knot spectrum): without active bounds the smoothest spectrum
+/// of colour t solves 2LS = −Aᵀμ (L = DᵀD the roughness form, A the knot colorimetry), so it lies in
+/// span{1, L⁺a_X, L⁺a_Y, L⁺a_Z} (a_k the rows of A, projected to zero mean): those four come first and represent
+/// unsaturated colours exactly. The rest are the principal components of the table's peak-1 shapes after those
+/// four are projected out: the zero regions and narrow peaks of saturated colours.
+///
+/// Colour correction: the interpolated coefficients miss the target XYZ by the table's interpolation error. It is
+/// re-imposed as the exact path does (RgbUpsampler, docs/upsampling.md): by the smallest change in the metric
+/// Σ ΔS_i²/S_i, ΔS = diag(S)·Aᵀλ, which leaves zero regions at zero, here projected onto the basis:
+/// Δc = D·λ with D = Φᵀ·diag(S)·Aᵀ (K×3). D is linear in S, so it is precomputed per table entry (from the exact
+/// table spectrum) and interpolated with the same weights; λ solves the 3×3 system (M·D)·λ = t − M·c with
+/// M = A·Φ, so the colour is exact up to float rounding. Cost: a 3×K blend and a 3×3 solve, no 95-knot loop.
+///
+/// Clamping: the truncated basis rings (a few 1e-3 of the peak) around the exact spectrum's zero regions, and a
+/// reflectance must stay in [0, 1], so the spectrum used is clamp(Φc, 0, upper) at the knots, linear in between
+/// (evaluate_clamped). Clamping moves the colour (by up to 0.3 ΔE00 for dark saturated purples). At each entry the
+/// coefficients are fitted so that the clamped spectrum has the entry's colour, and the offset δ = M·c −
+/// colour(clamped) is stored and blended, so the correction can aim the unclamped colour at t + δ; between
+/// entries that ring, fit_clamped re-imposes the target on the clamped spectrum with the same correction
+/// directions, as the exact path repeats its correction while clamping.
+class UpsamplingBasis {
+ public:
+  /// Builds the basis and projects every table entry onto it (~0.1 s; once per colour space).
+  UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry);
+
+  /// Coefficients of the spectrum with chromaticity `xy` and luminance Y = 1 (under the table's white): the four
+  /// entries around (θ, ρ) interpolated bilinearly (each Y-normalised, as UpsamplingTable::interpolate), then
+  /// colour-corrected so that xyz_of() is xyz(xy, Y = 1) + δ up to float rounding, δ the blended clamping offset
+  /// (bounds->clamp_offset), so that the spectrum clamped at 0 lands near xyz(xy, 1); exactly there if no corner
+  /// rings (bounds->rings false), otherwise fit_clamped finishes the job. `xy` must lie inside the
+  /// usable gamut (relative radius ≤ 1: the caller maps it). Allocation-free; ~70 ns.
+  BasisCoefficients smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
+                                        SmoothShapeBounds* bounds = nullptr) const;
+
+  /// Moves `c` along `directions` (smooth_coefficients's D, scaled like c) until clamp(Φc, 0, upper) has colour
+  /// `target` (relative 1e-6): quasi-Newton steps, each one 95-knot pass, normally 2-3 passes.
+  /// Returns the residual left, |ΔX| + |ΔY| + |ΔZ| relative to |X| + |Y| + |Z| of the target: above ~1e-4 the
+  /// basis cannot hold this colour's spectrum at zero (saturated purples of the wide spaces, emission within
+  /// ~10 % of the locus; docs/upsampling.md), and the caller reports the colour as moved.
+  double fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions, const Xyz& target,
+                     float upper) const;
+
+  /// R(θ)·usable_fraction: distance from the white to the usable gamut's edge (RgbUpsampler's ρ = 1), linear
+  /// interpolation in a 4096-step table (≤ 1e-3 relative to the hull's exact radius, at the hull's vertices; the
+  /// error only moves which smooth shape is chosen and where the radial gamut move starts, by ≤ 0.1 % of the
+  /// radius, still inside the hull; the colour is corrected regardless).
+  double usable_radius(double angle_rad) const;
+
+  /// The spectrum clamp(Φc, lower, upper) at four wavelengths (4-lane, allocation-free): the clamped knot values
+  /// interpolated linearly in wavelength, so it equals KnotSamples of the clamped knots up to float rounding.
+  /// Constant beyond 360 and 830 nm. Pass ±infinity for no clamping.
+  Float4 evaluate_clamped(const BasisCoefficients& c, Float4 lambda_nm, Float4 lower, Float4 upper) const {
+    const Float4 x = clamp((lambda_nm - Float4(float(kUpsampleFirstKnotNm))) * Float4(float(1.0 / kUpsampleKnotSpacingNm)),
+                           Float4(0.0f), Float4(float(kUpsampleKnotCount - 1)));
+    const Float4 base = floor(x);
+    const Float4 t = x - base;
+    const __m128i index = _mm_cvttps_epi32(base.v);
+    const int lane_index[4] = {_mm_cvtsi128_si32(index), _mm_extract_epi32(index, 1), _mm_extract_epi32(index, 2),
+                               _mm_extract_epi32(index, 3)};
+    // Per lane: the dot products of c with the basis rows at the knot below and above, summed across the
+    // register by a 4×4 transpose, clamped, then linear interpolation in wavelength.
+    __m128 lo[4], hi[4];
+    for (int lane = 0; lane < 4; ++lane) {
+      const float* row = &rows_[size_t(lane_index[lane]) * kUpsamplingBasisSize];
+      __m128 a = _mm_setzero_ps(), b = _mm_setzero_ps();
+      for (int k = 0; k < kUpsamplingBasisSize; k += 4) {
+        const __m128 ck = _mm_load_ps(&c.c[k]);
+        a = _mm_add_ps(a, _mm_mul_ps(ck, _mm_loadu_ps(row + k)));
+        b = _mm_add_ps(b, _mm_mul_ps(ck, _mm_loadu_ps(row + kUpsamplingBasisSize + k)));
+      }
+      lo[lane] = a, hi[lane] = b;
+    }
+    _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
+    _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
+    const Float4 v0 = clamp(Float4(_mm_add_ps(_mm_add_ps(lo[0], lo[1]), _mm_add_ps(lo[2], lo[3]))), lower, upper);
+    const Float4 v1 = clamp(Float4(_mm_add_ps(_mm_add_ps(hi[0], hi[1]), _mm_add_ps(hi[2], hi[3]))), lower, upper);
+    return mul_add(t, v1 - v0, v0);
+  }
+
+  /// The knot values Φ·c (double, for setup and colorimetry).
+  KnotValues knots(const BasisCoefficients& c) const;
+  /// Φ·c at the 95 knots in float (~50-90 ns: the AVX2 or the SSE build of the loop, chosen by the CPU) into
+  /// `out` (96 floats, the last a pad); returns the largest value (the brightness limit's input).
+  float knots_float(const BasisCoefficients& c, float* out) const;
+  /// XYZ (Y(white) = 1) of the unclamped spectrum: M·c.
+  Xyz xyz_of(const BasisCoefficients& c) const;
+  /// Basis function k at knot i.
+  double basis(int k, int i) const { return rows_[size_t(i) * kUpsamplingBasisSize + k]; }
+
+ private:
+  int angle_count_ = 0, radius_count_ = 0;
+  std::vector<double> radius_rows_;       // ρ of each table row
+  std::vector<float> rows_;               // (95 + 1 pad) × K, knot-major, 16-byte aligned rows
+  // Per table entry: the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z).
+  std::vector<std::array<BasisCoefficients, 4>> entry_;
+  // Per table entry, interpolated with the same weights: M·c (3), M·D (9, row-major), the peak of the knots of
+  // Φc (Y = 1), the clamping offset δ (3).
+  struct EntrySummary {
+    alignas(16) std::array<float, 16> v{};
+  };
+  std::vector<EntrySummary> summary_;
+  std::array<double, 3> largest_row_{};  // max_i |a_m,i|: bounds the correction's relative change of a knot
+  std::array<std::array<double, kUpsamplingBasisSize>, 3> xyz_rows_{};  // M = A Φ
+  std::vector<float> colorimetry_rows_;  // A in float, 3 × 96 (pad 0): XYZ of clamped knots
+  std::vector<float> columns_;            // K × 96, basis-major: four knots of one basis function per load
+  std::vector<float> usable_radius_;      // R(θ)·usable_fraction at 4096 + 1 angles over [−π, π]
+};
+
+}  // namespace rimu
