@@ -9,6 +9,7 @@
 #include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
+#include "render/pbrt/pbrt_to_scene.h"
 #include "spectral/error.h"
 #include "render/interrupt_flag.h"
 #include "render/json_cursor.h"
@@ -80,12 +81,19 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
   return b;
 }
 
+nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log) {
+  PbrtImport imported = import_pbrt(path, library, {strict, {}});
+  log << describe_ignored(imported.ignored);
+  return std::move(imported.document);
+}
+
 RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
   std::unique_ptr<Scene> scene;
-  if (job.wavelengths || job.wavelength_density) {
-    nlohmann::json document = parse_json_file(scene_path);
+  const bool pbrt = is_pbrt_scene_path(scene_path);  // pbrt-v4 files are translated to a JSON document first
+  if (pbrt || job.wavelengths || job.wavelength_density) {
+    nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log) : parse_json_file(scene_path);
     if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
     if (job.wavelength_density)
       document["integrator"]["wavelength_density"] =
