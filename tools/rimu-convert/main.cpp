@@ -8,13 +8,15 @@
 
 #include "render/output_file.h"
 #include "render/pbrt/pbrt_to_scene.h"
+#include "render/scene.h"
 #include "spectral/error.h"
 #include "spectral/spectral_library.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "rimu-convert: translates a pbrt-v4 scene (.pbrt, with its Includes) into Rimu's JSON scene format\n"
-      "(docs/pbrt-import.md). Mesh and texture paths in the JSON are relative to the output's folder.\n"
+      "(docs/pbrt-import.md). Mesh and texture paths in the JSON are relative to the output's folder; the JSON is\n"
+      "checked by Rimu's scene loader (meshes read) before it is written.\n"
       "What Rimu does not support is listed on stderr (or, with --strict, is an error).\n"
       "Example: rimu-convert scene.pbrt -o scene.json"};
   std::string input, output;
@@ -35,6 +37,9 @@ int main(int argc, char** argv) {
     const std::filesystem::path output_directory = std::filesystem::absolute(output).parent_path();
     const rimu::PbrtImport imported = rimu::import_pbrt(input, library, {strict, output_directory});
     std::cerr << rimu::describe_ignored(imported.ignored);
+    // Rimu's own loader checks the document (and reads its meshes) before anything is written: a JSON that
+    // rimu-convert writes always loads.
+    rimu::load_scene(imported.document, input, output_directory, library);
     std::ofstream out(output);
     out << imported.document.dump(2) << "\n";
     if (!out.flush()) {
