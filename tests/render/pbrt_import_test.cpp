@@ -315,3 +315,11 @@ TEST_CASE("pbrt Cornell box renders the same image as the same scene written in 
   for (double deviation : block_deviations(*from_pbrt, *mirrored)) worst = std::max(worst, deviation);
   CHECK(worst > test::kSigmas);
 }
+
+TEST_CASE("pbrt interface material: its shapes are left out and listed") {
+  const PbrtImport imported = import_text(kUnmirroredCamera + "Material \"interface\"\nShape \"sphere\"\nMaterial \"diffuse\"\nShape \"sphere\"");
+  CHECK(imported.document["shapes"].size() == 1);
+  REQUIRE(imported.ignored.size() == 1);
+  CHECK(imported.ignored[0].what == "Shape \"sphere\" with the \"interface\" material (a medium boundary: left out)");
+  CHECK(imported.ignored[0].first.line == 6);
+}

@@ -132,6 +132,12 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
   const auto defaults = state_.attributes.find("material");
   const std::vector<PbrtParam>* material_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
   json m;
+  if (type == "interface") {
+    // pbrt's "no surface" (a medium's boundary). Without media its shapes have nothing to show: they are left out.
+    materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
+    interface_materials_.insert(name);
+    return name;
+  }
   if (type != "diffuse" && type != "coateddiffuse" && type != "conductor" && type != "dielectric") {
     ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};

@@ -136,6 +136,7 @@ class PbrtConverter {
   json film_ = json::object();
   json integrator_ = json::object();
   std::set<std::string> named_materials_;
+  std::set<std::string> interface_materials_;  ///< pbrt's "interface": shapes with it are left out
   int anonymous_materials_ = 0;
 
   std::vector<PbrtIgnored> ignored_;

@@ -208,6 +208,10 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
 
 void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                                double area_m2, int shape_count) {
+  if (interface_materials_.count(state_.material)) {
+    ignore(context + " with the \"interface\" material (a medium boundary: left out)", where);
+    return;
+  }
   shape["material"] = state_.material.empty() ? default_material() : state_.material;
   if (shape["type"] != "sphere") {
     const json steps = transform_steps(object_ ? state_.ctm : world_from_object(), where);

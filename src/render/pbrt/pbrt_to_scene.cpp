@@ -210,6 +210,10 @@ void PbrtConverter::statement(const PbrtStatement& s) {
     const std::string& target = s.strings[0];
     if (target != "shape" && target != "light" && target != "material" && target != "medium" && target != "texture")
       throw InputError(s.where, "Attribute: unknown target \"" + target + "\"; expected shape, light, material, medium or texture");
+    if (target == "medium" || target == "texture") {
+      ignore("Attribute \"" + target + "\" (media and procedural textures are not imported)", s.where);
+      return;
+    }
     for (const PbrtParam& p : s.params) state_.attributes[target].push_back(p);
   } else if (k == "ColorSpace") {
     const auto cs = rimu_colour_space(s.strings[0]);
