@@ -323,3 +323,7 @@ TEST_CASE("pbrt interface material: its shapes are left out and listed") {
   CHECK(imported.ignored[0].what == "Shape \"sphere\" with the \"interface\" material (a medium boundary: left out)");
   CHECK(imported.ignored[0].first.line == 6);
 }
+
+TEST_CASE("pbrt --strict: an unused parameter is an error at its line") {
+  CHECK_CONTAINS(error_of(kUnmirroredCamera + "Shape \"sphere\"\n  \"float alpha\" 0.5", true, true), "test.pbrt:6: not supported (--strict): parameter \"float alpha\" of Shape \"sphere\"");
+}

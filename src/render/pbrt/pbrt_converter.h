@@ -29,7 +29,8 @@ class PbrtParams {
  public:
   PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::string context,
              const std::vector<PbrtParam>* defaults = nullptr);
-  ~PbrtParams();
+  /// Reports the parameters nobody looked up; under --strict that throws, hence noexcept(false).
+  ~PbrtParams() noexcept(false);
   PbrtParams(const PbrtParams&) = delete;
   PbrtParams& operator=(const PbrtParams&) = delete;
 

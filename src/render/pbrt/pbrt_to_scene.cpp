@@ -61,7 +61,7 @@ PbrtParams::PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::st
       }
 }
 
-PbrtParams::~PbrtParams() {
+PbrtParams::~PbrtParams() noexcept(false) {
   if (std::uncaught_exceptions() > 0) return;
   for (const PbrtParam* p : all_)
     if (!used_.count(p->name))
