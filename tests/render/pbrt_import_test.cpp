@@ -327,3 +327,37 @@ TEST_CASE("pbrt interface material: its shapes are left out and listed") {
 TEST_CASE("pbrt --strict: an unused parameter is an error at its line") {
   CHECK_CONTAINS(error_of(kUnmirroredCamera + "Shape \"sphere\"\n  \"float alpha\" 0.5", true, true), "test.pbrt:6: not supported (--strict): parameter \"float alpha\" of Shape \"sphere\"");
 }
+
+TEST_CASE("pbrt ColorSpace, Attribute defaults, disks and imagemap textures") {
+  const PbrtImport imported = import_text(
+      kUnmirroredCamera +
+      "ColorSpace \"rec2020\"\n"
+      "Texture \"grid\" \"spectrum\" \"imagemap\" \"string filename\" \"../../../data/scenes/textured/colour_bars.png\"\n"
+      "  \"string encoding\" \"linear\"\n"
+      "Material \"diffuse\" \"rgb reflectance\" [0.2 0.3 0.4]\n"
+      "Attribute \"shape\" \"float radius\" 2\n"
+      "Shape \"sphere\"\n"
+      "Material \"diffuse\" \"texture reflectance\" \"grid\"\n"
+      "Shape \"disk\" \"float radius\" 1 \"float innerradius\" 0.5 \"float height\" 0.25\n");
+  CHECK(imported.ignored.empty());
+  const json& d = imported.document;
+  CHECK(d["shapes"][0]["radius"] == 2.0);  // from the Attribute
+  const json& first = d["materials"][d["shapes"][0]["material"].get<std::string>()];
+  CHECK(first["reflectance"]["space"] == "rec2020");
+  const json& disk = d["shapes"][1];
+  CHECK(d["materials"][disk["material"].get<std::string>()]["reflectance"] == json({{"texture", "../../../data/scenes/textured/colour_bars.png"}, {"encoding", "linear"}}));
+  // An annulus of 96 segments: two triangles each, all at z = 0.25, facing +z, between radii 0.5 and 1.
+  REQUIRE(disk["indices"].size() == 96 * 6);
+  double area = 0.0;
+  for (size_t t = 0; t < disk["indices"].size(); t += 3) {
+    const auto p = [&](size_t k) { return disk["positions"][disk["indices"][t + k].get<size_t>()].get<std::array<double, 3>>(); };
+    const auto a = p(0), b = p(1), c = p(2);
+    const double z = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    CHECK(z > 0);
+    CHECK(a[2] == 0.25);
+    area += 0.5 * z;
+  }
+  // The inscribed 96-gon annulus: (n/2) sin(2π/n) (R² − r²), 0.07 % below π (R² − r²).
+  CHECK(area == doctest::Approx(48 * std::sin(2 * M_PI / 96) * (1 - 0.25)).epsilon(1e-9));
+  CHECK_NOTHROW(load_scene(d, "test.pbrt", test::test_data("pbrt"), test::library()));
+}
