@@ -316,6 +316,13 @@ TEST_CASE("pbrt Cornell box renders the same image as the same scene written in 
   CHECK(worst > test::kSigmas);
 }
 
+TEST_CASE("pbrt loopsubdiv: its control mesh stands in, listed as an approximation") {
+  const PbrtImport imported = import_text(kUnmirroredCamera + "Shape \"loopsubdiv\" \"integer levels\" 2 \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]");
+  CHECK(imported.document["shapes"][0]["indices"] == json({0, 1, 2}));
+  REQUIRE(imported.ignored.size() == 1);
+  CHECK(imported.ignored[0].what == "Shape \"loopsubdiv\" (approximated by its control mesh, not subdivided)");
+}
+
 TEST_CASE("pbrt interface material: its shapes are left out and listed") {
   const PbrtImport imported = import_text(kUnmirroredCamera + "Material \"interface\"\nShape \"sphere\"\nMaterial \"diffuse\"\nShape \"sphere\"");
   CHECK(imported.document["shapes"].size() == 1);

@@ -48,12 +48,17 @@ void PbrtConverter::shape(const PbrtStatement& s) {
   const std::string context = "Shape \"" + type + "\"";
   const auto defaults = state_.attributes.find("shape");
   const std::vector<PbrtParam>* shape_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
-  if (type == "trianglemesh" || type == "bilinearmesh") {
+  if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
     PbrtParams p(*this, s, context, shape_defaults);
+    if (type == "loopsubdiv") {
+      // Approximated: the control mesh, unsubdivided (coarser and more angular than pbrt's limit surface).
+      ignore("Shape \"loopsubdiv\" (approximated by its control mesh, not subdivided)", s.where);
+      p.integer("levels", 3);
+    }
     std::vector<Vec3d> positions = triples(p.numbers("P", {PbrtParamType::point3}));
     if (positions.empty()) throw InputError(s.where, context + ": needs \"point3 P\"");
     const std::vector<double> raw_indices = p.numbers("indices", {PbrtParamType::integer});
-    const size_t corners = type == "trianglemesh" ? 3 : 4;
+    const size_t corners = type == "bilinearmesh" ? 4 : 3;
     std::vector<uint32_t> indices;
     if (raw_indices.empty()) {
       if (positions.size() != corners)
