@@ -126,9 +126,11 @@ void PbrtConverter::texture(const PbrtStatement& s) {
 
 std::string PbrtConverter::material(const PbrtStatement& s, const std::string& type, const std::string& context) {
   const bool named = s.keyword == "MakeNamedMaterial";
-  const std::string name = named ? s.strings[0]
-                                 : "pbrt " + type + " material at " + std::filesystem::path(s.where.file).filename().string() + ":" +
-                                       std::to_string(s.where.line) + (anonymous_materials_++ ? "" : "");
+  std::string name = named ? s.strings[0]
+                           : "pbrt " + type + " material at " + std::filesystem::path(s.where.file).filename().string() + ":" +
+                                 std::to_string(s.where.line);
+  // Files of one name in two folders (or one file included twice) would repeat a name: number the repeats.
+  if (!named && materials_.contains(name)) name += " #" + std::to_string(++anonymous_materials_);
   const auto defaults = state_.attributes.find("material");
   const std::vector<PbrtParam>* material_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
   json m;
