@@ -12,6 +12,7 @@
 #include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
+#include "render/pbrt/pbrt_to_scene.h"
 #include "spectral/error.h"
 #include "render/interrupt_flag.h"
 #include "render/json_cursor.h"
@@ -103,6 +104,12 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
   return b;
 }
 
+nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log) {
+  PbrtImport imported = import_pbrt(path, library, {strict, {}});
+  log << describe_ignored(imported.ignored);
+  return std::move(imported.document);
+}
+
 RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   // Everything that can be checked without the scene is checked first: a typo costs nothing.
   check_outputs(job);
@@ -112,7 +119,9 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
-  nlohmann::json document = parse_json_file(scene_path);
+  // pbrt-v4 files are translated into a JSON document first; both then go through the same loader.
+  const bool pbrt = is_pbrt_scene_path(scene_path);
+  nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log) : parse_json_file(scene_path);
   if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
   if (job.wavelength_density)
     document["integrator"]["wavelength_density"] =

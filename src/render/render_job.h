@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
 #include "render/film.h"
 #include "render/renderer.h"
+#include "spectral/spectral_library.h"
 #include "transport/wavelength_modes.h"
 
 namespace rimu {
@@ -36,6 +38,7 @@ struct RenderJob {
   std::optional<double> iso, shutter_s, f_number, compensation_ev;
   std::optional<std::string> white_balance;  ///< none | a temperature (2700, 2700K) | an illuminant name
   std::string view = "Standard";
+  bool strict = false;  ///< a pbrt-v4 scene: anything Rimu would ignore is an error (docs/pbrt-import.md)
   bool quiet = false;  ///< no progress bar (it is also off when stderr is not a terminal)
 };
 
@@ -48,6 +51,9 @@ struct RenderJobResult {
 /// failures of the machine or a library. Ctrl-C stops the render; the image reached so far is still written.
 /// A summary (time, samples/s, discarded samples) goes to `log`.
 RenderJobResult run_render_job(const RenderJob& job, std::ostream& log);
+
+/// Translates a pbrt-v4 file (render/pbrt/pbrt_to_scene.h) and writes what was ignored to `log`.
+nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log);
 
 /// Parses "WxH", "x0,y0,x1,y1": InputError naming `option` on malformed text.
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& option);

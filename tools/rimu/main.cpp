@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
       "Example: rimu -o box.exr --png box.png --spp 64"};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density;
-  app.add_option("scene", scene, "scene file (.json); omit for the embedded Cornell box");
+  app.add_option("scene", scene, "scene file (.json, or a pbrt-v4 .pbrt: see docs/pbrt-import.md); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "scene-referred OpenEXR output, a name ending in .exr (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
                                "by the extension (.png, .jpg, .tif); a photometric scene without a camera exposure "
@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", job.exposure_ev, "exposure of the display image in stops (EV), -60 to 60");
   app.add_option("--view", job.view, "OpenColorIO view of the PNG: Standard, \"ACES 1.0 SDR\" or Raw");
   app.add_flag("-q,--quiet", job.quiet, "no progress bar");
+  app.add_flag("--strict", job.strict, "pbrt-v4 scenes: anything Rimu does not support is an error, not a report");
   std::string shutter;
   app.add_option("--iso", job.iso, "physical camera: ISO speed (turns the physical camera on; see docs/light-units.md)");
   app.add_option("--shutter", shutter, "physical camera: shutter time in seconds, e.g. 0.01 or 1/100");

@@ -1,0 +1,327 @@
+// pbrt-v4 materials, textures and lights → Rimu's. The light units follow pbrt-v4: every light's spectrum is first
+// normalised to a luminance of 1 (SpectrumToPhotometric), so `scale` (and `power`, `illuminance`) set the pixel value
+// a pbrt film records, with a pixel Y of 1 standing for 1 nit. Rimu's XYZ film records Y = 1 at nits_per_unit_y_
+// (≈ 72 983 nt), so pbrt's amount A becomes A · nits_per_unit_y_ in Rimu's photometric keys: the same image.
+#include <algorithm>
+#include <cmath>
+
+#include "render/pbrt/pbrt_converter.h"
+#include "spectral/rgb_colour_space.h"
+
+namespace rimu {
+
+namespace {
+
+// pbrt-v4's roughness → Rimu's perceptual roughness r (GGX α = r²). pbrt's α is √roughness when remaproughness is
+// true (TrowbridgeReitzDistribution::RoughnessToAlpha), the roughness itself otherwise.
+double rimu_roughness(double pbrt_roughness, bool remap) {
+  const double alpha = remap ? std::sqrt(std::max(0.0, pbrt_roughness)) : std::max(0.0, pbrt_roughness);
+  return std::min(1.0, std::sqrt(alpha));
+}
+
+std::optional<std::string> metal_of(const std::string& named, const std::string& suffix) {
+  static const std::pair<const char*, const char*> metals[] = {{"Au", "gold"}, {"Ag", "silver"}, {"Cu", "copper"}, {"Al", "aluminium"}};
+  for (const auto& [symbol, name] : metals)
+    if (named == std::string("metal-") + symbol + suffix) return std::string(name);
+  return std::nullopt;
+}
+
+std::optional<std::string> illuminant_of(const std::string& named) {
+  if (named.rfind("stdillum-", 0) != 0) return std::nullopt;
+  const std::string tail = named.substr(9);
+  static const char* known[] = {"A", "D50", "D65", "F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8", "F9", "F10", "F11", "F12"};
+  for (const char* k : known)
+    if (tail == k) return tail;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string PbrtConverter::default_material() {
+  const std::string name = "pbrt default diffuse";
+  if (!materials_.contains(name)) materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
+  return name;
+}
+
+double PbrtConverter::rgb_luminance(const PbrtParam& rgb) const {
+  const RgbColourSpace& space = RgbColourSpace::named(state_.colour_space);
+  return space.to_xyz({rgb.numbers[0], rgb.numbers[1], rgb.numbers[2]}).y;
+}
+
+std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool illuminant) {
+  const std::string what = "spectrum of \"" + param.name + "\"";
+  switch (param.type) {
+    case PbrtParamType::rgb: return json{{"rgb", param.numbers}, {"space", state_.colour_space}};
+    case PbrtParamType::blackbody: return json{{"blackbody", param.numbers[0]}};
+    case PbrtParamType::real: return json(param.numbers.at(0));
+    case PbrtParamType::spectrum:
+      if (!param.strings.empty()) {
+        if (illuminant)
+          if (const auto name = illuminant_of(param.strings[0])) return json{{"illuminant", *name}};
+        ignore("spectrum \"" + param.strings[0] + "\" of \"" + param.name + "\" (named spectra other than stdillum-*, and spectrum files, are not imported)", param.where);
+        return std::nullopt;
+      } else {
+        bool constant = true;
+        for (size_t i = 3; i < param.numbers.size(); i += 2) constant = constant && param.numbers[i] == param.numbers[1];
+        if (constant) return json(param.numbers[1]);
+        ignore("inline " + what + " (wavelength-value pairs that vary)", param.where);
+        return std::nullopt;
+      }
+    default: return std::nullopt;
+  }
+}
+
+std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string& name, double fallback) {
+  const PbrtParam* param = p.get(name, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real});
+  if (!param) return json(fallback);
+  if (param->type != PbrtParamType::texture) {
+    if (auto v = spectrum_value(*param, false)) return v;
+    return json(fallback);
+  }
+  const auto found = textures_.find(param->strings.at(0));
+  if (found == textures_.end()) throw InputError(param->where, p.context() + ": no texture named \"" + param->strings[0] + "\"");
+  const PbrtTexture& texture = found->second;
+  const PbrtStatement& ts = texture.statement;
+  if (texture.kind != "spectrum") throw InputError(param->where, p.context() + ": \"" + name + "\" needs a spectrum texture, \"" + param->strings[0] + "\" is a float texture");
+  if (texture.texture_class == "constant") {
+    PbrtParams tp(*this, ts, "Texture \"" + ts.strings[0] + "\"");
+    return reflectance(tp, "value", 1.0);
+  }
+  if (texture.texture_class == "imagemap") {
+    PbrtParams tp(*this, ts, "Texture \"" + ts.strings[0] + "\"");
+    const std::string filename = tp.string("filename", "");
+    if (filename.empty()) throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": needs \"string filename\"");
+    const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
+    if (!std::filesystem::is_regular_file(path)) throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": cannot find the image '" + path.string() + "'");
+    json value = {{"texture", path_for_document(path)}};
+    const std::string encoding = tp.string("encoding", "sRGB");
+    if (encoding == "linear") {
+      value["encoding"] = "linear";
+    } else if (encoding != "sRGB") {
+      ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", ts.where);
+    }
+    const double scale = tp.real("scale", 1.0);
+    if (scale != 1.0) {
+      if (scale > 1.0 || scale < 0.0) ignore("imagemap \"scale\" outside 0-1 (clamped)", ts.where);
+      value["scale"] = std::clamp(scale, 0.0, 1.0);
+    }
+    if (tp.boolean("invert", false)) ignore("imagemap \"invert\"", ts.where);
+    if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
+        tp.real("vdelta", 0) != 0)
+      ignore("texture mapping other than plain uv", ts.where);
+    tp.string("filter", "bilinear");  // Rimu filters bilinearly
+    tp.string("wrap", "repeat");
+    return value;
+  }
+  ignore("Texture class \"" + texture.texture_class + "\" (the material's default is used)", ts.where);
+  return json(fallback);
+}
+
+void PbrtConverter::texture(const PbrtStatement& s) {
+  const std::string& kind = s.strings[1];
+  if (kind != "spectrum" && kind != "float")
+    throw InputError(s.where, "Texture \"" + s.strings[0] + "\": the type must be \"spectrum\" or \"float\", not \"" + kind + "\"");
+  textures_[s.strings[0]] = {kind, s.strings[2], s};
+}
+
+std::string PbrtConverter::material(const PbrtStatement& s, const std::string& type, const std::string& context) {
+  const bool named = s.keyword == "MakeNamedMaterial";
+  std::string name = named ? s.strings[0]
+                           : "pbrt " + type + " material at " + std::filesystem::path(s.where.file).filename().string() + ":" +
+                                 std::to_string(s.where.line);
+  // Files of one name in two folders (or one file included twice) would repeat a name: number the repeats.
+  if (!named && materials_.contains(name)) name += " #" + std::to_string(++anonymous_materials_);
+  const auto defaults = state_.attributes.find("material");
+  const std::vector<PbrtParam>* material_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
+  json m;
+  if (type == "interface") {
+    // pbrt's "no surface" (a medium's boundary). Without media its shapes have nothing to show: they are left out.
+    materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
+    interface_materials_.insert(name);
+    return name;
+  }
+  if (type != "diffuse" && type != "coateddiffuse" && type != "conductor" && type != "dielectric") {
+    ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
+    materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
+    return name;
+  }
+  PbrtParams p(*this, s, context + " (" + type + ")", material_defaults);
+  if (named) p.string("type", "");
+  const auto scalar = [&](const std::string& key, double fallback) {
+    const PbrtParam* q = p.get(key, {PbrtParamType::real, PbrtParamType::texture});
+    if (!q) return fallback;
+    if (q->type == PbrtParamType::real) return q->numbers.at(0);
+    ignore("texture for \"" + key + "\" of " + p.context() + " (" + std::to_string(fallback) + " is used)", q->where);
+    return fallback;
+  };
+  const bool remap = p.boolean("remaproughness", true);
+  if (type == "diffuse") {
+    m = {{"type", "diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
+  } else if (type == "coateddiffuse") {
+    m = {{"type", "coated_diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
+    const double roughness = scalar("roughness", 0.0);
+    if (roughness != 0.0) ignore("rough coat of coateddiffuse (Rimu's coat is smooth)", s.where);
+    if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum})) {
+      if (const auto v = spectrum_value(*eta, false)) m["coat_ior"] = *v;
+    }
+    if (p.real("thickness", 0.01) != 0.01) ignore("coateddiffuse \"thickness\" (Rimu's coat is clear and thin)", s.where);
+    if (const PbrtParam* albedo = p.get("albedo", {PbrtParamType::real, PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture}))
+      if (!(albedo->type == PbrtParamType::real && albedo->numbers[0] == 0.0)) ignore("coateddiffuse \"albedo\" (a clear coat is used)", s.where);
+  } else if (type == "conductor") {
+    m = {{"type", "conductor"}};
+    const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
+    const PbrtParam* k = p.get("k", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
+    if (const PbrtParam* r = p.get("reflectance", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture})) {
+      ignore("conductor \"reflectance\" (copper is used)", r->where);
+      m["metal"] = "copper";
+    } else if (!eta && !k) {
+      m["metal"] = "copper";  // pbrt's default: metal-Cu-eta / metal-Cu-k
+    } else if (eta && k && eta->type == PbrtParamType::spectrum && k->type == PbrtParamType::spectrum && !eta->strings.empty() &&
+               !k->strings.empty() && metal_of(eta->strings[0], "-eta") && metal_of(eta->strings[0], "-eta") == metal_of(k->strings[0], "-k")) {
+      m["metal"] = *metal_of(eta->strings[0], "-eta");
+    } else if (eta && k && eta->type == PbrtParamType::real && k->type == PbrtParamType::real) {
+      m["n"] = eta->numbers[0];
+      m["k"] = k->numbers[0];
+    } else {
+      ignore("conductor eta/k other than a metal-{Au,Ag,Cu,Al}-eta/-k pair or two floats (copper is used)", s.where);
+      m["metal"] = "copper";
+    }
+    const double r = scalar("roughness", 0.0);
+    const double u = scalar("uroughness", r), v = scalar("vroughness", r);
+    if (u == v) {
+      if (u > 0) m["roughness"] = rimu_roughness(u, remap);
+    } else {
+      m["roughness_u"] = rimu_roughness(u, remap);
+      m["roughness_v"] = rimu_roughness(v, remap);
+    }
+  } else {  // dielectric
+    m = {{"type", "dielectric"}};
+    const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum});
+    if (!eta) {
+      m["ior"] = 1.5;
+    } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && eta->strings[0] == "glass-BK7") {
+      m["glass"] = "bk7";
+    } else if (const auto v = spectrum_value(*eta, false)) {
+      m["ior"] = *v;
+    } else {
+      m["ior"] = 1.5;  // spectrum_value reported it
+    }
+    const double r = scalar("roughness", 0.0);
+    const double u = scalar("uroughness", r), v = scalar("vroughness", r);
+    if (u != v) ignore("anisotropic dielectric roughness (the mean is used)", s.where);
+    if (u + v > 0) m["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+  }
+  materials_[name] = m;
+  return name;
+}
+
+json PbrtConverter::light_amount(PbrtParams& p, const char* spectrum_key, const char* radiometric_key,
+                                 const char* photometric_key, std::optional<double> photometric_amount) {
+  const PbrtParam* sp = p.get(spectrum_key, {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody});
+  const double scale = p.real("scale", 1.0);
+  json value;
+  double rgb_y = 1.0;  // pbrt normalises only the illuminant of an RGB light: the RGB's own luminance stays
+  bool is_rgb = true;
+  if (!sp) {
+    value = {{"rgb", {1.0, 1.0, 1.0}}, {"space", state_.colour_space}};  // pbrt's default: the colour space's white
+  } else if (sp->type == PbrtParamType::rgb) {
+    value = *spectrum_value(*sp, true);
+    rgb_y = rgb_luminance(*sp);
+  } else if (const auto v = spectrum_value(*sp, true)) {
+    value = *v;
+    is_rgb = false;
+  } else {
+    value = {{"rgb", {1.0, 1.0, 1.0}}, {"space", state_.colour_space}};
+  }
+  if (is_rgb && !photometric_amount) {
+    value["scale"] = std::max(0.0, scale);
+    return {{radiometric_key, value}};
+  }
+  const double amount = nits_per_unit_y_ * scale * photometric_amount.value_or(1.0) * rgb_y;
+  if (!(amount > 0)) return {{radiometric_key, 0.0}};
+  return {{"spectrum", value}, {photometric_key, amount}};
+}
+
+json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m2, int shape_count, bool& two_sided) {
+  const auto defaults = state_.attributes.find("light");
+  PbrtParams p(*this, area_light, "AreaLightSource \"diffuse\"", defaults == state_.attributes.end() ? nullptr : &defaults->second);
+  two_sided = p.boolean("twosided", false);
+  if (!p.string("filename", "").empty()) ignore("AreaLightSource \"filename\" (image emission)", area_light.where);
+  // pbrt gives "power" to every shape it makes: a mesh's triangles each emit it, at the radiance power/(π A_triangle).
+  // With triangles of equal area that is a uniform radiance of shape_count · power over the whole mesh.
+  const double power = p.real("power", -1.0);
+  std::optional<double> lumens;
+  if (power > 0 && area_m2 > 0) lumens = power * shape_count;
+  const json fields = light_amount(p, "L", "emission", lumens ? "luminous_power_lm" : "luminance_nt", lumens);
+  return fields.contains("emission") ? fields["emission"] : fields;
+}
+
+void PbrtConverter::light_source(const PbrtStatement& s) {
+  const std::string& type = s.strings[0];
+  const std::string context = "LightSource \"" + type + "\"";
+  if (type != "point" && type != "spot" && type != "distant" && type != "infinite") {
+    ignore(context, s.where);
+    return;
+  }
+  if (object_) {
+    ignore("LightSource inside ObjectBegin", s.where);
+    return;
+  }
+  const auto defaults = state_.attributes.find("light");
+  PbrtParams p(*this, s, context, defaults == state_.attributes.end() ? nullptr : &defaults->second);
+  const PbrtMatrix world = world_from_object();
+  if (!world.is_finite() || !world.is_affine()) throw InputError(s.where, context + ": the current transform is not finite and affine");
+  const auto point = [&](const char* name, Vec3d fallback) {
+    const std::vector<double> v = p.numbers(name, {PbrtParamType::point3});
+    if (!v.empty() && v.size() != 3) throw InputError(s.where, context + ": \"" + name + "\" takes one point");
+    return v.empty() ? fallback : Vec3d{v[0], v[1], v[2]};
+  };
+  json light = {{"type", type}};
+  if (type == "point") {
+    light["position"] = world.point(point("from", {0, 0, 0}));
+    const double power = p.real("power", -1.0);
+    json amount = light_amount(p, "I", "intensity", power > 0 ? "luminous_power_lm" : "luminous_intensity_cd",
+                               power > 0 ? std::optional<double>(power) : std::nullopt);
+    light.update(amount);
+  } else if (type == "spot") {
+    const Vec3d from = point("from", {0, 0, 0}), to = point("to", {0, 0, 1});
+    light["position"] = world.point(from);
+    const Vec3d direction = world.vector({to[0] - from[0], to[1] - from[1], to[2] - from[2]});
+    if (direction == Vec3d{0, 0, 0}) throw InputError(s.where, context + ": \"from\" and \"to\" coincide");
+    light["direction"] = direction;
+    const double cone = p.real("coneangle", 30.0), delta = p.real("conedelta", 5.0);
+    // pbrt's angles are half-angles; Rimu's are full opening angles. Both fall off by a smoothstep in cos θ.
+    const double full = std::clamp(2.0 * cone, 0.01, 179.9);
+    if (full != 2.0 * cone) ignore("spot \"coneangle\" outside 0.005-89.95 degrees (clamped)", s.where);
+    light["cone_angle_deg"] = full;
+    light["falloff_start_deg"] = std::clamp(2.0 * (cone - delta), 0.0, full);
+    const double power = p.real("power", -1.0);
+    light.update(light_amount(p, "I", "intensity", power > 0 ? "luminous_power_lm" : "luminous_intensity_cd",
+                              power > 0 ? std::optional<double>(power) : std::nullopt));
+  } else if (type == "distant") {
+    const Vec3d from = point("from", {0, 0, 0}), to = point("to", {0, 0, 1});
+    // pbrt's light travels from "from" to "to"; Rimu's direction points from the scene towards the light.
+    const Vec3d towards_light = world.vector({from[0] - to[0], from[1] - to[1], from[2] - to[2]});
+    if (towards_light == Vec3d{0, 0, 0}) throw InputError(s.where, context + ": \"from\" and \"to\" coincide");
+    light["direction"] = towards_light;
+    const double illuminance = p.real("illuminance", -1.0);
+    light.update(light_amount(p, "L", "irradiance", "illuminance_lx",
+                              illuminance > 0 ? std::optional<double>(illuminance) : std::nullopt));
+  } else {  // infinite
+    light["type"] = "environment";
+    if (!p.string("filename", "").empty()) {
+      ignore("LightSource \"infinite\" with \"filename\" (equal-area octahedral maps are not read; the light is left out)", s.where);
+      p.numbers("portal", {PbrtParamType::point3});
+      p.real("scale", 1.0);
+      p.real("illuminance", -1.0);
+      return;
+    }
+    // "illuminance": what a surface facing up receives from the uniform sphere, π L.
+    const double illuminance = p.real("illuminance", -1.0);
+    light.update(light_amount(p, "L", "radiance", "luminance_nt",
+                              illuminance > 0 ? std::optional<double>(illuminance / M_PI) : std::nullopt));
+  }
+  lights_.push_back(std::move(light));
+}
+
+}  // namespace rimu

@@ -1,0 +1,147 @@
+// Internal to the pbrt importer: the graphics state machine that turns pbrt statements into Rimu JSON.
+// pbrt_to_scene.cpp holds the statements and the state, pbrt_shapes.cpp the shapes, pbrt_appearance.cpp the
+// materials, textures and lights.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "render/pbrt/pbrt_matrix.h"
+#include "render/pbrt/pbrt_parser.h"
+#include "render/pbrt/pbrt_to_scene.h"
+
+namespace rimu {
+
+using Vec3d = std::array<double, 3>;
+using nlohmann::json;
+
+class PbrtConverter;
+
+/// A statement's parameters (plus the Attribute defaults of its kind) with the ones looked up remembered, so that
+/// every parameter nobody asked for is reported once the statement is done.
+class PbrtParams {
+ public:
+  PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::string context,
+             const std::vector<PbrtParam>* defaults = nullptr);
+  /// Reports the parameters nobody looked up; under --strict that throws, hence noexcept(false).
+  ~PbrtParams() noexcept(false);
+  PbrtParams(const PbrtParams&) = delete;
+  PbrtParams& operator=(const PbrtParams&) = delete;
+
+  /// The parameter, or null; InputError if present with a type not in `types`.
+  const PbrtParam* get(const std::string& name, std::initializer_list<PbrtParamType> types);
+  double real(const std::string& name, double fallback);
+  int integer(const std::string& name, int fallback);
+  bool boolean(const std::string& name, bool fallback);
+  std::string string(const std::string& name, const std::string& fallback);
+  /// Numbers of a point3/vector3/normal/point2/integer/float array (empty if absent).
+  std::vector<double> numbers(const std::string& name, std::initializer_list<PbrtParamType> types);
+  const std::string& context() const { return context_; }
+  const SourceLocation& where() const { return statement_.where; }
+
+ private:
+  PbrtConverter& converter_;
+  const PbrtStatement& statement_;
+  std::string context_;
+  std::vector<const PbrtParam*> all_;
+  std::set<std::string> used_;
+};
+
+struct PbrtGraphicsState {
+  PbrtMatrix ctm = PbrtMatrix::identity();
+  std::string material;                    ///< Rimu material name; empty = pbrt's default diffuse
+  std::optional<PbrtStatement> area_light;  ///< the AreaLightSource in effect
+  bool reverse_orientation = false;
+  std::string colour_space = "srgb-linear";  ///< Rimu's name of the pbrt ColorSpace in effect
+  std::map<std::string, std::vector<PbrtParam>> attributes;  ///< Attribute "shape"/"light"/... defaults
+};
+
+struct PbrtTexture {
+  std::string kind;  ///< "spectrum" or "float"
+  std::string texture_class;
+  PbrtStatement statement;
+};
+
+class PbrtConverter {
+ public:
+  PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict);
+
+  void statement(const PbrtStatement& s);
+  /// The finished document; InputError if the scene has no camera.
+  json finish(const std::string& main_file);
+  std::vector<PbrtIgnored> ignored() const { return ignored_; }
+
+  /// Records something unsupported (or, strict, throws at `where`).
+  void ignore(const std::string& what, const SourceLocation& where);
+
+  // pbrt_appearance.cpp
+  std::string material(const PbrtStatement& s, const std::string& type, const std::string& context);
+  void light_source(const PbrtStatement& s);
+  /// The "emission" of an area light on a shape of world-space area `area_m2` (needed for "power").
+  /// `shape_count`: how many shapes pbrt makes of it (one per triangle of a mesh), each of which gets "power".
+  json area_emission(const PbrtStatement& area_light, double area_m2, int shape_count, bool& two_sided);
+  void texture(const PbrtStatement& s);
+
+  // pbrt_shapes.cpp
+  void shape(const PbrtStatement& s);
+
+ private:
+  friend class PbrtParams;
+  // pbrt_appearance.cpp
+  std::optional<json> reflectance(PbrtParams& p, const std::string& name, double fallback);
+  std::optional<json> spectrum_value(const PbrtParam& param, bool illuminant);
+  json light_amount(PbrtParams& p, const char* spectrum_key, const char* radiometric_key, const char* photometric_key,
+                    std::optional<double> photometric_amount);
+  double rgb_luminance(const PbrtParam& rgb) const;
+  std::string default_material();
+
+  // pbrt_shapes.cpp
+  void emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::vector<uint32_t> indices, std::vector<Vec3d> normals,
+                 std::vector<std::array<double, 2>> uvs, const std::string& context, int shape_count);
+  void emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
+                  double area_m2, int shape_count);
+  json transform_steps(const PbrtMatrix& m, const SourceLocation& where) const;
+  PbrtMatrix world_from_object() const { return mirror_ * state_.ctm; }
+  std::string path_for_document(const std::filesystem::path& absolute) const;
+
+  SpectralLibrary& library_;
+  std::filesystem::path output_directory_;
+  bool strict_;
+  double nits_per_unit_y_;
+
+  PbrtGraphicsState state_;
+  std::vector<std::pair<char, PbrtGraphicsState>> stack_;  ///< 'a' AttributeBegin, 't' TransformBegin, 'o' ObjectBegin
+  std::map<std::string, PbrtMatrix> named_coordinate_systems_;
+  bool world_begun_ = false;
+  bool end_time_active_ = false;
+  std::optional<std::string> object_;  ///< inside ObjectBegin
+  std::map<std::string, PbrtTexture> textures_;
+
+  // Camera: world-from-camera at the Camera statement, and its parameters.
+  std::optional<PbrtMatrix> world_from_camera_;
+  PbrtMatrix mirror_ = PbrtMatrix::identity();  ///< makes pbrt's image-right Rimu's (see docs/pbrt-import.md)
+  json camera_;
+  double fov_deg_ = 90.0;
+  int width_ = 1280, height_ = 720;
+
+  json materials_ = json::object();
+  json prototypes_ = json::object();
+  json shapes_ = json::array();
+  json lights_ = json::array();
+  json film_ = json::object();
+  json integrator_ = json::object();
+  std::set<std::string> named_materials_;
+  std::set<std::string> interface_materials_;  ///< pbrt's "interface": shapes with it are left out
+  int anonymous_materials_ = 0;
+
+  std::vector<PbrtIgnored> ignored_;
+  std::map<std::string, size_t> ignored_index_;
+};
+
+}  // namespace rimu

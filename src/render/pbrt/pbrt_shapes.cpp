@@ -1,0 +1,243 @@
+// pbrt-v4 shapes → Rimu shapes: meshes inline or by file, spheres analytic where Rimu's sphere can stand for them,
+// tessellated otherwise; disks tessellated.
+#include <cmath>
+#include <numbers>
+
+#include "render/pbrt/pbrt_converter.h"
+#include "render/ply_loader.h"
+
+namespace rimu {
+
+namespace {
+
+constexpr int kLatitudeSegments = 48;    // sphere tessellation: ~0.1 % area error, smooth shading normals
+constexpr int kLongitudeSegments = 96;
+constexpr int kDiskSegments = 96;
+
+Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+std::vector<Vec3d> triples(const std::vector<double>& v) {
+  std::vector<Vec3d> out(v.size() / 3);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+  return out;
+}
+
+// True when the linear part is a rotation (or mirror) times one uniform scale, returned in `scale`.
+bool is_similarity(const PbrtMatrix& m, double& scale) {
+  Vec3d c[3];
+  for (int j = 0; j < 3; ++j) c[j] = {m.m[0][j], m.m[1][j], m.m[2][j]};
+  const double l0 = std::sqrt(dot(c[0], c[0]));
+  if (!(l0 > 0)) return false;
+  for (int j = 1; j < 3; ++j)
+    if (std::abs(std::sqrt(dot(c[j], c[j])) - l0) > 1e-6 * l0) return false;
+  if (std::abs(dot(c[0], c[1])) > 1e-6 * l0 * l0 || std::abs(dot(c[0], c[2])) > 1e-6 * l0 * l0 ||
+      std::abs(dot(c[1], c[2])) > 1e-6 * l0 * l0)
+    return false;
+  scale = l0;
+  return true;
+}
+
+}  // namespace
+
+void PbrtConverter::shape(const PbrtStatement& s) {
+  const std::string& type = s.strings[0];
+  const std::string context = "Shape \"" + type + "\"";
+  const auto defaults = state_.attributes.find("shape");
+  const std::vector<PbrtParam>* shape_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
+  if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
+    PbrtParams p(*this, s, context, shape_defaults);
+    if (type == "loopsubdiv") {
+      // Approximated: the control mesh, unsubdivided (coarser and more angular than pbrt's limit surface).
+      ignore("Shape \"loopsubdiv\" (approximated by its control mesh, not subdivided)", s.where);
+      p.integer("levels", 3);
+    }
+    std::vector<Vec3d> positions = triples(p.numbers("P", {PbrtParamType::point3}));
+    if (positions.empty()) throw InputError(s.where, context + ": needs \"point3 P\"");
+    const std::vector<double> raw_indices = p.numbers("indices", {PbrtParamType::integer});
+    const size_t corners = type == "bilinearmesh" ? 4 : 3;
+    std::vector<uint32_t> indices;
+    if (raw_indices.empty()) {
+      if (positions.size() != corners)
+        throw InputError(s.where, context + ": \"integer indices\" is required unless P holds exactly " + std::to_string(corners) + " points");
+      for (uint32_t i = 0; i < corners; ++i) indices.push_back(i);
+    } else {
+      if (raw_indices.size() % corners != 0)
+        throw InputError(s.where, context + ": \"indices\" must hold a multiple of " + std::to_string(corners) + " values, found " +
+                                      std::to_string(raw_indices.size()));
+      for (double v : raw_indices) {
+        if (v < 0 || v >= double(positions.size()))
+          throw InputError(s.where, context + ": index " + std::to_string(int64_t(v)) + " is out of range (P has " +
+                                        std::to_string(positions.size()) + " points)");
+        indices.push_back(uint32_t(v));
+      }
+    }
+    if (corners == 4) {
+      // A bilinear patch (p00, p10, p01, p11) becomes the triangles (p00, p10, p11) and (p00, p11, p01): exact for
+      // planar patches, which is what exporters write; the front is pbrt's dp/du × dp/dv side.
+      std::vector<uint32_t> triangles;
+      for (size_t q = 0; q < indices.size(); q += 4)
+        for (uint32_t k : {0u, 1u, 3u, 0u, 3u, 2u}) triangles.push_back(indices[q + k]);
+      indices = std::move(triangles);
+    }
+    std::vector<Vec3d> normals = triples(p.numbers("N", {PbrtParamType::normal}));
+    if (!normals.empty() && normals.size() != positions.size())
+      throw InputError(s.where, context + ": \"N\" has " + std::to_string(normals.size()) + " normals for " +
+                                    std::to_string(positions.size()) + " points");
+    const std::vector<double> uv_numbers = p.numbers("uv", {PbrtParamType::point2});
+    std::vector<std::array<double, 2>> uvs(uv_numbers.size() / 2);
+    for (size_t i = 0; i < uvs.size(); ++i) uvs[i] = {uv_numbers[2 * i], uv_numbers[2 * i + 1]};
+    if (!uvs.empty() && uvs.size() != positions.size())
+      throw InputError(s.where, context + ": \"uv\" has " + std::to_string(uvs.size()) + " pairs for " +
+                                    std::to_string(positions.size()) + " points");
+    const int shape_count = int(raw_indices.empty() ? 1 : raw_indices.size() / corners);
+    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), std::move(uvs), context, shape_count);
+  } else if (type == "plymesh") {
+    PbrtParams p(*this, s, context, shape_defaults);
+    const std::string filename = p.string("filename", "");
+    if (filename.empty()) throw InputError(s.where, context + ": needs \"string filename\"");
+    const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
+    if (path.extension() == ".gz") {
+      ignore("plymesh with a gzip-compressed file (.ply.gz)", s.where);
+      return;
+    }
+    if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the PLY file '" + path.string() + "'");
+    if (state_.area_light || state_.reverse_orientation) {
+      // An emitter's side (and a reversed surface) is decided here, triangle by triangle, so the mesh goes inline.
+      const TriangleMesh mesh = load_ply(path);
+      std::vector<Vec3d> positions, normals;
+      std::vector<std::array<double, 2>> uvs;
+      for (const Vec3& v : mesh.positions) positions.push_back({v.x, v.y, v.z});
+      for (const Vec3& n : mesh.normals) normals.push_back({n.x, n.y, n.z});
+      for (const Vec2& uv : mesh.uvs) uvs.push_back({uv.x, uv.y});
+      emit_mesh(p, std::move(positions), mesh.indices, std::move(normals), std::move(uvs), context, int(mesh.triangle_count()));
+      return;
+    }
+    emit_shape({{"type", "mesh"}, {"file", path_for_document(path)}}, s.where, context, false, 0.0, 1);
+  } else if (type == "sphere") {
+    PbrtParams p(*this, s, context, shape_defaults);
+    const double radius = p.real("radius", 1.0);
+    if (!(radius > 0)) throw InputError(s.where, context + ": \"radius\" must be > 0");
+    const double zmin = p.real("zmin", -radius), zmax = p.real("zmax", radius), phimax = p.real("phimax", 360.0);
+    if (zmin > -radius || zmax < radius || phimax < 360.0) ignore("partial sphere (zmin, zmax or phimax): rendered whole", s.where);
+    double scale = 1.0;
+    const PbrtMatrix world = world_from_object();
+    if (!object_ && !state_.area_light && !state_.reverse_orientation && world.is_finite() && world.is_affine() &&
+        is_similarity(world, scale)) {
+      emit_shape({{"type", "sphere"}, {"center", world.point({0, 0, 0})}, {"radius", radius * scale}}, s.where, context, false, 0.0, 1);
+      return;
+    }
+    // Rimu's sphere cannot be instanced, emit or be squashed: a fine mesh with the sphere's own normals stands in.
+    std::vector<Vec3d> positions, normals;
+    std::vector<uint32_t> indices;
+    const auto vertex = [&](double theta, double phi) {
+      const Vec3d n = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+      positions.push_back({radius * n[0], radius * n[1], radius * n[2]});
+      normals.push_back(n);
+    };
+    vertex(0.0, 0.0);  // north pole, index 0
+    for (int i = 1; i < kLatitudeSegments; ++i)
+      for (int j = 0; j < kLongitudeSegments; ++j)
+        vertex(std::numbers::pi * i / kLatitudeSegments, 2 * std::numbers::pi * j / kLongitudeSegments);
+    vertex(std::numbers::pi, 0.0);  // south pole
+    const auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * kLongitudeSegments + (j % kLongitudeSegments)); };
+    const uint32_t south = uint32_t(positions.size() - 1);
+    for (int j = 0; j < kLongitudeSegments; ++j) {
+      indices.insert(indices.end(), {0u, ring(1, j), ring(1, j + 1)});
+      for (int i = 1; i + 1 < kLatitudeSegments; ++i)
+        indices.insert(indices.end(), {ring(i, j), ring(i + 1, j), ring(i, j + 1), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j + 1)});
+      indices.insert(indices.end(), {ring(kLatitudeSegments - 1, j), south, ring(kLatitudeSegments - 1, j + 1)});
+    }
+    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), {}, context, 1);
+  } else if (type == "disk") {
+    PbrtParams p(*this, s, context, shape_defaults);
+    const double height = p.real("height", 0.0), radius = p.real("radius", 1.0), inner = p.real("innerradius", 0.0);
+    const double phimax_rad = std::clamp(p.real("phimax", 360.0), 0.0, 360.0) * std::numbers::pi / 180.0;
+    if (!(radius > 0) || inner < 0 || inner >= radius) throw InputError(s.where, context + ": needs 0 <= innerradius < radius");
+    // Counter-clockwise seen from +z, pbrt's disk normal.
+    std::vector<Vec3d> positions, normals;
+    std::vector<uint32_t> indices;
+    for (int j = 0; j <= kDiskSegments; ++j) {
+      const double phi = phimax_rad * j / kDiskSegments;
+      positions.push_back({radius * std::cos(phi), radius * std::sin(phi), height});
+      positions.push_back({inner * std::cos(phi), inner * std::sin(phi), height});
+    }
+    for (uint32_t j = 0; j < uint32_t(kDiskSegments); ++j) {
+      const uint32_t o0 = 2 * j, i0 = 2 * j + 1, o1 = 2 * j + 2, i1 = 2 * j + 3;
+      indices.insert(indices.end(), {i0, o0, o1});
+      if (inner > 0) indices.insert(indices.end(), {i0, o1, i1});
+    }
+    normals.assign(positions.size(), Vec3d{0, 0, 1});
+    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), {}, context, 1);
+  } else {
+    ignore(context, s.where);
+  }
+}
+
+void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::vector<uint32_t> indices,
+                              std::vector<Vec3d> normals, std::vector<std::array<double, 2>> uvs, const std::string& context,
+                              int shape_count) {
+  // pbrt's front: the side of the shading normals N where given (flipped by ReverseOrientation), else the
+  // counter-clockwise side, flipped by ReverseOrientation. Rimu's front is always the counter-clockwise side, so
+  // triangles are rewound to match; a mirroring transform is left to Rimu, which rewinds as pbrt flips.
+  if (state_.reverse_orientation)
+    for (Vec3d& n : normals) n = {-n[0], -n[1], -n[2]};
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    bool flip = state_.reverse_orientation;
+    if (!normals.empty()) {
+      const Vec3d g = cross(sub(positions[indices[t + 1]], positions[indices[t]]), sub(positions[indices[t + 2]], positions[indices[t]]));
+      const Vec3d& a = normals[indices[t]];
+      const Vec3d& b = normals[indices[t + 1]];
+      const Vec3d& c = normals[indices[t + 2]];
+      flip = dot(g, {a[0] + b[0] + c[0], a[1] + b[1] + c[1], a[2] + b[2] + c[2]}) < 0;
+    }
+    if (flip) std::swap(indices[t + 1], indices[t + 2]);
+  }
+  double area_m2 = 0.0;
+  if (state_.area_light && !object_) {
+    const PbrtMatrix world = world_from_object();
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+      const Vec3d a = world.point(positions[indices[t]]);
+      const Vec3d g = cross(sub(world.point(positions[indices[t + 1]]), a), sub(world.point(positions[indices[t + 2]]), a));
+      area_m2 += 0.5 * std::sqrt(dot(g, g));
+    }
+  }
+  json shape = {{"type", "triangles"}, {"positions", positions}, {"indices", indices}};
+  if (!normals.empty()) shape["normals"] = normals;
+  if (!uvs.empty()) shape["uvs"] = uvs;
+  emit_shape(std::move(shape), p.where(), context, true, area_m2, shape_count);
+}
+
+void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
+                               double area_m2, int shape_count) {
+  if (interface_materials_.count(state_.material)) {
+    ignore(context + " with the \"interface\" material (a medium boundary: left out)", where);
+    return;
+  }
+  shape["material"] = state_.material.empty() ? default_material() : state_.material;
+  if (shape["type"] != "sphere") {
+    const json steps = transform_steps(object_ ? state_.ctm : world_from_object(), where);
+    if (!steps.is_null()) shape["transform"] = steps;
+  }
+  if (state_.area_light) {
+    if (object_) {
+      ignore("AreaLightSource on a shape inside ObjectBegin (instances do not emit)", where);
+    } else if (!emissive_capable) {
+      ignore("AreaLightSource on " + context + " (not emissive in Rimu)", where);
+    } else {
+      bool two_sided = false;
+      shape["emission"] = area_emission(*state_.area_light, area_m2, shape_count, two_sided);
+      if (two_sided) shape["two_sided"] = true;
+    }
+  }
+  if (object_) {
+    prototypes_[*object_].push_back(std::move(shape));
+  } else {
+    shapes_.push_back(std::move(shape));
+  }
+}
+
+}  // namespace rimu

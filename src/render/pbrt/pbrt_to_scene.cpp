@@ -1,0 +1,453 @@
+#include "render/pbrt/pbrt_to_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "render/pbrt/pbrt_converter.h"
+#include "render/spectral_response.h"
+
+namespace rimu {
+
+namespace {
+
+const char* type_word(PbrtParamType t) {
+  switch (t) {
+    case PbrtParamType::integer: return "integer";
+    case PbrtParamType::real: return "float";
+    case PbrtParamType::point2: return "point2";
+    case PbrtParamType::vector2: return "vector2";
+    case PbrtParamType::point3: return "point3";
+    case PbrtParamType::vector3: return "vector3";
+    case PbrtParamType::normal: return "normal";
+    case PbrtParamType::boolean: return "bool";
+    case PbrtParamType::string: return "string";
+    case PbrtParamType::rgb: return "rgb";
+    case PbrtParamType::spectrum: return "spectrum";
+    case PbrtParamType::blackbody: return "blackbody";
+    case PbrtParamType::texture: return "texture";
+  }
+  return "?";
+}
+
+// pbrt's colour space names → Rimu's.
+std::optional<std::string> rimu_colour_space(const std::string& pbrt_name) {
+  if (pbrt_name == "srgb") return "srgb-linear";
+  if (pbrt_name == "rec2020") return "rec2020";
+  if (pbrt_name == "aces2065-1") return "aces2065-1";
+  if (pbrt_name == "dci-p3") return "display-p3";  // pbrt's DCI-P3 uses the D65 white: Display P3's primaries
+  return std::nullopt;
+}
+
+}  // namespace
+
+// ---- PbrtParams ---------------------------------------------------------------------------------------------
+
+PbrtParams::PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::string context,
+                       const std::vector<PbrtParam>* defaults)
+    : converter_(converter), statement_(s), context_(std::move(context)) {
+  for (const PbrtParam& p : s.params) {
+    for (const PbrtParam* q : all_)
+      if (q->name == p.name) throw InputError(p.where, context_ + ": parameter \"" + p.name + "\" given twice");
+    all_.push_back(&p);
+  }
+  // Attribute defaults apply where the statement does not give the parameter; unused ones are not reported
+  // (they are meant for every shape or light, and most use only some of them).
+  if (defaults)
+    for (const PbrtParam& d : *defaults)
+      if (std::none_of(all_.begin(), all_.end(), [&](const PbrtParam* q) { return q->name == d.name; })) {
+        all_.push_back(&d);
+        used_.insert(d.name);
+      }
+}
+
+PbrtParams::~PbrtParams() noexcept(false) {
+  if (std::uncaught_exceptions() > 0) return;
+  for (const PbrtParam* p : all_)
+    if (!used_.count(p->name))
+      converter_.ignore("parameter \"" + p->type_name + " " + p->name + "\" of " + context_, p->where);
+}
+
+const PbrtParam* PbrtParams::get(const std::string& name, std::initializer_list<PbrtParamType> types) {
+  for (const PbrtParam* p : all_) {
+    if (p->name != name) continue;
+    used_.insert(name);
+    if (std::find(types.begin(), types.end(), p->type) == types.end()) {
+      std::string expected;
+      for (PbrtParamType t : types) expected += (expected.empty() ? "" : " or ") + std::string(type_word(t));
+      throw InputError(p->where, context_ + ": parameter \"" + name + "\" must be of type " + expected + ", not " +
+                                     p->type_name);
+    }
+    return p;
+  }
+  return nullptr;
+}
+
+double PbrtParams::real(const std::string& name, double fallback) {
+  const PbrtParam* p = get(name, {PbrtParamType::real});
+  if (!p) return fallback;
+  if (p->numbers.size() != 1) throw InputError(p->where, context_ + ": \"" + name + "\" takes one number");
+  return p->numbers[0];
+}
+
+int PbrtParams::integer(const std::string& name, int fallback) {
+  const PbrtParam* p = get(name, {PbrtParamType::integer});
+  if (!p) return fallback;
+  if (p->numbers.size() != 1) throw InputError(p->where, context_ + ": \"" + name + "\" takes one integer");
+  return int(p->numbers[0]);
+}
+
+bool PbrtParams::boolean(const std::string& name, bool fallback) {
+  const PbrtParam* p = get(name, {PbrtParamType::boolean});
+  if (!p) return fallback;
+  if (p->bools.size() != 1) throw InputError(p->where, context_ + ": \"" + name + "\" takes one value");
+  return p->bools[0];
+}
+
+std::string PbrtParams::string(const std::string& name, const std::string& fallback) {
+  const PbrtParam* p = get(name, {PbrtParamType::string});
+  if (!p) return fallback;
+  if (p->strings.size() != 1) throw InputError(p->where, context_ + ": \"" + name + "\" takes one string");
+  return p->strings[0];
+}
+
+std::vector<double> PbrtParams::numbers(const std::string& name, std::initializer_list<PbrtParamType> types) {
+  const PbrtParam* p = get(name, types);
+  return p ? p->numbers : std::vector<double>{};
+}
+
+// ---- the converter ------------------------------------------------------------------------------------------
+
+PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict)
+    : library_(library),
+      output_directory_(std::move(output_directory)),
+      strict_(strict),
+      nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()) {}
+
+void PbrtConverter::ignore(const std::string& what, const SourceLocation& where) {
+  if (strict_) throw InputError(where, "not supported (--strict): " + what);
+  const auto [it, added] = ignored_index_.emplace(what, ignored_.size());
+  if (added) ignored_.push_back({what, 0, where});
+  ++ignored_[it->second].count;
+}
+
+std::string PbrtConverter::path_for_document(const std::filesystem::path& absolute) const {
+  std::error_code error;
+  const std::filesystem::path relative = std::filesystem::relative(absolute, output_directory_, error);
+  return error || relative.empty() ? absolute.string() : relative.generic_string();
+}
+
+json PbrtConverter::transform_steps(const PbrtMatrix& m, const SourceLocation& where) const {
+  if (!m.is_finite()) throw InputError(where, "the current transform is not finite (check for huge numbers)");
+  if (!m.is_affine()) throw InputError(where, "the current transform is projective; only affine transforms place shapes");
+  const double det = m.determinant3();
+  if (!(std::abs(det) > 1e-30)) throw InputError(where, "the current transform is singular (determinant 0): it collapses the shape");
+  if (m.is_identity()) return json();
+  json rows = json::array();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) rows.push_back(m.m[i][j]);
+  return json::array({{{"matrix", rows}}});
+}
+
+void PbrtConverter::statement(const PbrtStatement& s) {
+  const std::string& k = s.keyword;
+  const auto apply = [&](const PbrtMatrix& t) {
+    if (end_time_active_) return;  // motion blur's end transform: reported once at ActiveTransform
+    state_.ctm = state_.ctm * t;
+  };
+  const auto require_world = [&](bool inside) {
+    if (world_begun_ != inside)
+      throw InputError(s.where, k + (inside ? " is only allowed after WorldBegin" : " is only allowed before WorldBegin"));
+  };
+  if (k == "Identity") {
+    if (!end_time_active_) state_.ctm = PbrtMatrix::identity();
+  } else if (k == "Translate") {
+    apply(PbrtMatrix::translate(s.numbers[0], s.numbers[1], s.numbers[2]));
+  } else if (k == "Scale") {
+    apply(PbrtMatrix::scale(s.numbers[0], s.numbers[1], s.numbers[2]));
+  } else if (k == "Rotate") {
+    if (s.numbers[1] == 0 && s.numbers[2] == 0 && s.numbers[3] == 0) throw InputError(s.where, "Rotate: the axis is (0, 0, 0)");
+    apply(PbrtMatrix::rotate(s.numbers[0], s.numbers[1], s.numbers[2], s.numbers[3]));
+  } else if (k == "LookAt") {
+    const auto m = PbrtMatrix::look_at({s.numbers[0], s.numbers[1], s.numbers[2]}, {s.numbers[3], s.numbers[4], s.numbers[5]},
+                                       {s.numbers[6], s.numbers[7], s.numbers[8]});
+    if (!m) throw InputError(s.where, "LookAt: the eye equals the target, or the up vector is zero or parallel to the view direction");
+    apply(*m);
+  } else if (k == "Transform" || k == "ConcatTransform") {
+    const PbrtMatrix m = PbrtMatrix::from_pbrt_numbers(s.numbers.data());
+    if (k == "Transform") {
+      if (!end_time_active_) state_.ctm = m;
+    } else {
+      apply(m);
+    }
+  } else if (k == "CoordinateSystem") {
+    named_coordinate_systems_[s.strings[0]] = state_.ctm;
+  } else if (k == "CoordSysTransform") {
+    const auto it = named_coordinate_systems_.find(s.strings[0]);
+    if (it == named_coordinate_systems_.end()) throw InputError(s.where, "CoordSysTransform: no coordinate system named \"" + s.strings[0] + "\"");
+    state_.ctm = it->second;
+  } else if (k == "ActiveTransform") {
+    end_time_active_ = s.strings[0] == "EndTime";
+    if (s.strings[0] != "StartTime") ignore("ActiveTransform " + s.strings[0] + " (motion blur: the start transform is used)", s.where);
+  } else if (k == "TransformTimes") {
+    ignore("TransformTimes (motion blur)", s.where);
+  } else if (k == "ReverseOrientation") {
+    state_.reverse_orientation = !state_.reverse_orientation;
+  } else if (k == "AttributeBegin" || k == "TransformBegin") {
+    stack_.push_back({k == "AttributeBegin" ? 'a' : 't', state_});
+  } else if (k == "AttributeEnd" || k == "TransformEnd") {
+    const char kind = k == "AttributeEnd" ? 'a' : 't';
+    if (stack_.empty()) throw InputError(s.where, k + " without a matching " + (kind == 'a' ? "AttributeBegin" : "TransformBegin"));
+    if (stack_.back().first != kind)
+      throw InputError(s.where, k + " closes a " + (stack_.back().first == 'a' ? "AttributeBegin" : stack_.back().first == 't' ? "TransformBegin" : "ObjectBegin"));
+    if (kind == 'a') {
+      state_ = stack_.back().second;
+    } else {
+      state_.ctm = stack_.back().second.ctm;  // TransformEnd restores the transform only
+    }
+    stack_.pop_back();
+  } else if (k == "Attribute") {
+    const std::string& target = s.strings[0];
+    if (target != "shape" && target != "light" && target != "material" && target != "medium" && target != "texture")
+      throw InputError(s.where, "Attribute: unknown target \"" + target + "\"; expected shape, light, material, medium or texture");
+    if (target == "medium" || target == "texture") {
+      ignore("Attribute \"" + target + "\" (media and procedural textures are not imported)", s.where);
+      return;
+    }
+    for (const PbrtParam& p : s.params) state_.attributes[target].push_back(p);
+  } else if (k == "ColorSpace") {
+    const auto cs = rimu_colour_space(s.strings[0]);
+    if (!cs) throw InputError(s.where, "ColorSpace: unknown colour space \"" + s.strings[0] + "\"; expected srgb, rec2020, aces2065-1 or dci-p3");
+    state_.colour_space = *cs;
+  } else if (k == "Option") {
+    ignore("Option \"" + s.params[0].type_name + " " + s.params[0].name + "\"", s.where);
+  } else if (k == "Camera") {
+    require_world(false);
+    const auto world_from_camera = state_.ctm.inverse();
+    if (!world_from_camera) throw InputError(s.where, "Camera: the camera transform is singular");
+    world_from_camera_ = *world_from_camera;
+    named_coordinate_systems_["camera"] = *world_from_camera;
+    PbrtParams p(*this, s, "Camera \"" + s.strings[0] + "\"");
+    if (s.strings[0] != "perspective") ignore("Camera \"" + s.strings[0] + "\" (rendered as perspective)", s.where);
+    fov_deg_ = p.real("fov", 90.0);
+    if (!(fov_deg_ > 0 && fov_deg_ < 180)) throw InputError(s.where, "Camera: \"fov\" must be in (0, 180) degrees");
+    const double lens_radius = p.real("lensradius", 0.0);
+    const double focal_distance = p.real("focaldistance", 1e6);
+    camera_ = json::object();
+    if (lens_radius > 0) {
+      camera_["type"] = "thin_lens";
+      camera_["lens_radius"] = lens_radius;
+      camera_["focus_distance"] = focal_distance;
+    }
+  } else if (k == "Film") {
+    require_world(false);
+    PbrtParams p(*this, s, "Film \"" + s.strings[0] + "\"");
+    if (s.strings[0] != "rgb") ignore("Film \"" + s.strings[0] + "\" (rendered to Rimu's XYZ film)", s.where);
+    width_ = p.integer("xresolution", 1280);
+    height_ = p.integer("yresolution", 720);
+    if (width_ < 1 || height_ < 1 || width_ > 32768 || height_ > 32768)
+      throw InputError(s.where, "Film: xresolution and yresolution must be in 1-32768");
+    film_["resolution"] = {width_, height_};
+    p.string("filename", "");  // the output is rimu's -o
+    if (p.string("sensor", "cie1931") != "cie1931") ignore("Film \"sensor\" other than cie1931", s.where);
+    if (p.real("iso", 100.0) != 100.0) ignore("Film \"iso\" other than 100", s.where);
+    if (p.real("exposuretime", 1.0) != 1.0) ignore("Film \"exposuretime\" other than 1", s.where);
+    if (p.real("whitebalance", 0.0) != 0.0) ignore("Film \"whitebalance\"", s.where);
+  } else if (k == "Sampler") {
+    require_world(false);
+    PbrtParams p(*this, s, "Sampler \"" + s.strings[0] + "\"");
+    int spp = p.integer("pixelsamples", 16);
+    if (s.strings[0] == "stratified") {
+      spp = p.integer("xsamples", 4) * p.integer("ysamples", 4);
+      p.boolean("jitter", true);
+    }
+    if (spp < 1) throw InputError(s.where, "Sampler: the sample count must be at least 1");
+    integrator_["spp"] = spp;
+    if (s.strings[0] == "independent") integrator_["sampler"] = "independent";
+    if (const PbrtParam* seed = p.get("seed", {PbrtParamType::integer})) integrator_["seed"] = std::max(0, int(seed->numbers[0]));
+    p.string("randomization", "");  // Rimu's Sobol' is always Owen-scrambled
+  } else if (k == "Integrator") {
+    require_world(false);
+    PbrtParams p(*this, s, "Integrator \"" + s.strings[0] + "\"");
+    if (s.strings[0] != "path" && s.strings[0] != "volpath")
+      ignore("Integrator \"" + s.strings[0] + "\" (rendered with Rimu's path tracer)", s.where);
+    const int max_depth = p.integer("maxdepth", 5);
+    if (max_depth < 0) throw InputError(s.where, "Integrator: \"maxdepth\" must be >= 0");
+    integrator_["max_depth"] = max_depth;
+  } else if (k == "PixelFilter") {
+    require_world(false);
+    PbrtParams p(*this, s, "PixelFilter \"" + s.strings[0] + "\"");
+    const std::string& type = s.strings[0];
+    if (type == "gaussian" || type == "box") {
+      const double fallback = type == "box" ? 0.5 : 1.5;
+      const double rx = p.real("xradius", fallback), ry = p.real("yradius", fallback);
+      if (rx != ry) ignore("PixelFilter with xradius != yradius (the larger is used)", s.where);
+      film_["filter"] = {{"type", type}, {"radius", std::max(rx, ry)}};
+      if (type == "gaussian") film_["filter"]["sigma"] = p.real("sigma", 0.5);
+    } else {
+      ignore("PixelFilter \"" + type + "\" (Rimu's Gaussian of radius 1.5 is used)", s.where);
+    }
+  } else if (k == "Accelerator") {
+    ignore("Accelerator (Rimu always builds Embree's BVH)", s.where);
+  } else if (k == "WorldBegin") {
+    require_world(false);
+    world_begun_ = true;
+    state_.ctm = PbrtMatrix::identity();
+    named_coordinate_systems_["world"] = state_.ctm;
+    if (world_from_camera_) {
+      // pbrt's camera space has image-right along +x = up × forward; Rimu's has forward × up (docs/pbrt-import.md).
+      // Where they disagree the world is mirrored in the plane of the view direction and image-up, which leaves
+      // the camera where it is and shows the image pbrt shows.
+      const PbrtMatrix& c = *world_from_camera_;
+      const Vec3d o = c.point({0, 0, 0}), f = c.vector({0, 0, 1}), u = c.vector({0, 1, 0}), r = c.vector({1, 0, 0});
+      const Vec3d rimu_right = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2], f[0] * u[1] - f[1] * u[0]};
+      const double len = std::sqrt(rimu_right[0] * rimu_right[0] + rimu_right[1] * rimu_right[1] + rimu_right[2] * rimu_right[2]);
+      if (len > 0 && rimu_right[0] * r[0] + rimu_right[1] * r[1] + rimu_right[2] * r[2] < 0) {
+        const Vec3d n = {rimu_right[0] / len, rimu_right[1] / len, rimu_right[2] / len};
+        // Householder reflection about the plane through o with normal n: x → x − 2 n (n·(x − o)).
+        PbrtMatrix h = PbrtMatrix::identity();
+        const double no = n[0] * o[0] + n[1] * o[1] + n[2] * o[2];
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) h.m[i][j] -= 2 * n[i] * n[j];
+          h.m[i][3] = 2 * n[i] * no;
+        }
+        mirror_ = h;
+      }
+    }
+  } else if (k == "WorldEnd") {
+    // pbrt-v3's end marker; pbrt-v4 ends the world at the end of the file.
+  } else if (k == "Shape") {
+    require_world(true);
+    shape(s);
+  } else if (k == "Material") {
+    require_world(true);
+    state_.material = material(s, s.strings[0], "Material \"" + s.strings[0] + "\"");
+  } else if (k == "MakeNamedMaterial") {
+    require_world(true);
+    const std::string& name = s.strings[0];
+    std::string type;
+    if (const PbrtParam* t = s.find("type"); t && t->type == PbrtParamType::string && t->strings.size() == 1) type = t->strings[0];
+    if (type.empty()) throw InputError(s.where, "MakeNamedMaterial \"" + name + "\": needs \"string type\"");
+    if (named_materials_.count(name)) throw InputError(s.where, "MakeNamedMaterial: \"" + name + "\" is already defined");
+    named_materials_.insert(name);
+    material(s, type, "MakeNamedMaterial \"" + name + "\"");
+  } else if (k == "NamedMaterial") {
+    require_world(true);
+    if (!named_materials_.count(s.strings[0])) {
+      std::string defined;
+      for (const std::string& n : named_materials_) defined += (defined.empty() ? "" : ", ") + n;
+      throw InputError(s.where, "NamedMaterial: no material named \"" + s.strings[0] + "\"; defined: " + (defined.empty() ? "none" : defined));
+    }
+    state_.material = s.strings[0];
+  } else if (k == "Texture") {
+    texture(s);
+  } else if (k == "LightSource") {
+    require_world(true);
+    light_source(s);
+  } else if (k == "AreaLightSource") {
+    require_world(true);
+    if (s.strings[0] != "diffuse") {
+      ignore("AreaLightSource \"" + s.strings[0] + "\"", s.where);
+      state_.area_light.reset();
+    } else {
+      state_.area_light = s;
+    }
+  } else if (k == "MakeNamedMedium") {
+    ignore("MakeNamedMedium (participating media are not imported)", s.where);
+  } else if (k == "MediumInterface") {
+    ignore("MediumInterface (participating media are not imported)", s.where);
+  } else if (k == "ObjectBegin") {
+    require_world(true);
+    if (object_) throw InputError(s.where, "ObjectBegin inside ObjectBegin \"" + *object_ + "\"");
+    if (prototypes_.contains(s.strings[0])) throw InputError(s.where, "ObjectBegin: \"" + s.strings[0] + "\" is already defined");
+    stack_.push_back({'o', state_});
+    object_ = s.strings[0];
+    prototypes_[*object_] = json::array();
+  } else if (k == "ObjectEnd") {
+    if (!object_ || stack_.empty() || stack_.back().first != 'o') throw InputError(s.where, "ObjectEnd without a matching ObjectBegin");
+    state_ = stack_.back().second;
+    stack_.pop_back();
+    object_.reset();
+  } else if (k == "ObjectInstance") {
+    require_world(true);
+    if (object_) {
+      ignore("ObjectInstance inside ObjectBegin (nested instancing)", s.where);
+      return;
+    }
+    if (!prototypes_.contains(s.strings[0])) throw InputError(s.where, "ObjectInstance: no object named \"" + s.strings[0] + "\"");
+    if (prototypes_[s.strings[0]].empty()) return;  // nothing Rimu could import in it (already reported)
+    json instance = {{"type", "instance"}, {"prototype", s.strings[0]}};
+    const json steps = transform_steps(world_from_object(), s.where);
+    if (!steps.is_null()) instance["transform"] = steps;
+    shapes_.push_back(std::move(instance));
+  } else {
+    ignore(k, s.where);
+  }
+}
+
+json PbrtConverter::finish(const std::string& main_file) {
+  if (!world_from_camera_) throw InputError({main_file, 0, ""}, "the scene has no Camera statement before WorldBegin");
+  // pbrt's fov spans the shorter image axis; Rimu's vertical_fov_deg always spans the height.
+  double vertical_fov_deg = fov_deg_;
+  if (width_ < height_) {
+    const double half = fov_deg_ * M_PI / 360.0;
+    vertical_fov_deg = 2.0 * std::atan(std::tan(half) * double(height_) / double(width_)) * 180.0 / M_PI;
+  }
+  const PbrtMatrix& c = *world_from_camera_;
+  const Vec3d o = c.point({0, 0, 0}), f = c.vector({0, 0, 1}), u = c.vector({0, 1, 0});
+  json camera = camera_.is_null() ? json::object() : camera_;
+  camera["from"] = o;
+  camera["to"] = Vec3d{o[0] + f[0], o[1] + f[1], o[2] + f[2]};
+  camera["up"] = u;
+  camera["vertical_fov_deg"] = vertical_fov_deg;
+  if (film_.find("resolution") == film_.end()) film_["resolution"] = {width_, height_};
+  if (integrator_.find("max_depth") == integrator_.end()) integrator_["max_depth"] = 5;
+  if (integrator_.find("spp") == integrator_.end()) integrator_["spp"] = 16;
+  json document = {{"description", "imported from the pbrt-v4 file " + std::filesystem::path(main_file).filename().string()},
+                   {"camera", camera}, {"film", film_}, {"integrator", integrator_}, {"materials", materials_},
+                   {"lights", lights_}, {"shapes", shapes_}};
+  json prototypes = json::object();
+  for (auto& [name, shapes] : prototypes_.items())
+    if (!shapes.empty()) prototypes[name] = shapes;
+  if (!prototypes.empty()) document["prototypes"] = prototypes;
+  return document;
+}
+
+// ---- entry points -------------------------------------------------------------------------------------------
+
+PbrtImport import_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
+                            SpectralLibrary& library, const PbrtImportOptions& options) {
+  PbrtConverter converter(library, options.output_directory.empty() ? directory : options.output_directory, options.strict);
+  parse_pbrt_text(text, file, directory, [&](const PbrtStatement& s) { converter.statement(s); });
+  PbrtImport result;
+  result.document = converter.finish(file);
+  result.ignored = converter.ignored();
+  return result;
+}
+
+PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& library, const PbrtImportOptions& options) {
+  const std::filesystem::path directory = std::filesystem::absolute(file).parent_path();
+  PbrtConverter converter(library, options.output_directory.empty() ? directory : std::filesystem::absolute(options.output_directory),
+                          options.strict);
+  parse_pbrt_file(file, [&](const PbrtStatement& s) { converter.statement(s); });
+  PbrtImport result;
+  result.document = converter.finish(file.string());
+  result.ignored = converter.ignored();
+  return result;
+}
+
+std::string describe_ignored(const std::vector<PbrtIgnored>& ignored) {
+  std::ostringstream out;
+  for (const PbrtIgnored& item : ignored)
+    out << "ignored: " << item.what << " (" << item.count << (item.count == 1 ? " time" : " times") << "), first at "
+        << item.first.file << ":" << item.first.line << "\n";
+  return out.str();
+}
+
+bool is_pbrt_scene_path(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".pbrt";
+}
+
+}  // namespace rimu

@@ -1,0 +1,49 @@
+// pbrt-v4 scene files translated into Rimu's JSON scene (docs/pbrt-import.md): the JSON then goes through the
+// ordinary, validated loader, so a .pbrt file and the JSON it becomes render the same image.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "spectral/error.h"
+#include "spectral/spectral_library.h"
+
+namespace rimu {
+
+/// Something of the pbrt file that Rimu does not render (or renders approximately), counted.
+struct PbrtIgnored {
+  std::string what;     ///< e.g. Shape "curve", parameter "float alpha" of Shape "trianglemesh"
+  int count = 0;
+  SourceLocation first; ///< file and line of the first occurrence
+};
+
+struct PbrtImportOptions {
+  /// Any ignored statement, parameter or type is an InputError at its location instead of a report entry.
+  bool strict = false;
+  /// File paths in the document (PLY meshes, image textures) are written relative to this folder; empty: the
+  /// folder of the pbrt file (right for rendering the document in memory).
+  std::filesystem::path output_directory;
+};
+
+struct PbrtImport {
+  nlohmann::json document;           ///< a Rimu scene (docs/scene-format.md)
+  std::vector<PbrtIgnored> ignored;  ///< in order of first occurrence
+};
+
+/// Reads a pbrt-v4 file (and what it Includes/Imports) into a Rimu scene document. Throws InputError with the pbrt
+/// file and line for malformed input, missing files, singular or non-finite transforms, a scene without a Camera,
+/// and (strict) anything unsupported. `library` supplies the film's luminance unit (pbrt's pixel value 1 = 1 nit).
+PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& library, const PbrtImportOptions& options = {});
+/// The same on text in memory: `file` is the name errors carry, `directory` resolves relative paths.
+PbrtImport import_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
+                            SpectralLibrary& library, const PbrtImportOptions& options = {});
+
+/// The report printed after loading: one line per entry, `ignored: Shape "curve" (12 times), first at a.pbrt:1234`.
+std::string describe_ignored(const std::vector<PbrtIgnored>& ignored);
+
+/// True for a path ending in .pbrt (case-insensitive): the scene readers dispatch on it.
+bool is_pbrt_scene_path(const std::filesystem::path& path);
+
+}  // namespace rimu

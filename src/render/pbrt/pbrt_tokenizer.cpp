@@ -1,0 +1,78 @@
+#include "render/pbrt/pbrt_tokenizer.h"
+
+#include <cctype>
+
+#include "spectral/error.h"
+
+namespace rimu {
+
+namespace {
+
+bool is_delimiter(char c) {
+  return std::isspace(static_cast<unsigned char>(c)) || c == '[' || c == ']' || c == '"' || c == '\'' || c == '#';
+}
+
+// The escapes pbrt's tokenizer resolves inside strings.
+char escaped(char c, const std::string& file, int line) {
+  switch (c) {
+    case 'b': return '\b';
+    case 'f': return '\f';
+    case 'n': return '\n';
+    case 'r': return '\r';
+    case 't': return '\t';
+    case '\\': return '\\';
+    case '\'': return '\'';
+    case '"': return '"';
+    default: throw InputError({file, line, ""}, std::string("unknown escape '\\") + c + "' in a quoted string");
+  }
+}
+
+}  // namespace
+
+std::vector<PbrtToken> tokenize_pbrt(const std::string& contents, const std::string& file) {
+  std::vector<PbrtToken> tokens;
+  int line = 1;
+  size_t i = 0;
+  const size_t n = contents.size();
+  while (i < n) {
+    const char c = contents[i];
+    if (c == '\n') {
+      ++line;
+      ++i;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else if (c == '#') {
+      while (i < n && contents[i] != '\n') ++i;
+    } else if (c == '[' || c == ']') {
+      tokens.push_back({std::string(1, c), false, line});
+      ++i;
+    } else if (c == '"' || c == '\'') {
+      const int start_line = line;
+      std::string text;
+      ++i;
+      while (true) {
+        if (i >= n) throw InputError({file, start_line, ""}, std::string("unterminated string: no closing ") + c);
+        const char d = contents[i];
+        if (d == c) break;
+        if (d == '\n') throw InputError({file, start_line, ""}, "a quoted string runs past the end of its line");
+        if (d == '\\') {
+          if (i + 1 >= n) throw InputError({file, start_line, ""}, "unterminated string: no closing quote");
+          text += escaped(contents[i + 1], file, line);
+          i += 2;
+        } else {
+          text += d;
+          ++i;
+        }
+      }
+      ++i;
+      tokens.push_back({std::move(text), true, start_line});
+    } else {
+      const size_t start = i;
+      while (i < n && !is_delimiter(contents[i])) ++i;
+      tokens.push_back({contents.substr(start, i - start), false, line});
+    }
+  }
+  return tokens;
+}
+
+}  // namespace rimu

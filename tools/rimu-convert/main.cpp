@@ -1,0 +1,57 @@
+// rimu-convert: translates a pbrt-v4 scene into Rimu's JSON scene format, so an imported scene can be edited.
+//
+// Exit codes: 0 ok, 1 bad input (nothing is written), 2 runtime failure.
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <iostream>
+
+#include "render/output_file.h"
+#include "render/pbrt/pbrt_to_scene.h"
+#include "render/scene.h"
+#include "spectral/error.h"
+#include "spectral/spectral_library.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "rimu-convert: translates a pbrt-v4 scene (.pbrt, with its Includes) into Rimu's JSON scene format\n"
+      "(docs/pbrt-import.md). Mesh and texture paths in the JSON are relative to the output's folder; the JSON is\n"
+      "checked by Rimu's scene loader (meshes read) before it is written.\n"
+      "What Rimu does not support is listed on stderr (or, with --strict, is an error).\n"
+      "Example: rimu-convert scene.pbrt -o scene.json"};
+  std::string input, output;
+  bool strict = false;
+  app.add_option("scene", input, "the pbrt-v4 file")->required();
+  app.add_option("-o,--output", output, "the JSON scene to write")->required();
+  app.add_flag("--strict", strict, "anything Rimu does not support is an error, not a report");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 1;
+  }
+  try {
+    rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
+    if (!rimu::is_pbrt_scene_path(input))
+      throw rimu::InputError({input, 0, ""}, "expected a pbrt-v4 scene file ending in .pbrt");
+    rimu::check_output_path(output);
+    const std::filesystem::path output_directory = std::filesystem::absolute(output).parent_path();
+    const rimu::PbrtImport imported = rimu::import_pbrt(input, library, {strict, output_directory});
+    std::cerr << rimu::describe_ignored(imported.ignored);
+    // Rimu's own loader checks the document (and reads its meshes) before anything is written: a JSON that
+    // rimu-convert writes always loads.
+    rimu::load_scene(imported.document, input, output_directory, library);
+    std::ofstream out(output);
+    out << imported.document.dump(2) << "\n";
+    if (!out.flush()) {
+      std::cerr << "rimu-convert: error: cannot write '" << output << "'\n";
+      return 2;
+    }
+    return 0;
+  } catch (const rimu::InputError& e) {
+    std::cerr << "rimu-convert: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "rimu-convert: error: " << e.what() << "\n";
+    return 2;
+  }
+}
