@@ -1,14 +1,14 @@
 // rimu-convert: translates a pbrt-v4 scene into Rimu's JSON scene format, so an imported scene can be edited.
 //
-// Exit codes: 0 ok, 1 bad input (nothing is written), 2 runtime failure.
-#include <CLI/CLI.hpp>
-
-#include <fstream>
+// Exit codes (common/tool_main.h): 0 ok, 1 bad input (nothing is written), 2 runtime failure.
 #include <iostream>
+
+#include "common/tool_main.h"
 
 #include "render/output_file.h"
 #include "render/pbrt/pbrt_to_scene.h"
 #include "render/scene.h"
+#include "render/text_file_output.h"
 #include "spectral/error.h"
 #include "spectral/spectral_library.h"
 
@@ -24,12 +24,7 @@ int main(int argc, char** argv) {
   app.add_option("scene", input, "the pbrt-v4 file")->required();
   app.add_option("-o,--output", output, "the JSON scene to write")->required();
   app.add_flag("--strict", strict, "anything Rimu does not support is an error, not a report");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;
-  }
-  try {
+  return rimu::run_tool("rimu-convert", app, argc, argv, [&] {
     rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
     if (!rimu::is_pbrt_scene_path(input))
       throw rimu::InputError({input, 0, ""}, "expected a pbrt-v4 scene file ending in .pbrt");
@@ -40,18 +35,6 @@ int main(int argc, char** argv) {
     // Rimu's own loader checks the document (and reads its meshes) before anything is written: a JSON that
     // rimu-convert writes always loads.
     rimu::load_scene(imported.document, input, output_directory, library);
-    std::ofstream out(output);
-    out << imported.document.dump(2) << "\n";
-    if (!out.flush()) {
-      std::cerr << "rimu-convert: error: cannot write '" << output << "'\n";
-      return 2;
-    }
-    return 0;
-  } catch (const rimu::InputError& e) {
-    std::cerr << "rimu-convert: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "rimu-convert: error: " << e.what() << "\n";
-    return 2;
-  }
+    rimu::write_text_file(output, imported.document.dump(2) + "\n");
+  });
 }
