@@ -9,14 +9,14 @@
 #include "light_test_support.h"
 #include "transport/area_light.h"
 #include "transport/distant_light.h"
-#include "transport/light_sampler.h"
+#include "transport/power_light_sampler.h"
 #include "transport/point_light.h"
 
 using namespace rimu;
 
 TEST_CASE("light sampler picks lights in proportion to their power and never a dark one") {
   const std::vector<double> power_w = {10.0, 0.0, 2.5, 100.0, 0.0, 0.01};
-  const LightSampler sampler(power_w);
+  const PowerLightSampler sampler(power_w);
   CHECK(sampler.light_count() == 6);
   const int n = 100000;
   std::vector<double> observed(power_w.size(), 0.0), expected(power_w.size());
@@ -41,9 +41,9 @@ TEST_CASE("light sampler picks lights in proportion to their power and never a d
 
 TEST_CASE("light sampler of a scene without power picks nothing") {
   const std::vector<double> zeros = {0.0, 0.0};
-  CHECK_FALSE(LightSampler(zeros).pick(0.3f));
-  CHECK_FALSE(LightSampler(std::vector<double>{}).pick(0.3f));
-  CHECK(LightSampler(zeros).probability(0) == 0.0f);
+  CHECK_FALSE(PowerLightSampler(zeros).pick(0.3f));
+  CHECK_FALSE(PowerLightSampler(std::vector<double>{}).pick(0.3f));
+  CHECK(PowerLightSampler(zeros).probability(0) == 0.0f);
 }
 
 TEST_CASE("light sampler weights lights by their radiant power, lights at infinity by the scene radius") {
@@ -54,7 +54,7 @@ TEST_CASE("light sampler weights lights by their radiant power, lights at infini
   const std::vector<uint32_t> idx = {0, 1, 2};
   const AreaLight dark(v, idx, LightSpectrum(spectrum, 0.0), false);  // black: never picked
   const std::vector<const Light*> lights = {&point, &sun, &dark};
-  const LightSampler sampler(lights, 1.0);
+  const PowerLightSampler sampler(lights, 1.0);
   // With r = 1 m the sun's weight is 4π, equal to the point light's.
   CHECK(sampler.probability(0) == doctest::Approx(0.5));
   CHECK(sampler.probability(1) == doctest::Approx(0.5));
