@@ -2,6 +2,7 @@
 // light type reports.
 #include <doctest/doctest.h>
 
+#include <random>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -59,4 +60,32 @@ TEST_CASE("light sampler weights lights by their radiant power, lights at infini
   CHECK(sampler.probability(0) == doctest::Approx(0.5));
   CHECK(sampler.probability(1) == doctest::Approx(0.5));
   CHECK(sampler.probability(2) == 0.0f);
+}
+
+TEST_CASE("power sampler picks a mesh's triangles by area within the light's power share") {
+  auto spectrum = std::make_shared<ConstantSpectrum>(1.0);
+  const PointLight point({0, 0, 0}, LightSpectrum(spectrum, 1.0 / (4.0 * std::numbers::pi)));  // 470 W
+  // Two triangles of areas 0.5 and 2 m²: 470π·2.5 W in all.
+  const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 1}, {0, 2, 1}};
+  const std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5};
+  const AreaLight mesh(v, idx, LightSpectrum(spectrum, 1.0 / std::numbers::pi), false);
+  const std::vector<const Light*> lights = {&point, &mesh};
+  const PowerLightSampler sampler(lights, 1.0);
+  const LightSamplingPoint at{{0.2f, 0.2f, 3}, {}};
+  const double total = 1.0 + 2.5;
+  CHECK(sampler.pmf(at, 0, 0) == doctest::Approx(1.0 / total));
+  CHECK(sampler.pmf(at, 1, 0) == doctest::Approx(0.5 / total));
+  CHECK(sampler.pmf(at, 1, 1) == doctest::Approx(2.0 / total));
+  CHECK(sampler.pmf(at, 1, 2) == 0.0f);
+  std::mt19937 rng(9);
+  std::vector<double> observed(3, 0.0);
+  const int n = 60000;
+  for (int s = 0; s < n; ++s) {
+    const auto c = sampler.sample(at, test::uniform01(rng));
+    REQUIRE(c);
+    REQUIRE(c->probability == sampler.pmf(at, c->light, c->part));
+    observed[size_t(c->light == 0 ? 0 : 1 + c->part)] += 1;
+  }
+  const std::vector<double> expected = {n / total, n * 0.5 / total, n * 2.0 / total};
+  CHECK(test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one).p_value > test::kChiSquareAlpha);
 }
