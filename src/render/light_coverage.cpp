@@ -132,7 +132,7 @@ std::vector<std::string> light_coverage_warnings(const Scene& scene) {
         size_t(c.light) < scene.light_names.size() ? scene.light_names[size_t(c.light)] : "light " + std::to_string(c.light);
     char text[320];
     std::snprintf(text, sizeof text,
-                  "%s gets %.2f %% of the light samples at (%.3g, %.3g, %.3g) m, the surface it lights, where it "
+                  "%s gets %.2g %% of the light samples at (%.3g, %.3g, %.3g) m, the surface it lights, where it "
                   "gives %.0f %% of the unshadowed direct light: expect noise there",
                   name.c_str(), 100.0 * c.sample_share, c.probe_m.x, c.probe_m.y, c.probe_m.z,
                   100.0 * c.irradiance_share);
