@@ -23,6 +23,63 @@ constexpr int kBins = 12;
 // items are halved by count, so no leaf is deeper than kCostDepth + log2(n) ≤ 62 and its trail fits 64 bits.
 constexpr int kCostDepth = 30;
 
+// The bounds of a set of members without a cone union per member (each costs an acos and a rotation), in two
+// sequential passes: the first gathers box, intensity and the mean axis; the second the largest angle from that axis
+// to a member's cone edge, in cosines: cos(α + θo) = cos α cos θo − sin α sin θo. Conservative, like unite().
+class BoundsAccumulator {
+ public:
+  void add_first_pass(const LightBounds& m) {
+    if (empty_) {
+      b_ = m;
+      empty_ = false;
+    } else {
+      b_.lower_m = {std::fmin(b_.lower_m.x, m.lower_m.x), std::fmin(b_.lower_m.y, m.lower_m.y), std::fmin(b_.lower_m.z, m.lower_m.z)};
+      b_.upper_m = {std::fmax(b_.upper_m.x, m.upper_m.x), std::fmax(b_.upper_m.y, m.upper_m.y), std::fmax(b_.upper_m.z, m.upper_m.z)};
+      b_.intensity_w_sr += m.intensity_w_sr;
+      b_.cos_theta_e = std::fmin(b_.cos_theta_e, m.cos_theta_e);
+      b_.two_sided = b_.two_sided || m.two_sided;
+      same_axis_ = same_axis_ && m.axis == b_.axis && m.flat_one_sided && b_.flat_one_sided;
+      if (same_axis_) b_.plane_offset_m = std::fmin(b_.plane_offset_m, m.plane_offset_m);
+    }
+    axis_sum_ += m.axis;
+  }
+  /// Between the passes. Returns false when the second pass is not needed (one member, or all facing one way).
+  bool needs_second_pass() {
+    if (empty_ || same_axis_) return false;
+    b_.flat_one_sided = false;
+    const float axis_length = length(axis_sum_);
+    if (axis_length > 1e-6f) b_.axis = axis_sum_ / axis_length;
+    second_ = true;
+    return true;
+  }
+  void add_second_pass(const LightBounds& m) {
+    if (cos_o_ <= -1.0f) return;
+    const float c = std::clamp(dot(b_.axis, m.axis), -1.0f, 1.0f);
+    if (c < -m.cos_theta_o) {  // α + θo ≥ π: the whole sphere
+      cos_o_ = -1.0f;
+      return;
+    }
+    const float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));
+    const float sin_o = std::sqrt(std::fmax(0.0f, 1.0f - m.cos_theta_o * m.cos_theta_o));
+    cos_o_ = std::fmin(cos_o_, c * m.cos_theta_o - s * sin_o);
+  }
+  LightBounds result() const {
+    LightBounds out = b_;
+    if (second_) {
+      // Widened by 1e-4 rad against rounding in the cosines above.
+      const double theta = std::min(std::acos(std::clamp(double(cos_o_), -1.0, 1.0)) + 1e-4, 3.14159265358979323846);
+      out.cos_theta_o = float(std::cos(theta));
+    }
+    return out;
+  }
+
+ private:
+  LightBounds b_;
+  Vec3 axis_sum_{};
+  float cos_o_ = 1.0f;
+  bool empty_ = true, same_axis_ = true, second_ = false;
+};
+
 double surface_area(const LightBounds& b, double floor_m) {
   const double x = double(b.upper_m.x - b.lower_m.x) + floor_m;
   const double y = double(b.upper_m.y - b.lower_m.y) + floor_m;
@@ -90,10 +147,13 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
     return index;
   }
 
-  LightBounds bounds;
+  BoundsAccumulator node_bounds;
+  for (size_t i = begin; i < end; ++i) node_bounds.add_first_pass(items[i].bounds);
+  if (node_bounds.needs_second_pass())
+    for (size_t i = begin; i < end; ++i) node_bounds.add_second_pass(items[i].bounds);
+  const LightBounds bounds = node_bounds.result();
   Vec3 centroid_lower = items[begin].centroid, centroid_upper = items[begin].centroid;
   for (size_t i = begin; i < end; ++i) {
-    bounds = unite(bounds, items[i].bounds);
     const Vec3 c = items[i].centroid;
     centroid_lower = {std::fmin(centroid_lower.x, c.x), std::fmin(centroid_lower.y, c.y), std::fmin(centroid_lower.z, c.z)};
     centroid_upper = {std::fmax(centroid_upper.x, c.x), std::fmax(centroid_upper.y, c.y), std::fmax(centroid_upper.z, c.z)};
@@ -106,19 +166,35 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
   if (depth < kCostDepth && max_extent > 0.0f) {
     double best_cost = std::numeric_limits<double>::infinity();
     int best_axis = -1, best_split = 0;
+    // As many bins as items, up to kBins: most nodes are small, and each bin boundary costs two cluster costs.
+    const int bins_here = int(std::min<size_t>(kBins, end - begin));
     for (int axis = 0; axis < 3; ++axis) {
       if (!(extent[axis] > 0.0f)) continue;
       std::array<LightBounds, kBins> bins{};
       std::array<size_t, kBins> counts{};
-      const float scale = float(kBins) / extent[axis];
+      const float scale = float(bins_here) / extent[axis];
+      const auto bin_of = [&](const BuildItem& item) {
+        return std::clamp(int((item.centroid[axis] - centroid_lower[axis]) * scale), 0, bins_here - 1);
+      };
+      std::array<BoundsAccumulator, kBins> accumulators;
       for (size_t i = begin; i < end; ++i) {
-        const int bin = std::clamp(int((items[i].centroid[axis] - centroid_lower[axis]) * scale), 0, kBins - 1);
-        bins[size_t(bin)] = unite(bins[size_t(bin)], items[i].bounds);
+        const int bin = bin_of(items[i]);
+        accumulators[size_t(bin)].add_first_pass(items[i].bounds);
         ++counts[size_t(bin)];
       }
-      std::array<double, kBins> cost_above{};  // cost of bins [s, kBins)
+      std::array<bool, kBins> second{};
+      bool any_second = false;
+      for (int b = 0; b < bins_here; ++b) any_second |= second[size_t(b)] = accumulators[size_t(b)].needs_second_pass();
+      if (any_second)
+        for (size_t i = begin; i < end; ++i) {
+          const int bin = bin_of(items[i]);
+          if (second[size_t(bin)]) accumulators[size_t(bin)].add_second_pass(items[i].bounds);
+        }
+      for (int b = 0; b < bins_here; ++b)
+        if (counts[size_t(b)] > 0) bins[size_t(b)] = accumulators[size_t(b)].result();
+      std::array<double, kBins> cost_above{};  // cost of bins [s, bins_here)
       LightBounds above;
-      for (int s = kBins - 1; s >= 1; --s) {
+      for (int s = bins_here - 1; s >= 1; --s) {
         above = unite(above, bins[size_t(s)]);
         cost_above[size_t(s)] = cluster_cost(above, floor_m);
       }
@@ -126,7 +202,7 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
       size_t count_below = 0;
       // Thin axes are penalised (Conty & Kulla's K_r): a split across a short extent separates little.
       const double regulariser = double(max_extent) / double(extent[axis]);
-      for (int s = 1; s < kBins; ++s) {
+      for (int s = 1; s < bins_here; ++s) {
         below = unite(below, bins[size_t(s - 1)]);
         count_below += counts[size_t(s - 1)];
         if (count_below == 0 || count_below == end - begin) continue;
@@ -139,12 +215,12 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
       }
     }
     if (best_axis >= 0) {
-      const float scale = float(kBins) / extent[best_axis];
+      const float scale = float(bins_here) / extent[best_axis];
       const float lower = centroid_lower[best_axis];
       middle = size_t(std::partition(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end),
                                      [&](const BuildItem& item) {
                                        return std::clamp(int((item.centroid[best_axis] - lower) * scale), 0,
-                                                         kBins - 1) < best_split;
+                                                         bins_here - 1) < best_split;
                                      }) -
                       items.begin());
     }
