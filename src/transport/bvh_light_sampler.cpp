@@ -255,19 +255,20 @@ BvhLightSampler::Split BvhLightSampler::split(const Node& node, const LightSampl
 
 BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) const {
   bool tree_can_contribute = false;
+  Split root_split{0.0f, 0.0f};
   if (!nodes_.empty()) {
     const Node& root = nodes_[0];
     if (root.is_leaf) {
       tree_can_contribute = light_importance(root.bounds, at.position_m, at.normal) > 0.0f;
     } else {
-      const Split s = split(root, at);
-      tree_can_contribute = s.first > 0.0f || s.second > 0.0f;
+      root_split = split(root, at);
+      tree_can_contribute = root_split.first > 0.0f || root_split.second > 0.0f;
     }
   }
   const int m = int(infinite_lights_.size());
-  if (m == 0) return {tree_can_contribute ? 1.0f : 0.0f, 0.0f};
-  if (!tree_can_contribute) return {0.0f, 1.0f / float(m)};
-  return {1.0f / float(m + 1), 1.0f / float(m + 1)};
+  if (m == 0) return {tree_can_contribute ? 1.0f : 0.0f, 0.0f, root_split};
+  if (!tree_can_contribute) return {0.0f, 1.0f / float(m), root_split};
+  return {1.0f / float(m + 1), 1.0f / float(m + 1), root_split};
 }
 
 std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at, float u_float) const {
@@ -285,7 +286,7 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at,
   float probability = shares_here.tree;
   uint32_t node = 0;
   while (!nodes_[node].is_leaf) {
-    const Split s = split(nodes_[node], at);
+    const Split s = node == 0 ? shares_here.root : split(nodes_[node], at);
     if (u < double(s.first)) {
       u = u / double(s.first);
       probability *= s.first;
@@ -320,7 +321,7 @@ float BvhLightSampler::pmf(const LightSamplingPoint& at, int light, int part) co
   float probability = shares_here.tree;
   uint32_t node = 0;
   while (!nodes_[node].is_leaf) {
-    const Split s = split(nodes_[node], at);
+    const Split s = node == 0 ? shares_here.root : split(nodes_[node], at);
     const bool second = (trail & 1) != 0;
     trail >>= 1;
     const float factor = second ? s.second : s.first;

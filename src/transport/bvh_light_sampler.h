@@ -58,6 +58,7 @@ class BvhLightSampler final : public LightSampler {
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
+    Split root;  // the root's split, reused by the descent (unset for a one-leaf tree)
   };
   Shares shares(const LightSamplingPoint& at) const;
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);

@@ -22,7 +22,8 @@ inline CosSin angle_difference_clamped(float cos_a, float sin_a, float cos_b, fl
   return {cos_a * cos_b + sin_a * sin_b, sin_a * cos_b - cos_a * sin_b};
 }
 
-inline float sine_of(float cos_x) { return std::sqrt(std::fmax(0.0f, 1.0f - cos_x * cos_x)); }
+// (std::max, not std::fmax: without -ffast-math fmax is a library call, and these inputs are never NaN.)
+inline float sine_of(float cos_x) { return std::sqrt(std::max(0.0f, 1.0f - cos_x * cos_x)); }
 
 double angle_of(float cos_x) { return std::acos(std::clamp(double(cos_x), -1.0, 1.0)); }
 
@@ -130,7 +131,7 @@ float light_importance(const LightBounds& b, Vec3 p, Vec3 normal) {
   if (distance2 <= radius2) {
     // p inside the bounding sphere: every direction is possible; the distance is taken as the sphere's radius.
     if (!(radius2 > 0.0f)) return 0.0f;  // p at a point light
-    return std::fmin(b.intensity_w_sr / radius2, kLargest);
+    return std::min(b.intensity_w_sr / radius2, kLargest);
   }
   const float sin2_u = radius2 / distance2;
   const float sin_u = std::sqrt(sin2_u), cos_u = std::sqrt(1.0f - sin2_u);
@@ -145,11 +146,11 @@ float light_importance(const LightBounds& b, Vec3 p, Vec3 normal) {
   float receiver = 1.0f;
   if (oriented) {
     const float cos_i = -dot(normal, w);
-    receiver = std::fmax(angle_difference_clamped(cos_i, sine_of(cos_i), cos_u, sin_u).cos, kImportanceCosineFloor);
+    receiver = std::max(angle_difference_clamped(cos_i, sine_of(cos_i), cos_u, sin_u).cos, kImportanceCosineFloor);
   }
   const float importance =
-      b.intensity_w_sr * std::fmax(emission.cos, kImportanceCosineFloor) * receiver / distance2;
-  return std::fmin(importance, kLargest);
+      b.intensity_w_sr * std::max(emission.cos, kImportanceCosineFloor) * receiver / distance2;
+  return std::min(importance, kLargest);
 }
 
 double orientation_measure(const LightBounds& b) {
