@@ -109,7 +109,9 @@ std::vector<LightCoverage> light_coverage(const Scene& scene) {
     }
 
     double share = 0.0;
-    if (light.part_count() <= kExactPartLimit) {
+    if (!sampler.chooses_parts()) {
+      share = sampler.pmf(at, int(l), -1);
+    } else if (light.part_count() <= kExactPartLimit) {
       for (int k = 0; k < light.part_count(); ++k) share += sampler.pmf(at, int(l), k);
     } else {
       int hits = 0;

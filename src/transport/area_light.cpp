@@ -74,6 +74,7 @@ std::optional<LightSample> AreaLight::sample_li(const LightReference& ref, const
 
 std::optional<LightSample> AreaLight::sample_part_li(int part, const LightReference& ref,
                                                      const SampledWavelengths& lambda, Vec2 u) const {
+  if (part == -1) return sample_li(ref, lambda, u);
   if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
   const Triangle& t = triangles_[size_t(part)];
   if (t.area_m2 == 0.0) return std::nullopt;
@@ -94,13 +95,9 @@ float AreaLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hi
 }
 
 float AreaLight::pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {
+  if (part == -1) return pdf_li(ref, wi, hit);
   if (!hit || part < 0 || size_t(part) != size_t(hit->primitive)) return 0.0f;
   return hit_pdf(size_t(part), ref, wi, hit, false);
-}
-
-double AreaLight::part_power_w(int part) const {
-  if (part < 0 || part >= triangle_count()) return 0.0;
-  return (two_sided_ ? 2.0 : 1.0) * std::numbers::pi * triangles_[size_t(part)].area_m2 * radiance_.integral_360_830();
 }
 
 std::optional<LightBounds> AreaLight::part_bounds(int part) const {

@@ -46,8 +46,6 @@ class AreaLight final : public Light {
 
   /// Parts are the triangles (light samplers may choose them one by one, e.g. the light BVH).
   int part_count() const override { return triangle_count(); }
-  /// π A_k ∫L dλ per emitting side; 0 for a degenerate triangle.
-  double part_power_w(int part) const override;
   /// A point uniform on triangle `part`: p_ω = d²/(A_k|cos θ_l|); otherwise as sample_li.
   std::optional<LightSample> sample_part_li(int part, const LightReference& ref, const SampledWavelengths& lambda,
                                             Vec2 u) const override;

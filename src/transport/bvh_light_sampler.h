@@ -33,6 +33,7 @@ class BvhLightSampler final : public LightSampler {
 
   std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const override;
   float pmf(const LightSamplingPoint& at, int light, int part) const override;
+  bool chooses_parts() const override { return true; }
 
   /// Leaves (finite light parts with power), nodes, the deepest leaf, and the bytes the sampler holds.
   int leaf_count() const { return leaf_count_; }

@@ -66,10 +66,9 @@ class Light {
 
   /// The number of parts (≥ 1).
   virtual int part_count() const { return 1; }
-  /// The radiant power of one part in W (Σ over parts = total_power_w for finite lights).
-  virtual double part_power_w(int part) const { return part == 0 ? total_power_w(0.0) : 0.0; }
   /// sample_li restricted to `part`: its solid-angle density is that of the part alone (for a triangle k,
   /// d²/(A_k |cos θ_l|)), so the sampler's probability of the part times it is the density of the whole choice.
+  /// Part −1 is the whole light (sample_li, pdf_li), for samplers that choose whole lights.
   virtual std::optional<LightSample> sample_part_li(int part, const LightReference& ref,
                                                     const SampledWavelengths& lambda, Vec2 u) const;
   /// The density sample_part_li(part, ref, ...) has for wi (0 where it would return std::nullopt).

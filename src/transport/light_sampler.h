@@ -7,6 +7,7 @@
 // integrators divide by the probability sample() returns, and weight BSDF-sampled hits on a light with pmf().
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
@@ -27,8 +28,10 @@ struct LightSamplingPoint {
 };
 
 struct LightChoice {
-  int light = 0;          ///< index into the lights given at construction
-  int part = 0;           ///< Light::part_count() parts: the triangle of an emissive mesh, else 0
+  int light = 0;  ///< index into the lights given at construction
+  /// The part (Light::part_count(): the triangle of an emissive mesh, else 0) for samplers that choose parts;
+  /// −1 for samplers that choose whole lights (Light::sample_part_li/pdf_part_li then sample the whole light).
+  int part = 0;
   float probability = 0;  ///< > 0: the probability of this (light, part) at the point
 };
 
@@ -40,6 +43,13 @@ class LightSampler {
   virtual std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const = 0;
   /// Exactly the probability sample(at, ·) returns for (light, part); 0 if it never returns it.
   virtual float pmf(const LightSamplingPoint& at, int light, int part) const = 0;
+  /// True if sample() chooses parts (the BVH: each triangle its own leaf); false if it chooses whole lights and
+  /// returns part −1 (power, uniform: the light then picks its triangle by area jointly with the point, which keeps
+  /// the point's 2D stratification over the whole mesh).
+  virtual bool chooses_parts() const = 0;
+  /// The part index this sampler uses for a hit on triangle `primitive` of a light (0 for lights of one part, e.g.
+  /// at infinity): the primitive, or −1 for samplers of whole lights.
+  int part_of_hit(uint32_t primitive) const { return chooses_parts() ? int(primitive) : -1; }
 };
 
 enum class LightSamplerKind { bvh, power, uniform };

@@ -1,5 +1,5 @@
-// Chooses a light with probability proportional to its radiant power, whatever the shading point; then a part of
-// it (a triangle of a mesh) in proportion to the part's power, i.e. its area.
+// Chooses a whole light with probability proportional to its radiant power, whatever the shading point (part −1:
+// an emissive mesh then picks its triangle by area inside Light::sample_li, jointly with the point).
 //
 // Why radiometric power (∫Φ_λ dλ over 360-830 nm, W) and not luminous power (lm): the film does not only record
 // luminance. Z (z̄ peaks at 445 nm, where V(λ) is 0.04) and camera-RGB blue channels respond strongly where V is
@@ -12,7 +12,6 @@
 
 #include <optional>
 #include <span>
-#include <vector>
 
 #include "transport/distribution_1d.h"
 #include "transport/light_sampler.h"
@@ -24,13 +23,15 @@ class PowerLightSampler final : public LightSampler {
   /// From each light's weight; every light is one part. Weights must be finite and ≥ 0 (asserted); zero-weight
   /// lights are never picked.
   explicit PowerLightSampler(std::span<const double> power_w);
-  /// The weights are lights[i]->total_power_w(scene radius); parts by Light::part_power_w.
+  /// The weights are lights[i]->total_power_w(scene radius).
   PowerLightSampler(std::span<const Light* const> lights, double scene_radius_m);
-  /// Every light with power gets the same probability (parts still by power): the uniform sampler.
+  /// Every light with power gets the same probability: the uniform sampler.
   static PowerLightSampler uniform_over_lights(std::span<const Light* const> lights, double scene_radius_m);
 
   std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const override;
+  /// P(light) for part −1; 0 for any other part (this sampler never returns one).
   float pmf(const LightSamplingPoint& at, int light, int part) const override;
+  bool chooses_parts() const override { return false; }
 
   struct Pick {
     int index = 0;          ///< index into the weights / lights given at construction
@@ -44,10 +45,7 @@ class PowerLightSampler final : public LightSampler {
   int light_count() const { return distribution_.size(); }
 
  private:
-  PowerLightSampler(std::span<const Light* const> lights, std::span<const double> weights);
-
   Distribution1D distribution_;
-  std::vector<Distribution1D> parts_;  // per light; empty for one-part lights
 };
 
 }  // namespace rimu

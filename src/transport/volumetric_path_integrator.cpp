@@ -188,7 +188,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         for (int index : surfaces.infinite_lights) {
           const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
           const float pdf = previous_specular ? 0.0f
-                                              : light_sampler.pmf(previous_sampling_point, index, 0) *
+                                              : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0)) *
                                                     lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
           add_emission(le, pdf);
         }
@@ -196,7 +196,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       }
       if (hit->light >= 0) {
         const Light& light = *lights[size_t(hit->light)];
-        const int part = int(hit->primitive);
+        const int part = light_sampler.part_of_hit(hit->primitive);
         const float pdf = previous_specular ? 0.0f
                                             : light_sampler.pmf(previous_sampling_point, hit->light, part) *
                                                   light.pdf_part_li(part, previous_reference, ray.direction, &*hit);

@@ -62,30 +62,39 @@ TEST_CASE("light sampler weights lights by their radiant power, lights at infini
   CHECK(sampler.probability(2) == 0.0f);
 }
 
-TEST_CASE("power sampler picks a mesh's triangles by area within the light's power share") {
+TEST_CASE("power sampler chooses whole lights: part -1, and a mesh's pdf is that of the whole mesh") {
   auto spectrum = std::make_shared<ConstantSpectrum>(1.0);
   const PointLight point({0, 0, 0}, LightSpectrum(spectrum, 1.0 / (4.0 * std::numbers::pi)));  // 470 W
-  // Two triangles of areas 0.5 and 2 m²: 470π·2.5 W in all.
+  // Two triangles of areas 0.5 and 2 m²: 470·2.5 W in all.
   const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 1}, {0, 2, 1}};
   const std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5};
   const AreaLight mesh(v, idx, LightSpectrum(spectrum, 1.0 / std::numbers::pi), false);
   const std::vector<const Light*> lights = {&point, &mesh};
   const PowerLightSampler sampler(lights, 1.0);
+  CHECK_FALSE(sampler.chooses_parts());
+  CHECK(sampler.part_of_hit(1) == -1);
   const LightSamplingPoint at{{0.2f, 0.2f, 3}, {}};
-  const double total = 1.0 + 2.5;
-  CHECK(sampler.pmf(at, 0, 0) == doctest::Approx(1.0 / total));
-  CHECK(sampler.pmf(at, 1, 0) == doctest::Approx(0.5 / total));
-  CHECK(sampler.pmf(at, 1, 1) == doctest::Approx(2.0 / total));
-  CHECK(sampler.pmf(at, 1, 2) == 0.0f);
+  CHECK(sampler.pmf(at, 0, -1) == doctest::Approx(1.0 / 3.5));
+  CHECK(sampler.pmf(at, 1, -1) == doctest::Approx(2.5 / 3.5));
+  CHECK(sampler.pmf(at, 1, 0) == 0.0f);
   std::mt19937 rng(9);
-  std::vector<double> observed(3, 0.0);
+  std::vector<double> observed(2, 0.0);
   const int n = 60000;
   for (int s = 0; s < n; ++s) {
     const auto c = sampler.sample(at, test::uniform01(rng));
     REQUIRE(c);
+    REQUIRE(c->part == -1);
     REQUIRE(c->probability == sampler.pmf(at, c->light, c->part));
-    observed[size_t(c->light == 0 ? 0 : 1 + c->part)] += 1;
+    observed[size_t(c->light)] += 1;
   }
-  const std::vector<double> expected = {n / total, n * 0.5 / total, n * 2.0 / total};
+  const std::vector<double> expected = {n / 3.5, n * 2.5 / 3.5};
   CHECK(test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one).p_value > test::kChiSquareAlpha);
+  // Part −1 samples the whole mesh: its density is the mesh's, d²/(A |cos θ|), not a triangle's.
+  const LightReference ref{{0.2f, 0.2f, 3}, {}};
+  const SampledWavelengths lambda(Float4(500.0f), Float4(1.0f));
+  const auto whole = mesh.sample_part_li(-1, ref, lambda, {0.3f, 0.6f});
+  const auto same = mesh.sample_li(ref, lambda, {0.3f, 0.6f});
+  REQUIRE(whole);
+  REQUIRE(same);
+  CHECK(whole->pdf_solid_angle == same->pdf_solid_angle);
 }
