@@ -126,8 +126,10 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   if (job.wavelength_density)
     document["integrator"]["wavelength_density"] =
         *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
+  if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
   const std::unique_ptr<Scene> scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
 
+  for (const std::string& warning : scene->warnings) log << "rimu: warning: " << warning << "\n";
   RenderSettings& settings = scene->settings;
   if (job.width) settings.width = *job.width;
   if (job.height) settings.height = *job.height;
@@ -210,6 +212,7 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   exr.metadata.extra["wavelengths"] = wavelength_mode_name(settings.integrator.wavelengths);
   exr.metadata.extra["wavelengthDensity"] = scene->wavelength_density ? "lights" : "visible";
   exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
+  exr.metadata.extra["lightSampler"] = light_sampler_kind_name(settings.light_sampler);
   for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, output_transform))
     exr.metadata.extra[key] = value;
   exr.metadata.camera = settings.camera_exposure.exposure;

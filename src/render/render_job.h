@@ -12,6 +12,7 @@
 #include "render/film.h"
 #include "render/renderer.h"
 #include "spectral/spectral_library.h"
+#include "transport/light_sampler.h"
 #include "transport/wavelength_modes.h"
 
 namespace rimu {
@@ -28,6 +29,8 @@ struct RenderJob {
   std::optional<WavelengthMode> wavelengths;
   /// Overrides "integrator.wavelength_density" (visible, lights); applied before loading, which builds the density.
   std::optional<WavelengthDensityKind> wavelength_density;
+  /// Overrides "integrator.light_sampler" (bvh, power, uniform); applied before loading, which builds the sampler.
+  std::optional<LightSamplerKind> light_sampler;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
   bool float_exr = false;

@@ -42,6 +42,7 @@ struct RenderSettings {
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
   DistanceSampling distance_sampling = DistanceSampling::spectral_mis;  ///< media only (integrator.distance_sampling)
+  LightSamplerKind light_sampler = LightSamplerKind::bvh;  ///< integrator.light_sampler (transport/light_sampler.h)
   WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
@@ -56,7 +57,10 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
+  std::vector<std::string> light_names;  ///< per light: its "name", else where it was defined ("/lights/2")
   std::unique_ptr<LightSampler> light_sampler;
+  /// Load-time warnings (render_job prints them): e.g. lights the light sampler starves (render/light_coverage.h).
+  std::vector<std::string> warnings;
   std::vector<int> infinite_lights;
   CameraSettings camera;
   RenderSettings settings;

@@ -88,6 +88,10 @@ std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const st
 void load_lights(const JsonCursor& section, LoadContext& context) {
   for (size_t i = 0; i < section.size(); ++i) {
     const JsonCursor light = section.at(i);
+    const std::string where = light.path();
+    context.scene.light_names.push_back(light.is_object() && light.has("name") && light.at("name").is_string()
+                                            ? "'" + light.at("name").string() + "' (" + where + ")"
+                                            : "the light " + where);
     if (light.is_object() && light.has("include")) {
       const nlohmann::json merged = included_light(light, context.spectra.scene_directory());
       context.scene.lights.push_back(load_light(JsonCursor(merged, light.file(), light.path()), context));

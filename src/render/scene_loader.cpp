@@ -1,9 +1,11 @@
 #include <cmath>
 
 #include "render/camera_exposure.h"
+#include "render/light_coverage.h"
 #include "render/scene.h"
 #include "render/scene_load_context.h"
 #include "transport/emission_wavelength_density.h"
+#include "transport/power_light_sampler.h"
 #include "transport/wavelength_modes.h"
 
 namespace rimu {
@@ -74,7 +76,9 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
-               "direct_lighting", "distance_sampling"});
+               "direct_lighting", "distance_sampling", "light_sampler"});
+  if (const auto d = c.find("light_sampler"))
+    s.light_sampler = *parse_light_sampler_kind(d->choice({"bvh", "power", "uniform"}));
   if (const auto d = c.find("wavelength_density"))
     s.wavelength_density = d->choice({"visible", "lights"}) == "lights" ? WavelengthDensityKind::lights
                                                                         : WavelengthDensityKind::visible;
@@ -150,12 +154,14 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
     light_pointers.push_back(scene->lights[i].get());
     if (scene->lights[i]->is_infinite()) scene->infinite_lights.push_back(int(i));
   }
-  scene->light_sampler = std::make_unique<LightSampler>(light_pointers, 0.5 * double(scene->scene_scale));
+  const double scene_radius_m = 0.5 * double(scene->scene_scale);
+  scene->light_sampler = make_light_sampler(scene->settings.light_sampler, light_pointers, scene_radius_m);
   if (scene->settings.wavelength_density == WavelengthDensityKind::lights &&
       scene->settings.integrator.wavelengths != WavelengthMode::rgb)
-    scene->wavelength_density =
-        std::make_shared<const TabulatedWavelengthDensity>(emission_wavelength_density(
-            scene->lights, *scene->light_sampler, library.observer(StandardObserver::cie1931_2deg)));
+    scene->wavelength_density = std::make_shared<const TabulatedWavelengthDensity>(
+        emission_wavelength_density(scene->lights, PowerLightSampler(light_pointers, scene_radius_m),
+                                    library.observer(StandardObserver::cie1931_2deg)));
+  scene->warnings = light_coverage_warnings(*scene);
   return scene;
 }
 

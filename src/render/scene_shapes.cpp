@@ -175,6 +175,8 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       // Lights were loaded first, so area lights take the indices after them, in the order of the shapes.
       auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
       scene.lights.push_back(std::move(light));
+      scene.light_names.push_back(shape.has("name") ? "'" + shape.at("name").string() + "' (" + shape.path() + ")"
+                                                    : "the emissive shape " + shape.path());
       scene.geometry.add_mesh(mesh, material, int(scene.lights.size()) - 1);
     } else {
       scene.geometry.add_mesh(mesh, material, -1);

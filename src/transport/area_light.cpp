@@ -41,20 +41,17 @@ AreaLight::AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t>
   by_area_ = Distribution1D(areas);
 }
 
-float AreaLight::solid_angle_pdf(const Triangle& t, Vec3 wi, float distance_squared) const {
+float AreaLight::solid_angle_pdf(const Triangle& t, Vec3 wi, float distance_squared, double area_m2) const {
   const float cos_light = -dot(t.normal, wi);  // between the normal and y → x
   if (!two_sided_ && !(cos_light > 0.0f)) return 0.0f;
-  const double pdf = double(distance_squared) / (area_m2_ * std::fabs(double(cos_light)));
+  const double pdf = double(distance_squared) / (area_m2 * std::fabs(double(cos_light)));
   if (!(pdf > 0.0) || !std::isfinite(pdf) || pdf > double(std::numeric_limits<float>::max())) return 0.0f;
   return float(pdf);
 }
 
-std::optional<LightSample> AreaLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
-                                                Vec2 u) const {
-  if (by_area_.is_zero() || radiance_.is_black()) return std::nullopt;
-  const auto pick = by_area_.sample_discrete(u.x);
-  const Triangle& t = triangles_[pick.index];
-  const Vec3 b = sample_uniform_triangle({pick.u_remapped, u.y});
+std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const LightReference& ref,
+                                                      const SampledWavelengths& lambda, Vec2 u, double area_m2) const {
+  const Vec3 b = sample_uniform_triangle(u);
   const Vec3 point = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
   const Vec3 to_light = point - ref.position;
   const float distance_squared = length_squared(to_light);
@@ -62,19 +59,52 @@ std::optional<LightSample> AreaLight::sample_li(const LightReference& ref, const
   LightSample s;
   s.distance = std::sqrt(distance_squared);
   s.wi = to_light / s.distance;
-  s.pdf_solid_angle = solid_angle_pdf(t, s.wi, distance_squared);
+  s.pdf_solid_angle = solid_angle_pdf(t, s.wi, distance_squared, area_m2);
   if (s.pdf_solid_angle == 0.0f) return std::nullopt;
   s.radiance = radiance_.sample(lambda);
   return s;
 }
 
-float AreaLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {
-  if (!hit || hit->primitive >= triangles_.size() || by_area_.is_zero() || radiance_.is_black()) return 0.0f;
-  const Triangle& t = triangles_[hit->primitive];
+std::optional<LightSample> AreaLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
+                                                Vec2 u) const {
+  if (by_area_.is_zero() || radiance_.is_black()) return std::nullopt;
+  const auto pick = by_area_.sample_discrete(u.x);
+  return sample_triangle(triangles_[pick.index], ref, lambda, {pick.u_remapped, u.y}, area_m2_);
+}
+
+std::optional<LightSample> AreaLight::sample_part_li(int part, const LightReference& ref,
+                                                     const SampledWavelengths& lambda, Vec2 u) const {
+  if (part == -1) return sample_li(ref, lambda, u);
+  if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
+  const Triangle& t = triangles_[size_t(part)];
+  if (t.area_m2 == 0.0) return std::nullopt;
+  return sample_triangle(t, ref, lambda, u, t.area_m2);
+}
+
+float AreaLight::hit_pdf(size_t k, const LightReference& ref, Vec3 wi, const SurfaceHit* hit, bool whole_mesh) const {
+  if (!hit || k >= triangles_.size() || by_area_.is_zero() || radiance_.is_black()) return 0.0f;
+  const Triangle& t = triangles_[k];
   if (t.area_m2 == 0.0) return 0.0f;
   const float distance_squared = length_squared(hit->position - ref.position);
   if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return 0.0f;
-  return solid_angle_pdf(t, wi, distance_squared);
+  return solid_angle_pdf(t, wi, distance_squared, whole_mesh ? area_m2_ : t.area_m2);
+}
+
+float AreaLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {
+  return hit ? hit_pdf(hit->primitive, ref, wi, hit, true) : 0.0f;
+}
+
+float AreaLight::pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {
+  if (part == -1) return pdf_li(ref, wi, hit);
+  if (!hit || part < 0 || size_t(part) != size_t(hit->primitive)) return 0.0f;
+  return hit_pdf(size_t(part), ref, wi, hit, false);
+}
+
+std::optional<LightBounds> AreaLight::part_bounds(int part) const {
+  if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
+  const Triangle& t = triangles_[size_t(part)];
+  if (t.area_m2 == 0.0) return std::nullopt;
+  return triangle_light_bounds(t.v0, t.v1, t.v2, t.normal, t.area_m2, radiance_.integral_360_830(), two_sided_);
 }
 
 SampledSpectrum AreaLight::radiance(const SurfaceHit& hit, Vec3 w_out, const SampledWavelengths& lambda) const {

@@ -44,6 +44,16 @@ class AreaLight final : public Light {
   /// Lambertian emitter: Φ = π A ∫L(λ) dλ per emitting side.
   double total_power_w(double scene_radius_m) const override;
 
+  /// Parts are the triangles (light samplers may choose them one by one, e.g. the light BVH).
+  int part_count() const override { return triangle_count(); }
+  /// A point uniform on triangle `part`: p_ω = d²/(A_k|cos θ_l|); otherwise as sample_li.
+  std::optional<LightSample> sample_part_li(int part, const LightReference& ref, const SampledWavelengths& lambda,
+                                            Vec2 u) const override;
+  /// d²/(A_k|cos θ_l|) for a ray that hit triangle `part` (= hit->primitive); 0 as pdf_li.
+  float pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const override;
+  /// The triangle's box, normal (θo = 0, θe = π/2) and intensity bound L·A_k; none for degenerate triangles.
+  std::optional<LightBounds> part_bounds(int part) const override;
+
   int triangle_count() const { return int(triangles_.size()); }
   /// Triangles skipped for zero (or non-finite) area.
   int degenerate_triangle_count() const { return degenerate_count_; }
@@ -58,8 +68,14 @@ class AreaLight final : public Light {
     Vec3 normal;  // unit front normal; zero for degenerate triangles
     double area_m2 = 0.0;
   };
-  /// p_ω = d²/(A|cos θ_l|) if the point y on triangle k is seen from the emitting side, finite and > 0; else 0.
-  float solid_angle_pdf(const Triangle& t, Vec3 wi, float distance_squared) const;
+  /// p_ω = d²/(area|cos θ_l|) if the point y on triangle k is seen from the emitting side, finite and > 0; else 0.
+  /// `area_m2`: the mesh's area (whole-light sampling) or the triangle's (part sampling).
+  float solid_angle_pdf(const Triangle& t, Vec3 wi, float distance_squared, double area_m2) const;
+  /// A point uniform on triangle t, with the density of choosing it over `area_m2`.
+  std::optional<LightSample> sample_triangle(const Triangle& t, const LightReference& ref,
+                                             const SampledWavelengths& lambda, Vec2 u, double area_m2) const;
+  /// The density for a hit on triangle `k` when points are uniform over `area_m2` (0 for bad hits).
+  float hit_pdf(size_t k, const LightReference& ref, Vec3 wi, const SurfaceHit* hit, bool whole_mesh) const;
 
   std::vector<Triangle> triangles_;
   Distribution1D by_area_;

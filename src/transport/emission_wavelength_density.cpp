@@ -7,7 +7,7 @@
 namespace rimu {
 
 TabulatedWavelengthDensity emission_wavelength_density(const std::vector<std::unique_ptr<Light>>& lights,
-                                                       const LightSampler& light_sampler, const Observer& response,
+                                                       const PowerLightSampler& light_sampler, const Observer& response,
                                                        double defensive_fraction) {
   struct Term {
     const LightSpectrum* spectrum;  // nullptr: flat

@@ -6,7 +6,7 @@
 
 #include "spectral/wavelength_density.h"
 #include "transport/light.h"
-#include "transport/light_sampler.h"
+#include "transport/power_light_sampler.h"
 
 namespace rimu {
 
@@ -15,12 +15,12 @@ namespace rimu {
 inline constexpr double kEmissionDensityDefensiveFraction = 0.25;
 
 /// light_weighted_wavelength_density with S(λ) = Σᵢ Pᵢ sᵢ(λ)/∫sᵢ dλ: each light's emitted spectrum shape
-/// (Light::emitted_spectrum), normalised, weighted by the probability Pᵢ with which next-event estimation
-/// picks it (∝ its radiant power). A light without one shape (an environment image) contributes Pᵢ as a flat
-/// spectrum, i.e. the visible density. Cost: one 1 nm integral per light plus 1880 evaluations of S.
+/// (Light::emitted_spectrum), normalised, weighted by its probability Pᵢ under the power sampler (∝ its radiant
+/// power, whichever sampler next-event estimation uses: a spatial sampler has no one probability per light). A
+/// light without one shape (an environment image) contributes Pᵢ as a flat spectrum, i.e. the visible density. Cost: one 1 nm integral per light plus 1880 evaluations of S.
 /// `response`: the three channel curves the density balances (the loader passes CIE 1931 x̄, ȳ, z̄).
 TabulatedWavelengthDensity emission_wavelength_density(const std::vector<std::unique_ptr<Light>>& lights,
-                                                       const LightSampler& light_sampler, const Observer& response,
+                                                       const PowerLightSampler& light_sampler, const Observer& response,
                                                        double defensive_fraction = kEmissionDensityDefensiveFraction);
 
 }  // namespace rimu

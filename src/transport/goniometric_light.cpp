@@ -1,7 +1,9 @@
 #include "transport/goniometric_light.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 #include "transport/point_light.h"
 
@@ -30,6 +32,29 @@ std::optional<LightSample> GoniometricLight::sample_li(const LightReference& ref
 
 double GoniometricLight::total_power_w(double) const {
   return per_unit_intensity_.integral_360_830() * table_->integral_sr();
+}
+
+std::optional<LightBounds> GoniometricLight::part_bounds(int part) const {
+  const double intensity = per_unit_intensity_.integral_360_830() * table_->peak();
+  if (part != 0 || !(intensity > 0.0)) return std::nullopt;
+  const std::vector<double>& gamma = table_->gamma_deg();
+  const std::vector<double>& c = table_->c_deg();
+  int first = -1, last = -1;
+  for (int j = 0; j < int(gamma.size()); ++j)
+    for (double c_deg : c)
+      if (table_->intensity_deg(gamma[size_t(j)], c_deg) > 0.0) {
+        if (first < 0) first = j;
+        last = j;
+        break;
+      }
+  if (first < 0) return std::nullopt;
+  const double to_rad = std::numbers::pi / 180.0;
+  // Between grid angles the interpolant is positive only next to a positive grid value.
+  const double gamma_min = gamma[size_t(std::max(first - 1, 0))] * to_rad;
+  const double gamma_max = gamma[size_t(std::min(last + 1, int(gamma.size()) - 1))] * to_rad;
+  const float i = float(intensity);
+  if (gamma_max <= std::numbers::pi - gamma_min) return point_light_bounds(position_m_, i, frame_.n, gamma_max, 0.0);
+  return point_light_bounds(position_m_, i, -frame_.n, std::numbers::pi - gamma_min, 0.0);
 }
 
 std::optional<CandelaDistribution::DirectionSample> GoniometricLight::sample_emission_direction(Vec2 u) const {

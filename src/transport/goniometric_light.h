@@ -31,6 +31,10 @@ class GoniometricLight final : public Light {
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
 
+  /// The table's peak times ∫shape dλ, in the narrowest cone about ±axis outside which the table is 0 (the γ range
+  /// of its nonzero values, widened to the neighbouring grid angles the bilinear interpolation reaches).
+  std::optional<LightBounds> part_bounds(int part) const override;
+
   /// An emission direction (world space) drawn proportionally to the table (CandelaDistribution::sample), with its
   /// solid-angle density; for light tracing and for tests.
   std::optional<CandelaDistribution::DirectionSample> sample_emission_direction(Vec2 u) const;

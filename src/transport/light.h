@@ -13,6 +13,7 @@
 
 #include <optional>
 
+#include "transport/light_bounds.h"
 #include "transport/light_spectrum.h"
 #include "transport/light_sample.h"
 #include "transport/surface_hit.h"
@@ -59,6 +60,22 @@ class Light {
   virtual std::optional<Vec3> delta_position_m() const { return std::nullopt; }
   /// True if the light is at infinity (radiance_escaped may be nonzero).
   virtual bool is_infinite() const { return false; }
+
+  // Parts. A light sampler may choose the parts of a light separately: the triangles of an emissive mesh (part k
+  // is triangle k, SurfaceHit::primitive). Every other light is one part, and these default to the whole light.
+
+  /// The number of parts (≥ 1).
+  virtual int part_count() const { return 1; }
+  /// sample_li restricted to `part`: its solid-angle density is that of the part alone (for a triangle k,
+  /// d²/(A_k |cos θ_l|)), so the sampler's probability of the part times it is the density of the whole choice.
+  /// Part −1 is the whole light (sample_li, pdf_li), for samplers that choose whole lights.
+  virtual std::optional<LightSample> sample_part_li(int part, const LightReference& ref,
+                                                    const SampledWavelengths& lambda, Vec2 u) const;
+  /// The density sample_part_li(part, ref, ...) has for wi (0 where it would return std::nullopt).
+  virtual float pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit = nullptr) const;
+  /// Where the part can emit, for the light BVH (light_bounds.h); std::nullopt for lights at infinity and for
+  /// parts that emit nothing (black, degenerate triangles), which the BVH then never picks.
+  virtual std::optional<LightBounds> part_bounds(int) const { return std::nullopt; }
 };
 
 }  // namespace rimu

@@ -1,29 +1,40 @@
 #include "transport/light_sampler.h"
 
-#include <vector>
-
-#include "transport/light.h"
+#include "transport/bvh_light_sampler.h"
+#include "transport/power_light_sampler.h"
 
 namespace rimu {
 
-LightSampler::LightSampler(std::span<const double> power_w) : distribution_(power_w) {}
-
-namespace {
-std::vector<double> powers_of(std::span<const Light* const> lights, double scene_radius_m) {
-  std::vector<double> power_w;
-  power_w.reserve(lights.size());
-  for (const Light* light : lights) power_w.push_back(light->total_power_w(scene_radius_m));
-  return power_w;
+std::optional<LightSamplerKind> parse_light_sampler_kind(std::string_view name) {
+  if (name == "bvh") return LightSamplerKind::bvh;
+  if (name == "power") return LightSamplerKind::power;
+  if (name == "uniform") return LightSamplerKind::uniform;
+  return std::nullopt;
 }
-}  // namespace
 
-LightSampler::LightSampler(std::span<const Light* const> lights, double scene_radius_m)
-    : distribution_(powers_of(lights, scene_radius_m)) {}
+const char* light_sampler_kind_name(LightSamplerKind kind) {
+  switch (kind) {
+    case LightSamplerKind::bvh:
+      return "bvh";
+    case LightSamplerKind::power:
+      return "power";
+    case LightSamplerKind::uniform:
+      return "uniform";
+  }
+  return "bvh";
+}
 
-std::optional<LightSampler::Pick> LightSampler::pick(float u) const {
-  if (distribution_.is_zero()) return std::nullopt;
-  const auto s = distribution_.sample_discrete(u);
-  return Pick{s.index, s.probability};
+std::unique_ptr<LightSampler> make_light_sampler(LightSamplerKind kind, std::span<const Light* const> lights,
+                                                 double scene_radius_m) {
+  switch (kind) {
+    case LightSamplerKind::power:
+      return std::make_unique<PowerLightSampler>(lights, scene_radius_m);
+    case LightSamplerKind::uniform:
+      return std::make_unique<PowerLightSampler>(PowerLightSampler::uniform_over_lights(lights, scene_radius_m));
+    case LightSamplerKind::bvh:
+      break;
+  }
+  return std::make_unique<BvhLightSampler>(lights);
 }
 
 }  // namespace rimu

@@ -1,44 +1,66 @@
-// Chooses which light next-event estimation samples: with probability proportional to its radiant power.
-//
-// Why radiometric power (∫Φ_λ dλ over 360-830 nm, W) and not luminous power (lm): the film does not only record
-// luminance. Z (z̄ peaks at 445 nm, where V(λ) is 0.04) and camera-RGB blue channels respond strongly where V is
-// small, so picking by lumens would starve a blue or violet light of samples and leave blue noise; radiant power
-// over the transported range treats every wavelength the film can record alike. It also needs no observer, so
-// transport does not depend on the spectral library's tables. Lights at infinity are counted through a scene
-// radius (Light::total_power_w). The choice only moves variance: any probability that is positive wherever a
-// light can contribute gives an unbiased estimate.
+// Chooses which light (and which part of it: a triangle of an emissive mesh) next-event estimation samples from a
+// shading point. Three strategies share this interface (light_sampler.cpp builds them by kind):
+//   bvh (the default; bvh_light_sampler.h): by an estimate of each light's contribution at the point;
+//   power (power_light_sampler.h): by radiant power, ignoring the point;
+//   uniform: every light with power equally (for tests).
+// Any choice that gives positive probability to every light that can contribute at the point is unbiased; the
+// integrators divide by the probability sample() returns, and weight BSDF-sampled hits on a light with pmf().
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
+#include <string_view>
 
-#include "transport/distribution_1d.h"
+#include "transport/vector.h"
 
 namespace rimu {
 
 class Light;
 
+/// Where a light is being chosen for.
+struct LightSamplingPoint {
+  Vec3 position_m;
+  /// The geometric normal of an opaque surface, on the side light may arrive from (the integrators drop light from
+  /// below it); zero for a point in a medium or on a surface that transmits, where light from every direction counts.
+  Vec3 normal;
+};
+
+struct LightChoice {
+  int light = 0;  ///< index into the lights given at construction
+  /// The part (Light::part_count(): the triangle of an emissive mesh, else 0) for samplers that choose parts;
+  /// −1 for samplers that choose whole lights (Light::sample_part_li/pdf_part_li then sample the whole light).
+  int part = 0;
+  float probability = 0;  ///< > 0: the probability of this (light, part) at the point
+};
+
 class LightSampler {
  public:
-  /// From each light's weight, normally total_power_w(scene radius). Weights must be finite and ≥ 0 (asserted);
-  /// zero-weight lights are never picked.
-  explicit LightSampler(std::span<const double> power_w);
-  /// Convenience: the weights are lights[i]->total_power_w(scene_radius_m).
-  LightSampler(std::span<const Light* const> lights, double scene_radius_m);
-
-  struct Pick {
-    int index = 0;          ///< index into the weights / lights given at construction
-    float probability = 0;  ///< > 0
-  };
-  /// A light with probability ∝ its power, from u in [0, 1); std::nullopt if no light has power. O(log n).
-  std::optional<Pick> pick(float u) const;
-  /// The probability that pick() returns light `index` (0 for zero-power lights, bad indices, empty scenes).
-  float probability(int index) const { return distribution_.probability(index); }
-  /// Number of lights (including zero-power ones).
-  int light_count() const { return distribution_.size(); }
-
- private:
-  Distribution1D distribution_;
+  virtual ~LightSampler() = default;
+  /// A (light, part) from u in [0, 1), with its probability; std::nullopt if no light can contribute at `at` (or,
+  /// for the BVH, the descent met only clusters that cannot). The probabilities of one point sum to at most 1.
+  virtual std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const = 0;
+  /// Exactly the probability sample(at, ·) returns for (light, part); 0 if it never returns it.
+  virtual float pmf(const LightSamplingPoint& at, int light, int part) const = 0;
+  /// True if sample() chooses parts (the BVH: each triangle its own leaf); false if it chooses whole lights and
+  /// returns part −1 (power, uniform: the light then picks its triangle by area jointly with the point, which keeps
+  /// the point's 2D stratification over the whole mesh).
+  virtual bool chooses_parts() const = 0;
+  /// The part index this sampler uses for a hit on triangle `primitive` of a light (0 for lights of one part, e.g.
+  /// at infinity): the primitive, or −1 for samplers of whole lights.
+  int part_of_hit(uint32_t primitive) const { return chooses_parts() ? int(primitive) : -1; }
 };
+
+enum class LightSamplerKind { bvh, power, uniform };
+
+/// "bvh", "power", "uniform"; std::nullopt for anything else.
+std::optional<LightSamplerKind> parse_light_sampler_kind(std::string_view name);
+const char* light_sampler_kind_name(LightSamplerKind kind);
+
+/// The sampler of `kind` over `lights` (which must outlive it). `scene_radius_m` only matters to the power
+/// sampler, which weighs lights at infinity by the power they send through a sphere of that radius.
+std::unique_ptr<LightSampler> make_light_sampler(LightSamplerKind kind, std::span<const Light* const> lights,
+                                                 double scene_radius_m);
 
 }  // namespace rimu

@@ -56,6 +56,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
   float previous_sum_ratio = sum(pdf_ratio);  // Σ_k R_k before the bounce
   float previous_bsdf_sum = sum(pdf_ratio);   // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
   LightReference previous_reference{};
+  LightSamplingPoint previous_sampling_point{};  // where the light sampler chose for the previous vertex
 
   // Adds an emitter seen along the sampled direction: spectral MIS, and power-heuristic MIS against light sampling.
   const DirectLighting strategy = settings_.direct_lighting;
@@ -79,7 +80,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
       for (int index : scene_.infinite_lights) {
         const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
         const float pdf = previous_specular ? 0.0f
-                                            : light_sampler.probability(index) *
+                                            : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0)) *
                                                   lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
         add_emission(le, pdf);
       }
@@ -90,9 +91,10 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     if (hit->light >= 0) {
       const Light& light = *lights[size_t(hit->light)];
       const SampledSpectrum le = light.radiance(*hit, wo_world, lambda);
+      const int part = light_sampler.part_of_hit(hit->primitive);
       const float pdf = previous_specular ? 0.0f
-                                          : light_sampler.probability(hit->light) *
-                                                light.pdf_li(previous_reference, ray.direction, &*hit);
+                                          : light_sampler.pmf(previous_sampling_point, hit->light, part) *
+                                                light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
       add_emission(le, pdf);
     }
     if (depth >= settings_.max_depth || hit->material < 0) break;
@@ -104,15 +106,17 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     if (wo.z == 0.0f) break;
 
     const LightReference reference{hit->position, shading.geometric_normal};
+    // Light from below an opaque surface is dropped (wrong_side below), so the sampler may ignore lights there.
+    const LightSamplingPoint sampling_point{hit->position, flags.has_transmission ? Vec3{} : shading.geometric_normal};
     const float sum_ratio = sum(pdf_ratio);
 
-    // Next-event estimation: one light, picked by power.
+    // Next-event estimation: one light (and part), chosen by the scene's light sampler.
     const float u_light_choice = sampler.next_1d();
     const Vec2 u_light = sampler.next_2d();
     if (flags.has_non_delta && strategy != DirectLighting::bsdf_only) {
-      if (const auto pick = light_sampler.pick(u_light_choice)) {
-        const Light& light = *lights[size_t(pick->index)];
-        if (const auto ls = light.sample_li(reference, lambda, u_light)) {
+      if (const auto pick = light_sampler.sample(sampling_point, u_light_choice)) {
+        const Light& light = *lights[size_t(pick->light)];
+        if (const auto ls = light.sample_part_li(pick->part, reference, lambda, u_light)) {
           const Vec3 wi = shading.frame.to_local(ls->wi);
           const SampledSpectrum f = bsdf.eval(wo, wi) * Float4(std::fabs(wi.z));
           // A direction below the geometric surface cannot be reached by an opaque material's light.
@@ -150,6 +154,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     const SampledSpectrum bsdf_densities = lanes.densities(bs->pdf);
     previous_bsdf_sum = sum(pdf_ratio * bsdf_densities);
     previous_reference = reference;
+    previous_sampling_point = sampling_point;
 
     beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
     pdf_ratio *= bsdf_densities / Float4(bs->pdf[0]);

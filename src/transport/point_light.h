@@ -23,6 +23,8 @@ class PointLight final : public Light {
   std::optional<Vec3> delta_position_m() const override { return position_m_; }
 
   Vec3 position_m() const { return position_m_; }
+  /// A point emitting I = ∫I(λ)dλ in every direction (θo = π).
+  std::optional<LightBounds> part_bounds(int part) const override;
 
   const LightSpectrum* emitted_spectrum() const override { return &intensity_; }
 

@@ -39,6 +39,13 @@ std::optional<LightSample> SpotLight::sample_li(const LightReference& ref, const
   return s;
 }
 
+std::optional<LightBounds> SpotLight::part_bounds(int part) const {
+  if (part != 0 || intensity_.is_black()) return std::nullopt;
+  const double inner = std::acos(std::clamp(cos_inner_, -1.0, 1.0));
+  const double outer = std::acos(std::clamp(cos_outer_, -1.0, 1.0));
+  return point_light_bounds(position_m_, float(intensity_.integral_360_830()), axis_, inner, outer - inner);
+}
+
 double SpotLight::total_power_w(double) const {
   return 2.0 * std::numbers::pi * (1.0 - 0.5 * (cos_inner_ + cos_outer_)) * intensity_.integral_360_830();
 }

@@ -31,6 +31,9 @@ class SpotLight final : public Light {
   bool is_delta() const override { return true; }
   std::optional<Vec3> delta_position_m() const override { return position_m_; }
 
+  /// The on-axis intensity ∫I(λ)dλ in the cone θo = inner, falling to nothing at θo + θe = outer.
+  std::optional<LightBounds> part_bounds(int part) const override;
+
   /// s(cos θ) for the direction `w_emitted` (unit, from the light outwards).
   float falloff(Vec3 w_emitted) const;
 

@@ -125,6 +125,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   float previous_sum_ratio = 4.0f;     // Σ R_k before the direction decision
   float pass_product = 1.0f;           // the technique's probability of passing the free flights since then
   LightReference previous_reference{};
+  LightSamplingPoint previous_sampling_point{};
 
   auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle) {
     if (strategy == DirectLighting::nee_only && !previous_specular) return;
@@ -187,7 +188,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         for (int index : surfaces.infinite_lights) {
           const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
           const float pdf = previous_specular ? 0.0f
-                                              : light_sampler.probability(index) *
+                                              : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0)) *
                                                     lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
           add_emission(le, pdf);
         }
@@ -195,9 +196,10 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       }
       if (hit->light >= 0) {
         const Light& light = *lights[size_t(hit->light)];
+        const int part = light_sampler.part_of_hit(hit->primitive);
         const float pdf = previous_specular ? 0.0f
-                                            : light_sampler.probability(hit->light) *
-                                                  light.pdf_li(previous_reference, ray.direction, &*hit);
+                                            : light_sampler.pmf(previous_sampling_point, hit->light, part) *
+                                                  light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
         add_emission(light.radiance(*hit, -ray.direction, lambda), pdf);
       }
       const MediumBoundary b = boundary(hit->material);
@@ -228,6 +230,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       shadow_origin = hit->position;
     }
     ++vertex_count;
+    // Light from below an opaque surface is dropped (wrong_side below), so the sampler may ignore lights there.
+    const LightSamplingPoint sampling_point{reference.position, scatterer.opaque() ? reference.normal : Vec3{}};
 
     // Rescale β and R together so that Σ R = 4 (the lane estimates 4β/ΣR do not change).
     const float rescale = kLanes / sum(pdf_ratio);
@@ -252,9 +256,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const float u_light_choice = sampler.next_1d();
     const Vec2 u_light = sampler.next_2d();
     if (scatterer.has_non_delta() && strategy != DirectLighting::bsdf_only) {
-      if (const auto pick = light_sampler.pick(u_light_choice)) {
-        const Light& light = *lights[size_t(pick->index)];
-        if (const auto ls = light.sample_li(reference, lambda, u_light)) {
+      if (const auto pick = light_sampler.sample(sampling_point, u_light_choice)) {
+        const Light& light = *lights[size_t(pick->light)];
+        if (const auto ls = light.sample_part_li(pick->part, reference, lambda, u_light)) {
           const SampledSpectrum f = scatterer.eval(ls->wi);
           const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
           if (!wrong_side && max_lane(f) > 0.0f) {
@@ -272,7 +276,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
               if (equiangular && scatter_point)
                 if (const auto light_m = light.delta_position_m())
                   weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *light_m,
-                                                      ratios_before_flight, lambda);
+                                                      ratios_before_flight, lambda,
+                                                      pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),
+                                                                                           pick->light, pick->part));
               radiance += beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight);
             }
           }
@@ -290,6 +296,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     previous_sum_ratio = sum_ratio;
     pass_product = 1.0f;
     previous_reference = reference;
+    previous_sampling_point = sampling_point;
     beta *= ds->f_cos / Float4(ds->pdf[0]);
     pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
     if (ds->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {

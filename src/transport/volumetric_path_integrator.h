@@ -80,9 +80,17 @@ class VolumetricPathIntegrator {
                                      const SampledSpectrum& ratios, const MediumStack& stack,
                                      const SampledWavelengths& lambda, Sampler& sampler) const;
   /// The balance-heuristic weight of free-flight sampling + NEE to a light at `light_m` for a scattering event at
-  /// `t` of `segment`, against the equiangular technique: S_dist / (S_dist + S_equi) (docs/media.md).
+  /// `t` of `segment`, against the equiangular technique: P_nee·S_dist / (P_nee·S_dist + P_equi·S_equi)
+  /// (docs/media.md), with P_nee the probability NEE chose the light at the scattering point and P_equi the one
+  /// the equiangular technique chooses it with (at equiangular_choice_point).
   float distance_technique_weight(EquiangularSegment segment, const Medium& medium, float t, Vec3 light_m,
-                                  const SampledSpectrum& ratios, const SampledWavelengths& lambda) const;
+                                  const SampledSpectrum& ratios, const SampledWavelengths& lambda,
+                                  float nee_probability, float equiangular_probability) const;
+  /// Where the equiangular technique chooses its light: the segment's start, as a point in a medium (no normal).
+  /// Any point fixed before the distance is drawn keeps the technique's density known to NEE's MIS weight.
+  static LightSamplingPoint equiangular_choice_point(const EquiangularSegment& segment) {
+    return {segment.origin + segment.direction * segment.t0, Vec3{}};
+  }
   MediumBoundary boundary(int material) const {
     return material >= 0 && size_t(material) < scene_.boundaries->size() ? (*scene_.boundaries)[size_t(material)]
                                                                          : MediumBoundary{};

@@ -81,7 +81,10 @@ TEST_CASE("MIS: a one-sided quad light over a diffuse and a glossy floor, NEE-on
        "vertices": [[-0.3, 1, -0.3], [0.3, 1, -0.3], [0.3, 1, 0.3], [-0.3, 1, 0.3]]}
     ]
   })");
-  check_all_agree(render_strategies(scene, 32, 32, 128));
+  // NEE-only gets 64 spp: the light tree (the default light sampler) chooses one of the quad's two triangles per
+  // sample, so the point's 2D Sobol' stratification covers a triangle rather than the quad, and NEE alone is
+  // ~2.4× noisier here than when the whole quad was sampled at once.
+  check_all_agree(render_strategies(scene, 32, 64, 128));
 }
 
 TEST_CASE("MIS: a constant environment over a diffuse floor with a glossy sphere, the three strategies agree") {

@@ -42,7 +42,7 @@ TEST_CASE("emission wavelength density: Σ P_i s_i / ∫s_i over the lights, fla
   lights.push_back(std::make_unique<PointLight>(Vec3{0, 3, 0}, LightSpectrum(warm, 0.0)));  // black: ignored
   std::vector<const Light*> pointers;
   for (const auto& l : lights) pointers.push_back(l.get());
-  const LightSampler sampler(pointers, 10.0);
+  const PowerLightSampler sampler(pointers, 10.0);
   REQUIRE(sampler.probability(2) > 0.0f);
 
   const Observer& cie1931 = test::library().observer(StandardObserver::cie1931_2deg);
@@ -64,7 +64,7 @@ TEST_CASE("emission wavelength density: Σ P_i s_i / ∫s_i over the lights, fla
 
 TEST_CASE("emission wavelength density: no lights is the visible density") {
   std::vector<std::unique_ptr<Light>> none;
-  const LightSampler sampler(std::vector<const Light*>{}, 1.0);
+  const PowerLightSampler sampler(std::vector<const Light*>{}, 1.0);
   const TabulatedWavelengthDensity d =
       emission_wavelength_density(none, sampler, test::library().observer(StandardObserver::cie1931_2deg));
   CHECK(d.pdf(500.5f) == doctest::Approx(visible_wavelength_pdf(500.5f)).epsilon(1e-4));

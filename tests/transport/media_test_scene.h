@@ -10,7 +10,7 @@
 
 #include "spectral/spectrum.h"
 #include "transport/distant_light.h"
-#include "transport/light_sampler.h"
+#include "transport/power_light_sampler.h"
 #include "transport/volumetric_path_integrator.h"
 
 namespace rimu::test {
@@ -104,7 +104,7 @@ struct SlabScene {
     const bool infinite = light->is_infinite();
     lights.push_back(std::move(light));
     const double power[] = {1.0};
-    light_sampler = std::make_unique<LightSampler>(power);
+    light_sampler = std::make_unique<PowerLightSampler>(power);
     surfaces.geometry = &geometry;
     surfaces.materials = &materials;
     surfaces.lights = &lights;

@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
       "of CIE XYZ (or camera RGB) and optionally a PNG for display. Ctrl-C stops early and still writes the image.\n"
       "Example: rimu -o box.exr --png box.png --spp 64"};
   rimu::RenderJob job;
-  std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density;
+  std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
+      light_sampler;
   app.add_option("scene", scene, "scene file (.json, or a pbrt-v4 .pbrt: see docs/pbrt-import.md); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "scene-referred OpenEXR output, a name ending in .exr (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
@@ -38,6 +39,10 @@ int main(int argc, char** argv) {
                  "emission too: less colour noise under line spectra such as F11; see docs/sampling.md) "
                  "(overrides the scene)")
       ->check(CLI::IsMember({"visible", "lights"}));
+  app.add_option("--light-sampler", light_sampler,
+                 "bvh (chooses lights by their estimated contribution at each point, the default), power (by "
+                 "radiant power only) or uniform (see docs/transport.md) (overrides the scene)")
+      ->check(CLI::IsMember({"bvh", "power", "uniform"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");
@@ -64,6 +69,7 @@ int main(int argc, char** argv) {
     if (!wavelength_density.empty())
       job.wavelength_density = wavelength_density == "lights" ? rimu::WavelengthDensityKind::lights
                                                               : rimu::WavelengthDensityKind::visible;
+    if (!light_sampler.empty()) job.light_sampler = rimu::parse_light_sampler_kind(light_sampler);
     if (!resolution.empty()) {
       const auto [w, h] = rimu::parse_resolution(resolution, "--resolution");
       job.width = w;

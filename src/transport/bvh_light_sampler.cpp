@@ -1,0 +1,341 @@
+#include "transport/bvh_light_sampler.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "transport/light.h"
+
+namespace rimu {
+
+struct BvhLightSampler::BuildItem {
+  LightBounds bounds;
+  Vec3 centroid;
+  uint32_t leaf;
+};
+
+namespace {
+
+constexpr int kBins = 12;
+// Below this depth splits minimise the cost; deeper (pathological inputs: thousands of coincident emitters) the
+// items are halved by count, so no leaf is deeper than kCostDepth + log2(n) ≤ 62 and its trail fits 64 bits.
+constexpr int kCostDepth = 30;
+
+// The bounds of a set of members without a cone union per member (each costs an acos and a rotation), in two
+// sequential passes: the first gathers box, intensity and the mean axis; the second the largest angle from that axis
+// to a member's cone edge, in cosines: cos(α + θo) = cos α cos θo − sin α sin θo. Conservative, like unite().
+class BoundsAccumulator {
+ public:
+  void add_first_pass(const LightBounds& m) {
+    if (empty_) {
+      b_ = m;
+      empty_ = false;
+    } else {
+      b_.lower_m = {std::fmin(b_.lower_m.x, m.lower_m.x), std::fmin(b_.lower_m.y, m.lower_m.y), std::fmin(b_.lower_m.z, m.lower_m.z)};
+      b_.upper_m = {std::fmax(b_.upper_m.x, m.upper_m.x), std::fmax(b_.upper_m.y, m.upper_m.y), std::fmax(b_.upper_m.z, m.upper_m.z)};
+      b_.intensity_w_sr += m.intensity_w_sr;
+      b_.cos_theta_e = std::fmin(b_.cos_theta_e, m.cos_theta_e);
+      b_.two_sided = b_.two_sided || m.two_sided;
+      same_axis_ = same_axis_ && m.axis == b_.axis && m.flat_one_sided && b_.flat_one_sided;
+      if (same_axis_) b_.plane_offset_m = std::fmin(b_.plane_offset_m, m.plane_offset_m);
+    }
+    axis_sum_ += m.axis;
+  }
+  /// Between the passes. Returns false when the second pass is not needed (one member, or all facing one way).
+  bool needs_second_pass() {
+    if (empty_ || same_axis_) return false;
+    b_.flat_one_sided = false;
+    const float axis_length = length(axis_sum_);
+    if (axis_length > 1e-6f) b_.axis = axis_sum_ / axis_length;
+    second_ = true;
+    return true;
+  }
+  void add_second_pass(const LightBounds& m) {
+    if (cos_o_ <= -1.0f) return;
+    const float c = std::clamp(dot(b_.axis, m.axis), -1.0f, 1.0f);
+    if (c < -m.cos_theta_o) {  // α + θo ≥ π: the whole sphere
+      cos_o_ = -1.0f;
+      return;
+    }
+    const float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));
+    const float sin_o = std::sqrt(std::fmax(0.0f, 1.0f - m.cos_theta_o * m.cos_theta_o));
+    cos_o_ = std::fmin(cos_o_, c * m.cos_theta_o - s * sin_o);
+  }
+  LightBounds result() const {
+    LightBounds out = b_;
+    if (second_) {
+      // Widened by 1e-4 rad against rounding in the cosines above.
+      const double theta = std::min(std::acos(std::clamp(double(cos_o_), -1.0, 1.0)) + 1e-4, 3.14159265358979323846);
+      out.cos_theta_o = float(std::cos(theta));
+    }
+    return out;
+  }
+
+ private:
+  LightBounds b_;
+  Vec3 axis_sum_{};
+  float cos_o_ = 1.0f;
+  bool empty_ = true, same_axis_ = true, second_ = false;
+};
+
+double surface_area(const LightBounds& b, double floor_m) {
+  const double x = double(b.upper_m.x - b.lower_m.x) + floor_m;
+  const double y = double(b.upper_m.y - b.lower_m.y) + floor_m;
+  const double z = double(b.upper_m.z - b.lower_m.z) + floor_m;
+  return 2.0 * (x * y + y * z + z * x);
+}
+
+// Conty & Kulla's cost of a cluster: its intensity × orientation measure × surface area. The floor (a thousandth
+// of the node's diagonal added to each extent) keeps collinear or coplanar point lights from all costing 0.
+double cluster_cost(const LightBounds& b, double floor_m) {
+  if (!(b.intensity_w_sr > 0.0f)) return 0.0;
+  return double(b.intensity_w_sr) * orientation_measure(b) * surface_area(b, floor_m);
+}
+
+}  // namespace
+
+BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
+  first_part_.resize(lights.size());
+  is_infinite_.resize(lights.size());
+  size_t total_parts = 0;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    first_part_[i] = uint32_t(total_parts);
+    total_parts += size_t(std::max(lights[i]->part_count(), 1));
+  }
+  trails_.assign(total_parts, 0);
+  std::vector<BuildItem> items;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const Light& light = *lights[i];
+    if (light.is_infinite()) {
+      is_infinite_[i] = true;
+      if (light.total_power_w(1.0) > 0.0) infinite_lights_.push_back(int(i));
+      continue;
+    }
+    bool any_bounds = false;
+    for (int k = 0; k < light.part_count(); ++k) {
+      const std::optional<LightBounds> b = light.part_bounds(k);
+      if (!b || !(b->intensity_w_sr > 0.0f) || !std::isfinite(b->intensity_w_sr) || !is_finite(b->lower_m) ||
+          !is_finite(b->upper_m))
+        continue;
+      any_bounds = true;
+      items.push_back({*b, b->centre_m(), uint32_t(leaves_.size())});
+      leaves_.push_back({int(i), k});
+    }
+    // A finite light with power must say where it emits, or the tree could never pick it.
+    assert(any_bounds || !(light.total_power_w(0.0) > 0.0));
+    (void)any_bounds;
+  }
+  leaf_count_ = int(leaves_.size());
+  if (!items.empty()) {
+    nodes_.reserve(2 * items.size());
+    build(items, 0, items.size(), 0, 0);
+  }
+}
+
+uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail) {
+  const uint32_t index = uint32_t(nodes_.size());
+  nodes_.emplace_back();
+  if (end - begin == 1) {
+    const Leaf& leaf = leaves_[items[begin].leaf];
+    nodes_[index].bounds = items[begin].bounds;
+    nodes_[index].index = items[begin].leaf;
+    nodes_[index].is_leaf = true;
+    trails_[first_part_[size_t(leaf.light)] + uint32_t(leaf.part)] = trail | (uint64_t(1) << depth);
+    max_depth_ = std::max(max_depth_, depth);
+    return index;
+  }
+
+  BoundsAccumulator node_bounds;
+  for (size_t i = begin; i < end; ++i) node_bounds.add_first_pass(items[i].bounds);
+  if (node_bounds.needs_second_pass())
+    for (size_t i = begin; i < end; ++i) node_bounds.add_second_pass(items[i].bounds);
+  const LightBounds bounds = node_bounds.result();
+  Vec3 centroid_lower = items[begin].centroid, centroid_upper = items[begin].centroid;
+  for (size_t i = begin; i < end; ++i) {
+    const Vec3 c = items[i].centroid;
+    centroid_lower = {std::fmin(centroid_lower.x, c.x), std::fmin(centroid_lower.y, c.y), std::fmin(centroid_lower.z, c.z)};
+    centroid_upper = {std::fmax(centroid_upper.x, c.x), std::fmax(centroid_upper.y, c.y), std::fmax(centroid_upper.z, c.z)};
+  }
+  const Vec3 extent = centroid_upper - centroid_lower;
+  const float max_extent = max_component(extent);
+  const double floor_m = 1e-3 * double(length(bounds.upper_m - bounds.lower_m));
+
+  size_t middle = begin;
+  if (depth < kCostDepth && max_extent > 0.0f) {
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_split = 0;
+    // As many bins as items, up to kBins: most nodes are small, and each bin boundary costs two cluster costs.
+    const int bins_here = int(std::min<size_t>(kBins, end - begin));
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(extent[axis] > 0.0f)) continue;
+      std::array<LightBounds, kBins> bins{};
+      std::array<size_t, kBins> counts{};
+      const float scale = float(bins_here) / extent[axis];
+      const auto bin_of = [&](const BuildItem& item) {
+        return std::clamp(int((item.centroid[axis] - centroid_lower[axis]) * scale), 0, bins_here - 1);
+      };
+      std::array<BoundsAccumulator, kBins> accumulators;
+      for (size_t i = begin; i < end; ++i) {
+        const int bin = bin_of(items[i]);
+        accumulators[size_t(bin)].add_first_pass(items[i].bounds);
+        ++counts[size_t(bin)];
+      }
+      std::array<bool, kBins> second{};
+      bool any_second = false;
+      for (int b = 0; b < bins_here; ++b) any_second |= second[size_t(b)] = accumulators[size_t(b)].needs_second_pass();
+      if (any_second)
+        for (size_t i = begin; i < end; ++i) {
+          const int bin = bin_of(items[i]);
+          if (second[size_t(bin)]) accumulators[size_t(bin)].add_second_pass(items[i].bounds);
+        }
+      for (int b = 0; b < bins_here; ++b)
+        if (counts[size_t(b)] > 0) bins[size_t(b)] = accumulators[size_t(b)].result();
+      std::array<double, kBins> cost_above{};  // cost of bins [s, bins_here)
+      LightBounds above;
+      for (int s = bins_here - 1; s >= 1; --s) {
+        above = unite(above, bins[size_t(s)]);
+        cost_above[size_t(s)] = cluster_cost(above, floor_m);
+      }
+      LightBounds below;
+      size_t count_below = 0;
+      // Thin axes are penalised (Conty & Kulla's K_r): a split across a short extent separates little.
+      const double regulariser = double(max_extent) / double(extent[axis]);
+      for (int s = 1; s < bins_here; ++s) {
+        below = unite(below, bins[size_t(s - 1)]);
+        count_below += counts[size_t(s - 1)];
+        if (count_below == 0 || count_below == end - begin) continue;
+        const double cost = regulariser * (cluster_cost(below, floor_m) + cost_above[size_t(s)]);
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_split = s;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      const float scale = float(bins_here) / extent[best_axis];
+      const float lower = centroid_lower[best_axis];
+      middle = size_t(std::partition(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end),
+                                     [&](const BuildItem& item) {
+                                       return std::clamp(int((item.centroid[best_axis] - lower) * scale), 0,
+                                                         bins_here - 1) < best_split;
+                                     }) -
+                      items.begin());
+    }
+  }
+  if (middle == begin || middle == end) {
+    // No useful cost split: halve by count along the longest centroid extent.
+    middle = begin + (end - begin) / 2;
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (extent[a] > extent[axis]) axis = a;
+    std::nth_element(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(middle),
+                     items.begin() + std::ptrdiff_t(end),
+                     [axis](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
+  }
+
+  build(items, begin, middle, depth + 1, trail);
+  const uint32_t second = build(items, middle, end, depth + 1, trail | (uint64_t(1) << depth));
+  nodes_[index].bounds = bounds;
+  nodes_[index].index = second;
+  return index;
+}
+
+BvhLightSampler::Split BvhLightSampler::split(const Node& node, const LightSamplingPoint& at) const {
+  const Node& first = (&node)[1];
+  const Node& second = nodes_[node.index];
+  const float a = light_importance(first.bounds, at.position_m, at.normal);
+  const float b = light_importance(second.bounds, at.position_m, at.normal);
+  const float sum = a + b;
+  if (!(sum > 0.0f)) return {0.0f, 0.0f};
+  return {a / sum, b / sum};
+}
+
+BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) const {
+  bool tree_can_contribute = false;
+  Split root_split{0.0f, 0.0f};
+  if (!nodes_.empty()) {
+    const Node& root = nodes_[0];
+    if (root.is_leaf) {
+      tree_can_contribute = light_importance(root.bounds, at.position_m, at.normal) > 0.0f;
+    } else {
+      root_split = split(root, at);
+      tree_can_contribute = root_split.first > 0.0f || root_split.second > 0.0f;
+    }
+  }
+  const int m = int(infinite_lights_.size());
+  if (m == 0) return {tree_can_contribute ? 1.0f : 0.0f, 0.0f, root_split};
+  if (!tree_can_contribute) return {0.0f, 1.0f / float(m), root_split};
+  return {1.0f / float(m + 1), 1.0f / float(m + 1), root_split};
+}
+
+std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at, float u_float) const {
+  const Shares shares_here = shares(at);
+  const int m = int(infinite_lights_.size());
+  double u = double(u_float);
+  const double infinite_total = double(shares_here.each_infinite) * m;
+  if (m > 0 && u < infinite_total) {
+    const int k = std::min(int(u / double(shares_here.each_infinite)), m - 1);
+    return LightChoice{infinite_lights_[size_t(k)], 0, shares_here.each_infinite};
+  }
+  if (!(shares_here.tree > 0.0f)) return std::nullopt;
+  constexpr double kBelowOne = 1.0 - 0x1p-53;
+  u = std::min((u - infinite_total) / double(shares_here.tree), kBelowOne);
+  float probability = shares_here.tree;
+  uint32_t node = 0;
+  while (!nodes_[node].is_leaf) {
+    const Split s = node == 0 ? shares_here.root : split(nodes_[node], at);
+    if (u < double(s.first)) {
+      u = u / double(s.first);
+      probability *= s.first;
+      node = node + 1;
+    } else {
+      if (!(s.second > 0.0f)) return std::nullopt;  // neither child can contribute
+      u = (u - double(s.first)) / double(s.second);
+      probability *= s.second;
+      node = nodes_[node].index;
+    }
+    u = std::clamp(u, 0.0, kBelowOne);
+  }
+  if (!(probability > 0.0f)) return std::nullopt;  // underflow far down a deep tree
+  const Leaf& leaf = leaves_[nodes_[node].index];
+  return LightChoice{leaf.light, leaf.part, probability};
+}
+
+float BvhLightSampler::pmf(const LightSamplingPoint& at, int light, int part) const {
+  if (light < 0 || size_t(light) >= first_part_.size() || part < 0) return 0.0f;
+  if (is_infinite_[size_t(light)]) {
+    if (part != 0 || std::find(infinite_lights_.begin(), infinite_lights_.end(), light) == infinite_lights_.end())
+      return 0.0f;
+    return shares(at).each_infinite;
+  }
+  const size_t end = size_t(light) + 1 < first_part_.size() ? first_part_[size_t(light) + 1] : trails_.size();
+  const size_t slot = first_part_[size_t(light)] + size_t(part);
+  if (slot >= end) return 0.0f;
+  uint64_t trail = trails_[slot];
+  if (trail == 0) return 0.0f;
+  const Shares shares_here = shares(at);
+  if (!(shares_here.tree > 0.0f)) return 0.0f;
+  float probability = shares_here.tree;
+  uint32_t node = 0;
+  while (!nodes_[node].is_leaf) {
+    const Split s = node == 0 ? shares_here.root : split(nodes_[node], at);
+    const bool second = (trail & 1) != 0;
+    trail >>= 1;
+    const float factor = second ? s.second : s.first;
+    if (!(factor > 0.0f)) return 0.0f;
+    probability *= factor;
+    node = second ? nodes_[node].index : node + 1;
+  }
+  return probability;
+}
+
+size_t BvhLightSampler::memory_bytes() const {
+  return sizeof(*this) + nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
+         first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
+         infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8;
+}
+
+}  // namespace rimu

@@ -1,0 +1,77 @@
+// Chooses a light for a shading point by descending a bounding volume hierarchy over every finite light's parts
+// (each emissive triangle its own leaf), in proportion to each cluster's importance there (light_bounds.h;
+// Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree Splitting").
+//
+// Descent. At an interior node with children a, b of importances I_a, I_b at (p, n), child a is taken with
+// probability I_a / (I_a + I_b); the leaf's probability is the product along its path. pmf() retraces that path
+// (stored per leaf as a bit trail) and multiplies the same factors in the same order, so it returns exactly the
+// sampled probability. When both children of a node have importance 0 the descent fails (std::nullopt): that
+// probability mass is lost, never given to a light that cannot contribute. Importances are 0 behind one-sided
+// emitters, outside spot/IES cones and below an opaque surface's tangent plane.
+//
+// Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
+// with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
+// finite light can contribute (the tree's top split has importance 0 on both sides), each gets 1/m instead.
+//
+// Build: binned (12 bins per axis) top-down splits minimising Conty & Kulla's surface-area-orientation cost
+// Σ_children intensity · M_Ω · area, the area regularised so that collinear point lights still split. Cost
+// O(n log n); memory in memory_bytes().
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "transport/light_bounds.h"
+#include "transport/light_sampler.h"
+
+namespace rimu {
+
+class BvhLightSampler final : public LightSampler {
+ public:
+  /// Over `lights` (indices as given; they must outlive the sampler).
+  explicit BvhLightSampler(std::span<const Light* const> lights);
+
+  std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const override;
+  float pmf(const LightSamplingPoint& at, int light, int part) const override;
+  bool chooses_parts() const override { return true; }
+
+  /// Leaves (finite light parts with power), nodes, the deepest leaf, and the bytes the sampler holds.
+  int leaf_count() const { return leaf_count_; }
+  int node_count() const { return int(nodes_.size()); }
+  int max_depth() const { return max_depth_; }
+  size_t memory_bytes() const;
+
+ private:
+  struct Node {
+    LightBounds bounds;
+    uint32_t index = 0;  // interior: the second child (the first is the next node); leaf: into leaves_
+    bool is_leaf = false;
+  };
+  struct Leaf {
+    int light, part;
+  };
+  struct Split {
+    float first, second;  // the probabilities of the two children; both 0 if neither can contribute
+  };
+  struct BuildItem;
+
+  Split split(const Node& node, const LightSamplingPoint& at) const;
+  /// The probability of the tree as a whole and of each light at infinity at `at`.
+  struct Shares {
+    float tree, each_infinite;
+    Split root;  // the root's split, reused by the descent (unset for a one-leaf tree)
+  };
+  Shares shares(const LightSamplingPoint& at) const;
+  uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
+
+  std::vector<Node> nodes_;
+  std::vector<Leaf> leaves_;
+  std::vector<uint32_t> first_part_;  // per light: the index of its part 0 in trails_
+  std::vector<uint64_t> trails_;      // per (light, part): 1 << depth | the path's bits (1 = second child); 0: none
+  std::vector<int> infinite_lights_;
+  std::vector<bool> is_infinite_;
+  int leaf_count_ = 0;
+  int max_depth_ = 0;
+};
+
+}  // namespace rimu

@@ -1,0 +1,13 @@
+# Light sampler choice: the option, the scene key, and the load-time warning about a starved light.
+rimu_cli_test("rimu power light sampler renders" 0 "discarded samples: 0 NaN, 0 Inf, 0 negative"
+              $<TARGET_FILE:rimu> --light-sampler power --spp 2 --resolution 16x16 -q
+              -o ${CMAKE_BINARY_DIR}/cli_power_sampler.exr)
+rimu_cli_test("rimu unknown light sampler" 1 "--light-sampler: .*bvh"
+              $<TARGET_FILE:rimu> --light-sampler tree -o ${CMAKE_BINARY_DIR}/cli_never_written.exr)
+rimu_cli_test("rimu unknown light sampler in a scene" 1 "bad_light_sampler.json: /integrator/light_sampler.*bvh"
+              $<TARGET_FILE:rimu> ${CMAKE_CURRENT_SOURCE_DIR}/cli/bad_light_sampler.json
+              -o ${CMAKE_BINARY_DIR}/cli_never_written.exr -q)
+rimu_cli_test("rimu warns about a light the power sampler starves" 0
+              "warning: 'key' \\(/lights/0\\) gets [0-9.e-]+ % of the light samples"
+              $<TARGET_FILE:rimu> ${CMAKE_CURRENT_SOURCE_DIR}/cli/starved_spot.json
+              -o ${CMAKE_BINARY_DIR}/cli_starved_spot.exr -q)

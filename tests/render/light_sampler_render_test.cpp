@@ -1,0 +1,130 @@
+// The light samplers converge to the same image: the BVH sampler against the power sampler on the Cornell box, on a
+// spot + D65 environment + floor, and under 1,000 emissive triangles of different spectra. Each pair of renders
+// uses different seeds; the mean pixel difference is compared with its standard error estimated from the pixel
+// differences themselves (test::paired_difference), at test::kSigmas. Also: the load-time coverage warning names
+// the spot the power sampler starves, and is silent under the BVH sampler.
+#include <doctest/doctest.h>
+
+#include <random>
+#include <string>
+
+#include "integration_support.h"
+#include "render/json_cursor.h"
+#include "render/light_coverage.h"
+
+using namespace rimu;
+
+namespace {
+
+struct Comparison {
+  test::Estimate difference;
+  double mean_power = 0.0;
+};
+
+Comparison bvh_against_power(nlohmann::json document, int spp,
+                             const std::filesystem::path& directory = test::library().root()) {
+  document["integrator"]["light_sampler"] = "bvh";
+  const auto bvh = load_scene(document, "bvh.json", directory, test::library());
+  document["integrator"]["light_sampler"] = "power";
+  const auto power = load_scene(document, "power.json", directory, test::library());
+  const auto a = test::luminance_values(*test::render_xyz(*bvh, spp, 101).film);
+  const auto b = test::luminance_values(*test::render_xyz(*power, spp, 202).film);
+  return {test::paired_difference(a, b), test::mean_of(b)};
+}
+
+void check_same_mean(const Comparison& c, const char* scene) {
+  INFO(scene << ": mean Y (power) " << c.mean_power << ", bvh − power " << c.difference.mean << " ± "
+             << c.difference.standard_error);
+  CHECK(c.mean_power > 0.0);
+  CHECK(std::fabs(c.difference.mean) <= test::kSigmas * c.difference.standard_error);
+}
+
+nlohmann::json spot_environment_floor(double floor_half_size_m) {
+  nlohmann::json d = nlohmann::json::parse(R"({
+    "camera": {"from": [0, 3.5, 4.5], "to": [0, 0, 0], "vertical_fov_deg": 50},
+    "film": {"resolution": [24, 24], "filter": {"type": "box"}},
+    "integrator": {"max_depth": 4},
+    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5},
+                  "copper": {"type": "conductor", "metal": "copper", "roughness": 0.2}},
+    "lights": [
+      {"type": "spot", "name": "key", "position": [0, 2, 0], "direction": [0, -1, 0], "cone_angle_deg": 40,
+       "falloff_start_deg": 30, "luminous_power_lm": 800, "power_convention": "cone", "spectrum": {"blackbody": 2700}},
+      {"type": "environment", "name": "sky", "radiance": {"illuminant": "D65", "scale": 0.0001}}
+    ],
+    "shapes": [
+      {"type": "sphere", "material": "copper", "center": [0.6, 0.4, 0.2], "radius": 0.4}
+    ]
+  })");
+  const double h = floor_half_size_m;
+  d["shapes"].push_back({{"type", "quad"},
+                         {"material", "grey"},
+                         {"vertices", {{-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}}}});
+  return d;
+}
+
+// 1,000 one-sided emissive triangles, each its own light with its own blackbody (1,500-10,000 K), most under a
+// 10 m ceiling facing down, a tenth at random orientations, above a grey floor.
+nlohmann::json thousand_triangles() {
+  nlohmann::json d = nlohmann::json::parse(R"({
+    "camera": {"from": [0, 2.5, 7], "to": [0, 0.5, 0], "vertical_fov_deg": 60},
+    "film": {"resolution": [24, 24], "filter": {"type": "box"}},
+    "integrator": {"max_depth": 3},
+    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}, "black": {"type": "diffuse", "reflectance": 0}},
+    "shapes": [
+      {"type": "quad", "material": "grey", "vertices": [[-8, 0, 8], [8, 0, 8], [8, 0, -8], [-8, 0, -8]]}
+    ]
+  })");
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 1000; ++k) {
+    const double x = -5 + 10 * u(rng), y = k % 10 == 0 ? 0.5 + 2.0 * u(rng) : 3.0, z = -5 + 10 * u(rng);
+    const double s = 0.08 + 0.1 * u(rng);
+    nlohmann::json positions;
+    if (k % 10 == 0) {  // a random orientation
+      for (int j = 0; j < 3; ++j) positions.push_back({x + s * (2 * u(rng) - 1), y + s * (2 * u(rng) - 1), z + s * (2 * u(rng) - 1)});
+    } else {  // facing down: (v1 − v0) × (v2 − v0) = −y
+      positions = {{x, y, z}, {x + s, y, z}, {x, y, z + s}};
+    }
+    d["shapes"].push_back({{"type", "triangles"},
+                           {"material", "black"},
+                           {"positions", positions},
+                           {"indices", {0, 1, 2}},
+                           {"emission", {{"blackbody", 1500.0 + 8.5 * k}, {"scale", 2.0 + 3.0 * u(rng)}}}});
+  }
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("light samplers agree: the Cornell box") {
+  const std::filesystem::path path = test::library().root() / "scenes" / "cornell_box" / "scene.json";
+  nlohmann::json document = parse_json_file(path);
+  document["film"]["resolution"] = {24, 24};
+  document["film"]["filter"] = {{"type", "box"}};
+  document["integrator"]["max_depth"] = 5;
+  check_same_mean(bvh_against_power(document, 32, path.parent_path()), "Cornell box");
+}
+
+TEST_CASE("light samplers agree: a spot, a D65 environment and a floor") {
+  check_same_mean(bvh_against_power(spot_environment_floor(3.0), 32), "spot + environment, 6 m floor");
+}
+
+TEST_CASE("light samplers agree: 1,000 emissive triangles of different spectra") {
+  check_same_mean(bvh_against_power(thousand_triangles(), 16), "1,000 triangles");
+}
+
+TEST_CASE("load-time warning: a spot starved by the power sampler is named; none under the BVH sampler") {
+  nlohmann::json document = spot_environment_floor(50.0);  // a 100 m floor: the environment's power weight is huge
+  document["integrator"]["light_sampler"] = "power";
+  const auto power = test::scene_from_json(document);
+  REQUIRE(power->warnings.size() == 1);
+  CHECK(power->warnings[0].find("'key' (/lights/0)") != std::string::npos);
+  const std::vector<LightCoverage> coverage = light_coverage(*power);
+  REQUIRE(coverage.size() == 1);
+  CHECK(coverage[0].sample_share < 0.01);
+  CHECK(coverage[0].irradiance_share > 0.1);  // under the spot, the spot gives a good part of the light (17 %)
+  document["integrator"]["light_sampler"] = "bvh";
+  const auto bvh = test::scene_from_json(document);
+  CHECK(bvh->warnings.empty());
+  CHECK(light_coverage(*bvh)[0].sample_share > 0.4);
+}
