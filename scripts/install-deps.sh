@@ -16,6 +16,8 @@ packages=(
   libbenchmark-dev       # Google Benchmark (benchmarks only)
   libtinyobjloader-dev   # OBJ meshes
   gnuplot-nox            # plots in benchmark reports and figures
+  clang                  # fuzz targets (scripts/fuzz.sh): clang++ 14
+  libclang-rt-14-dev     # libFuzzer and the sanitizer runtimes for clang 14
 )
 
 missing=()
