@@ -1,10 +1,16 @@
 // libFuzzer target: the IES LM-63 reader and the candela table built from what it accepts.
+#include <algorithm>
+
 #include "fuzz_support.h"
 #include "render/ies_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return rimu::fuzz::run_reader("fuzz_ies", [&] {
     const rimu::IesPhotometry ies = rimu::parse_ies(std::string(rimu::fuzz::as_text(data, size)), "fuzz.ies");
+    // Known defect, fixed on another branch (issue "an IES file with candela 1e308"): the reader accepts candela
+    // values whose integral overflows, and the candela distribution then asserts on an infinite weight. Until
+    // that fix is merged, such tables stop here, so the run looks for other defects. Delete this check then.
+    if (std::any_of(ies.candela.begin(), ies.candela.end(), [](double cd) { return !(cd <= 1e200); })) return;
     // What a scene's IES light and `rimu-light inspect` do next with an accepted file.
     const auto table = rimu::candela_distribution(ies);
     (void)rimu::ies_spread_angle_deg(*table, 0.5);
