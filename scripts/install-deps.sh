@@ -18,6 +18,8 @@ packages=(
   gnuplot-nox            # plots in benchmark reports and figures
   pybind11-dev python3-dev python3-pybind11  # the rimu Python module
   python3-numpy          # spectra as numpy arrays in the Python module and its tests
+  clang                  # fuzz targets (scripts/fuzz.sh): clang++ 14
+  libclang-rt-14-dev     # libFuzzer and the sanitizer runtimes for clang 14
 )
 
 missing=()

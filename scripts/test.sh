@@ -17,3 +17,5 @@ scripts/install-deps.sh
 cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
 cmake --build "$build_dir" -j"$(nproc)"
 ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"
+# The readers' fuzz targets, briefly (docs/fuzzing.md): a crash, sanitizer report or unexpected exception fails.
+scripts/fuzz.sh "${RIMU_CI_FUZZ_SECONDS:-25}"

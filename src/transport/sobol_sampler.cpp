@@ -21,6 +21,15 @@ constexpr uint32_t key_word(uint32_t hash, int word) {
   return x ^ (x >> 16);  // the xorshift carries high bits down: low bits of a product see only low bits
 }
 
+// An AVX2 clone of the two batch loops, chosen at run time, is a GCC-only speed-up here: clang wants
+// target_clones on the first declaration (these are member functions declared in the header, and used inline
+// there), so a clang build (the fuzzing build, docs/fuzzing.md) keeps the one SSE4.1 version.
+#if defined(__GNUC__) && !defined(__clang__)
+#define RIMU_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RIMU_AVX2_CLONES
+#endif
+
 }  // namespace
 
 DrawKeys sobol_draw_keys(uint32_t key0, uint32_t key1, uint32_t draw) {
@@ -49,7 +58,7 @@ void SobolSampler::start_pixel_sample(int x, int y, uint32_t sample_index) {
   batch_first_draw_ = ~0u - kBatch;  // no batch yet: lane_of_next_draw() computes one
 }
 
-__attribute__((target_clones("avx2", "default"))) void SobolSampler::compute_key_words(
+RIMU_AVX2_CLONES void SobolSampler::compute_key_words(
     const uint32_t pixel_key[2], uint32_t first_draw, uint32_t (&words)[9][kBatch]) {
   // The same formulas as sobol_draw_keys, lane by lane, in loops the compiler vectorises.
   uint32_t hash[kBatch];
@@ -58,7 +67,7 @@ __attribute__((target_clones("avx2", "default"))) void SobolSampler::compute_key
     for (int lane = 0; lane < kBatch; ++lane) words[w][lane] = key_word(hash[lane], w);
 }
 
-__attribute__((target_clones("avx2", "default"))) void SobolSampler::compute_batch(uint32_t first_draw) {
+RIMU_AVX2_CLONES void SobolSampler::compute_batch(uint32_t first_draw) {
   // Draws are consumed in order, so batches start at multiples of kBatch and batch b follows batch b − 1: the
   // words of batch b are either cached or about to be (b == cached_batches_), or b lies beyond the cache.
   const uint32_t batch = first_draw / uint32_t(kBatch);

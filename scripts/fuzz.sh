@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (build-fuzz/: clang, ASan + UBSan, see docs/fuzzing.md) and fuzzes each reader for a
+# bounded time. Fails (exit 1) if any target finds a crash, a sanitizer report, an unexpected exception, a timeout
+# or an out-of-memory; the input is written to fuzz/crashes/<target>/.
+#   scripts/fuzz.sh [seconds-per-target] [target...]     targets: scene csv ies ply obj rvol (default: all)
+# Inputs that add coverage accumulate in build-fuzz/corpus/<target>/ (reused by the next run; not committed).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+seconds=${1:-60}
+shift || true
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then targets=(scene csv ies ply obj rvol); fi
+
+scripts/install-deps.sh
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+# -O1 and line tables only: the usual fuzzing build (fast to compile, readable stack traces). No NDEBUG, so
+# Rimu's assertions are checked too.
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DRIMU_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" "${launcher[@]}" >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}")
+
+# The longest input per target: large enough for every seed and for what the readers parse, small enough that one
+# input runs in milliseconds under the sanitizers.
+declare -A max_len=([scene]=8192 [csv]=4096 [ies]=4096 [ply]=4096 [obj]=4096 [rvol]=1024)
+
+mkdir -p build-fuzz/logs
+failed=()
+printf '%-6s %10s %8s %8s %8s  %s\n' target execs exec/s cov ft result
+for t in "${targets[@]}"; do
+  mkdir -p "build-fuzz/corpus/$t" "fuzz/crashes/$t"
+  log="build-fuzz/logs/$t.log"
+  dict=()
+  if [ -f "fuzz/$t.dict" ]; then dict=(-dict="fuzz/$t.dict"); fi
+  status=0
+  # One worker, one job: the machine is shared. -timeout is per input; -rss_limit_mb also bounds any one malloc.
+  "build-fuzz/bin/fuzz_$t" -max_total_time="$seconds" -max_len="${max_len[$t]}" -timeout=20 -rss_limit_mb=2048 \
+    -print_final_stats=1 -artifact_prefix="fuzz/crashes/$t/" "${dict[@]}" \
+    "build-fuzz/corpus/$t" "fuzz/corpus/$t" "fuzz/regressions/$t" >"$log" 2>&1 || status=$?
+  # The statistics of the log (absent if the target died early: then "-").
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2 || true)
+  ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | cut -d' ' -f2 || true)
+  if [ "$status" -eq 0 ]; then result=ok; else result="FAILED (exit $status; log $log; inputs in fuzz/crashes/$t/)"; failed+=("$t"); fi
+  printf '%-6s %10s %8s %8s %8s  %s\n' "$t" "${execs:--}" "${rate:--}" "${cov:--}" "${ft:--}" "$result"
+done
+
+if [ ${#failed[@]} -ne 0 ]; then
+  echo "fuzz: ${failed[*]} crashed. The end of each log:" >&2
+  for t in "${failed[@]}"; do
+    echo "---- build-fuzz/logs/$t.log" >&2
+    grep -v '^#[0-9]' "build-fuzz/logs/$t.log" | tail -40 >&2
+  done
+  echo "fuzz: reproduce with build-fuzz/bin/fuzz_<target> <crash file> (docs/fuzzing.md)" >&2
+  exit 1
+fi
+echo "fuzz: every target ran ${seconds} s without a crash"
