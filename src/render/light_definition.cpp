@@ -53,7 +53,7 @@ std::string spectrum_csv(const LightDefinition& light) {
   const std::string csv = spectrum_csv(light);
   if (csv.empty()) throw e;
   SourceLocation where = e.where();
-  if (where.file.empty() || where.file == "light") where = {csv, 0, ""};
+  if (where.file.empty()) where = {csv, 0, ""};
   where.key.clear();
   throw InputError(where, e.explanation());
 }
@@ -89,7 +89,7 @@ nlohmann::json cct_spectrum(double cct_k, bool daylight, const SourceLocation& w
 SpectrumPtr light_shape(const LightDefinition& light, SpectralLibrary& library, const std::filesystem::path& dir) {
   SpectrumInputContext context(library, dir);
   try {
-    return context.parse(JsonCursor(light.spectrum, light.source.empty() ? "light" : light.source, "/spectrum"),
+    return context.parse(JsonCursor(light.spectrum, light.source, "/spectrum"),
                          SpectrumRole::emission);
   } catch (const InputError& e) {
     rethrow_at_spectrum_origin(light, e);
