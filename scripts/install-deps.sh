@@ -16,6 +16,7 @@ packages=(
   libbenchmark-dev       # Google Benchmark (benchmarks only)
   libtinyobjloader-dev   # OBJ meshes
   gnuplot-nox            # plots in benchmark reports and figures
+  slurm-wlm slurmctld slurmd slurm-client munge  # render-farm tests: a single-node Slurm (scripts/slurm-local.sh)
 )
 
 missing=()
