@@ -21,3 +21,14 @@ rimu_cli_test("rimu merge without partials" 1 "partials is required|required"
               $<TARGET_FILE:rimu> merge -o ${farm_dir}/never.exr)
 rimu_cli_test("rimu merge of a missing file" 1 "cannot read as OpenEXR"
               $<TARGET_FILE:rimu> merge ${farm_dir}/no-such-part.exr -o ${farm_dir}/never.exr)
+add_test(NAME "cli: rimu-farm scripts run by hand: frames, merge, changed scene"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/farm_scripts.sh $<TARGET_FILE:rimu> ${CMAKE_BINARY_DIR}/bin/rimu-farm
+                 $<TARGET_FILE:rimu-exr-compare> ${CMAKE_CURRENT_SOURCE_DIR}/cli/frame_card.json ${farm_dir}/scripts)
+rimu_cli_test("rimu frame placeholder without --frame" 1 "frame_card.json: uses \\$\\{frame\\} but no frame number was given"
+              $<TARGET_FILE:rimu> ${CMAKE_CURRENT_SOURCE_DIR}/cli/frame_card.json -q -o ${farm_dir}/never.exr)
+# A real Slurm on this machine (scripts/slurm-local.sh); skipped loudly (exit 77) when its daemons cannot start.
+add_test(NAME "cli: rimu-farm on a single-node Slurm: 4-task array and merge equal a single render"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/slurm_farm.sh ${PROJECT_SOURCE_DIR} $<TARGET_FILE:rimu>
+                 ${CMAKE_BINARY_DIR}/bin/rimu-farm $<TARGET_FILE:rimu-exr-compare> ${farm_dir}/slurm)
+set_tests_properties("cli: rimu-farm on a single-node Slurm: 4-task array and merge equal a single render"
+                     PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE TIMEOUT 600)
