@@ -77,7 +77,7 @@ MergeResult merge_partials(const std::vector<std::filesystem::path>& inputs, con
   check_output_path(output);
   std::vector<PartialImage> parts;
   for (const auto& path : inputs) {
-    parts.push_back(read_partial_exr(path));
+    parts.push_back(read_partial_exr(path, false));  // headers first: every check before any pixel is read
     check_same_render(parts.front(), parts.back());
   }
   // A fixed summation order, whatever the order on the command line.
@@ -147,13 +147,11 @@ MergeResult merge_partials(const std::vector<std::filesystem::path>& inputs, con
   const PartialImage& first = parts.front();
   PartialImage shape = first;  // the window and film of the result, without sums
   shape.crop = window;
-  shape.sums.clear();
   shape.counts = {};
-  shape.sums.assign(size_t(window.area()) * size_t(first.accumulators_per_pixel), 0.0);
   const std::unique_ptr<Film> film = film_from_partial(shape, library);
   double render_time_s = 0.0;
-  for (const PartialImage& p : parts) {
-    add_partial_to_film(p, *film);
+  for (const PartialImage& p : parts) {  // one partial's sums in memory at a time
+    add_partial_to_film(read_partial_exr(p.path), *film);
     render_time_s += p.metadata.render_time_s;
   }
 

@@ -10,6 +10,7 @@
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 
+#include <algorithm>
 #include <bit>
 #include <set>
 
@@ -40,7 +41,7 @@ bool derived_attribute(const std::string& name) {
 
 }  // namespace
 
-PartialImage read_partial_exr(const std::filesystem::path& path) {
+PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums) {
   PartialImage p;
   p.path = path;
   std::unique_ptr<Imf::InputFile> file;
@@ -83,30 +84,44 @@ PartialImage read_partial_exr(const std::filesystem::path& path) {
   const Imf::Channel* first = h.channels().findChannel(h.channels().begin().name());
   p.pixel_type = first && first->type == Imf::FLOAT ? ExrPixelType::float32 : ExrPixelType::half;
 
-  // The accumulators, exactly: two UINT words per double.
-  const size_t pixels = size_t(p.crop.area());
+  // The accumulators, exactly: two UINT words per double, read a band of rows at a time (bounded memory).
   const int n = p.accumulators_per_pixel;
-  std::vector<std::vector<uint32_t>> words(size_t(2 * n), std::vector<uint32_t>(pixels));
-  Imf::FrameBuffer frame_buffer;
   for (int k = 0; k < 2 * n; ++k) {
     const std::string name = partial_sum_channel_name(k / 2, k % 2 == 0);
     const Imf::Channel* channel = h.channels().findChannel(name);
     if (!channel || channel->type != Imf::UINT)
       throw partial_error(path, "not a partial render: no UINT channel '" + name + "'");
-    frame_buffer.insert(name, Imf::Slice::Make(Imf::UINT, words[size_t(k)].data(), data, sizeof(uint32_t),
-                                               sizeof(uint32_t) * size_t(p.crop.width())));
   }
-  try {
-    file->setFrameBuffer(frame_buffer);
-    file->readPixels(data.min.y, data.max.y);
-  } catch (const std::exception& e) {
-    throw partial_error(path, std::string("cannot read its pixels: ") + e.what());
+  if (with_sums) {
+    const size_t width = size_t(p.crop.width());
+    p.sums.resize(size_t(p.crop.area()) * size_t(n));
+    constexpr int kBandRows = 64;
+    std::vector<uint32_t> words(size_t(2 * n) * width * kBandRows);
+    for (int y0 = data.min.y; y0 <= data.max.y; y0 += kBandRows) {
+      const int y1 = std::min(y0 + kBandRows - 1, data.max.y);
+      Imf::FrameBuffer frame_buffer;
+      // Word k of pixel (x, y) of the band at words[((y - y0) · width + x - x0) · 2n + k].
+      char* origin = reinterpret_cast<char*>(words.data()) -
+                     (ptrdiff_t(y0) * ptrdiff_t(width) + data.min.x) * ptrdiff_t(2 * n) * ptrdiff_t(sizeof(uint32_t));
+      for (int k = 0; k < 2 * n; ++k)
+        frame_buffer.insert(partial_sum_channel_name(k / 2, k % 2 == 0),
+                            Imf::Slice(Imf::UINT, origin + k * sizeof(uint32_t), size_t(2 * n) * sizeof(uint32_t),
+                                       size_t(2 * n) * sizeof(uint32_t) * width));
+      try {
+        file->setFrameBuffer(frame_buffer);
+        file->readPixels(y0, y1);
+      } catch (const std::exception& e) {
+        throw partial_error(path, std::string("cannot read its pixels: ") + e.what());
+      }
+      const size_t first = size_t(y0 - data.min.y) * width;
+      const size_t count = size_t(y1 - y0 + 1) * width;
+      for (size_t i = 0; i < count; ++i)
+        for (int k = 0; k < n; ++k) {
+          const uint32_t* w = &words[i * size_t(2 * n) + size_t(2 * k)];
+          p.sums[(first + i) * size_t(n) + size_t(k)] = std::bit_cast<double>((uint64_t(w[0]) << 32) | w[1]);
+        }
+    }
   }
-  p.sums.resize(pixels * size_t(n));
-  for (size_t i = 0; i < pixels; ++i)
-    for (int k = 0; k < n; ++k)
-      p.sums[i * size_t(n) + size_t(k)] =
-          std::bit_cast<double>((uint64_t(words[size_t(2 * k)][i]) << 32) | words[size_t(2 * k + 1)][i]);
 
   auto count = [&](const char* name) {
     const auto* a = h.findTypedAttribute<Imf::DoubleAttribute>(name);
@@ -155,6 +170,7 @@ std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLib
 }
 
 void add_partial_to_film(const PartialImage& partial, Film& film) {
+  if (partial.sums.empty()) return;  // a header only
   FilmTile tile = film.make_tile(partial.crop);
   const int n = partial.accumulators_per_pixel;
   size_t i = 0;

@@ -25,9 +25,10 @@ struct PartialImage {
   RenderMetadata metadata;
 };
 
-/// Reads `path`. Throws InputError naming the file if it cannot be read as OpenEXR or is not a partial render
-/// (no "rimu:partial:*" record or accumulator channels: e.g. an image rendered without --samples/--checkpoint).
-PartialImage read_partial_exr(const std::filesystem::path& path);
+/// Reads `path` (without `with_sums`, only its header: sums stays empty). Throws InputError naming the file if it
+/// cannot be read as OpenEXR or is not a partial render (no "rimu:partial:*" record or accumulator channels: e.g. an
+/// image rendered without --samples/--checkpoint).
+PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums = true);
 
 /// A film holding the partial's sums and sample counts (its response rebuilt from the record's film spec), with
 /// the record's output transform: writing it gives the partial's image again.
