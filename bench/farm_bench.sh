@@ -5,6 +5,7 @@
 #    not blurred by idle workers.
 # 2. Wall time of `rimu merge` of 8 partials of a spectral (47-bin) image at MERGE_RESOLUTION (default 3840x2160).
 # Usage: bench/farm_bench.sh BUILD_DIR [WORK_DIR]   (prints a Markdown table; not run by the tests)
+#        RESOLUTION=640x480 MERGE_RESOLUTION=none bench/farm_bench.sh build   (part 1 only)
 set -euo pipefail
 build=$(realpath "${1:?usage: bench/farm_bench.sh BUILD_DIR [WORK_DIR]}")
 work=${2:-/tmp/rimu-farm-bench}
@@ -35,11 +36,12 @@ for n in 2 4 8; do
   echo "| $n | $total | $m | $(awk -v a="$total" -v b="$one" 'BEGIN { printf "%.3f", a / b }') |"
 done
 
+[ "$merge_resolution" = none ] && exit 0
 echo
 echo "merge of 8 partials at $merge_resolution, --film spectral:47 (1 spp each):"
 parts=()
 for i in $(seq 0 7); do
-  "$rimu" --resolution "$merge_resolution" --film spectral:47 --spp 8 --samples $i:$((i + 1)) -q -o big.$i.exr
+  "$rimu" --resolution "$merge_resolution" --film spectral:47 --spp 8 --samples $i:$((i + 1)) -q -o big.$i.exr 2>/dev/null
   parts+=(big.$i.exr)
 done
 echo "partial size: $(du -h big.0.exr | cut -f1) each"

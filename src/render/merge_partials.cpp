@@ -166,7 +166,7 @@ MergeResult merge_partials(const std::vector<std::filesystem::path>& inputs, con
   if (options.keep_sums) {
     PartialRecord record = first.record;
     record.samples = result.samples;
-    record.requested = {result.samples.front().begin, result.samples.back().end};
+    if (!result.samples.empty()) record.requested = {result.samples.front().begin, result.samples.back().end};
     exr.partial = record;
   }
   const size_t replaced = write_exr(output, *film, exr);

@@ -35,6 +35,7 @@ std::string sample_ranges_text(const std::vector<SampleRange>& ranges) {
 
 std::vector<SampleRange> parse_sample_ranges(const std::string& text, const std::string& where) {
   std::vector<SampleRange> ranges;
+  if (text.empty()) return ranges;  // a checkpoint written before its first pass ended
   size_t start = 0;
   while (start <= text.size()) {
     const size_t comma = text.find(',', start);

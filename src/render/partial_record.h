@@ -27,7 +27,8 @@ SampleRange parse_sample_range(const std::string& text, const std::string& optio
 /// A duration such as "30s", "10m", "1h" or "90" (seconds) as seconds > 0: InputError naming `option` otherwise.
 double parse_duration_s(const std::string& text, const std::string& option);
 
-/// "0:64,128:256" for a sorted list of ranges; parse_sample_ranges() reads it back (InputError naming `where`).
+/// "0:64,128:256" for a sorted list of ranges ("" for none); parse_sample_ranges() reads it back (InputError naming
+/// `where`).
 std::string sample_ranges_text(const std::vector<SampleRange>& ranges);
 std::vector<SampleRange> parse_sample_ranges(const std::string& text, const std::string& where);
 

@@ -199,6 +199,9 @@ TEST_CASE("partial renders: --samples beyond the render's spp and malformed rang
   CHECK_THROWS_AS(parse_sample_range("5:5", "--samples"), InputError);
   CHECK_THROWS_AS(parse_sample_range("0-64", "--samples"), InputError);
   CHECK(parse_sample_range("64:128", "--samples") == SampleRange{64, 128});
+  CHECK(parse_sample_ranges("0:8,16:24", "x") == std::vector<SampleRange>{{0, 8}, {16, 24}});
+  CHECK(parse_sample_ranges("", "x").empty());  // a checkpoint written before its first pass ended
+  CHECK(sample_ranges_text({{0, 8}, {16, 24}}) == "0:8,16:24");
   CHECK(parse_duration_s("10m", "--checkpoint") == 600);
   CHECK(parse_duration_s("30s", "--checkpoint") == 30);
   CHECK_THROWS_AS(parse_duration_s("0s", "--checkpoint"), InputError);
