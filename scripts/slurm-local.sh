@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A single-node Slurm cluster on this machine, for the render-farm tests (docs/farm.md):
 #   scripts/slurm-local.sh start   munged, slurmctld and slurmd on localhost; prints `export SLURM_CONF=...`
-#   scripts/slurm-local.sh stop    stops the daemons it started
+#   scripts/slurm-local.sh stop    stops the daemons it started (munged only if it started it)
 # Its configuration and state live in $RIMU_SLURM_DIR (default /tmp/rimu-slurm), never in /etc/slurm, so it does
 # not touch a machine's real cluster: clients find it through SLURM_CONF. One node (this host) with this machine's
 # cores, one partition "rimu", no accounting database (sacct then reports that accounting is off).
@@ -21,6 +21,15 @@ stop() {
   done
 }
 
+stop_all() {
+  stop
+  # munged only if this script started it (a machine's own munged is left alone).
+  if [ -f "$dir/munged.started" ] && [ -f /run/munge/munged.pid ]; then
+    kill "$(cat /run/munge/munged.pid)" 2>/dev/null
+    rm -f "$dir/munged.started"
+  fi
+}
+
 start() {
   for tool in munged slurmctld slurmd sinfo; do
     command -v "$tool" >/dev/null || [ -x "/usr/sbin/$tool" ] || { echo "slurm-local: $tool is not installed (scripts/install-deps.sh)"; exit 2; }
@@ -36,6 +45,7 @@ start() {
     mkdir -p /run/munge /var/log/munge /var/lib/munge
     chown munge:munge /run/munge /var/log/munge /var/lib/munge 2>/dev/null
     runuser -u munge -- /usr/sbin/munged || /usr/sbin/munged --force || { echo "slurm-local: munged did not start"; exit 2; }
+    touch "$dir/munged.started"
     sleep 1
     (munge -n | unmunge) >/dev/null 2>&1 || { echo "slurm-local: munge credentials do not round-trip"; exit 2; }
   fi
@@ -85,6 +95,6 @@ CONF
 
 case "${1:-}" in
   start) start ;;
-  stop) stop ;;
+  stop) stop_all ;;
   *) echo "usage: scripts/slurm-local.sh start|stop"; exit 1 ;;
 esac
