@@ -20,6 +20,7 @@ packages=(
   python3-numpy          # spectra as numpy arrays in the Python module and its tests
   clang                  # fuzz targets (scripts/fuzz.sh): clang++ 14
   libclang-rt-14-dev     # libFuzzer and the sanitizer runtimes for clang 14
+  slurm-wlm slurmctld slurmd slurm-client munge  # render-farm tests: a single-node Slurm (scripts/slurm-local.sh)
 )
 
 missing=()

@@ -14,6 +14,8 @@
 #include <half.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdio>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -112,6 +114,21 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
   if (!m.scene.empty()) add_string(h, "rimu:scene", m.scene);
   if (m.interrupted) add_string(h, "rimu:interrupted", "interrupted at " + std::to_string(m.samples_per_pixel) + " spp");
   for (const auto& [key, value] : m.extra) add_string(h, "rimu:" + key, value);
+  if (options.partial) {
+    const PartialRecord& p = *options.partial;
+    add_string(h, "rimu:partial:sceneHash", p.scene_hash);
+    add_string(h, "rimu:partial:samples", sample_ranges_text(p.samples));
+    add_string(h, "rimu:partial:requested", p.requested.text());
+    h.insert("rimu:partial:totalSpp", Imf::IntAttribute(p.total_spp));
+    add_string(h, "rimu:partial:film", p.film_spec);
+    add_string(h, "rimu:partial:job", p.job);
+    h.insert("rimu:partial:accumulators", Imf::IntAttribute(film.accumulators_per_pixel()));
+    Imath::M33d m;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = p.output_transform.channel_matrix(r, c);
+    h.insert("rimu:partial:outputMatrix", Imf::M33dAttribute(m));
+    h.insert("rimu:partial:outputScale", Imf::DoubleAttribute(p.output_transform.scale));
+  }
   if (film.binning().count > 0) {
     add_string(h, "spectralLayoutVersion", "1.0");
     // Fichet et al. 2021's emissive layout: S0 channels of spectral radiance (per nm: the mean over each bin).
@@ -121,6 +138,12 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
 }
 
 }  // namespace
+
+std::string partial_sum_channel_name(int accumulator, bool high_word) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "rimu.sum.%02d.%s", accumulator, high_word ? "hi" : "lo");
+  return name;
+}
 
 std::string spectral_channel_name(const SpectralBinning& binning, int bin) {
   char digits[64];
@@ -166,8 +189,33 @@ size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrO
   const Imf::PixelType type = use_half ? Imf::HALF : Imf::FLOAT;
   for (const auto& channel : channels) header.channels().insert(channel.name, Imf::Channel(type));
 
+  // A partial's accumulators: each double's bits as two 32-bit words (EXR has no 64-bit type; UINT is exact).
+  std::vector<std::vector<uint32_t>> sum_words;
+  if (options.partial) {
+    const int n = film.accumulators_per_pixel();
+    sum_words.assign(size_t(2 * n), std::vector<uint32_t>(pixel_count));
+    size_t i = 0;
+    for (int y = b.y0; y < b.y1; ++y)
+      for (int x = b.x0; x < b.x1; ++x, ++i) {
+        const double* a = film.accumulators(x, y);
+        for (int k = 0; k < n; ++k) {
+          const uint64_t bits = std::bit_cast<uint64_t>(a[k]);
+          sum_words[size_t(2 * k)][i] = uint32_t(bits >> 32);
+          sum_words[size_t(2 * k + 1)][i] = uint32_t(bits);
+        }
+      }
+    for (int k = 0; k < n; ++k) {
+      header.channels().insert(partial_sum_channel_name(k, true), Imf::Channel(Imf::UINT));
+      header.channels().insert(partial_sum_channel_name(k, false), Imf::Channel(Imf::UINT));
+    }
+  }
+
   write_atomically(path, [&](const std::filesystem::path& temporary) {
     Imf::FrameBuffer frame_buffer;
+    for (size_t k = 0; k < sum_words.size(); ++k)
+      frame_buffer.insert(partial_sum_channel_name(int(k / 2), k % 2 == 0),
+                          Imf::Slice::Make(Imf::UINT, sum_words[k].data(), header.dataWindow(), sizeof(uint32_t),
+                                           sizeof(uint32_t) * size_t(b.width())));
     const size_t element = use_half ? sizeof(half) : sizeof(float);
     for (auto& channel : channels) {
       char* base = use_half ? reinterpret_cast<char*>(channel.halves.data())

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "render/film.h"
+#include "render/partial_record.h"
 #include "render/physical_camera.h"
 #include "spectral/matrix3.h"
 
@@ -40,6 +41,8 @@ struct ExrOptions {
   /// Name XYZ channels R, G, B instead of X, Y, Z. Some readers take a lone "Y" channel for luminance and ignore
   /// X and Z; with R, G, B and the XYZ chromaticities, colour-managed readers show the right colours.
   bool xyz_channels_as_rgb = false;
+  /// A partial render (render/partial_record.h): also write the film's accumulators exactly and the record.
+  std::optional<PartialRecord> partial;
 };
 
 /// Writes the film's crop window as the EXR data window (display window = the full image); pixels without samples
@@ -65,10 +68,17 @@ struct ExrOptions {
 /// rimu:renderTimeSeconds (double), rimu:samplesAccepted / rimu:discardedNaN / rimu:discardedInf /
 /// rimu:discardedNegative (double: exact to 2⁵³), rimu:luminanceNitsPerUnitY (XYZ films), rimu:scene,
 /// rimu:interrupted, rimu:<extra keys>.
+/// With options.partial, the file is also a partial render: every accumulator of the film (Film::accumulators: the
+/// three channel sums in film units before the output transform, the filter-weight sum, the spectral bin sums) is
+/// stored exactly, the 64 bits of its double split over two UINT channels "rimu.sum.<k>.hi" and "rimu.sum.<k>.lo"
+/// (k = 0, 1, ..., two digits), and the record as "rimu:partial:*" attributes (docs/farm.md lists them).
 /// Written to a temporary file in the same folder and renamed (write_atomically): on failure no file is left at
 /// `path`. Throws InputError for a missing folder, OutputError for anything else. Returns the number of non-finite
 /// values replaced (see above).
 size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options = {});
+
+/// The EXR channel holding the high (or low) 32 bits of accumulator `accumulator` of a partial (see write_exr).
+std::string partial_sum_channel_name(int accumulator, bool high_word);
 
 /// The EXR channel name of spectral bin `bin` (see write_exr).
 std::string spectral_channel_name(const SpectralBinning& binning, int bin);

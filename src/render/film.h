@@ -64,6 +64,10 @@ class Film {
   double spectral_value(int x, int y, int bin) const;
   /// The sum of filter weights of pixel (x, y) (its sample count with weight-1 filters).
   double weight_sum(int x, int y) const { return pixels_.pixel(x, y)[FilmTile::kWeight]; }
+  /// The raw accumulators of pixel (x, y) (FilmTile layout: 3 channel sums, the weight sum, the bin sums): what a
+  /// partial render writes so that merging partials is summation.
+  const double* accumulators(int x, int y) const { return pixels_.pixel(x, y); }
+  int accumulators_per_pixel() const { return pixels_.doubles_per_pixel(); }
   /// Accepted and discarded samples over everything merged or added so far.
   FilmSampleCounts sample_counts() const;
 

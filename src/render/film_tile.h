@@ -73,6 +73,9 @@ class FilmTile {
   const PixelBounds& bounds() const { return bounds_; }
   const SpectralBinning& binning() const { return binning_; }
   const FilmSampleCounts& sample_counts() const { return counts_; }
+  /// Adds counts of samples taken elsewhere (a partial render read back from its file, whose sums are loaded with
+  /// pixel()).
+  void add_sample_counts(const FilmSampleCounts& counts) { counts_ += counts; }
   /// Accumulators per pixel: 3 channel sums, the weight sum, then the spectral bin sums.
   int doubles_per_pixel() const { return kFirstBin + binning_.count; }
   /// The accumulators of pixel (x, y), full-image coordinates.

@@ -10,7 +10,7 @@ namespace {
 std::atomic<bool> g_interrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
 std::atomic<bool> g_installed{false};
-struct sigaction g_previous;
+struct sigaction g_previous_int, g_previous_term;
 
 extern "C" void on_sigint(int) { g_interrupted.store(true, std::memory_order_relaxed); }
 
@@ -24,11 +24,13 @@ InterruptFlag::InterruptFlag() {
   action.sa_handler = on_sigint;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESETHAND | SA_RESTART;
-  sigaction(SIGINT, &action, &g_previous);
+  sigaction(SIGINT, &action, &g_previous_int);
+  sigaction(SIGTERM, &action, &g_previous_term);  // what schedulers (Slurm, systemd) send before SIGKILL
 }
 
 InterruptFlag::~InterruptFlag() {
-  sigaction(SIGINT, &g_previous, nullptr);
+  sigaction(SIGINT, &g_previous_int, nullptr);
+  sigaction(SIGTERM, &g_previous_term, nullptr);
   g_installed.store(false);
 }
 

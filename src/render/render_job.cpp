@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <chrono>
 #include <ctime>
 #include <ostream>
 #include <sstream>
@@ -12,7 +13,9 @@
 #include "render/display_output.h"
 #include "render/exr_output.h"
 #include "render/output_file.h"
+#include "render/partial_exr.h"
 #include "render/pbrt/pbrt_to_scene.h"
+#include "render/scene_frame.h"
 #include "spectral/error.h"
 #include "render/interrupt_flag.h"
 #include "render/json_cursor.h"
@@ -110,7 +113,11 @@ nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrar
   return std::move(imported.document);
 }
 
-RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
+namespace {
+
+// The render itself. `previous`: a partial (checkpoint) of this job whose sums the film starts from; the render
+// continues after its last sample.
+RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, std::ostream& log) {
   // Everything that can be checked without the scene is checked first: a typo costs nothing.
   check_outputs(job);
   DisplayOptions display;
@@ -121,7 +128,20 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
   // pbrt-v4 files are translated into a JSON document first; both then go through the same loader.
   const bool pbrt = is_pbrt_scene_path(scene_path);
-  nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log) : parse_json_file(scene_path);
+  if (pbrt && job.frame)
+    throw InputError({"", 0, "--frame"}, "frame numbers are substituted into JSON scenes; a pbrt-v4 scene is read as it is");
+  nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log)
+                                 : parse_json_text(scene_text_for_frame(scene_path, job.frame), scene_path.string());
+  const std::string hash = scene_hash(job);
+  if (job.expected_scene_hash && *job.expected_scene_hash != hash)
+    throw InputError({scene_path.string(), 0, ""},
+                     "the scene (file or image options) hashes to " + hash + ", not the expected " +
+                         *job.expected_scene_hash + ": it changed after the render was submitted");
+  if (previous && previous->record.scene_hash != hash)
+    throw InputError({scene_path.string(), 0, ""},
+                     "the scene (file or image options) hashes to " + hash + ", but " + previous->path.string() +
+                         " was rendered from one that hashed to " + previous->record.scene_hash +
+                         ": it changed since; resuming would mix two scenes");
   if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
   if (job.wavelength_density)
     document["integrator"]["wavelength_density"] =
@@ -183,45 +203,102 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   if (film.response().kind() == ResponseKind::camera_rgb) colour_fit = fit_camera_to_xyz(film.response(), library);
   const bool metered_display = !settings.camera_exposure.exposure && uses_photometric_units(document);
 
+  // The samples this job covers: all of them, or a --samples range of a render of samples_per_pixel.
+  const int total_spp = settings.samples_per_pixel;
+  const SampleRange requested = job.samples.value_or(SampleRange{0, total_spp});
+  if (requested.end > total_spp)
+    throw InputError({"", 0, "--samples"}, "--samples " + requested.text() + " reaches beyond the render's " +
+                                               std::to_string(total_spp) +
+                                               " samples per pixel (the scene's samples_per_pixel, or --spp)");
+  const bool partial_output = job.samples || job.checkpoint_interval_s || previous;
+  int start = requested.begin;
+  double previous_seconds = 0.0;
+  if (previous) {
+    if (previous->crop != film.pixel_bounds() || previous->spectral_bins != film.binning().count)
+      throw InputError({previous->path.string(), 0, ""}, "its window or spectral bins differ from its recorded job's");
+    start = previous->record.samples.front().end;
+    previous_seconds = previous->metadata.render_time_s;
+    add_partial_to_film(*previous, film);
+  }
+
   InterruptFlag interrupt;
-  const uint64_t total = uint64_t(film.pixel_bounds().area()) * uint64_t(settings.samples_per_pixel);
+  const uint64_t total = uint64_t(film.pixel_bounds().area()) * uint64_t(requested.end - start);
   ProgressReporter::Options progress_options;
   if (job.quiet) progress_options.terminal = 0;
   ProgressReporter progress(total, "rendering", progress_options);
 
   RenderOptions options;
-  options.samples_per_pixel = settings.samples_per_pixel;
+  options.samples_per_pixel = requested.end;
+  options.first_sample = start;
   options.threads = job.threads.value_or(0);
   options.seed = settings.seed;
   options.sampler = settings.sampler;
   options.interrupt = &interrupt;
   options.progress = &progress;
+  const auto render_start = std::chrono::steady_clock::now();
+  // The output after samples [requested.begin, reached) (a checkpoint, or the final image).
+  auto exr_options = [&](int reached, bool interrupted) {
+    ExrOptions exr;
+    exr.pixel_type = job.float_exr ? ExrPixelType::float32 : ExrPixelType::half;
+    exr.metadata.samples_per_pixel = reached - requested.begin;
+    exr.metadata.seed = settings.seed;
+    exr.metadata.render_time_s =
+        previous_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
+    exr.metadata.interrupted = interrupted;
+    exr.metadata.scene = scene_path.string();
+    exr.metadata.extra["degenerateTrianglesRemoved"] = std::to_string(scene->degenerate_triangles_removed);
+    exr.metadata.extra["wavelengths"] = wavelength_mode_name(settings.integrator.wavelengths);
+    exr.metadata.extra["wavelengthDensity"] = scene->wavelength_density ? "lights" : "visible";
+    exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
+    exr.metadata.extra["lightSampler"] = light_sampler_kind_name(settings.light_sampler);
+    for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, output_transform))
+      exr.metadata.extra[key] = value;
+    exr.metadata.camera = settings.camera_exposure.exposure;
+    exr.metadata.finished_at = std::time(nullptr);
+    if (colour_fit) {
+      // The written R, G, B are M_wb · raw (times the exposure): undo the white balance to reach the fit's raw input.
+      exr.metadata.camera_to_xyz = colour_fit->camera_to_xyz * output_transform.channel_matrix.inverse();
+      exr.metadata.camera_to_xyz_mean_delta_e2000 = colour_fit->mean_delta_e2000;
+    }
+    if (partial_output) {
+      PartialRecord record;
+      record.scene_hash = hash;
+      record.seed = settings.seed;
+      if (reached > requested.begin) record.samples = {SampleRange{requested.begin, reached}};
+      record.requested = requested;
+      record.total_spp = total_spp;
+      record.film_spec = settings.integrator.wavelengths == WavelengthMode::rgb ? "rgb-transport" : settings.film_response;
+      record.output_transform = output_transform;
+      RenderJob recorded = job;
+      recorded.samples = requested;
+      recorded.samples_per_pixel = total_spp;
+      recorded.seed = settings.seed;
+      record.job = render_job_json(recorded);
+      exr.partial = record;
+    }
+    return exr;
+  };
+  auto last_checkpoint = render_start;
+  if (job.checkpoint_interval_s) {
+    options.after_pass = [&](int reached) {
+      const auto now = std::chrono::steady_clock::now();
+      if (reached >= requested.end || std::chrono::duration<double>(now - last_checkpoint).count() <
+                                          *job.checkpoint_interval_s)
+        return;
+      const ExrOptions exr = exr_options(reached, false);
+      write_exr(job.exr_output, film, exr);
+      last_checkpoint = std::chrono::steady_clock::now();
+      if (!job.quiet) log << "\nrimu: checkpoint " << job.exr_output.string() << ": samples " << requested.begin << ":"
+                          << reached << "\n";
+    };
+  }
   RenderJobResult result;
   result.statistics = render(*scene, filter, film, options);
   progress.finish();
   result.sample_counts = film.sample_counts();
+  const int reached = start + result.statistics.samples_per_pixel_done;
 
-  ExrOptions exr;
-  exr.pixel_type = job.float_exr ? ExrPixelType::float32 : ExrPixelType::half;
-  exr.metadata.samples_per_pixel = result.statistics.samples_per_pixel_done;
-  exr.metadata.seed = settings.seed;
-  exr.metadata.render_time_s = result.statistics.seconds;
-  exr.metadata.interrupted = result.statistics.interrupted;
-  exr.metadata.scene = scene_path.string();
-  exr.metadata.extra["degenerateTrianglesRemoved"] = std::to_string(scene->degenerate_triangles_removed);
-  exr.metadata.extra["wavelengths"] = wavelength_mode_name(settings.integrator.wavelengths);
-  exr.metadata.extra["wavelengthDensity"] = scene->wavelength_density ? "lights" : "visible";
-  exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
-  exr.metadata.extra["lightSampler"] = light_sampler_kind_name(settings.light_sampler);
-  for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, output_transform))
-    exr.metadata.extra[key] = value;
-  exr.metadata.camera = settings.camera_exposure.exposure;
-  exr.metadata.finished_at = std::time(nullptr);
-  if (colour_fit) {
-    // The written R, G, B are M_wb · raw (times the exposure): undo the white balance to reach the fit's raw input.
-    exr.metadata.camera_to_xyz = colour_fit->camera_to_xyz * output_transform.channel_matrix.inverse();
-    exr.metadata.camera_to_xyz_mean_delta_e2000 = colour_fit->mean_delta_e2000;
-  }
+  const ExrOptions exr = exr_options(reached, result.statistics.interrupted);
   const size_t replaced = write_exr(job.exr_output, film, exr);
   if (replaced > 0)
     log << "rimu: warning: " << replaced << " values of " << job.exr_output.string()
@@ -239,8 +316,9 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
 
   const FilmSampleCounts& c = result.sample_counts;
   std::ostringstream summary;
-  summary << "rimu: " << scene_path.string() << ": " << result.statistics.samples_per_pixel_done << " spp";
-  if (result.statistics.interrupted) summary << " (interrupted; requested " << settings.samples_per_pixel << ")";
+  summary << "rimu: " << scene_path.string() << ": " << reached - requested.begin << " spp";
+  if (job.samples || previous) summary << " (samples " << requested.begin << ":" << reached << ")";
+  if (result.statistics.interrupted) summary << " (interrupted; requested " << requested.count() << ")";
   summary << " in " << result.statistics.seconds << " s, "
           << (result.statistics.seconds > 0 ? double(result.statistics.camera_samples) / result.statistics.seconds : 0.0)
           << " samples/s; discarded samples: " << c.nan << " NaN, " << c.infinite << " Inf, " << c.negative
@@ -250,6 +328,41 @@ RenderJobResult run_render_job(const RenderJob& job, std::ostream& log) {
   summary << "\n";
   log << summary.str();
   return result;
+}
+
+// --resume: the recorded job, continued from the file's sums.
+RenderJobResult resume_render_job(const RenderJob& job, std::ostream& log) {
+  const PartialImage previous = read_partial_exr(*job.resume);
+  RenderJob resumed = render_job_from_json(previous.record.job, job.resume->string() + ": rimu:partial:job");
+  resumed.threads = job.threads;
+  resumed.quiet = job.quiet;
+  resumed.exr_output = job.exr_output;
+  if (job.checkpoint_interval_s) resumed.checkpoint_interval_s = job.checkpoint_interval_s;
+  const SampleRange requested = previous.record.requested;
+  const std::vector<SampleRange>& held = previous.record.samples;
+  if (held.size() > 1 || (held.size() == 1 && held.front().begin != requested.begin))
+    throw InputError({job.resume->string(), 0, "--resume"},
+                     "holds samples " + sample_ranges_text(held) + ", not one range starting at " +
+                         std::to_string(requested.begin) + " (a merge of partials): render the missing samples with "
+                         "--samples and merge them instead");
+  if (held.empty()) return render_job(resumed, nullptr, log);
+  if (held.front().end >= requested.end) {
+    log << "rimu: " << job.resume->string() << " already holds samples " << requested.text()
+        << ": nothing to resume\n";
+    return {};
+  }
+  return render_job(resumed, &previous, log);
+}
+
+}  // namespace
+
+RenderJobResult run_render_job(const RenderJob& job_in, std::ostream& log) {
+  RenderJob job = job_in;
+  // "${frame}" in the output names, as in the scene (render/scene_frame.h).
+  job.exr_output = substitute_frame(job.exr_output.string(), job.frame, "-o");
+  if (job.png_output) job.png_output = substitute_frame(job.png_output->string(), job.frame, "--png");
+  if (job.resume) return resume_render_job(job, log);
+  return render_job(job, nullptr, log);
 }
 
 }  // namespace rimu

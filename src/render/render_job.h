@@ -10,6 +10,7 @@
 #include <string>
 
 #include "render/film.h"
+#include "render/partial_record.h"
 #include "render/renderer.h"
 #include "spectral/spectral_library.h"
 #include "transport/light_sampler.h"
@@ -43,7 +44,30 @@ struct RenderJob {
   std::string view = "Standard";
   bool strict = false;  ///< a pbrt-v4 scene: anything Rimu would ignore is an error (docs/pbrt-import.md)
   bool quiet = false;  ///< no progress bar (it is also off when stderr is not a terminal)
+
+  /// Render only sample indices [begin, end) of every pixel (a partial: the EXR also holds the exact sums and the
+  /// record a merge needs; docs/farm.md). samples_per_pixel is then the whole render's spp (default: the scene's),
+  /// which a merge checks the partials cover.
+  std::optional<SampleRange> samples;
+  /// Write the output as a partial every this many seconds (atomically: a valid file at any moment), and on
+  /// Ctrl-C/SIGTERM. Implies a partial output (the sums are kept), so --resume can continue it.
+  std::optional<double> checkpoint_interval_s;
+  /// Continue the partial or checkpoint at this path to the end of the range it was asked for, with the options it
+  /// records (its scene must still hash the same). exr_output defaults to it; threads and quiet are this job's.
+  std::optional<std::filesystem::path> resume;
+  /// The scene hash the caller expects (a farm task checks the scene did not change after submission).
+  std::optional<std::string> expected_scene_hash;
+  /// The frame number substituted for "${frame}" in the scene file's text (docs/scene-format.md, "Frames").
+  std::optional<int> frame;
 };
+
+/// The scene file's bytes (with ${frame} substituted) and the options that change the image, hashed (64-bit
+/// FNV-1a, 16 hex digits): equal hashes mean the same render. Files the scene refers to (meshes, textures, IES) are
+/// not hashed. InputError if the scene cannot be read.
+std::string scene_hash(const RenderJob& job);
+/// The job's options as JSON (what a partial records for --resume) and back.
+std::string render_job_json(const RenderJob& job);
+RenderJob render_job_from_json(const std::string& json, const std::string& where);
 
 struct RenderJobResult {
   RenderStatistics statistics;

@@ -31,6 +31,16 @@ std::vector<PixelBounds> make_tiles(const PixelBounds& b) {
 
 }  // namespace
 
+int sample_pass_end(int sample) {
+  constexpr int kLastDoubling = 15;  // passes of 1, 2, 4, 8 end at 1, 3, 7, 15; then passes of 16
+  if (sample < kLastDoubling) {
+    int end = 1;
+    while (end <= sample) end = 2 * end + 1;
+    return end;
+  }
+  return kLastDoubling + ((sample - kLastDoubling) / 16 + 1) * 16;
+}
+
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const TransportScene view = scene.transport_view();
   const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
@@ -60,10 +70,9 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
 
   RenderStatistics stats;
-  int pass_size = 1;
-  while (stats.samples_per_pixel_done < options.samples_per_pixel) {
-    const int first = stats.samples_per_pixel_done;
-    const int count = std::min(pass_size, options.samples_per_pixel - first);
+  while (options.first_sample + stats.samples_per_pixel_done < options.samples_per_pixel) {
+    const int first = options.first_sample + stats.samples_per_pixel_done;
+    const int count = std::min(sample_pass_end(first), options.samples_per_pixel) - first;
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
     std::atomic<bool> stopped{false};
 
@@ -102,9 +111,9 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     for (const auto& tile : results) film.merge_tile(*tile);
     stats.samples_per_pixel_done += count;
     stats.camera_samples += uint64_t(film.pixel_bounds().area()) * uint64_t(count);
-    pass_size = std::min(pass_size * 2, 16);
+    if (options.after_pass) options.after_pass(first + count);
     if (options.interrupt && options.interrupt->requested()) {
-      stats.interrupted = stats.samples_per_pixel_done < options.samples_per_pixel;
+      stats.interrupted = first + count < options.samples_per_pixel;
       break;
     }
   }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "render/film.h"
 #include "render/pixel_filter.h"
@@ -14,7 +15,14 @@ class InterruptFlag;
 class ProgressReporter;
 
 struct RenderOptions {
-  int samples_per_pixel = 16;
+  int samples_per_pixel = 16;  ///< the end (exclusive) of the sample indices taken: [first_sample, samples_per_pixel)
+  /// The first sample index taken: > 0 for a partial render (--samples a:b) or a resumed one, whose film already
+  /// holds the sums of the samples before it. Passes follow the global schedule (sample_pass_end), so the film
+  /// reaches the same sums as a render that started at 0.
+  int first_sample = 0;
+  /// Called on the calling thread after every whole pass, with the end of the samples now in the film (the film is
+  /// consistent there: checkpoints are written from it).
+  std::function<void(int samples_end)> after_pass;
   int threads = 0;           ///< 0 = every core
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::sobol;  ///< where the random numbers come from (docs/sampling.md)
@@ -23,7 +31,7 @@ struct RenderOptions {
 };
 
 struct RenderStatistics {
-  int samples_per_pixel_done = 0;  ///< < requested if interrupted
+  int samples_per_pixel_done = 0;  ///< samples taken by this call; < requested if interrupted
   bool interrupted = false;
   double seconds = 0;
   uint64_t camera_samples = 0;
@@ -33,9 +41,15 @@ struct RenderStatistics {
 /// scene, the seed and the sample count: not on the thread count or the order in which tiles finish, because
 /// every pixel's samples are drawn from (seed, pixel, sample index) and summed in sample order by one thread.
 ///
-/// Samples are taken in passes of 1, 2, 4, 8, 16, 16, ... per pixel; an interrupt stops after the current
+/// Samples are taken in passes of 1, 2, 4, 8, 16, 16, ... per pixel (sample indices [0,1), [1,3), [3,7), [7,15),
+/// [15,31), ...: the pass boundaries depend on the sample index only, see sample_pass_end); an interrupt stops after the current
 /// tile and throws away the unfinished pass, so every pixel of the result has the same number of samples.
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options);
+
+/// The end of the pass that contains sample index `sample`: the smallest pass boundary above it (1, 3, 7, 15, then
+/// every 16). A render of [a, b) cuts its passes at these boundaries (and at b), so a render resumed at a boundary
+/// adds the same pass sums in the same order as an uninterrupted one: the film is bit-identical.
+int sample_pass_end(int sample);
 
 /// The same over a transport view and camera the caller assembles: for wrapping part of a scene, e.g. a ray
 /// counter around `transport.geometry` (render/ray_recorder.h). The overload above is this one with

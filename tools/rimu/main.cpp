@@ -9,14 +9,17 @@
 #include "render/render_error.h"
 #include "render/camera_exposure.h"
 #include "render/render_job.h"
+#include "merge_command.h"
 #include "spectral/error.h"
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "merge") return run_merge_command(argc - 1, argv + 1);
   CLI::App app{
       "rimu: spectral hero-wavelength path tracer.\n"
       "Renders SCENE (a JSON file, see docs/scene-format.md; default: the measured Cornell box) to an OpenEXR image\n"
       "of CIE XYZ (or camera RGB) and optionally a PNG for display. Ctrl-C stops early and still writes the image.\n"
-      "Example: rimu -o box.exr --png box.png --spp 64"};
+      "Example: rimu -o box.exr --png box.png --spp 64\n"
+      "Partial renders, checkpoints and farms: docs/farm.md; `rimu merge --help` merges partial renders."};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
       light_sampler;
@@ -59,6 +62,18 @@ int main(int argc, char** argv) {
   app.add_option("--ev", job.compensation_ev, "physical camera: exposure compensation in stops");
   app.add_option("--white-balance", job.white_balance, "none, a temperature (2700 or 2700K) or an illuminant (A, D50...)");
 
+  std::string samples, checkpoint, resume, expect_hash;
+  bool print_hash = false;
+  app.add_option("--samples", samples, "render only sample indices BEGIN:END of every pixel (END exclusive), a "
+                                       "partial for `rimu merge`; --spp is then the whole render's spp");
+  app.add_option("--checkpoint", checkpoint, "write -o as a resumable partial every interval (30s, 10m, 1h), and on "
+                                             "Ctrl-C or SIGTERM");
+  app.add_option("--resume", resume, "continue the partial or checkpoint FILE.exr to the samples it was asked for "
+                                     "(its recorded options; -o defaults to FILE.exr)");
+  app.add_option("--frame", job.frame, "frame number substituted for ${frame} in the scene and output names");
+  app.add_option("--expect-scene-hash", expect_hash, "refuse to render unless the scene hashes to this (farm tasks)");
+  app.add_flag("--print-scene-hash", print_hash, "print the scene hash (scene file + image options) and exit");
+
   return rimu::run_tool("rimu", app, argc, argv, [&] {
     if (!scene.empty()) job.scene = scene;
     job.exr_output = output;
@@ -77,6 +92,17 @@ int main(int argc, char** argv) {
     }
     if (!crop.empty()) job.crop = rimu::parse_crop(crop, "--crop");
     if (!shutter.empty()) job.shutter_s = rimu::parse_shutter_time_s(shutter, "--shutter");
+    if (!samples.empty()) job.samples = rimu::parse_sample_range(samples, "--samples");
+    if (!checkpoint.empty()) job.checkpoint_interval_s = rimu::parse_duration_s(checkpoint, "--checkpoint");
+    if (!resume.empty()) {
+      job.resume = resume;
+      if (app.get_option("-o")->count() == 0) job.exr_output = resume;
+    }
+    if (!expect_hash.empty()) job.expected_scene_hash = expect_hash;
+    if (print_hash) {
+      std::cout << rimu::scene_hash(job) << "\n";
+      return;
+    }
     rimu::run_render_job(job, std::cerr);
   });
 }

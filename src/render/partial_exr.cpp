@@ -1,0 +1,184 @@
+#include "render/partial_exr.h"
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
+#include <ImfMatrixAttribute.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
+
+#include <algorithm>
+#include <bit>
+#include <set>
+
+#include "spectral/error.h"
+
+namespace rimu {
+namespace {
+
+InputError partial_error(const std::filesystem::path& path, const std::string& what) {
+  return InputError({path.string(), 0, ""}, what);
+}
+
+const std::string& string_attribute(const Imf::Header& h, const std::filesystem::path& path, const char* name) {
+  const auto* a = h.findTypedAttribute<Imf::StringAttribute>(name);
+  if (!a)
+    throw partial_error(path, std::string("not a partial render: no '") + name +
+                                  "' attribute (render it with --samples or --checkpoint)");
+  return a->value();
+}
+
+// Attributes that write_exr derives itself from the film, the RenderMetadata fields or the PartialRecord: every
+// other "rimu:*" string is copied as RenderMetadata::extra.
+bool derived_attribute(const std::string& name) {
+  static const std::set<std::string> derived = {"rimu:version", "rimu:filmResponse", "rimu:camera", "rimu:seed",
+                                                "rimu:scene", "rimu:interrupted"};
+  return derived.count(name) > 0 || name.rfind("rimu:partial:", 0) == 0;
+}
+
+}  // namespace
+
+PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums) {
+  PartialImage p;
+  p.path = path;
+  std::unique_ptr<Imf::InputFile> file;
+  try {
+    file = std::make_unique<Imf::InputFile>(path.c_str());
+  } catch (const std::exception& e) {
+    throw partial_error(path, std::string("cannot read as OpenEXR: ") + e.what());
+  }
+  const Imf::Header& h = file->header();
+  PartialRecord& r = p.record;
+  r.scene_hash = string_attribute(h, path, "rimu:partial:sceneHash");
+  r.samples = parse_sample_ranges(string_attribute(h, path, "rimu:partial:samples"), path.string() + ": rimu:partial:samples");
+  r.requested = parse_sample_range(string_attribute(h, path, "rimu:partial:requested"), path.string() + ": rimu:partial:requested");
+  r.film_spec = string_attribute(h, path, "rimu:partial:film");
+  r.job = string_attribute(h, path, "rimu:partial:job");
+  try {
+    r.seed = std::stoull(string_attribute(h, path, "rimu:seed"));
+  } catch (const std::invalid_argument&) {
+    throw partial_error(path, "rimu:seed is not a number");
+  }
+  const auto* total = h.findTypedAttribute<Imf::IntAttribute>("rimu:partial:totalSpp");
+  const auto* accumulators = h.findTypedAttribute<Imf::IntAttribute>("rimu:partial:accumulators");
+  const auto* matrix = h.findTypedAttribute<Imf::M33dAttribute>("rimu:partial:outputMatrix");
+  const auto* scale = h.findTypedAttribute<Imf::DoubleAttribute>("rimu:partial:outputScale");
+  if (!total || !accumulators || !matrix || !scale)
+    throw partial_error(path, "not a partial render: its rimu:partial:* record is incomplete");
+  r.total_spp = total->value();
+  p.accumulators_per_pixel = accumulators->value();
+  for (int row = 0; row < 3; ++row)
+    for (int c = 0; c < 3; ++c) r.output_transform.channel_matrix(row, c) = matrix->value()[row][c];
+  r.output_transform.scale = scale->value();
+
+  const Imath::Box2i& display = h.displayWindow();
+  const Imath::Box2i& data = h.dataWindow();
+  p.width = display.max.x - display.min.x + 1;
+  p.height = display.max.y - display.min.y + 1;
+  p.crop = {data.min.x, data.min.y, data.max.x + 1, data.max.y + 1};
+  p.spectral_bins = p.accumulators_per_pixel - FilmTile::kFirstBin;
+  if (p.spectral_bins < 0) throw partial_error(path, "rimu:partial:accumulators is below 4");
+  const Imf::Channel* first = h.channels().findChannel(h.channels().begin().name());
+  p.pixel_type = first && first->type == Imf::FLOAT ? ExrPixelType::float32 : ExrPixelType::half;
+
+  // The accumulators, exactly: two UINT words per double, read a band of rows at a time (bounded memory).
+  const int n = p.accumulators_per_pixel;
+  for (int k = 0; k < 2 * n; ++k) {
+    const std::string name = partial_sum_channel_name(k / 2, k % 2 == 0);
+    const Imf::Channel* channel = h.channels().findChannel(name);
+    if (!channel || channel->type != Imf::UINT)
+      throw partial_error(path, "not a partial render: no UINT channel '" + name + "'");
+  }
+  if (with_sums) {
+    const size_t width = size_t(p.crop.width());
+    p.sums.resize(size_t(p.crop.area()) * size_t(n));
+    constexpr int kBandRows = 64;
+    std::vector<uint32_t> words(size_t(2 * n) * width * kBandRows);
+    for (int y0 = data.min.y; y0 <= data.max.y; y0 += kBandRows) {
+      const int y1 = std::min(y0 + kBandRows - 1, data.max.y);
+      Imf::FrameBuffer frame_buffer;
+      // Word k of pixel (x, y) of the band at words[((y - y0) · width + x - x0) · 2n + k].
+      char* origin = reinterpret_cast<char*>(words.data()) -
+                     (ptrdiff_t(y0) * ptrdiff_t(width) + data.min.x) * ptrdiff_t(2 * n) * ptrdiff_t(sizeof(uint32_t));
+      for (int k = 0; k < 2 * n; ++k)
+        frame_buffer.insert(partial_sum_channel_name(k / 2, k % 2 == 0),
+                            Imf::Slice(Imf::UINT, origin + k * sizeof(uint32_t), size_t(2 * n) * sizeof(uint32_t),
+                                       size_t(2 * n) * sizeof(uint32_t) * width));
+      try {
+        file->setFrameBuffer(frame_buffer);
+        file->readPixels(y0, y1);
+      } catch (const std::exception& e) {
+        throw partial_error(path, std::string("cannot read its pixels: ") + e.what());
+      }
+      const size_t first = size_t(y0 - data.min.y) * width;
+      const size_t count = size_t(y1 - y0 + 1) * width;
+      for (size_t i = 0; i < count; ++i)
+        for (int k = 0; k < n; ++k) {
+          const uint32_t* w = &words[i * size_t(2 * n) + size_t(2 * k)];
+          p.sums[(first + i) * size_t(n) + size_t(k)] = std::bit_cast<double>((uint64_t(w[0]) << 32) | w[1]);
+        }
+    }
+  }
+
+  auto count = [&](const char* name) {
+    const auto* a = h.findTypedAttribute<Imf::DoubleAttribute>(name);
+    return a ? uint64_t(a->value()) : 0;
+  };
+  p.counts = {count("rimu:samplesAccepted"), count("rimu:discardedNaN"), count("rimu:discardedInf"),
+              count("rimu:discardedNegative")};
+
+  RenderMetadata& m = p.metadata;
+  m.seed = r.seed;
+  if (const auto* a = h.findTypedAttribute<Imf::IntAttribute>("rimu:spp")) m.samples_per_pixel = a->value();
+  if (const auto* a = h.findTypedAttribute<Imf::DoubleAttribute>("rimu:renderTimeSeconds")) m.render_time_s = a->value();
+  if (const auto* a = h.findTypedAttribute<Imf::StringAttribute>("rimu:scene")) m.scene = a->value();
+  if (Imf::hasIsoSpeed(h) && Imf::hasExpTime(h) && Imf::hasAperture(h)) {
+    PhysicalCameraSettings camera;
+    camera.iso = Imf::isoSpeed(h);
+    camera.shutter_s = Imf::expTime(h);
+    camera.f_number = Imf::aperture(h);
+    m.camera = camera;
+  }
+  if (const auto* a = h.findTypedAttribute<Imf::M33fAttribute>("cameraToXYZ")) {
+    Matrix3 c;
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) c(row, col) = a->value()[row][col];
+    m.camera_to_xyz = c;
+    if (const auto* e = h.findTypedAttribute<Imf::DoubleAttribute>("rimu:cameraToXYZMeanDeltaE2000"))
+      m.camera_to_xyz_mean_delta_e2000 = e->value();
+  }
+  for (auto it = h.begin(); it != h.end(); ++it) {
+    const std::string name = it.name();
+    if (name.rfind("rimu:", 0) != 0 || derived_attribute(name)) continue;
+    if (const auto* a = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) m.extra[name.substr(5)] = a->value();
+  }
+  return p;
+}
+
+std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLibrary& library) {
+  SpectralResponse response = partial.record.film_spec == "rgb-transport"
+                                  ? SpectralResponse::rgb_transport(library)
+                                  : SpectralResponse::from_spec(library, partial.record.film_spec);
+  FilmOptions options{partial.width, partial.height, partial.crop, partial.spectral_bins};
+  auto film = std::make_unique<Film>(options, std::move(response));
+  film->set_output_transform(partial.record.output_transform);
+  add_partial_to_film(partial, *film);
+  return film;
+}
+
+void add_partial_to_film(const PartialImage& partial, Film& film) {
+  if (partial.sums.empty()) return;  // a header only
+  FilmTile tile = film.make_tile(partial.crop);
+  const int n = partial.accumulators_per_pixel;
+  size_t i = 0;
+  for (int y = partial.crop.y0; y < partial.crop.y1; ++y)
+    for (int x = partial.crop.x0; x < partial.crop.x1; ++x, ++i)
+      for (int k = 0; k < n; ++k) tile.pixel(x, y)[k] = partial.sums[i * size_t(n) + size_t(k)];
+  tile.add_sample_counts(partial.counts);
+  film.merge_tile(tile);
+}
+
+}  // namespace rimu

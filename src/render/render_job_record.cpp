@@ -1,0 +1,107 @@
+// What a partial render records about its job: the scene hash and the options as JSON (render_job.h).
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "render/json_cursor.h"
+#include "render/render_job.h"
+#include "render/scene_frame.h"
+
+namespace rimu {
+namespace {
+
+// The options that change the image (not the samples, seed or crop: a merge checks those on their own).
+nlohmann::json image_options(const RenderJob& job) {
+  nlohmann::json j = nlohmann::json::object();
+  if (job.width) j["width"] = *job.width;
+  if (job.height) j["height"] = *job.height;
+  if (job.sampler) j["sampler"] = sampler_kind_name(*job.sampler);
+  if (job.wavelengths) j["wavelengths"] = wavelength_mode_name(*job.wavelengths);
+  if (job.wavelength_density)
+    j["wavelength_density"] = *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
+  if (job.film) j["film"] = *job.film;
+  if (job.iso) j["iso"] = *job.iso;
+  if (job.shutter_s) j["shutter_s"] = *job.shutter_s;
+  if (job.f_number) j["f_number"] = *job.f_number;
+  if (job.compensation_ev) j["ev"] = *job.compensation_ev;
+  if (job.white_balance) j["white_balance"] = *job.white_balance;
+  if (job.frame) j["frame"] = *job.frame;
+  if (job.light_sampler) j["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
+  if (job.strict) j["strict"] = true;
+  return j;
+}
+
+// 64-bit FNV-1a (Fowler, Noll, Vo): enough to tell a changed scene from an unchanged one, not a security check.
+uint64_t fnv1a(const std::string& bytes, uint64_t h = 0xcbf29ce484222325ULL) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+}  // namespace
+
+std::string scene_hash(const RenderJob& job) {
+  SpectralLibrary library = SpectralLibrary::at_default_location();
+  const std::filesystem::path path = job.scene ? *job.scene : default_scene_path(library);
+  const std::string text = scene_text_for_frame(path, job.frame);
+  const uint64_t h = fnv1a(image_options(job).dump(), fnv1a(text + '\0'));
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+std::string render_job_json(const RenderJob& job) {
+  nlohmann::json j = image_options(job);
+  if (job.scene) j["scene"] = std::filesystem::absolute(*job.scene).lexically_normal().string();
+  if (job.samples_per_pixel) j["spp"] = *job.samples_per_pixel;
+  if (job.seed) j["seed"] = std::to_string(*job.seed);
+  if (job.crop) j["crop"] = {job.crop->x0, job.crop->y0, job.crop->x1, job.crop->y1};
+  if (job.samples) j["samples"] = job.samples->text();
+  if (job.checkpoint_interval_s) j["checkpoint_s"] = *job.checkpoint_interval_s;
+  if (job.png_output) j["png"] = std::filesystem::absolute(*job.png_output).lexically_normal().string();
+  j["float"] = job.float_exr;
+  j["exposure_ev"] = job.exposure_ev;
+  j["view"] = job.view;
+  return j.dump();
+}
+
+RenderJob render_job_from_json(const std::string& json, const std::string& where) {
+  const nlohmann::json j = parse_json_text(json, where);
+  RenderJob job;
+  try {
+    if (j.contains("scene")) job.scene = j["scene"].get<std::string>();
+    if (j.contains("width")) job.width = j["width"].get<int>();
+    if (j.contains("height")) job.height = j["height"].get<int>();
+    if (j.contains("spp")) job.samples_per_pixel = j["spp"].get<int>();
+    if (j.contains("seed")) job.seed = std::stoull(j["seed"].get<std::string>());
+    if (j.contains("sampler")) job.sampler = parse_sampler_kind(j["sampler"].get<std::string>());
+    if (j.contains("wavelengths")) job.wavelengths = parse_wavelength_mode(j["wavelengths"].get<std::string>());
+    if (j.contains("wavelength_density"))
+      job.wavelength_density = j["wavelength_density"] == "lights" ? WavelengthDensityKind::lights
+                                                                   : WavelengthDensityKind::visible;
+    if (j.contains("film")) job.film = j["film"].get<std::string>();
+    if (j.contains("iso")) job.iso = j["iso"].get<double>();
+    if (j.contains("shutter_s")) job.shutter_s = j["shutter_s"].get<double>();
+    if (j.contains("f_number")) job.f_number = j["f_number"].get<double>();
+    if (j.contains("ev")) job.compensation_ev = j["ev"].get<double>();
+    if (j.contains("white_balance")) job.white_balance = j["white_balance"].get<std::string>();
+    if (j.contains("frame")) job.frame = j["frame"].get<int>();
+    if (j.contains("crop")) {
+      const auto& c = j["crop"];
+      job.crop = PixelBounds{c[0].get<int>(), c[1].get<int>(), c[2].get<int>(), c[3].get<int>()};
+    }
+    if (j.contains("samples")) job.samples = parse_sample_range(j["samples"].get<std::string>(), where);
+    if (j.contains("checkpoint_s")) job.checkpoint_interval_s = j["checkpoint_s"].get<double>();
+    if (j.contains("png")) job.png_output = j["png"].get<std::string>();
+    job.float_exr = j.value("float", false);
+    job.exposure_ev = j.value("exposure_ev", 0.0);
+    job.view = j.value("view", std::string("Standard"));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError({where, 0, ""}, std::string("the recorded render job is malformed: ") + e.what());
+  }
+  return job;
+}
+
+}  // namespace rimu

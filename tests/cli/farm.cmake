@@ -1,0 +1,34 @@
+# Partial renders, merge, checkpoints and resume from the command line (docs/farm.md); the doctest side is
+# tests/render/merge_partials_test.cpp.
+add_executable(rimu-exr-compare ${CMAKE_CURRENT_SOURCE_DIR}/cli/exr_compare_main.cpp)
+target_link_libraries(rimu-exr-compare PRIVATE rimu_render)
+set(farm_dir ${CMAKE_BINARY_DIR}/cli_farm)
+file(MAKE_DIRECTORY ${farm_dir})
+add_test(NAME "cli: rimu checkpoint, kill -9, SIGTERM and resume" COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/resume.sh
+         $<TARGET_FILE:rimu> $<TARGET_FILE:rimu-exr-compare> ${farm_dir}/resume)
+set(farm_tiny --resolution 16x12 --spp 8 -q)
+rimu_cli_test("rimu --samples beyond --spp" 1 "--samples: --samples 0:16 reaches beyond the render's 8 samples"
+              $<TARGET_FILE:rimu> ${farm_tiny} --samples 0:16 -o ${farm_dir}/never.exr)
+rimu_cli_test("rimu --samples malformed" 1 "--samples: expected sample indices BEGIN:END"
+              $<TARGET_FILE:rimu> ${farm_tiny} --samples 4-8 -o ${farm_dir}/never.exr)
+rimu_cli_test("rimu --checkpoint malformed" 1 "--checkpoint: expected a positive duration"
+              $<TARGET_FILE:rimu> ${farm_tiny} --checkpoint 10x -o ${farm_dir}/never.exr)
+rimu_cli_test("rimu --resume of a plain render" 1 "plain.exr: not a partial render"
+              sh -c "'$<TARGET_FILE:rimu>' --resolution 16x12 --spp 8 -q -o '${farm_dir}/plain.exr' && '$<TARGET_FILE:rimu>' --resume '${farm_dir}/plain.exr'")
+rimu_cli_test("rimu --expect-scene-hash mismatch" 1 "hashes to [0-9a-f]{16}, not the expected 0000000000000000"
+              $<TARGET_FILE:rimu> ${farm_tiny} --expect-scene-hash 0000000000000000 -o ${farm_dir}/never.exr)
+rimu_cli_test("rimu merge without partials" 1 "partials is required|required"
+              $<TARGET_FILE:rimu> merge -o ${farm_dir}/never.exr)
+rimu_cli_test("rimu merge of a missing file" 1 "cannot read as OpenEXR"
+              $<TARGET_FILE:rimu> merge ${farm_dir}/no-such-part.exr -o ${farm_dir}/never.exr)
+add_test(NAME "cli: rimu-farm scripts run by hand: frames, merge, changed scene"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/farm_scripts.sh $<TARGET_FILE:rimu> ${CMAKE_BINARY_DIR}/bin/rimu-farm
+                 $<TARGET_FILE:rimu-exr-compare> ${CMAKE_CURRENT_SOURCE_DIR}/cli/frame_card.json ${farm_dir}/scripts)
+rimu_cli_test("rimu frame placeholder without --frame" 1 "frame_card.json: uses \\$\\{frame\\} but no frame number was given"
+              $<TARGET_FILE:rimu> ${CMAKE_CURRENT_SOURCE_DIR}/cli/frame_card.json -q -o ${farm_dir}/never.exr)
+# A real Slurm on this machine (scripts/slurm-local.sh); skipped loudly (exit 77) when its daemons cannot start.
+add_test(NAME "cli: rimu-farm on a single-node Slurm: 4-task array and merge equal a single render"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/slurm_farm.sh ${PROJECT_SOURCE_DIR} $<TARGET_FILE:rimu>
+                 ${CMAKE_BINARY_DIR}/bin/rimu-farm $<TARGET_FILE:rimu-exr-compare> ${farm_dir}/slurm)
+set_tests_properties("cli: rimu-farm on a single-node Slurm: 4-task array and merge equal a single render"
+                     PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE TIMEOUT 600)

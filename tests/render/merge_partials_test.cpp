@@ -1,0 +1,222 @@
+// Partial renders and their merge (render/merge_partials.h, render/partial_exr.h): N sample ranges or crop tiles of
+// a render, merged, give the single process's image (crop tiles bit for bit; sample ranges within the stated bound
+// of one float32 ULP); mismatched, overlapping and missing partials are errors that write nothing.
+#include <doctest/doctest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "render/exr_compare.h"
+#include "render/merge_partials.h"
+#include "render/partial_exr.h"
+#include "render/render_job.h"
+#include "spectral/error.h"
+
+using namespace rimu;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Folder {
+  fs::path path;
+  explicit Folder(const std::string& name)
+      : path(fs::temp_directory_path() / ("rimu-merge-" + name + "-" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~Folder() { fs::remove_all(path); }
+  fs::path operator/(const std::string& f) const { return path / f; }
+};
+
+// The embedded Cornell box, small, float32 channels, 24 spp in all; `film` e.g. "spectral:47" or "camera:...".
+RenderJob tiny_job(const fs::path& out, std::optional<SampleRange> samples, const std::string& film = "xyz") {
+  RenderJob job;
+  job.width = 24;
+  job.height = 16;
+  job.samples_per_pixel = 24;
+  job.seed = 7;
+  job.threads = 2;
+  job.float_exr = true;
+  job.quiet = true;
+  job.film = film;
+  job.samples = samples;
+  job.exr_output = out;
+  return job;
+}
+
+void render(const RenderJob& job) {
+  std::ostringstream log;
+  run_render_job(job, log);
+}
+
+MergeResult merge(const std::vector<fs::path>& parts, const fs::path& out, MergeOptions options = {}) {
+  std::ostringstream log;
+  return merge_partials(parts, out, options, log);
+}
+
+}  // namespace
+
+TEST_CASE("partial renders: sample ranges merge to the single process's image within one float32 ULP") {
+  for (const std::string film : {"xyz", "spectral:47"}) {
+    CAPTURE(film);
+    Folder dir("ranges");
+    render(tiny_job(dir / "single.exr", SampleRange{0, 24}, film));
+    // Ranges that cut passes (the pass boundaries are 1, 3, 7, 15, 31) and one that is a whole pass.
+    render(tiny_job(dir / "a.exr", SampleRange{0, 5}, film));
+    render(tiny_job(dir / "b.exr", SampleRange{5, 15}, film));
+    render(tiny_job(dir / "c.exr", SampleRange{15, 24}, film));
+    const MergeResult result = merge({dir / "c.exr", dir / "a.exr", dir / "b.exr"}, dir / "merged.exr");
+    CHECK(result.complete);
+    CHECK(result.samples_per_pixel == 24);
+    const ExrDifference d = compare_exr(dir / "single.exr", dir / "merged.exr", true);
+    CAPTURE(d.worst);
+    CHECK(d.values == 24 * 16 * (film == "xyz" ? 3 : 50));
+    // The bound (merge_partials.h): two more double additions per pixel cannot move a float32 by more than 1 ULP.
+    CHECK(d.max_ulps <= 1);
+    MESSAGE(film << ": " << d.different << " of " << d.values << " values differ (by 1 ULP)");
+
+    // The merged sums agree with the single process's to double rounding: relative 3 · 2^-53 per sum.
+    const PartialImage single = read_partial_exr(dir / "single.exr");
+    const PartialImage merged = read_partial_exr(dir / "merged.exr");
+    REQUIRE(single.sums.size() == merged.sums.size());
+    for (size_t i = 0; i < single.sums.size(); ++i)
+      REQUIRE(std::abs(single.sums[i] - merged.sums[i]) <= 3.0 * 0x1p-53 * std::abs(single.sums[i]));
+    CHECK(merged.record.samples == std::vector<SampleRange>{{0, 24}});
+
+    // A plain render (no --samples) writes the same image as the partial covering everything: bit for bit.
+    RenderJob plain = tiny_job(dir / "plain.exr", std::nullopt, film);
+    render(plain);
+    CHECK(compare_exr(dir / "single.exr", dir / "plain.exr", true).different == 0);
+  }
+}
+
+TEST_CASE("partial renders: crop tiles merge bit for bit, and a merged file merges again (tree of merges)") {
+  Folder dir("tiles");
+  render(tiny_job(dir / "single.exr", SampleRange{0, 24}));
+  RenderJob left = tiny_job(dir / "left.exr", SampleRange{0, 24});
+  left.crop = PixelBounds{0, 0, 10, 16};
+  RenderJob right = tiny_job(dir / "right.exr", SampleRange{0, 24});
+  right.crop = PixelBounds{10, 0, 24, 16};
+  render(left);
+  render(right);
+  merge({dir / "right.exr", dir / "left.exr"}, dir / "merged.exr");
+  CHECK(compare_exr(dir / "single.exr", dir / "merged.exr", false).different == 0);  // sums too
+
+  // Tree: (a + b) + c equals a + b + c up to the same bound.
+  render(tiny_job(dir / "a.exr", SampleRange{0, 8}));
+  render(tiny_job(dir / "b.exr", SampleRange{8, 16}));
+  render(tiny_job(dir / "c.exr", SampleRange{16, 24}));
+  MergeOptions gaps;
+  gaps.allow_gaps = true;
+  const MergeResult ab = merge({dir / "a.exr", dir / "b.exr"}, dir / "ab.exr", gaps);
+  CHECK_FALSE(ab.complete);
+  CHECK(ab.samples == std::vector<SampleRange>{{0, 16}});
+  CHECK(merge({dir / "ab.exr", dir / "c.exr"}, dir / "abc.exr").complete);
+  CHECK(compare_exr(dir / "single.exr", dir / "abc.exr", true).max_ulps <= 1);
+}
+
+TEST_CASE("partial renders: camera films keep their colour matrix and the photometric metadata through a merge") {
+  Folder dir("camera");
+  const std::string film = "camera:nikon_d850";
+  RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12}, film);
+  a.iso = 400;
+  RenderJob b = tiny_job(dir / "b.exr", SampleRange{12, 24}, film);
+  b.iso = 400;
+  RenderJob single = tiny_job(dir / "single.exr", SampleRange{0, 24}, film);
+  single.iso = 400;
+  render(a);
+  render(b);
+  render(single);
+  merge({dir / "a.exr", dir / "b.exr"}, dir / "merged.exr");
+  CHECK(compare_exr(dir / "single.exr", dir / "merged.exr", true).max_ulps <= 1);
+  const PartialImage s = read_partial_exr(dir / "single.exr");
+  const PartialImage m = read_partial_exr(dir / "merged.exr");
+  REQUIRE(m.metadata.camera_to_xyz);
+  REQUIRE(m.metadata.camera);
+  CHECK(m.metadata.camera->iso == doctest::Approx(400));
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) CHECK((*m.metadata.camera_to_xyz)(r, c) == (*s.metadata.camera_to_xyz)(r, c));
+  CHECK(m.record.output_transform.scale == s.record.output_transform.scale);
+  CHECK(m.metadata.extra == [&] {
+    auto e = s.metadata.extra;
+    e["mergedFrom"] = "2 partial renders";
+    return e;
+  }());
+}
+
+TEST_CASE("partial renders: mismatched, overlapping and missing partials are errors and nothing is written") {
+  Folder dir("errors");
+  render(tiny_job(dir / "a.exr", SampleRange{0, 12}));
+  render(tiny_job(dir / "b.exr", SampleRange{12, 24}));
+  const fs::path out = dir / "out.exr";
+  auto refused = [&](const std::vector<fs::path>& parts, const std::string& message) {
+    CAPTURE(message);
+    try {
+      merge(parts, out);
+      FAIL("merged");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).find(message) != std::string::npos);
+      MESSAGE(std::string(e.what()));
+    }
+    CHECK_FALSE(fs::exists(out));
+  };
+
+  RenderJob other_seed = tiny_job(dir / "seed.exr", SampleRange{12, 24});
+  other_seed.seed = 8;
+  render(other_seed);
+  refused({dir / "a.exr", dir / "seed.exr"}, "seed 8 here, 7 there");
+
+  RenderJob other_size = tiny_job(dir / "size.exr", SampleRange{12, 24});
+  other_size.width = 20;
+  render(other_size);
+  refused({dir / "a.exr", dir / "size.exr"}, "resolution 20x16 here, 24x16 there");
+
+  RenderJob other_scene = tiny_job(dir / "scene.exr", SampleRange{12, 24});
+  other_scene.film = "xyz10";
+  render(other_scene);
+  refused({dir / "a.exr", dir / "scene.exr"}, "film xyz10 here, xyz there");
+  RenderJob other_iso = tiny_job(dir / "iso.exr", SampleRange{12, 24});
+  other_iso.iso = 200;
+  render(other_iso);
+  refused({dir / "a.exr", dir / "iso.exr"}, "exposure or white balance");
+  RenderJob other_mode = tiny_job(dir / "mode.exr", SampleRange{12, 24});
+  other_mode.wavelengths = WavelengthMode::single;  // an image option with no check of its own: the scene hash tells
+  render(other_mode);
+  refused({dir / "a.exr", dir / "mode.exr"}, "the scene (file or image options) differs: scene hash");
+
+  render(tiny_job(dir / "overlap.exr", SampleRange{10, 24}));
+  refused({dir / "a.exr", dir / "overlap.exr"}, "both hold samples 10:12");
+  refused({dir / "a.exr", dir / "a.exr"}, "both hold samples 0:12");
+  refused({dir / "a.exr"}, "no partial holds samples 12:24 of 24");
+
+  RenderJob plain = tiny_job(dir / "plain.exr", std::nullopt);
+  render(plain);
+  refused({dir / "a.exr", dir / "plain.exr"}, "not a partial render");
+}
+
+TEST_CASE("partial renders: --samples beyond the render's spp and malformed ranges are input errors") {
+  CHECK_THROWS_AS(parse_sample_range("5:5", "--samples"), InputError);
+  CHECK_THROWS_AS(parse_sample_range("0-64", "--samples"), InputError);
+  CHECK(parse_sample_range("64:128", "--samples") == SampleRange{64, 128});
+  CHECK(parse_sample_ranges("0:8,16:24", "x") == std::vector<SampleRange>{{0, 8}, {16, 24}});
+  CHECK(parse_sample_ranges("", "x").empty());  // a checkpoint written before its first pass ended
+  CHECK(sample_ranges_text({{0, 8}, {16, 24}}) == "0:8,16:24");
+  CHECK(parse_duration_s("10m", "--checkpoint") == 600);
+  CHECK(parse_duration_s("30s", "--checkpoint") == 30);
+  CHECK_THROWS_AS(parse_duration_s("0s", "--checkpoint"), InputError);
+  Folder dir("beyond");
+  CHECK_THROWS_AS(render(tiny_job(dir / "x.exr", SampleRange{0, 48})), InputError);
+  CHECK_FALSE(fs::exists(dir / "x.exr"));
+}
+
+TEST_CASE("passes follow the sample index, so a range starting inside the schedule cuts at the same boundaries") {
+  CHECK(sample_pass_end(0) == 1);
+  CHECK(sample_pass_end(1) == 3);
+  CHECK(sample_pass_end(2) == 3);
+  CHECK(sample_pass_end(3) == 7);
+  CHECK(sample_pass_end(14) == 15);
+  CHECK(sample_pass_end(15) == 31);
+  CHECK(sample_pass_end(30) == 31);
+  CHECK(sample_pass_end(31) == 47);
+}
