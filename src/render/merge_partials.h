@@ -32,10 +32,12 @@ struct MergeResult {
 ///
 /// Exactness: each pixel's sums are added in a fixed order (partials sorted by first sample, then crop), whatever
 /// the order of `inputs`. A pixel held by one partial is copied bit for bit. A single process adds its passes one
-/// at a time into one running double sum; the merge adds the partials' double sums, so a pixel's double sums may
-/// differ by the rounding of k-1 more additions of non-negative terms (relative 2^-53 each, k = partials). The
-/// written float32 (or half) values therefore equal the single process's or differ by one unit in the last place
-/// where the two doubles straddle a rounding boundary of the written type (tests/render/merge_partials_test.cpp).
+/// at a time into one running double sum; the merge adds the partials' double sums, and a range that cuts a pass
+/// splits that pass's tile sums, so a pixel's double sums are the same m non-negative terms in another
+/// association: they differ by at most 2 (m - 1) 2^-53 relative (m = the samples reaching the pixel, a few hundred
+/// to thousands), far below a float32 unit (2^-24). The written float32 (or half) values therefore equal the single
+/// process's or differ by one unit in the last place where the two doubles straddle a rounding boundary of the
+/// written type (tests/render/merge_partials_test.cpp).
 ///
 /// Throws InputError (nothing written) for unreadable inputs, mismatches, overlaps and, unless allowed, gaps;
 /// OutputError if the output cannot be written.
