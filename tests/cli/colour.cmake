@@ -55,3 +55,8 @@ rimu_cli_test("rimu-colour 10 nm light uses E308" 0 "^tristimulus method astm-e3
               $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)
 rimu_cli_test("rimu-colour 10 nm flat light is white E" 0 "xy  \\(2°\\) +0\\.333[23][0-9] 0\\.333[23][0-9]"
               $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)
+
+# The TM-30 colour vector graphic: a PNG at the given path, titles through the plot runner's text helper, a bad
+# destination refused (exit 1) before anything is computed or written.
+add_test(NAME "cli: rimu-colour fidelity --graphic writes a PNG and refuses a bad folder"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/colour_graphic.sh $<TARGET_FILE:rimu-colour>)
