@@ -36,6 +36,40 @@ std::vector<double> e308_lagrange_coefficients(int points, double position) {
   return c;
 }
 
+TabulatedSpectrum e308_interpolate_to_1nm(const TabulatedSpectrum& data) {
+  const auto& l = data.wavelengths_nm();
+  const auto& v = data.values();
+  const int n = int(l.size());
+  const int step = n >= 2 ? int(std::lround(l[1] - l[0])) : 0;
+  bool even = n >= 3 && step >= 1 && near(l[0], std::round(l[0]));
+  for (int i = 1; even && i < n; ++i) even = near(l[size_t(i)] - l[size_t(i - 1)], step);
+  if (!even)
+    throw InputError({}, "'" + data.describe() + "': interpolating to 1 nm needs at least 3 samples evenly spaced "
+                                                 "on whole nanometres");
+  std::vector<double> nm_out, value_out;
+  const int first = int(std::lround(l.front())), last = first + (n - 1) * step;
+  for (int nm = first; nm <= last; ++nm) {
+    const int interval = std::min((nm - first) / step, n - 2);
+    const double r = double(nm - first - interval * step) / step;
+    double value = 0.0;
+    if (r == 0.0) {
+      value = v[size_t(interval)];
+    } else if (interval == 0) {
+      const auto c = e308_lagrange_coefficients(3, r);
+      for (int k = 0; k < 3; ++k) value += c[size_t(k)] * v[size_t(k)];
+    } else if (interval == n - 2) {
+      const auto c = e308_lagrange_coefficients(3, 1.0 + r);
+      for (int k = 0; k < 3; ++k) value += c[size_t(k)] * v[size_t(n - 3 + k)];
+    } else {
+      const auto c = e308_lagrange_coefficients(4, 1.0 + r);
+      for (int k = 0; k < 4; ++k) value += c[size_t(k)] * v[size_t(interval - 1 + k)];
+    }
+    nm_out.push_back(nm);
+    value_out.push_back(value);
+  }
+  return TabulatedSpectrum(std::move(nm_out), std::move(value_out), Extrapolation::zero, data.describe() + ", 1 nm");
+}
+
 E308WeightTable compute_e308_weights(const Spectrum& illuminant, const Observer& observer, double interval_nm,
                                      const std::string& illuminant_name, double first_nm, double last_nm) {
   const int step = int(std::lround(interval_nm));

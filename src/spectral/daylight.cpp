@@ -18,6 +18,8 @@ Chromaticity daylight_chromaticity(double cct_k) {
   return {x, y};
 }
 
+double cie_daylight_defined_cct_k(double nominal_k) { return nominal_k * 1.4388 / 1.4380; }
+
 TabulatedSpectrum daylight_spectrum(const DaylightBasis& basis, double cct_k, DaylightRounding rounding) {
   const Chromaticity c = daylight_chromaticity(cct_k);
   const double m = 0.0241 + 0.2562 * c.x - 0.7341 * c.y;

@@ -19,6 +19,11 @@ Chromaticity daylight_chromaticity(double cct_k);
 /// illuminants; Rimu keeps them unrounded for a CCT the user asks for.
 enum class DaylightRounding { exact, cie_three_decimals };
 
+/// The temperature a CIE D illuminant named after `nominal_k` is defined at (CIE 15:2004 §3.1): the names date
+/// from c2 = 1.4380e-2 m·K; with today's 1.4388e-2 the same chromaticities lie at nominal × 1.4388/1.4380, e.g. D55
+/// at 5503 K and D75 at 7504 K.
+double cie_daylight_defined_cct_k(double nominal_k);
+
 /// S(λ) = S0 + M1·S1 + M2·S2 at `cct_k` (relative power, ≈100 at 560 nm), sampled on the basis' 5 nm grid and
 /// linearly interpolated between (CIE 15:2004 recommends linear interpolation of the basis).
 TabulatedSpectrum daylight_spectrum(const DaylightBasis& basis, double cct_k,

@@ -1,5 +1,6 @@
 #include "spectral/spectral_library.h"
 
+#include <cassert>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +38,13 @@ const std::vector<IlluminantSource>& illuminant_sources() {
   }();
   return sources;
 }
+
+// The D illuminants CIE 15 defines but publishes no table of here: name and nominal temperature (K).
+struct ComputedDaylight {
+  std::string_view name;
+  double nominal_k;
+};
+constexpr ComputedDaylight kComputedDaylights[] = {{"D55", 5500.0}, {"D75", 7500.0}};
 
 constexpr std::string_view kColorChecker = "spectra/reflectances/colorchecker_classic_babelcolor_avg_10nm.csv";
 
@@ -111,6 +119,7 @@ std::vector<std::string> SpectralLibrary::illuminant_names() {
   std::vector<std::string> names;
   for (const auto& source : illuminant_sources())
     for (const auto& c : source.columns) names.push_back(c);
+  for (const auto& d : kComputedDaylights) names.emplace_back(d.name);
   return names;
 }
 
@@ -126,6 +135,22 @@ SpectrumPtr SpectralLibrary::illuminant(std::string_view name) {
       spectra_.emplace(key, s);
       return s;
     }
+  }
+  for (const auto& d : kComputedDaylights) {
+    if (d.name != name) continue;
+    const CsvTable& t = table_unlocked("spectra/illuminants/cie_d_series_basis_s0_s1_s2_5nm.csv");
+    const DaylightBasis basis{TabulatedSpectrum::from_csv(t, "S0", Extrapolation::zero),
+                              TabulatedSpectrum::from_csv(t, "S1", Extrapolation::zero),
+                              TabulatedSpectrum::from_csv(t, "S2", Extrapolation::zero)};
+    const double cct_k = cie_daylight_defined_cct_k(d.nominal_k);
+    const TabulatedSpectrum computed = daylight_spectrum(basis, cct_k, DaylightRounding::cie_three_decimals);
+    char description[96];
+    std::snprintf(description, sizeof description, "CIE %s (S0, S1, S2 at %.0f K, CIE 15:2004)",
+                  std::string(d.name).c_str(), cct_k);
+    auto s = std::make_shared<TabulatedSpectrum>(computed.wavelengths_nm(), computed.values(), Extrapolation::zero,
+                                                 description);
+    spectra_.emplace(key, s);
+    return s;
   }
   std::string known;
   for (const auto& n : illuminant_names()) known += (known.empty() ? "" : ", ") + n;
@@ -148,7 +173,18 @@ SpectrumPtr SpectralLibrary::colorchecker_patch(std::string_view name) {
   return s;
 }
 
-std::vector<std::string> SpectralLibrary::e308_illuminant_names() { return {"A", "D50", "D65", "E"}; }
+std::vector<std::string> SpectralLibrary::e308_illuminant_names() {
+  return {"A", "D50", "D55", "D65", "D75", "E", "F2", "F7", "F11"};
+}
+
+SpectrumPtr SpectralLibrary::e308_illuminant(std::string_view name) {
+  if (name != "D55" && name != "D75" && name != "F2" && name != "F7" && name != "F11") return illuminant(name);
+  // illuminant() holds these on their 5 nm grid (CIE 15's tables, or the daylight basis'); E308 takes them to
+  // 1 nm by Lagrange interpolation.
+  const auto five_nm = std::dynamic_pointer_cast<const TabulatedSpectrum>(illuminant(name));
+  assert(five_nm);
+  return std::make_shared<TabulatedSpectrum>(e308_interpolate_to_1nm(*five_nm));
+}
 
 const E308WeightTable& SpectralLibrary::e308_weights(std::string_view illuminant, StandardObserver observer,
                                                      double interval_nm) {

@@ -55,3 +55,20 @@ rimu_cli_test("rimu-colour 10 nm light uses E308" 0 "^tristimulus method astm-e3
               $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)
 rimu_cli_test("rimu-colour 10 nm flat light is white E" 0 "xy  \\(2°\\) +0\\.333[23][0-9] 0\\.333[23][0-9]"
               $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv)
+
+# The TM-30 colour vector graphic: a PNG at the given path, titles through the plot runner's text helper, a bad
+# destination refused (exit 1) before anything is computed or written.
+add_test(NAME "cli: rimu-colour fidelity --graphic writes a PNG and refuses a bad folder"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/colour_graphic.sh $<TARGET_FILE:rimu-colour>)
+
+# D55 and D75 (CIE daylight at 5503 K and 7504 K) and the E308 weights of D55, D75, F2, F7 and F11.
+# CIE 15:2004 Table T.3: D55 xy (0.33242, 0.34743), 5 decimals, summed at the basis' 5 nm.
+rimu_cli_test("rimu-colour D55 matches CIE 15 Table T.3" 0 "xy  \\(2°\\) +0\\.33242 0\\.34743"
+              $<TARGET_FILE:rimu-colour> report D55)
+rimu_cli_test("rimu-colour reflectance under D75 uses E308" 0 "^tristimulus method astm-e308$"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant D75)
+rimu_cli_test("rimu-colour reflectance under F11 uses E308" 0 "^tristimulus method astm-e308$"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant F11)
+rimu_cli_test("rimu-colour E308 weights are named when missing" 1
+              "no ASTM E308 weights for illuminant 'F3'.*A, D50, D55, D65, D75, E, F2, F7, F11"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant F3)

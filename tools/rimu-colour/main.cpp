@@ -7,8 +7,10 @@
 #include "common/tool_main.h"
 
 #include "spectral/colour_fidelity.h"
+#include "spectral/colour_vector_graphic.h"
 #include "spectral/error.h"
 #include "spectral/gamut_figure.h"
+#include "spectral/gnuplot_process.h"
 #include "spectral/reflectance_report.h"
 #include "spectral/rgb_upsampler.h"
 #include "spectral/upsample_report.h"
@@ -79,6 +81,7 @@ struct Options {
   std::string gamut_png = "gamut.png", gamut_csv, gamut_space = "srgb-linear";
   std::vector<double> upsample_rgb;
   std::string upsample_space = "srgb-linear", upsample_plot;
+  std::string fidelity_graphic;
   UpsampleFlags upsample_flags;
 };
 
@@ -120,6 +123,7 @@ void declare(CLI::App& app, Options& o) {
   o.fid_csv = o.fidelity_cmd->add_option("--csv", fidelity.csv, "a CSV file: wavelength_nm, then spectral power");
   o.fidelity_cmd->add_option("--column", fidelity.column, "which power column of --csv (default: the second column)");
   o.fidelity_cmd->add_flag("--json", fidelity.json, "print JSON instead of text");
+  o.fidelity_cmd->add_option("--graphic", o.fidelity_graphic, "also draw the TM-30 colour vector graphic to this PNG");
 
   o.gamut_cmd = app.add_subcommand(
       "gamut", "plot the brightest reflectance per chromaticity: MacAdam's optimal colours vs the upsampler's smooth spectra");
@@ -147,11 +151,14 @@ void run(const Options& o) {
     const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(o.report.method));
     std::cout << (o.report.json ? rimu::report_json(r) : rimu::report_text(r));
   } else if (*o.fidelity_cmd) {
+    // A graphic that cannot be drawn is refused before anything is computed or printed.
+    if (!o.fidelity_graphic.empty()) rimu::check_plot_destination(o.fidelity_graphic, {"", 0, "--graphic"});
     const rimu::SpectrumSource source = source_from(o.fidelity, int(o.fid_name->count() + o.fid_csv->count()));
     const rimu::SpectrumPtr spectrum = rimu::make_emission_spectrum(source, library);
     const rimu::ColourFidelity f = rimu::ColourFidelityEvaluator(library).evaluate(*spectrum);
     std::cout << (o.fidelity.json ? rimu::colour_fidelity_json(f, source.describe())
                                   : rimu::colour_fidelity_text(f, source.describe()));
+    if (!o.fidelity_graphic.empty()) rimu::write_colour_vector_graphic(f, source.describe(), o.fidelity_graphic);
   } else if (*o.refl_cmd) {
     const ReflectanceOptions& refl = o.refl;
     if (o.refl_csv->count() + o.refl_patch->count() != 1)

@@ -2,9 +2,10 @@
 //
 //   rimu-e308-weights --data <data root> --out <folder>
 //
-// For each illuminant of SpectralLibrary::e308_illuminant_names(), both standard observers and 10 and 20 nm,
-// runs compute_e308_weights() (src/spectral/astm_e308.h) over 360-830 nm and writes
-// astm_e308_<illuminant>_<2|10>deg_<10|20>nm.csv with the command in its first lines.
+// For each illuminant of SpectralLibrary::e308_illuminant_names() (its 1 nm spectrum from
+// SpectralLibrary::e308_illuminant()), both standard observers and 10 and 20 nm, runs compute_e308_weights()
+// (src/spectral/astm_e308.h) over 360-830 nm and writes astm_e308_<illuminant>_<2|10>deg_<10|20>nm.csv with the
+// command in its first lines.
 #include <cctype>
 #include <cstdio>
 #include <cstring>
@@ -18,6 +19,24 @@
 #include "spectral/spectral_library.h"
 
 using namespace rimu;
+
+namespace {
+
+/// Where the 1 nm spectrum of `name` comes from (SpectralLibrary::e308_illuminant), for the files' first lines.
+std::string source_of(const std::string& name) {
+  if (name == "D55")
+    return "the S0, S1, S2 basis at 5503 K (CIE 15:2004 3.1, M1 and M2 to 3 decimals), 5 nm, Lagrange-interpolated to 1 nm";
+  if (name == "D75")
+    return "the S0, S1, S2 basis at 7504 K (CIE 15:2004 3.1, M1 and M2 to 3 decimals), 5 nm, Lagrange-interpolated to 1 nm";
+  if (name == "F2" || name == "F7" || name == "F11")
+    return "the CIE 15:2004 Table T.6 5 nm table (cie_f1_f12_5nm.csv), Lagrange-interpolated to 1 nm";
+  if (name == "A") return "the CIE 1 nm table (cie_a_1nm.csv)";
+  if (name == "D50") return "the CIE 1 nm table (cie_d50_1nm.csv)";
+  if (name == "D65") return "the CIE 1 nm table (cie_d65_1nm.csv)";
+  return "a constant (cie_e_5nm.csv)";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::filesystem::path data, out;
@@ -33,7 +52,7 @@ int main(int argc, char** argv) {
     SpectralLibrary library(data);
     std::filesystem::create_directories(out);
     for (const std::string& name : SpectralLibrary::e308_illuminant_names()) {
-      const SpectrumPtr illuminant = library.illuminant(name);
+      const SpectrumPtr illuminant = library.e308_illuminant(name);
       for (StandardObserver observer : {StandardObserver::cie1931_2deg, StandardObserver::cie1964_10deg}) {
         const Observer& o = library.observer(observer);
         const bool ten = observer == StandardObserver::cie1964_10deg;
@@ -46,7 +65,8 @@ int main(int argc, char** argv) {
           const std::string comment =
               "ASTM E308-15 Table 6 practice (E2022-11 Lagrange weights, no bandpass correction): CIE " + name +
               ", " + o.name + ", " + std::to_string(interval) + " nm, 360-830 nm, sum of Wy = 100.\n"
-              "Generated from the CIE 1 nm tables in data/ by: build/bin/rimu-e308-weights --data data --out data/e308";
+              "Illuminant from " + source_of(name) + ".\n"
+              "Generated from the CIE tables in data/ by: build/bin/rimu-e308-weights --data data --out data/e308";
           std::ofstream f(file);
           f << e308_weights_csv(table, comment);
           f.close();
