@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds Rimu and runs the whole test suite through CTest.
+# Installs what is missing, builds Rimu, fuzzes each file reader briefly and runs the whole test suite through CTest.
 #   scripts/test.sh              Release build in build/
 #   scripts/test.sh --sanitize   ASan+UBSan build in build-sanitize/
 set -euo pipefail
@@ -16,6 +16,7 @@ fi
 scripts/install-deps.sh
 cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
 cmake --build "$build_dir" -j"$(nproc)"
-ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"
 # The readers' fuzz targets, briefly (docs/fuzzing.md): a crash, sanitizer report or unexpected exception fails.
+# They run before CTest so that CTest's summary is the run's closing line.
 scripts/fuzz.sh "${RIMU_CI_FUZZ_SECONDS:-25}"
+ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"
