@@ -1,7 +1,11 @@
 // Shared helpers for Rimu's tests.
 #pragma once
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <fstream>
+#include <string>
 
 #include "spectral/spectral_library.h"
 
@@ -12,5 +16,31 @@ SpectralLibrary& library();
 
 /// tests/data, for test-only tables (e.g. the Sharma 2005 CIEDE2000 pairs).
 inline std::filesystem::path test_data(const std::string& name) { return std::filesystem::path(RIMU_TEST_DATA_DIR) / name; }
+
+/// A folder of its own per test case (CTest runs test cases as parallel processes, so the name carries the pid and a
+/// counter): <temp>/rimu_<name>_<pid>_<n>, created empty and removed with its contents afterwards.
+struct ScratchFolder {
+  std::filesystem::path path;
+  explicit ScratchFolder(const std::string& name) {
+    static int counter = 0;
+    path = std::filesystem::temp_directory_path() /
+           ("rimu_" + name + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  std::filesystem::path operator/(const std::string& file) const { return path / file; }
+  /// Writes `bytes` to the file `name` in the folder and returns its path.
+  std::filesystem::path write(const std::string& name, const std::string& bytes) const {
+    const std::filesystem::path file = path / name;
+    std::ofstream(file, std::ios::binary) << bytes;
+    return file;
+  }
+};
 
 }  // namespace rimu::test

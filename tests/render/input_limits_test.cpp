@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "test_support.h"
 #include "integration_support.h"
 #include "render/coordinate_limit.h"
 #include "render/ies_file.h"
@@ -32,24 +33,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A folder of its own per test case (CTest runs test cases as parallel processes), removed afterwards.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static int counter = 0;
-    path = fs::temp_directory_path() / ("rimu_input_limits_" + std::to_string(::getpid()) + "_" +
-                                        std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    const fs::path file = path / name;
-    std::ofstream(file, std::ios::binary) << bytes;
-    return file;
-  }
+// A folder of its own per test case, removed afterwards.
+struct TempDir : test::ScratchFolder {
+  TempDir() : ScratchFolder("input_limits") {}
 };
 
 // The InputError `action` throws (the test fails if it throws none), after checking its message holds each fragment.

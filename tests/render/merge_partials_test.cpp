@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "test_support.h"
 #include "render/exr_compare.h"
 #include "render/merge_partials.h"
 #include "render/partial_exr.h"
@@ -18,15 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Folder {
-  fs::path path;
-  explicit Folder(const std::string& name)
-      : path(fs::temp_directory_path() / ("rimu-merge-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Folder() { fs::remove_all(path); }
-  fs::path operator/(const std::string& f) const { return path / f; }
+struct Folder : test::ScratchFolder {
+  explicit Folder(const std::string& name) : ScratchFolder("merge_" + name) {}
 };
 
 // The embedded Cornell box, small, float32 channels, 24 spp in all; `film` e.g. "spectral:47" or "camera:...".

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "test_support.h"
 #include "render/mesh_loader.h"
 #include "render/obj_loader.h"
 #include "render/ply_loader.h"
@@ -25,24 +26,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A folder of its own per test case (CTest runs test cases as parallel processes), removed afterwards.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    static int counter = 0;
-    path = fs::temp_directory_path() /
-           ("rimu_mesh_loader_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    const fs::path file = path / name;
-    std::ofstream(file, std::ios::binary) << bytes;
-    return file;
-  }
+// A folder of its own per test case, removed afterwards.
+struct TempDir : test::ScratchFolder {
+  TempDir() : ScratchFolder("mesh_loader") {}
 };
 
 // Runs `load`, expecting an InputError whose message holds every fragment; returns the error's location.

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "test_support.h"
 #include "render/output_file.h"
 #include "spectral/error.h"
 
@@ -18,16 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Folder {
-  fs::path path;
-  explicit Folder(const std::string& name)
-      : path(fs::temp_directory_path() / ("rimu-output-file-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Folder() { fs::remove_all(path); }
+struct Folder : test::ScratchFolder {
+  explicit Folder(const std::string& name) : ScratchFolder("output_file_" + name) {}
   void touch(const std::string& name) const { std::ofstream(path / name) << "partial"; }
-  bool has(const std::string& name) const { return fs::exists(path / name); }
+  bool has(const std::string& name) const { return std::filesystem::exists(path / name); }
 };
 
 // The id of a process that has exited and been reaped: no process has it (until the kernel reuses it, which it
