@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "render/pixel_filter.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "spectral/gnuplot_process.h"
 
 #ifndef RIMU_BENCH_BUILD

@@ -25,9 +25,9 @@
 #include "bench_support.h"
 #include "render/camera.h"
 #include "render/film.h"
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "transport/area_light.h"
 #include "transport/bvh_light_sampler.h"
 

@@ -26,9 +26,9 @@
 
 #include "bench_support.h"
 #include "render/image_error.h"
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 
 namespace fs = std::filesystem;
 using namespace rimu;

@@ -35,7 +35,7 @@
 #include "render/ray_recorder.h"
 #include "render/render_job.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "spectral/error.h"
 #include "transport/sampler.h"
 #include "transport/volumetric_path_integrator.h"

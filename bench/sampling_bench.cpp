@@ -44,7 +44,7 @@
 #include "render/pixel_filter.h"
 #include "render/render_job.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "spectral/error.h"
 
 using namespace rimu;

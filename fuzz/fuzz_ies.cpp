@@ -1,6 +1,6 @@
 // libFuzzer target: the IES LM-63 reader and the candela table built from what it accepts.
 #include "fuzz_support.h"
-#include "render/ies_file.h"
+#include "render/scene/ies_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return rimu::fuzz::run_reader("fuzz_ies", [&] {

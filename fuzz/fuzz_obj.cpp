@@ -1,6 +1,6 @@
 // libFuzzer target: the OBJ mesh reader (Rimu's line check, then tinyobjloader, then de-indexing).
 #include "fuzz_support.h"
-#include "render/obj_loader.h"
+#include "render/scene/obj_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return rimu::fuzz::run_reader("fuzz_obj", [&] {

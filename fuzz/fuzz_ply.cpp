@@ -1,6 +1,6 @@
 // libFuzzer target: the PLY mesh reader (ascii, binary little- and big-endian).
 #include "fuzz_support.h"
-#include "render/ply_loader.h"
+#include "render/scene/ply_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return rimu::fuzz::run_reader("fuzz_ply", [&] {

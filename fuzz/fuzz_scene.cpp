@@ -2,8 +2,8 @@
 #include <nlohmann/json.hpp>
 
 #include "fuzz_support.h"
-#include "render/json_cursor.h"
-#include "render/scene.h"
+#include "render/scene/json_cursor.h"
+#include "render/scene/scene.h"
 #include "spectral/spectral_library.h"
 
 namespace {

@@ -8,7 +8,7 @@
 #include "render/camera_exposure.h"
 #include "render/film.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "spectral/error.h"
 
 namespace rimu::python {

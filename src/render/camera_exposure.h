@@ -15,7 +15,7 @@
 #include <string>
 
 #include "render/film_output_transform.h"
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/physical_camera.h"
 #include "render/spectral_response.h"
 #include "spectral/spectral_library.h"

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/ies_file.h"
+#include "render/scene/ies_file.h"
 #include "render/inspect_point.h"
 
 namespace rimu {

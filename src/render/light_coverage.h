@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "render/scene.h"
+#include "render/scene/scene.h"
 
 namespace rimu {
 

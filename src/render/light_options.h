@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "render/light_definition.h"
+#include "render/scene/light_definition.h"
 
 namespace rimu {
 

@@ -14,13 +14,13 @@
 #include "render/exr_output.h"
 #include "render/output_file.h"
 #include "render/partial_exr.h"
-#include "render/pbrt/pbrt_to_scene.h"
-#include "render/scene_frame.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+#include "render/scene/scene_frame.h"
 #include "spectral/error.h"
 #include "render/interrupt_flag.h"
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/progress_reporter.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 
 namespace rimu {
 namespace {
@@ -358,7 +358,7 @@ RenderJobResult resume_render_job(const RenderJob& job, std::ostream& log) {
 
 RenderJobResult run_render_job(const RenderJob& job_in, std::ostream& log) {
   RenderJob job = job_in;
-  // "${frame}" in the output names, as in the scene (render/scene_frame.h).
+  // "${frame}" in the output names, as in the scene (render/scene/scene_frame.h).
   job.exr_output = substitute_frame(job.exr_output.string(), job.frame, "-o");
   if (job.png_output) job.png_output = substitute_frame(job.png_output->string(), job.frame, "--png");
   if (job.resume) return resume_render_job(job, log);

@@ -79,7 +79,7 @@ struct RenderJobResult {
 /// A summary (time, samples/s, discarded samples) goes to `log`.
 RenderJobResult run_render_job(const RenderJob& job, std::ostream& log);
 
-/// Translates a pbrt-v4 file (render/pbrt/pbrt_to_scene.h) and writes what was ignored to `log`.
+/// Translates a pbrt-v4 file (render/scene/pbrt/pbrt_to_scene.h) and writes what was ignored to `log`.
 nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log);
 
 /// Parses "WxH", "x0,y0,x1,y1": InputError naming `option` on malformed text.

@@ -3,9 +3,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/render_job.h"
-#include "render/scene_frame.h"
+#include "render/scene/scene_frame.h"
 
 namespace rimu {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "render/film.h"
 #include "render/pixel_filter.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "transport/sampler.h"
 
 namespace rimu {

@@ -21,7 +21,7 @@
 #include <memory>
 
 #include "render/rgb_image.h"
-#include "render/spectrum_input.h"
+#include "render/scene/spectrum_input.h"
 #include "spectral/rgb_colour_space.h"
 #include "transport/environment_image.h"
 #include "transport/homogeneous_medium.h"

@@ -30,7 +30,13 @@ cat resume.log
 # 2. SIGTERM: a checkpoint and exit 0 (the interval is long: only the signal writes).
 "$rimu" "${opts[@]}" --checkpoint 1h -o term.exr 2>term.log &
 pid=$!
-sleep 1.5
+# Signal only once rimu has installed its SIGTERM handler (bit 15 of SigCgt in /proc): on a loaded machine start-up
+# can take longer than any fixed sleep, and a signal before the handler exists kills the process with status 143.
+caught() { local mask; mask=$(awk '/^SigCgt:/ {print $2}' /proc/$pid/status 2>/dev/null) || return 1
+           [ -n "$mask" ] && (( (16#$mask >> 14) & 1 )); }
+for _ in $(seq 1 600); do caught && break; kill -0 $pid 2>/dev/null || break; sleep 0.05; done
+caught || fail "SIGTERM: rimu never installed a SIGTERM handler (or ended early): $(cat term.log)"
+sleep 0.5
 kill -TERM $pid
 wait $pid; code=$?
 [ $code = 0 ] || fail "SIGTERM: exit code $code, expected 0: $(cat term.log)"

@@ -11,9 +11,9 @@
 #include <numbers>
 #include <unistd.h>
 
-#include "render/ies_file.h"
+#include "render/scene/ies_file.h"
 #include "render/light_meter.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "spectral/blackbody_spectrum.h"
 #include "spectral/emitter_photometry.h"
 #include "spectral/error.h"

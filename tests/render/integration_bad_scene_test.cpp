@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "integration_support.h"
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 
 using namespace rimu;
 using namespace rimu::test;

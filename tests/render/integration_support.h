@@ -23,7 +23,7 @@
 #include "render/film.h"
 #include "render/pixel_filter.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "test_support.h"
 #include "transport/path_integrator.h"
 #include "transport/sampler.h"

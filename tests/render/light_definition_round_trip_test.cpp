@@ -11,9 +11,9 @@
 #include <regex>
 #include <unistd.h>
 
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/light_options.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "integration_support.h"
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/light_coverage.h"
 
 using namespace rimu;

@@ -13,7 +13,7 @@
 #include "render/light_meter.h"
 #include "render/pixel_filter.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "spectral/blackbody_spectrum.h"
 #include "spectral/emitter_photometry.h"
 #include "test_support.h"

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "test_support.h"
-#include "render/mesh_loader.h"
-#include "render/obj_loader.h"
-#include "render/ply_loader.h"
+#include "render/scene/mesh_loader.h"
+#include "render/scene/obj_loader.h"
+#include "render/scene/ply_loader.h"
 #include "spectral/error.h"
 
 using namespace rimu;

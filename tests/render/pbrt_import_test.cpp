@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "integration_support.h"
-#include "render/pbrt/pbrt_parser.h"
-#include "render/pbrt/pbrt_to_scene.h"
-#include "render/pbrt/pbrt_tokenizer.h"
+#include "render/scene/pbrt/pbrt_parser.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+#include "render/scene/pbrt/pbrt_tokenizer.h"
 #include "render/spectral_response.h"
 #include "test_support.h"
 

@@ -10,7 +10,7 @@
 #include "render/physical_camera.h"
 #include "render/pixel_filter.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "spectral/blackbody_spectrum.h"
 #include "spectral/light_units.h"
 #include "test_support.h"

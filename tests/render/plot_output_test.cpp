@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "render/light_definition.h"
+#include "render/scene/light_definition.h"
 #include "render/plot_output.h"
 #include "render/render_error.h"
 #include "spectral/blackbody_spectrum.h"

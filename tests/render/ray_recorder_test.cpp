@@ -11,7 +11,7 @@
 #include "render/pixel_filter.h"
 #include "render/ray_recorder.h"
 #include "render/renderer.h"
-#include "render/scene.h"
+#include "render/scene/scene.h"
 #include "test_support.h"
 
 using namespace rimu;

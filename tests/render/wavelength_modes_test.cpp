@@ -8,7 +8,7 @@
 
 #include "integration_support.h"
 #include "render/rgb_transport_inputs.h"
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "spectral/colorimetry.h"
 #include "spectral/tabulated_spectrum.h"
 #include "test_image_files.h"

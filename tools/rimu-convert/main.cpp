@@ -6,8 +6,8 @@
 #include "common/tool_main.h"
 
 #include "render/output_file.h"
-#include "render/pbrt/pbrt_to_scene.h"
-#include "render/scene.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+#include "render/scene/scene.h"
 #include "render/text_file_output.h"
 #include "spectral/error.h"
 #include "spectral/spectral_library.h"

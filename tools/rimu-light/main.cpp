@@ -1,5 +1,5 @@
 // rimu-light: author lights in lumens, candela, lux or nits, inspect them, convert between units and recolour them
-// at constant lumens. It declares the options and calls render/light_options.h, render/light_definition.h and
+// at constant lumens. It declares the options and calls render/light_options.h, render/scene/light_definition.h and
 // render/ies_report.h (docs/light-units.md).
 //
 // Exit codes (common/tool_main.h): 0 ok, 1 bad input (the message names the file/option), 2 runtime failure
@@ -9,8 +9,8 @@
 
 #include "common/tool_main.h"
 #include "render/ies_report.h"
-#include "render/json_cursor.h"
-#include "render/light_definition.h"
+#include "render/scene/json_cursor.h"
+#include "render/scene/light_definition.h"
 #include "render/plot_output.h"
 #include "render/render_error.h"
 #include "render/light_options.h"

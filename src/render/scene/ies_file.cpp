@@ -1,4 +1,4 @@
-#include "render/ies_file.h"
+#include "render/scene/ies_file.h"
 
 #include <algorithm>
 #include <charconv>

@@ -2,8 +2,8 @@
 
 #include "render/camera_exposure.h"
 #include "render/light_coverage.h"
-#include "render/scene.h"
-#include "render/scene_load_context.h"
+#include "render/scene/scene.h"
+#include "render/scene/scene_load_context.h"
 #include "transport/emission_wavelength_density.h"
 #include "transport/power_light_sampler.h"
 #include "transport/wavelength_modes.h"

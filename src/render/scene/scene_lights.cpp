@@ -3,9 +3,9 @@
 
 #include "render/rgb_environment_image.h"
 #include "render/rgb_transport_inputs.h"
-#include "render/scene_load_context.h"
-#include "render/scene_ies_light.h"
-#include "render/scene_light_emission.h"
+#include "render/scene/scene_load_context.h"
+#include "render/scene/scene_ies_light.h"
+#include "render/scene/scene_light_emission.h"
 #include "transport/distant_light.h"
 #include "transport/environment_light.h"
 #include "transport/light_spectrum.h"

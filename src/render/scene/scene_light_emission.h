@@ -12,7 +12,7 @@
 
 #include <initializer_list>
 
-#include "render/scene_load_context.h"
+#include "render/scene/scene_load_context.h"
 #include "spectral/emitter_photometry.h"
 #include "transport/light_spectrum.h"
 

@@ -1,4 +1,4 @@
-#include "render/scene_light_emission.h"
+#include "render/scene/scene_light_emission.h"
 
 #include <array>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/obj_check.h"
+#include "render/scene/obj_check.h"
 
 #include <algorithm>
 #include <charconv>

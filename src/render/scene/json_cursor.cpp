@@ -1,4 +1,4 @@
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 
 #include <cmath>
 #include <sstream>

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "spectral/rgb_upsampler.h"
 #include "spectral/spectral_library.h"
 #include "spectral/spectrum.h"

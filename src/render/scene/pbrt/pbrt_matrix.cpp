@@ -1,4 +1,4 @@
-#include "render/pbrt/pbrt_matrix.h"
+#include "render/scene/pbrt/pbrt_matrix.h"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "render/spectrum_input.h"
+#include "render/scene/spectrum_input.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "render/scene_ies_light.h"
+#include "render/scene/scene_ies_light.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "render/ies_file.h"
+#include "render/scene/ies_file.h"
 #include "spectral/light_units.h"
 #include "transport/goniometric_light.h"
 

@@ -1,4 +1,4 @@
-#include "render/coordinate_limit.h"
+#include "render/scene/coordinate_limit.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/ply_format.h"
+#include "render/scene/ply_format.h"
 
 #include <bit>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "render/scene_frame.h"
+#include "render/scene/scene_frame.h"
 
 #include <cstdio>
 

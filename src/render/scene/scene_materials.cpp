@@ -1,7 +1,7 @@
 // The "materials" section of the JSON scene format.
 #include "render/image_texture.h"
 #include "render/rgb_transport_inputs.h"
-#include "render/scene_load_context.h"
+#include "render/scene/scene_load_context.h"
 #include "spectral/optical_constants.h"
 #include "transport/spectral_texture.h"
 

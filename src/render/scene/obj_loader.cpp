@@ -1,4 +1,4 @@
-#include "render/obj_loader.h"
+#include "render/scene/obj_loader.h"
 
 #include <tiny_obj_loader.h>
 
@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "render/obj_check.h"
+#include "render/scene/obj_check.h"
 #include "spectral/error.h"
 #include "spectral/input_file.h"
 

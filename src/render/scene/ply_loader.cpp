@@ -1,4 +1,4 @@
-#include "render/ply_loader.h"
+#include "render/scene/ply_loader.h"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 #include <limits>
 #include <sstream>
 
-#include "render/ply_format.h"
+#include "render/scene/ply_format.h"
 #include "spectral/error.h"
 #include "spectral/input_file.h"
 

@@ -1,4 +1,4 @@
-#include "render/pbrt/pbrt_tokenizer.h"
+#include "render/scene/pbrt/pbrt_tokenizer.h"
 
 #include <cctype>
 

@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "render/coordinate_limit.h"
-#include "render/json_cursor.h"
+#include "render/scene/coordinate_limit.h"
+#include "render/scene/json_cursor.h"
 #include "render/rgb_image.h"
-#include "render/scene.h"
-#include "render/spectrum_input.h"
+#include "render/scene/scene.h"
+#include "render/scene/spectrum_input.h"
 #include "render/triangle_mesh.h"
 
 namespace rimu::scene_loading {
@@ -31,7 +31,7 @@ Transform parse_transform(const JsonCursor& shape);
 /// linear) or "linear"; by default integer files are sRGB-encoded and float files (EXR, HDR) linear.
 std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const std::filesystem::path& path);
 void load_materials(const JsonCursor& section, LoadContext& context);
-/// Loads the "media" section (render/scene_media.cpp); runs after the materials, which media name as boundaries.
+/// Loads the "media" section (render/scene/scene_media.cpp); runs after the materials, which media name as boundaries.
 void load_media(const JsonCursor& section, LoadContext& context);
 void load_shapes(const JsonCursor& section, LoadContext& context);
 void load_prototypes(const JsonCursor& section, LoadContext& context);

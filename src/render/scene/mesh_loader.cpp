@@ -1,10 +1,10 @@
-#include "render/mesh_loader.h"
+#include "render/scene/mesh_loader.h"
 
 #include <algorithm>
 #include <cctype>
 
-#include "render/obj_loader.h"
-#include "render/ply_loader.h"
+#include "render/scene/obj_loader.h"
+#include "render/scene/ply_loader.h"
 #include "spectral/error.h"
 
 namespace rimu {

@@ -10,7 +10,7 @@
 #include <array>
 #include <string>
 
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/triangle_mesh.h"
 #include "transport/transform.h"
 #include "transport/vector.h"

@@ -1,4 +1,4 @@
-#include "render/light_definition.h"
+#include "render/scene/light_definition.h"
 
 #include <array>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/json_cursor.h"
+#include "render/scene/json_cursor.h"
 #include "render/plot_output.h"
 #include "render/render_error.h"
-#include "render/spectrum_input.h"
+#include "render/scene/spectrum_input.h"
 #include "spectral/spectrum_report.h"
 
 namespace rimu {
@@ -20,7 +20,7 @@ struct KeyUnit {
   const char* key;
   LightUnit unit;
 };
-// The scene's amount keys (render/scene_light_emission.h), in the order definitions are written.
+// The scene's amount keys (render/scene/scene_light_emission.h), in the order definitions are written.
 constexpr std::array kKeys{
     KeyUnit{"luminous_power_lm", LightUnit::lumen},       KeyUnit{"radiant_power_w", LightUnit::watt},
     KeyUnit{"luminous_intensity_cd", LightUnit::candela}, KeyUnit{"radiant_intensity_w_sr", LightUnit::watt_per_sr},

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "render/pbrt/pbrt_converter.h"
-#include "render/ply_loader.h"
+#include "render/scene/pbrt/pbrt_converter.h"
+#include "render/scene/ply_loader.h"
 
 namespace rimu {
 

@@ -2,11 +2,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "render/mesh_loader.h"
+#include "render/scene/mesh_loader.h"
 #include "transport/area_light.h"
 #include "transport/light_spectrum.h"
-#include "render/scene_load_context.h"
-#include "render/scene_light_emission.h"
+#include "render/scene/scene_load_context.h"
+#include "render/scene/scene_light_emission.h"
 
 namespace rimu::scene_loading {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/pbrt/pbrt_parser.h"
+#include "render/scene/pbrt/pbrt_parser.h"
 
 #include <cerrno>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "render/pbrt/pbrt_tokenizer.h"
+#include "render/scene/pbrt/pbrt_tokenizer.h"
 
 namespace rimu {
 

@@ -1,10 +1,10 @@
-#include "render/pbrt/pbrt_to_scene.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "render/pbrt/pbrt_converter.h"
+#include "render/scene/pbrt/pbrt_converter.h"
 #include "render/spectral_response.h"
 
 namespace rimu {

@@ -1,4 +1,4 @@
-// A scene light of type "ies": a goniometric point light from an IES LM-63 file (render/ies_file.h). Internal to
+// A scene light of type "ies": a goniometric point light from an IES LM-63 file (render/scene/ies_file.h). Internal to
 // scene loading.
 //
 //   {"type": "ies", "file": "downlight.ies", "position": [0, 3, 0], "direction": [0, -1, 0],
@@ -14,7 +14,7 @@
 
 #include <memory>
 
-#include "render/scene_load_context.h"
+#include "render/scene/scene_load_context.h"
 #include "transport/light.h"
 
 namespace rimu::scene_loading {

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "render/pbrt/pbrt_matrix.h"
-#include "render/pbrt/pbrt_parser.h"
-#include "render/pbrt/pbrt_to_scene.h"
+#include "render/scene/pbrt/pbrt_matrix.h"
+#include "render/scene/pbrt/pbrt_parser.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
 
 namespace rimu {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/pbrt/pbrt_converter.h"
+#include "render/scene/pbrt/pbrt_converter.h"
 #include "spectral/rgb_colour_space.h"
 
 namespace rimu {
