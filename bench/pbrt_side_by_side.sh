@@ -5,11 +5,13 @@
 #
 #   bench/pbrt_side_by_side.sh PBRT_BINARY [SCENE.pbrt ...]
 #
-# PBRT_BINARY is a CPU build of pbrt-v4 (never part of this repository). Without scene arguments: every .pbrt file
+# PBRT_BINARY is a CPU build of pbrt-v4 (never part of this repository), or "-" for Rimu's figures alone. Without
+# scene arguments: every .pbrt file
 # in tests/data/pbrt/ that is a whole scene (has WorldBegin) and is not a bad_* error case, then bench/pbrt_scenes/.
 # Environment (defaults in brackets): BUILD [build] (Rimu's build folder, with bin/rimu and
 # bin/rimu-pbrt-image-compare), OUT [/tmp/pbrt_side_by_side], SPP [64], REF_SPP [1024], THREADS [2],
-# RESOLUTION [the scene's; WIDTHxHEIGHT rewrites the copied scene's Film], SPACE [srgb-linear].
+# RESOLUTION [the scene's; WIDTHxHEIGHT rewrites the copied scene's Film], SPACE [srgb-linear], MESH_N [0: none;
+# N adds a generated binary-PLY scene of 2·N² triangles, bench/pbrt_scenes/make_mesh_scene.py, e.g. 708 ≈ 1 M].
 #
 # Per scene and renderer: two renders at SPP (seeds 1 and 2) and one reference at REF_SPP (seed 7), each under
 # /usr/bin/time -v. Reported: wall and CPU (user + sys) seconds and peak RSS of the SPP render with seed 1; its
@@ -24,9 +26,15 @@ if [[ $# -lt 1 ]]; then
   echo "usage: $0 PBRT_BINARY [SCENE.pbrt ...]" >&2
   exit 1
 fi
-PBRT=$(realpath "$1")
+PBRT=$1
 shift
-[[ -x "$PBRT" ]] || { echo "$0: $PBRT is not an executable" >&2; exit 1; }
+if [[ $PBRT == - ]]; then
+  renderers=(rimu)
+else
+  PBRT=$(realpath "$PBRT")
+  [[ -x "$PBRT" ]] || { echo "$0: $PBRT is not an executable" >&2; exit 1; }
+  renderers=(pbrt rimu)
+fi
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$(realpath "${BUILD:-$ROOT/build}")
 RIMU="$BUILD/bin/rimu"
@@ -40,6 +48,7 @@ REF_SPP=${REF_SPP:-1024}
 THREADS=${THREADS:-2}
 SPACE=${SPACE:-srgb-linear}
 RESOLUTION=${RESOLUTION:-}
+MESH_N=${MESH_N:-0}
 mkdir -p "$OUT"
 
 scenes=("$@")
@@ -47,6 +56,10 @@ if [[ ${#scenes[@]} -eq 0 ]]; then
   for f in "$ROOT"/tests/data/pbrt/*.pbrt "$ROOT"/bench/pbrt_scenes/*.pbrt; do
     [[ -f "$f" && $(basename "$f") != bad_* ]] && grep -q '^[[:space:]]*WorldBegin' "$f" && scenes+=("$f")
   done
+fi
+if [[ $MESH_N -gt 0 ]]; then
+  mkdir -p "$OUT/generated_mesh"
+  scenes+=("$(python3 "$ROOT/bench/pbrt_scenes/make_mesh_scene.py" "$OUT/generated_mesh" "$MESH_N")")
 fi
 
 # key=value from the compare tool's output
@@ -71,6 +84,13 @@ run_renderer() {
   fi
 }
 
+# compare_row A B: one row of the image table for $work/A.exr against $work/B.exr
+compare_row() {
+  local c
+  c=$("$COMPARE" compare "$work/$1.exr" "$work/$2.exr" --space "$SPACE")
+  image_rows+=("| $name | $2 / $1 | $(value mean_a "$c") | $(value mean_b "$c") | $(value ratio_b_over_a "$c") | $(value block_tests "$c") | $(value blocks_beyond_3sigma "$c") | $(value blocks_beyond_4.5sigma "$c") | $(value rms_z "$c") | $(value worst_z "$c") at $(value worst_at "$c") |")
+}
+
 echo "# pbrt_side_by_side: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)), load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "# rimu: $("$RIMU" --version 2>/dev/null | head -1); pbrt: $PBRT; SPP=$SPP REF_SPP=$REF_SPP THREADS=$THREADS RESOLUTION=${RESOLUTION:-scene} SPACE=$SPACE"
 timing_rows=()
@@ -86,13 +106,13 @@ for scene in "${scenes[@]}"; do
   if [[ -n "$RESOLUTION" ]]; then
     sed -i -E "s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION%x*}/; s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION#*x}/" "$file"
   fi
-  for r in pbrt rimu; do
+  for r in "${renderers[@]}"; do
     run_renderer $r "$file" "$SPP" 1 "$work/$r-s1.exr"
     run_renderer $r "$file" "$SPP" 2 "$work/$r-s2.exr"
     run_renderer $r "$file" "$REF_SPP" 7 "$work/$r-ref.exr"
   done
   declare -A render relmse
-  for r in pbrt rimu; do
+  for r in "${renderers[@]}"; do
     t="$work/$r-s1.log.time"
     render[$r]=$(value render_time_s "$("$COMPARE" info "$work/$r-s1.exr")")
     relmse[$r]=$(value relmse "$("$COMPARE" relmse "$work/$r-s1.exr" "$work/$r-ref.exr" --space "$SPACE")")
@@ -102,14 +122,17 @@ for scene in "${scenes[@]}"; do
     [[ $r == rimu ]] && ignored=$(grep -c '^ignored: ' "$work/rimu-s1.log" || true)
     timing_rows+=("| $name | $r | $load | ${render[$r]} | $wall | $(cpu_s "$t") | $(rss_mib "$t") | ${relmse[$r]} | ${ignored:-–} |")
   done
+  if [[ ${#renderers[@]} -eq 1 ]]; then
+    compare_row rimu-s1 rimu-s2
+    unset render relmse
+    continue
+  fi
   # Time to the relMSE pbrt reaches at SPP (relMSE ∝ 1/spp): pbrt's is its render time; Rimu's is scaled.
   rimu_equal=$(awk -v t="${render[rimu]}" -v e="${relmse[rimu]}" -v target="${relmse[pbrt]}" 'BEGIN {printf "%.3g", t * e / target}')
   ratio=$(awk -v a="$rimu_equal" -v b="${render[pbrt]}" 'BEGIN {printf "%.2f", a / b}')
   timing_rows+=("| $name | time to pbrt's relMSE | | pbrt ${render[pbrt]} s, Rimu $rimu_equal s (Rimu/pbrt $ratio) | | | | | |")
   for pair in "pbrt-ref rimu-ref" "pbrt-s1 pbrt-s2" "rimu-s1 rimu-s2" "pbrt-s1 rimu-s1"; do
-    set -- $pair
-    c=$("$COMPARE" compare "$work/$1.exr" "$work/$2.exr" --space "$SPACE")
-    image_rows+=("| $name | $2 / $1 | $(value mean_a "$c") | $(value mean_b "$c") | $(value ratio_b_over_a "$c") | $(value block_tests "$c") | $(value blocks_beyond_3sigma "$c") | $(value blocks_beyond_4.5sigma "$c") | $(value rms_z "$c") | $(value worst_z "$c") at $(value worst_at "$c") |")
+    compare_row $pair
   done
   unset render relmse
 done
