@@ -7,6 +7,9 @@
 //       paired difference in units of its standard error (sd of the 64 pixel differences / 8)
 //   rimu-pbrt-image-compare relmse IMAGE.exr REFERENCE.exr [--space srgb-linear]
 //       relMSE = mean over pixels and channels of (x − r)² / (r² + 0.01)
+//   rimu-pbrt-image-compare png A.exr B.exr OUT.png [--space srgb-linear]
+//       A and B side by side, enlarged 3×, one exposure for both (A's mean luminance shown as 18 % grey),
+//       clipped and sRGB-encoded, 8 bits: the pictures next to the numbers in docs/benchmarks.md
 //   rimu-pbrt-image-compare info IMAGE.exr
 //       render_time_s: pbrt's "renderTimeSeconds" or Rimu's "rimu:renderTimeSeconds" header attribute
 //
@@ -16,6 +19,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfStandardAttributes.h>
+#include <OpenImageIO/imageio.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfFloatAttribute.h>
 
@@ -154,6 +158,35 @@ void relmse(const LinearRgbImage& image, const LinearRgbImage& reference) {
   std::printf("relmse=%.6g\n", sum / double(image.rgb.size()));
 }
 
+void side_by_side_png(const LinearRgbImage& a, const LinearRgbImage& b, const rimu::RgbColourSpace& space,
+                      const std::filesystem::path& out) {
+  require_same_size(a, b);
+  constexpr int kZoom = 3, kGap = 2;
+  const rimu::Matrix3& m = space.rgb_to_xyz();
+  double mean_y = 0;
+  for (size_t i = 0; i < a.rgb.size(); i += 3)
+    mean_y += m(1, 0) * a.rgb[i] + m(1, 1) * a.rgb[i + 1] + m(1, 2) * a.rgb[i + 2];
+  mean_y /= double(a.width) * double(a.height);
+  const double exposure = mean_y > 0 ? 0.18 / mean_y : 1.0;
+  const int width = kZoom * (2 * a.width) + kGap, height = kZoom * a.height;
+  std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 3, 255);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int xa = x / kZoom, xb = (x - kZoom * a.width - kGap) / kZoom;
+      const bool in_a = xa < a.width, in_b = x >= kZoom * a.width + kGap;
+      if (!in_a && !in_b) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double v = in_a ? a.at(xa, y / kZoom, c) : b.at(xb, y / kZoom, c);
+        const double encoded = rimu::srgb_encode(std::clamp(v * exposure, 0.0, 1.0));
+        pixels[3 * (size_t(y) * size_t(width) + size_t(x)) + size_t(c)] = (unsigned char)std::lround(255 * encoded);
+      }
+    }
+  auto file = OIIO::ImageOutput::create(out.string());
+  if (!file || !file->open(out.string(), OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8)) ||
+      !file->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !file->close())
+    fail(out.string() + ": cannot write: " + (file ? file->geterror() : OIIO::geterror()), 2);
+}
+
 // The render time each renderer records in its EXR header (pbrt-v4: float "renderTimeSeconds", the integrator's
 // loop only; Rimu: double "rimu:renderTimeSeconds", the render loop only): wall time minus this is load + output.
 void info(const std::filesystem::path& path) {
@@ -183,12 +216,16 @@ int main(int argc, char** argv) {
     else if (arg.rfind("--", 0) == 0) fail("unknown option " + arg);
     else positional.push_back(arg);
   }
-  if (positional.size() == 2 && positional[0] == "info") {
+  const std::string command = positional.empty() ? "" : positional[0];
+  const size_t expected = command == "info" ? 2 : command == "png" ? 4 : 3;
+  if ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
+      positional.size() != expected || block < 2)
+    fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr | png A.exr B.exr OUT.png | info A.exr "
+         "[--space NAME] [--block N]");
+  if (command == "info") {
     info(positional[1]);
     return 0;
   }
-  if (positional.size() != 3 || (positional[0] != "compare" && positional[0] != "relmse") || block < 2)
-    fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr [--space NAME] [--block N] | info A.exr");
   const rimu::RgbColourSpace* space = nullptr;
   try {
     space = &rimu::RgbColourSpace::named(space_name);
@@ -197,7 +234,8 @@ int main(int argc, char** argv) {
   }
   const LinearRgbImage a = read_linear_rgb(positional[1], *space);
   const LinearRgbImage b = read_linear_rgb(positional[2], *space);
-  if (positional[0] == "compare") compare(a, b, block);
+  if (command == "png") side_by_side_png(a, b, *space, positional[3]);
+  else if (command == "compare") compare(a, b, block);
   else relmse(a, b);
   return 0;
 }

@@ -19,7 +19,8 @@
 # writing the image); relMSE of each SPP image against its own renderer's reference; the time each needs to reach
 # the relMSE pbrt reaches at SPP, taking relMSE ∝ 1/spp (render time × relMSE / target); and, between the two
 # references (and between the two SPP renders of each renderer as a control of the test itself), per-channel mean
-# ratio Rimu/pbrt and the 8×8-block paired differences in units of their standard error.
+# ratio Rimu/pbrt and the 8×8-block paired differences in units of their standard error; and $OUT/SCENE/
+# pbrt_vs_rimu.png, the two references side by side (pbrt left) at one exposure.
 set -euo pipefail
 
 if [[ $# -lt 1 ]]; then
@@ -134,6 +135,7 @@ for scene in "${scenes[@]}"; do
   for pair in "pbrt-ref rimu-ref" "pbrt-s1 pbrt-s2" "rimu-s1 rimu-s2" "pbrt-s1 rimu-s1"; do
     compare_row $pair
   done
+  "$COMPARE" png "$work/pbrt-ref.exr" "$work/rimu-ref.exr" "$work/pbrt_vs_rimu.png" --space "$SPACE"
   unset render relmse
 done
 
