@@ -6,8 +6,8 @@
 #   bench/pbrt_side_by_side.sh PBRT_BINARY [SCENE.pbrt ...]
 #
 # PBRT_BINARY is a CPU build of pbrt-v4 (never part of this repository), or "-" for Rimu's figures alone. Without
-# scene arguments: every .pbrt file
-# in tests/data/pbrt/ that is a whole scene (has WorldBegin) and is not a bad_* error case, then bench/pbrt_scenes/.
+# scene arguments: every .pbrt file in tests/data/pbrt/ that is a whole scene (has WorldBegin) and is not a bad_*
+# error case, then those of bench/pbrt_scenes/.
 # Environment (defaults in brackets): BUILD [build] (Rimu's build folder, with bin/rimu and
 # bin/rimu-pbrt-image-compare), OUT [/tmp/pbrt_side_by_side], SPP [64], REF_SPP [1024], THREADS [2],
 # RESOLUTION [the scene's; WIDTHxHEIGHT rewrites the copied scene's Film], SPACE [srgb-linear], MESH_N [0: none;
