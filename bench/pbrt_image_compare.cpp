@@ -1,0 +1,241 @@
+// rimu-pbrt-image-compare: the image half of bench/pbrt_side_by_side.sh. Reads a pbrt-v4 EXR (linear R, G, B in
+// its film's colour space) and a Rimu EXR (CIE 1931 X, Y, Z), brings both to the same RGB space with the exact
+// matrix of Rimu's colour-space code, and prints key=value lines the script turns into a table:
+//
+//   rimu-pbrt-image-compare compare A.exr B.exr [--space srgb-linear] [--block 8]
+//       channel means of both, their ratio B/A per channel, and per block×block tile and channel the mean
+//       paired difference in units of its standard error (sd of the 64 pixel differences / 8)
+//   rimu-pbrt-image-compare relmse IMAGE.exr REFERENCE.exr [--space srgb-linear]
+//       relMSE = mean over pixels and channels of (x − r)² / (r² + 0.01)
+//   rimu-pbrt-image-compare png A.exr B.exr OUT.png [--space srgb-linear]
+//       A and B side by side, enlarged 3×, one exposure for both (A's mean luminance shown as 18 % grey),
+//       clipped and sRGB-encoded, 8 bits: the pictures next to the numbers in docs/benchmarks.md
+//   rimu-pbrt-image-compare info IMAGE.exr
+//       render_time_s: pbrt's "renderTimeSeconds" or Rimu's "rimu:renderTimeSeconds" header attribute
+//
+// Either file may hold R, G, B or X, Y, Z channels (found by name); anything else is an error (exit 1).
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
+#include <OpenImageIO/imageio.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFloatAttribute.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "spectral/rgb_colour_space.h"
+
+namespace {
+
+struct LinearRgbImage {
+  int width = 0, height = 0;
+  std::vector<double> rgb;  // 3 per pixel, row 0 at the top
+  double at(int x, int y, int c) const { return rgb[3 * (size_t(y) * size_t(width) + size_t(x)) + size_t(c)]; }
+};
+
+[[noreturn]] void fail(const std::string& message, int status = 1) {
+  std::cerr << "rimu-pbrt-image-compare: " << message << "\n";
+  std::exit(status);
+}
+
+// Reads R,G,B (taken as already in `space`) or X,Y,Z (converted with space.xyz_to_rgb()).
+LinearRgbImage read_linear_rgb(const std::filesystem::path& path, const rimu::RgbColourSpace& space) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool xyz = channels.findChannel("X") && channels.findChannel("Y") && channels.findChannel("Z");
+    const bool rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    if (!xyz && !rgb) fail(path.string() + ": has neither R, G, B nor X, Y, Z channels");
+    // A pbrt file names its primaries: they must be the space the comparison is made in.
+    if (rgb && Imf::hasChromaticities(file.header())) {
+      const Imf::Chromaticities& c = Imf::chromaticities(file.header());
+      const auto far = [](Imath::V2f p, rimu::Chromaticity q) { return std::abs(p.x - q.x) + std::abs(p.y - q.y) > 2e-3; };
+      if (far(c.red, space.red()) || far(c.green, space.green()) || far(c.blue, space.blue()) ||
+          far(c.white, space.white()))
+        fail(path.string() + ": its chromaticities are not those of " + space.name() + " (use --space)");
+    }
+    const char* names[3] = {"R", "G", "B"};
+    if (xyz) names[0] = "X", names[1] = "Y", names[2] = "Z";
+    std::vector<float> planes(size_t(3) * size_t(width) * size_t(height));
+    Imf::FrameBuffer frame;
+    for (int c = 0; c < 3; ++c) {
+      float* base = planes.data() + size_t(c) * size_t(width) * size_t(height);
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base - window.min.x - window.min.y * width),
+                                        sizeof(float), sizeof(float) * size_t(width)));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    LinearRgbImage image{width, height, std::vector<double>(planes.size())};
+    const size_t n = size_t(width) * size_t(height);
+    for (size_t i = 0; i < n; ++i) {
+      const double a = planes[i], b = planes[n + i], c = planes[2 * n + i];
+      if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
+        fail(path.string() + ": pixel " + std::to_string(i % size_t(width)) + "," + std::to_string(i / size_t(width)) +
+             " is not finite");
+      rimu::Rgb out{a, b, c};
+      if (xyz) out = space.from_xyz(rimu::Xyz{a, b, c});
+      image.rgb[3 * i] = out.r, image.rgb[3 * i + 1] = out.g, image.rgb[3 * i + 2] = out.b;
+    }
+    return image;
+  } catch (const std::exception& e) {
+    fail(path.string() + ": " + e.what());
+  }
+}
+
+void require_same_size(const LinearRgbImage& a, const LinearRgbImage& b) {
+  if (a.width != b.width || a.height != b.height)
+    fail("the images differ in size: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
+         std::to_string(b.width) + "x" + std::to_string(b.height));
+}
+
+void print_triple(const char* key, const double v[3]) { std::printf("%s=%.6g,%.6g,%.6g\n", key, v[0], v[1], v[2]); }
+
+// Means, their ratio, and the block test. Two unbiased renders of one scene differ per pixel by noise alone, so the
+// mean of a block's 64 paired differences divided by its standard error is ~N(0, 1): a block and channel beyond
+// ~4.5 (the project's threshold for 48–300 tests) is a difference in the images, not noise.
+void compare(const LinearRgbImage& a, const LinearRgbImage& b, int block) {
+  require_same_size(a, b);
+  double sum_a[3] = {0, 0, 0}, sum_b[3] = {0, 0, 0};
+  for (size_t i = 0; i < a.rgb.size(); ++i) sum_a[i % 3] += a.rgb[i], sum_b[i % 3] += b.rgb[i];
+  const double n = double(a.width) * double(a.height);
+  double mean_a[3], mean_b[3], ratio[3];
+  for (int c = 0; c < 3; ++c) {
+    mean_a[c] = sum_a[c] / n, mean_b[c] = sum_b[c] / n;
+    ratio[c] = mean_a[c] != 0 ? mean_b[c] / mean_a[c] : NAN;
+  }
+  print_triple("mean_a", mean_a);
+  print_triple("mean_b", mean_b);
+  print_triple("ratio_b_over_a", ratio);
+
+  int tests = 0, beyond_3 = 0, beyond_4_5 = 0;
+  double worst = 0, sum_sq = 0;
+  std::string worst_where = "none";
+  for (int by = 0; by + block <= a.height; by += block)
+    for (int bx = 0; bx + block <= a.width; bx += block)
+      for (int c = 0; c < 3; ++c) {
+        double s = 0, s2 = 0;
+        for (int y = by; y < by + block; ++y)
+          for (int x = bx; x < bx + block; ++x) {
+            const double d = b.at(x, y, c) - a.at(x, y, c);
+            s += d, s2 += d * d;
+          }
+        const double m = double(block) * double(block);
+        const double mean = s / m, variance = std::max(0.0, (s2 - s * s / m) / (m - 1));
+        const double se = std::sqrt(variance / m);
+        const double z = se > 0 ? mean / se : (mean == 0 ? 0.0 : INFINITY);
+        ++tests;
+        sum_sq += std::isfinite(z) ? z * z : 0;
+        beyond_3 += std::abs(z) > 3.0;
+        beyond_4_5 += std::abs(z) > 4.5;
+        if (std::abs(z) > std::abs(worst)) {
+          worst = z;
+          worst_where = "block(" + std::to_string(bx) + "," + std::to_string(by) + ")" + "RGB"[c];
+        }
+      }
+  std::printf("block_tests=%d\nblocks_beyond_3sigma=%d\nblocks_beyond_4.5sigma=%d\n", tests, beyond_3, beyond_4_5);
+  std::printf("rms_z=%.4g\nworst_z=%.4g\nworst_at=%s\n", std::sqrt(sum_sq / std::max(tests, 1)), worst,
+              worst_where.c_str());
+}
+
+void relmse(const LinearRgbImage& image, const LinearRgbImage& reference) {
+  require_same_size(image, reference);
+  double sum = 0;
+  for (size_t i = 0; i < image.rgb.size(); ++i) {
+    const double d = image.rgb[i] - reference.rgb[i], r = reference.rgb[i];
+    sum += d * d / (r * r + 0.01);
+  }
+  std::printf("relmse=%.6g\n", sum / double(image.rgb.size()));
+}
+
+void side_by_side_png(const LinearRgbImage& a, const LinearRgbImage& b, const rimu::RgbColourSpace& space,
+                      const std::filesystem::path& out) {
+  require_same_size(a, b);
+  constexpr int kZoom = 3, kGap = 2;
+  const rimu::Matrix3& m = space.rgb_to_xyz();
+  double mean_y = 0;
+  for (size_t i = 0; i < a.rgb.size(); i += 3)
+    mean_y += m(1, 0) * a.rgb[i] + m(1, 1) * a.rgb[i + 1] + m(1, 2) * a.rgb[i + 2];
+  mean_y /= double(a.width) * double(a.height);
+  const double exposure = mean_y > 0 ? 0.18 / mean_y : 1.0;
+  const int width = kZoom * (2 * a.width) + kGap, height = kZoom * a.height;
+  std::vector<unsigned char> pixels(size_t(width) * size_t(height) * 3, 255);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int xa = x / kZoom, xb = (x - kZoom * a.width - kGap) / kZoom;
+      const bool in_a = xa < a.width, in_b = x >= kZoom * a.width + kGap;
+      if (!in_a && !in_b) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double v = in_a ? a.at(xa, y / kZoom, c) : b.at(xb, y / kZoom, c);
+        const double encoded = rimu::srgb_encode(std::clamp(v * exposure, 0.0, 1.0));
+        pixels[3 * (size_t(y) * size_t(width) + size_t(x)) + size_t(c)] = (unsigned char)std::lround(255 * encoded);
+      }
+    }
+  auto file = OIIO::ImageOutput::create(out.string());
+  if (!file || !file->open(out.string(), OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8)) ||
+      !file->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !file->close())
+    fail(out.string() + ": cannot write: " + (file ? file->geterror() : OIIO::geterror()), 2);
+}
+
+// The render time each renderer records in its EXR header (pbrt-v4: float "renderTimeSeconds", the integrator's
+// loop only; Rimu: double "rimu:renderTimeSeconds", the render loop only): wall time minus this is load + output.
+void info(const std::filesystem::path& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    if (const auto* pbrt = file.header().findTypedAttribute<Imf::FloatAttribute>("renderTimeSeconds"))
+      std::printf("render_time_s=%.6g\n", double(pbrt->value()));
+    else if (const auto* rimu = file.header().findTypedAttribute<Imf::DoubleAttribute>("rimu:renderTimeSeconds"))
+      std::printf("render_time_s=%.6g\n", rimu->value());
+    else
+      fail(path.string() + ": no renderTimeSeconds attribute");
+  } catch (const std::exception& e) {
+    fail(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> positional;
+  std::string space_name = "srgb-linear";
+  int block = 8;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--space" && i + 1 < argc) space_name = argv[++i];
+    else if (arg == "--block" && i + 1 < argc) block = std::atoi(argv[++i]);
+    else if (arg.rfind("--", 0) == 0) fail("unknown option " + arg);
+    else positional.push_back(arg);
+  }
+  const std::string command = positional.empty() ? "" : positional[0];
+  const size_t expected = command == "info" ? 2 : command == "png" ? 4 : 3;
+  if ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
+      positional.size() != expected || block < 2)
+    fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr | png A.exr B.exr OUT.png | info A.exr "
+         "[--space NAME] [--block N]");
+  if (command == "info") {
+    info(positional[1]);
+    return 0;
+  }
+  const rimu::RgbColourSpace* space = nullptr;
+  try {
+    space = &rimu::RgbColourSpace::named(space_name);
+  } catch (const std::exception& e) {
+    fail(std::string("--space: ") + e.what());
+  }
+  const LinearRgbImage a = read_linear_rgb(positional[1], *space);
+  const LinearRgbImage b = read_linear_rgb(positional[2], *space);
+  if (command == "png") side_by_side_png(a, b, *space, positional[3]);
+  else if (command == "compare") compare(a, b, block);
+  else relmse(a, b);
+  return 0;
+}

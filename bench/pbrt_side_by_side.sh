@@ -1,0 +1,153 @@
+#!/usr/bin/env bash
+# Rimu against pbrt-v4 on the same .pbrt files: load time, peak memory, time to a given spp, time to equal
+# relMSE, and the image difference. Prints markdown tables (the "Rimu and pbrt-v4 side by side" section of
+# docs/benchmarks.md was made with it) and leaves every image and log in $OUT.
+#
+#   bench/pbrt_side_by_side.sh PBRT_BINARY [SCENE.pbrt ...]
+#
+# PBRT_BINARY is a CPU build of pbrt-v4 (never part of this repository), or "-" for Rimu's figures alone. Without
+# scene arguments: every .pbrt file in tests/data/pbrt/ that is a whole scene (has WorldBegin) and is not a bad_*
+# error case, then those of bench/pbrt_scenes/.
+# Environment (defaults in brackets): BUILD [build] (Rimu's build folder, with bin/rimu and
+# bin/rimu-pbrt-image-compare), OUT [/tmp/pbrt_side_by_side], SPP [64], REF_SPP [1024], THREADS [2],
+# RESOLUTION [the scene's; WIDTHxHEIGHT rewrites the copied scene's Film], SPACE [srgb-linear], MESH_N [0: none;
+# N adds a generated binary-PLY scene of 2·N² triangles, bench/pbrt_scenes/make_mesh_scene.py, e.g. 708 ≈ 1 M].
+#
+# Per scene and renderer: two renders at SPP (seeds 1 and 2) and one reference at REF_SPP (seed 7), each under
+# /usr/bin/time -v. Reported: wall and CPU (user + sys) seconds and peak RSS of the SPP render with seed 1; its
+# render time (the renderer's own, from the EXR header) and load = wall − render (parsing, BVH, start-up and
+# writing the image); relMSE of each SPP image against its own renderer's reference; the time each needs to reach
+# the relMSE pbrt reaches at SPP, taking relMSE ∝ 1/spp (render time × relMSE / target); and, between the two
+# references (and between the two SPP renders of each renderer as a control of the test itself), per-channel mean
+# ratio Rimu/pbrt and the 8×8-block paired differences in units of their standard error; and $OUT/SCENE/
+# pbrt_vs_rimu.png, the two references side by side (pbrt left) at one exposure.
+set -euo pipefail
+
+if [[ $# -lt 1 ]]; then
+  echo "usage: $0 PBRT_BINARY [SCENE.pbrt ...]" >&2
+  exit 1
+fi
+PBRT=$1
+shift
+if [[ $PBRT == - ]]; then
+  renderers=(rimu)
+else
+  PBRT=$(realpath "$PBRT")
+  [[ -x "$PBRT" ]] || { echo "$0: $PBRT is not an executable" >&2; exit 1; }
+  renderers=(pbrt rimu)
+fi
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=$(realpath "${BUILD:-$ROOT/build}")
+RIMU="$BUILD/bin/rimu"
+COMPARE="$BUILD/bin/rimu-pbrt-image-compare"
+for tool in "$RIMU" "$COMPARE"; do
+  [[ -x "$tool" ]] || { echo "$0: $tool missing: cmake --build $BUILD --target rimu rimu-pbrt-image-compare" >&2; exit 1; }
+done
+OUT=${OUT:-/tmp/pbrt_side_by_side}
+SPP=${SPP:-64}
+REF_SPP=${REF_SPP:-1024}
+THREADS=${THREADS:-2}
+SPACE=${SPACE:-srgb-linear}
+RESOLUTION=${RESOLUTION:-}
+MESH_N=${MESH_N:-0}
+mkdir -p "$OUT"
+
+scenes=("$@")
+if [[ ${#scenes[@]} -eq 0 ]]; then
+  for f in "$ROOT"/tests/data/pbrt/*.pbrt "$ROOT"/bench/pbrt_scenes/*.pbrt; do
+    [[ -f "$f" && $(basename "$f") != bad_* ]] && grep -q '^[[:space:]]*WorldBegin' "$f" && scenes+=("$f")
+  done
+fi
+if [[ $MESH_N -gt 0 ]]; then
+  mkdir -p "$OUT/generated_mesh"
+  scenes+=("$(python3 "$ROOT/bench/pbrt_scenes/make_mesh_scene.py" "$OUT/generated_mesh" "$MESH_N")")
+fi
+
+# key=value from the compare tool's output
+value() { sed -n "s/^$1=//p" <<<"$2"; }
+# /usr/bin/time -v fields
+wall_s() { awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; ++i) s = s * 60 + t[i]; print s}' "$1"; }
+cpu_s() { awk -F': ' '/User time/ {u = $2} /System time/ {s = $2} END {printf "%.2f", u + s}' "$1"; }
+rss_mib() { awk -F': ' '/Maximum resident set size/ {printf "%.0f", $2 / 1024}' "$1"; }
+
+# run_renderer NAME SCENE SPP SEED OUTPUT.exr: one render under /usr/bin/time -v, its log next to the image.
+run_renderer() {
+  local name=$1 scene=$2 spp=$3 seed=$4 out=$5
+  local log=${out%.exr}.log
+  if [[ $name == rimu ]]; then
+    local res=()
+    [[ -n "$RESOLUTION" ]] && res=(--resolution "$RESOLUTION")
+    /usr/bin/time -v -o "$log.time" "$RIMU" "$scene" -o "$out" --float -q --spp "$spp" --seed "$seed" \
+      --threads "$THREADS" "${res[@]}" >"$log" 2>&1 || { echo "rimu failed on $scene: see $log" >&2; return 1; }
+  else
+    /usr/bin/time -v -o "$log.time" "$PBRT" --quiet --spp "$spp" --seed "$seed" --nthreads "$THREADS" \
+      --outfile "$out" "$scene" >"$log" 2>&1 || { echo "pbrt failed on $scene: see $log" >&2; return 1; }
+  fi
+}
+
+# compare_row A B: one row of the image table for $work/A.exr against $work/B.exr
+compare_row() {
+  local c
+  c=$("$COMPARE" compare "$work/$1.exr" "$work/$2.exr" --space "$SPACE")
+  image_rows+=("| $name | $2 / $1 | $(value mean_a "$c") | $(value mean_b "$c") | $(value ratio_b_over_a "$c") | $(value block_tests "$c") | $(value blocks_beyond_3sigma "$c") | $(value blocks_beyond_4.5sigma "$c") | $(value rms_z "$c") | $(value worst_z "$c") at $(value worst_at "$c") |")
+}
+
+echo "# pbrt_side_by_side: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)), load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# rimu: $("$RIMU" --version 2>/dev/null | head -1); pbrt: $PBRT; SPP=$SPP REF_SPP=$REF_SPP THREADS=$THREADS RESOLUTION=${RESOLUTION:-scene} SPACE=$SPACE"
+timing_rows=()
+image_rows=()
+for scene in "${scenes[@]}"; do
+  name=$(basename "$scene" .pbrt)
+  work="$OUT/$name"
+  rm -rf "$work"
+  mkdir -p "$work/scene"
+  # Both renderers read one copy of the scene's folder (its Includes and meshes), with RESOLUTION applied to it.
+  cp -r "$(dirname "$scene")"/. "$work/scene/"
+  file="$work/scene/$(basename "$scene")"
+  if [[ -n "$RESOLUTION" ]]; then
+    sed -i -E "s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION%x*}/; s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION#*x}/" "$file"
+  fi
+  for r in "${renderers[@]}"; do
+    run_renderer $r "$file" "$SPP" 1 "$work/$r-s1.exr"
+    run_renderer $r "$file" "$SPP" 2 "$work/$r-s2.exr"
+    run_renderer $r "$file" "$REF_SPP" 7 "$work/$r-ref.exr"
+  done
+  declare -A render relmse
+  for r in "${renderers[@]}"; do
+    t="$work/$r-s1.log.time"
+    render[$r]=$(value render_time_s "$("$COMPARE" info "$work/$r-s1.exr")")
+    relmse[$r]=$(value relmse "$("$COMPARE" relmse "$work/$r-s1.exr" "$work/$r-ref.exr" --space "$SPACE")")
+    wall=$(wall_s "$t")
+    load=$(awk -v w="$wall" -v r="${render[$r]}" 'BEGIN {printf "%.3f", w - r}')
+    ignored=""
+    [[ $r == rimu ]] && ignored=$(grep -c '^ignored: ' "$work/rimu-s1.log" || true)
+    timing_rows+=("| $name | $r | $load | ${render[$r]} | $wall | $(cpu_s "$t") | $(rss_mib "$t") | ${relmse[$r]} | ${ignored:-–} |")
+  done
+  if [[ ${#renderers[@]} -eq 1 ]]; then
+    compare_row rimu-s1 rimu-s2
+    unset render relmse
+    continue
+  fi
+  # Time to the relMSE pbrt reaches at SPP (relMSE ∝ 1/spp): pbrt's is its render time; Rimu's is scaled.
+  rimu_equal=$(awk -v t="${render[rimu]}" -v e="${relmse[rimu]}" -v target="${relmse[pbrt]}" 'BEGIN {printf "%.3g", t * e / target}')
+  ratio=$(awk -v a="$rimu_equal" -v b="${render[pbrt]}" 'BEGIN {printf "%.2f", a / b}')
+  timing_rows+=("| $name | time to pbrt's relMSE | | pbrt ${render[pbrt]} s, Rimu $rimu_equal s (Rimu/pbrt $ratio) | | | | | |")
+  for pair in "pbrt-ref rimu-ref" "pbrt-s1 pbrt-s2" "rimu-s1 rimu-s2" "pbrt-s1 rimu-s1"; do
+    compare_row $pair
+  done
+  "$COMPARE" png "$work/pbrt-ref.exr" "$work/rimu-ref.exr" "$work/pbrt_vs_rimu.png" --space "$SPACE"
+  unset render relmse
+done
+
+echo
+echo "Timing (the SPP render with seed 1; load = wall − the renderer's own render time; relMSE against the renderer's own REF_SPP reference; ignored = lines Rimu lists as ignored):"
+echo
+echo "| scene | renderer | load s | render s | wall s | CPU s | peak RSS MiB | relMSE at $SPP spp | ignored |"
+echo "|---|---|--:|--:|--:|--:|--:|--:|--:|"
+printf '%s\n' "${timing_rows[@]}"
+echo
+echo "Images in $SPACE (Rimu's XYZ converted with its xyz_to_rgb matrix); b / a: ratio = mean(b)/mean(a) per channel; blocks: 8×8 tiles × 3 channels, paired mean difference / standard error:"
+echo
+echo "| scene | b / a | mean a (R,G,B) | mean b (R,G,B) | ratio b/a | tests | >3σ | >4.5σ | rms z | worst z |"
+echo "|---|---|---|---|---|--:|--:|--:|--:|---|"
+printf '%s\n' "${image_rows[@]}"

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# The image half of bench/pbrt_side_by_side.sh (bench/pbrt_image_compare.cpp) on two Rimu renders of the pbrt
+# Cornell box. Usage: pbrt_image_compare.sh RIMU COMPARE DATA_DIR WORK_DIR
+# An image against itself: ratio exactly 1, every tile's z 0, relMSE 0. Two seeds: no 8×8 tile beyond 4.5σ of 48
+# (the standard error is right: a missing square root or a wrong divisor puts tiles far beyond it; false alarm for
+# 48 N(0,1) tests ≈ 3e-4). The same box with its red and green walls swapped (the JSON twin of the file, edited) is
+# caught. Bad input: exit 1 with the file named.
+set -u
+rimu=$1; compare=$2; data=$3; work=$4
+rm -rf "$work"; mkdir -p "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+value() { sed -n "s/^$1=//p" <<<"$2"; }
+
+for seed in 1 2; do
+  "$rimu" "$data/cornell.pbrt" -o "$work/s$seed.exr" --float -q --spp 16 --seed $seed --threads 2 >/dev/null 2>&1 ||
+    fail "rimu did not render cornell.pbrt"
+done
+
+out=$("$compare" compare "$work/s1.exr" "$work/s1.exr")
+[ "$(value ratio_b_over_a "$out")" = "1,1,1" ] || fail "self ratio: $out"
+[ "$(value block_tests "$out")" = 48 ] || fail "32x32 image: expected 48 tile tests: $out"
+[ "$(value worst_z "$out")" = 0 ] || fail "self worst z: $out"
+[ "$(value relmse "$("$compare" relmse "$work/s1.exr" "$work/s1.exr")")" = 0 ] || fail "self relMSE not 0"
+
+out=$("$compare" compare "$work/s1.exr" "$work/s2.exr")
+[ "$(value 'blocks_beyond_4.5sigma' "$out")" = 0 ] || fail "two seeds differ beyond noise: $out"
+awk -v r="$(value rms_z "$out")" 'BEGIN {exit !(r > 0.5 && r < 2)}' || fail "two seeds: rms z not ≈ 1: $out"
+relmse=$(value relmse "$("$compare" relmse "$work/s1.exr" "$work/s2.exr")")
+awk -v e="$relmse" 'BEGIN {exit !(e > 0)}' || fail "two seeds: relMSE $relmse, expected > 0"
+
+# The JSON twin has its geometry inline, so it renders from the work folder.
+sed -e 's/"red": {/"tmp": {/; s/"green": {/"red": {/; s/"tmp": {/"green": {/' "$data/cornell_equivalent.json" >"$work/swapped.json"
+"$rimu" "$work/swapped.json" -o "$work/swapped.exr" --float -q --spp 16 --seed 3 --threads 2 >/dev/null 2>&1 ||
+  fail "rimu did not render the swapped JSON"
+out=$("$compare" compare "$work/s1.exr" "$work/swapped.exr")
+[ "$(value 'blocks_beyond_4.5sigma' "$out")" -gt 0 ] 2>/dev/null || fail "swapped walls not caught: $out"
+
+t=$(value render_time_s "$("$compare" info "$work/s1.exr")")
+awk -v t="$t" 'BEGIN {exit !(t > 0)}' || fail "info: render time '$t'"
+
+out=$("$compare" compare "$work/s1.exr" "$work/missing.exr" 2>&1); code=$?
+[ $code = 1 ] && grep -q "missing.exr" <<<"$out" || fail "missing file: exit $code: $out"
+out=$("$compare" compare "$work/s1.exr" 2>&1); code=$?
+[ $code = 1 ] && grep -q "usage" <<<"$out" || fail "usage: exit $code: $out"
+out=$("$compare" compare "$work/s1.exr" "$work/s2.exr" --space nonsense 2>&1); code=$?
+[ $code = 1 ] && grep -q -- "--space" <<<"$out" || fail "bad space: exit $code: $out"
+
+[ $failures = 0 ] && echo "pbrt_image_compare: all checks passed"
+exit $((failures > 0))
