@@ -15,6 +15,7 @@ packages=(
   libcli11-dev           # command-line parsing
   libbenchmark-dev       # Google Benchmark (benchmarks only)
   libtinyobjloader-dev   # OBJ meshes
+  zlib1g-dev             # .ply.gz meshes
   gnuplot-nox            # plots in benchmark reports and figures
   pybind11-dev python3-dev python3-pybind11  # the rimu Python module
   python3-numpy          # spectra as numpy arrays in the Python module and its tests

@@ -11,6 +11,22 @@ void embree_error_callback(void* user, RTCError code, const char* message) {
   *last_error = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
 }
 
+// Embree reports every allocation (bytes > 0) and release (bytes < 0) here; allowing all, it only counts.
+bool embree_memory_monitor(void* user, ssize_t bytes, bool /*post*/) {
+  static_cast<std::atomic<int64_t>*>(user)->fetch_add(int64_t(bytes));
+  return true;
+}
+
+// The texture coordinates at barycentric (u, v) of triangle `primitive`: the mesh's uvs interpolated, or (u, v)
+// itself when the mesh has none (the convention shade_hit reports).
+Vec2 surface_uv(const TriangleMesh& mesh, unsigned primitive, float u, float v) {
+  if (mesh.uvs.empty()) return {u, v};
+  const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
+  const float w = 1.0f - u - v;
+  const Vec2 a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
+  return {w * a.x + u * b.x + v * c.x, w * a.y + u * b.y + v * c.y};
+}
+
 RTCRay to_embree(const Ray& ray) {
   RTCRay r;
   r.org_x = ray.origin.x;
@@ -28,12 +44,29 @@ RTCRay to_embree(const Ray& ray) {
   return r;
 }
 
+// Embree calls this for every candidate hit on a cut-out mesh, for intersect and occluded queries alike; clearing
+// valid[i] makes Embree carry on past the hit as if the surface were not there.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* filter = static_cast<const EmbreeAlphaFilter*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const Vec2 uv = surface_uv(*filter->mesh, RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                               RTCHitN_v(args->hit, args->N, i));
+    const Vec3 origin{RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                      RTCRayN_org_z(args->ray, args->N, i)};
+    const Vec3 direction{RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                         RTCRayN_dir_z(args->ray, args->N, i)};
+    if (!alpha_keeps_hit(filter->alpha->evaluate(uv), origin, direction)) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 EmbreeScene::EmbreeScene() {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw RenderError("cannot create an Embree device (rtcNewDevice failed)");
   rtcSetDeviceErrorFunction(device_, embree_error_callback, &last_error_);
+  rtcSetDeviceMemoryMonitorFunction(device_, embree_memory_monitor, &embree_bytes_);
   scene_ = rtcNewScene(device_);
   // Robust mode: no missed hits at edges shared by triangles, which would leak light through closed meshes.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
@@ -55,19 +88,24 @@ void EmbreeScene::check_error(const char* what) const {
   }
 }
 
-unsigned EmbreeScene::attach_mesh(RTCScene scene, const TriangleMesh& mesh) {
+unsigned EmbreeScene::attach_mesh(RTCScene scene, TriangleMesh& mesh, std::shared_ptr<const AlphaMask> alpha) {
+  // Embree reads the mesh's own arrays (shared buffers): the positions and indices exist once. Vec3 is three
+  // packed floats, so the positions are RTC_FORMAT_FLOAT3 with a 12-byte stride. Embree may read a vertex with a
+  // 16-byte load, so the last one needs 4 readable bytes after it: one spare element of capacity provides them.
+  static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats for Embree's FLOAT3");
+  if (mesh.positions.capacity() == mesh.positions.size()) mesh.positions.reserve(mesh.positions.size() + 1);
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                               3 * sizeof(float), mesh.positions.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), mesh.triangle_count()));
-  check_error("allocating mesh buffers");
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    vertices[3 * i + 0] = mesh.positions[i].x;
-    vertices[3 * i + 1] = mesh.positions[i].y;
-    vertices[3 * i + 2] = mesh.positions[i].z;
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positions.data(), 0,
+                             sizeof(Vec3), mesh.positions.size());
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
+                             3 * sizeof(uint32_t), mesh.triangle_count());
+  check_error("sharing mesh buffers with Embree");
+  if (alpha) {
+    alpha_filters_.push_back(std::make_unique<EmbreeAlphaFilter>(EmbreeAlphaFilter{&mesh, std::move(alpha)}));
+    rtcSetGeometryUserData(geometry, alpha_filters_.back().get());
+    rtcSetGeometryIntersectFilterFunction(geometry, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, alpha_filter);
   }
-  for (size_t i = 0; i < mesh.indices.size(); ++i) indices[i] = mesh.indices[i];
   rtcCommitGeometry(geometry);
   const unsigned id = rtcAttachGeometry(scene, geometry);
   rtcReleaseGeometry(geometry);
@@ -75,9 +113,9 @@ unsigned EmbreeScene::attach_mesh(RTCScene scene, const TriangleMesh& mesh) {
   return id;
 }
 
-unsigned EmbreeScene::add_mesh(const TriangleMesh& mesh, int material, int light) {
-  meshes_.push_back(std::make_unique<TriangleMesh>(mesh));
-  const unsigned id = attach_mesh(scene_, *meshes_.back());
+unsigned EmbreeScene::add_mesh(TriangleMesh mesh, int material, int light, std::shared_ptr<const AlphaMask> alpha) {
+  meshes_.push_back(std::make_unique<TriangleMesh>(std::move(mesh)));
+  const unsigned id = attach_mesh(scene_, *meshes_.back(), std::move(alpha));
   geometries_.resize(id + 1);
   instance_of_geometry_.resize(id + 1, -1);
   geometries_[id] = {GeometryInfo::Kind::mesh, material, light, meshes_.back().get()};
@@ -102,13 +140,15 @@ unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material) {
   return id;
 }
 
-int EmbreeScene::add_prototype(const std::vector<std::pair<TriangleMesh, int>>& meshes) {
+int EmbreeScene::add_prototype(std::vector<std::pair<TriangleMesh, int>> meshes,
+                               const std::vector<std::shared_ptr<const AlphaMask>>& alphas) {
   Prototype prototype;
   prototype.scene = rtcNewScene(device_);
   rtcSetSceneFlags(prototype.scene, RTC_SCENE_FLAG_ROBUST);
-  for (const auto& [mesh, material] : meshes) {
-    prototype.meshes.push_back(std::make_unique<TriangleMesh>(mesh));
-    const unsigned id = attach_mesh(prototype.scene, *prototype.meshes.back());
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    auto& [mesh, material] = meshes[k];
+    prototype.meshes.push_back(std::make_unique<TriangleMesh>(std::move(mesh)));
+    const unsigned id = attach_mesh(prototype.scene, *prototype.meshes.back(), k < alphas.size() ? alphas[k] : nullptr);
     prototype.geometries.resize(id + 1);
     prototype.geometries[id] = {GeometryInfo::Kind::mesh, material, -1, prototype.meshes.back().get()};
   }
@@ -196,12 +236,7 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
   const TriangleMesh& mesh = *info->mesh;
   const uint32_t* tri = &mesh.indices[3 * size_t(rh.hit.primID)];
   const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
-  if (!mesh.uvs.empty()) {
-    const Vec2 a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
-    hit.uv = {w * a.x + u * b.x + v * c.x, w * a.y + u * b.y + v * c.y};
-  } else {
-    hit.uv = {u, v};
-  }
+  hit.uv = surface_uv(mesh, rh.hit.primID, u, v);
   if (!mesh.normals.empty()) {
     Vec3 n = mesh.normals[tri[0]] * w + mesh.normals[tri[1]] * u + mesh.normals[tri[2]] * v;
     if (object_to_world) n = object_to_world->normal(n);

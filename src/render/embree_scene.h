@@ -3,11 +3,14 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "render/alpha_mask.h"
 #include "render/render_error.h"
 #include "transport/surface_hit.h"
 #include "render/triangle_mesh.h"
@@ -15,6 +18,12 @@
 #include "transport/ray_queries.h"
 
 namespace rimu {
+
+/// What the alpha filter function needs of a cut-out geometry (EmbreeScene's internals; Embree holds a pointer).
+struct EmbreeAlphaFilter {
+  const TriangleMesh* mesh;
+  std::shared_ptr<const AlphaMask> alpha;
+};
 
 /// Owns an Embree device and scene. Errors reported by Embree's callback become exceptions (RenderError) at the
 /// call that caused them, so the rest of Rimu sees one error style.
@@ -28,12 +37,19 @@ class EmbreeScene final : public RayQueries {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   /// A world-space triangle mesh. `light` is the emitter index (or -1). Returns the geometry id.
-  unsigned add_mesh(const TriangleMesh& mesh, int material, int light);
+  /// The scene keeps the mesh and Embree reads its positions and indices in place (shared buffers, no copy):
+  /// move a mesh in to hold it once.
+  /// `alpha`, if given, cuts holes: rays pass where alpha_keeps_hit says so (camera and shadow rays alike, through
+  /// Embree's intersection and occlusion filter functions).
+  unsigned add_mesh(TriangleMesh mesh, int material, int light, std::shared_ptr<const AlphaMask> alpha = nullptr);
   /// A sphere (Embree's native sphere primitive).
   unsigned add_sphere(Vec3 centre, float radius, int material);
 
-  /// A prototype: meshes in object space, shared by instances (no lights inside prototypes).
-  int add_prototype(const std::vector<std::pair<TriangleMesh, int /*material*/>>& meshes);
+  /// A prototype: meshes in object space, shared by instances (no lights inside prototypes). Held once however
+  /// many instances refer to it; move the meshes in.
+  /// `alphas`: empty, or one cut-out mask (or null) per mesh.
+  int add_prototype(std::vector<std::pair<TriangleMesh, int /*material*/>> meshes,
+                    const std::vector<std::shared_ptr<const AlphaMask>>& alphas = {});
   /// An instance of a prototype placed by `object_to_world`.
   void add_instance(int prototype, const Transform& object_to_world);
 
@@ -48,6 +64,9 @@ class EmbreeScene final : public RayQueries {
   /// Axis-aligned bounds of everything (after commit()).
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
+
+  /// Bytes Embree has allocated and not freed (BVHs, its build scratch while building), from its memory monitor.
+  int64_t embree_bytes() const { return embree_bytes_.load(); }
 
  private:
   struct GeometryInfo {
@@ -66,7 +85,7 @@ class EmbreeScene final : public RayQueries {
     Transform object_to_world;
   };
 
-  unsigned attach_mesh(RTCScene scene, const TriangleMesh& mesh);
+  unsigned attach_mesh(RTCScene scene, TriangleMesh& mesh, std::shared_ptr<const AlphaMask> alpha);
   SurfaceHit shade_hit(const RTCRayHit& rh) const;
   void check_error(const char* what) const;
 
@@ -79,6 +98,8 @@ class EmbreeScene final : public RayQueries {
   std::vector<int> instance_of_geometry_;
   Vec3 bounds_min_, bounds_max_;
   mutable std::string last_error_;
+  std::atomic<int64_t> embree_bytes_{0};
+  std::vector<std::unique_ptr<EmbreeAlphaFilter>> alpha_filters_;  // Embree's filter functions point at these
 };
 
 }  // namespace rimu

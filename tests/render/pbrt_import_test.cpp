@@ -270,7 +270,7 @@ TEST_CASE("pbrt: what is not imported is listed once with a count and the first 
   const std::string report = describe_ignored(imported.ignored);
   CHECK_CONTAINS(report, "ignored: Shape \"curve\" (2 times), first at " + file.string() + ":7\n");
   CHECK_CONTAINS(report, "ignored: partial sphere (zmin, zmax or phimax): rendered whole (1 time), first at " + file.string() + ":9");
-  CHECK_CONTAINS(report, "ignored: parameter \"float alpha\" of Shape \"sphere\" (1 time), first at " + file.string() + ":10");
+  CHECK_CONTAINS(report, "ignored: parameter \"vector3 S\" of Shape \"trianglemesh\" (1 time), first at " + file.string() + ":10");
   CHECK(imported.ignored.size() == 3);
   CHECK_THROWS_WITH_AS(import_pbrt(file, test::library(), {true, {}}),
                        doctest::Contains("unsupported.pbrt:7: not supported (--strict): Shape \"curve\""), InputError);
@@ -332,7 +332,8 @@ TEST_CASE("pbrt interface material: its shapes are left out and listed") {
 }
 
 TEST_CASE("pbrt --strict: an unused parameter is an error at its line") {
-  CHECK_CONTAINS(error_of(kUnmirroredCamera + "Shape \"sphere\"\n  \"float alpha\" 0.5", true, true), "test.pbrt:6: not supported (--strict): parameter \"float alpha\" of Shape \"sphere\"");
+  CHECK_CONTAINS(error_of(kUnmirroredCamera + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"vector3 S\" [1 0 0 1 0 0 1 0 0]", true, true),
+                 "test.pbrt:6: not supported (--strict): parameter \"vector3 S\" of Shape \"trianglemesh\"");
 }
 
 TEST_CASE("pbrt ColorSpace, Attribute defaults, disks and imagemap textures") {

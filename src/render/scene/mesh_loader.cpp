@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "render/scene/gzip_bytes.h"
 #include "render/scene/obj_loader.h"
 #include "render/scene/ply_loader.h"
 #include "spectral/error.h"
@@ -14,6 +15,12 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const std::string& obj
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".obj") return load_obj(path, object);
+  if (has_gzip_extension(path)) {
+    std::string inner = path.stem().extension().string();  // "mesh.ply.gz" → ".ply"
+    std::transform(inner.begin(), inner.end(), inner.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (inner == ".ply") extension = ".ply";
+  }
   if (extension == ".ply") {
     if (!object.empty())
       throw InputError({path.string(), 0, ""},
@@ -22,7 +29,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const std::string& obj
   }
   throw InputError(
       {path.string(), 0, ""},
-      "unsupported mesh format '" + (extension.empty() ? "(no extension)" : extension) + "'; supported: .obj, .ply");
+      "unsupported mesh format '" + (extension.empty() ? "(no extension)" : extension) + "'; supported: .obj, .ply, .ply.gz");
 }
 
 }  // namespace rimu

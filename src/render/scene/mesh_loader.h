@@ -8,7 +8,7 @@
 
 namespace rimu {
 
-/// Loads a mesh file by its extension (case-insensitive): .obj (load_obj) or .ply (load_ply). `object` names an
+/// Loads a mesh file by its extension (case-insensitive): .obj (load_obj), .ply or .ply.gz (load_ply). `object` names an
 /// OBJ object/group to load instead of the whole file; a PLY file holds one mesh, so `object` must be empty.
 /// Throws InputError naming the file for an unsupported extension (listing the supported ones) and for
 /// everything the format loaders reject.

@@ -169,6 +169,11 @@ void BodyReader::fail(const std::string& what) const {
   throw InputError({file_, format_ == Format::ascii ? line_ : 0, ""}, message.str());
 }
 
+bool BodyReader::native_order() const {
+  if (format_ == Format::ascii) return false;
+  return (format_ == Format::binary_little_endian) == (std::endian::native == std::endian::little);
+}
+
 double BodyReader::read(Type type) { return format_ == Format::ascii ? read_ascii(type) : read_binary(type); }
 
 void BodyReader::skip(Type type, uint64_t n) {

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,21 @@ struct Header {
   int body_line = 0;       ///< the line the body starts on (meaningful for ascii)
 };
 
+/// The scalar of `type` stored at `p` in native byte order, as a double (exact for every PLY type).
+inline double native_value(const char* p, Type type) {
+  switch (type) {
+    case Type::int8: { int8_t v; std::memcpy(&v, p, 1); return v; }
+    case Type::uint8: { uint8_t v; std::memcpy(&v, p, 1); return v; }
+    case Type::int16: { int16_t v; std::memcpy(&v, p, 2); return v; }
+    case Type::uint16: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+    case Type::int32: { int32_t v; std::memcpy(&v, p, 4); return v; }
+    case Type::uint32: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case Type::float32: { float v; std::memcpy(&v, p, 4); return v; }
+    case Type::float64: { double v; std::memcpy(&v, p, 8); return v; }
+  }
+  return 0.0;
+}
+
 /// Parses the header at the start of `bytes`; throws InputError naming `file` and the header line.
 Header parse_header(std::string_view bytes, const std::string& file);
 
@@ -69,6 +85,16 @@ class BodyReader {
   double read(Type type);
   /// Skips `n` values of `type`.
   void skip(Type type, uint64_t n);
+  /// Binary bodies: the next `n` raw bytes (bounds-checked like read, then skipped), for readers that decode a
+  /// whole record in place. The caller converts byte order (native_order() says whether it must).
+  const char* take(size_t n) {
+    if (n > remaining()) fail("the file ends inside this record (is it truncated?)");
+    const char* at = bytes_.data() + offset_;
+    offset_ += n;
+    return at;
+  }
+  /// True for a binary body in this machine's byte order: values can be copied out as they are.
+  bool native_order() const;
   /// Bytes (binary) or characters (ascii) left; a bound on how many values can follow.
   size_t remaining() const { return bytes_.size() - offset_; }
 

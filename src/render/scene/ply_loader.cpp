@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 
+#include "render/scene/gzip_bytes.h"
 #include "render/scene/ply_format.h"
 #include "spectral/error.h"
 #include "spectral/input_file.h"
@@ -80,43 +81,129 @@ void read_record(ply::BodyReader& reader, const ply::Element& element, std::vect
   }
 }
 
-void read_vertices(ply::BodyReader& reader, const ply::Element& element, const VertexLayout& layout,
-                   TriangleMesh& mesh) {
+// Appends one vertex, `value(i)` being the record's property i; checks what the mesh needs (finite in single
+// precision, non-zero normals) and fails at `record` otherwise.
+template <typename Value>
+void append_vertex(ply::BodyReader& reader, const ply::Element& element, uint64_t record, const VertexLayout& layout,
+                   Value&& value, TriangleMesh& mesh) {
+  const auto fail = [&](const std::string& what) {
+    reader.at(element.name, record);
+    reader.fail(what);
+  };
+  const double x = value(layout.position[0]), y = value(layout.position[1]), z = value(layout.position[2]);
+  if (!fits_float(x) || !fits_float(y) || !fits_float(z)) {
+    std::ostringstream message;
+    message << "the position (" << x << ", " << y << ", " << z << ") is not finite in single precision";
+    fail(message.str());
+  }
+  mesh.positions.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+  if (layout.normal[0] >= 0) {
+    // Normals are normalised in double so that large but finite components do not overflow the length.
+    const double nx = value(layout.normal[0]), ny = value(layout.normal[1]), nz = value(layout.normal[2]);
+    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    if (!(len > 0.0) || !std::isfinite(len)) fail("the normal is zero or not finite");
+    mesh.normals.push_back({static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)});
+  }
+  if (layout.uv[0] >= 0) {
+    const double u = value(layout.uv[0]), v = value(layout.uv[1]);
+    if (!fits_float(u) || !fits_float(v)) fail("the texture coordinate is not finite in single precision");
+    mesh.uvs.push_back({static_cast<float>(u), static_cast<float>(v)});
+  }
+}
+
+void reserve_vertices(uint64_t count, size_t remaining, const VertexLayout& layout, TriangleMesh& mesh) {
   // A record takes at least one byte, so the file size bounds the allocation even when the count is garbage.
-  const size_t reserve = static_cast<size_t>(std::min<uint64_t>(element.count, reader.remaining()));
-  mesh.positions.reserve(reserve);
+  // One spare position: Embree reads the last vertex with a 16-byte load (embree_scene.cpp shares this array).
+  const size_t reserve = static_cast<size_t>(std::min<uint64_t>(count, remaining));
+  mesh.positions.reserve(reserve + 1);
   if (layout.normal[0] >= 0) mesh.normals.reserve(reserve);
   if (layout.uv[0] >= 0) mesh.uvs.reserve(reserve);
+}
+
+// Binary records in this machine's byte order whose properties are all scalars (what exporters write) have one
+// size: each attribute is copied out at its offset, without the per-value dispatch of BodyReader::read.
+// Returns false (nothing read) for other layouts.
+bool read_vertices_native(ply::BodyReader& reader, const ply::Element& element, const VertexLayout& layout,
+                          TriangleMesh& mesh) {
+  if (!reader.native_order()) return false;
+  std::vector<size_t> offsets;
+  size_t stride = 0;
+  for (const ply::Property& property : element.properties) {
+    if (property.is_list) return false;
+    offsets.push_back(stride);
+    stride += ply::size_of(property.type);
+  }
+  reserve_vertices(element.count, reader.remaining(), layout, mesh);
+  for (uint64_t record = 0; record < element.count; ++record) {
+    if (reader.remaining() < stride) reader.at(element.name, record);  // names the record take() fails at
+    const char* bytes = reader.take(stride);
+    const auto value = [&](int index) {
+      return ply::native_value(bytes + offsets[size_t(index)], element.properties[size_t(index)].type);
+    };
+    append_vertex(reader, element, record, layout, value, mesh);
+  }
+  return true;
+}
+
+void read_vertices(ply::BodyReader& reader, const ply::Element& element, const VertexLayout& layout,
+                   TriangleMesh& mesh) {
+  if (read_vertices_native(reader, element, layout, mesh)) return;
+  reserve_vertices(element.count, reader.remaining(), layout, mesh);
   std::vector<double> values(element.properties.size());
-  auto value = [&values](int index) { return values[static_cast<size_t>(index)]; };
+  const auto value = [&values](int index) { return values[static_cast<size_t>(index)]; };
   for (uint64_t record = 0; record < element.count; ++record) {
     reader.at(element.name, record);
     read_record(reader, element, values);
-    const double x = value(layout.position[0]), y = value(layout.position[1]), z = value(layout.position[2]);
-    if (!fits_float(x) || !fits_float(y) || !fits_float(z)) {
-      std::ostringstream message;
-      message << "the position (" << x << ", " << y << ", " << z << ") is not finite in single precision";
-      reader.fail(message.str());
-    }
-    mesh.positions.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
-    if (layout.normal[0] >= 0) {
-      // Normals are normalised in double so that large but finite components do not overflow the length.
-      const double nx = value(layout.normal[0]), ny = value(layout.normal[1]), nz = value(layout.normal[2]);
-      const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
-      if (!(len > 0.0) || !std::isfinite(len)) reader.fail("the normal is zero or not finite");
-      mesh.normals.push_back(
-          {static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)});
-    }
-    if (layout.uv[0] >= 0) {
-      const double u = value(layout.uv[0]), v = value(layout.uv[1]);
-      if (!fits_float(u) || !fits_float(v)) reader.fail("the texture coordinate is not finite in single precision");
-      mesh.uvs.push_back({static_cast<float>(u), static_cast<float>(v)});
-    }
+    append_vertex(reader, element, record, layout, value, mesh);
   }
+}
+
+// Fan triangulation keeps the polygon's winding: (0, i, i+1) turns the same way as the polygon. `index(i)` is the
+// polygon's i-th vertex index, already checked.
+template <typename Index>
+void append_polygon(uint64_t corners, Index&& index, TriangleMesh& mesh) {
+  const uint32_t first = index(0);
+  uint32_t previous = index(1);
+  for (uint64_t i = 2; i < corners; ++i) {
+    const uint32_t current = index(i);
+    mesh.indices.insert(mesh.indices.end(), {first, previous, current});
+    previous = current;
+  }
+}
+
+// The face element of a binary body in native byte order holding only its index list (what exporters write): the
+// count and the indices are copied out of the bytes in place. Returns false (nothing read) for other layouts.
+bool read_faces_native(ply::BodyReader& reader, const ply::Element& element, const ply::Property& list,
+                       uint64_t vertex_count, TriangleMesh& mesh) {
+  if (!reader.native_order() || element.properties.size() != 1) return false;
+  const size_t count_size = ply::size_of(list.count_type), item_size = ply::size_of(list.type);
+  mesh.indices.reserve(3 * static_cast<size_t>(std::min<uint64_t>(element.count, reader.remaining())));
+  for (uint64_t record = 0; record < element.count; ++record) {
+    const auto fail = [&](const std::string& what) {
+      reader.at(element.name, record);
+      reader.fail(what);
+    };
+    if (reader.remaining() < count_size) fail("the file ends inside this record (is it truncated?)");
+    const double n = ply::native_value(reader.take(count_size), list.count_type);
+    if (n < 3) fail("has " + std::to_string(static_cast<long long>(n)) + " vertices; a face needs at least 3");
+    if (n > static_cast<double>(reader.remaining() / item_size))
+      fail("the file ends inside this record (is it truncated?)");
+    const char* items = reader.take(static_cast<size_t>(n) * item_size);
+    const auto index = [&](uint64_t i) {
+      const double v = ply::native_value(items + i * item_size, list.type);
+      if (v < 0 || v >= static_cast<double>(vertex_count))
+        fail("refers to vertex " + std::to_string(static_cast<long long>(v)) + " but there are " +
+             std::to_string(vertex_count) + " vertices");
+      return static_cast<uint32_t>(v);
+    };
+    append_polygon(static_cast<uint64_t>(n), index, mesh);
+  }
+  return true;
 }
 
 void read_faces(ply::BodyReader& reader, const ply::Element& element, int list_index, uint64_t vertex_count,
                 TriangleMesh& mesh) {
+  if (read_faces_native(reader, element, element.properties[size_t(list_index)], vertex_count, mesh)) return;
   mesh.indices.reserve(3 * static_cast<size_t>(std::min<uint64_t>(element.count, reader.remaining())));
   std::vector<uint32_t> polygon;
   for (uint64_t record = 0; record < element.count; ++record) {
@@ -146,9 +233,7 @@ void read_faces(ply::BodyReader& reader, const ply::Element& element, int list_i
                       std::to_string(vertex_count) + " vertices");
         polygon.push_back(static_cast<uint32_t>(index));
       }
-      // Fan triangulation keeps the polygon's winding: (0, i, i+1) turns the same way as the polygon.
-      for (size_t i = 1; i + 1 < polygon.size(); ++i)
-        mesh.indices.insert(mesh.indices.end(), {polygon[0], polygon[i], polygon[i + 1]});
+      append_polygon(polygon.size(), [&polygon](uint64_t i) { return polygon[i]; }, mesh);
     }
   }
 }
@@ -201,6 +286,9 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& file) {
 }
 
 TriangleMesh load_ply(const std::filesystem::path& path) {
+  if (has_gzip_extension(path))
+    return parse_ply(gunzip(read_input_file(path, kMaxBinaryFileBytes), path.string(), kMaxBinaryFileBytes),
+                     path.string());
   return parse_ply(read_input_file(path, kMaxBinaryFileBytes), path.string());
 }
 

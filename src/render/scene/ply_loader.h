@@ -9,7 +9,7 @@
 
 namespace rimu {
 
-/// Reads a PLY mesh: element `vertex` with x y z (any numeric type), optionally nx ny nz (normalised on load)
+/// Reads a PLY mesh (gzip-compressed if the name ends in .gz, e.g. mesh.ply.gz): element `vertex` with x y z (any numeric type), optionally nx ny nz (normalised on load)
 /// and one of the uv pairs u v / s t / texture_u texture_v / texture_s texture_t; element `face` with a list
 /// property `vertex_indices` (or `vertex_index`). Polygons are fan-triangulated (0, i, i+1), which is exact for
 /// convex faces. Other elements and properties are skipped. Degenerate triangles are kept (the scene removes

@@ -2,7 +2,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "render/alpha_mask.h"
 #include "render/scene/mesh_loader.h"
+#include "render/rgb_image.h"
 #include "transport/area_light.h"
 #include "transport/light_spectrum.h"
 #include "render/scene/scene_load_context.h"
@@ -39,12 +41,12 @@ void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type,
                            "emitter in \"shapes\"");
   }
   if (type == "mesh") {
-    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "two_sided"});
+    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "two_sided", "alpha"});
   } else if (type == "quad") {
-    shape.only_keys({"type", "name", "vertices", "material", "transform", "emission", "two_sided"});
+    shape.only_keys({"type", "name", "vertices", "uvs", "material", "transform", "emission", "two_sided", "alpha"});
   } else {
     shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "material", "transform", "emission",
-                     "two_sided"});
+                     "two_sided", "alpha"});
   }
 }
 
@@ -66,6 +68,9 @@ TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadConte
     if (v.size() != 4) v.fail("a quad has 4 vertices, counter-clockwise seen from its front");
     mesh.positions = vec3_array(v);
     mesh.indices = {0, 1, 2, 0, 2, 3};
+    // Without "uvs" a quad's texture coordinates are the triangles' barycentrics, which no texture can follow.
+    if (const auto uvs = shape.find("uvs"))
+      for (size_t i = 0; i < uvs->size(); ++i) mesh.uvs.push_back(uvs->at(i).vec2());
   } else {  // triangles
     mesh.positions = vec3_array(shape.at("positions"));
     const JsonCursor indices = shape.at("indices");
@@ -76,6 +81,37 @@ TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadConte
   }
   if (const std::string problem = mesh.validate(); !problem.empty()) shape.fail("invalid mesh: " + problem);
   return mesh;
+}
+
+// A shape's cut-out: a number in [0, 1], or {"texture": "mask.png", "channel": "r"|"g"|"b"|"a", "encoding":
+// "srgb"|"linear", "invert": bool}. Null when the shape is solid (no key, or alpha 1).
+std::shared_ptr<const AlphaMask> alpha_of(const JsonCursor& shape, LoadContext& context) {
+  const auto value = shape.find("alpha");
+  if (!value) return nullptr;
+  if (shape.has("emission"))
+    value->fail("an emissive shape cannot have an alpha (cut-out lights are not supported); give the light its own shape");
+  if (value->is_number()) {
+    const float alpha = float(value->number(0.0, 1.0));
+    return alpha >= 1.0f ? nullptr : std::make_shared<const AlphaMask>(AlphaMask::constant(alpha));
+  }
+  if (!value->is_object() || !value->has("texture"))
+    value->fail("expected a number in [0, 1] or {\"texture\": \"mask.png\", \"channel\": \"a\"}");
+  value->only_keys({"texture", "channel", "encoding", "invert"});
+  const std::string channel_name = value->has("channel") ? value->at("channel").choice({"r", "g", "b", "a"}) : "r";
+  const int channel = channel_name == "r" ? 0 : channel_name == "g" ? 1 : channel_name == "b" ? 2 : 3;
+  const JsonCursor file = value->at("texture");
+  const std::filesystem::path path = context.spectra.scene_directory() / file.string();
+  try {
+    // An alpha channel is linear coverage; colour channels of 8/16-bit files carry the sRGB curve unless told.
+    bool srgb = channel != 3 && default_encoding_for(path).srgb_transfer;
+    if (value->has("encoding")) srgb = value->at("encoding").choice({"srgb", "linear"}) == "srgb";
+    return std::make_shared<const AlphaMask>(AlphaMask::read(path, channel, srgb, value->boolean_or("invert", false)));
+  } catch (const InputError& e) {
+    if (!e.where().key.empty()) throw;
+    SourceLocation where = e.where();
+    where.key = file.path();
+    throw InputError(where, e.explanation());
+  }
 }
 
 }  // namespace
@@ -169,6 +205,7 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     const std::optional<LightSpectrum> radiance =
         emission ? std::optional(area_light_emission(*emission, mesh, two_sided, context)) : std::nullopt;
     if (!emission && shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
+    const std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
     scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
     if (mesh.triangle_count() == 0) continue;  // only degenerate triangles (counted above)
     if (radiance) {
@@ -177,9 +214,9 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       scene.lights.push_back(std::move(light));
       scene.light_names.push_back(shape.has("name") ? "'" + shape.at("name").string() + "' (" + shape.path() + ")"
                                                     : "the emissive shape " + shape.path());
-      scene.geometry.add_mesh(mesh, material, int(scene.lights.size()) - 1);
+      scene.geometry.add_mesh(std::move(mesh), material, int(scene.lights.size()) - 1);
     } else {
-      scene.geometry.add_mesh(mesh, material, -1);
+      scene.geometry.add_mesh(std::move(mesh), material, -1, alpha);
     }
   }
 }
@@ -189,6 +226,7 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
   for (const auto& [name, unused] : section.value().items()) {
     const JsonCursor shapes = section.at(name);
     std::vector<std::pair<TriangleMesh, int>> meshes;
+    std::vector<std::shared_ptr<const AlphaMask>> alphas;
     BoundsD bounds;
     for (size_t i = 0; i < shapes.size(); ++i) {
       const JsonCursor shape = shapes.at(i);
@@ -197,12 +235,16 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
       TriangleMesh mesh = mesh_of(shape, type, context);
       mesh.transform(parse_transform(shape));
       const int material = material_of(shape, context);
+      std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
       check_mesh_coordinates(mesh, shape);  // the prototype's own space is a scene too (Embree checks it alike)
       context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
       for (const Vec3& p : mesh.positions) bounds.extend(p);
-      if (mesh.triangle_count() > 0) meshes.emplace_back(std::move(mesh), material);
+      if (mesh.triangle_count() > 0) {
+        meshes.emplace_back(std::move(mesh), material);
+        alphas.push_back(std::move(alpha));
+      }
     }
-    const int index = context.scene.geometry.add_prototype(meshes);
+    const int index = context.scene.geometry.add_prototype(std::move(meshes), alphas);
     context.prototype_index[name] = index;
     context.prototype_bounds[index] = bounds;
   }

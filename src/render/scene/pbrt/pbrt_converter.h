@@ -106,6 +106,9 @@ class PbrtConverter {
                  std::vector<std::array<double, 2>> uvs, const std::string& context, int shape_count);
   void emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                   double area_m2, int shape_count);
+  /// The shape's "alpha" (a float or a float texture) as Rimu's shape "alpha", or null (solid). `has_uvs`: whether
+  /// the shape carries texture coordinates an alpha image can follow.
+  json alpha_parameter(PbrtParams& p, bool has_uvs);
   json transform_steps(const PbrtMatrix& m, const SourceLocation& where) const;
   PbrtMatrix world_from_object() const { return mirror_ * state_.ctm; }
   std::string path_for_document(const std::filesystem::path& absolute) const;
@@ -121,6 +124,7 @@ class PbrtConverter {
   bool world_begun_ = false;
   bool end_time_active_ = false;
   std::optional<std::string> object_;  ///< inside ObjectBegin
+  json shape_alpha_;                   ///< the alpha of the Shape being converted (pbrt_shapes.cpp), or null
   std::map<std::string, PbrtTexture> textures_;
 
   // Camera: world-from-camera at the Camera statement, and its parameters.

@@ -1,7 +1,10 @@
 // pbrt-v4 shapes → Rimu shapes: meshes inline or by file, spheres analytic where Rimu's sphere can stand for them,
 // tessellated otherwise; disks tessellated.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/ply_loader.h"
@@ -93,6 +96,12 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     if (!uvs.empty() && uvs.size() != positions.size())
       throw InputError(s.where, context + ": \"uv\" has " + std::to_string(uvs.size()) + " pairs for " +
                                     std::to_string(positions.size()) + " points");
+    if (uvs.empty() && corners == 4 && positions.size() == 4) {
+      // pbrt's default (u, v) of a bilinear patch is (0,0), (1,0), (0,1), (1,1) at p00, p10, p01, p11: kept for the
+      // single patch (the common quad), whose vertices no other patch shares.
+      uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    }
+    shape_alpha_ = alpha_parameter(p, !uvs.empty());
     const int shape_count = int(raw_indices.empty() ? 1 : raw_indices.size() / corners);
     emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), std::move(uvs), context, shape_count);
   } else if (type == "plymesh") {
@@ -100,11 +109,8 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     const std::string filename = p.string("filename", "");
     if (filename.empty()) throw InputError(s.where, context + ": needs \"string filename\"");
     const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
-    if (path.extension() == ".gz") {
-      ignore("plymesh with a gzip-compressed file (.ply.gz)", s.where);
-      return;
-    }
     if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the PLY file '" + path.string() + "'");
+    shape_alpha_ = alpha_parameter(p, true);  // PLY meshes with cut-outs (leaves) carry uvs
     if (state_.area_light || state_.reverse_orientation) {
       // An emitter's side (and a reversed surface) is decided here, triangle by triangle, so the mesh goes inline.
       const TriangleMesh mesh = load_ply(path);
@@ -123,9 +129,11 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     if (!(radius > 0)) throw InputError(s.where, context + ": \"radius\" must be > 0");
     const double zmin = p.real("zmin", -radius), zmax = p.real("zmax", radius), phimax = p.real("phimax", 360.0);
     if (zmin > -radius || zmax < radius || phimax < 360.0) ignore("partial sphere (zmin, zmax or phimax): rendered whole", s.where);
+    shape_alpha_ = alpha_parameter(p, false);
     double scale = 1.0;
     const PbrtMatrix world = world_from_object();
-    if (!object_ && !state_.area_light && !state_.reverse_orientation && world.is_finite() && world.is_affine() &&
+    // Rimu's analytic sphere has no cut-outs: a sphere with alpha takes the mesh path below.
+    if (shape_alpha_.is_null() && !object_ && !state_.area_light && !state_.reverse_orientation && world.is_finite() && world.is_affine() &&
         is_similarity(world, scale)) {
       emit_shape({{"type", "sphere"}, {"center", world.point({0, 0, 0})}, {"radius", radius * scale}}, s.where, context, false, 0.0, 1);
       return;
@@ -157,6 +165,7 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     const double height = p.real("height", 0.0), radius = p.real("radius", 1.0), inner = p.real("innerradius", 0.0);
     const double phimax_rad = std::clamp(p.real("phimax", 360.0), 0.0, 360.0) * std::numbers::pi / 180.0;
     if (!(radius > 0) || inner < 0 || inner >= radius) throw InputError(s.where, context + ": needs 0 <= innerradius < radius");
+    shape_alpha_ = alpha_parameter(p, false);
     // Counter-clockwise seen from +z, pbrt's disk normal.
     std::vector<Vec3d> positions, normals;
     std::vector<uint32_t> indices;
@@ -213,11 +222,18 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
 
 void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                                double area_m2, int shape_count) {
+  json alpha = std::exchange(shape_alpha_, nullptr);  // taken first: no early return may leave it to the next shape
   if (interface_materials_.count(state_.material)) {
     ignore(context + " with the \"interface\" material (a medium boundary: left out)", where);
     return;
   }
   shape["material"] = state_.material.empty() ? default_material() : state_.material;
+  if (!alpha.is_null()) {
+    if (state_.area_light && !object_ && emissive_capable)
+      ignore("\"alpha\" on an area light (Rimu's lights are not cut out: left solid)", where);
+    else
+      shape["alpha"] = std::move(alpha);
+  }
   if (shape["type"] != "sphere") {
     const json steps = transform_steps(object_ ? state_.ctm : world_from_object(), where);
     if (!steps.is_null()) shape["transform"] = steps;
@@ -238,6 +254,56 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
   } else {
     shapes_.push_back(std::move(shape));
   }
+}
+
+json PbrtConverter::alpha_parameter(PbrtParams& p, bool has_uvs) {
+  const PbrtParam* param = p.get("alpha", {PbrtParamType::real, PbrtParamType::texture});
+  if (!param) return nullptr;
+  if (param->type == PbrtParamType::real) {
+    const double alpha = param->numbers.empty() ? 1.0 : param->numbers[0];
+    return alpha >= 1.0 ? json(nullptr) : json(std::clamp(alpha, 0.0, 1.0));
+  }
+  const std::string& name = param->strings.at(0);
+  const auto it = textures_.find(name);
+  if (it == textures_.end())
+    throw InputError(param->where, p.context() + ": \"alpha\" names the texture \"" + name + "\", which is not defined");
+  const PbrtTexture& texture = it->second;
+  if (texture.kind != "float")
+    throw InputError(param->where, p.context() + ": \"alpha\" needs a float texture; \"" + name + "\" is a " + texture.kind + " texture");
+  const PbrtStatement& ts = texture.statement;
+  if (texture.texture_class == "imagemap" && !has_uvs) {
+    ignore("alpha image texture on a shape without texture coordinates (left solid)", p.where());
+    return nullptr;
+  }
+  PbrtParams tp(*this, ts, "Texture \"" + name + "\"");
+  if (texture.texture_class == "constant") {
+    const double alpha = tp.real("value", 1.0);
+    return alpha >= 1.0 ? json(nullptr) : json(std::clamp(alpha, 0.0, 1.0));
+  }
+  if (texture.texture_class != "imagemap") {
+    ignore("alpha texture of class \"" + texture.texture_class + "\" (the shape is left solid)", ts.where);
+    return nullptr;
+  }
+  const std::string filename = tp.string("filename", "");
+  if (filename.empty()) throw InputError(ts.where, "Texture \"" + name + "\": needs \"string filename\"");
+  const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(ts.where, "Texture \"" + name + "\": cannot find the image '" + path.string() + "'");
+  // A float imagemap reads the image's first channel (pbrt-v4's MIPMap texel for Float); pbrt's encoding defaults
+  // to sRGB for PNG files and linear otherwise.
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
+  json value = {{"texture", path_for_document(path)}, {"channel", "r"}, {"encoding", encoding == "linear" ? "linear" : "srgb"}};
+  if (encoding != "linear" && encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", ts.where);
+  if (tp.boolean("invert", false)) value["invert"] = true;
+  if (tp.real("scale", 1.0) != 1.0) ignore("\"scale\" of an alpha texture (alpha is used unscaled)", ts.where);
+  if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
+      tp.real("vdelta", 0) != 0)
+    ignore("texture mapping other than plain uv", ts.where);
+  tp.string("filter", "bilinear");  // Rimu filters bilinearly
+  tp.string("wrap", "repeat");
+  return value;
 }
 
 }  // namespace rimu
