@@ -20,6 +20,10 @@ std::vector<std::filesystem::path> candidate_paths() {
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) paths.push_back(exe.parent_path() / ".." / "lib" / "rimu" / kModuleName);
+  // For a program that is not installed beside it (the Python module runs inside python3).
+#ifdef RIMU_IMAGE_MODULE_INSTALL_PATH
+  paths.emplace_back(RIMU_IMAGE_MODULE_INSTALL_PATH);
+#endif
 #ifdef RIMU_IMAGE_MODULE_BUILD_PATH
   paths.emplace_back(RIMU_IMAGE_MODULE_BUILD_PATH);
 #endif

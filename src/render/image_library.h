@@ -9,8 +9,8 @@ namespace rimu {
 
 /// The OpenImageIO module's functions; loads it on the first call (thread-safe; later calls cost an atomic load).
 /// The module is found at, in order: the RIMU_IMAGE_MODULE environment variable (a wrong one is an error);
-/// `<exe>/../lib/rimu/librimu_oiio.so` (the build tree and an installed tree); the build tree's path recorded at
-/// compile time (for the Python module, whose executable is python3). Throws RenderError (exit 2: the
+/// `<exe>/../lib/rimu/librimu_oiio.so` (the build tree and an installed tree); the install prefix's and then the
+/// build tree's path recorded at compile time (for the Python module, whose executable is python3). Throws RenderError (exit 2: the
 /// installation, not the user's input) naming the places tried and dlopen's message if none loads.
 const ImageModuleApi& image_library();
 
