@@ -1,12 +1,11 @@
 #include "render/alpha_mask.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 
+#include "render/image_library.h"
 #include "spectral/rgb_colour_space.h"
 #include "spectral/error.h"
 #include "spectral/input_file.h"
@@ -21,28 +20,21 @@ AlphaMask AlphaMask::constant(float alpha) {
 
 AlphaMask AlphaMask::read(const std::filesystem::path& path, int channel, bool srgb, bool invert) {
   check_input_file(path, kMaxBinaryFileBytes);  // OpenImageIO would block on a FIFO
-  // The channels as stored: OpenImageIO would otherwise multiply a PNG's colour by its alpha, and a mask read from
-  // the red channel would gain the alpha channel's holes.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto input = OIIO::ImageInput::open(path.string(), &config);
-  if (!input) throw InputError({path.string(), 0, ""}, "cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec spec = input->spec();
-  const int w = spec.width, h = spec.height, channels = spec.nchannels;
-  if (w <= 0 || h <= 0 || channels <= 0) throw InputError({path.string(), 0, ""}, "the image is empty");
+  DecodedImage image;
+  image.as_stored = true;
+  if (std::string error; !image_library().read_pixels(path.string(), image, error))
+    throw InputError({path.string(), 0, ""}, error);
+  const int w = image.width, h = image.height, channels = image.channels;
   int source = channel;
   if (channel == 3) {
-    source = spec.alpha_channel;
+    source = image.alpha_channel;
     if (source < 0)
       throw InputError({path.string(), 0, ""}, "the image has no alpha channel (it has " + std::to_string(channels) +
                                                    " channels); choose \"channel\": \"r\", \"g\" or \"b\"");
   } else if (channels < 3) {
     source = 0;  // grey (or grey + alpha): every colour channel is the grey one
   }
-  std::vector<float> raw(size_t(w) * size_t(h) * size_t(channels));
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
-    throw InputError({path.string(), 0, ""}, "cannot read the pixels: " + input->geterror());
-  input->close();
+  const std::vector<float>& raw = image.pixels;
   AlphaMask mask;
   mask.width_ = w;
   mask.height_ = h;

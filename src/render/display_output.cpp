@@ -1,11 +1,10 @@
 #include "render/display_output.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "render/image_library.h"
 #include "render/output_file.h"
 #include "render/version.h"
 #include "spectral/error.h"
@@ -87,9 +86,8 @@ std::string display_image_format(const std::filesystem::path& path, const std::s
                      ".png, .jpg, .jpeg, .tif or .tiff, got '" +
                          path.extension().string() + "'" + hint);
   }
-  if (!OIIO::ImageOutput::create(format))
-    throw InputError({path.string(), 0, option}, "this OpenImageIO build cannot write " + format + ": " +
-                                                     OIIO::geterror());
+  if (std::string error; !image_library().can_write(format, error))
+    throw InputError({path.string(), 0, option}, "this OpenImageIO build cannot write " + format + ": " + error);
   return format;
 }
 
@@ -98,21 +96,11 @@ DisplayLevels write_display_image(const std::filesystem::path& path, const Film&
   const std::vector<uint8_t> pixels = display_pixels(film, options);  // InputErrors before touching the disk
   const PixelBounds& b = film.pixel_bounds();
   write_atomically(path, [&](const std::filesystem::path& temporary) {
-    // OpenImageIO reports failure through return values and geterror(); turn each into an exception here.
-    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
-    if (!out) throw std::runtime_error("OpenImageIO has no " + format + " writer: " + OIIO::geterror());
-    OIIO::ImageSpec spec(b.width(), b.height(), 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("Software", std::string("Rimu ") + rimu_version());
-    spec.attribute("rimu:view", options.view);
     // The views other than Raw end in the sRGB display encoding (data/ocio/config.ocio): say so in the file.
-    if (options.view != "Raw") spec.attribute("oiio:ColorSpace", "sRGB");
-    if (!out->open(temporary.string(), spec)) throw std::runtime_error(out->geterror());
-    if (!out->write_image(OIIO::TypeDesc::UINT8, pixels.data())) {
-      const std::string error = out->geterror();
-      out->close();
+    std::string error;
+    if (!image_library().write_rgb8(temporary.string(), format, b.width(), b.height(), pixels,
+                                    std::string("Rimu ") + rimu_version(), options.view, options.view != "Raw", error))
       throw std::runtime_error(error);
-    }
-    if (!out->close()) throw std::runtime_error(out->geterror());
   });
   return display_levels(pixels);
 }

@@ -39,7 +39,8 @@ void check_same_render(const PartialImage& a, const PartialImage& b) {
   if (!same_transform)
     mismatch("exposure or white balance", "one", "another");
   if (a.record.scene_hash != b.record.scene_hash)
-    mismatch("the scene (file or image options) differs: scene hash", a.record.scene_hash, b.record.scene_hash);
+    mismatch("the scene (its file, the files it names, or image options) differs: scene hash", a.record.scene_hash,
+             b.record.scene_hash);
   if (a.pixel_type != b.pixel_type)
     mismatch("pixel type", a.pixel_type == ExrPixelType::half ? "half" : "float",
              b.pixel_type == ExrPixelType::half ? "half" : "float");
@@ -150,8 +151,8 @@ MergeResult merge_partials(const std::vector<std::filesystem::path>& inputs, con
   shape.counts = {};
   const std::unique_ptr<Film> film = film_from_partial(shape, library);
   double render_time_s = 0.0;
-  for (const PartialImage& p : parts) {  // one partial's sums in memory at a time
-    add_partial_to_film(read_partial_exr(p.path), *film);
+  for (const PartialImage& p : parts) {  // one band of one partial's sums in memory at a time
+    add_partial_exr_to_film(p, *film);
     render_time_s += p.metadata.render_time_s;
   }
 

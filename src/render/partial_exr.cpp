@@ -39,17 +39,54 @@ bool derived_attribute(const std::string& name) {
   return derived.count(name) > 0 || name.rfind("rimu:partial:", 0) == 0;
 }
 
+// Calls band(first_row, rows, sums) for successive bands of rows of the partial's crop, sums holding the
+// accumulators of rows·crop width pixels (accumulators_per_pixel doubles each, row by row), exactly: two UINT words
+// per double. Only one band is in memory at a time, so a 4K spectral partial (GBs of sums) is read in bounded memory.
+template <typename Band>
+void for_each_sum_band(Imf::InputFile& file, const PartialImage& p, const Band& band) {
+  // EXR has no 64-bit type: each double is two UINT channels, read here straight into the double's halves (the
+  // high word at byte 4 on a little-endian machine), so the bits come back exactly and without a second buffer.
+  static_assert(std::endian::native == std::endian::little, "the sum slices assume a little-endian double");
+  constexpr int kBandRows = 64;
+  const int n = p.accumulators_per_pixel;
+  const size_t width = size_t(p.crop.width());
+  const size_t pixel_stride = sizeof(double) * size_t(n);
+  std::vector<double> sums(size_t(n) * width * kBandRows);
+  for (int y0 = p.crop.y0; y0 < p.crop.y1; y0 += kBandRows) {
+    const int y1 = std::min(y0 + kBandRows, p.crop.y1);  // exclusive
+    Imf::FrameBuffer frame_buffer;
+    // Accumulator k of pixel (x, y) of the band at sums[((y - y0) · width + x - x0) · n + k].
+    char* origin = reinterpret_cast<char*>(sums.data()) -
+                   (ptrdiff_t(y0) * ptrdiff_t(width) + p.crop.x0) * ptrdiff_t(pixel_stride);
+    for (int k = 0; k < n; ++k)
+      for (const bool high : {true, false})
+        frame_buffer.insert(partial_sum_channel_name(k, high),
+                            Imf::Slice(Imf::UINT, origin + sizeof(double) * size_t(k) + (high ? 4 : 0), pixel_stride,
+                                       pixel_stride * width));
+    try {
+      file.setFrameBuffer(frame_buffer);
+      file.readPixels(y0, y1 - 1);
+    } catch (const std::exception& e) {
+      throw partial_error(p.path, std::string("cannot read its pixels: ") + e.what());
+    }
+    band(y0, y1 - y0, static_cast<const double*>(sums.data()));
+  }
+}
+
+std::unique_ptr<Imf::InputFile> open_exr(const std::filesystem::path& path) {
+  try {
+    return std::make_unique<Imf::InputFile>(path.c_str());
+  } catch (const std::exception& e) {
+    throw partial_error(path, std::string("cannot read as OpenEXR: ") + e.what());
+  }
+}
+
 }  // namespace
 
 PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums) {
   PartialImage p;
   p.path = path;
-  std::unique_ptr<Imf::InputFile> file;
-  try {
-    file = std::make_unique<Imf::InputFile>(path.c_str());
-  } catch (const std::exception& e) {
-    throw partial_error(path, std::string("cannot read as OpenEXR: ") + e.what());
-  }
+  const std::unique_ptr<Imf::InputFile> file = open_exr(path);
   const Imf::Header& h = file->header();
   PartialRecord& r = p.record;
   r.scene_hash = string_attribute(h, path, "rimu:partial:sceneHash");
@@ -84,7 +121,7 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
   const Imf::Channel* first = h.channels().findChannel(h.channels().begin().name());
   p.pixel_type = first && first->type == Imf::FLOAT ? ExrPixelType::float32 : ExrPixelType::half;
 
-  // The accumulators, exactly: two UINT words per double, read a band of rows at a time (bounded memory).
+  // The accumulators, exactly: two UINT words per double, read a band of rows at a time (for_each_sum_band).
   const int n = p.accumulators_per_pixel;
   for (int k = 0; k < 2 * n; ++k) {
     const std::string name = partial_sum_channel_name(k / 2, k % 2 == 0);
@@ -93,34 +130,11 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
       throw partial_error(path, "not a partial render: no UINT channel '" + name + "'");
   }
   if (with_sums) {
-    const size_t width = size_t(p.crop.width());
     p.sums.resize(size_t(p.crop.area()) * size_t(n));
-    constexpr int kBandRows = 64;
-    std::vector<uint32_t> words(size_t(2 * n) * width * kBandRows);
-    for (int y0 = data.min.y; y0 <= data.max.y; y0 += kBandRows) {
-      const int y1 = std::min(y0 + kBandRows - 1, data.max.y);
-      Imf::FrameBuffer frame_buffer;
-      // Word k of pixel (x, y) of the band at words[((y - y0) · width + x - x0) · 2n + k].
-      char* origin = reinterpret_cast<char*>(words.data()) -
-                     (ptrdiff_t(y0) * ptrdiff_t(width) + data.min.x) * ptrdiff_t(2 * n) * ptrdiff_t(sizeof(uint32_t));
-      for (int k = 0; k < 2 * n; ++k)
-        frame_buffer.insert(partial_sum_channel_name(k / 2, k % 2 == 0),
-                            Imf::Slice(Imf::UINT, origin + k * sizeof(uint32_t), size_t(2 * n) * sizeof(uint32_t),
-                                       size_t(2 * n) * sizeof(uint32_t) * width));
-      try {
-        file->setFrameBuffer(frame_buffer);
-        file->readPixels(y0, y1);
-      } catch (const std::exception& e) {
-        throw partial_error(path, std::string("cannot read its pixels: ") + e.what());
-      }
-      const size_t first = size_t(y0 - data.min.y) * width;
-      const size_t count = size_t(y1 - y0 + 1) * width;
-      for (size_t i = 0; i < count; ++i)
-        for (int k = 0; k < n; ++k) {
-          const uint32_t* w = &words[i * size_t(2 * n) + size_t(2 * k)];
-          p.sums[(first + i) * size_t(n) + size_t(k)] = std::bit_cast<double>((uint64_t(w[0]) << 32) | w[1]);
-        }
-    }
+    for_each_sum_band(*file, p, [&](int first_row, int rows, const double* sums) {
+      std::copy_n(sums, size_t(rows) * size_t(p.crop.width()) * size_t(n),
+                  &p.sums[size_t(first_row - p.crop.y0) * size_t(p.crop.width()) * size_t(n)]);
+    });
   }
 
   auto count = [&](const char* name) {
@@ -179,6 +193,22 @@ void add_partial_to_film(const PartialImage& partial, Film& film) {
       for (int k = 0; k < n; ++k) tile.pixel(x, y)[k] = partial.sums[i * size_t(n) + size_t(k)];
   tile.add_sample_counts(partial.counts);
   film.merge_tile(tile);
+}
+
+void add_partial_exr_to_film(const PartialImage& header, Film& film) {
+  const std::unique_ptr<Imf::InputFile> file = open_exr(header.path);
+  const int n = header.accumulators_per_pixel;
+  bool counted = false;
+  for_each_sum_band(*file, header, [&](int first_row, int rows, const double* sums) {
+    FilmTile tile = film.make_tile({header.crop.x0, first_row, header.crop.x1, first_row + rows});
+    size_t i = 0;
+    for (int y = first_row; y < first_row + rows; ++y)
+      for (int x = header.crop.x0; x < header.crop.x1; ++x, ++i)
+        std::copy_n(&sums[i * size_t(n)], n, tile.pixel(x, y));
+    if (!counted) tile.add_sample_counts(header.counts);
+    counted = true;
+    film.merge_tile(tile);
+  });
 }
 
 }  // namespace rimu

@@ -37,4 +37,9 @@ std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLib
 /// Adds the partial's sums (and counts) into `film` over the partial's crop (which must lie inside the film's).
 void add_partial_to_film(const PartialImage& partial, Film& film);
 
+/// The same for a partial read without its sums (read_partial_exr(path, false)): reads them from `header.path` a
+/// band of 64 rows at a time straight into `film`, so the merge holds one film and one band, not a second copy of
+/// the image (a 4K 47-bin partial's sums are 3.4 GB). Bit for bit the same additions as add_partial_to_film.
+void add_partial_exr_to_film(const PartialImage& header, Film& film);
+
 }  // namespace rimu

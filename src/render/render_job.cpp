@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "render/camera_colour_matrix.h"
+#include "render/camera_keyframes.h"
 #include "render/camera_exposure.h"
 #include "render/display_image_policy.h"
 #include "render/display_output.h"
@@ -132,14 +133,16 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
     throw InputError({"", 0, "--frame"}, "frame numbers are substituted into JSON scenes; a pbrt-v4 scene is read as it is");
   nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log)
                                  : parse_json_text(scene_text_for_frame(scene_path, job.frame), scene_path.string());
+  if (job.frame) apply_camera_keyframes(document, *job.frame, scene_path.string());  // a camera path keyed by frame
   const std::string hash = scene_hash(job);
   if (job.expected_scene_hash && *job.expected_scene_hash != hash)
     throw InputError({scene_path.string(), 0, ""},
-                     "the scene (file or image options) hashes to " + hash + ", not the expected " +
-                         *job.expected_scene_hash + ": it changed after the render was submitted");
+                     "the scene (its file, the files it names, or image options) hashes to " + hash +
+                         ", not the expected " + *job.expected_scene_hash + ": it changed after the render was submitted");
   if (previous && previous->record.scene_hash != hash)
     throw InputError({scene_path.string(), 0, ""},
-                     "the scene (file or image options) hashes to " + hash + ", but " + previous->path.string() +
+                     "the scene (its file, the files it names, or image options) hashes to " + hash + ", but " +
+                         previous->path.string() +
                          " was rendered from one that hashed to " + previous->record.scene_hash +
                          ": it changed since; resuming would mix two scenes");
   if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);

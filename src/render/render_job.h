@@ -61,9 +61,10 @@ struct RenderJob {
   std::optional<int> frame;
 };
 
-/// The scene file's bytes (with ${frame} substituted) and the options that change the image, hashed (64-bit
-/// FNV-1a, 16 hex digits): equal hashes mean the same render. Files the scene refers to (meshes, textures, IES) are
-/// not hashed. InputError if the scene cannot be read.
+/// The scene file's bytes (with ${frame} substituted), the name and bytes of every file it names (meshes, CSV
+/// spectra, textures, IES profiles, volumes: scene_referenced_files()) and the options that change the image, hashed
+/// (64-bit FNV-1a, 16 hex digits): equal hashes mean the same render. Reads every referenced file once (≈ 1 s per
+/// GB). InputError if the scene cannot be read.
 std::string scene_hash(const RenderJob& job);
 /// The job's options as JSON (what a partial records for --resume) and back.
 std::string render_job_json(const RenderJob& job);

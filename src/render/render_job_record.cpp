@@ -2,9 +2,12 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "render/scene/json_cursor.h"
 #include "render/render_job.h"
+#include "render/scene/scene_files.h"
 #include "render/scene/scene_frame.h"
 
 namespace rimu {
@@ -32,12 +35,25 @@ nlohmann::json image_options(const RenderJob& job) {
 }
 
 // 64-bit FNV-1a (Fowler, Noll, Vo): enough to tell a changed scene from an unchanged one, not a security check.
-uint64_t fnv1a(const std::string& bytes, uint64_t h = 0xcbf29ce484222325ULL) {
+uint64_t fnv1a(std::string_view bytes, uint64_t h = 0xcbf29ce484222325ULL) {
   for (unsigned char c : bytes) {
     h ^= c;
     h *= 0x100000001b3ULL;
   }
   return h;
+}
+
+// A referenced file's name and bytes, read in blocks (a mesh may be hundreds of MB). A file that vanished since it
+// was listed hashes as its name alone; the loader then reports it.
+uint64_t hash_file(const SceneFile& file, uint64_t h) {
+  h = fnv1a(file.name + '\0', h);
+  std::ifstream in(file.path, std::ios::binary);
+  std::vector<char> block(1 << 20);
+  while (in) {
+    in.read(block.data(), std::streamsize(block.size()));
+    h = fnv1a(std::string_view(block.data(), size_t(in.gcount())), h);
+  }
+  return fnv1a(std::string_view("\0", 1), h);
 }
 
 }  // namespace
@@ -46,7 +62,9 @@ std::string scene_hash(const RenderJob& job) {
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path path = job.scene ? *job.scene : default_scene_path(library);
   const std::string text = scene_text_for_frame(path, job.frame);
-  const uint64_t h = fnv1a(image_options(job).dump(), fnv1a(text + '\0'));
+  uint64_t h = fnv1a(text + '\0');
+  for (const SceneFile& file : scene_referenced_files(text, path)) h = hash_file(file, h);
+  h = fnv1a(image_options(job).dump(), h);
   char hex[17];
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));
   return hex;

@@ -1,9 +1,8 @@
 #include "render/rgb_image.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 
+#include "render/image_library.h"
 #include "spectral/error.h"
 #include "spectral/input_file.h"
 
@@ -11,27 +10,20 @@ namespace rimu {
 
 ImageEncoding default_encoding_for(const std::filesystem::path& path) {
   check_input_file(path, kMaxBinaryFileBytes);  // OpenImageIO would block on a FIFO
-  auto input = OIIO::ImageInput::open(path.string());
   ImageEncoding encoding;
-  if (!input) return encoding;
-  const OIIO::TypeDesc format = input->spec().format;
-  encoding.srgb_transfer = format.basetype != OIIO::TypeDesc::FLOAT && format.basetype != OIIO::TypeDesc::HALF &&
-                           format.basetype != OIIO::TypeDesc::DOUBLE;
-  input->close();
+  DecodedImage header;
+  if (std::string error; !image_library().read_header(path.string(), header, error)) return encoding;
+  encoding.srgb_transfer = !header.stored_as_float;
   return encoding;
 }
 
 RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
   check_input_file(path, kMaxBinaryFileBytes);
-  auto input = OIIO::ImageInput::open(path.string());
-  if (!input) throw InputError({path.string(), 0, ""}, "cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec spec = input->spec();
-  const int w = spec.width, h = spec.height, channels = spec.nchannels;
-  if (w <= 0 || h <= 0 || channels <= 0) throw InputError({path.string(), 0, ""}, "the image is empty");
-  std::vector<float> raw(size_t(w) * size_t(h) * size_t(channels));
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
-    throw InputError({path.string(), 0, ""}, "cannot read the pixels: " + input->geterror());
-  input->close();
+  DecodedImage image;
+  if (std::string error; !image_library().read_pixels(path.string(), image, error))
+    throw InputError({path.string(), 0, ""}, error);
+  const int w = image.width, channels = image.channels, h = image.height;
+  const std::vector<float>& raw = image.pixels;
 
   std::vector<float> rgb(size_t(w) * size_t(h) * 3);
   for (size_t i = 0; i < size_t(w) * size_t(h); ++i) {

@@ -32,3 +32,13 @@ add_test(NAME "cli: rimu-farm on a single-node Slurm: 4-task array and merge equ
                  ${CMAKE_BINARY_DIR}/bin/rimu-farm $<TARGET_FILE:rimu-exr-compare> ${farm_dir}/slurm)
 set_tests_properties("cli: rimu-farm on a single-node Slurm: 4-task array and merge equal a single render"
                      PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE TIMEOUT 600)
+add_test(NAME "cli: scene hash covers referenced files: a CSV edited between partials is refused"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/scene_files_hash.sh $<TARGET_FILE:rimu>
+                 ${PROJECT_SOURCE_DIR}/data/scenes/cornell_box ${farm_dir}/scene_files)
+# A camera path keyed by frame (docs/scene-format.md, "Camera paths"): needs --frame, renders with it.
+rimu_cli_test("rimu camera keyframes without --frame" 1
+              "camera_path.json.*/camera/keyframes.*needs a frame number: render with --frame N"
+              $<TARGET_FILE:rimu> ${CMAKE_CURRENT_SOURCE_DIR}/cli/camera_path.json -q -o ${farm_dir}/never.exr)
+add_test(NAME "cli: camera keyframes: frame 6 is the dolly's half-way camera, frames differ"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/camera_path.sh $<TARGET_FILE:rimu> $<TARGET_FILE:rimu-exr-compare>
+                 ${CMAKE_CURRENT_SOURCE_DIR}/cli/camera_path.json ${farm_dir}/camera_path)

@@ -181,7 +181,7 @@ TEST_CASE("partial renders: mismatched, overlapping and missing partials are err
   RenderJob other_mode = tiny_job(dir / "mode.exr", SampleRange{12, 24});
   other_mode.wavelengths = WavelengthMode::single;  // an image option with no check of its own: the scene hash tells
   render(other_mode);
-  refused({dir / "a.exr", dir / "mode.exr"}, "the scene (file or image options) differs: scene hash");
+  refused({dir / "a.exr", dir / "mode.exr"}, "the scene (its file, the files it names, or image options) differs: scene hash");
 
   render(tiny_job(dir / "overlap.exr", SampleRange{10, 24}));
   refused({dir / "a.exr", dir / "overlap.exr"}, "both hold samples 10:12");

@@ -3,7 +3,7 @@
 
   rimu-farm submit SCENE --spp 4096 --tasks 16 [--frames 1-100] [--partition P] [--time 1:00:00]
                    [--out DIR] [--checkpoint 10m] [--no-submit] [-- RIMU OPTIONS, e.g. --film spectral:47]
-  rimu-farm status DIR      squeue/sacct for the jobs submitted from DIR
+  rimu-farm status DIR      squeue, and sacct (or scontrol without accounting) for the jobs submitted from DIR
   rimu-farm collect DIR     merge what the tasks wrote (as the merge job does), e.g. after fixing a failed task
 
 Thin on purpose: every task runs `rimu --samples A:B`, the merge job runs `rimu merge`. The scripts it writes into
@@ -178,16 +178,66 @@ def load_record(directory):
         fail(f"{directory}: not a rimu-farm folder ({e.strerror}: farm.json)")
 
 
+def sacct_table(jobs):
+    """sacct's table of the jobs, or None when Slurm keeps no accounting (a cluster without slurmdbd: sacct then
+    fails or says that accounting storage is disabled)."""
+    if not shutil.which("sacct"):
+        return None
+    result = subprocess.run(["sacct", "--jobs", ",".join(jobs), "--format=JobID%20,State,ExitCode,Elapsed"],
+                            capture_output=True, text=True)
+    if result.returncode != 0 or "disabled" in result.stderr or "disabled" in result.stdout:
+        return None
+    return result.stdout
+
+
+def scontrol_rows(job):
+    """One row per job (or array task) slurmctld still knows (finished jobs stay for MinJobAge, 300 s by default):
+    (JobId_ArrayTaskId, JobState, ExitCode, RunTime), from `scontrol show job -o`; None if it no longer knows it."""
+    result = subprocess.run(["scontrol", "show", "job", "-o", job], capture_output=True, text=True)
+    if result.returncode != 0:
+        return None
+    rows = []
+    for line in result.stdout.splitlines():
+        fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
+        name = fields.get("JobId", "?")
+        if fields.get("ArrayTaskId"):
+            name = f"{fields.get('ArrayJobId', name)}_{fields['ArrayTaskId']}"
+        rows.append((name, fields.get("JobState", "?"), fields.get("ExitCode", "?"), fields.get("RunTime", "?")))
+    return rows
+
+
 def status(args):
     record = load_record(args.dir)
     jobs = [j for j in (record.get("render_job"), record.get("merge_job")) if j]
     if not jobs:
         fail(f"{args.dir}: its scripts were written with --no-submit; nothing to ask Slurm about")
-    code = subprocess.run(["squeue", "--jobs", ",".join(jobs), "--array", "--format=%.18i %.9T %.10M %.20R"]).returncode
-    if shutil.which("sacct"):
-        # sacct needs Slurm accounting; without it, say so and keep the squeue answer.
-        subprocess.run(["sacct", "--jobs", ",".join(jobs), "--format=JobID%20,State,ExitCode,Elapsed"])
-    sys.exit(0 if code == 0 else 2)
+    if not shutil.which("squeue"):
+        fail("squeue is not on PATH: is this a Slurm login node?", 2)
+    print("queued or running (squeue):")
+    sys.stdout.flush()
+    # squeue fails for a job id slurmctld has forgotten; the answer below may still hold it.
+    answered = subprocess.run(["squeue", "--jobs", ",".join(jobs), "--array",
+                               "--format=%.18i %.9T %.10M %.20R"]).returncode == 0
+    table = sacct_table(jobs)
+    if table is not None:
+        print("accounting (sacct):")
+        print(table, end="")
+        answered = True
+    else:
+        # No accounting database: slurmctld's own memory of the jobs (finished ones for MinJobAge) is the record.
+        print("all states (scontrol show job; this cluster keeps no accounting, so finished jobs are listed only "
+              "for slurmctld's MinJobAge):")
+        print(f"{'JOB':>20} {'STATE':>12} {'EXIT':>6} {'TIME':>10}")
+        for job in jobs:
+            rows = scontrol_rows(job)
+            if rows is None:
+                print(f"{job:>20} {'FORGOTTEN':>12}      -          -   (no longer known to slurmctld: see "
+                      f"{os.path.join(args.dir, 'logs')} and the partials in {os.path.join(args.dir, 'parts')})")
+                continue
+            answered = True
+            for name, state, exit_code, run_time in rows:
+                print(f"{name:>20} {state:>12} {exit_code:>6} {run_time:>10}")
+    sys.exit(0 if answered else 2)
 
 
 def collect(args):

@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
                                      "(its recorded options; -o defaults to FILE.exr)");
   app.add_option("--frame", job.frame, "frame number substituted for ${frame} in the scene and output names");
   app.add_option("--expect-scene-hash", expect_hash, "refuse to render unless the scene hashes to this (farm tasks)");
-  app.add_flag("--print-scene-hash", print_hash, "print the scene hash (scene file + image options) and exit");
+  app.add_flag("--print-scene-hash", print_hash,
+               "print the scene hash (scene file, the files it names, image options) and exit");
 
   return rimu::run_tool("rimu", app, argc, argv, [&] {
     if (!scene.empty()) job.scene = scene;

@@ -31,6 +31,9 @@ std::filesystem::path default_scene_path(const SpectralLibrary& library) {
 namespace {
 
 void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
+  // render_job resolves "keyframes" for the frame being rendered (render/camera_keyframes.h); here there is none.
+  if (c.has("keyframes"))
+    c.at("keyframes").fail("a camera path keyed by frame needs a frame number: render with --frame N");
   c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance", "exposure",
                "white_balance"});
   // The physical camera (render/camera_exposure.h): applied when the film is written.
