@@ -136,7 +136,7 @@ unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material) {
   check_error("adding a sphere");
   geometries_.resize(id + 1);
   instance_of_geometry_.resize(id + 1, -1);
-  geometries_[id] = {GeometryInfo::Kind::sphere, material, -1, nullptr};
+  geometries_[id] = {GeometryInfo::Kind::sphere, material, -1, nullptr, centre, radius};
   return id;
 }
 
@@ -228,14 +228,41 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
   hit.shading_normal = hit.geometric_normal;
 
   if (info->kind == GeometryInfo::Kind::sphere) {
-    // Spherical uv: u = azimuth/2π, v = polar angle/π about +y.
+    // o + t·d carries the rounding of the ray's origin, which can be far larger than the sphere: put the point
+    // back on the sphere, so its error is that of the centre and radius.
     const Vec3 n = hit.geometric_normal;
+    hit.position = info->centre + n * info->radius;
+    hit.position_scale = max_component(abs(info->centre)) + info->radius;
+    // Spherical uv: u = azimuth/2π, v = polar angle/π about +y.
     hit.uv = {float(0.5 + std::atan2(n.z, n.x) / (2.0 * M_PI)), float(std::acos(std::fmax(-1.0f, std::fmin(1.0f, n.y))) / M_PI)};
     return hit;
   }
   const TriangleMesh& mesh = *info->mesh;
   const uint32_t* tri = &mesh.indices[3 * size_t(rh.hit.primID)];
   const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+  // The hit point from the triangle's own vertices, not o + t·d: a camera 10 m from a plane makes o + t·d wrong
+  // by ~10·2⁻²⁴ m along the normal even where the plane passes through the origin, and continuation rays offset in
+  // proportion to |p| would then start behind the plane (self-shadowing rings). Interpolated, the error is a few
+  // ulps of the vertices' coordinates (position_scale), however far away the ray came from.
+  const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+  Vec3 p = a * w + b * u + c * v;
+  float scale = std::fmax(max_component(abs(a)), std::fmax(max_component(abs(b)), max_component(abs(c))));
+  if (object_to_world) {
+    p = object_to_world->point(p);
+    // |M·p − fl(M·p)| ≤ (row sums of |M|)·|p| + |translation|, in units of rounding.
+    const std::array<float, 12>& m = object_to_world->rows();
+    float row_sum = 0, translation = 0;
+    for (int r = 0; r < 3; ++r) {
+      row_sum = std::fmax(row_sum, std::fabs(m[4 * r]) + std::fabs(m[4 * r + 1]) + std::fabs(m[4 * r + 2]));
+      translation = std::fmax(translation, std::fabs(m[4 * r + 3]));
+    }
+    scale = row_sum * scale + translation;
+  }
+  // Degenerate or NaN vertices keep Embree's point (the scene loader refuses non-finite ones; this is a guard).
+  if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
+    hit.position = p;
+    hit.position_scale = scale;
+  }
   hit.uv = surface_uv(mesh, rh.hit.primID, u, v);
   if (!mesh.normals.empty()) {
     Vec3 n = mesh.normals[tri[0]] * w + mesh.normals[tri[1]] * u + mesh.normals[tri[2]] * v;

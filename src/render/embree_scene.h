@@ -73,7 +73,9 @@ class EmbreeScene final : public RayQueries {
     enum class Kind { mesh, sphere } kind = Kind::mesh;
     int material = -1;
     int light = -1;
-    const TriangleMesh* mesh = nullptr;  // owned by meshes_ (kept for normals and uvs)
+    const TriangleMesh* mesh = nullptr;  // owned by meshes_ (kept for positions, normals and uvs)
+    Vec3 centre;                         // spheres: the hit point is put back on the sphere from these
+    float radius = 0;
   };
   struct Prototype {
     RTCScene scene = nullptr;

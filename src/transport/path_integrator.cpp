@@ -35,6 +35,12 @@ Vec3 offset_ray_origin(Vec3 position, Vec3 geometric_normal, Vec3 direction, flo
   return position + face_forward(geometric_normal, direction) * offset;
 }
 
+Vec3 offset_ray_origin(const SurfaceHit& hit, Vec3 direction, float scene_scale) {
+  const float magnitude =
+      std::fmax(std::fmax(max_component(abs(hit.position)), hit.position_scale), 1e-4f * scene_scale);
+  return hit.position + face_forward(hit.geometric_normal, direction) * (magnitude * 0x1p-18f);
+}
+
 SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
                                          Sampler& sampler) const {
   const auto& lights = *scene_.lights;
@@ -123,7 +129,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
           const bool wrong_side = !flags.has_transmission && dot(ls->wi, shading.geometric_normal) <= 0.0f;
           if (!wrong_side && max_lane(f) > 0.0f) {
             Ray shadow;
-            shadow.origin = offset_ray_origin(hit->position, hit->geometric_normal, ls->wi, scene_.scene_scale);
+            shadow.origin = offset_ray_origin(*hit, ls->wi, scene_.scene_scale);
             shadow.direction = ls->wi;
             shadow.t_max = std::isinf(ls->distance) ? ls->distance : ls->distance * (1.0f - 0x1p-12f);
             if (!scene_.geometry->occluded(shadow)) {
@@ -174,7 +180,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     }
     if (max_lane(abs(beta)) == 0.0f) break;
 
-    ray.origin = offset_ray_origin(hit->position, hit->geometric_normal, wi_world, scene_.scene_scale);
+    ray.origin = offset_ray_origin(*hit, wi_world, scene_.scene_scale);
     ray.direction = wi_world;
     ray.t_min = 0.0f;
     ray.t_max = INFINITY;

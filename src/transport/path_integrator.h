@@ -72,5 +72,8 @@ class PathIntegrator {
 /// The origin of a ray leaving `position` on the side `normal`·`direction` > 0, offset against self-intersection
 /// by a distance that scales with the magnitude of the coordinates (float spacing) and the scene's size.
 Vec3 offset_ray_origin(Vec3 position, Vec3 geometric_normal, Vec3 direction, float scene_scale);
+/// The same for a ray leaving a surface hit: the offset also covers the rounding of the coordinates the hit point
+/// was computed from (SurfaceHit::position_scale), which near the world origin exceeds |p|'s.
+Vec3 offset_ray_origin(const SurfaceHit& hit, Vec3 direction, float scene_scale);
 
 }  // namespace rimu

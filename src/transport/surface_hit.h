@@ -11,6 +11,10 @@ namespace rimu {
 struct SurfaceHit {
   float t = 0;                 ///< ray parameter (distance, since ray directions are unit)
   Vec3 position;
+  /// The magnitude of the coordinates `position` was computed from (a triangle's vertices, a sphere's centre plus
+  /// radius, through an instance's transform): its rounding error is a few units in the last place of this, not of
+  /// |position|, so rays leaving the surface are offset in proportion to it (offset_ray_origin).
+  float position_scale = 0;
   Vec3 geometric_normal;       ///< unit; the front side of the triangle (counter-clockwise winding) or sphere's outside
   Vec3 shading_normal;         ///< unit; interpolated vertex normal, on the same side as geometric_normal
   Vec2 uv;

@@ -93,7 +93,7 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
     const MediumBoundary b = boundary(hit->material);
     if (hit->material < 0 || !b.index_matched) return std::nullopt;
     stack.cross(b.interior_medium, dot(direction, hit->geometric_normal) < 0.0f);
-    origin = offset_ray_origin(hit->position, hit->geometric_normal, direction, scene_.surfaces.scene_scale);
+    origin = offset_ray_origin(*hit, direction, scene_.surfaces.scene_scale);
     remaining -= hit->t;
     if (!(remaining > 0.0f)) return out;
   }
@@ -207,7 +207,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         // No BSDF: the ray continues unchanged into (or out of) the enclosed medium; no vertex, no MIS change.
         if (++crossings > kMaxCrossings * 64) break;
         stack.cross(b.interior_medium, dot(ray.direction, hit->geometric_normal) < 0.0f);
-        ray.origin = offset_ray_origin(hit->position, hit->geometric_normal, ray.direction, surfaces.scene_scale);
+        ray.origin = offset_ray_origin(*hit, ray.direction, surfaces.scene_scale);
         ray.t_min = 0.0f;
         ray.t_max = INFINITY;
         continue;
@@ -249,7 +249,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     };
     auto origin_towards = [&](Vec3 wi_world) {
       return scatter_point ? shadow_origin
-                           : offset_ray_origin(hit->position, hit->geometric_normal, wi_world, surfaces.scene_scale);
+                           : offset_ray_origin(*hit, wi_world, surfaces.scene_scale);
     };
 
     // Next-event estimation with transmittance.

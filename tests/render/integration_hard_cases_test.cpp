@@ -90,3 +90,13 @@ TEST_CASE("hard cases: a plane seen exactly edge-on and rays that miss everythin
   CHECK(rendered.film->sample_counts().discarded() == 0);
   for (double y : luminance_values(*rendered.film)) CHECK(std::isfinite(y));
 }
+
+TEST_CASE("hard cases: a narrow camera far from a large plane sees no self-shadowing near the world origin") {
+  // Hit points computed as o + t·d carry a rounding error of order |o|·2⁻²⁴ along the normal, however close to the
+  // origin they lie; a ray offset that scales with |p| alone is smaller than that, and shadow rays then hit their own
+  // plane (found by pbrt-v4's far_camera_plane scene: 10 % dark at a 0.5° field of view). A 100 m plane seen from
+  // 10 m through 0.5°, and a 1 km plane seen from 1 km through 0.005°: every hit point lies within 0.05 m of the
+  // origin.
+  check_closure(closure_scene(1.0, {0, 10, -1e-3}, {0, 0, 0}, 0.5, 50.0), 16);
+  check_closure(closure_scene(1.0, {0, 1000, -1e-1}, {0, 0, 0}, 0.005, 500.0), 16);
+}
