@@ -71,5 +71,7 @@ TEST_CASE("pbrt partial spheres are listed; degenerate triangles are removed and
       "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  1 1 0  2 2 0] \"integer indices\" [0 1 2  0 1 1  0 2 3]");
   const auto scene = load_scene(imported.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
   CHECK(scene->degenerate_triangles_removed == 2);
+  REQUIRE(scene->warnings.size() == 1);  // printed by rimu before rendering
+  CHECK(scene->warnings[0].find("2 degenerate triangles") == 0);
   CHECK(hit_distance_down(*scene, 0.8f, 0.2f));
 }

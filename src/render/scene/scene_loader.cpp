@@ -165,6 +165,11 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
         emission_wavelength_density(scene->lights, PowerLightSampler(light_pointers, scene_radius_m),
                                     library.observer(StandardObserver::cie1931_2deg)));
   scene->warnings = light_coverage_warnings(*scene);
+  // Zero-area triangles cannot be hit or shaded; removing them is right, but a count the user never sees would
+  // hide a broken export.
+  if (scene->degenerate_triangles_removed > 0)
+    scene->warnings.push_back(std::to_string(scene->degenerate_triangles_removed) +
+                              " degenerate triangles (zero area or not finite) were removed from the meshes");
   return scene;
 }
 
