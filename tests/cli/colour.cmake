@@ -70,5 +70,32 @@ rimu_cli_test("rimu-colour reflectance under D75 uses E308" 0 "^tristimulus meth
 rimu_cli_test("rimu-colour reflectance under F11 uses E308" 0 "^tristimulus method astm-e308$"
               $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant F11)
 rimu_cli_test("rimu-colour E308 weights are named when missing" 1
-              "no ASTM E308 weights for illuminant 'F3'.*A, D50, D55, D65, D75, E, F2, F7, F11"
+              "no ASTM E308 weights for illuminant 'F3'.*A, C, D50, D55, D65, D75, E, F2, F7, F11"
               $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant F3)
+
+# ASTM E308 Table 6 (data corrected for bandpass, the default) or Table 5 (--bandpass-corrected no): every report
+# names the table; the switch is refused where no E308 weights are used.
+rimu_cli_test("rimu-colour reflectance names E308 Table 6 by default" 0
+              "^e308 weights +ASTM E308 Table 6 \\(weights for spectral data corrected for bandpass\\)$"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin")
+rimu_cli_test("rimu-colour reflectance --bandpass-corrected no uses Table 5" 0
+              "^e308 weights +ASTM E308 Table 5 \\(weights for spectral data not corrected for bandpass\\)$"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --bandpass-corrected no)
+rimu_cli_test("rimu-colour reflectance JSON names the E308 table" 0 "\"e308_table\": 5"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --bandpass-corrected no --json)
+rimu_cli_test("rimu-colour report of 10 nm light names the E308 table" 0 "\"e308_table\": 6"
+              $<TARGET_FILE:rimu-colour> report --csv ${colour_csv_dir}/flat_10nm.csv --json)
+rimu_cli_test("rimu-colour --bandpass-corrected takes yes or no" 1 "--bandpass-corrected: expected yes or no, got 'maybe'"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --bandpass-corrected maybe)
+rimu_cli_test("rimu-colour --bandpass-corrected is refused without E308" 1
+              "--bandpass-corrected: .*summed by the 'native' method"
+              $<TARGET_FILE:rimu-colour> report F2 --bandpass-corrected no)
+rimu_cli_test("rimu-colour report unknown illuminant" 1 "unknown illuminant 'D66'" $<TARGET_FILE:rimu-colour> report D66)
+
+# Illuminant C (CIE 15:2004 Table T.1, 5 nm): CIE 15:2004 Table T.3 xy (0.31006, 0.31616) to 4 decimals (0.3101,
+# 0.3162): the native sum includes C's 360-375 nm values, which T.3's 380-780 nm sum leaves out (y 0.31617; the
+# 5 decimals over 380-780 nm are checked in tests/spectral/e308_tables_test.cpp).
+rimu_cli_test("rimu-colour C matches CIE 15 Table T.3" 0
+              "xy  \\(2°\\) +0\\.310(0[5-9]|1[0-4]) 0\\.316(1[5-9]|2[0-4])" $<TARGET_FILE:rimu-colour> report C)
+rimu_cli_test("rimu-colour reflectance under C uses E308" 0 "^tristimulus method astm-e308$"
+              $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant C)
