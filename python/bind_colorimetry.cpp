@@ -25,6 +25,10 @@ TristimulusMethod method_of(const std::string& name, const TabulatedSpectrum& s)
   throw InputError({}, "method: expected auto, native, 1nm or astm-e308, got '" + name + "'");
 }
 
+E308Table e308_table_of(bool bandpass_corrected) {
+  return bandpass_corrected ? E308Table::table6_bandpass_corrected : E308Table::table5_uncorrected;
+}
+
 }  // namespace
 
 void bind_colorimetry(py::module_& m) {
@@ -60,23 +64,29 @@ void bind_colorimetry(py::module_& m) {
       .def(
           "reflectance_xyz",
           [](SpectralLibrary& l, const Array& wl, const Array& v, const std::string& illuminant, int observer,
-             const std::string& method) {
+             const std::string& method, bool bandpass_corrected) {
             const TabulatedSpectrum s = spectrum_from_arrays(wl, v, Extrapolation::clamp, "reflectance");
-            const Xyz xyz = reflectance_xyz(s, illuminant, observer_of(observer), method_of(method, s), l);
+            const Xyz xyz = reflectance_xyz(s, illuminant, observer_of(observer), method_of(method, s), l,
+                                            e308_table_of(bandpass_corrected));
             return vec3(xyz.x, xyz.y, xyz.z);
           },
           py::arg("wavelengths_nm"), py::arg("values"), py::arg("illuminant") = "D50", py::arg("observer") = 2,
-          py::arg("method") = "auto", "XYZ of a reflectance factor under a CIE illuminant (perfect diffuser Y = 100).")
+          py::arg("method") = "auto", py::arg("bandpass_corrected") = true,
+          "XYZ of a reflectance factor under a CIE illuminant (perfect diffuser Y = 100). For astm-e308, "
+          "bandpass_corrected picks E308 Table 6 (True: data corrected for the instrument's bandpass) or Table 5 "
+          "(False: uncorrected data, triangular bandpass = interval).")
       .def(
           "white_xyz",
-          [](SpectralLibrary& l, const Array& wl, const std::string& illuminant, int observer, const std::string& method) {
+          [](SpectralLibrary& l, const Array& wl, const std::string& illuminant, int observer, const std::string& method,
+             bool bandpass_corrected) {
             const TabulatedSpectrum s(std::vector<double>(wl.data(), wl.data() + wl.size()),
                                       std::vector<double>(size_t(wl.size()), 1.0), Extrapolation::clamp, "sampling");
-            const Xyz xyz = perfect_diffuser_xyz(s, illuminant, observer_of(observer), method_of(method, s), l);
+            const Xyz xyz = perfect_diffuser_xyz(s, illuminant, observer_of(observer), method_of(method, s), l,
+                                                 e308_table_of(bandpass_corrected));
             return vec3(xyz.x, xyz.y, xyz.z);
           },
           py::arg("wavelengths_nm"), py::arg("illuminant") = "D50", py::arg("observer") = 2,
-          py::arg("method") = "auto",
+          py::arg("method") = "auto", py::arg("bandpass_corrected") = true,
           "The perfect diffuser's XYZ sampled and summed like reflectance_xyz would (CIELAB's white).")
       .def(
           "cct_duv",

@@ -41,6 +41,17 @@ class Colorimetry(unittest.TestCase):
         published = rimu.lab(np.array([x / y * big_y, big_y, (1 - x - y) / y * big_y]), np.array([96.42, 100, 82.49]))
         self.assertLess(rimu.delta_e_2000(rimu.lab(xyz, white), published), 0.2)
 
+    def test_e308_table5_keeps_the_white_and_moves_a_colour(self):
+        # ASTM E308 Table 5 (bandpass_corrected=False) is Table 6 with the Stearns correction folded in: each column
+        # of the correction sums to 1, so the perfect diffuser keeps its white (9-decimal files: 1e-6), while a
+        # coloured patch moves (by more than the 1e-3 the tables' rounding could explain).
+        wl, r = self.lib.colorchecker("red")
+        white5 = self.lib.white_xyz(wl, "D65", bandpass_corrected=False)
+        white6 = self.lib.white_xyz(wl, "D65")
+        self.assertLess(np.max(np.abs(white5 - white6)), 1e-6)
+        moved = self.lib.reflectance_xyz(wl, r, "D65", bandpass_corrected=False) - self.lib.reflectance_xyz(wl, r, "D65")
+        self.assertGreater(np.max(np.abs(moved)), 1e-3)
+
     def test_unknown_illuminant_is_a_value_error(self):
         with self.assertRaisesRegex(ValueError, "unknown illuminant 'D66'"):
             self.lib.illuminant("D66")

@@ -112,6 +112,56 @@ E308WeightTable compute_e308_weights(const Spectrum& illuminant, const Observer&
   return table;
 }
 
+int e308_table_number(E308Table table) { return table == E308Table::table5_uncorrected ? 5 : 6; }
+
+std::string e308_table_description(E308Table table) {
+  return table == E308Table::table5_uncorrected
+             ? "ASTM E308 Table 5 (weights for spectral data not corrected for bandpass)"
+             : "ASTM E308 Table 6 (weights for spectral data corrected for bandpass)";
+}
+
+namespace {
+
+/// T·v for the Stearns correction matrix T (symmetric, tridiagonal): the same formula serves for data (R' = T R)
+/// and weights (W5 = Tᵀ W6 = T W6).
+template <typename T>
+std::vector<T> stearns_apply(const std::vector<T>& v) {
+  const size_t n = v.size();
+  const double a = kStearnsAlpha;
+  std::vector<T> out(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (i == 0) out[i] = (1 + a) * v[0] - a * v[1];
+    else if (i == n - 1) out[i] = (1 + a) * v[n - 1] - a * v[n - 2];
+    else out[i] = (1 + 2 * a) * v[i] - a * (v[i - 1] + v[i + 1]);
+  }
+  return out;
+}
+
+}  // namespace
+
+E308WeightTable e308_table5_from_table6(const E308WeightTable& table6) {
+  assert(table6.weights.size() >= 2);
+  std::vector<double> x, y, z;
+  for (const Xyz& w : table6.weights) {
+    x.push_back(w.x);
+    y.push_back(w.y);
+    z.push_back(w.z);
+  }
+  x = stearns_apply(x);
+  y = stearns_apply(y);
+  z = stearns_apply(z);
+  E308WeightTable table5 = table6;
+  for (size_t j = 0; j < table5.weights.size(); ++j) table5.weights[j] = {x[j], y[j], z[j]};
+  return table5;
+}
+
+TabulatedSpectrum stearns_bandpass_correction(const TabulatedSpectrum& data) {
+  if (data.values().size() < 2)
+    throw InputError({}, "'" + data.describe() + "': the bandpass correction needs at least 2 samples");
+  return TabulatedSpectrum(data.wavelengths_nm(), stearns_apply(data.values()), data.extrapolation(),
+                           data.describe() + ", bandpass-corrected (Stearns & Stearns)");
+}
+
 E308WeightTable fold_e308_weights(const E308WeightTable& table, double first_nm, double last_nm) {
   E308WeightTable folded = table;
   folded.first_nm = first_nm;

@@ -5,8 +5,9 @@
 // the range, quadratic through three in the first and last interval), so the 1 nm sum
 //   X = k Σ_λ R(λ) S(λ) x̄(λ),   R(λ) = Σ_j L_j(λ) R_j
 // becomes X = Σ_j R_j W_x,j with W_x,j = k Σ_λ L_j(λ) S(λ) x̄(λ) over the 1 nm CIE tables. These are the weights of
-// E308's Table 6 ("for use with spectral data corrected for bandpass"); Table 5, which also folds in a triangular
-// instrument bandpass, is not computed here.
+// E308's Table 6 ("for use with spectral data corrected for bandpass"). E308's Table 5 is for data that were NOT
+// corrected: an instrument whose triangular bandpass equals the interval reports R_i ≈ R(λ_i) + (Δ²/12) R''(λ_i),
+// and Table 5 folds the correction of that into the weights (e308_table5_from_table6()).
 #pragma once
 
 #include <string>
@@ -29,6 +30,21 @@ class TabulatedSpectrum;
 /// than silently extended.
 inline constexpr double kE308LatestStart_nm = 380.0;
 inline constexpr double kE308EarliestEnd_nm = 730.0;
+
+/// Which of E308's two weight tables: Table 6 for spectral data corrected for the instrument's bandpass (or
+/// measured with a bandpass much narrower than the interval), Table 5 for uncorrected data from an instrument
+/// whose (triangular) bandpass equals the measurement interval, the common 10 nm spectrophotometer.
+enum class E308Table { table6_bandpass_corrected, table5_uncorrected };
+
+/// 6 or 5.
+int e308_table_number(E308Table table);
+/// e.g. "ASTM E308 Table 6 (weights for spectral data corrected for bandpass)": what every report prints.
+std::string e308_table_description(E308Table table);
+
+/// The Stearns & Stearns (1988) bandpass correction coefficient E308 uses: R'_i = (1 + 2α) R_i − α (R_i−1 + R_i+1),
+/// R'_1 = (1 + α) R_1 − α R_2 at the ends. α = 0.083 ≈ 1/12, the second-moment ratio of a triangle as wide as
+/// the interval (a triangle of half-width Δ blurs a parabola by Δ²/12 · R'').
+inline constexpr double kStearnsAlpha = 0.083;
 
 /// Weighting factors W_x, W_y, W_z at first_nm + j·interval_nm, normalised so that Σ W_y = 100 (the perfect
 /// reflecting diffuser has Y = 100).
@@ -68,6 +84,15 @@ E308WeightTable fold_e308_weights(const E308WeightTable& table, double first_nm,
 /// Σ_j R_j W_j for data on the table's grid. Throws InputError (naming the data) if the spacing differs from the
 /// table's, the data start after 380 nm or end before 730 nm (the tails E308 needs), or do not sit on the grid.
 Xyz apply_e308_weights(const TabulatedSpectrum& data, const E308WeightTable& table);
+
+/// Table 5 from Table 6 on the same grid: X = Σ W6_i R'_i with R' the Stearns-corrected data is Σ W5_i R_i with
+/// W5 = Tᵀ W6, T the correction matrix above. T is symmetric, so W5_i = (1 + 2α) W6_i − α (W6_i−1 + W6_i+1) and
+/// (1 + α) W6_1 − α W6_2 at the ends; every column of T sums to 1, so the white point (Σ W) is unchanged.
+E308WeightTable e308_table5_from_table6(const E308WeightTable& table6);
+
+/// The Stearns & Stearns correction of evenly spaced data (the formula above), for data measured with a
+/// triangular bandpass as wide as their interval. Throws InputError for fewer than 2 samples.
+TabulatedSpectrum stearns_bandpass_correction(const TabulatedSpectrum& data);
 
 /// The table as CSV (wavelength_nm,Wx,Wy,Wz), preceded by '#' lines of `comment` (the generating command).
 std::string e308_weights_csv(const E308WeightTable& table, const std::string& comment);

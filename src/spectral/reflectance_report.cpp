@@ -31,6 +31,10 @@ nlohmann::ordered_json colour_json(const ReflectanceColour& c) {
   nlohmann::ordered_json j;
   j["description"] = c.description;
   j["tristimulus_method"] = c.method;
+  if (c.e308_table) {
+    j["e308_table"] = e308_table_number(*c.e308_table);
+    j["e308_weights"] = e308_table_description(*c.e308_table);
+  }
   j["xyz"] = {c.xyz.x, c.xyz.y, c.xyz.z};
   j["xyY"] = {c.xy.x, c.xy.y, c.xyz.y};
   j["white_xyz"] = {c.white.x, c.white.y, c.white.z};
@@ -90,9 +94,11 @@ ReflectanceColour measure_reflectance(const TabulatedSpectrum& sample, const Ref
   ReflectanceColour c;
   c.description = sample.describe();
   c.method = std::string(method_name(method));
-  c.xyz = reflectance_xyz(sample, conditions.illuminant, conditions.observer, method, library);
+  if (method == TristimulusMethod::astm_e308) c.e308_table = conditions.e308_table;
+  c.xyz = reflectance_xyz(sample, conditions.illuminant, conditions.observer, method, library, conditions.e308_table);
   c.xy = chromaticity_of(c.xyz);
-  c.white = perfect_diffuser_xyz(sample, conditions.illuminant, conditions.observer, method, library);
+  c.white = perfect_diffuser_xyz(sample, conditions.illuminant, conditions.observer, method, library,
+                                 conditions.e308_table);
   c.lab = lab_of(c.xyz, c.white);
   // sRGB is defined for a D65 white: adapt the illuminant's white there (Bradford, as ICC practice does).
   const RgbColourSpace& srgb = RgbColourSpace::named("srgb-linear");
@@ -126,6 +132,7 @@ std::string reflectance_report_text(const ReflectanceReport& r) {
   out << "illuminant         " << r.illuminant << " (white: its perfect reflecting diffuser, Y = 100)\n";
   out << "observer           " << r.observer << "\n";
   out << "tristimulus method " << r.sample.method << "\n";
+  if (r.sample.e308_table) out << "e308 weights       " << e308_table_description(*r.sample.e308_table) << "\n";
   colour_text(out, "sample             ", r.sample);
   if (r.reference) {
     colour_text(out, "reference          ", *r.reference);

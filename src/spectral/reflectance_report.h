@@ -31,12 +31,15 @@ struct ReflectanceConditions {
   std::string illuminant = "D50";
   StandardObserver observer = StandardObserver::cie1931_2deg;
   std::optional<TristimulusMethod> method;  ///< empty: default_tristimulus_method() of the sample
+  /// For astm-e308: Table 6 if the data were corrected for the instrument's bandpass (the default), Table 5 if not.
+  E308Table e308_table = E308Table::table6_bandpass_corrected;
 };
 
 /// One sample's colour under the conditions; XYZ and the white with the perfect diffuser at Y = 100.
 struct ReflectanceColour {
   std::string description;
   std::string method;  ///< the tristimulus method used
+  std::optional<E308Table> e308_table;  ///< the E308 table used, when the method is astm-e308
   Xyz xyz;
   Chromaticity xy;
   Xyz white;           ///< the illuminant's perfect reflecting diffuser, by the same method (CIELAB's white)

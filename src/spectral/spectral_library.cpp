@@ -31,6 +31,7 @@ const std::vector<IlluminantSource>& illuminant_sources() {
         {"spectra/illuminants/cie_hp1_hp5_5nm.csv", {"HP1", "HP2", "HP3", "HP4", "HP5"}},
         {"spectra/illuminants/cie_led_5nm.csv",
          {"LED-B1", "LED-B2", "LED-B3", "LED-B4", "LED-B5", "LED-BH1", "LED-RGB1", "LED-V1", "LED-V2"}},
+        {"spectra/illuminants/cie_c_5nm.csv", {"C"}},
     };
     for (int i = 1; i <= 12; ++i) s[4].columns.push_back("F" + std::to_string(i));
     for (int i = 1; i <= 15; ++i) s[5].columns.push_back("FL3." + std::to_string(i));
@@ -174,10 +175,26 @@ SpectrumPtr SpectralLibrary::colorchecker_patch(std::string_view name) {
 }
 
 std::vector<std::string> SpectralLibrary::e308_illuminant_names() {
-  return {"A", "D50", "D55", "D65", "D75", "E", "F2", "F7", "F11"};
+  return {"A", "C", "D50", "D55", "D65", "D75", "E", "F2", "F7", "F11"};
 }
 
 SpectrumPtr SpectralLibrary::e308_illuminant(std::string_view name) {
+  if (name == "D50") {
+    // The CIE 5 nm D50 table taken to 1 nm, not the CIE 1 nm table: only the former gives E308's white points
+    // (2°: 96.422, 82.5218 vs published 96.422, 82.521; the 1 nm table gives 96.4241, 82.5128).
+    const CsvTable& t = table("spectra/illuminants/cie_d50_5nm.csv");
+    return std::make_shared<TabulatedSpectrum>(
+        e308_interpolate_to_1nm(TabulatedSpectrum::from_csv(t, "D50", Extrapolation::zero)));
+  }
+  if (name == "C") {
+    // CIE 15 tabulates C only to 780 nm; E308's range runs to 830 nm: hold the 780 nm value (CIE 15:2004
+    // §7.2.2.1's rule for missing end data; it moves X by 2e-4, well inside the published rounding).
+    const auto five_nm = std::dynamic_pointer_cast<const TabulatedSpectrum>(illuminant(name));
+    assert(five_nm);
+    const TabulatedSpectrum one_nm = e308_interpolate_to_1nm(*five_nm);
+    return std::make_shared<TabulatedSpectrum>(one_nm.wavelengths_nm(), one_nm.values(), Extrapolation::clamp,
+                                               one_nm.describe());
+  }
   if (name != "D55" && name != "D75" && name != "F2" && name != "F7" && name != "F11") return illuminant(name);
   // illuminant() holds these on their 5 nm grid (CIE 15's tables, or the daylight basis'); E308 takes them to
   // 1 nm by Lagrange interpolation.
@@ -187,7 +204,7 @@ SpectrumPtr SpectralLibrary::e308_illuminant(std::string_view name) {
 }
 
 const E308WeightTable& SpectralLibrary::e308_weights(std::string_view illuminant, StandardObserver observer,
-                                                     double interval_nm) {
+                                                     double interval_nm, E308Table e308_table) {
   const bool ten = observer == StandardObserver::cie1964_10deg;
   const int interval = int(std::lround(interval_nm));
   bool known = false;
@@ -204,7 +221,8 @@ const E308WeightTable& SpectralLibrary::e308_weights(std::string_view illuminant
   std::string lower(illuminant);
   for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   const std::string file = "e308/astm_e308_" + lower + "_" + (ten ? "10" : "2") + "deg_" +
-                           std::to_string(interval) + "nm.csv";
+                           std::to_string(interval) + "nm" +
+                           (e308_table == E308Table::table5_uncorrected ? "_table5" : "") + ".csv";
   std::lock_guard lock(mutex_);
   auto& slot = e308_tables_[file];
   if (!slot) {

@@ -37,13 +37,13 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
 }  // namespace
 
 SpectrumReport analyse_spectrum(const SpectrumSource& source, SpectralLibrary& library,
-                                std::optional<TristimulusMethod> method) {
+                                std::optional<TristimulusMethod> method, E308Table e308_table) {
   const SpectrumPtr spectrum = make_emission_spectrum(source, library);
-  return analyse_spectrum(*spectrum, source.describe(), library, method);
+  return analyse_spectrum(*spectrum, source.describe(), library, method, e308_table);
 }
 
 SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& description, SpectralLibrary& library,
-                                std::optional<TristimulusMethod> method) {
+                                std::optional<TristimulusMethod> method, E308Table e308_table) {
   SpectrumReport r;
   r.description = description;
   const Observer& two = library.observer(StandardObserver::cie1931_2deg);
@@ -55,9 +55,10 @@ SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& des
   const TristimulusMethod used =
       table ? method.value_or(default_tristimulus_method(*table)) : TristimulusMethod::interpolate_1nm;
   r.tristimulus_method = std::string(method_name(used));
+  if (used == TristimulusMethod::astm_e308) r.e308_table = e308_table;
   if (table) {
-    r.xyz_2deg = light_xyz(*table, StandardObserver::cie1931_2deg, used, library);
-    r.xyz_10deg = light_xyz(*table, StandardObserver::cie1964_10deg, used, library);
+    r.xyz_2deg = light_xyz(*table, StandardObserver::cie1931_2deg, used, library, e308_table);
+    r.xyz_10deg = light_xyz(*table, StandardObserver::cie1964_10deg, used, library, e308_table);
   } else {
     r.xyz_2deg = illuminant_xyz(spectrum, two);
     r.xyz_10deg = illuminant_xyz(spectrum, ten);
@@ -90,6 +91,7 @@ std::string report_text(const SpectrumReport& r) {
   std::ostringstream out;
   out << "spectrum           " << r.description << "\n";
   out << "tristimulus method " << r.tristimulus_method << "\n";
+  if (r.e308_table) out << "e308 weights       " << e308_table_description(*r.e308_table) << "\n";
   out << format("XYZ (2°, Y=100)    %.4f %.4f %.4f\n", r.xyz_2deg.x, r.xyz_2deg.y, r.xyz_2deg.z);
   out << format("xy  (2°)           %.5f %.5f\n", r.xy_2deg.x, r.xy_2deg.y);
   out << format("u'v' (2°)          %.5f %.5f\n", r.uv_prime_2deg.u, r.uv_prime_2deg.v);
@@ -118,6 +120,10 @@ std::string report_json(const SpectrumReport& r) {
   nlohmann::ordered_json j;
   j["spectrum"] = r.description;
   j["tristimulus_method"] = r.tristimulus_method;
+  if (r.e308_table) {
+    j["e308_table"] = e308_table_number(*r.e308_table);
+    j["e308_weights"] = e308_table_description(*r.e308_table);
+  }
   j["xyz_2deg"] = {r.xyz_2deg.x, r.xyz_2deg.y, r.xyz_2deg.z};
   j["xy_2deg"] = {r.xy_2deg.x, r.xy_2deg.y};
   j["uv_prime_2deg"] = {r.uv_prime_2deg.u, r.uv_prime_2deg.v};

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "spectral/astm_e308.h"
 #include "spectral/chromaticity.h"
 #include "spectral/colour_rendering_index.h"
 #include "spectral/planckian_locus.h"
@@ -20,6 +21,7 @@ struct SpectrumReport {
   /// How XYZ was summed: "native" (the table's own 1 or 5 nm wavelengths, CIE 15:2004 §7.1), "astm-e308"
   /// (10/20 nm data) or "1nm" (interpolated to 1 nm; also every continuous spectrum: blackbody, daylight).
   std::string tristimulus_method;
+  std::optional<E308Table> e308_table;  ///< the E308 table used, when tristimulus_method is astm-e308
   Xyz xyz_2deg;        ///< relative, Y = 100 (CIE 1931 2°), by tristimulus_method
   Chromaticity xy_2deg;
   Uv1976 uv_prime_2deg;
@@ -37,13 +39,16 @@ struct SpectrumReport {
 };
 
 /// Builds the spectrum described by `source` and analyses it. `method` overrides the tristimulus method chosen
-/// from the data's spacing (default_tristimulus_method()). Throws InputError for bad input.
+/// from the data's spacing (default_tristimulus_method()); `e308_table` picks E308's Table 6 (data corrected for
+/// bandpass) or Table 5 (uncorrected) when that method is astm-e308. Throws InputError for bad input.
 SpectrumReport analyse_spectrum(const SpectrumSource& source, SpectralLibrary& library,
-                                std::optional<TristimulusMethod> method = std::nullopt);
+                                std::optional<TristimulusMethod> method = std::nullopt,
+                                E308Table e308_table = E308Table::table6_bandpass_corrected);
 /// Analyses an existing spectrum. Continuous spectra (not tables) are always summed at 1 nm; asking for another
 /// method for them is an InputError.
 SpectrumReport analyse_spectrum(const Spectrum& spectrum, const std::string& description, SpectralLibrary& library,
-                                std::optional<TristimulusMethod> method = std::nullopt);
+                                std::optional<TristimulusMethod> method = std::nullopt,
+                                E308Table e308_table = E308Table::table6_bandpass_corrected);
 
 /// A human-readable report (several lines, ending with a newline).
 std::string report_text(const SpectrumReport& report);

@@ -46,7 +46,7 @@ TabulatedSpectrum unit_like(const TabulatedSpectrum& data) {
 }  // namespace
 
 Xyz light_xyz(const TabulatedSpectrum& light, StandardObserver observer, TristimulusMethod method,
-              SpectralLibrary& library) {
+              SpectralLibrary& library, E308Table e308_table) {
   const Observer& o = library.observer(observer);
   switch (method) {
     case TristimulusMethod::native:
@@ -56,7 +56,7 @@ Xyz light_xyz(const TabulatedSpectrum& light, StandardObserver observer, Tristim
       return illuminant_xyz(light, o, IntegrationGrid::cie_1nm());
     case TristimulusMethod::astm_e308: {
       const auto step = uniform_interval_nm(light);
-      const E308WeightTable& weights = library.e308_weights("E", observer, step ? *step : 0.0);
+      const E308WeightTable& weights = library.e308_weights("E", observer, step ? *step : 0.0, e308_table);
       return scaled_to_y100(apply_e308_weights(light, weights));
     }
   }
@@ -64,7 +64,7 @@ Xyz light_xyz(const TabulatedSpectrum& light, StandardObserver observer, Tristim
 }
 
 Xyz reflectance_xyz(const TabulatedSpectrum& reflectance, std::string_view illuminant, StandardObserver observer,
-                    TristimulusMethod method, SpectralLibrary& library) {
+                    TristimulusMethod method, SpectralLibrary& library, E308Table e308_table) {
   const Observer& o = library.observer(observer);
   switch (method) {
     case TristimulusMethod::native: {
@@ -80,15 +80,16 @@ Xyz reflectance_xyz(const TabulatedSpectrum& reflectance, std::string_view illum
       return reflectance_xyz(reflectance, *library.illuminant(illuminant), o, IntegrationGrid::cie_1nm());
     case TristimulusMethod::astm_e308: {
       const auto step = uniform_interval_nm(reflectance);
-      return apply_e308_weights(reflectance, library.e308_weights(illuminant, observer, step ? *step : 0.0));
+      return apply_e308_weights(reflectance, library.e308_weights(illuminant, observer, step ? *step : 0.0, e308_table));
     }
   }
   return {};
 }
 
 Xyz perfect_diffuser_xyz(const TabulatedSpectrum& reflectance, std::string_view illuminant,
-                         StandardObserver observer, TristimulusMethod method, SpectralLibrary& library) {
-  return reflectance_xyz(unit_like(reflectance), illuminant, observer, method, library);
+                         StandardObserver observer, TristimulusMethod method, SpectralLibrary& library,
+                         E308Table e308_table) {
+  return reflectance_xyz(unit_like(reflectance), illuminant, observer, method, library, e308_table);
 }
 
 }  // namespace rimu

@@ -29,12 +29,12 @@ struct ReportOptions {
   std::string illuminant;
   double blackbody_k = 0, daylight_k = 0;
   std::string csv, column;
-  std::string method;
+  std::string method, bandpass_corrected;
   bool json = false;
 };
 
 struct ReflectanceOptions {
-  std::string csv, column, patch, illuminant = "D50", method, reference, reference_column;
+  std::string csv, column, patch, illuminant = "D50", method, reference, reference_column, bandpass_corrected;
   int observer = 2;
   bool json = false;
 };
@@ -44,6 +44,21 @@ std::optional<rimu::TristimulusMethod> method_option(const std::string& text) {
   if (text.empty()) return std::nullopt;
   if (auto m = rimu::parse_tristimulus_method(text)) return m;
   throw rimu::InputError({"", 0, "--method"}, "unknown tristimulus method '" + text + "'; use native, 1nm or astm-e308");
+}
+
+/// --bandpass-corrected yes|no: which ASTM E308 table (Table 6 for corrected data, Table 5 for uncorrected data).
+rimu::E308Table e308_table_option(const std::string& text) {
+  if (text.empty() || text == "yes") return rimu::E308Table::table6_bandpass_corrected;
+  if (text == "no") return rimu::E308Table::table5_uncorrected;
+  throw rimu::InputError({"", 0, "--bandpass-corrected"}, "expected yes or no, got '" + text + "'");
+}
+
+/// --bandpass-corrected only means something for the E308 weights: refuse it when another method was used.
+void check_bandpass_option(const std::string& text, bool used_e308, const std::string& method) {
+  if (!text.empty() && !used_e308)
+    throw rimu::InputError({"", 0, "--bandpass-corrected"},
+                           "chooses between ASTM E308 Table 6 (yes) and Table 5 (no), but these data are summed by "
+                           "the '" + method + "' method; it applies to --method astm-e308 (10 and 20 nm data)");
 }
 
 rimu::SpectrumSource source_from(const ReportOptions& o, int given) {
@@ -97,6 +112,10 @@ void declare(CLI::App& app, Options& o) {
   o.csv_opt = o.report_cmd->add_option("--csv", report.csv, "a CSV file: wavelength_nm, then spectral power columns");
   o.report_cmd->add_option("--column", report.column, "which power column of --csv (default: the second column)");
   o.report_cmd->add_flag("--json", report.json, "print JSON instead of text");
+  o.report_cmd->add_option("--bandpass-corrected", report.bandpass_corrected,
+                           "yes (default): the data were corrected for the instrument's bandpass, or measured with a "
+                           "narrow one: ASTM E308 Table 6. no: uncorrected data from an instrument whose triangular "
+                           "bandpass equals the interval: Table 5. Only with --method astm-e308 (10/20 nm data)");
   o.report_cmd->add_option("--method", report.method,
                            "tristimulus summation: native (the data's own 1/5 nm wavelengths), 1nm (interpolate to "
                            "1 nm) or astm-e308 (10/20 nm data); default from the data's spacing");
@@ -112,6 +131,10 @@ void declare(CLI::App& app, Options& o) {
   o.refl_cmd->add_option("--illuminant", refl.illuminant, "CIE illuminant the sample is seen under (default D50)");
   o.refl_cmd->add_option("--observer", refl.observer, "2 (CIE 1931, default) or 10 (CIE 1964)");
   o.refl_cmd->add_option("--method", refl.method, "native, 1nm or astm-e308 (default from the data's spacing)");
+  o.refl_cmd->add_option("--bandpass-corrected", refl.bandpass_corrected,
+                         "yes (default): the data were corrected for the instrument's bandpass, or measured with a "
+                           "narrow one: ASTM E308 Table 6. no: uncorrected data from an instrument whose triangular "
+                           "bandpass equals the interval: Table 5. Only with --method astm-e308 (10/20 nm data)");
   o.refl_cmd->add_option("--reference", refl.reference, "a second reflectance CSV to compare against (ΔE)");
   o.refl_cmd->add_option("--reference-column", refl.reference_column, "which column of --reference");
   o.refl_cmd->add_flag("--json", refl.json, "print JSON instead of text");
@@ -148,7 +171,9 @@ void run(const Options& o) {
   if (*o.report_cmd) {
     const int given = int(o.name_opt->count() + o.bb_opt->count() + o.dl_opt->count() + o.csv_opt->count());
     const rimu::SpectrumSource source = source_from(o.report, given);
-    const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(o.report.method));
+    const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(o.report.method),
+                                                          e308_table_option(o.report.bandpass_corrected));
+    check_bandpass_option(o.report.bandpass_corrected, r.e308_table.has_value(), r.tristimulus_method);
     std::cout << (o.report.json ? rimu::report_json(r) : rimu::report_text(r));
   } else if (*o.fidelity_cmd) {
     // A graphic that cannot be drawn is refused before anything is computed or printed.
@@ -170,12 +195,14 @@ void run(const Options& o) {
     conditions.observer =
         refl.observer == 10 ? rimu::StandardObserver::cie1964_10deg : rimu::StandardObserver::cie1931_2deg;
     conditions.method = method_option(refl.method);
+    conditions.e308_table = e308_table_option(refl.bandpass_corrected);
     const rimu::TabulatedSpectrum sample = refl.csv.empty() ? rimu::colorchecker_patch(library, refl.patch)
                                                             : rimu::load_reflectance_csv(refl.csv, refl.column);
     std::optional<rimu::TabulatedSpectrum> reference;
     if (!refl.reference.empty()) reference = rimu::load_reflectance_csv(refl.reference, refl.reference_column);
     const rimu::ReflectanceReport r =
         rimu::analyse_reflectance(sample, reference ? &*reference : nullptr, conditions, library);
+    check_bandpass_option(refl.bandpass_corrected, r.sample.e308_table.has_value(), r.sample.method);
     std::cout << (refl.json ? rimu::reflectance_report_json(r) : rimu::reflectance_report_text(r));
   } else if (*o.gamut_cmd) {
     const rimu::RgbUpsampler upsampler(library, rimu::RgbColourSpace::named(o.gamut_space));

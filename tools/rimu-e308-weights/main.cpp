@@ -5,7 +5,8 @@
 // For each illuminant of SpectralLibrary::e308_illuminant_names() (its 1 nm spectrum from
 // SpectralLibrary::e308_illuminant()), both standard observers and 10 and 20 nm, runs compute_e308_weights()
 // (src/spectral/astm_e308.h) over 360-830 nm and writes astm_e308_<illuminant>_<2|10>deg_<10|20>nm.csv with the
-// command in its first lines.
+// command in its first lines, and beside it the Table 5 counterpart (…_table5.csv: the same weights with the
+// Stearns & Stearns bandpass correction folded in, e308_table5_from_table6()).
 #include <cctype>
 #include <cstdio>
 #include <cstring>
@@ -31,7 +32,12 @@ std::string source_of(const std::string& name) {
   if (name == "F2" || name == "F7" || name == "F11")
     return "the CIE 15:2004 Table T.6 5 nm table (cie_f1_f12_5nm.csv), Lagrange-interpolated to 1 nm";
   if (name == "A") return "the CIE 1 nm table (cie_a_1nm.csv)";
-  if (name == "D50") return "the CIE 1 nm table (cie_d50_1nm.csv)";
+  if (name == "D50")
+    return "the CIE 5 nm table (cie_d50_5nm.csv), Lagrange-interpolated to 1 nm (this, not the CIE 1 nm table, "
+           "reproduces E308's white points)";
+  if (name == "C")
+    return "CIE 15:2004 Table T.1 (cie_c_5nm.csv, 320-780 nm), Lagrange-interpolated to 1 nm, held at its 780 nm "
+           "value beyond";
   if (name == "D65") return "the CIE 1 nm table (cie_d65_1nm.csv)";
   return "a constant (cie_e_5nm.csv)";
 }
@@ -57,24 +63,34 @@ int main(int argc, char** argv) {
         const Observer& o = library.observer(observer);
         const bool ten = observer == StandardObserver::cie1964_10deg;
         for (int interval : {10, 20}) {
-          const E308WeightTable table = compute_e308_weights(*illuminant, o, interval, name);
+          const E308WeightTable table6 = compute_e308_weights(*illuminant, o, interval, name);
           std::string lower = name;
           for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-          const std::filesystem::path file =
-              out / ("astm_e308_" + lower + "_" + (ten ? "10" : "2") + "deg_" + std::to_string(interval) + "nm.csv");
-          const std::string comment =
-              "ASTM E308-15 Table 6 practice (E2022-11 Lagrange weights, no bandpass correction): CIE " + name +
-              ", " + o.name + ", " + std::to_string(interval) + " nm, 360-830 nm, sum of Wy = 100.\n"
-              "Illuminant from " + source_of(name) + ".\n"
+          const std::string stem = "astm_e308_" + lower + "_" + (ten ? "10" : "2") + "deg_" + std::to_string(interval) + "nm";
+          const std::string what = "CIE " + name + ", " + o.name + ", " + std::to_string(interval) +
+                                   " nm, 360-" + (interval == 20 ? "820" : "830") + " nm, sum of Wy = 100.\n"
+                                   "Illuminant from " + source_of(name) + ".\n";
+          const std::string command =
               "Generated from the CIE tables in data/ by: build/bin/rimu-e308-weights --data data --out data/e308";
-          std::ofstream f(file);
-          f << e308_weights_csv(table, comment);
-          f.close();
-          if (!f) {
-            std::cerr << "rimu-e308-weights: cannot write " << file.string() << "\n";
-            return 2;
+          const std::string comment6 =
+              "ASTM E308-15 Table 6 practice, for spectral data corrected for bandpass (E2022-11 Lagrange weights): " +
+              what + command;
+          const std::string comment5 =
+              "ASTM E308-15 Table 5 practice, for spectral data NOT corrected for bandpass (triangular bandpass = "
+              "interval): the Table 6 weights (" + stem + ".csv) with the Stearns & Stearns correction folded in, "
+              "W5_i = 1.166 W6_i - 0.083 (W6_i-1 + W6_i+1), ends 1.083 W6_1 - 0.083 W6_2: " + what + command;
+          const E308WeightTable table5 = e308_table5_from_table6(table6);
+          for (const auto& [file, text] : {std::pair{out / (stem + ".csv"), e308_weights_csv(table6, comment6)},
+                                           std::pair{out / (stem + "_table5.csv"), e308_weights_csv(table5, comment5)}}) {
+            std::ofstream f(file);
+            f << text;
+            f.close();
+            if (!f) {
+              std::cerr << "rimu-e308-weights: cannot write " << file.string() << "\n";
+              return 2;
+            }
+            std::cout << "wrote " << file.string() << "\n";
           }
-          std::cout << "wrote " << file.string() << "\n";
         }
       }
     }
