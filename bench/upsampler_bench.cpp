@@ -53,6 +53,31 @@ double rms(const KnotValues& a, const KnotValues& b) {
   return std::sqrt(s / kUpsampleKnotCount);
 }
 
+// What the rendering evaluation (UpsamplingBasis::evaluate: clamp after interpolating between knots) adds to the
+// colour of the knot-clamped spectrum (evaluate_clamped: clamp the knots, then interpolate), whose colour the knot
+// colorimetry gives: the two differ only on knot intervals where the unclamped spectrum crosses 0 or 1, and there
+// the difference is integrated against W·x̄, W·ȳ, W·z̄ at 0.05 nm, normalised so that Y(white) = 1.
+Xyz render_clamp_offset(const KnotValues& raw, double lower, double upper, const TabulatedSpectrum& w,
+                        const Observer& observer, double white_y) {
+  Xyz out;
+  constexpr int kSteps = 100;
+  for (int i = 0; i + 1 < kUpsampleKnotCount; ++i) {
+    const double a = raw[i], b = raw[i + 1];
+    const bool crosses = (a < lower) != (b < lower) || (a > upper) != (b > upper);
+    if (!crosses) continue;
+    const double ca = std::clamp(a, lower, upper), cb = std::clamp(b, lower, upper);
+    const double step_nm = kUpsampleKnotSpacingNm / kSteps;
+    for (int s = 0; s < kSteps; ++s) {
+      const double t = (s + 0.5) / kSteps;
+      const double l = kUpsampleFirstKnotNm + (i + t) * kUpsampleKnotSpacingNm;
+      const double d = std::clamp(a + t * (b - a), lower, upper) - (ca + t * (cb - ca));
+      const double k = d * w.value(l) * step_nm / white_y;
+      out.x += k * observer.x_bar.value(l), out.y += k * observer.y_bar.value(l), out.z += k * observer.z_bar.value(l);
+    }
+  }
+  return out;
+}
+
 SpectralLibrary& library() {
   static SpectralLibrary l = SpectralLibrary::at_default_location();
   return l;
@@ -71,11 +96,14 @@ void accuracy_report() {
     const double setup_start = now_s();
     const RgbUpsampler up(library(), RgbColourSpace::named(name));
     const double setup_s = now_s() - setup_start;
-    Stats exact_unmapped, exact_unmapped_cie, fast_unmapped, exact_mapped, fast_mapped, exact_rms, fast_rms,
+    Stats exact_unmapped, exact_unmapped_cie, fast_unmapped, fast_render_unmapped, render_vs_knot, exact_mapped, fast_mapped, exact_rms, fast_rms,
         fast_vs_exact_rms, ringing, rough;
     const Observer& observer = library().observer(StandardObserver::cie1931_2deg);
     int unmapped_count = 0, total = 0, flag_mismatch = 0;
     const Xyz white = up.colorimetry().white_xyz();
+    const double white_y = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) {
+      return up.illuminant()->value(l) * observer.y_bar.value(l);
+    });
     for (int r = 0, n = 0; r < kSteps; ++r)
       for (int g = 0; g < kSteps; ++g)
         for (int b = 0; b < kSteps; ++b, ++n) {
@@ -99,6 +127,13 @@ void accuracy_report() {
           ++unmapped_count;
           exact_unmapped.add(exact.delta_e2000);
           fast_unmapped.add(fast_delta_e);
+          {
+            const Xyz knot_colour = up.colorimetry().xyz_of(fast);
+            const Xyz offset = render_clamp_offset(raw, 0.0, 1.0, *up.illuminant(), observer, white_y);
+            const Xyz rendered{knot_colour.x + offset.x, knot_colour.y + offset.y, knot_colour.z + offset.z};
+            fast_render_unmapped.add(delta_e_xyz(in, rendered, white));
+            render_vs_knot.add(delta_e_xyz(knot_colour, rendered, white));
+          }
           ringing.add(-most_negative);
           const KnotValues exact_knots = exact.spectrum.samples().knots();
           rough.add(roughness(exact_knots));
@@ -123,6 +158,8 @@ void accuracy_report() {
     exact_unmapped.print("exact path (table + solve)");
     exact_unmapped_cie.print("exact path, via the CIE table illuminant");
     fast_unmapped.print("fast path (basis, knots clamped to [0,1])");
+    fast_render_unmapped.print("fast path as rendered (clamp after lerp)");
+    render_vs_knot.print("  rendered vs knot-clamped fast spectrum");
     std::printf("  CIEDE2000 moved by gamut mapping:\n");
     exact_mapped.print("exact path");
     fast_mapped.print("fast path");
@@ -207,16 +244,53 @@ void BM_Eval4_KnotSpectrum(benchmark::State& state) {
 }
 BENCHMARK(BM_Eval4_KnotSpectrum);
 
-void BM_Eval4_BasisCoefficients(benchmark::State& state) {
+// The knot-clamped evaluation (evaluate_clamped: clamp the two knots, then interpolate), the reference.
+void BM_Eval4_BasisCoefficients_KnotClamped(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
-  const BasisCoefficients c = up.reflectance_coefficients({0.6, 0.3, 0.1});
+  std::vector<BasisCoefficients> cs;
+  for (const Rgb& rgb : random_colours()) cs.push_back(up.reflectance_coefficients(rgb));
   const auto lambdas = wavelength_sets();
   size_t i = 0;
-  for (auto _ : state)
+  for (auto _ : state) {
     benchmark::DoNotOptimize(
-        up.basis().evaluate_clamped(c, lambdas[i++ & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
+        up.basis().evaluate_clamped(cs[i & 4095], lambdas[(i >> 3) & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
+    ++i;
+  }
+}
+BENCHMARK(BM_Eval4_BasisCoefficients_KnotClamped);
+
+// The rendering evaluation (evaluate: the basis interpolated at the path's wavelengths from the per-thread cache,
+// one 16-term dot product per lane). A path evaluates every texture it meets at its four wavelengths; here 8
+// evaluations of different colours per wavelength set.
+void BM_Eval4_BasisCoefficients(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  std::vector<BasisCoefficients> cs;
+  for (const Rgb& rgb : random_colours()) cs.push_back(up.reflectance_coefficients(rgb));
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        up.basis().evaluate(cs[i & 4095], lambdas[(i >> 3) & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
+    ++i;
+  }
 }
 BENCHMARK(BM_Eval4_BasisCoefficients);
+
+// The same with new wavelengths at every evaluation: the cache refilled each time (the worst case; the first
+// evaluation of every path pays it).
+void BM_Eval4_BasisCoefficients_NewWavelengths(benchmark::State& state) {
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  std::vector<BasisCoefficients> cs;
+  for (const Rgb& rgb : random_colours()) cs.push_back(up.reflectance_coefficients(rgb));
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        up.basis().evaluate(cs[i & 4095], lambdas[i & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
+    ++i;
+  }
+}
+BENCHMARK(BM_Eval4_BasisCoefficients_NewWavelengths);
 
 void BM_Eval4_EmissionExact(benchmark::State& state) {
   const UpsampledEmission e = upsampler("srgb-linear").upsample_emission({0.8, 0.2, 0.1});
@@ -273,6 +347,21 @@ void BM_TextureLookup_Basis(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_TextureLookup_Basis)->Arg(64)->Arg(1024);
+
+// The same with 8 lookups per wavelength set: what a path that meets textures several times pays per lookup
+// (BM_TextureLookup_Basis refills the per-thread basis cache at every lookup, the worst case).
+void BM_TextureLookup_Basis_SameWavelengths(benchmark::State& state) {
+  auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));
+  const ImageTexture texture(random_image(int(state.range(0))), shared, 1.0f);
+  const auto uvs = random_uvs();
+  const auto lambdas = wavelength_sets();
+  size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(texture.evaluate(uvs[i & 4095], lambdas[(i >> 3) & 4095]));
+    ++i;
+  }
+}
+BENCHMARK(BM_TextureLookup_Basis_SameWavelengths)->Arg(64);
 
 void BM_TextureConversion_PerTexel(benchmark::State& state) {
   auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));

@@ -39,7 +39,7 @@ SampledSpectrum ImageTexture::evaluate(Vec2 uv, const SampledWavelengths& lambda
     _mm_store_ps(&blend.c[k], s);
   }
   // Clamped: the basis truncation rings a few 1e-3 around the exact spectrum's zeros and peaks.
-  return upsampler_->basis().evaluate_clamped(blend, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f)) * Float4(scale_);
+  return upsampler_->basis().evaluate(blend, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f)) * Float4(scale_);
 }
 
 }  // namespace rimu

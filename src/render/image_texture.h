@@ -14,8 +14,8 @@ namespace rimu {
 /// reflectance_coefficients: the smoothest spectrum, gamut-mapped into [0, 1], as 16 basis coefficients, 0.15-0.3 µs
 /// per texel, 64 bytes per texel). A lookup blends the four texels around (u, v) bilinearly — blending the
 /// spectra, so the result's colour is the bilinear blend of the texels' colours — and evaluates the blend at the
-/// path's four wavelengths, clamped to [0, 1] and times `scale`: a fetch, a blend and a 16-term dot product per
-/// lane, no solve (~30 ns). docs/upsampling.md ("Fast path") has the error against per-texel exact upsampling.
+/// path's four wavelengths (UpsamplingBasis::evaluate: one 16-term dot product per lane), clamped to [0, 1], times
+/// `scale`: a fetch, a blend, a dot product, no solve. docs/upsampling.md ("Fast path") has the error added.
 class ImageTexture final : public SpectralTexture {
  public:
   ImageTexture(std::shared_ptr<const RgbImage> image, std::shared_ptr<const RgbUpsampler> upsampler, float scale);

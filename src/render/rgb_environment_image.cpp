@@ -27,7 +27,7 @@ SampledSpectrum RgbEnvironmentImage::radiance(int x, int y, const SampledWavelen
   // S(λ) = emission_scale · max(0, s(λ)·Y) · W(λ), as EmissionSpectrum::evaluate with the shape clamped at 0
   // (basis truncation rings a few 1e-3 of the peak below zero where the exact shape is zero).
   const Float4 shape =
-      upsampler_->basis().evaluate_clamped(pixels_[index(x, y)], lambda.lambda_nm(), Float4(0.0f), Float4(INFINITY));
+      upsampler_->basis().evaluate(pixels_[index(x, y)], lambda.lambda_nm(), Float4(0.0f), Float4(INFINITY));
   return Float4(float(upsampler_->emission_scale())) * shape * upsampler_->illuminant()->sample(lambda);
 }
 

@@ -72,8 +72,8 @@ class RgbUpsampler {
   // For per-texel conversion and anything that needs many colours; colorimetry and the toolkit use the exact path.
 
   /// Coefficients of the reflectance upsample_reflectance would give (gamut mapping and brightness limit
-  /// included). The spectrum is basis().evaluate_clamped(c, λ, 0, 1) (truncation ringing dips a few 1e-3 below 0
-  /// where the exact spectrum is zero); its colour is the target's to ~1e-6. `mapped`: the colour moved — gamut
+  /// included). The spectrum is basis().evaluate_clamped(c, λ, 0, 1), rendered by evaluate() (ringing dips below 0
+  /// where the exact spectrum is zero); its colour is the target's to ~1e-5. `mapped`: the colour moved — gamut
   /// mapping, the brightness limit, or a spectrum the basis cannot hold in [0, 1] (residual > 1e-4: saturated
   /// purples of the wide spaces, docs/upsampling.md). ~150 ns, plus ~50-90 ns per 95-knot pass for saturated
   /// colours and colours near the brightness limit (1-3 passes).

@@ -256,3 +256,72 @@ TEST_CASE("fast path: the 4-lane clamped evaluation is the knot spectrum of the 
     for (int lane = 0; lane < kLaneCount; ++lane) CHECK(got[lane] == doctest::Approx(want[lane]).epsilon(1e-5));
   }
 }
+
+TEST_CASE("fast path: the rendering evaluation is the knot-clamped one wherever no knot pair crosses a bound") {
+  // evaluate() interpolates the basis first and clamps after; evaluate_clamped() clamps the two knots first.
+  // Clamping is 1-Lipschitz, so on an interval whose knots a, b lie beyond a bound the two differ by at most
+  // max(|a − clamp(a)|, |b − clamp(b)|), and where both knots are inside they agree up to float rounding.
+  for (const std::string space : {"srgb-linear", "acescg"}) {
+    CAPTURE(space);
+    const RgbUpsampler& up = upsampler(space);
+    Random random{11};
+    int crossing_lanes = 0;
+    for (int i = 0; i < 400; ++i) {
+      const Rgb rgb{random.next(), random.next(), random.next()};
+      const BasisCoefficients c = up.reflectance_coefficients(rgb);
+      const KnotValues raw = up.basis().knots(c);
+      const SampledWavelengths lambda = SampledWavelengths::sample_visible(float(random.next()));
+      const Float4 got = up.basis().evaluate(c, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f));
+      const Float4 want = up.basis().evaluate_clamped(c, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f));
+      for (int lane = 0; lane < kLaneCount; ++lane) {
+        const int knot = std::min(int((lambda.lambda_nm(lane) - kUpsampleFirstKnotNm) / kUpsampleKnotSpacingNm),
+                                  kUpsampleKnotCount - 2);
+        const double beyond = std::max(std::abs(raw[knot] - std::clamp(raw[knot], 0.0, 1.0)),
+                                       std::abs(raw[knot + 1] - std::clamp(raw[knot + 1], 0.0, 1.0)));
+        crossing_lanes += beyond > 0.0;
+        CAPTURE(i);
+        CAPTURE(lane);
+        CHECK(std::abs(got[lane] - want[lane]) <= beyond + 2e-6);
+      }
+      // Unclamped, both are the same linear interpolation of Φc.
+      const Float4 free_got = up.basis().evaluate(c, lambda.lambda_nm(), Float4(-INFINITY), Float4(INFINITY));
+      const Float4 free_want = up.basis().evaluate_clamped(c, lambda.lambda_nm(), Float4(-INFINITY), Float4(INFINITY));
+      for (int lane = 0; lane < kLaneCount; ++lane) CHECK(std::abs(free_got[lane] - free_want[lane]) <= 2e-6);
+    }
+    CHECK(crossing_lanes > 0);  // the random colours include ringing ones: the bound above was exercised
+  }
+}
+
+TEST_CASE("fast path: the per-thread basis cache never serves one basis's rows to another") {
+  // sRGB (D65) and ACEScg (ACES white) have different tables, hence different bases; evaluated alternately at the
+  // same wavelengths, each must give its own basis's values (the cache is keyed by the basis, not only by λ).
+  const RgbUpsampler& a = upsampler("srgb-linear");
+  const RgbUpsampler& b = upsampler("acescg");
+  const BasisCoefficients ca = a.reflectance_coefficients({0.2, 0.5, 0.3});
+  const BasisCoefficients cb = b.reflectance_coefficients({0.2, 0.5, 0.3});
+  const Float4 lambda(412.0f, 505.5f, 611.0f, 700.25f);
+  const Float4 free_lo(-INFINITY), free_hi(INFINITY);
+  const Float4 want_a = a.basis().evaluate_clamped(ca, lambda, free_lo, free_hi);
+  const Float4 want_b = b.basis().evaluate_clamped(cb, lambda, free_lo, free_hi);
+  // The coefficients of one basis read with the other basis's rows give another spectrum: the check can fail.
+  CHECK(max_lane(abs(b.basis().evaluate_clamped(ca, lambda, free_lo, free_hi) - want_a)) > 1e-3f);
+  for (int round = 0; round < 3; ++round) {
+    const Float4 got_a = a.basis().evaluate(ca, lambda, free_lo, free_hi);
+    const Float4 got_b = b.basis().evaluate(cb, lambda, free_lo, free_hi);
+    for (int lane = 0; lane < kLaneCount; ++lane) {
+      CHECK(got_a[lane] == doctest::Approx(want_a[lane]).epsilon(1e-5));
+      CHECK(got_b[lane] == doctest::Approx(want_b[lane]).epsilon(1e-5));
+    }
+  }
+  // A basis built after another was destroyed gets a new identity even at a reused address.
+  Float4 first;
+  {
+    const RgbUpsampler d65(test::library(), RgbColourSpace::named("srgb-linear"));
+    first = d65.basis().evaluate(d65.reflectance_coefficients({0.2, 0.5, 0.3}), lambda, free_lo, free_hi);
+  }
+  const RgbUpsampler aces(test::library(), RgbColourSpace::named("acescg"));
+  const BasisCoefficients c = aces.reflectance_coefficients({0.2, 0.5, 0.3});
+  const Float4 got = aces.basis().evaluate(c, lambda, free_lo, free_hi);
+  const Float4 want = aces.basis().evaluate_clamped(c, lambda, free_lo, free_hi);
+  for (int lane = 0; lane < kLaneCount; ++lane) CHECK(got[lane] == doctest::Approx(want[lane]).epsilon(1e-5));
+}
