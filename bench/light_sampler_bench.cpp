@@ -1,6 +1,7 @@
 // Light sampling benchmark: equal-time relative MSE of the BVH light sampler against the power sampler on five
-// scenes, and the tree's build time and memory for 10⁶ emissive triangles. Not a test: timings go to
-// docs/benchmarks.md with the machine, its load and the command.
+// scenes (data/scenes/light_sampling/*.json and the Cornell box; `rimu` renders the same files), and the tree's
+// build time and memory for 10⁶ emissive triangles. Not a test: timings go to docs/benchmarks.md with the machine,
+// its load and the command.
 //
 // Method. Per scene: a reference rendered with the BVH sampler at --reference-spp; then each sampler renders the
 // scene --runs times at --spp, alternating (bvh, power, bvh, ...) so that both see the same machine load, with
@@ -52,92 +53,6 @@ struct BenchScene {
   std::function<bool(Vec3)> in_region;
   std::string region_name = "whole image";
 };
-
-json spot_scene(double floor_half_m) {
-  json d = json::parse(R"({
-    "camera": {"from": [0, 3.5, 4.5], "to": [0, 0.3, 0], "vertical_fov_deg": 50},
-    "integrator": {"max_depth": 6},
-    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5},
-                  "glass": {"type": "dielectric", "ior": 1.5},
-                  "copper": {"type": "conductor", "metal": "copper", "roughness": 0.15}},
-    "lights": [
-      {"type": "spot", "name": "spot", "position": [0, 2, 0], "direction": [0, -1, 0], "cone_angle_deg": 40,
-       "falloff_start_deg": 30, "luminous_power_lm": 800, "power_convention": "cone", "spectrum": {"blackbody": 2700}},
-      {"type": "environment", "name": "sky", "radiance": {"illuminant": "D65", "scale": 0.0001}}
-    ],
-    "shapes": [
-      {"type": "sphere", "material": "glass", "center": [-0.35, 0.3, 0.1], "radius": 0.3},
-      {"type": "sphere", "material": "copper", "center": [0.4, 0.3, -0.2], "radius": 0.3}
-    ]
-  })");
-  const double h = floor_half_m;
-  d["shapes"].push_back({{"type", "quad"}, {"material", "grey"}, {"vertices", {{-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}}}});
-  return d;
-}
-
-// An 8 m × 8 m × 3 m room; 32 × 32 emissive 8 cm squares on the ceiling (blackbodies 2700-6500 K); a 2 m × 1 m
-// window in the +x wall onto a D65 sky.
-json ceiling_grid_scene() {
-  json d = json::parse(R"({
-    "camera": {"from": [-3.5, 1.6, -3.0], "to": [4, 1.2, 1.0], "vertical_fov_deg": 70},
-    "integrator": {"max_depth": 5},
-    "materials": {"wall": {"type": "diffuse", "reflectance": 0.6}, "floor": {"type": "diffuse", "reflectance": 0.3},
-                  "black": {"type": "diffuse", "reflectance": 0}},
-    "lights": [{"type": "environment", "name": "sky", "radiance": {"illuminant": "D65", "scale": 0.01}}],
-    "shapes": [
-      {"type": "quad", "material": "floor", "vertices": [[-4, 0, 4], [4, 0, 4], [4, 0, -4], [-4, 0, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[-4, 3, -4], [4, 3, -4], [4, 3, 4], [-4, 3, 4]]},
-      {"type": "quad", "material": "wall", "vertices": [[-4, 0, -4], [4, 0, -4], [4, 3, -4], [-4, 3, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 0, 4], [-4, 0, 4], [-4, 3, 4], [4, 3, 4]]},
-      {"type": "quad", "material": "wall", "vertices": [[-4, 0, 4], [-4, 0, -4], [-4, 3, -4], [-4, 3, 4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 0, -4], [4, 0, 4], [4, 1, 4], [4, 1, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 2, -4], [4, 2, 4], [4, 3, 4], [4, 3, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 1, -4], [4, 1, -1], [4, 2, -1], [4, 2, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 1, 1], [4, 1, 4], [4, 2, 4], [4, 2, 1]]}
-    ]
-  })");
-  for (int i = 0; i < 32; ++i)
-    for (int j = 0; j < 32; ++j) {
-      const double x = -4 + 0.25 * (i + 0.5), z = -4 + 0.25 * (j + 0.5), s = 0.04, y = 2.99;
-      const double cct = 2700.0 + (6500.0 - 2700.0) * double((i * 7 + j * 3) % 8) / 7.0;
-      // Counter-clockwise seen from below: faces down.
-      d["shapes"].push_back({{"type", "quad"},
-                             {"material", "black"},
-                             {"vertices", {{x - s, y, z - s}, {x + s, y, z - s}, {x + s, y, z + s}, {x - s, y, z + s}}},
-                             {"emission", {{"blackbody", cct}, {"scale", 30.0}}}});
-    }
-  return d;
-}
-
-// A 500 m road with 200 lamps 8 m up on both sides: LED spots, high-pressure sodium points (CIE HP1), low-pressure
-// sodium spots (the D doublet); a dim night sky.
-json street_scene() {
-  json d = json::parse(R"({
-    "camera": {"from": [-200, 1.7, -2], "to": [-150, 1.0, 1], "vertical_fov_deg": 45},
-    "integrator": {"max_depth": 4},
-    "materials": {"asphalt": {"type": "diffuse", "reflectance": 0.12}, "kerb": {"type": "diffuse", "reflectance": 0.4}},
-    "lights": [{"type": "environment", "name": "night sky", "radiance": {"daylight": 12000, "scale": 0.00002}}],
-    "shapes": [
-      {"type": "quad", "material": "asphalt", "vertices": [[-250, 0, 6], [250, 0, 6], [250, 0, -6], [-250, 0, -6]]},
-      {"type": "quad", "material": "kerb", "vertices": [[-250, 0.15, 10], [250, 0.15, 10], [250, 0.15, 6], [-250, 0.15, 6]]},
-      {"type": "quad", "material": "kerb", "vertices": [[-250, 0.15, -6], [250, 0.15, -6], [250, 0.15, -10], [-250, 0.15, -10]]}
-    ]
-  })");
-  for (int k = 0; k < 200; ++k) {
-    const double x = -250 + 2.5 * (k + 0.5), z = k % 2 ? 7.0 : -7.0;
-    json light;
-    if (k % 3 == 1) {
-      light = {{"type", "point"}, {"position", {x, 8, z}}, {"luminous_power_lm", 9000}, {"spectrum", {{"illuminant", "HP1"}}}};
-    } else {
-      light = {{"type", "spot"}, {"position", {x, 8, z}}, {"direction", {0, -1, -z * 0.05}}, {"cone_angle_deg", 130},
-               {"falloff_start_deg", 90}, {"luminous_power_lm", 8000}, {"power_convention", "cone"}};
-      light["spectrum"] = k % 3 == 0 ? json{{"illuminant", "LED-B3"}} : json{{"csv", "low_pressure_sodium.csv"}};
-    }
-    light["name"] = "lamp " + std::to_string(k);
-    d["lights"].push_back(light);
-  }
-  return d;
-}
 
 struct RenderResult {
   std::vector<double> y;  // film Y per pixel, row by row
@@ -302,20 +217,24 @@ int main(int argc, char** argv) {
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::string load_before = bench::load_average();
   const std::filesystem::path scenes = library.root() / "scenes";
+  const std::filesystem::path light_sampling = scenes / "light_sampling";
+  const auto scene_file = [&](const std::string& name, const std::filesystem::path& file) {
+    return BenchScene{name, parse_json_file(file), file.parent_path()};
+  };
   std::vector<BenchScene> bench_scenes;
   // The spot's pool: floor points within 0.7 m of the spot's axis (its outer cone reaches 0.73 m).
-  BenchScene spot3{"spot + D65 environment, 6 m floor", spot_scene(3.0), scenes / "light_sampling"};
-  spot3.in_region = [](Vec3 p) { return p.y < 1e-3f && p.x * p.x + p.z * p.z < 0.49f; };
-  spot3.region_name = "spot's pool (floor within 0.7 m of its axis)";
-  BenchScene spot100 = spot3;
-  spot100.name = "spot + D65 environment, 100 m floor";
-  spot100.document = spot_scene(50.0);
-  bench_scenes.push_back(spot3);
-  bench_scenes.push_back(spot100);
-  bench_scenes.push_back({"room, 32 × 32 ceiling panels 2700-6500 K + sky window", ceiling_grid_scene(), scenes / "light_sampling"});
-  bench_scenes.push_back({"street, 200 sodium/LED lamps over 500 m + night sky", street_scene(), scenes / "light_sampling"});
-  const std::filesystem::path cornell = scenes / "cornell_box" / "scene.json";
-  bench_scenes.push_back({"Cornell box", parse_json_file(cornell), cornell.parent_path()});
+  const auto in_pool = [](Vec3 p) { return p.y < 1e-3f && p.x * p.x + p.z * p.z < 0.49f; };
+  for (const std::string floor_m : {"3", "100"}) {
+    BenchScene spot = scene_file("spot + D65 environment, " + floor_m + " m floor",
+                                 light_sampling / ("spot_" + floor_m + "m_floor.json"));
+    spot.in_region = in_pool;
+    spot.region_name = "spot's pool (floor within 0.7 m of its axis)";
+    bench_scenes.push_back(spot);
+  }
+  bench_scenes.push_back(scene_file("room, 32 × 32 ceiling panels 2700-6500 K + sky window",
+                                    light_sampling / "ceiling_grid_room.json"));
+  bench_scenes.push_back(scene_file("street, 200 sodium/LED lamps over 500 m + night sky", light_sampling / "street.json"));
+  bench_scenes.push_back(scene_file("Cornell box", scenes / "cornell_box" / "scene.json"));
 
   std::vector<SceneResult> results;
   for (size_t i = 0; i < bench_scenes.size() && !settings.build_only; ++i)
@@ -328,8 +247,8 @@ int main(int argc, char** argv) {
   std::ostringstream md;
   md << "Command: `build/bin/rimu-light-sampler-bench --spp " << settings.spp << " --reference-spp "
      << settings.reference_spp << " --runs " << settings.runs << " --resolution " << settings.width << "x"
-     << settings.height << (settings.docs ? " --docs" : "") << "` (Release build; scenes in "
-     << "bench/light_sampler_bench.cpp, the low-pressure sodium spectrum in data/scenes/light_sampling/).\n\n"
+     << settings.height << (settings.docs ? " --docs" : "") << "` (Release build; scenes in data/scenes/light_sampling/ and data/scenes/cornell_box/, rendered by the bench at "
+     << "the resolution above with a box filter).\n\n"
      << "Machine: " << bench::machine_description() << "; 2 render threads; load average before " << load_before
      << ", after " << load_after << " (a shared machine: both samplers' runs alternate, times are medians).\n"
      << "Build: " << bench::build_description() << ".\n\n"

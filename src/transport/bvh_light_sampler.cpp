@@ -142,6 +142,7 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
     nodes_[index].bounds = items[begin].bounds;
     nodes_[index].index = items[begin].leaf;
     nodes_[index].is_leaf = true;
+    nodes_[index].representative = index;
     trails_[first_part_[size_t(leaf.light)] + uint32_t(leaf.part)] = trail | (uint64_t(1) << depth);
     max_depth_ = std::max(max_depth_, depth);
     return index;
@@ -236,21 +237,45 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
                      [axis](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
   }
 
-  build(items, begin, middle, depth + 1, trail);
+  const uint32_t first = build(items, begin, middle, depth + 1, trail);
   const uint32_t second = build(items, middle, end, depth + 1, trail | (uint64_t(1) << depth));
   nodes_[index].bounds = bounds;
   nodes_[index].index = second;
+  const uint32_t first_representative = nodes_[first].representative;
+  const uint32_t second_representative = nodes_[second].representative;
+  nodes_[index].representative =
+      nodes_[second_representative].bounds.intensity_w_sr > nodes_[first_representative].bounds.intensity_w_sr
+          ? second_representative
+          : first_representative;
   return index;
 }
 
 BvhLightSampler::Split BvhLightSampler::split(const Node& node, const LightSamplingPoint& at) const {
-  const Node& first = (&node)[1];
-  const Node& second = nodes_[node.index];
-  const float a = light_importance(first.bounds, at.position_m, at.normal);
-  const float b = light_importance(second.bounds, at.position_m, at.normal);
+  const uint32_t first = uint32_t(&node - nodes_.data()) + 1;
+  const float a = pruned_importance(first, at);
+  const float b = pruned_importance(node.index, at);
   const float sum = a + b;
   if (!(sum > 0.0f)) return {0.0f, 0.0f};
   return {a / sum, b / sum};
+}
+
+float BvhLightSampler::pruned_importance(uint32_t index, const LightSamplingPoint& at) const {
+  const Node& node = nodes_[index];
+  const float importance = light_importance(node.bounds, at.position_m, at.normal);
+  if (!(importance > 0.0f) || node.is_leaf) return importance;
+  return subtree_can_contribute(index, at) ? importance : 0.0f;
+}
+
+bool BvhLightSampler::subtree_can_contribute(uint32_t index, const LightSamplingPoint& at) const {
+  if (light_importance(nodes_[nodes_[index].representative].bounds, at.position_m, at.normal) > 0.0f) return true;
+  // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
+  // too, up to rounding).
+  for (const uint32_t child : {index + 1, nodes_[index].index}) {
+    const Node& c = nodes_[child];
+    if (!(light_importance(c.bounds, at.position_m, at.normal) > 0.0f)) continue;
+    if (c.is_leaf || subtree_can_contribute(child, at)) return true;
+  }
+  return false;
 }
 
 BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) const {

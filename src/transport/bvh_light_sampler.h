@@ -5,9 +5,16 @@
 // Descent. At an interior node with children a, b of importances I_a, I_b at (p, n), child a is taken with
 // probability I_a / (I_a + I_b); the leaf's probability is the product along its path. pmf() retraces that path
 // (stored per leaf as a bit trail) and multiplies the same factors in the same order, so it returns exactly the
-// sampled probability. When both children of a node have importance 0 the descent fails (std::nullopt): that
-// probability mass is lost, never given to a light that cannot contribute. Importances are 0 behind one-sided
-// emitters, outside spot/IES cones and below an opaque surface's tangent plane.
+// sampled probability. Importances are 0 behind one-sided emitters, outside spot/IES cones and below an opaque
+// surface's tangent plane.
+//
+// Pruning. A node's bounds are looser than its children's, so a node can score > 0 while every leaf below it
+// scores 0 (its box straddles the tangent plane, each child's box lies below it). A descent into such a subtree
+// would find no light, and that probability would be lost (~20 % at random points with random normals). So a
+// child's importance counts only if its subtree can contribute: if some leaf below it scores > 0. That is
+// checked first on the subtree's representative (its leaf of largest intensity: one evaluation, nearly always
+// enough), else by a depth-first search that stops at the first leaf that scores > 0. With it the probabilities
+// of the leaves that score > 0 sum to 1 (to float rounding), and no other leaf has any.
 //
 // Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
@@ -45,6 +52,7 @@ class BvhLightSampler final : public LightSampler {
   struct Node {
     LightBounds bounds;
     uint32_t index = 0;  // interior: the second child (the first is the next node); leaf: into leaves_
+    uint32_t representative = 0;  // the node of the subtree's leaf of largest intensity
     bool is_leaf = false;
   };
   struct Leaf {
@@ -56,6 +64,10 @@ class BvhLightSampler final : public LightSampler {
   struct BuildItem;
 
   Split split(const Node& node, const LightSamplingPoint& at) const;
+  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0.
+  float pruned_importance(uint32_t index, const LightSamplingPoint& at) const;
+  /// Whether some leaf below interior node `index` scores > 0 (the representative first, then depth first).
+  bool subtree_can_contribute(uint32_t index, const LightSamplingPoint& at) const;
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
