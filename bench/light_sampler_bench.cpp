@@ -11,7 +11,9 @@
 //   (relMSE_power · t_power) / (relMSE_bvh · t_bvh)   (> 1: the BVH sampler wins by that factor).
 //
 // Usage: rimu-light-sampler-bench [--spp 16] [--reference-spp 512] [--runs 3] [--resolution 64x48] [--docs]
-//        [--scenes 01234] [--build-only]
+//        [--scenes 01234] [--build-only] [--power-spp N]
+// --power-spp gives the power sampler its own spp (default --spp), so that a light it starves is picked at all;
+// the equal-time ratio then compares relMSE · spp · (time per sample).
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -39,6 +41,7 @@ namespace {
 
 struct Settings {
   int spp = 16, reference_spp = 512, runs = 3, width = 64, height = 48;
+  int power_spp = 0;  // the power sampler's spp, if not --spp: enough that it picks a starved light at all
   bool docs = false;
   bool build_only = false;  // only the 10⁶-triangle build figures
   std::string scenes = "01234";  // which scenes, by index
@@ -115,17 +118,19 @@ double median(std::vector<double> v) {
 struct SceneResult {
   std::string name, region;
   double rel_mse_bvh, rel_mse_power, time_bvh_us, time_power_us, ratio;
+  int power_spp;
 };
 
 SceneResult run_scene(const BenchScene& s, const Settings& settings, SpectralLibrary& library) {
   const auto bvh = load(s, "bvh", settings, library);
   const auto power = load(s, "power", settings, library);
+  const int power_spp = settings.power_spp > 0 ? settings.power_spp : settings.spp;
   const RenderResult reference = render_y(*bvh, settings.reference_spp, 99, library);
   const std::vector<bool> mask = region_mask(*bvh, s);
   std::vector<double> t_bvh, t_power, e_bvh, e_power;
   for (int r = 0; r < settings.runs; ++r) {
     const RenderResult a = render_y(*bvh, settings.spp, uint64_t(1000 + r), library);
-    const RenderResult b = render_y(*power, settings.spp, uint64_t(2000 + r), library);
+    const RenderResult b = render_y(*power, power_spp, uint64_t(2000 + r), library);
     t_bvh.push_back(a.seconds);
     t_power.push_back(b.seconds);
     e_bvh.push_back(relative_mse(a.y, reference.y, mask));
@@ -140,10 +145,11 @@ SceneResult run_scene(const BenchScene& s, const Settings& settings, SpectralLib
   const double reference_noise = mean_bvh * settings.spp / settings.reference_spp / (1.0 + double(settings.spp) / settings.reference_spp);
   mean_bvh -= reference_noise;
   mean_power -= reference_noise;
-  const double samples = double(settings.width) * settings.height * settings.spp;
-  SceneResult out{s.name, s.region_name, mean_bvh, mean_power, median(t_bvh) / samples * 1e6,
-                  median(t_power) / samples * 1e6, 0.0};
-  out.ratio = (mean_power * out.time_power_us) / (mean_bvh * out.time_bvh_us);
+  const double pixels = double(settings.width) * settings.height;
+  SceneResult out{s.name, s.region_name, mean_bvh, mean_power, median(t_bvh) / (pixels * settings.spp) * 1e6,
+                  median(t_power) / (pixels * power_spp) * 1e6, 0.0, power_spp};
+  // relMSE ∝ 1/spp: at equal time each sampler's relMSE would be relMSE · spp · (time per sample) / T.
+  out.ratio = (mean_power * power_spp * out.time_power_us) / (mean_bvh * settings.spp * out.time_bvh_us);
   std::cerr << s.name << ": relMSE bvh " << mean_bvh << " power " << mean_power << ", us/sample " << out.time_bvh_us
             << " / " << out.time_power_us << ", equal-time ratio " << out.ratio << "\n";
   return out;
@@ -205,12 +211,14 @@ int main(int argc, char** argv) {
     if (a == "--spp") settings.spp = std::stoi(next());
     else if (a == "--reference-spp") settings.reference_spp = std::stoi(next());
     else if (a == "--runs") settings.runs = std::stoi(next());
+    else if (a == "--power-spp") settings.power_spp = std::stoi(next());
     else if (a == "--resolution") std::sscanf(next().c_str(), "%dx%d", &settings.width, &settings.height);
     else if (a == "--docs") settings.docs = true;
     else if (a == "--build-only") settings.build_only = true;
     else if (a == "--scenes") settings.scenes = next();
     else {
-      std::cerr << "usage: rimu-light-sampler-bench [--spp N] [--reference-spp N] [--runs N] [--resolution WxH] [--docs]\n";
+      std::cerr << "usage: rimu-light-sampler-bench [--spp N] [--power-spp N] [--reference-spp N] [--runs N] "
+                   "[--resolution WxH] [--scenes 01234] [--build-only] [--docs]\n";
       return 1;
     }
   }
@@ -219,7 +227,11 @@ int main(int argc, char** argv) {
   const std::filesystem::path scenes = library.root() / "scenes";
   const std::filesystem::path light_sampling = scenes / "light_sampling";
   const auto scene_file = [&](const std::string& name, const std::filesystem::path& file) {
-    return BenchScene{name, parse_json_file(file), file.parent_path()};
+    BenchScene scene;
+    scene.name = name;
+    scene.document = parse_json_file(file);
+    scene.directory = file.parent_path();
+    return scene;
   };
   std::vector<BenchScene> bench_scenes;
   // The spot's pool: floor points within 0.7 m of the spot's axis (its outer cone reaches 0.73 m).
@@ -247,8 +259,12 @@ int main(int argc, char** argv) {
   std::ostringstream md;
   md << "Command: `build/bin/rimu-light-sampler-bench --spp " << settings.spp << " --reference-spp "
      << settings.reference_spp << " --runs " << settings.runs << " --resolution " << settings.width << "x"
-     << settings.height << (settings.docs ? " --docs" : "") << "` (Release build; scenes in data/scenes/light_sampling/ and data/scenes/cornell_box/, rendered by the bench at "
-     << "the resolution above with a box filter).\n\n"
+     << settings.height
+     << (settings.power_spp > 0 ? " --power-spp " + std::to_string(settings.power_spp) : std::string())
+     << (settings.scenes != "01234" ? " --scenes " + settings.scenes : std::string())
+     << (settings.docs ? " --docs" : "")
+     << "` (Release build; scenes in data/scenes/light_sampling/ and data/scenes/cornell_box/, rendered at the "
+     << "resolution above with a box filter).\n\n"
      << "Machine: " << bench::machine_description() << "; 2 render threads; load average before " << load_before
      << ", after " << load_after << " (a shared machine: both samplers' runs alternate, times are medians).\n"
      << "Build: " << bench::build_description() << ".\n\n"
