@@ -7,7 +7,8 @@
 // scene --runs times at --spp, alternating (bvh, power, bvh, ...) so that both see the same machine load, with
 // different seeds. relMSE = Σ(Y − Y_ref)² / Σ Y_ref² over the scene's region (film Y); the reference's own noise
 // (estimated as the BVH run's relMSE × spp / reference spp) is subtracted from both. Time per sample is the median
-// over the runs. Monte Carlo error falls as 1/time, so the equal-time ratio is
+// over the runs, in process CPU time (both render threads; the machine is shared, so wall time would also count
+// other processes' turns). Monte Carlo error falls as 1/time, so the equal-time ratio is
 //   (relMSE_power · t_power) / (relMSE_bvh · t_bvh)   (> 1: the BVH sampler wins by that factor).
 //
 // Usage: rimu-light-sampler-bench [--spp 16] [--reference-spp 512] [--runs 3] [--resolution 64x48] [--docs]
@@ -59,7 +60,7 @@ struct BenchScene {
 
 struct RenderResult {
   std::vector<double> y;  // film Y per pixel, row by row
-  double seconds = 0;
+  double seconds = 0;  // process CPU time (both render threads): on a shared machine, the work done
 };
 
 std::unique_ptr<Scene> load(const BenchScene& s, const char* sampler, const Settings& settings,
@@ -78,10 +79,10 @@ RenderResult render_y(const Scene& scene, int spp, uint64_t seed, SpectralLibrar
   options.seed = seed;
   options.sampler = scene.settings.sampler;
   options.threads = 2;
-  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t start = std::clock();
   render(scene, bench::make_filter(scene.settings.filter), film, options);
   RenderResult r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
   for (int py = 0; py < scene.settings.height; ++py)
     for (int px = 0; px < scene.settings.width; ++px) r.y.push_back(film.pixel_value(px, py)[1]);
   return r;
@@ -188,17 +189,18 @@ BuildResult million_triangles() {
   std::vector<LightSamplingPoint> points;
   for (int i = 0; i < calls; ++i) points.push_back({{100 * u(rng), 20 * u(rng), 100 * u(rng)}, {0, 1, 0}});
   double checksum = 0;
-  auto t0 = std::chrono::steady_clock::now();
+  // Process CPU time (one thread here): the machine is shared, and wall time would count other processes' turns.
+  const std::clock_t t0 = std::clock();
   std::vector<LightChoice> choices;
   for (int i = 0; i < calls; ++i)
     if (const auto c = sampler.sample(points[size_t(i)], u(rng))) choices.push_back(*c);
-  auto t1 = std::chrono::steady_clock::now();
+  const std::clock_t t1 = std::clock();
   for (size_t i = 0; i < choices.size(); ++i) checksum += sampler.pmf(points[i], choices[i].light, choices[i].part);
-  auto t2 = std::chrono::steady_clock::now();
+  const std::clock_t t2 = std::clock();
   if (checksum < 0) std::cerr << checksum;
   return {n, build_s, build_cpu_s, double(sampler.memory_bytes()) / n, sampler.max_depth(),
-          std::chrono::duration<double>(t1 - t0).count() / calls * 1e9,
-          std::chrono::duration<double>(t2 - t1).count() / double(std::max<size_t>(choices.size(), 1)) * 1e9};
+          double(t1 - t0) / CLOCKS_PER_SEC / calls * 1e9,
+          double(t2 - t1) / CLOCKS_PER_SEC / double(std::max<size_t>(choices.size(), 1)) * 1e9};
 }
 
 }  // namespace
@@ -266,7 +268,8 @@ int main(int argc, char** argv) {
      << "` (Release build; scenes in data/scenes/light_sampling/ and data/scenes/cornell_box/, rendered at the "
      << "resolution above with a box filter).\n\n"
      << "Machine: " << bench::machine_description() << "; 2 render threads; load average before " << load_before
-     << ", after " << load_after << " (a shared machine: both samplers' runs alternate, times are medians).\n"
+     << ", after " << load_after
+     << " (a shared machine: both samplers' runs alternate; times are process CPU time, medians over the runs).\n"
      << "Build: " << bench::build_description() << ".\n\n"
      << "| scene | region | relMSE bvh | relMSE power | µs/sample bvh | µs/sample power | equal-time relMSE power ÷ bvh |\n"
      << "|---|---|---|---|---|---|---|\n";
@@ -279,7 +282,7 @@ int main(int argc, char** argv) {
      << " s CPU, one thread), " << bench::format(build.bytes_per_light, "%.4g")
      << " bytes per triangle (nodes, leaves, bit trails), depth " << build.depth << "; sample() "
      << bench::format(build.sample_ns, "%.3g") << " ns, pmf() " << bench::format(build.pmf_ns, "%.3g")
-     << " ns per call at random points.\n";
+     << " ns CPU per call at random points with normal +y.\n";
   std::cout << md.str();
   if (settings.docs)
     bench::update_docs_section(library.root().parent_path() / "docs" / "benchmarks.md", "light-sampling",

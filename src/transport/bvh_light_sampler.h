@@ -12,9 +12,12 @@
 // scores 0 (its box straddles the tangent plane, each child's box lies below it). A descent into such a subtree
 // would find no light, and that probability would be lost (~20 % at random points with random normals). So a
 // child's importance counts only if its subtree can contribute: if some leaf below it scores > 0. That is
-// checked first on the subtree's representative (its leaf of largest intensity: one evaluation, nearly always
-// enough), else by a depth-first search that stops at the first leaf that scores > 0. With it the probabilities
-// of the leaves that score > 0 sum to 1 (to float rounding), and no other leaf has any.
+// decided from the child's own bounds where they guarantee that every leaf scores (the usual case: the cluster
+// wholly above the tangent plane and p inside every member's emission cone), else on the subtree's representative
+// (its leaf of largest intensity), else by a depth-first search that stops at the first leaf that scores > 0.
+// The leaf found is carried down as a witness: the child holding it needs no check, so a descent checks one child
+// per level. With it the probabilities of the leaves that score > 0 sum to 1 (to float rounding), and no other
+// leaf has any. pmf() carries the same witnesses along the same path, so it still multiplies identical factors.
 //
 // Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
@@ -58,16 +61,21 @@ class BvhLightSampler final : public LightSampler {
   struct Leaf {
     int light, part;
   };
+  static constexpr uint32_t kNoLeaf = 0xffffffffu;
   struct Split {
-    float first, second;  // the probabilities of the two children; both 0 if neither can contribute
+    float first = 0.0f, second = 0.0f;  // the probabilities of the two children; both 0 if neither can contribute
+    uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;  // a leaf node below each child that scores > 0
   };
   struct BuildItem;
 
-  Split split(const Node& node, const LightSamplingPoint& at) const;
-  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0.
-  float pruned_importance(uint32_t index, const LightSamplingPoint& at) const;
-  /// Whether some leaf below interior node `index` scores > 0 (the representative first, then depth first).
-  bool subtree_can_contribute(uint32_t index, const LightSamplingPoint& at) const;
+  /// The split at interior node `index`, given `witness`: a leaf node below it known to score > 0 (the child
+  /// holding it needs no search), or kNoLeaf.
+  Split split(uint32_t index, uint32_t witness, const LightSamplingPoint& at) const;
+  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf.
+  float pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const;
+  /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
+  /// representative if every leaf is certified to score or it scores, else depth first.
+  uint32_t find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const;
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
