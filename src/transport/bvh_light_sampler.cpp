@@ -129,6 +129,20 @@ bool every_leaf_scores(const LightBounds& b, Vec3 p, Vec3 normal) {
   return c >= b.cos_theta_e * kCosMargin + sin_e * kSinMargin;
 }
 
+// Whether leaf a is the better representative of a subtree than leaf b: the one more likely to score > 0 at an
+// arbitrary point, i.e. the one whose emission reaches the widest cone (θo + θe: a point light everywhere, a spot
+// its cone, a triangle its hemisphere), then the brighter.
+bool more_likely_to_score(const LightBounds& a, const LightBounds& b) {
+  const auto reach = [](const LightBounds& x) {
+    return std::min(std::acos(std::clamp(double(x.cos_theta_o), -1.0, 1.0)) +
+                        std::acos(std::clamp(double(x.cos_theta_e), -1.0, 1.0)),
+                    3.14159265358979323846) + (x.two_sided ? 3.14159265358979323846 : 0.0);
+  };
+  const double reach_a = reach(a), reach_b = reach(b);
+  if (std::fabs(reach_a - reach_b) > 1e-6) return reach_a > reach_b;
+  return a.intensity_w_sr > b.intensity_w_sr;
+}
+
 }  // namespace
 
 BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
@@ -279,7 +293,7 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
   const uint32_t first_representative = nodes_[first].representative;
   const uint32_t second_representative = nodes_[second].representative;
   nodes_[index].representative =
-      nodes_[second_representative].bounds.intensity_w_sr > nodes_[first_representative].bounds.intensity_w_sr
+      more_likely_to_score(nodes_[second_representative].bounds, nodes_[first_representative].bounds)
           ? second_representative
           : first_representative;
   return index;
@@ -290,8 +304,14 @@ BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
   const uint32_t first = index + 1, second = nodes_[index].index;
   Split out;
   float a = 0.0f, b = 0.0f;
-  // Leaves below the first child have node indices in [first, second) (depth-first order).
-  if (witness != kNoLeaf && witness < second) {
+  if (witness == kCertified) {
+    // Every leaf below scores: the plain importances, and both children stay certified.
+    a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
+    b = light_importance(nodes_[second].bounds, at.position_m, at.normal);
+    out.first_witness = a > 0.0f ? kCertified : kNoLeaf;
+    out.second_witness = b > 0.0f ? kCertified : kNoLeaf;
+  } else if (witness != kNoLeaf && witness < second) {
+    // Leaves below the first child have node indices in [first, second) (depth-first order).
     a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
     out.first_witness = a > 0.0f ? witness : kNoLeaf;
     b = pruned_importance(second, at, &out.second_witness);
@@ -317,14 +337,18 @@ float BvhLightSampler::pruned_importance(uint32_t index, const LightSamplingPoin
   const float importance = light_importance(node.bounds, at.position_m, at.normal);
   *witness = kNoLeaf;
   if (!(importance > 0.0f)) return 0.0f;
-  *witness = node.is_leaf ? index : find_scoring_leaf(index, at);
+  if (node.is_leaf)
+    *witness = index;
+  else if (every_leaf_scores(node.bounds, at.position_m, at.normal))
+    *witness = kCertified;
+  else
+    *witness = find_scoring_leaf(index, at);
   return *witness == kNoLeaf ? 0.0f : importance;
 }
 
 uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const {
   const Node& node = nodes_[index];
-  if (every_leaf_scores(node.bounds, at.position_m, at.normal) ||
-      light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
+  if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
     return node.representative;
   // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
   // too, up to rounding).
@@ -332,6 +356,7 @@ uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const LightSamplingP
     const Node& c = nodes_[child];
     if (!(light_importance(c.bounds, at.position_m, at.normal) > 0.0f)) continue;
     if (c.is_leaf) return child;
+    if (every_leaf_scores(c.bounds, at.position_m, at.normal)) return c.representative;
     if (const uint32_t leaf = find_scoring_leaf(child, at); leaf != kNoLeaf) return leaf;
   }
   return kNoLeaf;

@@ -14,9 +14,9 @@
 // child's importance counts only if its subtree can contribute: if some leaf below it scores > 0. That is
 // decided from the child's own bounds where they guarantee that every leaf scores (the usual case: the cluster
 // wholly above the tangent plane and p inside every member's emission cone), else on the subtree's representative
-// (its leaf of largest intensity), else by a depth-first search that stops at the first leaf that scores > 0.
+// (its leaf whose emission reaches the widest cone, then the brightest), else by a depth-first search that stops at the first leaf that scores > 0.
 // The leaf found is carried down as a witness: the child holding it needs no check, so a descent checks one child
-// per level. With it the probabilities of the leaves that score > 0 sum to 1 (to float rounding), and no other
+// per level; below a certified cluster nothing is checked (every descendant is certified too). With it the probabilities of the leaves that score > 0 sum to 1 (to float rounding), and no other
 // leaf has any. pmf() carries the same witnesses along the same path, so it still multiplies identical factors.
 //
 // Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
@@ -55,23 +55,26 @@ class BvhLightSampler final : public LightSampler {
   struct Node {
     LightBounds bounds;
     uint32_t index = 0;  // interior: the second child (the first is the next node); leaf: into leaves_
-    uint32_t representative = 0;  // the node of the subtree's leaf of largest intensity
+    uint32_t representative = 0;  // the node of the subtree's leaf likeliest to score (widest reach, brightest)
     bool is_leaf = false;
   };
   struct Leaf {
     int light, part;
   };
   static constexpr uint32_t kNoLeaf = 0xffffffffu;
+  static constexpr uint32_t kCertified = 0xfffffffeu;  // a witness meaning: every leaf below scores > 0
   struct Split {
     float first = 0.0f, second = 0.0f;  // the probabilities of the two children; both 0 if neither can contribute
-    uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;  // a leaf node below each child that scores > 0
+    // Per child: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the child cannot contribute).
+    uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;
   };
   struct BuildItem;
 
   /// The split at interior node `index`, given `witness`: a leaf node below it known to score > 0 (the child
-  /// holding it needs no search), or kNoLeaf.
+  /// holding it needs no search), kCertified (no child needs one), or kNoLeaf.
   Split split(uint32_t index, uint32_t witness, const LightSamplingPoint& at) const;
-  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf.
+  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf,
+  /// kCertified if the node's bounds show that every leaf below scores, or kNoLeaf.
   float pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const;
   /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
   /// representative if every leaf is certified to score or it scores, else depth first.
