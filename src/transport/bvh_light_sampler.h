@@ -11,13 +11,15 @@
 // Pruning. A node's bounds are looser than its children's, so a node can score > 0 while every leaf below it
 // scores 0 (its box straddles the tangent plane, each child's box lies below it). A descent into such a subtree
 // would find no light, and that probability would be lost (~20 % at random points with random normals). So a
-// child's importance counts only if its subtree can contribute: if some leaf below it scores > 0. That is
-// decided from the child's own bounds where they guarantee that every leaf scores (the usual case: the cluster
-// wholly above the tangent plane and p inside every member's emission cone), else on the subtree's representative
-// (its leaf whose emission reaches the widest cone, then the brightest), else by a depth-first search that stops at the first leaf that scores > 0.
-// The leaf found is carried down as a witness: the child holding it needs no check, so a descent checks one child
-// per level; below a certified cluster nothing is checked (every descendant is certified too). With it the probabilities of the leaves that score > 0 sum to 1 (to float rounding), and no other
-// leaf has any. pmf() carries the same witnesses along the same path, so it still multiplies identical factors.
+// child's importance counts only if some leaf below it scores > 0. That is decided from the child's own bounds
+// where they guarantee that every leaf scores (the usual case: the cluster wholly above the tangent plane and p
+// inside every member's emission cone; below such a cluster nothing more is checked), else on the subtree's
+// representative (its leaf whose emission reaches the widest cone, then the brightest), else by a depth-first
+// search that stops at the first leaf that scores > 0. The leaf found is carried down as a witness: the child
+// holding it needs no check, so a descent checks one child per level. The probabilities of the leaves that score
+// > 0 then sum to 1 (to float rounding), and no other leaf has any. pmf() carries the same witnesses along the
+// same path, so it still multiplies identical factors. Cost: one extra importance evaluation per level where
+// nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
 //
 // Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
