@@ -1,16 +1,20 @@
 // Light sampling benchmark: equal-time relative MSE of the BVH light sampler against the power sampler on five
-// scenes, and the tree's build time and memory for 10⁶ emissive triangles. Not a test: timings go to
-// docs/benchmarks.md with the machine, its load and the command.
+// scenes (data/scenes/light_sampling/*.json and the Cornell box; `rimu` renders the same files), and the tree's
+// build time and memory for 10⁶ emissive triangles. Not a test: timings go to docs/benchmarks.md with the machine,
+// its load and the command.
 //
 // Method. Per scene: a reference rendered with the BVH sampler at --reference-spp; then each sampler renders the
 // scene --runs times at --spp, alternating (bvh, power, bvh, ...) so that both see the same machine load, with
 // different seeds. relMSE = Σ(Y − Y_ref)² / Σ Y_ref² over the scene's region (film Y); the reference's own noise
 // (estimated as the BVH run's relMSE × spp / reference spp) is subtracted from both. Time per sample is the median
-// over the runs. Monte Carlo error falls as 1/time, so the equal-time ratio is
+// over the runs, in process CPU time (both render threads; the machine is shared, so wall time would also count
+// other processes' turns). Monte Carlo error falls as 1/time, so the equal-time ratio is
 //   (relMSE_power · t_power) / (relMSE_bvh · t_bvh)   (> 1: the BVH sampler wins by that factor).
 //
 // Usage: rimu-light-sampler-bench [--spp 16] [--reference-spp 512] [--runs 3] [--resolution 64x48] [--docs]
-//        [--scenes 01234] [--build-only]
+//        [--scenes 01234] [--build-only] [--power-spp N]
+// --power-spp gives the power sampler its own spp (default --spp), so that a light it starves is picked at all;
+// the equal-time ratio then compares relMSE · spp · (time per sample).
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -38,6 +42,7 @@ namespace {
 
 struct Settings {
   int spp = 16, reference_spp = 512, runs = 3, width = 64, height = 48;
+  int power_spp = 0;  // the power sampler's spp, if not --spp: enough that it picks a starved light at all
   bool docs = false;
   bool build_only = false;  // only the 10⁶-triangle build figures
   std::string scenes = "01234";  // which scenes, by index
@@ -53,95 +58,9 @@ struct BenchScene {
   std::string region_name = "whole image";
 };
 
-json spot_scene(double floor_half_m) {
-  json d = json::parse(R"({
-    "camera": {"from": [0, 3.5, 4.5], "to": [0, 0.3, 0], "vertical_fov_deg": 50},
-    "integrator": {"max_depth": 6},
-    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5},
-                  "glass": {"type": "dielectric", "ior": 1.5},
-                  "copper": {"type": "conductor", "metal": "copper", "roughness": 0.15}},
-    "lights": [
-      {"type": "spot", "name": "spot", "position": [0, 2, 0], "direction": [0, -1, 0], "cone_angle_deg": 40,
-       "falloff_start_deg": 30, "luminous_power_lm": 800, "power_convention": "cone", "spectrum": {"blackbody": 2700}},
-      {"type": "environment", "name": "sky", "radiance": {"illuminant": "D65", "scale": 0.0001}}
-    ],
-    "shapes": [
-      {"type": "sphere", "material": "glass", "center": [-0.35, 0.3, 0.1], "radius": 0.3},
-      {"type": "sphere", "material": "copper", "center": [0.4, 0.3, -0.2], "radius": 0.3}
-    ]
-  })");
-  const double h = floor_half_m;
-  d["shapes"].push_back({{"type", "quad"}, {"material", "grey"}, {"vertices", {{-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}}}});
-  return d;
-}
-
-// An 8 m × 8 m × 3 m room; 32 × 32 emissive 8 cm squares on the ceiling (blackbodies 2700-6500 K); a 2 m × 1 m
-// window in the +x wall onto a D65 sky.
-json ceiling_grid_scene() {
-  json d = json::parse(R"({
-    "camera": {"from": [-3.5, 1.6, -3.0], "to": [4, 1.2, 1.0], "vertical_fov_deg": 70},
-    "integrator": {"max_depth": 5},
-    "materials": {"wall": {"type": "diffuse", "reflectance": 0.6}, "floor": {"type": "diffuse", "reflectance": 0.3},
-                  "black": {"type": "diffuse", "reflectance": 0}},
-    "lights": [{"type": "environment", "name": "sky", "radiance": {"illuminant": "D65", "scale": 0.01}}],
-    "shapes": [
-      {"type": "quad", "material": "floor", "vertices": [[-4, 0, 4], [4, 0, 4], [4, 0, -4], [-4, 0, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[-4, 3, -4], [4, 3, -4], [4, 3, 4], [-4, 3, 4]]},
-      {"type": "quad", "material": "wall", "vertices": [[-4, 0, -4], [4, 0, -4], [4, 3, -4], [-4, 3, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 0, 4], [-4, 0, 4], [-4, 3, 4], [4, 3, 4]]},
-      {"type": "quad", "material": "wall", "vertices": [[-4, 0, 4], [-4, 0, -4], [-4, 3, -4], [-4, 3, 4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 0, -4], [4, 0, 4], [4, 1, 4], [4, 1, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 2, -4], [4, 2, 4], [4, 3, 4], [4, 3, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 1, -4], [4, 1, -1], [4, 2, -1], [4, 2, -4]]},
-      {"type": "quad", "material": "wall", "vertices": [[4, 1, 1], [4, 1, 4], [4, 2, 4], [4, 2, 1]]}
-    ]
-  })");
-  for (int i = 0; i < 32; ++i)
-    for (int j = 0; j < 32; ++j) {
-      const double x = -4 + 0.25 * (i + 0.5), z = -4 + 0.25 * (j + 0.5), s = 0.04, y = 2.99;
-      const double cct = 2700.0 + (6500.0 - 2700.0) * double((i * 7 + j * 3) % 8) / 7.0;
-      // Counter-clockwise seen from below: faces down.
-      d["shapes"].push_back({{"type", "quad"},
-                             {"material", "black"},
-                             {"vertices", {{x - s, y, z - s}, {x + s, y, z - s}, {x + s, y, z + s}, {x - s, y, z + s}}},
-                             {"emission", {{"blackbody", cct}, {"scale", 30.0}}}});
-    }
-  return d;
-}
-
-// A 500 m road with 200 lamps 8 m up on both sides: LED spots, high-pressure sodium points (CIE HP1), low-pressure
-// sodium spots (the D doublet); a dim night sky.
-json street_scene() {
-  json d = json::parse(R"({
-    "camera": {"from": [-200, 1.7, -2], "to": [-150, 1.0, 1], "vertical_fov_deg": 45},
-    "integrator": {"max_depth": 4},
-    "materials": {"asphalt": {"type": "diffuse", "reflectance": 0.12}, "kerb": {"type": "diffuse", "reflectance": 0.4}},
-    "lights": [{"type": "environment", "name": "night sky", "radiance": {"daylight": 12000, "scale": 0.00002}}],
-    "shapes": [
-      {"type": "quad", "material": "asphalt", "vertices": [[-250, 0, 6], [250, 0, 6], [250, 0, -6], [-250, 0, -6]]},
-      {"type": "quad", "material": "kerb", "vertices": [[-250, 0.15, 10], [250, 0.15, 10], [250, 0.15, 6], [-250, 0.15, 6]]},
-      {"type": "quad", "material": "kerb", "vertices": [[-250, 0.15, -6], [250, 0.15, -6], [250, 0.15, -10], [-250, 0.15, -10]]}
-    ]
-  })");
-  for (int k = 0; k < 200; ++k) {
-    const double x = -250 + 2.5 * (k + 0.5), z = k % 2 ? 7.0 : -7.0;
-    json light;
-    if (k % 3 == 1) {
-      light = {{"type", "point"}, {"position", {x, 8, z}}, {"luminous_power_lm", 9000}, {"spectrum", {{"illuminant", "HP1"}}}};
-    } else {
-      light = {{"type", "spot"}, {"position", {x, 8, z}}, {"direction", {0, -1, -z * 0.05}}, {"cone_angle_deg", 130},
-               {"falloff_start_deg", 90}, {"luminous_power_lm", 8000}, {"power_convention", "cone"}};
-      light["spectrum"] = k % 3 == 0 ? json{{"illuminant", "LED-B3"}} : json{{"csv", "low_pressure_sodium.csv"}};
-    }
-    light["name"] = "lamp " + std::to_string(k);
-    d["lights"].push_back(light);
-  }
-  return d;
-}
-
 struct RenderResult {
   std::vector<double> y;  // film Y per pixel, row by row
-  double seconds = 0;
+  double seconds = 0;  // process CPU time (both render threads): on a shared machine, the work done
 };
 
 std::unique_ptr<Scene> load(const BenchScene& s, const char* sampler, const Settings& settings,
@@ -160,10 +79,10 @@ RenderResult render_y(const Scene& scene, int spp, uint64_t seed, SpectralLibrar
   options.seed = seed;
   options.sampler = scene.settings.sampler;
   options.threads = 2;
-  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t start = std::clock();
   render(scene, bench::make_filter(scene.settings.filter), film, options);
   RenderResult r;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
   for (int py = 0; py < scene.settings.height; ++py)
     for (int px = 0; px < scene.settings.width; ++px) r.y.push_back(film.pixel_value(px, py)[1]);
   return r;
@@ -200,17 +119,19 @@ double median(std::vector<double> v) {
 struct SceneResult {
   std::string name, region;
   double rel_mse_bvh, rel_mse_power, time_bvh_us, time_power_us, ratio;
+  int power_spp;
 };
 
 SceneResult run_scene(const BenchScene& s, const Settings& settings, SpectralLibrary& library) {
   const auto bvh = load(s, "bvh", settings, library);
   const auto power = load(s, "power", settings, library);
+  const int power_spp = settings.power_spp > 0 ? settings.power_spp : settings.spp;
   const RenderResult reference = render_y(*bvh, settings.reference_spp, 99, library);
   const std::vector<bool> mask = region_mask(*bvh, s);
   std::vector<double> t_bvh, t_power, e_bvh, e_power;
   for (int r = 0; r < settings.runs; ++r) {
     const RenderResult a = render_y(*bvh, settings.spp, uint64_t(1000 + r), library);
-    const RenderResult b = render_y(*power, settings.spp, uint64_t(2000 + r), library);
+    const RenderResult b = render_y(*power, power_spp, uint64_t(2000 + r), library);
     t_bvh.push_back(a.seconds);
     t_power.push_back(b.seconds);
     e_bvh.push_back(relative_mse(a.y, reference.y, mask));
@@ -225,10 +146,11 @@ SceneResult run_scene(const BenchScene& s, const Settings& settings, SpectralLib
   const double reference_noise = mean_bvh * settings.spp / settings.reference_spp / (1.0 + double(settings.spp) / settings.reference_spp);
   mean_bvh -= reference_noise;
   mean_power -= reference_noise;
-  const double samples = double(settings.width) * settings.height * settings.spp;
-  SceneResult out{s.name, s.region_name, mean_bvh, mean_power, median(t_bvh) / samples * 1e6,
-                  median(t_power) / samples * 1e6, 0.0};
-  out.ratio = (mean_power * out.time_power_us) / (mean_bvh * out.time_bvh_us);
+  const double pixels = double(settings.width) * settings.height;
+  SceneResult out{s.name, s.region_name, mean_bvh, mean_power, median(t_bvh) / (pixels * settings.spp) * 1e6,
+                  median(t_power) / (pixels * power_spp) * 1e6, 0.0, power_spp};
+  // relMSE ∝ 1/spp: at equal time each sampler's relMSE would be relMSE · spp · (time per sample) / T.
+  out.ratio = (mean_power * power_spp * out.time_power_us) / (mean_bvh * settings.spp * out.time_bvh_us);
   std::cerr << s.name << ": relMSE bvh " << mean_bvh << " power " << mean_power << ", us/sample " << out.time_bvh_us
             << " / " << out.time_power_us << ", equal-time ratio " << out.ratio << "\n";
   return out;
@@ -267,17 +189,18 @@ BuildResult million_triangles() {
   std::vector<LightSamplingPoint> points;
   for (int i = 0; i < calls; ++i) points.push_back({{100 * u(rng), 20 * u(rng), 100 * u(rng)}, {0, 1, 0}});
   double checksum = 0;
-  auto t0 = std::chrono::steady_clock::now();
+  // Process CPU time (one thread here): the machine is shared, and wall time would count other processes' turns.
+  const std::clock_t t0 = std::clock();
   std::vector<LightChoice> choices;
   for (int i = 0; i < calls; ++i)
     if (const auto c = sampler.sample(points[size_t(i)], u(rng))) choices.push_back(*c);
-  auto t1 = std::chrono::steady_clock::now();
+  const std::clock_t t1 = std::clock();
   for (size_t i = 0; i < choices.size(); ++i) checksum += sampler.pmf(points[i], choices[i].light, choices[i].part);
-  auto t2 = std::chrono::steady_clock::now();
+  const std::clock_t t2 = std::clock();
   if (checksum < 0) std::cerr << checksum;
   return {n, build_s, build_cpu_s, double(sampler.memory_bytes()) / n, sampler.max_depth(),
-          std::chrono::duration<double>(t1 - t0).count() / calls * 1e9,
-          std::chrono::duration<double>(t2 - t1).count() / double(std::max<size_t>(choices.size(), 1)) * 1e9};
+          double(t1 - t0) / CLOCKS_PER_SEC / calls * 1e9,
+          double(t2 - t1) / CLOCKS_PER_SEC / double(std::max<size_t>(choices.size(), 1)) * 1e9};
 }
 
 }  // namespace
@@ -290,32 +213,42 @@ int main(int argc, char** argv) {
     if (a == "--spp") settings.spp = std::stoi(next());
     else if (a == "--reference-spp") settings.reference_spp = std::stoi(next());
     else if (a == "--runs") settings.runs = std::stoi(next());
+    else if (a == "--power-spp") settings.power_spp = std::stoi(next());
     else if (a == "--resolution") std::sscanf(next().c_str(), "%dx%d", &settings.width, &settings.height);
     else if (a == "--docs") settings.docs = true;
     else if (a == "--build-only") settings.build_only = true;
     else if (a == "--scenes") settings.scenes = next();
     else {
-      std::cerr << "usage: rimu-light-sampler-bench [--spp N] [--reference-spp N] [--runs N] [--resolution WxH] [--docs]\n";
+      std::cerr << "usage: rimu-light-sampler-bench [--spp N] [--power-spp N] [--reference-spp N] [--runs N] "
+                   "[--resolution WxH] [--scenes 01234] [--build-only] [--docs]\n";
       return 1;
     }
   }
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::string load_before = bench::load_average();
   const std::filesystem::path scenes = library.root() / "scenes";
+  const std::filesystem::path light_sampling = scenes / "light_sampling";
+  const auto scene_file = [&](const std::string& name, const std::filesystem::path& file) {
+    BenchScene scene;
+    scene.name = name;
+    scene.document = parse_json_file(file);
+    scene.directory = file.parent_path();
+    return scene;
+  };
   std::vector<BenchScene> bench_scenes;
   // The spot's pool: floor points within 0.7 m of the spot's axis (its outer cone reaches 0.73 m).
-  BenchScene spot3{"spot + D65 environment, 6 m floor", spot_scene(3.0), scenes / "light_sampling"};
-  spot3.in_region = [](Vec3 p) { return p.y < 1e-3f && p.x * p.x + p.z * p.z < 0.49f; };
-  spot3.region_name = "spot's pool (floor within 0.7 m of its axis)";
-  BenchScene spot100 = spot3;
-  spot100.name = "spot + D65 environment, 100 m floor";
-  spot100.document = spot_scene(50.0);
-  bench_scenes.push_back(spot3);
-  bench_scenes.push_back(spot100);
-  bench_scenes.push_back({"room, 32 × 32 ceiling panels 2700-6500 K + sky window", ceiling_grid_scene(), scenes / "light_sampling"});
-  bench_scenes.push_back({"street, 200 sodium/LED lamps over 500 m + night sky", street_scene(), scenes / "light_sampling"});
-  const std::filesystem::path cornell = scenes / "cornell_box" / "scene.json";
-  bench_scenes.push_back({"Cornell box", parse_json_file(cornell), cornell.parent_path()});
+  const auto in_pool = [](Vec3 p) { return p.y < 1e-3f && p.x * p.x + p.z * p.z < 0.49f; };
+  for (const std::string floor_m : {"3", "100"}) {
+    BenchScene spot = scene_file("spot + D65 environment, " + floor_m + " m floor",
+                                 light_sampling / ("spot_" + floor_m + "m_floor.json"));
+    spot.in_region = in_pool;
+    spot.region_name = "spot's pool (floor within 0.7 m of its axis)";
+    bench_scenes.push_back(spot);
+  }
+  bench_scenes.push_back(scene_file("room, 32 × 32 ceiling panels 2700-6500 K + sky window",
+                                    light_sampling / "ceiling_grid_room.json"));
+  bench_scenes.push_back(scene_file("street, 200 sodium/LED lamps over 500 m + night sky", light_sampling / "street.json"));
+  bench_scenes.push_back(scene_file("Cornell box", scenes / "cornell_box" / "scene.json"));
 
   std::vector<SceneResult> results;
   for (size_t i = 0; i < bench_scenes.size() && !settings.build_only; ++i)
@@ -328,10 +261,15 @@ int main(int argc, char** argv) {
   std::ostringstream md;
   md << "Command: `build/bin/rimu-light-sampler-bench --spp " << settings.spp << " --reference-spp "
      << settings.reference_spp << " --runs " << settings.runs << " --resolution " << settings.width << "x"
-     << settings.height << (settings.docs ? " --docs" : "") << "` (Release build; scenes in "
-     << "bench/light_sampler_bench.cpp, the low-pressure sodium spectrum in data/scenes/light_sampling/).\n\n"
+     << settings.height
+     << (settings.power_spp > 0 ? " --power-spp " + std::to_string(settings.power_spp) : std::string())
+     << (settings.scenes != "01234" ? " --scenes " + settings.scenes : std::string())
+     << (settings.docs ? " --docs" : "")
+     << "` (Release build; scenes in data/scenes/light_sampling/ and data/scenes/cornell_box/, rendered at the "
+     << "resolution above with a box filter).\n\n"
      << "Machine: " << bench::machine_description() << "; 2 render threads; load average before " << load_before
-     << ", after " << load_after << " (a shared machine: both samplers' runs alternate, times are medians).\n"
+     << ", after " << load_after
+     << " (a shared machine: both samplers' runs alternate; times are process CPU time, medians over the runs).\n"
      << "Build: " << bench::build_description() << ".\n\n"
      << "| scene | region | relMSE bvh | relMSE power | µs/sample bvh | µs/sample power | equal-time relMSE power ÷ bvh |\n"
      << "|---|---|---|---|---|---|---|\n";
@@ -344,7 +282,7 @@ int main(int argc, char** argv) {
      << " s CPU, one thread), " << bench::format(build.bytes_per_light, "%.4g")
      << " bytes per triangle (nodes, leaves, bit trails), depth " << build.depth << "; sample() "
      << bench::format(build.sample_ns, "%.3g") << " ns, pmf() " << bench::format(build.pmf_ns, "%.3g")
-     << " ns per call at random points.\n";
+     << " ns CPU per call at random points with normal +y.\n";
   std::cout << md.str();
   if (settings.docs)
     bench::update_docs_section(library.root().parent_path() / "docs" / "benchmarks.md", "light-sampling",

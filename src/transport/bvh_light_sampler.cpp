@@ -94,6 +94,55 @@ double cluster_cost(const LightBounds& b, double floor_m) {
   return double(b.intensity_w_sr) * orientation_measure(b) * surface_area(b, floor_m);
 }
 
+// True if every leaf below a cluster with bounds `b` scores > 0 at (p, n), decided from the cluster's own bounds
+// (no leaf is read): p lies outside the cluster's bounding sphere, the whole box lies strictly above p's tangent
+// plane (so every member's box does), and p is inside every member's emission cone from every member position:
+// with w the direction from the box centre to p, θu the angle the bounding sphere subtends at p, and each member's
+// cone inside the cluster's (axis within θo of the cluster's), a member's angle to p is at most ∠(axis, w) + θu +
+// θo; that must not exceed θe (the members' smallest falloff reach) less twice the bounds' angular margin. For
+// one-sided flat emitters (θe = π/2) this puts p in front of every member's plane. Two-sided clusters and clusters
+// whose cone plus falloff covers the sphere through an omnidirectional member (θo = π) are never certified here.
+bool every_leaf_scores(const LightBounds& b, Vec3 p, Vec3 normal) {
+  if (b.two_sided) return false;
+  const Vec3 centre = b.centre_m();
+  const Vec3 half = (b.upper_m - b.lower_m) * 0.5f;
+  const Vec3 to_p = p - centre;
+  if (!(normal == Vec3{}) && !(-dot(normal, to_p) - dot(abs(normal), half) > 0.0f)) return false;
+  const float distance2 = length_squared(to_p);
+  const float radius2 = length_squared(half);
+  if (!(distance2 > radius2)) return false;
+  // cos and sin of ∠(axis, w) + θu + θo, by the angle-sum formulas; a sum past π fails (its sine turns negative).
+  const float sin2_u = radius2 / distance2;
+  float c = dot(b.axis, to_p / std::sqrt(distance2));
+  float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
+  for (const float cos_add : {std::sqrt(1.0f - sin2_u), b.cos_theta_o}) {
+    const float sin_add = std::sqrt(std::max(0.0f, 1.0f - cos_add * cos_add));
+    const float c_sum = c * cos_add - s * sin_add;
+    const float s_sum = s * cos_add + c * sin_add;
+    if (!(s_sum >= 0.0f)) return false;
+    c = c_sum;
+    s = s_sum;
+  }
+  // cos(θe − 2·margin), margin 1e-3 rad (light_bounds.cpp).
+  constexpr float kCosMargin = 0.999998f, kSinMargin = 0.002f;
+  const float sin_e = std::sqrt(std::max(0.0f, 1.0f - b.cos_theta_e * b.cos_theta_e));
+  return c >= b.cos_theta_e * kCosMargin + sin_e * kSinMargin;
+}
+
+// Whether leaf a is the better representative of a subtree than leaf b: the one more likely to score > 0 at an
+// arbitrary point, i.e. the one whose emission reaches the widest cone (θo + θe: a point light everywhere, a spot
+// its cone, a triangle its hemisphere), then the brighter.
+bool more_likely_to_score(const LightBounds& a, const LightBounds& b) {
+  const auto reach = [](const LightBounds& x) {
+    return std::min(std::acos(std::clamp(double(x.cos_theta_o), -1.0, 1.0)) +
+                        std::acos(std::clamp(double(x.cos_theta_e), -1.0, 1.0)),
+                    3.14159265358979323846) + (x.two_sided ? 3.14159265358979323846 : 0.0);
+  };
+  const double reach_a = reach(a), reach_b = reach(b);
+  if (std::fabs(reach_a - reach_b) > 1e-6) return reach_a > reach_b;
+  return a.intensity_w_sr > b.intensity_w_sr;
+}
+
 }  // namespace
 
 BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
@@ -142,6 +191,7 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
     nodes_[index].bounds = items[begin].bounds;
     nodes_[index].index = items[begin].leaf;
     nodes_[index].is_leaf = true;
+    nodes_[index].representative = index;
     trails_[first_part_[size_t(leaf.light)] + uint32_t(leaf.part)] = trail | (uint64_t(1) << depth);
     max_depth_ = std::max(max_depth_, depth);
     return index;
@@ -236,32 +286,91 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
                      [axis](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
   }
 
-  build(items, begin, middle, depth + 1, trail);
+  const uint32_t first = build(items, begin, middle, depth + 1, trail);
   const uint32_t second = build(items, middle, end, depth + 1, trail | (uint64_t(1) << depth));
   nodes_[index].bounds = bounds;
   nodes_[index].index = second;
+  const uint32_t first_representative = nodes_[first].representative;
+  const uint32_t second_representative = nodes_[second].representative;
+  nodes_[index].representative =
+      more_likely_to_score(nodes_[second_representative].bounds, nodes_[first_representative].bounds)
+          ? second_representative
+          : first_representative;
   return index;
 }
 
-BvhLightSampler::Split BvhLightSampler::split(const Node& node, const LightSamplingPoint& at) const {
-  const Node& first = (&node)[1];
-  const Node& second = nodes_[node.index];
-  const float a = light_importance(first.bounds, at.position_m, at.normal);
-  const float b = light_importance(second.bounds, at.position_m, at.normal);
+BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
+                                              const LightSamplingPoint& at) const {
+  const uint32_t first = index + 1, second = nodes_[index].index;
+  Split out;
+  float a = 0.0f, b = 0.0f;
+  if (witness == kCertified) {
+    // Every leaf below scores: the plain importances, and both children stay certified.
+    a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
+    b = light_importance(nodes_[second].bounds, at.position_m, at.normal);
+    out.first_witness = a > 0.0f ? kCertified : kNoLeaf;
+    out.second_witness = b > 0.0f ? kCertified : kNoLeaf;
+  } else if (witness != kNoLeaf && witness < second) {
+    // Leaves below the first child have node indices in [first, second) (depth-first order).
+    a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
+    out.first_witness = a > 0.0f ? witness : kNoLeaf;
+    b = pruned_importance(second, at, &out.second_witness);
+  } else if (witness != kNoLeaf) {
+    a = pruned_importance(first, at, &out.first_witness);
+    b = light_importance(nodes_[second].bounds, at.position_m, at.normal);
+    out.second_witness = b > 0.0f ? witness : kNoLeaf;
+  } else {
+    a = pruned_importance(first, at, &out.first_witness);
+    b = pruned_importance(second, at, &out.second_witness);
+  }
+  if (out.first_witness == kNoLeaf) a = 0.0f;
+  if (out.second_witness == kNoLeaf) b = 0.0f;
   const float sum = a + b;
-  if (!(sum > 0.0f)) return {0.0f, 0.0f};
-  return {a / sum, b / sum};
+  if (!(sum > 0.0f)) return Split{};
+  out.first = a / sum;
+  out.second = b / sum;
+  return out;
+}
+
+float BvhLightSampler::pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const {
+  const Node& node = nodes_[index];
+  const float importance = light_importance(node.bounds, at.position_m, at.normal);
+  *witness = kNoLeaf;
+  if (!(importance > 0.0f)) return 0.0f;
+  if (node.is_leaf)
+    *witness = index;
+  else if (every_leaf_scores(node.bounds, at.position_m, at.normal))
+    *witness = kCertified;
+  else
+    *witness = find_scoring_leaf(index, at);
+  return *witness == kNoLeaf ? 0.0f : importance;
+}
+
+uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const {
+  const Node& node = nodes_[index];
+  if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
+    return node.representative;
+  // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
+  // too, up to rounding).
+  for (const uint32_t child : {index + 1, node.index}) {
+    const Node& c = nodes_[child];
+    if (!(light_importance(c.bounds, at.position_m, at.normal) > 0.0f)) continue;
+    if (c.is_leaf) return child;
+    if (every_leaf_scores(c.bounds, at.position_m, at.normal)) return c.representative;
+    if (const uint32_t leaf = find_scoring_leaf(child, at); leaf != kNoLeaf) return leaf;
+  }
+  return kNoLeaf;
 }
 
 BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) const {
   bool tree_can_contribute = false;
-  Split root_split{0.0f, 0.0f};
+  Split root_split;
   if (!nodes_.empty()) {
     const Node& root = nodes_[0];
     if (root.is_leaf) {
       tree_can_contribute = light_importance(root.bounds, at.position_m, at.normal) > 0.0f;
     } else {
-      root_split = split(root, at);
+      root_split = split(0, kNoLeaf, at);
       tree_can_contribute = root_split.first > 0.0f || root_split.second > 0.0f;
     }
   }
@@ -284,18 +393,20 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at,
   constexpr double kBelowOne = 1.0 - 0x1p-53;
   u = std::min((u - infinite_total) / double(shares_here.tree), kBelowOne);
   float probability = shares_here.tree;
-  uint32_t node = 0;
+  uint32_t node = 0, witness = kNoLeaf;
   while (!nodes_[node].is_leaf) {
-    const Split s = node == 0 ? shares_here.root : split(nodes_[node], at);
+    const Split s = node == 0 ? shares_here.root : split(node, witness, at);
     if (u < double(s.first)) {
       u = u / double(s.first);
       probability *= s.first;
       node = node + 1;
+      witness = s.first_witness;
     } else {
-      if (!(s.second > 0.0f)) return std::nullopt;  // neither child can contribute
+      if (!(s.second > 0.0f)) return std::nullopt;  // neither child can contribute (only through rounding)
       u = (u - double(s.first)) / double(s.second);
       probability *= s.second;
       node = nodes_[node].index;
+      witness = s.second_witness;
     }
     u = std::clamp(u, 0.0, kBelowOne);
   }
@@ -319,15 +430,16 @@ float BvhLightSampler::pmf(const LightSamplingPoint& at, int light, int part) co
   const Shares shares_here = shares(at);
   if (!(shares_here.tree > 0.0f)) return 0.0f;
   float probability = shares_here.tree;
-  uint32_t node = 0;
+  uint32_t node = 0, witness = kNoLeaf;
   while (!nodes_[node].is_leaf) {
-    const Split s = node == 0 ? shares_here.root : split(nodes_[node], at);
+    const Split s = node == 0 ? shares_here.root : split(node, witness, at);
     const bool second = (trail & 1) != 0;
     trail >>= 1;
     const float factor = second ? s.second : s.first;
     if (!(factor > 0.0f)) return 0.0f;
     probability *= factor;
     node = second ? nodes_[node].index : node + 1;
+    witness = second ? s.second_witness : s.first_witness;
   }
   return probability;
 }

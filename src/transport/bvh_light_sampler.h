@@ -5,9 +5,21 @@
 // Descent. At an interior node with children a, b of importances I_a, I_b at (p, n), child a is taken with
 // probability I_a / (I_a + I_b); the leaf's probability is the product along its path. pmf() retraces that path
 // (stored per leaf as a bit trail) and multiplies the same factors in the same order, so it returns exactly the
-// sampled probability. When both children of a node have importance 0 the descent fails (std::nullopt): that
-// probability mass is lost, never given to a light that cannot contribute. Importances are 0 behind one-sided
-// emitters, outside spot/IES cones and below an opaque surface's tangent plane.
+// sampled probability. Importances are 0 behind one-sided emitters, outside spot/IES cones and below an opaque
+// surface's tangent plane.
+//
+// Pruning. A node's bounds are looser than its children's, so a node can score > 0 while every leaf below it
+// scores 0 (its box straddles the tangent plane, each child's box lies below it). A descent into such a subtree
+// would find no light, and that probability would be lost (~20 % at random points with random normals). So a
+// child's importance counts only if some leaf below it scores > 0. That is decided from the child's own bounds
+// where they guarantee that every leaf scores (the usual case: the cluster wholly above the tangent plane and p
+// inside every member's emission cone; below such a cluster nothing more is checked), else on the subtree's
+// representative (its leaf whose emission reaches the widest cone, then the brightest), else by a depth-first
+// search that stops at the first leaf that scores > 0. The leaf found is carried down as a witness: the child
+// holding it needs no check, so a descent checks one child per level. The probabilities of the leaves that score
+// > 0 then sum to 1 (to float rounding), and no other leaf has any. pmf() carries the same witnesses along the
+// same path, so it still multiplies identical factors. Cost: one extra importance evaluation per level where
+// nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
 //
 // Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
@@ -45,17 +57,30 @@ class BvhLightSampler final : public LightSampler {
   struct Node {
     LightBounds bounds;
     uint32_t index = 0;  // interior: the second child (the first is the next node); leaf: into leaves_
+    uint32_t representative = 0;  // the node of the subtree's leaf likeliest to score (widest reach, brightest)
     bool is_leaf = false;
   };
   struct Leaf {
     int light, part;
   };
+  static constexpr uint32_t kNoLeaf = 0xffffffffu;
+  static constexpr uint32_t kCertified = 0xfffffffeu;  // a witness meaning: every leaf below scores > 0
   struct Split {
-    float first, second;  // the probabilities of the two children; both 0 if neither can contribute
+    float first = 0.0f, second = 0.0f;  // the probabilities of the two children; both 0 if neither can contribute
+    // Per child: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the child cannot contribute).
+    uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;
   };
   struct BuildItem;
 
-  Split split(const Node& node, const LightSamplingPoint& at) const;
+  /// The split at interior node `index`, given `witness`: a leaf node below it known to score > 0 (the child
+  /// holding it needs no search), kCertified (no child needs one), or kNoLeaf.
+  Split split(uint32_t index, uint32_t witness, const LightSamplingPoint& at) const;
+  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf,
+  /// kCertified if the node's bounds show that every leaf below scores, or kNoLeaf.
+  float pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const;
+  /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
+  /// representative if every leaf is certified to score or it scores, else depth first.
+  uint32_t find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const;
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
