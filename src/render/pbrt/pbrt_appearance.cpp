@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "render/pbrt/pbrt_converter.h"
+#include "render/rgb_image.h"
+#include "transport/equal_area_square.h"
 #include "spectral/rgb_colour_space.h"
 
 namespace rimu {
@@ -256,6 +258,67 @@ json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m
   return fields.contains("emission") ? fields["emission"] : fields;
 }
 
+json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world) {
+  const std::string context = "LightSource \"infinite\"";
+  if (p.get("L", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody}))
+    throw InputError(s.where, context + ": give either \"L\" or \"filename\", not both");
+  if (!p.numbers("portal", {PbrtParamType::point3}).empty()) ignore(context + " \"portal\" (the whole map is sampled)", s.where);
+  const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
+  if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
+  // pbrt looks a world direction up at EqualAreaSphereToSquare(light_from_world · d): the image's axes s, t, n are
+  // the world images of light-space x, y, z. Its light transform may mirror (a Frame of either handedness works);
+  // a shear or non-uniform scale, which bends pbrt's mapping, cannot be represented and is made rigid.
+  std::array<Vec3d, 3> axes;
+  for (int i = 0; i < 3; ++i) axes[i] = world.vector({i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0});
+  const auto dot3 = [](const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const double scale0 = std::sqrt(dot3(axes[0], axes[0]));
+  bool rigid = scale0 > 0;
+  for (int i = 0; i < 3 && rigid; ++i)
+    for (int j = 0; j < 3; ++j)
+      rigid = rigid && std::abs(dot3(axes[i], axes[j]) - (i == j ? scale0 * scale0 : 0.0)) <= 1e-6 * scale0 * scale0;
+  if (!rigid) {
+    ignore(context + " under a shear or non-uniform scale (its axes are made perpendicular)", s.where);
+    for (int i = 0; i < 3; ++i) {  // Gram-Schmidt
+      for (int j = 0; j < i; ++j) {
+        const double d = dot3(axes[i], axes[j]);
+        for (int c = 0; c < 3; ++c) axes[i][c] -= d * axes[j][c];
+      }
+      const double len = std::sqrt(dot3(axes[i], axes[i]));
+      if (!(len > 0)) throw InputError(s.where, context + ": the current transform is singular");
+      for (int c = 0; c < 3; ++c) axes[i][c] /= len;
+    }
+  }
+  double scale = p.real("scale", 1.0);
+  const double illuminance = p.real("illuminance", -1.0);
+  if (illuminance > 0) {
+    // pbrt-v4 (lights.cpp, ImageInfiniteLight) scales the map so that k_e = (2π/N) Σ Y(pixel) cos θ over the N
+    // pixels whose centre has light-space z > 0 becomes the given illuminance. Each pixel subtends 4π/N sr, so the
+    // upper hemisphere's true illuminance is twice pbrt's k_e: following pbrt (the same image) means twice the
+    // stated illuminance. Y uses the linear sRGB luminance weights (pbrt: the file's colour space, sRGB by default).
+    const RgbImage image = RgbImage::read(path, default_encoding_for(path));
+    const RgbColourSpace& srgb = RgbColourSpace::named("srgb-linear");
+    double k_e = 0.0;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) {
+        const Vec3 w = equal_area_square_to_sphere({(x + 0.5f) / float(image.width()), (y + 0.5f) / float(image.height())});
+        if (w.z <= 0) continue;
+        const Rgb rgb = image.pixel(x, y);
+        k_e += srgb.to_xyz(rgb).y * w.z;
+      }
+    k_e *= 2.0 * M_PI / (double(image.width()) * image.height());
+    if (!(k_e > 0)) throw InputError(s.where, context + ": \"illuminance\" given for a map whose upper hemisphere is black");
+    scale *= illuminance / k_e;
+  }
+  // A pixel of luminance Y is Y nits in pbrt (its spectrum divided by the colour space white's luminance), the
+  // film's Y = 1 per nit: Rimu's film units, so pbrt's scale carries over unchanged.
+  const auto unit = [&](const Vec3d& a) {
+    const double len = std::sqrt(dot3(a, a));
+    return Vec3d{a[0] / len, a[1] / len, a[2] / len};
+  };
+  return {{"type", "environment"}, {"image", path_for_document(path)}, {"mapping", "equal_area_octahedral"},
+          {"frame", {unit(axes[0]), unit(axes[1]), unit(axes[2])}}, {"scale", std::max(0.0, scale)}};
+}
+
 void PbrtConverter::light_source(const PbrtStatement& s) {
   const std::string& type = s.strings[0];
   const std::string context = "LightSource \"" + type + "\"";
@@ -309,11 +372,8 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
                               illuminance > 0 ? std::optional<double>(illuminance) : std::nullopt));
   } else {  // infinite
     light["type"] = "environment";
-    if (!p.string("filename", "").empty()) {
-      ignore("LightSource \"infinite\" with \"filename\" (equal-area octahedral maps are not read; the light is left out)", s.where);
-      p.numbers("portal", {PbrtParamType::point3});
-      p.real("scale", 1.0);
-      p.real("illuminance", -1.0);
+    if (const std::string filename = p.string("filename", ""); !filename.empty()) {
+      lights_.push_back(image_environment(p, s, filename, world));
       return;
     }
     // "illuminance": what a surface facing up receives from the uniform sphere, π L.

@@ -99,6 +99,8 @@ class PbrtConverter {
   json light_amount(PbrtParams& p, const char* spectrum_key, const char* radiometric_key, const char* photometric_key,
                     std::optional<double> photometric_amount);
   double rgb_luminance(const PbrtParam& rgb) const;
+  /// pbrt's "infinite" light with an equal-area octahedral image `filename`, in the light transform `world`.
+  json image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world);
   std::string default_material();
 
   // pbrt_shapes.cpp
