@@ -4,6 +4,9 @@
 // (≈ 72 983 nt), so pbrt's amount A becomes A · nits_per_unit_y_ in Rimu's photometric keys: the same image.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "render/pbrt/pbrt_converter.h"
 #include "render/rgb_image.h"
@@ -37,6 +40,57 @@ std::optional<std::string> illuminant_of(const std::string& named) {
   return std::nullopt;
 }
 
+// pbrt-v4's wavelength-value pairs (PiecewiseLinearSpectrum::FromInterleaved): strictly increasing wavelengths,
+// and the end values carried out to 360 and 830 nm, so that beyond its table the spectrum keeps its end values
+// (pbrt is 0 only outside 360-830 nm, which Rimu does not transport). The overall scale pbrt applies to a light's
+// spectrum does not matter: light amounts are set photometrically (see the top of this file).
+json tabulated_spectrum(const std::vector<double>& pairs, const PbrtParam& param) {
+  if (pairs.size() < 4 || pairs.size() % 2 != 0)
+    throw InputError(param.where, "spectrum of \"" + param.name + "\": expected at least two wavelength-value pairs, got " +
+                                      std::to_string(pairs.size()) + " numbers");
+  std::vector<double> lambda_nm, values;
+  for (size_t i = 0; i < pairs.size(); i += 2) {
+    if (i > 0 && !(pairs[i] > pairs[i - 2]))
+      throw InputError(param.where, "spectrum of \"" + param.name + "\": wavelengths must increase; " + std::to_string(pairs[i]) +
+                                        " nm follows " + std::to_string(pairs[i - 2]) + " nm");
+    if (pairs[i + 1] < 0) throw InputError(param.where, "spectrum of \"" + param.name + "\": negative value at " + std::to_string(pairs[i]) + " nm");
+    lambda_nm.push_back(pairs[i]);
+    values.push_back(pairs[i + 1]);
+  }
+  if (lambda_nm.front() > 360.0) {
+    lambda_nm.insert(lambda_nm.begin(), 360.0);
+    values.insert(values.begin(), values.front());
+  }
+  if (lambda_nm.back() < 830.0) {
+    lambda_nm.push_back(830.0);
+    values.push_back(values.back());
+  }
+  return {{"wavelengths_nm", lambda_nm}, {"values", values}};
+}
+
+// A pbrt spectrum file: numbers separated by white space (or commas), '#' to the end of a line a comment; the
+// numbers are wavelength-value pairs. Errors name the file and line.
+std::vector<double> read_spectrum_file(const std::filesystem::path& path, const PbrtParam& param) {
+  std::ifstream in(path);
+  if (!in) throw InputError(param.where, "cannot read the spectrum file '" + path.string() + "'");
+  std::vector<double> numbers;
+  std::string line;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream words(line);
+    for (std::string word; words >> word;) {
+      char* end = nullptr;
+      const double v = std::strtod(word.c_str(), &end);
+      if (end != word.c_str() + word.size() || !std::isfinite(v))
+        throw InputError({path.string(), line_number, ""}, "expected a number, not '" + word + "'");
+      numbers.push_back(v);
+    }
+  }
+  if (numbers.size() % 2 != 0) throw InputError({path.string(), 0, ""}, "an odd count of numbers: expected wavelength-value pairs");
+  return numbers;
+}
+
 }  // namespace
 
 std::string PbrtConverter::default_material() {
@@ -50,24 +104,29 @@ double PbrtConverter::rgb_luminance(const PbrtParam& rgb) const {
   return space.to_xyz({rgb.numbers[0], rgb.numbers[1], rgb.numbers[2]}).y;
 }
 
-std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool illuminant) {
-  const std::string what = "spectrum of \"" + param.name + "\"";
+std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool illuminant, const std::filesystem::path& directory) {
   switch (param.type) {
     case PbrtParamType::rgb: return json{{"rgb", param.numbers}, {"space", state_.colour_space}};
     case PbrtParamType::blackbody: return json{{"blackbody", param.numbers[0]}};
     case PbrtParamType::real: return json(param.numbers.at(0));
     case PbrtParamType::spectrum:
       if (!param.strings.empty()) {
+        const std::string& named = param.strings[0];
         if (illuminant)
-          if (const auto name = illuminant_of(param.strings[0])) return json{{"illuminant", *name}};
-        ignore("spectrum \"" + param.strings[0] + "\" of \"" + param.name + "\" (named spectra other than stdillum-*, and spectrum files, are not imported)", param.where);
-        return std::nullopt;
+          if (const auto name = illuminant_of(named)) return json{{"illuminant", *name}};
+        const std::filesystem::path file = directory / named;
+        const bool looks_like_file = named.find('.') != std::string::npos || named.find('/') != std::string::npos;
+        if (!std::filesystem::is_regular_file(file)) {
+          if (looks_like_file) throw InputError(param.where, "cannot find the spectrum file '" + file.string() + "' of \"" + param.name + "\"");
+          ignore("spectrum \"" + named + "\" of \"" + param.name + "\" (named spectra other than stdillum-*, metal-{Au,Ag,Cu,Al}-eta/k and glass-BK7 are not imported)", param.where);
+          return std::nullopt;
+        }
+        return tabulated_spectrum(read_spectrum_file(file, param), param);
       } else {
         bool constant = true;
         for (size_t i = 3; i < param.numbers.size(); i += 2) constant = constant && param.numbers[i] == param.numbers[1];
         if (constant) return json(param.numbers[1]);
-        ignore("inline " + what + " (wavelength-value pairs that vary)", param.where);
-        return std::nullopt;
+        return tabulated_spectrum(param.numbers, param);
       }
     default: return std::nullopt;
   }
@@ -77,7 +136,7 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
   const PbrtParam* param = p.get(name, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real});
   if (!param) return json(fallback);
   if (param->type != PbrtParamType::texture) {
-    if (auto v = spectrum_value(*param, false)) return v;
+    if (auto v = spectrum_value(*param, false, p.directory())) return v;
     return json(fallback);
   }
   const auto found = textures_.find(param->strings.at(0));
@@ -164,7 +223,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     const double roughness = scalar("roughness", 0.0);
     if (roughness != 0.0) ignore("rough coat of coateddiffuse (Rimu's coat is smooth)", s.where);
     if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum})) {
-      if (const auto v = spectrum_value(*eta, false)) m["coat_ior"] = *v;
+      if (const auto v = spectrum_value(*eta, false, p.directory())) m["coat_ior"] = *v;
     }
     if (p.real("thickness", 0.01) != 0.01) ignore("coateddiffuse \"thickness\" (Rimu's coat is clear and thin)", s.where);
     if (const PbrtParam* albedo = p.get("albedo", {PbrtParamType::real, PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture}))
@@ -181,11 +240,19 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     } else if (eta && k && eta->type == PbrtParamType::spectrum && k->type == PbrtParamType::spectrum && !eta->strings.empty() &&
                !k->strings.empty() && metal_of(eta->strings[0], "-eta") && metal_of(eta->strings[0], "-eta") == metal_of(k->strings[0], "-k")) {
       m["metal"] = *metal_of(eta->strings[0], "-eta");
-    } else if (eta && k && eta->type == PbrtParamType::real && k->type == PbrtParamType::real) {
-      m["n"] = eta->numbers[0];
-      m["k"] = k->numbers[0];
+    } else if (eta && k && eta->type != PbrtParamType::rgb && eta->type != PbrtParamType::texture && k->type != PbrtParamType::rgb &&
+               k->type != PbrtParamType::texture) {
+      // Floats, inline pairs or spectrum files; a named spectrum Rimu lacks is listed by spectrum_value.
+      const auto n_value = spectrum_value(*eta, false, p.directory());
+      const auto k_value = spectrum_value(*k, false, p.directory());
+      if (n_value && k_value) {
+        m["n"] = *n_value;
+        m["k"] = *k_value;
+      } else {
+        m["metal"] = "copper";
+      }
     } else {
-      ignore("conductor eta/k other than a metal-{Au,Ag,Cu,Al}-eta/-k pair or two floats (copper is used)", s.where);
+      ignore("conductor eta/k other than a metal-{Au,Ag,Cu,Al}-eta/-k pair, floats or tabulated spectra (copper is used)", s.where);
       m["metal"] = "copper";
     }
     const double r = scalar("roughness", 0.0);
@@ -203,7 +270,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       m["ior"] = 1.5;
     } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && eta->strings[0] == "glass-BK7") {
       m["glass"] = "bk7";
-    } else if (const auto v = spectrum_value(*eta, false)) {
+    } else if (const auto v = spectrum_value(*eta, false, p.directory())) {
       m["ior"] = *v;
     } else {
       m["ior"] = 1.5;  // spectrum_value reported it
@@ -227,9 +294,9 @@ json PbrtConverter::light_amount(PbrtParams& p, const char* spectrum_key, const 
   if (!sp) {
     value = {{"rgb", {1.0, 1.0, 1.0}}, {"space", state_.colour_space}};  // pbrt's default: the colour space's white
   } else if (sp->type == PbrtParamType::rgb) {
-    value = *spectrum_value(*sp, true);
+    value = *spectrum_value(*sp, true, p.directory());
     rgb_y = rgb_luminance(*sp);
-  } else if (const auto v = spectrum_value(*sp, true)) {
+  } else if (const auto v = spectrum_value(*sp, true, p.directory())) {
     value = *v;
     is_rgb = false;
   } else {

@@ -44,6 +44,7 @@ class PbrtParams {
   std::vector<double> numbers(const std::string& name, std::initializer_list<PbrtParamType> types);
   const std::string& context() const { return context_; }
   const SourceLocation& where() const { return statement_.where; }
+  const std::filesystem::path& directory() const { return statement_.directory; }
 
  private:
   PbrtConverter& converter_;
@@ -95,7 +96,9 @@ class PbrtConverter {
   friend class PbrtParams;
   // pbrt_appearance.cpp
   std::optional<json> reflectance(PbrtParams& p, const std::string& name, double fallback);
-  std::optional<json> spectrum_value(const PbrtParam& param, bool illuminant);
+  /// A pbrt spectrum parameter as a Rimu spectral value; spectrum files resolve against `directory`. Empty (and
+  /// listed) for what is not imported.
+  std::optional<json> spectrum_value(const PbrtParam& param, bool illuminant, const std::filesystem::path& directory);
   json light_amount(PbrtParams& p, const char* spectrum_key, const char* radiometric_key, const char* photometric_key,
                     std::optional<double> photometric_amount);
   double rgb_luminance(const PbrtParam& rgb) const;
