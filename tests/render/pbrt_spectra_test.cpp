@@ -2,6 +2,8 @@
 // table form of Rimu's spectral values they become.
 #include <doctest/doctest.h>
 
+#include <cmath>
+
 #include "integration_support.h"
 #include "render/pbrt/pbrt_to_scene.h"
 
@@ -73,4 +75,30 @@ TEST_CASE("scene spectra: the inline table form is checked like a CSV column") {
   CHECK_MESSAGE(unordered.find("increase") != std::string::npos, unordered);
   const std::string count = reflectance_error({{"wavelengths_nm", {400, 500, 700}}, {"values", {0.2, 0.6}}});
   CHECK_MESSAGE(count.find("expected 3 values") != std::string::npos, count);
+}
+
+TEST_CASE("pbrt float textures that are constant everywhere become numbers (constant, scale, mix)") {
+  const PbrtImport imported = import_pbrt_text(
+      kCamera +
+          "Texture \"r\" \"float\" \"constant\" \"float value\" 0.04\n"
+          "Texture \"half\" \"float\" \"scale\" \"texture tex\" \"r\" \"float scale\" 0.5\n"
+          "Texture \"blend\" \"float\" \"mix\" \"texture tex1\" \"r\" \"float tex2\" 0.16 \"float amount\" 0.25\n"
+          "Material \"conductor\" \"texture roughness\" \"half\" \"bool remaproughness\" false\n"
+          "Shape \"sphere\"\n"
+          "Material \"conductor\" \"texture roughness\" \"blend\" \"bool remaproughness\" false\n"
+          "Shape \"sphere\"\n"
+          "Texture \"grid\" \"float\" \"checkerboard\"\n"
+          "Material \"conductor\" \"texture roughness\" \"grid\"\n"
+          "Shape \"sphere\"\n",
+      "t.pbrt", test::test_data("pbrt"), test::library());
+  const json& d = imported.document;
+  const auto material = [&](int shape) { return d["materials"][d["shapes"][shape]["material"].get<std::string>()]; };
+  const auto roughness = [&](int shape) { return material(shape).value("roughness", -1.0); };
+  // Rimu's roughness r is √α; without remapping α is pbrt's roughness: 0.04·0.5 = 0.02, and 0.75·0.04 + 0.25·0.16 = 0.07.
+  CHECK(roughness(0) == doctest::Approx(std::pow(0.02, 0.5)));
+  CHECK(roughness(1) == doctest::Approx(std::pow(0.07, 0.5)));
+  // A texture that varies is still listed, and the default used.
+  CHECK_FALSE(material(2).contains("roughness"));
+  REQUIRE(imported.ignored.size() == 1);
+  CHECK(imported.ignored[0].what.find("texture for \"roughness\"") != std::string::npos);
 }

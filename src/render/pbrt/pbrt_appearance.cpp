@@ -178,6 +178,35 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
   return json(fallback);
 }
 
+std::optional<double> PbrtConverter::constant_float_texture(const std::string& name, const SourceLocation& where, int depth) {
+  const auto found = textures_.find(name);
+  if (found == textures_.end()) throw InputError(where, "no texture named \"" + name + "\"");
+  const PbrtTexture& texture = found->second;
+  const PbrtStatement& ts = texture.statement;
+  if (texture.kind != "float") throw InputError(where, "\"" + name + "\" is a spectrum texture where a float texture is needed");
+  if (depth > 64) throw InputError(ts.where, "Texture \"" + name + "\": textures nested more than 64 deep");
+  const std::string& cls = texture.texture_class;
+  if (cls != "constant" && cls != "scale" && cls != "mix") return std::nullopt;
+  // Textures that are constant everywhere are numbers: "constant", and "scale"/"mix" of constants (pbrt-v4's
+  // FloatScaledTexture: tex·scale; FloatMixTexture: (1 − amount)·tex1 + amount·tex2).
+  PbrtParams tp(*this, ts, "Texture \"" + name + "\"");
+  const auto operand = [&](const std::string& key, double fallback) -> std::optional<double> {
+    const PbrtParam* q = tp.get(key, {PbrtParamType::real, PbrtParamType::texture});
+    if (!q) return fallback;
+    if (q->type == PbrtParamType::real) return q->numbers.at(0);
+    return constant_float_texture(q->strings.at(0), q->where, depth + 1);
+  };
+  if (cls == "constant") return tp.real("value", 1.0);
+  if (cls == "scale") {
+    const auto t = operand("tex", 1.0), k = operand("scale", 1.0);
+    if (!t || !k) return std::nullopt;
+    return *t * *k;
+  }
+  const auto a = operand("tex1", 0.0), b = operand("tex2", 1.0), amount = operand("amount", 0.5);
+  if (!a || !b || !amount) return std::nullopt;
+  return (1.0 - *amount) * *a + *amount * *b;
+}
+
 void PbrtConverter::texture(const PbrtStatement& s) {
   const std::string& kind = s.strings[1];
   if (kind != "spectrum" && kind != "float")
@@ -212,6 +241,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     const PbrtParam* q = p.get(key, {PbrtParamType::real, PbrtParamType::texture});
     if (!q) return fallback;
     if (q->type == PbrtParamType::real) return q->numbers.at(0);
+    if (const auto constant = constant_float_texture(q->strings.at(0), q->where, 0)) return *constant;
     ignore("texture for \"" + key + "\" of " + p.context() + " (" + std::to_string(fallback) + " is used)", q->where);
     return fallback;
   };
