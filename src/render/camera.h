@@ -6,7 +6,9 @@
 
 namespace rimu {
 
-/// A pinhole (lens_radius = 0) or thin-lens perspective camera.
+/// A pinhole (lens_radius = 0) or thin-lens perspective camera, or an orthographic one (orthographic_height > 0:
+/// parallel rays along +z from the points of a film orthographic_height scene units tall; with lens_radius > 0
+/// they pass a thin lens focused at focus_distance, as pbrt's OrthographicCamera).
 ///
 /// Film coordinates are continuous pixels: (0,0) is the top-left corner of the image, (width, height) the
 /// bottom-right. The vertical field of view spans the image height. The thin lens focuses at `focus_distance`
@@ -17,6 +19,7 @@ struct CameraSettings {
   float vertical_fov_deg = 40.0f;
   float lens_radius = 0.0f;        ///< aperture radius in scene units; 0 = pinhole
   float focus_distance = 1.0f;     ///< scene units, along +z
+  float orthographic_height = 0.0f;  ///< > 0: orthographic, the film's height in scene units (fov unused)
 };
 
 class Camera {

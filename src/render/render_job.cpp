@@ -163,11 +163,13 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
   apply_camera_options(job, settings.camera_exposure, library);
 
   FilmOptions film_options{settings.width, settings.height, std::nullopt, settings.spectral_bins};
-  if (job.crop) {
-    if (job.crop->x1 > settings.width || job.crop->y1 > settings.height)
-      throw InputError({"", 0, "--crop"}, "the crop window reaches outside the " + std::to_string(settings.width) + "x" +
-                                              std::to_string(settings.height) + " image");
-    film_options.crop = *job.crop;
+  // --crop, else the scene's film "crop" (checked against the scene's resolution, which --width/--height may change).
+  if (const std::optional<PixelBounds> crop = job.crop ? job.crop : settings.crop) {
+    if (crop->x1 > settings.width || crop->y1 > settings.height)
+      throw InputError({job.crop ? "" : scene_path.string(), 0, job.crop ? "--crop" : "/film/crop"},
+                       "the crop window reaches outside the " + std::to_string(settings.width) + "x" +
+                           std::to_string(settings.height) + " image");
+    film_options.crop = *crop;
   }
   SpectralResponse response = [&] {
     try {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "spectral/wavelength_range.h"
+#include "transport/equal_area_square.h"
 #include "transport/light_warps.h"
 
 namespace rimu {
@@ -25,8 +26,9 @@ EnvironmentLight::EnvironmentLight(LightSpectrum radiance)
   mean_radiance_integral_ = constant_->integral_360_830();
 }
 
-EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentImage> image, double scale, Frame frame)
-    : image_(std::move(image)), image_scale_(scale), frame_(frame) {
+EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentImage> image, double scale, Frame frame,
+                                   EnvironmentMapping mapping)
+    : image_(std::move(image)), image_scale_(scale), frame_(frame), mapping_(mapping) {
   assert(image_ && image_->width() > 0 && image_->height() > 0 && std::isfinite(scale) && scale >= 0.0);
   const int w = image_->width(), h = image_->height();
   std::vector<double> luminance(size_t(w) * h);
@@ -39,7 +41,9 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentImage> image
       mean += luminance[size_t(y) * w + x];
     }
   mean /= double(w) * h;
-  // Ω_y = (2π/w)(cos θ_top − cos θ_bottom) of a pixel in row y, for the power estimate.
+  // Ω_y = (2π/w)(cos θ_top − cos θ_bottom) of a pixel in row y (equirectangular) or 4π/(w·h) (equal-area), for
+  // the power estimate.
+  const bool equal_area = mapping_ == EnvironmentMapping::equal_area_octahedral;
   const double band_nm = (kLambdaMaxNm - kLambdaMinNm) / kPowerWavelengths;
   std::vector<SampledWavelengths> groups;
   for (int g = 0; g < kPowerWavelengths / kLaneCount; ++g) {
@@ -50,9 +54,10 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentImage> image
   double radiance_times_solid_angle = 0.0;
   for (int y = 0; y < h; ++y) {
     const double theta_center = std::numbers::pi * (y + 0.5) / h;
-    const double sin_theta = std::sin(theta_center);
-    const double pixel_sr = 2.0 * std::numbers::pi / w *
-                            (std::cos(std::numbers::pi * y / h) - std::cos(std::numbers::pi * (y + 1) / h));
+    const double sin_theta = equal_area ? 1.0 : std::sin(theta_center);
+    const double pixel_sr = equal_area ? 4.0 * std::numbers::pi / (double(w) * h)
+                                       : 2.0 * std::numbers::pi / w *
+                                             (std::cos(std::numbers::pi * y / h) - std::cos(std::numbers::pi * (y + 1) / h));
     for (int x = 0; x < w; ++x) {
       double& weight = luminance[size_t(y) * w + x];
       weight = (weight + kLuminanceFloor * mean) * sin_theta;
@@ -67,14 +72,19 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentImage> image
 
 Vec2 EnvironmentLight::direction_to_uv(Vec3 direction) const {
   const Vec3 d = frame_.to_local(direction);
+  const float below_one = std::nextafter(1.0f, 0.0f);
+  if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
+    const Vec2 uv = equal_area_sphere_to_square(d);
+    return {std::min(uv.x, below_one), std::min(uv.y, below_one)};
+  }
   const float theta = std::acos(std::clamp(d.z, -1.0f, 1.0f));
   float phi = std::atan2(-d.y, d.x);
   if (phi < 0.0f) phi += 2.0f * kPi;
-  const float below_one = std::nextafter(1.0f, 0.0f);
   return {std::min(phi / (2.0f * kPi), below_one), std::min(theta / kPi, below_one)};
 }
 
 Vec3 EnvironmentLight::uv_to_direction(Vec2 uv) const {
+  if (mapping_ == EnvironmentMapping::equal_area_octahedral) return frame_.to_world(equal_area_square_to_sphere(uv));
   const float theta = kPi * uv.y, phi = 2.0f * kPi * uv.x;
   const float sin_theta = std::sin(theta);
   return frame_.to_world({sin_theta * std::cos(phi), -sin_theta * std::sin(phi), std::cos(theta)});
@@ -94,6 +104,11 @@ SampledSpectrum EnvironmentLight::radiance_escaped(Vec3 direction, const Sampled
 float EnvironmentLight::pdf_li(const LightReference&, Vec3 wi, const SurfaceHit*) const {
   if (!(mean_radiance_integral_ > 0.0)) return 0.0f;
   if (distribution_.is_zero()) return kUniformSpherePdf;
+  if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
+    // dω = 4π du dv everywhere (the map preserves area).
+    const float pdf = distribution_.pdf(direction_to_uv(wi)) / (4.0f * kPi);
+    return std::isfinite(pdf) ? pdf : 0.0f;
+  }
   const Vec3 d = frame_.to_local(wi);
   const float sin_theta = std::sqrt(std::fmax(0.0f, d.x * d.x + d.y * d.y));
   if (!(sin_theta > 0.0f)) return 0.0f;

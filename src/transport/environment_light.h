@@ -1,12 +1,20 @@
-// Light from infinitely far away in every direction: a constant radiance, or an equirectangular image.
+// Light from infinitely far away in every direction: a constant radiance, or an image in one of two mappings:
+// equirectangular (latitude-longitude, below) or equal-area octahedral (pbrt-v4's, further below).
 //
-// Directions. The light has its own orthonormal frame (s, t, n), given at construction (default: world x, y, z):
+// Equirectangular directions. The light has its own orthonormal frame (s, t, n), given at construction (default: world x, y, z):
 // n is "up", the image's top row. A direction d with local coordinates (d_s, d_t, d_n) maps to
 //   θ = acos(d_n) ∈ [0, π]  (0 at the top),   φ = atan2(−d_t, d_s) wrapped to [0, 2π),
 //   u = φ / 2π (image x = ⌊u·width⌋),         v = θ / π (image y = ⌊v·height⌋),
 // so u = 0 (the left edge) looks along +s, and u grows to the RIGHT of a viewer at the centre who looks along +s
 // with n up (the image is not mirrored when seen from inside). The frame must be right-handed (s × t = n);
 // a y-up scene passes Frame{{1,0,0},{0,0,-1},{0,1,0}}: +y up, u = 0 along +x.
+//
+// Equal-area octahedral directions (EnvironmentMapping::equal_area_octahedral; transport/equal_area_square.h): a
+// direction with local coordinates d maps to (u, v) = equal_area_sphere_to_square(d) — the image centre looks along
+// +n, the middle of the right edge along +s, the middle of the bottom edge (v = 1) along +t, the corners along −n.
+// This is pbrt-v4's ImageInfiniteLight with (s, t, n) its light-space x, y, z, pixel row 0 at v = 0. Every pixel
+// of a w × h image subtends exactly 4π/(w·h) sr; the frame may have either handedness (pbrt's light-to-world
+// transform may mirror).
 //
 // Lookup: nearest pixel (piecewise constant), NOT bilinear, so the radiance is constant on exactly the cells the
 // sampling density is constant on: importance sampling by luminance then matches the integrand pixel for pixel.
@@ -18,6 +26,8 @@
 // violet pixel), at the cost of ≤ 0.1 % of the samples. With dω = sin θ dθ dφ = 2π² sin θ du dv,
 //   p_ω(d) = p(u, v) / (2π² sin θ).
 // Directions at the poles (sin θ = 0) have p_ω undefined: std::nullopt / pdf 0 (a set of zero measure).
+// Equal-area images use the weights f(x, y) = Y(x, y) + 10⁻³·Ȳ (no sin θ: every pixel has the same solid angle),
+// and since the map preserves area, p_ω(d) = p(u, v) / 4π exactly, at every direction.
 // A black image (every weight 0) falls back to uniform sphere sampling, p_ω = 1/4π; so does a constant light.
 #pragma once
 
@@ -32,15 +42,18 @@
 
 namespace rimu {
 
+enum class EnvironmentMapping { equirectangular, equal_area_octahedral };
+
 class EnvironmentLight final : public Light {
  public:
   /// Constant radiance `radiance` W/(m²·sr·nm) from every direction.
   explicit EnvironmentLight(LightSpectrum radiance);
   /// An image, its radiance multiplied by `scale` (set at load time, e.g. from nits in issue 5), oriented by
-  /// `frame` (see above). Cost O(width·height): the sampling distribution and 16 wavelengths of every pixel for
-  /// the power estimate.
+  /// `frame` (see above) and read in `mapping`. Cost O(width·height): the sampling distribution and 16 wavelengths
+  /// of every pixel for the power estimate.
   EnvironmentLight(std::shared_ptr<const EnvironmentImage> image, double scale,
-                   Frame frame = Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+                   Frame frame = Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                   EnvironmentMapping mapping = EnvironmentMapping::equirectangular);
 
   /// A direction by luminance (image) or uniform on the sphere; distance ∞.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
@@ -54,7 +67,7 @@ class EnvironmentLight final : public Light {
   double total_power_w(double scene_radius_m) const override;
   bool is_infinite() const override { return true; }
 
-  /// (u, v) ∈ [0, 1)² of a world direction (convention above), and back.
+  /// (u, v) ∈ [0, 1)² of a world direction (the mapping's convention above), and back.
   Vec2 direction_to_uv(Vec3 direction) const;
   Vec3 uv_to_direction(Vec2 uv) const;
 
@@ -69,6 +82,7 @@ class EnvironmentLight final : public Light {
   std::optional<LightSpectrum> constant_;          // set for a constant environment
   double image_scale_ = 1.0;
   Frame frame_;
+  EnvironmentMapping mapping_ = EnvironmentMapping::equirectangular;
   Distribution2D distribution_;  // empty: uniform sphere sampling
   double mean_radiance_integral_ = 0.0;  // ∫L̄(λ)dλ over 360-830 nm, W/(m²·sr)
 };

@@ -12,6 +12,7 @@
 #include "render/camera.h"
 #include "render/camera_exposure.h"
 #include "render/embree_scene.h"
+#include "render/film_tile.h"
 #include "spectral/spectral_library.h"
 #include "transport/light.h"
 #include "transport/light_sampler.h"
@@ -48,6 +49,8 @@ struct RenderSettings {
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
   FilterSettings filter;
   CameraExposureSettings camera_exposure;  ///< the camera's "exposure" and "white_balance" (film units if absent)
+  /// film "crop": render only these pixels of the width × height image (the default of `rimu --crop`).
+  std::optional<PixelBounds> crop;
 };
 
 /// Everything the renderer needs, owned in one place. Immutable after loading; shared by all render threads.

@@ -21,6 +21,16 @@ Vec3 unit_direction(const JsonCursor& c) {
   return normalize(d);
 }
 
+/// An environment image's axes: three world directions [s, t, n], orthonormal to 1e-4 (either handedness: a
+/// mirrored frame shows the image mirrored). They are renormalised.
+Frame environment_frame(const JsonCursor& f) {
+  if (!f.is_array() || f.size() != 3) f.fail("expected three directions [s, t, n]");
+  const Vec3 s = unit_direction(f.at(0)), t = unit_direction(f.at(1)), n = unit_direction(f.at(2));
+  if (std::fabs(dot(s, t)) > 1e-4f || std::fabs(dot(s, n)) > 1e-4f || std::fabs(dot(t, n)) > 1e-4f)
+    f.fail("the three directions must be perpendicular to one another");
+  return {s, t, n};
+}
+
 std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
   const std::string type = l.at("type").choice({"point", "spot", "distant", "environment", "ies"});
   if (type == "ies") return load_ies_light(l, context);
@@ -45,7 +55,7 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
                                           parse_light_emission(l, "irradiance", geometry, context),
                                           l.number_or("angular_diameter_deg", 0.0, 0.0, 90.0));
   }
-  only_light_keys(l, {"type", "name", "radiance", "image", "colour_space", "encoding", "scale"});
+  only_light_keys(l, {"type", "name", "radiance", "image", "colour_space", "encoding", "scale", "mapping", "frame"});
   if (l.has("image")) {
     if (l.has("radiance")) l.at("radiance").fail("give either radiance or image, not both");
     if (has_light_amount(l) || l.has("spectrum"))
@@ -55,14 +65,22 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
     const std::string space = l.string_or("colour_space", "srgb-linear");
     const auto upsampler = context.spectra.upsampler(space, l.has("colour_space") ? l.at("colour_space") : l);
     const double scale = l.number_or("scale", 1.0, 0.0, 1e30);
-    // Scenes are y-up: the image's top row is +y and its left edge looks along +x (environment_light.h). Pixel
-    // values are in film units, like every RGB emission (SpectrumInputContext::emission_rgb_scale).
-    const Frame y_up{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
+    const EnvironmentMapping mapping = l.has("mapping") && l.at("mapping").choice({"equirectangular", "equal_area_octahedral"}) ==
+                                                                  "equal_area_octahedral"
+                                           ? EnvironmentMapping::equal_area_octahedral
+                                           : EnvironmentMapping::equirectangular;
+    if (mapping == EnvironmentMapping::equal_area_octahedral && image->width() != image->height())
+      l.at("image").fail("an equal-area octahedral image must be square, not " + std::to_string(image->width()) + " x " +
+                         std::to_string(image->height()));
+    // Scenes are y-up: by default the image's local n (equirectangular: top row; octahedral: centre) is +y and its
+    // s (left edge; middle of the right edge) is +x (environment_light.h). Pixel values are in film units, like
+    // every RGB emission (SpectrumInputContext::emission_rgb_scale).
+    const Frame frame = l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
     if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/rgb_transport_inputs.h)
       return std::make_unique<EnvironmentLight>(
-          std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale, y_up);
+          std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale, frame, mapping);
     return std::make_unique<EnvironmentLight>(std::make_shared<RgbEnvironmentImage>(image, upsampler),
-                                              scale * context.spectra.emission_rgb_scale(), y_up);
+                                              scale * context.spectra.emission_rgb_scale(), frame, mapping);
   }
   only_light_keys(l, {"type", "name", "radiance"});
   const EmitterGeometry geometry{EmitterKind::environment};

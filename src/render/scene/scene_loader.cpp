@@ -34,13 +34,13 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
   // render_job resolves "keyframes" for the frame being rendered (render/camera_keyframes.h); here there is none.
   if (c.has("keyframes"))
     c.at("keyframes").fail("a camera path keyed by frame needs a frame number: render with --frame N");
-  c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance", "exposure",
+  c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance", "height", "exposure",
                "white_balance"});
   // The physical camera (render/camera_exposure.h): applied when the film is written.
   if (const auto exposure = c.find("exposure")) scene.settings.camera_exposure.exposure = parse_exposure(*exposure);
   if (const auto wb = c.find("white_balance"))
     scene.settings.camera_exposure.white_balance = parse_white_balance(*wb, library);
-  const std::string type = c.has("type") ? c.at("type").choice({"pinhole", "thin_lens"}) : "pinhole";
+  const std::string type = c.has("type") ? c.at("type").choice({"pinhole", "thin_lens", "orthographic"}) : "pinhole";
   const Vec3 from = c.at("from").vec3(), to = c.at("to").vec3();
   const Vec3 up = c.has("up") ? c.at("up").vec3() : Vec3{0, 1, 0};
   check_coordinates(from, c.at("from"), "the camera position");
@@ -48,6 +48,17 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
   if (length(to - from) == 0.0f) c.at("to").fail("'to' equals 'from': the camera has no viewing direction");
   if (length(cross(up, to - from)) == 0.0f) c.at("up").fail("'up' is parallel to the viewing direction");
   scene.camera.camera_to_world = Transform::look_at(from, to, up);
+  if (type == "orthographic") {
+    if (c.has("vertical_fov_deg")) c.at("vertical_fov_deg").fail("an orthographic camera has no field of view: give its 'height'");
+    scene.camera.orthographic_height = float(c.at("height").number(1e-9, 1e9));
+    if (c.has("lens_radius") != c.has("focus_distance")) c.fail("a lens needs both lens_radius and focus_distance");
+    if (c.has("lens_radius")) {
+      scene.camera.lens_radius = float(c.at("lens_radius").number(0.0, 1e6));
+      scene.camera.focus_distance = float(c.at("focus_distance").number(1e-6, 1e9));
+    }
+    return;
+  }
+  if (c.has("height")) c.at("height").fail("'height' applies to \"type\": \"orthographic\" cameras only");
   scene.camera.vertical_fov_deg = float(c.number_or("vertical_fov_deg", 40.0, 1e-3, 179.0));
   if (type == "pinhole") {
     for (const char* key : {"lens_radius", "focus_distance"})
@@ -59,12 +70,21 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
 }
 
 void load_film(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"resolution", "response", "spectral_bins", "filter"});
+  c.only_keys({"resolution", "response", "spectral_bins", "filter", "crop"});
   if (c.has("resolution")) {
     const JsonCursor r = c.at("resolution");
     if (r.size() != 2) r.fail("expected [width, height]");
     s.width = r.at(size_t(0)).integer(1, 1 << 15);
     s.height = r.at(size_t(1)).integer(1, 1 << 15);
+  }
+  if (const auto crop = c.find("crop")) {
+    if (!crop->is_array() || crop->size() != 4) crop->fail("expected [x0, y0, x1, y1]: pixels x0 <= x < x1, y0 <= y < y1");
+    PixelBounds b;
+    b.x0 = crop->at(size_t(0)).integer(0, s.width - 1);
+    b.y0 = crop->at(size_t(1)).integer(0, s.height - 1);
+    b.x1 = crop->at(size_t(2)).integer(b.x0 + 1, s.width);
+    b.y1 = crop->at(size_t(3)).integer(b.y0 + 1, s.height);
+    s.crop = b;
   }
   s.film_response = c.string_or("response", s.film_response);
   s.spectral_bins = c.integer_or("spectral_bins", 0, 0, 471);

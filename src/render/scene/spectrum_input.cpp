@@ -104,8 +104,8 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
     return convert ? rgb_transport_form(constant, role, library_) : constant;
   }
   if (!value.is_object())
-    value.fail("expected a spectrum: a number, or an object with one of constant, illuminant, csv, blackbody, "
-               "daylight, rgb, spectrum");
+    value.fail("expected a spectrum: a number, or an object with one of constant, illuminant, csv, wavelengths_nm, "
+               "blackbody, daylight, rgb, spectrum");
   SpectrumPtr base;
   if (value.has("constant")) {
     value.only_keys({"constant", "scale"});
@@ -125,6 +125,23 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
       if (table.column_count() < 2) throw InputError({path.string(), 1, ""}, "expected wavelength_nm and a value column");
       const std::string c = column.empty() ? table.header()[1] : column;
       return std::make_shared<TabulatedSpectrum>(TabulatedSpectrum::from_csv(table, c, extrapolation));
+    });
+  } else if (value.has("wavelengths_nm")) {
+    // An inline table: the same piecewise-linear function and end rule as a CSV column.
+    value.only_keys({"wavelengths_nm", "values", "scale"});
+    const auto list = [](const JsonCursor& c) {
+      if (!c.is_array() || c.size() < 2) c.fail("expected an array of at least two numbers");
+      std::vector<double> out;
+      for (size_t i = 0; i < c.size(); ++i) out.push_back(c.at(i).number());
+      return out;
+    };
+    std::vector<double> lambda_nm = list(value.at("wavelengths_nm")), values = list(value.at("values"));
+    if (lambda_nm.size() != values.size())
+      value.at("values").fail("expected " + std::to_string(lambda_nm.size()) + " values, one per wavelength, not " +
+                              std::to_string(values.size()));
+    const Extrapolation extrapolation = role == SpectrumRole::emission ? Extrapolation::zero : Extrapolation::clamp;
+    base = at_key(value.at("wavelengths_nm"), [&] {
+      return std::make_shared<TabulatedSpectrum>(std::move(lambda_nm), std::move(values), extrapolation, "");
     });
   } else if (value.has("blackbody")) {
     value.only_keys({"blackbody", "scale"});
@@ -174,7 +191,7 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
     base = parse(named_->at(name), role);
     converted = convert;
   } else {
-    value.fail("expected one of the keys constant, illuminant, csv, blackbody, daylight, rgb, spectrum");
+    value.fail("expected one of the keys constant, illuminant, csv, wavelengths_nm, blackbody, daylight, rgb, spectrum");
   }
   if (value.has("scale")) {
     const double scale = value.at("scale").number(0.0, 1e30);

@@ -4,8 +4,13 @@
 // (≈ 72 983 nt), so pbrt's amount A becomes A · nits_per_unit_y_ in Rimu's photometric keys: the same image.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
+#include "render/rgb_image.h"
+#include "transport/equal_area_square.h"
 #include "spectral/rgb_colour_space.h"
 
 namespace rimu {
@@ -35,6 +40,57 @@ std::optional<std::string> illuminant_of(const std::string& named) {
   return std::nullopt;
 }
 
+// pbrt-v4's wavelength-value pairs (PiecewiseLinearSpectrum::FromInterleaved): strictly increasing wavelengths,
+// and the end values carried out to 360 and 830 nm, so that beyond its table the spectrum keeps its end values
+// (pbrt is 0 only outside 360-830 nm, which Rimu does not transport). The overall scale pbrt applies to a light's
+// spectrum does not matter: light amounts are set photometrically (see the top of this file).
+json tabulated_spectrum(const std::vector<double>& pairs, const PbrtParam& param) {
+  if (pairs.size() < 4 || pairs.size() % 2 != 0)
+    throw InputError(param.where, "spectrum of \"" + param.name + "\": expected at least two wavelength-value pairs, got " +
+                                      std::to_string(pairs.size()) + " numbers");
+  std::vector<double> lambda_nm, values;
+  for (size_t i = 0; i < pairs.size(); i += 2) {
+    if (i > 0 && !(pairs[i] > pairs[i - 2]))
+      throw InputError(param.where, "spectrum of \"" + param.name + "\": wavelengths must increase; " + std::to_string(pairs[i]) +
+                                        " nm follows " + std::to_string(pairs[i - 2]) + " nm");
+    if (pairs[i + 1] < 0) throw InputError(param.where, "spectrum of \"" + param.name + "\": negative value at " + std::to_string(pairs[i]) + " nm");
+    lambda_nm.push_back(pairs[i]);
+    values.push_back(pairs[i + 1]);
+  }
+  if (lambda_nm.front() > 360.0) {
+    lambda_nm.insert(lambda_nm.begin(), 360.0);
+    values.insert(values.begin(), values.front());
+  }
+  if (lambda_nm.back() < 830.0) {
+    lambda_nm.push_back(830.0);
+    values.push_back(values.back());
+  }
+  return {{"wavelengths_nm", lambda_nm}, {"values", values}};
+}
+
+// A pbrt spectrum file: numbers separated by white space (or commas), '#' to the end of a line a comment; the
+// numbers are wavelength-value pairs. Errors name the file and line.
+std::vector<double> read_spectrum_file(const std::filesystem::path& path, const PbrtParam& param) {
+  std::ifstream in(path);
+  if (!in) throw InputError(param.where, "cannot read the spectrum file '" + path.string() + "'");
+  std::vector<double> numbers;
+  std::string line;
+  for (int line_number = 1; std::getline(in, line); ++line_number) {
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream words(line);
+    for (std::string word; words >> word;) {
+      char* end = nullptr;
+      const double v = std::strtod(word.c_str(), &end);
+      if (end != word.c_str() + word.size() || !std::isfinite(v))
+        throw InputError({path.string(), line_number, ""}, "expected a number, not '" + word + "'");
+      numbers.push_back(v);
+    }
+  }
+  if (numbers.size() % 2 != 0) throw InputError({path.string(), 0, ""}, "an odd count of numbers: expected wavelength-value pairs");
+  return numbers;
+}
+
 }  // namespace
 
 std::string PbrtConverter::default_material() {
@@ -48,24 +104,29 @@ double PbrtConverter::rgb_luminance(const PbrtParam& rgb) const {
   return space.to_xyz({rgb.numbers[0], rgb.numbers[1], rgb.numbers[2]}).y;
 }
 
-std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool illuminant) {
-  const std::string what = "spectrum of \"" + param.name + "\"";
+std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool illuminant, const std::filesystem::path& directory) {
   switch (param.type) {
     case PbrtParamType::rgb: return json{{"rgb", param.numbers}, {"space", state_.colour_space}};
     case PbrtParamType::blackbody: return json{{"blackbody", param.numbers[0]}};
     case PbrtParamType::real: return json(param.numbers.at(0));
     case PbrtParamType::spectrum:
       if (!param.strings.empty()) {
+        const std::string& named = param.strings[0];
         if (illuminant)
-          if (const auto name = illuminant_of(param.strings[0])) return json{{"illuminant", *name}};
-        ignore("spectrum \"" + param.strings[0] + "\" of \"" + param.name + "\" (named spectra other than stdillum-*, and spectrum files, are not imported)", param.where);
-        return std::nullopt;
+          if (const auto name = illuminant_of(named)) return json{{"illuminant", *name}};
+        const std::filesystem::path file = directory / named;
+        const bool looks_like_file = named.find('.') != std::string::npos || named.find('/') != std::string::npos;
+        if (!std::filesystem::is_regular_file(file)) {
+          if (looks_like_file) throw InputError(param.where, "cannot find the spectrum file '" + file.string() + "' of \"" + param.name + "\"");
+          ignore("spectrum \"" + named + "\" of \"" + param.name + "\" (named spectra other than stdillum-*, metal-{Au,Ag,Cu,Al}-eta/k and glass-BK7 are not imported)", param.where);
+          return std::nullopt;
+        }
+        return tabulated_spectrum(read_spectrum_file(file, param), param);
       } else {
         bool constant = true;
         for (size_t i = 3; i < param.numbers.size(); i += 2) constant = constant && param.numbers[i] == param.numbers[1];
         if (constant) return json(param.numbers[1]);
-        ignore("inline " + what + " (wavelength-value pairs that vary)", param.where);
-        return std::nullopt;
+        return tabulated_spectrum(param.numbers, param);
       }
     default: return std::nullopt;
   }
@@ -75,7 +136,7 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
   const PbrtParam* param = p.get(name, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real});
   if (!param) return json(fallback);
   if (param->type != PbrtParamType::texture) {
-    if (auto v = spectrum_value(*param, false)) return v;
+    if (auto v = spectrum_value(*param, false, p.directory())) return v;
     return json(fallback);
   }
   const auto found = textures_.find(param->strings.at(0));
@@ -117,6 +178,35 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
   return json(fallback);
 }
 
+std::optional<double> PbrtConverter::constant_float_texture(const std::string& name, const SourceLocation& where, int depth) {
+  const auto found = textures_.find(name);
+  if (found == textures_.end()) throw InputError(where, "no texture named \"" + name + "\"");
+  const PbrtTexture& texture = found->second;
+  const PbrtStatement& ts = texture.statement;
+  if (texture.kind != "float") throw InputError(where, "\"" + name + "\" is a spectrum texture where a float texture is needed");
+  if (depth > 64) throw InputError(ts.where, "Texture \"" + name + "\": textures nested more than 64 deep");
+  const std::string& cls = texture.texture_class;
+  if (cls != "constant" && cls != "scale" && cls != "mix") return std::nullopt;
+  // Textures that are constant everywhere are numbers: "constant", and "scale"/"mix" of constants (pbrt-v4's
+  // FloatScaledTexture: tex·scale; FloatMixTexture: (1 − amount)·tex1 + amount·tex2).
+  PbrtParams tp(*this, ts, "Texture \"" + name + "\"");
+  const auto operand = [&](const std::string& key, double fallback) -> std::optional<double> {
+    const PbrtParam* q = tp.get(key, {PbrtParamType::real, PbrtParamType::texture});
+    if (!q) return fallback;
+    if (q->type == PbrtParamType::real) return q->numbers.at(0);
+    return constant_float_texture(q->strings.at(0), q->where, depth + 1);
+  };
+  if (cls == "constant") return tp.real("value", 1.0);
+  if (cls == "scale") {
+    const auto t = operand("tex", 1.0), k = operand("scale", 1.0);
+    if (!t || !k) return std::nullopt;
+    return *t * *k;
+  }
+  const auto a = operand("tex1", 0.0), b = operand("tex2", 1.0), amount = operand("amount", 0.5);
+  if (!a || !b || !amount) return std::nullopt;
+  return (1.0 - *amount) * *a + *amount * *b;
+}
+
 void PbrtConverter::texture(const PbrtStatement& s) {
   const std::string& kind = s.strings[1];
   if (kind != "spectrum" && kind != "float")
@@ -151,6 +241,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     const PbrtParam* q = p.get(key, {PbrtParamType::real, PbrtParamType::texture});
     if (!q) return fallback;
     if (q->type == PbrtParamType::real) return q->numbers.at(0);
+    if (const auto constant = constant_float_texture(q->strings.at(0), q->where, 0)) return *constant;
     ignore("texture for \"" + key + "\" of " + p.context() + " (" + std::to_string(fallback) + " is used)", q->where);
     return fallback;
   };
@@ -162,7 +253,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     const double roughness = scalar("roughness", 0.0);
     if (roughness != 0.0) ignore("rough coat of coateddiffuse (Rimu's coat is smooth)", s.where);
     if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum})) {
-      if (const auto v = spectrum_value(*eta, false)) m["coat_ior"] = *v;
+      if (const auto v = spectrum_value(*eta, false, p.directory())) m["coat_ior"] = *v;
     }
     if (p.real("thickness", 0.01) != 0.01) ignore("coateddiffuse \"thickness\" (Rimu's coat is clear and thin)", s.where);
     if (const PbrtParam* albedo = p.get("albedo", {PbrtParamType::real, PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture}))
@@ -179,11 +270,19 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     } else if (eta && k && eta->type == PbrtParamType::spectrum && k->type == PbrtParamType::spectrum && !eta->strings.empty() &&
                !k->strings.empty() && metal_of(eta->strings[0], "-eta") && metal_of(eta->strings[0], "-eta") == metal_of(k->strings[0], "-k")) {
       m["metal"] = *metal_of(eta->strings[0], "-eta");
-    } else if (eta && k && eta->type == PbrtParamType::real && k->type == PbrtParamType::real) {
-      m["n"] = eta->numbers[0];
-      m["k"] = k->numbers[0];
+    } else if (eta && k && eta->type != PbrtParamType::rgb && eta->type != PbrtParamType::texture && k->type != PbrtParamType::rgb &&
+               k->type != PbrtParamType::texture) {
+      // Floats, inline pairs or spectrum files; a named spectrum Rimu lacks is listed by spectrum_value.
+      const auto n_value = spectrum_value(*eta, false, p.directory());
+      const auto k_value = spectrum_value(*k, false, p.directory());
+      if (n_value && k_value) {
+        m["n"] = *n_value;
+        m["k"] = *k_value;
+      } else {
+        m["metal"] = "copper";
+      }
     } else {
-      ignore("conductor eta/k other than a metal-{Au,Ag,Cu,Al}-eta/-k pair or two floats (copper is used)", s.where);
+      ignore("conductor eta/k other than a metal-{Au,Ag,Cu,Al}-eta/-k pair, floats or tabulated spectra (copper is used)", s.where);
       m["metal"] = "copper";
     }
     const double r = scalar("roughness", 0.0);
@@ -201,7 +300,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       m["ior"] = 1.5;
     } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && eta->strings[0] == "glass-BK7") {
       m["glass"] = "bk7";
-    } else if (const auto v = spectrum_value(*eta, false)) {
+    } else if (const auto v = spectrum_value(*eta, false, p.directory())) {
       m["ior"] = *v;
     } else {
       m["ior"] = 1.5;  // spectrum_value reported it
@@ -225,9 +324,9 @@ json PbrtConverter::light_amount(PbrtParams& p, const char* spectrum_key, const 
   if (!sp) {
     value = {{"rgb", {1.0, 1.0, 1.0}}, {"space", state_.colour_space}};  // pbrt's default: the colour space's white
   } else if (sp->type == PbrtParamType::rgb) {
-    value = *spectrum_value(*sp, true);
+    value = *spectrum_value(*sp, true, p.directory());
     rgb_y = rgb_luminance(*sp);
-  } else if (const auto v = spectrum_value(*sp, true)) {
+  } else if (const auto v = spectrum_value(*sp, true, p.directory())) {
     value = *v;
     is_rgb = false;
   } else {
@@ -254,6 +353,67 @@ json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m
   if (power > 0 && area_m2 > 0) lumens = power * shape_count;
   const json fields = light_amount(p, "L", "emission", lumens ? "luminous_power_lm" : "luminance_nt", lumens);
   return fields.contains("emission") ? fields["emission"] : fields;
+}
+
+json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world) {
+  const std::string context = "LightSource \"infinite\"";
+  if (p.get("L", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody}))
+    throw InputError(s.where, context + ": give either \"L\" or \"filename\", not both");
+  if (!p.numbers("portal", {PbrtParamType::point3}).empty()) ignore(context + " \"portal\" (the whole map is sampled)", s.where);
+  const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
+  if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
+  // pbrt looks a world direction up at EqualAreaSphereToSquare(light_from_world · d): the image's axes s, t, n are
+  // the world images of light-space x, y, z. Its light transform may mirror (a Frame of either handedness works);
+  // a shear or non-uniform scale, which bends pbrt's mapping, cannot be represented and is made rigid.
+  std::array<Vec3d, 3> axes;
+  for (int i = 0; i < 3; ++i) axes[i] = world.vector({i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0});
+  const auto dot3 = [](const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const double scale0 = std::sqrt(dot3(axes[0], axes[0]));
+  bool rigid = scale0 > 0;
+  for (int i = 0; i < 3 && rigid; ++i)
+    for (int j = 0; j < 3; ++j)
+      rigid = rigid && std::abs(dot3(axes[i], axes[j]) - (i == j ? scale0 * scale0 : 0.0)) <= 1e-6 * scale0 * scale0;
+  if (!rigid) {
+    ignore(context + " under a shear or non-uniform scale (its axes are made perpendicular)", s.where);
+    for (int i = 0; i < 3; ++i) {  // Gram-Schmidt
+      for (int j = 0; j < i; ++j) {
+        const double d = dot3(axes[i], axes[j]);
+        for (int c = 0; c < 3; ++c) axes[i][c] -= d * axes[j][c];
+      }
+      const double len = std::sqrt(dot3(axes[i], axes[i]));
+      if (!(len > 0)) throw InputError(s.where, context + ": the current transform is singular");
+      for (int c = 0; c < 3; ++c) axes[i][c] /= len;
+    }
+  }
+  double scale = p.real("scale", 1.0);
+  const double illuminance = p.real("illuminance", -1.0);
+  if (illuminance > 0) {
+    // pbrt-v4 (lights.cpp, ImageInfiniteLight) scales the map so that k_e = (2π/N) Σ Y(pixel) cos θ over the N
+    // pixels whose centre has light-space z > 0 becomes the given illuminance. Each pixel subtends 4π/N sr, so the
+    // upper hemisphere's true illuminance is twice pbrt's k_e: following pbrt (the same image) means twice the
+    // stated illuminance. Y uses the linear sRGB luminance weights (pbrt: the file's colour space, sRGB by default).
+    const RgbImage image = RgbImage::read(path, default_encoding_for(path));
+    const RgbColourSpace& srgb = RgbColourSpace::named("srgb-linear");
+    double k_e = 0.0;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) {
+        const Vec3 w = equal_area_square_to_sphere({(x + 0.5f) / float(image.width()), (y + 0.5f) / float(image.height())});
+        if (w.z <= 0) continue;
+        const Rgb rgb = image.pixel(x, y);
+        k_e += srgb.to_xyz(rgb).y * w.z;
+      }
+    k_e *= 2.0 * M_PI / (double(image.width()) * image.height());
+    if (!(k_e > 0)) throw InputError(s.where, context + ": \"illuminance\" given for a map whose upper hemisphere is black");
+    scale *= illuminance / k_e;
+  }
+  // A pixel of luminance Y is Y nits in pbrt (its spectrum divided by the colour space white's luminance), the
+  // film's Y = 1 per nit: Rimu's film units, so pbrt's scale carries over unchanged.
+  const auto unit = [&](const Vec3d& a) {
+    const double len = std::sqrt(dot3(a, a));
+    return Vec3d{a[0] / len, a[1] / len, a[2] / len};
+  };
+  return {{"type", "environment"}, {"image", path_for_document(path)}, {"mapping", "equal_area_octahedral"},
+          {"frame", {unit(axes[0]), unit(axes[1]), unit(axes[2])}}, {"scale", std::max(0.0, scale)}};
 }
 
 void PbrtConverter::light_source(const PbrtStatement& s) {
@@ -309,11 +469,8 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
                               illuminance > 0 ? std::optional<double>(illuminance) : std::nullopt));
   } else {  // infinite
     light["type"] = "environment";
-    if (!p.string("filename", "").empty()) {
-      ignore("LightSource \"infinite\" with \"filename\" (equal-area octahedral maps are not read; the light is left out)", s.where);
-      p.numbers("portal", {PbrtParamType::point3});
-      p.real("scale", 1.0);
-      p.real("illuminance", -1.0);
+    if (const std::string filename = p.string("filename", ""); !filename.empty()) {
+      lights_.push_back(image_environment(p, s, filename, world));
       return;
     }
     // "illuminance": what a surface facing up receives from the uniform sphere, π L.

@@ -44,6 +44,7 @@ class PbrtParams {
   std::vector<double> numbers(const std::string& name, std::initializer_list<PbrtParamType> types);
   const std::string& context() const { return context_; }
   const SourceLocation& where() const { return statement_.where; }
+  const std::filesystem::path& directory() const { return statement_.directory; }
 
  private:
   PbrtConverter& converter_;
@@ -95,11 +96,21 @@ class PbrtConverter {
   friend class PbrtParams;
   // pbrt_appearance.cpp
   std::optional<json> reflectance(PbrtParams& p, const std::string& name, double fallback);
-  std::optional<json> spectrum_value(const PbrtParam& param, bool illuminant);
+  /// A pbrt spectrum parameter as a Rimu spectral value; spectrum files resolve against `directory`. Empty (and
+  /// listed) for what is not imported.
+  std::optional<json> spectrum_value(const PbrtParam& param, bool illuminant, const std::filesystem::path& directory);
   json light_amount(PbrtParams& p, const char* spectrum_key, const char* radiometric_key, const char* photometric_key,
                     std::optional<double> photometric_amount);
   double rgb_luminance(const PbrtParam& rgb) const;
+  /// The value of float texture `name` if it is the same everywhere (constant, or scale/mix of such); empty
+  /// otherwise. InputError (at `where`) for an unknown or spectrum texture.
+  std::optional<double> constant_float_texture(const std::string& name, const SourceLocation& where, int depth);
+  /// pbrt's "infinite" light with an equal-area octahedral image `filename`, in the light transform `world`.
+  json image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world);
   std::string default_material();
+
+  // pbrt_to_scene.cpp
+  void film_crop(PbrtParams& p, const PbrtStatement& s);
 
   // pbrt_shapes.cpp
   void emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::vector<uint32_t> indices, std::vector<Vec3d> normals,
@@ -132,6 +143,7 @@ class PbrtConverter {
   PbrtMatrix mirror_ = PbrtMatrix::identity();  ///< makes pbrt's image-right Rimu's (see docs/pbrt-import.md)
   json camera_;
   double fov_deg_ = 90.0;
+  bool orthographic_ = false;  ///< Camera "orthographic"
   int width_ = 1280, height_ = 720;
 
   json materials_ = json::object();

@@ -228,9 +228,12 @@ void PbrtConverter::statement(const PbrtStatement& s) {
     world_from_camera_ = *world_from_camera;
     named_coordinate_systems_["camera"] = *world_from_camera;
     PbrtParams p(*this, s, "Camera \"" + s.strings[0] + "\"");
-    if (s.strings[0] != "perspective") ignore("Camera \"" + s.strings[0] + "\" (rendered as perspective)", s.where);
-    fov_deg_ = p.real("fov", 90.0);
-    if (!(fov_deg_ > 0 && fov_deg_ < 180)) throw InputError(s.where, "Camera: \"fov\" must be in (0, 180) degrees");
+    orthographic_ = s.strings[0] == "orthographic";
+    if (s.strings[0] != "perspective" && !orthographic_) ignore("Camera \"" + s.strings[0] + "\" (rendered as perspective)", s.where);
+    if (!orthographic_) {
+      fov_deg_ = p.real("fov", 90.0);
+      if (!(fov_deg_ > 0 && fov_deg_ < 180)) throw InputError(s.where, "Camera: \"fov\" must be in (0, 180) degrees");
+    }
     const double lens_radius = p.real("lensradius", 0.0);
     const double focal_distance = p.real("focaldistance", 1e6);
     camera_ = json::object();
@@ -239,6 +242,7 @@ void PbrtConverter::statement(const PbrtStatement& s) {
       camera_["lens_radius"] = lens_radius;
       camera_["focus_distance"] = focal_distance;
     }
+    if (orthographic_) camera_["type"] = "orthographic";
   } else if (k == "Film") {
     require_world(false);
     PbrtParams p(*this, s, "Film \"" + s.strings[0] + "\"");
@@ -248,6 +252,7 @@ void PbrtConverter::statement(const PbrtStatement& s) {
     if (width_ < 1 || height_ < 1 || width_ > 32768 || height_ > 32768)
       throw InputError(s.where, "Film: xresolution and yresolution must be in 1-32768");
     film_["resolution"] = {width_, height_};
+    film_crop(p, s);
     p.string("filename", "");  // the output is rimu's -o
     if (p.string("sensor", "cie1931") != "cie1931") ignore("Film \"sensor\" other than cie1931", s.where);
     if (p.real("iso", 100.0) != 100.0) ignore("Film \"iso\" other than 100", s.where);
@@ -385,6 +390,36 @@ void PbrtConverter::statement(const PbrtStatement& s) {
   }
 }
 
+void PbrtConverter::film_crop(PbrtParams& p, const PbrtStatement& s) {
+  // pbrt-v4 (FilmBaseParameters): "cropwindow" [x0 x1 y0 y1] in [0, 1] gives the pixels ceil(res·x0) ≤ x <
+  // ceil(res·x1) (likewise y) and wins over "pixelbounds" [x0 x1 y0 y1]; both are clamped to the image.
+  const std::vector<double> window = p.numbers("cropwindow", {PbrtParamType::real});
+  const std::vector<double> bounds = p.numbers("pixelbounds", {PbrtParamType::integer});
+  if (window.empty() && bounds.empty()) return;
+  int x0 = 0, x1 = width_, y0 = 0, y1 = height_;
+  if (!window.empty()) {
+    if (window.size() != 4) throw InputError(s.where, "Film: \"cropwindow\" takes 4 numbers [x0 x1 y0 y1], not " + std::to_string(window.size()));
+    if (!bounds.empty()) ignore("Film \"pixelbounds\" together with \"cropwindow\" (the crop window is used, as in pbrt)", s.where);
+    const auto clamp01 = [](double v) { return std::clamp(v, 0.0, 1.0); };
+    x0 = int(std::ceil(width_ * clamp01(std::min(window[0], window[1]))));
+    x1 = int(std::ceil(width_ * clamp01(std::max(window[0], window[1]))));
+    y0 = int(std::ceil(height_ * clamp01(std::min(window[2], window[3]))));
+    y1 = int(std::ceil(height_ * clamp01(std::max(window[2], window[3]))));
+  } else {
+    if (bounds.size() != 4) throw InputError(s.where, "Film: \"pixelbounds\" takes 4 integers [x0 x1 y0 y1], not " + std::to_string(bounds.size()));
+    x0 = std::max(0, int(bounds[0]));
+    x1 = std::min(width_, int(bounds[1]));
+    y0 = std::max(0, int(bounds[2]));
+    y1 = std::min(height_, int(bounds[3]));
+    if (x0 != int(bounds[0]) || x1 != int(bounds[1]) || y0 != int(bounds[2]) || y1 != int(bounds[3]))
+      ignore("Film \"pixelbounds\" beyond the image (clamped, as in pbrt)", s.where);
+  }
+  if (x1 <= x0 || y1 <= y0)
+    throw InputError(s.where, "Film: the crop window or pixel bounds select no pixels (x " + std::to_string(x0) + "-" + std::to_string(x1) +
+                                  ", y " + std::to_string(y0) + "-" + std::to_string(y1) + ")");
+  if (x0 != 0 || y0 != 0 || x1 != width_ || y1 != height_) film_["crop"] = {x0, y0, x1, y1};
+}
+
 json PbrtConverter::finish(const std::string& main_file) {
   if (!world_from_camera_) throw InputError({main_file, 0, ""}, "the scene has no Camera statement before WorldBegin");
   // pbrt's fov spans the shorter image axis; Rimu's vertical_fov_deg always spans the height.
@@ -399,7 +434,14 @@ json PbrtConverter::finish(const std::string& main_file) {
   camera["from"] = o;
   camera["to"] = Vec3d{o[0] + f[0], o[1] + f[1], o[2] + f[2]};
   camera["up"] = u;
-  camera["vertical_fov_deg"] = vertical_fov_deg;
+  if (orthographic_) {
+    // pbrt's default screen window spans [-1, 1] camera-space units along the shorter image axis; camera space is
+    // scaled like the world when the camera transform scales (|up| is the world length of one camera unit).
+    const double camera_unit_m = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    camera["height"] = (width_ >= height_ ? 2.0 : 2.0 * double(height_) / double(width_)) * camera_unit_m;
+  } else {
+    camera["vertical_fov_deg"] = vertical_fov_deg;
+  }
   if (film_.find("resolution") == film_.end()) film_["resolution"] = {width_, height_};
   if (integrator_.find("max_depth") == integrator_.end()) integrator_["max_depth"] = 5;
   if (integrator_.find("spp") == integrator_.end()) integrator_["spp"] = 16;

@@ -1,0 +1,138 @@
+// pbrt-v4 cameras and films beyond the perspective basics (docs/pbrt-import.md): crop windows and pixel bounds.
+#include <doctest/doctest.h>
+
+#include <OpenImageIO/imageio.h>
+#include <fstream>
+#include <sstream>
+
+#include "integration_support.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+#include "render/camera.h"
+#include "render/render_job.h"
+
+using namespace rimu;
+using nlohmann::json;
+
+namespace {
+PbrtImport import_text(const std::string& text) {
+  return import_pbrt_text(text, "t.pbrt", test::test_data("pbrt"), test::library());
+}
+std::string import_error(const std::string& text) {
+  try {
+    import_text(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n";
+}  // namespace
+
+TEST_CASE("pbrt film: cropwindow and pixelbounds become the film's crop, as pbrt-v4 rounds them") {
+  // cropwindow [x0 x1 y0 y1] (either order): ceil(res · value); 10 × 8 → x 3-8, y 0-4.
+  const PbrtImport cropped = import_pbrt(test::test_data("pbrt/crop.pbrt"), test::library());
+  CHECK(cropped.ignored.empty());
+  CHECK(cropped.document["film"]["crop"] == json({3, 0, 8, 4}));
+  // pixelbounds [x0 x1 y0 y1], clamped to the image (listed), and overridden by a cropwindow (listed).
+  CHECK(import_text(kCamera + "Film \"rgb\" \"integer xresolution\" 10 \"integer yresolution\" 8 \"integer pixelbounds\" [1 4 2 6]\nWorldBegin\n")
+            .document["film"]["crop"] == json({1, 2, 4, 6}));
+  const PbrtImport clamped = import_text(kCamera + "Film \"rgb\" \"integer xresolution\" 10 \"integer yresolution\" 8 \"integer pixelbounds\" [-2 4 2 60]\nWorldBegin\n");
+  CHECK(clamped.document["film"]["crop"] == json({0, 2, 4, 8}));
+  REQUIRE(clamped.ignored.size() == 1);
+  CHECK(clamped.ignored[0].what == "Film \"pixelbounds\" beyond the image (clamped, as in pbrt)");
+  const PbrtImport both = import_text(kCamera + "Film \"rgb\" \"integer xresolution\" 10 \"integer yresolution\" 8 \"integer pixelbounds\" [1 4 2 6] \"float cropwindow\" [0 0.5 0 1]\nWorldBegin\n");
+  CHECK(both.document["film"]["crop"] == json({0, 0, 5, 8}));
+  CHECK(both.ignored.size() == 1);
+  // The whole image is no crop at all.
+  CHECK_FALSE(import_text(kCamera + "Film \"rgb\" \"float cropwindow\" [0 1 0 1]\nWorldBegin\n").document["film"].contains("crop"));
+  // Empty or malformed windows are errors at the Film's line.
+  CHECK(import_error(kCamera + "Film \"rgb\" \"float cropwindow\" [0.5 0.5 0 1]\nWorldBegin\n").find("t.pbrt:3: Film: the crop window or pixel bounds select no pixels") != std::string::npos);
+  CHECK(import_error(kCamera + "Film \"rgb\" \"float cropwindow\" [0 0.5 0]\nWorldBegin\n").find("t.pbrt:3: Film: \"cropwindow\" takes 4 numbers") != std::string::npos);
+}
+
+TEST_CASE("scene film crop: rimu renders only the crop, and --crop overrides it") {
+  const test::ScratchFolder folder("pbrt-crop");
+  const auto data_window = [](const std::filesystem::path& exr) {
+    auto in = OIIO::ImageInput::open(exr.string());
+    REQUIRE(in);
+    const OIIO::ImageSpec spec = in->spec();
+    return std::array<int, 4>{spec.x, spec.y, spec.x + spec.width, spec.y + spec.height};
+  };
+  RenderJob job;
+  job.scene = test::test_data("pbrt/crop.pbrt");
+  job.exr_output = folder / "crop.exr";
+  job.quiet = true;
+  job.threads = 1;
+  std::ostringstream log;
+  run_render_job(job, log);
+  CHECK(data_window(job.exr_output) == std::array<int, 4>{3, 0, 8, 4});
+  job.crop = PixelBounds{0, 0, 2, 2};
+  run_render_job(job, log);
+  CHECK(data_window(job.exr_output) == std::array<int, 4>{0, 0, 2, 2});
+  // A scene crop the command line's resolution no longer holds names the scene's key.
+  job.crop.reset();
+  job.width = 5;
+  job.height = 5;
+  try {
+    run_render_job(job, log);
+    FAIL("expected an InputError");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("/film/crop") != std::string::npos);
+  }
+}
+
+TEST_CASE("pbrt orthographic camera: the image is 2 camera units along the shorter axis, at any distance") {
+  std::ifstream in(test::test_data("pbrt/orthographic.pbrt"));
+  std::stringstream text;
+  text << in.rdbuf();
+  const PbrtImport imported = import_text(text.str());
+  CHECK(imported.ignored.empty());
+  CHECK(imported.document["camera"]["type"] == "orthographic");
+  CHECK(imported.document["camera"]["height"] == 2.0);
+  CHECK_FALSE(imported.document["camera"].contains("vertical_fov_deg"));
+  // Portrait films: the shorter axis (the width) spans 2 units, so the height is 2·h/w.
+  CHECK(import_text(kCamera.substr(0, kCamera.find("Camera")) + "Camera \"orthographic\"\nFilm \"rgb\" \"integer xresolution\" 10 \"integer yresolution\" 30\nWorldBegin\n")
+            .document["camera"]["height"] == doctest::Approx(6.0));
+  // Rendered: sky Y = 1 outside the disc, 0.5 on the sphere (a diffuse 0.5 under a uniform sky), so the image mean
+  // is 1 − 0.5·π·5²/400 = 0.90183, from 3 units away and from 30. The disc edge's coverage, estimated by 64 samples
+  // in each of ~31 edge pixels, has a standard error ≈ 0.5·√(31·0.25/64)/400 ≈ 2e-4; 3e-3 is 15 of them. A
+  // perspective camera's disc would shrink 10 times from 3 to 30 units away.
+  const double expected = 1.0 - 0.5 * M_PI * 25.0 / 400.0;
+  for (const std::string& distance : {"-3", "-30"}) {
+    CAPTURE(distance);
+    std::string scene = text.str();
+    scene.replace(scene.find("LookAt 0 0 -3"), 13, "LookAt 0 0 " + distance);
+    const PbrtImport at = import_text(scene);
+    const auto loaded = load_scene(at.document, "orthographic.pbrt", test::test_data("pbrt"), test::library());
+    const test::Estimate y = test::estimate_of(test::luminance_values(*test::render_xyz(*loaded, 64, 3).film));
+    CHECK(y.mean == doctest::Approx(expected).epsilon(3e-3));
+  }
+}
+
+TEST_CASE("scene camera: orthographic rays are parallel, from the film plane, and the keys are checked") {
+  CameraSettings settings;
+  settings.camera_to_world = Transform::look_at({0, 0, 0}, {0, 0, 1}, {0, 1, 0});
+  settings.orthographic_height = 4.0f;
+  const Camera camera(settings, 20, 10);  // 8 × 4 units
+  const Ray corner = camera.generate_ray(0.0f, 0.0f, {0.5f, 0.5f});
+  const Ray centre = camera.generate_ray(10.0f, 5.0f, {0.5f, 0.5f});
+  CHECK(centre.origin.x == doctest::Approx(0.0));
+  CHECK(centre.origin.y == doctest::Approx(0.0));
+  CHECK(std::abs(corner.origin.x) == doctest::Approx(4.0));  // half the width: 4 units
+  CHECK(corner.origin.y == doctest::Approx(2.0));             // top edge: +2
+  CHECK(corner.direction.z == doctest::Approx(1.0));
+  CHECK(centre.direction.z == doctest::Approx(1.0));
+  const auto camera_error = [](const json& camera) {
+    try {
+      test::scene_from_json({{"camera", camera}, {"shapes", json::array()}});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(camera_error({{"type", "orthographic"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"height", 2}}) == "no error");
+  CHECK(camera_error({{"type", "orthographic"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}}).find("/camera") != std::string::npos);
+  CHECK(camera_error({{"type", "orthographic"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"height", 2}, {"vertical_fov_deg", 30}})
+            .find("no field of view") != std::string::npos);
+  CHECK(camera_error({{"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"height", 2}}).find("orthographic") != std::string::npos);
+}

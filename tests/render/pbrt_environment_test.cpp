@@ -1,0 +1,94 @@
+// pbrt-v4 environment maps (docs/pbrt-import.md): an "infinite" light with "filename" is an equal-area octahedral
+// image, read as Rimu's equal_area_octahedral environment in the light's frame. One bright texel must light a
+// diffuse plane from the direction pbrt's mapping puts it; pbrt's "illuminance" normalisation is reproduced.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "integration_support.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+
+using namespace rimu;
+using nlohmann::json;
+
+namespace {
+
+std::string file_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The mean pixel luminance of `pbrt_text` (resolved in tests/data/pbrt) and its standard error.
+test::Estimate plane_luminance(const std::string& pbrt_text) {
+  const std::filesystem::path folder = test::test_data("pbrt");
+  const PbrtImport imported = import_pbrt_text(pbrt_text, "envmap_texel.pbrt", folder, test::library());
+  CHECK(imported.ignored.empty());
+  const auto scene = load_scene(imported.document, "envmap_texel.pbrt", folder, test::library());
+  return test::estimate_of(test::luminance_values(*test::render_xyz(*scene, 64, 5).film));
+}
+
+}  // namespace
+
+TEST_CASE("pbrt environment map: one bright texel lights a plane from the direction pbrt's mapping puts it") {
+  // tests/data/pbrt/envmap_texel.pbrt: texel (17, 6) of a 32 × 32 map, its centre at light-space direction
+  // (0.18061, −0.83023, 0.52734) by pbrt-v4's EqualAreaSquareToSphere (worked by hand in the .pbrt file), turned by
+  // "Rotate -90 1 0 0" to world (0.18061, 0.52734, 0.83023). The plane's normal is (sin 45°, 0, cos 45°), so a
+  // pixel shows Y = (0.5/π)·512·(4π/1024)·cos = cos, with cos = 0.71477 at the texel's centre; averaged over the
+  // texel (a 200 × 200 midpoint rule of the same formulas) it is 0.71369, which is the expectation here.
+  // Misreadings give other values: u mirrored 0.459, v mirrored 0 (the texel behind the plane), the light's
+  // rotation ignored 0.501, u and v swapped 0.
+  constexpr double kExpected = 0.71369;
+  const std::string text = file_text(test::test_data("pbrt/envmap_texel.pbrt"));
+  SUBCASE("pbrt's own camera handedness (the world is mirrored on import)") {
+    const test::Estimate y = plane_luminance(text);
+    CAPTURE(y.mean);
+    CAPTURE(y.standard_error);
+    CHECK(std::abs(y.mean - kExpected) <= test::kSigmas * y.standard_error + 2e-3 * kExpected);
+  }
+  SUBCASE("a camera whose handedness is Rimu's (no mirror)") {
+    const test::Estimate y = plane_luminance("Scale -1 1 1\n" + text);
+    CAPTURE(y.mean);
+    CHECK(std::abs(y.mean - kExpected) <= test::kSigmas * y.standard_error + 2e-3 * kExpected);
+  }
+}
+
+TEST_CASE("pbrt environment map: the JSON it becomes, illuminance, and errors") {
+  const std::filesystem::path folder = test::test_data("pbrt");
+  const std::string camera = "LookAt 0 0 5  0 0 0  0 1 0\nScale -1 1 1\nCamera \"perspective\"\nWorldBegin\n";
+  SUBCASE("frame and mapping") {
+    const PbrtImport imported = import_pbrt_text(
+        camera + "Rotate -90 1 0 0\nLightSource \"infinite\" \"string filename\" \"envmap_texel.ppm\" \"float scale\" 3",
+        "t.pbrt", folder, test::library());
+    const json& light = imported.document["lights"][0];
+    CHECK(light["mapping"] == "equal_area_octahedral");
+    CHECK(light["scale"] == 3.0);
+    const auto axis = [&](int i, int c) { return light["frame"][i][c].get<double>(); };
+    CHECK(axis(0, 0) == doctest::Approx(1.0));
+    CHECK(axis(1, 2) == doctest::Approx(-1.0));  // light y → world −z
+    CHECK(axis(2, 1) == doctest::Approx(1.0));   // light z → world +y
+  }
+  SUBCASE("illuminance follows pbrt-v4's normalisation, k_e = (2π/N) Σ Y cos θ over the upper pixels") {
+    // The one white texel is in the upper hemisphere at cos θ = z = 0.52734: k_e = 2π/1024 · 0.52734.
+    const PbrtImport imported = import_pbrt_text(
+        camera + "LightSource \"infinite\" \"string filename\" \"envmap_texel.ppm\" \"float illuminance\" 2",
+        "t.pbrt", folder, test::library());
+    CHECK(imported.document["lights"][0]["scale"].get<double>() ==
+          doctest::Approx(2.0 / (2 * M_PI / 1024 * 0.52734375)).epsilon(1e-5));
+  }
+  SUBCASE("errors name the line") {
+    const auto error = [&](const std::string& text) {
+      try {
+        import_pbrt_text(camera + text, "t.pbrt", folder, test::library());
+      } catch (const InputError& e) {
+        return std::string(e.what());
+      }
+      return std::string("no error");
+    };
+    CHECK(error("LightSource \"infinite\" \"string filename\" \"nope.exr\"").find("t.pbrt:5: LightSource \"infinite\": cannot find the image") != std::string::npos);
+    CHECK(error("LightSource \"infinite\" \"string filename\" \"envmap_texel.ppm\" \"rgb L\" [1 1 1]").find("t.pbrt:5: LightSource \"infinite\": give either \"L\" or \"filename\"") != std::string::npos);
+  }
+}

@@ -1,0 +1,154 @@
+// Equal-area octahedral environments (pbrt-v4's environment maps): the square ↔ sphere map against values worked
+// by hand from its formulas, its area preservation (uniform directions fill the square uniformly, by chi-square),
+// and the light's importance sampling against its pdf (chi-square) and against the irradiance by quadrature.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "light_test_support.h"
+#include "transport/environment_light.h"
+#include "transport/equal_area_square.h"
+#include "transport/light_warps.h"
+
+using namespace rimu;
+
+namespace {
+const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+constexpr double kPi = std::numbers::pi;
+
+class GreyImage final : public EnvironmentImage {
+ public:
+  GreyImage(int w, int h, std::vector<float> values) : w_(w), h_(h), values_(std::move(values)) {}
+  int width() const override { return w_; }
+  int height() const override { return h_; }
+  SampledSpectrum radiance(int x, int y, const SampledWavelengths&) const override { return Float4(at(x, y)); }
+  float luminance(int x, int y) const override { return at(x, y); }
+  float at(int x, int y) const { return values_[size_t(y) * w_ + x]; }
+
+ private:
+  int w_, h_;
+  std::vector<float> values_;
+};
+
+/// A 16 × 16 image with a bright pixel, a dark column and a gradient.
+std::shared_ptr<GreyImage> test_image() {
+  std::vector<float> v(16 * 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) v[y * 16 + x] = (x == 9 ? 0.0f : 0.1f + 0.05f * y) + (x == 3 && y == 12 ? 60.0f : 0.0f);
+  return std::make_shared<GreyImage>(16, 16, v);
+}
+
+void check_direction(Vec3 got, Vec3 expected) {
+  CAPTURE(got.x);
+  CAPTURE(got.y);
+  CAPTURE(got.z);
+  CHECK(got.x == doctest::Approx(expected.x).epsilon(1e-5));
+  CHECK(got.y == doctest::Approx(expected.y).epsilon(1e-5));
+  CHECK(got.z == doctest::Approx(expected.z).epsilon(1e-5));
+}
+}  // namespace
+
+TEST_CASE("equal-area square: landmarks and a point worked by hand") {
+  check_direction(equal_area_square_to_sphere({0.5f, 0.5f}), {0, 0, 1});
+  check_direction(equal_area_square_to_sphere({1.0f, 0.5f}), {1, 0, 0});
+  check_direction(equal_area_square_to_sphere({0.0f, 0.5f}), {-1, 0, 0});
+  check_direction(equal_area_square_to_sphere({0.5f, 1.0f}), {0, 1, 0});
+  check_direction(equal_area_square_to_sphere({0.5f, 0.0f}), {0, -1, 0});
+  for (Vec2 corner : {Vec2{0, 0}, Vec2{1, 0}, Vec2{0, 1}, Vec2{1, 1}}) check_direction(equal_area_square_to_sphere(corner), {0, 0, -1});
+  // (u, v) = (0.8125, 0.4375): a = 0.625, b = −0.125, r = 1 − |1 − 0.75| = 0.75, φ = (π/4)(−0.5/0.75 + 1) = π/12,
+  // z = 1 − r² = 0.4375, r√(2 − r²) = 0.75·√1.4375; x = +cos φ·that, y = −sin φ·that.
+  const double radial = 0.75 * std::sqrt(1.4375);
+  check_direction(equal_area_square_to_sphere({0.8125f, 0.4375f}),
+                  {float(std::cos(kPi / 12) * radial), float(-std::sin(kPi / 12) * radial), 0.4375f});
+  // Its mirror image through the diamond's edge is the lower hemisphere: (a, b) = (0.875, −0.375) → z = −0.4375.
+  CHECK(equal_area_square_to_sphere({0.9375f, 0.3125f}).z == doctest::Approx(-0.4375));
+}
+
+TEST_CASE("equal-area square: round trips in both directions") {
+  for (int j = 0; j < 41; ++j)
+    for (int i = 0; i < 41; ++i) {
+      const Vec2 p{(i + 0.25f) / 41.0f, (j + 0.6f) / 41.0f};
+      const Vec3 d = equal_area_square_to_sphere(p);
+      REQUIRE(length(d) == doctest::Approx(1.0).epsilon(1e-5));
+      const Vec2 back = equal_area_sphere_to_square(d);
+      CHECK(back.x == doctest::Approx(p.x).epsilon(2e-5));
+      CHECK(back.y == doctest::Approx(p.y).epsilon(2e-5));
+    }
+}
+
+TEST_CASE("equal-area square: uniform directions land uniformly on the square (chi-square)") {
+  // Area preservation: if every region of area A covers 4π·A steradians, uniform sphere directions fall into each
+  // of the 24 × 24 cells with probability 1/576.
+  const int cells = 24, n = 288000;
+  std::vector<double> observed(cells * cells, 0.0), expected(cells * cells, double(n) / (cells * cells));
+  std::mt19937 rng(41);
+  for (int s = 0; s < n; ++s) {
+    const Vec2 p = equal_area_sphere_to_square(sample_uniform_sphere({test::uniform01(rng), test::uniform01(rng)}));
+    observed[std::min(cells - 1, int(p.y * cells)) * cells + std::min(cells - 1, int(p.x * cells))] += 1;
+  }
+  const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
+  CAPTURE(chi.statistic);
+  CHECK(chi.p_value > test::kChiSquareAlpha);
+}
+
+TEST_CASE("equal-area environment: sampling matches pdf_li (chi-square), pdf = p(u, v)/4pi, irradiance") {
+  for (bool mirrored : {false, true}) {
+    CAPTURE(mirrored);
+    // A rotated frame, and the same with t negated: pbrt's light transform may mirror.
+    Frame frame = Frame::from_normal(normalize({0.3f, 1.0f, -0.4f}));
+    if (mirrored) frame.t = frame.t * -1.0f;
+    const EnvironmentLight env(test_image(), 2.0, frame, EnvironmentMapping::equal_area_octahedral);
+    // The bright pixel's centre is where its radiance comes from.
+    CHECK(env.radiance_escaped(env.uv_to_direction({3.5f / 16, 12.5f / 16}), kLambda)[0] == doctest::Approx(2.0 * 60.7));
+    const int cells = 32, n = 200000;
+    std::vector<double> observed(cells * cells, 0.0), expected(cells * cells, 0.0);
+    double total = 0;
+    for (int cy = 0; cy < cells; ++cy)
+      for (int cx = 0; cx < cells; ++cx) {
+        // dω = 4π du dv; pdf_li is constant on a cell (a quarter pixel), so one midpoint is exact.
+        const double integral = env.pdf_li({}, env.uv_to_direction({(cx + 0.5f) / cells, (cy + 0.5f) / cells})) * 4 * kPi / (cells * cells);
+        expected[cy * cells + cx] = n * integral;
+        total += integral;
+      }
+    CHECK(total == doctest::Approx(1.0).epsilon(1e-4));
+    std::mt19937 rng(43);
+    for (int s = 0; s < n; ++s) {
+      const auto ls = env.sample_li({}, kLambda, {test::uniform01(rng), test::uniform01(rng)});
+      REQUIRE(ls);
+      REQUIRE(ls->pdf_solid_angle == env.pdf_li({}, ls->wi));
+      const Vec2 uv = env.direction_to_uv(ls->wi);
+      observed[std::min(cells - 1, int(uv.y * cells)) * cells + std::min(cells - 1, int(uv.x * cells))] += 1;
+    }
+    const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
+    CAPTURE(chi.statistic);
+    CHECK(chi.p_value > test::kChiSquareAlpha);
+
+    // Irradiance on three normals: light sampling against a 512 × 512 midpoint quadrature over the square.
+    for (Vec3 normal : {Vec3{0, 0, 1}, normalize(Vec3{1, 0.5f, 0.2f}), frame.n}) {
+      double exact = 0;
+      for (int j = 0; j < 512; ++j)
+        for (int i = 0; i < 512; ++i) {
+          const Vec3 d = env.uv_to_direction({(i + 0.5f) / 512, (j + 0.5f) / 512});
+          exact += env.radiance_escaped(d, kLambda)[0] * std::max(0.0f, dot(d, normal)) * 4 * kPi / (512.0 * 512.0);
+        }
+      test::MeanEstimate e;
+      for (int s = 0; s < 40000; ++s) {
+        const auto ls = env.sample_li({}, kLambda, {test::uniform01(rng), test::uniform01(rng)});
+        REQUIRE(ls);
+        e.add(ls->radiance[0] * std::max(0.0f, dot(ls->wi, normal)) / ls->pdf_solid_angle);
+      }
+      CAPTURE(exact);
+      CAPTURE(e.mean());
+      CHECK(std::abs(e.mean() - exact) <= test::kMonteCarloSigmas * e.standard_error() + 1e-3 * exact);
+    }
+  }
+  // Power: every pixel subtends 4π/256 sr, so the solid-angle mean radiance is the plain pixel mean.
+  double mean = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) mean += 1.5 * test_image()->at(x, y) / 256.0;
+  const EnvironmentLight env(test_image(), 1.5, Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, EnvironmentMapping::equal_area_octahedral);
+  CHECK(env.total_power_w(3.0) == doctest::Approx(4 * kPi * kPi * 9.0 * mean * 470.0).epsilon(1e-5));
+}
