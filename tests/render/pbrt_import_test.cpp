@@ -205,7 +205,7 @@ TEST_CASE("pbrt lights: pbrt's luminance-normalised amounts become Rimu's photom
       kUnmirroredCamera +
       "LightSource \"point\" \"blackbody I\" [3000] \"float scale\" 2 \"point3 from\" [0 1 0]\n"
       "LightSource \"point\" \"rgb I\" [1 0.5 0.25] \"float scale\" 3\n"
-      "LightSource \"spot\" \"float coneangle\" 20 \"float conedelta\" 5 \"float power\" 100 \"point3 from\" [0 2 0] \"point3 to\" [0 0 0]\n"
+      "LightSource \"spot\" \"float coneangle\" 20 \"float conedeltaangle\" 8 \"float power\" 100 \"point3 from\" [0 2 0] \"point3 to\" [0 0 0]\n"
       "LightSource \"distant\" \"point3 from\" [0 1 0] \"point3 to\" [0 0 0] \"blackbody L\" [5500] \"float illuminance\" 1000\n"
       "LightSource \"infinite\" \"spectrum L\" \"stdillum-D50\" \"float scale\" 0.5\n"
       "AttributeBegin\nAreaLightSource \"diffuse\" \"float power\" 10 \"bool twosided\" true\n"
@@ -219,7 +219,7 @@ TEST_CASE("pbrt lights: pbrt's luminance-normalised amounts become Rimu's photom
   CHECK(lights[0]["luminous_intensity_cd"].get<double>() == doctest::Approx(2 * k));
   CHECK(lights[1]["intensity"] == json({{"rgb", {1.0, 0.5, 0.25}}, {"space", "srgb-linear"}, {"scale", 3.0}}));
   CHECK(lights[2]["cone_angle_deg"] == 40.0);
-  CHECK(lights[2]["falloff_start_deg"] == 30.0);
+  CHECK(lights[2]["falloff_start_deg"] == 24.0);  // 2·(20 − 8): pbrt-v4 names the delta "conedeltaangle"
   CHECK(lights[2]["direction"] == json({0.0, -2.0, 0.0}));
   CHECK(lights[2]["luminous_power_lm"].get<double>() == doctest::Approx(100 * k));
   CHECK(lights[3]["direction"] == json({0.0, 1.0, 0.0}));

@@ -449,7 +449,7 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
     const Vec3d direction = world.vector({to[0] - from[0], to[1] - from[1], to[2] - from[2]});
     if (direction == Vec3d{0, 0, 0}) throw InputError(s.where, context + ": \"from\" and \"to\" coincide");
     light["direction"] = direction;
-    const double cone = p.real("coneangle", 30.0), delta = p.real("conedelta", 5.0);
+    const double cone = p.real("coneangle", 30.0), delta = p.real("conedeltaangle", 5.0);
     // pbrt's angles are half-angles; Rimu's are full opening angles. Both fall off by a smoothstep in cos θ.
     const double full = std::clamp(2.0 * cone, 0.01, 179.9);
     if (full != 2.0 * cone) ignore("spot \"coneangle\" outside 0.005-89.95 degrees (clamped)", s.where);
