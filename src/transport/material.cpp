@@ -62,6 +62,16 @@ Bsdf DielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
   return DielectricBsdf(ior_->sample(lambda), distribution_);
 }
 
+ThinDielectricMaterial::ThinDielectricMaterial(SpectrumPtr ior) : ior_(std::move(ior)) {
+  if (!ior_) throw InputError({}, "a thin dielectric needs an index of refraction");
+  if (!(min_over_range(*ior_) > 0.0))
+    throw InputError({}, "the index of refraction of " + ior_->describe() + " must be positive over 360-830 nm");
+}
+
+Bsdf ThinDielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
+  return ThinDielectricBsdf(ior_->sample(lambda));
+}
+
 CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior)
     : reflectance_(std::move(reflectance)), coat_ior_(std::move(coat_ior)) {
   if (!reflectance_ || !coat_ior_) throw InputError({}, "a coated diffuse material needs a reflectance and a coat index");

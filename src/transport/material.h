@@ -47,6 +47,17 @@ class DielectricMaterial {
   TrowbridgeReitz distribution_;
 };
 
+/// A thin sheet of glass of index n(λ) in air (ThinDielectricBsdf): smooth only, as in pbrt-v4.
+class ThinDielectricMaterial {
+ public:
+  /// Throws InputError if the spectrum is missing or n ≤ 0 somewhere.
+  explicit ThinDielectricMaterial(SpectrumPtr ior);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectrumPtr ior_;
+};
+
 /// A Lambertian base of reflectance ρ(λ) under a smooth clear coat of index n(λ) (CoatedDiffuseBsdf).
 /// The coat's hemispherical reflectance F̄_ext(n(λ)) is tabulated at 5 nm at construction (it is a smooth
 /// function of n, which varies by about 1% over the visible for glasses).
@@ -68,7 +79,8 @@ class CoatedDiffuseMaterial {
 /// Roughness parameters are perceptual, r ∈ [0, 1], with α = r² (TrowbridgeReitz::roughness_to_alpha).
 class Material {
  public:
-  using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial>;
+  using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial,
+                               ThinDielectricMaterial>;
 
   template <typename T>
   Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)

@@ -143,6 +143,11 @@ TEST_CASE("furnace: a smooth dielectric sphere of index 1.5 is invisible") {
   check_furnace(nlohmann::json::parse(R"({"type": "dielectric", "ior": 1.5})"), true);
 }
 
+TEST_CASE("furnace: a thin BK7 sheet shaped as a sphere is invisible: R + T = 1, straight through") {
+  // Through the JSON type, the loader and the integrator: a transmissive delta BSDF that changes no medium.
+  check_furnace(nlohmann::json::parse(R"({"type": "thin_dielectric", "glass": "bk7"})"), true);
+}
+
 TEST_CASE("furnace: nearly smooth rough conductor and dielectric (roughness 0.1, alpha 0.01) are invisible within the MC bound") {
   // At α = 0.01 the single-scattering loss is far below the ≈0.5 % error bars (it vanishes as α → 0, Kulla &
   // Conty 2017; bsdf_energy_test bounds it below 1 % already at α = 0.05), so the expectation 1 is used as is.

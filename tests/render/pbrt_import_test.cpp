@@ -253,6 +253,19 @@ TEST_CASE("pbrt materials: named metals and glasses, remapped roughness, plastic
   CHECK_CONTAINS(error_of(kUnmirroredCamera + "NamedMaterial \"nope\"", true), "test.pbrt:5: NamedMaterial: no material named \"nope\"");
 }
 
+TEST_CASE("pbrt thindielectric: a thin sheet with the dielectric's eta, not listed as ignored") {
+  const PbrtImport imported = import_text(kUnmirroredCamera +
+                                          "MakeNamedMaterial \"pane\" \"string type\" \"thindielectric\" \"spectrum eta\" \"glass-BK7\"\n"
+                                          "MakeNamedMaterial \"film\" \"string type\" \"thindielectric\" \"float eta\" 1.33\n"
+                                          "Material \"thindielectric\"\nShape \"sphere\"\n");
+  const json& d = imported.document;
+  CHECK(d["materials"]["pane"] == json({{"type", "thin_dielectric"}, {"glass", "bk7"}}));
+  CHECK(d["materials"]["film"] == json({{"type", "thin_dielectric"}, {"ior", 1.33}}));
+  CHECK(d["materials"][d["shapes"][0]["material"].get<std::string>()] == json({{"type", "thin_dielectric"}, {"ior", 1.5}}));
+  CHECK(imported.ignored.empty());
+  CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", test::test_data("pbrt"), test::library()));
+}
+
 TEST_CASE("pbrt meshes: PLY files by path, missing ones are errors with the line") {
   const json d = import_text(kUnmirroredCamera + "Shape \"plymesh\" \"string filename\" \"quad.ply\"").document;
   CHECK(d["shapes"][0]["type"] == "mesh");

@@ -230,7 +230,8 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     interface_materials_.insert(name);
     return name;
   }
-  if (type != "diffuse" && type != "coateddiffuse" && type != "conductor" && type != "dielectric") {
+  if (type != "diffuse" && type != "coateddiffuse" && type != "conductor" && type != "dielectric" &&
+      type != "thindielectric") {
     ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
     return name;
@@ -293,8 +294,9 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       m["roughness_u"] = rimu_roughness(u, remap);
       m["roughness_v"] = rimu_roughness(v, remap);
     }
-  } else {  // dielectric
-    m = {{"type", "dielectric"}};
+  } else {  // dielectric, thindielectric: the same eta
+    const bool thin = type == "thindielectric";
+    m = {{"type", thin ? "thin_dielectric" : "dielectric"}};
     const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum});
     if (!eta) {
       m["ior"] = 1.5;
@@ -305,10 +307,13 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     } else {
       m["ior"] = 1.5;  // spectrum_value reported it
     }
-    const double r = scalar("roughness", 0.0);
-    const double u = scalar("uroughness", r), v = scalar("vroughness", r);
-    if (u != v) ignore("anisotropic dielectric roughness (the mean is used)", s.where);
-    if (u + v > 0) m["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+    // pbrt-v4's ThinDielectricMaterial reads no roughness: left unread, a given one is listed as unused.
+    if (!thin) {
+      const double r = scalar("roughness", 0.0);
+      const double u = scalar("uroughness", r), v = scalar("vroughness", r);
+      if (u != v) ignore("anisotropic dielectric roughness (the mean is used)", s.where);
+      if (u + v > 0) m["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+    }
   }
   materials_[name] = m;
   return name;
