@@ -10,6 +10,7 @@
 #include "transport/conductor_bsdf.h"
 #include "transport/dielectric_bsdf.h"
 #include "transport/diffuse_bsdf.h"
+#include "transport/diffuse_transmission_bsdf.h"
 #include "transport/thin_dielectric_bsdf.h"
 
 namespace rimu {
@@ -25,7 +26,8 @@ namespace rimu {
 /// frame of the geometric outside (the normal pointing out of the object).
 class Bsdf {
  public:
-  using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf, ThinDielectricBsdf>;
+  using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf, ThinDielectricBsdf,
+                               DiffuseTransmissionBsdf>;
 
   template <typename T>
   Bsdf(T bsdf) : bsdf_(std::move(bsdf)) {}  // NOLINT(google-explicit-constructor): any BSDF is a Bsdf

@@ -47,6 +47,22 @@ class DielectricMaterial {
   TrowbridgeReitz distribution_;
 };
 
+/// Lambertian reflection R(λ) and transmission T(λ), both multiplied by `scale` (pbrt-v4's diffusetransmission).
+/// Per lane R and T are clamped to [0, 1] and, where R + T > 1 (which would create energy), both are divided by
+/// R + T: the ratio R : T is kept, the sheet scatters everything. pbrt-v4 does not rescale (it renders such a
+/// surface brighter than physical).
+class DiffuseTransmissionMaterial {
+ public:
+  /// Throws InputError if a texture is missing or scale < 0.
+  DiffuseTransmissionMaterial(SpectralTexturePtr reflectance, SpectralTexturePtr transmittance, float scale);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectralTexturePtr reflectance_;
+  SpectralTexturePtr transmittance_;
+  float scale_;
+};
+
 /// A thin sheet of glass of index n(λ) in air (ThinDielectricBsdf): smooth only, as in pbrt-v4.
 class ThinDielectricMaterial {
  public:
@@ -80,7 +96,7 @@ class CoatedDiffuseMaterial {
 class Material {
  public:
   using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial,
-                               ThinDielectricMaterial>;
+                               ThinDielectricMaterial, DiffuseTransmissionMaterial>;
 
   template <typename T>
   Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)
