@@ -10,6 +10,8 @@
 #include "transport/conductor_bsdf.h"
 #include "transport/dielectric_bsdf.h"
 #include "transport/diffuse_bsdf.h"
+#include "transport/diffuse_transmission_bsdf.h"
+#include "transport/thin_dielectric_bsdf.h"
 
 namespace rimu {
 
@@ -20,11 +22,12 @@ namespace rimu {
 ///
 /// Sides: opaque BSDFs (flags().has_transmission == false) are two-sided, and give the same result as if the
 /// frame were flipped so that wo.z > 0; the integrator may flip the shading frame for them. Transmissive BSDFs
-/// (the dielectric) use the sign of wo.z to know whether the path is inside, so the integrator must pass the
+/// (the dielectrics) use the sign of wo.z to know whether the path is inside, so the integrator must pass the
 /// frame of the geometric outside (the normal pointing out of the object).
 class Bsdf {
  public:
-  using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf>;
+  using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf, ThinDielectricBsdf,
+                               DiffuseTransmissionBsdf>;
 
   template <typename T>
   Bsdf(T bsdf) : bsdf_(std::move(bsdf)) {}  // NOLINT(google-explicit-constructor): any BSDF is a Bsdf

@@ -62,6 +62,33 @@ Bsdf DielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
   return DielectricBsdf(ior_->sample(lambda), distribution_);
 }
 
+DiffuseTransmissionMaterial::DiffuseTransmissionMaterial(SpectralTexturePtr reflectance, SpectralTexturePtr transmittance,
+                                                         float scale)
+    : reflectance_(std::move(reflectance)), transmittance_(std::move(transmittance)), scale_(scale) {
+  if (!reflectance_ || !transmittance_)
+    throw InputError({}, "a diffuse transmission material needs a reflectance and a transmittance");
+  if (!(scale_ >= 0.0f)) throw InputError({}, "scale must be at least 0, got " + std::to_string(scale_));
+}
+
+Bsdf DiffuseTransmissionMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
+  const Float4 r = clamp_unit(reflectance_->evaluate(uv, lambda) * Float4(scale_));
+  const Float4 t = clamp_unit(transmittance_->evaluate(uv, lambda) * Float4(scale_));
+  // More than all the incident flux scattered would create energy: keep R : T, scatter exactly everything.
+  const Float4 total = r + t;
+  const Float4 normalise = select(total > Float4(1.0f), Float4(1.0f) / total, Float4(1.0f));
+  return DiffuseTransmissionBsdf(r * normalise, t * normalise);
+}
+
+ThinDielectricMaterial::ThinDielectricMaterial(SpectrumPtr ior) : ior_(std::move(ior)) {
+  if (!ior_) throw InputError({}, "a thin dielectric needs an index of refraction");
+  if (!(min_over_range(*ior_) > 0.0))
+    throw InputError({}, "the index of refraction of " + ior_->describe() + " must be positive over 360-830 nm");
+}
+
+Bsdf ThinDielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
+  return ThinDielectricBsdf(ior_->sample(lambda));
+}
+
 CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior)
     : reflectance_(std::move(reflectance)), coat_ior_(std::move(coat_ior)) {
   if (!reflectance_ || !coat_ior_) throw InputError({}, "a coated diffuse material needs a reflectance and a coat index");

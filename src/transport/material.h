@@ -47,6 +47,33 @@ class DielectricMaterial {
   TrowbridgeReitz distribution_;
 };
 
+/// Lambertian reflection R(λ) and transmission T(λ), both multiplied by `scale` (pbrt-v4's diffusetransmission).
+/// Per lane R and T are clamped to [0, 1] and, where R + T > 1 (which would create energy), both are divided by
+/// R + T: the ratio R : T is kept, the sheet scatters everything. pbrt-v4 does not rescale (it renders such a
+/// surface brighter than physical).
+class DiffuseTransmissionMaterial {
+ public:
+  /// Throws InputError if a texture is missing or scale < 0.
+  DiffuseTransmissionMaterial(SpectralTexturePtr reflectance, SpectralTexturePtr transmittance, float scale);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectralTexturePtr reflectance_;
+  SpectralTexturePtr transmittance_;
+  float scale_;
+};
+
+/// A thin sheet of glass of index n(λ) in air (ThinDielectricBsdf): smooth only, as in pbrt-v4.
+class ThinDielectricMaterial {
+ public:
+  /// Throws InputError if the spectrum is missing or n ≤ 0 somewhere.
+  explicit ThinDielectricMaterial(SpectrumPtr ior);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectrumPtr ior_;
+};
+
 /// A Lambertian base of reflectance ρ(λ) under a smooth clear coat of index n(λ) (CoatedDiffuseBsdf).
 /// The coat's hemispherical reflectance F̄_ext(n(λ)) is tabulated at 5 nm at construction (it is a smooth
 /// function of n, which varies by about 1% over the visible for glasses).
@@ -68,7 +95,8 @@ class CoatedDiffuseMaterial {
 /// Roughness parameters are perceptual, r ∈ [0, 1], with α = r² (TrowbridgeReitz::roughness_to_alpha).
 class Material {
  public:
-  using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial>;
+  using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial,
+                               ThinDielectricMaterial, DiffuseTransmissionMaterial>;
 
   template <typename T>
   Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)

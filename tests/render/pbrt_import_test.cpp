@@ -253,6 +253,52 @@ TEST_CASE("pbrt materials: named metals and glasses, remapped roughness, plastic
   CHECK_CONTAINS(error_of(kUnmirroredCamera + "NamedMaterial \"nope\"", true), "test.pbrt:5: NamedMaterial: no material named \"nope\"");
 }
 
+TEST_CASE("pbrt thindielectric: a thin sheet with the dielectric's eta, not listed as ignored") {
+  const PbrtImport imported = import_text(kUnmirroredCamera +
+                                          "MakeNamedMaterial \"pane\" \"string type\" \"thindielectric\" \"spectrum eta\" \"glass-BK7\"\n"
+                                          "MakeNamedMaterial \"film\" \"string type\" \"thindielectric\" \"float eta\" 1.33\n"
+                                          "Material \"thindielectric\"\nShape \"sphere\"\n");
+  const json& d = imported.document;
+  CHECK(d["materials"]["pane"] == json({{"type", "thin_dielectric"}, {"glass", "bk7"}}));
+  CHECK(d["materials"]["film"] == json({{"type", "thin_dielectric"}, {"ior", 1.33}}));
+  CHECK(d["materials"][d["shapes"][0]["material"].get<std::string>()] == json({{"type", "thin_dielectric"}, {"ior", 1.5}}));
+  CHECK(imported.ignored.empty());
+  CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", test::test_data("pbrt"), test::library()));
+}
+
+TEST_CASE("pbrt diffusetransmission: reflectance, transmittance and scale, with pbrt's defaults") {
+  const PbrtImport imported = import_text(kUnmirroredCamera +
+                                          "MakeNamedMaterial \"paper\" \"string type\" \"diffusetransmission\" \"rgb transmittance\" [0.5 0.5 0.5] \"float scale\" 1.5\n"
+                                          "Material \"diffusetransmission\"\nShape \"sphere\"\n");
+  const json& d = imported.document;
+  const json& paper = d["materials"]["paper"];
+  CHECK(paper["type"] == "diffuse_transmission");
+  CHECK(paper["reflectance"] == 0.25);
+  CHECK(paper["scale"] == 1.5);
+  CHECK(paper["transmittance"].is_object());  // RGB: through the reflectance upsampler
+  CHECK(d["materials"][d["shapes"][0]["material"].get<std::string>()] ==
+        json({{"type", "diffuse_transmission"}, {"reflectance", 0.25}, {"transmittance", 0.25}}));
+  CHECK(imported.ignored.empty());
+  CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", test::test_data("pbrt"), test::library()));
+}
+
+TEST_CASE("pbrt mix: the material amount favours stands in, listed as an approximation") {
+  const std::string defs = kUnmirroredCamera +
+                           "MakeNamedMaterial \"red\" \"string type\" \"diffuse\" \"float reflectance\" 0.2\n"
+                           "MakeNamedMaterial \"glass\" \"string type\" \"dielectric\"\n";
+  const PbrtImport imported = import_text(defs +
+                                          "MakeNamedMaterial \"mostly glass\" \"string type\" \"mix\" \"string materials\" [\"red\" \"glass\"] \"float amount\" 0.7\n"
+                                          "MakeNamedMaterial \"mostly red\" \"string type\" \"mix\" \"string materials\" [\"red\" \"glass\"] \"float amount\" 0.3\n");
+  const json& d = imported.document;
+  CHECK(d["materials"]["mostly glass"] == d["materials"]["glass"]);
+  CHECK(d["materials"]["mostly red"] == d["materials"]["red"]);
+  REQUIRE(imported.ignored.size() == 1);
+  CHECK(imported.ignored[0].what.find("Material \"mix\"") != std::string::npos);
+  CHECK(imported.ignored[0].count == 2);
+  CHECK_CONTAINS(error_of(defs + "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"red\" \"nope\"] \"float amount\" 1", true),
+                 "test.pbrt:7", "no material named \"nope\"");
+}
+
 TEST_CASE("pbrt meshes: PLY files by path, missing ones are errors with the line") {
   const json d = import_text(kUnmirroredCamera + "Shape \"plymesh\" \"string filename\" \"quad.ply\"").document;
   CHECK(d["shapes"][0]["type"] == "mesh");

@@ -133,6 +133,18 @@ TEST_CASE("chi-square: smooth BK7 reflects and refracts with the probabilities i
   run_all(cases);
 }
 
+TEST_CASE("chi-square: a thin BK7 sheet reflects and transmits with the probabilities it reports") {
+  // Two delta cells, the mirror and the straight-through direction, with frequencies R(hero) and 1 − R(hero).
+  const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
+  std::vector<Case> cases;
+  for (float hero : kHeroes)
+    for (float c : kCosines)
+      for (float side : {1.0f, -1.0f})
+        cases.push_back({ThinDielectricBsdf(bk7->sample(wavelengths_with_hero(hero))), direction(side * c),
+                         label("thin BK7", 0, side * c, hero)});
+  run_all(cases);
+}
+
 TEST_CASE("chi-square: coated diffuse chooses coat and base with the probabilities and density it reports") {
   const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
   std::vector<Case> cases;

@@ -38,7 +38,8 @@ auto with_key(const JsonCursor& where, F&& f) {
 }
 
 Material load_material(const JsonCursor& m, LoadContext& context) {
-  const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "coated_diffuse"});
+  const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "thin_dielectric", "coated_diffuse",
+                                                    "diffuse_transmission"});
   SpectralLibrary& library = context.spectra.library();
   if (type == "diffuse") {
     m.only_keys({"type", "reflectance"});
@@ -64,8 +65,12 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
     const float ru = float(m.number_or("roughness_u", r, 0.0, 1.0)), rv = float(m.number_or("roughness_v", r, 0.0, 1.0));
     return with_key(m, [&] { return Material(ConductorMaterial(ior, ru, rv)); });
   }
-  if (type == "dielectric") {
-    m.only_keys({"type", "ior", "glass", "roughness"});
+  if (type == "dielectric" || type == "thin_dielectric") {
+    const bool thin = type == "thin_dielectric";
+    if (thin)
+      m.only_keys({"type", "ior", "glass"});  // a thin sheet is smooth (pbrt-v4 has no rough one either)
+    else
+      m.only_keys({"type", "ior", "glass", "roughness"});
     SpectrumPtr ior;
     if (m.has("glass")) {
       if (m.has("ior")) m.at("ior").fail("give either glass or ior, not both");
@@ -75,8 +80,19 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
     } else {
       ior = context.spectra.parse(m.at("ior"), SpectrumRole::ior);
     }
+    if (thin) return with_key(m, [&] { return Material(ThinDielectricMaterial(ior)); });
     const float roughness = roughness_of(m);
     return with_key(m, [&] { return Material(DielectricMaterial(ior, roughness)); });
+  }
+  if (type == "diffuse_transmission") {
+    m.only_keys({"type", "reflectance", "transmittance", "scale"});
+    // pbrt-v4's defaults: 0.25 each.
+    SpectralTexturePtr reflectance = m.has("reflectance") ? reflectance_texture(m.at("reflectance"), context)
+                                                          : std::make_shared<ConstantSpectralTexture>(std::make_shared<ConstantSpectrum>(0.25));
+    SpectralTexturePtr transmittance = m.has("transmittance") ? reflectance_texture(m.at("transmittance"), context)
+                                                              : std::make_shared<ConstantSpectralTexture>(std::make_shared<ConstantSpectrum>(0.25));
+    const float scale = float(m.number_or("scale", 1.0, 0.0));
+    return with_key(m, [&] { return Material(DiffuseTransmissionMaterial(std::move(reflectance), std::move(transmittance), scale)); });
   }
   m.only_keys({"type", "reflectance", "coat_ior"});
   const SpectrumPtr coat = m.has("coat_ior") ? context.spectra.parse(m.at("coat_ior"), SpectrumRole::ior)

@@ -214,6 +214,34 @@ void PbrtConverter::texture(const PbrtStatement& s) {
   textures_[s.strings[0]] = {kind, s.strings[2], s};
 }
 
+std::string PbrtConverter::mix_material(const PbrtStatement& s, const std::string& name, const std::string& context,
+                                        const std::vector<PbrtParam>* material_defaults) {
+  // pbrt-v4's MixMaterial picks materials[1] with probability `amount` per hit (a hash of the hit). Rimu has no
+  // per-hit material choice yet: the more likely of the two stands in, for the whole surface, and is listed.
+  PbrtParams p(*this, s, context + " (mix)", material_defaults);
+  if (s.keyword == "MakeNamedMaterial") p.string("type", "");
+  const PbrtParam* names = p.get("materials", {PbrtParamType::string});
+  if (!names || names->strings.size() != 2)
+    throw InputError(s.where, p.context() + ": \"string materials\" must name two materials");
+  double amount = 0.5;
+  if (const PbrtParam* a = p.get("amount", {PbrtParamType::real, PbrtParamType::texture})) {
+    if (a->type == PbrtParamType::real) {
+      amount = a->numbers.at(0);
+    } else if (const auto constant = constant_float_texture(a->strings.at(0), a->where, 0)) {
+      amount = *constant;
+    } else {
+      ignore("texture for \"amount\" of " + p.context() + " (0.5 is used)", a->where);
+    }
+  }
+  const std::string& chosen = names->strings[amount >= 0.5 ? 1 : 0];
+  if (!named_materials_.count(chosen) || !materials_.contains(chosen))
+    throw InputError(names->where, p.context() + ": no material named \"" + chosen + "\"");
+  ignore("Material \"mix\" (not stochastic: the material of the larger share, by \"amount\", stands in)", s.where);
+  materials_[name] = materials_.at(chosen);
+  if (interface_materials_.count(chosen)) interface_materials_.insert(name);
+  return name;
+}
+
 std::string PbrtConverter::material(const PbrtStatement& s, const std::string& type, const std::string& context) {
   const bool named = s.keyword == "MakeNamedMaterial";
   std::string name = named ? s.strings[0]
@@ -230,7 +258,9 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     interface_materials_.insert(name);
     return name;
   }
-  if (type != "diffuse" && type != "coateddiffuse" && type != "conductor" && type != "dielectric") {
+  if (type == "mix") return mix_material(s, name, context, material_defaults);
+  if (type != "diffuse" && type != "coateddiffuse" && type != "conductor" && type != "dielectric" &&
+      type != "thindielectric" && type != "diffusetransmission") {
     ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
     return name;
@@ -248,6 +278,11 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
   const bool remap = p.boolean("remaproughness", true);
   if (type == "diffuse") {
     m = {{"type", "diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
+  } else if (type == "diffusetransmission") {
+    m = {{"type", "diffuse_transmission"}, {"reflectance", *reflectance(p, "reflectance", 0.25)},
+         {"transmittance", *reflectance(p, "transmittance", 0.25)}};
+    const double scale = p.real("scale", 1.0);
+    if (scale != 1.0) m["scale"] = std::max(0.0, scale);
   } else if (type == "coateddiffuse") {
     m = {{"type", "coated_diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
     const double roughness = scalar("roughness", 0.0);
@@ -293,8 +328,9 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       m["roughness_u"] = rimu_roughness(u, remap);
       m["roughness_v"] = rimu_roughness(v, remap);
     }
-  } else {  // dielectric
-    m = {{"type", "dielectric"}};
+  } else {  // dielectric, thindielectric: the same eta
+    const bool thin = type == "thindielectric";
+    m = {{"type", thin ? "thin_dielectric" : "dielectric"}};
     const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum});
     if (!eta) {
       m["ior"] = 1.5;
@@ -305,10 +341,13 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     } else {
       m["ior"] = 1.5;  // spectrum_value reported it
     }
-    const double r = scalar("roughness", 0.0);
-    const double u = scalar("uroughness", r), v = scalar("vroughness", r);
-    if (u != v) ignore("anisotropic dielectric roughness (the mean is used)", s.where);
-    if (u + v > 0) m["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+    // pbrt-v4's ThinDielectricMaterial reads no roughness: left unread, a given one is listed as unused.
+    if (!thin) {
+      const double r = scalar("roughness", 0.0);
+      const double u = scalar("uroughness", r), v = scalar("vroughness", r);
+      if (u != v) ignore("anisotropic dielectric roughness (the mean is used)", s.where);
+      if (u + v > 0) m["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+    }
   }
   materials_[name] = m;
   return name;

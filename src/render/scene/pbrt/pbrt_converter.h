@@ -96,6 +96,9 @@ class PbrtConverter {
   friend class PbrtParams;
   // pbrt_appearance.cpp
   std::optional<json> reflectance(PbrtParams& p, const std::string& name, double fallback);
+  /// pbrt's "mix": the JSON of the material `amount` favours, under `name`.
+  std::string mix_material(const PbrtStatement& s, const std::string& name, const std::string& context,
+                           const std::vector<PbrtParam>* material_defaults);
   /// A pbrt spectrum parameter as a Rimu spectral value; spectrum files resolve against `directory`. Empty (and
   /// listed) for what is not imported.
   std::optional<json> spectrum_value(const PbrtParam& param, bool illuminant, const std::filesystem::path& directory);

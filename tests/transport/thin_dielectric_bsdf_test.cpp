@@ -1,0 +1,117 @@
+// The thin dielectric sheet: its reflectance against the closed form, R + T = 1, straight transmission, and
+// sample weights and lobe probabilities that agree with what it reports.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "bsdf_test_fixtures.h"
+#include "spectral/error.h"
+#include "test_support.h"
+#include "transport/bsdf.h"
+#include "transport/fresnel.h"
+#include "transport/material.h"
+
+using namespace rimu;
+
+namespace {
+
+Vec3 direction(float cos_theta) {
+  const float s = std::sqrt(std::fmax(0.0f, 1.0f - cos_theta * cos_theta));
+  return {s * std::cos(0.4f), s * std::sin(0.4f), cos_theta};
+}
+
+}  // namespace
+
+TEST_CASE("thin dielectric: at normal incidence R = 2R0/(1 + R0), the closed form of the inter-reflection series") {
+  // η = 1.5: R₀ = ((η−1)/(η+1))² = 0.04; the series R₀ + (1−R₀)²R₀/(1−R₀²) sums to 2R₀/(1+R₀) = 0.0769231
+  // (e.g. Hecht, Optics, for an incoherent slab).
+  const ThinDielectricBsdf sheet(Float4(1.5f));
+  const double r0 = 0.04;
+  CHECK(sheet.reflectance(1.0f)[0] == doctest::Approx(2 * r0 / (1 + r0)).epsilon(1e-6));
+  // η = 1 is no sheet at all: nothing reflected.
+  CHECK(ThinDielectricBsdf(Float4(1.0f)).reflectance(0.5f)[0] == doctest::Approx(0.0).epsilon(1e-7));
+  // Grazing: everything reflected (R₀ → 1), finite.
+  CHECK(sheet.reflectance(0.0f)[0] == 1.0f);
+}
+
+TEST_CASE("thin dielectric: a lossless sheet reflects R and transmits 1 - R, per lane, from either side") {
+  const SampledWavelengths lambda = test::four_visible_wavelengths();
+  const Float4 eta = test::bk7_eta(lambda);  // a different index per lane
+  const ThinDielectricBsdf sheet(eta);
+  for (float c : {1.0f, 0.8f, 0.5f, 0.2f, 0.05f, -0.7f, -0.1f}) {
+    CAPTURE(c);
+    const Vec3 wo = direction(c);
+    const auto reflected = sheet.sample(wo, 0.0f, {0.5f, 0.5f});
+    const auto transmitted = sheet.sample(wo, 0.999999f, {0.5f, 0.5f});
+    REQUIRE(reflected);
+    REQUIRE(transmitted);
+    CHECK(reflected->is_delta);
+    CHECK(transmitted->is_delta);
+    CHECK_FALSE(transmitted->wavelength_dependent_direction);
+    // Mirror direction, and straight through: the two refractions cancel.
+    CHECK(reflected->wi.z == doctest::Approx(c));
+    CHECK(reflected->wi.x == doctest::Approx(-wo.x));
+    CHECK(transmitted->wi.x == -wo.x);
+    CHECK(transmitted->wi.y == -wo.y);
+    CHECK(transmitted->wi.z == -wo.z);
+    for (int lane = 0; lane < 4; ++lane) {
+      CAPTURE(lane);
+      // Analytic R per lane in double: R₀ + T₀²R₀/(1 − R₀²).
+      const double r0 = fresnel_dielectric(double(std::fabs(c)), double(eta[lane]));
+      const double r = r0 + (1 - r0) * (1 - r0) * r0 / (1 - r0 * r0);
+      const double r_sheet = reflected->f[lane] * std::fabs(c);
+      const double t_sheet = transmitted->f[lane] * std::fabs(c);
+      CHECK(r_sheet == doctest::Approx(r).epsilon(1e-5));
+      CHECK(r_sheet + t_sheet == doctest::Approx(1.0).epsilon(1e-6));  // lossless: R + T = 1
+      // The probability of each lobe is its reflectance: the weights are 1 in the lane that chose.
+      CHECK(reflected->pdf[lane] == doctest::Approx(r_sheet).epsilon(1e-6));
+      CHECK(transmitted->pdf[lane] == doctest::Approx(t_sheet).epsilon(1e-6));
+    }
+    CHECK(reflected->hero_weight()[0] == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(transmitted->hero_weight()[0] == doctest::Approx(1.0).epsilon(1e-6));
+    // Delta lobes only: nothing to evaluate.
+    CHECK((sheet.eval(wo, reflected->wi) == Float4(0.0f)).all());
+    CHECK((sheet.pdf(wo, transmitted->wi) == Float4(0.0f)).all());
+  }
+  CHECK_FALSE(sheet.sample({1.0f, 0.0f, 0.0f}, 0.5f, {0.5f, 0.5f}));  // on the horizon
+}
+
+TEST_CASE("thin dielectric: the fraction of samples reflected is R(hero), and the mean weight is 1") {
+  const Float4 eta = test::bk7_eta(test::four_visible_wavelengths());
+  const Bsdf sheet = ThinDielectricBsdf(eta);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (float c : {0.9f, 0.3f, -0.6f}) {
+    CAPTURE(c);
+    const Vec3 wo = direction(c);
+    constexpr int kCount = 200000;
+    int reflections = 0;
+    double weight = 0;
+    for (int i = 0; i < kCount; ++i) {
+      const auto s = sheet.sample(wo, u(rng), {u(rng), u(rng)});
+      REQUIRE(s);
+      reflections += s->wi.z * wo.z > 0.0f;
+      weight += s->hero_weight()[0];
+    }
+    const double r = ThinDielectricBsdf(eta).reflectance(std::fabs(c))[0];
+    // Binomial: 4σ with σ = √(R(1−R)/N).
+    CHECK(std::fabs(double(reflections) / kCount - r) < 4.0 * std::sqrt(r * (1 - r) / kCount));
+    CHECK(weight / kCount == doctest::Approx(1.0).epsilon(1e-5));  // every weight is 1: no energy lost or made
+  }
+}
+
+TEST_CASE("thin dielectric material: a BK7 pane colours R and T but keeps one direction, and bad indices throw") {
+  const SampledWavelengths lambda = test::four_visible_wavelengths();
+  const Material pane = ThinDielectricMaterial(dielectric_ior(test::library(), "bk7"));
+  const Bsdf bsdf = pane.bsdf({0.0f, 0.0f}, lambda);
+  CHECK(bsdf.flags().has_transmission);
+  CHECK(bsdf.flags().has_delta);
+  CHECK_FALSE(bsdf.flags().has_non_delta);
+  const auto s = bsdf.sample(direction(0.5f), 0.99f, {0.5f, 0.5f});
+  REQUIRE(s);
+  CHECK(s->pdf[1] > 0.0f);  // every lane shares the transmitted direction
+  CHECK(s->pdf[0] != s->pdf[3]);  // BK7 disperses: the lanes' transmittances differ
+  CHECK_THROWS_AS(ThinDielectricMaterial(nullptr), InputError);
+  CHECK_THROWS_AS(ThinDielectricMaterial(std::make_shared<ConstantSpectrum>(0.0)), InputError);
+}
