@@ -13,7 +13,7 @@ class TabulatedSpectrum;
 enum class TristimulusMethod {
   native,           ///< sum at the data's own wavelengths against the CMFs there (CIE 15:2004 §7.1, 1 and 5 nm data)
   interpolate_1nm,  ///< interpolate the data linearly to 1 nm over 360-830 nm, then sum (Rimu's former default)
-  astm_e308,        ///< ASTM E308-15 weighting factors (Table 6 practice) for 10 and 20 nm data
+  astm_e308,        ///< ASTM E308-15 weighting factors for 10 and 20 nm data: Table 6 (bandpass-corrected data) or Table 5 (uncorrected), by E308Table
 };
 
 /// "native", "1nm" or "astm-e308": the names used on the command line and in every report.
