@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "grey_environment_image.h"
 #include "light_test_support.h"
 #include "transport/environment_light.h"
 #include "transport/equal_area_square.h"
@@ -19,19 +20,7 @@ namespace {
 const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
 constexpr double kPi = std::numbers::pi;
 
-class GreyImage final : public EnvironmentImage {
- public:
-  GreyImage(int w, int h, std::vector<float> values) : w_(w), h_(h), values_(std::move(values)) {}
-  int width() const override { return w_; }
-  int height() const override { return h_; }
-  SampledSpectrum radiance(int x, int y, const SampledWavelengths&) const override { return Float4(at(x, y)); }
-  float luminance(int x, int y) const override { return at(x, y); }
-  float at(int x, int y) const { return values_[size_t(y) * w_ + x]; }
-
- private:
-  int w_, h_;
-  std::vector<float> values_;
-};
+using test::GreyImage;
 
 /// A 16 × 16 image with a bright pixel, a dark column and a gradient.
 std::shared_ptr<GreyImage> test_image() {
