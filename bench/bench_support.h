@@ -3,14 +3,19 @@
 // Header-only and bench-only (the benchmarks are separate executables; nothing in src/ depends on this).
 #pragma once
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "render/pixel_filter.h"
 #include "render/scene/scene.h"
@@ -21,6 +26,20 @@
 #endif
 
 namespace rimu::bench {
+
+/// Parses the command line with CLI11 (as the tools do): after --help prints the usage and exits 0; on a bad command
+/// line prints CLI11's message and exits 1. Returns the command as typed, for the "reproduce with" line of a report.
+inline std::string parse_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e) == 0 ? 0 : 1);  // CLI11's own codes (105, 109, ...) → the tools' 1
+  }
+  std::string command;
+  for (int i = 0; i < argc; ++i)
+    command += i ? " " + std::string(argv[i]) : std::filesystem::path(argv[0]).filename().string();
+  return command;
+}
 
 /// The CPU's model name from /proc/cpuinfo.
 inline std::string cpu_model() {
@@ -71,6 +90,34 @@ inline bool draw_plot(const GnuplotJob& job, const std::filesystem::path& png) {
     std::cerr << "plot not drawn: " << e.what() << "\n";
     return false;
   }
+}
+
+/// One point of an error-against-time curve: a render of `spp` samples per pixel that took `seconds` of wall time.
+struct ErrorTimePoint {
+  double seconds = 0, relative_mse = 0;
+  int spp = 0;
+};
+
+/// The speed-against-error plot every such report draws: relative MSE against wall time, log-log, one line per
+/// series (the map's order), titled `title`.
+inline bool draw_error_time_plot(const std::string& title,
+                                 const std::map<std::string, std::vector<ErrorTimePoint>>& series,
+                                 const std::filesystem::path& png) {
+  GnuplotJob job;
+  job.terminal = "pngcairo size 640,440 noenhanced";
+  std::ostringstream gp;
+  gp << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
+     << "set title " << gnuplot_text(title) << " noenhanced\nset key top right noenhanced\nset grid\nplot ";
+  int index = 0;
+  for (const auto& [name, points] : series) {
+    std::ostringstream data;
+    for (const ErrorTimePoint& p : points) data << p.seconds << " " << p.relative_mse << " " << p.spp << "\n";
+    const std::string file = "series" + std::to_string(index) + ".dat";
+    job.data_files.emplace_back(file, data.str());
+    gp << (index++ ? ", " : "") << "'" << file << "' using 1:2 with linespoints title " << gnuplot_text(name);
+  }
+  job.commands = gp.str();
+  return draw_plot(job, png);
 }
 
 /// Replaces the text between `<!-- <marker>:begin -->` and `<!-- <marker>:end -->` in `path` with `section`;

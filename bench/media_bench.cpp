@@ -98,49 +98,30 @@ XyzImage render_case(const Scene& scene, int spp, uint64_t seed, int threads, Sp
 }
 
 void write_plot(const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode, const fs::path& png) {
-  GnuplotJob job;
-  job.terminal = "pngcairo size 640,440 noenhanced";
-  std::ostringstream gp;
-  gp << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
-     << "set title " << gnuplot_text("Participating media, distance sampling: " + id)
-     << " noenhanced\nset key top right noenhanced\nset grid\nplot ";
-  int index = 0;
-  for (const auto& [mode, rows] : by_mode) {
-    std::ostringstream d;
-    for (const Row& r : rows) d << r.seconds << " " << r.relative_mse << " " << r.spp << "\n";
-    const std::string name = "mode" + std::to_string(index) + ".dat";
-    job.data_files.emplace_back(name, d.str());
-    gp << (index++ ? ", " : "") << "'" << name << "' using 1:2 with linespoints title " << gnuplot_text(mode);
-  }
-  job.commands = gp.str();
-  bench::draw_plot(job, png);
+  std::map<std::string, std::vector<bench::ErrorTimePoint>> series;
+  for (const auto& [mode, rows] : by_mode)
+    for (const Row& r : rows) series[mode].push_back({r.seconds, r.relative_mse, r.spp});
+  bench::draw_error_time_plot("Participating media, distance sampling: " + id, series, png);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Settings settings;
-  std::string command = "rimu-media-bench";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    command += " " + a;
-    if (a == "--quick") {
-      settings.ladder = {1, 2};
-      settings.reference_spp = 4;
-      settings.docs = false;
-    } else if (a == "--threads" && i + 1 < argc) {
-      settings.threads = std::atoi(argv[++i]);
-      command += std::string(" ") + argv[i];
-    } else if (a == "--out" && i + 1 < argc) {
-      settings.out = argv[++i];
-      command += std::string(" ") + argv[i];
-    } else if (a == "--no-docs") {
-      settings.docs = false;
-    } else {
-      std::cerr << "usage: rimu-media-bench [--quick] [--threads N] [--out DIR] [--no-docs]\n";
-      return 2;
-    }
+  CLI::App app{"Participating media: relative MSE against wall time of each distance-sampling mode.", "rimu-media-bench"};
+  bool quick = false, no_docs = false;
+  std::string out;
+  app.add_flag("--quick", quick, "a 1- and 2-spp ladder against a 4-spp reference (a smoke run; no docs)");
+  app.add_option("--threads", settings.threads, "render threads")->check(CLI::Range(1, 1 << 20));
+  app.add_option("--out", out, "folder of the report and the cached references (default: <build>/media_report)");
+  app.add_flag("--no-docs", no_docs, "do not rewrite docs/benchmarks.md");
+  const std::string command = bench::parse_command_line(app, argc, argv);
+  if (quick) {
+    settings.ladder = {1, 2};
+    settings.reference_spp = 4;
   }
+  settings.docs = !quick && !no_docs;
+  settings.out = out;
   if (settings.out.empty()) settings.out = fs::canonical("/proc/self/exe").parent_path().parent_path() / "media_report";
   fs::create_directories(settings.out);
 

@@ -65,41 +65,26 @@ struct Options {
   bool docs = true;
 };
 
-const char* const kUsage =
-    "usage: rimu-sampling-bench [--scene FILE]... [--resolution WxH] [--max-spp N] [--reference-spp N] [--threads N]\n"
-    "                           [--timing-repeats N] [--cache DIR] [--no-docs]\n";
-
-int parse_positive(const std::string& text, const std::string& option) {
-  char* end = nullptr;
-  const long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || v < 1 || v > 1 << 24)
-    throw InputError({"", 0, option}, "expected a positive integer, got '" + text + "'");
-  return int(v);
-}
-
 Options parse_options(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    }
-    if (arg == "--no-docs") {
-      o.docs = false;
-      continue;
-    }
-    if (i + 1 >= argc) throw InputError({"", 0, arg}, "unknown option or missing value\n" + std::string(kUsage));
-    const std::string value = argv[++i];
-    if (arg == "--scene") o.scenes.push_back({value, 0, 0});
-    else if (arg == "--resolution") o.resolution = parse_resolution(value, arg);
-    else if (arg == "--max-spp") o.max_spp = parse_positive(value, arg);
-    else if (arg == "--reference-spp") o.reference_spp = parse_positive(value, arg);
-    else if (arg == "--threads") o.threads = parse_positive(value, arg);
-    else if (arg == "--timing-repeats") o.timing_repeats = parse_positive(value, arg);
-    else if (arg == "--cache") o.cache = value;
-    else throw InputError({"", 0, arg}, "unknown option\n" + std::string(kUsage));
-  }
+  CLI::App app{"Independent against Sobol' sampling: MSE and relative MSE against wall time on a ladder of sample "
+               "counts.", "rimu-sampling-bench"};
+  std::vector<std::string> scenes;
+  std::string resolution, cache;
+  bool no_docs = false;
+  app.add_option("--scene", scenes, "scene file (repeatable; default: the Cornell box and the ColorChecker room)");
+  app.add_option("--resolution", resolution, "WxH (default: each scene's benchmark resolution)");
+  app.add_option("--max-spp", o.max_spp, "top of the ladder")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--reference-spp", o.reference_spp, "samples per pixel of the reference")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--threads", o.threads, "render threads (default: every core)")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--timing-repeats", o.timing_repeats, "timed renders per row")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--cache", cache, "folder of the cached references (default: <build>/sampling_reference)");
+  app.add_flag("--no-docs", no_docs, "do not rewrite docs/benchmarks.md");
+  bench::parse_command_line(app, argc, argv);
+  for (const std::string& file : scenes) o.scenes.push_back({file, 0, 0});
+  if (!resolution.empty()) o.resolution = parse_resolution(resolution, "--resolution");
+  if (!cache.empty()) o.cache = cache;
+  o.docs = !no_docs;
   return o;
 }
 

@@ -200,22 +200,10 @@ double median(std::vector<double> v) {
 }
 
 void write_plot(const std::string& id, const std::map<std::string, std::vector<Row>>& by_mode, const fs::path& png) {
-  GnuplotJob job;
-  job.terminal = "pngcairo size 640,440";
-  std::ostringstream gp;
-  gp << "set logscale xy\nset xlabel 'wall time (s)'\nset ylabel 'relative MSE vs reference'\n"
-     << "set title " << gnuplot_text("Wavelength modes, speed against error: " + id)
-     << " noenhanced\nset key top right noenhanced\nset grid\nplot ";
-  int index = 0;
-  for (const auto& [mode, rows] : by_mode) {
-    std::ostringstream d;
-    for (const Row& r : rows) d << r.seconds << " " << r.error.relative_mse << " " << r.spp << "\n";
-    const std::string name = "mode" + std::to_string(index) + ".dat";
-    job.data_files.emplace_back(name, d.str());
-    gp << (index++ ? ", " : "") << "'" << name << "' using 1:2 with linespoints title " << gnuplot_text(mode);
-  }
-  job.commands = gp.str();
-  bench::draw_plot(job, png);
+  std::map<std::string, std::vector<bench::ErrorTimePoint>> series;
+  for (const auto& [mode, rows] : by_mode)
+    for (const Row& r : rows) series[mode].push_back({r.seconds, r.error.relative_mse, r.spp});
+  bench::draw_error_time_plot("Wavelength modes, speed against error: " + id, series, png);
 }
 
 }  // namespace

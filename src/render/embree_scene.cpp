@@ -118,7 +118,7 @@ unsigned EmbreeScene::add_mesh(TriangleMesh mesh, int material, int light, std::
   const unsigned id = attach_mesh(scene_, *meshes_.back(), std::move(alpha));
   geometries_.resize(id + 1);
   instance_of_geometry_.resize(id + 1, -1);
-  geometries_[id] = {GeometryInfo::Kind::mesh, material, light, meshes_.back().get()};
+  geometries_[id] = {GeometryInfo::Kind::mesh, material, light, meshes_.back().get(), Vec3{}, 0.0f};
   return id;
 }
 
@@ -150,7 +150,7 @@ int EmbreeScene::add_prototype(std::vector<std::pair<TriangleMesh, int>> meshes,
     prototype.meshes.push_back(std::make_unique<TriangleMesh>(std::move(mesh)));
     const unsigned id = attach_mesh(prototype.scene, *prototype.meshes.back(), k < alphas.size() ? alphas[k] : nullptr);
     prototype.geometries.resize(id + 1);
-    prototype.geometries[id] = {GeometryInfo::Kind::mesh, material, -1, prototype.meshes.back().get()};
+    prototype.geometries[id] = {GeometryInfo::Kind::mesh, material, -1, prototype.meshes.back().get(), Vec3{}, 0.0f};
   }
   rtcCommitScene(prototype.scene);
   check_error("building a prototype's BVH");

@@ -98,10 +98,10 @@ TEST_CASE("pbrt orthographic camera: the image is 2 camera units along the short
   // in each of ~31 edge pixels, has a standard error ≈ 0.5·√(31·0.25/64)/400 ≈ 2e-4; 3e-3 is 15 of them. A
   // perspective camera's disc would shrink 10 times from 3 to 30 units away.
   const double expected = 1.0 - 0.5 * M_PI * 25.0 / 400.0;
-  for (const std::string& distance : {"-3", "-30"}) {
+  for (const char* distance : {"-3", "-30"}) {
     CAPTURE(distance);
     std::string scene = text.str();
-    scene.replace(scene.find("LookAt 0 0 -3"), 13, "LookAt 0 0 " + distance);
+    scene.replace(scene.find("LookAt 0 0 -3"), 13, std::string("LookAt 0 0 ") + distance);
     const PbrtImport at = import_text(scene);
     const auto loaded = load_scene(at.document, "orthographic.pbrt", test::test_data("pbrt"), test::library());
     const test::Estimate y = test::estimate_of(test::luminance_values(*test::render_xyz(*loaded, 64, 3).film));

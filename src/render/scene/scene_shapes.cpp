@@ -202,8 +202,8 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     const auto emission = shape.find("emission");
     const bool two_sided = emission ? shape.boolean_or("two_sided", false) : false;
     // An amount in lm is spread over the area after the transform (scene_light_emission.h).
-    const std::optional<LightSpectrum> radiance =
-        emission ? std::optional(area_light_emission(*emission, mesh, two_sided, context)) : std::nullopt;
+    std::optional<LightSpectrum> radiance;
+    if (emission) radiance.emplace(area_light_emission(*emission, mesh, two_sided, context));
     if (!emission && shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
     const std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
     scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
