@@ -5,13 +5,8 @@
 # refused with exit 1 before the fidelity report is printed, and nothing is written.
 set -u
 colour=$1
-work=$(mktemp -d "${TMPDIR:-/tmp}/rimu-cvg-test-XXXXXX")
-trap 'rm -rf "$work"' EXIT
-mkdir "$work/tmp"
-export TMPDIR="$work/tmp" MARK="$work/INJECTED"
-cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$(dirname "$0")/private_folder.sh"
+private_folder rimu-cvg-test
 is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ]; }
 
 "$colour" fidelity F2 --graphic cvg.png > report.txt || fail "fidelity F2 --graphic cvg.png: exit $?"

@@ -9,13 +9,8 @@
 set -u
 case_name=$1 light=$2 colour=$3
 here=$(cd "$(dirname "$0")" && pwd)
-work=$(mktemp -d "${TMPDIR:-/tmp}/rimu-plots-test-XXXXXX")
-trap 'rm -rf "$work"' EXIT
-mkdir "$work/tmp"
-export TMPDIR="$work/tmp" MARK="$work/INJECTED"
-cd "$work" || exit 1
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$here/private_folder.sh"
+private_folder rimu-plots-test
 
 # run EXPECTED_PNG COMMAND...: runs COMMAND, then checks the rules above for EXPECTED_PNG.
 run() {
