@@ -11,6 +11,22 @@
 
 using namespace rimu;
 
+namespace {
+
+/// The three channels of `response` for `patch` (a perfect white when null) under `light`: trapezoidal sums over
+/// 360-830 nm at 1 nm, the integral the fit itself evaluates.
+std::array<double, 3> channels_under(const Spectrum& light, const SpectralResponse& response, const Spectrum* patch) {
+  std::array<double, 3> s{};
+  for (int nm = 360; nm <= 830; ++nm) {
+    const double w = (nm == 360 || nm == 830) ? 0.5 : 1.0;
+    const double e = light.value(nm) * (patch ? patch->value(nm) : 1.0);
+    for (int c = 0; c < 3; ++c) s[size_t(c)] += w * e * response.value(c, nm);
+  }
+  return s;
+}
+
+}  // namespace
+
 TEST_CASE("fitting the XYZ film's own curves gives the identity with no residual") {
   const CameraColourFit fit = fit_camera_to_xyz(SpectralResponse::cie_xyz(test::library()), test::library());
   CHECK(fit.patch_count == 24);
@@ -36,15 +52,7 @@ TEST_CASE("a measured sensor's fit beats raw R, G, B shown as Rec.709 on the Col
   const Matrix3 srgb_to_xyz{{{{0.4124, 0.3576, 0.1805}, {0.2126, 0.7152, 0.0722}, {0.0193, 0.1192, 0.9505}}}};
   const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
   const SpectrumPtr d65 = library.illuminant("D65");
-  const auto channels = [&](const SpectralResponse& r, const Spectrum* patch) {
-    std::array<double, 3> s{};
-    for (int nm = 360; nm <= 830; ++nm) {
-      const double w = (nm == 360 || nm == 830) ? 0.5 : 1.0;
-      const double e = d65->value(nm) * (patch ? patch->value(nm) : 1.0);
-      for (int c = 0; c < 3; ++c) s[size_t(c)] += w * e * r.value(c, nm);
-    }
-    return s;
-  };
+  const auto channels = [&](const SpectralResponse& r, const Spectrum* patch) { return channels_under(*d65, r, patch); };
   const auto white_xyz = channels(xyz, nullptr);
   const auto white_raw = channels(camera, nullptr);
   const Xyz white{white_xyz[0], white_xyz[1], white_xyz[2]};
@@ -89,15 +97,7 @@ TEST_CASE("the fit holds on surfaces it was not trained on: the 14 CIE test colo
   const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
   const CameraColourFit fit = fit_camera_to_xyz(camera, library);
   const SpectrumPtr d65 = library.illuminant("D65");
-  const auto channels = [&](const SpectralResponse& r, const Spectrum* patch) {
-    std::array<double, 3> s{};
-    for (int nm = 360; nm <= 830; ++nm) {
-      const double w = (nm == 360 || nm == 830) ? 0.5 : 1.0;
-      const double e = d65->value(nm) * (patch ? patch->value(nm) : 1.0);
-      for (int c = 0; c < 3; ++c) s[size_t(c)] += w * e * r.value(c, nm);
-    }
-    return s;
-  };
+  const auto channels = [&](const SpectralResponse& r, const Spectrum* patch) { return channels_under(*d65, r, patch); };
   const auto w = channels(xyz, nullptr);
   const Xyz white{w[0], w[1], w[2]};
   const CsvTable& tcs = library.table("spectra/reflectances/cie_13_3_tcs_5nm.csv");
