@@ -215,10 +215,9 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour the unclamped one
     // was aimed at, t = M·c − δ.
     if (bounds.rings || clamps_at_1) {
-      for (BasisCoefficients& d : bounds.directions) d *= float(luminance);
       const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
       const double left = basis_.fit_clamped(
-          c, bounds.directions,
+          c, basis_.correction_directions(bounds, float(luminance)),
           {aimed.x - luminance * offset.x, aimed.y - luminance * offset.y, aimed.z - luminance * offset.z}, 1.0f,
           have_knots ? knots : nullptr, float(luminance));
       if (left > kFitTolerance) moved = true;
@@ -250,10 +249,9 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
     c = smooth_coefficients(xyz, &moved, &bounds);
     c *= float(xyz.y);
     if (bounds.rings) {
-      for (BasisCoefficients& d : bounds.directions) d *= float(xyz.y);
       const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
       const double left = basis_.fit_clamped(
-          c, bounds.directions, {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
+          c, basis_.correction_directions(bounds, float(xyz.y)), {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
           INFINITY);
       if (left > kFitTolerance) moved = true;
     }

@@ -31,7 +31,10 @@ struct BasisCoefficients {
 /// What smooth_coefficients knows about the spectrum besides its coefficients, so that callers can skip a
 /// 95-knot pass (~50-90 ns) when it cannot matter.
 struct SmoothShapeBounds {
-  std::array<BasisCoefficients, 3> directions;  ///< D: the correction directions, for fit_clamped
+  /// The four table entries around the colour (coefficients, then D) and their bilinear weights: what
+  /// correction_directions() blends, only when a fit needs the directions (a fifth of random sRGB colours).
+  const float* corner[4] = {};
+  float weight[4] = {};
   float peak_bound = 0;  ///< ≥ the largest knot of Φc (interpolated corner peaks, raised by the correction)
   /// δ: M·c − colour(clamp(Φc, 0, ∞)) as interpolated from the entries (the colour clamping at 0 takes away).
   Xyz clamp_offset;
@@ -75,7 +78,11 @@ class UpsamplingBasis {
   BasisCoefficients smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
                                         SmoothShapeBounds* bounds = nullptr) const;
 
-  /// Moves `c` along `directions` (smooth_coefficients's D, scaled like c) until clamp(Φc, 0, upper) has colour
+  /// The correction directions D of smooth_coefficients's colour (the corners' D blended with its weights), times
+  /// `scale` (the luminance c was scaled by): fit_clamped's `directions`.
+  std::array<BasisCoefficients, 3> correction_directions(const SmoothShapeBounds& bounds, float scale) const;
+
+  /// Moves `c` along `directions` (correction_directions) until clamp(Φc, 0, upper) has colour
   /// `target` (relative 1e-5): quasi-Newton steps, each one 95-knot pass, normally 2 passes.
   /// Returns the residual left, |ΔX| + |ΔY| + |ΔZ| relative to |X| + |Y| + |Z| of the target: above ~1e-4 the
   /// basis cannot hold this colour's spectrum at zero (saturated purples of the wide spaces, emission within
@@ -173,9 +180,13 @@ class UpsamplingBasis {
  private:
   int angle_count_ = 0, radius_count_ = 0;
   std::vector<double> radius_rows_;       // ρ of each table row
+  std::vector<double> row_inverse_spacing_;  // 1 / (ρ_{r+1} − ρ_r)
+  double angle_scale_ = 0;                // angle_count / 2π: cells per radian
   std::vector<float> rows_;               // (95 + 1 pad) × K, knot-major, 16-byte aligned rows
-  // Per table entry: the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z).
+  // Per table entry: the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z),
+  // 64 contiguous floats.
   std::vector<std::array<BasisCoefficients, 4>> entry_;
+  bool avx2_fma_ = false;  // the CPU has AVX2 and FMA: smooth_coefficients blends with 8-lane fused multiply-adds
   // Per table entry, interpolated with the same weights: M·c (3), M·D (9, row-major), the peak of the knots of
   // Φc (Y = 1), the clamping offset δ (3).
   struct EntrySummary {
@@ -192,6 +203,9 @@ class UpsamplingBasis {
   // with a new one built at the same address.
   uint64_t id_ = 0;
   void fill(BasisAtWavelengths& cache, Float4 lambda_nm) const;
+  // fit_clamped's pass without AVX2: knots_float (or given × given_scale), then the clamped colour and J's sums.
+  void clamped_pass_sse(const BasisCoefficients& c, const float* given, float given_scale, const float* const a[3],
+                        float upper, float* out) const;
   // Trivially constructible and destructible, so access needs no initialisation guard.
   static inline thread_local BasisAtWavelengths thread_cache_{};
 };
