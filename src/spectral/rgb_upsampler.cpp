@@ -52,25 +52,6 @@ constexpr double kRingingAllowance = 1.02;
 // relative XYZ residual (ΔE00 ≲ 0.01): the basis cannot hold that spectrum at zero or under 1.
 constexpr double kFitTolerance = 1e-4;
 
-// atan2 for the fast path's cell location, ~4× cheaper than std::atan2: octant reduction to atan(x), x in [0, 1],
-// and the polynomial of Abramowitz & Stegun 4.4.49 (|error| ≤ 2e-8 rad). The angle only chooses the table cell,
-// its weights and the usable radius (the colour is corrected regardless), so 2e-8 rad changes nothing visible.
-double fast_atan2(double y, double x) {
-  const double ax = std::abs(x), ay = std::abs(y);
-  const bool swap = ay > ax;
-  const double big = swap ? ay : ax;
-  if (big == 0.0) return 0.0;
-  const double t = (swap ? ax : ay) / big, t2 = t * t;
-  double p = 0.0028662257;
-  for (double a : {-0.0161657367, 0.0429096138, -0.0752896400, 0.1065626393, -0.1420889944, 0.1999355085,
-                   -0.3333314528, 1.0})
-    p = p * t2 + a;
-  double angle = t * p;
-  if (swap) angle = std::numbers::pi / 2 - angle;
-  if (x < 0) angle = std::numbers::pi - angle;
-  return y < 0 ? -angle : angle;
-}
-
 double delta_e(const Xyz& a, const Xyz& b, const Xyz& white) { return delta_e_2000(lab_of(a, white), lab_of(b, white)); }
 
 Xyz scaled(const Xyz& v, double k) { return {v.x * k, v.y * k, v.z * k}; }
@@ -169,19 +150,19 @@ UpsampledEmission RgbUpsampler::upsample_emission(const Rgb& rgb, const SourceLo
 }
 
 BasisCoefficients RgbUpsampler::smooth_coefficients(const Xyz& xyz, bool* moved, SmoothShapeBounds* bounds) const {
-  const double sum = xyz.x + xyz.y + xyz.z;
-  Chromaticity xy{xyz.x / sum, xyz.y / sum};
+  const double inv_sum = 1.0 / (xyz.x + xyz.y + xyz.z);
+  Chromaticity xy{xyz.x * inv_sum, xyz.y * inv_sum};
   const Chromaticity w = gamut_.white();
   const double dx = xy.x - w.x, dy = xy.y - w.y;
   const double distance = std::sqrt(dx * dx + dy * dy);
-  const double angle = fast_atan2(dy, dx);
-  double rho = distance == 0.0 ? 0.0 : distance / basis_.usable_radius(angle);
+  const UpsamplingBasis::PolarCell cell = basis_.locate(dx, dy);
+  double rho = distance == 0.0 ? 0.0 : distance / cell.usable_radius;
   if (rho > 1.0) {  // radial move onto the usable gamut's edge, as smooth_shape
     xy = {w.x + dx / rho, w.y + dy / rho};
     rho = 1.0;
     *moved = true;
   }
-  return basis_.smooth_coefficients(xy, angle, rho, bounds);
+  return basis_.smooth_coefficients_in_cell(xy, cell.angle_cell, rho, bounds);
 }
 
 BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* mapped, const SourceLocation& where) const {

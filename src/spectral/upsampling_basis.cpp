@@ -220,6 +220,19 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
   for (int s = 0; s <= kRadiusSteps; ++s)
     usable_radius_[s] =
         float(gamut.boundary_radius(-std::numbers::pi + 2 * std::numbers::pi * s / kRadiusSteps) * table.usable_fraction);
+  pseudo_angle_table_.resize(2 * size_t(kPseudoAngleSteps + 1));
+  for (int s = 0; s <= kPseudoAngleSteps; ++s) {
+    // Invert locate()'s pseudo-angle: p ∈ [0, 2] is dy ≥ 0 with q = dx/(|dx|+|dy|) = 1 − p, p ∈ [2, 4] is dy < 0
+    // with q = p − 3; then (dx, dy) = (q, ±(1 − |q|)) up to scale.
+    const double p = 4.0 * s / kPseudoAngleSteps;
+    const double q = p <= 2.0 ? 1.0 - p : p - 3.0;
+    const double theta = std::atan2(p <= 2.0 ? 1.0 - std::abs(q) : -(1.0 - std::abs(q)), q);  // (−π, π]
+    const double theta_0_2pi = s == kPseudoAngleSteps ? 2 * std::numbers::pi
+                               : theta < 0.0           ? theta + 2 * std::numbers::pi
+                                                       : theta;
+    pseudo_angle_table_[2 * size_t(s)] = float(theta_0_2pi * angle_scale_);
+    pseudo_angle_table_[2 * size_t(s) + 1] = float(gamut.boundary_radius(theta) * table.usable_fraction);
+  }
 }
 
 double UpsamplingBasis::usable_radius(double angle_rad) const {
@@ -306,16 +319,22 @@ __attribute__((target("avx2,fma"))) void clamped_pass_avx2(const float* columns,
 
 BasisCoefficients UpsamplingBasis::smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
                                                        SmoothShapeBounds* bounds) const {
+  return smooth_coefficients_in_cell(xy, angle_rad * angle_scale_, relative_radius, bounds);
+}
+
+BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, double angle_cell,
+                                                               double relative_radius, SmoothShapeBounds* bounds) const {
   // The same cell and weights as UpsamplingTable::interpolate: periodic uniform angle, rows uniform in
   // u = 1 − √(1 − ρ), weights linear in ρ. Multiplications by precomputed reciprocals, not divisions: this is
   // the setup's critical path.
-  double a = angle_rad * angle_scale_;
+  double a = angle_cell;
   if (a < 0.0 || a >= angle_count_) a -= std::floor(a * (1.0 / angle_count_)) * angle_count_;
   const int a0 = std::min(int(a), angle_count_ - 1);
   const int a1 = a0 + 1 == angle_count_ ? 0 : a0 + 1;
   const float ta = float(std::clamp(a - a0, 0.0, 1.0));
   const double rho = std::clamp(relative_radius, 0.0, 1.0);
-  const double u = (1.0 - std::sqrt(1.0 - rho)) * (radius_count_ - 1);
+  // The row index only (a float root is exact enough: at a row boundary tr clamps to 0 or 1, continuous either way).
+  const float u = (1.0f - std::sqrt(float(1.0 - rho))) * float(radius_count_ - 1);
   const int r0 = std::min(int(u), radius_count_ - 2);
   const float tr = float(std::clamp((rho - radius_rows_[r0]) * row_inverse_spacing_[r0], 0.0, 1.0));
   const size_t e[4] = {size_t(a0) * radius_count_ + r0, size_t(a1) * radius_count_ + r0,
@@ -330,8 +349,9 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients(Chromaticity xy, double a
   }
   // Exact colour: c += D·λ with (M·D)·λ = t + δ − M·c, δ the clamping offset. Cramer's rule on the 3×3 (one
   // set of cofactors for the determinant and the solution).
-  const double r[3] = {xy.x / xy.y + summary[13] - summary[0], 1.0 + summary[14] - summary[1],
-                       (1.0 - xy.x - xy.y) / xy.y + summary[15] - summary[2]};
+  const double inv_y = 1.0 / xy.y;
+  const double r[3] = {xy.x * inv_y + summary[13] - summary[0], 1.0 + summary[14] - summary[1],
+                       (1.0 - xy.x - xy.y) * inv_y + summary[15] - summary[2]};
   const double m00 = summary[3], m01 = summary[4], m02 = summary[5], m10 = summary[6], m11 = summary[7],
                m12 = summary[8], m20 = summary[9], m21 = summary[10], m22 = summary[11];
   const double c00 = m11 * m22 - m12 * m21, c01 = m12 * m20 - m10 * m22, c02 = m10 * m21 - m11 * m20;

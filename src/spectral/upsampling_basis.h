@@ -3,7 +3,9 @@
 // 95-knot colour correction, and a texel stores 16 floats instead of 95.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -91,6 +93,31 @@ class UpsamplingBasis {
   /// pass.
   double fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions, const Xyz& target,
                      float upper, const float* first_knots = nullptr, float first_knots_scale = 1.0f) const;
+
+  /// Where a chromaticity at offset (dx, dy) from the white lies, without an atan2: `angle_cell` = θ·angle_count/2π
+  /// in [0, angle_count] (θ ∈ [0, 2π)) and `usable_radius` = R(θ)·usable_fraction, both interpolated linearly in a
+  /// 2048-step table (16 KB) over the pseudo-angle p = 1 − dx/(|dx|+|dy|) (dy ≥ 0) or 3 + dx/(|dx|+|dy|) (dy < 0), which
+  /// is monotonic in θ. θ(p) is smooth (|θ''| ≤ 2), so the table's θ is within 1e-6 rad of atan2's (h²/8·|θ''|,
+  /// h = 4/2048); the hull radius R(θ) is convex between the hull's vertices (the lerp's chord overstates it by
+  /// ≤ (2h)²/8 ≈ 2e-6 relative there: dθ/dp ≤ 2) and the lerp understates it at a vertex, as usable_radius's does. Cost: one division and one 16-byte load.
+  struct PolarCell {
+    double angle_cell = 0;
+    double usable_radius = 0;
+  };
+  PolarCell locate(double dx, double dy) const {
+    const double sum = std::abs(dx) + std::abs(dy);
+    const double q = sum > 0.0 ? dx / sum : 1.0;
+    const double p = dy >= 0.0 ? 1.0 - q : 3.0 + q;
+    const double x = std::min(p * (kPseudoAngleSteps / 4.0), double(kPseudoAngleSteps));
+    const int i = std::min(int(x), kPseudoAngleSteps - 1);
+    const double t = x - i;
+    const float* row = &pseudo_angle_table_[size_t(i) * 2];  // angle_cell, radius at i, then at i + 1
+    return {row[0] + t * (row[2] - row[0]), row[1] + t * (row[3] - row[1])};
+  }
+
+  /// smooth_coefficients with the angle as locate()'s cell coordinate (the fast path's own entry point).
+  BasisCoefficients smooth_coefficients_in_cell(Chromaticity xy, double angle_cell, double relative_radius,
+                                                SmoothShapeBounds* bounds = nullptr) const;
 
   /// R(θ)·usable_fraction: distance from the white to the usable gamut's edge (RgbUpsampler's ρ = 1), linear
   /// interpolation in a 4096-step table (≤ 1e-3 relative to the hull's exact radius, at the hull's vertices; the
@@ -198,6 +225,8 @@ class UpsamplingBasis {
   std::vector<float> colorimetry_rows_;  // A in float, 3 × 96 (pad 0): XYZ of clamped knots
   std::vector<float> columns_;            // K × 96, basis-major: four knots of one basis function per load
   std::vector<float> usable_radius_;      // R(θ)·usable_fraction at 4096 + 1 angles over [−π, π]
+  static constexpr int kPseudoAngleSteps = 2048;
+  std::vector<float> pseudo_angle_table_;  // (angle_cell, usable radius) at 2048 + 1 pseudo-angles over [0, 4]
 
   // Unique per constructed basis (a copy shares its id and its rows), so the cache cannot confuse a destroyed basis
   // with a new one built at the same address.
