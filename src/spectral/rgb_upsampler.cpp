@@ -64,8 +64,7 @@ RgbUpsampler::RgbUpsampler(SpectralLibrary& library, const RgbColourSpace& space
           upsampling_illuminant(library, upsampling_white_for(space.white())))),
       colorimetry_(library.observer(StandardObserver::cie1931_2deg), *illuminant_, upsampling_white_for(space.white()).white),
       table_(UpsamplingTable::read(library.root() / upsampling_table_file(upsampling_white_for(space.white())))),
-      gamut_(table_.gamut()),
-      basis_(table_, colorimetry_) {
+      gamut_(table_.gamut()) {
   const double white_y = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) {
     return illuminant_->value(l) * library.observer(StandardObserver::cie1931_2deg).y_bar.value(l);
   });
@@ -149,20 +148,29 @@ UpsampledEmission RgbUpsampler::upsample_emission(const Rgb& rgb, const SourceLo
   return out;
 }
 
+const UpsamplingBasis& RgbUpsampler::build_basis() const {
+  const std::lock_guard<std::mutex> lock(lazy_basis_->mutex);
+  if (!lazy_basis_->basis) {
+    lazy_basis_->basis = std::make_unique<const UpsamplingBasis>(table_, colorimetry_);
+    lazy_basis_->built.store(lazy_basis_->basis.get(), std::memory_order_release);
+  }
+  return *lazy_basis_->basis;
+}
+
 BasisCoefficients RgbUpsampler::smooth_coefficients(const Xyz& xyz, bool* moved, SmoothShapeBounds* bounds) const {
   const double inv_sum = 1.0 / (xyz.x + xyz.y + xyz.z);
   Chromaticity xy{xyz.x * inv_sum, xyz.y * inv_sum};
   const Chromaticity w = gamut_.white();
   const double dx = xy.x - w.x, dy = xy.y - w.y;
   const double distance = std::sqrt(dx * dx + dy * dy);
-  const UpsamplingBasis::PolarCell cell = basis_.locate(dx, dy);
+  const UpsamplingBasis::PolarCell cell = basis().locate(dx, dy);
   double rho = distance == 0.0 ? 0.0 : distance / cell.usable_radius;
   if (rho > 1.0) {  // radial move onto the usable gamut's edge, as smooth_shape
     xy = {w.x + dx / rho, w.y + dy / rho};
     rho = 1.0;
     *moved = true;
   }
-  return basis_.smooth_coefficients_in_cell(xy, cell.angle_cell, rho, bounds);
+  return basis().smooth_coefficients_in_cell(xy, cell.angle_cell, rho, bounds);
 }
 
 BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* mapped, const SourceLocation& where) const {
@@ -184,7 +192,7 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     bool clamps_at_1 = false, have_knots = false;
     alignas(16) float knots[kUpsampleKnotCount + 1];
     if (luminance * bounds.peak_bound > 1.0) {
-      const double peak = basis_.knots_float(c, knots);
+      const double peak = basis().knots_float(c, knots);
       have_knots = true;
       if (luminance * peak > kRingingAllowance) {
         luminance = kRingingAllowance / peak;
@@ -196,9 +204,9 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour the unclamped one
     // was aimed at, t = M·c − δ.
     if (bounds.rings || clamps_at_1) {
-      const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
-      const double left = basis_.fit_clamped(
-          c, basis_.correction_directions(bounds, float(luminance)),
+      const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
+      const double left = basis().fit_clamped(
+          c, basis().correction_directions(bounds, float(luminance)),
           {aimed.x - luminance * offset.x, aimed.y - luminance * offset.y, aimed.z - luminance * offset.z}, 1.0f,
           have_knots ? knots : nullptr, float(luminance));
       if (left > kFitTolerance) moved = true;
@@ -211,7 +219,7 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
 ReflectanceSpectrum RgbUpsampler::fast_reflectance_spectrum(const Rgb& rgb, const SourceLocation& where) const {
   const BasisCoefficients c = reflectance_coefficients(rgb, nullptr, where);
   alignas(16) float knots[kUpsampleKnotCount + 1];
-  basis_.knots_float(c, knots);
+  basis().knots_float(c, knots);
   KnotValues clamped;
   for (int i = 0; i < kUpsampleKnotCount; ++i) clamped[i] = std::clamp(double(knots[i]), 0.0, 1.0);
   return ReflectanceSpectrum(clamped);
@@ -230,9 +238,9 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
     c = smooth_coefficients(xyz, &moved, &bounds);
     c *= float(xyz.y);
     if (bounds.rings) {
-      const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
-      const double left = basis_.fit_clamped(
-          c, basis_.correction_directions(bounds, float(xyz.y)), {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
+      const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
+      const double left = basis().fit_clamped(
+          c, basis().correction_directions(bounds, float(xyz.y)), {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
           INFINITY);
       if (left > kFitTolerance) moved = true;
     }
@@ -248,7 +256,7 @@ EmissionSpectrum RgbUpsampler::fast_emission_spectrum(const Rgb& rgb, const Sour
   const double luminance = space_.to_xyz(rgb).y;
   if (c.c[0] == 0.0f || !(luminance > 0.0)) return {};
   alignas(16) float knots[kUpsampleKnotCount + 1];
-  basis_.knots_float(c, knots);
+  basis().knots_float(c, knots);
   KnotValues shape;
   for (int i = 0; i < kUpsampleKnotCount; ++i) shape[i] = std::fmax(double(knots[i]), 0.0) / luminance;
   return EmissionSpectrum(shape, emission_scale_ * luminance, illuminant_);
