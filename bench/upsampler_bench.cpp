@@ -95,6 +95,8 @@ void accuracy_report() {
   for (const char* name : {"srgb-linear", "acescg", "rec2020"}) {
     const double setup_start = now_s();
     const RgbUpsampler up(library(), RgbColourSpace::named(name));
+    const double exact_setup_s = now_s() - setup_start;
+    up.basis();  // built on first use
     const double setup_s = now_s() - setup_start;
     Stats exact_unmapped, exact_unmapped_cie, fast_unmapped, fast_render_unmapped, render_vs_knot, exact_mapped, fast_mapped, exact_rms, fast_rms,
         fast_vs_exact_rms, ringing, rough;
@@ -152,8 +154,8 @@ void accuracy_report() {
             }
           }
         }
-    std::printf("%s (33^3 = %d colours; %.1f %% need no gamut mapping; upsampler setup incl. basis %.1f ms)\n", name,
-                total, 100.0 * unmapped_count / total, setup_s * 1e3);
+    std::printf("%s (33^3 = %d colours; %.1f %% need no gamut mapping; upsampler setup %.1f ms, incl. basis %.1f ms)\n",
+                name, total, 100.0 * unmapped_count / total, exact_setup_s * 1e3, setup_s * 1e3);
     std::printf("  round-trip CIEDE2000, RGB -> spectrum -> XYZ under the space's white -> RGB, not mapped:\n");
     exact_unmapped.print("exact path (table + solve)");
     exact_unmapped_cie.print("exact path, via the CIE table illuminant");

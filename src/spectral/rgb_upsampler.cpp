@@ -52,25 +52,6 @@ constexpr double kRingingAllowance = 1.02;
 // relative XYZ residual (ΔE00 ≲ 0.01): the basis cannot hold that spectrum at zero or under 1.
 constexpr double kFitTolerance = 1e-4;
 
-// atan2 for the fast path's cell location, ~4× cheaper than std::atan2: octant reduction to atan(x), x in [0, 1],
-// and the polynomial of Abramowitz & Stegun 4.4.49 (|error| ≤ 2e-8 rad). The angle only chooses the table cell,
-// its weights and the usable radius (the colour is corrected regardless), so 2e-8 rad changes nothing visible.
-double fast_atan2(double y, double x) {
-  const double ax = std::abs(x), ay = std::abs(y);
-  const bool swap = ay > ax;
-  const double big = swap ? ay : ax;
-  if (big == 0.0) return 0.0;
-  const double t = (swap ? ax : ay) / big, t2 = t * t;
-  double p = 0.0028662257;
-  for (double a : {-0.0161657367, 0.0429096138, -0.0752896400, 0.1065626393, -0.1420889944, 0.1999355085,
-                   -0.3333314528, 1.0})
-    p = p * t2 + a;
-  double angle = t * p;
-  if (swap) angle = std::numbers::pi / 2 - angle;
-  if (x < 0) angle = std::numbers::pi - angle;
-  return y < 0 ? -angle : angle;
-}
-
 double delta_e(const Xyz& a, const Xyz& b, const Xyz& white) { return delta_e_2000(lab_of(a, white), lab_of(b, white)); }
 
 Xyz scaled(const Xyz& v, double k) { return {v.x * k, v.y * k, v.z * k}; }
@@ -83,8 +64,7 @@ RgbUpsampler::RgbUpsampler(SpectralLibrary& library, const RgbColourSpace& space
           upsampling_illuminant(library, upsampling_white_for(space.white())))),
       colorimetry_(library.observer(StandardObserver::cie1931_2deg), *illuminant_, upsampling_white_for(space.white()).white),
       table_(UpsamplingTable::read(library.root() / upsampling_table_file(upsampling_white_for(space.white())))),
-      gamut_(table_.gamut()),
-      basis_(table_, colorimetry_) {
+      gamut_(table_.gamut()) {
   const double white_y = integrate_on_grid(IntegrationGrid::cie_1nm(), [&](double l) {
     return illuminant_->value(l) * library.observer(StandardObserver::cie1931_2deg).y_bar.value(l);
   });
@@ -168,20 +148,29 @@ UpsampledEmission RgbUpsampler::upsample_emission(const Rgb& rgb, const SourceLo
   return out;
 }
 
+const UpsamplingBasis& RgbUpsampler::build_basis() const {
+  const std::lock_guard<std::mutex> lock(lazy_basis_->mutex);
+  if (!lazy_basis_->basis) {
+    lazy_basis_->basis = std::make_unique<const UpsamplingBasis>(table_, colorimetry_);
+    lazy_basis_->built.store(lazy_basis_->basis.get(), std::memory_order_release);
+  }
+  return *lazy_basis_->basis;
+}
+
 BasisCoefficients RgbUpsampler::smooth_coefficients(const Xyz& xyz, bool* moved, SmoothShapeBounds* bounds) const {
-  const double sum = xyz.x + xyz.y + xyz.z;
-  Chromaticity xy{xyz.x / sum, xyz.y / sum};
+  const double inv_sum = 1.0 / (xyz.x + xyz.y + xyz.z);
+  Chromaticity xy{xyz.x * inv_sum, xyz.y * inv_sum};
   const Chromaticity w = gamut_.white();
   const double dx = xy.x - w.x, dy = xy.y - w.y;
   const double distance = std::sqrt(dx * dx + dy * dy);
-  const double angle = fast_atan2(dy, dx);
-  double rho = distance == 0.0 ? 0.0 : distance / basis_.usable_radius(angle);
+  const UpsamplingBasis::PolarCell cell = basis().locate(dx, dy);
+  double rho = distance == 0.0 ? 0.0 : distance / cell.usable_radius;
   if (rho > 1.0) {  // radial move onto the usable gamut's edge, as smooth_shape
     xy = {w.x + dx / rho, w.y + dy / rho};
     rho = 1.0;
     *moved = true;
   }
-  return basis_.smooth_coefficients(xy, angle, rho, bounds);
+  return basis().smooth_coefficients_in_cell(xy, cell.angle_cell, rho, bounds);
 }
 
 BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* mapped, const SourceLocation& where) const {
@@ -203,7 +192,7 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     bool clamps_at_1 = false, have_knots = false;
     alignas(16) float knots[kUpsampleKnotCount + 1];
     if (luminance * bounds.peak_bound > 1.0) {
-      const double peak = basis_.knots_float(c, knots);
+      const double peak = basis().knots_float(c, knots);
       have_knots = true;
       if (luminance * peak > kRingingAllowance) {
         luminance = kRingingAllowance / peak;
@@ -215,10 +204,9 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour the unclamped one
     // was aimed at, t = M·c − δ.
     if (bounds.rings || clamps_at_1) {
-      for (BasisCoefficients& d : bounds.directions) d *= float(luminance);
-      const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
-      const double left = basis_.fit_clamped(
-          c, bounds.directions,
+      const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
+      const double left = basis().fit_clamped(
+          c, basis().correction_directions(bounds, float(luminance)),
           {aimed.x - luminance * offset.x, aimed.y - luminance * offset.y, aimed.z - luminance * offset.z}, 1.0f,
           have_knots ? knots : nullptr, float(luminance));
       if (left > kFitTolerance) moved = true;
@@ -231,7 +219,7 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
 ReflectanceSpectrum RgbUpsampler::fast_reflectance_spectrum(const Rgb& rgb, const SourceLocation& where) const {
   const BasisCoefficients c = reflectance_coefficients(rgb, nullptr, where);
   alignas(16) float knots[kUpsampleKnotCount + 1];
-  basis_.knots_float(c, knots);
+  basis().knots_float(c, knots);
   KnotValues clamped;
   for (int i = 0; i < kUpsampleKnotCount; ++i) clamped[i] = std::clamp(double(knots[i]), 0.0, 1.0);
   return ReflectanceSpectrum(clamped);
@@ -250,10 +238,9 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
     c = smooth_coefficients(xyz, &moved, &bounds);
     c *= float(xyz.y);
     if (bounds.rings) {
-      for (BasisCoefficients& d : bounds.directions) d *= float(xyz.y);
-      const Xyz aimed = basis_.xyz_of(c), offset = bounds.clamp_offset;
-      const double left = basis_.fit_clamped(
-          c, bounds.directions, {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
+      const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
+      const double left = basis().fit_clamped(
+          c, basis().correction_directions(bounds, float(xyz.y)), {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
           INFINITY);
       if (left > kFitTolerance) moved = true;
     }
@@ -269,7 +256,7 @@ EmissionSpectrum RgbUpsampler::fast_emission_spectrum(const Rgb& rgb, const Sour
   const double luminance = space_.to_xyz(rgb).y;
   if (c.c[0] == 0.0f || !(luminance > 0.0)) return {};
   alignas(16) float knots[kUpsampleKnotCount + 1];
-  basis_.knots_float(c, knots);
+  basis().knots_float(c, knots);
   KnotValues shape;
   for (int i = 0; i < kUpsampleKnotCount; ++i) shape[i] = std::fmax(double(knots[i]), 0.0) / luminance;
   return EmissionSpectrum(shape, emission_scale_ * luminance, illuminant_);

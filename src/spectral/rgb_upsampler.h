@@ -1,7 +1,9 @@
 // RGB → spectrum: Meng et al. (2015) smoothest spectra, per colour space, with gamut mapping for reflectances.
 #pragma once
 
+#include <atomic>
 #include <memory>
+#include <mutex>
 
 #include "spectral/error.h"
 #include "spectral/rgb_colour_space.h"
@@ -65,8 +67,8 @@ class RgbUpsampler {
   UpsampledEmission upsample_emission(const Rgb& rgb, const SourceLocation& where = {}) const;
 
   // The fast path (docs/upsampling.md, "Fast path"): the same method with the table's entries as coefficients of
-  // UpsamplingBasis, so an upsampled colour costs 0.15-0.3 µs instead of 1-6 µs (the basis is built with the
-  // upsampler: ~0.1 s per colour space). Same gamut mapping and brightness
+  // UpsamplingBasis, so an upsampled colour costs 0.15-0.3 µs instead of 1-6 µs (the basis is built on the first
+  // fast-path call: ~0.1-0.2 s per colour space). Same gamut mapping and brightness
   // limit as upsample_reflectance/upsample_emission; the colour is exact up to float rounding before clamping,
   // and the spectrum differs from the exact path's by the basis truncation (docs/upsampling.md has both errors).
   // For per-texel conversion and anything that needs many colours; colorimetry and the toolkit use the exact path.
@@ -90,7 +92,12 @@ class RgbUpsampler {
   EmissionSpectrum fast_emission_spectrum(const Rgb& rgb, const SourceLocation& where = {}) const;
   /// Radiance in W/(m²·sr·nm) per unit of the smooth factor times W: 1 / (K_m Σ W ȳ Δλ).
   double emission_scale() const { return emission_scale_; }
-  const UpsamplingBasis& basis() const { return basis_; }
+  /// The fast path's basis, built on the first call (~0.1-0.2 s, most of the upsampler's construction: scenes and
+  /// tools that use only the exact path never pay it); thread-safe, and one atomic load once built.
+  const UpsamplingBasis& basis() const {
+    const UpsamplingBasis* built = lazy_basis_->built.load(std::memory_order_acquire);
+    return built ? *built : build_basis();
+  }
 
   /// The smooth spectrum of chromaticity `xy` with Y = 1 (xy moved to the gamut edge if outside), and whether it
   /// was moved. Its peak's reciprocal is the brightness limit at xy.
@@ -120,7 +127,14 @@ class RgbUpsampler {
   KnotColorimetry colorimetry_;
   UpsamplingTable table_;
   KnotGamut gamut_;
-  UpsamplingBasis basis_;
+  // Built by the first basis() call (double-checked: the atomic pointer is set after the basis is complete).
+  struct LazyBasis {
+    std::mutex mutex;
+    std::unique_ptr<const UpsamplingBasis> basis;
+    std::atomic<const UpsamplingBasis*> built{nullptr};
+  };
+  std::unique_ptr<LazyBasis> lazy_basis_ = std::make_unique<LazyBasis>();
+  const UpsamplingBasis& build_basis() const;
   double emission_scale_;  // 1 / (K_m Σ W ȳ Δλ): radiance per unit luminance of W
 };
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <immintrin.h>
+
 #include "spectral/matrix3.h"
 
 namespace rimu {
@@ -116,6 +118,9 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
   static std::atomic<uint64_t> next_id{1};
   id_ = next_id.fetch_add(1);
   for (int r = 0; r < radius_count_; ++r) radius_rows_.push_back(table.radius_of_row(r));
+  for (int r = 0; r + 1 < radius_count_; ++r) row_inverse_spacing_.push_back(1.0 / (radius_rows_[r + 1] - radius_rows_[r]));
+  angle_scale_ = angle_count_ / (2 * std::numbers::pi);
+  avx2_fma_ = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   Vector a[3];
   for (int k = 0; k < 3; ++k)
     for (int i = 0; i < n; ++i) a[k][i] = colorimetry.row(k)[i];
@@ -215,69 +220,161 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
   for (int s = 0; s <= kRadiusSteps; ++s)
     usable_radius_[s] =
         float(gamut.boundary_radius(-std::numbers::pi + 2 * std::numbers::pi * s / kRadiusSteps) * table.usable_fraction);
+  pseudo_angle_table_.resize(2 * size_t(kPseudoAngleSteps + 1));
+  for (int s = 0; s <= kPseudoAngleSteps; ++s) {
+    // Invert locate()'s pseudo-angle: p ∈ [0, 2] is dy ≥ 0 with q = dx/(|dx|+|dy|) = 1 − p, p ∈ [2, 4] is dy < 0
+    // with q = p − 3; then (dx, dy) = (q, ±(1 − |q|)) up to scale.
+    const double p = 4.0 * s / kPseudoAngleSteps;
+    const double q = p <= 2.0 ? 1.0 - p : p - 3.0;
+    const double theta = std::atan2(p <= 2.0 ? 1.0 - std::abs(q) : -(1.0 - std::abs(q)), q);  // (−π, π]
+    const double theta_0_2pi = s == kPseudoAngleSteps ? 2 * std::numbers::pi
+                               : theta < 0.0           ? theta + 2 * std::numbers::pi
+                                                       : theta;
+    pseudo_angle_table_[2 * size_t(s)] = float(theta_0_2pi * angle_scale_);
+    pseudo_angle_table_[2 * size_t(s) + 1] = float(gamut.boundary_radius(theta) * table.usable_fraction);
+  }
 }
 
 double UpsamplingBasis::usable_radius(double angle_rad) const {
-  const double x = std::clamp((angle_rad + std::numbers::pi) / (2 * std::numbers::pi) * kRadiusSteps, 0.0,
-                              double(kRadiusSteps));
+  constexpr double kStepsPerRadian = kRadiusSteps / (2 * std::numbers::pi);
+  const double x = std::clamp((angle_rad + std::numbers::pi) * kStepsPerRadian, 0.0, double(kRadiusSteps));
   const int i = std::min(int(x), kRadiusSteps - 1);
   const double t = x - i;
   return usable_radius_[i] + t * (usable_radius_[i + 1] - usable_radius_[i]);
 }
 
+namespace {
+
+// out = Σ_c Σ_p weight[4c + p] · corner[c][16p .. 16p + 15]: with weight = w_c · (1, λ_X, λ_Y, λ_Z) this is the
+// blended coefficients plus the blended correction D·λ in one pass, so the blended D is never formed (only a fit
+// needs it: correction_directions). Two builds, chosen once per basis by the CPU: 8-lane fused multiply-adds
+// (32 of them, four independent chains) and the SSE4.1 baseline.
+__attribute__((target("avx2,fma"))) void combine_corners_avx2(const float* const corner[4], const float weight[16],
+                                                              float* out) {
+  __m256 lo[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()}, hi[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()};
+  for (int c = 0; c < 4; ++c)
+    for (int p = 0; p < 4; ++p) {
+      const __m256 w = _mm256_set1_ps(weight[4 * c + p]);
+      const float* src = corner[c] + 16 * p;
+      lo[c & 1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(src), lo[c & 1]);
+      hi[c & 1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(src + 8), hi[c & 1]);
+    }
+  _mm256_storeu_ps(out, _mm256_add_ps(lo[0], lo[1]));
+  _mm256_storeu_ps(out + 8, _mm256_add_ps(hi[0], hi[1]));
+}
+
+void combine_corners_sse(const float* const corner[4], const float weight[16], float* out) {
+  __m128 acc[2][4] = {};
+  for (int c = 0; c < 4; ++c)
+    for (int p = 0; p < 4; ++p) {
+      const __m128 w = _mm_set1_ps(weight[4 * c + p]);
+      const float* src = corner[c] + 16 * p;
+      for (int k = 0; k < 4; ++k) acc[c & 1][k] = _mm_add_ps(acc[c & 1][k], _mm_mul_ps(w, _mm_load_ps(src + 4 * k)));
+    }
+  for (int k = 0; k < 4; ++k) _mm_store_ps(out + 4 * k, _mm_add_ps(acc[0][k], acc[1][k]));
+}
+
+// One pass of fit_clamped, fused for AVX2 + FMA: the 96 knot values v = Φc (or given × given_scale) in twelve
+// 8-lane registers, then out[0..2] = XYZ of clamp(v, 0, upper) and out[3..8] = J_xx, J_xy, J_xz, J_yy, J_yz, J_zz
+// summed over the live knots (inside (0, upper)), as clamped_pass_sse. `a`: the three colorimetry rows, 96 apart.
+__attribute__((target("avx2,fma"))) void clamped_pass_avx2(const float* columns, const float* c, const float* given,
+                                                           float given_scale, const float* a, float upper,
+                                                           float* out) {
+  constexpr int kBlocks = (n + 1) / 8;
+  __m256 v[kBlocks];
+  if (given) {
+    const __m256 scale = _mm256_set1_ps(given_scale);
+    for (int b = 0; b < kBlocks; ++b) v[b] = _mm256_mul_ps(_mm256_loadu_ps(given + 8 * b), scale);
+  } else {
+    for (int b = 0; b < kBlocks; ++b) v[b] = _mm256_setzero_ps();
+    for (int k = 0; k < K; ++k) {
+      const __m256 ck = _mm256_set1_ps(c[k]);
+      for (int b = 0; b < kBlocks; ++b) v[b] = _mm256_fmadd_ps(ck, _mm256_loadu_ps(columns + k * (n + 1) + 8 * b), v[b]);
+    }
+  }
+  const __m256 lower_v = _mm256_setzero_ps(), upper_v = _mm256_set1_ps(upper);
+  __m256 acc[9];
+  for (__m256& x : acc) x = _mm256_setzero_ps();
+  for (int b = 0; b < kBlocks; ++b) {
+    const __m256 clamped = _mm256_min_ps(_mm256_max_ps(v[b], lower_v), upper_v);
+    const __m256 live = _mm256_and_ps(_mm256_cmp_ps(v[b], clamped, _CMP_EQ_OQ), clamped);  // S_i where live
+    const __m256 ax = _mm256_loadu_ps(a + 8 * b), ay = _mm256_loadu_ps(a + (n + 1) + 8 * b),
+                 az = _mm256_loadu_ps(a + 2 * (n + 1) + 8 * b);
+    acc[0] = _mm256_fmadd_ps(clamped, ax, acc[0]);
+    acc[1] = _mm256_fmadd_ps(clamped, ay, acc[1]);
+    acc[2] = _mm256_fmadd_ps(clamped, az, acc[2]);
+    const __m256 sx = _mm256_mul_ps(live, ax), sy = _mm256_mul_ps(live, ay), sz = _mm256_mul_ps(live, az);
+    acc[3] = _mm256_fmadd_ps(sx, ax, acc[3]), acc[4] = _mm256_fmadd_ps(sx, ay, acc[4]);
+    acc[5] = _mm256_fmadd_ps(sx, az, acc[5]), acc[6] = _mm256_fmadd_ps(sy, ay, acc[6]);
+    acc[7] = _mm256_fmadd_ps(sy, az, acc[7]), acc[8] = _mm256_fmadd_ps(sz, az, acc[8]);
+  }
+  for (int m = 0; m < 9; ++m) {
+    const __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc[m]), _mm256_extractf128_ps(acc[m], 1));
+    const __m128 q = _mm_add_ps(h, _mm_movehl_ps(h, h));
+    out[m] = _mm_cvtss_f32(_mm_add_ss(q, _mm_shuffle_ps(q, q, 1)));
+  }
+}
+
+}  // namespace
+
 BasisCoefficients UpsamplingBasis::smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
                                                        SmoothShapeBounds* bounds) const {
+  return smooth_coefficients_in_cell(xy, angle_rad * angle_scale_, relative_radius, bounds);
+}
+
+BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, double angle_cell,
+                                                               double relative_radius, SmoothShapeBounds* bounds) const {
   // The same cell and weights as UpsamplingTable::interpolate: periodic uniform angle, rows uniform in
-  // u = 1 − √(1 − ρ), weights linear in ρ.
-  double a = angle_rad / (2 * std::numbers::pi) * angle_count_;
-  a -= std::floor(a / angle_count_) * angle_count_;
+  // u = 1 − √(1 − ρ), weights linear in ρ. Multiplications by precomputed reciprocals, not divisions: this is
+  // the setup's critical path.
+  double a = angle_cell;
+  if (a < 0.0 || a >= angle_count_) a -= std::floor(a * (1.0 / angle_count_)) * angle_count_;
   const int a0 = std::min(int(a), angle_count_ - 1);
-  const int a1 = (a0 + 1) % angle_count_;
+  const int a1 = a0 + 1 == angle_count_ ? 0 : a0 + 1;
   const float ta = float(std::clamp(a - a0, 0.0, 1.0));
   const double rho = std::clamp(relative_radius, 0.0, 1.0);
-  const double u = (1.0 - std::sqrt(1.0 - rho)) * (radius_count_ - 1);
+  // The row index only (a float root is exact enough: at a row boundary tr clamps to 0 or 1, continuous either way).
+  const float u = (1.0f - std::sqrt(float(1.0 - rho))) * float(radius_count_ - 1);
   const int r0 = std::min(int(u), radius_count_ - 2);
-  const float tr =
-      float(std::clamp((rho - radius_rows_[r0]) / (radius_rows_[r0 + 1] - radius_rows_[r0]), 0.0, 1.0));
-  const std::array<BasisCoefficients, 4>* corner[4] = {
-      &entry_[size_t(a0) * radius_count_ + r0], &entry_[size_t(a1) * radius_count_ + r0],
-      &entry_[size_t(a0) * radius_count_ + r0 + 1], &entry_[size_t(a1) * radius_count_ + r0 + 1]};
-  const __m128 w[4] = {_mm_set1_ps((1 - ta) * (1 - tr)), _mm_set1_ps(ta * (1 - tr)), _mm_set1_ps((1 - ta) * tr),
-                       _mm_set1_ps(ta * tr)};
-  BasisCoefficients blend[4];  // the coefficients and the three correction directions
-  for (int part = 0; part < 4; ++part)
-    for (int k = 0; k < K; k += 4) {
-      __m128 s = _mm_mul_ps(w[0], _mm_load_ps(&(*corner[0])[part].c[k]));
-      for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(w[c], _mm_load_ps(&(*corner[c])[part].c[k])));
-      _mm_store_ps(&blend[part].c[k], s);
-    }
-  // M·c and M·D are linear in the entries too: interpolated, not recomputed.
-  const EntrySummary* sum_corner[4] = {&summary_[size_t(a0) * radius_count_ + r0], &summary_[size_t(a1) * radius_count_ + r0],
-                                       &summary_[size_t(a0) * radius_count_ + r0 + 1],
-                                       &summary_[size_t(a1) * radius_count_ + r0 + 1]};
+  const float tr = float(std::clamp((rho - radius_rows_[r0]) * row_inverse_spacing_[r0], 0.0, 1.0));
+  const size_t e[4] = {size_t(a0) * radius_count_ + r0, size_t(a1) * radius_count_ + r0,
+                       size_t(a0) * radius_count_ + r0 + 1, size_t(a1) * radius_count_ + r0 + 1};
+  const float w[4] = {(1 - ta) * (1 - tr), ta * (1 - tr), (1 - ta) * tr, ta * tr};
+  // M·c, M·D, the peak and δ are linear in the entries too: interpolated, not recomputed.
   alignas(16) float summary[16];
   for (int j = 0; j < 16; j += 4) {
-    __m128 s = _mm_mul_ps(w[0], _mm_load_ps(&sum_corner[0]->v[j]));
-    for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(w[c], _mm_load_ps(&sum_corner[c]->v[j])));
+    __m128 s = _mm_mul_ps(_mm_set1_ps(w[0]), _mm_load_ps(&summary_[e[0]].v[j]));
+    for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(w[c]), _mm_load_ps(&summary_[e[c]].v[j])));
     _mm_store_ps(summary + j, s);
   }
-  // Exact colour: c += D·λ with (M·D)·λ = t + δ − M·c, δ the clamping offset.
-  const std::array<double, 3> residual = {xy.x / xy.y + summary[13] - summary[0], 1.0 + summary[14] - summary[1],
-                                          (1.0 - xy.x - xy.y) / xy.y + summary[15] - summary[2]};
-  Matrix3 md;
-  for (int row = 0; row < 3; ++row)
-    for (int m = 0; m < 3; ++m) md(row, m) = summary[3 + row * 3 + m];
-  std::array<double, 3> lambda{};
-  const double scale = md(0, 0) + md(1, 1) + md(2, 2);
-  if (std::abs(md.determinant()) > 1e-12 * scale * scale * scale) lambda = md.inverse().apply(residual);
-  BasisCoefficients out = blend[0];
-  for (int k = 0; k < K; k += 4) {
-    __m128 s = _mm_load_ps(&out.c[k]);
-    for (int m = 0; m < 3; ++m) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(float(lambda[m])), _mm_load_ps(&blend[m + 1].c[k])));
-    _mm_store_ps(&out.c[k], s);
+  // Exact colour: c += D·λ with (M·D)·λ = t + δ − M·c, δ the clamping offset. Cramer's rule on the 3×3 (one
+  // set of cofactors for the determinant and the solution).
+  const double inv_y = 1.0 / xy.y;
+  const double r[3] = {xy.x * inv_y + summary[13] - summary[0], 1.0 + summary[14] - summary[1],
+                       (1.0 - xy.x - xy.y) * inv_y + summary[15] - summary[2]};
+  const double m00 = summary[3], m01 = summary[4], m02 = summary[5], m10 = summary[6], m11 = summary[7],
+               m12 = summary[8], m20 = summary[9], m21 = summary[10], m22 = summary[11];
+  const double c00 = m11 * m22 - m12 * m21, c01 = m12 * m20 - m10 * m22, c02 = m10 * m21 - m11 * m20;
+  const double det = m00 * c00 + m01 * c01 + m02 * c02;
+  const double trace = m00 + m11 + m22;
+  float lambda[3] = {0, 0, 0};
+  if (std::abs(det) > 1e-12 * trace * trace * trace) {
+    const double inv = 1.0 / det;
+    lambda[0] = float((c00 * r[0] + (m02 * m21 - m01 * m22) * r[1] + (m01 * m12 - m02 * m11) * r[2]) * inv);
+    lambda[1] = float((c01 * r[0] + (m00 * m22 - m02 * m20) * r[1] + (m02 * m10 - m00 * m12) * r[2]) * inv);
+    lambda[2] = float((c02 * r[0] + (m01 * m20 - m00 * m21) * r[1] + (m00 * m11 - m01 * m10) * r[2]) * inv);
   }
+  const float* corner[4] = {entry_[e[0]][0].c.data(), entry_[e[1]][0].c.data(), entry_[e[2]][0].c.data(),
+                            entry_[e[3]][0].c.data()};
+  alignas(16) float weight[16];
+  for (int c = 0; c < 4; ++c)
+    weight[4 * c] = w[c], weight[4 * c + 1] = w[c] * lambda[0], weight[4 * c + 2] = w[c] * lambda[1],
+                  weight[4 * c + 3] = w[c] * lambda[2];
+  BasisCoefficients out;
+  if (avx2_fma_) combine_corners_avx2(corner, weight, out.c.data());
+  else combine_corners_sse(corner, weight, out.c.data());
   if (bounds) {
-    bounds->directions = {blend[1], blend[2], blend[3]};
+    for (int c = 0; c < 4; ++c) bounds->corner[c] = corner[c], bounds->weight[c] = w[c];
     // The correction changes knot i by about S_i (Aᵀλ)_i (its projection rings a little more: 2 % slack).
     const double change = std::abs(lambda[0]) * largest_row_[0] + std::abs(lambda[1]) * largest_row_[1] +
                           std::abs(lambda[2]) * largest_row_[2];
@@ -288,6 +385,49 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients(Chromaticity xy, double a
   return out;
 }
 
+std::array<BasisCoefficients, 3> UpsamplingBasis::correction_directions(const SmoothShapeBounds& bounds,
+                                                                        float scale) const {
+  std::array<BasisCoefficients, 3> out;
+  for (int m = 0; m < 3; ++m)
+    for (int k = 0; k < K; k += 4) {
+      __m128 s = _mm_setzero_ps();
+      for (int c = 0; c < 4; ++c)
+        s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(bounds.weight[c] * scale),
+                                     _mm_load_ps(bounds.corner[c] + K * (m + 1) + k)));
+      _mm_store_ps(&out[m].c[k], s);
+    }
+  return out;
+}
+
+void UpsamplingBasis::clamped_pass_sse(const BasisCoefficients& c, const float* given, float given_scale,
+                                       const float* const a[3], float upper, float* out) const {
+  alignas(16) float knots[n + 1];
+  if (given) {
+    for (int i = 0; i < n + 1; ++i) knots[i] = given[i] * given_scale;
+  } else {
+    knots_float(c, knots);
+  }
+  const __m128 lower_v = _mm_setzero_ps(), upper_v = _mm_set1_ps(upper);
+  __m128 xyz[3] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps()};
+  __m128 j[6] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(),
+                 _mm_setzero_ps()};
+  for (int i = 0; i < n + 1; i += 4) {
+    const __m128 v = _mm_load_ps(knots + i);
+    const __m128 clamped = _mm_min_ps(_mm_max_ps(v, lower_v), upper_v);
+    const __m128 live = _mm_and_ps(_mm_cmpeq_ps(v, clamped), clamped);  // S_i where live, else 0
+    const __m128 ax = _mm_loadu_ps(a[0] + i), ay = _mm_loadu_ps(a[1] + i), az = _mm_loadu_ps(a[2] + i);
+    xyz[0] = _mm_add_ps(xyz[0], _mm_mul_ps(clamped, ax));
+    xyz[1] = _mm_add_ps(xyz[1], _mm_mul_ps(clamped, ay));
+    xyz[2] = _mm_add_ps(xyz[2], _mm_mul_ps(clamped, az));
+    const __m128 sx = _mm_mul_ps(live, ax), sy = _mm_mul_ps(live, ay), sz = _mm_mul_ps(live, az);
+    j[0] = _mm_add_ps(j[0], _mm_mul_ps(sx, ax)), j[1] = _mm_add_ps(j[1], _mm_mul_ps(sx, ay));
+    j[2] = _mm_add_ps(j[2], _mm_mul_ps(sx, az)), j[3] = _mm_add_ps(j[3], _mm_mul_ps(sy, ay));
+    j[4] = _mm_add_ps(j[4], _mm_mul_ps(sy, az)), j[5] = _mm_add_ps(j[5], _mm_mul_ps(sz, az));
+  }
+  for (int m = 0; m < 3; ++m) out[m] = sum(Float4(xyz[m]));
+  for (int m = 0; m < 6; ++m) out[3 + m] = sum(Float4(j[m]));
+}
+
 double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions,
                                     const Xyz& target, float upper, const float* first_knots,
                                     float first_knots_scale) const {
@@ -295,7 +435,6 @@ double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<Basis
   // S_i a_m,i (D's definition, before projection onto the basis), so the clamped colour's Jacobian is
   // J_rm ≈ Σ_{i live} a_r,i S_i a_m,i, live = the knots inside (0, upper): one 95-knot pass gives the colour and
   // J. The best coefficients seen are kept, and a step that overshoots (the live set changed) is halved.
-  const __m128 lower_v = _mm_setzero_ps(), upper_v = _mm_set1_ps(upper);
   const float* a[3] = {&colorimetry_rows_[0], &colorimetry_rows_[n + 1], &colorimetry_rows_[2 * (n + 1)]};
   BasisCoefficients best = c;
   double best_error = INFINITY;
@@ -310,31 +449,12 @@ double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<Basis
     }
   };
   for (int step = 0; step < 8; ++step) {
-    alignas(16) float knots[n + 1];
-    if (step == 0 && first_knots) {
-      for (int i = 0; i < n + 1; ++i) knots[i] = first_knots[i] * first_knots_scale;
-    } else {
-      knots_float(c, knots);
-    }
     // XYZ of the clamped spectrum (A rows have a zero pad, so knot 95 adds nothing) and the six sums of J.
-    __m128 xyz[3] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps()};
-    __m128 j[6] = {_mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(), _mm_setzero_ps(),
-                   _mm_setzero_ps()};
-    for (int i = 0; i < n + 1; i += 4) {
-      const __m128 v = _mm_load_ps(knots + i);
-      const __m128 clamped = _mm_min_ps(_mm_max_ps(v, lower_v), upper_v);
-      const __m128 live = _mm_and_ps(_mm_cmpeq_ps(v, clamped), clamped);  // S_i where live, else 0
-      const __m128 ax = _mm_loadu_ps(a[0] + i), ay = _mm_loadu_ps(a[1] + i), az = _mm_loadu_ps(a[2] + i);
-      xyz[0] = _mm_add_ps(xyz[0], _mm_mul_ps(clamped, ax));
-      xyz[1] = _mm_add_ps(xyz[1], _mm_mul_ps(clamped, ay));
-      xyz[2] = _mm_add_ps(xyz[2], _mm_mul_ps(clamped, az));
-      const __m128 sx = _mm_mul_ps(live, ax), sy = _mm_mul_ps(live, ay), sz = _mm_mul_ps(live, az);
-      j[0] = _mm_add_ps(j[0], _mm_mul_ps(sx, ax)), j[1] = _mm_add_ps(j[1], _mm_mul_ps(sx, ay));
-      j[2] = _mm_add_ps(j[2], _mm_mul_ps(sx, az)), j[3] = _mm_add_ps(j[3], _mm_mul_ps(sy, ay));
-      j[4] = _mm_add_ps(j[4], _mm_mul_ps(sy, az)), j[5] = _mm_add_ps(j[5], _mm_mul_ps(sz, az));
-    }
-    const std::array<double, 3> residual = {target.x - sum(Float4(xyz[0])), target.y - sum(Float4(xyz[1])),
-                                            target.z - sum(Float4(xyz[2]))};
+    alignas(16) float sums[9];
+    const float* given = step == 0 ? first_knots : nullptr;
+    if (avx2_fma_) clamped_pass_avx2(columns_.data(), c.c.data(), given, first_knots_scale, a[0], upper, sums);
+    else clamped_pass_sse(c, given, first_knots_scale, a, upper, sums);
+    const std::array<double, 3> residual = {target.x - sums[0], target.y - sums[1], target.z - sums[2]};
     const double error = std::abs(residual[0]) + std::abs(residual[1]) + std::abs(residual[2]);
     if (!(error < best_error)) {
       step_scale *= 0.5f;  // overshoot: back to the best point, half the step
@@ -345,8 +465,7 @@ double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<Basis
     best = c, best_error = error, step_scale = 1.0f;
     if (error <= tolerance) break;
     Matrix3 jacobian;
-    const double jxx = sum(Float4(j[0])), jxy = sum(Float4(j[1])), jxz = sum(Float4(j[2])), jyy = sum(Float4(j[3])),
-                 jyz = sum(Float4(j[4])), jzz = sum(Float4(j[5]));
+    const double jxx = sums[3], jxy = sums[4], jxz = sums[5], jyy = sums[6], jyz = sums[7], jzz = sums[8];
     jacobian.m = {{{jxx, jxy, jxz}, {jxy, jyy, jyz}, {jxz, jyz, jzz}}};
     const double scale = jxx + jyy + jzz;
     if (!(std::abs(jacobian.determinant()) > 1e-12 * scale * scale * scale)) break;
@@ -383,23 +502,40 @@ KnotValues UpsamplingBasis::knots(const BasisCoefficients& c) const {
   return out;
 }
 
-// The setup's one heavy loop (95 × 16 multiply-adds): written plainly so the compiler vectorises it, and built
-// twice, for AVX2+FMA (8 lanes, fused: ~3× faster) and for the baseline SSE4.1, chosen at load by the CPU.
-__attribute__((target_clones("avx2,fma", "default"))) static float knot_values(const float* columns, const float* c,
-                                                                               float* out) {
+// The setup's one heavy loop (96 × 16 multiply-adds), in two builds chosen once per basis by the CPU: AVX2 + FMA
+// (twelve 8-lane accumulators) and the SSE4.1 baseline (written plainly for the compiler to vectorise).
+__attribute__((target("avx2,fma"))) static float knot_values_avx2(const float* columns, const float* c, float* out) {
+  constexpr int kBlocks = (n + 1) / 8;
+  __m256 v[kBlocks];
+  for (int b = 0; b < kBlocks; ++b) v[b] = _mm256_setzero_ps();
+  for (int k = 0; k < K; ++k) {
+    const __m256 ck = _mm256_set1_ps(c[k]);
+    for (int b = 0; b < kBlocks; ++b) v[b] = _mm256_fmadd_ps(ck, _mm256_loadu_ps(columns + k * (n + 1) + 8 * b), v[b]);
+  }
+  __m256 peak = v[0];
+  for (int b = 0; b < kBlocks; ++b) {
+    _mm256_storeu_ps(out + 8 * b, v[b]);
+    peak = _mm256_max_ps(peak, v[b]);  // the pad (knot 95) repeats knot 94, so it cannot raise the maximum
+  }
+  __m128 h = _mm_max_ps(_mm256_castps256_ps128(peak), _mm256_extractf128_ps(peak, 1));
+  h = _mm_max_ps(h, _mm_movehl_ps(h, h));
+  return _mm_cvtss_f32(_mm_max_ss(h, _mm_shuffle_ps(h, h, 1)));
+}
+
+static float knot_values(const float* columns, const float* c, float* out) {
   float values[n + 1] = {};
   for (int k = 0; k < K; ++k)
     for (int i = 0; i < n + 1; ++i) values[i] += c[k] * columns[k * (n + 1) + i];
   float peak = values[0];
   for (int i = 0; i < n + 1; ++i) {
     out[i] = values[i];
-    peak = std::max(peak, values[i]);  // the pad (column 95) repeats knot 94, so it cannot raise the maximum
+    peak = std::max(peak, values[i]);
   }
   return peak;
 }
 
 float UpsamplingBasis::knots_float(const BasisCoefficients& c, float* out) const {
-  return knot_values(columns_.data(), c.c.data(), out);
+  return avx2_fma_ ? knot_values_avx2(columns_.data(), c.c.data(), out) : knot_values(columns_.data(), c.c.data(), out);
 }
 
 Xyz UpsamplingBasis::xyz_of(const BasisCoefficients& c) const {

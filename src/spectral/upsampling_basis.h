@@ -3,7 +3,9 @@
 // 95-knot colour correction, and a texel stores 16 floats instead of 95.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -31,7 +33,10 @@ struct BasisCoefficients {
 /// What smooth_coefficients knows about the spectrum besides its coefficients, so that callers can skip a
 /// 95-knot pass (~50-90 ns) when it cannot matter.
 struct SmoothShapeBounds {
-  std::array<BasisCoefficients, 3> directions;  ///< D: the correction directions, for fit_clamped
+  /// The four table entries around the colour (coefficients, then D) and their bilinear weights: what
+  /// correction_directions() blends, only when a fit needs the directions (a fifth of random sRGB colours).
+  const float* corner[4] = {};
+  float weight[4] = {};
   float peak_bound = 0;  ///< ≥ the largest knot of Φc (interpolated corner peaks, raised by the correction)
   /// δ: M·c − colour(clamp(Φc, 0, ∞)) as interpolated from the entries (the colour clamping at 0 takes away).
   Xyz clamp_offset;
@@ -75,7 +80,11 @@ class UpsamplingBasis {
   BasisCoefficients smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
                                         SmoothShapeBounds* bounds = nullptr) const;
 
-  /// Moves `c` along `directions` (smooth_coefficients's D, scaled like c) until clamp(Φc, 0, upper) has colour
+  /// The correction directions D of smooth_coefficients's colour (the corners' D blended with its weights), times
+  /// `scale` (the luminance c was scaled by): fit_clamped's `directions`.
+  std::array<BasisCoefficients, 3> correction_directions(const SmoothShapeBounds& bounds, float scale) const;
+
+  /// Moves `c` along `directions` (correction_directions) until clamp(Φc, 0, upper) has colour
   /// `target` (relative 1e-5): quasi-Newton steps, each one 95-knot pass, normally 2 passes.
   /// Returns the residual left, |ΔX| + |ΔY| + |ΔZ| relative to |X| + |Y| + |Z| of the target: above ~1e-4 the
   /// basis cannot hold this colour's spectrum at zero (saturated purples of the wide spaces, emission within
@@ -84,6 +93,32 @@ class UpsamplingBasis {
   /// pass.
   double fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions, const Xyz& target,
                      float upper, const float* first_knots = nullptr, float first_knots_scale = 1.0f) const;
+
+  /// Where a chromaticity at offset (dx, dy) from the white lies, without an atan2: `angle_cell` = θ·angle_count/2π
+  /// in [0, angle_count] (θ ∈ [0, 2π)) and `usable_radius` = R(θ)·usable_fraction, both interpolated linearly in a
+  /// 2048-step table (16 KB) over the pseudo-angle p = 1 − dx/(|dx|+|dy|) (dy ≥ 0) or 3 + dx/(|dx|+|dy|) (dy < 0), which
+  /// is monotonic in θ. θ(p) is smooth (|θ''| ≤ 2), so the table's θ is within 1e-6 rad of atan2's (h²/8·|θ''|,
+  /// h = 4/2048); the hull radius R(θ) is convex between the hull's vertices (the lerp's chord overstates it by
+  /// ≤ (2h)²/8 ≈ 2e-6 relative there: dθ/dp ≤ 2) and the lerp understates it at a vertex, by ≤ 2e-3 (tested;
+  /// usable_radius's finer table: ≤ 1e-3), so a colour within 0.2 % of the usable edge may be moved onto it. Cost: one division and one 16-byte load.
+  struct PolarCell {
+    double angle_cell = 0;
+    double usable_radius = 0;
+  };
+  PolarCell locate(double dx, double dy) const {
+    const double sum = std::abs(dx) + std::abs(dy);
+    const double q = sum > 0.0 ? dx / sum : 1.0;
+    const double p = dy >= 0.0 ? 1.0 - q : 3.0 + q;
+    const double x = std::min(p * (kPseudoAngleSteps / 4.0), double(kPseudoAngleSteps));
+    const int i = std::min(int(x), kPseudoAngleSteps - 1);
+    const double t = x - i;
+    const float* row = &pseudo_angle_table_[size_t(i) * 2];  // angle_cell, radius at i, then at i + 1
+    return {row[0] + t * (row[2] - row[0]), row[1] + t * (row[3] - row[1])};
+  }
+
+  /// smooth_coefficients with the angle as locate()'s cell coordinate (the fast path's own entry point).
+  BasisCoefficients smooth_coefficients_in_cell(Chromaticity xy, double angle_cell, double relative_radius,
+                                                SmoothShapeBounds* bounds = nullptr) const;
 
   /// R(θ)·usable_fraction: distance from the white to the usable gamut's edge (RgbUpsampler's ρ = 1), linear
   /// interpolation in a 4096-step table (≤ 1e-3 relative to the hull's exact radius, at the hull's vertices; the
@@ -173,9 +208,13 @@ class UpsamplingBasis {
  private:
   int angle_count_ = 0, radius_count_ = 0;
   std::vector<double> radius_rows_;       // ρ of each table row
+  std::vector<double> row_inverse_spacing_;  // 1 / (ρ_{r+1} − ρ_r)
+  double angle_scale_ = 0;                // angle_count / 2π: cells per radian
   std::vector<float> rows_;               // (95 + 1 pad) × K, knot-major, 16-byte aligned rows
-  // Per table entry: the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z).
+  // Per table entry: the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z),
+  // 64 contiguous floats.
   std::vector<std::array<BasisCoefficients, 4>> entry_;
+  bool avx2_fma_ = false;  // the CPU has AVX2 and FMA: smooth_coefficients blends with 8-lane fused multiply-adds
   // Per table entry, interpolated with the same weights: M·c (3), M·D (9, row-major), the peak of the knots of
   // Φc (Y = 1), the clamping offset δ (3).
   struct EntrySummary {
@@ -187,11 +226,16 @@ class UpsamplingBasis {
   std::vector<float> colorimetry_rows_;  // A in float, 3 × 96 (pad 0): XYZ of clamped knots
   std::vector<float> columns_;            // K × 96, basis-major: four knots of one basis function per load
   std::vector<float> usable_radius_;      // R(θ)·usable_fraction at 4096 + 1 angles over [−π, π]
+  static constexpr int kPseudoAngleSteps = 2048;
+  std::vector<float> pseudo_angle_table_;  // (angle_cell, usable radius) at 2048 + 1 pseudo-angles over [0, 4]
 
   // Unique per constructed basis (a copy shares its id and its rows), so the cache cannot confuse a destroyed basis
   // with a new one built at the same address.
   uint64_t id_ = 0;
   void fill(BasisAtWavelengths& cache, Float4 lambda_nm) const;
+  // fit_clamped's pass without AVX2: knots_float (or given × given_scale), then the clamped colour and J's sums.
+  void clamped_pass_sse(const BasisCoefficients& c, const float* given, float given_scale, const float* const a[3],
+                        float upper, float* out) const;
   // Trivially constructible and destructible, so access needs no initialisation guard.
   static inline thread_local BasisAtWavelengths thread_cache_{};
 };
