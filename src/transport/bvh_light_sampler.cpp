@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "spectral/sampled_wavelengths.h"
 #include "transport/light.h"
 
 namespace rimu {
@@ -14,6 +15,7 @@ struct BvhLightSampler::BuildItem {
   LightBounds bounds;
   Vec3 centroid;
   uint32_t leaf;
+  uint32_t spectrum;  // spectral only: index into the per-light band shapes
 };
 
 namespace {
@@ -145,7 +147,46 @@ bool more_likely_to_score(const LightBounds& a, const LightBounds& b) {
 
 }  // namespace
 
-BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
+namespace {
+
+constexpr double kBandLowerNm = 360.0, kBandUpperNm = 830.0;
+
+// A light's emission spectrum in BvhLightSampler::kBands bands: each band's mean over its mean over 360-830 nm
+// (1 nm midpoint sums), so the bands average to 1. Flat for lights without one spectrum or with a black one.
+std::array<float, BvhLightSampler::kBands> band_shape(const Light& light) {
+  std::array<float, BvhLightSampler::kBands> shape;
+  shape.fill(1.0f);
+  const LightSpectrum* spectrum = light.emitted_spectrum();
+  if (!spectrum) return shape;
+  // 30 midpoints per band, 0.98 nm apart: fine enough for 1 nm tables and line spectra a few nm wide.
+  constexpr int kNmPerBand = int(kBandUpperNm - kBandLowerNm) / BvhLightSampler::kBands;
+  const double band_nm = (kBandUpperNm - kBandLowerNm) / BvhLightSampler::kBands;
+  std::array<double, BvhLightSampler::kBands> mean{};
+  double total = 0.0;
+  for (int b = 0; b < BvhLightSampler::kBands; ++b) {
+    const double step = band_nm / (kNmPerBand + 1);
+    for (int i = 0; i <= kNmPerBand; ++i)
+      mean[size_t(b)] += std::max(0.0, spectrum->shape()->value(kBandLowerNm + b * band_nm + (i + 0.5) * step));
+    mean[size_t(b)] /= kNmPerBand + 1;
+    total += mean[size_t(b)] / BvhLightSampler::kBands;
+  }
+  if (!(total > 0.0) || !std::isfinite(total)) return shape;
+  for (int b = 0; b < BvhLightSampler::kBands; ++b) shape[size_t(b)] = float(mean[size_t(b)] / total);
+  return shape;
+}
+
+int band_of(float lambda_nm) {
+  const int b = int((double(lambda_nm) - kBandLowerNm) * (BvhLightSampler::kBands / (kBandUpperNm - kBandLowerNm)));
+  return std::clamp(b, 0, BvhLightSampler::kBands - 1);
+}
+
+}  // namespace
+
+BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importance importance) {
+  const bool spectral = importance == Importance::spectral;
+  std::vector<std::array<float, kBands>> light_bands;  // spectral: per light, band_shape
+  if (spectral)
+    for (const Light* light : lights) light_bands.push_back(light->is_infinite() ? std::array<float, kBands>{} : band_shape(*light));
   first_part_.resize(lights.size());
   is_infinite_.resize(lights.size());
   size_t total_parts = 0;
@@ -169,7 +210,7 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
           !is_finite(b->upper_m))
         continue;
       any_bounds = true;
-      items.push_back({*b, b->centre_m(), uint32_t(leaves_.size())});
+      items.push_back({*b, b->centre_m(), uint32_t(leaves_.size()), uint32_t(i)});
       leaves_.push_back({int(i), k});
     }
     // A finite light with power must say where it emits, or the tree could never pick it.
@@ -177,10 +218,16 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
     (void)any_bounds;
   }
   leaf_count_ = int(leaves_.size());
+  if (spectral) {
+    light_bands_ = std::move(light_bands);
+    node_bands_.resize(items.empty() ? 0 : 2 * items.size() - 1);
+  }
   if (!items.empty()) {
     nodes_.reserve(2 * items.size());
     build(items, 0, items.size(), 0, 0);
   }
+  light_bands_.clear();
+  light_bands_.shrink_to_fit();
 }
 
 uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail) {
@@ -194,6 +241,9 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
     nodes_[index].representative = index;
     trails_[first_part_[size_t(leaf.light)] + uint32_t(leaf.part)] = trail | (uint64_t(1) << depth);
     max_depth_ = std::max(max_depth_, depth);
+    if (!node_bands_.empty())
+      for (int b = 0; b < kBands; ++b)
+        node_bands_[index][size_t(b)] = items[begin].bounds.intensity_w_sr * light_bands_[items[begin].spectrum][size_t(b)];
     return index;
   }
 
@@ -290,6 +340,9 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
   const uint32_t second = build(items, middle, end, depth + 1, trail | (uint64_t(1) << depth));
   nodes_[index].bounds = bounds;
   nodes_[index].index = second;
+  if (!node_bands_.empty())
+    for (int b = 0; b < kBands; ++b)
+      node_bands_[index][size_t(b)] = node_bands_[first][size_t(b)] + node_bands_[second][size_t(b)];
   const uint32_t first_representative = nodes_[first].representative;
   const uint32_t second_representative = nodes_[second].representative;
   nodes_[index].representative =
@@ -306,18 +359,18 @@ BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
   float a = 0.0f, b = 0.0f;
   if (witness == kCertified) {
     // Every leaf below scores: the plain importances, and both children stay certified.
-    a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
-    b = light_importance(nodes_[second].bounds, at.position_m, at.normal);
+    a = importance(first, at);
+    b = importance(second, at);
     out.first_witness = a > 0.0f ? kCertified : kNoLeaf;
     out.second_witness = b > 0.0f ? kCertified : kNoLeaf;
   } else if (witness != kNoLeaf && witness < second) {
     // Leaves below the first child have node indices in [first, second) (depth-first order).
-    a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
+    a = importance(first, at);
     out.first_witness = a > 0.0f ? witness : kNoLeaf;
     b = pruned_importance(second, at, &out.second_witness);
   } else if (witness != kNoLeaf) {
     a = pruned_importance(first, at, &out.first_witness);
-    b = light_importance(nodes_[second].bounds, at.position_m, at.normal);
+    b = importance(second, at);
     out.second_witness = b > 0.0f ? witness : kNoLeaf;
   } else {
     a = pruned_importance(first, at, &out.first_witness);
@@ -332,9 +385,32 @@ BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
   return out;
 }
 
+float BvhLightSampler::importance(uint32_t index, const LightSamplingPoint& at) const {
+  const LightBounds& bounds = nodes_[index].bounds;
+  const float broadband = light_importance(bounds, at.position_m, at.normal);
+  if (node_bands_.empty() || !at.wavelengths || !(broadband > 0.0f)) return broadband;
+  const std::array<float, kBands>& bands = node_bands_[index];
+  const SampledWavelengths& lambda = *at.wavelengths;
+  static_assert(kLaneCount == 4);
+  float v[4];
+  for (int k = 0; k < 4; ++k) v[k] = bands[size_t(band_of(lambda.lambda_nm(k)))];
+  // Summed in sorted order, so the result is bit-identical whichever lane is the hero (rotated lanes).
+  const auto order = [](float& a, float& b) {
+    if (b < a) std::swap(a, b);
+  };
+  order(v[0], v[1]);
+  order(v[2], v[3]);
+  order(v[0], v[2]);
+  order(v[1], v[3]);
+  order(v[1], v[2]);
+  const float at_lanes = ((v[0] + v[1]) + v[2]) + v[3];
+  const float spectral = at_lanes / float(kLaneCount) + kSpectralFloor * bounds.intensity_w_sr;
+  return broadband * (spectral / bounds.intensity_w_sr);
+}
+
 float BvhLightSampler::pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const {
   const Node& node = nodes_[index];
-  const float importance = light_importance(node.bounds, at.position_m, at.normal);
+  const float importance = this->importance(index, at);
   *witness = kNoLeaf;
   if (!(importance > 0.0f)) return 0.0f;
   if (node.is_leaf)
@@ -368,7 +444,7 @@ BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) co
   if (!nodes_.empty()) {
     const Node& root = nodes_[0];
     if (root.is_leaf) {
-      tree_can_contribute = light_importance(root.bounds, at.position_m, at.normal) > 0.0f;
+      tree_can_contribute = importance(0, at) > 0.0f;
     } else {
       root_split = split(0, kNoLeaf, at);
       tree_can_contribute = root_split.first > 0.0f || root_split.second > 0.0f;
@@ -447,7 +523,8 @@ float BvhLightSampler::pmf(const LightSamplingPoint& at, int light, int part) co
 size_t BvhLightSampler::memory_bytes() const {
   return sizeof(*this) + nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
          first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
-         infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8;
+         infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8 +
+         node_bands_.capacity() * sizeof(node_bands_[0]);
 }
 
 }  // namespace rimu

@@ -25,11 +25,26 @@
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
 // finite light can contribute (the tree's top split has importance 0 on both sides), each gets 1/m instead.
 //
+// Spectral importance (Importance::spectral, "light_sampler": "bvh-spectral"). Each node also holds its intensity
+// bound's spectral shape in kBands equal bands over 360-830 nm: band b is the cluster's intensity_w_sr times the
+// mean of its members' emission spectra over the band relative to their mean over 360-830 nm (so the bands average
+// to intensity_w_sr; a cluster holds the sum of its members'). Given the path's wavelengths, a node's importance is
+// its geometric factor (light_importance ÷ intensity_w_sr) times
+//   ¼ Σ_k band(λ_k) + kSpectralFloor · intensity_w_sr,
+// the mean over the four lanes of the power there. The sum is symmetric in the lanes, so the probabilities are the
+// same whichever lane is the hero: the per-lane light densities of the spectral MIS are all equal, and the
+// integrators' MIS needs no change (each lane's technique density includes the same choice probability). The floor
+// keeps every leaf that can contribute at some wavelength at probability > 0 whatever the bands say (a band mean
+// can be 0 where a tabulated spectrum has one non-zero knot), so the choice stays unbiased; pruning (which leaves
+// score > 0) is geometric and unchanged, so the probabilities still sum to 1. Without wavelengths (nullptr in
+// LightSamplingPoint) the importance is bvh's. Memory: kBands floats more per node.
+//
 // Build: binned (12 bins per axis) top-down splits minimising Conty & Kulla's surface-area-orientation cost
 // Σ_children intensity · M_Ω · area, the area regularised so that collinear point lights still split. Cost
 // O(n log n); memory in memory_bytes().
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -40,8 +55,14 @@ namespace rimu {
 
 class BvhLightSampler final : public LightSampler {
  public:
+  /// What a node's importance weighs light by: radiant intensity over 360-830 nm (bvh), or at the path's
+  /// wavelengths (bvh-spectral; see above).
+  enum class Importance { broadband, spectral };
+  static constexpr int kBands = 16;  ///< 29.4 nm each: 64 bytes per node
+  static constexpr float kSpectralFloor = 1e-3f;
+
   /// Over `lights` (indices as given; they must outlive the sampler).
-  explicit BvhLightSampler(std::span<const Light* const> lights);
+  explicit BvhLightSampler(std::span<const Light* const> lights, Importance importance = Importance::broadband);
 
   std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const override;
   float pmf(const LightSamplingPoint& at, int light, int part) const override;
@@ -88,8 +109,14 @@ class BvhLightSampler final : public LightSampler {
   };
   Shares shares(const LightSamplingPoint& at) const;
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
+  /// The importance of node `index` at `at` (light_importance, or its spectral form when the sampler is spectral
+  /// and `at` carries wavelengths). Zero exactly where light_importance is zero (up to underflow).
+  float importance(uint32_t index, const LightSamplingPoint& at) const;
 
   std::vector<Node> nodes_;
+  // Spectral only: per node, the band intensities (W/sr, averaging to the node's intensity_w_sr).
+  std::vector<std::array<float, kBands>> node_bands_;
+  std::vector<std::array<float, kBands>> light_bands_;  // during the build only: per light, its band shape
   std::vector<Leaf> leaves_;
   std::vector<uint32_t> first_part_;  // per light: the index of its part 0 in trails_
   std::vector<uint64_t> trails_;      // per (light, part): 1 << depth | the path's bits (1 = second child); 0: none
