@@ -17,7 +17,8 @@
 // blue lamps, RGB LED panels, sodium + mercury square, the street), same method, with relMSE per film channel X, Y,
 // Z and of the chromaticity (x, y): Σ|xy − xy_ref|² / Σ|xy_ref|² over pixels with Y_ref > 0. Chromaticity error is
 // a ratio of noisy sums, not exactly ∝ 1/spp; at these noise levels it is close, and the ratio is reported as
-// measured. The reference is rendered with bvh.
+// measured. The reference is rendered with bvh. Scenes 0-3 use the visible wavelength density, 4-7 the same scenes
+// with "wavelength_density": "lights" (--scenes picks by index; the default 01234 runs 0-4, so pass 01234567).
 // --power-spp gives the power sampler its own spp (default --spp), so that a light it starves is picked at all;
 // the equal-time ratio then compares relMSE · spp · (time per sample).
 #include <algorithm>
@@ -237,17 +238,19 @@ int spectral_main(const Settings& settings, SpectralLibrary& library) {
   const std::string load_before = bench::load_average();
   const std::filesystem::path dir = library.root() / "scenes" / "light_sampling";
   std::vector<BenchScene> scenes;
-  for (const auto& [name, file] : std::vector<std::pair<std::string, std::string>>{
-           {"red + blue LED lamps", "red_blue_lamps.json"},
-           {"RGB LED panels (12 × 6)", "rgb_led_panels.json"},
-           {"square: low-/high-pressure sodium + mercury", "sodium_mercury_square.json"},
-           {"street, 200 sodium/LED lamps", "street.json"}}) {
-    BenchScene scene;
-    scene.name = name;
-    scene.document = parse_json_file(dir / file);
-    scene.directory = dir;
-    scenes.push_back(scene);
-  }
+  for (const std::string density : {"visible", "lights"})
+    for (const auto& [name, file] : std::vector<std::pair<std::string, std::string>>{
+             {"red + blue LED lamps", "red_blue_lamps.json"},
+             {"RGB LED panels (12 × 6)", "rgb_led_panels.json"},
+             {"square: low-/high-pressure sodium + mercury", "sodium_mercury_square.json"},
+             {"street, 200 sodium/LED lamps", "street.json"}}) {
+      BenchScene scene;
+      scene.name = name + ", wavelength density " + density;
+      scene.document = parse_json_file(dir / file);
+      scene.document["integrator"]["wavelength_density"] = density;
+      scene.directory = dir;
+      scenes.push_back(scene);
+    }
   std::vector<SpectralResult> results;
   for (size_t i = 0; i < scenes.size(); ++i)
     if (settings.scenes.find(char('0' + i)) != std::string::npos)
@@ -259,7 +262,7 @@ int spectral_main(const Settings& settings, SpectralLibrary& library) {
      << settings.height << (settings.scenes != "01234" ? " --scenes " + settings.scenes : std::string())
      << (settings.docs ? " --docs" : "")
      << "` (Release build; scenes in data/scenes/light_sampling/; whole image; film CIE 1931 XYZ; hero-wavelength "
-        "sampling with the visible wavelength density).\n\n"
+        "sampling with the visible and with the lights wavelength density, scenes 0-3 and 4-7).\n\n"
      << "Machine: " << bench::machine_description() << "; 2 render threads; load average before " << load_before
      << ", after " << load_after << " (runs alternate; process CPU time, medians over the runs).\n"
      << "Build: " << bench::build_description() << ".\n\n"

@@ -353,7 +353,7 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
 }
 
 BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
-                                              const LightSamplingPoint& at) const {
+                                              const Query& at) const {
   const uint32_t first = index + 1, second = nodes_[index].index;
   Split out;
   float a = 0.0f, b = 0.0f;
@@ -385,16 +385,10 @@ BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
   return out;
 }
 
-float BvhLightSampler::importance(uint32_t index, const LightSamplingPoint& at) const {
-  const LightBounds& bounds = nodes_[index].bounds;
-  const float broadband = light_importance(bounds, at.position_m, at.normal);
-  if (node_bands_.empty() || !at.wavelengths || !(broadband > 0.0f)) return broadband;
-  const std::array<float, kBands>& bands = node_bands_[index];
-  const SampledWavelengths& lambda = *at.wavelengths;
-  static_assert(kLaneCount == 4);
-  float v[4];
-  for (int k = 0; k < 4; ++k) v[k] = bands[size_t(band_of(lambda.lambda_nm(k)))];
-  // Summed in sorted order, so the result is bit-identical whichever lane is the hero (rotated lanes).
+namespace {
+
+// Sums four floats in ascending order: the same result for any order of the inputs (rotated lanes).
+float order_independent_sum(std::array<float, 4> v) {
   const auto order = [](float& a, float& b) {
     if (b < a) std::swap(a, b);
   };
@@ -403,12 +397,43 @@ float BvhLightSampler::importance(uint32_t index, const LightSamplingPoint& at) 
   order(v[0], v[2]);
   order(v[1], v[3]);
   order(v[1], v[2]);
-  const float at_lanes = ((v[0] + v[1]) + v[2]) + v[3];
-  const float spectral = at_lanes / float(kLaneCount) + kSpectralFloor * bounds.intensity_w_sr;
+  return ((v[0] + v[1]) + v[2]) + v[3];
+}
+
+}  // namespace
+
+BvhLightSampler::Query BvhLightSampler::query(const LightSamplingPoint& at) const {
+  Query q;
+  static_cast<LightSamplingPoint&>(q) = at;
+  if (node_bands_.empty() || !at.wavelengths) return q;
+  static_assert(kLaneCount == 4);
+  const SampledWavelengths& lambda = *at.wavelengths;
+  const Float4 pdf = lambda.pdf();
+  std::array<float, 4> w{};
+  for (int k = 0; k < 4; ++k) {
+    q.band[size_t(k)] = band_of(lambda.lambda_nm(k));
+    // Lanes without a density (terminated) add nothing to the film.
+    w[size_t(k)] = pdf[k] > 0.0f && std::isfinite(pdf[k]) ? 1.0f : 0.0f;
+  }
+  const float total = order_independent_sum(w);
+  if (!(total > 0.0f) || !std::isfinite(total)) return q;
+  for (int k = 0; k < 4; ++k) q.weight[size_t(k)] = w[size_t(k)] / total;
+  q.spectral = true;
+  return q;
+}
+
+float BvhLightSampler::importance(uint32_t index, const Query& at) const {
+  const LightBounds& bounds = nodes_[index].bounds;
+  const float broadband = light_importance(bounds, at.position_m, at.normal);
+  if (!at.spectral || !(broadband > 0.0f)) return broadband;
+  const std::array<float, kBands>& bands = node_bands_[index];
+  std::array<float, 4> terms;
+  for (size_t k = 0; k < 4; ++k) terms[k] = at.weight[k] * bands[size_t(at.band[k])];
+  const float spectral = order_independent_sum(terms) + kSpectralFloor * bounds.intensity_w_sr;
   return broadband * (spectral / bounds.intensity_w_sr);
 }
 
-float BvhLightSampler::pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const {
+float BvhLightSampler::pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const {
   const Node& node = nodes_[index];
   const float importance = this->importance(index, at);
   *witness = kNoLeaf;
@@ -422,7 +447,7 @@ float BvhLightSampler::pruned_importance(uint32_t index, const LightSamplingPoin
   return *witness == kNoLeaf ? 0.0f : importance;
 }
 
-uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const {
+uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at) const {
   const Node& node = nodes_[index];
   if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
     return node.representative;
@@ -438,7 +463,7 @@ uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const LightSamplingP
   return kNoLeaf;
 }
 
-BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) const {
+BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
   bool tree_can_contribute = false;
   Split root_split;
   if (!nodes_.empty()) {
@@ -456,7 +481,8 @@ BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) co
   return {1.0f / float(m + 1), 1.0f / float(m + 1), root_split};
 }
 
-std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at, float u_float) const {
+std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& point, float u_float) const {
+  const Query at = query(point);
   const Shares shares_here = shares(at);
   const int m = int(infinite_lights_.size());
   double u = double(u_float);
@@ -491,7 +517,8 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at,
   return LightChoice{leaf.light, leaf.part, probability};
 }
 
-float BvhLightSampler::pmf(const LightSamplingPoint& at, int light, int part) const {
+float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part) const {
+  const Query at = query(point);
   if (light < 0 || size_t(light) >= first_part_.size() || part < 0) return 0.0f;
   if (is_infinite_[size_t(light)]) {
     if (part != 0 || std::find(infinite_lights_.begin(), infinite_lights_.end(), light) == infinite_lights_.end())

@@ -31,8 +31,12 @@
 // to intensity_w_sr; a cluster holds the sum of its members'). Given the path's wavelengths, a node's importance is
 // its geometric factor (light_importance ÷ intensity_w_sr) times
 //   ¼ Σ_k band(λ_k) + kSpectralFloor · intensity_w_sr,
-// the mean over the four lanes of the power there. The sum is symmetric in the lanes, so the probabilities are the
-// same whichever lane is the hero: the per-lane light densities of the spectral MIS are all equal, and the
+// the mean over the four lanes of the power there (lanes without a density, if any, left out). Two variants were
+// measured and dropped (docs/sampling.md): weighing each lane by p_vis(λ_k)/p(λ_k), what it adds to the film under
+// "wavelength_density": "lights" (worse: 2.8× higher relMSE than bvh on the red + blue lamps there, 1.6× without),
+// and 47 bands of 10 nm (4 % lower relMSE on the red + blue lamps under the visible density, at 3× the memory).
+// The sum is symmetric in the lanes, so the probabilities are the same whichever
+// lane is the hero: the per-lane light densities of the spectral MIS are all equal, and the
 // integrators' MIS needs no change (each lane's technique density includes the same choice probability). The floor
 // keeps every leaf that can contribute at some wavelength at probability > 0 whatever the bands say (a band mean
 // can be 0 where a tabulated spectrum has one non-zero knot), so the choice stays unbiased; pruning (which leaves
@@ -92,26 +96,34 @@ class BvhLightSampler final : public LightSampler {
     uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;
   };
   struct BuildItem;
+  /// A point with what the spectral importance needs of its wavelengths, worked out once per sample()/pmf():
+  /// each lane's band and weight (1/n for the n lanes with a density); spectral = false: the broadband importance.
+  struct Query : LightSamplingPoint {
+    bool spectral = false;
+    std::array<int, 4> band{};
+    std::array<float, 4> weight{};
+  };
+  Query query(const LightSamplingPoint& at) const;
 
   /// The split at interior node `index`, given `witness`: a leaf node below it known to score > 0 (the child
   /// holding it needs no search), kCertified (no child needs one), or kNoLeaf.
-  Split split(uint32_t index, uint32_t witness, const LightSamplingPoint& at) const;
+  Split split(uint32_t index, uint32_t witness, const Query& at) const;
   /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf,
   /// kCertified if the node's bounds show that every leaf below scores, or kNoLeaf.
-  float pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const;
+  float pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const;
   /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
   /// representative if every leaf is certified to score or it scores, else depth first.
-  uint32_t find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const;
+  uint32_t find_scoring_leaf(uint32_t index, const Query& at) const;
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
     Split root;  // the root's split, reused by the descent (unset for a one-leaf tree)
   };
-  Shares shares(const LightSamplingPoint& at) const;
+  Shares shares(const Query& at) const;
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
   /// The importance of node `index` at `at` (light_importance, or its spectral form when the sampler is spectral
   /// and `at` carries wavelengths). Zero exactly where light_importance is zero (up to underflow).
-  float importance(uint32_t index, const LightSamplingPoint& at) const;
+  float importance(uint32_t index, const Query& at) const;
 
   std::vector<Node> nodes_;
   // Spectral only: per node, the band intensities (W/sr, averaging to the node's intensity_w_sr).

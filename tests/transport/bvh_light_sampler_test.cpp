@@ -414,8 +414,8 @@ TEST_CASE("light BVH, spectral: sampled frequencies equal pmf() and sum to 1 at 
     CHECK(sum == doctest::Approx(1.0).epsilon(64 * 0x1p-24));
     // The same probabilities whichever lane is the hero (the lanes rotated), bit for bit: the per-lane light
     // densities of the spectral MIS are equal, as the integrators assume.
-    const Float4 l = lambda.lambda_nm();
-    const SampledWavelengths rotated = four_wavelengths(Float4(l[2], l[3], l[0], l[1]));
+    const Float4 l = lambda.lambda_nm(), pdf = lambda.pdf();
+    const SampledWavelengths rotated(Float4(l[2], l[3], l[0], l[1]), Float4(pdf[2], pdf[3], pdf[0], pdf[1]));
     LightSamplingPoint at_rotated = at;
     at_rotated.wavelengths = &rotated;
     int differing = 0;
