@@ -289,7 +289,20 @@ struct BuildResult {
   double build_s, build_cpu_s, bytes_per_light;
   int depth;
   double sample_ns, pmf_ns;
+  // sample() again with unlimited (the default) and capped pruning searches, and the fraction of calls that found
+  // no light (the probability the cap loses, plus points where nothing can contribute).
+  double sample_uncapped_ns = 0, sample_capped_ns = 0, no_light_capped = 0, no_light_uncapped = 0;
 };
+
+// Process CPU time per sample() call over `points` (one thread), and the fraction that returned no light.
+std::pair<double, double> time_sample(const BvhLightSampler& sampler, const std::vector<LightSamplingPoint>& points,
+                                      const std::vector<float>& u) {
+  size_t none = 0;
+  const std::clock_t t0 = std::clock();
+  for (size_t i = 0; i < points.size(); ++i) none += !sampler.sample(points[i], u[i]);
+  const std::clock_t t1 = std::clock();
+  return {double(t1 - t0) / CLOCKS_PER_SEC / double(points.size()) * 1e9, double(none) / double(points.size())};
+}
 
 BuildResult million_triangles() {
   std::mt19937 rng(1);
@@ -319,16 +332,27 @@ BuildResult million_triangles() {
   double checksum = 0;
   // Process CPU time (one thread here): the machine is shared, and wall time would count other processes' turns.
   const std::clock_t t0 = std::clock();
-  std::vector<LightChoice> choices;
+  std::vector<std::pair<size_t, LightChoice>> choices;
   for (int i = 0; i < calls; ++i)
-    if (const auto c = sampler.sample(points[size_t(i)], u(rng))) choices.push_back(*c);
+    if (const auto c = sampler.sample(points[size_t(i)], u(rng))) choices.push_back({size_t(i), *c});
   const std::clock_t t1 = std::clock();
-  for (size_t i = 0; i < choices.size(); ++i) checksum += sampler.pmf(points[i], choices[i].light, choices[i].part);
+  for (const auto& [i, c] : choices) checksum += sampler.pmf(points[i], c.light, c.part);
   const std::clock_t t2 = std::clock();
   if (checksum < 0) std::cerr << checksum;
-  return {n, build_s, build_cpu_s, double(sampler.memory_bytes()) / n, sampler.max_depth(),
-          double(t1 - t0) / CLOCKS_PER_SEC / calls * 1e9,
-          double(t2 - t1) / CLOCKS_PER_SEC / double(std::max<size_t>(choices.size(), 1)) * 1e9};
+  BuildResult out{n, build_s, build_cpu_s, double(sampler.memory_bytes()) / n, sampler.max_depth(),
+                  double(t1 - t0) / CLOCKS_PER_SEC / calls * 1e9,
+                  double(t2 - t1) / CLOCKS_PER_SEC / double(std::max<size_t>(choices.size(), 1)) * 1e9};
+  // Unlimited searches (the default) against capped ones (an option), same points and numbers, timed in turn.
+  std::vector<float> us(static_cast<size_t>(calls));
+  for (float& x : us) x = u(rng);
+  const BvhLightSampler capped(lights, BvhLightSampler::Importance::broadband, BvhLightSampler::kSearchBudget);
+  const auto [uncapped_ns, uncapped_none] = time_sample(sampler, points, us);
+  const auto [capped_ns, capped_none] = time_sample(capped, points, us);
+  out.sample_uncapped_ns = uncapped_ns;
+  out.no_light_uncapped = uncapped_none;
+  out.sample_capped_ns = capped_ns;
+  out.no_light_capped = capped_none;
+  return out;
 }
 
 }  // namespace
@@ -412,7 +436,11 @@ int main(int argc, char** argv) {
      << " s CPU, one thread), " << bench::format(build.bytes_per_light, "%.4g")
      << " bytes per triangle (nodes, leaves, bit trails), depth " << build.depth << "; sample() "
      << bench::format(build.sample_ns, "%.3g") << " ns, pmf() " << bench::format(build.pmf_ns, "%.3g")
-     << " ns CPU per call at random points with normal +y.\n";
+     << " ns CPU per call at random points with normal +y. Timed again in turn: sample() "
+     << bench::format(build.sample_uncapped_ns, "%.3g") << " ns (no light at "
+     << bench::format(100 * build.no_light_uncapped, "%.3g") << " % of the calls); with searches capped at "
+     << BvhLightSampler::kSearchBudget << " nodes (an option) " << bench::format(build.sample_capped_ns, "%.3g")
+     << " ns (no light at " << bench::format(100 * build.no_light_capped, "%.3g") << " %).\n";
   std::cout << md.str();
   if (settings.docs)
     bench::update_docs_section(library.root().parent_path() / "docs" / "benchmarks.md", "light-sampling",

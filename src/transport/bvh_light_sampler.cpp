@@ -182,7 +182,8 @@ int band_of(float lambda_nm) {
 
 }  // namespace
 
-BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importance importance) {
+BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importance importance, int search_budget)
+    : search_budget_(search_budget) {
   const bool spectral = importance == Importance::spectral;
   std::vector<std::array<float, kBands>> light_bands;  // spectral: per light, band_shape
   if (spectral)
@@ -363,16 +364,16 @@ BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
     b = importance(second, at);
     out.first_witness = a > 0.0f ? kCertified : kNoLeaf;
     out.second_witness = b > 0.0f ? kCertified : kNoLeaf;
-  } else if (witness != kNoLeaf && witness < second) {
+  } else if (witness < kUnknown && witness < second) {
     // Leaves below the first child have node indices in [first, second) (depth-first order).
     a = importance(first, at);
     out.first_witness = a > 0.0f ? witness : kNoLeaf;
     b = pruned_importance(second, at, &out.second_witness);
-  } else if (witness != kNoLeaf) {
+  } else if (witness < kUnknown) {
     a = pruned_importance(first, at, &out.first_witness);
     b = importance(second, at);
     out.second_witness = b > 0.0f ? witness : kNoLeaf;
-  } else {
+  } else {  // kNoLeaf (the root) or kUnknown: both children are checked
     a = pruned_importance(first, at, &out.first_witness);
     b = pruned_importance(second, at, &out.second_witness);
   }
@@ -442,23 +443,33 @@ float BvhLightSampler::pruned_importance(uint32_t index, const Query& at, uint32
     *witness = index;
   else if (every_leaf_scores(node.bounds, at.position_m, at.normal))
     *witness = kCertified;
-  else
-    *witness = find_scoring_leaf(index, at);
+  else {
+    int budget = search_budget_ > 0 ? search_budget_ : -1;
+    *witness = find_scoring_leaf(index, at, &budget);
+  }
   return *witness == kNoLeaf ? 0.0f : importance;
 }
 
-uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at) const {
+uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget) const {
+  // One node visit = one importance evaluation; a budget of 0 left means give up (a negative one never does).
+  const auto visit = [budget] {
+    if (*budget == 0) return false;
+    if (*budget > 0) --*budget;
+    return true;
+  };
   const Node& node = nodes_[index];
+  if (!visit()) return kUnknown;
   if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
     return node.representative;
   // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
   // too, up to rounding).
   for (const uint32_t child : {index + 1, node.index}) {
     const Node& c = nodes_[child];
+    if (!visit()) return kUnknown;
     if (!(light_importance(c.bounds, at.position_m, at.normal) > 0.0f)) continue;
     if (c.is_leaf) return child;
     if (every_leaf_scores(c.bounds, at.position_m, at.normal)) return c.representative;
-    if (const uint32_t leaf = find_scoring_leaf(child, at); leaf != kNoLeaf) return leaf;
+    if (const uint32_t leaf = find_scoring_leaf(child, at, budget); leaf != kNoLeaf) return leaf;
   }
   return kNoLeaf;
 }
