@@ -12,10 +12,17 @@
 //   (relMSE_power · t_power) / (relMSE_bvh · t_bvh)   (> 1: the BVH sampler wins by that factor).
 //
 // Usage: rimu-light-sampler-bench [--spp 16] [--reference-spp 512] [--runs 3] [--resolution 64x48] [--docs]
-//        [--scenes 01234] [--build-only] [--power-spp N]
+//        [--scenes 01234] [--build-only] [--power-spp N] [--spectral]
+// --spectral: instead, wavelength-aware choice (bvh-spectral) against bvh on four scenes of coloured lights (red +
+// blue lamps, RGB LED panels, sodium + mercury square, the street), same method, with relMSE per film channel X, Y,
+// Z and of the chromaticity (x, y): Σ|xy − xy_ref|² / Σ|xy_ref|² over pixels with Y_ref > 0. Chromaticity error is
+// a ratio of noisy sums, not exactly ∝ 1/spp; at these noise levels it is close, and the ratio is reported as
+// measured. The reference is rendered with bvh. Scenes 0-3 use the visible wavelength density, 4-7 the same scenes
+// with "wavelength_density": "lights" (--scenes picks by index; the default 01234 runs 0-4, so pass 01234567).
 // --power-spp gives the power sampler its own spp (default --spp), so that a light it starves is picked at all;
 // the equal-time ratio then compares relMSE · spp · (time per sample).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -45,6 +52,7 @@ struct Settings {
   int power_spp = 0;  // the power sampler's spp, if not --spp: enough that it picks a starved light at all
   bool docs = false;
   bool build_only = false;  // only the 10⁶-triangle build figures
+  bool spectral = false;    // bvh-spectral against bvh on coloured lights
   std::string scenes = "01234";  // which scenes, by index
 };
 
@@ -60,6 +68,7 @@ struct BenchScene {
 
 struct RenderResult {
   std::vector<double> y;  // film Y per pixel, row by row
+  std::vector<double> x, z;  // film X and Z likewise
   double seconds = 0;  // process CPU time (both render threads): on a shared machine, the work done
 };
 
@@ -84,7 +93,12 @@ RenderResult render_y(const Scene& scene, int spp, uint64_t seed, SpectralLibrar
   RenderResult r;
   r.seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
   for (int py = 0; py < scene.settings.height; ++py)
-    for (int px = 0; px < scene.settings.width; ++px) r.y.push_back(film.pixel_value(px, py)[1]);
+    for (int px = 0; px < scene.settings.width; ++px) {
+      const auto v = film.pixel_value(px, py);
+      r.x.push_back(v[0]);
+      r.y.push_back(v[1]);
+      r.z.push_back(v[2]);
+    }
   return r;
 }
 
@@ -156,12 +170,139 @@ SceneResult run_scene(const BenchScene& s, const Settings& settings, SpectralLib
   return out;
 }
 
+// Σ|xy − xy_ref|² / Σ|xy_ref|² over masked pixels with Y_ref > 0 (a pixel with X+Y+Z ≤ 0 counts as xy = 0).
+double chromaticity_mse(const RenderResult& r, const RenderResult& reference, const std::vector<bool>& mask) {
+  const auto xy = [](double x, double y, double z) {
+    const double sum = x + y + z;
+    return sum > 0.0 ? std::pair<double, double>{x / sum, y / sum} : std::pair<double, double>{0.0, 0.0};
+  };
+  double error = 0, norm = 0;
+  for (size_t i = 0; i < r.y.size(); ++i) {
+    if (!mask[i] || !(reference.y[i] > 0.0)) continue;
+    const auto [a, b] = xy(r.x[i], r.y[i], r.z[i]);
+    const auto [ra, rb] = xy(reference.x[i], reference.y[i], reference.z[i]);
+    error += (a - ra) * (a - ra) + (b - rb) * (b - rb);
+    norm += ra * ra + rb * rb;
+  }
+  return error / norm;
+}
+
+struct SpectralResult {
+  std::string name;
+  std::array<double, 4> spectral{}, bvh{}, ratio{};  // X, Y, Z, chromaticity
+  double time_spectral_us = 0, time_bvh_us = 0;
+};
+
+// bvh-spectral against bvh on one scene: relMSE per channel and of chromaticity, and the equal-time ratios.
+SpectralResult run_spectral_scene(const BenchScene& s, const Settings& settings, SpectralLibrary& library) {
+  const auto bvh = load(s, "bvh", settings, library);
+  const auto spectral = load(s, "bvh-spectral", settings, library);
+  const RenderResult reference = render_y(*bvh, settings.reference_spp, 99, library);
+  const std::vector<bool> mask = region_mask(*bvh, s);
+  std::vector<double> t_spectral, t_bvh;
+  SpectralResult out;
+  out.name = s.name;
+  for (int r = 0; r < settings.runs; ++r) {
+    const RenderResult a = render_y(*spectral, settings.spp, uint64_t(1000 + r), library);
+    const RenderResult b = render_y(*bvh, settings.spp, uint64_t(2000 + r), library);
+    t_spectral.push_back(a.seconds);
+    t_bvh.push_back(b.seconds);
+    const std::array<double, 4> ea = {relative_mse(a.x, reference.x, mask), relative_mse(a.y, reference.y, mask),
+                                      relative_mse(a.z, reference.z, mask), chromaticity_mse(a, reference, mask)};
+    const std::array<double, 4> eb = {relative_mse(b.x, reference.x, mask), relative_mse(b.y, reference.y, mask),
+                                      relative_mse(b.z, reference.z, mask), chromaticity_mse(b, reference, mask)};
+    for (size_t c = 0; c < 4; ++c) {
+      out.spectral[c] += ea[c] / settings.runs;
+      out.bvh[c] += eb[c] / settings.runs;
+    }
+  }
+  const double pixels = double(settings.width) * settings.height;
+  out.time_spectral_us = median(t_spectral) / (pixels * settings.spp) * 1e6;
+  out.time_bvh_us = median(t_bvh) / (pixels * settings.spp) * 1e6;
+  for (size_t c = 0; c < 4; ++c) {
+    // The reference (bvh) has the bvh runs' noise scaled by spp / reference spp; subtracted from both.
+    const double reference_noise =
+        out.bvh[c] * settings.spp / settings.reference_spp / (1.0 + double(settings.spp) / settings.reference_spp);
+    out.spectral[c] -= reference_noise;
+    out.bvh[c] -= reference_noise;
+    out.ratio[c] = (out.bvh[c] * out.time_bvh_us) / (out.spectral[c] * out.time_spectral_us);
+  }
+  std::cerr << s.name << ": relMSE X/Y/Z/xy bvh-spectral " << out.spectral[0] << " " << out.spectral[1] << " "
+            << out.spectral[2] << " " << out.spectral[3] << ", bvh " << out.bvh[0] << " " << out.bvh[1] << " "
+            << out.bvh[2] << " " << out.bvh[3] << "; us/sample " << out.time_spectral_us << " / " << out.time_bvh_us
+            << "\n";
+  return out;
+}
+
+int spectral_main(const Settings& settings, SpectralLibrary& library) {
+  const std::string load_before = bench::load_average();
+  const std::filesystem::path dir = library.root() / "scenes" / "light_sampling";
+  std::vector<BenchScene> scenes;
+  for (const std::string density : {"visible", "lights"})
+    for (const auto& [name, file] : std::vector<std::pair<std::string, std::string>>{
+             {"red + blue LED lamps", "red_blue_lamps.json"},
+             {"RGB LED panels (12 × 6)", "rgb_led_panels.json"},
+             {"square: low-/high-pressure sodium + mercury", "sodium_mercury_square.json"},
+             {"street, 200 sodium/LED lamps", "street.json"}}) {
+      BenchScene scene;
+      scene.name = name + ", wavelength density " + density;
+      scene.document = parse_json_file(dir / file);
+      scene.document["integrator"]["wavelength_density"] = density;
+      scene.directory = dir;
+      scenes.push_back(scene);
+    }
+  std::vector<SpectralResult> results;
+  for (size_t i = 0; i < scenes.size(); ++i)
+    if (settings.scenes.find(char('0' + i)) != std::string::npos)
+      results.push_back(run_spectral_scene(scenes[i], settings, library));
+  const std::string load_after = bench::load_average();
+  std::ostringstream md;
+  md << "Command: `build/bin/rimu-light-sampler-bench --spectral --spp " << settings.spp << " --reference-spp "
+     << settings.reference_spp << " --runs " << settings.runs << " --resolution " << settings.width << "x"
+     << settings.height << (settings.scenes != "01234" ? " --scenes " + settings.scenes : std::string())
+     << (settings.docs ? " --docs" : "")
+     << "` (Release build; scenes in data/scenes/light_sampling/; whole image; film CIE 1931 XYZ; hero-wavelength "
+        "sampling with the visible and with the lights wavelength density, scenes 0-3 and 4-7).\n\n"
+     << "Machine: " << bench::machine_description() << "; 2 render threads; load average before " << load_before
+     << ", after " << load_after << " (runs alternate; process CPU time, medians over the runs).\n"
+     << "Build: " << bench::build_description() << ".\n\n"
+     << "| scene | relMSE X, Y, Z, xy: bvh-spectral | relMSE X, Y, Z, xy: bvh | µs/sample spectral / bvh | "
+        "equal-time relMSE bvh ÷ bvh-spectral: X, Y, Z, xy |\n|---|---|---|---|---|\n";
+  const auto four = [](const std::array<double, 4>& v, const char* format) {
+    std::string text;
+    for (size_t c = 0; c < 4; ++c) text += (c ? ", " : "") + bench::format(v[c], format);
+    return text;
+  };
+  for (const SpectralResult& r : results)
+    md << "| " << r.name << " | " << four(r.spectral, "%.3g") << " | " << four(r.bvh, "%.3g") << " | "
+       << bench::format(r.time_spectral_us, "%.3g") << " / " << bench::format(r.time_bvh_us, "%.3g") << " | "
+       << four(r.ratio, "%.3g") << " |\n";
+  std::cout << md.str();
+  if (settings.docs)
+    bench::update_docs_section(library.root().parent_path() / "docs" / "benchmarks.md", "light-sampling-spectral",
+                               "## Light sampling: wavelength-aware choice against bvh", md.str());
+  return 0;
+}
+
 struct BuildResult {
   int triangles = 0;
   double build_s, build_cpu_s, bytes_per_light;
   int depth;
   double sample_ns, pmf_ns;
+  // sample() again with unlimited (the default) and capped pruning searches, and the fraction of calls that found
+  // no light (the probability the cap loses, plus points where nothing can contribute).
+  double sample_uncapped_ns = 0, sample_capped_ns = 0, no_light_capped = 0, no_light_uncapped = 0;
 };
+
+// Process CPU time per sample() call over `points` (one thread), and the fraction that returned no light.
+std::pair<double, double> time_sample(const BvhLightSampler& sampler, const std::vector<LightSamplingPoint>& points,
+                                      const std::vector<float>& u) {
+  size_t none = 0;
+  const std::clock_t t0 = std::clock();
+  for (size_t i = 0; i < points.size(); ++i) none += !sampler.sample(points[i], u[i]);
+  const std::clock_t t1 = std::clock();
+  return {double(t1 - t0) / CLOCKS_PER_SEC / double(points.size()) * 1e9, double(none) / double(points.size())};
+}
 
 BuildResult million_triangles() {
   std::mt19937 rng(1);
@@ -191,16 +332,27 @@ BuildResult million_triangles() {
   double checksum = 0;
   // Process CPU time (one thread here): the machine is shared, and wall time would count other processes' turns.
   const std::clock_t t0 = std::clock();
-  std::vector<LightChoice> choices;
+  std::vector<std::pair<size_t, LightChoice>> choices;
   for (int i = 0; i < calls; ++i)
-    if (const auto c = sampler.sample(points[size_t(i)], u(rng))) choices.push_back(*c);
+    if (const auto c = sampler.sample(points[size_t(i)], u(rng))) choices.push_back({size_t(i), *c});
   const std::clock_t t1 = std::clock();
-  for (size_t i = 0; i < choices.size(); ++i) checksum += sampler.pmf(points[i], choices[i].light, choices[i].part);
+  for (const auto& [i, c] : choices) checksum += sampler.pmf(points[i], c.light, c.part);
   const std::clock_t t2 = std::clock();
   if (checksum < 0) std::cerr << checksum;
-  return {n, build_s, build_cpu_s, double(sampler.memory_bytes()) / n, sampler.max_depth(),
-          double(t1 - t0) / CLOCKS_PER_SEC / calls * 1e9,
-          double(t2 - t1) / CLOCKS_PER_SEC / double(std::max<size_t>(choices.size(), 1)) * 1e9};
+  BuildResult out{n, build_s, build_cpu_s, double(sampler.memory_bytes()) / n, sampler.max_depth(),
+                  double(t1 - t0) / CLOCKS_PER_SEC / calls * 1e9,
+                  double(t2 - t1) / CLOCKS_PER_SEC / double(std::max<size_t>(choices.size(), 1)) * 1e9};
+  // Unlimited searches (the default) against capped ones (an option), same points and numbers, timed in turn.
+  std::vector<float> us(static_cast<size_t>(calls));
+  for (float& x : us) x = u(rng);
+  const BvhLightSampler capped(lights, BvhLightSampler::Importance::broadband, BvhLightSampler::kSearchBudget);
+  const auto [uncapped_ns, uncapped_none] = time_sample(sampler, points, us);
+  const auto [capped_ns, capped_none] = time_sample(capped, points, us);
+  out.sample_uncapped_ns = uncapped_ns;
+  out.no_light_uncapped = uncapped_none;
+  out.sample_capped_ns = capped_ns;
+  out.no_light_capped = capped_none;
+  return out;
 }
 
 }  // namespace
@@ -217,14 +369,16 @@ int main(int argc, char** argv) {
     else if (a == "--resolution") std::sscanf(next().c_str(), "%dx%d", &settings.width, &settings.height);
     else if (a == "--docs") settings.docs = true;
     else if (a == "--build-only") settings.build_only = true;
+    else if (a == "--spectral") settings.spectral = true;
     else if (a == "--scenes") settings.scenes = next();
     else {
       std::cerr << "usage: rimu-light-sampler-bench [--spp N] [--power-spp N] [--reference-spp N] [--runs N] "
-                   "[--resolution WxH] [--scenes 01234] [--build-only] [--docs]\n";
+                   "[--resolution WxH] [--scenes 01234] [--build-only] [--spectral] [--docs]\n";
       return 1;
     }
   }
   SpectralLibrary library = SpectralLibrary::at_default_location();
+  if (settings.spectral) return spectral_main(settings, library);
   const std::string load_before = bench::load_average();
   const std::filesystem::path scenes = library.root() / "scenes";
   const std::filesystem::path light_sampling = scenes / "light_sampling";
@@ -282,7 +436,11 @@ int main(int argc, char** argv) {
      << " s CPU, one thread), " << bench::format(build.bytes_per_light, "%.4g")
      << " bytes per triangle (nodes, leaves, bit trails), depth " << build.depth << "; sample() "
      << bench::format(build.sample_ns, "%.3g") << " ns, pmf() " << bench::format(build.pmf_ns, "%.3g")
-     << " ns CPU per call at random points with normal +y.\n";
+     << " ns CPU per call at random points with normal +y. Timed again in turn: sample() "
+     << bench::format(build.sample_uncapped_ns, "%.3g") << " ns (no light at "
+     << bench::format(100 * build.no_light_uncapped, "%.3g") << " % of the calls); with searches capped at "
+     << BvhLightSampler::kSearchBudget << " nodes (an option) " << bench::format(build.sample_capped_ns, "%.3g")
+     << " ns (no light at " << bench::format(100 * build.no_light_capped, "%.3g") << " %).\n";
   std::cout << md.str();
   if (settings.docs)
     bench::update_docs_section(library.root().parent_path() / "docs" / "benchmarks.md", "light-sampling",

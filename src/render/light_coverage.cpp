@@ -139,7 +139,8 @@ std::vector<std::string> light_coverage_warnings(const Scene& scene) {
                   name.c_str(), 100.0 * c.sample_share, c.probe_m.x, c.probe_m.y, c.probe_m.z,
                   100.0 * c.irradiance_share);
     std::string message = text;
-    if (scene.settings.light_sampler != LightSamplerKind::bvh)
+    if (scene.settings.light_sampler != LightSamplerKind::bvh &&
+        scene.settings.light_sampler != LightSamplerKind::bvh_spectral)
       message += std::string(" (\"light_sampler\": \"") + light_sampler_kind_name(scene.settings.light_sampler) +
                  "\"; \"bvh\" chooses lights by their contribution at each point)";
     warnings.push_back(message);

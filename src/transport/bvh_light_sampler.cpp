@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "spectral/sampled_wavelengths.h"
 #include "transport/light.h"
 
 namespace rimu {
@@ -14,6 +15,7 @@ struct BvhLightSampler::BuildItem {
   LightBounds bounds;
   Vec3 centroid;
   uint32_t leaf;
+  uint32_t spectrum;  // spectral only: index into the per-light band shapes
 };
 
 namespace {
@@ -145,7 +147,47 @@ bool more_likely_to_score(const LightBounds& a, const LightBounds& b) {
 
 }  // namespace
 
-BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
+namespace {
+
+constexpr double kBandLowerNm = 360.0, kBandUpperNm = 830.0;
+
+// A light's emission spectrum in BvhLightSampler::kBands bands: each band's mean over its mean over 360-830 nm
+// (1 nm midpoint sums), so the bands average to 1. Flat for lights without one spectrum or with a black one.
+std::array<float, BvhLightSampler::kBands> band_shape(const Light& light) {
+  std::array<float, BvhLightSampler::kBands> shape;
+  shape.fill(1.0f);
+  const LightSpectrum* spectrum = light.emitted_spectrum();
+  if (!spectrum) return shape;
+  // 30 midpoints per band, 0.98 nm apart: fine enough for 1 nm tables and line spectra a few nm wide.
+  constexpr int kNmPerBand = int(kBandUpperNm - kBandLowerNm) / BvhLightSampler::kBands;
+  const double band_nm = (kBandUpperNm - kBandLowerNm) / BvhLightSampler::kBands;
+  std::array<double, BvhLightSampler::kBands> mean{};
+  double total = 0.0;
+  for (int b = 0; b < BvhLightSampler::kBands; ++b) {
+    const double step = band_nm / (kNmPerBand + 1);
+    for (int i = 0; i <= kNmPerBand; ++i)
+      mean[size_t(b)] += std::max(0.0, spectrum->shape()->value(kBandLowerNm + b * band_nm + (i + 0.5) * step));
+    mean[size_t(b)] /= kNmPerBand + 1;
+    total += mean[size_t(b)] / BvhLightSampler::kBands;
+  }
+  if (!(total > 0.0) || !std::isfinite(total)) return shape;
+  for (int b = 0; b < BvhLightSampler::kBands; ++b) shape[size_t(b)] = float(mean[size_t(b)] / total);
+  return shape;
+}
+
+int band_of(float lambda_nm) {
+  const int b = int((double(lambda_nm) - kBandLowerNm) * (BvhLightSampler::kBands / (kBandUpperNm - kBandLowerNm)));
+  return std::clamp(b, 0, BvhLightSampler::kBands - 1);
+}
+
+}  // namespace
+
+BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importance importance, int search_budget)
+    : search_budget_(search_budget) {
+  const bool spectral = importance == Importance::spectral;
+  std::vector<std::array<float, kBands>> light_bands;  // spectral: per light, band_shape
+  if (spectral)
+    for (const Light* light : lights) light_bands.push_back(light->is_infinite() ? std::array<float, kBands>{} : band_shape(*light));
   first_part_.resize(lights.size());
   is_infinite_.resize(lights.size());
   size_t total_parts = 0;
@@ -169,7 +211,7 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
           !is_finite(b->upper_m))
         continue;
       any_bounds = true;
-      items.push_back({*b, b->centre_m(), uint32_t(leaves_.size())});
+      items.push_back({*b, b->centre_m(), uint32_t(leaves_.size()), uint32_t(i)});
       leaves_.push_back({int(i), k});
     }
     // A finite light with power must say where it emits, or the tree could never pick it.
@@ -177,10 +219,16 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights) {
     (void)any_bounds;
   }
   leaf_count_ = int(leaves_.size());
+  if (spectral) {
+    light_bands_ = std::move(light_bands);
+    node_bands_.resize(items.empty() ? 0 : 2 * items.size() - 1);
+  }
   if (!items.empty()) {
     nodes_.reserve(2 * items.size());
     build(items, 0, items.size(), 0, 0);
   }
+  light_bands_.clear();
+  light_bands_.shrink_to_fit();
 }
 
 uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail) {
@@ -194,6 +242,9 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
     nodes_[index].representative = index;
     trails_[first_part_[size_t(leaf.light)] + uint32_t(leaf.part)] = trail | (uint64_t(1) << depth);
     max_depth_ = std::max(max_depth_, depth);
+    if (!node_bands_.empty())
+      for (int b = 0; b < kBands; ++b)
+        node_bands_[index][size_t(b)] = items[begin].bounds.intensity_w_sr * light_bands_[items[begin].spectrum][size_t(b)];
     return index;
   }
 
@@ -290,6 +341,9 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
   const uint32_t second = build(items, middle, end, depth + 1, trail | (uint64_t(1) << depth));
   nodes_[index].bounds = bounds;
   nodes_[index].index = second;
+  if (!node_bands_.empty())
+    for (int b = 0; b < kBands; ++b)
+      node_bands_[index][size_t(b)] = node_bands_[first][size_t(b)] + node_bands_[second][size_t(b)];
   const uint32_t first_representative = nodes_[first].representative;
   const uint32_t second_representative = nodes_[second].representative;
   nodes_[index].representative =
@@ -300,26 +354,26 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
 }
 
 BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
-                                              const LightSamplingPoint& at) const {
+                                              const Query& at) const {
   const uint32_t first = index + 1, second = nodes_[index].index;
   Split out;
   float a = 0.0f, b = 0.0f;
   if (witness == kCertified) {
     // Every leaf below scores: the plain importances, and both children stay certified.
-    a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
-    b = light_importance(nodes_[second].bounds, at.position_m, at.normal);
+    a = importance(first, at);
+    b = importance(second, at);
     out.first_witness = a > 0.0f ? kCertified : kNoLeaf;
     out.second_witness = b > 0.0f ? kCertified : kNoLeaf;
-  } else if (witness != kNoLeaf && witness < second) {
+  } else if (witness < kUnknown && witness < second) {
     // Leaves below the first child have node indices in [first, second) (depth-first order).
-    a = light_importance(nodes_[first].bounds, at.position_m, at.normal);
+    a = importance(first, at);
     out.first_witness = a > 0.0f ? witness : kNoLeaf;
     b = pruned_importance(second, at, &out.second_witness);
-  } else if (witness != kNoLeaf) {
+  } else if (witness < kUnknown) {
     a = pruned_importance(first, at, &out.first_witness);
-    b = light_importance(nodes_[second].bounds, at.position_m, at.normal);
+    b = importance(second, at);
     out.second_witness = b > 0.0f ? witness : kNoLeaf;
-  } else {
+  } else {  // kNoLeaf (the root) or kUnknown: both children are checked
     a = pruned_importance(first, at, &out.first_witness);
     b = pruned_importance(second, at, &out.second_witness);
   }
@@ -332,43 +386,101 @@ BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
   return out;
 }
 
-float BvhLightSampler::pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const {
+namespace {
+
+// Sums four floats in ascending order: the same result for any order of the inputs (rotated lanes).
+float order_independent_sum(std::array<float, 4> v) {
+  const auto order = [](float& a, float& b) {
+    if (b < a) std::swap(a, b);
+  };
+  order(v[0], v[1]);
+  order(v[2], v[3]);
+  order(v[0], v[2]);
+  order(v[1], v[3]);
+  order(v[1], v[2]);
+  return ((v[0] + v[1]) + v[2]) + v[3];
+}
+
+}  // namespace
+
+BvhLightSampler::Query BvhLightSampler::query(const LightSamplingPoint& at) const {
+  Query q;
+  static_cast<LightSamplingPoint&>(q) = at;
+  if (node_bands_.empty() || !at.wavelengths) return q;
+  static_assert(kLaneCount == 4);
+  const SampledWavelengths& lambda = *at.wavelengths;
+  const Float4 pdf = lambda.pdf();
+  std::array<float, 4> w{};
+  for (int k = 0; k < 4; ++k) {
+    q.band[size_t(k)] = band_of(lambda.lambda_nm(k));
+    // Lanes without a density (terminated) add nothing to the film.
+    w[size_t(k)] = pdf[k] > 0.0f && std::isfinite(pdf[k]) ? 1.0f : 0.0f;
+  }
+  const float total = order_independent_sum(w);
+  if (!(total > 0.0f) || !std::isfinite(total)) return q;
+  for (int k = 0; k < 4; ++k) q.weight[size_t(k)] = w[size_t(k)] / total;
+  q.spectral = true;
+  return q;
+}
+
+float BvhLightSampler::importance(uint32_t index, const Query& at) const {
+  const LightBounds& bounds = nodes_[index].bounds;
+  const float broadband = light_importance(bounds, at.position_m, at.normal);
+  if (!at.spectral || !(broadband > 0.0f)) return broadband;
+  const std::array<float, kBands>& bands = node_bands_[index];
+  std::array<float, 4> terms;
+  for (size_t k = 0; k < 4; ++k) terms[k] = at.weight[k] * bands[size_t(at.band[k])];
+  const float spectral = order_independent_sum(terms) + kSpectralFloor * bounds.intensity_w_sr;
+  return broadband * (spectral / bounds.intensity_w_sr);
+}
+
+float BvhLightSampler::pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const {
   const Node& node = nodes_[index];
-  const float importance = light_importance(node.bounds, at.position_m, at.normal);
+  const float importance = this->importance(index, at);
   *witness = kNoLeaf;
   if (!(importance > 0.0f)) return 0.0f;
   if (node.is_leaf)
     *witness = index;
   else if (every_leaf_scores(node.bounds, at.position_m, at.normal))
     *witness = kCertified;
-  else
-    *witness = find_scoring_leaf(index, at);
+  else {
+    int budget = search_budget_ > 0 ? search_budget_ : -1;
+    *witness = find_scoring_leaf(index, at, &budget);
+  }
   return *witness == kNoLeaf ? 0.0f : importance;
 }
 
-uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const {
+uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget) const {
+  // One node visit = one importance evaluation; a budget of 0 left means give up (a negative one never does).
+  const auto visit = [budget] {
+    if (*budget == 0) return false;
+    if (*budget > 0) --*budget;
+    return true;
+  };
   const Node& node = nodes_[index];
+  if (!visit()) return kUnknown;
   if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
     return node.representative;
   // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
   // too, up to rounding).
   for (const uint32_t child : {index + 1, node.index}) {
     const Node& c = nodes_[child];
+    if (!visit()) return kUnknown;
     if (!(light_importance(c.bounds, at.position_m, at.normal) > 0.0f)) continue;
     if (c.is_leaf) return child;
     if (every_leaf_scores(c.bounds, at.position_m, at.normal)) return c.representative;
-    if (const uint32_t leaf = find_scoring_leaf(child, at); leaf != kNoLeaf) return leaf;
+    if (const uint32_t leaf = find_scoring_leaf(child, at, budget); leaf != kNoLeaf) return leaf;
   }
   return kNoLeaf;
 }
 
-BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) const {
+BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
   bool tree_can_contribute = false;
   Split root_split;
   if (!nodes_.empty()) {
     const Node& root = nodes_[0];
     if (root.is_leaf) {
-      tree_can_contribute = light_importance(root.bounds, at.position_m, at.normal) > 0.0f;
+      tree_can_contribute = importance(0, at) > 0.0f;
     } else {
       root_split = split(0, kNoLeaf, at);
       tree_can_contribute = root_split.first > 0.0f || root_split.second > 0.0f;
@@ -380,7 +492,8 @@ BvhLightSampler::Shares BvhLightSampler::shares(const LightSamplingPoint& at) co
   return {1.0f / float(m + 1), 1.0f / float(m + 1), root_split};
 }
 
-std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at, float u_float) const {
+std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& point, float u_float) const {
+  const Query at = query(point);
   const Shares shares_here = shares(at);
   const int m = int(infinite_lights_.size());
   double u = double(u_float);
@@ -415,7 +528,8 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& at,
   return LightChoice{leaf.light, leaf.part, probability};
 }
 
-float BvhLightSampler::pmf(const LightSamplingPoint& at, int light, int part) const {
+float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part) const {
+  const Query at = query(point);
   if (light < 0 || size_t(light) >= first_part_.size() || part < 0) return 0.0f;
   if (is_infinite_[size_t(light)]) {
     if (part != 0 || std::find(infinite_lights_.begin(), infinite_lights_.end(), light) == infinite_lights_.end())
@@ -447,7 +561,8 @@ float BvhLightSampler::pmf(const LightSamplingPoint& at, int light, int part) co
 size_t BvhLightSampler::memory_bytes() const {
   return sizeof(*this) + nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
          first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
-         infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8;
+         infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8 +
+         node_bands_.capacity() * sizeof(node_bands_[0]);
 }
 
 }  // namespace rimu

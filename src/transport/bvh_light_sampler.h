@@ -21,15 +21,46 @@
 // same path, so it still multiplies identical factors. Cost: one extra importance evaluation per level where
 // nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
 //
+// Capped search (an option, off by default). A search may be limited to `search_budget` node visits (importance
+// evaluations; 0, the default: unlimited). If it runs out, the child counts as if it could contribute, with no witness: the descent checks both
+// of its children again. Where such a child has no scoring leaf below, a descent into it finds none and sample()
+// returns std::nullopt: the probabilities then sum to less than 1 at that point, by that child's share, but every
+// leaf that scores > 0 still has probability > 0 (a child holding one is never dropped), so the choice stays
+// unbiased, and pmf() retraces the same checks with the same budget, so it still equals sample()'s probability
+// exactly. The cap bounds a choice's cost at about search_budget importance evaluations per level. Measured with
+// kSearchBudget = 8 (docs/benchmarks.md, "Light sampling"): on 10⁶ randomly oriented triangles sample() 19-25 %
+// faster (two runs) but 3 % of the choices find no light; on the test's 1,050 random triangles the sum falls to 0.87 on average. Too
+// small a gain for that loss to be the default; a depth below which nothing is pruned was also tried (12: 10 % of
+// the choices lost, still 9.8 µs per choice), so the cost there is not mainly the searches.
+//
 // Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
 // finite light can contribute (the tree's top split has importance 0 on both sides), each gets 1/m instead.
+//
+// Spectral importance (Importance::spectral, "light_sampler": "bvh-spectral"). Each node also holds its intensity
+// bound's spectral shape in kBands equal bands over 360-830 nm: band b is the cluster's intensity_w_sr times the
+// mean of its members' emission spectra over the band relative to their mean over 360-830 nm (so the bands average
+// to intensity_w_sr; a cluster holds the sum of its members'). Given the path's wavelengths, a node's importance is
+// its geometric factor (light_importance ÷ intensity_w_sr) times
+//   ¼ Σ_k band(λ_k) + kSpectralFloor · intensity_w_sr,
+// the mean over the four lanes of the power there (lanes without a density, if any, left out). Two variants were
+// measured and dropped (docs/sampling.md): weighing each lane by p_vis(λ_k)/p(λ_k), what it adds to the film under
+// "wavelength_density": "lights" (worse: 2.8× higher relMSE than bvh on the red + blue lamps there, 1.6× without),
+// and 47 bands of 10 nm (4 % lower relMSE on the red + blue lamps under the visible density, at 3× the memory).
+// The sum is symmetric in the lanes, so the probabilities are the same whichever
+// lane is the hero: the per-lane light densities of the spectral MIS are all equal, and the
+// integrators' MIS needs no change (each lane's technique density includes the same choice probability). The floor
+// keeps every leaf that can contribute at some wavelength at probability > 0 whatever the bands say (a band mean
+// can be 0 where a tabulated spectrum has one non-zero knot), so the choice stays unbiased; pruning (which leaves
+// score > 0) is geometric and unchanged, so the probabilities still sum to 1. Without wavelengths (nullptr in
+// LightSamplingPoint) the importance is bvh's. Memory: kBands floats more per node.
 //
 // Build: binned (12 bins per axis) top-down splits minimising Conty & Kulla's surface-area-orientation cost
 // Σ_children intensity · M_Ω · area, the area regularised so that collinear point lights still split. Cost
 // O(n log n); memory in memory_bytes().
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -40,8 +71,19 @@ namespace rimu {
 
 class BvhLightSampler final : public LightSampler {
  public:
-  /// Over `lights` (indices as given; they must outlive the sampler).
-  explicit BvhLightSampler(std::span<const Light* const> lights);
+  /// What a node's importance weighs light by: radiant intensity over 360-830 nm (bvh), or at the path's
+  /// wavelengths (bvh-spectral; see above).
+  enum class Importance { broadband, spectral };
+  static constexpr int kBands = 16;  ///< 29.4 nm each: 64 bytes per node
+  static constexpr float kSpectralFloor = 1e-3f;
+
+  /// The search cap measured in docs/benchmarks.md (see "Capped search"); not the default.
+  static constexpr int kSearchBudget = 8;
+
+  /// Over `lights` (indices as given; they must outlive the sampler). `search_budget`: 0 (the default) for
+  /// unlimited searches, so the probabilities sum to exactly 1 wherever some light can contribute; else the cap.
+  explicit BvhLightSampler(std::span<const Light* const> lights, Importance importance = Importance::broadband,
+                           int search_budget = 0);
 
   std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const override;
   float pmf(const LightSamplingPoint& at, int light, int part) const override;
@@ -65,36 +107,53 @@ class BvhLightSampler final : public LightSampler {
   };
   static constexpr uint32_t kNoLeaf = 0xffffffffu;
   static constexpr uint32_t kCertified = 0xfffffffeu;  // a witness meaning: every leaf below scores > 0
+  static constexpr uint32_t kUnknown = 0xfffffffdu;  // a witness meaning: the search ran out (see "Capped search")
   struct Split {
     float first = 0.0f, second = 0.0f;  // the probabilities of the two children; both 0 if neither can contribute
     // Per child: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the child cannot contribute).
     uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;
   };
   struct BuildItem;
+  /// A point with what the spectral importance needs of its wavelengths, worked out once per sample()/pmf():
+  /// each lane's band and weight (1/n for the n lanes with a density); spectral = false: the broadband importance.
+  struct Query : LightSamplingPoint {
+    bool spectral = false;
+    std::array<int, 4> band{};
+    std::array<float, 4> weight{};
+  };
+  Query query(const LightSamplingPoint& at) const;
 
   /// The split at interior node `index`, given `witness`: a leaf node below it known to score > 0 (the child
   /// holding it needs no search), kCertified (no child needs one), or kNoLeaf.
-  Split split(uint32_t index, uint32_t witness, const LightSamplingPoint& at) const;
+  Split split(uint32_t index, uint32_t witness, const Query& at) const;
   /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf,
   /// kCertified if the node's bounds show that every leaf below scores, or kNoLeaf.
-  float pruned_importance(uint32_t index, const LightSamplingPoint& at, uint32_t* witness) const;
+  float pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const;
   /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
-  /// representative if every leaf is certified to score or it scores, else depth first.
-  uint32_t find_scoring_leaf(uint32_t index, const LightSamplingPoint& at) const;
+  /// representative if every leaf is certified to score or it scores, else depth first; kUnknown once `*budget`
+  /// node visits are spent (a negative budget never runs out).
+  uint32_t find_scoring_leaf(uint32_t index, const Query& at, int* budget) const;
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
     Split root;  // the root's split, reused by the descent (unset for a one-leaf tree)
   };
-  Shares shares(const LightSamplingPoint& at) const;
+  Shares shares(const Query& at) const;
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
+  /// The importance of node `index` at `at` (light_importance, or its spectral form when the sampler is spectral
+  /// and `at` carries wavelengths). Zero exactly where light_importance is zero (up to underflow).
+  float importance(uint32_t index, const Query& at) const;
 
   std::vector<Node> nodes_;
+  // Spectral only: per node, the band intensities (W/sr, averaging to the node's intensity_w_sr).
+  std::vector<std::array<float, kBands>> node_bands_;
+  std::vector<std::array<float, kBands>> light_bands_;  // during the build only: per light, its band shape
   std::vector<Leaf> leaves_;
   std::vector<uint32_t> first_part_;  // per light: the index of its part 0 in trails_
   std::vector<uint64_t> trails_;      // per (light, part): 1 << depth | the path's bits (1 = second child); 0: none
   std::vector<int> infinite_lights_;
   std::vector<bool> is_infinite_;
+  int search_budget_ = 0;
   int leaf_count_ = 0;
   int max_depth_ = 0;
 };

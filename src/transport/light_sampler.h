@@ -1,6 +1,7 @@
 // Chooses which light (and which part of it: a triangle of an emissive mesh) next-event estimation samples from a
-// shading point. Three strategies share this interface (light_sampler.cpp builds them by kind):
+// shading point. Four strategies share this interface (light_sampler.cpp builds them by kind):
 //   bvh (the default; bvh_light_sampler.h): by an estimate of each light's contribution at the point;
+//   bvh-spectral (the same tree): by that estimate at the path's four wavelengths (docs/sampling.md);
 //   power (power_light_sampler.h): by radiant power, ignoring the point;
 //   uniform: every light with power equally (for tests).
 // Any choice that gives positive probability to every light that can contribute at the point is unbiased; the
@@ -18,6 +19,7 @@
 namespace rimu {
 
 class Light;
+class SampledWavelengths;
 
 /// Where a light is being chosen for.
 struct LightSamplingPoint {
@@ -25,6 +27,10 @@ struct LightSamplingPoint {
   /// The geometric normal of an opaque surface, on the side light may arrive from (the integrators drop light from
   /// below it); zero for a point in a medium or on a surface that transmits, where light from every direction counts.
   Vec3 normal;
+  /// The path's wavelengths, for samplers that choose by power at them (bvh-spectral); nullptr: by power over
+  /// 360-830 nm. sample() and pmf() must be given the same wavelengths for the same path (the integrators pass
+  /// the path's own, which do not change along it). The sampler reads them only during the call.
+  const SampledWavelengths* wavelengths = nullptr;
 };
 
 struct LightChoice {
@@ -52,9 +58,9 @@ class LightSampler {
   int part_of_hit(uint32_t primitive) const { return chooses_parts() ? int(primitive) : -1; }
 };
 
-enum class LightSamplerKind { bvh, power, uniform };
+enum class LightSamplerKind { bvh, bvh_spectral, power, uniform };
 
-/// "bvh", "power", "uniform"; std::nullopt for anything else.
+/// "bvh", "bvh-spectral", "power", "uniform"; std::nullopt for anything else.
 std::optional<LightSamplerKind> parse_light_sampler_kind(std::string_view name);
 const char* light_sampler_kind_name(LightSamplerKind kind);
 

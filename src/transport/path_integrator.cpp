@@ -113,7 +113,10 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
 
     const LightReference reference{hit->position, shading.geometric_normal};
     // Light from below an opaque surface is dropped (wrong_side below), so the sampler may ignore lights there.
-    const LightSamplingPoint sampling_point{hit->position, flags.has_transmission ? Vec3{} : shading.geometric_normal};
+    // The path's wavelengths go with it (bvh-spectral chooses by power at them; the same for every hero rotation,
+    // so the per-lane light-choice densities are equal and the MIS sums below hold as written).
+    const LightSamplingPoint sampling_point{hit->position, flags.has_transmission ? Vec3{} : shading.geometric_normal,
+                                            &lambda};
     const float sum_ratio = sum(pdf_ratio);
 
     // Next-event estimation: one light (and part), chosen by the scene's light sampler.

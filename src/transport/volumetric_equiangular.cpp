@@ -63,7 +63,8 @@ SampledSpectrum VolumetricPathIntegrator::equiangular_direct(EquiangularSegment 
   if (!tr) return Float4(0.0f);
 
   const float s_equi = pick->probability * es->pdf_per_m * sum(ratios);
-  const float s_dist = light_sampler.pmf({point, Vec3{}}, pick->light, pick->part) *
+  // The choice next-event estimation makes at a medium point: with the path's wavelengths, as there.
+  const float s_dist = light_sampler.pmf({point, Vec3{}, &lambda}, pick->light, pick->part) *
                        distance_technique_density(c, settings_.distance, s, ratios);
   const float denominator = s_equi + s_dist;
   if (!(denominator > 0.0f)) return Float4(0.0f);

@@ -231,7 +231,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     }
     ++vertex_count;
     // Light from below an opaque surface is dropped (wrong_side below), so the sampler may ignore lights there.
-    const LightSamplingPoint sampling_point{reference.position, scatterer.opaque() ? reference.normal : Vec3{}};
+    // With the path's wavelengths (bvh-spectral; path_integrator.cpp says why the MIS needs no change).
+    const LightSamplingPoint sampling_point{reference.position, scatterer.opaque() ? reference.normal : Vec3{},
+                                            &lambda};
 
     // Rescale β and R together so that Σ R = 4 (the lane estimates 4β/ΣR do not change).
     const float rescale = kLanes / sum(pdf_ratio);

@@ -22,8 +22,9 @@ struct Comparison {
 };
 
 Comparison bvh_against_power(nlohmann::json document, int spp,
-                             const std::filesystem::path& directory = test::library().root()) {
-  document["integrator"]["light_sampler"] = "bvh";
+                             const std::filesystem::path& directory = test::library().root(),
+                             const char* tree = "bvh") {
+  document["integrator"]["light_sampler"] = tree;
   const auto bvh = load_scene(document, "bvh.json", directory, test::library());
   document["integrator"]["light_sampler"] = "power";
   const auto power = load_scene(document, "power.json", directory, test::library());
@@ -94,7 +95,66 @@ nlohmann::json thousand_triangles() {
   return d;
 }
 
+// A red and a blue point light (narrow Gaussian-like tables around 630 and 460 nm) and a low-pressure sodium line
+// at 589 nm over a white floor, with a white D65 panel: the coloured-light case wavelength-aware choice is for.
+nlohmann::json coloured_lights() {
+  nlohmann::json d = nlohmann::json::parse(R"({
+    "camera": {"from": [0, 3, 4], "to": [0, 0, 0], "vertical_fov_deg": 55},
+    "film": {"resolution": [24, 24], "filter": {"type": "box"}},
+    "integrator": {"max_depth": 3},
+    "materials": {"white": {"type": "diffuse", "reflectance": 0.8}},
+    "lights": [
+      {"type": "point", "name": "red", "position": [-1, 1, 0], "radiant_power_w": 20,
+       "spectrum": {"wavelengths_nm": [600, 615, 630, 645, 660], "values": [0, 0.5, 1, 0.5, 0]}},
+      {"type": "point", "name": "blue", "position": [1, 1, 0], "radiant_power_w": 20,
+       "spectrum": {"wavelengths_nm": [430, 445, 460, 475, 490], "values": [0, 0.5, 1, 0.5, 0]}},
+      {"type": "spot", "name": "sodium", "position": [0, 1.5, -1], "direction": [0, -1, 0.3], "cone_angle_deg": 60,
+       "falloff_start_deg": 45, "radiant_power_w": 5, "power_convention": "cone", "spectrum": {"wavelengths_nm": [587, 589.3, 591.6], "values": [0, 1, 0]}}
+    ],
+    "shapes": [
+      {"type": "quad", "material": "white", "vertices": [[-4, 0, 4], [4, 0, 4], [4, 0, -4], [-4, 0, -4]]},
+      {"type": "quad", "material": "white", "vertices": [[-0.3, 2, -0.3], [0.3, 2, -0.3], [0.3, 2, 0.3], [-0.3, 2, 0.3]],
+       "emission": {"illuminant": "D65", "scale": 0.05}}
+    ]
+  })");
+  return d;
+}
+
 }  // namespace
+
+TEST_CASE("light samplers agree: bvh-spectral against power under red, blue and sodium lights, in X, Y and Z") {
+  // Each film channel separately: a choice that favoured one light at the wrong wavelengths would bias the colour.
+  nlohmann::json document = coloured_lights();
+  document["integrator"]["light_sampler"] = "bvh-spectral";
+  const auto spectral = load_scene(document, "spectral.json", test::library().root(), test::library());
+  document["integrator"]["light_sampler"] = "power";
+  const auto power = load_scene(document, "power.json", test::library().root(), test::library());
+  const auto a = test::render_xyz(*spectral, 32, 303);
+  const auto b = test::render_xyz(*power, 32, 404);
+  for (int channel = 0; channel < 3; ++channel) {
+    const auto values = [channel](const Film& film) {
+      std::vector<double> v;
+      const PixelBounds& bounds = film.pixel_bounds();
+      for (int py = bounds.y0; py < bounds.y1; ++py)
+        for (int px = bounds.x0; px < bounds.x1; ++px) v.push_back(film.pixel_value(px, py)[size_t(channel)]);
+      return v;
+    };
+    const std::vector<double> vb = values(*b.film);
+    INFO("channel " << "XYZ"[channel]);
+    check_same_mean({test::paired_difference(values(*a.film), vb), test::mean_of(vb)}, "coloured lights, bvh-spectral");
+  }
+}
+
+TEST_CASE("light samplers agree: bvh-spectral against power on the Cornell box and 1,000 triangles") {
+  const std::filesystem::path path = test::library().root() / "scenes" / "cornell_box" / "scene.json";
+  nlohmann::json document = parse_json_file(path);
+  document["film"]["resolution"] = {24, 24};
+  document["film"]["filter"] = {{"type", "box"}};
+  document["integrator"]["max_depth"] = 5;
+  check_same_mean(bvh_against_power(document, 32, path.parent_path(), "bvh-spectral"), "Cornell box, bvh-spectral");
+  check_same_mean(bvh_against_power(thousand_triangles(), 16, test::library().root(), "bvh-spectral"),
+                  "1,000 triangles, bvh-spectral");
+}
 
 TEST_CASE("light samplers agree: the Cornell box") {
   const std::filesystem::path path = test::library().root() / "scenes" / "cornell_box" / "scene.json";

@@ -43,9 +43,10 @@ int main(int argc, char** argv) {
                  "(overrides the scene)")
       ->check(CLI::IsMember({"visible", "lights"}));
   app.add_option("--light-sampler", light_sampler,
-                 "bvh (chooses lights by their estimated contribution at each point, the default), power (by "
-                 "radiant power only) or uniform (see docs/transport.md) (overrides the scene)")
-      ->check(CLI::IsMember({"bvh", "power", "uniform"}));
+                 "bvh (chooses lights by their estimated contribution at each point, the default), bvh-spectral "
+                 "(the same, at the path's four wavelengths; see docs/sampling.md), power (by radiant power only) "
+                 "or uniform (see docs/transport.md) (overrides the scene)")
+      ->check(CLI::IsMember({"bvh", "bvh-spectral", "power", "uniform"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Writes the light-sampling benchmark scenes (docs/benchmarks.md, "Light sampling"): a spot + D65 environment over
-a 3 m and a 100 m floor, a room lit by 32 x 32 ceiling panels and a sky window, and a street of 200 lamps.
+a 3 m and a 100 m floor, a room lit by 32 x 32 ceiling panels and a sky window, and a street of 200 lamps; for
+wavelength-aware light choice, three scenes of coloured lights: a red and a blue lamp, a wall of RGB LED panels, and
+a square under low-/high-pressure sodium and mercury lamps.
 
 Run from anywhere:  python3 data/scenes/light_sampling/generate_scenes.py
 The outputs are committed; this script is how they were made (standard library only). rimu renders each file as it
@@ -114,6 +116,93 @@ def street():
     }
 
 
+def narrow_line(peak_nm, fwhm_nm):
+    """An LED-like emission band: a Gaussian of the given full width at half maximum, tabulated every 2 nm over
+    +-2 FWHM (relative units)."""
+    import math
+    sigma = fwhm_nm / (2.0 * math.sqrt(2.0 * math.log(2.0)))
+    lo = int(round(peak_nm - 2 * fwhm_nm))
+    wavelengths = list(range(lo - lo % 2, int(peak_nm + 2 * fwhm_nm) + 2, 2))
+    values = [round(math.exp(-0.5 * ((w - peak_nm) / sigma) ** 2), 6) for w in wavelengths]
+    values[0] = values[-1] = 0.0
+    return {"wavelengths_nm": wavelengths, "values": values}
+
+
+# Typical LED primaries: royal blue 460 nm (FWHM 20 nm), green 530 nm (30 nm), red 630 nm (18 nm).
+RED, GREEN, BLUE = narrow_line(630, 18), narrow_line(530, 30), narrow_line(460, 20)
+
+
+def coloured_floor_scene(description, lights, extra_shapes=(), camera=None):
+    shapes = [
+        {"type": "quad", "material": "white", "vertices": [[-6, 0, 6], [6, 0, 6], [6, 0, -6], [-6, 0, -6]]},
+        {"type": "sphere", "material": "grey", "center": [-0.6, 0.4, 0.3], "radius": 0.4},
+        {"type": "sphere", "material": "white", "center": [0.7, 0.3, -0.2], "radius": 0.3},
+        {"type": "quad", "material": "white", "vertices": [[-6, 0, -3], [6, 0, -3], [6, 3, -3], [-6, 3, -3]]},
+    ] + list(extra_shapes)
+    return {
+        "description": description,
+        "camera": camera or {"from": [0, 2.2, 4.5], "to": [0, 0.5, -0.5], "vertical_fov_deg": 55},
+        "film": FILM,
+        "integrator": {"spp": 64, "max_depth": 4, "seed": 1},
+        "materials": {"white": {"type": "diffuse", "reflectance": 0.8}, "grey": {"type": "diffuse", "reflectance": 0.4},
+                      "black": {"type": "diffuse", "reflectance": 0}},
+        "lights": lights,
+        "shapes": shapes,
+    }
+
+
+def red_blue():
+    """A red and a blue LED lamp (630 and 460 nm) either side of two spheres on a white floor by a white wall."""
+    return coloured_floor_scene(
+        "Light sampling, coloured lights: a red (630 nm) and a blue (460 nm) LED lamp of 5 W each either side of two "
+        "spheres on a white floor; choosing the lamp that emits at the path's wavelengths cuts colour noise.",
+        [{"type": "point", "name": "red", "position": [-1.5, 1.5, 0.5], "radiant_power_w": 5, "spectrum": RED},
+         {"type": "point", "name": "blue", "position": [1.5, 1.5, 0.5], "radiant_power_w": 5, "spectrum": BLUE}])
+
+
+def rgb_led_panels():
+    """A wall of 12 x 6 small emissive panels, each a red, green or blue LED primary, facing the scene."""
+    panels = []
+    for i in range(12):
+        for j in range(6):
+            x, y, s = -2.75 + 0.5 * i, 0.5 + 0.4 * j, 0.08
+            spectrum = (RED, GREEN, BLUE)[(i + 2 * j) % 3]
+            # Counter-clockwise seen from +z: faces the scene.
+            panels.append({"type": "quad", "material": "black",
+                           "vertices": [[x - s, y - s, -2.99], [x + s, y - s, -2.99], [x + s, y + s, -2.99],
+                                        [x - s, y + s, -2.99]],
+                           "emission": dict(spectrum, scale=3.0)})
+    return coloured_floor_scene(
+        "Light sampling, coloured lights: a wall of 12 x 6 RGB LED panels (each one primary: 630, 530 or 460 nm) "
+        "lighting two spheres on a white floor.", [], panels)
+
+
+def sodium_mercury():
+    """A 30 m square under nine lamps 6 m up: low-pressure sodium (the D doublet), high-pressure sodium (CIE HP1)
+    and mercury (its four visible line groups), with a dim night sky."""
+    lights = [{"type": "environment", "name": "night sky", "radiance": {"daylight": 12000, "scale": 0.00002}}]
+    kinds = [{"csv": "low_pressure_sodium.csv"}, {"illuminant": "HP1"}, {"csv": "mercury_lines.csv"}]
+    for i in range(3):
+        for j in range(3):
+            lights.append({"type": "point", "name": "lamp %d%d" % (i, j), "position": [-10 + 10 * i, 6, -10 + 10 * j],
+                           "luminous_power_lm": 6000, "spectrum": kinds[(i + j) % 3]})
+    return {
+        "description": "Light sampling, coloured lights: a 30 m square under nine lamps 6 m up, low-pressure sodium, "
+                       "high-pressure sodium (CIE HP1) and mercury, and a dim night sky.",
+        "camera": {"from": [-14, 1.7, -14], "to": [5, 0.5, 5], "vertical_fov_deg": 60},
+        "film": FILM,
+        "integrator": {"spp": 64, "max_depth": 4, "seed": 1},
+        "materials": {"paving": {"type": "diffuse", "reflectance": 0.35},
+                      "wall": {"type": "diffuse", "reflectance": 0.6}},
+        "lights": lights,
+        "shapes": [
+            {"type": "quad", "material": "paving", "vertices": [[-15, 0, 15], [15, 0, 15], [15, 0, -15], [-15, 0, -15]]},
+            {"type": "sphere", "material": "wall", "center": [0, 1, 0], "radius": 1},
+            {"type": "quad", "material": "wall", "vertices": [[15, 0, -15], [15, 0, 15], [15, 4, 15], [15, 4, -15]]},
+        ],
+    }
+
+
 def write(name, scene):
     # One setting, shape or light per line: readable, and a diff shows which one changed.
     lines = []
@@ -132,3 +221,6 @@ if __name__ == "__main__":
     write("spot_100m_floor.json", spot_scene(100.0))
     write("ceiling_grid_room.json", ceiling_grid_room())
     write("street.json", street())
+    write("red_blue_lamps.json", red_blue())
+    write("rgb_led_panels.json", rgb_led_panels())
+    write("sodium_mercury_square.json", sodium_mercury())

@@ -101,7 +101,7 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
                "direct_lighting", "distance_sampling", "light_sampler"});
   if (const auto d = c.find("light_sampler"))
-    s.light_sampler = *parse_light_sampler_kind(d->choice({"bvh", "power", "uniform"}));
+    s.light_sampler = *parse_light_sampler_kind(d->choice({"bvh", "bvh-spectral", "power", "uniform"}));
   if (const auto d = c.find("wavelength_density"))
     s.wavelength_density = d->choice({"visible", "lights"}) == "lights" ? WavelengthDensityKind::lights
                                                                         : WavelengthDensityKind::visible;
