@@ -1,5 +1,6 @@
 // Light sampling benchmark: equal-time relative MSE of the BVH light sampler against the power sampler on five
-// scenes (data/scenes/light_sampling/*.json and the Cornell box; `rimu` renders the same files), and the tree's
+// scenes (data/scenes/light_sampling/*.json and the Cornell box; `rimu` renders the same files), the room again with
+// its window as the sky's portal (both samplers with it; then bvh with it against power without), and the tree's
 // build time and memory for 10⁶ emissive triangles. Not a test: timings go to docs/benchmarks.md with the machine,
 // its load and the command.
 //
@@ -12,7 +13,7 @@
 //   (relMSE_power · t_power) / (relMSE_bvh · t_bvh)   (> 1: the BVH sampler wins by that factor).
 //
 // Usage: rimu-light-sampler-bench [--spp 16] [--reference-spp 512] [--runs 3] [--resolution 64x48] [--docs]
-//        [--scenes 01234] [--build-only] [--power-spp N]
+//        [--scenes 0123456] [--build-only] [--power-spp N]
 // --power-spp gives the power sampler its own spp (default --spp), so that a light it starves is picked at all;
 // the equal-time ratio then compares relMSE · spp · (time per sample).
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -45,7 +47,7 @@ struct Settings {
   int power_spp = 0;  // the power sampler's spp, if not --spp: enough that it picks a starved light at all
   bool docs = false;
   bool build_only = false;  // only the 10⁶-triangle build figures
-  std::string scenes = "01234";  // which scenes, by index
+  std::string scenes = "0123456";  // which scenes, by index
 };
 
 struct BenchScene {
@@ -56,6 +58,8 @@ struct BenchScene {
   // (none: the whole image).
   std::function<bool(Vec3)> in_region;
   std::string region_name = "whole image";
+  // If set, the power sampler renders this document instead (a baseline without some other improvement).
+  std::optional<json> power_document;
 };
 
 struct RenderResult {
@@ -65,7 +69,7 @@ struct RenderResult {
 
 std::unique_ptr<Scene> load(const BenchScene& s, const char* sampler, const Settings& settings,
                             SpectralLibrary& library) {
-  json d = s.document;
+  json d = std::string(sampler) == "power" && s.power_document ? *s.power_document : s.document;
   d["integrator"]["light_sampler"] = sampler;
   d["film"]["resolution"] = {settings.width, settings.height};
   d["film"]["filter"] = {{"type", "box"}};
@@ -220,7 +224,7 @@ int main(int argc, char** argv) {
     else if (a == "--scenes") settings.scenes = next();
     else {
       std::cerr << "usage: rimu-light-sampler-bench [--spp N] [--power-spp N] [--reference-spp N] [--runs N] "
-                   "[--resolution WxH] [--scenes 01234] [--build-only] [--docs]\n";
+                   "[--resolution WxH] [--scenes 0123456] [--build-only] [--docs]\n";
       return 1;
     }
   }
@@ -249,12 +253,26 @@ int main(int argc, char** argv) {
                                     light_sampling / "ceiling_grid_room.json"));
   bench_scenes.push_back(scene_file("street, 200 sodium/LED lamps over 500 m + night sky", light_sampling / "street.json"));
   bench_scenes.push_back(scene_file("Cornell box", scenes / "cornell_box" / "scene.json"));
+  bench_scenes.push_back(scene_file("room, the window as the sky's portal (both samplers)",
+                                    light_sampling / "ceiling_grid_room_portal.json"));
+  BenchScene portal_against_none = scene_file("room: bvh with the window portal, power without",
+                                              light_sampling / "ceiling_grid_room_portal.json");
+  portal_against_none.power_document = parse_json_file(light_sampling / "ceiling_grid_room.json");
+  bench_scenes.push_back(portal_against_none);
+  // Where the room's error comes from, not run by default (--scenes 78): the same room lit by its panels alone (the
+  // sky removed), and by the sky alone (the panels' emission removed; they stay as black quads).
+  BenchScene panels_only = scene_file("room, panels only (no sky)", light_sampling / "ceiling_grid_room.json");
+  panels_only.document["lights"] = json::array();
+  bench_scenes.push_back(panels_only);
+  BenchScene sky_only = scene_file("room, sky only (panels not emitting)", light_sampling / "ceiling_grid_room.json");
+  for (json& shape : sky_only.document["shapes"]) shape.erase("emission");
+  bench_scenes.push_back(sky_only);
 
   std::vector<SceneResult> results;
   for (size_t i = 0; i < bench_scenes.size() && !settings.build_only; ++i)
     if (settings.scenes.find(char('0' + i)) != std::string::npos)
       results.push_back(run_scene(bench_scenes[i], settings, library));
-  const bool all_scenes = settings.scenes == "01234";
+  const bool all_scenes = settings.scenes == "0123456";
   const BuildResult build = settings.build_only || all_scenes ? million_triangles() : BuildResult{};
   const std::string load_after = bench::load_average();
 
@@ -263,7 +281,7 @@ int main(int argc, char** argv) {
      << settings.reference_spp << " --runs " << settings.runs << " --resolution " << settings.width << "x"
      << settings.height
      << (settings.power_spp > 0 ? " --power-spp " + std::to_string(settings.power_spp) : std::string())
-     << (settings.scenes != "01234" ? " --scenes " + settings.scenes : std::string())
+     << (settings.scenes != "0123456" ? " --scenes " + settings.scenes : std::string())
      << (settings.docs ? " --docs" : "")
      << "` (Release build; scenes in data/scenes/light_sampling/ and data/scenes/cornell_box/, rendered at the "
      << "resolution above with a box filter).\n\n"
