@@ -146,18 +146,23 @@ std::optional<PortalSet::Sample> PortalSet::sample(Vec3 origin, Vec2 u) const {
   if (!(d > 0.0f) || !std::isfinite(d)) return std::nullopt;
   const Vec3 wi = to_point / d;
   // The density from the returned direction, as pdf() gives it (a direction on an edge shared by two portals, or
-  // rounded just outside its own, gets the same number both ways).
-  const float pdf_sr = pdf(origin, wi);
+  // rounded just outside its own, gets the same number both ways); ΣΩ is already known.
+  const float pdf_sr = pdf_given_total(origin, wi, total);
   if (!(pdf_sr > 0.0f)) return std::nullopt;
   return Sample{wi, pdf_sr};
 }
 
 float PortalSet::pdf(Vec3 origin, Vec3 wi) const {
+  // Directions through no portal (most escaping rays) cost no spherical-rectangle set-up.
+  for (const auto& p : portals_)
+    if (passes_through(p, origin, wi)) return pdf_given_total(origin, wi, total_solid_angle(origin));
+  return 0.0f;
+}
+
+float PortalSet::pdf_given_total(Vec3 origin, Vec3 wi, double total) const {
   int through = 0;
   for (const auto& p : portals_) through += passes_through(p, origin, wi) ? 1 : 0;
-  if (through == 0) return 0.0f;
-  const double total = total_solid_angle(origin);
-  if (!(total > 0.0)) return 0.0f;
+  if (through == 0 || !(total > 0.0)) return 0.0f;
   const float pdf_sr = float(through / total);
   return std::isfinite(pdf_sr) ? pdf_sr : 0.0f;
 }

@@ -73,6 +73,7 @@ class PortalSet {
 
  private:
   double total_solid_angle(Vec3 origin) const;
+  float pdf_given_total(Vec3 origin, Vec3 wi, double total_solid_angle_sr) const;
   std::vector<PortalRectangle> portals_;
 };
 
