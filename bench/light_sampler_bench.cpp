@@ -1,5 +1,6 @@
 // Light sampling benchmark: equal-time relative MSE of the BVH light sampler against the power sampler on five
-// scenes (data/scenes/light_sampling/*.json and the Cornell box; `rimu` renders the same files), and the tree's
+// scenes (data/scenes/light_sampling/*.json and the Cornell box; `rimu` renders the same files), the room again with
+// its window as the sky's portal (both samplers with it; then bvh with it against power without), and the tree's
 // build time and memory for 10⁶ emissive triangles. Not a test: timings go to docs/benchmarks.md with the machine,
 // its load and the command.
 //
@@ -12,13 +13,14 @@
 //   (relMSE_power · t_power) / (relMSE_bvh · t_bvh)   (> 1: the BVH sampler wins by that factor).
 //
 // Usage: rimu-light-sampler-bench [--spp 16] [--reference-spp 512] [--runs 3] [--resolution 64x48] [--docs]
-//        [--scenes 01234] [--build-only] [--power-spp N] [--spectral]
+//        [--scenes 01234567] [--build-only] [--power-spp N] [--spectral]
 // --spectral: instead, wavelength-aware choice (bvh-spectral) against bvh on four scenes of coloured lights (red +
 // blue lamps, RGB LED panels, sodium + mercury square, the street), same method, with relMSE per film channel X, Y,
 // Z and of the chromaticity (x, y): Σ|xy − xy_ref|² / Σ|xy_ref|² over pixels with Y_ref > 0. Chromaticity error is
 // a ratio of noisy sums, not exactly ∝ 1/spp; at these noise levels it is close, and the ratio is reported as
 // measured. The reference is rendered with bvh. Scenes 0-3 use the visible wavelength density, 4-7 the same scenes
-// with "wavelength_density": "lights" (--scenes picks by index; the default 01234 runs 0-4, so pass 01234567).
+// with "wavelength_density": "lights" (--scenes picks by index; with --spectral the default 01234 runs 0-4, so pass 01234567;
+// without it the default runs all eight).
 // --power-spp gives the power sampler its own spp (default --spp), so that a light it starves is picked at all;
 // the equal-time ratio then compares relMSE · spp · (time per sample).
 #include <algorithm>
@@ -28,6 +30,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -53,7 +56,7 @@ struct Settings {
   bool docs = false;
   bool build_only = false;  // only the 10⁶-triangle build figures
   bool spectral = false;    // bvh-spectral against bvh on coloured lights
-  std::string scenes = "01234";  // which scenes, by index
+  std::string scenes;       // which scenes, by index; empty: 01234 with --spectral, else 01234567
 };
 
 struct BenchScene {
@@ -64,6 +67,8 @@ struct BenchScene {
   // (none: the whole image).
   std::function<bool(Vec3)> in_region;
   std::string region_name = "whole image";
+  // If set, the power sampler renders this document instead (a baseline without some other improvement).
+  std::optional<json> power_document;
 };
 
 struct RenderResult {
@@ -74,7 +79,7 @@ struct RenderResult {
 
 std::unique_ptr<Scene> load(const BenchScene& s, const char* sampler, const Settings& settings,
                             SpectralLibrary& library) {
-  json d = s.document;
+  json d = std::string(sampler) == "power" && s.power_document ? *s.power_document : s.document;
   d["integrator"]["light_sampler"] = sampler;
   d["film"]["resolution"] = {settings.width, settings.height};
   d["film"]["filter"] = {{"type", "box"}};
@@ -373,10 +378,11 @@ int main(int argc, char** argv) {
     else if (a == "--scenes") settings.scenes = next();
     else {
       std::cerr << "usage: rimu-light-sampler-bench [--spp N] [--power-spp N] [--reference-spp N] [--runs N] "
-                   "[--resolution WxH] [--scenes 01234] [--build-only] [--spectral] [--docs]\n";
+                   "[--resolution WxH] [--scenes 01234567] [--build-only] [--spectral] [--docs]\n";
       return 1;
     }
   }
+  if (settings.scenes.empty()) settings.scenes = settings.spectral ? "01234" : "01234567";
   SpectralLibrary library = SpectralLibrary::at_default_location();
   if (settings.spectral) return spectral_main(settings, library);
   const std::string load_before = bench::load_average();
@@ -403,12 +409,37 @@ int main(int argc, char** argv) {
                                     light_sampling / "ceiling_grid_room.json"));
   bench_scenes.push_back(scene_file("street, 200 sodium/LED lamps over 500 m + night sky", light_sampling / "street.json"));
   bench_scenes.push_back(scene_file("Cornell box", scenes / "cornell_box" / "scene.json"));
+  // The room again, measured where light sampling matters: pixels whose central ray hits the floor or a wall below
+  // 2.7 m. Over the whole image the error is that of the ceiling's panels seen directly (16 spp estimate how much
+  // of a pixel an 8 cm panel covers: the same noise under every light sampler), which dwarfs the rest.
+  const auto below_ceiling = [](Vec3 p) { return p.y < 2.7f; };
+  const std::string below_ceiling_name = "floor and walls below 2.7 m (no panel seen directly)";
+  const auto room_file = [&](const std::string& name, const char* file) {
+    BenchScene scene = scene_file(name, light_sampling / file);
+    scene.in_region = below_ceiling;
+    scene.region_name = below_ceiling_name;
+    return scene;
+  };
+  bench_scenes.push_back(room_file("room, the window as the sky's portal (both samplers)", "ceiling_grid_room_portal.json"));
+  BenchScene portal_against_none = room_file("room: bvh with the window portal, power without", "ceiling_grid_room_portal.json");
+  portal_against_none.power_document = parse_json_file(light_sampling / "ceiling_grid_room.json");
+  bench_scenes.push_back(portal_against_none);
+  // The room itself over the same region (run by default); then, to see where its error comes from (not run by
+  // default: --scenes 89), the room lit by its panels alone (the sky removed) and by the sky alone (the panels'
+  // emission removed; they stay as black quads).
+  bench_scenes.push_back(room_file("room, 32 × 32 ceiling panels 2700-6500 K + sky window", "ceiling_grid_room.json"));
+  BenchScene panels_only = room_file("room, panels only (no sky)", "ceiling_grid_room.json");
+  panels_only.document["lights"] = json::array();
+  bench_scenes.push_back(panels_only);
+  BenchScene sky_only = room_file("room, sky only (panels not emitting)", "ceiling_grid_room.json");
+  for (json& shape : sky_only.document["shapes"]) shape.erase("emission");
+  bench_scenes.push_back(sky_only);
 
   std::vector<SceneResult> results;
   for (size_t i = 0; i < bench_scenes.size() && !settings.build_only; ++i)
     if (settings.scenes.find(char('0' + i)) != std::string::npos)
       results.push_back(run_scene(bench_scenes[i], settings, library));
-  const bool all_scenes = settings.scenes == "01234";
+  const bool all_scenes = settings.scenes == "01234567";
   const BuildResult build = settings.build_only || all_scenes ? million_triangles() : BuildResult{};
   const std::string load_after = bench::load_average();
 
@@ -417,7 +448,7 @@ int main(int argc, char** argv) {
      << settings.reference_spp << " --runs " << settings.runs << " --resolution " << settings.width << "x"
      << settings.height
      << (settings.power_spp > 0 ? " --power-spp " + std::to_string(settings.power_spp) : std::string())
-     << (settings.scenes != "01234" ? " --scenes " + settings.scenes : std::string())
+     << (settings.scenes != "01234567" ? " --scenes " + settings.scenes : std::string())
      << (settings.docs ? " --docs" : "")
      << "` (Release build; scenes in data/scenes/light_sampling/ and data/scenes/cornell_box/, rendered at the "
      << "resolution above with a box filter).\n\n"

@@ -199,7 +199,8 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
   std::vector<BuildItem> items;
   for (size_t i = 0; i < lights.size(); ++i) {
     const Light& light = *lights[i];
-    if (light.is_infinite()) {
+    // An environment with portals has bounds (its portals) and is a leaf like any area light.
+    if (light.is_infinite() && !light.part_bounds(0)) {
       is_infinite_[i] = true;
       if (light.total_power_w(1.0) > 0.0) infinite_lights_.push_back(int(i));
       continue;

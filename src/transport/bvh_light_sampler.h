@@ -33,7 +33,10 @@
 // small a gain for that loss to be the default; a depth below which nothing is pruned was also tried (12: 10 % of
 // the choices lost, still 9.8 µs per choice), so the cost there is not mainly the searches.
 //
-// Lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
+// An environment with portals (environment_light.h) is a leaf of the tree: its bounds are the portal rectangles,
+// two-sided, with the intensity of a Lambertian emitter of the environment's mean radiance, so near a window the sky
+// competes with the lamps as a window-sized area light would, and far from it gets little.
+// Other lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
 // finite light can contribute (the tree's top split has importance 0 on both sides), each gets 1/m instead.
 //

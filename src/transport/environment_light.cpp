@@ -101,8 +101,9 @@ SampledSpectrum EnvironmentLight::radiance_escaped(Vec3 direction, const Sampled
   return lookup(direction_to_uv(direction), lambda);
 }
 
-float EnvironmentLight::pdf_li(const LightReference&, Vec3 wi, const SurfaceHit*) const {
+float EnvironmentLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit*) const {
   if (!(mean_radiance_integral_ > 0.0)) return 0.0f;
+  if (!portals_.empty()) return portals_.pdf(ref.position, wi);
   if (distribution_.is_zero()) return kUniformSpherePdf;
   if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
     // dω = 4π du dv everywhere (the map preserves area).
@@ -120,7 +121,12 @@ std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref
                                                        Vec2 u) const {
   if (!(mean_radiance_integral_ > 0.0)) return std::nullopt;
   LightSample s;
-  if (distribution_.is_zero()) {
+  if (!portals_.empty()) {
+    const auto through = portals_.sample(ref.position, u);
+    if (!through) return std::nullopt;
+    s.wi = through->wi;
+    s.pdf_solid_angle = through->pdf_sr;
+  } else if (distribution_.is_zero()) {
     s.wi = sample_uniform_sphere(u);
     s.pdf_solid_angle = kUniformSpherePdf;
   } else {
@@ -135,7 +141,23 @@ std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref
   return s;
 }
 
+std::optional<LightBounds> EnvironmentLight::part_bounds(int part) const {
+  if (portals_.empty() || part != 0 || !(mean_radiance_integral_ > 0.0)) return std::nullopt;
+  LightBounds all;
+  for (const PortalRectangle& p : portals_.portals()) {
+    // The rectangle as its two triangles (the bounds' area-weighted intensities add up to L̄·A).
+    const Vec3 c0 = p.corner, c1 = p.corner + p.edge_a, c2 = c1 + p.edge_b, c3 = p.corner + p.edge_b;
+    const double half_area = 0.5 * p.area_m2();
+    all = unite(all, triangle_light_bounds(c0, c1, c2, p.normal(), half_area, mean_radiance_integral_, true));
+    all = unite(all, triangle_light_bounds(c0, c2, c3, p.normal(), half_area, mean_radiance_integral_, true));
+  }
+  if (!(all.intensity_w_sr > 0.0f)) return std::nullopt;
+  return all;
+}
+
 double EnvironmentLight::total_power_w(double scene_radius_m) const {
+  // A portal of area A under radiance L from its whole outer hemisphere passes ∫ L cos θ dω dA = π L A.
+  if (!portals_.empty()) return std::numbers::pi * portals_.total_area_m2() * mean_radiance_integral_;
   return 4.0 * std::numbers::pi * std::numbers::pi * scene_radius_m * scene_radius_m * mean_radiance_integral_;
 }
 

@@ -29,6 +29,15 @@
 // Equal-area images use the weights f(x, y) = Y(x, y) + 10⁻³·Ȳ (no sin θ: every pixel has the same solid angle),
 // and since the map preserves area, p_ω(d) = p(u, v) / 4π exactly, at every direction.
 // A black image (every weight 0) falls back to uniform sphere sampling, p_ω = 1/4π; so does a constant light.
+//
+// Portals (set_portals; transport/environment_portal.h): rectangles through which the environment is known to reach
+// the scene (a room's windows). sample_li then draws directions uniformly in the solid angle the portals subtend at
+// the reference point, p_ω = N/ΣΩ (N portals crossed, ΣΩ their total solid angle), and pdf_li is 0 for every
+// direction that crosses no portal. Those directions are NOT assumed dark (pbrt-v4's PortalImageInfiniteLight
+// assumes they are): radiance_escaped still returns the environment there, so a BSDF-sampled ray that escapes
+// elsewhere counts with MIS weight 1 and the estimate stays unbiased whatever the portals cover. An image is then
+// sampled by solid angle within the portals, not by luminance (Bitterli et al. 2015's portal-masked image sampling
+// would do both; not built). The power becomes what crosses the portals (total_power_w).
 #pragma once
 
 #include <memory>
@@ -36,6 +45,7 @@
 
 #include "transport/distribution_2d.h"
 #include "transport/environment_image.h"
+#include "transport/environment_portal.h"
 #include "transport/frame.h"
 #include "transport/light.h"
 #include "transport/light_spectrum.h"
@@ -55,7 +65,12 @@ class EnvironmentLight final : public Light {
                    Frame frame = Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
                    EnvironmentMapping mapping = EnvironmentMapping::equirectangular);
 
-  /// A direction by luminance (image) or uniform on the sphere; distance ∞.
+  /// Restrict light sampling to directions through `portals` (see above); an empty set restores the default.
+  /// Call before the light is shared (lights are read-only while rendering).
+  void set_portals(PortalSet portals) { portals_ = std::move(portals); }
+  const PortalSet& portals() const { return portals_; }
+
+  /// A direction through the portals (if any), else by luminance (image) or uniform on the sphere; distance ∞.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                        Vec2 u) const override;
   /// p_ω(wi); `hit` is ignored.
@@ -64,12 +79,19 @@ class EnvironmentLight final : public Light {
   SampledSpectrum radiance_escaped(Vec3 direction, const SampledWavelengths& lambda) const override;
   /// Power entering a sphere of radius r: each point of it receives π·L̄ per unit area, so Φ = 4π² r² ∫L̄(λ) dλ, with
   /// L̄ the radiance averaged over directions (solid-angle weighted; for an image, a 16-wavelength midpoint rule).
+  /// With portals, the power through them, Φ = π·A·∫L̄(λ)dλ (A their total area; an image's L̄ is its mean over the
+  /// sphere, not over the directions each portal lets in), whatever the radius.
   double total_power_w(double scene_radius_m) const override;
   bool is_infinite() const override { return true; }
 
   /// (u, v) ∈ [0, 1)² of a world direction (the mapping's convention above), and back.
   Vec2 direction_to_uv(Vec3 direction) const;
   Vec3 uv_to_direction(Vec2 uv) const;
+
+  /// With portals: where the light enters, for the light BVH, which then holds the environment as one leaf like an
+  /// area light (bvh_light_sampler.h): the portals' rectangles, two-sided, intensity ∫L̄(λ)dλ·A (a Lambertian
+  /// emitter of the mean radiance over the portals' area A). Without portals std::nullopt: a light at infinity.
+  std::optional<LightBounds> part_bounds(int part) const override;
 
   /// The constant environment's spectrum; nullptr for an image (its spectrum varies with direction).
   const LightSpectrum* emitted_spectrum() const override { return constant_ ? &*constant_ : nullptr; }
@@ -84,6 +106,7 @@ class EnvironmentLight final : public Light {
   Frame frame_;
   EnvironmentMapping mapping_ = EnvironmentMapping::equirectangular;
   Distribution2D distribution_;  // empty: uniform sphere sampling
+  PortalSet portals_;            // empty: the whole sphere
   double mean_radiance_integral_ = 0.0;  // ∫L̄(λ)dλ over 360-830 nm, W/(m²·sr)
 };
 

@@ -73,8 +73,9 @@ class Light {
                                                     const SampledWavelengths& lambda, Vec2 u) const;
   /// The density sample_part_li(part, ref, ...) has for wi (0 where it would return std::nullopt).
   virtual float pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit = nullptr) const;
-  /// Where the part can emit, for the light BVH (light_bounds.h); std::nullopt for lights at infinity and for
-  /// parts that emit nothing (black, degenerate triangles), which the BVH then never picks.
+  /// Where the part can emit, for the light BVH (light_bounds.h); std::nullopt for lights at infinity (except an
+  /// environment with portals: the portals) and for parts that emit nothing (black, degenerate triangles), which the
+  /// BVH then never picks.
   virtual std::optional<LightBounds> part_bounds(int) const { return std::nullopt; }
 };
 

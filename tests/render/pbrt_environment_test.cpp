@@ -92,3 +92,31 @@ TEST_CASE("pbrt environment map: the JSON it becomes, illuminance, and errors") 
     CHECK(error("LightSource \"infinite\" \"string filename\" \"envmap_texel.ppm\" \"rgb L\" [1 1 1]").find("t.pbrt:5: LightSource \"infinite\": give either \"L\" or \"filename\"") != std::string::npos);
   }
 }
+
+TEST_CASE("pbrt infinite light portal: four world-space points become the environment's portal") {
+  const std::filesystem::path folder = test::test_data("pbrt");
+  const std::string camera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
+  const std::string portal = " \"point3 portal\" [4 1 -1  4 1 1  4 2 1  4 2 -1]";
+  // pbrt-v4 reads the portal in world space: the current transform (a rotation here) does not apply to it.
+  for (const std::string source : {"\"rgb L\" [0.5 0.5 0.5]", "\"string filename\" \"envmap_texel.ppm\""}) {
+    CAPTURE(source);
+    const PbrtImport imported =
+        import_pbrt_text(camera + "Rotate 90 0 1 0\nLightSource \"infinite\" " + source + portal, "t.pbrt", folder, test::library());
+    const json& light = imported.document["lights"][0];
+    REQUIRE(light.contains("portals"));
+    CHECK(light["portals"] == json::parse("[[[4, 1, -1], [4, 1, 1], [4, 2, 1], [4, 2, -1]]]"));
+    for (const auto& ignored : imported.ignored) CHECK(ignored.what.find("portal") == std::string::npos);
+    // The document loads: the portal reaches the light.
+    CHECK(load_scene(imported.document, "t.json", folder, test::library())->lights.size() == 1);
+  }
+  const auto error = [&](const std::string& text) {
+    try {
+      import_pbrt_text(camera + text, "t.pbrt", folder, test::library());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(error("LightSource \"infinite\" \"point3 portal\" [4 1 -1  4 1 1  4 2 1]").find("t.pbrt:4: LightSource \"infinite\": \"portal\" takes four points, not 3") != std::string::npos);
+  CHECK(error("LightSource \"infinite\" \"point3 portal\" [4 1 -1  4 1 1  4 2 2  4 2 -1]").find("t.pbrt:4: LightSource \"infinite\": the four \"portal\" points must form a rectangle") != std::string::npos);
+}

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Writes the light-sampling benchmark scenes (docs/benchmarks.md, "Light sampling"): a spot + D65 environment over
-a 3 m and a 100 m floor, a room lit by 32 x 32 ceiling panels and a sky window, and a street of 200 lamps; for
-wavelength-aware light choice, three scenes of coloured lights: a red and a blue lamp, a wall of RGB LED panels, and
-a square under low-/high-pressure sodium and mercury lamps.
+a 3 m and a 100 m floor, a room lit by 32 x 32 ceiling panels and a sky window (also with the window as the sky's
+portal), and a street of 200 lamps; for wavelength-aware light choice, three scenes of coloured lights: a red and a
+blue lamp, a wall of RGB LED panels, and a square under low-/high-pressure sodium and mercury lamps.
 
 Run from anywhere:  python3 data/scenes/light_sampling/generate_scenes.py
 The outputs are committed; this script is how they were made (standard library only). rimu renders each file as it
@@ -45,9 +45,9 @@ def spot_scene(floor_m):
     }
 
 
-def ceiling_grid_room():
+def ceiling_grid_room(portal=False):
     """An 8 m x 8 m x 3 m room; 32 x 32 emissive 8 cm squares on the ceiling (blackbodies 2700-6500 K); a 2 m x 1 m
-    window in the +x wall onto a D65 sky."""
+    window in the +x wall onto a D65 sky. portal: the sky is given the window as its portal (the same image)."""
     def wall(v):
         return {"type": "quad", "material": "wall", "vertices": v}
     shapes = [
@@ -69,15 +69,19 @@ def ceiling_grid_room():
             shapes.append({"type": "quad", "material": "black",
                            "vertices": [[x - s, y, z - s], [x + s, y, z - s], [x + s, y, z + s], [x - s, y, z + s]],
                            "emission": {"blackbody": round(cct, 6), "scale": 30.0}})
+    sky = {"type": "environment", "name": "sky", "radiance": {"illuminant": "D65", "scale": 0.01}}
+    if portal:
+        sky["portals"] = [[[4, 1, -1], [4, 1, 1], [4, 2, 1], [4, 2, -1]]]
     return {
         "description": "Light sampling: an 8 m x 8 m x 3 m room lit by 32 x 32 emissive 8 cm ceiling panels of "
-                       "2700-6500 K and a 2 m x 1 m window onto a D65 sky.",
+                       "2700-6500 K and a 2 m x 1 m window onto a D65 sky"
+                       + (", given to the sky as its portal." if portal else "."),
         "camera": {"from": [-3.5, 1.6, -3.0], "to": [4, 1.2, 1.0], "vertical_fov_deg": 70},
         "film": FILM,
         "integrator": {"spp": 64, "max_depth": 5, "seed": 1},
         "materials": {"wall": {"type": "diffuse", "reflectance": 0.6}, "floor": {"type": "diffuse", "reflectance": 0.3},
                       "black": {"type": "diffuse", "reflectance": 0}},
-        "lights": [{"type": "environment", "name": "sky", "radiance": {"illuminant": "D65", "scale": 0.01}}],
+        "lights": [sky],
         "shapes": shapes,
     }
 
@@ -220,6 +224,7 @@ if __name__ == "__main__":
     write("spot_3m_floor.json", spot_scene(3.0))
     write("spot_100m_floor.json", spot_scene(100.0))
     write("ceiling_grid_room.json", ceiling_grid_room())
+    write("ceiling_grid_room_portal.json", ceiling_grid_room(portal=True))
     write("street.json", street())
     write("red_blue_lamps.json", red_blue())
     write("rgb_led_panels.json", rgb_led_panels())

@@ -31,6 +31,26 @@ Frame environment_frame(const JsonCursor& f) {
   return {s, t, n};
 }
 
+/// "portals": [[c0, c1, c2, c3], ...], each four corners of a rectangle in order (transport/environment_portal.h).
+PortalSet load_portals(const JsonCursor& l) {
+  if (!l.has("portals")) return {};
+  const JsonCursor list = l.at("portals");
+  if (!list.is_array() || list.size() == 0) list.fail("expected a non-empty array of portals, each [c0, c1, c2, c3]");
+  std::vector<PortalRectangle> portals;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const JsonCursor p = list.at(i);
+    if (!p.is_array() || p.size() != 4) p.fail("expected the four corners of a rectangle, in order: [c0, c1, c2, c3]");
+    const auto rectangle = PortalRectangle::from_corners(p.at(0).vec3(), p.at(1).vec3(), p.at(2).vec3(), p.at(3).vec3());
+    if (!rectangle)
+      p.fail("the four corners must form a rectangle in order (c2 = c1 + c3 - c0 and a right angle at c0, to 1e-3 of "
+             "the longer edge), with no edge of zero length");
+    portals.push_back(*rectangle);
+  }
+  return PortalSet(std::move(portals));
+}
+
+std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context);
+
 std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
   const std::string type = l.at("type").choice({"point", "spot", "distant", "environment", "ies"});
   if (type == "ies") return load_ies_light(l, context);
@@ -55,7 +75,14 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
                                           parse_light_emission(l, "irradiance", geometry, context),
                                           l.number_or("angular_diameter_deg", 0.0, 0.0, 90.0));
   }
-  only_light_keys(l, {"type", "name", "radiance", "image", "colour_space", "encoding", "scale", "mapping", "frame"});
+  return load_environment(l, context);
+}
+
+std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context) {
+  only_light_keys(l, {"type", "name", "radiance", "image", "colour_space", "encoding", "scale", "mapping", "frame",
+                      "portals"});
+  PortalSet portals = load_portals(l);
+  std::unique_ptr<EnvironmentLight> light;
   if (l.has("image")) {
     if (l.has("radiance")) l.at("radiance").fail("give either radiance or image, not both");
     if (has_light_amount(l) || l.has("spectrum"))
@@ -77,14 +104,18 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
     // every RGB emission (SpectrumInputContext::emission_rgb_scale).
     const Frame frame = l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
     if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/rgb_transport_inputs.h)
-      return std::make_unique<EnvironmentLight>(
+      light = std::make_unique<EnvironmentLight>(
           std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale, frame, mapping);
-    return std::make_unique<EnvironmentLight>(std::make_shared<RgbEnvironmentImage>(image, upsampler),
-                                              scale * context.spectra.emission_rgb_scale(), frame, mapping);
+    else
+      light = std::make_unique<EnvironmentLight>(std::make_shared<RgbEnvironmentImage>(image, upsampler),
+                                                 scale * context.spectra.emission_rgb_scale(), frame, mapping);
+  } else {
+    only_light_keys(l, {"type", "name", "radiance", "portals"});
+    const EmitterGeometry geometry{EmitterKind::environment};
+    light = std::make_unique<EnvironmentLight>(parse_light_emission(l, "radiance", geometry, context));
   }
-  only_light_keys(l, {"type", "name", "radiance"});
-  const EmitterGeometry geometry{EmitterKind::environment};
-  return std::make_unique<EnvironmentLight>(parse_light_emission(l, "radiance", geometry, context));
+  light->set_portals(std::move(portals));
+  return light;
 }
 
 }  // namespace

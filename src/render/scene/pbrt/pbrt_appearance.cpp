@@ -10,6 +10,7 @@
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/rgb_image.h"
+#include "transport/environment_portal.h"
 #include "transport/equal_area_square.h"
 #include "spectral/rgb_colour_space.h"
 
@@ -398,7 +399,6 @@ json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, con
   const std::string context = "LightSource \"infinite\"";
   if (p.get("L", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody}))
     throw InputError(s.where, context + ": give either \"L\" or \"filename\", not both");
-  if (!p.numbers("portal", {PbrtParamType::point3}).empty()) ignore(context + " \"portal\" (the whole map is sampled)", s.where);
   const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
   if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
   // pbrt looks a world direction up at EqualAreaSphereToSquare(light_from_world · d): the image's axes s, t, n are
@@ -508,10 +508,23 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
                               illuminance > 0 ? std::optional<double>(illuminance) : std::nullopt));
   } else {  // infinite
     light["type"] = "environment";
+    // pbrt-v4's "portal": four points in world space (not under the current transform), a rectangle.
+    json portals;
+    if (const std::vector<double> v = p.numbers("portal", {PbrtParamType::point3}); !v.empty()) {
+      if (v.size() != 12) throw InputError(s.where, context + ": \"portal\" takes four points, not " + std::to_string(v.size() / 3));
+      const auto corner = [&](int i) { return Vec3{float(v[3 * i]), float(v[3 * i + 1]), float(v[3 * i + 2])}; };
+      if (!PortalRectangle::from_corners(corner(0), corner(1), corner(2), corner(3)))
+        throw InputError(s.where, context + ": the four \"portal\" points must form a rectangle, in order");
+      portals = json::array({json::array({Vec3d{v[0], v[1], v[2]}, Vec3d{v[3], v[4], v[5]}, Vec3d{v[6], v[7], v[8]},
+                                          Vec3d{v[9], v[10], v[11]}})});
+    }
     if (const std::string filename = p.string("filename", ""); !filename.empty()) {
-      lights_.push_back(image_environment(p, s, filename, world));
+      json image = image_environment(p, s, filename, world);
+      if (!portals.is_null()) image["portals"] = portals;
+      lights_.push_back(std::move(image));
       return;
     }
+    if (!portals.is_null()) light["portals"] = portals;
     // "illuminance": what a surface facing up receives from the uniform sphere, π L.
     const double illuminance = p.real("illuminance", -1.0);
     light.update(light_amount(p, "L", "radiance", "luminance_nt",
