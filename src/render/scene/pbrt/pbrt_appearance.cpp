@@ -264,7 +264,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
                                  std::to_string(s.where.line);
   // Files of one name in two folders (or one file included twice) would repeat a name: number the repeats.
   if (!named && materials_.contains(name)) name += " #" + std::to_string(++anonymous_materials_);
-  origin("/materials/" + json_pointer_step(name), s.where, context);
+  origin("/materials/" + name, s.where, context);
   const auto defaults = state_.attributes.find("material");
   const std::vector<PbrtParam>* material_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
   json m;

@@ -24,9 +24,6 @@ using nlohmann::json;
 
 class PbrtConverter;
 
-/// `name` as one step of a JSON pointer (RFC 6901: ~ → ~0, / → ~1).
-std::string json_pointer_step(const std::string& name);
-
 /// A statement's parameters (plus the Attribute defaults of its kind) with the ones looked up remembered, so that
 /// every parameter nobody asked for is reported once the statement is done.
 class PbrtParams {

@@ -115,14 +115,14 @@ std::optional<std::string> PbrtConverter::boundary_material(const std::string& m
   // (pbrt's interface: no surface at all) belongs to the medium.
   const std::string boundary = material + " (around medium " + inside + ")";
   materials_[boundary] = materials_.at(material);
-  origin("/materials/" + json_pointer_step(boundary), where, context);
+  origin("/materials/" + boundary, where, context);
   std::string rimu_name = inside;
   for (int n = 2; media_.contains(rimu_name); ++n) rimu_name = inside + " #" + std::to_string(n);
   json entry = medium;
   entry["boundary_material"] = boundary;
   if (is_interface) entry["index_matched"] = true;
   media_[rimu_name] = std::move(entry);
-  origin("/media/" + json_pointer_step(rimu_name), media_where_.at(inside), "MakeNamedMedium \"" + inside + "\"");
+  origin("/media/" + rimu_name, media_where_.at(inside), "MakeNamedMedium \"" + inside + "\"");
   boundary_materials_[key] = boundary;
   return boundary;
 }

@@ -261,7 +261,7 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
     }
   }
   if (object_) {
-    origin("/prototypes/" + json_pointer_step(*object_) + "/" + std::to_string(prototypes_[*object_].size()), where, context);
+    origin("/prototypes/" + *object_ + "/" + std::to_string(prototypes_[*object_].size()), where, context);
     prototypes_[*object_].push_back(std::move(shape));
   } else {
     origin("/shapes/" + std::to_string(shapes_.size()), where, context);

@@ -488,16 +488,6 @@ PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& libra
   return result;
 }
 
-std::string json_pointer_step(const std::string& name) {
-  std::string out;
-  for (char c : name) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
-  }
-  return out;
-}
-
 std::optional<InputError> at_pbrt_origin(const InputError& error, const std::vector<PbrtOrigin>& origins) {
   const std::string& key = error.where().key;
   const PbrtOrigin* best = nullptr;

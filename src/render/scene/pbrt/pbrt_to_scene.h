@@ -30,7 +30,7 @@ struct PbrtImportOptions {
 
 /// Where a part of the imported document came from: the pbrt statement that made it.
 struct PbrtOrigin {
-  std::string pointer;    ///< JSON pointer of the part ("/shapes/3", "/prototypes/tree/0", "/materials/gold")
+  std::string pointer;    ///< key path of the part as the JSON loader writes it, names unescaped ("/shapes/3", "/materials/gold")
   SourceLocation where;   ///< the pbrt file and line of the statement
   std::string statement;  ///< e.g. Shape "plymesh"
 };
