@@ -108,9 +108,11 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
   return b;
 }
 
-nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log) {
+nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log,
+                               std::vector<PbrtOrigin>* origins) {
   PbrtImport imported = import_pbrt(path, library, {strict, {}});
   log << describe_ignored(imported.ignored);
+  if (origins) *origins = std::move(imported.origins);
   return std::move(imported.document);
 }
 
@@ -131,7 +133,8 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
   const bool pbrt = is_pbrt_scene_path(scene_path);
   if (pbrt && job.frame)
     throw InputError({"", 0, "--frame"}, "frame numbers are substituted into JSON scenes; a pbrt-v4 scene is read as it is");
-  nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log)
+  std::vector<PbrtOrigin> pbrt_origins;  // errors inside files a pbrt scene names are reported at its lines
+  nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log, &pbrt_origins)
                                  : parse_json_text(scene_text_for_frame(scene_path, job.frame), scene_path.string());
   if (job.frame) apply_camera_keyframes(document, *job.frame, scene_path.string());  // a camera path keyed by frame
   const std::string hash = scene_hash(job);
@@ -150,7 +153,14 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
     document["integrator"]["wavelength_density"] =
         *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
   if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
-  const std::unique_ptr<Scene> scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
+  const std::unique_ptr<Scene> scene = [&] {
+    try {
+      return load_scene(document, scene_path.string(), scene_path.parent_path(), library);
+    } catch (const InputError& e) {
+      if (std::optional<InputError> at_pbrt = at_pbrt_origin(e, pbrt_origins)) throw *at_pbrt;
+      throw;
+    }
+  }();
 
   for (const std::string& warning : scene->warnings) log << "rimu: warning: " << warning << "\n";
   RenderSettings& settings = scene->settings;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "render/film.h"
 #include "render/partial_record.h"
@@ -17,6 +18,8 @@
 #include "transport/wavelength_modes.h"
 
 namespace rimu {
+
+struct PbrtOrigin;  // render/scene/pbrt/pbrt_to_scene.h
 
 struct RenderJob {
   std::optional<std::filesystem::path> scene;  ///< empty: the embedded Cornell box
@@ -81,7 +84,8 @@ struct RenderJobResult {
 RenderJobResult run_render_job(const RenderJob& job, std::ostream& log);
 
 /// Translates a pbrt-v4 file (render/scene/pbrt/pbrt_to_scene.h) and writes what was ignored to `log`.
-nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log);
+nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log,
+                               std::vector<PbrtOrigin>* origins = nullptr);
 
 /// Parses "WxH", "x0,y0,x1,y1": InputError naming `option` on malformed text.
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& option);

@@ -45,6 +45,28 @@ constexpr ConductorSource kConductors[] = {
     {"silver", "spectra/materials/ag_nk_johnson_christy_1972.csv"},
     {"copper", "spectra/materials/cu_nk_johnson_christy_1972.csv"},
     {"aluminium", "spectra/materials/al_nk_mcpeak_2015.csv"},
+    // pbrt-v4's own tables (its metal-*-eta/-k named spectra), so that imported pbrt scenes reproduce pbrt; pbrt
+    // names no source for them (data/spectra/README.md).
+    {"pbrt-au", "spectra/materials/pbrt_metal_au_nk.csv"},
+    {"pbrt-ag", "spectra/materials/pbrt_metal_ag_nk.csv"},
+    {"pbrt-cu", "spectra/materials/pbrt_metal_cu_nk.csv"},
+    {"pbrt-al", "spectra/materials/pbrt_metal_al_nk.csv"},
+    {"pbrt-cuzn", "spectra/materials/pbrt_metal_cuzn_nk.csv"},
+    {"pbrt-mgo", "spectra/materials/pbrt_metal_mgo_nk.csv"},
+    {"pbrt-tio2", "spectra/materials/pbrt_metal_tio2_nk.csv"},
+};
+
+// pbrt-v4's glass-* named spectra: refractiveindex.info's SCHOTT formulas as pbrt tabulated them (~22 nm steps),
+// read as tables (linear between points, end values beyond) so that imported pbrt scenes disperse as in pbrt.
+struct TabulatedDielectricSource {
+  std::string_view name;
+  std::string_view file;
+};
+constexpr TabulatedDielectricSource kTabulatedDielectrics[] = {
+    {"pbrt-bk7", "spectra/materials/pbrt_glass_bk7_n.csv"},     {"pbrt-baf10", "spectra/materials/pbrt_glass_baf10_n.csv"},
+    {"pbrt-fk51a", "spectra/materials/pbrt_glass_fk51a_n.csv"}, {"pbrt-lasf9", "spectra/materials/pbrt_glass_lasf9_n.csv"},
+    {"pbrt-sf5", "spectra/materials/pbrt_glass_sf5_n.csv"},     {"pbrt-sf10", "spectra/materials/pbrt_glass_sf10_n.csv"},
+    {"pbrt-sf11", "spectra/materials/pbrt_glass_sf11_n.csv"},
 };
 
 std::string join(const std::vector<std::string>& names) {
@@ -117,6 +139,7 @@ SampledSpectrum SellmeierSpectrum::sample(const SampledWavelengths& lambda) cons
 std::vector<std::string> dielectric_names() {
   std::vector<std::string> names;
   for (const auto& d : kDielectrics) names.emplace_back(d.name);
+  for (const auto& d : kTabulatedDielectrics) names.emplace_back(d.name);
   return names;
 }
 
@@ -127,6 +150,13 @@ SpectrumPtr dielectric_ior(SpectralLibrary& library, std::string_view name) {
     auto terms = d.row.empty() ? water_terms(table) : glass_terms(table, d.row);
     const std::string label = std::string(d.name) + " (Sellmeier, " + table.name() + ")";
     return std::make_shared<SellmeierSpectrum>(std::move(terms), label);
+  }
+  for (const auto& d : kTabulatedDielectrics) {
+    if (d.name != name) continue;
+    const CsvTable& table = library.table(std::string(d.file));
+    auto n = std::make_shared<TabulatedSpectrum>(TabulatedSpectrum::from_csv(table, "n", Extrapolation::clamp));
+    if (n->min_value() <= 0.0) throw InputError({table.name(), 0, ""}, "an index of refraction must be > 0 at every wavelength");
+    return n;
   }
   throw InputError({}, "unknown dielectric '" + std::string(name) + "'; known dielectrics: " + join(dielectric_names()));
 }

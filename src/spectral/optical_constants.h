@@ -48,13 +48,15 @@ struct ComplexIorSpectra {
   SpectrumPtr k;  ///< imaginary part (extinction coefficient), ≥ 0
 };
 
-/// The names dielectric_ior() knows: "bk7", "sf11", "fused-silica", "water".
+/// The names dielectric_ior() knows: "bk7", "sf11", "fused-silica", "water" (Sellmeier), and pbrt-v4's glass
+/// tables "pbrt-bk7", "pbrt-baf10", "pbrt-fk51a", "pbrt-lasf9", "pbrt-sf5", "pbrt-sf10", "pbrt-sf11".
 std::vector<std::string> dielectric_names();
-/// The refractive index of a named dielectric as a SellmeierSpectrum, from data/spectra/materials.
+/// The refractive index of a named dielectric (a SellmeierSpectrum, or a table for pbrt's), from data/spectra/materials.
 /// Throws InputError naming the known materials if `name` is not one of them.
 SpectrumPtr dielectric_ior(SpectralLibrary& library, std::string_view name);
 
-/// The names conductor_ior() knows: "gold", "silver", "copper", "aluminium".
+/// The names conductor_ior() knows: "gold", "silver", "copper", "aluminium" (published measurements), and
+/// pbrt-v4's tables "pbrt-au", "pbrt-ag", "pbrt-cu", "pbrt-al", "pbrt-cuzn", "pbrt-mgo", "pbrt-tio2".
 std::vector<std::string> conductor_names();
 /// The measured n, k of a named metal, linearly interpolated (clamped beyond the table's ends).
 /// Throws InputError naming the known metals if `name` is not one of them.

@@ -27,7 +27,7 @@ expect_bad bad_missing_include.pbrt "bad_missing_include.pbrt:4: Include: cannot
 expect_bad bad_missing_ply.pbrt "bad_missing_ply.pbrt:5: .*cannot find the PLY file '.*no_such_mesh.ply'" convert
 expect_bad bad_mismatched_end.pbrt "bad_mismatched_end.pbrt:6: AttributeEnd without a matching AttributeBegin"
 expect_bad bad_nan_transform.pbrt "bad_nan_transform.pbrt:4: Translate: expected a finite number, found 'nan'"
-expect_bad bad_truncated_ply.pbrt "truncated.ply" convert
+expect_bad bad_truncated_ply.pbrt "bad_truncated_ply.pbrt:4: Shape \"plymesh\": .*truncated.ply:13: vertex 2: the file ends inside this record" convert
 
 # --strict turns the report into an error, in both tools.
 output=$("$rimu" "$data/unsupported.pbrt" --strict -o "$work/strict.exr" -q 2>&1)

@@ -245,9 +245,9 @@ TEST_CASE("pbrt materials: named metals and glasses, remapped roughness, plastic
                              "MakeNamedMaterial \"plastic\" \"string type\" \"coateddiffuse\" \"rgb reflectance\" [0.5 0.2 0.1]\n")
                      .document;
   // remaproughness: α = √roughness, and Rimu's r = √α: 0.0625 → 0.5. Without it α = roughness: 0.25 → 0.5.
-  CHECK(d["materials"]["gold"] == json({{"type", "conductor"}, {"metal", "gold"}, {"roughness", 0.5}}));
-  CHECK(d["materials"]["raw"] == json({{"type", "conductor"}, {"metal", "copper"}, {"roughness", 0.5}}));
-  CHECK(d["materials"]["bk7"] == json({{"type", "dielectric"}, {"glass", "bk7"}}));
+  CHECK(d["materials"]["gold"] == json({{"type", "conductor"}, {"metal", "pbrt-au"}, {"roughness", 0.5}}));
+  CHECK(d["materials"]["raw"] == json({{"type", "conductor"}, {"metal", "pbrt-cu"}, {"roughness", 0.5}}));
+  CHECK(d["materials"]["bk7"] == json({{"type", "dielectric"}, {"glass", "pbrt-bk7"}}));
   CHECK(d["materials"]["water"] == json({{"type", "dielectric"}, {"ior", 1.33}}));
   CHECK(d["materials"]["plastic"]["type"] == "coated_diffuse");
   CHECK_CONTAINS(error_of(kUnmirroredCamera + "NamedMaterial \"nope\"", true), "test.pbrt:5: NamedMaterial: no material named \"nope\"");
@@ -259,7 +259,7 @@ TEST_CASE("pbrt thindielectric: a thin sheet with the dielectric's eta, not list
                                           "MakeNamedMaterial \"film\" \"string type\" \"thindielectric\" \"float eta\" 1.33\n"
                                           "Material \"thindielectric\"\nShape \"sphere\"\n");
   const json& d = imported.document;
-  CHECK(d["materials"]["pane"] == json({{"type", "thin_dielectric"}, {"glass", "bk7"}}));
+  CHECK(d["materials"]["pane"] == json({{"type", "thin_dielectric"}, {"glass", "pbrt-bk7"}}));
   CHECK(d["materials"]["film"] == json({{"type", "thin_dielectric"}, {"ior", 1.33}}));
   CHECK(d["materials"][d["shapes"][0]["material"].get<std::string>()] == json({{"type", "thin_dielectric"}, {"ior", 1.5}}));
   CHECK(imported.ignored.empty());
@@ -362,18 +362,32 @@ TEST_CASE("pbrt Cornell box renders the same image as the same scene written in 
   CHECK(worst > test::kSigmas);
 }
 
-TEST_CASE("pbrt loopsubdiv: its control mesh stands in, listed as an approximation") {
+TEST_CASE("pbrt loopsubdiv: subdivided to \"levels\" with limit normals; meshes Loop's rules refuse are listed") {
   const PbrtImport imported = import_text(kUnmirroredCamera + "Shape \"loopsubdiv\" \"integer levels\" 2 \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]");
-  CHECK(imported.document["shapes"][0]["indices"] == json({0, 1, 2}));
-  REQUIRE(imported.ignored.size() == 1);
-  CHECK(imported.ignored[0].what == "Shape \"loopsubdiv\" (approximated by its control mesh, not subdivided)");
+  CHECK(imported.ignored.empty());
+  const json& mesh = imported.document["shapes"][0];
+  CHECK(mesh["type"] == "triangles");
+  CHECK(mesh["indices"].size() == 3 * 16);    // 4^2 triangles
+  CHECK(mesh["positions"].size() == 15);      // a triangle's level-2 refinement
+  CHECK(mesh["normals"].size() == 15);
+  // pbrt's default is 3 levels.
+  const PbrtImport by_default = import_text(kUnmirroredCamera + "Shape \"loopsubdiv\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]");
+  CHECK(by_default.document["shapes"][0]["indices"].size() == 3 * 64);
+  // Three triangles on one edge: the control mesh stands in, listed with the reason.
+  const PbrtImport fin = import_text(kUnmirroredCamera + "Shape \"loopsubdiv\" \"point3 P\" [0 0 0 1 0 0 0 1 0 0 -1 0 0 0 1]\n"
+                                                         "  \"integer indices\" [0 1 2 1 0 3 0 1 4]");
+  CHECK(fin.document["shapes"][0]["indices"].size() == 9);
+  REQUIRE(fin.ignored.size() == 1);
+  CHECK_CONTAINS(fin.ignored[0].what, "Shape \"loopsubdiv\" that Loop's rules do not apply to, not subdivided: the edge 0-1 belongs to more than two triangles");
+  CHECK_CONTAINS(error_of(kUnmirroredCamera + "Shape \"loopsubdiv\" \"integer levels\" 11 \"point3 P\" [0 0 0 1 0 0 0 1 0]", true),
+                 "test.pbrt:5: Shape \"loopsubdiv\": \"levels\" must be 0-10, not 11");
 }
 
-TEST_CASE("pbrt interface material: its shapes are left out and listed") {
+TEST_CASE("pbrt interface material: without a medium inside, its shapes are left out and listed") {
   const PbrtImport imported = import_text(kUnmirroredCamera + "Material \"interface\"\nShape \"sphere\"\nMaterial \"diffuse\"\nShape \"sphere\"");
   CHECK(imported.document["shapes"].size() == 1);
   REQUIRE(imported.ignored.size() == 1);
-  CHECK(imported.ignored[0].what == "Shape \"sphere\" with the \"interface\" material (a medium boundary: left out)");
+  CHECK(imported.ignored[0].what == "Shape \"sphere\" with the \"interface\" material and no medium inside it (left out)");
   CHECK(imported.ignored[0].first.line == 6);
 }
 
@@ -414,4 +428,38 @@ TEST_CASE("pbrt ColorSpace, Attribute defaults, disks and imagemap textures") {
   // The inscribed 96-gon annulus: (n/2) sin(2π/n) (R² − r²), 0.07 % below π (R² − r²).
   CHECK(area == doctest::Approx(48 * std::sin(2 * M_PI / 96) * (1 - 0.25)).epsilon(1e-9));
   CHECK_NOTHROW(load_scene(d, "test.pbrt", test::test_data("pbrt"), test::library()));
+}
+
+TEST_CASE("pbrt: a problem inside a file or value the pbrt scene names is reported at the pbrt line that names it") {
+  // A truncated PLY: the loader's error names the PLY's line and the document's key; moved to the Shape statement.
+  const std::filesystem::path file = test::test_data("pbrt/bad_truncated_ply.pbrt");
+  const PbrtImport imported = import_pbrt(file, test::library());
+  std::string moved = "no error";
+  try {
+    load_scene(imported.document, file.string(), file.parent_path(), test::library());
+  } catch (const InputError& e) {
+    const std::optional<InputError> at_pbrt = at_pbrt_origin(e, imported.origins);
+    REQUIRE(at_pbrt);
+    moved = at_pbrt->what();
+  }
+  CHECK_CONTAINS(moved, file.string() + ":4: Shape \"plymesh\": ", "truncated.ply:13: vertex 2: the file ends inside this record",
+                 "(the converted scene's /shapes/0/file)");
+  // A value Rimu refuses that pbrt accepted (a reflectance above 1) is reported at its Material statement.
+  const PbrtImport bright = import_text(kUnmirroredCamera + "\nMaterial \"diffuse\" \"spectrum reflectance\" [400 0.5 700 1.5]\nShape \"sphere\"");
+  try {
+    load_scene(bright.document, "test.pbrt", test::test_data("pbrt"), test::library());
+    FAIL("a reflectance of 1.5 loaded");
+  } catch (const InputError& e) {
+    const std::optional<InputError> at_pbrt = at_pbrt_origin(e, bright.origins);
+    REQUIRE(at_pbrt);
+    CHECK_CONTAINS(at_pbrt->what(), "test.pbrt:6: Material \"diffuse\": ", "a reflectance cannot exceed 1");
+  }
+  // Pointers match whole steps only: an error under /shapes/10 is not /shapes/1's.
+  const std::vector<PbrtOrigin> origins = {{"/shapes/1", {"a.pbrt", 3, ""}, "Shape \"sphere\""},
+                                           {"/shapes/10", {"a.pbrt", 30, ""}, "Shape \"disk\""}};
+  const std::optional<InputError> tenth = at_pbrt_origin(InputError({"a.pbrt", 0, "/shapes/10/radius"}, "too small"), origins);
+  REQUIRE(tenth);
+  CHECK(std::string(tenth->what()) == "a.pbrt:30: Shape \"disk\": too small (the converted scene's /shapes/10/radius)");
+  CHECK_FALSE(at_pbrt_origin(InputError({"a.pbrt", 0, "/shapes/2"}, "x"), origins));
+  CHECK_FALSE(at_pbrt_origin(InputError({"a.pbrt", 0, "/film/resolution"}, "x"), origins));
 }

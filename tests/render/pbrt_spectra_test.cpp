@@ -50,9 +50,9 @@ TEST_CASE("pbrt spectra: bad pairs and files are errors with the file and line")
   const std::string bad_number = import_error(kCamera + "Material \"diffuse\" \"spectrum reflectance\" \"bad_spectrum_number.spd\"");
   CHECK_MESSAGE(bad_number.find("bad_spectrum_number.spd:2: expected a number, not 'half'") != std::string::npos, bad_number);
   // A named spectrum Rimu does not have is listed, not an error.
-  const PbrtImport named = import_pbrt_text(kCamera + "Material \"dielectric\" \"spectrum eta\" \"glass-F11\"", "t.pbrt", test::test_data("pbrt"), test::library());
+  const PbrtImport named = import_pbrt_text(kCamera + "Material \"dielectric\" \"spectrum eta\" \"glass-SF66\"", "t.pbrt", test::test_data("pbrt"), test::library());
   REQUIRE(named.ignored.size() == 1);
-  CHECK(named.ignored[0].what.find("spectrum \"glass-F11\"") != std::string::npos);
+  CHECK(named.ignored[0].what.find("spectrum \"glass-SF66\"") != std::string::npos);
 }
 
 TEST_CASE("scene spectra: the inline table form is checked like a CSV column") {

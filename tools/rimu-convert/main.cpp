@@ -34,7 +34,12 @@ int main(int argc, char** argv) {
     std::cerr << rimu::describe_ignored(imported.ignored);
     // Rimu's own loader checks the document (and reads its meshes) before anything is written: a JSON that
     // rimu-convert writes always loads.
-    rimu::load_scene(imported.document, input, output_directory, library);
+    try {
+      rimu::load_scene(imported.document, input, output_directory, library);
+    } catch (const rimu::InputError& e) {
+      if (std::optional<rimu::InputError> at_pbrt = rimu::at_pbrt_origin(e, imported.origins)) throw *at_pbrt;
+      throw;
+    }
     rimu::write_text_file(output, imported.document.dump(2) + "\n");
   });
 }

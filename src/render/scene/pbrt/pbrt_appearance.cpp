@@ -25,10 +25,25 @@ double rimu_roughness(double pbrt_roughness, bool remap) {
   return std::min(1.0, std::sqrt(alpha));
 }
 
+// pbrt-v4's named metal spectra → Rimu's copies of pbrt's own tables (src/spectral/optical_constants.cpp), so that
+// an imported scene reflects as in pbrt; Rimu's "gold" etc. are other measurements (docs/pbrt-import.md).
 std::optional<std::string> metal_of(const std::string& named, const std::string& suffix) {
-  static const std::pair<const char*, const char*> metals[] = {{"Au", "gold"}, {"Ag", "silver"}, {"Cu", "copper"}, {"Al", "aluminium"}};
+  static const std::pair<const char*, const char*> metals[] = {{"Au", "pbrt-au"}, {"Ag", "pbrt-ag"},     {"Cu", "pbrt-cu"},
+                                                               {"Al", "pbrt-al"}, {"CuZn", "pbrt-cuzn"}, {"MgO", "pbrt-mgo"},
+                                                               {"TiO2", "pbrt-tio2"}};
   for (const auto& [symbol, name] : metals)
     if (named == std::string("metal-") + symbol + suffix) return std::string(name);
+  return std::nullopt;
+}
+
+// pbrt-v4's named glasses → Rimu's copies of pbrt's tables (glass-F5/F10/F11 are SCHOTT SF5/SF10/SF11).
+std::optional<std::string> glass_of(const std::string& named) {
+  static const std::pair<const char*, const char*> glasses[] = {{"glass-BK7", "pbrt-bk7"},     {"glass-BAF10", "pbrt-baf10"},
+                                                                {"glass-FK51A", "pbrt-fk51a"}, {"glass-LASF9", "pbrt-lasf9"},
+                                                                {"glass-F5", "pbrt-sf5"},      {"glass-F10", "pbrt-sf10"},
+                                                                {"glass-F11", "pbrt-sf11"}};
+  for (const auto& [pbrt_name, name] : glasses)
+    if (named == pbrt_name) return std::string(name);
   return std::nullopt;
 }
 
@@ -119,7 +134,7 @@ std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool i
         const bool looks_like_file = named.find('.') != std::string::npos || named.find('/') != std::string::npos;
         if (!std::filesystem::is_regular_file(file)) {
           if (looks_like_file) throw InputError(param.where, "cannot find the spectrum file '" + file.string() + "' of \"" + param.name + "\"");
-          ignore("spectrum \"" + named + "\" of \"" + param.name + "\" (named spectra other than stdillum-*, metal-{Au,Ag,Cu,Al}-eta/k and glass-BK7 are not imported)", param.where);
+          ignore("spectrum \"" + named + "\" of \"" + param.name + "\" (named spectra are imported as a conductor's metal-*-eta/-k pair, a dielectric's glass-* and a light's stdillum-*)", param.where);
           return std::nullopt;
         }
         return tabulated_spectrum(read_spectrum_file(file, param), param);
@@ -250,6 +265,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
                                  std::to_string(s.where.line);
   // Files of one name in two folders (or one file included twice) would repeat a name: number the repeats.
   if (!named && materials_.contains(name)) name += " #" + std::to_string(++anonymous_materials_);
+  origin("/materials/" + name, s.where, context);
   const auto defaults = state_.attributes.find("material");
   const std::vector<PbrtParam>* material_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
   json m;
@@ -299,10 +315,10 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
     const PbrtParam* k = p.get("k", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
     if (const PbrtParam* r = p.get("reflectance", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture})) {
-      ignore("conductor \"reflectance\" (copper is used)", r->where);
-      m["metal"] = "copper";
+      ignore("conductor \"reflectance\" (pbrt's copper is used)", r->where);
+      m["metal"] = "pbrt-cu";
     } else if (!eta && !k) {
-      m["metal"] = "copper";  // pbrt's default: metal-Cu-eta / metal-Cu-k
+      m["metal"] = "pbrt-cu";  // pbrt's default: metal-Cu-eta / metal-Cu-k
     } else if (eta && k && eta->type == PbrtParamType::spectrum && k->type == PbrtParamType::spectrum && !eta->strings.empty() &&
                !k->strings.empty() && metal_of(eta->strings[0], "-eta") && metal_of(eta->strings[0], "-eta") == metal_of(k->strings[0], "-k")) {
       m["metal"] = *metal_of(eta->strings[0], "-eta");
@@ -315,11 +331,11 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
         m["n"] = *n_value;
         m["k"] = *k_value;
       } else {
-        m["metal"] = "copper";
+        m["metal"] = "pbrt-cu";
       }
     } else {
-      ignore("conductor eta/k other than a metal-{Au,Ag,Cu,Al}-eta/-k pair, floats or tabulated spectra (copper is used)", s.where);
-      m["metal"] = "copper";
+      ignore("conductor eta/k other than a metal-*-eta/-k pair of one metal, floats or tabulated spectra (pbrt's copper is used)", s.where);
+      m["metal"] = "pbrt-cu";
     }
     const double r = scalar("roughness", 0.0);
     const double u = scalar("uroughness", r), v = scalar("vroughness", r);
@@ -335,8 +351,8 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum});
     if (!eta) {
       m["ior"] = 1.5;
-    } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && eta->strings[0] == "glass-BK7") {
-      m["glass"] = "bk7";
+    } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && glass_of(eta->strings[0])) {
+      m["glass"] = *glass_of(eta->strings[0]);
     } else if (const auto v = spectrum_value(*eta, false, p.directory())) {
       m["ior"] = *v;
     } else {
@@ -519,6 +535,7 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
                                           Vec3d{v[9], v[10], v[11]}})});
     }
     if (const std::string filename = p.string("filename", ""); !filename.empty()) {
+      origin("/lights/" + std::to_string(lights_.size()), s.where, "LightSource \"" + s.strings[0] + "\"");
       json image = image_environment(p, s, filename, world);
       if (!portals.is_null()) image["portals"] = portals;
       lights_.push_back(std::move(image));
@@ -530,6 +547,7 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
     light.update(light_amount(p, "L", "radiance", "luminance_nt",
                               illuminance > 0 ? std::optional<double>(illuminance / M_PI) : std::nullopt));
   }
+  origin("/lights/" + std::to_string(lights_.size()), s.where, "LightSource \"" + s.strings[0] + "\"");
   lights_.push_back(std::move(light));
 }
 

@@ -15,6 +15,7 @@
 #include "render/scene/pbrt/pbrt_matrix.h"
 #include "render/scene/pbrt/pbrt_parser.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
+#include "spectral/rgb_upsampler.h"
 
 namespace rimu {
 
@@ -61,6 +62,8 @@ struct PbrtGraphicsState {
   bool reverse_orientation = false;
   std::string colour_space = "srgb-linear";  ///< Rimu's name of the pbrt ColorSpace in effect
   std::map<std::string, std::vector<PbrtParam>> attributes;  ///< Attribute "shape"/"light"/... defaults
+  std::string inside_medium, outside_medium;  ///< MediumInterface names; empty = vacuum
+  SourceLocation medium_interface_where;      ///< the MediumInterface in effect, for errors
 };
 
 struct PbrtTexture {
@@ -77,6 +80,11 @@ class PbrtConverter {
   /// The finished document; InputError if the scene has no camera.
   json finish(const std::string& main_file);
   std::vector<PbrtIgnored> ignored() const { return ignored_; }
+  std::vector<PbrtOrigin> origins() const { return origins_; }
+  /// Remembers that the document's part at `pointer` comes from `statement` at `where`.
+  void origin(std::string pointer, const SourceLocation& where, std::string statement) {
+    origins_.push_back({std::move(pointer), where, std::move(statement)});
+  }
 
   /// Records something unsupported (or, strict, throws at `where`).
   void ignore(const std::string& what, const SourceLocation& where);
@@ -91,6 +99,9 @@ class PbrtConverter {
 
   // pbrt_shapes.cpp
   void shape(const PbrtStatement& s);
+
+  // pbrt_media.cpp
+  void make_named_medium(const PbrtStatement& s);
 
  private:
   friend class PbrtParams;
@@ -111,6 +122,15 @@ class PbrtConverter {
   /// pbrt's "infinite" light with an equal-area octahedral image `filename`, in the light transform `world`.
   json image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world);
   std::string default_material();
+
+  // pbrt_media.cpp
+  /// A medium's sigma_a/sigma_s (1/m; pbrt's unbounded RGB becomes a table through Rimu's upsampler).
+  json coefficient_value(PbrtParams& p, const std::string& name, double fallback);
+  /// The material a shape of `material` gets under the MediumInterface in effect: a copy bounding the inside medium
+  /// where one begins at the shape; empty for an "interface" shape with no medium to bound (left out, listed).
+  std::optional<std::string> boundary_material(const std::string& material, const SourceLocation& where, const std::string& context);
+  /// Lists the outside media that no shape has inside (pbrt's scene-wide media).
+  void finish_media();
 
   // pbrt_to_scene.cpp
   void film_crop(PbrtParams& p, const PbrtStatement& s);
@@ -156,11 +176,19 @@ class PbrtConverter {
   json film_ = json::object();
   json integrator_ = json::object();
   std::set<std::string> named_materials_;
-  std::set<std::string> interface_materials_;  ///< pbrt's "interface": shapes with it are left out
+  std::set<std::string> interface_materials_;  ///< pbrt's "interface": index-matched medium boundaries
+  std::map<std::string, json> media_defined_;  ///< MakeNamedMedium name → Rimu medium (no boundary yet); null: not imported
+  json media_ = json::object();                ///< the document's "media"
+  std::map<std::string, std::string> boundary_materials_;  ///< material + '\n' + medium → the bounding copy's name
+  std::set<std::string> interior_media_;                   ///< media some shape has inside
+  std::map<std::string, SourceLocation> exterior_media_;   ///< media some shape has outside, first place
+  std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;  ///< by Rimu colour space name
   int anonymous_materials_ = 0;
 
   std::vector<PbrtIgnored> ignored_;
   std::map<std::string, size_t> ignored_index_;
+  std::vector<PbrtOrigin> origins_;
+  std::map<std::string, SourceLocation> media_where_;  ///< MakeNamedMedium name → its statement
 };
 
 }  // namespace rimu

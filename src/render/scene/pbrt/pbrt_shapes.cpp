@@ -6,6 +6,7 @@
 #include <numbers>
 #include <utility>
 
+#include "render/scene/loop_subdivision.h"
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/ply_loader.h"
 
@@ -53,11 +54,8 @@ void PbrtConverter::shape(const PbrtStatement& s) {
   const std::vector<PbrtParam>* shape_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
   if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
     PbrtParams p(*this, s, context, shape_defaults);
-    if (type == "loopsubdiv") {
-      // Approximated: the control mesh, unsubdivided (coarser and more angular than pbrt's limit surface).
-      ignore("Shape \"loopsubdiv\" (approximated by its control mesh, not subdivided)", s.where);
-      p.integer("levels", 3);
-    }
+    const int levels = type == "loopsubdiv" ? p.integer("levels", 3) : 0;
+    if (levels < 0 || levels > 10) throw InputError(s.where, context + ": \"levels\" must be 0-10, not " + std::to_string(levels));
     std::vector<Vec3d> positions = triples(p.numbers("P", {PbrtParamType::point3}));
     if (positions.empty()) throw InputError(s.where, context + ": needs \"point3 P\"");
     const std::vector<double> raw_indices = p.numbers("indices", {PbrtParamType::integer});
@@ -85,6 +83,20 @@ void PbrtConverter::shape(const PbrtStatement& s) {
       for (size_t q = 0; q < indices.size(); q += 4)
         for (uint32_t k : {0u, 1u, 3u, 0u, 3u, 2u}) triangles.push_back(indices[q + k]);
       indices = std::move(triangles);
+    }
+    if (type == "loopsubdiv") {
+      // pbrt-v4 reads only P, indices and levels here (N and uv would be listed as unused, as pbrt ignores them).
+      try {
+        LoopMesh mesh = loop_subdivide(positions, indices, levels);
+        shape_alpha_ = alpha_parameter(p, false);
+        const int triangles = int(mesh.indices.size() / 3);
+        emit_mesh(p, std::move(mesh.positions), std::move(mesh.indices), std::move(mesh.normals), {}, context, triangles);
+        return;
+      } catch (const std::length_error& e) {
+        throw InputError(s.where, context + ": " + e.what());
+      } catch (const std::invalid_argument& e) {
+        ignore(context + " that Loop's rules do not apply to, not subdivided: " + e.what() + " (the control mesh stands in)", s.where);
+      }
     }
     std::vector<Vec3d> normals = triples(p.numbers("N", {PbrtParamType::normal}));
     if (!normals.empty() && normals.size() != positions.size())
@@ -223,11 +235,10 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
 void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                                double area_m2, int shape_count) {
   json alpha = std::exchange(shape_alpha_, nullptr);  // taken first: no early return may leave it to the next shape
-  if (interface_materials_.count(state_.material)) {
-    ignore(context + " with the \"interface\" material (a medium boundary: left out)", where);
-    return;
-  }
-  shape["material"] = state_.material.empty() ? default_material() : state_.material;
+  const std::optional<std::string> material =
+      boundary_material(state_.material.empty() ? default_material() : state_.material, where, context);
+  if (!material) return;
+  shape["material"] = *material;
   if (!alpha.is_null()) {
     if (state_.area_light && !object_ && emissive_capable)
       ignore("\"alpha\" on an area light (Rimu's lights are not cut out: left solid)", where);
@@ -250,8 +261,10 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
     }
   }
   if (object_) {
+    origin("/prototypes/" + *object_ + "/" + std::to_string(prototypes_[*object_].size()), where, context);
     prototypes_[*object_].push_back(std::move(shape));
   } else {
+    origin("/shapes/" + std::to_string(shapes_.size()), where, context);
     shapes_.push_back(std::move(shape));
   }
 }

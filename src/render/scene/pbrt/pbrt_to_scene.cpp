@@ -228,6 +228,9 @@ void PbrtConverter::statement(const PbrtStatement& s) {
     world_from_camera_ = *world_from_camera;
     named_coordinate_systems_["camera"] = *world_from_camera;
     PbrtParams p(*this, s, "Camera \"" + s.strings[0] + "\"");
+    if (!state_.outside_medium.empty())
+      ignore("the camera's medium \"" + state_.outside_medium + "\" (MediumInterface before Camera: Rimu's camera must be outside every "
+             "medium, so it sees as if from vacuum)", s.where);
     orthographic_ = s.strings[0] == "orthographic";
     if (s.strings[0] != "perspective" && !orthographic_) ignore("Camera \"" + s.strings[0] + "\" (rendered as perspective)", s.where);
     if (!orthographic_) {
@@ -358,9 +361,11 @@ void PbrtConverter::statement(const PbrtStatement& s) {
       state_.area_light = s;
     }
   } else if (k == "MakeNamedMedium") {
-    ignore("MakeNamedMedium (participating media are not imported)", s.where);
+    make_named_medium(s);
   } else if (k == "MediumInterface") {
-    ignore("MediumInterface (participating media are not imported)", s.where);
+    state_.inside_medium = s.strings[0];
+    state_.outside_medium = s.strings.size() > 1 ? s.strings[1] : s.strings[0];
+    state_.medium_interface_where = s.where;
   } else if (k == "ObjectBegin") {
     require_world(true);
     if (object_) throw InputError(s.where, "ObjectBegin inside ObjectBegin \"" + *object_ + "\"");
@@ -384,6 +389,7 @@ void PbrtConverter::statement(const PbrtStatement& s) {
     json instance = {{"type", "instance"}, {"prototype", s.strings[0]}};
     const json steps = transform_steps(world_from_object(), s.where);
     if (!steps.is_null()) instance["transform"] = steps;
+    origin("/shapes/" + std::to_string(shapes_.size()), s.where, "ObjectInstance \"" + s.strings[0] + "\"");
     shapes_.push_back(std::move(instance));
   } else {
     ignore(k, s.where);
@@ -448,6 +454,8 @@ json PbrtConverter::finish(const std::string& main_file) {
   json document = {{"description", "imported from the pbrt-v4 file " + std::filesystem::path(main_file).filename().string()},
                    {"camera", camera}, {"film", film_}, {"integrator", integrator_}, {"materials", materials_},
                    {"lights", lights_}, {"shapes", shapes_}};
+  finish_media();
+  if (!media_.empty()) document["media"] = media_;
   json prototypes = json::object();
   for (auto& [name, shapes] : prototypes_.items())
     if (!shapes.empty()) prototypes[name] = shapes;
@@ -464,6 +472,7 @@ PbrtImport import_pbrt_text(const std::string& text, const std::string& file, co
   PbrtImport result;
   result.document = converter.finish(file);
   result.ignored = converter.ignored();
+  result.origins = converter.origins();
   return result;
 }
 
@@ -475,7 +484,21 @@ PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& libra
   PbrtImport result;
   result.document = converter.finish(file.string());
   result.ignored = converter.ignored();
+  result.origins = converter.origins();
   return result;
+}
+
+std::optional<InputError> at_pbrt_origin(const InputError& error, const std::vector<PbrtOrigin>& origins) {
+  const std::string& key = error.where().key;
+  const PbrtOrigin* best = nullptr;
+  for (const PbrtOrigin& o : origins)
+    if (key.compare(0, o.pointer.size(), o.pointer) == 0 && (key.size() == o.pointer.size() || key[o.pointer.size()] == '/'))
+      if (!best || o.pointer.size() > best->pointer.size()) best = &o;
+  if (!best) return std::nullopt;
+  // The problem's own place (a PLY's file:line) stays in the message; the document's key goes last, in brackets.
+  const SourceLocation inner{error.where().file == best->where.file ? "" : error.where().file, error.where().line, ""};
+  const std::string place = inner.file.empty() ? "" : inner.describe() + ": ";
+  return InputError(best->where, best->statement + ": " + place + error.explanation() + " (the converted scene's " + key + ")");
 }
 
 std::string describe_ignored(const std::vector<PbrtIgnored>& ignored) {

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,9 +28,17 @@ struct PbrtImportOptions {
   std::filesystem::path output_directory;
 };
 
+/// Where a part of the imported document came from: the pbrt statement that made it.
+struct PbrtOrigin {
+  std::string pointer;    ///< key path of the part as the JSON loader writes it, names unescaped ("/shapes/3", "/materials/gold")
+  SourceLocation where;   ///< the pbrt file and line of the statement
+  std::string statement;  ///< e.g. Shape "plymesh"
+};
+
 struct PbrtImport {
   nlohmann::json document;           ///< a Rimu scene (docs/scene-format.md)
   std::vector<PbrtIgnored> ignored;  ///< in order of first occurrence
+  std::vector<PbrtOrigin> origins;   ///< every shape, instance, material, light and medium of the document
 };
 
 /// Reads a pbrt-v4 file (and what it Includes/Imports) into a Rimu scene document. Throws InputError with the pbrt
@@ -39,6 +48,11 @@ PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& libra
 /// The same on text in memory: `file` is the name errors carry, `directory` resolves relative paths.
 PbrtImport import_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
                             SpectralLibrary& library, const PbrtImportOptions& options = {});
+
+/// An InputError that loading the imported document raised (a truncated PLY, a bad image, a value Rimu refuses)
+/// moved to the pbrt statement that made the part it names: "scene.pbrt:12: Shape \"plymesh\": mesh.ply:40:
+/// vertex 2: …", with the document's key kept at the end. Empty when the error names no imported part.
+std::optional<InputError> at_pbrt_origin(const InputError& error, const std::vector<PbrtOrigin>& origins);
 
 /// The report printed after loading: one line per entry, `ignored: Shape "curve" (12 times), first at a.pbrt:1234`.
 std::string describe_ignored(const std::vector<PbrtIgnored>& ignored);
