@@ -93,6 +93,39 @@ TEST_CASE("layered: a smooth clear coat of zero thickness over a Lambertian conv
   }
 }
 
+TEST_CASE("layered: a smooth coat over an absorbing slab matches the absorbing closed form") {
+  // CoatedDiffuseBsdf::absorbing (each crossing attenuated by exp(−τ/μt), the internal loop by K(η, τ)) is the
+  // exact answer for a smooth coat over a non-scattering slab: the walk (which knows nothing of K) must agree.
+  const float eta = 1.5f, tau = 0.3f;
+  const LayeredBsdf walk = coated_diffuse(0.0f, {tau, Float4(0.0f), 0.0f}, {400, 1});
+  const CoatedDiffuseBsdf closed = CoatedDiffuseBsdf::absorbing(kBaseAlbedo, Float4(eta),
+                                                                Float4(float(coat_internal_reflectance(eta, tau))), tau);
+  for (const auto& [cos_o, cos_i] : {std::pair{0.9f, 0.7f}, {0.3f, 0.95f}, {0.1f, 0.5f}}) {
+    CAPTURE(cos_o);
+    CAPTURE(cos_i);
+    const LaneStats estimate = eval_estimates(walk, cos_o, cos_i, 1.0f, 20000);
+    const Float4 exact = closed.eval(direction(cos_o, 0.0f), direction(cos_i, 1.0f));
+    for (int k = 0; k < 4; ++k) {
+      CAPTURE(k);
+      CHECK(std::fabs(estimate.mean(k) - exact[k]) <= kSigmas * estimate.error(k) + 1e-6);
+      CHECK(estimate.error(k) < 0.02 * exact[k]);
+    }
+  }
+}
+
+TEST_CASE("layered: the internal reflectance K(eta, tau) of the absorbing closed form") {
+  // τ = 0: the clear coat's F̄_int, which reciprocity ties to F̄_ext: 1 − F̄_int = (1 − F̄_ext)/η².
+  for (double eta : {1.1, 1.5, 2.4}) {
+    CAPTURE(eta);
+    CHECK(coat_internal_reflectance(eta, 0.0) == doctest::Approx(1.0 - (1.0 - fresnel_diffuse_reflectance(eta)) / (eta * eta)).epsilon(1e-6));
+    // Decreasing in τ, and 0 for an opaque slab.
+    CHECK(coat_internal_reflectance(eta, 0.1) < coat_internal_reflectance(eta, 0.01));
+    CHECK(coat_internal_reflectance(eta, 50.0) < 1e-12);
+  }
+  // η = 1 (no interface): nothing is reflected.
+  CHECK(coat_internal_reflectance(1.0, 0.0) == doctest::Approx(0.0).epsilon(1e-9));
+}
+
 TEST_CASE("layered: a smooth coat over a smooth metal is a delta lobe with the albedo of its Fresnel series") {
   // Mirror-like at every event, zero thickness: the weight of a sample is R + (1−R)² F_m Σ (F_m R)^k summed over
   // the walks, in expectation R + (1−R)² F_m / (1 − F_m R), with R = F(θ, η) (equal from inside at the refracted
