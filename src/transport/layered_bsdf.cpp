@@ -113,9 +113,14 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
     const auto wos = top_.sample(wo, uc_o, random.next_2d());
     const float uc_i = random.next();
     const auto wis = top_.sample(wi, uc_i, random.next_2d());
-    // A coat reflection drawn here cannot enter: this walk contributes 0 (the transmitted ones carry 1/T).
-    if (!usable(wos) || wos->wi.z >= 0.0f || !usable(wis) || wis->wi.z >= 0.0f) continue;
-    const SampledSpectrum wis_weight = wis->f * Float4(importance_factor / wis->pdf[0]);  // f/pdf of the companion
+    // A coat reflection drawn for wo cannot enter: this walk contributes 0 (the transmitted ones carry 1/T).
+    if (!usable(wos) || wos->wi.z >= 0.0f) continue;
+    // Likewise the companion: without it the connections to it are 0 for this walk, but the walk's own exits
+    // through the rough coat (the other MIS strategy) still count; skipping those would bias eval() low by the
+    // companion's reflection probability times their share.
+    const bool companion = usable(wis) && wis->wi.z < 0.0f;
+    const SampledSpectrum wis_weight =
+        companion ? wis->f * Float4(importance_factor / wis->pdf[0]) : Float4(0.0f);  // f/pdf of the companion
 
     SampledSpectrum beta = wos->f * Float4(std::fabs(wos->wi.z) / wos->pdf[0]);
     float z = thickness;
@@ -133,10 +138,12 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
         if (zp == z) continue;
         if (0.0f < zp && zp < thickness) {
           // Scattering in the slab: connect to the companion through the coat...
-          const Vec3 to_exit = -wis->wi;
-          const float phase_value = phase.eval(-w, to_exit);
-          const float weight = top_smooth_ ? 1.0f : power_heuristic(wis->pdf[0], phase_value);
-          f += beta * medium_.albedo * Float4(phase_value * weight * transmittance(zp - thickness, to_exit)) * wis_weight;
+          if (companion) {
+            const Vec3 to_exit = -wis->wi;
+            const float phase_value = phase.eval(-w, to_exit);
+            const float weight = top_smooth_ ? 1.0f : power_heuristic(wis->pdf[0], phase_value);
+            f += beta * medium_.albedo * Float4(phase_value * weight * transmittance(zp - thickness, to_exit)) * wis_weight;
+          }
           // ...and continue the walk in a phase-sampled direction.
           const PhaseSample ps = phase.sample(-w, random.next_2d());
           if (!(ps.pdf_solid_angle > 0.0f) || ps.wi.z == 0.0f) break;
@@ -170,7 +177,7 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
         continue;
       }
       // At the base: connect to the companion...
-      if (!base_specular) {
+      if (!base_specular && companion) {
         const Vec3 to_exit = -wis->wi;
         const float weight = top_smooth_ ? 1.0f : power_heuristic(wis->pdf[0], base_pdf(-w, to_exit));
         f += beta * base_eval(-w, to_exit) *
@@ -210,8 +217,10 @@ SampledSpectrum LayeredBsdf::pdf(Vec3 wo, Vec3 wi) const {
     const auto wos = top_.sample(wo, uc_o, random.next_2d());
     const float uc_i = random.next();
     const auto wis = top_.sample(wi, uc_i, random.next_2d());
-    if (!usable(wos) || wos->wi.z >= 0.0f || !usable(wis) || wis->wi.z >= 0.0f) continue;
+    const bool companion = usable(wis) && wis->wi.z < 0.0f;
+    if (!usable(wos) || wos->wi.z >= 0.0f) continue;
     if (top_smooth_) {
+      if (!companion) continue;
       // The base's density of the one direction that leaves towards wi (in the slab's solid angle).
       pdf_sum += base_pdf(-wos->wi, -wis->wi);
       continue;
@@ -224,8 +233,10 @@ SampledSpectrum LayeredBsdf::pdf(Vec3 wo, Vec3 wi) const {
       pdf_sum += top_.pdf(-rs->wi, wi)[0];
       continue;
     }
-    const float base_density = base_pdf(-wos->wi, -wis->wi);
-    pdf_sum += power_heuristic(wis->pdf[0], base_density) * base_density;
+    if (companion) {
+      const float base_density = base_pdf(-wos->wi, -wis->wi);
+      pdf_sum += power_heuristic(wis->pdf[0], base_density) * base_density;
+    }
     const float coat_density = top_.pdf(-rs->wi, wi)[0];
     pdf_sum += power_heuristic(rs->pdf[0], coat_density) * coat_density;
   }
