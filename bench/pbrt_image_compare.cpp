@@ -12,6 +12,8 @@
 //       clipped and sRGB-encoded, 8 bits: the pictures next to the numbers in docs/benchmarks.md
 //   rimu-pbrt-image-compare info IMAGE.exr
 //       render_time_s: pbrt's "renderTimeSeconds" or Rimu's "rimu:renderTimeSeconds" header attribute
+//   --crop X0 Y0 X1 Y1 (compare, relmse, png): only the pixels x0 ≤ x < x1, y0 ≤ y < y1 of both images (e.g. one
+//       object's pixels, so that its mean is not diluted by the rest of the frame)
 //
 // Either file may hold R, G, B or X, Y, Z channels (found by name); anything else is an error (exit 1).
 #include <ImfChannelList.h>
@@ -24,6 +26,8 @@
 #include <ImfFloatAttribute.h>
 
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -203,15 +207,33 @@ void info(const std::filesystem::path& path) {
   }
 }
 
+/// The pixels x0 ≤ x < x1, y0 ≤ y < y1 of `image` (the crop must lie inside it).
+LinearRgbImage crop(const LinearRgbImage& image, const std::array<int, 4>& box) {
+  const auto [x0, y0, x1, y1] = box;
+  if (!(0 <= x0 && x0 < x1 && x1 <= image.width && 0 <= y0 && y0 < y1 && y1 <= image.height))
+    fail("--crop " + std::to_string(x0) + " " + std::to_string(y0) + " " + std::to_string(x1) + " " + std::to_string(y1) +
+         " does not lie inside the " + std::to_string(image.width) + "x" + std::to_string(image.height) + " image");
+  LinearRgbImage out{x1 - x0, y1 - y0, {}};
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c) out.rgb.push_back(image.at(x, y, c));
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> positional;
   std::string space_name = "srgb-linear";
   int block = 8;
+  std::optional<std::array<int, 4>> crop_box;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--space" && i + 1 < argc) space_name = argv[++i];
+    else if (arg == "--crop" && i + 4 < argc) {
+      crop_box = std::array<int, 4>{};
+      for (int& v : *crop_box) v = std::atoi(argv[++i]);
+    }
     else if (arg == "--block" && i + 1 < argc) block = std::atoi(argv[++i]);
     else if (arg.rfind("--", 0) == 0) fail("unknown option " + arg);
     else positional.push_back(arg);
@@ -221,7 +243,7 @@ int main(int argc, char** argv) {
   if ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
       positional.size() != expected || block < 2)
     fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr | png A.exr B.exr OUT.png | info A.exr "
-         "[--space NAME] [--block N]");
+         "[--space NAME] [--block N] [--crop X0 Y0 X1 Y1]");
   if (command == "info") {
     info(positional[1]);
     return 0;
@@ -232,8 +254,12 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     fail(std::string("--space: ") + e.what());
   }
-  const LinearRgbImage a = read_linear_rgb(positional[1], *space);
-  const LinearRgbImage b = read_linear_rgb(positional[2], *space);
+  LinearRgbImage a = read_linear_rgb(positional[1], *space);
+  LinearRgbImage b = read_linear_rgb(positional[2], *space);
+  if (crop_box) {
+    a = crop(a, *crop_box);
+    b = crop(b, *crop_box);
+  }
   if (command == "png") side_by_side_png(a, b, *space, positional[3]);
   else if (command == "compare") compare(a, b, block);
   else relmse(a, b);

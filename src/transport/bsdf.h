@@ -11,6 +11,7 @@
 #include "transport/dielectric_bsdf.h"
 #include "transport/diffuse_bsdf.h"
 #include "transport/diffuse_transmission_bsdf.h"
+#include "transport/layered_bsdf.h"
 #include "transport/thin_dielectric_bsdf.h"
 
 namespace rimu {
@@ -27,7 +28,7 @@ namespace rimu {
 class Bsdf {
  public:
   using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf, ThinDielectricBsdf,
-                               DiffuseTransmissionBsdf>;
+                               DiffuseTransmissionBsdf, LayeredBsdf>;
 
   template <typename T>
   Bsdf(T bsdf) : bsdf_(std::move(bsdf)) {}  // NOLINT(google-explicit-constructor): any BSDF is a Bsdf

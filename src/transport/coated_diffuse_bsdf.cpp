@@ -1,6 +1,7 @@
 #include "transport/coated_diffuse_bsdf.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "transport/direction_warps.h"
@@ -24,6 +25,46 @@ CoatedDiffuseBsdf::CoatedDiffuseBsdf(SampledSpectrum albedo, SampledSpectrum eta
   mean_albedo_ = std::max(0.25f * sum(albedo), 0.05f);
 }
 
+CoatedDiffuseBsdf CoatedDiffuseBsdf::absorbing(SampledSpectrum albedo, SampledSpectrum eta,
+                                                SampledSpectrum internal_reflectance, float thickness) {
+  CoatedDiffuseBsdf b;
+  b.albedo_ = albedo;
+  b.eta_ = eta;
+  b.diffuse_scale_ = albedo * Float4(std::numbers::inv_pi_v<float>) / (eta * eta * (Float4(1.0f) - albedo * internal_reflectance));
+  b.mean_albedo_ = std::max(0.25f * sum(albedo), 0.05f);
+  b.thickness_ = std::max(thickness, 0.0f);
+  return b;
+}
+
+SampledSpectrum CoatedDiffuseBsdf::crossing(float cos_theta) const {
+  const Float4 transmit = Float4(1.0f) - fresnel_dielectric(Float4(cos_theta), eta_);
+  if (thickness_ == 0.0f) return transmit;
+  // cos θt from Snell's law, per lane: μt² = 1 − sin²θ/η².
+  const Float4 mu_t = sqrt(max(Float4(1.0f) - Float4(1.0f - cos_theta * cos_theta) / (eta_ * eta_), Float4(0.0f)));
+  return transmit * exp(Float4(-thickness_) / max(mu_t, Float4(1e-20f)));
+}
+
+double coat_internal_reflectance(double eta, double thickness) {
+  const auto simpson = [](const auto& g, double a, double b, int intervals) {
+    const double h = (b - a) / intervals;
+    double s = 0;
+    for (int i = 0; i <= intervals; ++i) {
+      const double w = (i == 0 || i == intervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+      s += w * g(a + i * h);
+    }
+    return 2.0 * s * h / 3.0;
+  };
+  const auto attenuation = [thickness](double mu) { return mu > 0.0 ? std::exp(-2.0 * thickness / mu) : 0.0; };
+  // From inside, the index ratio is 1/η: total reflection below μc = √(1 − 1/η²).
+  const double mu_critical = std::sqrt(std::max(0.0, 1.0 - 1.0 / (eta * eta)));
+  const double total = simpson([&](double mu) { return attenuation(mu) * mu; }, 0.0, mu_critical, 512);
+  const auto partial = [&](double t) {
+    const double mu = mu_critical + t * t;
+    return fresnel_dielectric(-mu, eta) * attenuation(mu) * mu * 2.0 * t;
+  };
+  return total + simpson(partial, 0.0, std::sqrt(1.0 - mu_critical), 512);
+}
+
 SampledSpectrum CoatedDiffuseBsdf::specular_probability(SampledSpectrum coat_reflectance) const {
   return coat_reflectance / (coat_reflectance + (Float4(1.0f) - coat_reflectance) * Float4(mean_albedo_));
 }
@@ -33,9 +74,7 @@ SampledSpectrum CoatedDiffuseBsdf::eval(Vec3 wo, Vec3 wi) const {
   wo = flip_z(wo, side);
   wi = flip_z(wi, side);
   if (!(wo.z > 0.0f && wi.z > 0.0f)) return Float4(0.0f);
-  const Float4 transmit_o = Float4(1.0f) - fresnel_dielectric(Float4(wo.z), eta_);
-  const Float4 transmit_i = Float4(1.0f) - fresnel_dielectric(Float4(wi.z), eta_);
-  return diffuse_scale_ * transmit_o * transmit_i;
+  return diffuse_scale_ * crossing(wo.z) * crossing(wi.z);
 }
 
 SampledSpectrum CoatedDiffuseBsdf::pdf(Vec3 wo, Vec3 wi) const {

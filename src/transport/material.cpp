@@ -1,5 +1,6 @@
 #include "transport/material.h"
 
+#include <cmath>
 #include <vector>
 
 #include "spectral/error.h"
@@ -89,24 +90,79 @@ Bsdf ThinDielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const 
   return ThinDielectricBsdf(ior_->sample(lambda));
 }
 
-CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior)
-    : reflectance_(std::move(reflectance)), coat_ior_(std::move(coat_ior)) {
-  if (!reflectance_ || !coat_ior_) throw InputError({}, "a coated diffuse material needs a reflectance and a coat index");
+namespace {
+
+void check_layer(const CoatLayer& layer) {
+  check_roughness(layer.roughness, "coat roughness");
+  if (!(layer.thickness >= 0.0f && std::isfinite(layer.thickness)))
+    throw InputError({}, "coat thickness must be a finite number ≥ 0, got " + std::to_string(layer.thickness));
+  if (!(std::fabs(layer.g) < 1.0f)) throw InputError({}, "coat g must lie in (-1, 1), got " + std::to_string(layer.g));
+  if (layer.walk.max_depth < 1 || layer.walk.samples < 1)
+    throw InputError({}, "coat max_depth and samples must be at least 1");
+}
+
+/// The coat's index at the hero wavelength: the walk's interfaces have one index for all lanes.
+float hero_coat_eta(const Spectrum& coat_ior, const SampledWavelengths& lambda) { return float(coat_ior.value(lambda.hero_nm())); }
+
+LayerMedium layer_medium(const CoatLayer& layer, Vec2 uv, const SampledWavelengths& lambda) {
+  const Float4 albedo = layer.albedo ? clamp_unit(layer.albedo->evaluate(uv, lambda)) : Float4(0.0f);
+  return {layer.thickness, albedo, layer.g};
+}
+
+TrowbridgeReitz coat_distribution(const CoatLayer& layer) { return distribution_for(layer.roughness, layer.roughness); }
+
+void check_coat_ior(const Spectrum& coat_ior) {
   // η < 1 would make the coat's internal reflectance formula describe a coat less dense than air: not a coat.
-  if (!(min_over_range(*coat_ior_) >= 1.0))
-    throw InputError({}, "the coat index of " + coat_ior_->describe() + " must be at least 1 over 360-830 nm");
-  std::vector<double> lambda_nm, reflectance_ext;
+  if (!(min_over_range(coat_ior) >= 1.0))
+    throw InputError({}, "the coat index of " + coat_ior.describe() + " must be at least 1 over 360-830 nm");
+}
+
+}  // namespace
+
+CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior, CoatLayer layer)
+    : reflectance_(std::move(reflectance)), coat_ior_(std::move(coat_ior)), layer_(std::move(layer)) {
+  if (!reflectance_ || !coat_ior_) throw InputError({}, "a coated diffuse material needs a reflectance and a coat index");
+  check_coat_ior(*coat_ior_);
+  check_layer(layer_);
+  if (!layer_.smooth_and_clear()) return;
+  std::vector<double> lambda_nm, internal;
   for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 5.0) {
     lambda_nm.push_back(l);
-    reflectance_ext.push_back(fresnel_diffuse_reflectance(coat_ior_->value(l)));
+    internal.push_back(coat_internal_reflectance(coat_ior_->value(l), layer_.thickness));
   }
-  coat_diffuse_reflectance_ = std::make_shared<TabulatedSpectrum>(
-      std::move(lambda_nm), std::move(reflectance_ext), Extrapolation::clamp, "diffuse Fresnel reflectance of the coat");
+  coat_internal_reflectance_ = std::make_shared<TabulatedSpectrum>(
+      std::move(lambda_nm), std::move(internal), Extrapolation::clamp, "internal diffuse reflectance of the coat");
 }
 
 Bsdf CoatedDiffuseMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
-  return CoatedDiffuseBsdf(clamp_unit(reflectance_->evaluate(uv, lambda)), coat_ior_->sample(lambda),
-                           coat_diffuse_reflectance_->sample(lambda));
+  const Float4 base = clamp_unit(reflectance_->evaluate(uv, lambda));
+  if (layer_.smooth_and_clear())
+    return CoatedDiffuseBsdf::absorbing(base, coat_ior_->sample(lambda), coat_internal_reflectance_->sample(lambda),
+                                        layer_.thickness);
+  return LayeredBsdf(hero_coat_eta(*coat_ior_, lambda), coat_distribution(layer_), DiffuseBsdf(base),
+                     layer_medium(layer_, uv, lambda), layer_.walk);
+}
+
+CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor,
+                                                 float conductor_roughness_u, float conductor_roughness_v, CoatLayer layer)
+    : coat_ior_(std::move(coat_ior)),
+      conductor_(std::move(conductor)),
+      conductor_distribution_(distribution_for(conductor_roughness_u, conductor_roughness_v)),
+      layer_(std::move(layer)) {
+  if (!coat_ior_) throw InputError({}, "a coated conductor needs a coat index");
+  if (!conductor_.n || !conductor_.k) throw InputError({}, "a coated conductor needs both n and k spectra");
+  check_coat_ior(*coat_ior_);
+  check_roughness(conductor_roughness_u, "conductor roughness");
+  check_roughness(conductor_roughness_v, "conductor roughness");
+  check_layer(layer_);
+}
+
+Bsdf CoatedConductorMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
+  const float eta = hero_coat_eta(*coat_ior_, lambda);
+  // The metal borders the coat, not air: its Fresnel factor uses the index relative to the coat.
+  const ConductorBsdf base(conductor_.n->sample(lambda) / Float4(eta), conductor_.k->sample(lambda) / Float4(eta),
+                           conductor_distribution_);
+  return LayeredBsdf(eta, coat_distribution(layer_), base, layer_medium(layer_, uv, lambda), layer_.walk);
 }
 
 }  // namespace rimu

@@ -74,19 +74,56 @@ class ThinDielectricMaterial {
   SpectrumPtr ior_;
 };
 
-/// A Lambertian base of reflectance ρ(λ) under a smooth clear coat of index n(λ) (CoatedDiffuseBsdf).
-/// The coat's hemispherical reflectance F̄_ext(n(λ)) is tabulated at 5 nm at construction (it is a smooth
+/// A coat's layer parameters beyond its index: roughness of its surface, the slab under it (LayeredBsdf's
+/// LayerMedium, with a textured albedo) and the random walk's limits.
+struct CoatLayer {
+  float roughness = 0.0f;     ///< perceptual, α = r² (isotropic)
+  float thickness = 0.0f;     ///< in mean free paths (σt = 1)
+  SpectralTexturePtr albedo;  ///< single-scattering albedo of the slab; null = 0 (clear: absorbing only)
+  float g = 0.0f;             ///< Henyey-Greenstein asymmetry of the slab
+  LayerWalk walk;
+  /// A smooth coat whose slab only absorbs (no albedo, or zero thickness) has an exact closed form over a
+  /// Lambertian base (CoatedDiffuseBsdf).
+  bool smooth_and_clear() const { return roughness == 0.0f && (thickness == 0.0f || !albedo); }
+};
+
+/// A Lambertian base of reflectance ρ(λ) under a dielectric coat of index n(λ).
+/// Rule: a smooth coat whose slab does not scatter (no albedo given, or zero thickness) uses the exact closed
+/// form (CoatedDiffuseBsdf, absorbing when thickness > 0: fast, noiseless); any other coat (rough, or a
+/// scattering slab) the stochastic LayeredBsdf, with the coat index of the hero wavelength
+/// for the whole walk (the coat's dispersion, ~1 % in n for lacquers and glasses, is neglected there).
+/// The closed form's internal reflectance K(n(λ), thickness) is tabulated at 5 nm at construction (a smooth
 /// function of n, which varies by about 1% over the visible for glasses).
 class CoatedDiffuseMaterial {
  public:
-  /// Throws InputError if the coat index is not ≥ 1 over 360-830 nm or an input is missing.
-  CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior);
+  /// Throws InputError if the coat index is not ≥ 1 over 360-830 nm, an input is missing, the roughness is
+  /// outside [0, 1], the thickness negative, |g| ≥ 1, or max_depth/samples < 1.
+  CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior, CoatLayer layer = {});
   Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
 
  private:
   SpectralTexturePtr reflectance_;
   SpectrumPtr coat_ior_;
-  SpectrumPtr coat_diffuse_reflectance_;  // F̄_ext(λ)
+  SpectrumPtr coat_internal_reflectance_;  // K(n(λ), thickness) of the closed form
+  CoatLayer layer_;
+};
+
+/// A conductor of complex index n(λ) + ik(λ) (smooth or GGX) under a dielectric coat of index n_c(λ) with a
+/// slab (pbrt-v4's coatedconductor): always the stochastic LayeredBsdf. The metal's index is taken relative to
+/// the coat, (n + ik)/n_c, and the coat index is the hero wavelength's for the whole walk (as above).
+class CoatedConductorMaterial {
+ public:
+  /// Throws InputError for a missing input, a coat index below 1, roughnesses outside [0, 1], a negative
+  /// thickness, |g| ≥ 1 or max_depth/samples < 1.
+  CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor, float conductor_roughness_u,
+                          float conductor_roughness_v, CoatLayer layer);
+  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+
+ private:
+  SpectrumPtr coat_ior_;
+  ComplexIorSpectra conductor_;
+  TrowbridgeReitz conductor_distribution_;
+  CoatLayer layer_;
 };
 
 /// A surface material of any kind, held by value (a std::variant): a scene keeps a std::vector<Material>.
@@ -96,7 +133,7 @@ class CoatedDiffuseMaterial {
 class Material {
  public:
   using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial,
-                               ThinDielectricMaterial, DiffuseTransmissionMaterial>;
+                               ThinDielectricMaterial, DiffuseTransmissionMaterial, CoatedConductorMaterial>;
 
   template <typename T>
   Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)

@@ -93,3 +93,53 @@ TEST_CASE("material: invalid parameters are input errors") {
   CHECK_THROWS_AS(CoatedDiffuseMaterial(constant_texture(0.5), std::make_shared<ConstantSpectrum>(0.8)), InputError);
   CHECK_THROWS_AS(DiffuseMaterial(nullptr), InputError);
 }
+
+namespace {
+
+CoatLayer layer(float roughness, float thickness = 0.0f, SpectralTexturePtr albedo = nullptr) {
+  CoatLayer l;
+  l.roughness = roughness;
+  l.thickness = thickness;
+  l.albedo = std::move(albedo);
+  return l;
+}
+
+}  // namespace
+
+TEST_CASE("material: coated materials choose the closed form or the random walk by the stated rule") {
+  const auto ior = std::make_shared<ConstantSpectrum>(1.5);
+  const auto kind = [&](const Material& m) { return m.bsdf({0.5f, 0.5f}, kLambda).variant().index(); };
+  const size_t closed = Bsdf::Variant(CoatedDiffuseBsdf(Float4(0.5f), Float4(1.5f), Float4(0.09f))).index();
+  const size_t walk = Bsdf::Variant(LayeredBsdf(1.5f, TrowbridgeReitz(0, 0), DiffuseBsdf(Float4(0.5f)), {}, {})).index();
+  // Smooth and not scattering (no albedo, or zero thickness): the exact closed form, absorbing if thick.
+  CHECK(kind(CoatedDiffuseMaterial(constant_texture(0.5), ior)) == closed);
+  CHECK(kind(CoatedDiffuseMaterial(constant_texture(0.5), ior, layer(0.0f, 0.01f))) == closed);
+  CHECK(kind(CoatedDiffuseMaterial(constant_texture(0.5), ior, layer(0.0f, 0.0f, constant_texture(0.5)))) == closed);
+  // Rough, or a scattering slab: the walk.
+  CHECK(kind(CoatedDiffuseMaterial(constant_texture(0.5), ior, layer(0.3f, 0.0f))) == walk);
+  CHECK(kind(CoatedDiffuseMaterial(constant_texture(0.5), ior, layer(0.0f, 0.1f, constant_texture(0.5)))) == walk);
+  // A coated conductor is always the walk.
+  CHECK(kind(CoatedConductorMaterial(ior, conductor_ior(test::library(), "gold"), 0.0f, 0.0f, {})) == walk);
+  // The absorbing closed form darkens the clear one: thickness 0.5 at normal incidence loses ≥ exp(−1) of the
+  // diffuse lobe (two crossings), more with the internal loop.
+  const Vec3 up{0, 0, 1};
+  const Float4 clear = CoatedDiffuseMaterial(constant_texture(0.8), ior).bsdf({}, kLambda).eval(up, up);
+  const Float4 thick = CoatedDiffuseMaterial(constant_texture(0.8), ior, layer(0.0f, 0.5f)).bsdf({}, kLambda).eval(up, up);
+  CHECK(thick[0] < clear[0] * std::exp(-1.0f) * 1.0001f);
+  CHECK(thick[0] > 0.0f);
+}
+
+TEST_CASE("material: invalid coat layers are input errors") {
+  const auto ior = std::make_shared<ConstantSpectrum>(1.5);
+  CHECK_THROWS_AS(CoatedDiffuseMaterial(constant_texture(0.5), ior, layer(1.5f)), InputError);
+  CHECK_THROWS_AS(CoatedDiffuseMaterial(constant_texture(0.5), ior, layer(0.0f, -1.0f)), InputError);
+  CoatLayer bad_g;
+  bad_g.g = 1.0f;
+  CHECK_THROWS_AS(CoatedDiffuseMaterial(constant_texture(0.5), ior, bad_g), InputError);
+  CoatLayer no_walk;
+  no_walk.walk.samples = 0;
+  CHECK_THROWS_AS(CoatedConductorMaterial(ior, conductor_ior(test::library(), "gold"), 0.0f, 0.0f, no_walk), InputError);
+  CHECK_THROWS_AS(CoatedConductorMaterial(ior, ComplexIorSpectra{}, 0.0f, 0.0f, {}), InputError);
+  CHECK_THROWS_AS(CoatedConductorMaterial(std::make_shared<ConstantSpectrum>(0.9), conductor_ior(test::library(), "gold"), 0.0f, 0.0f, {}),
+                  InputError);
+}

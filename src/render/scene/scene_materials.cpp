@@ -1,4 +1,6 @@
 // The "materials" section of the JSON scene format.
+#include <cmath>
+
 #include "render/image_texture.h"
 #include "render/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
@@ -37,9 +39,48 @@ auto with_key(const JsonCursor& where, F&& f) {
   }
 }
 
+// A conductor's complex index: "metal" (a named metal) or "n" and "k".
+ComplexIorSpectra conductor_ior_of(const JsonCursor& m, LoadContext& context) {
+  ComplexIorSpectra ior;
+  if (m.has("metal")) {
+    for (const char* key : {"n", "k"})
+      if (m.has(key)) m.at(key).fail("give either metal or n and k, not both");
+    const JsonCursor metal = m.at("metal");
+    ior = with_key(metal, [&] { return conductor_ior(context.spectra.library(), metal.string()); });
+  } else {
+    // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/rgb_transport_inputs.h).
+    ior.n = context.spectra.parse_spectral(m.at("n"), SpectrumRole::ior);
+    // k ≥ 0 and unbounded, like an emission; but RGB would be upsampled (and scaled) as light, so refuse it here.
+    const JsonCursor k = m.at("k");
+    if (k.is_object() && k.has("rgb")) k.at("rgb").fail("an extinction coefficient cannot be given as RGB");
+    ior.k = context.spectra.parse_spectral(k, SpectrumRole::emission);
+  }
+  return ior;
+}
+
+// The coat's index (default 1.5, pbrt-v4's and a typical lacquer's).
+SpectrumPtr coat_ior_of(const JsonCursor& m, LoadContext& context) {
+  return m.has("coat_ior") ? context.spectra.parse(m.at("coat_ior"), SpectrumRole::ior) : std::make_shared<ConstantSpectrum>(1.5);
+}
+
+// The coat's roughness and slab: "roughness", "thickness" (mean free paths), "albedo" (a reflectance, textures
+// allowed), "g", and the walk's "max_depth" and "samples" (pbrt-v4's defaults 10 and 1).
+CoatLayer coat_layer_of(const JsonCursor& m, LoadContext& context) {
+  CoatLayer layer;
+  layer.roughness = roughness_of(m);
+  layer.thickness = float(m.number_or("thickness", 0.0, 0.0, 1e6));
+  if (m.has("albedo")) layer.albedo = reflectance_texture(m.at("albedo"), context);
+  layer.g = float(m.number_or("g", 0.0, -0.99, 0.99));
+  layer.walk.max_depth = int(m.number_or("max_depth", 10, 1, 1000));
+  layer.walk.samples = int(m.number_or("samples", 1, 1, 1000));
+  for (const char* key : {"max_depth", "samples"})
+    if (m.has(key) && m.at(key).number() != std::floor(m.at(key).number())) m.at(key).fail("expected a whole number");
+  return layer;
+}
+
 Material load_material(const JsonCursor& m, LoadContext& context) {
   const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "thin_dielectric", "coated_diffuse",
-                                                    "diffuse_transmission"});
+                                                    "diffuse_transmission", "coated_conductor"});
   SpectralLibrary& library = context.spectra.library();
   if (type == "diffuse") {
     m.only_keys({"type", "reflectance"});
@@ -47,20 +88,7 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
   }
   if (type == "conductor") {
     m.only_keys({"type", "metal", "n", "k", "roughness", "roughness_u", "roughness_v"});
-    ComplexIorSpectra ior;
-    if (m.has("metal")) {
-      for (const char* key : {"n", "k"})
-        if (m.has(key)) m.at(key).fail("give either metal or n and k, not both");
-      const JsonCursor metal = m.at("metal");
-      ior = with_key(metal, [&] { return conductor_ior(library, metal.string()); });
-    } else {
-      // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/rgb_transport_inputs.h).
-      ior.n = context.spectra.parse_spectral(m.at("n"), SpectrumRole::ior);
-      // k ≥ 0 and unbounded, like an emission; but RGB would be upsampled (and scaled) as light, so refuse it here.
-      const JsonCursor k = m.at("k");
-      if (k.is_object() && k.has("rgb")) k.at("rgb").fail("an extinction coefficient cannot be given as RGB");
-      ior.k = context.spectra.parse_spectral(k, SpectrumRole::emission);
-    }
+    const ComplexIorSpectra ior = conductor_ior_of(m, context);
     const float r = roughness_of(m);
     const float ru = float(m.number_or("roughness_u", r, 0.0, 1.0)), rv = float(m.number_or("roughness_v", r, 0.0, 1.0));
     return with_key(m, [&] { return Material(ConductorMaterial(ior, ru, rv)); });
@@ -94,13 +122,25 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
     const float scale = float(m.number_or("scale", 1.0, 0.0));
     return with_key(m, [&] { return Material(DiffuseTransmissionMaterial(std::move(reflectance), std::move(transmittance), scale)); });
   }
-  m.only_keys({"type", "reflectance", "coat_ior"});
-  const SpectrumPtr coat = m.has("coat_ior") ? context.spectra.parse(m.at("coat_ior"), SpectrumRole::ior)
-                                             : std::make_shared<ConstantSpectrum>(1.5);
+  if (type == "coated_conductor") {
+    m.only_keys({"type", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
+                 "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});
+    const SpectrumPtr coat = coat_ior_of(m, context);
+    const ComplexIorSpectra ior = conductor_ior_of(m, context);
+    const float r = float(m.number_or("conductor_roughness", 0.0, 0.0, 1.0));
+    const float ru = float(m.number_or("conductor_roughness_u", r, 0.0, 1.0));
+    const float rv = float(m.number_or("conductor_roughness_v", r, 0.0, 1.0));
+    const CoatLayer layer = coat_layer_of(m, context);
+    return with_key(m.has("coat_ior") ? m.at("coat_ior") : m,
+                    [&] { return Material(CoatedConductorMaterial(coat, ior, ru, rv, layer)); });
+  }
+  m.only_keys({"type", "reflectance", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples"});
+  const SpectrumPtr coat = coat_ior_of(m, context);
   SpectralTexturePtr reflectance = reflectance_texture(m.at("reflectance"), context);
+  const CoatLayer layer = coat_layer_of(m, context);
   // The material checks that the coat index is ≥ 1 everywhere; its error is reported at coat_ior.
   return with_key(m.has("coat_ior") ? m.at("coat_ior") : m,
-                  [&] { return Material(CoatedDiffuseMaterial(std::move(reflectance), coat)); });
+                  [&] { return Material(CoatedDiffuseMaterial(std::move(reflectance), coat, layer)); });
 }
 
 }  // namespace

@@ -276,8 +276,8 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     return name;
   }
   if (type == "mix") return mix_material(s, name, context, material_defaults);
-  if (type != "diffuse" && type != "coateddiffuse" && type != "conductor" && type != "dielectric" &&
-      type != "thindielectric" && type != "diffusetransmission") {
+  if (type != "diffuse" && type != "coateddiffuse" && type != "coatedconductor" && type != "conductor" &&
+      type != "dielectric" && type != "thindielectric" && type != "diffusetransmission") {
     ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
     return name;
@@ -293,6 +293,56 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     return fallback;
   };
   const bool remap = p.boolean("remaproughness", true);
+  // pbrt's "roughness" is the default of "uroughness" and "vroughness" (with a prefix for the coated conductor's
+  // "interface." and "conductor." parameters).
+  const auto roughness_pair = [&](const std::string& prefix) {
+    const double r = scalar(prefix + "roughness", 0.0);
+    return std::pair{scalar(prefix + "uroughness", r), scalar(prefix + "vroughness", r)};
+  };
+  // The coat and slab of coateddiffuse / coatedconductor, with pbrt-v4's defaults (thickness 0.01, albedo 0,
+  // g 0, maxdepth 10, nsamples 1). Rimu's coat is isotropic: anisotropic roughness becomes the mean.
+  const auto coat_layer = [&](const std::string& prefix, json& out) {
+    const auto [u, v] = roughness_pair(prefix);
+    if (u != v) ignore("anisotropic coat roughness of " + type + " (the mean is used)", s.where);
+    if (u + v > 0) out["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+    out["thickness"] = std::max(0.0, scalar("thickness", 0.01));
+    if (const PbrtParam* albedo = p.get("albedo", {PbrtParamType::real, PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture})) {
+      if (!(albedo->type == PbrtParamType::real && albedo->numbers[0] == 0.0)) out["albedo"] = *reflectance(p, "albedo", 0.0);
+    }
+    const double g = scalar("g", 0.0);
+    if (g != 0.0) out["g"] = std::clamp(g, -0.99, 0.99);
+    const int max_depth = p.integer("maxdepth", 10), samples = p.integer("nsamples", 1);
+    if (max_depth != 10) out["max_depth"] = std::clamp(max_depth, 1, 1000);
+    if (samples != 1) out["samples"] = std::clamp(samples, 1, 1000);
+  };
+  // A conductor's n and k from "<prefix>eta" / "<prefix>k" (named metal spectra, floats, tabulated), or copper.
+  const auto conductor_ior = [&](const std::string& prefix, json& out) {
+    const PbrtParam* eta = p.get(prefix + "eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
+    const PbrtParam* k = p.get(prefix + "k", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
+    if (const PbrtParam* r = p.get("reflectance", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture})) {
+      ignore(type + " \"reflectance\" (pbrt's copper is used)", r->where);
+      out["metal"] = "pbrt-cu";
+    } else if (!eta && !k) {
+      out["metal"] = "pbrt-cu";  // pbrt's default: metal-Cu-eta / metal-Cu-k
+    } else if (eta && k && eta->type == PbrtParamType::spectrum && k->type == PbrtParamType::spectrum && !eta->strings.empty() &&
+               !k->strings.empty() && metal_of(eta->strings[0], "-eta") && metal_of(eta->strings[0], "-eta") == metal_of(k->strings[0], "-k")) {
+      out["metal"] = *metal_of(eta->strings[0], "-eta");
+    } else if (eta && k && eta->type != PbrtParamType::rgb && eta->type != PbrtParamType::texture && k->type != PbrtParamType::rgb &&
+               k->type != PbrtParamType::texture) {
+      // Floats, inline pairs or spectrum files; a named spectrum Rimu lacks is listed by spectrum_value.
+      const auto n_value = spectrum_value(*eta, false, p.directory());
+      const auto k_value = spectrum_value(*k, false, p.directory());
+      if (n_value && k_value) {
+        out["n"] = *n_value;
+        out["k"] = *k_value;
+      } else {
+        out["metal"] = "pbrt-cu";
+      }
+    } else {
+      ignore(type + " " + prefix + "eta/" + prefix + "k other than a metal-*-eta/-k pair of one metal, floats or tabulated spectra (pbrt's copper is used)", s.where);
+      out["metal"] = "pbrt-cu";
+    }
+  };
   if (type == "diffuse") {
     m = {{"type", "diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
   } else if (type == "diffusetransmission") {
@@ -302,43 +352,28 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     if (scale != 1.0) m["scale"] = std::max(0.0, scale);
   } else if (type == "coateddiffuse") {
     m = {{"type", "coated_diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
-    const double roughness = scalar("roughness", 0.0);
-    if (roughness != 0.0) ignore("rough coat of coateddiffuse (Rimu's coat is smooth)", s.where);
     if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum})) {
       if (const auto v = spectrum_value(*eta, false, p.directory())) m["coat_ior"] = *v;
     }
-    if (p.real("thickness", 0.01) != 0.01) ignore("coateddiffuse \"thickness\" (Rimu's coat is clear and thin)", s.where);
-    if (const PbrtParam* albedo = p.get("albedo", {PbrtParamType::real, PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture}))
-      if (!(albedo->type == PbrtParamType::real && albedo->numbers[0] == 0.0)) ignore("coateddiffuse \"albedo\" (a clear coat is used)", s.where);
+    coat_layer("", m);
+  } else if (type == "coatedconductor") {
+    m = {{"type", "coated_conductor"}};
+    if (const PbrtParam* eta = p.get("interface.eta", {PbrtParamType::real, PbrtParamType::spectrum})) {
+      if (const auto v = spectrum_value(*eta, false, p.directory())) m["coat_ior"] = *v;
+    }
+    coat_layer("interface.", m);
+    conductor_ior("conductor.", m);
+    const auto [u, v] = roughness_pair("conductor.");
+    if (u == v) {
+      if (u > 0) m["conductor_roughness"] = rimu_roughness(u, remap);
+    } else {
+      m["conductor_roughness_u"] = rimu_roughness(u, remap);
+      m["conductor_roughness_v"] = rimu_roughness(v, remap);
+    }
   } else if (type == "conductor") {
     m = {{"type", "conductor"}};
-    const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
-    const PbrtParam* k = p.get("k", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
-    if (const PbrtParam* r = p.get("reflectance", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture})) {
-      ignore("conductor \"reflectance\" (pbrt's copper is used)", r->where);
-      m["metal"] = "pbrt-cu";
-    } else if (!eta && !k) {
-      m["metal"] = "pbrt-cu";  // pbrt's default: metal-Cu-eta / metal-Cu-k
-    } else if (eta && k && eta->type == PbrtParamType::spectrum && k->type == PbrtParamType::spectrum && !eta->strings.empty() &&
-               !k->strings.empty() && metal_of(eta->strings[0], "-eta") && metal_of(eta->strings[0], "-eta") == metal_of(k->strings[0], "-k")) {
-      m["metal"] = *metal_of(eta->strings[0], "-eta");
-    } else if (eta && k && eta->type != PbrtParamType::rgb && eta->type != PbrtParamType::texture && k->type != PbrtParamType::rgb &&
-               k->type != PbrtParamType::texture) {
-      // Floats, inline pairs or spectrum files; a named spectrum Rimu lacks is listed by spectrum_value.
-      const auto n_value = spectrum_value(*eta, false, p.directory());
-      const auto k_value = spectrum_value(*k, false, p.directory());
-      if (n_value && k_value) {
-        m["n"] = *n_value;
-        m["k"] = *k_value;
-      } else {
-        m["metal"] = "pbrt-cu";
-      }
-    } else {
-      ignore("conductor eta/k other than a metal-*-eta/-k pair of one metal, floats or tabulated spectra (pbrt's copper is used)", s.where);
-      m["metal"] = "pbrt-cu";
-    }
-    const double r = scalar("roughness", 0.0);
-    const double u = scalar("uroughness", r), v = scalar("vroughness", r);
+    conductor_ior("", m);
+    const auto [u, v] = roughness_pair("");
     if (u == v) {
       if (u > 0) m["roughness"] = rimu_roughness(u, remap);
     } else {
