@@ -68,7 +68,7 @@ struct SmoothShapeBounds {
 /// directions, as the exact path repeats its correction while clamping.
 class UpsamplingBasis {
  public:
-  /// Builds the basis and projects every table entry onto it (~0.1 s; once per colour space).
+  /// Builds the basis and projects every table entry onto it (~20 ms of CPU; once per colour space).
   UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry);
 
   /// Coefficients of the spectrum with chromaticity `xy` and luminance Y = 1 (under the table's white): the four
