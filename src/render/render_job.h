@@ -33,7 +33,8 @@ struct RenderJob {
   std::optional<WavelengthMode> wavelengths;
   /// Overrides "integrator.wavelength_density" (visible, lights); applied before loading, which builds the density.
   std::optional<WavelengthDensityKind> wavelength_density;
-  /// Overrides "integrator.light_sampler" (bvh, bvh-spectral, power, uniform); applied before loading, which builds the sampler.
+  /// Overrides "integrator.light_sampler" (bvh, bvh-spectral, power, uniform); applied before loading, which
+  /// builds the sampler.
   std::optional<LightSamplerKind> light_sampler;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;

@@ -22,16 +22,17 @@
 // nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
 //
 // Capped search (an option, off by default). A search may be limited to `search_budget` node visits (importance
-// evaluations; 0, the default: unlimited). If it runs out, the child counts as if it could contribute, with no witness: the descent checks both
-// of its children again. Where such a child has no scoring leaf below, a descent into it finds none and sample()
-// returns std::nullopt: the probabilities then sum to less than 1 at that point, by that child's share, but every
-// leaf that scores > 0 still has probability > 0 (a child holding one is never dropped), so the choice stays
-// unbiased, and pmf() retraces the same checks with the same budget, so it still equals sample()'s probability
-// exactly. The cap bounds a choice's cost at about search_budget importance evaluations per level. Measured with
-// kSearchBudget = 8 (docs/benchmarks.md, "Light sampling"): on 10⁶ randomly oriented triangles sample() 19-25 %
-// faster (two runs) but 3 % of the choices find no light; on the test's 1,050 random triangles the sum falls to 0.87 on average. Too
-// small a gain for that loss to be the default; a depth below which nothing is pruned was also tried (12: 10 % of
-// the choices lost, still 9.8 µs per choice), so the cost there is not mainly the searches.
+// evaluations; 0, the default: unlimited). If it runs out, the child counts as if it could contribute, with no
+// witness: the descent checks both of its children again. Where such a child has no scoring leaf below, a descent
+// into it finds none and sample() returns std::nullopt: the probabilities then sum to less than 1 at that point, by
+// that child's share, but every leaf that scores > 0 still has probability > 0 (a child holding one is never
+// dropped), so the choice stays unbiased, and pmf() retraces the same checks with the same budget, so it still
+// equals sample()'s probability exactly. The cap bounds a choice's cost at about search_budget importance
+// evaluations per level. Measured with kSearchBudget = 8 (docs/benchmarks.md, "Light sampling"): on 10⁶ randomly
+// oriented triangles sample() 19-25 % faster (two runs) but 3 % of the choices find no light; on the test's 1,050
+// random triangles the sum falls to 0.87 on average. Too small a gain for that loss to be the default; a depth
+// below which nothing is pruned was also tried (12: 10 % of the choices lost, still 9.8 µs per choice), so the cost
+// there is not mainly the searches.
 //
 // An environment with portals (environment_light.h) is a leaf of the tree: its bounds are the portal rectangles,
 // two-sided, with the intensity of a Lambertian emitter of the environment's mean radiance, so near a window the sky
@@ -49,9 +50,9 @@
 // the mean over the four lanes of the power there (lanes without a density, if any, left out). Two variants were
 // measured and dropped (docs/sampling.md): weighing each lane by p_vis(λ_k)/p(λ_k), what it adds to the film under
 // "wavelength_density": "lights" (worse: 2.8× higher relMSE than bvh on the red + blue lamps there, 1.6× without),
-// and 47 bands of 10 nm (4 % lower relMSE on the red + blue lamps under the visible density, at 3× the memory).
-// The sum is symmetric in the lanes, so the probabilities are the same whichever
-// lane is the hero: the per-lane light densities of the spectral MIS are all equal, and the
+// and, with those weights, 47 bands of 10 nm (4 % lower relMSE on the red + blue lamps under the visible density,
+// at 3× the memory). The sum is symmetric in the lanes, so the probabilities are the same whichever lane is the
+// hero: the per-lane light densities of the spectral MIS are all equal, and the
 // integrators' MIS needs no change (each lane's technique density includes the same choice probability). The floor
 // keeps every leaf that can contribute at some wavelength at probability > 0 whatever the bands say (a band mean
 // can be 0 where a tabulated spectrum has one non-zero knot), so the choice stays unbiased; pruning (which leaves
