@@ -1,6 +1,7 @@
 #include "render/embree_scene.h"
 
 #include <cmath>
+#include <utility>
 #include <limits>
 
 namespace rimu {
@@ -25,6 +26,20 @@ Vec2 surface_uv(const TriangleMesh& mesh, unsigned primitive, float u, float v) 
   const float w = 1.0f - u - v;
   const Vec2 a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
   return {w * a.x + u * b.x + v * c.x, w * a.y + u * b.y + v * c.y};
+}
+
+// ∂p/∂u, ∂p/∂v of the triangle (a, b, c) in object space. With uvs, the 2×2 system p_i − p_c = (u_i − u_c)·∂p/∂u +
+// (v_i − v_c)·∂p/∂v (as pbrt-v4's Triangle::InteractionFromIntersection); without, uv are the barycentrics
+// (surface_uv), so ∂p/∂u = b − a and ∂p/∂v = c − a. Degenerate uvs give zero tangents (MaterialContext: unknown).
+std::pair<Vec3, Vec3> surface_tangents(const TriangleMesh& mesh, const uint32_t* tri, Vec3 a, Vec3 b, Vec3 c) {
+  if (mesh.uvs.empty()) return {b - a, c - a};
+  const Vec2 ta = mesh.uvs[tri[0]], tb = mesh.uvs[tri[1]], tc = mesh.uvs[tri[2]];
+  const float du02 = ta.x - tc.x, dv02 = ta.y - tc.y, du12 = tb.x - tc.x, dv12 = tb.y - tc.y;
+  const float determinant = du02 * dv12 - dv02 * du12;
+  if (!(std::fabs(determinant) > 1e-12f)) return {};
+  const Vec3 dp02 = a - c, dp12 = b - c;
+  const float inverse = 1.0f / determinant;
+  return {(dp02 * dv12 - dp12 * dv02) * inverse, (dp12 * du02 - dp02 * du12) * inverse};
 }
 
 RTCRay to_embree(const Ray& ray) {
@@ -235,6 +250,14 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
     hit.position_scale = max_component(abs(info->centre)) + info->radius;
     // Spherical uv: u = azimuth/2π, v = polar angle/π about +y.
     hit.uv = {float(0.5 + std::atan2(n.z, n.x) / (2.0 * M_PI)), float(std::acos(std::fmax(-1.0f, std::fmin(1.0f, n.y))) / M_PI)};
+    // p = c + r·(sin θ cos φ, cos θ, sin θ sin φ) with φ = 2π(u − ½), θ = πv: differentiate. At the poles
+    // (sin θ = 0) both vanish or are undefined: left zero.
+    const float sin_theta = std::sqrt(n.x * n.x + n.z * n.z);
+    if (surface_tangents_ && sin_theta > 1e-6f) {
+      const float r = info->radius;
+      hit.dpdu = Vec3{-n.z, 0.0f, n.x} * float(2.0 * M_PI * r);
+      hit.dpdv = Vec3{n.y * n.x / sin_theta, -sin_theta, n.y * n.z / sin_theta} * float(M_PI * r);
+    }
     return hit;
   }
   const TriangleMesh& mesh = *info->mesh;
@@ -264,6 +287,11 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
     hit.position_scale = scale;
   }
   hit.uv = surface_uv(mesh, rh.hit.primID, u, v);
+  if (surface_tangents_) {
+    const auto [dpdu, dpdv] = surface_tangents(mesh, tri, a, b, c);
+    hit.dpdu = object_to_world ? object_to_world->vector(dpdu) : dpdu;
+    hit.dpdv = object_to_world ? object_to_world->vector(dpdv) : dpdv;
+  }
   if (!mesh.normals.empty()) {
     Vec3 n = mesh.normals[tri[0]] * w + mesh.normals[tri[1]] * u + mesh.normals[tri[2]] * v;
     if (object_to_world) n = object_to_world->normal(n);

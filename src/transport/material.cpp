@@ -21,6 +21,9 @@ TrowbridgeReitz distribution_for(float roughness_u, float roughness_v) {
                          TrowbridgeReitz::roughness_to_alpha(roughness_v));
 }
 
+// A textured roughness, known only per hit: into [0, 1] (NaN → 0: fmax returns the number).
+float clamp_roughness(float r) { return std::fmin(1.0f, std::fmax(0.0f, r)); }
+
 Float4 clamp_unit(Float4 x) { return clamp(x, Float4(0.0f), Float4(1.0f)); }
 
 /// The smallest value of `s` on a 1 nm grid over the transported range (for load-time validation).
@@ -36,8 +39,8 @@ DiffuseMaterial::DiffuseMaterial(SpectralTexturePtr reflectance) : reflectance_(
   if (!reflectance_) throw InputError({}, "a diffuse material needs a reflectance");
 }
 
-Bsdf DiffuseMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
-  return DiffuseBsdf(clamp_unit(reflectance_->evaluate(uv, lambda)));
+Bsdf DiffuseMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+  return DiffuseBsdf(clamp_unit(reflectance_->evaluate_at(context, lambda)));
 }
 
 ConductorMaterial::ConductorMaterial(ComplexIorSpectra ior, float roughness_u, float roughness_v)
@@ -47,8 +50,36 @@ ConductorMaterial::ConductorMaterial(ComplexIorSpectra ior, float roughness_u, f
   check_roughness(roughness_v, "conductor roughness");
 }
 
-Bsdf ConductorMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
-  return ConductorBsdf(ior_.n->sample(lambda), ior_.k->sample(lambda), distribution_);
+ConductorMaterial::ConductorMaterial(ComplexIorSpectra ior, FloatTexturePtr roughness_u, FloatTexturePtr roughness_v)
+    : ior_(std::move(ior)), roughness_u_(std::move(roughness_u)), roughness_v_(std::move(roughness_v)),
+      distribution_(0.0f, 0.0f) {
+  if (!ior_.n || !ior_.k) throw InputError({}, "a conductor needs both n and k spectra");
+  if (!roughness_u_ || !roughness_v_) throw InputError({}, "a conductor needs both roughness textures");
+}
+
+ConductorMaterial ConductorMaterial::from_reflectance(SpectralTexturePtr reflectance, FloatTexturePtr roughness_u,
+                                                      FloatTexturePtr roughness_v) {
+  if (!reflectance || !roughness_u || !roughness_v)
+    throw InputError({}, "a conductor by reflectance needs a reflectance and both roughness textures");
+  ConductorMaterial m;
+  m.reflectance_ = std::move(reflectance);
+  m.roughness_u_ = std::move(roughness_u);
+  m.roughness_v_ = std::move(roughness_v);
+  return m;
+}
+
+TrowbridgeReitz ConductorMaterial::distribution_at(const MaterialContext& context) const {
+  if (!roughness_u_) return distribution_;
+  return distribution_for(clamp_roughness(roughness_u_->evaluate(context)), clamp_roughness(roughness_v_->evaluate(context)));
+}
+
+Bsdf ConductorMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+  if (reflectance_) {
+    const Float4 r = clamp(reflectance_->evaluate_at(context, lambda), Float4(0.0f), Float4(0.9999f));
+    const Float4 k = Float4(2.0f) * sqrt(r / (Float4(1.0f) - r));
+    return ConductorBsdf(Float4(1.0f), k, distribution_at(context));
+  }
+  return ConductorBsdf(ior_.n->sample(lambda), ior_.k->sample(lambda), distribution_at(context));
 }
 
 DielectricMaterial::DielectricMaterial(SpectrumPtr ior, float roughness)
@@ -59,8 +90,17 @@ DielectricMaterial::DielectricMaterial(SpectrumPtr ior, float roughness)
     throw InputError({}, "the index of refraction of " + ior_->describe() + " must be positive over 360-830 nm");
 }
 
-Bsdf DielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
-  return DielectricBsdf(ior_->sample(lambda), distribution_);
+DielectricMaterial::DielectricMaterial(SpectrumPtr ior, FloatTexturePtr roughness_u, FloatTexturePtr roughness_v)
+    : DielectricMaterial(std::move(ior), 0.0f) {
+  if (!roughness_u || !roughness_v) throw InputError({}, "a dielectric needs both roughness textures");
+  roughness_u_ = std::move(roughness_u);
+  roughness_v_ = std::move(roughness_v);
+}
+
+Bsdf DielectricMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+  if (!roughness_u_) return DielectricBsdf(ior_->sample(lambda), distribution_);
+  return DielectricBsdf(ior_->sample(lambda), distribution_for(clamp_roughness(roughness_u_->evaluate(context)),
+                                                               clamp_roughness(roughness_v_->evaluate(context))));
 }
 
 DiffuseTransmissionMaterial::DiffuseTransmissionMaterial(SpectralTexturePtr reflectance, SpectralTexturePtr transmittance,
@@ -71,9 +111,9 @@ DiffuseTransmissionMaterial::DiffuseTransmissionMaterial(SpectralTexturePtr refl
   if (!(scale_ >= 0.0f)) throw InputError({}, "scale must be at least 0, got " + std::to_string(scale_));
 }
 
-Bsdf DiffuseTransmissionMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
-  const Float4 r = clamp_unit(reflectance_->evaluate(uv, lambda) * Float4(scale_));
-  const Float4 t = clamp_unit(transmittance_->evaluate(uv, lambda) * Float4(scale_));
+Bsdf DiffuseTransmissionMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+  const Float4 r = clamp_unit(reflectance_->evaluate_at(context, lambda) * Float4(scale_));
+  const Float4 t = clamp_unit(transmittance_->evaluate_at(context, lambda) * Float4(scale_));
   // More than all the incident flux scattered would create energy: keep R : T, scatter exactly everything.
   const Float4 total = r + t;
   const Float4 normalise = select(total > Float4(1.0f), Float4(1.0f) / total, Float4(1.0f));
@@ -86,7 +126,7 @@ ThinDielectricMaterial::ThinDielectricMaterial(SpectrumPtr ior) : ior_(std::move
     throw InputError({}, "the index of refraction of " + ior_->describe() + " must be positive over 360-830 nm");
 }
 
-Bsdf ThinDielectricMaterial::bsdf(Vec2, const SampledWavelengths& lambda) const {
+Bsdf ThinDielectricMaterial::bsdf(const MaterialContext&, const SampledWavelengths& lambda) const {
   return ThinDielectricBsdf(ior_->sample(lambda));
 }
 
@@ -104,8 +144,8 @@ void check_layer(const CoatLayer& layer) {
 /// The coat's index at the hero wavelength: the walk's interfaces have one index for all lanes.
 float hero_coat_eta(const Spectrum& coat_ior, const SampledWavelengths& lambda) { return float(coat_ior.value(lambda.hero_nm())); }
 
-LayerMedium layer_medium(const CoatLayer& layer, Vec2 uv, const SampledWavelengths& lambda) {
-  const Float4 albedo = layer.albedo ? clamp_unit(layer.albedo->evaluate(uv, lambda)) : Float4(0.0f);
+LayerMedium layer_medium(const CoatLayer& layer, const MaterialContext& context, const SampledWavelengths& lambda) {
+  const Float4 albedo = layer.albedo ? clamp_unit(layer.albedo->evaluate_at(context, lambda)) : Float4(0.0f);
   return {layer.thickness, albedo, layer.g};
 }
 
@@ -134,13 +174,13 @@ CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, Spe
       std::move(lambda_nm), std::move(internal), Extrapolation::clamp, "internal diffuse reflectance of the coat");
 }
 
-Bsdf CoatedDiffuseMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
-  const Float4 base = clamp_unit(reflectance_->evaluate(uv, lambda));
+Bsdf CoatedDiffuseMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+  const Float4 base = clamp_unit(reflectance_->evaluate_at(context, lambda));
   if (layer_.smooth_and_clear())
     return CoatedDiffuseBsdf::absorbing(base, coat_ior_->sample(lambda), coat_internal_reflectance_->sample(lambda),
                                         layer_.thickness);
   return LayeredBsdf(hero_coat_eta(*coat_ior_, lambda), coat_distribution(layer_), DiffuseBsdf(base),
-                     layer_medium(layer_, uv, lambda), layer_.walk);
+                     layer_medium(layer_, context, lambda), layer_.walk);
 }
 
 CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor,
@@ -157,12 +197,31 @@ CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIo
   check_layer(layer_);
 }
 
-Bsdf CoatedConductorMaterial::bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
+Bsdf CoatedConductorMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
   const float eta = hero_coat_eta(*coat_ior_, lambda);
   // The metal borders the coat, not air: its Fresnel factor uses the index relative to the coat.
   const ConductorBsdf base(conductor_.n->sample(lambda) / Float4(eta), conductor_.k->sample(lambda) / Float4(eta),
                            conductor_distribution_);
-  return LayeredBsdf(eta, coat_distribution(layer_), base, layer_medium(layer_, uv, lambda), layer_.walk);
+  return LayeredBsdf(eta, coat_distribution(layer_), base, layer_medium(layer_, context, lambda), layer_.walk);
+}
+
+MixMaterial::MixMaterial(std::shared_ptr<const Material> first, std::shared_ptr<const Material> second,
+                         FloatTexturePtr amount, uint32_t salt)
+    : first_(std::move(first)), second_(std::move(second)), amount_(std::move(amount)), salt_(salt) {
+  if (!first_ || !second_ || !amount_) throw InputError({}, "a mix material needs two materials and an amount");
+}
+
+const Material& MixMaterial::choose(const MaterialContext& context) const {
+  const float amount = amount_->evaluate(context);
+  // pbrt-v4 skips the hash where the choice is certain; so does this (and NaN amounts choose the first).
+  if (!(amount > 0.0f)) return *first_;
+  if (amount >= 1.0f) return *second_;
+  const float u = unit_float_from_hash(hash32(context.hash() ^ salt_));
+  return u < amount ? *second_ : *first_;
+}
+
+Bsdf MixMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+  return choose(context).bsdf(context, lambda);
 }
 
 }  // namespace rimu

@@ -7,6 +7,8 @@
 #include "spectral/optical_constants.h"
 #include "spectral/spectrum.h"
 #include "transport/bsdf.h"
+#include "transport/float_texture.h"
+#include "transport/material_context.h"
 #include "transport/spectral_texture.h"
 
 namespace rimu {
@@ -15,22 +17,35 @@ namespace rimu {
 class DiffuseMaterial {
  public:
   explicit DiffuseMaterial(SpectralTexturePtr reflectance);
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectralTexturePtr reflectance_;
 };
 
 /// A metal with measured (or given) n(λ), k(λ); smooth when roughness is 0, else GGX with α = roughness².
+/// Roughness may vary over the surface (a FloatTexture, clamped to [0, 1] per hit).
 class ConductorMaterial {
  public:
   /// Throws InputError if a roughness is outside [0, 1] or a spectrum is missing.
   ConductorMaterial(ComplexIorSpectra ior, float roughness_u, float roughness_v);
   ConductorMaterial(ComplexIorSpectra ior, float roughness) : ConductorMaterial(std::move(ior), roughness, roughness) {}
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+  /// Textured roughness along the two tangents. Throws InputError if an input is missing.
+  ConductorMaterial(ComplexIorSpectra ior, FloatTexturePtr roughness_u, FloatTexturePtr roughness_v);
+  /// pbrt-v4's artist-friendly conductor: a normal-incidence reflectance r(λ), met with n = 1 and
+  /// k = 2·√(r/(1 − r)) (which gives exactly r at normal incidence: ((n−1)² + k²)/((n+1)² + k²) = k²/(4 + k²)),
+  /// r clamped to [0, 0.9999] per hit as pbrt does. Throws InputError if an input is missing.
+  static ConductorMaterial from_reflectance(SpectralTexturePtr reflectance, FloatTexturePtr roughness_u,
+                                            FloatTexturePtr roughness_v);
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
+  ConductorMaterial() : distribution_(0.0f, 0.0f) {}
+  TrowbridgeReitz distribution_at(const MaterialContext& context) const;
+
   ComplexIorSpectra ior_;
+  SpectralTexturePtr reflectance_;               // instead of ior_ (from_reflectance)
+  FloatTexturePtr roughness_u_, roughness_v_;    // null: distribution_ everywhere
   TrowbridgeReitz distribution_;
 };
 
@@ -40,10 +55,13 @@ class DielectricMaterial {
  public:
   /// Throws InputError if roughness is outside [0, 1], the spectrum is missing, or n ≤ 0 somewhere.
   DielectricMaterial(SpectrumPtr ior, float roughness);
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+  /// Textured roughness along the two tangents (clamped to [0, 1] per hit). Throws as above.
+  DielectricMaterial(SpectrumPtr ior, FloatTexturePtr roughness_u, FloatTexturePtr roughness_v);
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectrumPtr ior_;
+  FloatTexturePtr roughness_u_, roughness_v_;  // null: distribution_ everywhere
   TrowbridgeReitz distribution_;
 };
 
@@ -55,7 +73,7 @@ class DiffuseTransmissionMaterial {
  public:
   /// Throws InputError if a texture is missing or scale < 0.
   DiffuseTransmissionMaterial(SpectralTexturePtr reflectance, SpectralTexturePtr transmittance, float scale);
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectralTexturePtr reflectance_;
@@ -68,7 +86,7 @@ class ThinDielectricMaterial {
  public:
   /// Throws InputError if the spectrum is missing or n ≤ 0 somewhere.
   explicit ThinDielectricMaterial(SpectrumPtr ior);
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectrumPtr ior_;
@@ -99,7 +117,7 @@ class CoatedDiffuseMaterial {
   /// Throws InputError if the coat index is not ≥ 1 over 360-830 nm, an input is missing, the roughness is
   /// outside [0, 1], the thickness negative, |g| ≥ 1, or max_depth/samples < 1.
   CoatedDiffuseMaterial(SpectralTexturePtr reflectance, SpectrumPtr coat_ior, CoatLayer layer = {});
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectralTexturePtr reflectance_;
@@ -117,13 +135,36 @@ class CoatedConductorMaterial {
   /// thickness, |g| ≥ 1 or max_depth/samples < 1.
   CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor, float conductor_roughness_u,
                           float conductor_roughness_v, CoatLayer layer);
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const;
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectrumPtr coat_ior_;
   ComplexIorSpectra conductor_;
   TrowbridgeReitz conductor_distribution_;
   CoatLayer layer_;
+};
+
+class Material;
+
+/// pbrt-v4's "mix": at each hit one of two materials, `second` with probability amount(hit) ∈ [0, 1] (clamped),
+/// else `first`. The choice uses a hash of the hit (MaterialContext::hash, salted so that nested mixes choose
+/// independently), not the sampler: the same point seen from the same direction always gets the same material,
+/// so next-event estimation and the continuation ray at a vertex use one BSDF (they do anyway in Rimu's
+/// integrators, which build one BSDF per vertex), and a mix is a per-point choice of material, i.e. a 50/50 mix
+/// renders as the average of the two images.
+class MixMaterial {
+ public:
+  /// Throws InputError if a material or the amount is missing.
+  MixMaterial(std::shared_ptr<const Material> first, std::shared_ptr<const Material> second, FloatTexturePtr amount,
+              uint32_t salt);
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
+  /// The material used at this hit (a nested mix is resolved further by its own bsdf()).
+  const Material& choose(const MaterialContext& context) const;
+
+ private:
+  std::shared_ptr<const Material> first_, second_;
+  FloatTexturePtr amount_;
+  uint32_t salt_;
 };
 
 /// A surface material of any kind, held by value (a std::variant): a scene keeps a std::vector<Material>.
@@ -133,14 +174,14 @@ class CoatedConductorMaterial {
 class Material {
  public:
   using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial,
-                               ThinDielectricMaterial, DiffuseTransmissionMaterial, CoatedConductorMaterial>;
+                               ThinDielectricMaterial, DiffuseTransmissionMaterial, CoatedConductorMaterial, MixMaterial>;
 
   template <typename T>
   Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)
 
-  /// The BSDF at texture coordinates `uv` for the four wavelengths of the path.
-  Bsdf bsdf(Vec2 uv, const SampledWavelengths& lambda) const {
-    return std::visit([&](const auto& m) { return m.bsdf(uv, lambda); }, material_);
+  /// The BSDF at the surface point `context` for the four wavelengths of the path.
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+    return std::visit([&](const auto& m) { return m.bsdf(context, lambda); }, material_);
   }
   const Variant& variant() const { return material_; }
 

@@ -105,7 +105,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     }
     if (depth >= settings_.max_depth || hit->material < 0) break;
 
-    const Bsdf bsdf = (*scene_.materials)[size_t(hit->material)].bsdf(hit->uv, lambda);
+    const Bsdf bsdf = (*scene_.materials)[size_t(hit->material)].bsdf(MaterialContext::at(*hit, wo_world), lambda);
     const BsdfFlags flags = bsdf.flags();
     const ShadingContext shading = shading_context(*hit, wo_world, !flags.has_transmission);
     const Vec3 wo = shading.frame.to_local(wo_world);

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "spectral/spectrum.h"
+#include "transport/material_context.h"
 #include "transport/vector.h"
 
 namespace rimu {
@@ -15,6 +16,11 @@ class SpectralTexture {
   virtual ~SpectralTexture() = default;
   /// The values at `uv` and the four sampled wavelengths (per-sample path: no allocation).
   virtual SampledSpectrum evaluate(Vec2 uv, const SampledWavelengths& lambda) const = 0;
+  /// The values at a surface point: what materials call. Textures that depend on more than uv (the normal, wo)
+  /// override this; the default looks up `context.uv`.
+  virtual SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const {
+    return evaluate(context.uv, lambda);
+  }
 };
 
 using SpectralTexturePtr = std::shared_ptr<const SpectralTexture>;
@@ -24,6 +30,10 @@ class ConstantSpectralTexture final : public SpectralTexture {
  public:
   explicit ConstantSpectralTexture(SpectrumPtr spectrum) : spectrum_(std::move(spectrum)) {}
   SampledSpectrum evaluate(Vec2, const SampledWavelengths& lambda) const override {
+    return spectrum_->sample(lambda);
+  }
+  // Overridden too so that a material's lookup is one virtual call, not two (the default forwards to evaluate).
+  SampledSpectrum evaluate_at(const MaterialContext&, const SampledWavelengths& lambda) const override {
     return spectrum_->sample(lambda);
   }
   const SpectrumPtr& spectrum() const { return spectrum_; }

@@ -18,6 +18,9 @@ struct SurfaceHit {
   Vec3 geometric_normal;       ///< unit; the front side of the triangle (counter-clockwise winding) or sphere's outside
   Vec3 shading_normal;         ///< unit; interpolated vertex normal, on the same side as geometric_normal
   Vec2 uv;
+  /// ∂p/∂u, ∂p/∂v in world space (not unit): tangents along the texture axes, for normal and bump maps. Zero
+  /// where the parametrisation is degenerate (coincident uvs, a sphere's poles).
+  Vec3 dpdu, dpdv;
   int32_t material = -1;       ///< index into the scene's materials
   int32_t light = -1;          ///< index into the scene's lights if the surface emits, else -1
   uint32_t primitive = 0;      ///< triangle index within its mesh (for area-light pdfs)

@@ -214,7 +214,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       }
       if (surface_depth >= path.max_depth || hit->material < 0) break;
       ++surface_depth;
-      scatterer.bsdf = (*surfaces.materials)[size_t(hit->material)].bsdf(hit->uv, lambda);
+      scatterer.bsdf = (*surfaces.materials)[size_t(hit->material)].bsdf(MaterialContext::at(*hit, -ray.direction), lambda);
       const bool two_sided = !scatterer.bsdf->flags().has_transmission;
       Vec3 ns = hit->shading_normal, ng = hit->geometric_normal;
       if (two_sided && dot(ray.direction, ng) > 0.0f) {

@@ -65,7 +65,7 @@ double reference_walk(const Material& material, Ray ray, std::mt19937_64& rng) {
     if (depth == 64) return 0.0;
     const Vec3 p = ray.origin + ray.direction * t;
     const Frame frame = Frame::from_normal(normalize(p));
-    const Bsdf bsdf = material.bsdf({0.0f, 0.0f}, fixed_wavelengths());
+    const Bsdf bsdf = material.bsdf({}, fixed_wavelengths());
     const float u_lobe = uniform(rng), u1 = uniform(rng), u2 = uniform(rng);
     const auto s = bsdf.sample(frame.to_local(-ray.direction), u_lobe, {u1, u2});
     if (!s || !(s->pdf[0] > 0.0f)) return 0.0;

@@ -282,19 +282,20 @@ TEST_CASE("pbrt diffusetransmission: reflectance, transmittance and scale, with 
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", test::test_data("pbrt"), test::library()));
 }
 
-TEST_CASE("pbrt mix: the material amount favours stands in, listed as an approximation") {
+TEST_CASE("pbrt mix: Rimu's stochastic mix of the two named materials, amount clamped to [0, 1]") {
   const std::string defs = kUnmirroredCamera +
                            "MakeNamedMaterial \"red\" \"string type\" \"diffuse\" \"float reflectance\" 0.2\n"
                            "MakeNamedMaterial \"glass\" \"string type\" \"dielectric\"\n";
   const PbrtImport imported = import_text(defs +
                                           "MakeNamedMaterial \"mostly glass\" \"string type\" \"mix\" \"string materials\" [\"red\" \"glass\"] \"float amount\" 0.7\n"
-                                          "MakeNamedMaterial \"mostly red\" \"string type\" \"mix\" \"string materials\" [\"red\" \"glass\"] \"float amount\" 0.3\n");
+                                          "MakeNamedMaterial \"all glass\" \"string type\" \"mix\" \"string materials\" [\"red\" \"glass\"] \"float amount\" 3\n"
+                                          "MakeNamedMaterial \"half\" \"string type\" \"mix\" \"string materials\" [\"red\" \"glass\"]\n");
   const json& d = imported.document;
-  CHECK(d["materials"]["mostly glass"] == d["materials"]["glass"]);
-  CHECK(d["materials"]["mostly red"] == d["materials"]["red"]);
-  REQUIRE(imported.ignored.size() == 1);
-  CHECK(imported.ignored[0].what.find("Material \"mix\"") != std::string::npos);
-  CHECK(imported.ignored[0].count == 2);
+  CHECK(d["materials"]["mostly glass"] == json({{"type", "mix"}, {"materials", {"red", "glass"}}, {"amount", 0.7}}));
+  CHECK(d["materials"]["all glass"]["amount"] == 1.0);
+  CHECK(d["materials"]["half"]["amount"] == 0.5);  // pbrt-v4's default
+  CHECK(imported.ignored.empty());
+  CHECK_NOTHROW(load_scene(d, "test.pbrt", test::test_data("pbrt"), test::library()));
   CHECK_CONTAINS(error_of(defs + "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"red\" \"nope\"] \"float amount\" 1", true),
                  "test.pbrt:7", "no material named \"nope\"");
 }

@@ -82,13 +82,13 @@ TEST_CASE("chi-square: diffuse transmission samples the density it reports, from
 TEST_CASE("diffuse transmission material: scale multiplies both, and R + T above 1 is scaled down to 1") {
   const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f));
   const Material plain = DiffuseTransmissionMaterial(constant_texture(0.25), constant_texture(0.25), 1.0f);
-  const Bsdf a = plain.bsdf({0.0f, 0.0f}, lambda);
+  const Bsdf a = plain.bsdf({}, lambda);
   const auto& da = std::get<DiffuseTransmissionBsdf>(a.variant());
   CHECK(da.reflectance()[0] == doctest::Approx(0.25));
   CHECK(da.transmittance()[3] == doctest::Approx(0.25));
   // scale 3: R = T = 0.75 would scatter 1.5 of the incident flux; normalised to R + T = 1, keeping R : T.
   const Material bright = DiffuseTransmissionMaterial(constant_texture(0.25), constant_texture(0.25), 3.0f);
-  const Bsdf b = bright.bsdf({0.0f, 0.0f}, lambda);
+  const Bsdf b = bright.bsdf({}, lambda);
   const auto& db = std::get<DiffuseTransmissionBsdf>(b.variant());
   CHECK(db.reflectance()[1] == doctest::Approx(0.5));
   CHECK(db.transmittance()[1] == doctest::Approx(0.5));

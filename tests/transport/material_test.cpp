@@ -1,6 +1,7 @@
 // Materials turn spectral inputs into BSDFs at the path's wavelengths.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <variant>
 
@@ -24,7 +25,7 @@ const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(
 TEST_CASE("material: diffuse evaluates its reflectance per lane and clamps it to [0, 1]") {
   auto& lib = test::library();
   const Material patch = DiffuseMaterial(std::make_shared<ConstantSpectralTexture>(lib.colorchecker_patch("dark_skin")));
-  const Bsdf bsdf = patch.bsdf({0.5f, 0.5f}, kLambda);
+  const Bsdf bsdf = patch.bsdf(MaterialContext::at_uv({0.5f, 0.5f}), kLambda);
   REQUIRE(std::holds_alternative<DiffuseBsdf>(bsdf.variant()));
   const Float4 albedo = std::get<DiffuseBsdf>(bsdf.variant()).albedo();
   const Float4 expected = lib.colorchecker_patch("dark_skin")->sample(kLambda);
@@ -104,11 +105,24 @@ CoatLayer layer(float roughness, float thickness = 0.0f, SpectralTexturePtr albe
   return l;
 }
 
+// A context at a point of the unit square (z = 0) seen from straight above: what MixMaterial hashes.
+MaterialContext context_at(float x, float y) {
+  MaterialContext c;
+  c.position = {x, y, 0.0f};
+  c.geometric_normal = c.shading_normal = {0.0f, 0.0f, 1.0f};
+  c.wo = {0.0f, 0.0f, 1.0f};
+  return c;
+}
+
+bool chose_second(const MixMaterial& mix, const MaterialContext& c) {
+  return std::holds_alternative<DielectricMaterial>(mix.choose(c).variant());
+}
+
 }  // namespace
 
 TEST_CASE("material: coated materials choose the closed form or the random walk by the stated rule") {
   const auto ior = std::make_shared<ConstantSpectrum>(1.5);
-  const auto kind = [&](const Material& m) { return m.bsdf({0.5f, 0.5f}, kLambda).variant().index(); };
+  const auto kind = [&](const Material& m) { return m.bsdf(MaterialContext::at_uv({0.5f, 0.5f}), kLambda).variant().index(); };
   const size_t closed = Bsdf::Variant(CoatedDiffuseBsdf(Float4(0.5f), Float4(1.5f), Float4(0.09f))).index();
   const size_t walk = Bsdf::Variant(LayeredBsdf(1.5f, TrowbridgeReitz(0, 0), DiffuseBsdf(Float4(0.5f)), {}, {})).index();
   // Smooth and not scattering (no albedo, or zero thickness): the exact closed form, absorbing if thick.
@@ -142,4 +156,67 @@ TEST_CASE("material: invalid coat layers are input errors") {
   CHECK_THROWS_AS(CoatedConductorMaterial(ior, ComplexIorSpectra{}, 0.0f, 0.0f, {}), InputError);
   CHECK_THROWS_AS(CoatedConductorMaterial(std::make_shared<ConstantSpectrum>(0.9), conductor_ior(test::library(), "gold"), 0.0f, 0.0f, {}),
                   InputError);
+}
+
+TEST_CASE("material context: the hit hash is deterministic and spreads neighbouring points uniformly") {
+  const MaterialContext a = context_at(0.25f, 0.5f);
+  CHECK(a.hash() == context_at(0.25f, 0.5f).hash());
+  CHECK(a.hash() != context_at(std::nextafter(0.25f, 1.0f), 0.5f).hash());
+  MaterialContext other_direction = a;
+  other_direction.wo = {0.0f, 0.6f, 0.8f};
+  CHECK(a.hash() != other_direction.hash());
+  // 10 bins over a 316×316 grid of points 1/316 apart: a chi-square test of the hashed values' uniformity
+  // (9 degrees of freedom; 27.9 is the 0.999 quantile).
+  std::array<int, 10> bins{};
+  const int n = 316;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) ++bins[size_t(unit_float_from_hash(context_at(float(i) / n, float(j) / n).hash()) * 10.0f)];
+  const double expected = double(n) * n / 10.0;
+  double chi2 = 0.0;
+  for (int b : bins) chi2 += (b - expected) * (b - expected) / expected;
+  CHECK(chi2 < 27.9);
+}
+
+TEST_CASE("material: mix chooses per hit, the second with probability amount, the same choice at the same hit") {
+  auto first = std::make_shared<const Material>(DiffuseMaterial(constant_texture(0.5)));
+  auto second = std::make_shared<const Material>(DielectricMaterial(std::make_shared<ConstantSpectrum>(1.5), 0.0f));
+  const auto mix_of = [&](float amount, uint32_t salt = 1) {
+    return MixMaterial(first, second, std::make_shared<ConstantFloatTexture>(amount), salt);
+  };
+  SUBCASE("certain amounts") {
+    for (int i = 0; i < 100; ++i) {
+      CHECK(!chose_second(mix_of(0.0f), context_at(float(i) / 100.0f, 0.3f)));
+      CHECK(chose_second(mix_of(1.0f), context_at(float(i) / 100.0f, 0.3f)));
+    }
+  }
+  SUBCASE("the share of the second over many points is the amount (binomial, 4.5 standard errors)") {
+    for (float amount : {0.1f, 0.3f, 0.5f, 0.9f}) {
+      const MixMaterial mix = mix_of(amount);
+      const int n = 300;
+      int second_count = 0;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) second_count += chose_second(mix, context_at(float(i) / n, float(j) / n));
+      const double share = double(second_count) / (n * n);
+      const double standard_error = std::sqrt(amount * (1.0 - amount) / (n * n));
+      CHECK(std::abs(share - amount) <= 4.5 * standard_error);
+    }
+  }
+  SUBCASE("deterministic per hit; different salts choose independently") {
+    const MixMaterial a = mix_of(0.5f, 1), b = mix_of(0.5f, 2);
+    int agree = 0;
+    const int n = 10000;
+    for (int i = 0; i < n; ++i) {
+      const MaterialContext c = context_at(float(i) / n, 0.7f);
+      CHECK(chose_second(a, c) == chose_second(a, c));
+      agree += chose_second(a, c) == chose_second(b, c);
+    }
+    // Independent 50/50 choices agree half the time (binomial standard error 0.005).
+    CHECK(std::abs(double(agree) / n - 0.5) <= 4.5 * 0.005);
+  }
+  SUBCASE("the BSDF is the chosen material's") {
+    const MaterialContext c = context_at(0.1f, 0.2f);
+    const MixMaterial mix = mix_of(0.5f);
+    CHECK(Material(mix).bsdf(c, kLambda).flags().has_transmission == chose_second(mix, c));
+  }
+  CHECK_THROWS_AS(MixMaterial(first, nullptr, std::make_shared<ConstantFloatTexture>(0.5f), 0), InputError);
 }

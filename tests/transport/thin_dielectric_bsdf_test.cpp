@@ -104,7 +104,7 @@ TEST_CASE("thin dielectric: the fraction of samples reflected is R(hero), and th
 TEST_CASE("thin dielectric material: a BK7 pane colours R and T but keeps one direction, and bad indices throw") {
   const SampledWavelengths lambda = test::four_visible_wavelengths();
   const Material pane = ThinDielectricMaterial(dielectric_ior(test::library(), "bk7"));
-  const Bsdf bsdf = pane.bsdf({0.0f, 0.0f}, lambda);
+  const Bsdf bsdf = pane.bsdf({}, lambda);
   CHECK(bsdf.flags().has_transmission);
   CHECK(bsdf.flags().has_delta);
   CHECK_FALSE(bsdf.flags().has_non_delta);

@@ -1,33 +1,40 @@
 // The "materials" section of the JSON scene format.
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "render/image_texture.h"
 #include "render/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
+#include "render/scene/scene_textures.h"
 #include "spectral/optical_constants.h"
+#include "transport/bit_mixing.h"
+#include "transport/float_texture.h"
 #include "transport/spectral_texture.h"
 
 namespace rimu::scene_loading {
 namespace {
 
-// A reflectance: any spectral input, or {"texture": "file.png", "colour_space": ..., "encoding": ..., "scale": k}.
 SpectralTexturePtr reflectance_texture(const JsonCursor& value, LoadContext& context) {
-  if (value.is_object() && value.has("texture")) {
-    value.only_keys({"texture", "colour_space", "encoding", "scale"});
-    const std::filesystem::path path = context.spectra.scene_directory() / value.at("texture").string();
-    const std::shared_ptr<const RgbImage> image = load_rgb_image(value, path);
-    const std::string space = value.string_or("colour_space", "srgb-linear");
-    if (context.spectra.rgb_transport())
-      return std::make_shared<RgbLaneImageTexture>(image, RgbColourSpace::named(space),
-                                                   float(value.number_or("scale", 1.0, 0.0, 1.0)));
-    const auto upsampler = context.spectra.upsampler(space, value.has("colour_space") ? value.at("colour_space") : value);
-    return std::make_shared<ImageTexture>(image, upsampler, float(value.number_or("scale", 1.0, 0.0, 1.0)));
-  }
-  return std::make_shared<ConstantSpectralTexture>(context.spectra.parse(value, SpectrumRole::reflectance));
+  return load_spectral_texture(value, context);
 }
 
 // Roughness in [0, 1] (perceptual: alpha = roughness²; see transport/microfacet.h).
 float roughness_of(const JsonCursor& m) { return float(m.number_or("roughness", 0.0, 0.0, 1.0)); }
+
+// Whether any of the material's roughness keys holds a texture (an object) rather than a number.
+bool textured_roughness(const JsonCursor& m) {
+  for (const char* key : {"roughness", "roughness_u", "roughness_v"})
+    if (m.has(key) && !m.at(key).is_number()) return true;
+  return false;
+}
+
+// The roughness along one tangent as a texture: `key` if given, else "roughness", else 0.
+FloatTexturePtr roughness_texture(const JsonCursor& m, const char* key, LoadContext& context) {
+  if (m.has(key)) return load_float_texture(m.at(key), context, 0.0, 1.0);
+  if (m.has("roughness")) return load_float_texture(m.at("roughness"), context, 0.0, 1.0);
+  return std::make_shared<ConstantFloatTexture>(0.0f);
+}
 
 template <typename F>
 auto with_key(const JsonCursor& where, F&& f) {
@@ -78,17 +85,75 @@ CoatLayer coat_layer_of(const JsonCursor& m, LoadContext& context) {
   return layer;
 }
 
-Material load_material(const JsonCursor& m, LoadContext& context) {
+// Materials by name, built on first use so that a mix may name materials that come after it in the section.
+class MaterialResolver {
+ public:
+  MaterialResolver(const JsonCursor& section, LoadContext& context) : section_(section), context_(context) {}
+  std::shared_ptr<const Material> named(const std::string& name, const JsonCursor& where);
+  LoadContext& context() { return context_; }
+
+ private:
+  const JsonCursor& section_;
+  LoadContext& context_;
+  std::map<std::string, std::shared_ptr<const Material>> built_;
+  std::set<std::string> in_progress_;
+};
+
+Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver);
+
+// {"type": "mix", "materials": ["a", "b"], "amount": a}: per hit "b" with probability a, else "a" (MixMaterial).
+Material load_mix(const JsonCursor& m, MaterialResolver& resolver, uint32_t salt) {
+  m.only_keys({"type", "materials", "amount"});
+  const JsonCursor names = m.at("materials");
+  if (!names.is_array() || names.size() != 2) names.fail("expected an array of two material names");
+  auto first = resolver.named(names.at(size_t(0)).string(), names.at(size_t(0)));
+  auto second = resolver.named(names.at(size_t(1)).string(), names.at(size_t(1)));
+  FloatTexturePtr amount = m.has("amount") ? load_float_texture(m.at("amount"), resolver.context(), 0.0, 1.0)
+                                           : std::make_shared<ConstantFloatTexture>(0.5f);
+  return MixMaterial(std::move(first), std::move(second), std::move(amount), salt);
+}
+
+std::shared_ptr<const Material> MaterialResolver::named(const std::string& name, const JsonCursor& where) {
+  if (const auto found = built_.find(name); found != built_.end()) return found->second;
+  if (!section_.has(name)) where.fail("no material named \"" + name + "\" in /materials");
+  if (!in_progress_.insert(name).second) where.fail("mix materials refer to each other in a loop through \"" + name + "\"");
+  auto material = std::make_shared<const Material>(load_material(section_.at(name), context_, *this));
+  in_progress_.erase(name);
+  return built_[name] = material;
+}
+
+Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver) {
   const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "thin_dielectric", "coated_diffuse",
-                                                    "diffuse_transmission", "coated_conductor"});
+                                                    "diffuse_transmission", "coated_conductor", "mix"});
+  // Each mix decorrelates its choice from other mixes' by its own salt: its key path, hashed.
+  if (type == "mix") {
+    uint32_t salt = 0;
+    for (const char c : m.path()) salt = hash32(salt ^ uint8_t(c));
+    return load_mix(m, resolver, salt);
+  }
   SpectralLibrary& library = context.spectra.library();
   if (type == "diffuse") {
     m.only_keys({"type", "reflectance"});
     return DiffuseMaterial(reflectance_texture(m.at("reflectance"), context));
   }
   if (type == "conductor") {
-    m.only_keys({"type", "metal", "n", "k", "roughness", "roughness_u", "roughness_v"});
+    m.only_keys({"type", "metal", "n", "k", "reflectance", "roughness", "roughness_u", "roughness_v"});
+    const bool textured = textured_roughness(m);
+    if (m.has("reflectance")) {
+      // pbrt-v4's artist-friendly conductor: the normal-incidence reflectance instead of n and k.
+      for (const char* key : {"metal", "n", "k"})
+        if (m.has(key)) m.at(key).fail("give either reflectance or metal or n and k, not several");
+      SpectralTexturePtr reflectance = load_spectral_texture(m.at("reflectance"), context);
+      return with_key(m, [&] {
+        return Material(ConductorMaterial::from_reflectance(std::move(reflectance), roughness_texture(m, "roughness_u", context),
+                                                            roughness_texture(m, "roughness_v", context)));
+      });
+    }
     const ComplexIorSpectra ior = conductor_ior_of(m, context);
+    if (textured)
+      return with_key(m, [&] {
+        return Material(ConductorMaterial(ior, roughness_texture(m, "roughness_u", context), roughness_texture(m, "roughness_v", context)));
+      });
     const float r = roughness_of(m);
     const float ru = float(m.number_or("roughness_u", r, 0.0, 1.0)), rv = float(m.number_or("roughness_v", r, 0.0, 1.0));
     return with_key(m, [&] { return Material(ConductorMaterial(ior, ru, rv)); });
@@ -109,6 +174,10 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
       ior = context.spectra.parse(m.at("ior"), SpectrumRole::ior);
     }
     if (thin) return with_key(m, [&] { return Material(ThinDielectricMaterial(ior)); });
+    if (textured_roughness(m)) {
+      FloatTexturePtr roughness = roughness_texture(m, "roughness", context);
+      return with_key(m, [&] { return Material(DielectricMaterial(ior, roughness, roughness)); });
+    }
     const float roughness = roughness_of(m);
     return with_key(m, [&] { return Material(DielectricMaterial(ior, roughness)); });
   }
@@ -147,8 +216,9 @@ Material load_material(const JsonCursor& m, LoadContext& context) {
 
 void load_materials(const JsonCursor& section, LoadContext& context) {
   if (!section.is_object()) section.fail("expected an object of material name → material");
+  MaterialResolver resolver(section, context);
   for (const auto& [name, unused] : section.value().items()) {
-    context.scene.materials.push_back(load_material(section.at(name), context));
+    context.scene.materials.push_back(*resolver.named(name, section));
     context.scene.material_names.push_back(name);
     context.material_index[name] = int(context.scene.materials.size()) - 1;
   }

@@ -148,7 +148,7 @@ std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool i
   }
 }
 
-std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string& name, double fallback) {
+std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string& name, double fallback, int depth) {
   const PbrtParam* param = p.get(name, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real});
   if (!param) return json(fallback);
   if (param->type != PbrtParamType::texture) {
@@ -160,10 +160,13 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
   const PbrtTexture& texture = found->second;
   const PbrtStatement& ts = texture.statement;
   if (texture.kind != "spectrum") throw InputError(param->where, p.context() + ": \"" + name + "\" needs a spectrum texture, \"" + param->strings[0] + "\" is a float texture");
+  if (depth > 64) throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": textures nested more than 64 deep");
   if (texture.texture_class == "constant") {
     PbrtParams tp(*this, ts, "Texture \"" + ts.strings[0] + "\"");
-    return reflectance(tp, "value", 1.0);
+    return reflectance(tp, "value", 1.0, depth + 1);
   }
+  if (texture.texture_class != "imagemap")
+    if (auto combined = spectrum_combinator(texture, depth + 1)) return combined;
   if (texture.texture_class == "imagemap") {
     PbrtParams tp(*this, ts, "Texture \"" + ts.strings[0] + "\"");
     const std::string filename = tp.string("filename", "");
@@ -227,34 +230,35 @@ void PbrtConverter::texture(const PbrtStatement& s) {
   const std::string& kind = s.strings[1];
   if (kind != "spectrum" && kind != "float")
     throw InputError(s.where, "Texture \"" + s.strings[0] + "\": the type must be \"spectrum\" or \"float\", not \"" + kind + "\"");
-  textures_[s.strings[0]] = {kind, s.strings[2], s};
+  textures_[s.strings[0]] = {kind, s.strings[2], s, world_from_object()};
 }
 
 std::string PbrtConverter::mix_material(const PbrtStatement& s, const std::string& name, const std::string& context,
                                         const std::vector<PbrtParam>* material_defaults) {
-  // pbrt-v4's MixMaterial picks materials[1] with probability `amount` per hit (a hash of the hit). Rimu has no
-  // per-hit material choice yet: the more likely of the two stands in, for the whole surface, and is listed.
+  // pbrt-v4's MixMaterial picks materials[1] with probability `amount` per hit (a hash of the hit): Rimu's "mix".
   PbrtParams p(*this, s, context + " (mix)", material_defaults);
   if (s.keyword == "MakeNamedMaterial") p.string("type", "");
   const PbrtParam* names = p.get("materials", {PbrtParamType::string});
   if (!names || names->strings.size() != 2)
     throw InputError(s.where, p.context() + ": \"string materials\" must name two materials");
-  double amount = 0.5;
-  if (const PbrtParam* a = p.get("amount", {PbrtParamType::real, PbrtParamType::texture})) {
-    if (a->type == PbrtParamType::real) {
-      amount = a->numbers.at(0);
-    } else if (const auto constant = constant_float_texture(a->strings.at(0), a->where, 0)) {
-      amount = *constant;
-    } else {
-      ignore("texture for \"amount\" of " + p.context() + " (0.5 is used)", a->where);
-    }
+  for (const std::string& n : names->strings)
+    if (!named_materials_.count(n) || !materials_.contains(n))
+      throw InputError(names->where, p.context() + ": no material named \"" + n + "\"");
+  json amount = float_value(p, "amount", 0.5);
+  // pbrt-v4 treats ≤ 0 and ≥ 1 as certain choices; Rimu's mix clamps a textured amount per hit.
+  if (amount.is_number()) amount = std::clamp(amount.get<double>(), 0.0, 1.0);
+  const bool first_interface = interface_materials_.count(names->strings[0]) > 0;
+  const bool second_interface = interface_materials_.count(names->strings[1]) > 0;
+  if (first_interface || second_interface) {
+    // A mix with pbrt's "no surface" would need a per-hit choice of whether the shape exists (an alpha): the
+    // material of the larger share stands in for the whole surface.
+    const std::string& chosen = names->strings[!amount.is_number() || amount.get<double>() >= 0.5 ? 1 : 0];
+    ignore("Material \"mix\" with an \"interface\" material (the material of the larger share stands in)", s.where);
+    materials_[name] = materials_.at(chosen);
+    if (interface_materials_.count(chosen)) interface_materials_.insert(name);
+    return name;
   }
-  const std::string& chosen = names->strings[amount >= 0.5 ? 1 : 0];
-  if (!named_materials_.count(chosen) || !materials_.contains(chosen))
-    throw InputError(names->where, p.context() + ": no material named \"" + chosen + "\"");
-  ignore("Material \"mix\" (not stochastic: the material of the larger share, by \"amount\", stands in)", s.where);
-  materials_[name] = materials_.at(chosen);
-  if (interface_materials_.count(chosen)) interface_materials_.insert(name);
+  materials_[name] = {{"type", "mix"}, {"materials", names->strings}, {"amount", amount}};
   return name;
 }
 
@@ -372,13 +376,23 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     }
   } else if (type == "conductor") {
     m = {{"type", "conductor"}};
-    conductor_ior("", m);
-    const auto [u, v] = roughness_pair("");
-    if (u == v) {
-      if (u > 0) m["roughness"] = rimu_roughness(u, remap);
+    if (p.get("reflectance", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real})) {
+      // pbrt-v4's artist-friendly conductor (n = 1, k from the reflectance): Rimu's conductor "reflectance".
+      const std::initializer_list<PbrtParamType> ior_types = {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture};
+      if (p.get("eta", ior_types) || p.get("k", ior_types))
+        ignore("conductor eta/k given with \"reflectance\" (the reflectance is used)", s.where);
+      m["reflectance"] = *reflectance(p, "reflectance", 0.0);
     } else {
-      m["roughness_u"] = rimu_roughness(u, remap);
-      m["roughness_v"] = rimu_roughness(v, remap);
+      conductor_ior("", m);
+    }
+    const json r = float_value(p, "roughness", 0.0);
+    const json u = p.get("uroughness", {PbrtParamType::real, PbrtParamType::texture}) ? float_value(p, "uroughness", 0.0) : r;
+    const json v = p.get("vroughness", {PbrtParamType::real, PbrtParamType::texture}) ? float_value(p, "vroughness", 0.0) : r;
+    if (u == v) {
+      if (u != json(0.0)) m["roughness"] = roughness_value(u, remap);
+    } else {
+      m["roughness_u"] = roughness_value(u, remap);
+      m["roughness_v"] = roughness_value(v, remap);
     }
   } else {  // dielectric, thindielectric: the same eta
     const bool thin = type == "thindielectric";
@@ -395,10 +409,17 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     }
     // pbrt-v4's ThinDielectricMaterial reads no roughness: left unread, a given one is listed as unused.
     if (!thin) {
-      const double r = scalar("roughness", 0.0);
-      const double u = scalar("uroughness", r), v = scalar("vroughness", r);
-      if (u != v) ignore("anisotropic dielectric roughness (the mean is used)", s.where);
-      if (u + v > 0) m["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+      const json r = float_value(p, "roughness", 0.0);
+      const json u = p.get("uroughness", {PbrtParamType::real, PbrtParamType::texture}) ? float_value(p, "uroughness", 0.0) : r;
+      const json v = p.get("vroughness", {PbrtParamType::real, PbrtParamType::texture}) ? float_value(p, "vroughness", 0.0) : r;
+      if (u.is_number() && v.is_number()) {
+        const double mean = 0.5 * (u.get<double>() + v.get<double>());
+        if (u != v) ignore("anisotropic dielectric roughness (the mean is used)", s.where);
+        if (mean > 0) m["roughness"] = roughness_value(mean, remap);
+      } else {
+        if (u != v) ignore("anisotropic textured dielectric roughness (uroughness is used)", s.where);
+        m["roughness"] = roughness_value(u, remap);
+      }
     }
   }
   materials_[name] = m;

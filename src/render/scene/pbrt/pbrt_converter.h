@@ -70,6 +70,7 @@ struct PbrtTexture {
   std::string kind;  ///< "spectrum" or "float"
   std::string texture_class;
   PbrtStatement statement;
+  PbrtMatrix world_from_texture = PbrtMatrix::identity();  ///< the CTM at the statement (directionmix's "dir")
 };
 
 class PbrtConverter {
@@ -106,7 +107,22 @@ class PbrtConverter {
  private:
   friend class PbrtParams;
   // pbrt_appearance.cpp
-  std::optional<json> reflectance(PbrtParams& p, const std::string& name, double fallback);
+  /// A spectrum parameter or spectrum texture `name` of `p` as a Rimu reflectance value (docs/scene-format.md,
+  /// "Textures"); `fallback` when absent or not imported (listed). `depth` guards texture chains.
+  std::optional<json> reflectance(PbrtParams& p, const std::string& name, double fallback, int depth = 0);
+
+  // pbrt_textures.cpp
+  /// A float parameter or float texture `name` of `p` as a Rimu float value (a number or a float texture object);
+  /// `fallback` when absent or not imported (listed).
+  json float_value(PbrtParams& p, const std::string& name, double fallback, int depth = 0);
+  /// Float texture `texture_name` (referred to at `where`) as a Rimu float value; empty when not imported (listed).
+  std::optional<json> float_texture_value(const std::string& texture_name, const SourceLocation& where, int depth);
+  /// Spectrum texture `texture` of a class other than constant/imagemap (scale, mix, directionmix, checkerboard)
+  /// as a Rimu reflectance value; empty when not imported (listed).
+  std::optional<json> spectrum_combinator(const PbrtTexture& texture, int depth);
+  /// pbrt's roughness value (number or texture) as Rimu's perceptual roughness: r = α^½ with pbrt's α = roughness^½
+  /// under remaproughness, else α = roughness (a texture is raised to that power per hit: {"power": [t, e]}).
+  json roughness_value(const json& pbrt_roughness, bool remap) const;
   /// pbrt's "mix": the JSON of the material `amount` favours, under `name`.
   std::string mix_material(const PbrtStatement& s, const std::string& name, const std::string& context,
                            const std::vector<PbrtParam>* material_defaults);

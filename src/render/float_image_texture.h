@@ -1,0 +1,32 @@
+// A float texture from an image's first channel (pbrt-v4's float "imagemap"): roughness maps, mix amounts.
+#pragma once
+
+#include <cmath>
+#include <memory>
+
+#include "render/alpha_mask.h"
+#include "transport/float_texture.h"
+
+namespace rimu {
+
+/// pbrt-v4's FloatImageTexture: v = scale·value(uv), then max(0, 1 − v) if `invert` (in that order, after filtering,
+/// as pbrt does). The values are read once at load (AlphaMask::read: one channel, sRGB-decoded if asked, clamped
+/// to [0, 1]) and looked up bilinearly, coordinates repeating, v = 0 the bottom row. Cost per lookup: four loads
+/// and two flops, no decoding.
+class ImageFloatTexture final : public FloatTexture {
+ public:
+  /// `values` must have been read without inversion (it is applied here, after the scale).
+  ImageFloatTexture(std::shared_ptr<const AlphaMask> values, float scale, bool invert)
+      : values_(std::move(values)), scale_(scale), invert_(invert) {}
+  float evaluate(const MaterialContext& context) const override {
+    const float v = scale_ * values_->evaluate(context.uv);
+    return invert_ ? std::fmax(0.0f, 1.0f - v) : v;
+  }
+
+ private:
+  std::shared_ptr<const AlphaMask> values_;
+  float scale_;
+  bool invert_;
+};
+
+}  // namespace rimu

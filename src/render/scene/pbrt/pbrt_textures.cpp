@@ -1,0 +1,117 @@
+// pbrt-v4 textures → Rimu's texture values (docs/scene-format.md "Textures", docs/pbrt-import.md): float textures
+// (constant, scale, mix, directionmix, 2D checkerboard, imagemap) and the spectrum combinators. Default operands
+// are pbrt-v4's: scale tex 1 × scale 1; mix tex1 0, tex2 1, amount 0.5; directionmix tex1 0, tex2 1, dir (0, 1, 0);
+// checkerboard tex1 1, tex2 0.
+#include <algorithm>
+#include <cmath>
+
+#include "render/scene/pbrt/pbrt_converter.h"
+
+namespace rimu {
+namespace {
+
+// pbrt-v4's 2D uv mapping parameters as Rimu's checkerboard keys; other mappings are listed (uv is used).
+void uv_mapping(PbrtParams& tp, json& value, PbrtConverter& converter, const SourceLocation& where) {
+  if (tp.string("mapping", "uv") != "uv") converter.ignore("texture mapping other than uv (uv is used)", where);
+  value["uv_scale"] = {tp.real("uscale", 1.0), tp.real("vscale", 1.0)};
+  value["uv_offset"] = {tp.real("udelta", 0.0), tp.real("vdelta", 0.0)};
+}
+
+}  // namespace
+
+json PbrtConverter::float_value(PbrtParams& p, const std::string& name, double fallback, int depth) {
+  const PbrtParam* q = p.get(name, {PbrtParamType::real, PbrtParamType::texture});
+  if (!q) return fallback;
+  if (q->type == PbrtParamType::real) return q->numbers.at(0);
+  if (auto v = float_texture_value(q->strings.at(0), q->where, depth)) return *v;
+  return fallback;
+}
+
+std::optional<json> PbrtConverter::float_texture_value(const std::string& texture_name, const SourceLocation& where, int depth) {
+  // Constant everywhere (constant, scale/mix of constants): a number. This also checks the name and kind.
+  if (const auto constant = constant_float_texture(texture_name, where, depth)) return json(*constant);
+  if (depth > 64) throw InputError(where, "Texture \"" + texture_name + "\": textures nested more than 64 deep");
+  const PbrtTexture& texture = textures_.at(texture_name);
+  const PbrtStatement& ts = texture.statement;
+  const std::string& cls = texture.texture_class;
+  PbrtParams tp(*this, ts, "Texture \"" + texture_name + "\"");
+  if (cls == "scale") return json{{"product", {float_value(tp, "tex", 1.0, depth + 1), float_value(tp, "scale", 1.0, depth + 1)}}};
+  if (cls == "mix")
+    return json{{"mix", {float_value(tp, "tex1", 0.0, depth + 1), float_value(tp, "tex2", 1.0, depth + 1)}},
+                {"amount", float_value(tp, "amount", 0.5, depth + 1)}};
+  if (cls == "directionmix") {
+    std::vector<double> dir = tp.numbers("dir", {PbrtParamType::vector3});
+    if (dir.empty()) dir = {0.0, 1.0, 0.0};
+    if (dir.size() != 3) throw InputError(ts.where, "Texture \"" + texture_name + "\": \"dir\" must be one vector3");
+    const auto world = texture.world_from_texture.vector({dir[0], dir[1], dir[2]});
+    return json{{"direction_mix", {float_value(tp, "tex1", 0.0, depth + 1), float_value(tp, "tex2", 1.0, depth + 1)}},
+                {"direction", {world[0], world[1], world[2]}}};
+  }
+  if (cls == "checkerboard") {
+    if (tp.integer("dimension", 2) != 2) {
+      ignore("3D checkerboard texture (the material's default is used)", ts.where);
+      return std::nullopt;
+    }
+    json value = {{"checkerboard", {float_value(tp, "tex1", 1.0, depth + 1), float_value(tp, "tex2", 0.0, depth + 1)}}};
+    uv_mapping(tp, value, *this, ts.where);
+    return value;
+  }
+  if (cls == "imagemap") {
+    const std::string filename = tp.string("filename", "");
+    if (filename.empty()) throw InputError(ts.where, "Texture \"" + texture_name + "\": needs \"string filename\"");
+    const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
+    if (!std::filesystem::is_regular_file(path))
+      throw InputError(ts.where, "Texture \"" + texture_name + "\": cannot find the image '" + path.string() + "'");
+    // The first channel (pbrt-v4's MIPMap texel for Float); pbrt's encoding defaults to sRGB for PNG, else linear.
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
+    if (encoding != "linear" && encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", ts.where);
+    json value = {{"texture", path_for_document(path)}, {"encoding", encoding == "linear" ? "linear" : "srgb"}};
+    if (tp.boolean("invert", false)) value["invert"] = true;
+    if (const double scale = tp.real("scale", 1.0); scale != 1.0) value["scale"] = scale;
+    if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
+        tp.real("vdelta", 0) != 0)
+      ignore("texture mapping other than plain uv", ts.where);
+    tp.string("filter", "bilinear");  // Rimu filters bilinearly
+    tp.string("wrap", "repeat");
+    return value;
+  }
+  ignore("float Texture class \"" + cls + "\" (the parameter's default is used)", ts.where);
+  return std::nullopt;
+}
+
+std::optional<json> PbrtConverter::spectrum_combinator(const PbrtTexture& texture, int depth) {
+  const PbrtStatement& ts = texture.statement;
+  const std::string& cls = texture.texture_class;
+  if (cls != "scale" && cls != "mix" && cls != "directionmix" && cls != "checkerboard") return std::nullopt;
+  PbrtParams tp(*this, ts, "Texture \"" + ts.strings[0] + "\"");
+  const auto spectral = [&](const char* key, double fallback) { return reflectance(tp, key, fallback, depth).value_or(json(fallback)); };
+  if (cls == "scale") return json{{"product", {spectral("tex", 1.0), float_value(tp, "scale", 1.0, depth)}}};
+  if (cls == "mix")
+    return json{{"mix", {spectral("tex1", 0.0), spectral("tex2", 1.0)}},
+                {"amount", float_value(tp, "amount", 0.5, depth)}};
+  if (cls == "directionmix") {
+    std::vector<double> dir = tp.numbers("dir", {PbrtParamType::vector3});
+    if (dir.empty()) dir = {0.0, 1.0, 0.0};
+    if (dir.size() != 3) throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": \"dir\" must be one vector3");
+    const auto world = texture.world_from_texture.vector({dir[0], dir[1], dir[2]});
+    return json{{"direction_mix", {spectral("tex1", 0.0), spectral("tex2", 1.0)}},
+                {"direction", {world[0], world[1], world[2]}}};
+  }
+  if (tp.integer("dimension", 2) != 2) return std::nullopt;  // listed by the caller as an unsupported class
+  json value = {{"checkerboard", {spectral("tex1", 1.0), spectral("tex2", 0.0)}}};
+  uv_mapping(tp, value, *this, ts.where);
+  return value;
+}
+
+json PbrtConverter::roughness_value(const json& pbrt_roughness, bool remap) const {
+  if (pbrt_roughness.is_number()) {
+    const double r = pbrt_roughness.get<double>();
+    const double alpha = remap ? std::sqrt(std::max(0.0, r)) : std::max(0.0, r);
+    return std::min(1.0, std::sqrt(alpha));
+  }
+  return json{{"power", {pbrt_roughness, remap ? 0.25 : 0.5}}};
+}
+
+}  // namespace rimu

@@ -1,0 +1,59 @@
+#include "transport/float_texture.h"
+
+#include "spectral/error.h"
+
+namespace rimu {
+namespace {
+
+void require(const FloatTexturePtr& t, const char* what) {
+  if (!t) throw InputError({}, std::string(what) + " needs all of its input textures");
+}
+
+}  // namespace
+
+ProductFloatTexture::ProductFloatTexture(FloatTexturePtr a, FloatTexturePtr b) : a_(std::move(a)), b_(std::move(b)) {
+  require(a_, "a product texture");
+  require(b_, "a product texture");
+}
+
+PowerFloatTexture::PowerFloatTexture(FloatTexturePtr a, float exponent) : a_(std::move(a)), exponent_(exponent) {
+  require(a_, "a power texture");
+}
+
+MixFloatTexture::MixFloatTexture(FloatTexturePtr a, FloatTexturePtr b, FloatTexturePtr amount)
+    : a_(std::move(a)), b_(std::move(b)), amount_(std::move(amount)) {
+  for (const auto* t : {&a_, &b_, &amount_}) require(*t, "a mix texture");
+}
+
+float MixFloatTexture::evaluate(const MaterialContext& context) const {
+  const float t = amount_->evaluate(context);
+  // Only the inputs with a non-zero weight are looked up (an image lookup costs more than the test).
+  const float a = t != 1.0f ? a_->evaluate(context) : 0.0f;
+  const float b = t != 0.0f ? b_->evaluate(context) : 0.0f;
+  return (1.0f - t) * a + t * b;
+}
+
+DirectionMixFloatTexture::DirectionMixFloatTexture(FloatTexturePtr a, FloatTexturePtr b, Vec3 direction)
+    : a_(std::move(a)), b_(std::move(b)) {
+  require(a_, "a direction mix texture");
+  require(b_, "a direction mix texture");
+  const float len = length(direction);
+  if (!(len > 0.0f) || !std::isfinite(len))
+    throw InputError({}, "a direction mix texture needs a non-zero, finite direction");
+  direction_ = direction / len;
+}
+
+float DirectionMixFloatTexture::evaluate(const MaterialContext& context) const {
+  const float w = direction_mix_weight(context, direction_);
+  const float a = w != 0.0f ? a_->evaluate(context) : 0.0f;
+  const float b = w != 1.0f ? b_->evaluate(context) : 0.0f;
+  return w * a + (1.0f - w) * b;
+}
+
+CheckerboardFloatTexture::CheckerboardFloatTexture(FloatTexturePtr a, FloatTexturePtr b, UvMapping mapping)
+    : a_(std::move(a)), b_(std::move(b)), mapping_(mapping) {
+  require(a_, "a checkerboard texture");
+  require(b_, "a checkerboard texture");
+}
+
+}  // namespace rimu

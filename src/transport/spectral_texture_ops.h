@@ -1,0 +1,66 @@
+// Spectral textures built from others (pbrt-v4's "scale", "mix", "directionmix", "checkerboard" spectrum textures).
+#pragma once
+
+#include "transport/float_texture.h"
+#include "transport/spectral_texture.h"
+
+namespace rimu {
+
+/// A spectral texture defined at surface points: evaluate(uv) asks at a point known only by its uv (normal, wo and
+/// position zero), which is what a lookup without a hit means.
+class SpectralTextureAtPoint : public SpectralTexture {
+ public:
+  SampledSpectrum evaluate(Vec2 uv, const SampledWavelengths& lambda) const final {
+    return evaluate_at(MaterialContext::at_uv(uv), lambda);
+  }
+  SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override = 0;
+};
+
+/// spectrum·scale (pbrt-v4's "scale").
+class ProductSpectralTexture final : public SpectralTextureAtPoint {
+ public:
+  ProductSpectralTexture(SpectralTexturePtr spectrum, FloatTexturePtr scale);
+  SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override;
+
+ private:
+  SpectralTexturePtr spectrum_;
+  FloatTexturePtr scale_;
+};
+
+/// (1 − t)·a + t·b, t = amount (pbrt-v4's "mix").
+class MixSpectralTexture final : public SpectralTextureAtPoint {
+ public:
+  MixSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, FloatTexturePtr amount);
+  SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override;
+
+ private:
+  SpectralTexturePtr a_, b_;
+  FloatTexturePtr amount_;
+};
+
+/// w·a + (1 − w)·b, w = |n·direction| (pbrt-v4's "directionmix").
+class DirectionMixSpectralTexture final : public SpectralTextureAtPoint {
+ public:
+  /// Throws InputError if `direction` is zero or not finite.
+  DirectionMixSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, Vec3 direction);
+  SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override;
+
+ private:
+  SpectralTexturePtr a_, b_;
+  Vec3 direction_;
+};
+
+/// a on the even squares, b on the odd ones (pbrt-v4's 2D "checkerboard", point-sampled).
+class CheckerboardSpectralTexture final : public SpectralTextureAtPoint {
+ public:
+  CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, UvMapping mapping);
+  SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override {
+    return checkerboard_first(mapping_(context.uv)) ? a_->evaluate_at(context, lambda) : b_->evaluate_at(context, lambda);
+  }
+
+ private:
+  SpectralTexturePtr a_, b_;
+  UvMapping mapping_;
+};
+
+}  // namespace rimu

@@ -1,0 +1,161 @@
+// pbrt-v4 textures through the importer (docs/pbrt-import.md, "Texture"): float and spectrum texture classes become
+// Rimu texture values where pbrt takes them, and a textured pbrt scene renders as its JSON twin.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "integration_support.h"
+#include "render/float_image_texture.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+#include "test_image_files.h"
+
+using namespace rimu;
+using nlohmann::json;
+
+namespace {
+
+const std::string kHeader = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
+
+PbrtImport import_text(const std::string& text, const std::filesystem::path& directory) {
+  return import_pbrt_text(text, "test.pbrt", directory, test::library());
+}
+
+// Per 8×8 block of a 32×32 image: |mean difference| of a and b over its standard error (paired, per pixel).
+std::vector<double> block_deviations(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> deviations;
+  for (int by = 0; by < 4; ++by)
+    for (int bx = 0; bx < 4; ++bx) {
+      std::vector<double> pa, pb;
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+          pa.push_back(a[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
+          pb.push_back(b[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
+        }
+      const test::Estimate d = test::paired_difference(pa, pb);
+      deviations.push_back(d.standard_error > 0 ? std::abs(d.mean) / d.standard_error : (d.mean == 0 ? 0.0 : 1e9));
+    }
+  return deviations;
+}
+
+}  // namespace
+
+TEST_CASE("pbrt float textures: roughness and mix amounts from scale, mix, directionmix, checkerboard, imagemap") {
+  test::ScratchFolder dir("pbrt_textures");
+  const auto grey = test::write_ppm("pbrt_rough", 2, 1, {51, 0, 0, 255, 255, 255});
+  std::filesystem::copy_file(grey, dir / "rough.ppm", std::filesystem::copy_options::overwrite_existing);
+  const std::string textures =
+      "Texture \"board\" \"float\" \"checkerboard\" \"float uscale\" 8 \"float vscale\" 4 \"float tex1\" 0.1 \"float tex2\" 0.4\n"
+      "Texture \"scaled\" \"float\" \"scale\" \"texture tex\" \"board\" \"float scale\" 0.5\n"
+      "Texture \"sideways\" \"float\" \"directionmix\" \"float tex1\" 0.2 \"texture tex2\" \"board\" \"vector3 dir\" [0 0 2]\n"
+      "Texture \"map\" \"float\" \"imagemap\" \"string filename\" \"rough.ppm\" \"bool invert\" true \"float scale\" 0.5\n"
+      "Texture \"blend\" \"float\" \"mix\" \"texture tex1\" \"scaled\" \"texture tex2\" \"map\" \"texture amount\" \"sideways\"\n";
+  const PbrtImport imported = import_text(
+      kHeader + textures +
+          "MakeNamedMaterial \"metal\" \"string type\" \"conductor\" \"texture roughness\" \"blend\"\n"
+          "MakeNamedMaterial \"raw\" \"string type\" \"conductor\" \"texture uroughness\" \"board\" \"float vroughness\" 0.09 \"bool remaproughness\" false\n"
+          "MakeNamedMaterial \"frosted\" \"string type\" \"dielectric\" \"texture roughness\" \"map\"\n"
+          "MakeNamedMaterial \"either\" \"string type\" \"mix\" \"string materials\" [\"metal\" \"frosted\"] \"texture amount\" \"board\"\n",
+      dir.path);
+  CHECK(imported.ignored.empty());
+  const json& m = imported.document["materials"];
+  const json board = {{"checkerboard", {0.1, 0.4}}, {"uv_scale", {8.0, 4.0}}, {"uv_offset", {0.0, 0.0}}};
+  const json scaled = {{"product", {board, 0.5}}};
+  // "dir" goes through the CTM of the Texture statement (here "Scale -1 1 1" then the camera: the world's z).
+  const json sideways = {{"direction_mix", {0.2, board}}, {"direction", {0.0, 0.0, 2.0}}};
+  // The first channel of a PPM: linear by pbrt's default (sRGB only for PNG), inverted, scaled.
+  const json map = m["frosted"]["roughness"]["power"][0];
+  CHECK(map["texture"].get<std::string>().find("rough.ppm") != std::string::npos);
+  CHECK(map["encoding"] == "linear");
+  CHECK(map["invert"] == true);
+  CHECK(map["scale"] == 0.5);
+  // Under remaproughness pbrt's α = roughness^½, Rimu's r = α^½: the texture is raised to ¼ per hit.
+  CHECK(m["metal"]["roughness"] == json({{"power", {{{"mix", {scaled, map}}, {"amount", sideways}}, 0.25}}}));
+  CHECK(m["raw"]["roughness_u"] == json({{"power", {board, 0.5}}}));
+  CHECK(m["raw"]["roughness_v"].get<double>() == doctest::Approx(0.3));  // √0.09 without remapping
+  CHECK(m["frosted"]["roughness"] == json({{"power", {map, 0.25}}}));
+  CHECK(m["either"]["amount"] == board);
+  CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
+}
+
+TEST_CASE("pbrt spectrum textures and the conductor's reflectance") {
+  test::ScratchFolder dir("pbrt_spectrum_textures");
+  const PbrtImport imported = import_text(
+      kHeader +
+          "Texture \"tiles\" \"spectrum\" \"checkerboard\" \"float uscale\" 4 \"float vscale\" 4 \"rgb tex1\" [0.8 0.1 0.1] \"float tex2\" 0.2\n"
+          "Texture \"dim\" \"spectrum\" \"scale\" \"texture tex\" \"tiles\" \"float scale\" 0.5\n"
+          "Texture \"faded\" \"spectrum\" \"mix\" \"texture tex1\" \"dim\" \"float tex2\" 0.9 \"float amount\" 0.25\n"
+          "Texture \"up\" \"spectrum\" \"directionmix\" \"float tex1\" 0.7 \"texture tex2\" \"faded\"\n"
+          "MakeNamedMaterial \"floor\" \"string type\" \"diffuse\" \"texture reflectance\" \"up\"\n"
+          "MakeNamedMaterial \"gilt\" \"string type\" \"conductor\" \"rgb reflectance\" [0.9 0.7 0.3] \"float roughness\" 0.01\n"
+          "MakeNamedMaterial \"leaf\" \"string type\" \"diffusetransmission\" \"texture transmittance\" \"tiles\"\n",
+      dir.path);
+  CHECK(imported.ignored.empty());
+  const json& m = imported.document["materials"];
+  const json tiles = {{"checkerboard", {{{"rgb", {0.8, 0.1, 0.1}}, {"space", "srgb-linear"}}, 0.2}}, {"uv_scale", {4.0, 4.0}}, {"uv_offset", {0.0, 0.0}}};
+  const json faded = {{"mix", {{{"product", {tiles, 0.5}}}, 0.9}}, {"amount", 0.25}};
+  CHECK(m["floor"]["reflectance"] == json({{"direction_mix", {0.7, faded}}, {"direction", {0.0, 1.0, 0.0}}}));
+  CHECK(m["gilt"]["reflectance"] == json({{"rgb", {0.9, 0.7, 0.3}}, {"space", "srgb-linear"}}));
+  CHECK(!m["gilt"].contains("metal"));
+  CHECK(m["gilt"]["roughness"].get<double>() == doctest::Approx(std::sqrt(std::sqrt(0.01))));
+  CHECK(m["leaf"]["transmittance"] == tiles);
+  CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
+}
+
+TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON") {
+  // cornell.pbrt's ball made of a red/white checkerboard, as pbrt text and as its hand-written JSON twin. Two
+  // squares along u: the hemisphere facing the camera (u ≥ ½) is white, the back red; an offset of one square
+  // swaps them, which the comparison must see.
+  const std::filesystem::path pbrt_file = test::test_data("pbrt/cornell.pbrt");
+  std::stringstream text;
+  text << std::ifstream(pbrt_file).rdbuf();
+  std::string pbrt = text.str();
+  const std::string green = "MakeNamedMaterial \"green\"";
+  pbrt.insert(pbrt.find(green),
+              "Texture \"tiles\" \"spectrum\" \"checkerboard\" \"float uscale\" 2 \"float vscale\" 1 "
+              "\"rgb tex1\" [0.6 0.05 0.05] \"rgb tex2\" [0.7 0.7 0.7]\n"
+              "MakeNamedMaterial \"tiled\" \"string type\" \"diffuse\" \"texture reflectance\" \"tiles\"\n");
+  const std::string ball = "NamedMaterial \"white\"\n  Translate 0.45";
+  REQUIRE(pbrt.find(ball) != std::string::npos);
+  pbrt.replace(pbrt.find(ball), ball.size(), "NamedMaterial \"tiled\"\n  Translate 0.45");
+  const PbrtImport imported = import_pbrt_text(pbrt, pbrt_file.string(), pbrt_file.parent_path(), test::library());
+  CHECK(imported.ignored.empty());
+  const auto from_pbrt = load_scene(imported.document, pbrt_file.string(), pbrt_file.parent_path(), test::library());
+
+  std::ifstream in(test::test_data("pbrt/cornell_equivalent.json"));
+  json hand_written = json::parse(in);
+  const auto tiled = [](double u_offset) {
+    return json{{"type", "diffuse"},
+                {"reflectance", {{"checkerboard", {{{"rgb", {0.6, 0.05, 0.05}}}, {{"rgb", {0.7, 0.7, 0.7}}}}}, {"uv_scale", {2, 1}},
+                                 {"uv_offset", {u_offset, 0}}}}};
+  };
+  hand_written["materials"]["tiled"] = tiled(0.0);
+  for (json& shape : hand_written["shapes"])
+    if (shape["type"] == "sphere") shape["material"] = "tiled";
+  const auto from_json = load_scene(hand_written, "cornell_equivalent.json", pbrt_file.parent_path(), test::library());
+  const std::vector<double> a = test::luminance_values(*test::render_xyz(*from_pbrt, 128, 1).film);
+  const std::vector<double> b = test::luminance_values(*test::render_xyz(*from_json, 128, 2).film);
+  for (double deviation : block_deviations(a, b)) CHECK(deviation <= test::kSigmas);
+
+  // The comparison can fail: the squares swapped (offset by one square along u).
+  json swapped = hand_written;
+  swapped["materials"]["tiled"] = tiled(1.0);
+  const auto other = load_scene(swapped, "swapped.json", pbrt_file.parent_path(), test::library());
+  const std::vector<double> c = test::luminance_values(*test::render_xyz(*other, 128, 3).film);
+  double worst = 0.0;
+  for (double deviation : block_deviations(a, c)) worst = std::max(worst, deviation);
+  CHECK(worst > test::kSigmas);
+}
+
+TEST_CASE("float image texture: scale, then invert, as pbrt-v4's FloatImageTexture") {
+  // Two texels, 51/255 = 0.2 and 1.0 (read linear); looked up at their centres.
+  const auto path = test::write_ppm("float_image", 2, 1, {51, 0, 0, 255, 255, 255});
+  const auto values = std::make_shared<const AlphaMask>(AlphaMask::read(path, 0, false, false));
+  const ImageFloatTexture plain(values, 0.5f, false), inverted(values, 0.5f, true), over(values, 3.0f, true);
+  const MaterialContext left = MaterialContext::at_uv({0.25f, 0.5f}), right = MaterialContext::at_uv({0.75f, 0.5f});
+  CHECK(plain.evaluate(left) == doctest::Approx(0.1f));
+  CHECK(plain.evaluate(right) == doctest::Approx(0.5f));
+  CHECK(inverted.evaluate(left) == doctest::Approx(0.9f));   // 1 − 0.5·0.2, not 0.5·(1 − 0.2) = 0.4
+  CHECK(inverted.evaluate(right) == doctest::Approx(0.5f));
+  CHECK(over.evaluate(right) == 0.0f);                      // max(0, 1 − 3·1)
+}

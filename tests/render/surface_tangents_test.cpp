@@ -1,0 +1,122 @@
+// ∂p/∂u and ∂p/∂v at hits (SurfaceHit::dpdu/dpdv, MaterialContext): the tangents normal and bump maps need,
+// checked against the parametrisation they differentiate.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "render/embree_scene.h"
+#include "transport/transform.h"
+
+using namespace rimu;
+
+namespace {
+
+Ray ray_to(Vec3 from, Vec3 to) {
+  Ray r;
+  r.origin = from;
+  r.direction = normalize(to - from);
+  r.t_min = 0.0f;
+  r.t_max = 1e30f;
+  return r;
+}
+
+// A triangle whose uvs are a sheared, scaled copy of its positions' plane, so ∂p/∂u ≠ b − a.
+TriangleMesh sheared_triangle(bool with_uvs) {
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}};
+  if (with_uvs) m.uvs = {{0.1f, 0.2f}, {0.5f, 0.3f}, {0.2f, 0.9f}};
+  m.indices = {0, 1, 2};
+  return m;
+}
+
+void check_close(Vec3 a, Vec3 b, float tolerance) {
+  CHECK(a.x == doctest::Approx(b.x).epsilon(tolerance));
+  CHECK(a.y == doctest::Approx(b.y).epsilon(tolerance));
+  CHECK(a.z == doctest::Approx(b.z).epsilon(tolerance));
+}
+
+// p is affine in uv over a triangle: each edge must equal Δu·∂p/∂u + Δv·∂p/∂v exactly (to rounding).
+void check_edges(const TriangleMesh& m, const SurfaceHit& hit, const Transform& to_world) {
+  for (int e = 1; e < 3; ++e) {
+    const Vec3 edge = to_world.vector(m.positions[size_t(e)] - m.positions[0]);
+    const Vec2 duv{m.uvs[size_t(e)].x - m.uvs[0].x, m.uvs[size_t(e)].y - m.uvs[0].y};
+    check_close(hit.dpdu * duv.x + hit.dpdv * duv.y, edge, 1e-5f);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("surface tangents: a triangle's dp/du, dp/dv reproduce its edges from its uvs") {
+  SUBCASE("with uvs") {
+    EmbreeScene scene;
+    scene.add_mesh(sheared_triangle(true), 0, -1);
+    scene.commit();
+    const auto hit = scene.intersect(ray_to({0.5f, 0.5f, 1.0f}, {0.5f, 0.5f, 0.0f}));
+    REQUIRE(hit);
+    check_edges(sheared_triangle(true), *hit, Transform());
+    CHECK(dot(hit->dpdu, hit->geometric_normal) == doctest::Approx(0.0f).epsilon(1e-6f));
+  }
+  SUBCASE("without uvs the barycentrics are the uvs: dp/du = b − a, dp/dv = c − a") {
+    EmbreeScene scene;
+    scene.add_mesh(sheared_triangle(false), 0, -1);
+    scene.commit();
+    const auto hit = scene.intersect(ray_to({0.5f, 0.5f, 1.0f}, {0.5f, 0.5f, 0.0f}));
+    REQUIRE(hit);
+    check_close(hit->dpdu, {2, 0, 0}, 1e-6f);
+    check_close(hit->dpdv, {0, 3, 0}, 1e-6f);
+  }
+  SUBCASE("through an instance's transform") {
+    EmbreeScene scene;
+    std::vector<std::pair<TriangleMesh, int>> meshes;
+    meshes.emplace_back(sheared_triangle(true), 0);
+    const int prototype = scene.add_prototype(std::move(meshes));
+    const Transform to_world = Transform::translate({5, 0, 0}) * Transform::rotate(30.0f, {0, 0, 1}) * Transform::scale({2, 1, 1});
+    scene.add_instance(prototype, to_world);
+    scene.commit();
+    const Vec3 target = to_world.point({0.5f, 0.5f, 0.0f});
+    const auto hit = scene.intersect(ray_to(target + Vec3{0, 0, 1}, target));
+    REQUIRE(hit);
+    check_edges(sheared_triangle(true), *hit, to_world);
+  }
+  SUBCASE("coincident uvs give zero tangents (unknown), not NaN") {
+    TriangleMesh m = sheared_triangle(true);
+    m.uvs = {{0.5f, 0.5f}, {0.5f, 0.5f}, {0.5f, 0.5f}};
+    EmbreeScene scene;
+    scene.add_mesh(m, 0, -1);
+    scene.commit();
+    const auto hit = scene.intersect(ray_to({0.5f, 0.5f, 1.0f}, {0.5f, 0.5f, 0.0f}));
+    REQUIRE(hit);
+    CHECK(length(hit->dpdu) == 0.0f);
+    CHECK(length(hit->dpdv) == 0.0f);
+  }
+}
+
+TEST_CASE("surface tangents: a sphere's dp/du, dp/dv match finite differences of its parametrisation") {
+  EmbreeScene scene;
+  const Vec3 centre{1, 2, 3};
+  const float radius = 1.5f;
+  scene.add_sphere(centre, radius, 0);
+  scene.commit();
+  // Points at several polar and azimuthal angles (away from the poles and from the u seam at φ = ±π).
+  for (const float theta : {0.4f, 1.2f, 2.5f})
+    for (const float phi : {-2.0f, 0.3f, 1.7f}) {
+      const auto point_at = [&](float t, float p) {
+        return centre + Vec3{std::sin(t) * std::cos(p), std::cos(t), std::sin(t) * std::sin(p)} * radius;
+      };
+      const Vec3 p = point_at(theta, phi);
+      const auto hit = scene.intersect(ray_to(centre + (p - centre) * 3.0f, p));
+      REQUIRE(hit);
+      CHECK(dot(hit->dpdu, hit->geometric_normal) == doctest::Approx(0.0f).epsilon(1e-4f));
+      CHECK(dot(hit->dpdv, hit->geometric_normal) == doctest::Approx(0.0f).epsilon(1e-4f));
+      // u = ½ + φ/2π, v = θ/π (shade_hit's convention): central differences in φ and θ.
+      const float h = 1e-3f;
+      const Vec3 du = (point_at(theta, phi + h) - point_at(theta, phi - h)) * (float(2.0 * M_PI) / (2.0f * h));
+      const Vec3 dv = (point_at(theta + h, phi) - point_at(theta - h, phi)) * (float(M_PI) / (2.0f * h));
+      for (auto [got, want] : {std::pair{hit->dpdu, du}, std::pair{hit->dpdv, dv}}) {
+        CHECK(length(got - want) <= 1e-3f * length(want));
+      }
+      // And the hit's uv is the parametrisation's (so the tangents belong to the uv the textures see).
+      CHECK(hit->uv.x == doctest::Approx(0.5 + phi / (2.0 * M_PI)).epsilon(1e-4));
+      CHECK(hit->uv.y == doctest::Approx(theta / M_PI).epsilon(1e-4));
+    }
+}
