@@ -77,8 +77,8 @@ TEST_CASE("pbrt coatedconductor: interface.* and conductor.* parameters, copper 
       "MakeNamedMaterial \"artist\" \"string type\" \"coatedconductor\" \"rgb reflectance\" [0.9 0.6 0.3]\n"
       "NamedMaterial \"gold\"\nShape \"sphere\"\n");
   const json& m = imported.document["materials"];
-  CHECK(m["copper"] == json({{"type", "coated_conductor"}, {"metal", "copper"}, {"thickness", 0.01}}));
-  CHECK(m["gold"]["metal"] == "gold");
+  CHECK(m["copper"] == json({{"type", "coated_conductor"}, {"metal", "pbrt-cu"}, {"thickness", 0.01}}));
+  CHECK(m["gold"]["metal"] == "pbrt-au");
   CHECK(m["gold"]["conductor_roughness"] == doctest::Approx(0.5));
   CHECK(m["gold"]["roughness"] == doctest::Approx(0.2));  // √√0.0016
   CHECK(m["gold"]["coat_ior"] == 1.6);
@@ -88,7 +88,7 @@ TEST_CASE("pbrt coatedconductor: interface.* and conductor.* parameters, copper 
   CHECK(m["brushed"]["conductor_roughness_u"] == doctest::Approx(0.5));
   CHECK(m["brushed"]["conductor_roughness_v"] == doctest::Approx(0.2));
   // pbrt's artist-friendly reflectance has no Rimu counterpart: listed, copper stands in.
-  CHECK(m["artist"]["metal"] == "copper");
+  CHECK(m["artist"]["metal"] == "pbrt-cu");
   REQUIRE(imported.ignored.size() == 1);
   CHECK(imported.ignored[0].what.find("reflectance") != std::string::npos);
 
