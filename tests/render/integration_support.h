@@ -140,6 +140,36 @@ inline Estimate paired_difference(const std::vector<double>& a, const std::vecto
   return {sum / n, std::sqrt(squares) / n};
 }
 
+/// Per block×block tile of two width×height images (row-major, pixels independent): |mean paired difference| over its
+/// standard error (paired_difference). Two renders of one image with different seeds give values of a standard
+/// normal's size; a tile whose value exceeds kSigmas differs beyond noise. A tile with no difference at all gives 0,
+/// one with a difference but no spread 1e9.
+inline std::vector<double> block_deviations(const std::vector<double>& a, const std::vector<double>& b, int width = 32,
+                                            int height = 32, int block = 8) {
+  REQUIRE(a.size() == size_t(width) * size_t(height));
+  REQUIRE(b.size() == a.size());
+  std::vector<double> deviations;
+  for (int by = 0; by + block <= height; by += block)
+    for (int bx = 0; bx + block <= width; bx += block) {
+      std::vector<double> pa, pb;
+      for (int y = by; y < by + block; ++y)
+        for (int x = bx; x < bx + block; ++x) {
+          pa.push_back(a[size_t(y) * size_t(width) + size_t(x)]);
+          pb.push_back(b[size_t(y) * size_t(width) + size_t(x)]);
+        }
+      const Estimate d = paired_difference(pa, pb);
+      deviations.push_back(d.standard_error > 0 ? std::abs(d.mean) / d.standard_error : (d.mean == 0 ? 0.0 : 1e9));
+    }
+  return deviations;
+}
+
+/// The largest of block_deviations' values.
+inline double worst_deviation(const std::vector<double>& deviations) {
+  double worst = 0.0;
+  for (double d : deviations) worst = std::max(worst, d);
+  return worst;
+}
+
 /// The mean of a list of values.
 inline double mean_of(const std::vector<double>& values) {
   double sum = 0.0;

@@ -40,28 +40,6 @@ std::vector<double> luminance_of(const json& scene, int spp, uint64_t seed) {
   return test::luminance_values(*test::render_xyz(*test::scene_from_json(scene), spp, seed).film);
 }
 
-// Per 8×8 block of a 32×32 image: |mean difference| of a and b over its standard error (paired, per pixel).
-std::vector<double> block_deviations(const std::vector<double>& a, const std::vector<double>& b) {
-  std::vector<double> deviations;
-  for (int by = 0; by < 4; ++by)
-    for (int bx = 0; bx < 4; ++bx) {
-      std::vector<double> pa, pb;
-      for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) {
-          pa.push_back(a[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-          pb.push_back(b[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-        }
-      const test::Estimate d = test::paired_difference(pa, pb);
-      deviations.push_back(d.standard_error > 0 ? std::abs(d.mean) / d.standard_error : (d.mean == 0 ? 0.0 : 1e9));
-    }
-  return deviations;
-}
-
-double worst_of(const std::vector<double>& deviations) {
-  double worst = 0.0;
-  for (double d : deviations) worst = std::max(worst, d);
-  return worst;
-}
 
 }  // namespace
 
@@ -75,12 +53,12 @@ TEST_CASE("mix material: a 50/50 mix renders as the average of its two materials
   // estimates from the data together with the mix's own.
   std::vector<double> average(matte.size());
   for (size_t i = 0; i < matte.size(); ++i) average[i] = 0.5 * (matte[i] + glossy[i]);
-  for (double deviation : block_deviations(mixed, average)) CHECK(deviation <= test::kSigmas);
+  for (double deviation : test::block_deviations(mixed, average)) CHECK(deviation <= test::kSigmas);
   // The check can fail: a 20/80 mix is told apart from the 50/50 average, and so are the two materials.
   const std::vector<double> mostly_glossy =
       luminance_of(floor_scene({{"type", "mix"}, {"materials", {"matte", "glossy"}}, {"amount", 0.8}}), 32, 4);
-  CHECK(worst_of(block_deviations(mostly_glossy, average)) > test::kSigmas);
-  CHECK(worst_of(block_deviations(matte, glossy)) > test::kSigmas);
+  CHECK(test::worst_deviation(test::block_deviations(mostly_glossy, average)) > test::kSigmas);
+  CHECK(test::worst_deviation(test::block_deviations(matte, glossy)) > test::kSigmas);
 }
 
 TEST_CASE("mix material: JSON errors name the key") {
@@ -136,12 +114,12 @@ TEST_CASE("pbrt mix renders as the same scene written in Rimu's JSON") {
   const auto from_json = load_scene(hand_written, "cornell_equivalent.json", pbrt_file.parent_path(), test::library());
   const std::vector<double> a = test::luminance_values(*test::render_xyz(*from_pbrt, 128, 1).film);
   const std::vector<double> b = test::luminance_values(*test::render_xyz(*from_json, 128, 2).film);
-  for (double deviation : block_deviations(a, b)) CHECK(deviation <= test::kSigmas);
+  for (double deviation : test::block_deviations(a, b)) CHECK(deviation <= test::kSigmas);
 
   // The comparison can fail: the ball all red.
   json red_ball = hand_written;
   red_ball["materials"]["mixed"]["amount"] = 0.0;
   const auto all_red = load_scene(red_ball, "red_ball.json", pbrt_file.parent_path(), test::library());
   const std::vector<double> c = test::luminance_values(*test::render_xyz(*all_red, 128, 3).film);
-  CHECK(worst_of(block_deviations(a, c)) > test::kSigmas);
+  CHECK(test::worst_deviation(test::block_deviations(a, c)) > test::kSigmas);
 }

@@ -336,21 +336,8 @@ TEST_CASE("pbrt Cornell box renders the same image as the same scene written in 
 
   // 8×8 blocks: the mean difference of the two renders (different seeds) against its standard error.
   const auto block_deviations = [&](const Scene& a, const Scene& b) {
-    const std::vector<double> ya = test::luminance_values(*test::render_xyz(a, 16, 1).film);
-    const std::vector<double> yb = test::luminance_values(*test::render_xyz(b, 16, 2).film);
-    std::vector<double> deviations;
-    for (int by = 0; by < 4; ++by)
-      for (int bx = 0; bx < 4; ++bx) {
-        std::vector<double> pa, pb;
-        for (int y = 0; y < 8; ++y)
-          for (int x = 0; x < 8; ++x) {
-            pa.push_back(ya[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-            pb.push_back(yb[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-          }
-        const test::Estimate d = test::paired_difference(pa, pb);
-        deviations.push_back(d.standard_error > 0 ? std::abs(d.mean) / d.standard_error : (d.mean == 0 ? 0.0 : 1e9));
-      }
-    return deviations;
+    return test::block_deviations(test::luminance_values(*test::render_xyz(a, 16, 1).film),
+                                  test::luminance_values(*test::render_xyz(b, 16, 2).film));
   };
   for (double deviation : block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
 

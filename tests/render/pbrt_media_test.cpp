@@ -35,21 +35,8 @@ std::string ignored_list(const PbrtImport& imported) { return describe_ignored(i
 
 // 8×8 blocks of a 32×32 luminance image: |mean difference| of two renders (different seeds) over its standard error.
 std::vector<double> block_deviations(const Scene& a, const Scene& b) {
-  const std::vector<double> ya = test::luminance_values(*test::render_xyz(a, 16, 1).film);
-  const std::vector<double> yb = test::luminance_values(*test::render_xyz(b, 16, 2).film);
-  std::vector<double> deviations;
-  for (int by = 0; by < 4; ++by)
-    for (int bx = 0; bx < 4; ++bx) {
-      std::vector<double> pa, pb;
-      for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) {
-          pa.push_back(ya[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-          pb.push_back(yb[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-        }
-      const test::Estimate d = test::paired_difference(pa, pb);
-      deviations.push_back(d.standard_error > 0 ? std::abs(d.mean) / d.standard_error : (d.mean == 0 ? 0.0 : 1e9));
-    }
-  return deviations;
+  return test::block_deviations(test::luminance_values(*test::render_xyz(a, 16, 1).film),
+                                test::luminance_values(*test::render_xyz(b, 16, 2).film));
 }
 
 }  // namespace

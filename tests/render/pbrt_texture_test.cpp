@@ -21,22 +21,6 @@ PbrtImport import_text(const std::string& text, const std::filesystem::path& dir
   return import_pbrt_text(text, "test.pbrt", directory, test::library());
 }
 
-// Per 8×8 block of a 32×32 image: |mean difference| of a and b over its standard error (paired, per pixel).
-std::vector<double> block_deviations(const std::vector<double>& a, const std::vector<double>& b) {
-  std::vector<double> deviations;
-  for (int by = 0; by < 4; ++by)
-    for (int bx = 0; bx < 4; ++bx) {
-      std::vector<double> pa, pb;
-      for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) {
-          pa.push_back(a[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-          pb.push_back(b[size_t((by * 8 + y) * 32 + bx * 8 + x)]);
-        }
-      const test::Estimate d = test::paired_difference(pa, pb);
-      deviations.push_back(d.standard_error > 0 ? std::abs(d.mean) / d.standard_error : (d.mean == 0 ? 0.0 : 1e9));
-    }
-  return deviations;
-}
 
 }  // namespace
 
@@ -135,7 +119,7 @@ TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON")
   const auto from_json = load_scene(hand_written, "cornell_equivalent.json", pbrt_file.parent_path(), test::library());
   const std::vector<double> a = test::luminance_values(*test::render_xyz(*from_pbrt, 128, 1).film);
   const std::vector<double> b = test::luminance_values(*test::render_xyz(*from_json, 128, 2).film);
-  for (double deviation : block_deviations(a, b)) CHECK(deviation <= test::kSigmas);
+  for (double deviation : test::block_deviations(a, b)) CHECK(deviation <= test::kSigmas);
 
   // The comparison can fail: the squares swapped (offset by one square along u).
   json swapped = hand_written;
@@ -143,7 +127,7 @@ TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON")
   const auto other = load_scene(swapped, "swapped.json", pbrt_file.parent_path(), test::library());
   const std::vector<double> c = test::luminance_values(*test::render_xyz(*other, 128, 3).film);
   double worst = 0.0;
-  for (double deviation : block_deviations(a, c)) worst = std::max(worst, deviation);
+  for (double deviation : test::block_deviations(a, c)) worst = std::max(worst, deviation);
   CHECK(worst > test::kSigmas);
 }
 
