@@ -36,6 +36,21 @@ class JsonCursor {
   const std::string& file() const { return file_; }
   SourceLocation where() const { return {file_, 0, path_.empty() ? "/" : path_}; }
   [[noreturn]] void fail(const std::string& what) const;
+  /// Runs `build` and returns what it returns; an InputError from a lower layer (a material's constructor, a
+  /// spectrum table) that names no key is raised again at this cursor's key path, keeping the file and line it
+  /// named if any, so that the message says which value of the scene was wrong.
+  template <typename F>
+  auto blame(F&& build) const -> decltype(build()) {
+    try {
+      return build();
+    } catch (const InputError& e) {
+      if (!e.where().key.empty()) throw;
+      SourceLocation location = e.where();
+      location.key = path_.empty() ? "/" : path_;
+      if (location.file.empty()) location.file = file_;
+      throw InputError(location, e.explanation());
+    }
+  }
 
   bool has(const std::string& key) const;
   /// The member `key`; error if it is missing or this is not an object.

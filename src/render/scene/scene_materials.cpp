@@ -36,16 +36,6 @@ FloatTexturePtr roughness_texture(const JsonCursor& m, const char* key, LoadCont
   return std::make_shared<ConstantFloatTexture>(0.0f);
 }
 
-template <typename F>
-auto with_key(const JsonCursor& where, F&& f) {
-  try {
-    return f();
-  } catch (const InputError& e) {
-    if (!e.where().key.empty()) throw;
-    where.fail(e.explanation());
-  }
-}
-
 // A conductor's complex index: "metal" (a named metal) or "n" and "k".
 ComplexIorSpectra conductor_ior_of(const JsonCursor& m, LoadContext& context) {
   ComplexIorSpectra ior;
@@ -53,7 +43,7 @@ ComplexIorSpectra conductor_ior_of(const JsonCursor& m, LoadContext& context) {
     for (const char* key : {"n", "k"})
       if (m.has(key)) m.at(key).fail("give either metal or n and k, not both");
     const JsonCursor metal = m.at("metal");
-    ior = with_key(metal, [&] { return conductor_ior(context.spectra.library(), metal.string()); });
+    ior = metal.blame([&] { return conductor_ior(context.spectra.library(), metal.string()); });
   } else {
     // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/rgb_transport_inputs.h).
     ior.n = context.spectra.parse_spectral(m.at("n"), SpectrumRole::ior);
@@ -144,19 +134,19 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
       for (const char* key : {"metal", "n", "k"})
         if (m.has(key)) m.at(key).fail("give either reflectance or metal or n and k, not several");
       SpectralTexturePtr reflectance = load_spectral_texture(m.at("reflectance"), context);
-      return with_key(m, [&] {
+      return m.blame([&] {
         return Material(ConductorMaterial::from_reflectance(std::move(reflectance), roughness_texture(m, "roughness_u", context),
                                                             roughness_texture(m, "roughness_v", context)));
       });
     }
     const ComplexIorSpectra ior = conductor_ior_of(m, context);
     if (textured)
-      return with_key(m, [&] {
+      return m.blame([&] {
         return Material(ConductorMaterial(ior, roughness_texture(m, "roughness_u", context), roughness_texture(m, "roughness_v", context)));
       });
     const float r = roughness_of(m);
     const float ru = float(m.number_or("roughness_u", r, 0.0, 1.0)), rv = float(m.number_or("roughness_v", r, 0.0, 1.0));
-    return with_key(m, [&] { return Material(ConductorMaterial(ior, ru, rv)); });
+    return m.blame([&] { return Material(ConductorMaterial(ior, ru, rv)); });
   }
   if (type == "dielectric" || type == "thin_dielectric") {
     const bool thin = type == "thin_dielectric";
@@ -168,18 +158,18 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
     if (m.has("glass")) {
       if (m.has("ior")) m.at("ior").fail("give either glass or ior, not both");
       const JsonCursor glass = m.at("glass");
-      ior = context.spectra.transport_form(with_key(glass, [&] { return dielectric_ior(library, glass.string()); }),
+      ior = context.spectra.transport_form(glass.blame([&] { return dielectric_ior(library, glass.string()); }),
                                            SpectrumRole::ior);
     } else {
       ior = context.spectra.parse(m.at("ior"), SpectrumRole::ior);
     }
-    if (thin) return with_key(m, [&] { return Material(ThinDielectricMaterial(ior)); });
+    if (thin) return m.blame([&] { return Material(ThinDielectricMaterial(ior)); });
     if (textured_roughness(m)) {
       FloatTexturePtr roughness = roughness_texture(m, "roughness", context);
-      return with_key(m, [&] { return Material(DielectricMaterial(ior, roughness, roughness)); });
+      return m.blame([&] { return Material(DielectricMaterial(ior, roughness, roughness)); });
     }
     const float roughness = roughness_of(m);
-    return with_key(m, [&] { return Material(DielectricMaterial(ior, roughness)); });
+    return m.blame([&] { return Material(DielectricMaterial(ior, roughness)); });
   }
   if (type == "diffuse_transmission") {
     m.only_keys({"type", "reflectance", "transmittance", "scale"});
@@ -189,7 +179,7 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
     SpectralTexturePtr transmittance = m.has("transmittance") ? reflectance_texture(m.at("transmittance"), context)
                                                               : std::make_shared<ConstantSpectralTexture>(std::make_shared<ConstantSpectrum>(0.25));
     const float scale = float(m.number_or("scale", 1.0, 0.0));
-    return with_key(m, [&] { return Material(DiffuseTransmissionMaterial(std::move(reflectance), std::move(transmittance), scale)); });
+    return m.blame([&] { return Material(DiffuseTransmissionMaterial(std::move(reflectance), std::move(transmittance), scale)); });
   }
   if (type == "coated_conductor") {
     m.only_keys({"type", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
@@ -200,16 +190,18 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
     const float ru = float(m.number_or("conductor_roughness_u", r, 0.0, 1.0));
     const float rv = float(m.number_or("conductor_roughness_v", r, 0.0, 1.0));
     const CoatLayer layer = coat_layer_of(m, context);
-    return with_key(m.has("coat_ior") ? m.at("coat_ior") : m,
-                    [&] { return Material(CoatedConductorMaterial(coat, ior, ru, rv, layer)); });
+    return (m.has("coat_ior") ? m.at("coat_ior") : m).blame([&] {
+      return Material(CoatedConductorMaterial(coat, ior, ru, rv, layer));
+    });
   }
   m.only_keys({"type", "reflectance", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples"});
   const SpectrumPtr coat = coat_ior_of(m, context);
   SpectralTexturePtr reflectance = reflectance_texture(m.at("reflectance"), context);
   const CoatLayer layer = coat_layer_of(m, context);
   // The material checks that the coat index is ≥ 1 everywhere; its error is reported at coat_ior.
-  return with_key(m.has("coat_ior") ? m.at("coat_ior") : m,
-                  [&] { return Material(CoatedDiffuseMaterial(std::move(reflectance), coat, layer)); });
+  return (m.has("coat_ior") ? m.at("coat_ior") : m).blame([&] {
+    return Material(CoatedDiffuseMaterial(std::move(reflectance), coat, layer));
+  });
 }
 
 }  // namespace

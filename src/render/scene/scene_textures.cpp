@@ -46,16 +46,6 @@ UvMapping uv_mapping(const JsonCursor& value) {
   return m;
 }
 
-template <typename F>
-auto with_key(const JsonCursor& where, F&& f) {
-  try {
-    return f();
-  } catch (const InputError& e) {
-    if (!e.where().key.empty()) throw;
-    where.fail(e.explanation());
-  }
-}
-
 // Any finite number inside a combinator (a scale may exceed 1, an offset be negative).
 FloatTexturePtr operand_float(const JsonCursor& value, LoadContext& context) {
   return load_float_texture(value, context, -1e30, 1e30);
@@ -71,7 +61,7 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
     value.only_keys({"texture", "encoding", "invert", "scale"});
     const JsonCursor file = value.at("texture");
     const std::filesystem::path path = context.spectra.scene_directory() / file.string();
-    return with_key(file, [&]() -> FloatTexturePtr {
+    return file.blame([&]() -> FloatTexturePtr {
       // The first channel, with the sRGB curve removed from 8/16-bit files unless told otherwise (pbrt-v4's default).
       bool srgb = default_encoding_for(path).srgb_transfer;
       if (value.has("encoding")) srgb = value.at("encoding").choice({"srgb", "linear"}) == "srgb";
@@ -100,7 +90,7 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
   if (*kind == "direction_mix") {
     value.only_keys({"direction_mix", "direction"});
     const JsonCursor direction = value.at("direction");
-    return with_key(direction, [&]() -> FloatTexturePtr {
+    return direction.blame([&]() -> FloatTexturePtr {
       return std::make_shared<DirectionMixFloatTexture>(std::move(a), std::move(b), direction.vec3());
     });
   }
@@ -138,7 +128,7 @@ SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& c
   if (*kind == "direction_mix") {
     value.only_keys({"direction_mix", "direction"});
     const JsonCursor direction = value.at("direction");
-    return with_key(direction, [&]() -> SpectralTexturePtr {
+    return direction.blame([&]() -> SpectralTexturePtr {
       return std::make_shared<DirectionMixSpectralTexture>(std::move(a), std::move(b), direction.vec3());
     });
   }

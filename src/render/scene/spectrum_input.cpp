@@ -15,20 +15,6 @@
 namespace rimu {
 namespace {
 
-// Runs `build` and re-raises an InputError from lower layers with the scene's key path added.
-template <typename F>
-SpectrumPtr at_key(const JsonCursor& where, F&& build) {
-  try {
-    return build();
-  } catch (const InputError& e) {
-    if (!e.where().key.empty()) throw;
-    SourceLocation loc = e.where();
-    loc.key = where.path();
-    if (loc.file.empty()) loc.file = where.file();
-    throw InputError(loc, e.explanation());
-  }
-}
-
 void check_range(const JsonCursor& where, const Spectrum& s, SpectrumRole role) {
   // Checked at the integer wavelengths of 360-830 nm: tabulated inputs are linear between their knots, and
   // every analytic one here is smooth, so this finds any negative lobe a user could have written.
@@ -113,14 +99,14 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
   } else if (value.has("illuminant")) {
     value.only_keys({"illuminant", "scale"});
     const std::string name = value.at("illuminant").string();
-    base = at_key(value.at("illuminant"), [&] { return library_.illuminant(name); });
+    base = value.at("illuminant").blame([&] { return library_.illuminant(name); });
   } else if (value.has("csv")) {
     value.only_keys({"csv", "column", "scale"});
     const std::filesystem::path path = scene_directory_ / value.at("csv").string();
     const std::string column = value.string_or("column", "");
     // Light outside a measured emission table is absent; a reflectance, index or coefficient keeps its end value.
     const Extrapolation extrapolation = role == SpectrumRole::emission ? Extrapolation::zero : Extrapolation::clamp;
-    base = at_key(value.at("csv"), [&] {
+    base = value.at("csv").blame([&] {
       const CsvTable table = CsvTable::read(path);
       if (table.column_count() < 2) throw InputError({path.string(), 1, ""}, "expected wavelength_nm and a value column");
       const std::string c = column.empty() ? table.header()[1] : column;
@@ -140,7 +126,7 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
       value.at("values").fail("expected " + std::to_string(lambda_nm.size()) + " values, one per wavelength, not " +
                               std::to_string(values.size()));
     const Extrapolation extrapolation = role == SpectrumRole::emission ? Extrapolation::zero : Extrapolation::clamp;
-    base = at_key(value.at("wavelengths_nm"), [&] {
+    base = value.at("wavelengths_nm").blame([&] {
       return std::make_shared<TabulatedSpectrum>(std::move(lambda_nm), std::move(values), extrapolation, "");
     });
   } else if (value.has("blackbody")) {
