@@ -60,6 +60,7 @@ class EmbreeScene final : public RayQueries {
   /// triangle hit (the uv system's solve), 1.5 % of a Cornell-box sample: a scene whose materials do not read them
   /// turns them off (they are then zero, "unknown").
   void set_surface_tangents(bool on) { surface_tangents_ = on; }
+  bool has_surface_tangents() const { return surface_tangents_; }
 
   /// Closest hit along the ray within [t_min, t_max], or nothing.
   std::optional<SurfaceHit> intersect(const Ray& ray) const override;

@@ -224,4 +224,16 @@ Bsdf MixMaterial::bsdf(const MaterialContext& context, const SampledWavelengths&
   return choose(context).bsdf(context, lambda);
 }
 
+bool MixMaterial::uses_tangents() const { return first_->uses_tangents() || second_->uses_tangents(); }
+
+bool Material::uses_tangents() const {
+  if (const auto* mix = std::get_if<MixMaterial>(&material_)) return mix->uses_tangents();
+  return normal_modifier_ != nullptr;
+}
+
+Vec3 Material::shading_normal(const MaterialContext& context) const {
+  if (const auto* mix = std::get_if<MixMaterial>(&material_)) return mix->choose(context).shading_normal(context);
+  return normal_modifier_ ? normal_modifier_->shading_normal(context) : context.shading_normal;
+}
+
 }  // namespace rimu

@@ -9,6 +9,7 @@
 #include "transport/bsdf.h"
 #include "transport/float_texture.h"
 #include "transport/material_context.h"
+#include "transport/shading_normal_map.h"
 #include "transport/spectral_texture.h"
 
 namespace rimu {
@@ -160,6 +161,8 @@ class MixMaterial {
   Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
   /// The material used at this hit (a nested mix is resolved further by its own bsdf()).
   const Material& choose(const MaterialContext& context) const;
+  /// Whether either material reads ∂p/∂u, ∂p/∂v (Material::uses_tangents).
+  bool uses_tangents() const;
 
  private:
   std::shared_ptr<const Material> first_, second_;
@@ -185,8 +188,20 @@ class Material {
   }
   const Variant& variant() const { return material_; }
 
+  /// Gives the material a normal or bump map (null: none). A mix's own modifier is ignored: the chosen
+  /// material's applies (pbrt-v4's mix has none).
+  void set_normal_modifier(std::shared_ptr<const ShadingNormalModifier> modifier) { normal_modifier_ = std::move(modifier); }
+  bool has_normal_modifier() const { return normal_modifier_ != nullptr; }
+  /// Whether a hit on this material needs ∂p/∂u, ∂p/∂v (a normal or bump map, here or in a mix's materials): the
+  /// scene computes them only then (EmbreeScene::set_surface_tangents).
+  bool uses_tangents() const;
+  /// The shading normal the BSDF is to be built around: the hit's, or the normal/bump map's (unit, on the geometric
+  /// normal's side). Integrators call this before bsdf() and pass the result in the context and shading frame.
+  Vec3 shading_normal(const MaterialContext& context) const;
+
  private:
   Variant material_;
+  std::shared_ptr<const ShadingNormalModifier> normal_modifier_;
 };
 
 }  // namespace rimu

@@ -17,10 +17,12 @@ struct MaterialContext {
   Vec2 uv;                ///< texture coordinates
   Vec3 position;          ///< the hit point
   Vec3 geometric_normal;  ///< unit; the surface's front side (not flipped towards wo)
-  Vec3 shading_normal;    ///< unit; interpolated vertex normal on the geometric normal's side
+  /// unit; interpolated vertex normal on the geometric normal's side — or, once the integrator has asked
+  /// Material::shading_normal, the material's normal- or bump-mapped one (what its BSDF is built around)
+  Vec3 shading_normal;
   /// ∂p/∂u and ∂p/∂v: the surface's tangents along the texture axes (from the triangle's uvs, its barycentrics when
   /// the mesh has none, or a sphere's parametrisation). Zero where the uv parametrisation is degenerate, and in
-  /// scenes loaded from files for now: no material reads them yet (EmbreeScene::set_surface_tangents).
+  /// scenes loaded from files where no material has a normal or bump map (EmbreeScene::set_surface_tangents).
   Vec3 dpdu, dpdv;
   Vec3 wo;                ///< unit; towards where the light leaves (the previous vertex)
 

@@ -16,9 +16,9 @@ struct ShadingContext {
   Vec3 geometric_normal;  // on the same side as the shading normal
 };
 
-ShadingContext shading_context(const SurfaceHit& hit, Vec3 wo_world, bool two_sided) {
+ShadingContext shading_context(const MaterialContext& hit, bool two_sided) {
   Vec3 ns = hit.shading_normal, ng = hit.geometric_normal;
-  if (two_sided && dot(wo_world, ng) < 0.0f) {
+  if (two_sided && dot(hit.wo, ng) < 0.0f) {
     ns = -ns;
     ng = -ng;
   }
@@ -105,9 +105,12 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     }
     if (depth >= settings_.max_depth || hit->material < 0) break;
 
-    const Bsdf bsdf = (*scene_.materials)[size_t(hit->material)].bsdf(MaterialContext::at(*hit, wo_world), lambda);
+    const Material& material = (*scene_.materials)[size_t(hit->material)];
+    MaterialContext context = MaterialContext::at(*hit, wo_world);
+    context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
+    const Bsdf bsdf = material.bsdf(context, lambda);
     const BsdfFlags flags = bsdf.flags();
-    const ShadingContext shading = shading_context(*hit, wo_world, !flags.has_transmission);
+    const ShadingContext shading = shading_context(context, !flags.has_transmission);
     const Vec3 wo = shading.frame.to_local(wo_world);
     if (wo.z == 0.0f) break;
 

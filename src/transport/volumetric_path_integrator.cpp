@@ -214,9 +214,12 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       }
       if (surface_depth >= path.max_depth || hit->material < 0) break;
       ++surface_depth;
-      scatterer.bsdf = (*surfaces.materials)[size_t(hit->material)].bsdf(MaterialContext::at(*hit, -ray.direction), lambda);
+      const Material& material = (*surfaces.materials)[size_t(hit->material)];
+      MaterialContext context = MaterialContext::at(*hit, -ray.direction);
+      context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
+      scatterer.bsdf = material.bsdf(context, lambda);
       const bool two_sided = !scatterer.bsdf->flags().has_transmission;
-      Vec3 ns = hit->shading_normal, ng = hit->geometric_normal;
+      Vec3 ns = context.shading_normal, ng = hit->geometric_normal;
       if (two_sided && dot(ray.direction, ng) > 0.0f) {
         ns = -ns;
         ng = -ng;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "render/camera_exposure.h"
@@ -156,9 +157,9 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
 
-  // No material of Rimu reads ∂p/∂u, ∂p/∂v yet (normal and bump maps, tangent-aligned anisotropy will): skip their
-  // cost per hit (EmbreeScene::set_surface_tangents; the tangents' own test turns them on).
-  scene->geometry.set_surface_tangents(false);
+  // ∂p/∂u, ∂p/∂v are read only by normal and bump maps: scenes without one skip their cost per hit.
+  scene->geometry.set_surface_tangents(
+      std::any_of(scene->materials.begin(), scene->materials.end(), [](const Material& m) { return m.uses_tangents(); }));
   scene->geometry.commit();
   if (!context.instance_transforms.empty()) {
     // Every ray starts at the camera's lens or on a surface: the box of those is what instances must see in range.

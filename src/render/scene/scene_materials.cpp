@@ -4,12 +4,14 @@
 #include <set>
 
 #include "render/image_texture.h"
+#include "render/rgb_normal_map.h"
 #include "render/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_textures.h"
 #include "spectral/optical_constants.h"
 #include "transport/bit_mixing.h"
 #include "transport/float_texture.h"
+#include "transport/shading_normal_map.h"
 #include "transport/spectral_texture.h"
 
 namespace rimu::scene_loading {
@@ -112,7 +114,7 @@ std::shared_ptr<const Material> MaterialResolver::named(const std::string& name,
   return built_[name] = material;
 }
 
-Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver) {
+Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver) {
   const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "thin_dielectric", "coated_diffuse",
                                                     "diffuse_transmission", "coated_conductor", "mix"});
   // Each mix decorrelates its choice from other mixes' by its own salt: its key path, hashed.
@@ -123,11 +125,11 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
   }
   SpectralLibrary& library = context.spectra.library();
   if (type == "diffuse") {
-    m.only_keys({"type", "reflectance"});
+    m.only_keys({"type", "normal_map", "displacement", "reflectance"});
     return DiffuseMaterial(reflectance_texture(m.at("reflectance"), context));
   }
   if (type == "conductor") {
-    m.only_keys({"type", "metal", "n", "k", "reflectance", "roughness", "roughness_u", "roughness_v"});
+    m.only_keys({"type", "normal_map", "displacement", "metal", "n", "k", "reflectance", "roughness", "roughness_u", "roughness_v"});
     const bool textured = textured_roughness(m);
     if (m.has("reflectance")) {
       // pbrt-v4's artist-friendly conductor: the normal-incidence reflectance instead of n and k.
@@ -151,9 +153,9 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
   if (type == "dielectric" || type == "thin_dielectric") {
     const bool thin = type == "thin_dielectric";
     if (thin)
-      m.only_keys({"type", "ior", "glass"});  // a thin sheet is smooth (pbrt-v4 has no rough one either)
+      m.only_keys({"type", "normal_map", "displacement", "ior", "glass"});  // a thin sheet is smooth (pbrt-v4 has no rough one either)
     else
-      m.only_keys({"type", "ior", "glass", "roughness"});
+      m.only_keys({"type", "normal_map", "displacement", "ior", "glass", "roughness"});
     SpectrumPtr ior;
     if (m.has("glass")) {
       if (m.has("ior")) m.at("ior").fail("give either glass or ior, not both");
@@ -172,7 +174,7 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
     return m.blame([&] { return Material(DielectricMaterial(ior, roughness)); });
   }
   if (type == "diffuse_transmission") {
-    m.only_keys({"type", "reflectance", "transmittance", "scale"});
+    m.only_keys({"type", "normal_map", "displacement", "reflectance", "transmittance", "scale"});
     // pbrt-v4's defaults: 0.25 each.
     SpectralTexturePtr reflectance = m.has("reflectance") ? reflectance_texture(m.at("reflectance"), context)
                                                           : std::make_shared<ConstantSpectralTexture>(std::make_shared<ConstantSpectrum>(0.25));
@@ -182,7 +184,7 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
     return m.blame([&] { return Material(DiffuseTransmissionMaterial(std::move(reflectance), std::move(transmittance), scale)); });
   }
   if (type == "coated_conductor") {
-    m.only_keys({"type", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
+    m.only_keys({"type", "normal_map", "displacement", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
                  "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});
     const SpectrumPtr coat = coat_ior_of(m, context);
     const ComplexIorSpectra ior = conductor_ior_of(m, context);
@@ -194,7 +196,7 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
       return Material(CoatedConductorMaterial(coat, ior, ru, rv, layer));
     });
   }
-  m.only_keys({"type", "reflectance", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples"});
+  m.only_keys({"type", "normal_map", "displacement", "reflectance", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples"});
   const SpectrumPtr coat = coat_ior_of(m, context);
   SpectralTexturePtr reflectance = reflectance_texture(m.at("reflectance"), context);
   const CoatLayer layer = coat_layer_of(m, context);
@@ -202,6 +204,30 @@ Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolv
   return (m.has("coat_ior") ? m.at("coat_ior") : m).blame([&] {
     return Material(CoatedDiffuseMaterial(std::move(reflectance), coat, layer));
   });
+}
+
+// "normal_map": an RGB image in tangent space (always read linearly, pbrt-v4's convention), or "displacement": a
+// float texture (a bump map, in scene units along the normal); not both, and not on a mix (its materials' own apply).
+std::shared_ptr<const ShadingNormalModifier> normal_modifier_of(const JsonCursor& m, LoadContext& context) {
+  if (m.has("normal_map") && m.has("displacement"))
+    m.at("displacement").fail("a material takes a \"normal_map\" or a \"displacement\", not both");
+  if (m.has("normal_map")) {
+    const JsonCursor file = m.at("normal_map");
+    const std::filesystem::path path = context.spectra.scene_directory() / file.string();
+    return with_key(file, [&] {
+      auto image = std::make_shared<const RgbImage>(RgbImage::read(path, ImageEncoding{"srgb-linear", false}));
+      return ShadingNormalModifier::normal_map(std::make_shared<const RgbNormalMap>(std::move(image)));
+    });
+  }
+  if (m.has("displacement"))
+    return ShadingNormalModifier::bump(load_float_texture(m.at("displacement"), context, -1e30, 1e30));
+  return nullptr;
+}
+
+Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver) {
+  Material material = load_material_kind(m, context, resolver);
+  material.set_normal_modifier(normal_modifier_of(m, context));
+  return material;
 }
 
 }  // namespace

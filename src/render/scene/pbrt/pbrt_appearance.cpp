@@ -422,6 +422,19 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       }
     }
   }
+  // pbrt-v4's "normalmap" (an RGB image in tangent space, which pbrt reads linearly: so does Rimu's "normal_map")
+  // and bump map ("displacement", a float texture). pbrt's GetBSDF uses the normal map when both are given.
+  const std::string normal_map = p.string("normalmap", "");
+  const bool displaced = p.get("displacement", {PbrtParamType::real, PbrtParamType::texture}) != nullptr;
+  if (!normal_map.empty()) {
+    const std::filesystem::path path = std::filesystem::absolute(p.directory() / normal_map);
+    if (!std::filesystem::is_regular_file(path))
+      throw InputError(s.where, p.context() + ": cannot find the normal map '" + path.string() + "'");
+    m["normal_map"] = path_for_document(path);
+    if (displaced) ignore("\"displacement\" given with \"normalmap\" (the normal map is used, as in pbrt-v4)", s.where);
+  } else if (displaced) {
+    m["displacement"] = float_value(p, "displacement", 0.0);
+  }
   materials_[name] = m;
   return name;
 }
