@@ -214,7 +214,7 @@ std::shared_ptr<const ShadingNormalModifier> normal_modifier_of(const JsonCursor
   if (m.has("normal_map")) {
     const JsonCursor file = m.at("normal_map");
     const std::filesystem::path path = context.spectra.scene_directory() / file.string();
-    return with_key(file, [&] {
+    return file.blame([&] {
       auto image = std::make_shared<const RgbImage>(RgbImage::read(path, ImageEncoding{"srgb-linear", false}));
       return ShadingNormalModifier::normal_map(std::make_shared<const RgbNormalMap>(std::move(image)));
     });
