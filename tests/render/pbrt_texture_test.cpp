@@ -102,6 +102,31 @@ TEST_CASE("pbrt spectrum textures and the conductor's reflectance") {
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
 }
 
+TEST_CASE("pbrt spectrum imagemap: encoding defaults to sRGB for .png names only, as pbrt-v4's imagemap") {
+  test::ScratchFolder dir("pbrt_spectrum_encoding");
+  const auto ppm = test::write_ppm("pbrt_spectrum_encoding", 2, 1, {128, 128, 128, 255, 255, 255});
+  std::filesystem::copy_file(ppm, dir / "paint.ppm", std::filesystem::copy_options::overwrite_existing);
+  // The importer decides by the file name (pbrt does too); the bytes of this one are never read.
+  std::ofstream(dir / "paint.PNG") << "not read";
+  const PbrtImport imported = import_text(
+      kHeader +
+          "Texture \"ppm\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.ppm\"\n"
+          "Texture \"ppmsrgb\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.ppm\" \"string encoding\" \"sRGB\"\n"
+          "Texture \"png\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.PNG\"\n"
+          "Texture \"pnglinear\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.PNG\" \"string encoding\" \"linear\"\n"
+          "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"texture reflectance\" \"ppm\"\n"
+          "MakeNamedMaterial \"b\" \"string type\" \"diffuse\" \"texture reflectance\" \"ppmsrgb\"\n"
+          "MakeNamedMaterial \"c\" \"string type\" \"diffuse\" \"texture reflectance\" \"png\"\n"
+          "MakeNamedMaterial \"d\" \"string type\" \"diffuse\" \"texture reflectance\" \"pnglinear\"\n",
+      dir.path);
+  CHECK(imported.ignored.empty());
+  const json& m = imported.document["materials"];
+  CHECK(m["a"]["reflectance"]["encoding"] == "linear");  // was sRGB for every file before
+  CHECK(m["b"]["reflectance"]["encoding"] == "srgb");
+  CHECK(m["c"]["reflectance"]["encoding"] == "srgb");
+  CHECK(m["d"]["reflectance"]["encoding"] == "linear");
+}
+
 TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON") {
   // cornell.pbrt's ball made of a red/white checkerboard, as pbrt text and as its hand-written JSON twin. Two
   // squares along u: the hemisphere facing the camera (u ≥ ½) is white, the back red; an offset of one square

@@ -302,13 +302,8 @@ json PbrtConverter::alpha_parameter(PbrtParams& p, bool has_uvs) {
   const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
   if (!std::filesystem::is_regular_file(path))
     throw InputError(ts.where, "Texture \"" + name + "\": cannot find the image '" + path.string() + "'");
-  // A float imagemap reads the image's first channel (pbrt-v4's MIPMap texel for Float); pbrt's encoding defaults
-  // to sRGB for PNG files and linear otherwise.
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
-  json value = {{"texture", path_for_document(path)}, {"channel", "r"}, {"encoding", encoding == "linear" ? "linear" : "srgb"}};
-  if (encoding != "linear" && encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", ts.where);
+  // A float imagemap reads the image's first channel (pbrt-v4's MIPMap texel for Float).
+  json value = {{"texture", path_for_document(path)}, {"channel", "r"}, {"encoding", image_encoding(tp, path, ts.where)}};
   if (tp.boolean("invert", false)) value["invert"] = true;
   if (tp.real("scale", 1.0) != 1.0) ignore("\"scale\" of an alpha texture (alpha is used unscaled)", ts.where);
   if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
