@@ -18,7 +18,7 @@ AlphaMask AlphaMask::constant(float alpha) {
   return mask;
 }
 
-AlphaMask AlphaMask::read(const std::filesystem::path& path, int channel, bool srgb, bool invert) {
+AlphaMask AlphaMask::read(const std::filesystem::path& path, int channel, bool srgb, bool invert, bool clamp_to_unit) {
   check_input_file(path, kMaxBinaryFileBytes);  // OpenImageIO would block on a FIFO
   DecodedImage image;
   image.as_stored = true;
@@ -46,7 +46,8 @@ AlphaMask AlphaMask::read(const std::filesystem::path& path, int channel, bool s
                                                    std::to_string(i / size_t(w)) + ") is not a finite number");
     // Alpha channels hold coverage linearly; only colour data carries the sRGB curve.
     if (srgb && channel != 3) v = float(srgb_decode(v));
-    mask.values_[i] = std::clamp(invert ? 1.0f - v : v, 0.0f, 1.0f);
+    if (invert) v = 1.0f - v;
+    mask.values_[i] = clamp_to_unit ? std::clamp(v, 0.0f, 1.0f) : v;
   }
   return mask;
 }

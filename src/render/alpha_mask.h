@@ -17,11 +17,15 @@ class AlphaMask {
   static AlphaMask constant(float alpha);
   /// One channel of an image: `channel` 0-3 = R, G, B, A ("A" needs an alpha channel; a grey image has one
   /// channel, which every colour channel reads). `srgb_decode`: apply the sRGB curve first (8-bit colour data).
-  /// `invert`: use 1 − value. Throws InputError naming the file: unreadable, no such channel, a value not finite.
-  static AlphaMask read(const std::filesystem::path& path, int channel, bool srgb_decode, bool invert);
+  /// `invert`: use 1 − value. `clamp_to_unit`: clamp each texel to [0, 1] (coverage); false keeps the values as read
+  /// (a float texture's: an EXR roughness or displacement map may hold any finite value, pbrt-v4 keeps it; the
+  /// parameter clamps at use where its range needs it). Throws InputError naming the file: unreadable, no such
+  /// channel, a value not finite.
+  static AlphaMask read(const std::filesystem::path& path, int channel, bool srgb_decode, bool invert,
+                        bool clamp_to_unit = true);
 
-  /// Alpha at (u, v): bilinear between texel centres, coordinates repeating, v = 0 the bottom row (as RgbImage),
-  /// clamped to [0, 1]. Cost: four loads.
+  /// Alpha at (u, v): bilinear between texel centres, coordinates repeating, v = 0 the bottom row (as RgbImage);
+  /// within [0, 1] when read clamped. Cost: four loads.
   float evaluate(Vec2 uv) const;
 
  private:

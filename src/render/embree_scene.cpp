@@ -137,7 +137,7 @@ unsigned EmbreeScene::add_mesh(TriangleMesh mesh, int material, int light, std::
   return id;
 }
 
-unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material) {
+unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material, const std::optional<std::array<Vec3, 3>>& uv_axes) {
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
   auto* data = static_cast<float*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
@@ -151,7 +151,8 @@ unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material) {
   check_error("adding a sphere");
   geometries_.resize(id + 1);
   instance_of_geometry_.resize(id + 1, -1);
-  geometries_[id] = {GeometryInfo::Kind::sphere, material, -1, nullptr, centre, radius};
+  geometries_[id] = {GeometryInfo::Kind::sphere, material, -1, nullptr, centre, radius, uv_axes.has_value(),
+                     uv_axes.value_or(std::array<Vec3, 3>{})};
   return id;
 }
 
@@ -248,6 +249,23 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
     const Vec3 n = hit.geometric_normal;
     hit.position = info->centre + n * info->radius;
     hit.position_scale = max_component(abs(info->centre)) + info->radius;
+    if (info->pbrt_uv) {
+      // pbrt-v4's sphere: p = r·(sin θ cos φ, sin θ sin φ, cos θ) in its object axes, u = φ/2π with φ in [0, 2π),
+      // v = (θ − π)/(0 − π) (θ_min = acos(z_min/r) = π, θ_max = 0 for a whole sphere).
+      const auto& [ax, ay, az] = info->uv_axes;
+      const float a = dot(n, ax), b = dot(n, ay), c = std::fmax(-1.0f, std::fmin(1.0f, dot(n, az)));
+      double phi = std::atan2(double(b), double(a));
+      if (phi < 0) phi += 2.0 * M_PI;
+      hit.uv = {float(phi / (2.0 * M_PI)), float(1.0 - std::acos(c) / M_PI)};
+      const float sin_theta = std::sqrt(a * a + b * b);
+      if (surface_tangents_ && sin_theta > 1e-6f) {
+        // pbrt's ∂p/∂u = 2π·(−y, x, 0), ∂p/∂v = −π·(z cos φ, z sin φ, −r sin θ), in world through the axes.
+        const float r = info->radius;
+        hit.dpdu = (ax * -b + ay * a) * float(2.0 * M_PI * r);
+        hit.dpdv = (ax * (c * a / sin_theta) + ay * (c * b / sin_theta) - az * sin_theta) * float(-M_PI * r);
+      }
+      return hit;
+    }
     // Spherical uv: u = azimuth/2π, v = polar angle/π about +y.
     hit.uv = {float(0.5 + std::atan2(n.z, n.x) / (2.0 * M_PI)), float(std::acos(std::fmax(-1.0f, std::fmin(1.0f, n.y))) / M_PI)};
     // p = c + r·(sin θ cos φ, cos θ, sin θ sin φ) with φ = 2π(u − ½), θ = πv: differentiate. At the poles

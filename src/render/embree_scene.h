@@ -3,6 +3,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -42,8 +43,10 @@ class EmbreeScene final : public RayQueries {
   /// `alpha`, if given, cuts holes: rays pass where alpha_keeps_hit says so (camera and shadow rays alike, through
   /// Embree's intersection and occlusion filter functions).
   unsigned add_mesh(TriangleMesh mesh, int material, int light, std::shared_ptr<const AlphaMask> alpha = nullptr);
-  /// A sphere (Embree's native sphere primitive).
-  unsigned add_sphere(Vec3 centre, float radius, int material);
+  /// A sphere (Embree's native sphere primitive). Its uv: without `uv_axes`, Rimu's (u = ½ + atan2(n.z, n.x)/2π,
+  /// v = polar angle from +y / π); with orthonormal world directions {x, y, z} of the sphere's object axes,
+  /// pbrt-v4's (u = φ/2π, φ = atan2(n·y, n·x) in [0, 2π); v = 1 − θ/π, θ the polar angle from z: v = 1 at +z).
+  unsigned add_sphere(Vec3 centre, float radius, int material, const std::optional<std::array<Vec3, 3>>& uv_axes = std::nullopt);
 
   /// A prototype: meshes in object space, shared by instances (no lights inside prototypes). Held once however
   /// many instances refer to it; move the meshes in.
@@ -83,6 +86,8 @@ class EmbreeScene final : public RayQueries {
     const TriangleMesh* mesh = nullptr;  // owned by meshes_ (kept for positions, normals and uvs)
     Vec3 centre;                         // spheres: the hit point is put back on the sphere from these
     float radius = 0;
+    bool pbrt_uv = false;                // spheres: uv about uv_axes (pbrt-v4's convention), else Rimu's
+    std::array<Vec3, 3> uv_axes{};
   };
   struct Prototype {
     RTCScene scene = nullptr;

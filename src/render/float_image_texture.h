@@ -10,8 +10,8 @@
 namespace rimu {
 
 /// pbrt-v4's FloatImageTexture: v = scale·value(uv), then max(0, 1 − v) if `invert` (in that order, after filtering,
-/// as pbrt does). The values are read once at load (AlphaMask::read: one channel, sRGB-decoded if asked, clamped
-/// to [0, 1]) and looked up bilinearly, coordinates repeating, v = 0 the bottom row. Cost per lookup: four loads
+/// as pbrt does). The values are read once at load (AlphaMask::read: one channel, sRGB-decoded if asked, not
+/// clamped: an EXR map keeps values beyond [0, 1] as pbrt does) and looked up bilinearly, coordinates repeating, v = 0 the bottom row. Cost per lookup: four loads
 /// and two flops, no decoding.
 class ImageFloatTexture final : public FloatTexture {
  public:

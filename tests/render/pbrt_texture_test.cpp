@@ -2,6 +2,7 @@
 // Rimu texture values where pbrt takes them, and a textured pbrt scene renders as its JSON twin.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -86,10 +87,35 @@ TEST_CASE("pbrt spectrum textures and the conductor's reflectance") {
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
 }
 
+TEST_CASE("pbrt spectrum imagemap: encoding defaults to sRGB for .png names only, as pbrt-v4's imagemap") {
+  test::ScratchFolder dir("pbrt_spectrum_encoding");
+  const auto ppm = test::write_ppm("pbrt_spectrum_encoding", 2, 1, {128, 128, 128, 255, 255, 255});
+  std::filesystem::copy_file(ppm, dir / "paint.ppm", std::filesystem::copy_options::overwrite_existing);
+  // The importer decides by the file name (pbrt does too); the bytes of this one are never read.
+  std::ofstream(dir / "paint.PNG") << "not read";
+  const PbrtImport imported = import_text(
+      kHeader +
+          "Texture \"ppm\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.ppm\"\n"
+          "Texture \"ppmsrgb\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.ppm\" \"string encoding\" \"sRGB\"\n"
+          "Texture \"png\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.PNG\"\n"
+          "Texture \"pnglinear\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.PNG\" \"string encoding\" \"linear\"\n"
+          "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"texture reflectance\" \"ppm\"\n"
+          "MakeNamedMaterial \"b\" \"string type\" \"diffuse\" \"texture reflectance\" \"ppmsrgb\"\n"
+          "MakeNamedMaterial \"c\" \"string type\" \"diffuse\" \"texture reflectance\" \"png\"\n"
+          "MakeNamedMaterial \"d\" \"string type\" \"diffuse\" \"texture reflectance\" \"pnglinear\"\n",
+      dir.path);
+  CHECK(imported.ignored.empty());
+  const json& m = imported.document["materials"];
+  CHECK(m["a"]["reflectance"]["encoding"] == "linear");  // was sRGB for every file before
+  CHECK(m["b"]["reflectance"]["encoding"] == "srgb");
+  CHECK(m["c"]["reflectance"]["encoding"] == "srgb");
+  CHECK(m["d"]["reflectance"]["encoding"] == "linear");
+}
+
 TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON") {
   // cornell.pbrt's ball made of a red/white checkerboard, as pbrt text and as its hand-written JSON twin. Two
-  // squares along u: the hemisphere facing the camera (u ≥ ½) is white, the back red; an offset of one square
-  // swaps them, which the comparison must see.
+  // squares along pbrt's u = φ/2π about the ball's z-axis: the upper half (pbrt's y > 0, φ < π) one colour, the
+  // lower the other; an offset of one square swaps them, which the comparison must see.
   const std::filesystem::path pbrt_file = test::test_data("pbrt/cornell.pbrt");
   std::stringstream text;
   text << std::ifstream(pbrt_file).rdbuf();
@@ -115,7 +141,11 @@ TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON")
   };
   hand_written["materials"]["tiled"] = tiled(0.0);
   for (json& shape : hand_written["shapes"])
-    if (shape["type"] == "sphere") shape["material"] = "tiled";
+    if (shape["type"] == "sphere") {
+      shape["material"] = "tiled";
+      // pbrt's object axes in Rimu's world: the ball is only translated and scaled, and the importer mirrors x.
+      shape["uv_axes"] = {{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    }
   const auto from_json = load_scene(hand_written, "cornell_equivalent.json", pbrt_file.parent_path(), test::library());
   const std::vector<double> a = test::luminance_values(*test::render_xyz(*from_pbrt, 128, 1).film);
   const std::vector<double> b = test::luminance_values(*test::render_xyz(*from_json, 128, 2).film);
@@ -142,4 +172,88 @@ TEST_CASE("float image texture: scale, then invert, as pbrt-v4's FloatImageTextu
   CHECK(inverted.evaluate(left) == doctest::Approx(0.9f));   // 1 − 0.5·0.2, not 0.5·(1 − 0.2) = 0.4
   CHECK(inverted.evaluate(right) == doctest::Approx(0.5f));
   CHECK(over.evaluate(right) == 0.0f);                      // max(0, 1 − 3·1)
+}
+
+TEST_CASE("float image texture: values beyond [0, 1] kept as read (pbrt-v4 does not clamp); non-finite texels rejected") {
+  // A float image (PFM, linear): 2.5 and -0.5 in the first channel, looked up at the texel centres.
+  const auto path = test::write_pfm("float_image_unclamped", 2, 1, {2.5f, 0.0f, 0.0f, -0.5f, 0.0f, 0.0f});
+  const auto values = std::make_shared<const AlphaMask>(AlphaMask::read(path, 0, false, false, false));
+  const ImageFloatTexture plain(values, 2.0f, false), inverted(values, 1.0f, true);
+  const MaterialContext left = MaterialContext::at_uv({0.25f, 0.5f}), right = MaterialContext::at_uv({0.75f, 0.5f});
+  CHECK(plain.evaluate(left) == doctest::Approx(5.0f));   // was 2·1 when the texel was clamped at load
+  CHECK(plain.evaluate(right) == doctest::Approx(-1.0f));  // was 0
+  CHECK(inverted.evaluate(right) == doctest::Approx(1.5f));  // max(0, 1 − (−0.5))
+  CHECK(inverted.evaluate(left) == 0.0f);                    // max(0, 1 − 2.5)
+  // Coverage keeps its clamp.
+  const AlphaMask coverage = AlphaMask::read(path, 0, false, false);
+  CHECK(coverage.evaluate({0.25f, 0.5f}) == 1.0f);
+  CHECK(coverage.evaluate({0.75f, 0.5f}) == 0.0f);
+  const auto bad = test::write_pfm("float_image_nan", 2, 1, {0.5f, 0.0f, 0.0f, std::nanf(""), 0.0f, 0.0f});
+  CHECK_THROWS_WITH_AS(AlphaMask::read(bad, 0, false, false, false), doctest::Contains("is not a finite number"), InputError);
+}
+
+TEST_CASE("pbrt sphere: textures land where pbrt-v4 puts them (pole +z, u = φ/2π, v = 1 − θ/π, in object space)") {
+  // Unmirrored header: pbrt's image-right (+x) is Rimu's left, so the importer mirrors the world x → −x.
+  const PbrtImport imported = import_text(
+      "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+      "Translate 0 0 5\nRotate 90 1 0 0\nScale 2 2 2\nShape \"sphere\" \"float radius\" 0.5\n",
+      std::filesystem::temp_directory_path());
+  CHECK(imported.ignored.empty());
+  const json& sphere = imported.document["shapes"][0];
+  REQUIRE(sphere["type"] == "sphere");
+  // Object x, y, z through Rotate 90 about x ((x, y, z) → (x, −z, y)), then the mirror.
+  const json want = {{-1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.0, -1.0, 0.0}};
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t l = 0; l < 3; ++l) CHECK(sphere["uv_axes"][k][l].get<double>() == doctest::Approx(want[k][l].get<double>()).epsilon(1e-12));
+  const auto scene = load_scene(imported.document, "test.pbrt", std::filesystem::temp_directory_path(), test::library());
+  // pbrt's point of (u, v): object o = (sin θ cos φ, sin θ sin φ, cos θ), φ = 2πu, θ = π(1 − v); world =
+  // (0, 0, 5) + (o.x, −o.z, o.y) by the CTM (radius 0.5 · scale 2 = 1), then x → −x.
+  for (const auto [u, v] : {std::pair{0.3f, 0.8f}, std::pair{0.05f, 0.4f}, std::pair{0.7f, 0.15f}, std::pair{0.95f, 0.6f}}) {
+    CAPTURE(u);
+    const double phi = 2 * M_PI * u, theta = M_PI * (1 - v);
+    const Vec3 o{float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta))};
+    const Vec3 centre{0, 0, 5}, p = centre + Vec3{-o.x, -o.z, o.y};
+    Ray ray;
+    ray.origin = centre + (p - centre) * 3.0f;
+    ray.direction = normalize(p - ray.origin);
+    ray.t_min = 0.0f;
+    ray.t_max = 1e30f;
+    const auto hit = scene->geometry.intersect(ray);
+    REQUIRE(hit);
+    CHECK(hit->uv.x == doctest::Approx(u).epsilon(1e-4));
+    CHECK(hit->uv.y == doctest::Approx(v).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("pbrt sphere as a mesh (squashed, emissive, with alpha) carries pbrt-v4's uv; an image alpha is kept") {
+  test::ScratchFolder dir("pbrt_sphere_mesh_uv");
+  const auto mask = test::write_ppm("pbrt_sphere_mask", 2, 1, {0, 0, 0, 255, 255, 255});
+  std::filesystem::copy_file(mask, dir / "mask.ppm", std::filesystem::copy_options::overwrite_existing);
+  const PbrtImport imported = import_text(kHeader +
+                                              "Texture \"holes\" \"float\" \"imagemap\" \"string filename\" \"mask.ppm\"\n"
+                                              "AttributeBegin\nScale 1 2 1\nShape \"sphere\" \"float radius\" 2\nAttributeEnd\n"
+                                              "Shape \"sphere\" \"texture alpha\" \"holes\"\n",
+                                          dir.path);
+  CHECK(imported.ignored.empty());  // the image alpha was listed ("no texture coordinates") before
+  const json& squashed = imported.document["shapes"][0];
+  REQUIRE(squashed["type"] == "triangles");
+  const auto positions = squashed["positions"].get<std::vector<std::array<double, 3>>>();
+  const auto uvs = squashed["uvs"].get<std::vector<std::array<double, 2>>>();
+  REQUIRE(uvs.size() == positions.size());
+  for (size_t k = 0; k < positions.size(); ++k) {
+    const auto [x, y, z] = positions[k];
+    CAPTURE(k);
+    // v = 1 − θ/π with cos θ = z/r (v = 1 at the +z pole); u = φ/2π away from the poles (the seam column: 0 or 1).
+    CHECK(uvs[k][1] == doctest::Approx(1.0 - std::acos(std::clamp(z / 2.0, -1.0, 1.0)) / M_PI).epsilon(1e-9));
+    if (std::hypot(x, y) > 1e-9) {
+      double phi = std::atan2(y, x);
+      if (phi < 0) phi += 2 * M_PI;
+      const double u = uvs[k][0] >= 1.0 - 1e-12 && phi < 1e-9 ? 1.0 : phi / (2 * M_PI);
+      CHECK(uvs[k][0] == doctest::Approx(u).epsilon(1e-9));
+    }
+  }
+  const json& cut = imported.document["shapes"][1];
+  CHECK(cut["type"] == "triangles");
+  CHECK(cut["alpha"]["texture"].get<std::string>().find("mask.ppm") != std::string::npos);
+  CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
 }

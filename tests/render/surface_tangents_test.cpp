@@ -120,3 +120,38 @@ TEST_CASE("surface tangents: a sphere's dp/du, dp/dv match finite differences of
       CHECK(hit->uv.y == doctest::Approx(theta / M_PI).epsilon(1e-4));
     }
 }
+
+TEST_CASE("surface tangents: a sphere with pbrt-v4's uv (uv_axes) has pbrt's u, v and their dp/du, dp/dv") {
+  // Object axes in world: a rotation about the world y-axis by 90° composed with a mirror (x → −x), as an imported
+  // pbrt sphere under pbrt's camera mirror gets them. Orthonormal, left-handed.
+  const std::array<Vec3, 3> axes = {Vec3{0, 0, 1}, Vec3{0, 1, 0}, Vec3{1, 0, 0}};
+  EmbreeScene scene;
+  const Vec3 centre{1, 2, 3};
+  const float radius = 1.5f;
+  scene.add_sphere(centre, radius, 0, axes);
+  scene.commit();
+  // pbrt's sphere: p = r·(sin θ cos φ, sin θ sin φ, cos θ) in object axes; u = φ/2π (φ in [0, 2π)), v = 1 − θ/π.
+  const auto point_at = [&](float theta, float phi) {
+    const Vec3 o{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+    return centre + (axes[0] * o.x + axes[1] * o.y + axes[2] * o.z) * radius;
+  };
+  for (const float theta : {0.4f, 1.2f, 2.5f})
+    for (const float phi : {0.3f, 1.7f, 4.0f, 5.9f}) {
+      const Vec3 p = point_at(theta, phi);
+      const auto hit = scene.intersect(ray_to(centre + (p - centre) * 3.0f, p));
+      REQUIRE(hit);
+      CHECK(hit->uv.x == doctest::Approx(phi / (2.0 * M_PI)).epsilon(1e-4));
+      CHECK(hit->uv.y == doctest::Approx(1.0 - theta / M_PI).epsilon(1e-4));
+      // ∂p/∂u = ∂p/∂φ·2π, ∂p/∂v = ∂p/∂θ·(−π): central differences.
+      const float h = 1e-3f;
+      const Vec3 du = (point_at(theta, phi + h) - point_at(theta, phi - h)) * (float(2.0 * M_PI) / (2.0f * h));
+      const Vec3 dv = (point_at(theta + h, phi) - point_at(theta - h, phi)) * (float(-M_PI) / (2.0f * h));
+      for (auto [got, want] : {std::pair{hit->dpdu, du}, std::pair{hit->dpdv, dv}}) {
+        CHECK(length(got - want) <= 1e-3f * length(want));
+      }
+    }
+  // The +z pole of the object (world +x here) is v = 1, the −z pole v = 0.
+  const auto top = scene.intersect(ray_to(centre + Vec3{5, 0.01f, 0}, centre));
+  REQUIRE(top);
+  CHECK(top->uv.y == doctest::Approx(1.0f).epsilon(1e-2));
+}

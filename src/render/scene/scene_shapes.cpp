@@ -169,7 +169,7 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     if (type == "sphere") {
       if (shape.has("emission"))
         shape.at("emission").fail("spheres cannot emit light; use a mesh, triangles or quad shape as an area light");
-      shape.only_keys({"type", "name", "center", "radius", "material", "transform"});
+      shape.only_keys({"type", "name", "center", "radius", "material", "transform", "uv_axes"});
       if (shape.has("transform")) shape.at("transform").fail("spheres take center and radius, not a transform");
       const Vec3 centre = shape.at("center").vec3();
       const float radius = float(shape.at("radius").number(1e-30, 1e30));
@@ -177,7 +177,19 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       for (const float sign : {-1.0f, 1.0f})
         check_coordinates(centre + Vec3{sign * radius, sign * radius, sign * radius}, shape.at("radius"),
                           "a corner of the sphere's bounding box (centre ± radius)");
-      scene.geometry.add_sphere(centre, radius, material_of(shape, context));
+      std::optional<std::array<Vec3, 3>> uv_axes;
+      if (shape.has("uv_axes")) {
+        // pbrt-v4's sphere uv about three orthonormal directions (the importer's sphere object axes in world).
+        const JsonCursor axes = shape.at("uv_axes");
+        if (!axes.is_array() || axes.size() != 3) axes.fail("expected three directions [[x], [y], [z]] (orthonormal)");
+        uv_axes.emplace();
+        for (size_t k = 0; k < 3; ++k) (*uv_axes)[k] = axes.at(k).vec3();
+        for (size_t k = 0; k < 3; ++k)
+          for (size_t l = k; l < 3; ++l)
+            if (std::abs(dot((*uv_axes)[k], (*uv_axes)[l]) - (k == l ? 1.0f : 0.0f)) > 1e-4f)
+              axes.fail("the three directions must be orthonormal (unit length, at right angles) to within 1e-4");
+      }
+      scene.geometry.add_sphere(centre, radius, material_of(shape, context), uv_axes);
       continue;
     }
     if (type == "instance") {

@@ -65,7 +65,8 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
       // The first channel, with the sRGB curve removed from 8/16-bit files unless told otherwise (pbrt-v4's default).
       bool srgb = default_encoding_for(path).srgb_transfer;
       if (value.has("encoding")) srgb = value.at("encoding").choice({"srgb", "linear"}) == "srgb";
-      auto values = std::make_shared<const AlphaMask>(AlphaMask::read(path, 0, srgb, false));
+      // Values as read, not clamped: roughness clamps at use, a mix's amount decides by a ≤ 0 / ≥ 1 test.
+      auto values = std::make_shared<const AlphaMask>(AlphaMask::read(path, 0, srgb, false, false));
       return std::make_shared<ImageFloatTexture>(std::move(values), float(value.number_or("scale", 1.0, -1e30, 1e30)),
                                                  value.boolean_or("invert", false));
     });

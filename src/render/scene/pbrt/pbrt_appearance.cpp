@@ -173,13 +173,7 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
     if (filename.empty()) throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": needs \"string filename\"");
     const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
     if (!std::filesystem::is_regular_file(path)) throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": cannot find the image '" + path.string() + "'");
-    json value = {{"texture", path_for_document(path)}};
-    const std::string encoding = tp.string("encoding", "sRGB");
-    if (encoding == "linear") {
-      value["encoding"] = "linear";
-    } else if (encoding != "sRGB") {
-      ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", ts.where);
-    }
+    json value = {{"texture", path_for_document(path)}, {"encoding", image_encoding(tp, path, ts.where)}};
     const double scale = tp.real("scale", 1.0);
     if (scale != 1.0) {
       if (scale > 1.0 || scale < 0.0) ignore("imagemap \"scale\" outside 0-1 (clamped)", ts.where);

@@ -120,6 +120,9 @@ class PbrtConverter {
   /// Spectrum texture `texture` of a class other than constant/imagemap (scale, mix, directionmix, checkerboard)
   /// as a Rimu reflectance value; empty when not imported (listed).
   std::optional<json> spectrum_combinator(const PbrtTexture& texture, int depth);
+  /// An imagemap's "encoding" as Rimu's "srgb" or "linear": pbrt-v4 defaults to sRGB for a .png file name and to
+  /// linear for any other (its imagemap texture creation); other encodings ("gamma g") are listed and read as sRGB.
+  std::string image_encoding(PbrtParams& tp, const std::filesystem::path& image, const SourceLocation& where);
   /// pbrt's roughness value (number or texture) as Rimu's perceptual roughness: r = α^½ with pbrt's α = roughness^½
   /// under remaproughness, else α = roughness (a texture is raised to that power per hit: {"power": [t, e]}).
   json roughness_value(const json& pbrt_roughness, bool remap) const;

@@ -141,37 +141,48 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     if (!(radius > 0)) throw InputError(s.where, context + ": \"radius\" must be > 0");
     const double zmin = p.real("zmin", -radius), zmax = p.real("zmax", radius), phimax = p.real("phimax", 360.0);
     if (zmin > -radius || zmax < radius || phimax < 360.0) ignore("partial sphere (zmin, zmax or phimax): rendered whole", s.where);
-    shape_alpha_ = alpha_parameter(p, false);
+    shape_alpha_ = alpha_parameter(p, true);  // an image alpha takes the mesh path below, which carries pbrt's uv
     double scale = 1.0;
     const PbrtMatrix world = world_from_object();
     // Rimu's analytic sphere has no cut-outs: a sphere with alpha takes the mesh path below.
     if (shape_alpha_.is_null() && !object_ && !state_.area_light && !state_.reverse_orientation && world.is_finite() && world.is_affine() &&
         is_similarity(world, scale)) {
-      emit_shape({{"type", "sphere"}, {"center", world.point({0, 0, 0})}, {"radius", radius * scale}}, s.where, context, false, 0.0, 1);
+      // pbrt's sphere uv is about its object axes (pole +z, u = 0 along +x): carried as their world directions,
+      // so textures land where pbrt puts them (a mirroring CTM flips the direction u runs, as in pbrt).
+      json axes = json::array();
+      for (const Vec3d& axis : {Vec3d{1, 0, 0}, Vec3d{0, 1, 0}, Vec3d{0, 0, 1}}) {
+        const Vec3d d = world.vector(axis);
+        axes.push_back({d[0] / scale, d[1] / scale, d[2] / scale});
+      }
+      emit_shape({{"type", "sphere"}, {"center", world.point({0, 0, 0})}, {"radius", radius * scale}, {"uv_axes", axes}}, s.where,
+                 context, false, 0.0, 1);
       return;
     }
-    // Rimu's sphere cannot be instanced, emit or be squashed: a fine mesh with the sphere's own normals stands in.
+    // Rimu's sphere cannot be instanced, emit or be squashed: a fine mesh with the sphere's own normals and pbrt's
+    // uv (u = φ/2π, v = 1 − θ/π) stands in. Rows i = 0…L from the +z pole, columns j = 0…N with the seam column
+    // repeated (u = 0 and u = 1) so that uv interpolates across it; a pole vertex per column, at the column's middle u.
     std::vector<Vec3d> positions, normals;
+    std::vector<std::array<double, 2>> uvs;
     std::vector<uint32_t> indices;
-    const auto vertex = [&](double theta, double phi) {
+    const auto vertex = [&](int i, double u) {
+      const double theta = std::numbers::pi * i / kLatitudeSegments, phi = 2 * std::numbers::pi * u;
       const Vec3d n = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
       positions.push_back({radius * n[0], radius * n[1], radius * n[2]});
       normals.push_back(n);
+      uvs.push_back({u, 1.0 - double(i) / kLatitudeSegments});
     };
-    vertex(0.0, 0.0);  // north pole, index 0
-    for (int i = 1; i < kLatitudeSegments; ++i)
-      for (int j = 0; j < kLongitudeSegments; ++j)
-        vertex(std::numbers::pi * i / kLatitudeSegments, 2 * std::numbers::pi * j / kLongitudeSegments);
-    vertex(std::numbers::pi, 0.0);  // south pole
-    const auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * kLongitudeSegments + (j % kLongitudeSegments)); };
-    const uint32_t south = uint32_t(positions.size() - 1);
-    for (int j = 0; j < kLongitudeSegments; ++j) {
-      indices.insert(indices.end(), {0u, ring(1, j), ring(1, j + 1)});
-      for (int i = 1; i + 1 < kLatitudeSegments; ++i)
-        indices.insert(indices.end(), {ring(i, j), ring(i + 1, j), ring(i, j + 1), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j + 1)});
-      indices.insert(indices.end(), {ring(kLatitudeSegments - 1, j), south, ring(kLatitudeSegments - 1, j + 1)});
+    for (int i = 0; i <= kLatitudeSegments; ++i) {
+      const bool pole = i == 0 || i == kLatitudeSegments;
+      for (int j = 0; j <= kLongitudeSegments; ++j) vertex(i, (j + (pole ? 0.5 : 0.0)) / kLongitudeSegments);
     }
-    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), {}, context, 1);
+    const auto at = [&](int i, int j) { return uint32_t(i * (kLongitudeSegments + 1) + j); };
+    for (int j = 0; j < kLongitudeSegments; ++j) {
+      indices.insert(indices.end(), {at(0, j), at(1, j), at(1, j + 1)});
+      for (int i = 1; i + 1 < kLatitudeSegments; ++i)
+        indices.insert(indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+      indices.insert(indices.end(), {at(kLatitudeSegments - 1, j), at(kLatitudeSegments, j), at(kLatitudeSegments - 1, j + 1)});
+    }
+    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), std::move(uvs), context, 1);
   } else if (type == "disk") {
     PbrtParams p(*this, s, context, shape_defaults);
     const double height = p.real("height", 0.0), radius = p.real("radius", 1.0), inner = p.real("innerradius", 0.0);
@@ -302,13 +313,8 @@ json PbrtConverter::alpha_parameter(PbrtParams& p, bool has_uvs) {
   const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
   if (!std::filesystem::is_regular_file(path))
     throw InputError(ts.where, "Texture \"" + name + "\": cannot find the image '" + path.string() + "'");
-  // A float imagemap reads the image's first channel (pbrt-v4's MIPMap texel for Float); pbrt's encoding defaults
-  // to sRGB for PNG files and linear otherwise.
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
-  json value = {{"texture", path_for_document(path)}, {"channel", "r"}, {"encoding", encoding == "linear" ? "linear" : "srgb"}};
-  if (encoding != "linear" && encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", ts.where);
+  // A float imagemap reads the image's first channel (pbrt-v4's MIPMap texel for Float).
+  json value = {{"texture", path_for_document(path)}, {"channel", "r"}, {"encoding", image_encoding(tp, path, ts.where)}};
   if (tp.boolean("invert", false)) value["invert"] = true;
   if (tp.real("scale", 1.0) != 1.0) ignore("\"scale\" of an alpha texture (alpha is used unscaled)", ts.where);
   if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||

@@ -62,12 +62,8 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
     const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
     if (!std::filesystem::is_regular_file(path))
       throw InputError(ts.where, "Texture \"" + texture_name + "\": cannot find the image '" + path.string() + "'");
-    // The first channel (pbrt-v4's MIPMap texel for Float); pbrt's encoding defaults to sRGB for PNG, else linear.
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
-    if (encoding != "linear" && encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", ts.where);
-    json value = {{"texture", path_for_document(path)}, {"encoding", encoding == "linear" ? "linear" : "srgb"}};
+    // The first channel (pbrt-v4's MIPMap texel for Float).
+    json value = {{"texture", path_for_document(path)}, {"encoding", image_encoding(tp, path, ts.where)}};
     if (tp.boolean("invert", false)) value["invert"] = true;
     if (const double scale = tp.real("scale", 1.0); scale != 1.0) value["scale"] = scale;
     if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
@@ -79,6 +75,15 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
   }
   ignore("float Texture class \"" + cls + "\" (the parameter's default is used)", ts.where);
   return std::nullopt;
+}
+
+std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem::path& image, const SourceLocation& where) {
+  std::string extension = image.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
+  if (encoding == "linear") return "linear";
+  if (encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", where);
+  return "srgb";
 }
 
 std::optional<json> PbrtConverter::spectrum_combinator(const PbrtTexture& texture, int depth) {
