@@ -6,6 +6,7 @@
 
 #include "transport/direction_warps.h"
 #include "transport/fresnel.h"
+#include "transport/simpson_rule.h"
 
 namespace rimu {
 namespace {
@@ -45,14 +46,9 @@ SampledSpectrum CoatedDiffuseBsdf::crossing(float cos_theta) const {
 }
 
 double coat_internal_reflectance(double eta, double thickness) {
+  // 2∫ g(x) dx over [a, b] (composite Simpson, `intervals` even).
   const auto simpson = [](const auto& g, double a, double b, int intervals) {
-    const double h = (b - a) / intervals;
-    double s = 0;
-    for (int i = 0; i <= intervals; ++i) {
-      const double w = (i == 0 || i == intervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-      s += w * g(a + i * h);
-    }
-    return 2.0 * s * h / 3.0;
+    return 2.0 * simpson_integral(g, a, b, intervals);
   };
   const auto attenuation = [thickness](double mu) { return mu > 0.0 ? std::exp(-2.0 * thickness / mu) : 0.0; };
   // From inside, the index ratio is 1/η: total reflection below μc = √(1 − 1/η²).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "transport/simpson_rule.h"
+
 namespace rimu {
 namespace {
 
@@ -78,15 +80,9 @@ SampledSpectrum fresnel_conductor(SampledSpectrum cos_theta_i, SampledSpectrum n
 }
 
 double fresnel_diffuse_reflectance(double eta) {
-  // 2∫ g(x) dx over [a, b] by composite Simpson with `intervals` (even) panels.
+  // 2∫ g(x) dx over [a, b] (composite Simpson, `intervals` even).
   const auto simpson = [](const auto& g, double a, double b, int intervals) {
-    const double h = (b - a) / intervals;
-    double s = 0;
-    for (int i = 0; i <= intervals; ++i) {
-      const double w = (i == 0 || i == intervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-      s += w * g(a + i * h);
-    }
-    return 2.0 * s * h / 3.0;
+    return 2.0 * simpson_integral(g, a, b, intervals);
   };
   // η ≥ 1: F(μ)·μ is smooth on [0, 1].
   if (eta >= 1.0) return simpson([eta](double mu) { return fresnel_dielectric(mu, eta) * mu; }, 0.0, 1.0, 512);
