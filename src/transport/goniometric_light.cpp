@@ -52,7 +52,7 @@ std::optional<LightBounds> GoniometricLight::part_bounds(int part) const {
   // Between grid angles the interpolant is positive only next to a positive grid value.
   const double gamma_min = gamma[size_t(std::max(first - 1, 0))] * to_rad;
   const double gamma_max = gamma[size_t(std::min(last + 1, int(gamma.size()) - 1))] * to_rad;
-  const float i = float(intensity);
+  const double i = intensity;
   if (gamma_max <= std::numbers::pi - gamma_min) return point_light_bounds(position_m_, i, frame_.n, gamma_max, 0.0);
   return point_light_bounds(position_m_, i, -frame_.n, std::numbers::pi - gamma_min, 0.0);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace rimu {
@@ -72,11 +73,16 @@ void unite_cones(Vec3 axis_a, double theta_a, Vec3 axis_b, double theta_b, Vec3&
 
 }  // namespace
 
-LightBounds point_light_bounds(Vec3 position_m, float intensity_w_sr, Vec3 axis, double theta_o_rad,
+float intensity_bound(double intensity_w_sr) {
+  if (!(intensity_w_sr > 0.0)) return 0.0f;
+  return float(std::clamp(intensity_w_sr, kSmallestIntensityBoundWsr, kLargestIntensityBoundWsr));
+}
+
+LightBounds point_light_bounds(Vec3 position_m, double intensity_w_sr, Vec3 axis, double theta_o_rad,
                                double theta_e_rad) {
   LightBounds b;
   b.lower_m = b.upper_m = position_m;
-  b.intensity_w_sr = intensity_w_sr;
+  b.intensity_w_sr = intensity_bound(intensity_w_sr);
   b.axis = normalize(axis);
   b.cos_theta_o = float(std::cos(std::clamp(theta_o_rad, 0.0, kPi)));
   b.cos_theta_e = float(std::cos(std::clamp(theta_e_rad + kAngleMarginRad, 0.0, kPi)));
@@ -88,7 +94,7 @@ LightBounds triangle_light_bounds(Vec3 v0, Vec3 v1, Vec3 v2, Vec3 normal, double
   LightBounds b;
   b.lower_m = min3(v0, min3(v1, v2));
   b.upper_m = max3(v0, max3(v1, v2));
-  b.intensity_w_sr = float(area_m2 * radiance_w_m2_sr);  // L·A·cos θ, largest along the normal
+  b.intensity_w_sr = intensity_bound(area_m2 * radiance_w_m2_sr);  // L·A·cos θ, largest along the normal
   b.axis = normal;
   b.cos_theta_o = 1.0f;
   b.cos_theta_e = float(std::cos(kPi / 2 + kAngleMarginRad));
@@ -128,10 +134,13 @@ float light_importance(const LightBounds& b, Vec3 p, Vec3 normal) {
   const float distance2 = length_squared(to_p);
   const float radius2 = length_squared(half);
   constexpr float kLargest = 1e30f;
+  // Past the tests above the cluster can contribute, so its importance must not round to 0 (a faint light far away
+  // would then never be picked by next-event estimation and, if it is a point light, never reached at all).
+  constexpr float kSmallest = std::numeric_limits<float>::min();
   if (distance2 <= radius2) {
     // p inside the bounding sphere: every direction is possible; the distance is taken as the sphere's radius.
     if (!(radius2 > 0.0f)) return 0.0f;  // p at a point light
-    return std::min(b.intensity_w_sr / radius2, kLargest);
+    return std::clamp(b.intensity_w_sr / radius2, kSmallest, kLargest);
   }
   const float sin2_u = radius2 / distance2;
   const float sin_u = std::sqrt(sin2_u), cos_u = std::sqrt(1.0f - sin2_u);
@@ -150,7 +159,7 @@ float light_importance(const LightBounds& b, Vec3 p, Vec3 normal) {
   }
   const float importance =
       b.intensity_w_sr * std::max(emission.cos, kImportanceCosineFloor) * receiver / distance2;
-  return std::min(importance, kLargest);
+  return std::clamp(importance, kSmallest, kLargest);
 }
 
 double orientation_measure(const LightBounds& b) {

@@ -35,6 +35,15 @@ namespace rimu {
 
 inline constexpr float kImportanceCosineFloor = 1e-3f;
 
+/// The range a part's intensity bound is kept in. The tree only compares intensities, so squeezing an absurd value
+/// (a 1e-50 W/sr point light, a 1e35 W/sr sun stand-in) into it changes how often a light is picked, never whether it
+/// can be: every light with power stays a leaf with a positive bound, and the sum over a million leaves stays finite.
+inline constexpr double kSmallestIntensityBoundWsr = 1e-30;
+inline constexpr double kLargestIntensityBoundWsr = 1e30;
+
+/// `intensity_w_sr` as a tree bound: 0 for 0, negative or NaN; otherwise clamped into the range above.
+float intensity_bound(double intensity_w_sr);
+
 struct LightBounds {
   Vec3 lower_m{}, upper_m{};
   float intensity_w_sr = 0.0f;
@@ -50,7 +59,7 @@ struct LightBounds {
 };
 
 /// Bounds of an emitter at one point (point, spot, IES), emitting into the cone (axis, θo) with falloff to θo + θe.
-LightBounds point_light_bounds(Vec3 position_m, float intensity_w_sr, Vec3 axis, double theta_o_rad,
+LightBounds point_light_bounds(Vec3 position_m, double intensity_w_sr, Vec3 axis, double theta_o_rad,
                                double theta_e_rad);
 /// Bounds of a Lambertian triangle of radiance integral `radiance_w_m2_sr` (∫L dλ) with unit front normal `normal`.
 LightBounds triangle_light_bounds(Vec3 v0, Vec3 v1, Vec3 v2, Vec3 normal, double area_m2, double radiance_w_m2_sr,

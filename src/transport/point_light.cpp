@@ -29,7 +29,7 @@ std::optional<LightSample> PointLight::sample_li(const LightReference& ref, cons
 
 std::optional<LightBounds> PointLight::part_bounds(int part) const {
   if (part != 0 || intensity_.is_black()) return std::nullopt;
-  return point_light_bounds(position_m_, float(intensity_.integral_360_830()), {0, 0, 1}, std::numbers::pi, 0.0);
+  return point_light_bounds(position_m_, intensity_.integral_360_830(), {0, 0, 1}, std::numbers::pi, 0.0);
 }
 
 double PointLight::total_power_w(double) const { return 4.0 * std::numbers::pi * intensity_.integral_360_830(); }

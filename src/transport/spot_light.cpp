@@ -43,7 +43,7 @@ std::optional<LightBounds> SpotLight::part_bounds(int part) const {
   if (part != 0 || intensity_.is_black()) return std::nullopt;
   const double inner = std::acos(std::clamp(cos_inner_, -1.0, 1.0));
   const double outer = std::acos(std::clamp(cos_outer_, -1.0, 1.0));
-  return point_light_bounds(position_m_, float(intensity_.integral_360_830()), axis_, inner, outer - inner);
+  return point_light_bounds(position_m_, intensity_.integral_360_830(), axis_, inner, outer - inner);
 }
 
 double SpotLight::total_power_w(double) const {

@@ -274,6 +274,29 @@ TEST_CASE("light BVH: the probabilities sum to 1 where every cluster can contrib
   }
 }
 
+TEST_CASE("light BVH: lights of absurd brightness stay leaves that can be chosen, and the sums stay finite") {
+  // Intensities far outside float's range (the scene format's `scale` has no bound): each is squeezed into the tree's
+  // range, so the faint light keeps a probability > 0 and the bright ones do not overflow a node's sum. Found by the
+  // scene fuzzer (a point light of scale 1e-50 had power but no leaf).
+  TestScene s;
+  s.lights.push_back(std::make_unique<PointLight>(Vec3{0, 1, 0}, flat(1e-50)));
+  s.lights.push_back(std::make_unique<PointLight>(Vec3{0, 1e6f, 0}, flat(1e-30)));  // faint and far: I/d² < FLT_MIN
+  for (int k = 0; k < 4; ++k)
+    s.lights.push_back(std::make_unique<PointLight>(Vec3{float(k), 2, 0}, flat(1e300)));
+  const auto pointers = s.pointers();
+  const BvhLightSampler sampler(pointers);
+  CHECK(sampler.leaf_count() == 6);
+  const LightSamplingPoint at{{0.5f, 0, 0}, {0, 1, 0}};
+  double sum = 0.0;
+  for (size_t l = 0; l < s.lights.size(); ++l) {
+    const float p = sampler.pmf(at, int(l), 0);
+    CHECK(std::isfinite(p));
+    CHECK(p > 0.0f);
+    sum += p;
+  }
+  CHECK(sum == doctest::Approx(1.0).epsilon(1e-5));
+}
+
 TEST_CASE("light BVH: nothing behind a one-sided emitter is ever chosen") {
   std::vector<Triangle> triangles;
   const TestScene scene = many_scene(&triangles);
