@@ -275,26 +275,40 @@ TEST_CASE("light BVH: the probabilities sum to 1 where every cluster can contrib
 }
 
 TEST_CASE("light BVH: lights of absurd brightness stay leaves that can be chosen, and the sums stay finite") {
-  // Intensities far outside float's range (the scene format's `scale` has no bound): each is squeezed into the tree's
-  // range, so the faint light keeps a probability > 0 and the bright ones do not overflow a node's sum. Found by the
-  // scene fuzzer (a point light of scale 1e-50 had power but no leaf).
-  TestScene s;
-  s.lights.push_back(std::make_unique<PointLight>(Vec3{0, 1, 0}, flat(1e-50)));
-  s.lights.push_back(std::make_unique<PointLight>(Vec3{0, 1e6f, 0}, flat(1e-30)));  // faint and far: I/d² < FLT_MIN
-  for (int k = 0; k < 4; ++k)
-    s.lights.push_back(std::make_unique<PointLight>(Vec3{float(k), 2, 0}, flat(1e300)));
-  const auto pointers = s.pointers();
-  const BvhLightSampler sampler(pointers);
-  CHECK(sampler.leaf_count() == 6);
+  // Intensities far outside float's range (the scene format's `scale` has no bound) are squeezed into the tree's
+  // range: every light with power stays a leaf and the bright ones do not overflow a node's sum. Found by the scene
+  // fuzzer (a point light of scale 1e-50 had power but no leaf).
+  const auto faint_pair = [] {
+    TestScene s;
+    s.lights.push_back(std::make_unique<PointLight>(Vec3{0, 1, 0}, flat(1e-50)));
+    s.lights.push_back(std::make_unique<PointLight>(Vec3{0, 1e9f, 0}, flat(1e-30)));  // I/d² ≈ 5e-46: rounds to 0
+    return s;
+  };
   const LightSamplingPoint at{{0.5f, 0, 0}, {0, 1, 0}};
-  double sum = 0.0;
-  for (size_t l = 0; l < s.lights.size(); ++l) {
-    const float p = sampler.pmf(at, int(l), 0);
-    CHECK(std::isfinite(p));
-    CHECK(p > 0.0f);
-    sum += p;
+  SUBCASE("faint lights alone: both have probability > 0 (the importance floor)") {
+    const TestScene s = faint_pair();
+    const auto pointers = s.pointers();
+    const BvhLightSampler sampler(pointers);
+    CHECK(sampler.leaf_count() == 2);
+    CHECK(sampler.pmf(at, 0, 0) > 0.0f);
+    CHECK(sampler.pmf(at, 1, 0) > 0.0f);
+    CHECK(sampler.pmf(at, 0, 0) + sampler.pmf(at, 1, 0) == doctest::Approx(1.0).epsilon(1e-6));
   }
-  CHECK(sum == doctest::Approx(1.0).epsilon(1e-5));
+  SUBCASE("beside lights 1e350 times brighter: still leaves, finite probabilities summing to 1") {
+    // (their probabilities then round to 0 in float, as any probability below 1e-38 must)
+    TestScene s = faint_pair();
+    for (int k = 0; k < 4; ++k) s.lights.push_back(std::make_unique<PointLight>(Vec3{float(k), 2, 0}, flat(1e300)));
+    const auto pointers = s.pointers();
+    const BvhLightSampler sampler(pointers);
+    CHECK(sampler.leaf_count() == 6);
+    double sum = 0.0;
+    for (size_t l = 0; l < s.lights.size(); ++l) {
+      const float p = sampler.pmf(at, int(l), 0);
+      CHECK(std::isfinite(p));
+      sum += p;
+    }
+    CHECK(sum == doctest::Approx(1.0).epsilon(1e-5));
+  }
 }
 
 TEST_CASE("light BVH: nothing behind a one-sided emitter is ever chosen") {
