@@ -104,6 +104,10 @@ for scene in "${scenes[@]}"; do
   # Both renderers read one copy of the scene's folder (its Includes and meshes), with RESOLUTION applied to it.
   cp -r "$(dirname "$scene")"/. "$work/scene/"
   file="$work/scene/$(basename "$scene")"
+  # pbrt-v4 writes half floats unless told otherwise (Film "savefp16" defaults to true); Rimu writes 32-bit floats
+  # here (--float). Half rounding is the same in every pixel of a flat region (a uniform sky), where it shows as a
+  # difference of many standard errors, so pbrt writes 32-bit floats too. Rimu lists the parameter as ignored.
+  grep -q savefp16 "$file" || sed -i -E 's/^([[:space:]]*Film[[:space:]]+"[a-z]+")/\1 "bool savefp16" false/' "$file"
   if [[ -n "$RESOLUTION" ]]; then
     sed -i -E "s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION%x*}/; s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION#*x}/" "$file"
   fi
