@@ -153,6 +153,40 @@ std::string spectral_channel_name(const SpectralBinning& binning, int bin) {
   return "S0." + centre + "nm";
 }
 
+HalfRangeCounts half_range_counts(const Film& film) {
+  constexpr double kSmallestNormalHalf = 0x1p-14;
+  const PixelBounds& b = film.pixel_bounds();
+  HalfRangeCounts counts;
+  for (int y = b.y0; y < b.y1; ++y)
+    for (int x = b.x0; x < b.x1; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double v = std::abs(double(film.output_value(x, y)[c]));
+        if (!(v > 0.0) || !std::isfinite(v)) continue;
+        ++counts.nonzero;
+        if (v < kSmallestNormalHalf) ++counts.below_normal;
+        if (v > double(kHalfMax)) ++counts.above_max;
+      }
+  return counts;
+}
+
+std::string half_range_warning(const HalfRangeCounts& counts, const std::string& file) {
+  std::string problems;
+  if (counts.above_max > 0)
+    problems = std::to_string(counts.above_max) + " values above 65504 (half's largest) were clamped";
+  // A tenth: deep shadows of an ordinary image may be subnormal and lose little that shows; when that much of the
+  // image is, its colours (X, Y, Z → RGB amplifies the rounding several-fold) are no longer to be trusted.
+  if (counts.nonzero > 0 && 10 * counts.below_normal >= counts.nonzero) {
+    if (!problems.empty()) problems += " and ";
+    char percent[32];
+    std::snprintf(percent, sizeof(percent), "%.0f %%", 100.0 * double(counts.below_normal) / double(counts.nonzero));
+    problems += std::string(percent) + " of the non-zero values lie below half's normal range (6.1e-5), where it " +
+                "keeps less than 0.05 % precision";
+  }
+  if (problems.empty()) return {};
+  return "rimu: warning: " + file + " is written as half floats: " + problems +
+         "; write 32-bit floats (--float) or set an exposure (docs/light-units.md)";
+}
+
 size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options) {
   const PixelBounds& b = film.pixel_bounds();
   const bool use_half = options.pixel_type == ExrPixelType::half;

@@ -77,6 +77,22 @@ struct ExrOptions {
 /// values replaced (see above).
 size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options = {});
 
+/// How well half floats hold the film's X, Y, Z / R, G, B output (Film::output_value()), counted over its non-zero
+/// finite values. Half keeps 11 significant bits (relative step ≤ 2⁻¹¹ ≈ 0.05 %) only between its smallest normal
+/// value, 2⁻¹⁴ ≈ 6.1e-5, and 65504: below, the step stays 2⁻²⁴ ≈ 6e-8 in absolute terms (1e-6 keeps 6 %, values
+/// under 3e-8 become 0); above, write_exr clamps. Film units put Y = 1 at about 73,000 cd/m² (XYZ films), so a scene
+/// lit in lux without a physical camera's exposure can sit mostly below the normal range: an office at 500 lx gives
+/// a grey card Y ≈ 4e-4, moonlight 1e-7.
+struct HalfRangeCounts {
+  size_t nonzero = 0;       ///< non-zero finite values
+  size_t below_normal = 0;  ///< 0 < |v| < 2⁻¹⁴
+  size_t above_max = 0;     ///< |v| > 65504 (clamped when written as half)
+};
+HalfRangeCounts half_range_counts(const Film& film);
+/// A warning line (no trailing newline) when half floats would lose the image: some value is clamped, or at least
+/// a tenth of the non-zero values lie below half's normal range; empty otherwise.
+std::string half_range_warning(const HalfRangeCounts& counts, const std::string& file);
+
 /// The EXR channel holding the high (or low) 32 bits of accumulator `accumulator` of a partial (see write_exr).
 std::string partial_sum_channel_name(int accumulator, bool high_word);
 

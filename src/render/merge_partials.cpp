@@ -170,6 +170,10 @@ MergeResult merge_partials(const std::vector<std::filesystem::path>& inputs, con
     if (!result.samples.empty()) record.requested = {result.samples.front().begin, result.samples.back().end};
     exr.partial = record;
   }
+  if (exr.pixel_type == ExrPixelType::half) {
+    const std::string warning = half_range_warning(half_range_counts(*film), output.string());
+    if (!warning.empty()) log << warning << "\n";
+  }
   const size_t replaced = write_exr(output, *film, exr);
   if (replaced > 0)
     log << "rimu merge: warning: " << replaced << " values were NaN or beyond the largest float and were replaced\n";

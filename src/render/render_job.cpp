@@ -314,6 +314,10 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
   const int reached = start + result.statistics.samples_per_pixel_done;
 
   const ExrOptions exr = exr_options(reached, result.statistics.interrupted);
+  if (exr.pixel_type == ExrPixelType::half) {
+    const std::string warning = half_range_warning(half_range_counts(film), job.exr_output.string());
+    if (!warning.empty()) log << warning << "\n";
+  }
   const size_t replaced = write_exr(job.exr_output, film, exr);
   if (replaced > 0)
     log << "rimu: warning: " << replaced << " values of " << job.exr_output.string()

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <map>
 #include <unistd.h>
 
@@ -206,6 +207,47 @@ TEST_CASE("half output clamps instead of overflowing to Inf") {
   Imath::Box2i window;
   const auto channels = read_channels(path, window);
   CHECK(channels.at("Y")[0] == 65504.0f);
+}
+
+TEST_CASE("half range: values half floats would clamp or keep imprecisely are counted and warned about") {
+  // One sample per pixel at one wavelength: the film value is radiance × c(λ)/p(λ) (× ¼ for the lane mean), so
+  // scaling the radiance scales X, Y, Z alike. 2⁻¹⁴ is half's smallest normal value.
+  const SampledWavelengths lambda = SampledWavelengths::sample_visible(0.4f);
+  const auto film_at = [&](float radiance) {
+    auto film = std::make_unique<Film>(FilmOptions{4, 1, {}, 0}, SpectralResponse::cie_xyz(test::library()));
+    for (int x = 0; x < 4; ++x) film->add_sample(x, 0, Float4(radiance), lambda);
+    return film;
+  };
+  const auto unit_film = film_at(1.0f);
+  const Film& unit = *unit_film;
+  const double y = unit.output_value(0, 0)[1];
+  REQUIRE(y > 0.0);
+  SUBCASE("an ordinary image: nothing to say") {
+    const HalfRangeCounts counts = half_range_counts(unit);
+    CHECK(counts.nonzero == 12);
+    CHECK(counts.below_normal == 0);
+    CHECK(counts.above_max == 0);
+    CHECK(half_range_warning(counts, "a.exr").empty());
+  }
+  SUBCASE("a dim image (Y ≈ 1e-6): every value below the normal range") {
+    const HalfRangeCounts counts = half_range_counts(*film_at(float(1e-6 / y)));
+    CHECK(counts.below_normal == counts.nonzero);
+    const std::string warning = half_range_warning(counts, "dim.exr");
+    CHECK(warning.find("dim.exr") != std::string::npos);
+    CHECK(warning.find("100 % of the non-zero values") != std::string::npos);
+    CHECK(warning.find("--float") != std::string::npos);
+  }
+  SUBCASE("a bright image (Y ≈ 1e5): clamped values counted") {
+    const HalfRangeCounts counts = half_range_counts(*film_at(float(1e5 / y)));
+    CHECK(counts.above_max >= 4);  // at least Y of every pixel
+    CHECK(half_range_warning(counts, "b.exr").find("above 65504") != std::string::npos);
+  }
+  SUBCASE("a few subnormal shadows (under a tenth) are not worth a warning") {
+    HalfRangeCounts counts{100, 9, 0};
+    CHECK(half_range_warning(counts, "c.exr").empty());
+    counts.below_normal = 10;
+    CHECK_FALSE(half_range_warning(counts, "c.exr").empty());
+  }
 }
 
 TEST_CASE("no NaN or Inf reaches an image: an overflowing output transform is written finite and counted") {
