@@ -32,6 +32,18 @@ CatMethod cat_of(const std::string& name) {
   throw InputError({}, "cat: expected bradford, cat02, von-kries or xyz-scaling, got '" + name + "'");
 }
 
+// (wavelengths_nm, values at 1 nm, gamut_mapped) of `upsample`(upsampler of `space`, `rgb`): the reflectance and
+// emission upsamplings return the same shape of result.
+template <typename Upsample>
+py::tuple upsampled_arrays(SpectralLibrary& library, const Array& rgb, const std::string& space, Upsample upsample) {
+  Rgb c;
+  read3(rgb, c.r, c.g, c.b, "rgb");
+  const RgbUpsampler upsampler(library, RgbColourSpace::named(space));
+  const auto u = upsample(upsampler, c);
+  const py::tuple arrays = arrays_at_1nm(u.spectrum);
+  return py::make_tuple(arrays[0], arrays[1], u.gamut_mapped);
+}
+
 py::array_t<double> matrix_array(const Matrix3& m) {
   py::array_t<double> out({3, 3});
   for (int i = 0; i < 3; ++i)
@@ -107,24 +119,16 @@ void bind_spaces(py::module_& m) {
   lib.def(
          "upsample_reflectance",
          [](SpectralLibrary& l, const Array& rgb, const std::string& space) {
-           Rgb c;
-           read3(rgb, c.r, c.g, c.b, "rgb");
-           const RgbUpsampler upsampler(l, RgbColourSpace::named(space));
-           const UpsampledReflectance u = upsampler.upsample_reflectance(c);
-           const py::tuple arrays = arrays_at_1nm(u.spectrum);
-           return py::make_tuple(arrays[0], arrays[1], u.gamut_mapped);
+           return upsampled_arrays(l, rgb, space,
+                                   [](const RgbUpsampler& u, const Rgb& c) { return u.upsample_reflectance(c); });
          },
          py::arg("rgb"), py::arg("space") = "srgb-linear",
          "The smoothest reflectance with this linear RGB: (wavelengths_nm, values at 1 nm, gamut_mapped).")
       .def(
           "upsample_emission",
           [](SpectralLibrary& l, const Array& rgb, const std::string& space) {
-            Rgb c;
-            read3(rgb, c.r, c.g, c.b, "rgb");
-            const RgbUpsampler upsampler(l, RgbColourSpace::named(space));
-            const UpsampledEmission u = upsampler.upsample_emission(c);
-            const py::tuple arrays = arrays_at_1nm(u.spectrum);
-            return py::make_tuple(arrays[0], arrays[1], u.gamut_mapped);
+            return upsampled_arrays(l, rgb, space,
+                                    [](const RgbUpsampler& u, const Rgb& c) { return u.upsample_emission(c); });
           },
           py::arg("rgb"), py::arg("space") = "srgb-linear",
           "An emission spectrum with this linear RGB: (wavelengths_nm, values at 1 nm, gamut_mapped).");

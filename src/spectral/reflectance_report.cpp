@@ -10,6 +10,7 @@
 #include "spectral/delta_e.h"
 #include "spectral/error.h"
 #include "spectral/tabulated_colorimetry.h"
+#include "spectral/tristimulus_method_json.h"
 
 namespace rimu {
 namespace {
@@ -30,11 +31,7 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0) {
 nlohmann::ordered_json colour_json(const ReflectanceColour& c) {
   nlohmann::ordered_json j;
   j["description"] = c.description;
-  j["tristimulus_method"] = c.method;
-  if (c.e308_table) {
-    j["e308_table"] = e308_table_number(*c.e308_table);
-    j["e308_weights"] = e308_table_description(*c.e308_table);
-  }
+  add_tristimulus_method_json(j, c.method, c.e308_table);
   j["xyz"] = {c.xyz.x, c.xyz.y, c.xyz.z};
   j["xyY"] = {c.xy.x, c.xy.y, c.xyz.y};
   j["white_xyz"] = {c.white.x, c.white.y, c.white.z};

@@ -9,6 +9,7 @@
 #include "spectral/error.h"
 #include "spectral/photometry.h"
 #include "spectral/tabulated_colorimetry.h"
+#include "spectral/tristimulus_method_json.h"
 
 namespace rimu {
 namespace {
@@ -119,11 +120,7 @@ std::string report_text(const SpectrumReport& r) {
 std::string report_json(const SpectrumReport& r) {
   nlohmann::ordered_json j;
   j["spectrum"] = r.description;
-  j["tristimulus_method"] = r.tristimulus_method;
-  if (r.e308_table) {
-    j["e308_table"] = e308_table_number(*r.e308_table);
-    j["e308_weights"] = e308_table_description(*r.e308_table);
-  }
+  add_tristimulus_method_json(j, r.tristimulus_method, r.e308_table);
   j["xyz_2deg"] = {r.xyz_2deg.x, r.xyz_2deg.y, r.xyz_2deg.z};
   j["xy_2deg"] = {r.xy_2deg.x, r.xy_2deg.y};
   j["uv_prime_2deg"] = {r.uv_prime_2deg.u, r.uv_prime_2deg.v};

@@ -3,26 +3,28 @@
 #include "spectral/error.h"
 
 namespace rimu {
-namespace {
-
-void require(const FloatTexturePtr& t, const char* what) {
-  if (!t) throw InputError({}, std::string(what) + " needs all of its input textures");
+void throw_missing_texture_input(const char* what) {
+  throw InputError({}, std::string(what) + " needs all of its input textures");
 }
 
-}  // namespace
+Vec3 direction_mix_unit_direction(Vec3 direction) {
+  const float len = length(direction);
+  if (!(len > 0.0f) || !std::isfinite(len))
+    throw InputError({}, "a direction mix texture needs a non-zero, finite direction");
+  return direction / len;
+}
 
 ProductFloatTexture::ProductFloatTexture(FloatTexturePtr a, FloatTexturePtr b) : a_(std::move(a)), b_(std::move(b)) {
-  require(a_, "a product texture");
-  require(b_, "a product texture");
+  require_texture_inputs("a product texture", a_, b_);
 }
 
 PowerFloatTexture::PowerFloatTexture(FloatTexturePtr a, float exponent) : a_(std::move(a)), exponent_(exponent) {
-  require(a_, "a power texture");
+  require_texture_inputs("a power texture", a_);
 }
 
 MixFloatTexture::MixFloatTexture(FloatTexturePtr a, FloatTexturePtr b, FloatTexturePtr amount)
     : a_(std::move(a)), b_(std::move(b)), amount_(std::move(amount)) {
-  for (const auto* t : {&a_, &b_, &amount_}) require(*t, "a mix texture");
+  require_texture_inputs("a mix texture", a_, b_, amount_);
 }
 
 float MixFloatTexture::evaluate(const MaterialContext& context) const {
@@ -35,12 +37,8 @@ float MixFloatTexture::evaluate(const MaterialContext& context) const {
 
 DirectionMixFloatTexture::DirectionMixFloatTexture(FloatTexturePtr a, FloatTexturePtr b, Vec3 direction)
     : a_(std::move(a)), b_(std::move(b)) {
-  require(a_, "a direction mix texture");
-  require(b_, "a direction mix texture");
-  const float len = length(direction);
-  if (!(len > 0.0f) || !std::isfinite(len))
-    throw InputError({}, "a direction mix texture needs a non-zero, finite direction");
-  direction_ = direction / len;
+  require_texture_inputs("a direction mix texture", a_, b_);
+  direction_ = direction_mix_unit_direction(direction);
 }
 
 float DirectionMixFloatTexture::evaluate(const MaterialContext& context) const {
@@ -52,8 +50,7 @@ float DirectionMixFloatTexture::evaluate(const MaterialContext& context) const {
 
 CheckerboardFloatTexture::CheckerboardFloatTexture(FloatTexturePtr a, FloatTexturePtr b, UvMapping mapping)
     : a_(std::move(a)), b_(std::move(b)), mapping_(mapping) {
-  require(a_, "a checkerboard texture");
-  require(b_, "a checkerboard texture");
+  require_texture_inputs("a checkerboard texture", a_, b_);
 }
 
 }  // namespace rimu

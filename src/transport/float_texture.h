@@ -46,6 +46,17 @@ inline float direction_mix_weight(const MaterialContext& context, Vec3 unit_dire
   return std::fmin(1.0f, std::fabs(dot(context.geometric_normal, unit_direction)));
 }
 
+/// Throws InputError ("<what> needs all of its input textures") unless every input is set: the check every
+/// combinator's constructor makes, float or spectral.
+[[noreturn]] void throw_missing_texture_input(const char* what);
+template <typename... Inputs>
+void require_texture_inputs(const char* what, const Inputs&... inputs) {
+  if (!(static_cast<bool>(inputs) && ...)) throw_missing_texture_input(what);
+}
+
+/// `direction` normalised for direction_mix_weight(); throws InputError if it is zero or not finite.
+Vec3 direction_mix_unit_direction(Vec3 direction);
+
 /// a·b (pbrt-v4's "scale": tex·scale).
 class ProductFloatTexture final : public FloatTexture {
  public:

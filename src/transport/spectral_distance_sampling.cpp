@@ -30,6 +30,24 @@ void for_each_majorant(const Medium& medium, const Ray& ray, float t_max, const 
   });
 }
 
+// Null-collision tracking's walk: calls collision(t, μ̄, coefficients, σ_n) at each tentative collision along
+// [t_min, t_max), at exponential steps of rate μ̄ (one sampler dimension each), σ_n = max(μ̄ − σ_t, 0) per lane.
+// collision returns false to end the walk.
+template <typename F>
+void for_each_tentative_collision(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
+                                  Sampler& sampler, F&& collision) {
+  for_each_majorant(medium, ray, t_max, lambda, [&](float t0, float t1, float majorant, auto&& coefficients_at) {
+    if (!(majorant > 0.0f)) return true;
+    for (float t = t0;;) {
+      t += exponential_distance(majorant, sampler.next_1d());
+      if (t >= t1) return true;
+      const MediumCoefficients c = coefficients_at(ray.origin + ray.direction * t);
+      const Float4 sigma_n = max(Float4(majorant) - c.sigma_t_per_m(), Float4(0.0f));
+      if (!collision(t, majorant, c, sigma_n)) return false;
+    }
+  });
+}
+
 // The collision-type probabilities of a tracker at a tentative collision with coefficients σ_s, σ_n = μ̄ − σ_t:
 // scatter with P_s, null with P_n = 1 − P_s (absorption is not sampled: it is left in the weights). Lane-wise
 // versions (what P would have been with lane k as hero) are needed by spectral MIS.
@@ -127,37 +145,28 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
   // the probabilities above. Path contribution per lane: σ_s at the real vertex, σ_n at null vertices, e^{−μ̄ t}
   // along the way; the density as run: μ̄ e^{−μ̄ t} · P_s or P_n. The exponentials cancel (docs/media.md).
   FreeFlight flight;
-  bool done = false;
-  for_each_majorant(medium, ray, t_max, lambda, [&](float t0, float t1, float majorant, auto&& coefficients_at) {
-    if (!(majorant > 0.0f)) return true;
-    for (float t = t0;;) {
-      t += exponential_distance(majorant, sampler.next_1d());
-      if (t >= t1) return true;
-      const MediumCoefficients c = coefficients_at(ray.origin + ray.direction * t);
-      const Float4 sigma_n = max(Float4(majorant) - c.sigma_t_per_m(), Float4(0.0f));
-      const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
-      const float u = sampler.next_1d();
-      if (p.scatter + p.null <= 0.0f) {  // the hero (or the mean) only absorbs here: the path ends
-        flight.weight = Float4(0.0f);
-        done = true;
-        return false;
-      }
-      if (u < p.scatter) {
-        flight.weight *= c.sigma_s_per_m / Float4(majorant * p.scatter);
-        flight.pdf_ratio *= p.scatter_lane / Float4(p.scatter);
-        flight.scattered = true;
-        flight.t = t;
-        done = true;
-        return false;
-      }
-      const Float4 null_weight = sigma_n / Float4(majorant * p.null);
-      flight.weight *= null_weight;
-      throughput = tracking_weights_after_null(throughput, sigma_n);
-      flight.pdf_ratio *= p.null_lane / Float4(p.null);
-      flight.pass_probability *= p.null;
+  for_each_tentative_collision(medium, ray, t_max, lambda, sampler,
+                               [&](float t, float majorant, const MediumCoefficients& c, Float4 sigma_n) {
+    const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
+    const float u = sampler.next_1d();
+    if (p.scatter + p.null <= 0.0f) {  // the hero (or the mean) only absorbs here: the path ends
+      flight.weight = Float4(0.0f);
+      return false;
     }
+    if (u < p.scatter) {
+      flight.weight *= c.sigma_s_per_m / Float4(majorant * p.scatter);
+      flight.pdf_ratio *= p.scatter_lane / Float4(p.scatter);
+      flight.scattered = true;
+      flight.t = t;
+      return false;
+    }
+    const Float4 null_weight = sigma_n / Float4(majorant * p.null);
+    flight.weight *= null_weight;
+    throughput = tracking_weights_after_null(throughput, sigma_n);
+    flight.pdf_ratio *= p.null_lane / Float4(p.null);
+    flight.pass_probability *= p.null;
+    return true;
   });
-  (void)done;
   return flight;
 }
 
@@ -176,20 +185,14 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
     return out;
   }
   // Ratio tracking: T ≈ Π σ_n/μ̄ over tentative collisions at rate μ̄ (unbiased, bounded by 1 per step).
-  for_each_majorant(medium, ray, t_max, lambda, [&](float t0, float t1, float majorant, auto&& coefficients_at) {
-    if (!(majorant > 0.0f)) return true;
-    for (float t = t0;;) {
-      t += exponential_distance(majorant, sampler.next_1d());
-      if (t >= t1) return true;
-      const MediumCoefficients c = coefficients_at(ray.origin + ray.direction * t);
-      const Float4 sigma_n = max(Float4(majorant) - c.sigma_t_per_m(), Float4(0.0f));
-      out.transmittance *= sigma_n / Float4(majorant);
-      const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
-      out.pass_probability *= p.null_lane;
-      // The free-flight technique would have carried this throughput through the same null collision.
-      throughput = tracking_weights_after_null(throughput, sigma_n);
-      if (max_lane(out.transmittance) <= 0.0f) return false;
-    }
+  for_each_tentative_collision(medium, ray, t_max, lambda, sampler,
+                               [&](float, float majorant, const MediumCoefficients& c, Float4 sigma_n) {
+    out.transmittance *= sigma_n / Float4(majorant);
+    const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
+    out.pass_probability *= p.null_lane;
+    // The free-flight technique would have carried this throughput through the same null collision.
+    throughput = tracking_weights_after_null(throughput, sigma_n);
+    return !(max_lane(out.transmittance) <= 0.0f);  // stop once no lane passes
   });
   return out;
 }

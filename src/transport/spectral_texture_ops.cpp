@@ -1,21 +1,10 @@
 #include "transport/spectral_texture_ops.h"
 
-#include "spectral/error.h"
-
 namespace rimu {
-namespace {
-
-template <typename T>
-void require(const T& t, const char* what) {
-  if (!t) throw InputError({}, std::string(what) + " needs all of its input textures");
-}
-
-}  // namespace
 
 ProductSpectralTexture::ProductSpectralTexture(SpectralTexturePtr spectrum, FloatTexturePtr scale)
     : spectrum_(std::move(spectrum)), scale_(std::move(scale)) {
-  require(spectrum_, "a product texture");
-  require(scale_, "a product texture");
+  require_texture_inputs("a product texture", spectrum_, scale_);
 }
 
 SampledSpectrum ProductSpectralTexture::evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const {
@@ -24,42 +13,39 @@ SampledSpectrum ProductSpectralTexture::evaluate_at(const MaterialContext& conte
   return spectrum_->evaluate_at(context, lambda) * Float4(k);
 }
 
+SpectralTexturePair::SpectralTexturePair(SpectralTexturePtr a, SpectralTexturePtr b, const char* what)
+    : a_(std::move(a)), b_(std::move(b)) {
+  require_texture_inputs(what, a_, b_);
+}
+
+SampledSpectrum SpectralTexturePair::weighted_sum(const MaterialContext& context, const SampledWavelengths& lambda,
+                                                  float weight_a, float weight_b) const {
+  const SampledSpectrum a = weight_a != 0.0f ? a_->evaluate_at(context, lambda) : SampledSpectrum(0.0f);
+  const SampledSpectrum b = weight_b != 0.0f ? b_->evaluate_at(context, lambda) : SampledSpectrum(0.0f);
+  return a * Float4(weight_a) + b * Float4(weight_b);
+}
+
 MixSpectralTexture::MixSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, FloatTexturePtr amount)
-    : a_(std::move(a)), b_(std::move(b)), amount_(std::move(amount)) {
-  require(a_, "a mix texture");
-  require(b_, "a mix texture");
-  require(amount_, "a mix texture");
+    : SpectralTexturePair(std::move(a), std::move(b), "a mix texture"), amount_(std::move(amount)) {
+  require_texture_inputs("a mix texture", amount_);
 }
 
 SampledSpectrum MixSpectralTexture::evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const {
   const float t = amount_->evaluate(context);
-  const SampledSpectrum a = t != 1.0f ? a_->evaluate_at(context, lambda) : SampledSpectrum(0.0f);
-  const SampledSpectrum b = t != 0.0f ? b_->evaluate_at(context, lambda) : SampledSpectrum(0.0f);
-  return a * Float4(1.0f - t) + b * Float4(t);
+  return weighted_sum(context, lambda, 1.0f - t, t);  // 1 − t is 0 exactly when t is 1
 }
 
 DirectionMixSpectralTexture::DirectionMixSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, Vec3 direction)
-    : a_(std::move(a)), b_(std::move(b)) {
-  require(a_, "a direction mix texture");
-  require(b_, "a direction mix texture");
-  const float len = length(direction);
-  if (!(len > 0.0f) || !std::isfinite(len))
-    throw InputError({}, "a direction mix texture needs a non-zero, finite direction");
-  direction_ = direction / len;
-}
+    : SpectralTexturePair(std::move(a), std::move(b), "a direction mix texture"),
+      direction_(direction_mix_unit_direction(direction)) {}
 
 SampledSpectrum DirectionMixSpectralTexture::evaluate_at(const MaterialContext& context,
                                                          const SampledWavelengths& lambda) const {
   const float w = direction_mix_weight(context, direction_);
-  const SampledSpectrum a = w != 0.0f ? a_->evaluate_at(context, lambda) : SampledSpectrum(0.0f);
-  const SampledSpectrum b = w != 1.0f ? b_->evaluate_at(context, lambda) : SampledSpectrum(0.0f);
-  return a * Float4(w) + b * Float4(1.0f - w);
+  return weighted_sum(context, lambda, w, 1.0f - w);
 }
 
 CheckerboardSpectralTexture::CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, UvMapping mapping)
-    : a_(std::move(a)), b_(std::move(b)), mapping_(mapping) {
-  require(a_, "a checkerboard texture");
-  require(b_, "a checkerboard texture");
-}
+    : SpectralTexturePair(std::move(a), std::move(b), "a checkerboard texture"), mapping_(mapping) {}
 
 }  // namespace rimu

@@ -27,31 +27,41 @@ class ProductSpectralTexture final : public SpectralTextureAtPoint {
   FloatTexturePtr scale_;
 };
 
+/// The base of the combinators of two spectral textures a and b: the inputs, and their weighted sum.
+class SpectralTexturePair : public SpectralTextureAtPoint {
+ protected:
+  /// Throws InputError naming `what` if an input is missing.
+  SpectralTexturePair(SpectralTexturePtr a, SpectralTexturePtr b, const char* what);
+  /// weight_a·a + weight_b·b; an input whose weight is 0 is not looked up (an image lookup costs more than the test).
+  SampledSpectrum weighted_sum(const MaterialContext& context, const SampledWavelengths& lambda, float weight_a,
+                               float weight_b) const;
+
+  SpectralTexturePtr a_, b_;
+};
+
 /// (1 − t)·a + t·b, t = amount (pbrt-v4's "mix").
-class MixSpectralTexture final : public SpectralTextureAtPoint {
+class MixSpectralTexture final : public SpectralTexturePair {
  public:
   MixSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, FloatTexturePtr amount);
   SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override;
 
  private:
-  SpectralTexturePtr a_, b_;
   FloatTexturePtr amount_;
 };
 
 /// w·a + (1 − w)·b, w = |n·direction| (pbrt-v4's "directionmix").
-class DirectionMixSpectralTexture final : public SpectralTextureAtPoint {
+class DirectionMixSpectralTexture final : public SpectralTexturePair {
  public:
   /// Throws InputError if `direction` is zero or not finite.
   DirectionMixSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, Vec3 direction);
   SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override;
 
  private:
-  SpectralTexturePtr a_, b_;
   Vec3 direction_;
 };
 
 /// a on the even squares, b on the odd ones (pbrt-v4's 2D "checkerboard", point-sampled).
-class CheckerboardSpectralTexture final : public SpectralTextureAtPoint {
+class CheckerboardSpectralTexture final : public SpectralTexturePair {
  public:
   CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, UvMapping mapping);
   SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override {
@@ -59,7 +69,6 @@ class CheckerboardSpectralTexture final : public SpectralTextureAtPoint {
   }
 
  private:
-  SpectralTexturePtr a_, b_;
   UvMapping mapping_;
 };
 

@@ -33,7 +33,8 @@ Comparison bvh_against_power(nlohmann::json document, int spp,
   return {test::paired_difference(a, b), test::mean_of(b)};
 }
 
-void check_same_mean(const Comparison& c, const char* scene) {
+// `scene` is a std::string: doctest's INFO prints a const char* as a pointer.
+void check_same_mean(const Comparison& c, const std::string& scene) {
   INFO(scene << ": mean Y (power) " << c.mean_power << ", bvh − power " << c.difference.mean << " ± "
              << c.difference.standard_error);
   CHECK(c.mean_power > 0.0);

@@ -31,6 +31,16 @@ test::Estimate plane_luminance(const std::string& pbrt_text) {
   return test::estimate_of(test::luminance_values(*test::render_xyz(*scene, 64, 5).film));
 }
 
+// The message of the InputError importing `pbrt_text` (as t.pbrt, resolved in tests/data/pbrt) raises, or "no error".
+std::string import_error(const std::string& pbrt_text) {
+  try {
+    import_pbrt_text(pbrt_text, "t.pbrt", test::test_data("pbrt"), test::library());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 }  // namespace
 
 TEST_CASE("pbrt environment map: one bright texel lights a plane from the direction pbrt's mapping puts it") {
@@ -80,14 +90,7 @@ TEST_CASE("pbrt environment map: the JSON it becomes, illuminance, and errors") 
           doctest::Approx(2.0 / (2 * M_PI / 1024 * 0.52734375)).epsilon(1e-5));
   }
   SUBCASE("errors name the line") {
-    const auto error = [&](const std::string& text) {
-      try {
-        import_pbrt_text(camera + text, "t.pbrt", folder, test::library());
-      } catch (const InputError& e) {
-        return std::string(e.what());
-      }
-      return std::string("no error");
-    };
+    const auto error = [&](const std::string& text) { return import_error(camera + text); };
     CHECK(error("LightSource \"infinite\" \"string filename\" \"nope.exr\"").find("t.pbrt:5: LightSource \"infinite\": cannot find the image") != std::string::npos);
     CHECK(error("LightSource \"infinite\" \"string filename\" \"envmap_texel.ppm\" \"rgb L\" [1 1 1]").find("t.pbrt:5: LightSource \"infinite\": give either \"L\" or \"filename\"") != std::string::npos);
   }
@@ -109,14 +112,7 @@ TEST_CASE("pbrt infinite light portal: four world-space points become the enviro
     // The document loads: the portal reaches the light.
     CHECK(load_scene(imported.document, "t.json", folder, test::library())->lights.size() == 1);
   }
-  const auto error = [&](const std::string& text) {
-    try {
-      import_pbrt_text(camera + text, "t.pbrt", folder, test::library());
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto error = [&](const std::string& text) { return import_error(camera + text); };
   CHECK(error("LightSource \"infinite\" \"point3 portal\" [4 1 -1  4 1 1  4 2 1]").find("t.pbrt:4: LightSource \"infinite\": \"portal\" takes four points, not 3") != std::string::npos);
   CHECK(error("LightSource \"infinite\" \"point3 portal\" [4 1 -1  4 1 1  4 2 2  4 2 -1]").find("t.pbrt:4: LightSource \"infinite\": the four \"portal\" points must form a rectangle") != std::string::npos);
 }

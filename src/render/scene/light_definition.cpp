@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "render/scene/json_cursor.h"
+#include "render/scene/light_amount_key.h"
 #include "render/plot_output.h"
 #include "render/render_error.h"
 #include "render/scene/spectrum_input.h"
@@ -15,19 +16,6 @@
 
 namespace rimu {
 namespace {
-
-struct KeyUnit {
-  const char* key;
-  LightUnit unit;
-};
-// The scene's amount keys (render/scene/scene_light_emission.h), in the order definitions are written.
-constexpr std::array kKeys{
-    KeyUnit{"luminous_power_lm", LightUnit::lumen},       KeyUnit{"radiant_power_w", LightUnit::watt},
-    KeyUnit{"luminous_intensity_cd", LightUnit::candela}, KeyUnit{"radiant_intensity_w_sr", LightUnit::watt_per_sr},
-    KeyUnit{"illuminance_lx", LightUnit::lux},            KeyUnit{"irradiance_w_m2", LightUnit::watt_per_m2},
-    KeyUnit{"luminance_nt", LightUnit::nit},              KeyUnit{"radiance_w_m2_sr", LightUnit::watt_per_m2_sr},
-    KeyUnit{"ev100", LightUnit::ev100},
-};
 
 // printf-style formatting of one number into a string of whatever length the format needs (a fixed buffer once
 // cut the efficacy line of `rimu-light inspect` short).
@@ -121,7 +109,7 @@ nlohmann::json light_definition_json(const LightDefinition& light) {
   nlohmann::ordered_json j;
   j["type"] = light.geometry.kind_name();
   j["spectrum"] = light.spectrum;
-  for (const KeyUnit& k : kKeys)
+  for (const LightAmountKey& k : kLightAmountKeys)
     if (k.unit == light.amount.unit) j[k.key] = light.amount.value;
   if (light.geometry.kind == EmitterKind::spot) {
     j["cone_angle_deg"] = 2.0 * light.geometry.outer_half_angle_deg;
@@ -150,17 +138,10 @@ LightDefinition read_light_definition(const nlohmann::json& document, const std:
       light.geometry.spot_power = SpotPowerConvention::point;
   }
   light.spectrum = root.at("spectrum").value();
-  bool found = false;
-  for (const KeyUnit& k : kKeys) {
-    if (!root.has(k.key)) continue;
-    if (found) root.at(k.key).fail("a light takes one amount");
-    light.amount = {k.unit == LightUnit::ev100 ? root.at(k.key).number(kMinEv100, kMaxEv100)
-                                               : root.at(k.key).number(kMinLightAmount, kMaxLightAmount),
-                    k.unit};
-    found = true;
-  }
-  if (!found) root.fail("no amount: expected luminous_power_lm, luminous_intensity_cd, illuminance_lx, luminance_nt, "
-                        "ev100 or a radiometric twin");
+  const std::optional<KeyedLightAmount> amount = read_light_amount(root);
+  if (!amount) root.fail("no amount: expected luminous_power_lm, luminous_intensity_cd, illuminance_lx, luminance_nt, "
+                         "ev100 or a radiometric twin");
+  light.amount = amount->amount;
   return light;
 }
 

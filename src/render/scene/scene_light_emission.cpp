@@ -3,20 +3,11 @@
 #include <array>
 #include <cmath>
 
+#include "render/scene/light_amount_key.h"
+
 namespace rimu::scene_loading {
 namespace {
 
-struct AmountKey {
-  const char* key;
-  LightUnit unit;
-};
-constexpr std::array kAmountKeys{
-    AmountKey{"luminous_power_lm", LightUnit::lumen},       AmountKey{"radiant_power_w", LightUnit::watt},
-    AmountKey{"luminous_intensity_cd", LightUnit::candela}, AmountKey{"radiant_intensity_w_sr", LightUnit::watt_per_sr},
-    AmountKey{"illuminance_lx", LightUnit::lux},            AmountKey{"irradiance_w_m2", LightUnit::watt_per_m2},
-    AmountKey{"luminance_nt", LightUnit::nit},              AmountKey{"radiance_w_m2_sr", LightUnit::watt_per_m2_sr},
-    AmountKey{"ev100", LightUnit::ev100},
-};
 constexpr std::array kFormKeys{"spectrum", "keep", "reference_spectrum", "power_convention"};
 
 // The shape's integrals, with the key path added to the "no visible power" error.
@@ -32,7 +23,7 @@ ShapeIntegrals integrals_at(const JsonCursor& where, const Spectrum& shape, Load
 
 bool has_light_amount(const JsonCursor& object) {
   if (!object.is_object()) return false;
-  for (const AmountKey& a : kAmountKeys)
+  for (const LightAmountKey& a : kLightAmountKeys)
     if (object.has(a.key)) return true;
   return false;
 }
@@ -43,12 +34,12 @@ void only_light_keys(const JsonCursor& object, std::initializer_list<const char*
     bool known = false;
     for (const char* k : own) known = known || key == k;
     for (const char* k : kFormKeys) known = known || key == k;
-    for (const AmountKey& a : kAmountKeys) known = known || key == a.key;
+    for (const LightAmountKey& a : kLightAmountKeys) known = known || key == a.key;
     if (known) continue;
     std::string list;
     for (const char* k : own) list += std::string(list.empty() ? "" : ", ") + k;
     for (const char* k : kFormKeys) list += std::string(", ") + k;
-    for (const AmountKey& a : kAmountKeys) list += std::string(", ") + a.key;
+    for (const LightAmountKey& a : kLightAmountKeys) list += std::string(", ") + a.key;
     object.at(key).fail("unknown key '" + key + "'; expected one of: " + list);
   }
 }
@@ -71,17 +62,11 @@ LightSpectrum parse_light_emission(const JsonCursor& object, const char* legacy_
   if (object.has(legacy_key))
     object.at(legacy_key).fail(std::string("give either '") + legacy_key +
                                "' (an absolute spectrum) or 'spectrum' and an amount, not both");
-  const AmountKey* given = nullptr;
-  for (const AmountKey& a : kAmountKeys) {
-    if (!object.has(a.key)) continue;
-    if (given) object.at(a.key).fail(std::string("a light takes one amount; '") + given->key + "' is given too");
-    given = &a;
-  }
-  const JsonCursor amount_key = object.at(given->key);
-  const LightAmount amount{given->unit == LightUnit::ev100 ? amount_key.number(-50.0, 50.0) : amount_key.number(1e-30, 1e30),
-                           given->unit};
+  const KeyedLightAmount given = *read_light_amount(object);  // has_light_amount: there is one
+  const LightAmount amount = given.amount;
+  const JsonCursor amount_key = object.at(given.key->key);
   if (!object.has("spectrum"))
-    object.fail(std::string("'") + given->key + "' needs 'spectrum': the light's spectral shape, e.g. {\"blackbody\": 2700}");
+    object.fail(std::string("'") + given.key->key + "' needs 'spectrum': the light's spectral shape, e.g. {\"blackbody\": 2700}");
   const JsonCursor spectrum_key = object.at("spectrum");
   SpectrumPtr shape = context.spectra.parse(spectrum_key, SpectrumRole::emission);
   const ShapeIntegrals integrals = integrals_at(spectrum_key, *shape, context);

@@ -224,8 +224,13 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       // Lights were loaded first, so area lights take the indices after them, in the order of the shapes.
       auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
       scene.lights.push_back(std::move(light));
-      scene.light_names.push_back(shape.has("name") ? "'" + shape.at("name").string() + "' (" + shape.path() + ")"
-                                                    : "the emissive shape " + shape.path());
+      // Appended rather than built with operator+: GCC 12 warns falsely (-Wrestrict) on "'" + std::string.
+      std::string light_name;
+      if (shape.has("name"))
+        light_name.append("'").append(shape.at("name").string()).append("' (").append(shape.path()).append(")");
+      else
+        light_name.append("the emissive shape ").append(shape.path());
+      scene.light_names.push_back(std::move(light_name));
       scene.geometry.add_mesh(std::move(mesh), material, int(scene.lights.size()) - 1);
     } else {
       scene.geometry.add_mesh(std::move(mesh), material, -1, alpha);

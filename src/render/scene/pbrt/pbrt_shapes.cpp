@@ -173,9 +173,12 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     };
     for (int i = 0; i <= kLatitudeSegments; ++i) {
       const bool pole = i == 0 || i == kLatitudeSegments;
-      for (int j = 0; j <= kLongitudeSegments; ++j) vertex(i, (j + (pole ? 0.5 : 0.0)) / kLongitudeSegments);
+      for (int j = 0; j < kLongitudeSegments + (pole ? 0 : 1); ++j) vertex(i, (j + (pole ? 0.5 : 0.0)) / kLongitudeSegments);
     }
-    const auto at = [&](int i, int j) { return uint32_t(i * (kLongitudeSegments + 1) + j); };
+    // The pole rows hold N vertices (one per column), the others N + 1: row i ≥ 1 starts at N + (i − 1)(N + 1).
+    const auto at = [&](int i, int j) {
+      return uint32_t(i == 0 ? j : kLongitudeSegments + (i - 1) * (kLongitudeSegments + 1) + j);
+    };
     for (int j = 0; j < kLongitudeSegments; ++j) {
       indices.insert(indices.end(), {at(0, j), at(1, j), at(1, j + 1)});
       for (int i = 1; i + 1 < kLatitudeSegments; ++i)
