@@ -16,19 +16,14 @@
 #include "spectral/delta_e.h"
 #include "spectral/rgb_upsampler.h"
 #include "test_support.h"
+#include "upsampler_fixture.h"
 
 using namespace rimu;
 
 namespace {
 
-const RgbUpsampler& upsampler(const std::string& space) {
-  static std::map<std::string, std::unique_ptr<RgbUpsampler>> cache;
-  auto& slot = cache[space];
-  if (!slot) slot = std::make_unique<RgbUpsampler>(test::library(), RgbColourSpace::named(space));
-  return *slot;
-}
-
-const char* const kSpaces[] = {"srgb-linear", "rec2020", "display-p3", "acescg", "aces2065-1", "cie-rgb"};
+using test::upsampler;
+const auto& kSpaces = test::kUpsamplerSpaces;
 
 /// Deterministic uniform numbers in [0, 1) (a 32-bit LCG: reproducible failures).
 struct Random {
