@@ -1,7 +1,7 @@
 // RGB → spectrum upsampler: the exact path (table + colour-correcting solve per colour) beside the fast path
 // (basis coefficients interpolated at the table's grid points, docs/upsampling.md "Fast path").
 //
-//   build/bin/rimu-upsampler-bench [--accuracy-only | --timing-only] [Google Benchmark flags]
+//   build/bin/rimu-upsampler-bench [--accuracy-only | --timing-only] [Google Benchmark flags]   (--help: usage)
 //
 // First a round-trip accuracy report (a plain table: Google Benchmark's counters do not fit it) on the 33³ RGB
 // grids of sRGB, ACEScg and Rec.2020: CIEDE2000 mean / p99 / max of both paths, unmapped and mapped, and the
@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "bench_support.h"
 #include "render/image_texture.h"
 #include "spectral/cielab.h"
 #include "spectral/colorimetry.h"
@@ -196,19 +197,31 @@ std::vector<SampledWavelengths> wavelength_sets() {
   return out;
 }
 
+// One timing loop: DoNotOptimize(call(i)) for i = 0, 1, 2, … (callers index their 4096-entry inputs by i & 4095).
+template <class Call>
+void time_each(benchmark::State& state, Call call) {
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(call(i++));
+}
+
+// The fast path's coefficients of random_colours(): what the evaluation benchmarks evaluate.
+std::vector<BasisCoefficients> random_coefficients(const RgbUpsampler& up) {
+  std::vector<BasisCoefficients> out;
+  for (const Rgb& rgb : random_colours()) out.push_back(up.reflectance_coefficients(rgb));
+  return out;
+}
+
 void BM_Setup_Exact(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
   const auto colours = random_colours();
-  size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(up.reflectance_spectrum(colours[i++ & 4095]));
+  time_each(state, [&](size_t i) { return up.reflectance_spectrum(colours[i & 4095]); });
 }
 BENCHMARK(BM_Setup_Exact);
 
 void BM_Setup_FastCoefficients(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
   const auto colours = random_colours();
-  size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(up.reflectance_coefficients(colours[i++ & 4095]));
+  time_each(state, [&](size_t i) { return up.reflectance_coefficients(colours[i & 4095]); });
 }
 BENCHMARK(BM_Setup_FastCoefficients);
 
@@ -217,47 +230,39 @@ void BM_Setup_FastCoefficients_Muted(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
   auto colours = random_colours();
   for (Rgb& c : colours) c = {0.25 + 0.3 * c.r, 0.25 + 0.3 * c.g, 0.25 + 0.3 * c.b};
-  size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(up.reflectance_coefficients(colours[i++ & 4095]));
+  time_each(state, [&](size_t i) { return up.reflectance_coefficients(colours[i & 4095]); });
 }
 BENCHMARK(BM_Setup_FastCoefficients_Muted);
 
 void BM_Setup_FastKnotSpectrum(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
   const auto colours = random_colours();
-  size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(up.fast_reflectance_spectrum(colours[i++ & 4095]));
+  time_each(state, [&](size_t i) { return up.fast_reflectance_spectrum(colours[i & 4095]); });
 }
 BENCHMARK(BM_Setup_FastKnotSpectrum);
 
 void BM_Setup_FastEmissionCoefficients(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
   const auto colours = random_colours();
-  size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(up.emission_coefficients(colours[i++ & 4095]));
+  time_each(state, [&](size_t i) { return up.emission_coefficients(colours[i & 4095]); });
 }
 BENCHMARK(BM_Setup_FastEmissionCoefficients);
 
 void BM_Eval4_KnotSpectrum(benchmark::State& state) {
   const ReflectanceSpectrum s = upsampler("srgb-linear").reflectance_spectrum({0.6, 0.3, 0.1});
   const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(s.evaluate(lambdas[i++ & 4095]));
+  time_each(state, [&](size_t i) { return s.evaluate(lambdas[i & 4095]); });
 }
 BENCHMARK(BM_Eval4_KnotSpectrum);
 
 // The knot-clamped evaluation (evaluate_clamped: clamp the two knots, then interpolate), the reference.
 void BM_Eval4_BasisCoefficients_KnotClamped(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
-  std::vector<BasisCoefficients> cs;
-  for (const Rgb& rgb : random_colours()) cs.push_back(up.reflectance_coefficients(rgb));
+  const auto cs = random_coefficients(up);
   const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        up.basis().evaluate_clamped(cs[i & 4095], lambdas[(i >> 3) & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
-    ++i;
-  }
+  time_each(state, [&](size_t i) {
+    return up.basis().evaluate_clamped(cs[i & 4095], lambdas[(i >> 3) & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f));
+  });
 }
 BENCHMARK(BM_Eval4_BasisCoefficients_KnotClamped);
 
@@ -266,15 +271,11 @@ BENCHMARK(BM_Eval4_BasisCoefficients_KnotClamped);
 // evaluations of different colours per wavelength set.
 void BM_Eval4_BasisCoefficients(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
-  std::vector<BasisCoefficients> cs;
-  for (const Rgb& rgb : random_colours()) cs.push_back(up.reflectance_coefficients(rgb));
+  const auto cs = random_coefficients(up);
   const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        up.basis().evaluate(cs[i & 4095], lambdas[(i >> 3) & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
-    ++i;
-  }
+  time_each(state, [&](size_t i) {
+    return up.basis().evaluate(cs[i & 4095], lambdas[(i >> 3) & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f));
+  });
 }
 BENCHMARK(BM_Eval4_BasisCoefficients);
 
@@ -282,23 +283,18 @@ BENCHMARK(BM_Eval4_BasisCoefficients);
 // evaluation of every path pays it).
 void BM_Eval4_BasisCoefficients_NewWavelengths(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
-  std::vector<BasisCoefficients> cs;
-  for (const Rgb& rgb : random_colours()) cs.push_back(up.reflectance_coefficients(rgb));
+  const auto cs = random_coefficients(up);
   const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        up.basis().evaluate(cs[i & 4095], lambdas[i & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f)));
-    ++i;
-  }
+  time_each(state, [&](size_t i) {
+    return up.basis().evaluate(cs[i & 4095], lambdas[i & 4095].lambda_nm(), Float4(0.0f), Float4(1.0f));
+  });
 }
 BENCHMARK(BM_Eval4_BasisCoefficients_NewWavelengths);
 
 void BM_Eval4_EmissionExact(benchmark::State& state) {
   const UpsampledEmission e = upsampler("srgb-linear").upsample_emission({0.8, 0.2, 0.1});
   const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(e.spectrum.evaluate(lambdas[i++ & 4095]));
+  time_each(state, [&](size_t i) { return e.spectrum.evaluate(lambdas[i & 4095]); });
 }
 BENCHMARK(BM_Eval4_EmissionExact);
 
@@ -329,40 +325,24 @@ void BM_TextureLookup_PerLookupExact(benchmark::State& state) {
   const RgbUpsampler& up = upsampler("srgb-linear");
   const auto uvs = random_uvs();
   const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) {
-    const size_t j = i++ & 4095;
-    benchmark::DoNotOptimize(up.reflectance_spectrum(image->bilinear(uvs[j])).evaluate(lambdas[j]));
-  }
+  time_each(state, [&](size_t i) {
+    return up.reflectance_spectrum(image->bilinear(uvs[i & 4095])).evaluate(lambdas[i & 4095]);
+  });
 }
 BENCHMARK(BM_TextureLookup_PerLookupExact);
 
-void BM_TextureLookup_Basis(benchmark::State& state) {
+// 2^`shift` lookups per wavelength set: 1 refills the per-thread basis cache at every lookup (the worst case), 8 is
+// what a path that meets textures several times pays per lookup.
+void time_texture_lookups(benchmark::State& state, int shift) {
   auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));
   const ImageTexture texture(random_image(int(state.range(0))), shared, 1.0f);
   const auto uvs = random_uvs();
   const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) {
-    const size_t j = i++ & 4095;
-    benchmark::DoNotOptimize(texture.evaluate(uvs[j], lambdas[j]));
-  }
+  time_each(state, [&](size_t i) { return texture.evaluate(uvs[i & 4095], lambdas[(i >> shift) & 4095]); });
 }
+void BM_TextureLookup_Basis(benchmark::State& state) { time_texture_lookups(state, 0); }
 BENCHMARK(BM_TextureLookup_Basis)->Arg(64)->Arg(1024);
-
-// The same with 8 lookups per wavelength set: what a path that meets textures several times pays per lookup
-// (BM_TextureLookup_Basis refills the per-thread basis cache at every lookup, the worst case).
-void BM_TextureLookup_Basis_SameWavelengths(benchmark::State& state) {
-  auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));
-  const ImageTexture texture(random_image(int(state.range(0))), shared, 1.0f);
-  const auto uvs = random_uvs();
-  const auto lambdas = wavelength_sets();
-  size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(texture.evaluate(uvs[i & 4095], lambdas[(i >> 3) & 4095]));
-    ++i;
-  }
-}
+void BM_TextureLookup_Basis_SameWavelengths(benchmark::State& state) { time_texture_lookups(state, 3); }
 BENCHMARK(BM_TextureLookup_Basis_SameWavelengths)->Arg(64);
 
 void BM_TextureConversion_PerTexel(benchmark::State& state) {
@@ -376,18 +356,24 @@ BENCHMARK(BM_TextureConversion_PerTexel)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool accuracy = true, timing = true;
+  CLI::App app{"RGB -> spectrum upsampler: round-trip accuracy of the exact and fast paths on the 33^3 grids of "
+               "sRGB, ACEScg and Rec.2020, then Google Benchmark timings (setup, 4-lane evaluation, texture lookup). "
+               "Options it does not know (--benchmark_filter=..., --benchmark_min_time=...) go to Google Benchmark.",
+               "rimu-upsampler-bench"};
+  bool accuracy_only = false, timing_only = false;
+  CLI::Option* accuracy_flag = app.add_flag("--accuracy-only", accuracy_only, "the accuracy report alone");
+  app.add_flag("--timing-only", timing_only, "the timings alone")->excludes(accuracy_flag);
+  app.allow_extras();
+  bench::parse_command_line(app, argc, argv);
+  std::vector<std::string> extras = app.remaining();
   std::vector<char*> rest = {argv[0]};
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--accuracy-only") == 0) timing = false;
-    else if (std::strcmp(argv[i], "--timing-only") == 0) accuracy = false;
-    else rest.push_back(argv[i]);
-  }
+  for (std::string& e : extras) rest.push_back(e.data());
   std::printf("build: %s\n\n", RIMU_BENCH_BUILD);
-  if (accuracy) accuracy_report();
-  if (timing) {
+  if (!timing_only) accuracy_report();
+  if (!accuracy_only) {
     int count = int(rest.size());
     benchmark::Initialize(&count, rest.data());
+    if (benchmark::ReportUnrecognizedArguments(count, rest.data())) return 1;
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
   }

@@ -30,16 +30,9 @@ SampledSpectrum ImageTexture::evaluate(Vec2 uv, const SampledWavelengths& lambda
   const int x0 = wrap(int(fx), width_), x1 = wrap(int(fx) + 1, width_);
   const int y0 = wrap(int(fy), height_), y1 = wrap(int(fy) + 1, height_);
   const BasisCoefficients* t[4] = {&texel(x0, y0), &texel(x1, y0), &texel(x0, y1), &texel(x1, y1)};
-  const __m128 w[4] = {_mm_set1_ps((1 - tx) * (1 - ty)), _mm_set1_ps(tx * (1 - ty)), _mm_set1_ps((1 - tx) * ty),
-                       _mm_set1_ps(tx * ty)};
-  BasisCoefficients blend;
-  for (int k = 0; k < kUpsamplingBasisSize; k += 4) {
-    __m128 s = _mm_mul_ps(w[0], _mm_load_ps(&t[0]->c[k]));
-    for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(w[c], _mm_load_ps(&t[c]->c[k])));
-    _mm_store_ps(&blend.c[k], s);
-  }
+  const float w[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
   // Clamped: the basis truncation rings a few 1e-3 around the exact spectrum's zeros and peaks.
-  return upsampler_->basis().evaluate(blend, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f)) * Float4(scale_);
+  return upsampler_->basis().evaluate_blend(t, w, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f)) * Float4(scale_);
 }
 
 }  // namespace rimu

@@ -20,6 +20,12 @@ void check_finite(const Rgb& rgb, const std::string& space, const SourceLocation
                               " is not finite: every component must be a finite number to be upsampled");
 }
 
+/// RGB (0, 0, 0): every upsample_* and *_coefficients call gives exactly zero for it, not "mapped".
+bool is_black(const Rgb& rgb) { return rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0; }
+
+/// A colour no non-negative spectrum has (possible with negative components): Y ≤ 0 or X + Y + Z ≤ 0 (NaN-safe).
+bool has_no_spectrum(const Xyz& xyz) { return !(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0); }
+
 /// Re-imposes XYZ = target on a non-negative knot spectrum by the smallest change in the metric Σ ΔS_i²/S_i:
 /// ΔS = diag(S)·Aᵀλ with (A·diag(S)·Aᵀ)·λ = target − A·S. Knots at zero stay at zero, so the result stays ≥ 0
 /// if the relative change 1 + (Aᵀλ)_i stays ≥ 0; where it does not, the knot is clamped to 0 and the step
@@ -105,10 +111,10 @@ KnotValues RgbUpsampler::reflectance_knots(const Xyz& xyz, bool* moved) const {
 UpsampledReflectance RgbUpsampler::upsample_reflectance(const Rgb& rgb, const SourceLocation& where) const {
   check_finite(rgb, space_.name(), where);
   UpsampledReflectance out;
-  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) return out;
+  if (is_black(rgb)) return out;
   const Xyz xyz = space_.to_xyz(rgb);
   const Xyz white = colorimetry_.white_xyz();
-  if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+  if (has_no_spectrum(xyz)) {
     out.gamut_mapped = true;
     out.delta_e2000 = delta_e(xyz, Xyz{}, white);
     return out;
@@ -122,9 +128,9 @@ UpsampledReflectance RgbUpsampler::upsample_reflectance(const Rgb& rgb, const So
 
 ReflectanceSpectrum RgbUpsampler::reflectance_spectrum(const Rgb& rgb, const SourceLocation& where) const {
   check_finite(rgb, space_.name(), where);
-  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) return {};
+  if (is_black(rgb)) return {};
   const Xyz xyz = space_.to_xyz(rgb);
-  if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) return {};
+  if (has_no_spectrum(xyz)) return {};
   bool moved = false;
   return ReflectanceSpectrum(reflectance_knots(xyz, &moved));
 }
@@ -132,9 +138,9 @@ ReflectanceSpectrum RgbUpsampler::reflectance_spectrum(const Rgb& rgb, const Sou
 UpsampledEmission RgbUpsampler::upsample_emission(const Rgb& rgb, const SourceLocation& where) const {
   check_finite(rgb, space_.name(), where);
   UpsampledEmission out;
-  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) return out;
+  if (is_black(rgb)) return out;
   const Xyz xyz = space_.to_xyz(rgb);
-  if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+  if (has_no_spectrum(xyz)) {
     out.gamut_mapped = true;
     out.delta_e2000 = delta_e(scaled(xyz, 1.0 / std::fmax(std::abs(xyz.y), 1e-300)), Xyz{}, colorimetry_.white_xyz());
     return out;
@@ -178,8 +184,8 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
   bool moved = false;
   BasisCoefficients c;
   const Xyz xyz = space_.to_xyz(rgb);
-  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) {
-  } else if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+  if (is_black(rgb)) {
+  } else if (has_no_spectrum(xyz)) {
     moved = true;
   } else {
     SmoothShapeBounds bounds;
@@ -230,8 +236,8 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
   bool moved = false;
   BasisCoefficients c;
   const Xyz xyz = space_.to_xyz(rgb);
-  if (rgb.r == 0.0 && rgb.g == 0.0 && rgb.b == 0.0) {
-  } else if (!(xyz.y > 0.0) || !(xyz.x + xyz.y + xyz.z > 0.0)) {
+  if (is_black(rgb)) {
+  } else if (has_no_spectrum(xyz)) {
     moved = true;
   } else {
     SmoothShapeBounds bounds;

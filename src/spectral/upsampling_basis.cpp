@@ -113,6 +113,31 @@ std::vector<Vector> eigenvectors_descending(std::vector<double>& a) {
 
 }  // namespace
 
+namespace upsampling_kernels {
+
+__m128 dot_lanes_sse(const float* phi, const float* c) {
+  const __m128 c0 = _mm_loadu_ps(c), c1 = _mm_loadu_ps(c + 4), c2 = _mm_loadu_ps(c + 8), c3 = _mm_loadu_ps(c + 12);
+  __m128 lane[4];
+  for (int l = 0; l < 4; ++l) {
+    const float* p = phi + 16 * l;
+    lane[l] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_load_ps(p)), _mm_mul_ps(c1, _mm_load_ps(p + 4))),
+                         _mm_add_ps(_mm_mul_ps(c2, _mm_load_ps(p + 8)), _mm_mul_ps(c3, _mm_load_ps(p + 12))));
+  }
+  return _mm_hadd_ps(_mm_hadd_ps(lane[0], lane[1]), _mm_hadd_ps(lane[2], lane[3]));
+}
+
+__m128 blend_dot_lanes_sse(const float* phi, const BasisCoefficients* const corner[4], const float weight[4]) {
+  alignas(16) float blend[K];
+  for (int k = 0; k < K; k += 4) {
+    __m128 s = _mm_mul_ps(_mm_set1_ps(weight[0]), _mm_loadu_ps(&corner[0]->c[k]));
+    for (int j = 1; j < 4; ++j) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(weight[j]), _mm_loadu_ps(&corner[j]->c[k])));
+    _mm_store_ps(blend + k, s);
+  }
+  return dot_lanes_sse(phi, blend);
+}
+
+}  // namespace upsampling_kernels
+
 UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry)
     : angle_count_(table.angle_count), radius_count_(table.radius_count) {
   static std::atomic<uint64_t> next_id{1};
@@ -121,6 +146,10 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
   for (int r = 0; r + 1 < radius_count_; ++r) row_inverse_spacing_.push_back(1.0 / (radius_rows_[r + 1] - radius_rows_[r]));
   angle_scale_ = angle_count_ / (2 * std::numbers::pi);
   avx2_fma_ = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  if (avx2_fma_) {
+    dot_lanes_ = upsampling_kernels::dot_lanes_avx2;
+    blend_dot_lanes_ = upsampling_kernels::blend_dot_lanes_avx2;
+  }
   Vector a[3];
   for (int k = 0; k < 3; ++k)
     for (int i = 0; i < n; ++i) a[k][i] = colorimetry.row(k)[i];
@@ -175,7 +204,7 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
     }
   for (int k = 0; k < K; ++k)
     for (int c = 0; c < 3; ++c) xyz_rows_[c][k] = dot(a[c], basis[k]);
-  entry_.resize(entries);
+  entries_.resize(entries);
   for (size_t e = 0; e < entries; ++e) {
     Vector s = shapes[e];
     for (double& v : s) v /= table.luminance_limits[e];  // Y = 1
@@ -183,8 +212,8 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
     for (int m = 0; m < 3; ++m)
       for (int i = 0; i < n; ++i) weighted[m][i] = s[i] * a[m][i];
     for (int k = 0; k < K; ++k) {
-      entry_[e][0].c[k] = float(dot(s, basis[k]));
-      for (int m = 0; m < 3; ++m) entry_[e][m + 1].c[k] = float(dot(basis[k], weighted[m]));  // D = Φᵀ diag(S) Aᵀ
+      entries_[e].parts[0].c[k] = float(dot(s, basis[k]));
+      for (int m = 0; m < 3; ++m) entries_[e].parts[m + 1].c[k] = float(dot(basis[k], weighted[m]));  // D = Φᵀ diag(S) Aᵀ
     }
   }
   // Clamping at zero moves the colour of spectra that ring around a zero region. At each entry the coefficients
@@ -194,22 +223,21 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
   colorimetry_rows_.assign(3 * size_t(n + 1), 0.0f);
   for (int c = 0; c < 3; ++c)
     for (int i = 0; i < n; ++i) colorimetry_rows_[size_t(c) * (n + 1) + i] = float(a[c][i]);
-  summary_.resize(entries);
   for (size_t e = 0; e < entries; ++e) {
-    const Xyz target = xyz_of(entry_[e][0]);
-    fit_clamped(entry_[e][0], {entry_[e][1], entry_[e][2], entry_[e][3]}, target, INFINITY);
-    const Xyz fitted = xyz_of(entry_[e][0]);
-    summary_[e].v[13] = float(fitted.x - target.x), summary_[e].v[14] = float(fitted.y - target.y),
-    summary_[e].v[15] = float(fitted.z - target.z);
+    const Xyz target = xyz_of(entries_[e].parts[0]);
+    fit_clamped(entries_[e].parts[0], {entries_[e].parts[1], entries_[e].parts[2], entries_[e].parts[3]}, target, INFINITY);
+    const Xyz fitted = xyz_of(entries_[e].parts[0]);
+    entries_[e].summary[13] = float(fitted.x - target.x), entries_[e].summary[14] = float(fitted.y - target.y),
+    entries_[e].summary[15] = float(fitted.z - target.z);
   }
   for (size_t e = 0; e < entries; ++e) {
-    std::array<float, 16>& v = summary_[e].v;
+    std::array<float, 16>& v = entries_[e].summary;
     for (int part = 0; part < 4; ++part) {
-      const Xyz x = xyz_of(entry_[e][part]);
+      const Xyz x = xyz_of(entries_[e].parts[part]);
       if (part == 0) v[0] = float(x.x), v[1] = float(x.y), v[2] = float(x.z);
       else v[3 + 0 * 3 + (part - 1)] = float(x.x), v[3 + 1 * 3 + (part - 1)] = float(x.y), v[3 + 2 * 3 + (part - 1)] = float(x.z);
     }
-    const KnotValues knots_e = knots(entry_[e][0]);
+    const KnotValues knots_e = knots(entries_[e].parts[0]);
     v[12] = float(*std::max_element(knots_e.begin(), knots_e.end()));
   }
   for (int m = 0; m < 3; ++m)
@@ -339,12 +367,15 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
   const float tr = float(std::clamp((rho - radius_rows_[r0]) * row_inverse_spacing_[r0], 0.0, 1.0));
   const size_t e[4] = {size_t(a0) * radius_count_ + r0, size_t(a1) * radius_count_ + r0,
                        size_t(a0) * radius_count_ + r0 + 1, size_t(a1) * radius_count_ + r0 + 1};
+  // The corners' coefficients (the line after each summary) are read after the 3×3 solve: requested now, so that
+  // their latency overlaps the solve's.
+  for (const size_t entry : e) _mm_prefetch(reinterpret_cast<const char*>(&entries_[entry].parts[0]), _MM_HINT_T0);
   const float w[4] = {(1 - ta) * (1 - tr), ta * (1 - tr), (1 - ta) * tr, ta * tr};
   // M·c, M·D, the peak and δ are linear in the entries too: interpolated, not recomputed.
   alignas(16) float summary[16];
   for (int j = 0; j < 16; j += 4) {
-    __m128 s = _mm_mul_ps(_mm_set1_ps(w[0]), _mm_load_ps(&summary_[e[0]].v[j]));
-    for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(w[c]), _mm_load_ps(&summary_[e[c]].v[j])));
+    __m128 s = _mm_mul_ps(_mm_set1_ps(w[0]), _mm_load_ps(&entries_[e[0]].summary[j]));
+    for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(w[c]), _mm_load_ps(&entries_[e[c]].summary[j])));
     _mm_store_ps(summary + j, s);
   }
   // Exact colour: c += D·λ with (M·D)·λ = t + δ − M·c, δ the clamping offset. Cramer's rule on the 3×3 (one
@@ -364,8 +395,8 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
     lambda[1] = float((c01 * r[0] + (m00 * m22 - m02 * m20) * r[1] + (m02 * m10 - m00 * m12) * r[2]) * inv);
     lambda[2] = float((c02 * r[0] + (m01 * m20 - m00 * m21) * r[1] + (m00 * m11 - m01 * m10) * r[2]) * inv);
   }
-  const float* corner[4] = {entry_[e[0]][0].c.data(), entry_[e[1]][0].c.data(), entry_[e[2]][0].c.data(),
-                            entry_[e[3]][0].c.data()};
+  const float* corner[4] = {entries_[e[0]].parts[0].c.data(), entries_[e[1]].parts[0].c.data(),
+                            entries_[e[2]].parts[0].c.data(), entries_[e[3]].parts[0].c.data()};
   alignas(16) float weight[16];
   for (int c = 0; c < 4; ++c)
     weight[4 * c] = w[c], weight[4 * c + 1] = w[c] * lambda[0], weight[4 * c + 2] = w[c] * lambda[1],

@@ -12,19 +12,14 @@
 #include "spectral/rgb_upsampler.h"
 #include "spectral/smoothest_spectrum.h"
 #include "test_support.h"
+#include "upsampler_fixture.h"
 
 using namespace rimu;
 
 namespace {
 
-const RgbUpsampler& upsampler(const std::string& space) {
-  static std::map<std::string, std::unique_ptr<RgbUpsampler>> cache;
-  auto& slot = cache[space];
-  if (!slot) slot = std::make_unique<RgbUpsampler>(test::library(), RgbColourSpace::named(space));
-  return *slot;
-}
-
-const char* const kSpaces[] = {"srgb-linear", "rec2020", "display-p3", "acescg", "aces2065-1", "cie-rgb"};
+using test::upsampler;
+const auto& kSpaces = test::kUpsamplerSpaces;
 
 /// One unit in the last place of a float near `x`: the resolution the knots are stored with.
 float ulp(float x) { return std::nextafter(x, 2 * x + 1) - x; }

@@ -16,19 +16,14 @@
 #include "spectral/delta_e.h"
 #include "spectral/rgb_upsampler.h"
 #include "test_support.h"
+#include "upsampler_fixture.h"
 
 using namespace rimu;
 
 namespace {
 
-const RgbUpsampler& upsampler(const std::string& space) {
-  static std::map<std::string, std::unique_ptr<RgbUpsampler>> cache;
-  auto& slot = cache[space];
-  if (!slot) slot = std::make_unique<RgbUpsampler>(test::library(), RgbColourSpace::named(space));
-  return *slot;
-}
-
-const char* const kSpaces[] = {"srgb-linear", "rec2020", "display-p3", "acescg", "aces2065-1", "cie-rgb"};
+using test::upsampler;
+const auto& kSpaces = test::kUpsamplerSpaces;
 
 /// Deterministic uniform numbers in [0, 1) (a 32-bit LCG: reproducible failures).
 struct Random {
@@ -290,6 +285,45 @@ TEST_CASE("fast path: the rendering evaluation is the knot-clamped one wherever 
       for (int lane = 0; lane < kLaneCount; ++lane) CHECK(std::abs(free_got[lane] - free_want[lane]) <= 2e-6);
     }
     CHECK(crossing_lanes > 0);  // the random colours include ringing ones: the bound above was exercised
+  }
+}
+
+TEST_CASE("fast path: the AVX2 and SSE evaluation kernels agree, and evaluate_blend is evaluate of the blend") {
+  // evaluate() runs whichever kernel the CPU chose; both builds are compared here directly on the same cached
+  // basis values (the AVX2 one only where the CPU has it), then the texture lookup's fused blend against
+  // evaluate() of the blend formed in memory. A wrong lane order, a lost half of the 16 terms or a wrong weight
+  // moves values by far more than the float rounding of a 16-term sum (|c_k φ_k| ≤ ~1, so 1e-5 absolute).
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  Random random{29};
+  for (int i = 0; i < 200; ++i) {
+    CAPTURE(i);
+    BasisCoefficients corners[4];
+    for (BasisCoefficients& c : corners) c = up.reflectance_coefficients({random.next(), random.next(), random.next()});
+    const float w0 = float(random.next()), w1 = float(random.next());
+    const float weight[4] = {(1 - w0) * (1 - w1), w0 * (1 - w1), (1 - w0) * w1, w0 * w1};
+    const SampledWavelengths lambda = SampledWavelengths::sample_visible(float(random.next()));
+    const UpsamplingBasis::BasisAtWavelengths& phi = up.basis().at(lambda.lambda_nm());
+    const Float4 sse(upsampling_kernels::dot_lanes_sse(phi.phi[0], corners[0].c.data()));
+    for (int lane = 0; lane < kLaneCount; ++lane) {
+      double want = 0;
+      for (int k = 0; k < kUpsamplingBasisSize; ++k) want += double(phi.phi[lane][k]) * corners[0].c[k];
+      CHECK(std::abs(sse[lane] - want) <= 1e-5);
+    }
+    if (avx2) {
+      const Float4 fused(upsampling_kernels::dot_lanes_avx2(phi.phi[0], corners[0].c.data()));
+      CHECK(max_lane(abs(fused - sse)) <= 1e-5f);
+    }
+    BasisCoefficients blend;
+    for (int k = 0; k < kUpsamplingBasisSize; ++k)
+      for (int j = 0; j < 4; ++j) blend.c[k] += weight[j] * corners[j].c[k];
+    const BasisCoefficients* corner_pointers[4] = {&corners[0], &corners[1], &corners[2], &corners[3]};
+    const Float4 free_lo(-INFINITY), free_hi(INFINITY);
+    const Float4 want = up.basis().evaluate(blend, lambda.lambda_nm(), free_lo, free_hi);
+    CHECK(max_lane(abs(up.basis().evaluate_blend(corner_pointers, weight, lambda.lambda_nm(), free_lo, free_hi) -
+                       want)) <= 1e-5f);
+    const Float4 sse_blend(upsampling_kernels::blend_dot_lanes_sse(phi.phi[0], corner_pointers, weight));
+    CHECK(max_lane(abs(sse_blend - want)) <= 1e-5f);
   }
 }
 
