@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "spectral/blackbody_spectrum.h"
+#include "spectral/daylight.h"
 #include "spectral/error.h"
 
 namespace rimu {
@@ -12,6 +13,8 @@ namespace {
 
 // Blackbody CCTs accepted for white balance: the range rimu-light and the scene's {"blackbody": T} accept.
 constexpr double kMinCct_k = 1000.0, kMaxCct_k = 25000.0;
+// CIE daylight (CIE 15:2004 eqs. 3.3-3.4) is defined from 4000 K up.
+constexpr double kMinDaylightCct_k = 4000.0;
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -26,6 +29,7 @@ std::string WhiteBalanceSettings::describe() const {
   switch (kind) {
     case Kind::none: return "none";
     case Kind::cct: return number_text(cct_k) + " K";
+    case Kind::daylight: return "daylight " + number_text(cct_k) + " K";
     case Kind::illuminant: return "illuminant " + illuminant;
   }
   return "none";
@@ -51,14 +55,20 @@ PhysicalCameraSettings parse_exposure(const JsonCursor& c) {
 WhiteBalanceSettings parse_white_balance(const JsonCursor& c, SpectralLibrary& library) {
   WhiteBalanceSettings wb;
   if (c.is_string()) {
-    if (c.string() != "none") c.fail("expected \"none\", {\"cct\": K} or {\"illuminant\": name}");
+    if (c.string() != "none") c.fail("expected \"none\", {\"cct\": K}, {\"daylight_cct\": K} or {\"illuminant\": name}");
     return wb;
   }
-  if (!c.is_object() || c.size() != 1) c.fail("expected \"none\", {\"cct\": K} or {\"illuminant\": name}");
-  c.only_keys({"cct", "illuminant"});
+  if (!c.is_object() || c.size() != 1)
+    c.fail("expected \"none\", {\"cct\": K}, {\"daylight_cct\": K} or {\"illuminant\": name}");
+  c.only_keys({"cct", "daylight_cct", "illuminant"});
   if (c.has("cct")) {
     wb.kind = WhiteBalanceSettings::Kind::cct;
     wb.cct_k = c.at("cct").number(kMinCct_k, kMaxCct_k);
+    return wb;
+  }
+  if (c.has("daylight_cct")) {
+    wb.kind = WhiteBalanceSettings::Kind::daylight;
+    wb.cct_k = c.at("daylight_cct").number(kMinDaylightCct_k, kMaxCct_k);
     return wb;
   }
   wb.kind = WhiteBalanceSettings::Kind::illuminant;
@@ -115,6 +125,10 @@ FilmOutputTransform film_output_transform(const CameraExposureSettings& camera, 
     case WhiteBalanceSettings::Kind::cct:
       t.channel_matrix = white_balance_matrix(
           BlackbodySpectrum(camera.white_balance.cct_k, BlackbodySpectrum::Scale::peak_one), response, library);
+      break;
+    case WhiteBalanceSettings::Kind::daylight:
+      t.channel_matrix = white_balance_matrix(daylight_spectrum(library.daylight_basis(), camera.white_balance.cct_k),
+                                              response, library);
       break;
     case WhiteBalanceSettings::Kind::illuminant:
       t.channel_matrix = white_balance_matrix(*library.illuminant(camera.white_balance.illuminant), response, library);

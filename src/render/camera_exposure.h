@@ -2,12 +2,13 @@
 // output transform they resolve to (render/film_output_transform.h, applied when the film is written).
 //
 //   "camera": {..., "exposure": {"iso": 100, "shutter_s": 0.01, "f_number": 16, "compensation_ev": 0},
-//                   "white_balance": {"cct": 2700} | {"illuminant": "A"} | "none"}
+//                   "white_balance": {"cct": 2700} | {"daylight_cct": 6504} | {"illuminant": "A"} | "none"}
 //
 // Without "exposure" the film is written in film units (Y = 1 ↔ 72 983 nt for an XYZ film), as before. With it,
 // values are multiplied by the imaging ratio of physical_camera.h, so a surface at the metered luminance
 // K N²/(t S) (K = 12.5) is written as 0.18. A white balance "cct" is a Planckian (blackbody) white of that
-// temperature, as a camera's Kelvin setting is; "illuminant" is a CIE illuminant by name.
+// temperature, as a camera's Kelvin setting is; "daylight_cct" is CIE daylight of that correlated colour temperature
+// (S0 + M1·S1 + M2·S2, unrounded M, 4000-25000 K: pbrt-v4's "whitebalance"); "illuminant" is a CIE illuminant by name.
 #pragma once
 
 #include <map>
@@ -24,12 +25,13 @@ namespace rimu {
 
 /// The white the camera is balanced to.
 struct WhiteBalanceSettings {
-  enum class Kind { none, cct, illuminant };
+  enum class Kind { none, cct, daylight, illuminant };
   Kind kind = Kind::none;
-  double cct_k = 0;        ///< Kind::cct: a blackbody of this temperature, 1000-25000 K
+  double cct_k = 0;        ///< Kind::cct: a blackbody of this temperature, 1000-25000 K; Kind::daylight: CIE
+                           ///< daylight of this correlated colour temperature, 4000-25000 K
   std::string illuminant;  ///< Kind::illuminant: a CIE illuminant name (SpectralLibrary::illuminant)
 
-  /// "none", "2700 K", "illuminant A": for metadata and messages.
+  /// "none", "2700 K", "daylight 6504 K", "illuminant A": for metadata and messages.
   std::string describe() const;
 };
 
@@ -56,7 +58,8 @@ void check_camera_option(double value, const PhysicalCameraRange& range, const s
 
 /// Parses a scene camera's "exposure" object: iso, shutter_s, f_number required, compensation_ev optional (0).
 PhysicalCameraSettings parse_exposure(const JsonCursor& exposure);
-/// Parses "white_balance": {"cct": K}, {"illuminant": name} or "none"; unknown illuminants fail at the key.
+/// Parses "white_balance": {"cct": K}, {"daylight_cct": K}, {"illuminant": name} or "none"; unknown illuminants fail
+/// at the key.
 WhiteBalanceSettings parse_white_balance(const JsonCursor& white_balance, SpectralLibrary& library);
 /// Parses the command line's --white-balance: "none", a temperature ("2700" or "2700K"), or an illuminant name.
 WhiteBalanceSettings parse_white_balance_option(const std::string& text, SpectralLibrary& library,

@@ -14,7 +14,7 @@
 namespace rimu {
 
 /// True if any light of the scene document is given in photometric units (luminous_power_lm,
-/// luminous_intensity_cd, illuminance_lx, luminance_nt, or an "ies" light). Such scenes are in the tens to
+/// luminous_intensity_cd, illuminance_lx, luminance_nt, or an "ies" or "goniometric" light). Such scenes are in the tens to
 /// thousands of nits, which film units (Y = 1 ↔ 72 983 nt) show at a few codes of 255.
 bool uses_photometric_units(const nlohmann::json& scene_document);
 

@@ -94,4 +94,19 @@ float CandelaDistribution::pdf(Vec3 w) const {
   return float(double(cells_.pdf(centre)) / double(nc * ng) / solid_angle);
 }
 
+std::optional<std::pair<double, double>> CandelaDistribution::nonzero_gamma_rad() const {
+  int first = -1, last = -1;
+  for (int j = 0; j < int(gamma_deg_.size()); ++j)
+    for (size_t i = 0; i < c_deg_.size(); ++i)
+      if (value(i, size_t(j)) > 0.0) {
+        if (first < 0) first = j;
+        last = j;
+        break;
+      }
+  if (first < 0) return std::nullopt;
+  // Between grid angles the interpolant is positive only next to a positive grid value.
+  return std::pair{gamma_deg_[size_t(std::max(first - 1, 0))] * kDegToRad,
+                   gamma_deg_[size_t(std::min(last + 1, int(gamma_deg_.size()) - 1))] * kDegToRad};
+}
+
 }  // namespace rimu

@@ -21,34 +21,34 @@
 #include <vector>
 
 #include "transport/distribution_2d.h"
+#include "transport/intensity_distribution.h"
 #include "transport/vector.h"
 
 namespace rimu {
 
-class CandelaDistribution {
+class CandelaDistribution final : public IntensityDistribution {
  public:
   /// `gamma_deg` strictly increasing in [0, 180] (≥ 2 values), `c_deg` strictly increasing from 0 to 360 (≥ 2
   /// values), `values[c_index · gamma_count + gamma_index]` ≥ 0 (asserted: the IES reader checks user input).
   CandelaDistribution(std::vector<double> gamma_deg, std::vector<double> c_deg, std::vector<double> values);
 
   /// I at local direction `w` (unit), bilinear between grid points.
-  double intensity(Vec3 w) const;
+  double intensity(Vec3 w) const override;
   /// I at angles γ, C in degrees (C taken modulo 360).
   double intensity_deg(double gamma_deg, double c_deg) const;
   /// ∫ I dω over the sphere (exact for the bilinear interpolant): lm for a candela table.
-  double integral_sr() const { return integral_; }
+  double integral_sr() const override { return integral_; }
   /// The largest tabulated value.
-  double peak() const { return peak_; }
+  double peak() const override { return peak_; }
 
-  struct DirectionSample {
-    Vec3 w;     ///< local, unit
-    float pdf;  ///< solid-angle density, > 0
-  };
   /// A direction with density ≈ I(w)/∫I (see above); std::nullopt if the table is all zero. Cost O(log n).
-  std::optional<DirectionSample> sample(Vec2 u) const;
+  std::optional<DirectionSample> sample(Vec2 u) const override;
   /// The solid-angle density sample() has at local direction `w`.
-  float pdf(Vec3 w) const;
+  float pdf(Vec3 w) const override;
 
+  /// The γ range of the non-zero grid values widened to the neighbouring grid angles the bilinear interpolation
+  /// reaches.
+  std::optional<std::pair<double, double>> nonzero_gamma_rad() const override;
   const std::vector<double>& gamma_deg() const { return gamma_deg_; }
   const std::vector<double>& c_deg() const { return c_deg_; }
 

@@ -10,7 +10,7 @@
 namespace rimu {
 
 GoniometricLight::GoniometricLight(Vec3 position_m, Vec3 axis, Vec3 c0_direction, LightSpectrum per_unit_intensity,
-                                   std::shared_ptr<const CandelaDistribution> table)
+                                   std::shared_ptr<const IntensityDistribution> table)
     : position_m_(position_m), per_unit_intensity_(std::move(per_unit_intensity)), table_(std::move(table)) {
   const Vec3 n = normalize(axis);
   const Vec3 s = normalize(c0_direction - n * dot(c0_direction, n));
@@ -19,6 +19,10 @@ GoniometricLight::GoniometricLight(Vec3 position_m, Vec3 axis, Vec3 c0_direction
   // so C = 90° is the t with s × t = −n: t = s × n (then s × (s × n) = s (s·n) − n (s·s) = −n).
   frame_ = Frame{s, cross(s, n), n};
 }
+
+GoniometricLight::GoniometricLight(Vec3 position_m, Frame frame, LightSpectrum per_unit_intensity,
+                                   std::shared_ptr<const IntensityDistribution> table)
+    : position_m_(position_m), frame_(frame), per_unit_intensity_(std::move(per_unit_intensity)), table_(std::move(table)) {}
 
 std::optional<LightSample> GoniometricLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                                        Vec2) const {
@@ -37,27 +41,15 @@ double GoniometricLight::total_power_w(double) const {
 std::optional<LightBounds> GoniometricLight::part_bounds(int part) const {
   const double intensity = per_unit_intensity_.integral_360_830() * table_->peak();
   if (part != 0 || !(intensity > 0.0)) return std::nullopt;
-  const std::vector<double>& gamma = table_->gamma_deg();
-  const std::vector<double>& c = table_->c_deg();
-  int first = -1, last = -1;
-  for (int j = 0; j < int(gamma.size()); ++j)
-    for (double c_deg : c)
-      if (table_->intensity_deg(gamma[size_t(j)], c_deg) > 0.0) {
-        if (first < 0) first = j;
-        last = j;
-        break;
-      }
-  if (first < 0) return std::nullopt;
-  const double to_rad = std::numbers::pi / 180.0;
-  // Between grid angles the interpolant is positive only next to a positive grid value.
-  const double gamma_min = gamma[size_t(std::max(first - 1, 0))] * to_rad;
-  const double gamma_max = gamma[size_t(std::min(last + 1, int(gamma.size()) - 1))] * to_rad;
+  const auto gamma = table_->nonzero_gamma_rad();
+  if (!gamma) return std::nullopt;
+  const auto [gamma_min, gamma_max] = *gamma;
   const double i = intensity;
   if (gamma_max <= std::numbers::pi - gamma_min) return point_light_bounds(position_m_, i, frame_.n, gamma_max, 0.0);
   return point_light_bounds(position_m_, i, -frame_.n, std::numbers::pi - gamma_min, 0.0);
 }
 
-std::optional<CandelaDistribution::DirectionSample> GoniometricLight::sample_emission_direction(Vec2 u) const {
+std::optional<IntensityDistribution::DirectionSample> GoniometricLight::sample_emission_direction(Vec2 u) const {
   auto s = table_->sample(u);
   if (s) s->w = frame_.to_world(s->w);
   return s;

@@ -1,10 +1,12 @@
 #include "render/scene/scene_ies_light.h"
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "render/scene/ies_file.h"
 #include "spectral/light_units.h"
+#include "transport/equal_area_intensity.h"
 #include "transport/goniometric_light.h"
 
 namespace rimu::scene_loading {
@@ -16,7 +18,60 @@ std::string format_number(double v) {
   return s.str();
 }
 
+/// The light's "spectrum" scaled so that one table unit is one candela: K_m Σ S V Δλ = 1.
+LightSpectrum per_candela_spectrum(const JsonCursor& l, LoadContext& context, const std::string& type) {
+  if (!l.has("spectrum")) l.fail("a" + type + " light needs 'spectrum': its spectral shape, e.g. {\"blackbody\": 3000}");
+  const JsonCursor spectrum_key = l.at("spectrum");
+  SpectrumPtr shape = context.spectra.parse(spectrum_key, SpectrumRole::emission);
+  ShapeIntegrals integrals;
+  try {
+    integrals = shape_integrals(*shape, context.spectra.library().photopic_v());
+  } catch (const InputError& e) {
+    spectrum_key.fail(e.explanation());
+  }
+  if (!std::isfinite(1.0 / integrals.luminous) || !(integrals.luminous > 0.0))
+    spectrum_key.fail("the spectrum's luminous integral (" + format_number(integrals.luminous) +
+                      ") cannot be normalised to 1 cd");
+  return LightSpectrum(std::move(shape), 1.0 / integrals.luminous);
+}
+
 }  // namespace
+
+std::unique_ptr<Light> load_goniometric_image_light(const JsonCursor& l, LoadContext& context, const Frame& frame) {
+  l.only_keys({"type", "name", "image", "encoding", "position", "frame", "spectrum", "luminous_power_lm", "candela_scale"});
+  const JsonCursor file = l.at("image");
+  const std::shared_ptr<const RgbImage> image = load_rgb_image(l, context.spectra.scene_directory() / file.string());
+  if (image->width() != image->height())
+    file.fail("an equal-area octahedral image must be square, not " + std::to_string(image->width()) + " x " +
+              std::to_string(image->height()));
+  if (l.has("luminous_power_lm") && l.has("candela_scale"))
+    l.at("candela_scale").fail("give either luminous_power_lm or candela_scale, not both");
+  // pbrt-v4 reads one value per pixel: a "Y" channel, or the mean of R, G and B.
+  std::vector<double> values;
+  values.reserve(size_t(image->width()) * size_t(image->height()));
+  double sum = 0.0;
+  for (int y = 0; y < image->height(); ++y)
+    for (int x = 0; x < image->width(); ++x) {
+      const Rgb p = image->pixel(x, y);
+      const double v = (double(p.r) + double(p.g) + double(p.b)) / 3.0;
+      if (!(v >= 0.0)) file.fail("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is negative: an intensity cannot be");
+      values.push_back(v);
+      sum += v;
+    }
+  if (!(sum > 0.0)) file.fail("the image is black: the light would emit nothing");
+  const double integral_sr = 4.0 * std::numbers::pi * sum / double(values.size());
+  double table_scale = 1.0;
+  if (const auto s = l.find("candela_scale")) table_scale = s->number(1e-30, 1e30);
+  if (const auto lm = l.find("luminous_power_lm")) table_scale = lm->number(1e-30, 1e30) / integral_sr;
+  if (!std::isfinite(table_scale * integral_sr) || !(table_scale * integral_sr > 0.0) || !(table_scale * integral_sr <= 1e30))
+    (l.has("luminous_power_lm") ? l.at("luminous_power_lm") : file)
+        .fail("the image's intensities give " + format_number(table_scale * integral_sr) +
+              " lm; a lamp must give more than 0 and at most 1e30 lm");
+  for (double& v : values) v *= table_scale;
+  auto table = std::make_shared<const EqualAreaIntensity>(image->width(), std::move(values));
+  return std::make_unique<GoniometricLight>(l.at("position").vec3(), frame, per_candela_spectrum(l, context, " goniometric"),
+                                            std::move(table));
+}
 
 std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context) {
   l.only_keys({"type", "name", "file", "position", "direction", "c0_direction", "spectrum", "luminous_power_lm",
@@ -37,16 +92,7 @@ std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context)
     if (!(length(cross(c0, n)) > 1e-6f * length(c0))) c->fail("c0_direction must not be parallel to the direction");
   }
 
-  if (!l.has("spectrum")) l.fail("an ies light needs 'spectrum': its spectral shape, e.g. {\"blackbody\": 3000}");
-  const JsonCursor spectrum_key = l.at("spectrum");
-  SpectrumPtr shape = context.spectra.parse(spectrum_key, SpectrumRole::emission);
-  ShapeIntegrals integrals;
-  try {
-    integrals = shape_integrals(*shape, context.spectra.library().photopic_v());
-  } catch (const InputError& e) {
-    spectrum_key.fail(e.explanation());
-  }
-
+  LightSpectrum per_candela = per_candela_spectrum(l, context, "n ies");
   double table_scale = 1.0;
   if (l.has("luminous_power_lm") && l.has("candela_scale"))
     l.at("candela_scale").fail("give either luminous_power_lm or candela_scale, not both");
@@ -67,11 +113,6 @@ std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context)
     table = candela_distribution(ies, scale);
   }
 
-  // One table unit = 1 cd: the shape scaled so that K_m Σ S V Δλ = 1 (lm/sr per W/sr of the scaled shape).
-  if (!std::isfinite(1.0 / integrals.luminous) || !(integrals.luminous > 0.0))
-    spectrum_key.fail("the spectrum's luminous integral (" + format_number(integrals.luminous) +
-                      ") cannot be normalised to 1 cd");
-  LightSpectrum per_candela(std::move(shape), 1.0 / integrals.luminous);
   return std::make_unique<GoniometricLight>(l.at("position").vec3(), n, c0, std::move(per_candela), std::move(table));
 }
 

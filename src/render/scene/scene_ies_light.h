@@ -15,11 +15,22 @@
 #include <memory>
 
 #include "render/scene/scene_load_context.h"
+#include "transport/frame.h"
 #include "transport/light.h"
 
 namespace rimu::scene_loading {
 
 /// Loads an "ies" light; errors name the key, or the IES file and line.
 std::unique_ptr<Light> load_ies_light(const JsonCursor& light, LoadContext& context);
+
+/// Loads a "goniometric" light: pbrt-v4's goniometric light, an equal-area octahedral image of intensities
+/// (transport/equal_area_intensity.h) whose local x, y, z are `frame`'s s, t, n.
+///
+///   {"type": "goniometric", "image": "lamp.exr", "position": [0, 3, 0], "frame": [s, t, n],
+///    "spectrum": {"blackbody": 3000}, "candela_scale": 2 | "luminous_power_lm": 1200}
+///
+/// A pixel's value is the mean of its R, G, B (pbrt's), in candela times "candela_scale", or scaled so that the
+/// light emits "luminous_power_lm"; the spectrum is normalised as an "ies" light's.
+std::unique_ptr<Light> load_goniometric_image_light(const JsonCursor& light, LoadContext& context, const Frame& frame);
 
 }  // namespace rimu::scene_loading

@@ -52,8 +52,12 @@ PortalSet load_portals(const JsonCursor& l) {
 std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context);
 
 std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
-  const std::string type = l.at("type").choice({"point", "spot", "distant", "environment", "ies"});
+  const std::string type = l.at("type").choice({"point", "spot", "distant", "environment", "ies", "goniometric"});
   if (type == "ies") return load_ies_light(l, context);
+  // A goniometric image's default frame: image centre (local +z) along +y, as pbrt's after its y-z swap.
+  if (type == "goniometric")
+    return load_goniometric_image_light(l, context,
+                                        l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, 1}, {0, 1, 0}});
   if (type == "point") {
     only_light_keys(l, {"type", "name", "position", "intensity"});
     const EmitterGeometry geometry{EmitterKind::point};

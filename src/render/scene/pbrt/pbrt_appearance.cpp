@@ -474,15 +474,10 @@ json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m
   return fields.contains("emission") ? fields["emission"] : fields;
 }
 
-json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world) {
-  const std::string context = "LightSource \"infinite\"";
-  if (p.get("L", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody}))
-    throw InputError(s.where, context + ": give either \"L\" or \"filename\", not both");
-  const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
-  if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
-  // pbrt looks a world direction up at EqualAreaSphereToSquare(light_from_world · d): the image's axes s, t, n are
-  // the world images of light-space x, y, z. Its light transform may mirror (a Frame of either handedness works);
-  // a shear or non-uniform scale, which bends pbrt's mapping, cannot be represented and is made rigid.
+std::array<Vec3d, 3> PbrtConverter::light_axes(const PbrtMatrix& world, const std::string& context,
+                                                const SourceLocation& where) {
+  // A light transform may mirror (a Frame of either handedness works); a shear or non-uniform scale, which bends
+  // pbrt's mapping, cannot be represented and is made rigid.
   std::array<Vec3d, 3> axes;
   for (int i = 0; i < 3; ++i) axes[i] = world.vector({i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0});
   const auto dot3 = [](const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
@@ -491,18 +486,29 @@ json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, con
   for (int i = 0; i < 3 && rigid; ++i)
     for (int j = 0; j < 3; ++j)
       rigid = rigid && std::abs(dot3(axes[i], axes[j]) - (i == j ? scale0 * scale0 : 0.0)) <= 1e-6 * scale0 * scale0;
-  if (!rigid) {
-    ignore(context + " under a shear or non-uniform scale (its axes are made perpendicular)", s.where);
-    for (int i = 0; i < 3; ++i) {  // Gram-Schmidt
+  if (!rigid) ignore(context + " under a shear or non-uniform scale (its axes are made perpendicular)", where);
+  for (int i = 0; i < 3; ++i) {  // Gram-Schmidt (for a rigid transform only the normalisation does anything)
+    if (!rigid)
       for (int j = 0; j < i; ++j) {
         const double d = dot3(axes[i], axes[j]);
         for (int c = 0; c < 3; ++c) axes[i][c] -= d * axes[j][c];
       }
-      const double len = std::sqrt(dot3(axes[i], axes[i]));
-      if (!(len > 0)) throw InputError(s.where, context + ": the current transform is singular");
-      for (int c = 0; c < 3; ++c) axes[i][c] /= len;
-    }
+    const double len = std::sqrt(dot3(axes[i], axes[i]));
+    if (!(len > 0)) throw InputError(where, context + ": the current transform is singular");
+    for (int c = 0; c < 3; ++c) axes[i][c] /= len;
   }
+  return axes;
+}
+
+json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world) {
+  const std::string context = "LightSource \"infinite\"";
+  if (p.get("L", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody}))
+    throw InputError(s.where, context + ": give either \"L\" or \"filename\", not both");
+  const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
+  if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
+  // pbrt looks a world direction up at EqualAreaSphereToSquare(light_from_world · d): the image's axes s, t, n are
+  // the world images of light-space x, y, z.
+  const std::array<Vec3d, 3> axes = light_axes(world, context, s.where);
   double scale = p.real("scale", 1.0);
   const double illuminance = p.real("illuminance", -1.0);
   if (illuminance > 0) {
@@ -526,18 +532,44 @@ json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, con
   }
   // A pixel of luminance Y is Y nits in pbrt (its spectrum divided by the colour space white's luminance), the
   // film's Y = 1 per nit: Rimu's film units, so pbrt's scale carries over unchanged.
-  const auto unit = [&](const Vec3d& a) {
-    const double len = std::sqrt(dot3(a, a));
-    return Vec3d{a[0] / len, a[1] / len, a[2] / len};
-  };
   return {{"type", "environment"}, {"image", path_for_document(path)}, {"mapping", "equal_area_octahedral"},
-          {"frame", {unit(axes[0]), unit(axes[1]), unit(axes[2])}}, {"scale", std::max(0.0, scale)}};
+          {"frame", {axes[0], axes[1], axes[2]}}, {"scale", std::max(0.0, scale)}};
+}
+
+json PbrtConverter::goniometric_light(PbrtParams& p, const PbrtStatement& s, const PbrtMatrix& world) {
+  // pbrt-v4 (GoniometricLight): I(λ, ω) = scale · I_spectrum(λ)/Y(I_spectrum) · image(EqualAreaSphereToSquare(w))
+  // with w the light-space direction after swapping y and z, and image the pixel's "Y" or mean of R, G, B (nearest
+  // pixel). So the image's local x, y, z are the world images of light-space x, z, y. "power" P replaces the image's
+  // own scale: k_e = 4π · mean(image), scale · P / k_e.
+  const std::string context = "LightSource \"goniometric\"";
+  const std::string filename = p.string("filename", "");
+  if (filename.empty()) {
+    ignore(context + " without \"filename\" (pbrt renders it dark)", s.where);
+    return nullptr;
+  }
+  const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
+  if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
+  const std::array<Vec3d, 3> axes = light_axes(world, context, s.where);
+  json light = {{"type", "goniometric"}, {"image", path_for_document(path)}, {"position", world.point({0, 0, 0})},
+                {"frame", {axes[0], axes[2], axes[1]}}};
+  // The file is decoded as the environment's image is (float images linear, 8-bit ones sRGB), as pbrt reads files
+  // without colour-space metadata; pbrt's goniometric light takes no "encoding".
+  const double power = p.real("power", -1.0);
+  // Rimu's candela per pixel unit: pbrt's scale · Y_rgb in film units (nits_per_unit_y_), as for a point light.
+  const json amount = light_amount(p, "I", "intensity", power > 0 ? "luminous_power_lm" : "candela_scale",
+                                   power > 0 ? std::optional<double>(power) : std::optional<double>(1.0));
+  if (!amount.contains("spectrum")) {
+    ignore(context + " with a scale of 0 (it emits nothing)", s.where);
+    return nullptr;
+  }
+  light.update(amount);
+  return light;
 }
 
 void PbrtConverter::light_source(const PbrtStatement& s) {
   const std::string& type = s.strings[0];
   const std::string context = "LightSource \"" + type + "\"";
-  if (type != "point" && type != "spot" && type != "distant" && type != "infinite") {
+  if (type != "point" && type != "spot" && type != "distant" && type != "infinite" && type != "goniometric") {
     ignore(context, s.where);
     return;
   }
@@ -555,6 +587,13 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
     return v.empty() ? fallback : Vec3d{v[0], v[1], v[2]};
   };
   json light = {{"type", type}};
+  if (type == "goniometric") {
+    json goniometric = goniometric_light(p, s, world);
+    if (goniometric.is_null()) return;
+    origin("/lights/" + std::to_string(lights_.size()), s.where, context);
+    lights_.push_back(std::move(goniometric));
+    return;
+  }
   if (type == "point") {
     light["position"] = world.point(point("from", {0, 0, 0}));
     const double power = p.real("power", -1.0);

@@ -138,6 +138,11 @@ class PbrtConverter {
   /// The value of float texture `name` if it is the same everywhere (constant, or scale/mix of such); empty
   /// otherwise. InputError (at `where`) for an unknown or spectrum texture.
   std::optional<double> constant_float_texture(const std::string& name, const SourceLocation& where, int depth);
+  /// The unit world images of light-space x, y, z under `world` (made perpendicular, and listed, under a shear or
+  /// non-uniform scale); InputError at `where` for a singular transform.
+  std::array<Vec3d, 3> light_axes(const PbrtMatrix& world, const std::string& context, const SourceLocation& where);
+  /// pbrt's "goniometric" light at the light transform `world`.
+  json goniometric_light(PbrtParams& p, const PbrtStatement& s, const PbrtMatrix& world);
   /// pbrt's "infinite" light with an equal-area octahedral image `filename`, in the light transform `world`.
   json image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world);
   std::string default_material();
@@ -153,6 +158,14 @@ class PbrtConverter {
 
   // pbrt_to_scene.cpp
   void film_crop(PbrtParams& p, const PbrtStatement& s);
+
+  // pbrt_film.cpp
+  /// The Film statement: resolution, crop, sensor, iso, white balance, spectral buckets (docs/pbrt-import.md).
+  void film(const PbrtStatement& s);
+  /// The Camera's "shutteropen"/"shutterclose": pbrt's exposure time.
+  void camera_shutter(PbrtParams& p);
+  /// Adds the physical camera ("exposure": pbrt's imaging ratio t·S/100) and "white_balance" to `camera`.
+  void finish_exposure(json& camera) const;
 
   // pbrt_shapes.cpp
   void emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::vector<uint32_t> indices, std::vector<Vec3d> normals,
@@ -187,6 +200,13 @@ class PbrtConverter {
   double fov_deg_ = 90.0;
   bool orthographic_ = false;  ///< Camera "orthographic"
   int width_ = 1280, height_ = 720;
+  // Film and shutter (pbrt_film.cpp): pbrt's PixelSensor settings, combined by finish_exposure().
+  std::optional<double> film_iso_;  ///< Film "iso", when given
+  double film_white_balance_k_ = 0.0;  ///< Film "whitebalance" (0: pbrt's default)
+  std::string film_sensor_ = "cie1931";
+  SourceLocation film_where_;
+  double shutter_s_ = 1.0;  ///< Camera shutterclose − shutteropen (pbrt's exposure time)
+  bool shutter_given_ = false;
 
   json materials_ = json::object();
   json prototypes_ = json::object();

@@ -237,6 +237,7 @@ void PbrtConverter::statement(const PbrtStatement& s) {
       fov_deg_ = p.real("fov", 90.0);
       if (!(fov_deg_ > 0 && fov_deg_ < 180)) throw InputError(s.where, "Camera: \"fov\" must be in (0, 180) degrees");
     }
+    camera_shutter(p);
     const double lens_radius = p.real("lensradius", 0.0);
     const double focal_distance = p.real("focaldistance", 1e6);
     camera_ = json::object();
@@ -248,19 +249,7 @@ void PbrtConverter::statement(const PbrtStatement& s) {
     if (orthographic_) camera_["type"] = "orthographic";
   } else if (k == "Film") {
     require_world(false);
-    PbrtParams p(*this, s, "Film \"" + s.strings[0] + "\"");
-    if (s.strings[0] != "rgb") ignore("Film \"" + s.strings[0] + "\" (rendered to Rimu's XYZ film)", s.where);
-    width_ = p.integer("xresolution", 1280);
-    height_ = p.integer("yresolution", 720);
-    if (width_ < 1 || height_ < 1 || width_ > 32768 || height_ > 32768)
-      throw InputError(s.where, "Film: xresolution and yresolution must be in 1-32768");
-    film_["resolution"] = {width_, height_};
-    film_crop(p, s);
-    p.string("filename", "");  // the output is rimu's -o
-    if (p.string("sensor", "cie1931") != "cie1931") ignore("Film \"sensor\" other than cie1931", s.where);
-    if (p.real("iso", 100.0) != 100.0) ignore("Film \"iso\" other than 100", s.where);
-    if (p.real("exposuretime", 1.0) != 1.0) ignore("Film \"exposuretime\" other than 1", s.where);
-    if (p.real("whitebalance", 0.0) != 0.0) ignore("Film \"whitebalance\"", s.where);
+    film(s);
   } else if (k == "Sampler") {
     require_world(false);
     PbrtParams p(*this, s, "Sampler \"" + s.strings[0] + "\"");
@@ -448,6 +437,7 @@ json PbrtConverter::finish(const std::string& main_file) {
   } else {
     camera["vertical_fov_deg"] = vertical_fov_deg;
   }
+  finish_exposure(camera);
   if (film_.find("resolution") == film_.end()) film_["resolution"] = {width_, height_};
   if (integrator_.find("max_depth") == integrator_.end()) integrator_["max_depth"] = 5;
   if (integrator_.find("spp") == integrator_.end()) integrator_["spp"] = 16;
