@@ -169,7 +169,7 @@ bool run_row(SpectralLibrary& library, const Scene& scene, const PixelFilter& fi
     VolumetricIntegratorSettings settings;
     settings.path = scene.settings.integrator;
     settings.distance = scene.settings.distance_sampling;
-    const VolumetricScene volumetric{view, &scene.media, &scene.medium_boundaries};
+    const VolumetricScene volumetric{view, &scene.media, &scene.medium_boundaries, scene.camera_medium};
     row.decorated_s = render(volumetric, settings, camera, filter, *counted_film, options).seconds;
   } else {
     row.decorated_s = render(view, scene.settings.integrator, camera, filter, *counted_film, options).seconds;

@@ -46,7 +46,7 @@ RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& fil
   const Camera camera(scene.camera, scene.settings.width, scene.settings.height);
   // Scenes without media keep the surface integrator: they pay nothing for volumetric transport.
   if (scene.has_media()) {
-    const VolumetricScene volumetric{view, &scene.media, &scene.medium_boundaries};
+    const VolumetricScene volumetric{view, &scene.media, &scene.medium_boundaries, scene.camera_medium};
     VolumetricIntegratorSettings settings;
     settings.path = scene.settings.integrator;
     settings.distance = scene.settings.distance_sampling;

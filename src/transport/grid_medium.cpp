@@ -11,9 +11,15 @@
 namespace rimu {
 
 GridMedium::GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec3 bounds_min, Vec3 bounds_max,
-                       SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g)
+                       SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g, GridInterpolation interpolation,
+                       const std::optional<Transform>& world_from_grid)
     : nx_(nx), ny_(ny), nz_(nz), density_(std::move(densities)), min_(bounds_min), max_(bounds_max),
-      unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g) {
+      unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g), interpolation_(interpolation) {
+  if (world_from_grid) {
+    if (!world_from_grid->is_finite() || !(std::fabs(world_from_grid->determinant()) > 1e-30f))
+      throw InputError({}, "the medium's transform must be finite and invertible");
+    grid_from_world_ = world_from_grid->inverse();
+  }
   if (nx < 1 || ny < 1 || nz < 1) throw InputError({}, "a voxel grid needs at least one voxel per axis");
   if (density_.size() != size_t(nx) * size_t(ny) * size_t(nz))
     throw InputError({}, "the voxel grid holds " + std::to_string(density_.size()) + " values, expected nx*ny*nz");
@@ -26,20 +32,36 @@ GridMedium::GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec
   my_ = (ny + kBlock - 1) / kBlock;
   mz_ = (nz + kBlock - 1) / kBlock;
   majorant_.assign(size_t(mx_) * size_t(my_) * size_t(mz_), 0.0f);
-  for (int z = 0; z < nz; ++z)
-    for (int y = 0; y < ny; ++y)
-      for (int x = 0; x < nx; ++x) {
-        float& m = majorant_[size_t(((z / kBlock) * my_ + y / kBlock) * mx_ + x / kBlock)];
-        m = std::fmax(m, density_[size_t((z * ny + y) * nx + x)]);
+  // A block's voxels span [b·kBlock, (b+1)·kBlock) in voxel units. Trilinear lookup there reads voxels from one
+  // before the block to one after it (the sample position is x·n − ½, its floor and floor + 1).
+  const int margin = interpolation_ == GridInterpolation::trilinear ? 1 : 0;
+  for (int bz = 0; bz < mz_; ++bz)
+    for (int by = 0; by < my_; ++by)
+      for (int bx = 0; bx < mx_; ++bx) {
+        float m = 0.0f;
+        for (int z = std::max(bz * kBlock - margin, 0); z < std::min((bz + 1) * kBlock + margin, nz); ++z)
+          for (int y = std::max(by * kBlock - margin, 0); y < std::min((by + 1) * kBlock + margin, ny); ++y)
+            for (int x = std::max(bx * kBlock - margin, 0); x < std::min((bx + 1) * kBlock + margin, nx); ++x)
+              m = std::fmax(m, density_[size_t((z * ny + y) * nx + x)]);
+        majorant_[size_t((bz * my_ + by) * mx_ + bx)] = m;
       }
 }
 
-float GridMedium::density(Vec3 p) const {
+float GridMedium::density(Vec3 p) const { return density_in_grid(grid_from_world_ ? grid_from_world_->point(p) : p); }
+
+float GridMedium::density_in_grid(Vec3 p) const {
   const Vec3 local = p - min_;
-  const int x = int(std::floor(local.x / voxel_size_.x)), y = int(std::floor(local.y / voxel_size_.y)),
-            z = int(std::floor(local.z / voxel_size_.z));
+  const Vec3 cells{local.x / voxel_size_.x, local.y / voxel_size_.y, local.z / voxel_size_.z};
+  const int x = int(std::floor(cells.x)), y = int(std::floor(cells.y)), z = int(std::floor(cells.z));
   if (x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_) return 0.0f;
-  return density_[size_t((z * ny_ + y) * nx_ + x)];
+  if (interpolation_ == GridInterpolation::voxel) return density_[size_t((z * ny_ + y) * nx_ + x)];
+  // Trilinear between voxel centres (at integer + ½ in voxel units).
+  const Vec3 s{cells.x - 0.5f, cells.y - 0.5f, cells.z - 0.5f};
+  const int ix = int(std::floor(s.x)), iy = int(std::floor(s.y)), iz = int(std::floor(s.z));
+  const float fx = s.x - float(ix), fy = s.y - float(iy), fz = s.z - float(iz);
+  const auto lerp = [](float f, float a, float b) { return a + f * (b - a); };
+  const auto row = [&](int yy, int zz) { return lerp(fx, voxel(ix, yy, zz), voxel(ix + 1, yy, zz)); };
+  return lerp(fz, lerp(fy, row(iy, iz), row(iy + 1, iz)), lerp(fy, row(iy, iz + 1), row(iy + 1, iz + 1)));
 }
 
 bool GridMedium::clip(const Ray& ray, float t_max, float& t0, float& t1) const {

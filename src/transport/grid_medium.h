@@ -3,19 +3,31 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "transport/homogeneous_medium.h"
 #include "transport/ray.h"
+#include "transport/transform.h"
 
 namespace rimu {
 
-/// Densities on an nx × ny × nz grid filling the axis-aligned box [bounds_min, bounds_max] (world space, m).
+/// How densities between voxel centres are found.
+enum class GridInterpolation {
+  voxel,      ///< piecewise constant: the voxel containing x
+  trilinear,  ///< trilinear between the 8 nearest voxel centres, voxels outside the grid counting 0 (pbrt-v4's
+              ///< SampledGrid: the density fades to 0 over the outer half voxel)
+};
+
+/// Densities on an nx × ny × nz grid filling the axis-aligned box [bounds_min, bounds_max] of the grid's own space
+/// (m), placed in the world by `world_from_grid` (any invertible affine map; identity: the box is in world space).
 ///
-/// Lookup is piecewise constant (the voxel containing x): majorants are then exact maxima, and nothing
-/// between voxels can exceed them. σ_a(x, λ) = d(x)·σ_a(λ), σ_s(x, λ) = d(x)·σ_s(λ); d = 0 outside the box.
+/// σ_a(x, λ) = d(x)·σ_a(λ), σ_s(x, λ) = d(x)·σ_s(λ); d = 0 outside the box. Majorants are maxima per block of
+/// voxels: exact maxima for voxel lookup; for trilinear lookup the maxima over the block's voxels and their
+/// neighbours one voxel beyond (a trilinear value is a convex combination of those), so no interpolated value
+/// exceeds its block's majorant.
 ///
 /// File format (.rvol, "Rimu volume", little-endian; written by write_grid_file and by tools, read at load):
 ///     8 bytes  magic "RIMUVOL1"
@@ -27,10 +39,13 @@ class GridMedium {
   /// Throws InputError if a size is 0, the data size is not nx·ny·nz, a density is negative or not finite,
   /// or the box is empty.
   GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec3 bounds_min, Vec3 bounds_max,
-             SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g);
+             SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g,
+             GridInterpolation interpolation = GridInterpolation::voxel,
+             const std::optional<Transform>& world_from_grid = std::nullopt);
 
   /// The density at a world point (0 outside the box).
   float density(Vec3 p) const;
+  GridInterpolation interpolation() const { return interpolation_; }
   /// σ_a, σ_s at a world point, given the per-unit-density coefficients at the path's wavelengths.
   MediumCoefficients coefficients(Vec3 p, const MediumCoefficients& per_unit_density) const {
     const float d = density(p);
@@ -52,12 +67,19 @@ class GridMedium {
 
  private:
   bool clip(const Ray& ray, float t_max, float& t0, float& t1) const;
+  /// The density at a point of the grid's space.
+  float density_in_grid(Vec3 p) const;
+  float voxel(int x, int y, int z) const {
+    return x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_ ? 0.0f : density_[size_t((z * ny_ + y) * nx_ + x)];
+  }
   int nx_, ny_, nz_;
   std::vector<float> density_;
   Vec3 min_, max_, voxel_size_;
   int mx_, my_, mz_;                  // majorant grid size
   std::vector<float> majorant_;       // max density per block
   HomogeneousMedium unit_;
+  GridInterpolation interpolation_;
+  std::optional<Transform> grid_from_world_;  // empty: the grid's space is the world
 };
 
 /// Parses the bytes of an .rvol file (format above) into nx, ny, nz and densities. Throws InputError naming `name`
@@ -77,7 +99,13 @@ std::vector<float> procedural_cloud_density(int n, uint32_t seed);
 // ---- implementation of the template ----
 
 template <typename F>
-void GridMedium::for_each_majorant_segment(const Ray& ray, float t_max, F&& segment) const {
+void GridMedium::for_each_majorant_segment(const Ray& world_ray, float t_max, F&& segment) const {
+  // An affine map keeps the ray's parameter: the grid-space ray (direction not unit) has the same t everywhere.
+  Ray ray = world_ray;
+  if (grid_from_world_) {
+    ray.origin = grid_from_world_->point(world_ray.origin);
+    ray.direction = grid_from_world_->vector(world_ray.direction);
+  }
   float t0, t1;
   if (!clip(ray, t_max, t0, t1)) return;
   // The DDA walks majorant cells; positions are in cell units.

@@ -41,8 +41,8 @@ struct MediumBoundary {
 /// overlap (nested or intersecting), the CURRENT medium is the entry of highest priority, the most recently
 /// entered one among equals (the priority rule of Schmidt & Budge 2002, "Simple Nested Dielectrics in Ray
 /// Traced Images", without their false-interface skipping: a boundary always applies its own BSDF).
-/// The camera is outside every medium (the stack starts empty). Fixed capacity: deeper nesting than kCapacity
-/// keeps the innermost kCapacity entries.
+/// A camera path starts with the scene's camera medium, if any (VolumetricScene::camera_medium). Fixed capacity:
+/// deeper nesting than kCapacity keeps the innermost kCapacity entries.
 class MediumStack {
  public:
   static constexpr int kCapacity = 8;

@@ -118,6 +118,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   SampledSpectrum beta = pdf_ratio;
   Ray ray = camera_ray;
   MediumStack stack;
+  stack.cross(scene_.camera_medium, true);  // −1: the camera is in vacuum
 
   // MIS state of the last direction-sampling decision (see docs/media.md, "Lights reached by direction sampling").
   bool previous_specular = true;

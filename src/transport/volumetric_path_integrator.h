@@ -19,6 +19,8 @@ struct VolumetricScene {
   /// Indexed by material: the medium a shape of that material encloses, and whether its surface is index-matched.
   /// Materials beyond the end have no medium and a real surface.
   const std::vector<MediumBoundary>* boundaries = nullptr;
+  /// The medium around the camera (camera paths start inside it; no boundary need enclose it), −1: vacuum.
+  int camera_medium = -1;
 };
 
 struct VolumetricIntegratorSettings {

@@ -93,26 +93,68 @@ TEST_CASE("pbrt media: an unbounded RGB coefficient becomes a smooth spectrum of
   CHECK_NOTHROW(load_scene(imported.document, "media.pbrt", test::test_data("pbrt"), test::library()));
 }
 
-TEST_CASE("pbrt media: grids, emission, presets, a camera medium and a medium around everything are listed") {
+TEST_CASE("pbrt media: a named preset gives pbrt's measured coefficients (Jensen et al. 2001, Narasimhan et al. 2006)") {
   const PbrtImport imported = import_text(
-      "MakeNamedMedium \"air\" \"string type\" \"homogeneous\" \"rgb Le\" [1 1 1] \"float Lescale\" 2 \"string preset\" \"Skin1\"\n"
-      "MakeNamedMedium \"cloud\" \"string type\" \"uniformgrid\" \"float density\" [1] \"integer nx\" 1\n"
+      kCamera + "MakeNamedMedium \"k\" \"string type\" \"homogeneous\" \"string preset\" \"Ketchup\" \"float scale\" 10\n"
+                "MakeNamedMedium \"s\" \"string type\" \"homogeneous\" \"string preset\" \"Spectralon\" \"rgb sigma_a\" [1 1 1]\n"
+                "WorldBegin\nMediumInterface \"k\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n"
+                "MediumInterface \"s\" \"\"\nShape \"sphere\"\n");
+  // sigma_a given beside a preset is overridden (pbrt-v4 does the same) and listed.
+  CHECK(ignored_list(imported).find("MakeNamedMedium \"sigma_a\" beside a \"preset\"") != std::string::npos);
+  CHECK_MESSAGE(imported.ignored.size() == 1, ignored_list(imported));
+  const json& ketchup = imported.document["media"]["k"];
+  // Ketchup, per mm: σ'_s (0.18, 0.07, 0.03), σ_a (0.061, 0.97, 1.45), times "scale" 10: at most 2·max·10 per
+  // channel shape, red absorbs least and scatters most.
+  const auto at = [](const json& table, int nm) { return table["values"][size_t((nm - 360) / 5)].get<double>(); };
+  const json& a = ketchup["sigma_a"];
+  CHECK(a["scale"].get<double>() == doctest::Approx(10.0));
+  CHECK(at(a, 650) < 0.3 * at(a, 450));
+  CHECK(at(ketchup["sigma_s"], 650) > 3.0 * at(ketchup["sigma_s"], 450));
+  for (double v : a["values"].get<std::vector<double>>()) CHECK((v >= 0 && v <= 2.9 + 1e-9));
+  // Spectralon absorbs nothing (σ_a = 0 in every channel: a grey constant 0).
+  CHECK(imported.document["media"]["s"]["sigma_a"] == 0.0);
+  CHECK_NOTHROW(load_scene(imported.document, "media.pbrt", test::test_data("pbrt"), test::library()));
+}
+
+TEST_CASE("pbrt media: RGB grids, emission and unknown presets are listed; the camera's medium surrounds everything") {
+  const PbrtImport imported = import_text(
+      "MakeNamedMedium \"air\" \"string type\" \"homogeneous\" \"rgb Le\" [1 1 1] \"float Lescale\" 2 \"string preset\" \"Skin9\"\n"
+      "MakeNamedMedium \"cloud\" \"string type\" \"rgbgrid\" \"rgb sigma_a\" [1 1 1]\n"
       "MediumInterface \"\" \"air\"\n" + kCamera +
       "WorldBegin\n"
       "MediumInterface \"cloud\" \"air\"\nMaterial \"interface\"\nShape \"sphere\"\n"
       "Material \"diffuse\"\nShape \"sphere\"\n"
       "MediumInterface \"\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n");
   const std::string list = ignored_list(imported);
-  CHECK(list.find("MakeNamedMedium \"preset\"") != std::string::npos);
+  CHECK(list.find("MakeNamedMedium \"preset\" \"Skin9\" (not one of pbrt-v4's names") != std::string::npos);
   CHECK(list.find("MakeNamedMedium \"Le\" (Rimu's media do not emit") != std::string::npos);
-  CHECK(list.find("MakeNamedMedium \"uniformgrid\" (not imported") != std::string::npos);
-  CHECK(list.find("the camera's medium \"air\"") != std::string::npos);
-  CHECK(list.find("medium \"air\" outside shapes") != std::string::npos);
+  CHECK(list.find("MakeNamedMedium \"rgbgrid\" (not imported") != std::string::npos);
   CHECK(list.find("with the \"interface\" material and no medium inside it (left out) (2 times), first at media.pbrt:10") !=
         std::string::npos);
-  CHECK_MESSAGE(imported.ignored.size() == 6, list);
+  CHECK_MESSAGE(imported.ignored.size() == 4, list);
   CHECK(imported.document["shapes"].size() == 1);  // the diffuse sphere; both interface spheres are left out
-  CHECK_FALSE(imported.document.contains("media"));
+  // The camera's medium, which no shape has inside: a medium around everything that the camera starts in.
+  const json& media = imported.document["media"];
+  REQUIRE(media.size() == 1);
+  CHECK(media["air"]["contains_camera"] == true);
+  CHECK_FALSE(media["air"].contains("boundary_material"));
+  const auto scene = load_scene(imported.document, "media.pbrt", test::test_data("pbrt"), test::library());
+  CHECK(scene->camera_medium == 0);
+}
+
+TEST_CASE("pbrt media: a camera inside a bounded medium starts in it; vacuum inside glass in a medium is listed") {
+  const PbrtImport imported = import_text(
+      "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"
+      "MediumInterface \"\" \"fog\"\n" + kCamera +
+      "WorldBegin\n"
+      "AttributeBegin\nMediumInterface \"fog\" \"\"\nMaterial \"interface\"\nShape \"sphere\" \"float radius\" 10\nAttributeEnd\n"
+      "MediumInterface \"\" \"fog\"\nMaterial \"dielectric\"\nShape \"sphere\"\n");
+  CHECK(imported.document["media"]["fog"]["contains_camera"] == true);
+  CHECK(imported.document["media"]["fog"].contains("boundary_material"));
+  CHECK(ignored_list(imported).find("Shape \"sphere\": vacuum inside a transmitting shape that has a medium outside (in Rimu the "
+                                    "outside medium continues inside it) (1 time), first at media.pbrt:14") != std::string::npos);
+  CHECK(error_of("MediumInterface \"\" \"smog\"\n" + kCamera + "WorldBegin\n") ==
+        "media.pbrt:4: Camera: the MediumInterface in effect names the medium \"smog\", which no MakeNamedMedium defines");
 }
 
 TEST_CASE("pbrt media: bad media input is an error at its file and line") {

@@ -71,6 +71,7 @@ struct Scene {
   size_t degenerate_triangles_removed = 0;
   std::vector<Medium> media;                      ///< the "media" section (empty: the surface integrator is used)
   std::vector<MediumBoundary> medium_boundaries;  ///< per material: the medium its shapes enclose
+  int camera_medium = -1;                         ///< the medium marked "contains_camera", −1: none
   bool has_media() const { return !media.empty(); }
   /// Built at load for WavelengthDensityKind::lights (not in rgb mode, whose lanes are fixed); null otherwise.
   std::shared_ptr<const TabulatedWavelengthDensity> wavelength_density;

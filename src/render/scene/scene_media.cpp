@@ -33,6 +33,29 @@ Rgb rgb_lanes(const Spectrum& rgb_transport_form) {
   return {lanes[0], lanes[1], lanes[2]};
 }
 
+// "voxels": [nx, ny, nz] and "density": nx·ny·nz numbers (x fastest, then y, then z), each finite and ≥ 0: the
+// inline form of an .rvol file (what the pbrt importer writes).
+void load_inline_density(const JsonCursor& m, int& nx, int& ny, int& nz, std::vector<float>& density) {
+  const JsonCursor voxels = m.at("voxels");
+  if (!voxels.is_array() || voxels.size() != 3) voxels.fail("expected [nx, ny, nz]");
+  nx = voxels.at(0).integer(1, 4096);
+  ny = voxels.at(1).integer(1, 4096);
+  nz = voxels.at(2).integer(1, 4096);
+  const JsonCursor values = m.at("density");
+  const uint64_t count = uint64_t(nx) * uint64_t(ny) * uint64_t(nz);
+  if (!values.is_array() || values.size() != count)
+    values.fail("expected nx·ny·nz = " + std::to_string(count) + " numbers (x fastest, then y, then z)" +
+                (values.is_array() ? ", found " + std::to_string(values.size()) : std::string()));
+  density.resize(size_t(count));
+  for (size_t i = 0; i < size_t(count); ++i) {
+    const nlohmann::json& v = values.value()[i];
+    const double d = v.is_number() ? v.get<double>() : -1.0;
+    // Checked here, not only in GridMedium, so that the error names the value's index.
+    if (!(d >= 0.0) || !(d <= 3.4e38)) values.at(i).fail("a density must be a finite number >= 0");
+    density[i] = float(d);
+  }
+}
+
 Medium load_medium(const JsonCursor& m, LoadContext& context) {
   const std::string type = m.at("type").choice({"homogeneous", "grid"});
   const float g = float(m.number_or("g", 0.0, -0.99, 0.99));
@@ -63,14 +86,16 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   }
   if (type == "homogeneous") {
     m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
-                 "boundary_material", "index_matched"});
+                 "boundary_material", "index_matched", "contains_camera"});
     return Medium(HomogeneousMedium(sigma_a, sigma_s, g), priority);
   }
   m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
                "boundary_material", "index_matched", "file", "procedural", "resolution", "bounds_min", "bounds_max",
-               "seed"});
+               "seed", "voxels", "density", "interpolation", "transform", "contains_camera"});
   int nx = 0, ny = 0, nz = 0;
   std::vector<float> density;
+  const int sources = int(m.has("file")) + int(m.has("procedural")) + int(m.has("density"));
+  if (sources != 1) m.fail("a grid medium takes exactly one of \"file\", \"procedural\" or \"voxels\" + \"density\"");
   if (m.has("file")) {
     const JsonCursor file = m.at("file");
     try {
@@ -78,14 +103,21 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
     } catch (const InputError& e) {
       file.fail(e.what());  // "cloud.rvol: ..." under the key that named the file
     }
+  } else if (m.has("density")) {
+    load_inline_density(m, nx, ny, nz, density);
   } else {
     m.at("procedural").choice({"cloud"});
     nx = ny = nz = m.integer_or("resolution", 64, 1, 512);
     density = procedural_cloud_density(nx, uint32_t(m.integer_or("seed", 1, 0, 1 << 30)));
   }
+  const GridInterpolation interpolation = m.has("interpolation") && m.at("interpolation").choice({"voxel", "trilinear"}) == "trilinear"
+                                              ? GridInterpolation::trilinear
+                                              : GridInterpolation::voxel;
+  std::optional<Transform> world_from_grid;
+  if (m.has("transform")) world_from_grid = parse_transform(m);
   try {
     return Medium(GridMedium(nx, ny, nz, std::move(density), m.at("bounds_min").vec3(), m.at("bounds_max").vec3(),
-                             sigma_a, sigma_s, g),
+                             sigma_a, sigma_s, g, interpolation, world_from_grid),
                   priority);
   } catch (const InputError& e) {
     m.fail(e.explanation());
@@ -101,6 +133,17 @@ void load_media(const JsonCursor& section, LoadContext& context) {
   for (const auto& [name, unused] : section.value().items()) {
     const JsonCursor m = section.at(name);
     scene.media.push_back(load_medium(m, context));
+    // "contains_camera": camera paths start in this medium. Without a boundary material it surrounds everything
+    // (nothing ever leaves it: a scene-wide fog).
+    const bool contains_camera = m.boolean_or("contains_camera", false);
+    if (contains_camera) {
+      if (scene.camera_medium >= 0) m.at("contains_camera").fail("only one medium can contain the camera");
+      scene.camera_medium = int(scene.media.size()) - 1;
+      if (!m.has("boundary_material")) {
+        if (m.has("index_matched")) m.at("index_matched").fail("a medium without a boundary_material has no boundary to match");
+        continue;
+      }
+    }
     // The shapes of the boundary material enclose this medium (closed meshes, normals pointing out).
     const JsonCursor b = m.at("boundary_material");
     const auto it = context.material_index.find(b.string());

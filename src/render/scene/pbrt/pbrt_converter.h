@@ -150,6 +150,14 @@ class PbrtConverter {
   // pbrt_media.cpp
   /// A medium's sigma_a/sigma_s (1/m; pbrt's unbounded RGB becomes a table through Rimu's upsampler).
   json coefficient_value(PbrtParams& p, const std::string& name, double fallback);
+  /// pbrt's unbounded RGB coefficient `c` in `colour_space` (a Rimu colour space name) as a Rimu spectral value.
+  json unbounded_rgb(const Vec3d& c, const std::string& colour_space, const SourceLocation& where);
+  /// pbrt-v4's named measured medium `name` (data/media/scattering_presets.csv) as {sigma_a, sigma_s}; empty if
+  /// pbrt has no such name.
+  std::optional<std::pair<json, json>> scattering_preset(const std::string& name, const SourceLocation& where);
+  /// A "uniformgrid" medium's density grid, box and transform onto `medium` (a Rimu "grid" medium with its density
+  /// inline, trilinear like pbrt's). InputError at the statement for a wrong voxel count or a negative density.
+  void add_density_grid(PbrtParams& p, json& medium);
   /// The material a shape of `material` gets under the MediumInterface in effect: a copy bounding the inside medium
   /// where one begins at the shape; empty for an "interface" shape with no medium to bound (left out, listed).
   std::optional<std::string> boundary_material(const std::string& material, const SourceLocation& where, const std::string& context);
@@ -221,6 +229,8 @@ class PbrtConverter {
   std::map<std::string, std::string> boundary_materials_;  ///< material + '\n' + medium → the bounding copy's name
   std::set<std::string> interior_media_;                   ///< media some shape has inside
   std::map<std::string, SourceLocation> exterior_media_;   ///< media some shape has outside, first place
+  std::string camera_medium_;                              ///< the outside medium at Camera; empty: vacuum
+  SourceLocation camera_medium_where_;
   std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;  ///< by Rimu colour space name
   int anonymous_materials_ = 0;
 

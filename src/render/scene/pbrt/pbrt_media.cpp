@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "render/scene/pbrt/pbrt_converter.h"
+#include "spectral/csv_table.h"
 #include "spectral/rgb_upsampler.h"
 
 namespace rimu {
@@ -22,6 +23,45 @@ json scaled(json value, double k) {
 
 }  // namespace
 
+json PbrtConverter::unbounded_rgb(const Vec3d& c, const std::string& colour_space, const SourceLocation& where) {
+  if (c[0] == c[1] && c[1] == c[2]) return c[0];
+  // pbrt's unbounded RGB (RGBUnboundedSpectrum): the reflectance-like spectrum of rgb / (2·max), times 2·max.
+  // Rimu's scene format refuses RGB for coefficients (a coefficient is not a colour), so the importer writes
+  // that spectrum as a 5 nm table, through Rimu's reflectance upsampler of the colour space.
+  auto& upsampler = upsamplers_[colour_space];
+  if (!upsampler) upsampler = std::make_shared<const RgbUpsampler>(library_, RgbColourSpace::named(colour_space));
+  const double scale = 2.0 * std::max({c[0], c[1], c[2]});
+  const ReflectanceSpectrum shape = upsampler->reflectance_spectrum({c[0] / scale, c[1] / scale, c[2] / scale}, where);
+  json nm = json::array(), values = json::array();
+  for (int wavelength_nm = 360; wavelength_nm <= 830; wavelength_nm += 5) {
+    nm.push_back(wavelength_nm);
+    values.push_back(scale * shape.value(wavelength_nm));
+  }
+  return json{{"wavelengths_nm", nm}, {"values", values}};
+}
+
+std::optional<std::pair<json, json>> PbrtConverter::scattering_preset(const std::string& name, const SourceLocation& where) {
+  // data/media/scattering_presets.csv: pbrt-v4's table of Jensen et al. 2001 and Narasimhan et al. 2006, per mm,
+  // which pbrt uses per scene unit as sRGB unbounded RGB: σ_a, and σ'_s as σ_s.
+  const CsvTable& table = library_.table("media/scattering_presets.csv");
+  const size_t name_column = table.column_index("name");
+  for (size_t row = 0; row < table.row_count(); ++row) {
+    if (table.cell(row, name_column) != name) continue;
+    const auto rgb = [&](const char* prefix) {
+      Vec3d c{};
+      const char* channels[3] = {"_r", "_g", "_b"};
+      for (size_t k = 0; k < 3; ++k) {
+        const size_t column = table.column_index(std::string(prefix) + channels[k]);
+        if (!parse_finite_number(table.cell(row, column), c[k]) || c[k] < 0)
+          throw InputError({table.name(), table.line_of_row(row), ""}, "expected a finite number >= 0");
+      }
+      return c;
+    };
+    return std::pair{unbounded_rgb(rgb("sigma_a"), "srgb-linear", where), unbounded_rgb(rgb("sigma_prime_s"), "srgb-linear", where)};
+  }
+  return std::nullopt;
+}
+
 json PbrtConverter::coefficient_value(PbrtParams& p, const std::string& name, double fallback) {
   const PbrtParam* param = p.get(name, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::blackbody});
   if (!param) return fallback;
@@ -30,20 +70,7 @@ json PbrtConverter::coefficient_value(PbrtParams& p, const std::string& name, do
     if (c.size() != 3) throw InputError(param->where, p.context() + ": \"" + name + "\" takes 3 numbers");
     for (double v : c)
       if (!(v >= 0)) throw InputError(param->where, p.context() + ": \"" + name + "\" must be >= 0 (a coefficient per unit length)");
-    if (c[0] == c[1] && c[1] == c[2]) return c[0];
-    // pbrt's unbounded RGB (RGBUnboundedSpectrum): the reflectance-like spectrum of rgb / (2·max), times 2·max.
-    // Rimu's scene format refuses RGB for coefficients (a coefficient is not a colour), so the importer writes
-    // that spectrum as a 5 nm table, through Rimu's reflectance upsampler of the colour space in effect.
-    auto& upsampler = upsamplers_[state_.colour_space];
-    if (!upsampler) upsampler = std::make_shared<const RgbUpsampler>(library_, RgbColourSpace::named(state_.colour_space));
-    const double scale = 2.0 * std::max({c[0], c[1], c[2]});
-    const ReflectanceSpectrum shape = upsampler->reflectance_spectrum({c[0] / scale, c[1] / scale, c[2] / scale}, param->where);
-    json nm = json::array(), values = json::array();
-    for (int wavelength_nm = 360; wavelength_nm <= 830; wavelength_nm += 5) {
-      nm.push_back(wavelength_nm);
-      values.push_back(scale * shape.value(wavelength_nm));
-    }
-    return json{{"wavelengths_nm", nm}, {"values", values}};
+    return unbounded_rgb({c[0], c[1], c[2]}, state_.colour_space, param->where);
   }
   const std::optional<json> value = spectrum_value(*param, false, p.directory());
   if (!value) return fallback;  // a named spectrum Rimu lacks: listed by spectrum_value
@@ -58,20 +85,30 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
   if (media_defined_.count(name)) throw InputError(s.where, "MakeNamedMedium: \"" + name + "\" is already defined");
   const std::string context = "MakeNamedMedium \"" + name + "\" (" + type + ")";
   media_where_[name] = s.where;
-  if (type == "uniformgrid" || type == "rgbgrid" || type == "nanovdb" || type == "cloud") {
-    // Rimu's grid medium reads .rvol files or its procedural cloud; the importer does not write voxel files.
+  if (type == "rgbgrid" || type == "nanovdb" || type == "cloud") {
     ignore("MakeNamedMedium \"" + type + "\" (not imported: shapes it fills render without a medium)", s.where);
     media_defined_[name] = nullptr;
     return;
   }
-  if (type != "homogeneous") throw InputError(s.where, context + ": unknown medium type; pbrt-v4 has homogeneous, uniformgrid, rgbgrid, nanovdb and cloud");
+  if (type != "homogeneous" && type != "uniformgrid") throw InputError(s.where, context + ": unknown medium type; pbrt-v4 has homogeneous, uniformgrid, rgbgrid, nanovdb and cloud");
   PbrtParams p(*this, s, context);
   p.string("type", "");
-  const std::string preset = p.string("preset", "");
-  if (!preset.empty())
-    ignore("MakeNamedMedium \"preset\" (pbrt's measured scattering presets are not imported: sigma_a and sigma_s, or their default 1, stand in)", s.where);
-  const json sigma_a = coefficient_value(p, "sigma_a", 1.0);
-  const json sigma_s = coefficient_value(p, "sigma_s", 1.0);
+  json sigma_a = coefficient_value(p, "sigma_a", 1.0);
+  json sigma_s = coefficient_value(p, "sigma_s", 1.0);
+  if (type == "homogeneous") {
+    // pbrt-v4 reads "preset" for homogeneous media only; a preset it knows replaces sigma_a and sigma_s.
+    const std::string preset = p.string("preset", "");
+    if (!preset.empty()) {
+      if (const auto coefficients = scattering_preset(preset, s.where)) {
+        std::tie(sigma_a, sigma_s) = *coefficients;
+        for (const char* overridden : {"sigma_a", "sigma_s"})
+          if (p.get(overridden, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::blackbody}))
+            ignore("MakeNamedMedium \"" + std::string(overridden) + "\" beside a \"preset\" (the preset's values are used, as in pbrt-v4)", s.where);
+      } else {
+        ignore("MakeNamedMedium \"preset\" \"" + preset + "\" (not one of pbrt-v4's names: sigma_a and sigma_s, or their default 1, stand in, as in pbrt-v4)", s.where);
+      }
+    }
+  }
   const double scale = p.real("scale", 1.0);
   if (!(scale >= 0)) throw InputError(s.where, context + ": \"scale\" must be >= 0");
   double g = p.real("g", 0.0);
@@ -85,8 +122,62 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
                       std::all_of(le->numbers.begin(), le->numbers.end(), [](double v) { return v == 0; });
     if (!dark) ignore("MakeNamedMedium \"Le\" (Rimu's media do not emit: the medium is imported without its emission)", le->where);
   }
-  p.real("Lescale", 1.0);  // only meaningful with Le
-  media_defined_[name] = {{"type", "homogeneous"}, {"sigma_a", scaled(sigma_a, scale)}, {"sigma_s", scaled(sigma_s, scale)}, {"g", g}};
+  if (type == "homogeneous") p.real("Lescale", 1.0);  // only meaningful with Le
+  json medium = {{"type", "homogeneous"}, {"sigma_a", scaled(sigma_a, scale)}, {"sigma_s", scaled(sigma_s, scale)}, {"g", g}};
+  if (type == "uniformgrid") add_density_grid(p, medium);
+  media_defined_[name] = std::move(medium);
+}
+
+void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
+  const SourceLocation& where = p.where();
+  const std::string& context = p.context();
+  const int nx = p.integer("nx", 1), ny = p.integer("ny", 1), nz = p.integer("nz", 1);
+  for (int n : {nx, ny, nz})
+    if (n < 1 || n > 4096) throw InputError(where, context + ": \"nx\", \"ny\" and \"nz\" must be 1..4096 (they are " + std::to_string(nx) + ", " + std::to_string(ny) + ", " + std::to_string(nz) + ")");
+  const PbrtParam* density = p.get("density", {PbrtParamType::real});
+  if (!density) throw InputError(where, context + ": needs \"float density\" (nx·ny·nz values)");
+  const uint64_t count = uint64_t(nx) * uint64_t(ny) * uint64_t(nz);
+  if (density->numbers.size() != count)
+    throw InputError(density->where, context + ": \"density\" has " + std::to_string(density->numbers.size()) +
+                                         " values; expected nx·ny·nz = " + std::to_string(nx) + "·" + std::to_string(ny) + "·" +
+                                         std::to_string(nz) + " = " + std::to_string(count));
+  json values = json::array();
+  for (size_t i = 0; i < density->numbers.size(); ++i) {
+    const double d = density->numbers[i];
+    if (!(d >= 0) || !(d <= 3.4e38))
+      throw InputError(density->where, context + ": \"density\" value " + std::to_string(i) + " is " +
+                                           json(d).dump() + "; densities must be finite and >= 0");
+    values.push_back(d);
+  }
+  const auto point = [&](const char* name, Vec3d fallback) {
+    const std::vector<double> v = p.numbers(name, {PbrtParamType::point3});
+    if (v.empty()) return fallback;
+    if (v.size() != 3) throw InputError(where, context + ": \"" + name + "\" takes 3 numbers");
+    return Vec3d{v[0], v[1], v[2]};
+  };
+  const Vec3d p0 = point("p0", {0, 0, 0}), p1 = point("p1", {1, 1, 1});
+  // pbrt's Bounds3f(p0, p1) takes the componentwise min and max.
+  Vec3d lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[size_t(a)] = std::min(p0[size_t(a)], p1[size_t(a)]);
+    hi[size_t(a)] = std::max(p0[size_t(a)], p1[size_t(a)]);
+    if (!(hi[size_t(a)] > lo[size_t(a)])) throw InputError(where, context + ": the box \"p0\"–\"p1\" is empty");
+  }
+  if (!p.numbers("temperature", {PbrtParamType::real}).empty())
+    ignore("MakeNamedMedium \"uniformgrid\" \"temperature\" (Rimu's media do not emit: imported without its emission)", where);
+  for (const char* unused : {"temperaturescale", "temperatureoffset", "temperaturecutoff"}) p.real(unused, 0.0);
+  if (const PbrtParam* le_scale = p.get("Lescale", {PbrtParamType::real}); le_scale && le_scale->numbers.size() > 1)
+    ignore("MakeNamedMedium \"uniformgrid\" per-voxel \"Lescale\" (Rimu's media do not emit)", le_scale->where);
+  medium["type"] = "grid";
+  medium["voxels"] = {nx, ny, nz};
+  medium["density"] = std::move(values);
+  medium["bounds_min"] = lo;
+  medium["bounds_max"] = hi;
+  // pbrt-v4 interpolates its SampledGrid trilinearly between voxel centres (0 beyond the grid).
+  medium["interpolation"] = "trilinear";
+  // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium).
+  const json steps = transform_steps(world_from_object(), where);
+  if (!steps.is_null()) medium["transform"] = steps;
 }
 
 std::optional<std::string> PbrtConverter::boundary_material(const std::string& material, const SourceLocation& where,
@@ -105,6 +196,14 @@ std::optional<std::string> PbrtConverter::boundary_material(const std::string& m
     ignore(context + " with the \"interface\" material and no medium inside it (left out)", where);
     return std::nullopt;
   };
+  if (inside.empty() && !outside.empty() && !media_defined_.at(outside).is_null() && materials_.contains(material)) {
+    // pbrt: vacuum inside a shape in a medium. Rimu's stack keeps the medium around inside a shape that bounds no
+    // medium: the same for opaque surfaces, not for surfaces that transmit.
+    const json type = materials_.at(material).value("type", json());
+    if (type == "dielectric" || type == "thin_dielectric" || type == "diffuse_transmission" || type == "mix")
+      ignore(context + ": vacuum inside a transmitting shape that has a medium outside (in Rimu the outside medium "
+                       "continues inside it)", where);
+  }
   if (inside.empty() || inside == outside) return left_out();  // no medium begins at this surface
   const json& medium = media_defined_.at(inside);
   if (medium.is_null()) return left_out();  // a medium type Rimu does not import (listed at MakeNamedMedium)
@@ -128,8 +227,29 @@ std::optional<std::string> PbrtConverter::boundary_material(const std::string& m
 }
 
 void PbrtConverter::finish_media() {
+  if (!camera_medium_.empty()) {
+    const auto defined = media_defined_.find(camera_medium_);
+    if (defined == media_defined_.end())
+      throw InputError(camera_medium_where_, "Camera: the MediumInterface in effect names the medium \"" + camera_medium_ +
+                                                 "\", which no MakeNamedMedium defines");
+    if (defined->second.is_null()) {
+      ignore("the camera's medium \"" + camera_medium_ + "\" (its type is not imported: the camera sees as if from vacuum)", camera_medium_where_);
+    } else if (interior_media_.count(camera_medium_)) {
+      // Some shapes bound it: the camera starts in the first Rimu medium made of it (the others are copies with
+      // other boundary materials; a path leaving any of their shapes leaves it).
+      media_[camera_medium_]["contains_camera"] = true;
+    } else {
+      // No shape has it inside: a medium around everything, with no boundary.
+      json entry = defined->second;
+      entry["contains_camera"] = true;
+      std::string rimu_name = camera_medium_;
+      for (int n = 2; media_.contains(rimu_name); ++n) rimu_name = camera_medium_ + " #" + std::to_string(n);
+      media_[rimu_name] = std::move(entry);
+      origin("/media/" + rimu_name, media_where_.at(camera_medium_), "MakeNamedMedium \"" + camera_medium_ + "\"");
+    }
+  }
   for (const auto& [name, where] : exterior_media_)
-    if (!interior_media_.count(name) && !media_defined_.at(name).is_null())
+    if (name != camera_medium_ && !interior_media_.count(name) && !media_defined_.at(name).is_null())
       ignore("medium \"" + name + "\" outside shapes (MediumInterface exterior) with no shape that has it inside: Rimu's media fill "
              "closed shapes, so a medium around everything is not imported",
              where);

@@ -228,9 +228,9 @@ void PbrtConverter::statement(const PbrtStatement& s) {
     world_from_camera_ = *world_from_camera;
     named_coordinate_systems_["camera"] = *world_from_camera;
     PbrtParams p(*this, s, "Camera \"" + s.strings[0] + "\"");
-    if (!state_.outside_medium.empty())
-      ignore("the camera's medium \"" + state_.outside_medium + "\" (MediumInterface before Camera: Rimu's camera must be outside every "
-             "medium, so it sees as if from vacuum)", s.where);
+    // pbrt's camera medium is the outside medium in effect at Camera (docs/pbrt-import.md, "Media").
+    camera_medium_ = state_.outside_medium;
+    camera_medium_where_ = s.where;
     orthographic_ = s.strings[0] == "orthographic";
     if (s.strings[0] != "perspective" && !orthographic_) ignore("Camera \"" + s.strings[0] + "\" (rendered as perspective)", s.where);
     if (!orthographic_) {

@@ -1,0 +1,133 @@
+// pbrt-v4 "uniformgrid" media in the importer (src/render/scene/pbrt/pbrt_media.cpp, docs/pbrt-import.md "Media"):
+// the density grid inline in the document, trilinear like pbrt's, placed by the CTM at MakeNamedMedium; bad grids
+// with file:line; and a pbrt scene with a rotated grid rendering the same image as the same scene in Rimu's JSON.
+#include <doctest/doctest.h>
+
+#include <fstream>
+
+#include "integration_support.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+#include "test_support.h"
+
+using namespace rimu;
+using nlohmann::json;
+
+namespace {
+
+const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\n";
+
+PbrtImport import_text(const std::string& text) {
+  return import_pbrt_text(text, "grid.pbrt", test::test_data("pbrt"), test::library());
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    import_text(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::vector<double> block_deviations(const Scene& a, const Scene& b) {
+  return test::block_deviations(test::luminance_values(*test::render_xyz(a, 16, 1).film),
+                                test::luminance_values(*test::render_xyz(b, 16, 2).film));
+}
+
+}  // namespace
+
+TEST_CASE("pbrt grid media: a uniformgrid becomes a trilinear Rimu grid medium with its density inline") {
+  const PbrtImport imported = import_text(
+      kCamera + "WorldBegin\nAttributeBegin\nTranslate 1 2 3\n"
+                "MakeNamedMedium \"cloud\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"integer ny\" 1 \"integer nz\" 3\n"
+                "  \"float density\" [0 1 2 3 4 5] \"point3 p0\" [1 0 0] \"point3 p1\" [-1 2 1] \"float scale\" 2\n"
+                "  \"rgb sigma_s\" [0.5 0.5 0.5] \"float g\" 0.3\nAttributeEnd\n"
+                "MediumInterface \"cloud\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n");
+  CHECK_MESSAGE(imported.ignored.empty(), describe_ignored(imported.ignored));
+  const json& cloud = imported.document["media"]["cloud"];
+  CHECK(cloud["type"] == "grid");
+  CHECK(cloud["interpolation"] == "trilinear");
+  CHECK(cloud["voxels"] == json({2, 1, 3}));
+  CHECK(cloud["density"] == json({0, 1, 2, 3, 4, 5}));
+  // pbrt's bounds are the componentwise min and max of p0 and p1.
+  CHECK(cloud["bounds_min"] == json({-1, 0, 0}));
+  CHECK(cloud["bounds_max"] == json({1, 2, 1}));
+  CHECK(cloud["sigma_a"].get<double>() == doctest::Approx(2.0));  // pbrt's default 1 × scale
+  CHECK(cloud["sigma_s"].get<double>() == doctest::Approx(1.0));
+  CHECK(cloud["g"].get<double>() == doctest::Approx(0.3));
+  CHECK(cloud.contains("transform"));
+  const auto scene = load_scene(imported.document, "grid.pbrt", test::test_data("pbrt"), test::library());
+  REQUIRE(scene->media.size() == 1);
+  const GridMedium* grid = scene->media[0].grid();
+  REQUIRE(grid != nullptr);
+  CHECK(grid->interpolation() == GridInterpolation::trilinear);
+  // The CTM at MakeNamedMedium places the box: the voxel centre (0.5, 1, 5/6) of the grid's space, voxel (1, 0, 2)
+  // with density 5, sits at (1.5, 3, 3 + 5/6) in pbrt's world; Rimu's world is pbrt's mirrored in x (the camera's
+  // "Scale -1 1 1" cancels the mirror here).
+  CHECK(grid->density({1.5f, 3.0f, 3.0f + 5.0f / 6.0f}) == doctest::Approx(5.0f).epsilon(1e-4));
+  CHECK(grid->density({0.5f, 1.0f, 3.0f + 5.0f / 6.0f}) == doctest::Approx(0.0f));  // outside the box
+}
+
+TEST_CASE("pbrt grid media: bad grids are errors at the pbrt file and line") {
+  const std::string world = kCamera + "WorldBegin\n";
+  const std::string grid = "MakeNamedMedium \"g\" \"string type\" \"uniformgrid\" ";
+  CHECK(error_of(world + grid + "\"integer nx\" 2\n \"float density\" [1 2 3]\n") ==
+        "grid.pbrt:6: MakeNamedMedium \"g\" (uniformgrid): \"density\" has 3 values; expected nx·ny·nz = 2·1·1 = 2");
+  CHECK(error_of(world + grid + "\"integer nx\" 2\n \"float density\" [1 -2]\n") ==
+        "grid.pbrt:6: MakeNamedMedium \"g\" (uniformgrid): \"density\" value 1 is -2.0; densities must be finite and >= 0");
+  CHECK(error_of(world + grid + "\"integer nx\" 0 \"float density\" [1]\n") ==
+        "grid.pbrt:5: MakeNamedMedium \"g\" (uniformgrid): \"nx\", \"ny\" and \"nz\" must be 1..4096 (they are 0, 1, 1)");
+  CHECK(error_of(world + grid + "\"integer nx\" 1\n") == "grid.pbrt:5: MakeNamedMedium \"g\" (uniformgrid): needs \"float density\" (nx·ny·nz values)");
+  CHECK(error_of(world + grid + "\"float density\" [1] \"point3 p0\" [0 0 0] \"point3 p1\" [1 0 1]\n") ==
+        "grid.pbrt:5: MakeNamedMedium \"g\" (uniformgrid): the box \"p0\"–\"p1\" is empty");
+  CHECK(error_of(world + grid + "\"float density\" [1 nan]\n").find("grid.pbrt:5: ") == 0);
+}
+
+TEST_CASE("pbrt grid media: a rotated density grid renders the same image as the same scene written in Rimu's JSON") {
+  const std::filesystem::path pbrt_file = test::test_data("pbrt/grid_medium.pbrt");
+  const PbrtImport imported = import_pbrt(pbrt_file, test::library());
+  CHECK_MESSAGE(imported.ignored.empty(), describe_ignored(imported.ignored));
+  const auto from_pbrt = load_scene(imported.document, pbrt_file.string(), pbrt_file.parent_path(), test::library());
+  std::ifstream in(test::test_data("pbrt/grid_medium_equivalent.json"));
+  const json hand_written = json::parse(in);
+  const auto from_json = load_scene(hand_written, "grid_medium_equivalent.json", pbrt_file.parent_path(), test::library());
+  for (double deviation : block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
+
+  // The comparison can fail: the grid without its CTM's translation (0.75 m lower, half under the floor) is caught.
+  json unmoved = hand_written;
+  unmoved["media"]["haze"]["transform"].erase(1);
+  const auto wrong = load_scene(unmoved, "unmoved.json", pbrt_file.parent_path(), test::library());
+  double worst = 0.0;
+  for (double deviation : block_deviations(*from_pbrt, *wrong)) worst = std::max(worst, deviation);
+  CHECK(worst > test::kSigmas);
+}
+
+TEST_CASE("grid media in JSON: inline densities are checked at their key") {
+  const auto with_medium = [](const json& medium) {
+    json m = medium;
+    m.update({{"type", "grid"}, {"boundary_material", "edge"}, {"index_matched", true}, {"sigma_a", 1}, {"sigma_s", 0},
+              {"bounds_min", {0, 0, 0}}, {"bounds_max", {1, 1, 1}}});
+    return json{{"camera", {{"from", {0, 0, -3}}, {"to", {0, 0, 0}}}},
+                {"film", {{"resolution", {8, 8}}}},
+                {"materials", {{"edge", {{"type", "diffuse"}, {"reflectance", 0.5}}}}},
+                {"media", {{"m", m}}},
+                {"shapes", json::array({{{"type", "sphere"}, {"center", {0.5, 0.5, 0.5}}, {"radius", 1}, {"material", "edge"}}})}};
+  };
+  const auto error_of_json = [&](const json& medium) {
+    try {
+      test::scene_from_json(with_medium(medium));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(error_of_json({{"voxels", {2, 1, 1}}, {"density", {1, 2}}, {"interpolation", "trilinear"}}) == "no error");
+  CHECK(error_of_json({{"voxels", {2, 1, 1}}, {"density", {1}}}).find("/media/m/density: expected nx·ny·nz = 2 numbers") != std::string::npos);
+  CHECK(error_of_json({{"voxels", {2, 1, 1}}, {"density", {1, -1}}}).find("/media/m/density/1: a density must be a finite number >= 0") !=
+        std::string::npos);
+  CHECK(error_of_json({{"voxels", {2, 1}}, {"density", {1, 1}}}).find("/media/m/voxels: expected [nx, ny, nz]") != std::string::npos);
+  CHECK(error_of_json({{"voxels", {1, 1, 1}}, {"density", {1}}, {"procedural", "cloud"}}).find("exactly one of") != std::string::npos);
+  CHECK(error_of_json({{"voxels", {1, 1, 1}}, {"density", {1}}, {"interpolation", "cubic"}}).find("/media/m/interpolation") != std::string::npos);
+  CHECK(error_of_json({{"voxels", {1, 1, 1}}, {"density", {1}}, {"transform", json::array({json{{"scale", 0}}})}}).find("/media/m/transform") !=
+        std::string::npos);
+}
