@@ -56,7 +56,7 @@ SampledSpectrum DirectionMixSpectralTexture::evaluate_at(const MaterialContext& 
   return a * Float4(w) + b * Float4(1.0f - w);
 }
 
-CheckerboardSpectralTexture::CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, UvMapping mapping)
+CheckerboardSpectralTexture::CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, TextureMapping mapping)
     : a_(std::move(a)), b_(std::move(b)), mapping_(mapping) {
   require(a_, "a checkerboard texture");
   require(b_, "a checkerboard texture");
