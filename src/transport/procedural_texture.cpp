@@ -18,8 +18,12 @@ void require(const T& t, const char* what) {
 void check_octaves(const NoiseOctaves& n, const char* what) {
   if (n.octaves < 0 || n.octaves > 30)
     throw InputError({}, std::string(what) + ": octaves must be 0-30, not " + std::to_string(n.octaves));
-  if (!std::isfinite(n.roughness)) throw InputError({}, std::string(what) + ": roughness must be finite");
+  // |ω| ≤ 10 keeps ω^30 within a float.
+  if (!(std::fabs(n.roughness) <= 10.0f)) throw InputError({}, std::string(what) + ": roughness must be within ±10");
 }
+
+// t clamped to [0, 1], NaN to 0 (a marble scale or variation large enough to overflow gives sin(∞)).
+float unit_clamp(float t) { return t > 0.0f ? (t < 1.0f ? t : 1.0f) : 0.0f; }
 
 }  // namespace
 
@@ -71,7 +75,7 @@ Rgb marble_colour(float t) {
                                            {.5f, .5f, .5f},   {.6f, .59f, .58f}, {.58f, .58f, .6f},
                                            {.58f, .58f, .6f}, {.2f, .2f, .33f},  {.58f, .58f, .6f}};
   constexpr int kSegments = 9 - 3;
-  t = std::clamp(t, 0.0f, 1.0f);
+  t = unit_clamp(t);
   const int first = std::min(int(std::floor(t * kSegments)), kSegments - 1);
   const float u = t * kSegments - float(first), v = 1.0f - u;
   // Bernstein form of the cubic Bézier through colours first … first + 3.
@@ -99,7 +103,7 @@ MarbleSpectralTexture::MarbleSpectralTexture(MarbleParameters parameters, const 
 
 SampledSpectrum MarbleSpectralTexture::evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const {
   const float t = marble_ramp_position(texture_from_world_.point(context.position), parameters_);
-  const float x = std::clamp(t, 0.0f, 1.0f) * float(kMarbleRampSize - 1);
+  const float x = unit_clamp(t) * float(kMarbleRampSize - 1);
   const int i = std::min(int(x), kMarbleRampSize - 2);
   const float f = x - float(i);
   if (!upsampler_) {

@@ -12,7 +12,7 @@
 namespace rimu {
 
 /// The parameters of a noise sum: `octaves` (0-30) of gradient noise, each 1.99× the frequency of the last and
-/// `roughness` (ω) times its weight.
+/// `roughness` (ω, |ω| ≤ 10) times its weight.
 struct NoiseOctaves {
   int octaves = 8;
   float roughness = 0.5f;
@@ -22,7 +22,7 @@ struct NoiseOctaves {
 ///   fbm:      fbm(p, ω, octaves), in about [−1, 1], mean 0;
 ///   wrinkled: turbulence(p, ω, octaves), ≥ 0;
 ///   windy:    |fbm(p/10, 0.5, 3)| · fbm(p, 0.5, 6) (waves whose height a slower noise modulates; no parameters).
-/// Throws InputError if octaves is outside 0-30.
+/// Throws InputError if octaves is outside 0-30 or |roughness| > 10.
 class NoiseFloatTexture final : public FloatTexture {
  public:
   enum class Kind { fbm, wrinkled, windy };

@@ -54,13 +54,14 @@ TEST_CASE("pbrt procedural float textures: fbm, wrinkled, windy, dots and the 3D
   const json v = {{"noise", "windy"}, {"transform", placed}};
   CHECK(m["a"]["roughness"] == json({{"power", {{{"mix", {f, w}}, {"amount", v}}, 0.5}}}));
   const json cube = {{"checkerboard", {0.1, 0.2}}, {"mapping", "solid"}, {"transform", placed}};
-  const json ball = {{"dots", {0.3, 0.0}}, {"mapping", "spherical"}, {"transform", placed}};
+  // pbrt-v4 puts "inside" outside the dots and "outside" inside them (its Create swaps the two): imported as rendered.
+  const json ball = {{"dots", {0.0, 0.3}}, {"mapping", "spherical"}, {"transform", placed}};
   const json tube = {{"checkerboard", {1.0, 0.0}}, {"mapping", "cylindrical"}, {"transform", placed}};
   CHECK(m["b"]["roughness"] == json({{"power", {{{"mix", {cube, ball}}, {"amount", tube}}, 0.5}}}));
-  const json flat = {{"dots", {1.0, 0.0}}, {"mapping", "planar"}, {"transform", placed},
+  const json flat = {{"dots", {0.0, 1.0}}, {"mapping", "planar"}, {"transform", placed},
                      {"planar_axes", {{0.0, 0.0, 1.0}, {1.0, 0.0, 0.0}}}, {"uv_offset", {0.5, 0.25}}};
   CHECK(m["c"]["roughness"] == json({{"power", {flat, 0.5}}}));
-  CHECK(m["d"]["roughness"] == json({{"power", {{{"dots", {1.0, 0.0}}, {"uv_scale", {4.0, 1.0}}, {"uv_offset", {0.0, 0.0}}}, 0.5}}}));
+  CHECK(m["d"]["roughness"] == json({{"power", {{{"dots", {0.0, 1.0}}, {"uv_scale", {4.0, 1.0}}, {"uv_offset", {0.0, 0.0}}}, 0.5}}}));
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", std::filesystem::temp_directory_path(), test::library()));
 }
 
@@ -73,7 +74,7 @@ TEST_CASE("pbrt procedural spectrum textures: marble, dots, 3D checkerboard; bad
       "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"texture reflectance\" \"cubes\"\n");
   CHECK(imported.ignored.empty());
   const json stone = {{"noise", "marble"}, {"octaves", 6}, {"roughness", 0.5}, {"scale", 3.0}, {"variation", 0.4}};
-  const json spots = {{"dots", {stone, {{"rgb", {0.1, 0.2, 0.3}}, {"space", "srgb-linear"}}}}, {"uv_scale", {1.0, 1.0}}, {"uv_offset", {0.0, 0.0}}};
+  const json spots = {{"dots", {{{"rgb", {0.1, 0.2, 0.3}}, {"space", "srgb-linear"}}, stone}}, {"uv_scale", {1.0, 1.0}}, {"uv_offset", {0.0, 0.0}}};
   CHECK(imported.document["materials"]["a"]["reflectance"] == json({{"checkerboard", {1.0, spots}}, {"mapping", "solid"}}));
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", std::filesystem::temp_directory_path(), test::library()));
 
@@ -84,6 +85,7 @@ TEST_CASE("pbrt procedural spectrum textures: marble, dots, 3D checkerboard; bad
   refused("Texture \"t\" \"float\" \"fbm\" \"integer octaves\" -2\n", "test.pbrt:5");
   refused("Texture \"t\" \"float\" \"wrinkled\" \"integer octaves\" 31\n", "\"octaves\" must be 0-30");
   refused("Texture \"t\" \"float\" \"checkerboard\" \"integer dimension\" 4\n", "\"dimension\" must be 2 or 3");
+  refused("Texture \"t\" \"float\" \"fbm\" \"float roughness\" 12\n", "\"roughness\" must be within");
 }
 
 TEST_CASE("JSON procedural textures: keys checked, mapping keys only where the mapping reads them") {
@@ -97,6 +99,7 @@ TEST_CASE("JSON procedural textures: keys checked, mapping keys only where the m
   CHECK_THROWS_WITH_AS(load(json{{"noise", "windy"}, {"octaves", 3}}), doctest::Contains("unknown key 'octaves'"), InputError);
   CHECK_THROWS_WITH_AS(load(json{{"noise", "perlin"}}), doctest::Contains("fbm"), InputError);
   CHECK_THROWS_WITH_AS(load(json{{"noise", "fbm"}, {"octaves", 40}}), doctest::Contains("octaves"), InputError);
+  CHECK_THROWS_WITH_AS(load(json{{"noise", "fbm"}, {"roughness", 11}}), doctest::Contains("roughness"), InputError);
   CHECK_THROWS_WITH_AS(load(json{{"dots", {0.1, 0.2}}, {"mapping", "solid"}}), doctest::Contains("mapping"), InputError);
   CHECK_THROWS_WITH_AS(load(json{{"checkerboard", {0.1, 0.2}}, {"mapping", "spherical"}, {"uv_scale", {2, 2}}}),
                        doctest::Contains("unknown key 'uv_scale'"), InputError);

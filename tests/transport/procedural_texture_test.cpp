@@ -89,6 +89,11 @@ TEST_CASE("fbm, turbulence, windy: the octave sums of pbrt-v4's FBm and Turbulen
   CHECK(windy.evaluate(c) == doctest::Approx(std::fabs(fbm(0.1f * p, 0.5f, 3)) * fbm(p, 0.5f, 6)).epsilon(1e-5));
   CHECK_THROWS_AS(NoiseFloatTexture(NoiseFloatTexture::Kind::fbm, {31, 0.5f}, Transform()), InputError);
   CHECK_THROWS_AS(NoiseFloatTexture(NoiseFloatTexture::Kind::fbm, {-1, 0.5f}, Transform()), InputError);
+  CHECK_THROWS_AS(NoiseFloatTexture(NoiseFloatTexture::Kind::fbm, {8, 10.5f}, Transform()), InputError);
+  // A marble whose phase overflows (sin(∞) = NaN) picks the ramp's first colour instead of indexing with NaN.
+  const MarbleSpectralTexture overflowing({{2, 0.5f}, 1e30f, 1e30f}, Transform(), nullptr);
+  const SampledSpectrum first = overflowing.evaluate_at(at({0.0f, 1e9f, 0.0f}), kLambda);  // q_y = 1e39: ∞ in float
+  CHECK(first[0] == doctest::Approx(marble_colour(0.0f).r));
 }
 
 TEST_CASE("polka dots: inside only in cells whose noise is positive, within 0.35 of the shifted centre") {

@@ -80,7 +80,7 @@ TextureMapping texture_mapping(const JsonCursor& value, const char* combinator, 
 }
 
 NoiseOctaves noise_octaves(const JsonCursor& value) {
-  return {value.integer_or("octaves", 8, 0, 30), float(value.number_or("roughness", 0.5))};
+  return {value.integer_or("octaves", 8, 0, 30), float(value.number_or("roughness", 0.5, -10.0, 10.0))};
 }
 
 // Any finite number inside a combinator (a scale may exceed 1, an offset be negative).

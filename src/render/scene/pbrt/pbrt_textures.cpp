@@ -43,6 +43,14 @@ void solid_mapping(json& value, const json& placement) {
   if (!placement.is_null()) value["transform"] = placement;
 }
 
+// The roughness (ω) of a noise texture: within ±10, so that ω^octaves stays a float.
+double noise_roughness(PbrtParams& tp, const std::string& texture_name, const SourceLocation& where) {
+  const double omega = tp.real("roughness", 0.5);
+  if (!(std::abs(omega) <= 10.0))
+    throw InputError(where, "Texture \"" + texture_name + "\": \"roughness\" must be within ±10 (the weight ratio of successive octaves)");
+  return omega;
+}
+
 // The octave count of a noise texture: pbrt-v4 loops over none for 0; a negative count has no meaning.
 int octaves(PbrtParams& tp, const std::string& texture_name, const SourceLocation& where) {
   const int n = tp.integer("octaves", 8);
@@ -94,7 +102,9 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
     return value;
   }
   if (cls == "dots") {
-    json value = {{"dots", {float_value(tp, "inside", 1.0, depth + 1), float_value(tp, "outside", 0.0, depth + 1)}}};
+    // pbrt-v4 hands its "inside" texture to the dots texture's outside slot and "outside" to the inside one (its
+    // Create passes them in the constructor's other order): imported as pbrt renders it.
+    json value = {{"dots", {float_value(tp, "outside", 0.0, depth + 1), float_value(tp, "inside", 1.0, depth + 1)}}};
     texture_mapping(tp, value, *this, ts.where, placement);
     return value;
   }
@@ -102,7 +112,7 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
     json value = {{"noise", cls}};
     if (cls != "windy") {
       value["octaves"] = octaves(tp, texture_name, ts.where);
-      value["roughness"] = tp.real("roughness", 0.5);
+      value["roughness"] = noise_roughness(tp, texture_name, ts.where);
     }
     if (json steps = placement(); !steps.is_null()) value["transform"] = steps;
     return value;
@@ -160,13 +170,13 @@ std::optional<json> PbrtConverter::spectrum_combinator(const PbrtTexture& textur
                 {"direction", {world[0], world[1], world[2]}}};
   }
   if (cls == "marble") {
-    json value = {{"noise", "marble"}, {"octaves", octaves(tp, ts.strings[0], ts.where)}, {"roughness", tp.real("roughness", 0.5)},
+    json value = {{"noise", "marble"}, {"octaves", octaves(tp, ts.strings[0], ts.where)}, {"roughness", noise_roughness(tp, ts.strings[0], ts.where)},
                   {"scale", tp.real("scale", 1.0)}, {"variation", tp.real("variation", 0.2)}};
     if (json steps = placement(); !steps.is_null()) value["transform"] = steps;
     return value;
   }
   if (cls == "dots") {
-    json value = {{"dots", {spectral("inside", 1.0), spectral("outside", 0.0)}}};
+    json value = {{"dots", {spectral("outside", 0.0), spectral("inside", 1.0)}}};  // swapped as pbrt-v4 does (above)
     texture_mapping(tp, value, *this, ts.where, placement);
     return value;
   }
