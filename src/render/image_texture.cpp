@@ -3,20 +3,31 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace rimu {
 
+Rgb scaled_texel(Rgb rgb, float scale, bool invert) {
+  const auto one = [&](double v) {
+    v *= double(scale);
+    if (invert) v = std::max(0.0, 1.0 - v);
+    return std::clamp(v, 0.0, 1.0);
+  };
+  return (scale == 1.0f && !invert) ? rgb : Rgb{one(rgb.r), one(rgb.g), one(rgb.b)};
+}
+
 ImageTexture::ImageTexture(std::shared_ptr<const RgbImage> image, std::shared_ptr<const RgbUpsampler> upsampler,
-                           float scale)
-    : width_(image->width()), height_(image->height()), upsampler_(std::move(upsampler)), scale_(scale) {
+                           float scale, bool invert)
+    : width_(image->width()), height_(image->height()), upsampler_(std::move(upsampler)) {
   // RgbImage::read has already rejected NaN/Inf pixels (naming the file and the pixel), so this cannot throw.
   // Rows in parallel: every texel is independent, so the result does not depend on the thread count.
   texels_.resize(size_t(width_) * size_t(height_));
   tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < width_; ++x)
-        texels_[size_t(y) * size_t(width_) + size_t(x)] = upsampler_->reflectance_coefficients(image->pixel(x, y));
+        texels_[size_t(y) * size_t(width_) + size_t(x)] =
+            upsampler_->reflectance_coefficients(scaled_texel(image->pixel(x, y), scale, invert));
   });
 }
 
@@ -32,7 +43,7 @@ SampledSpectrum ImageTexture::evaluate(Vec2 uv, const SampledWavelengths& lambda
   const BasisCoefficients* t[4] = {&texel(x0, y0), &texel(x1, y0), &texel(x0, y1), &texel(x1, y1)};
   const float w[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
   // Clamped: the basis truncation rings a few 1e-3 around the exact spectrum's zeros and peaks.
-  return upsampler_->basis().evaluate_blend(t, w, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f)) * Float4(scale_);
+  return upsampler_->basis().evaluate_blend(t, w, lambda.lambda_nm(), Float4(0.0f), Float4(1.0f));
 }
 
 }  // namespace rimu

@@ -1,5 +1,7 @@
 #include "render/rgb_transport_inputs.h"
 
+#include "render/image_texture.h"
+
 #include <algorithm>
 #include <array>
 #include <sstream>
@@ -115,11 +117,11 @@ float RgbLaneEnvironmentImage::luminance(int x, int y) const {
 }
 
 RgbLaneImageTexture::RgbLaneImageTexture(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space,
-                                         float scale)
-    : image_(std::move(image)), to_srgb_(srgb().xyz_to_rgb() * space.rgb_to_xyz()), scale_(scale) {}
+                                         float scale, bool invert)
+    : image_(std::move(image)), to_srgb_(srgb().xyz_to_rgb() * space.rgb_to_xyz()), scale_(scale), invert_(invert) {}
 
 SampledSpectrum RgbLaneImageTexture::evaluate(Vec2 uv, const SampledWavelengths&) const {
-  return srgb_lanes(image_value_in_srgb(to_srgb_, image_->bilinear(uv), 1.0)) * Float4(scale_);
+  return srgb_lanes(image_value_in_srgb(to_srgb_, scaled_texel(image_->bilinear(uv), scale_, invert_), 1.0));
 }
 
 }  // namespace rimu

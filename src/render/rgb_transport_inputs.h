@@ -88,17 +88,18 @@ class RgbLaneEnvironmentImage final : public EnvironmentImage {
   Matrix3 to_srgb_;  // the image's space → linear sRGB
 };
 
-/// An image reflectance texture in rgb transport: bilinear RGB, converted to linear sRGB, clipped to [0, 1] and
-/// scaled; no upsampling (compare render/image_texture.h).
+/// An image reflectance texture in rgb transport: bilinear RGB, scaled and inverted as ImageTexture's texels
+/// (scaled_texel), converted to linear sRGB, clipped to [0, 1]; no upsampling (compare render/image_texture.h).
 class RgbLaneImageTexture final : public SpectralTexture {
  public:
-  RgbLaneImageTexture(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space, float scale);
+  RgbLaneImageTexture(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space, float scale, bool invert = false);
   SampledSpectrum evaluate(Vec2 uv, const SampledWavelengths& lambda) const override;
 
  private:
   std::shared_ptr<const RgbImage> image_;
   Matrix3 to_srgb_;  // the image's space → linear sRGB
   float scale_;
+  bool invert_;
 };
 
 }  // namespace rimu

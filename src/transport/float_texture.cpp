@@ -48,7 +48,7 @@ float DirectionMixFloatTexture::evaluate(const MaterialContext& context) const {
   return w * a + (1.0f - w) * b;
 }
 
-CheckerboardFloatTexture::CheckerboardFloatTexture(FloatTexturePtr a, FloatTexturePtr b, UvMapping mapping)
+CheckerboardFloatTexture::CheckerboardFloatTexture(FloatTexturePtr a, FloatTexturePtr b, TextureMapping mapping)
     : a_(std::move(a)), b_(std::move(b)), mapping_(mapping) {
   require_texture_inputs("a checkerboard texture", a_, b_);
 }

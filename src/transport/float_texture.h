@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "transport/material_context.h"
+#include "transport/texture_mapping.h"
 
 namespace rimu {
 
@@ -29,16 +30,19 @@ class ConstantFloatTexture final : public FloatTexture {
   float value_;
 };
 
-/// pbrt-v4's 2D "uv" texture mapping: (s, t) = (su·u + du, sv·v + dv).
-struct UvMapping {
-  float su = 1, sv = 1, du = 0, dv = 0;
-  Vec2 operator()(Vec2 uv) const { return {su * uv.x + du, sv * uv.y + dv}; }
-};
+/// Whether ⌊x⌋ is odd (by fmod, so that no float, however large or NaN, overflows an integer conversion).
+inline bool checkerboard_odd_cell(float x) { return std::fmod(std::floor(x), 2.0f) != 0.0f; }
 
 /// Which of a 2D checkerboard's two textures covers (s, t): the first where ⌊s⌋ + ⌊t⌋ is even (pbrt-v4's
 /// checkerboard, point-sampled: Rimu has no ray differentials to box-filter it with).
-inline bool checkerboard_first(Vec2 st) {
-  return (static_cast<long long>(std::floor(st.x)) + static_cast<long long>(std::floor(st.y))) % 2 == 0;
+inline bool checkerboard_first(Vec2 st) { return checkerboard_odd_cell(st.x) == checkerboard_odd_cell(st.y); }
+
+/// The same for any mapping: a `solid` mapping gives pbrt-v4's 3D checkerboard (the first texture where
+/// ⌊x⌋ + ⌊y⌋ + ⌊z⌋ of the texture-space point is even: unit cubes).
+inline bool checkerboard_first(const TextureMapping& mapping, const MaterialContext& context) {
+  if (mapping.kind != TextureMapping::Kind::solid) return checkerboard_first(mapping.st(context));
+  const Vec3 p = mapping.point(context);
+  return (checkerboard_odd_cell(p.x) != checkerboard_odd_cell(p.y)) == checkerboard_odd_cell(p.z);
 }
 
 /// The weight of the first texture of pbrt-v4's "directionmix": |n·direction|, n the geometric normal.
@@ -103,17 +107,18 @@ class DirectionMixFloatTexture final : public FloatTexture {
   Vec3 direction_;
 };
 
-/// a on the even squares of the mapped uv grid, b on the odd ones (pbrt-v4's 2D "checkerboard").
+/// a on the even squares of the mapped grid (cubes for a solid mapping), b on the odd ones (pbrt-v4's
+/// "checkerboard", 2D or 3D).
 class CheckerboardFloatTexture final : public FloatTexture {
  public:
-  CheckerboardFloatTexture(FloatTexturePtr a, FloatTexturePtr b, UvMapping mapping);
+  CheckerboardFloatTexture(FloatTexturePtr a, FloatTexturePtr b, TextureMapping mapping);
   float evaluate(const MaterialContext& context) const override {
-    return checkerboard_first(mapping_(context.uv)) ? a_->evaluate(context) : b_->evaluate(context);
+    return checkerboard_first(mapping_, context) ? a_->evaluate(context) : b_->evaluate(context);
   }
 
  private:
   FloatTexturePtr a_, b_;
-  UvMapping mapping_;
+  TextureMapping mapping_;
 };
 
 }  // namespace rimu

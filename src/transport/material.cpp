@@ -197,11 +197,33 @@ CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIo
   check_layer(layer_);
 }
 
+CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, SpectralTexturePtr conductor_reflectance,
+                                                 float conductor_roughness_u, float conductor_roughness_v, CoatLayer layer)
+    : coat_ior_(std::move(coat_ior)),
+      reflectance_(std::move(conductor_reflectance)),
+      conductor_distribution_(distribution_for(conductor_roughness_u, conductor_roughness_v)),
+      layer_(std::move(layer)) {
+  if (!coat_ior_) throw InputError({}, "a coated conductor needs a coat index");
+  if (!reflectance_) throw InputError({}, "a coated conductor by reflectance needs a reflectance");
+  check_coat_ior(*coat_ior_);
+  check_roughness(conductor_roughness_u, "conductor roughness");
+  check_roughness(conductor_roughness_v, "conductor roughness");
+  check_layer(layer_);
+}
+
 Bsdf CoatedConductorMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
   const float eta = hero_coat_eta(*coat_ior_, lambda);
   // The metal borders the coat, not air: its Fresnel factor uses the index relative to the coat.
-  const ConductorBsdf base(conductor_.n->sample(lambda) / Float4(eta), conductor_.k->sample(lambda) / Float4(eta),
-                           conductor_distribution_);
+  Float4 n, k;
+  if (reflectance_) {
+    const Float4 r = clamp(reflectance_->evaluate_at(context, lambda), Float4(0.0f), Float4(0.9999f));
+    n = Float4(1.0f);
+    k = Float4(2.0f) * sqrt(r / (Float4(1.0f) - r));
+  } else {
+    n = conductor_.n->sample(lambda);
+    k = conductor_.k->sample(lambda);
+  }
+  const ConductorBsdf base(n / Float4(eta), k / Float4(eta), conductor_distribution_);
   return LayeredBsdf(eta, coat_distribution(layer_), base, layer_medium(layer_, context, lambda), layer_.walk);
 }
 

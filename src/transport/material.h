@@ -136,11 +136,17 @@ class CoatedConductorMaterial {
   /// thickness, |g| ≥ 1 or max_depth/samples < 1.
   CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor, float conductor_roughness_u,
                           float conductor_roughness_v, CoatLayer layer);
+  /// pbrt-v4's artist metal under the coat: the conductor's normal-incidence reflectance r(λ) (clamped to
+  /// [0, 0.9999]) met with n = 1, k = 2√(r/(1 − r)) as ConductorMaterial::from_reflectance, both then divided by
+  /// the coat's index (the metal borders the coat). Throws as the other constructor.
+  CoatedConductorMaterial(SpectrumPtr coat_ior, SpectralTexturePtr conductor_reflectance, float conductor_roughness_u,
+                          float conductor_roughness_v, CoatLayer layer);
   Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectrumPtr coat_ior_;
   ComplexIorSpectra conductor_;
+  SpectralTexturePtr reflectance_;  // instead of conductor_ (artist metal)
   TrowbridgeReitz conductor_distribution_;
   CoatLayer layer_;
 };

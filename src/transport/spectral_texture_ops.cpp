@@ -45,7 +45,8 @@ SampledSpectrum DirectionMixSpectralTexture::evaluate_at(const MaterialContext& 
   return weighted_sum(context, lambda, w, 1.0f - w);
 }
 
-CheckerboardSpectralTexture::CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, UvMapping mapping)
+CheckerboardSpectralTexture::CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b,
+                                                         TextureMapping mapping)
     : SpectralTexturePair(std::move(a), std::move(b), "a checkerboard texture"), mapping_(mapping) {}
 
 }  // namespace rimu

@@ -60,16 +60,16 @@ class DirectionMixSpectralTexture final : public SpectralTexturePair {
   Vec3 direction_;
 };
 
-/// a on the even squares, b on the odd ones (pbrt-v4's 2D "checkerboard", point-sampled).
+/// a on the even squares (cubes for a solid mapping), b on the odd ones (pbrt-v4's "checkerboard", point-sampled).
 class CheckerboardSpectralTexture final : public SpectralTexturePair {
  public:
-  CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, UvMapping mapping);
+  CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b, TextureMapping mapping);
   SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override {
-    return checkerboard_first(mapping_(context.uv)) ? a_->evaluate_at(context, lambda) : b_->evaluate_at(context, lambda);
+    return checkerboard_first(mapping_, context) ? a_->evaluate_at(context, lambda) : b_->evaluate_at(context, lambda);
   }
 
  private:
-  UvMapping mapping_;
+  TextureMapping mapping_;
 };
 
 }  // namespace rimu

@@ -220,3 +220,23 @@ TEST_CASE("material: mix chooses per hit, the second with probability amount, th
   }
   CHECK_THROWS_AS(MixMaterial(first, nullptr, std::make_shared<ConstantFloatTexture>(0.5f), 0), InputError);
 }
+
+TEST_CASE("material: a coated conductor by reflectance is the coated conductor of n = 1, k = 2√(r/(1 − r))") {
+  // pbrt-v4's artist metal under a coat: r = 0.5 gives k = 2, r = 0.8 gives k = 4. Same walk seed, same BSDF.
+  const auto ior = std::make_shared<ConstantSpectrum>(1.5);
+  CoatLayer rough;
+  rough.roughness = 0.3f;
+  for (const auto [r, k] : {std::pair{0.5, 2.0}, std::pair{0.8, 4.0}}) {
+    CAPTURE(r);
+    const CoatedConductorMaterial by_reflectance(ior, constant_texture(r), 0.2f, 0.2f, rough);
+    const CoatedConductorMaterial by_ior(ior, ComplexIorSpectra{std::make_shared<ConstantSpectrum>(1.0), std::make_shared<ConstantSpectrum>(k)},
+                                         0.2f, 0.2f, rough);
+    for (const Vec3 wi : {Vec3{0, 0, 1}, normalize(Vec3{0.3f, 0.1f, 0.9f}), normalize(Vec3{-0.6f, 0.2f, 0.5f})}) {
+      const Vec3 wo = normalize(Vec3{0.2f, -0.4f, 0.8f});
+      const Float4 a = by_reflectance.bsdf({}, kLambda).eval(wo, wi), b = by_ior.bsdf({}, kLambda).eval(wo, wi);
+      for (int l = 0; l < 4; ++l) CHECK(a[l] == doctest::Approx(b[l]).epsilon(1e-5));
+      CHECK(a[0] > 0.0f);
+    }
+  }
+  CHECK_THROWS_AS(CoatedConductorMaterial(ior, SpectralTexturePtr{}, 0.0f, 0.0f, {}), InputError);
+}

@@ -185,13 +185,20 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
   }
   if (type == "coated_conductor") {
     m.only_keys({"type", "normal_map", "displacement", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
-                 "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});
+                 "reflectance", "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});
     const SpectrumPtr coat = coat_ior_of(m, context);
-    const ComplexIorSpectra ior = conductor_ior_of(m, context);
     const float r = float(m.number_or("conductor_roughness", 0.0, 0.0, 1.0));
     const float ru = float(m.number_or("conductor_roughness_u", r, 0.0, 1.0));
     const float rv = float(m.number_or("conductor_roughness_v", r, 0.0, 1.0));
     const CoatLayer layer = coat_layer_of(m, context);
+    if (m.has("reflectance")) {
+      // pbrt-v4's artist metal under the coat, as the conductor's "reflectance".
+      for (const char* key : {"metal", "n", "k"})
+        if (m.has(key)) m.at(key).fail("give either reflectance or metal or n and k, not several");
+      SpectralTexturePtr reflectance = load_spectral_texture(m.at("reflectance"), context);
+      return m.blame([&] { return Material(CoatedConductorMaterial(coat, std::move(reflectance), ru, rv, layer)); });
+    }
+    const ComplexIorSpectra ior = conductor_ior_of(m, context);
     return (m.has("coat_ior") ? m.at("coat_ior") : m).blame([&] {
       return Material(CoatedConductorMaterial(coat, ior, ru, rv, layer));
     });

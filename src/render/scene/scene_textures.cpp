@@ -5,20 +5,21 @@
 #include "render/float_image_texture.h"
 #include "render/image_texture.h"
 #include "render/rgb_transport_inputs.h"
+#include "transport/procedural_texture.h"
 #include "transport/spectral_texture_ops.h"
 
 namespace rimu::scene_loading {
 namespace {
 
 // The combinator keys; an object has at most one of them.
-constexpr std::initializer_list<const char*> kCombinators = {"product", "power", "mix", "direction_mix", "checkerboard"};
+constexpr std::initializer_list<const char*> kCombinators = {"product", "power", "mix", "direction_mix", "checkerboard", "dots"};
 
 std::optional<std::string> combinator_of(const JsonCursor& value) {
   if (!value.is_object()) return std::nullopt;
   std::optional<std::string> found;
   for (const char* key : kCombinators)
     if (value.has(key)) {
-      if (found) value.fail("give one of product, power, mix, direction_mix, checkerboard, not both " + *found + " and " + key);
+      if (found) value.fail("give one of product, power, mix, direction_mix, checkerboard, dots, not both " + *found + " and " + key);
       found = key;
     }
   return found;
@@ -46,6 +47,42 @@ UvMapping uv_mapping(const JsonCursor& value) {
   return m;
 }
 
+// The mapping keys of a checkerboard or dots texture (docs/scene-format.md "Textures"): "mapping" uv (default:
+// "uv_scale", "uv_offset"), spherical, cylindrical, planar ("planar_axes", "uv_offset") or, where `solid_allowed`,
+// solid (3D); all but uv place texture space by "transform". Keys that the chosen mapping does not read are refused.
+TextureMapping texture_mapping(const JsonCursor& value, const char* combinator, bool solid_allowed) {
+  std::string kind = "uv";
+  if (value.has("mapping"))
+    kind = solid_allowed ? value.at("mapping").choice({"uv", "spherical", "cylindrical", "planar", "solid"})
+                         : value.at("mapping").choice({"uv", "spherical", "cylindrical", "planar"});
+  if (kind == "uv") {
+    value.only_keys({combinator, "mapping", "uv_scale", "uv_offset"});
+    return uv_mapping(value);
+  }
+  TextureMapping m;
+  m.texture_from_world = parse_transform(value).inverse();
+  if (kind == "planar") {
+    value.only_keys({combinator, "mapping", "transform", "planar_axes", "uv_offset"});
+    m.kind = TextureMapping::Kind::planar;
+    if (value.has("planar_axes")) {
+      const JsonCursor axes = value.at("planar_axes");
+      if (!axes.is_array() || axes.size() != 2) axes.fail("expected two directions [[x, y, z], [x, y, z]] (s and t)");
+      m.planar_s = axes.at(size_t(0)).vec3();
+      m.planar_t = axes.at(size_t(1)).vec3();
+    }
+    if (value.has("uv_offset")) m.planar_offset = value.at("uv_offset").vec2();
+    return m;
+  }
+  value.only_keys({combinator, "mapping", "transform"});
+  m.kind = kind == "spherical" ? TextureMapping::Kind::spherical
+                               : (kind == "cylindrical" ? TextureMapping::Kind::cylindrical : TextureMapping::Kind::solid);
+  return m;
+}
+
+NoiseOctaves noise_octaves(const JsonCursor& value) {
+  return {value.integer_or("octaves", 8, 0, 30), float(value.number_or("roughness", 0.5, -10.0, 10.0))};
+}
+
 // Any finite number inside a combinator (a scale may exceed 1, an offset be negative).
 FloatTexturePtr operand_float(const JsonCursor& value, LoadContext& context) {
   return load_float_texture(value, context, -1e30, 1e30);
@@ -71,8 +108,18 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
                                                  value.boolean_or("invert", false));
     });
   }
+  if (value.has("noise")) {
+    const std::string noise = value.at("noise").choice({"fbm", "wrinkled", "windy"});
+    if (noise == "windy")
+      value.only_keys({"noise", "transform"});
+    else
+      value.only_keys({"noise", "octaves", "roughness", "transform"});
+    const auto kind = noise == "fbm" ? NoiseFloatTexture::Kind::fbm
+                                     : (noise == "wrinkled" ? NoiseFloatTexture::Kind::wrinkled : NoiseFloatTexture::Kind::windy);
+    return std::make_shared<NoiseFloatTexture>(kind, noise_octaves(value), parse_transform(value).inverse());
+  }
   const auto kind = combinator_of(value);
-  if (!kind) value.fail("expected a number or an object with texture, product, mix, direction_mix or checkerboard");
+  if (!kind) value.fail("expected a number or an object with texture, noise, product, mix, direction_mix, checkerboard or dots");
   const auto [a_value, b_value] = operands(value, *kind);
   if (*kind == "power") {
     value.only_keys({"power"});
@@ -95,21 +142,31 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
       return std::make_shared<DirectionMixFloatTexture>(std::move(a), std::move(b), direction.vec3());
     });
   }
-  value.only_keys({"checkerboard", "uv_scale", "uv_offset"});
-  return std::make_shared<CheckerboardFloatTexture>(std::move(a), std::move(b), uv_mapping(value));
+  if (*kind == "dots") return std::make_shared<DotsFloatTexture>(std::move(a), std::move(b), texture_mapping(value, "dots", false));
+  return std::make_shared<CheckerboardFloatTexture>(std::move(a), std::move(b), texture_mapping(value, "checkerboard", true));
 }
 
 SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& context) {
   if (value.is_object() && value.has("texture")) {
-    value.only_keys({"texture", "colour_space", "encoding", "scale"});
+    value.only_keys({"texture", "colour_space", "encoding", "scale", "invert"});
     const std::filesystem::path path = context.spectra.scene_directory() / value.at("texture").string();
     const std::shared_ptr<const RgbImage> image = load_rgb_image(value, path);
     const std::string space = value.string_or("colour_space", "srgb-linear");
+    // Scale, then invert, on the texel RGB before it is upsampled (pbrt-v4's order; render/image_texture.h).
+    const float scale = float(value.number_or("scale", 1.0, 0.0, 1e30));
+    const bool invert = value.boolean_or("invert", false);
     if (context.spectra.rgb_transport())
-      return std::make_shared<RgbLaneImageTexture>(image, RgbColourSpace::named(space),
-                                                   float(value.number_or("scale", 1.0, 0.0, 1.0)));
+      return std::make_shared<RgbLaneImageTexture>(image, RgbColourSpace::named(space), scale, invert);
     const auto upsampler = context.spectra.upsampler(space, value.has("colour_space") ? value.at("colour_space") : value);
-    return std::make_shared<ImageTexture>(image, upsampler, float(value.number_or("scale", 1.0, 0.0, 1.0)));
+    return std::make_shared<ImageTexture>(image, upsampler, scale, invert);
+  }
+  if (value.is_object() && value.has("noise")) {
+    value.at("noise").choice({"marble"});
+    value.only_keys({"noise", "octaves", "roughness", "scale", "variation", "transform"});
+    MarbleParameters marble{noise_octaves(value), float(value.number_or("scale", 1.0)), float(value.number_or("variation", 0.2))};
+    // pbrt-v4's ramp colours are linear sRGB; rgb transport carries them as they are.
+    auto upsampler = context.spectra.rgb_transport() ? nullptr : context.spectra.upsampler("srgb-linear", value);
+    return std::make_shared<MarbleSpectralTexture>(marble, parse_transform(value).inverse(), std::move(upsampler));
   }
   const auto kind = combinator_of(value);
   if (!kind) return std::make_shared<ConstantSpectralTexture>(context.spectra.parse(value, SpectrumRole::reflectance));
@@ -133,8 +190,8 @@ SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& c
       return std::make_shared<DirectionMixSpectralTexture>(std::move(a), std::move(b), direction.vec3());
     });
   }
-  value.only_keys({"checkerboard", "uv_scale", "uv_offset"});
-  return std::make_shared<CheckerboardSpectralTexture>(std::move(a), std::move(b), uv_mapping(value));
+  if (*kind == "dots") return std::make_shared<DotsSpectralTexture>(std::move(a), std::move(b), texture_mapping(value, "dots", false));
+  return std::make_shared<CheckerboardSpectralTexture>(std::move(a), std::move(b), texture_mapping(value, "checkerboard", true));
 }
 
 }  // namespace rimu::scene_loading

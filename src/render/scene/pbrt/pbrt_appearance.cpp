@@ -174,12 +174,11 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
     const std::filesystem::path path = std::filesystem::absolute(ts.directory / filename);
     if (!std::filesystem::is_regular_file(path)) throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": cannot find the image '" + path.string() + "'");
     json value = {{"texture", path_for_document(path)}, {"encoding", image_encoding(tp, path, ts.where)}};
+    // Scale and invert act on the texel RGB before upsampling, as in pbrt-v4; a negative scale makes every texel 0
+    // (or 1 inverted) there, and so here.
     const double scale = tp.real("scale", 1.0);
-    if (scale != 1.0) {
-      if (scale > 1.0 || scale < 0.0) ignore("imagemap \"scale\" outside 0-1 (clamped)", ts.where);
-      value["scale"] = std::clamp(scale, 0.0, 1.0);
-    }
-    if (tp.boolean("invert", false)) ignore("imagemap \"invert\"", ts.where);
+    if (scale != 1.0) value["scale"] = std::max(0.0, scale);
+    if (tp.boolean("invert", false)) value["invert"] = true;
     if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
         tp.real("vdelta", 0) != 0)
       ignore("texture mapping other than plain uv", ts.where);
@@ -360,7 +359,15 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       if (const auto v = spectrum_value(*eta, false, p.directory())) m["coat_ior"] = *v;
     }
     coat_layer("interface.", m);
-    conductor_ior("conductor.", m);
+    if (p.get("reflectance", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real})) {
+      // pbrt-v4's artist metal under the coat (pbrt refuses it next to conductor.eta/k): Rimu's "reflectance".
+      const std::initializer_list<PbrtParamType> ior_types = {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture};
+      if (p.get("conductor.eta", ior_types) || p.get("conductor.k", ior_types))
+        throw InputError(s.where, "coatedconductor: give either \"reflectance\" or \"conductor.eta\"/\"conductor.k\", not both (as pbrt-v4)");
+      m["reflectance"] = *reflectance(p, "reflectance", 0.0);
+    } else {
+      conductor_ior("conductor.", m);
+    }
     const auto [u, v] = roughness_pair("conductor.");
     if (u == v) {
       if (u > 0) m["conductor_roughness"] = rimu_roughness(u, remap);

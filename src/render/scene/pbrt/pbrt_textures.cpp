@@ -1,20 +1,62 @@
 // pbrt-v4 textures → Rimu's texture values (docs/scene-format.md "Textures", docs/pbrt-import.md): float textures
-// (constant, scale, mix, directionmix, 2D checkerboard, imagemap) and the spectrum combinators. Default operands
+// (constant, scale, mix, directionmix, checkerboard, dots, fbm, wrinkled, windy, imagemap) and the spectrum ones
+// (scale, mix, directionmix, checkerboard, dots, marble) with every 2D mapping and the 3D one. Default operands
 // are pbrt-v4's: scale tex 1 × scale 1; mix tex1 0, tex2 1, amount 0.5; directionmix tex1 0, tex2 1, dir (0, 1, 0);
 // checkerboard tex1 1, tex2 0.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "render/scene/pbrt/pbrt_converter.h"
 
 namespace rimu {
 namespace {
 
-// pbrt-v4's 2D uv mapping parameters as Rimu's checkerboard keys; other mappings are listed (uv is used).
-void uv_mapping(PbrtParams& tp, json& value, PbrtConverter& converter, const SourceLocation& where) {
-  if (tp.string("mapping", "uv") != "uv") converter.ignore("texture mapping other than uv (uv is used)", where);
+// pbrt-v4's 2D texture mapping parameters as Rimu's mapping keys (docs/scene-format.md "Textures"). `placement` is
+// the texture's CTM as transform steps (null for the identity), asked for only by the mappings that use it; an unknown mapping is listed and uv is used.
+void texture_mapping(PbrtParams& tp, json& value, PbrtConverter& converter, const SourceLocation& where,
+                     const std::function<json()>& placement) {
+  const std::string mapping = tp.string("mapping", "uv");
+  if (mapping == "spherical" || mapping == "cylindrical" || mapping == "planar") {
+    value["mapping"] = mapping;
+    if (json steps = placement(); !steps.is_null()) value["transform"] = steps;
+    if (mapping == "planar") {
+      const auto axis = [&](const char* name, std::vector<double> fallback) {
+        std::vector<double> v = tp.numbers(name, {PbrtParamType::vector3});
+        if (v.empty()) v = std::move(fallback);
+        if (v.size() != 3) throw InputError(where, std::string("texture mapping \"planar\": \"") + name + "\" must be one vector3");
+        return v;
+      };
+      value["planar_axes"] = {axis("v1", {1, 0, 0}), axis("v2", {0, 1, 0})};
+      value["uv_offset"] = {tp.real("udelta", 0.0), tp.real("vdelta", 0.0)};
+    }
+    return;
+  }
+  if (mapping != "uv") converter.ignore("texture mapping \"" + mapping + "\" (uv is used)", where);
   value["uv_scale"] = {tp.real("uscale", 1.0), tp.real("vscale", 1.0)};
   value["uv_offset"] = {tp.real("udelta", 0.0), tp.real("vdelta", 0.0)};
+}
+
+// pbrt-v4's TextureMapping3D: the texture's CTM.
+void solid_mapping(json& value, const json& placement) {
+  value["mapping"] = "solid";
+  if (!placement.is_null()) value["transform"] = placement;
+}
+
+// The roughness (ω) of a noise texture: within ±10, so that ω^octaves stays a float.
+double noise_roughness(PbrtParams& tp, const std::string& texture_name, const SourceLocation& where) {
+  const double omega = tp.real("roughness", 0.5);
+  if (!(std::abs(omega) <= 10.0))
+    throw InputError(where, "Texture \"" + texture_name + "\": \"roughness\" must be within ±10 (the weight ratio of successive octaves)");
+  return omega;
+}
+
+// The octave count of a noise texture: pbrt-v4 loops over none for 0; a negative count has no meaning.
+int octaves(PbrtParams& tp, const std::string& texture_name, const SourceLocation& where) {
+  const int n = tp.integer("octaves", 8);
+  if (n < 0 || n > 30)
+    throw InputError(where, "Texture \"" + texture_name + "\": \"octaves\" must be 0-30 (each doubles the frequency), not " + std::to_string(n));
+  return n;
 }
 
 }  // namespace
@@ -35,6 +77,7 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
   const PbrtStatement& ts = texture.statement;
   const std::string& cls = texture.texture_class;
   PbrtParams tp(*this, ts, "Texture \"" + texture_name + "\"");
+  const auto placement = [&] { return transform_steps(texture.world_from_texture, ts.where); };
   if (cls == "scale") return json{{"product", {float_value(tp, "tex", 1.0, depth + 1), float_value(tp, "scale", 1.0, depth + 1)}}};
   if (cls == "mix")
     return json{{"mix", {float_value(tp, "tex1", 0.0, depth + 1), float_value(tp, "tex2", 1.0, depth + 1)}},
@@ -48,12 +91,30 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
                 {"direction", {world[0], world[1], world[2]}}};
   }
   if (cls == "checkerboard") {
-    if (tp.integer("dimension", 2) != 2) {
-      ignore("3D checkerboard texture (the material's default is used)", ts.where);
-      return std::nullopt;
-    }
+    const int dimension = tp.integer("dimension", 2);
+    if (dimension != 2 && dimension != 3)
+      throw InputError(ts.where, "Texture \"" + texture_name + "\": \"dimension\" must be 2 or 3, not " + std::to_string(dimension));
     json value = {{"checkerboard", {float_value(tp, "tex1", 1.0, depth + 1), float_value(tp, "tex2", 0.0, depth + 1)}}};
-    uv_mapping(tp, value, *this, ts.where);
+    if (dimension == 3)
+      solid_mapping(value, placement());
+    else
+      texture_mapping(tp, value, *this, ts.where, placement);
+    return value;
+  }
+  if (cls == "dots") {
+    // pbrt-v4 hands its "inside" texture to the dots texture's outside slot and "outside" to the inside one (its
+    // Create passes them in the constructor's other order): imported as pbrt renders it.
+    json value = {{"dots", {float_value(tp, "outside", 0.0, depth + 1), float_value(tp, "inside", 1.0, depth + 1)}}};
+    texture_mapping(tp, value, *this, ts.where, placement);
+    return value;
+  }
+  if (cls == "fbm" || cls == "wrinkled" || cls == "windy") {
+    json value = {{"noise", cls}};
+    if (cls != "windy") {
+      value["octaves"] = octaves(tp, texture_name, ts.where);
+      value["roughness"] = noise_roughness(tp, texture_name, ts.where);
+    }
+    if (json steps = placement(); !steps.is_null()) value["transform"] = steps;
     return value;
   }
   if (cls == "imagemap") {
@@ -81,6 +142,8 @@ std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem:
   std::string extension = image.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
+  // pbrt-v4 applies an encoding to 8-bit images only: a float image (EXR, PFM, HDR) is linear whatever is asked.
+  if (extension == ".exr" || extension == ".pfm" || extension == ".hdr") return "linear";
   if (encoding == "linear") return "linear";
   if (encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", where);
   return "srgb";
@@ -89,8 +152,10 @@ std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem:
 std::optional<json> PbrtConverter::spectrum_combinator(const PbrtTexture& texture, int depth) {
   const PbrtStatement& ts = texture.statement;
   const std::string& cls = texture.texture_class;
-  if (cls != "scale" && cls != "mix" && cls != "directionmix" && cls != "checkerboard") return std::nullopt;
+  if (cls != "scale" && cls != "mix" && cls != "directionmix" && cls != "checkerboard" && cls != "dots" && cls != "marble")
+    return std::nullopt;
   PbrtParams tp(*this, ts, "Texture \"" + ts.strings[0] + "\"");
+  const auto placement = [&] { return transform_steps(texture.world_from_texture, ts.where); };
   const auto spectral = [&](const char* key, double fallback) { return reflectance(tp, key, fallback, depth).value_or(json(fallback)); };
   if (cls == "scale") return json{{"product", {spectral("tex", 1.0), float_value(tp, "scale", 1.0, depth)}}};
   if (cls == "mix")
@@ -104,9 +169,25 @@ std::optional<json> PbrtConverter::spectrum_combinator(const PbrtTexture& textur
     return json{{"direction_mix", {spectral("tex1", 0.0), spectral("tex2", 1.0)}},
                 {"direction", {world[0], world[1], world[2]}}};
   }
-  if (tp.integer("dimension", 2) != 2) return std::nullopt;  // listed by the caller as an unsupported class
+  if (cls == "marble") {
+    json value = {{"noise", "marble"}, {"octaves", octaves(tp, ts.strings[0], ts.where)}, {"roughness", noise_roughness(tp, ts.strings[0], ts.where)},
+                  {"scale", tp.real("scale", 1.0)}, {"variation", tp.real("variation", 0.2)}};
+    if (json steps = placement(); !steps.is_null()) value["transform"] = steps;
+    return value;
+  }
+  if (cls == "dots") {
+    json value = {{"dots", {spectral("outside", 0.0), spectral("inside", 1.0)}}};  // swapped as pbrt-v4 does (above)
+    texture_mapping(tp, value, *this, ts.where, placement);
+    return value;
+  }
+  const int dimension = tp.integer("dimension", 2);
+  if (dimension != 2 && dimension != 3)
+    throw InputError(ts.where, "Texture \"" + ts.strings[0] + "\": \"dimension\" must be 2 or 3, not " + std::to_string(dimension));
   json value = {{"checkerboard", {spectral("tex1", 1.0), spectral("tex2", 0.0)}}};
-  uv_mapping(tp, value, *this, ts.where);
+  if (dimension == 3)
+    solid_mapping(value, placement());
+  else
+    texture_mapping(tp, value, *this, ts.where, placement);
   return value;
 }
 
