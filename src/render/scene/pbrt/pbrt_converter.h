@@ -75,7 +75,8 @@ struct PbrtTexture {
 
 class PbrtConverter {
  public:
-  PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict);
+  PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
+                std::size_t max_generated_triangles);
 
   void statement(const PbrtStatement& s);
   /// The finished document; InputError if the scene has no camera.
@@ -141,6 +142,9 @@ class PbrtConverter {
   /// pbrt's "infinite" light with an equal-area octahedral image `filename`, in the light transform `world`.
   json image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world);
   std::string default_material();
+  /// Counts one lookup of texture `name` at nesting `depth` (0: the parameter's own texture, which starts the
+  /// count); InputError at `where` beyond kMaxTextureLookups for one parameter.
+  void count_texture_lookup(const std::string& name, int depth, const SourceLocation& where);
 
   // pbrt_media.cpp
   /// A medium's sigma_a/sigma_s (1/m; pbrt's unbounded RGB becomes a table through Rimu's upsampler).
@@ -203,6 +207,14 @@ class PbrtConverter {
   std::map<std::string, SourceLocation> exterior_media_;   ///< media some shape has outside, first place
   std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;  ///< by Rimu colour space name
   int anonymous_materials_ = 0;
+  std::size_t max_generated_triangles_;  ///< PbrtImportOptions::max_generated_triangles
+  std::size_t generated_triangles_ = 0;  ///< so far: Loop subdivision and sphere/disk stand-ins
+  /// Adds `triangles` to the generated count; InputError at `where` if that crosses max_generated_triangles_.
+  void count_generated_triangles(double triangles, const SourceLocation& where, const std::string& context);
+  /// Texture lookups made for the parameter being converted: textures may share operands, so a graph of n
+  /// statements can unfold into 2ⁿ lookups (each texture mixing the one before with itself); bounded, see
+  /// count_texture_lookup.
+  int texture_lookups_ = 0;
 
   std::vector<PbrtIgnored> ignored_;
   std::map<std::string, size_t> ignored_index_;

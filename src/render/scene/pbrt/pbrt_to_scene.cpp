@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
@@ -10,6 +11,9 @@
 namespace rimu {
 
 namespace {
+
+// The largest samples per pixel a scene may ask for (the JSON loader's bound on "spp").
+constexpr int64_t kMaxSamplesPerPixel = int64_t(1) << 24;
 
 const char* type_word(PbrtParamType t) {
   switch (t) {
@@ -118,11 +122,13 @@ std::vector<double> PbrtParams::numbers(const std::string& name, std::initialize
 
 // ---- the converter ------------------------------------------------------------------------------------------
 
-PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict)
+PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
+                             std::size_t max_generated_triangles)
     : library_(library),
       output_directory_(std::move(output_directory)),
       strict_(strict),
-      nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()) {}
+      nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()),
+      max_generated_triangles_(max_generated_triangles) {}
 
 void PbrtConverter::ignore(const std::string& what, const SourceLocation& where) {
   if (strict_) throw InputError(where, "not supported (--strict): " + what);
@@ -264,12 +270,15 @@ void PbrtConverter::statement(const PbrtStatement& s) {
   } else if (k == "Sampler") {
     require_world(false);
     PbrtParams p(*this, s, "Sampler \"" + s.strings[0] + "\"");
-    int spp = p.integer("pixelsamples", 16);
+    // In 64 bits: xsamples × ysamples of two large integers overflows an int. The bound is the JSON loader's.
+    int64_t spp = p.integer("pixelsamples", 16);
     if (s.strings[0] == "stratified") {
-      spp = p.integer("xsamples", 4) * p.integer("ysamples", 4);
+      spp = int64_t(p.integer("xsamples", 4)) * p.integer("ysamples", 4);
       p.boolean("jitter", true);
     }
-    if (spp < 1) throw InputError(s.where, "Sampler: the sample count must be at least 1");
+    if (spp < 1 || spp > kMaxSamplesPerPixel)
+      throw InputError(s.where, "Sampler: the sample count must be 1-" + std::to_string(kMaxSamplesPerPixel) + ", not " +
+                                    std::to_string(spp));
     integrator_["spp"] = spp;
     if (s.strings[0] == "independent") integrator_["sampler"] = "independent";
     if (const PbrtParam* seed = p.get("seed", {PbrtParamType::integer})) integrator_["seed"] = std::max(0, int(seed->numbers[0]));
@@ -467,7 +476,8 @@ json PbrtConverter::finish(const std::string& main_file) {
 
 PbrtImport import_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
                             SpectralLibrary& library, const PbrtImportOptions& options) {
-  PbrtConverter converter(library, options.output_directory.empty() ? directory : options.output_directory, options.strict);
+  PbrtConverter converter(library, options.output_directory.empty() ? directory : options.output_directory, options.strict,
+                          options.max_generated_triangles);
   parse_pbrt_text(text, file, directory, [&](const PbrtStatement& s) { converter.statement(s); });
   PbrtImport result;
   result.document = converter.finish(file);
@@ -479,7 +489,7 @@ PbrtImport import_pbrt_text(const std::string& text, const std::string& file, co
 PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& library, const PbrtImportOptions& options) {
   const std::filesystem::path directory = std::filesystem::absolute(file).parent_path();
   PbrtConverter converter(library, options.output_directory.empty() ? directory : std::filesystem::absolute(options.output_directory),
-                          options.strict);
+                          options.strict, options.max_generated_triangles);
   parse_pbrt_file(file, [&](const PbrtStatement& s) { converter.statement(s); });
   PbrtImport result;
   result.document = converter.finish(file.string());
