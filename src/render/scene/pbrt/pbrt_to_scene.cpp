@@ -65,11 +65,11 @@ PbrtParams::PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::st
       }
 }
 
-PbrtParams::~PbrtParams() noexcept(false) {
+PbrtParams::~PbrtParams() {
   if (std::uncaught_exceptions() > 0) return;
   for (const PbrtParam* p : all_)
     if (!used_.count(p->name))
-      converter_.ignore("parameter \"" + p->type_name + " " + p->name + "\" of " + context_, p->where);
+      converter_.ignore_unused("parameter \"" + p->type_name + " " + p->name + "\" of " + context_, p->where);
 }
 
 const PbrtParam* PbrtParams::get(const std::string& name, std::initializer_list<PbrtParamType> types) {
@@ -130,6 +130,11 @@ PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path out
       nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()),
       max_generated_triangles_(max_generated_triangles) {}
 
+void PbrtConverter::ignore_unused(const std::string& what, const SourceLocation& where) {
+  if (!strict_) return ignore(what, where);
+  if (!unused_parameter_error_) unused_parameter_error_ = InputError(where, "not supported (--strict): " + what);
+}
+
 void PbrtConverter::ignore(const std::string& what, const SourceLocation& where) {
   if (strict_) throw InputError(where, "not supported (--strict): " + what);
   const auto [it, added] = ignored_index_.emplace(what, ignored_.size());
@@ -156,6 +161,12 @@ json PbrtConverter::transform_steps(const PbrtMatrix& m, const SourceLocation& w
 }
 
 void PbrtConverter::statement(const PbrtStatement& s) {
+  unused_parameter_error_.reset();
+  statement_body(s);
+  if (unused_parameter_error_) throw InputError(*unused_parameter_error_);
+}
+
+void PbrtConverter::statement_body(const PbrtStatement& s) {
   const std::string& k = s.keyword;
   const auto apply = [&](const PbrtMatrix& t) {
     if (end_time_active_) return;  // motion blur's end transform: reported once at ActiveTransform
