@@ -27,9 +27,13 @@ struct PrivateFolder {
 
 }  // namespace
 
-std::filesystem::path write_private_file(const uint8_t* data, size_t size, const std::string& extension) {
+const std::filesystem::path& private_folder() {
   static PrivateFolder folder;
-  const std::filesystem::path file = folder.path / ("input" + extension);
+  return folder.path;
+}
+
+std::filesystem::path write_private_file(const uint8_t* data, size_t size, const std::string& extension) {
+  const std::filesystem::path file = private_folder() / ("input" + extension);
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
   out.close();

@@ -45,4 +45,8 @@ inline std::string_view as_text(const uint8_t* data, size_t size) {
 /// The same file is overwritten for every input and removed when the process exits normally.
 std::filesystem::path write_private_file(const uint8_t* data, size_t size, const std::string& extension);
 
+/// The folder write_private_file writes into (made 0700 by mkdtemp on first use, removed at normal exit): a target
+/// may put the files its input refers to beside the input.
+const std::filesystem::path& private_folder();
+
 }  // namespace rimu::fuzz

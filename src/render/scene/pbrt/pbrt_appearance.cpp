@@ -155,6 +155,7 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
     if (auto v = spectrum_value(*param, false, p.directory())) return v;
     return json(fallback);
   }
+  count_texture_lookup(param->strings.at(0), depth, param->where);
   const auto found = textures_.find(param->strings.at(0));
   if (found == textures_.end()) throw InputError(param->where, p.context() + ": no texture named \"" + param->strings[0] + "\"");
   const PbrtTexture& texture = found->second;
@@ -191,6 +192,7 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
 }
 
 std::optional<double> PbrtConverter::constant_float_texture(const std::string& name, const SourceLocation& where, int depth) {
+  count_texture_lookup(name, depth, where);
   const auto found = textures_.find(name);
   if (found == textures_.end()) throw InputError(where, "no texture named \"" + name + "\"");
   const PbrtTexture& texture = found->second;

@@ -30,8 +30,10 @@ class PbrtParams {
  public:
   PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::string context,
              const std::vector<PbrtParam>* defaults = nullptr);
-  /// Reports the parameters nobody looked up; under --strict that throws, hence noexcept(false).
-  ~PbrtParams() noexcept(false);
+  /// Reports the parameters nobody looked up. Under --strict the first becomes the statement's error, thrown by
+  /// PbrtConverter::statement once the statement is done: a destructor that throws while its function returns a
+  /// value leaks that value (clang 14 does; LeakSanitizer found it), so this one never throws.
+  ~PbrtParams();
   PbrtParams(const PbrtParams&) = delete;
   PbrtParams& operator=(const PbrtParams&) = delete;
 
@@ -75,7 +77,8 @@ struct PbrtTexture {
 
 class PbrtConverter {
  public:
-  PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict);
+  PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
+                std::size_t max_generated_triangles);
 
   void statement(const PbrtStatement& s);
   /// The finished document; InputError if the scene has no camera.
@@ -89,6 +92,9 @@ class PbrtConverter {
 
   /// Records something unsupported (or, strict, throws at `where`).
   void ignore(const std::string& what, const SourceLocation& where);
+  /// The same for a parameter nobody used, from PbrtParams' destructor: strict, the error is kept (the first one)
+  /// and thrown when the statement is done, not from the destructor.
+  void ignore_unused(const std::string& what, const SourceLocation& where);
 
   // pbrt_appearance.cpp
   std::string material(const PbrtStatement& s, const std::string& type, const std::string& context);
@@ -146,6 +152,9 @@ class PbrtConverter {
   /// pbrt's "infinite" light with an equal-area octahedral image `filename`, in the light transform `world`.
   json image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world);
   std::string default_material();
+  /// Counts one lookup of texture `name` at nesting `depth` (0: the parameter's own texture, which starts the
+  /// count); InputError at `where` beyond kMaxTextureLookups for one parameter.
+  void count_texture_lookup(const std::string& name, int depth, const SourceLocation& where);
 
   // pbrt_media.cpp
   /// A medium's sigma_a/sigma_s (1/m; pbrt's unbounded RGB becomes a table through Rimu's upsampler).
@@ -233,6 +242,16 @@ class PbrtConverter {
   SourceLocation camera_medium_where_;
   std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;  ///< by Rimu colour space name
   int anonymous_materials_ = 0;
+  std::optional<InputError> unused_parameter_error_;  ///< strict: ignore_unused's first error in this statement
+  void statement_body(const PbrtStatement& s);
+  std::size_t max_generated_triangles_;  ///< PbrtImportOptions::max_generated_triangles
+  std::size_t generated_triangles_ = 0;  ///< so far: Loop subdivision and sphere/disk stand-ins
+  /// Adds `triangles` to the generated count; InputError at `where` if that crosses max_generated_triangles_.
+  void count_generated_triangles(double triangles, const SourceLocation& where, const std::string& context);
+  /// Texture lookups made for the parameter being converted: textures may share operands, so a graph of n
+  /// statements can unfold into 2ⁿ lookups (each texture mixing the one before with itself); bounded, see
+  /// count_texture_lookup.
+  int texture_lookups_ = 0;
 
   std::vector<PbrtIgnored> ignored_;
   std::map<std::string, size_t> ignored_index_;

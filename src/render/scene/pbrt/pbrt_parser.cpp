@@ -274,6 +274,11 @@ class Parser {
   void include(const PbrtStatement& s) {
     if (depth_ >= 64) throw InputError(s.where, s.keyword + ": more than 64 nested includes (does a file include itself?)");
     const std::filesystem::path path = directory_ / s.strings[0];
+    // Only regular files: a folder reads as empty, and a device (/dev/zero, a FIFO) would read forever or block.
+    std::error_code error;
+    if (!std::filesystem::exists(path, error)) throw InputError(s.where, s.keyword + ": cannot open '" + path.string() + "'");
+    if (!std::filesystem::is_regular_file(path, error))
+      throw InputError(s.where, s.keyword + ": '" + path.string() + "' is not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(s.where, s.keyword + ": cannot open '" + path.string() + "'");
     std::ostringstream text;

@@ -17,6 +17,10 @@ namespace {
 constexpr int kLatitudeSegments = 48;    // sphere tessellation: ~0.1 % area error, smooth shading normals
 constexpr int kLongitudeSegments = 96;
 constexpr int kDiskSegments = 96;
+// Triangles of the meshes standing in for a sphere (two polar caps of one row each) and a disk (an annulus has two
+// per segment), counted against PbrtImportOptions::max_generated_triangles.
+constexpr int kSphereTriangles = 2 * kLongitudeSegments * (kLatitudeSegments - 1);
+constexpr int kDiskTriangles = 2 * kDiskSegments;  // at most
 
 Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec3d cross(const Vec3d& a, const Vec3d& b) {
@@ -86,6 +90,7 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     }
     if (type == "loopsubdiv") {
       // pbrt-v4 reads only P, indices and levels here (N and uv would be listed as unused, as pbrt ignores them).
+      count_generated_triangles(double(indices.size() / 3) * std::pow(4.0, levels), s.where, context);
       try {
         LoopMesh mesh = loop_subdivide(positions, indices, levels);
         shape_alpha_ = alpha_parameter(p, false);
@@ -161,6 +166,7 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     // Rimu's sphere cannot be instanced, emit or be squashed: a fine mesh with the sphere's own normals and pbrt's
     // uv (u = φ/2π, v = 1 − θ/π) stands in. Rows i = 0…L from the +z pole, columns j = 0…N with the seam column
     // repeated (u = 0 and u = 1) so that uv interpolates across it; a pole vertex per column, at the column's middle u.
+    count_generated_triangles(kSphereTriangles, s.where, context);
     std::vector<Vec3d> positions, normals;
     std::vector<std::array<double, 2>> uvs;
     std::vector<uint32_t> indices;
@@ -192,6 +198,7 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     const double phimax_rad = std::clamp(p.real("phimax", 360.0), 0.0, 360.0) * std::numbers::pi / 180.0;
     if (!(radius > 0) || inner < 0 || inner >= radius) throw InputError(s.where, context + ": needs 0 <= innerradius < radius");
     shape_alpha_ = alpha_parameter(p, false);
+    count_generated_triangles(kDiskTriangles, s.where, context);
     // Counter-clockwise seen from +z, pbrt's disk normal.
     std::vector<Vec3d> positions, normals;
     std::vector<uint32_t> indices;
@@ -210,6 +217,15 @@ void PbrtConverter::shape(const PbrtStatement& s) {
   } else {
     ignore(context, s.where);
   }
+}
+
+void PbrtConverter::count_generated_triangles(double triangles, const SourceLocation& where, const std::string& context) {
+  if (double(generated_triangles_) + triangles > double(max_generated_triangles_))
+    throw InputError(where, context + ": would generate " + std::to_string(int64_t(triangles)) + " triangles after " +
+                                std::to_string(generated_triangles_) + ", beyond the importer's limit of " +
+                                std::to_string(max_generated_triangles_) +
+                                " generated triangles per scene (Loop subdivision, sphere and disk meshes; lower \"levels\"?)");
+  generated_triangles_ += size_t(triangles);
 }
 
 void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::vector<uint32_t> indices,

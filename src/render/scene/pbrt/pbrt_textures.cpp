@@ -59,7 +59,19 @@ int octaves(PbrtParams& tp, const std::string& texture_name, const SourceLocatio
   return n;
 }
 
+// Texture lookups allowed for one parameter: far more than a hand-made or exported texture graph uses, and few
+// enough that a graph unfolding exponentially is refused in milliseconds instead of running for ever.
+constexpr int kMaxTextureLookups = 4096;
+
 }  // namespace
+
+void PbrtConverter::count_texture_lookup(const std::string& name, int depth, const SourceLocation& where) {
+  if (depth == 0) texture_lookups_ = 0;
+  if (++texture_lookups_ > kMaxTextureLookups)
+    throw InputError(where, "Texture \"" + name + "\": the parameter's textures unfold into more than " +
+                                std::to_string(kMaxTextureLookups) +
+                                " texture lookups (textures that use the same texture in several operands, nested)");
+}
 
 json PbrtConverter::float_value(PbrtParams& p, const std::string& name, double fallback, int depth) {
   const PbrtParam* q = p.get(name, {PbrtParamType::real, PbrtParamType::texture});

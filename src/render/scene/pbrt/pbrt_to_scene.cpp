@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
@@ -10,6 +11,9 @@
 namespace rimu {
 
 namespace {
+
+// The largest samples per pixel a scene may ask for (the JSON loader's bound on "spp").
+constexpr int64_t kMaxSamplesPerPixel = int64_t(1) << 24;
 
 const char* type_word(PbrtParamType t) {
   switch (t) {
@@ -61,11 +65,11 @@ PbrtParams::PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::st
       }
 }
 
-PbrtParams::~PbrtParams() noexcept(false) {
+PbrtParams::~PbrtParams() {
   if (std::uncaught_exceptions() > 0) return;
   for (const PbrtParam* p : all_)
     if (!used_.count(p->name))
-      converter_.ignore("parameter \"" + p->type_name + " " + p->name + "\" of " + context_, p->where);
+      converter_.ignore_unused("parameter \"" + p->type_name + " " + p->name + "\" of " + context_, p->where);
 }
 
 const PbrtParam* PbrtParams::get(const std::string& name, std::initializer_list<PbrtParamType> types) {
@@ -118,11 +122,18 @@ std::vector<double> PbrtParams::numbers(const std::string& name, std::initialize
 
 // ---- the converter ------------------------------------------------------------------------------------------
 
-PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict)
+PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
+                             std::size_t max_generated_triangles)
     : library_(library),
       output_directory_(std::move(output_directory)),
       strict_(strict),
-      nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()) {}
+      nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()),
+      max_generated_triangles_(max_generated_triangles) {}
+
+void PbrtConverter::ignore_unused(const std::string& what, const SourceLocation& where) {
+  if (!strict_) return ignore(what, where);
+  if (!unused_parameter_error_) unused_parameter_error_ = InputError(where, "not supported (--strict): " + what);
+}
 
 void PbrtConverter::ignore(const std::string& what, const SourceLocation& where) {
   if (strict_) throw InputError(where, "not supported (--strict): " + what);
@@ -150,6 +161,12 @@ json PbrtConverter::transform_steps(const PbrtMatrix& m, const SourceLocation& w
 }
 
 void PbrtConverter::statement(const PbrtStatement& s) {
+  unused_parameter_error_.reset();
+  statement_body(s);
+  if (unused_parameter_error_) throw InputError(*unused_parameter_error_);
+}
+
+void PbrtConverter::statement_body(const PbrtStatement& s) {
   const std::string& k = s.keyword;
   const auto apply = [&](const PbrtMatrix& t) {
     if (end_time_active_) return;  // motion blur's end transform: reported once at ActiveTransform
@@ -253,12 +270,15 @@ void PbrtConverter::statement(const PbrtStatement& s) {
   } else if (k == "Sampler") {
     require_world(false);
     PbrtParams p(*this, s, "Sampler \"" + s.strings[0] + "\"");
-    int spp = p.integer("pixelsamples", 16);
+    // In 64 bits: xsamples × ysamples of two large integers overflows an int. The bound is the JSON loader's.
+    int64_t spp = p.integer("pixelsamples", 16);
     if (s.strings[0] == "stratified") {
-      spp = p.integer("xsamples", 4) * p.integer("ysamples", 4);
+      spp = int64_t(p.integer("xsamples", 4)) * p.integer("ysamples", 4);
       p.boolean("jitter", true);
     }
-    if (spp < 1) throw InputError(s.where, "Sampler: the sample count must be at least 1");
+    if (spp < 1 || spp > kMaxSamplesPerPixel)
+      throw InputError(s.where, "Sampler: the sample count must be 1-" + std::to_string(kMaxSamplesPerPixel) + ", not " +
+                                    std::to_string(spp));
     integrator_["spp"] = spp;
     if (s.strings[0] == "independent") integrator_["sampler"] = "independent";
     if (const PbrtParam* seed = p.get("seed", {PbrtParamType::integer})) integrator_["seed"] = std::max(0, int(seed->numbers[0]));
@@ -457,7 +477,8 @@ json PbrtConverter::finish(const std::string& main_file) {
 
 PbrtImport import_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
                             SpectralLibrary& library, const PbrtImportOptions& options) {
-  PbrtConverter converter(library, options.output_directory.empty() ? directory : options.output_directory, options.strict);
+  PbrtConverter converter(library, options.output_directory.empty() ? directory : options.output_directory, options.strict,
+                          options.max_generated_triangles);
   parse_pbrt_text(text, file, directory, [&](const PbrtStatement& s) { converter.statement(s); });
   PbrtImport result;
   result.document = converter.finish(file);
@@ -469,7 +490,7 @@ PbrtImport import_pbrt_text(const std::string& text, const std::string& file, co
 PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& library, const PbrtImportOptions& options) {
   const std::filesystem::path directory = std::filesystem::absolute(file).parent_path();
   PbrtConverter converter(library, options.output_directory.empty() ? directory : std::filesystem::absolute(options.output_directory),
-                          options.strict);
+                          options.strict, options.max_generated_triangles);
   parse_pbrt_file(file, [&](const PbrtStatement& s) { converter.statement(s); });
   PbrtImport result;
   result.document = converter.finish(file.string());
