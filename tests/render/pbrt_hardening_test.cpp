@@ -82,3 +82,20 @@ TEST_CASE("pbrt hardening: generated triangles (loopsubdiv, sphere and disk mesh
   CHECK(error_with_limit(kCamera + "WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 6 " + tetrahedron)
             .find("test.pbrt:4: Shape \"loopsubdiv\": would generate 16384 triangles after 0,") == 0);
 }
+
+TEST_CASE("pbrt hardening: --strict's unused parameter of a texture is the statement's error, at the parameter's line") {
+  // Found by LeakSanitizer: the error used to be thrown from the parameters' destructor while the texture's value
+  // was being returned, which leaked the value. It is now thrown once the statement is done, with the same text.
+  const std::string text = kCamera + "WorldBegin\n"
+                           "Texture \"bumps\" \"float\" \"checkerboard\" \"float uscale\" 4\n"
+                           "  \"float te82\" 0.2\n"
+                           "Material \"diffuse\" \"texture displacement\" \"bumps\"\n";
+  std::string error = "no error";
+  try {
+    import_pbrt_text(text, "test.pbrt", test::test_data("pbrt"), test::library(), {true, {}});
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  CHECK(error == "test.pbrt:5: not supported (--strict): parameter \"float te82\" of Texture \"bumps\"");
+  CHECK(error_of(text).find("no error") == 0);  // without --strict: listed, not an error
+}

@@ -204,20 +204,33 @@ std::optional<double> PbrtConverter::constant_float_texture(const std::string& n
   // Textures that are constant everywhere are numbers: "constant", and "scale"/"mix" of constants (pbrt-v4's
   // FloatScaledTexture: tex·scale; FloatMixTexture: (1 − amount)·tex1 + amount·tex2).
   PbrtParams tp(*this, ts, "Texture \"" + name + "\"");
-  const auto operand = [&](const std::string& key, double fallback) -> std::optional<double> {
-    const PbrtParam* q = tp.get(key, {PbrtParamType::real, PbrtParamType::texture});
+  if (cls == "constant") return tp.real("value", 1.0);
+  // Every operand is looked up first (so none is listed as unused), then followed only until one is not constant:
+  // following all of them at every level made a texture graph unfold quadratically more than it needs to.
+  const auto param = [&](const std::string& key) { return tp.get(key, {PbrtParamType::real, PbrtParamType::texture}); };
+  const auto value = [&](const PbrtParam* q, double fallback) -> std::optional<double> {
     if (!q) return fallback;
     if (q->type == PbrtParamType::real) return q->numbers.at(0);
     return constant_float_texture(q->strings.at(0), q->where, depth + 1);
   };
-  if (cls == "constant") return tp.real("value", 1.0);
   if (cls == "scale") {
-    const auto t = operand("tex", 1.0), k = operand("scale", 1.0);
-    if (!t || !k) return std::nullopt;
+    const PbrtParam* tex = param("tex");
+    const PbrtParam* scale = param("scale");
+    const auto t = value(tex, 1.0);
+    if (!t) return std::nullopt;
+    const auto k = value(scale, 1.0);
+    if (!k) return std::nullopt;
     return *t * *k;
   }
-  const auto a = operand("tex1", 0.0), b = operand("tex2", 1.0), amount = operand("amount", 0.5);
-  if (!a || !b || !amount) return std::nullopt;
+  const PbrtParam* tex1 = param("tex1");
+  const PbrtParam* tex2 = param("tex2");
+  const PbrtParam* amount_param = param("amount");
+  const auto a = value(tex1, 0.0);
+  if (!a) return std::nullopt;
+  const auto b = value(tex2, 1.0);
+  if (!b) return std::nullopt;
+  const auto amount = value(amount_param, 0.5);
+  if (!amount) return std::nullopt;
   return (1.0 - *amount) * *a + *amount * *b;
 }
 
