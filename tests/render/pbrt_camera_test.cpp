@@ -9,22 +9,14 @@
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/camera.h"
 #include "render/render_job.h"
+#include "pbrt_test_support.h"
 
 using namespace rimu;
 using nlohmann::json;
 
 namespace {
-PbrtImport import_text(const std::string& text) {
-  return import_pbrt_text(text, "t.pbrt", test::test_data("pbrt"), test::library());
-}
-std::string import_error(const std::string& text) {
-  try {
-    import_text(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_text(text); }
+std::string import_error(const std::string& text) { return test::pbrt_import_error(text); }
 const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n";
 }  // namespace
 

@@ -9,18 +9,12 @@
 
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
+#include "pbrt_test_support.h"
 
 using namespace rimu;
 using nlohmann::json;
 
 namespace {
-
-std::string file_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // The mean pixel luminance of `pbrt_text` (resolved in tests/data/pbrt) and its standard error.
 test::Estimate plane_luminance(const std::string& pbrt_text) {
@@ -32,14 +26,7 @@ test::Estimate plane_luminance(const std::string& pbrt_text) {
 }
 
 // The message of the InputError importing `pbrt_text` (as t.pbrt, resolved in tests/data/pbrt) raises, or "no error".
-std::string import_error(const std::string& pbrt_text) {
-  try {
-    import_pbrt_text(pbrt_text, "t.pbrt", test::test_data("pbrt"), test::library());
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string import_error(const std::string& pbrt_text) { return test::pbrt_import_error(pbrt_text); }
 
 }  // namespace
 
@@ -52,7 +39,7 @@ TEST_CASE("pbrt environment map: one bright texel lights a plane from the direct
   // Misreadings give other values: u mirrored 0.459, v mirrored 0 (the texel behind the plane), the light's
   // rotation ignored 0.501, u and v swapped 0.
   constexpr double kExpected = 0.71369;
-  const std::string text = file_text(test::test_data("pbrt/envmap_texel.pbrt"));
+  const std::string text = test::file_text(test::test_data("pbrt/envmap_texel.pbrt"));
   SUBCASE("pbrt's own camera handedness (the world is mirrored on import)") {
     const test::Estimate y = plane_luminance(text);
     CAPTURE(y.mean);

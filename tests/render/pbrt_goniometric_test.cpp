@@ -14,18 +14,12 @@
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "transport/equal_area_square.h"
 #include "transport/goniometric_light.h"
+#include "pbrt_test_support.h"
 
 using namespace rimu;
 using nlohmann::json;
 
 namespace {
-
-std::string file_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 const GoniometricLight& only_goniometric(const Scene& scene) {
   REQUIRE(scene.lights.size() == 1);
@@ -73,7 +67,7 @@ TEST_CASE("pbrt goniometric light: the intensity towards each pixel's direction 
 
 TEST_CASE("pbrt goniometric light: power sets the flux, an RGB I keeps its luminance, errors name the line") {
   const std::filesystem::path folder = test::test_data("pbrt");
-  const std::string text = file_text(folder / "goniometric.pbrt");
+  const std::string text = test::file_text(folder / "goniometric.pbrt");
   const std::string with_power = std::regex_replace(text, std::regex("\"float scale\" 0.5"), "\"float scale\" 0.5 \"float power\" 100");
   const PbrtImport imported = import_pbrt_text(with_power, "goniometric.pbrt", folder, test::library());
   CHECK(imported.ignored.empty());

@@ -8,6 +8,7 @@
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_support.h"
+#include "pbrt_test_support.h"
 
 using namespace rimu;
 using nlohmann::json;
@@ -16,18 +17,9 @@ namespace {
 
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\n";
 
-PbrtImport import_text(const std::string& text) {
-  return import_pbrt_text(text, "grid.pbrt", test::test_data("pbrt"), test::library());
-}
+PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_text(text, "grid.pbrt"); }
 
-std::string error_of(const std::string& text) {
-  try {
-    import_text(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return test::pbrt_import_error(text, "grid.pbrt"); }
 
 std::vector<double> block_deviations(const Scene& a, const Scene& b) {
   return test::block_deviations(test::luminance_values(*test::render_xyz(a, 16, 1).film),

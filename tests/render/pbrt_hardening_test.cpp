@@ -7,6 +7,7 @@
 
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_support.h"
+#include "pbrt_test_support.h"
 
 using namespace rimu;
 
@@ -15,14 +16,7 @@ namespace {
 const std::string kCamera = "LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\"\n";
 
 // The message of the InputError that importing `text` (as test.pbrt in tests/data/pbrt) raises.
-std::string error_of(const std::string& text) {
-  try {
-    import_pbrt_text(text, "test.pbrt", test::test_data("pbrt"), test::library());
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return test::pbrt_import_error(text, "test.pbrt"); }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_support.h"
+#include "pbrt_test_support.h"
 
 using namespace rimu;
 using nlohmann::json;
@@ -18,18 +19,9 @@ namespace {
 // A camera whose image-right agrees with Rimu's (pbrt's usual "Scale -1 1 1" idiom), so the world is not mirrored.
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\n";
 
-PbrtImport import_text(const std::string& text) {
-  return import_pbrt_text(text, "media.pbrt", test::test_data("pbrt"), test::library());
-}
+PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_text(text, "media.pbrt"); }
 
-std::string error_of(const std::string& text) {
-  try {
-    import_text(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return test::pbrt_import_error(text, "media.pbrt"); }
 
 std::string ignored_list(const PbrtImport& imported) { return describe_ignored(imported.ignored); }
 

@@ -6,19 +6,13 @@
 
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
+#include "pbrt_test_support.h"
 
 using namespace rimu;
 using nlohmann::json;
 
 namespace {
-std::string import_error(const std::string& text) {
-  try {
-    import_pbrt_text(text, "t.pbrt", test::test_data("pbrt"), test::library());
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string import_error(const std::string& text) { return test::pbrt_import_error(text); }
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 }  // namespace
 
