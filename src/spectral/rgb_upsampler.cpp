@@ -57,6 +57,9 @@ constexpr double kRingingAllowance = 1.02;
 // The fast path reports a colour as moved (gamut_mapped) when fitting its clamped spectrum leaves more than this
 // relative XYZ residual (ΔE00 ≲ 0.01): the basis cannot hold that spectrum at zero or under 1.
 constexpr double kFitTolerance = 1e-4;
+// Below this peak (after the luminance) a reflectance's fit cannot push a knot over 1 (a fit changes knots by
+// ~1e-3 of themselves), so only clamping at zero matters: UpsamplingBasis::fit_zero_clamped.
+constexpr double kZeroOnlyPeak = 0.99;
 
 double delta_e(const Xyz& a, const Xyz& b, const Xyz& white) { return delta_e_2000(lab_of(a, white), lab_of(b, white)); }
 
@@ -164,15 +167,20 @@ const UpsamplingBasis& RgbUpsampler::build_basis() const {
 }
 
 BasisCoefficients RgbUpsampler::smooth_coefficients(const Xyz& xyz, bool* moved, SmoothShapeBounds* bounds) const {
-  const double inv_sum = 1.0 / (xyz.x + xyz.y + xyz.z);
-  Chromaticity xy{xyz.x * inv_sum, xyz.y * inv_sum};
+  // The offset from the white, (dx, dy) = (X − x_w·Σ, Y − y_w·Σ)/Σ with Σ = X + Y + Z, is located unnormalised:
+  // locate() only needs its direction, and ρ = |offset|·(1/Σ)·(1/R(θ)) with 1/R tabulated, so the division by Σ
+  // runs beside locate()'s instead of before it (the setup is a chain of dependent divisions, roots and loads).
+  const double total = xyz.x + xyz.y + xyz.z;
   const Chromaticity w = gamut_.white();
-  const double dx = xy.x - w.x, dy = xy.y - w.y;
-  const double distance = std::sqrt(dx * dx + dy * dy);
-  const UpsamplingBasis::PolarCell cell = basis().locate(dx, dy);
-  double rho = distance == 0.0 ? 0.0 : distance / cell.usable_radius;
+  const double ox = xyz.x - w.x * total, oy = xyz.y - w.y * total;
+  const UpsamplingBasis::PolarCell cell = basis().locate(ox, oy);
+  const double offset = std::sqrt(ox * ox + oy * oy);
+  const double inv_total = 1.0 / total;
+  Chromaticity xy{xyz.x * inv_total, xyz.y * inv_total};
+  double rho = offset * inv_total * cell.inverse_usable_radius;
   if (rho > 1.0) {  // radial move onto the usable gamut's edge, as smooth_shape
-    xy = {w.x + dx / rho, w.y + dy / rho};
+    const double k = inv_total / rho;
+    xy = {w.x + ox * k, w.y + oy * k};
     rho = 1.0;
     *moved = true;
   }
@@ -195,26 +203,30 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     // that finds it is skipped where the bound shows the limit is far. The basis rings by up to ~2 % of the
     // peak around narrow peaks, so its peak overstates the exact path's: the limit allows that much above 1,
     // and fit_clamped below flattens it at 1 and restores the colour. Continuous in Y, like the exact limit.
-    bool clamps_at_1 = false, have_knots = false;
+    bool have_knots = false;
     alignas(16) float knots[kUpsampleKnotCount + 1];
+    double peak = bounds.peak_bound;  // ≥ the peak; the peak itself once have_knots
     if (luminance * bounds.peak_bound > 1.0) {
-      const double peak = basis().knots_float(c, knots);
+      peak = basis().knots_float(c, knots);
       have_knots = true;
       if (luminance * peak > kRingingAllowance) {
         luminance = kRingingAllowance / peak;
         moved = true;
       }
-      clamps_at_1 = luminance * peak > 1.0;
     }
     c *= float(luminance);
     // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour the unclamped one
-    // was aimed at, t = M·c − δ.
+    // was aimed at, t = M·c − δ. Well below 1 only zero can clamp, even after the fit's small steps: the cheaper
+    // fit.
+    const bool clamps_at_1 = luminance * peak > 1.0;
     if (bounds.rings || clamps_at_1) {
       const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
-      const double left = basis().fit_clamped(
-          c, basis().correction_directions(bounds, float(luminance)),
-          {aimed.x - luminance * offset.x, aimed.y - luminance * offset.y, aimed.z - luminance * offset.z}, 1.0f,
-          have_knots ? knots : nullptr, float(luminance));
+      const Xyz target{aimed.x - luminance * offset.x, aimed.y - luminance * offset.y, aimed.z - luminance * offset.z};
+      const double left =
+          luminance * peak < kZeroOnlyPeak
+              ? basis().fit_zero_clamped(c, bounds, float(luminance), target)
+              : basis().fit_clamped(c, basis().correction_directions(bounds, float(luminance)), target, 1.0f,
+                                    have_knots ? knots : nullptr, float(luminance));
       if (left > kFitTolerance) moved = true;
     }
   }
@@ -245,12 +257,10 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
     c *= float(xyz.y);
     if (bounds.rings) {
       const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
-      const double left = basis().fit_clamped(
-          c, basis().correction_directions(bounds, float(xyz.y)), {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z},
-          INFINITY);
+      const double left = basis().fit_zero_clamped(
+          c, bounds, float(xyz.y), {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z});
       if (left > kFitTolerance) moved = true;
     }
-
   }
   if (mapped) *mapped = moved;
   return c;

@@ -21,6 +21,16 @@ constexpr int kRadiusSteps = 4096;
 // any colour, below the 0.01 mean the fast path aims at; 1e-6 cost 2.6 passes per fit on random sRGB colours,
 // 1e-5 costs 2.1 (docs/upsampling.md "Fast path").
 constexpr double kFitTolerance = 1e-5;
+// A knot block is a candidate for clamping at zero (low_blocks) where an entry's Y = 1 spectrum dips below this
+// fraction of its peak. Between entries a knot is a weighted mean of the corners' values plus the correction,
+// which changes it by a few per cent of itself (bounded by SmoothShapeBounds's `change`), and the basis rings by
+// ≤ 1e-2 of the peak: a knot at a tenth of the peak in every corner cannot reach zero. fit_zero_clamped is only
+// used while the correction's relative change stays below kMaxLowChange.
+constexpr double kLowFraction = 0.1;
+constexpr double kMaxLowChange = 0.5;
+// Passes fit_zero_clamped makes before handing over to fit_clamped (random sRGB colours need 1-2).
+constexpr int kZeroOnlySteps = 4;
+constexpr uint32_t kAllBlocks = (1u << ((n + 7) / 8)) - 1;
 
 using Vector = std::array<double, n>;
 
@@ -138,14 +148,14 @@ __m128 blend_dot_lanes_sse(const float* phi, const BasisCoefficients* const corn
 
 }  // namespace upsampling_kernels
 
-UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry)
+UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry, Kernels kernels)
     : angle_count_(table.angle_count), radius_count_(table.radius_count) {
   static std::atomic<uint64_t> next_id{1};
   id_ = next_id.fetch_add(1);
   for (int r = 0; r < radius_count_; ++r) radius_rows_.push_back(table.radius_of_row(r));
   for (int r = 0; r + 1 < radius_count_; ++r) row_inverse_spacing_.push_back(1.0 / (radius_rows_[r + 1] - radius_rows_[r]));
   angle_scale_ = angle_count_ / (2 * std::numbers::pi);
-  avx2_fma_ = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  avx2_fma_ = kernels == Kernels::best_for_cpu && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   if (avx2_fma_) {
     dot_lanes_ = upsampling_kernels::dot_lanes_avx2;
     blend_dot_lanes_ = upsampling_kernels::blend_dot_lanes_avx2;
@@ -240,6 +250,13 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
     const KnotValues knots_e = knots(entries_[e].parts[0]);
     v[12] = float(*std::max_element(knots_e.begin(), knots_e.end()));
   }
+  low_blocks_.resize(entries);
+  for (size_t e = 0; e < entries; ++e) {
+    const KnotValues knots_e = knots(entries_[e].parts[0]);
+    const double threshold = kLowFraction * entries_[e].summary[12];
+    for (int i = 0; i < n; ++i)
+      if (knots_e[i] < threshold) low_blocks_[e] |= uint16_t(1u << (i / 8));
+  }
   for (int m = 0; m < 3; ++m)
     for (int i = 0; i < n; ++i) largest_row_[m] = std::max(largest_row_[m], std::abs(a[m][i]));
 
@@ -259,7 +276,7 @@ UpsamplingBasis::UpsamplingBasis(const UpsamplingTable& table, const KnotColorim
                                : theta < 0.0           ? theta + 2 * std::numbers::pi
                                                        : theta;
     pseudo_angle_table_[2 * size_t(s)] = float(theta_0_2pi * angle_scale_);
-    pseudo_angle_table_[2 * size_t(s) + 1] = float(gamut.boundary_radius(theta) * table.usable_fraction);
+    pseudo_angle_table_[2 * size_t(s) + 1] = float(1.0 / (gamut.boundary_radius(theta) * table.usable_fraction));
   }
 }
 
@@ -273,33 +290,33 @@ double UpsamplingBasis::usable_radius(double angle_rad) const {
 
 namespace {
 
-// out = Σ_c Σ_p weight[4c + p] · corner[c][16p .. 16p + 15]: with weight = w_c · (1, λ_X, λ_Y, λ_Z) this is the
-// blended coefficients plus the blended correction D·λ in one pass, so the blended D is never formed (only a fit
-// needs it: correction_directions). Two builds, chosen once per basis by the CPU: 8-lane fused multiply-adds
-// (32 of them, four independent chains) and the SSE4.1 baseline.
-__attribute__((target("avx2,fma"))) void combine_corners_avx2(const float* const corner[4], const float weight[16],
-                                                              float* out) {
-  __m256 lo[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()}, hi[2] = {_mm256_setzero_ps(), _mm256_setzero_ps()};
-  for (int c = 0; c < 4; ++c)
-    for (int p = 0; p < 4; ++p) {
-      const __m256 w = _mm256_set1_ps(weight[4 * c + p]);
-      const float* src = corner[c] + 16 * p;
-      lo[c & 1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(src), lo[c & 1]);
-      hi[c & 1] = _mm256_fmadd_ps(w, _mm256_loadu_ps(src + 8), hi[c & 1]);
+// out[p] = Σ_c weight[c] · corner[c][16p .. 16p + 15] for p < 4: the blended coefficients (p = 0) and the blended
+// correction directions D (p = 1..3). None of it waits for the 3×3 solve, so it runs while the solve's divisions
+// do; the correction is then three multiply-adds. Two builds, chosen once per basis by the CPU: 8-lane fused
+// multiply-adds (eight independent chains of four) and the SSE4.1 baseline.
+__attribute__((target("avx2,fma"))) void blend_corners_avx2(const float* const corner[4], const float weight[4],
+                                                            float out[4][K]) {
+  const __m256 w[4] = {_mm256_set1_ps(weight[0]), _mm256_set1_ps(weight[1]), _mm256_set1_ps(weight[2]),
+                       _mm256_set1_ps(weight[3])};
+  for (int p = 0; p < 4; ++p) {
+    __m256 lo = _mm256_mul_ps(w[0], _mm256_loadu_ps(corner[0] + 16 * p));
+    __m256 hi = _mm256_mul_ps(w[0], _mm256_loadu_ps(corner[0] + 16 * p + 8));
+    for (int c = 1; c < 4; ++c) {
+      lo = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(corner[c] + 16 * p), lo);
+      hi = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(corner[c] + 16 * p + 8), hi);
     }
-  _mm256_storeu_ps(out, _mm256_add_ps(lo[0], lo[1]));
-  _mm256_storeu_ps(out + 8, _mm256_add_ps(hi[0], hi[1]));
+    _mm256_storeu_ps(out[p], lo);
+    _mm256_storeu_ps(out[p] + 8, hi);
+  }
 }
 
-void combine_corners_sse(const float* const corner[4], const float weight[16], float* out) {
-  __m128 acc[2][4] = {};
-  for (int c = 0; c < 4; ++c)
-    for (int p = 0; p < 4; ++p) {
-      const __m128 w = _mm_set1_ps(weight[4 * c + p]);
-      const float* src = corner[c] + 16 * p;
-      for (int k = 0; k < 4; ++k) acc[c & 1][k] = _mm_add_ps(acc[c & 1][k], _mm_mul_ps(w, _mm_load_ps(src + 4 * k)));
+void blend_corners_sse(const float* const corner[4], const float weight[4], float out[4][K]) {
+  for (int p = 0; p < 4; ++p)
+    for (int k = 0; k < K; k += 4) {
+      __m128 s = _mm_mul_ps(_mm_set1_ps(weight[0]), _mm_load_ps(corner[0] + 16 * p + k));
+      for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(weight[c]), _mm_load_ps(corner[c] + 16 * p + k)));
+      _mm_store_ps(out[p] + k, s);
     }
-  for (int k = 0; k < 4; ++k) _mm_store_ps(out + 4 * k, _mm_add_ps(acc[0][k], acc[1][k]));
 }
 
 // One pass of fit_clamped, fused for AVX2 + FMA: the 96 knot values v = Φc (or given × given_scale) in twelve
@@ -343,6 +360,62 @@ __attribute__((target("avx2,fma"))) void clamped_pass_avx2(const float* columns,
   }
 }
 
+using XyzRows = std::array<std::array<double, K>, 3>;
+
+// fit_zero_clamped's pass: out[0..2] = M·c − Σ_{i in blocks} a_i·min((Φc)_i, 0), the colour of clamp(Φc, 0, ∞)
+// when Φc ≥ 0 outside `blocks` (8-knot blocks; the colorimetry rows' pad knot is 0). Two builds as above.
+__attribute__((target("avx2,fma"))) void zero_clamped_colour_avx2(const float* columns, const XyzRows& xyz_rows,
+                                                                  const float* c, const float* a, uint32_t blocks,
+                                                                  double* out) {
+  // M·c in double: it is the colour itself, and its terms cancel (coefficients of both signs), so float would
+  // cost ~1e-6 of the colour; the clamped knots' part is ~1e-2 of it and stays float.
+  __m256d cd[4];
+  for (int q = 0; q < 4; ++q) cd[q] = _mm256_cvtps_pd(_mm_loadu_ps(c + 4 * q));
+  __m256d unclamped[3];
+  for (int m = 0; m < 3; ++m) {
+    __m256d s = _mm256_mul_pd(cd[0], _mm256_loadu_pd(xyz_rows[m].data()));
+    for (int q = 1; q < 4; ++q) s = _mm256_fmadd_pd(cd[q], _mm256_loadu_pd(xyz_rows[m].data() + 4 * q), s);
+    unclamped[m] = s;
+  }
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 acc[3] = {zero, zero, zero};
+  for (; blocks != 0; blocks &= blocks - 1) {
+    const int b = __builtin_ctz(blocks);
+    __m256 even = zero, odd = zero;  // two chains: the 16 multiply-adds of a block are otherwise serial
+    for (int k = 0; k < K; k += 2) {
+      even = _mm256_fmadd_ps(_mm256_set1_ps(c[k]), _mm256_loadu_ps(columns + k * (n + 1) + 8 * b), even);
+      odd = _mm256_fmadd_ps(_mm256_set1_ps(c[k + 1]), _mm256_loadu_ps(columns + (k + 1) * (n + 1) + 8 * b), odd);
+    }
+    const __m256 negative = _mm256_min_ps(_mm256_add_ps(even, odd), zero);
+    for (int m = 0; m < 3; ++m) acc[m] = _mm256_fnmadd_ps(negative, _mm256_loadu_ps(a + m * (n + 1) + 8 * b), acc[m]);
+  }
+  for (int m = 0; m < 3; ++m) {
+    const __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc[m]), _mm256_extractf128_ps(acc[m], 1));
+    const __m128 q = _mm_add_ps(h, _mm_movehl_ps(h, h));
+    const __m128d d = _mm_add_pd(_mm256_castpd256_pd128(unclamped[m]), _mm256_extractf128_pd(unclamped[m], 1));
+    out[m] = _mm_cvtsd_f64(_mm_add_sd(d, _mm_unpackhi_pd(d, d))) + _mm_cvtss_f32(_mm_add_ss(q, _mm_shuffle_ps(q, q, 1)));
+  }
+}
+
+void zero_clamped_colour_sse(const float* columns, const XyzRows& xyz_rows, const float* c, const float* a,
+                             uint32_t blocks, double* out) {
+  for (int m = 0; m < 3; ++m) {
+    double sum = 0;
+    for (int k = 0; k < K; ++k) sum += xyz_rows[m][k] * c[k];
+    out[m] = sum;
+  }
+  for (; blocks != 0; blocks &= blocks - 1) {
+    const int b = __builtin_ctz(blocks);
+    for (int half = 0; half < 2; ++half) {
+      const int first = 8 * b + 4 * half;
+      __m128 v = _mm_setzero_ps();
+      for (int k = 0; k < K; ++k) v = _mm_add_ps(v, _mm_mul_ps(_mm_set1_ps(c[k]), _mm_loadu_ps(columns + k * (n + 1) + first)));
+      const __m128 negative = _mm_min_ps(v, _mm_setzero_ps());
+      for (int m = 0; m < 3; ++m) out[m] -= sum(Float4(_mm_mul_ps(negative, _mm_loadu_ps(a + m * (n + 1) + first))));
+    }
+  }
+}
+
 }  // namespace
 
 BasisCoefficients UpsamplingBasis::smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
@@ -367,10 +440,14 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
   const float tr = float(std::clamp((rho - radius_rows_[r0]) * row_inverse_spacing_[r0], 0.0, 1.0));
   const size_t e[4] = {size_t(a0) * radius_count_ + r0, size_t(a1) * radius_count_ + r0,
                        size_t(a0) * radius_count_ + r0 + 1, size_t(a1) * radius_count_ + r0 + 1};
-  // The corners' coefficients (the line after each summary) are read after the 3×3 solve: requested now, so that
-  // their latency overlaps the solve's.
-  for (const size_t entry : e) _mm_prefetch(reinterpret_cast<const char*>(&entries_[entry].parts[0]), _MM_HINT_T0);
   const float w[4] = {(1 - ta) * (1 - tr), ta * (1 - tr), (1 - ta) * tr, ta * tr};
+  // The blended coefficients and correction directions first: they need only the weights, so their loads and
+  // multiply-adds overlap the solve below instead of following it.
+  const float* corner[4] = {entries_[e[0]].parts[0].c.data(), entries_[e[1]].parts[0].c.data(),
+                            entries_[e[2]].parts[0].c.data(), entries_[e[3]].parts[0].c.data()};
+  alignas(16) float blended[4][K];  // coefficients, then D's columns X, Y, Z (uninitialised: all written)
+  if (avx2_fma_) blend_corners_avx2(corner, w, blended);
+  else blend_corners_sse(corner, w, blended);
   // M·c, M·D, the peak and δ are linear in the entries too: interpolated, not recomputed.
   alignas(16) float summary[16];
   for (int j = 0; j < 16; j += 4) {
@@ -395,23 +472,25 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
     lambda[1] = float((c01 * r[0] + (m00 * m22 - m02 * m20) * r[1] + (m02 * m10 - m00 * m12) * r[2]) * inv);
     lambda[2] = float((c02 * r[0] + (m01 * m20 - m00 * m21) * r[1] + (m00 * m11 - m01 * m10) * r[2]) * inv);
   }
-  const float* corner[4] = {entries_[e[0]].parts[0].c.data(), entries_[e[1]].parts[0].c.data(),
-                            entries_[e[2]].parts[0].c.data(), entries_[e[3]].parts[0].c.data()};
-  alignas(16) float weight[16];
-  for (int c = 0; c < 4; ++c)
-    weight[4 * c] = w[c], weight[4 * c + 1] = w[c] * lambda[0], weight[4 * c + 2] = w[c] * lambda[1],
-                  weight[4 * c + 3] = w[c] * lambda[2];
   BasisCoefficients out;
-  if (avx2_fma_) combine_corners_avx2(corner, weight, out.c.data());
-  else combine_corners_sse(corner, weight, out.c.data());
+  const Float4 l0(lambda[0]), l1(lambda[1]), l2(lambda[2]);
+  for (int k = 0; k < K; k += 4) {
+    const Float4 base(_mm_load_ps(&blended[0][k]));
+    const Float4 dx(_mm_load_ps(&blended[1][k])), dy(_mm_load_ps(&blended[2][k])), dz(_mm_load_ps(&blended[3][k]));
+    _mm_store_ps(&out.c[k], (base + (l0 * dx + (l1 * dy + l2 * dz))).v);
+  }
   if (bounds) {
-    for (int c = 0; c < 4; ++c) bounds->corner[c] = corner[c], bounds->weight[c] = w[c];
+    std::copy(&blended[1][0], &blended[1][0] + 3 * K, &bounds->directions[0][0]);
     // The correction changes knot i by about S_i (Aᵀλ)_i (its projection rings a little more: 2 % slack).
     const double change = std::abs(lambda[0]) * largest_row_[0] + std::abs(lambda[1]) * largest_row_[1] +
                           std::abs(lambda[2]) * largest_row_[2];
     bounds->peak_bound = float(summary[12] * (1.0 + change) * 1.02);
     bounds->clamp_offset = {summary[13], summary[14], summary[15]};
     bounds->rings = std::abs(summary[13]) + std::abs(summary[14]) + std::abs(summary[15]) > 0.0f;
+    bounds->low_blocks = change < kMaxLowChange
+                             ? uint32_t(low_blocks_[e[0]] | low_blocks_[e[1]] | low_blocks_[e[2]] | low_blocks_[e[3]])
+                             : kAllBlocks;
+    std::copy(summary + 3, summary + 12, bounds->colour_per_direction.begin());
   }
   return out;
 }
@@ -420,13 +499,7 @@ std::array<BasisCoefficients, 3> UpsamplingBasis::correction_directions(const Sm
                                                                         float scale) const {
   std::array<BasisCoefficients, 3> out;
   for (int m = 0; m < 3; ++m)
-    for (int k = 0; k < K; k += 4) {
-      __m128 s = _mm_setzero_ps();
-      for (int c = 0; c < 4; ++c)
-        s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(bounds.weight[c] * scale),
-                                     _mm_load_ps(bounds.corner[c] + K * (m + 1) + k)));
-      _mm_store_ps(&out[m].c[k], s);
-    }
+    for (int k = 0; k < K; ++k) out[m].c[k] = bounds.directions[m][k] * scale;
   return out;
 }
 
@@ -459,14 +532,11 @@ void UpsamplingBasis::clamped_pass_sse(const BasisCoefficients& c, const float* 
   for (int m = 0; m < 6; ++m) out[3 + m] = sum(Float4(j[m]));
 }
 
-double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions,
-                                    const Xyz& target, float upper, const float* first_knots,
-                                    float first_knots_scale) const {
-  // Newton's method on the colour of the clamped spectrum. A step along direction m changes knot i by about
-  // S_i a_m,i (D's definition, before projection onto the basis), so the clamped colour's Jacobian is
-  // J_rm ≈ Σ_{i live} a_r,i S_i a_m,i, live = the knots inside (0, upper): one 95-knot pass gives the colour and
-  // J. The best coefficients seen are kept, and a step that overshoots (the live set changed) is halved.
-  const float* a[3] = {&colorimetry_rows_[0], &colorimetry_rows_[n + 1], &colorimetry_rows_[2 * (n + 1)]};
+template <class Pass>
+double UpsamplingBasis::newton_fit(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions,
+                                   const Xyz& target, const Pass& pass, const Matrix3* fixed_inverse,
+                                   int max_steps) const {
+  // The best coefficients seen are kept, and a step that overshoots (the live set changed) is halved.
   BasisCoefficients best = c;
   double best_error = INFINITY;
   const double tolerance = kFitTolerance * (std::abs(target.x) + std::abs(target.y) + std::abs(target.z));
@@ -479,12 +549,9 @@ double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<Basis
       _mm_store_ps(&x.c[k], s);
     }
   };
-  for (int step = 0; step < 8; ++step) {
-    // XYZ of the clamped spectrum (A rows have a zero pad, so knot 95 adds nothing) and the six sums of J.
-    alignas(16) float sums[9];
-    const float* given = step == 0 ? first_knots : nullptr;
-    if (avx2_fma_) clamped_pass_avx2(columns_.data(), c.c.data(), given, first_knots_scale, a[0], upper, sums);
-    else clamped_pass_sse(c, given, first_knots_scale, a, upper, sums);
+  for (int step = 0; step < max_steps; ++step) {
+    double sums[9];
+    pass(c, step, sums);
     const std::array<double, 3> residual = {target.x - sums[0], target.y - sums[1], target.z - sums[2]};
     const double error = std::abs(residual[0]) + std::abs(residual[1]) + std::abs(residual[2]);
     if (!(error < best_error)) {
@@ -495,17 +562,72 @@ double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<Basis
     }
     best = c, best_error = error, step_scale = 1.0f;
     if (error <= tolerance) break;
-    Matrix3 jacobian;
-    const double jxx = sums[3], jxy = sums[4], jxz = sums[5], jyy = sums[6], jyz = sums[7], jzz = sums[8];
-    jacobian.m = {{{jxx, jxy, jxz}, {jxy, jyy, jyz}, {jxz, jyz, jzz}}};
-    const double scale = jxx + jyy + jzz;
-    if (!(std::abs(jacobian.determinant()) > 1e-12 * scale * scale * scale)) break;
-    const auto lambda = jacobian.inverse().apply(residual);
+    std::array<double, 3> lambda;
+    if (fixed_inverse) {
+      lambda = fixed_inverse->apply(residual);
+    } else {
+      Matrix3 jacobian;
+      const double jxx = sums[3], jxy = sums[4], jxz = sums[5], jyy = sums[6], jyz = sums[7], jzz = sums[8];
+      jacobian.m = {{{jxx, jxy, jxz}, {jxy, jyy, jyz}, {jxz, jyz, jzz}}};
+      const double scale = jxx + jyy + jzz;
+      if (!(std::abs(jacobian.determinant()) > 1e-12 * scale * scale * scale)) break;
+      lambda = jacobian.inverse().apply(residual);
+    }
     for (int m = 0; m < 3; ++m) last_lambda[m] = float(lambda[m]);
     step_along(c, 1.0f);
   }
   c = best;
   return best_error / (std::abs(target.x) + std::abs(target.y) + std::abs(target.z));
+}
+
+double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions,
+                                    const Xyz& target, float upper, const float* first_knots,
+                                    float first_knots_scale) const {
+  // Newton's method on the colour of the clamped spectrum. A step along direction m changes knot i by about
+  // S_i a_m,i (D's definition, before projection onto the basis), so the clamped colour's Jacobian is
+  // J_rm ≈ Σ_{i live} a_r,i S_i a_m,i, live = the knots inside (0, upper): one 95-knot pass gives the colour and
+  // J (A rows have a zero pad, so knot 95 adds nothing).
+  const float* a[3] = {&colorimetry_rows_[0], &colorimetry_rows_[n + 1], &colorimetry_rows_[2 * (n + 1)]};
+  const auto pass = [&](const BasisCoefficients& x, int step, double* sums) {
+    const float* given = step == 0 ? first_knots : nullptr;
+    alignas(16) float out[9];
+    if (avx2_fma_) clamped_pass_avx2(columns_.data(), x.c.data(), given, first_knots_scale, a[0], upper, out);
+    else clamped_pass_sse(x, given, first_knots_scale, a, upper, out);
+    std::copy(out, out + 9, sums);
+  };
+  return newton_fit(c, directions, target, pass, nullptr, 8);
+}
+
+double UpsamplingBasis::fit_zero_clamped(BasisCoefficients& c, const SmoothShapeBounds& bounds, float scale,
+                                         const Xyz& target) const {
+  // The Jacobian: a step λ along the scaled directions changes M·c by scale·(M·D)·λ, and the knots it would
+  // clamp have S_i ≈ 0 (D moves knot i by about S_i a_i), so clamping barely changes it: fixed for the fit.
+  Matrix3 jacobian;
+  for (int r = 0; r < 3; ++r)
+    for (int m = 0; m < 3; ++m) jacobian.m[r][m] = double(scale) * bounds.colour_per_direction[size_t(3 * r + m)];
+  const double size = std::abs(jacobian(0, 0)) + std::abs(jacobian(1, 1)) + std::abs(jacobian(2, 2));
+  if (!(std::abs(jacobian.determinant()) > 1e-12 * size * size * size))
+    return fit_clamped(c, correction_directions(bounds, scale), target, INFINITY);
+  const Matrix3 inverse = jacobian.inverse();
+  const float* a = colorimetry_rows_.data();
+  const auto pass = [&](const BasisCoefficients& x, int, double* sums) {
+    if (avx2_fma_) zero_clamped_colour_avx2(columns_.data(), xyz_rows_, x.c.data(), a, bounds.low_blocks, sums);
+    else zero_clamped_colour_sse(columns_.data(), xyz_rows_, x.c.data(), a, bounds.low_blocks, sums);
+  };
+  const std::array<BasisCoefficients, 3> directions = correction_directions(bounds, scale);
+  const double left = newton_fit(c, directions, target, pass, &inverse, kZeroOnlySteps);
+  // The fixed Jacobian converges linearly where many knots are clamped (near the locus): there the full fit,
+  // with the live knots' Jacobian, takes over from the best point reached.
+  return left <= kFitTolerance ? left : fit_clamped(c, directions, target, INFINITY);
+}
+
+uint32_t UpsamplingBasis::negative_blocks(const BasisCoefficients& c) const {
+  alignas(16) float v[n + 1];
+  knots_float(c, v);
+  uint32_t out = 0;
+  for (int i = 0; i < n; ++i)
+    if (v[i] < 0.0f) out |= 1u << (i / 8);
+  return out;
 }
 
 void UpsamplingBasis::fill(BasisAtWavelengths& cache, Float4 lambda_nm) const {

@@ -15,6 +15,8 @@
 
 namespace rimu {
 
+struct Matrix3;
+
 /// Number of basis functions: the 4 that span every smoothest spectrum with no zero knot (exactly), plus 12
 /// principal components of what the table's spectra with zero regions add. docs/upsampling.md ("Fast path") has
 /// the accuracy against this number; 16 floats = 64 bytes per texel.
@@ -34,15 +36,21 @@ struct BasisCoefficients {
 /// What smooth_coefficients knows about the spectrum besides its coefficients, so that callers can skip a
 /// 95-knot pass (~50-90 ns) when it cannot matter.
 struct SmoothShapeBounds {
-  /// The four table entries around the colour (coefficients, then D) and their bilinear weights: what
-  /// correction_directions() blends, only when a fit needs the directions (a fifth of random sRGB colours).
-  const float* corner[4] = {};
-  float weight[4] = {};
+  /// The correction directions D (columns X, Y, Z) of the colour at Y = 1: the four corners' D blended with the
+  /// bilinear weights, what correction_directions() scales for a fit (a fifth of random sRGB colours need one).
+  /// Left uninitialised (the setup's hot path fills it; zeroing 192 bytes per colour showed in its profile).
+  alignas(16) float directions[3][kUpsamplingBasisSize];
   float peak_bound = 0;  ///< ≥ the largest knot of Φc (interpolated corner peaks, raised by the correction)
   /// δ: M·c − colour(clamp(Φc, 0, ∞)) as interpolated from the entries (the colour clamping at 0 takes away).
   Xyz clamp_offset;
-  /// True if some corner's spectrum needed clamping (δ ≠ 0): then only a fit_clamped makes the colour exact.
+  /// True if some corner's spectrum needed clamping (δ ≠ 0): then only a fit makes the colour exact.
   bool rings = false;
+  /// The 8-knot blocks (bit b: knots 8b .. 8b + 7) where some corner's spectrum dips below a tenth of its peak:
+  /// the only knots at which Φc can be negative (fit_zero_clamped's candidates).
+  uint32_t low_blocks = 0;
+  /// M·D (row-major) at Y = 1: the colour's change per unit step along the directions, fit_zero_clamped's
+  /// Jacobian.
+  std::array<float, 9> colour_per_direction{};
 };
 
 namespace upsampling_kernels {
@@ -106,8 +114,13 @@ __attribute__((target("avx2,fma"))) inline __m128 blend_dot_lanes_avx2(const flo
 /// directions, as the exact path repeats its correction while clamping.
 class UpsamplingBasis {
  public:
+  /// Which builds of the setup and evaluation kernels a basis calls: the best the CPU runs (AVX2 + FMA where
+  /// present), or the SSE4.1 baseline everywhere (tests compare the two on one machine).
+  enum class Kernels { best_for_cpu, sse41 };
+
   /// Builds the basis and projects every table entry onto it (~20 ms of CPU; once per colour space).
-  UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry);
+  UpsamplingBasis(const UpsamplingTable& table, const KnotColorimetry& colorimetry,
+                  Kernels kernels = Kernels::best_for_cpu);
 
   /// Coefficients of the spectrum with chromaticity `xy` and luminance Y = 1 (under the table's white): the four
   /// entries around (θ, ρ) interpolated bilinearly (each Y-normalised, as UpsamplingTable::interpolate), then
@@ -118,8 +131,8 @@ class UpsamplingBasis {
   BasisCoefficients smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
                                         SmoothShapeBounds* bounds = nullptr) const;
 
-  /// The correction directions D of smooth_coefficients's colour (the corners' D blended with its weights), times
-  /// `scale` (the luminance c was scaled by): fit_clamped's `directions`.
+  /// The correction directions D of smooth_coefficients's colour (bounds.directions), times `scale` (the
+  /// luminance c was scaled by): fit_clamped's `directions`.
   std::array<BasisCoefficients, 3> correction_directions(const SmoothShapeBounds& bounds, float scale) const;
 
   /// Moves `c` along `directions` (correction_directions) until clamp(Φc, 0, upper) has colour
@@ -132,16 +145,30 @@ class UpsamplingBasis {
   double fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions, const Xyz& target,
                      float upper, const float* first_knots = nullptr, float first_knots_scale = 1.0f) const;
 
+  /// fit_clamped for a spectrum that can only clamp at zero (emission; a reflectance whose peak stays below 1),
+  /// from smooth_coefficients's `bounds` with c and the directions scaled by `scale`: a pass computes Φc only in
+  /// bounds.low_blocks (the colour of clamp(Φc, 0, ∞) is M·c minus the negative knots' colour, and knots elsewhere
+  /// are positive), and the Jacobian is scale·M·D from the interpolated entries, so a pass costs about a quarter
+  /// of fit_clamped's. Same stopping rule and return value.
+  double fit_zero_clamped(BasisCoefficients& c, const SmoothShapeBounds& bounds, float scale, const Xyz& target) const;
+
+  /// The knots' blocks of 8 (bit b: knots 8b .. 8b + 7) where Φc < 0 (tests: low_blocks must contain them).
+  uint32_t negative_blocks(const BasisCoefficients& c) const;
+
   /// Where a chromaticity at offset (dx, dy) from the white lies, without an atan2: `angle_cell` = θ·angle_count/2π
-  /// in [0, angle_count] (θ ∈ [0, 2π)) and `usable_radius` = R(θ)·usable_fraction, both interpolated linearly in a
-  /// 2048-step table (16 KB) over the pseudo-angle p = 1 − dx/(|dx|+|dy|) (dy ≥ 0) or 3 + dx/(|dx|+|dy|) (dy < 0), which
-  /// is monotonic in θ. θ(p) is smooth (|θ''| ≤ 2), so the table's θ is within 1e-6 rad of atan2's (h²/8·|θ''|,
-  /// h = 4/2048); the hull radius R(θ) is convex between the hull's vertices (the lerp's chord overstates it by
-  /// ≤ (2h)²/8 ≈ 2e-6 relative there: dθ/dp ≤ 2) and the lerp understates it at a vertex, by ≤ 2e-3 (tested;
-  /// usable_radius's finer table: ≤ 1e-3), so a colour within 0.2 % of the usable edge may be moved onto it. Cost: one division and one 16-byte load.
+  /// in [0, angle_count] (θ ∈ [0, 2π)) and `inverse_usable_radius` = 1/(R(θ)·usable_fraction), both interpolated
+  /// linearly in a 2048-step table (16 KB) over the pseudo-angle p = 1 − dx/(|dx|+|dy|) (dy ≥ 0) or
+  /// 3 + dx/(|dx|+|dy|) (dy < 0), which is monotonic in θ. θ(p) is smooth (|θ''| ≤ 2), so the table's θ is within
+  /// 1e-6 rad of atan2's (h²/8·|θ''|, h = 4/2048). The reciprocal is tabulated so that ρ = |offset|·(1/R) is a
+  /// product, not a second division on the setup's critical path. Along a straight hull edge 1/R(θ) = cos(θ − φ)/d
+  /// is concave, so the lerp's chord understates it by ≤ (2h)²/8 ≈ 2e-6 relative (dθ/dp ≤ 2), i.e. R by as much
+  /// above the hull; at a hull vertex 1/R has a kink upwards and the lerp overstates it by ≤ 2e-3 (tested;
+  /// usable_radius's finer table: ≤ 1e-3), so a colour within 0.2 % of the usable edge may be moved onto it.
+  /// Cost: one division and one 16-byte load.
   struct PolarCell {
     double angle_cell = 0;
-    double usable_radius = 0;
+    double inverse_usable_radius = 0;
+    double usable_radius() const { return 1.0 / inverse_usable_radius; }
   };
   PolarCell locate(double dx, double dy) const {
     const double sum = std::abs(dx) + std::abs(dy);
@@ -150,7 +177,7 @@ class UpsamplingBasis {
     const double x = std::min(p * (kPseudoAngleSteps / 4.0), double(kPseudoAngleSteps));
     const int i = std::min(int(x), kPseudoAngleSteps - 1);
     const double t = x - i;
-    const float* row = &pseudo_angle_table_[size_t(i) * 2];  // angle_cell, radius at i, then at i + 1
+    const float* row = &pseudo_angle_table_[size_t(i) * 2];  // angle_cell, 1/radius at i, then at i + 1
     return {row[0] + t * (row[2] - row[0]), row[1] + t * (row[3] - row[1])};
   }
 
@@ -266,6 +293,8 @@ class UpsamplingBasis {
     std::array<BasisCoefficients, 4> parts;
   };
   std::vector<Entry> entries_;
+  // Per entry, its Y = 1 spectrum's 8-knot blocks below a tenth of its peak (SmoothShapeBounds::low_blocks).
+  std::vector<uint16_t> low_blocks_;
   bool avx2_fma_ = false;  // the CPU has AVX2 and FMA: smooth_coefficients blends with 8-lane fused multiply-adds
   // evaluate()'s and evaluate_blend()'s kernels, chosen once by the CPU (upsampling_kernels).
   __m128 (*dot_lanes_)(const float*, const float*) = upsampling_kernels::dot_lanes_sse;
@@ -277,7 +306,7 @@ class UpsamplingBasis {
   std::vector<float> columns_;            // K × 96, basis-major: four knots of one basis function per load
   std::vector<float> usable_radius_;      // R(θ)·usable_fraction at 4096 + 1 angles over [−π, π]
   static constexpr int kPseudoAngleSteps = 2048;
-  std::vector<float> pseudo_angle_table_;  // (angle_cell, usable radius) at 2048 + 1 pseudo-angles over [0, 4]
+  std::vector<float> pseudo_angle_table_;  // (angle_cell, 1/usable radius) at 2048 + 1 pseudo-angles over [0, 4]
 
   // Unique per constructed basis (a copy shares its id and its rows), so the cache cannot confuse a destroyed basis
   // with a new one built at the same address.
@@ -286,6 +315,11 @@ class UpsamplingBasis {
   // fit_clamped's pass without AVX2: knots_float (or given × given_scale), then the clamped colour and J's sums.
   void clamped_pass_sse(const BasisCoefficients& c, const float* given, float given_scale, const float* const a[3],
                         float upper, float* out) const;
+  // Newton's method on the clamped colour, shared by the two fits: `pass(c, step, sums)` fills the clamped
+  // colour (sums[0..2]) and, unless `fixed_inverse` is given, J's six sums (sums[3..8]).
+  template <class Pass>
+  double newton_fit(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions, const Xyz& target,
+                    const Pass& pass, const Matrix3* fixed_inverse, int max_steps) const;
   // Trivially constructible and destructible, so access needs no initialisation guard.
   static inline thread_local BasisAtWavelengths thread_cache_{};
 };

@@ -364,9 +364,10 @@ TEST_CASE("fast path: the per-thread basis cache never serves one basis's rows t
 TEST_CASE("fast upsampling: the pseudo-angle cell location agrees with atan2 and the hull radius table") {
   // locate() replaces atan2 by a 2048-step table over the pseudo-angle p (upsampling_basis.h): its angle cell must
   // be θ·angle_count/2π within the lerp's bound h²/8·|θ''| ≤ 1e-6 rad (1e-5 allowed for float storage of the
-  // cell coordinate), and its radius never above the hull's (the lerp's chord overstates R only by ~2e-6 between
-  // vertices) and at most 2e-3 below it (at the hull's vertices, where the lerp cuts the corner: measured 8e-4 in
-  // sRGB, 1.6e-3 in ACEScg), at random directions and on the axes and diagonals, where p has its branch points.
+  // cell coordinate), and its radius (from the tabulated 1/R) never above the hull's by more than the lerp's
+  // chord error of the concave 1/R between vertices (~2e-6; 1e-5 allowed) and at most 2e-3 below it (at the
+  // hull's vertices, where the lerp cuts across 1/R's kink), at random directions and on the axes and diagonals,
+  // where p has its branch points.
   for (const char* space : {"srgb-linear", "acescg"}) {
     const UpsamplingBasis& basis = upsampler(space).basis();
     const int angle_count = upsampler(space).table().angle_count;
@@ -387,12 +388,139 @@ TEST_CASE("fast upsampling: the pseudo-angle cell location agrees with atan2 and
                     space << " (" << dx << ", " << dy << "): cell " << cell.angle_cell << " expected " << expected_cell);
       const double exact = upsampler(space).gamut().boundary_radius(std::atan2(dy, dx)) *
                            upsampler(space).table().usable_fraction;
-      CHECK_MESSAGE(cell.usable_radius <= exact * (1 + 1e-5),
-                    space << " (" << dx << ", " << dy << "): radius " << cell.usable_radius << " above the hull's " << exact);
-      CHECK_MESSAGE(cell.usable_radius >= exact * (1 - 2e-3),
-                    space << " (" << dx << ", " << dy << "): radius " << cell.usable_radius << " expected " << exact);
-      worst_below = std::max(worst_below, 1 - cell.usable_radius / exact);
+      CHECK_MESSAGE(cell.usable_radius() <= exact * (1 + 1e-5),
+                    space << " (" << dx << ", " << dy << "): radius " << cell.usable_radius() << " above the hull's " << exact);
+      CHECK_MESSAGE(cell.usable_radius() >= exact * (1 - 2e-3),
+                    space << " (" << dx << ", " << dy << "): radius " << cell.usable_radius() << " expected " << exact);
+      worst_below = std::max(worst_below, 1 - cell.usable_radius() / exact);
     }
     MESSAGE(std::string(space) << ": locate()'s radius at most " << worst_below << " below the hull's (relative)");
   }
+}
+
+namespace {
+
+/// A chromaticity inside `up`'s usable gamut (ρ ≤ 1) drawn from random RGB of its space, located as
+/// RgbUpsampler locates it; false for colours outside (the caller draws again).
+struct LocatedColour {
+  Chromaticity xy;
+  UpsamplingBasis::PolarCell cell;
+  double rho = 0;
+};
+bool locate_random(const RgbUpsampler& up, Random& random, LocatedColour& out) {
+  const Xyz xyz = up.space().to_xyz({random.next(), random.next(), random.next()});
+  const double total = xyz.x + xyz.y + xyz.z;
+  if (!(xyz.y > 1e-6 && total > 0)) return false;
+  out.xy = {xyz.x / total, xyz.y / total};
+  const Chromaticity w = up.gamut().white();
+  const double dx = out.xy.x - w.x, dy = out.xy.y - w.y;
+  out.cell = up.basis().locate(dx, dy);
+  out.rho = std::hypot(dx, dy) / out.cell.usable_radius();
+  return out.rho <= 1.0;
+}
+
+/// XYZ of clamp(Φc, 0, upper) at the knots, in double.
+Xyz clamped_xyz(const RgbUpsampler& up, const BasisCoefficients& c, double upper) {
+  KnotValues knots = up.basis().knots(c);
+  for (double& v : knots) v = std::clamp(v, 0.0, upper);
+  return up.colorimetry().xyz_of(knots);
+}
+
+double relative_miss(const Xyz& got, const Xyz& want) {
+  return (std::abs(got.x - want.x) + std::abs(got.y - want.y) + std::abs(got.z - want.z)) /
+         (std::abs(want.x) + std::abs(want.y) + std::abs(want.z));
+}
+
+}  // namespace
+
+TEST_CASE("fast path: Φc is negative only in the low blocks, and the zero-only fit reaches the full fit's colour") {
+  // fit_zero_clamped computes the clamped colour from the knots of bounds.low_blocks alone (the blocks where some
+  // corner's spectrum is below a tenth of its peak): a negative knot anywhere else would be left unclamped and its
+  // colour missed. Checked on the interpolated coefficients and after the fit, in every space, at Y = 1 and at
+  // the emission range's ends (1e-8, 1e6: the blocks do not depend on scale). The fit itself: its returned residual
+  // is the clamped colour's (recomputed here in double from all 95 knots, within float rounding 1e-6), and where
+  // the full fit (every knot, its own Jacobian) holds the colour to 1e-4 so does the zero-only fit.
+  for (const std::string space : kSpaces) {
+    CAPTURE(space);
+    const RgbUpsampler& up = upsampler(space);
+    const UpsamplingBasis& basis = up.basis();
+    Random random{1234};
+    int ringing = 0;
+    for (int i = 0; i < 3000; ++i) {
+      LocatedColour colour;
+      if (!locate_random(up, random, colour)) continue;
+      SmoothShapeBounds bounds;
+      const BasisCoefficients c = basis.smooth_coefficients_in_cell(colour.xy, colour.cell.angle_cell, colour.rho, &bounds);
+      CAPTURE(colour.xy.x);
+      CAPTURE(colour.xy.y);
+      REQUIRE((basis.negative_blocks(c) & ~bounds.low_blocks) == 0u);
+      if (!bounds.rings) continue;
+      ++ringing;
+      for (const double scale : {1.0, 1e-8, 1e6}) {
+        BasisCoefficients zero_only = c, full = c;
+        zero_only *= float(scale);
+        full *= float(scale);
+        const Xyz aimed = basis.xyz_of(zero_only);
+        const Xyz target{aimed.x - scale * bounds.clamp_offset.x, aimed.y - scale * bounds.clamp_offset.y,
+                         aimed.z - scale * bounds.clamp_offset.z};
+        const double left = basis.fit_zero_clamped(zero_only, bounds, float(scale), target);
+        const double left_full = basis.fit_clamped(full, basis.correction_directions(bounds, float(scale)), target, INFINITY);
+        REQUIRE((basis.negative_blocks(zero_only) & ~bounds.low_blocks) == 0u);
+        CHECK(std::abs(relative_miss(clamped_xyz(up, zero_only, INFINITY), target) - left) <= 1e-6);
+        if (left_full <= 1e-4) CHECK(left <= 1e-4);
+      }
+    }
+    CAPTURE(ringing);
+    CHECK(ringing > 100);  // the property is exercised where it matters
+  }
+}
+
+TEST_CASE("fast path: the SSE4.1 setup kernels give the AVX2 kernels' coefficients") {
+  // A basis built with Kernels::sse41 runs the baseline blend, clamped passes and zero-only passes; on a CPU
+  // with AVX2 the upsampler's own basis runs the 8-lane fused builds. Both must give the same coefficients and
+  // residuals up to float rounding of 16- and 96-term sums (1e-5 of the coefficients' size). On a CPU without
+  // AVX2 both are the baseline and this compares it with itself.
+  const RgbUpsampler& up = upsampler("srgb-linear");
+  const UpsamplingBasis sse(up.table(), up.colorimetry(), UpsamplingBasis::Kernels::sse41);
+  const UpsamplingBasis& best = up.basis();
+  auto close = [](const BasisCoefficients& a, const BasisCoefficients& b) {
+    float size = 0, difference = 0;
+    for (int k = 0; k < kUpsamplingBasisSize; ++k)
+      size = std::max(size, std::abs(a.c[k])), difference = std::max(difference, std::abs(a.c[k] - b.c[k]));
+    return difference <= 1e-5f * size;
+  };
+  Random random{31};
+  int fits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    LocatedColour colour;
+    if (!locate_random(up, random, colour)) continue;
+    CAPTURE(i);
+    SmoothShapeBounds bounds_sse, bounds_best;
+    BasisCoefficients a = sse.smooth_coefficients_in_cell(colour.xy, colour.cell.angle_cell, colour.rho, &bounds_sse);
+    BasisCoefficients b = best.smooth_coefficients_in_cell(colour.xy, colour.cell.angle_cell, colour.rho, &bounds_best);
+    REQUIRE(close(a, b));
+    CHECK(bounds_sse.low_blocks == bounds_best.low_blocks);
+    const auto directions_sse = sse.correction_directions(bounds_sse, 1.0f);
+    const auto directions_best = best.correction_directions(bounds_best, 1.0f);
+    for (int m = 0; m < 3; ++m) CHECK(close(directions_sse[m], directions_best[m]));
+    if (!bounds_best.rings) continue;
+    ++fits;
+    const Xyz aimed = best.xyz_of(b);
+    const Xyz target{aimed.x - bounds_best.clamp_offset.x, aimed.y - bounds_best.clamp_offset.y,
+                     aimed.z - bounds_best.clamp_offset.z};
+    BasisCoefficients a_zero = a, b_zero = b;
+    const double left_sse = sse.fit_zero_clamped(a_zero, bounds_sse, 1.0f, target);
+    const double left_best = best.fit_zero_clamped(b_zero, bounds_best, 1.0f, target);
+    CHECK(close(a_zero, b_zero));
+    CHECK(std::abs(left_sse - left_best) <= 1e-6);
+    // The full fit with clamping at 1 too: scaled so that its peak sits 1 % above 1.
+    alignas(16) float knots[kUpsampleKnotCount + 1];
+    const float scale = 1.01f / best.knots_float(b, knots);
+    a *= scale, b *= scale;
+    const Xyz scaled_target = clamped_xyz(up, b, 1.0);
+    CHECK(std::abs(sse.fit_clamped(a, sse.correction_directions(bounds_sse, scale), scaled_target, 1.0f) -
+                   best.fit_clamped(b, best.correction_directions(bounds_best, scale), scaled_target, 1.0f)) <= 1e-6);
+    CHECK(close(a, b));
+  }
+  CHECK(fits > 50);
 }
