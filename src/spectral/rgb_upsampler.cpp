@@ -215,13 +215,12 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
       }
     }
     c *= float(luminance);
-    // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour the unclamped one
-    // was aimed at, t = M·c − δ. Well below 1 only zero can clamp, even after the fit's small steps: the cheaper
+    // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour asked for (at the
+    // luminance kept). Well below 1 only zero can clamp, even after the fit's small steps: the cheaper
     // fit.
     const bool clamps_at_1 = luminance * peak > 1.0;
     if (bounds.rings || clamps_at_1) {
-      const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
-      const Xyz target{aimed.x - luminance * offset.x, aimed.y - luminance * offset.y, aimed.z - luminance * offset.z};
+      const Xyz target{luminance * bounds.colour.x, luminance, luminance * bounds.colour.z};
       const double left =
           luminance * peak < kZeroOnlyPeak
               ? basis().fit_zero_clamped(c, bounds, float(luminance), target)
@@ -256,9 +255,8 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
     c = smooth_coefficients(xyz, &moved, &bounds);
     c *= float(xyz.y);
     if (bounds.rings) {
-      const Xyz aimed = basis().xyz_of(c), offset = bounds.clamp_offset;
       const double left = basis().fit_zero_clamped(
-          c, bounds, float(xyz.y), {aimed.x - xyz.y * offset.x, aimed.y - xyz.y * offset.y, aimed.z - xyz.y * offset.z});
+          c, bounds, float(xyz.y), {xyz.y * bounds.colour.x, xyz.y, xyz.y * bounds.colour.z});
       if (left > kFitTolerance) moved = true;
     }
   }

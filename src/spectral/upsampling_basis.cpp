@@ -458,8 +458,9 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
   // Exact colour: c += D·λ with (M·D)·λ = t + δ − M·c, δ the clamping offset. Cramer's rule on the 3×3 (one
   // set of cofactors for the determinant and the solution).
   const double inv_y = 1.0 / xy.y;
-  const double r[3] = {xy.x * inv_y + summary[13] - summary[0], 1.0 + summary[14] - summary[1],
-                       (1.0 - xy.x - xy.y) * inv_y + summary[15] - summary[2]};
+  const Xyz colour{xy.x * inv_y, 1.0, (1.0 - xy.x - xy.y) * inv_y};
+  const double r[3] = {colour.x + summary[13] - summary[0], 1.0 + summary[14] - summary[1],
+                       colour.z + summary[15] - summary[2]};
   const double m00 = summary[3], m01 = summary[4], m02 = summary[5], m10 = summary[6], m11 = summary[7],
                m12 = summary[8], m20 = summary[9], m21 = summary[10], m22 = summary[11];
   const double c00 = m11 * m22 - m12 * m21, c01 = m12 * m20 - m10 * m22, c02 = m10 * m21 - m11 * m20;
@@ -485,7 +486,7 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
     const double change = std::abs(lambda[0]) * largest_row_[0] + std::abs(lambda[1]) * largest_row_[1] +
                           std::abs(lambda[2]) * largest_row_[2];
     bounds->peak_bound = float(summary[12] * (1.0 + change) * 1.02);
-    bounds->clamp_offset = {summary[13], summary[14], summary[15]};
+    bounds->colour = colour;
     bounds->rings = std::abs(summary[13]) + std::abs(summary[14]) + std::abs(summary[15]) > 0.0f;
     bounds->low_blocks = change < kMaxLowChange
                              ? uint32_t(low_blocks_[e[0]] | low_blocks_[e[1]] | low_blocks_[e[2]] | low_blocks_[e[3]])

@@ -41,9 +41,10 @@ struct SmoothShapeBounds {
   /// Left uninitialised (the setup's hot path fills it; zeroing 192 bytes per colour showed in its profile).
   alignas(16) float directions[3][kUpsamplingBasisSize];
   float peak_bound = 0;  ///< ≥ the largest knot of Φc (interpolated corner peaks, raised by the correction)
-  /// δ: M·c − colour(clamp(Φc, 0, ∞)) as interpolated from the entries (the colour clamping at 0 takes away).
-  Xyz clamp_offset;
-  /// True if some corner's spectrum needed clamping (δ ≠ 0): then only a fit makes the colour exact.
+  /// The colour asked for, xyz(xy, Y = 1): what a fit of the clamped spectrum aims at (times the luminance).
+  Xyz colour;
+  /// True if some corner's spectrum needed clamping (δ ≠ 0, see smooth_coefficients): then only a fit makes the
+  /// colour exact.
   bool rings = false;
   /// The 8-knot blocks (bit b: knots 8b .. 8b + 7) where some corner's spectrum dips below a tenth of its peak:
   /// the only knots at which Φc can be negative (fit_zero_clamped's candidates).
@@ -125,8 +126,9 @@ class UpsamplingBasis {
   /// Coefficients of the spectrum with chromaticity `xy` and luminance Y = 1 (under the table's white): the four
   /// entries around (θ, ρ) interpolated bilinearly (each Y-normalised, as UpsamplingTable::interpolate), then
   /// colour-corrected so that xyz_of() is xyz(xy, Y = 1) + δ up to float rounding, δ the blended clamping offset
-  /// (bounds->clamp_offset), so that the spectrum clamped at 0 lands near xyz(xy, 1); exactly there if no corner
-  /// rings (bounds->rings false), otherwise fit_clamped finishes the job. `xy` must lie inside the
+  /// (M·c − colour(clamp(Φc, 0, ∞)) at the entries: what clamping at 0 takes away), so that the spectrum clamped
+  /// at 0 lands near xyz(xy, 1) = bounds->colour; exactly there if no corner rings (bounds->rings false),
+  /// otherwise a fit (fit_zero_clamped, fit_clamped) finishes the job. `xy` must lie inside the
   /// usable gamut (relative radius ≤ 1: the caller maps it). Allocation-free; ~70 ns.
   BasisCoefficients smooth_coefficients(Chromaticity xy, double angle_rad, double relative_radius,
                                         SmoothShapeBounds* bounds = nullptr) const;
