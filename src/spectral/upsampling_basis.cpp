@@ -290,12 +290,12 @@ double UpsamplingBasis::usable_radius(double angle_rad) const {
 
 namespace {
 
-// out[p] = Σ_c weight[c] · corner[c][16p .. 16p + 15] for p < 4: the blended coefficients (p = 0) and the blended
-// correction directions D (p = 1..3). None of it waits for the 3×3 solve, so it runs while the solve's divisions
+// Σ_c weight[c] · corner[c][16p .. 16p + 15] for p < 4: the blended coefficients (p = 0, into `coefficients`) and
+// the blended correction directions D (p = 1..3, into `directions`). None of it waits for the 3×3 solve, so it runs while the solve's divisions
 // do; the correction is then three multiply-adds. Two builds, chosen once per basis by the CPU: 8-lane fused
 // multiply-adds (eight independent chains of four) and the SSE4.1 baseline.
 __attribute__((target("avx2,fma"))) void blend_corners_avx2(const float* const corner[4], const float weight[4],
-                                                            float out[4][K]) {
+                                                            float* coefficients, float directions[3][K]) {
   const __m256 w[4] = {_mm256_set1_ps(weight[0]), _mm256_set1_ps(weight[1]), _mm256_set1_ps(weight[2]),
                        _mm256_set1_ps(weight[3])};
   for (int p = 0; p < 4; ++p) {
@@ -305,17 +305,20 @@ __attribute__((target("avx2,fma"))) void blend_corners_avx2(const float* const c
       lo = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(corner[c] + 16 * p), lo);
       hi = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(corner[c] + 16 * p + 8), hi);
     }
-    _mm256_storeu_ps(out[p], lo);
-    _mm256_storeu_ps(out[p] + 8, hi);
+    float* out = p == 0 ? coefficients : directions[p - 1];
+    _mm256_storeu_ps(out, lo);
+    _mm256_storeu_ps(out + 8, hi);
   }
 }
 
-void blend_corners_sse(const float* const corner[4], const float weight[4], float out[4][K]) {
+void blend_corners_sse(const float* const corner[4], const float weight[4], float* coefficients,
+                       float directions[3][K]) {
   for (int p = 0; p < 4; ++p)
     for (int k = 0; k < K; k += 4) {
+      float* out = p == 0 ? coefficients : directions[p - 1];
       __m128 s = _mm_mul_ps(_mm_set1_ps(weight[0]), _mm_load_ps(corner[0] + 16 * p + k));
       for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(weight[c]), _mm_load_ps(corner[c] + 16 * p + k)));
-      _mm_store_ps(out[p] + k, s);
+      _mm_store_ps(out + k, s);
     }
 }
 
@@ -445,9 +448,12 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
   // multiply-adds overlap the solve below instead of following it.
   const float* corner[4] = {entries_[e[0]].parts[0].c.data(), entries_[e[1]].parts[0].c.data(),
                             entries_[e[2]].parts[0].c.data(), entries_[e[3]].parts[0].c.data()};
-  alignas(16) float blended[4][K];  // coefficients, then D's columns X, Y, Z (uninitialised: all written)
-  if (avx2_fma_) blend_corners_avx2(corner, w, blended);
-  else blend_corners_sse(corner, w, blended);
+  // The coefficients, then D's columns X, Y, Z (uninitialised: all written), D straight into the bounds if asked.
+  alignas(16) float blended[4][K];
+  static_assert(sizeof(bounds->directions) == 3 * sizeof(blended[0]));
+  if (avx2_fma_) blend_corners_avx2(corner, w, blended[0], bounds ? bounds->directions : &blended[1]);
+  else blend_corners_sse(corner, w, blended[0], bounds ? bounds->directions : &blended[1]);
+  const float(*directions)[K] = bounds ? bounds->directions : &blended[1];
   // M·c, M·D, the peak and δ are linear in the entries too: interpolated, not recomputed.
   alignas(16) float summary[16];
   for (int j = 0; j < 16; j += 4) {
@@ -477,11 +483,10 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
   const Float4 l0(lambda[0]), l1(lambda[1]), l2(lambda[2]);
   for (int k = 0; k < K; k += 4) {
     const Float4 base(_mm_load_ps(&blended[0][k]));
-    const Float4 dx(_mm_load_ps(&blended[1][k])), dy(_mm_load_ps(&blended[2][k])), dz(_mm_load_ps(&blended[3][k]));
+    const Float4 dx(_mm_load_ps(&directions[0][k])), dy(_mm_load_ps(&directions[1][k])), dz(_mm_load_ps(&directions[2][k]));
     _mm_store_ps(&out.c[k], (base + (l0 * dx + (l1 * dy + l2 * dz))).v);
   }
   if (bounds) {
-    std::copy(&blended[1][0], &blended[1][0] + 3 * K, &bounds->directions[0][0]);
     // The correction changes knot i by about S_i (Aᵀλ)_i (its projection rings a little more: 2 % slack).
     const double change = std::abs(lambda[0]) * largest_row_[0] + std::abs(lambda[1]) * largest_row_[1] +
                           std::abs(lambda[2]) * largest_row_[2];
