@@ -57,9 +57,6 @@ constexpr double kRingingAllowance = 1.02;
 // The fast path reports a colour as moved (gamut_mapped) when fitting its clamped spectrum leaves more than this
 // relative XYZ residual (ΔE00 ≲ 0.01): the basis cannot hold that spectrum at zero or under 1.
 constexpr double kFitTolerance = 1e-4;
-// Below this peak (after the luminance) a reflectance's fit cannot push a knot over 1 (a fit changes knots by
-// ~1e-3 of themselves), so only clamping at zero matters: UpsamplingBasis::fit_zero_clamped.
-constexpr double kZeroOnlyPeak = 0.99;
 
 double delta_e(const Xyz& a, const Xyz& b, const Xyz& white) { return delta_e_2000(lab_of(a, white), lab_of(b, white)); }
 
@@ -216,16 +213,15 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     }
     c *= float(luminance);
     // Clamped at 0 (ringing) or at 1 (the allowance): fit the clamped spectrum to the colour asked for (at the
-    // luminance kept). Well below 1 only zero can clamp, even after the fit's small steps: the cheaper
-    // fit.
+    // luminance kept). Below the brightness limit the cheaper fit (clamping at zero in the low blocks; it verifies
+    // its result and hands over to the full fit if a knot ends above 1).
     const bool clamps_at_1 = luminance * peak > 1.0;
     if (bounds.rings || clamps_at_1) {
       const Xyz target{luminance * bounds.colour.x, luminance, luminance * bounds.colour.z};
       const double left =
-          luminance * peak < kZeroOnlyPeak
-              ? basis().fit_zero_clamped(c, bounds, float(luminance), target)
-              : basis().fit_clamped(c, basis().correction_directions(bounds, float(luminance)), target, 1.0f,
-                                    have_knots ? knots : nullptr, float(luminance));
+          clamps_at_1 ? basis().fit_clamped(c, basis().correction_directions(bounds, float(luminance)), target, 1.0f,
+                                            have_knots ? knots : nullptr, float(luminance))
+                      : basis().fit_zero_clamped(c, bounds, float(luminance), target, 1.0f);
       if (left > kFitTolerance) moved = true;
     }
   }
@@ -256,7 +252,7 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
     c *= float(xyz.y);
     if (bounds.rings) {
       const double left = basis().fit_zero_clamped(
-          c, bounds, float(xyz.y), {xyz.y * bounds.colour.x, xyz.y, xyz.y * bounds.colour.z});
+          c, bounds, float(xyz.y), {xyz.y * bounds.colour.x, xyz.y, xyz.y * bounds.colour.z}, INFINITY);
       if (left > kFitTolerance) moved = true;
     }
   }

@@ -24,8 +24,8 @@ constexpr double kFitTolerance = 1e-5;
 // A knot block is a candidate for clamping at zero (low_blocks) where an entry's Y = 1 spectrum dips below this
 // fraction of its peak. Between entries a knot is a weighted mean of the corners' values plus the correction,
 // which changes it by a few per cent of itself (bounded by SmoothShapeBounds's `change`), and the basis rings by
-// ≤ 1e-2 of the peak: a knot at a tenth of the peak in every corner cannot reach zero. fit_zero_clamped is only
-// used while the correction's relative change stays below kMaxLowChange.
+// ≤ 1e-2 of the peak: a knot at a tenth of the peak in every corner cannot reach zero. The blocks are used only
+// while the correction's relative change stays below kMaxLowChange (and fit_zero_clamped verifies its result).
 constexpr double kLowFraction = 0.1;
 constexpr double kMaxLowChange = 0.5;
 // Passes fit_zero_clamped makes before handing over to fit_clamped (random sRGB colours need 1-2).
@@ -605,7 +605,7 @@ double UpsamplingBasis::fit_clamped(BasisCoefficients& c, const std::array<Basis
 }
 
 double UpsamplingBasis::fit_zero_clamped(BasisCoefficients& c, const SmoothShapeBounds& bounds, float scale,
-                                         const Xyz& target) const {
+                                         const Xyz& target, float upper) const {
   // The Jacobian: a step λ along the scaled directions changes M·c by scale·(M·D)·λ, and the knots it would
   // clamp have S_i ≈ 0 (D moves knot i by about S_i a_i), so clamping barely changes it: fixed for the fit.
   Matrix3 jacobian;
@@ -613,7 +613,7 @@ double UpsamplingBasis::fit_zero_clamped(BasisCoefficients& c, const SmoothShape
     for (int m = 0; m < 3; ++m) jacobian.m[r][m] = double(scale) * bounds.colour_per_direction[size_t(3 * r + m)];
   const double size = std::abs(jacobian(0, 0)) + std::abs(jacobian(1, 1)) + std::abs(jacobian(2, 2));
   if (!(std::abs(jacobian.determinant()) > 1e-12 * size * size * size))
-    return fit_clamped(c, correction_directions(bounds, scale), target, INFINITY);
+    return fit_clamped(c, correction_directions(bounds, scale), target, upper);
   const Matrix3 inverse = jacobian.inverse();
   const float* a = colorimetry_rows_.data();
   const auto pass = [&](const BasisCoefficients& x, int, double* sums) {
@@ -622,18 +622,21 @@ double UpsamplingBasis::fit_zero_clamped(BasisCoefficients& c, const SmoothShape
   };
   const std::array<BasisCoefficients, 3> directions = correction_directions(bounds, scale);
   const double left = newton_fit(c, directions, target, pass, &inverse, kZeroOnlySteps);
-  // The fixed Jacobian converges linearly where many knots are clamped (near the locus): there the full fit,
-  // with the live knots' Jacobian, takes over from the best point reached.
-  return left <= kFitTolerance ? left : fit_clamped(c, directions, target, INFINITY);
+  // The verification: the block pass's colour is the clamped spectrum's only if no knot outside the low blocks is
+  // negative and none exceeds `upper`. Where that fails, or the fixed Jacobian converged too slowly (many clamped
+  // knots, near the locus), the full fit takes over from the best point reached, its first pass these knots.
+  alignas(16) float knots[n + 1];
+  uint32_t negative = 0;
+  const float peak = knots_float(c, knots, &negative);
+  const bool valid = peak <= upper && left <= kFitTolerance && (negative & ~bounds.low_blocks) == 0;
+  return valid ? left : fit_clamped(c, directions, target, upper, knots, 1.0f);
 }
 
 uint32_t UpsamplingBasis::negative_blocks(const BasisCoefficients& c) const {
   alignas(16) float v[n + 1];
-  knots_float(c, v);
-  uint32_t out = 0;
-  for (int i = 0; i < n; ++i)
-    if (v[i] < 0.0f) out |= 1u << (i / 8);
-  return out;
+  uint32_t negative = 0;
+  knots_float(c, v, &negative);
+  return negative;
 }
 
 void UpsamplingBasis::fill(BasisAtWavelengths& cache, Float4 lambda_nm) const {
@@ -663,7 +666,9 @@ KnotValues UpsamplingBasis::knots(const BasisCoefficients& c) const {
 
 // The setup's one heavy loop (96 × 16 multiply-adds), in two builds chosen once per basis by the CPU: AVX2 + FMA
 // (twelve 8-lane accumulators) and the SSE4.1 baseline (written plainly for the compiler to vectorise).
-__attribute__((target("avx2,fma"))) static float knot_values_avx2(const float* columns, const float* c, float* out) {
+// Both also report the 8-knot blocks holding a negative knot (bit b: knots 8b .. 8b + 7; the pad repeats knot 94).
+__attribute__((target("avx2,fma"))) static float knot_values_avx2(const float* columns, const float* c, float* out,
+                                                                  uint32_t* negative) {
   constexpr int kBlocks = (n + 1) / 8;
   __m256 v[kBlocks];
   for (int b = 0; b < kBlocks; ++b) v[b] = _mm256_setzero_ps();
@@ -672,29 +677,39 @@ __attribute__((target("avx2,fma"))) static float knot_values_avx2(const float* c
     for (int b = 0; b < kBlocks; ++b) v[b] = _mm256_fmadd_ps(ck, _mm256_loadu_ps(columns + k * (n + 1) + 8 * b), v[b]);
   }
   __m256 peak = v[0];
+  uint32_t below = 0;
   for (int b = 0; b < kBlocks; ++b) {
     _mm256_storeu_ps(out + 8 * b, v[b]);
     peak = _mm256_max_ps(peak, v[b]);  // the pad (knot 95) repeats knot 94, so it cannot raise the maximum
+    below |= uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(v[b], _mm256_setzero_ps(), _CMP_LT_OQ)) != 0) << b;
   }
+  *negative = below;
   __m128 h = _mm_max_ps(_mm256_castps256_ps128(peak), _mm256_extractf128_ps(peak, 1));
   h = _mm_max_ps(h, _mm_movehl_ps(h, h));
   return _mm_cvtss_f32(_mm_max_ss(h, _mm_shuffle_ps(h, h, 1)));
 }
 
-static float knot_values(const float* columns, const float* c, float* out) {
+static float knot_values(const float* columns, const float* c, float* out, uint32_t* negative) {
   float values[n + 1] = {};
   for (int k = 0; k < K; ++k)
     for (int i = 0; i < n + 1; ++i) values[i] += c[k] * columns[k * (n + 1) + i];
   float peak = values[0];
+  uint32_t below = 0;
   for (int i = 0; i < n + 1; ++i) {
     out[i] = values[i];
     peak = std::max(peak, values[i]);
+    below |= uint32_t(values[i] < 0.0f) << (i / 8);
   }
+  *negative = below;
   return peak;
 }
 
-float UpsamplingBasis::knots_float(const BasisCoefficients& c, float* out) const {
-  return avx2_fma_ ? knot_values_avx2(columns_.data(), c.c.data(), out) : knot_values(columns_.data(), c.c.data(), out);
+float UpsamplingBasis::knots_float(const BasisCoefficients& c, float* out, uint32_t* negative_blocks) const {
+  uint32_t negative = 0;
+  const float peak = avx2_fma_ ? knot_values_avx2(columns_.data(), c.c.data(), out, &negative)
+                               : knot_values(columns_.data(), c.c.data(), out, &negative);
+  if (negative_blocks) *negative_blocks = negative;
+  return peak;
 }
 
 Xyz UpsamplingBasis::xyz_of(const BasisCoefficients& c) const {

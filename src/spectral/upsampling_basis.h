@@ -147,12 +147,15 @@ class UpsamplingBasis {
   double fit_clamped(BasisCoefficients& c, const std::array<BasisCoefficients, 3>& directions, const Xyz& target,
                      float upper, const float* first_knots = nullptr, float first_knots_scale = 1.0f) const;
 
-  /// fit_clamped for a spectrum that can only clamp at zero (emission; a reflectance whose peak stays below 1),
-  /// from smooth_coefficients's `bounds` with c and the directions scaled by `scale`: a pass computes Φc only in
-  /// bounds.low_blocks (the colour of clamp(Φc, 0, ∞) is M·c minus the negative knots' colour, and knots elsewhere
-  /// are positive), and the Jacobian is scale·M·D from the interpolated entries, so a pass costs about a quarter
-  /// of fit_clamped's. Same stopping rule and return value.
-  double fit_zero_clamped(BasisCoefficients& c, const SmoothShapeBounds& bounds, float scale, const Xyz& target) const;
+  /// fit_clamped for a spectrum expected to clamp only at zero (emission with `upper` = ∞; a reflectance whose
+  /// peak is at most `upper` = 1 before the fit), from smooth_coefficients's `bounds` with c and the directions
+  /// scaled by `scale`: a pass computes Φc only in bounds.low_blocks (the colour of clamp(Φc, 0, ∞) is M·c minus
+  /// the negative knots' colour), and the Jacobian is scale·M·D from the interpolated entries, so a pass costs
+  /// about a quarter of fit_clamped's. The result is verified with one 95-knot pass: if a knot outside the low
+  /// blocks is negative or one exceeds `upper` (a fit can raise a peak by a few per cent), or the fit did not
+  /// converge, fit_clamped continues from there (reusing that pass). Same stopping rule and return value.
+  double fit_zero_clamped(BasisCoefficients& c, const SmoothShapeBounds& bounds, float scale, const Xyz& target,
+                          float upper) const;
 
   /// The knots' blocks of 8 (bit b: knots 8b .. 8b + 7) where Φc < 0 (tests: low_blocks must contain them).
   uint32_t negative_blocks(const BasisCoefficients& c) const;
@@ -273,8 +276,9 @@ class UpsamplingBasis {
   /// The knot values Φ·c (double, for setup and colorimetry).
   KnotValues knots(const BasisCoefficients& c) const;
   /// Φ·c at the 95 knots in float (~50-90 ns: the AVX2 or the SSE build of the loop, chosen by the CPU) into
-  /// `out` (96 floats, the last a pad); returns the largest value (the brightness limit's input).
-  float knots_float(const BasisCoefficients& c, float* out) const;
+  /// `out` (96 floats, the last a pad); returns the largest value (the brightness limit's input) and, if asked,
+  /// the 8-knot blocks holding a negative value (bit b: knots 8b .. 8b + 7).
+  float knots_float(const BasisCoefficients& c, float* out, uint32_t* negative_blocks = nullptr) const;
   /// XYZ (Y(white) = 1) of the unclamped spectrum: M·c.
   Xyz xyz_of(const BasisCoefficients& c) const;
   /// Basis function k at knot i.

@@ -449,11 +449,12 @@ double relative_miss(const Xyz& got, const Xyz& want) {
 TEST_CASE("fast path: Φc is negative only in the low blocks, and the zero-only fit reaches the full fit's colour") {
   // fit_zero_clamped computes the clamped colour from the knots of bounds.low_blocks alone (the blocks where some
   // corner's spectrum is below a tenth of its peak): a negative knot anywhere else would be left unclamped and its
-  // colour missed. Checked on the interpolated coefficients and after the fit, in every space, at Y = 1 and at
-  // the emission range's ends (1e-8, 1e6: the blocks do not depend on scale). The fit itself: its returned residual
-  // is the clamped colour's (recomputed here in double from all 95 knots, within the float rounding of the sum's
-  // terms), and where
-  // the full fit (every knot, its own Jacobian) holds the colour to 1e-4 so does the zero-only fit.
+  // colour missed. The fit verifies its result and falls back to the full fit, so that is a cost, not an error;
+  // the interpolated coefficients must have no negative knot outside the blocks (else the fallback would be the
+  // rule), in every space. The fit itself, at Y = 1 and at the emission range's ends (1e-8, 1e6): its returned
+  // residual is the clamped colour's (recomputed here in double from all 95 knots, within the float rounding of
+  // the sum's terms), and where the full fit (every knot, its own Jacobian) holds the colour to 1e-4 so does the
+  // zero-only fit.
   for (const std::string space : kSpaces) {
     CAPTURE(space);
     const RgbUpsampler& up = upsampler(space);
@@ -475,9 +476,8 @@ TEST_CASE("fast path: Φc is negative only in the low blocks, and the zero-only 
         zero_only *= float(scale);
         full *= float(scale);
         const Xyz target{scale * bounds.colour.x, scale * bounds.colour.y, scale * bounds.colour.z};
-        const double left = basis.fit_zero_clamped(zero_only, bounds, float(scale), target);
+        const double left = basis.fit_zero_clamped(zero_only, bounds, float(scale), target, INFINITY);
         const double left_full = basis.fit_clamped(full, basis.correction_directions(bounds, float(scale)), target, INFINITY);
-        REQUIRE((basis.negative_blocks(zero_only) & ~bounds.low_blocks) == 0u);
         CHECK(std::abs(relative_miss(clamped_xyz(up, zero_only, INFINITY), target) - left) <=
               float_rounding_bound(up, zero_only, target));
         if (left_full <= 1e-4) CHECK(left <= 1e-4);
@@ -520,8 +520,8 @@ TEST_CASE("fast path: the SSE4.1 setup kernels give the AVX2 kernels' coefficien
     ++fits;
     const Xyz target = bounds_best.colour;
     BasisCoefficients a_zero = a, b_zero = b;
-    const double left_sse = sse.fit_zero_clamped(a_zero, bounds_sse, 1.0f, target);
-    const double left_best = best.fit_zero_clamped(b_zero, bounds_best, 1.0f, target);
+    const double left_sse = sse.fit_zero_clamped(a_zero, bounds_sse, 1.0f, target, INFINITY);
+    const double left_best = best.fit_zero_clamped(b_zero, bounds_best, 1.0f, target, INFINITY);
     CHECK(close(a_zero, b_zero));
     CHECK(std::abs(left_sse - left_best) <= 1e-6);
     // The full fit with clamping at 1 too: scaled so that its peak sits 1 % above 1.
@@ -534,4 +534,30 @@ TEST_CASE("fast path: the SSE4.1 setup kernels give the AVX2 kernels' coefficien
     CHECK(close(a, b));
   }
   CHECK(fits > 50);
+}
+
+TEST_CASE("fast path: on the wide spaces' cubes, every colour the fast path does not flag is within ΔE00 0.05") {
+  // What `mapped` promises callers: a colour not reported moved is the input colour (the issue's max 0.05). The
+  // wide spaces hold the hard cases: purples the basis cannot hold at zero (flagged), and greens whose fit raises
+  // the peak above 1 (Rec.2020 (3, 16, 0)/32: the cheaper fit's verification must hand it to the full fit, else
+  // clamping at 1 takes 2e-3 of its colour, ΔE00 0.054, unflagged). On the 33³ grids.
+  for (const char* space : {"rec2020", "acescg"}) {
+    CAPTURE(space);
+    const RgbUpsampler& up = upsampler(space);
+    int unflagged = 0;
+    for (int r = 0; r <= 32; ++r)
+      for (int g = 0; g <= 32; ++g)
+        for (int b = 0; b <= 32; ++b) {
+          const Rgb rgb{r / 32.0, g / 32.0, b / 32.0};
+          bool mapped = true;
+          up.reflectance_coefficients(rgb, &mapped);
+          if (mapped) continue;
+          ++unflagged;
+          CAPTURE(r);
+          CAPTURE(g);
+          CAPTURE(b);
+          CHECK(delta_e(up, up.space().to_xyz(rgb), up.colorimetry().xyz_of(fast_knots(up, rgb))) <= 0.05);
+        }
+    CHECK(unflagged > 15000);
+  }
 }
