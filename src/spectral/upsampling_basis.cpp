@@ -290,36 +290,43 @@ double UpsamplingBasis::usable_radius(double angle_rad) const {
 
 namespace {
 
-// Σ_c weight[c] · corner[c][16p .. 16p + 15] for p < 4: the blended coefficients (p = 0, into `coefficients`) and
-// the blended correction directions D (p = 1..3, into `directions`). None of it waits for the 3×3 solve, so it runs while the solve's divisions
-// do; the correction is then three multiply-adds. Two builds, chosen once per basis by the CPU: 8-lane fused
-// multiply-adds (eight independent chains of four) and the SSE4.1 baseline.
-__attribute__((target("avx2,fma"))) void blend_corners_avx2(const float* const corner[4], const float weight[4],
-                                                            float* coefficients, float directions[3][K]) {
+// The bilinear blend of the four corner entries, Σ_c weight[c]·x_c, of everything smooth_coefficients needs: the
+// summaries (16 floats each: M·c, M·D, peak, δ) into `summary`, the coefficients (corner[c][0..15]) into
+// `coefficients` and the correction directions D (corner[c][16p .. 16p + 15], p = 1..3) into `directions`. None
+// of it waits for the 3×3 solve, which needs the blended summary; the coefficients and directions are blended
+// while the solve's divisions run, and the correction is then three multiply-adds. Two builds, chosen once per
+// basis by the CPU: 8-lane fused multiply-adds (ten independent chains of four) and the SSE4.1 baseline.
+__attribute__((target("avx2,fma"))) void blend_corners_avx2(const float* const summary_in[4],
+                                                            const float* const corner[4], const float weight[4],
+                                                            float* summary, float* coefficients,
+                                                            float directions[3][K]) {
   const __m256 w[4] = {_mm256_set1_ps(weight[0]), _mm256_set1_ps(weight[1]), _mm256_set1_ps(weight[2]),
                        _mm256_set1_ps(weight[3])};
-  for (int p = 0; p < 4; ++p) {
-    __m256 lo = _mm256_mul_ps(w[0], _mm256_loadu_ps(corner[0] + 16 * p));
-    __m256 hi = _mm256_mul_ps(w[0], _mm256_loadu_ps(corner[0] + 16 * p + 8));
+  for (int p = -1; p < 4; ++p) {
+    const auto source = [&](int c) { return p < 0 ? summary_in[c] : corner[c] + 16 * p; };
+    __m256 lo = _mm256_mul_ps(w[0], _mm256_loadu_ps(source(0)));
+    __m256 hi = _mm256_mul_ps(w[0], _mm256_loadu_ps(source(0) + 8));
     for (int c = 1; c < 4; ++c) {
-      lo = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(corner[c] + 16 * p), lo);
-      hi = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(corner[c] + 16 * p + 8), hi);
+      lo = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(source(c)), lo);
+      hi = _mm256_fmadd_ps(w[c], _mm256_loadu_ps(source(c) + 8), hi);
     }
-    float* out = p == 0 ? coefficients : directions[p - 1];
+    float* out = p < 0 ? summary : p == 0 ? coefficients : directions[p - 1];
     _mm256_storeu_ps(out, lo);
     _mm256_storeu_ps(out + 8, hi);
   }
 }
 
-void blend_corners_sse(const float* const corner[4], const float weight[4], float* coefficients,
-                       float directions[3][K]) {
-  for (int p = 0; p < 4; ++p)
+void blend_corners_sse(const float* const summary_in[4], const float* const corner[4], const float weight[4],
+                       float* summary, float* coefficients, float directions[3][K]) {
+  for (int p = -1; p < 4; ++p) {
+    const auto source = [&](int c) { return p < 0 ? summary_in[c] : corner[c] + 16 * p; };
+    float* out = p < 0 ? summary : p == 0 ? coefficients : directions[p - 1];
     for (int k = 0; k < K; k += 4) {
-      float* out = p == 0 ? coefficients : directions[p - 1];
-      __m128 s = _mm_mul_ps(_mm_set1_ps(weight[0]), _mm_load_ps(corner[0] + 16 * p + k));
-      for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(weight[c]), _mm_load_ps(corner[c] + 16 * p + k)));
-      _mm_store_ps(out + k, s);
+      __m128 s = _mm_mul_ps(_mm_set1_ps(weight[0]), _mm_loadu_ps(source(0) + k));
+      for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(weight[c]), _mm_loadu_ps(source(c) + k)));
+      _mm_storeu_ps(out + k, s);
     }
+  }
 }
 
 // One pass of fit_clamped, fused for AVX2 + FMA: the 96 knot values v = Φc (or given × given_scale) in twelve
@@ -444,23 +451,19 @@ BasisCoefficients UpsamplingBasis::smooth_coefficients_in_cell(Chromaticity xy, 
   const size_t e[4] = {size_t(a0) * radius_count_ + r0, size_t(a1) * radius_count_ + r0,
                        size_t(a0) * radius_count_ + r0 + 1, size_t(a1) * radius_count_ + r0 + 1};
   const float w[4] = {(1 - ta) * (1 - tr), ta * (1 - tr), (1 - ta) * tr, ta * tr};
-  // The blended coefficients and correction directions first: they need only the weights, so their loads and
-  // multiply-adds overlap the solve below instead of following it.
+  // Everything blended in one call: the summary first (the solve needs it), then the coefficients and the
+  // correction directions, which need only the weights, so their loads and multiply-adds overlap the solve below.
   const float* corner[4] = {entries_[e[0]].parts[0].c.data(), entries_[e[1]].parts[0].c.data(),
                             entries_[e[2]].parts[0].c.data(), entries_[e[3]].parts[0].c.data()};
   // The coefficients, then D's columns X, Y, Z (uninitialised: all written), D straight into the bounds if asked.
   alignas(16) float blended[4][K];
   static_assert(sizeof(bounds->directions) == 3 * sizeof(blended[0]));
-  if (avx2_fma_) blend_corners_avx2(corner, w, blended[0], bounds ? bounds->directions : &blended[1]);
-  else blend_corners_sse(corner, w, blended[0], bounds ? bounds->directions : &blended[1]);
+  const float* summaries[4] = {entries_[e[0]].summary.data(), entries_[e[1]].summary.data(),
+                               entries_[e[2]].summary.data(), entries_[e[3]].summary.data()};
+  alignas(16) float summary[16];  // M·c, M·D, the peak and δ are linear in the entries too: interpolated
+  if (avx2_fma_) blend_corners_avx2(summaries, corner, w, summary, blended[0], bounds ? bounds->directions : &blended[1]);
+  else blend_corners_sse(summaries, corner, w, summary, blended[0], bounds ? bounds->directions : &blended[1]);
   const float(*directions)[K] = bounds ? bounds->directions : &blended[1];
-  // M·c, M·D, the peak and δ are linear in the entries too: interpolated, not recomputed.
-  alignas(16) float summary[16];
-  for (int j = 0; j < 16; j += 4) {
-    __m128 s = _mm_mul_ps(_mm_set1_ps(w[0]), _mm_load_ps(&entries_[e[0]].summary[j]));
-    for (int c = 1; c < 4; ++c) s = _mm_add_ps(s, _mm_mul_ps(_mm_set1_ps(w[c]), _mm_load_ps(&entries_[e[c]].summary[j])));
-    _mm_store_ps(summary + j, s);
-  }
   // Exact colour: c += D·λ with (M·D)·λ = t + δ − M·c, δ the clamping offset. Cramer's rule on the 3×3 (one
   // set of cofactors for the determinant and the solution).
   const double inv_y = 1.0 / xy.y;
