@@ -40,6 +40,9 @@ struct TextureMapping {
     return m;
   }
 
+  /// True for the surface's own (u, v) unchanged: a lookup through it can be skipped.
+  bool is_identity_uv() const { return kind == Kind::uv && uv.su == 1 && uv.sv == 1 && uv.du == 0 && uv.dv == 0; }
+
   /// The 3D texture-space point (every kind: what a solid texture reads).
   Vec3 point(const MaterialContext& c) const { return texture_from_world.point(c.position); }
 

@@ -56,6 +56,14 @@ void PbrtConverter::shape(const PbrtStatement& s) {
   const std::string context = "Shape \"" + type + "\"";
   const auto defaults = state_.attributes.find("shape");
   const std::vector<PbrtParam>* shape_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
+  // pbrt-v4 takes a singular CTM (exporters scale hidden objects by 0; transparent-machines has such transforms) and
+  // renders what it flattens; Rimu's shapes need an invertible transform, so the shape is left out and listed.
+  // Non-finite and projective transforms stay errors (transform_steps).
+  if (const PbrtMatrix m = object_ ? state_.ctm : world_from_object();
+      m.is_finite() && m.is_affine() && !(std::abs(m.determinant3()) > 1e-30)) {
+    ignore(context + " under a singular transform (pbrt-v4 renders it flattened; left out)", s.where);
+    return;
+  }
   if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
     PbrtParams p(*this, s, context, shape_defaults);
     const int levels = type == "loopsubdiv" ? p.integer("levels", 3) : 0;
