@@ -278,10 +278,14 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
   if (!material) return;
   shape["material"] = *material;
   if (!alpha.is_null()) {
-    if (state_.area_light && !object_ && emissive_capable)
+    if (state_.area_light && !object_ && emissive_capable) {
+      // pbrt-v4 masks an area light's emission by its alpha as well as its surface (DiffuseAreaLight::L is 0 where
+      // the alpha test fails): at alpha 0 the shape neither shows nor emits, as if absent (kroken's "sun" sphere).
+      if (alpha.is_number() && alpha.get<double>() <= 0.0) return;
       ignore("\"alpha\" on an area light (Rimu's lights are not cut out: left solid)", where);
-    else
+    } else {
       shape["alpha"] = std::move(alpha);
+    }
   }
   if (shape["type"] != "sphere") {
     const json steps = transform_steps(object_ ? state_.ctm : world_from_object(), where);
