@@ -279,10 +279,12 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
   shape["material"] = *material;
   if (!alpha.is_null()) {
     if (state_.area_light && !object_ && emissive_capable) {
-      // pbrt-v4 masks an area light's emission by its alpha as well as its surface (DiffuseAreaLight::L is 0 where
-      // the alpha test fails): at alpha 0 the shape neither shows nor emits, as if absent (kroken's "sun" sphere).
-      if (alpha.is_number() && alpha.get<double>() <= 0.0) return;
-      ignore("\"alpha\" on an area light (Rimu's lights are not cut out: left solid)", where);
+      // pbrt-v4 makes a constant alpha of 0 an invisible light that still emits (reached by light sampling only;
+      // kroken's "sun" sphere); Rimu has no invisible emitters.
+      if (alpha.is_number() && alpha.get<double>() <= 0.0)
+        ignore("\"alpha\" 0 on an area light (in pbrt-v4 an invisible emitter; Rimu's is seen: left solid)", where);
+      else
+        ignore("\"alpha\" on an area light (Rimu's lights are not cut out: left solid)", where);
     } else {
       shape["alpha"] = std::move(alpha);
     }
