@@ -45,7 +45,7 @@ run_rimu() {
     -o "$OUT/logs/$tag.exr" >"$OUT/logs/$tag.out" 2>"$OUT/logs/$tag.log"
   status=$?
   end=$(date +%s.%N)
-  printf '%s %.1f\n' "$status" "$(echo "$end - $start" | bc)"
+  awk -v s="$status" -v a="$start" -v b="$end" 'BEGIN { printf "%s %.1f\n", s, b - a }'
 }
 
 # outcome TAG STATUS: a short text for the table
