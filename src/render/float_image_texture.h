@@ -21,7 +21,7 @@ class ImageFloatTexture final : public FloatTexture {
   ImageFloatTexture(std::shared_ptr<const AlphaMask> values, float scale, bool invert, TextureMapping mapping = {})
       : values_(std::move(values)), scale_(scale), invert_(invert), mapping_(mapping) {}
   float evaluate(const MaterialContext& context) const override {
-    const float v = scale_ * values_->evaluate(mapping_.st(context));
+    const float v = scale_ * values_->evaluate(mapping_.image_st(context));
     return invert_ ? std::fmax(0.0f, 1.0f - v) : v;
   }
 

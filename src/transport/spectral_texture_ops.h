@@ -66,7 +66,7 @@ class MappedSpectralTexture final : public SpectralTextureAtPoint {
  public:
   MappedSpectralTexture(SpectralTexturePtr texture, TextureMapping mapping);
   SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override {
-    return texture_->evaluate(mapping_.st(context), lambda);
+    return texture_->evaluate(mapping_.image_st(context), lambda);
   }
 
  private:

@@ -138,6 +138,13 @@ TEST_CASE("image textures read at their mapping's (s, t)") {
   hit.position = {3.0f, 2.0f, 1.0f};
   SampledWavelengths lambda = SampledWavelengths::sample_visible(0.5f);
   CHECK(cover.evaluate_at(hit, lambda)[0] == doctest::Approx(0.55f + 0.5f));
+  // A mapping that overflows reads the texel at (0, 0) instead of indexing outside the image.
+  UvMapping huge;
+  huge.su = 3e38f;
+  const ImageFloatTexture overflowing(values, 1.0f, false, TextureMapping(huge));
+  CHECK(overflowing.evaluate(MaterialContext::at_uv({10.0f, 0.5f})) == doctest::Approx(plain.evaluate(MaterialContext::at_uv({0.0f, 0.5f}))));
+  const MappedSpectralTexture far(std::make_shared<UTexture>(), TextureMapping(huge));
+  CHECK(far.evaluate_at(MaterialContext::at_uv({10.0f, 0.5f}), lambda)[0] == 0.0f);
   CHECK(TextureMapping(doubled).is_identity_uv() == false);
   CHECK(TextureMapping().is_identity_uv());
 }
