@@ -6,6 +6,7 @@
 
 #include "render/alpha_mask.h"
 #include "transport/float_texture.h"
+#include "transport/texture_mapping.h"
 
 namespace rimu {
 
@@ -15,11 +16,12 @@ namespace rimu {
 /// and two flops, no decoding.
 class ImageFloatTexture final : public FloatTexture {
  public:
-  /// `values` must have been read without inversion (it is applied here, after the scale).
-  ImageFloatTexture(std::shared_ptr<const AlphaMask> values, float scale, bool invert)
-      : values_(std::move(values)), scale_(scale), invert_(invert) {}
+  /// `values` must have been read without inversion (it is applied here, after the scale); the image is read at
+  /// the (s, t) of `mapping` (default: the surface's own uv).
+  ImageFloatTexture(std::shared_ptr<const AlphaMask> values, float scale, bool invert, TextureMapping mapping = {})
+      : values_(std::move(values)), scale_(scale), invert_(invert), mapping_(mapping) {}
   float evaluate(const MaterialContext& context) const override {
-    const float v = scale_ * values_->evaluate(context.uv);
+    const float v = scale_ * values_->evaluate(mapping_.image_st(context));
     return invert_ ? std::fmax(0.0f, 1.0f - v) : v;
   }
 
@@ -27,6 +29,7 @@ class ImageFloatTexture final : public FloatTexture {
   std::shared_ptr<const AlphaMask> values_;
   float scale_;
   bool invert_;
+  TextureMapping mapping_;
 };
 
 }  // namespace rimu

@@ -45,6 +45,11 @@ SampledSpectrum DirectionMixSpectralTexture::evaluate_at(const MaterialContext& 
   return weighted_sum(context, lambda, w, 1.0f - w);
 }
 
+MappedSpectralTexture::MappedSpectralTexture(SpectralTexturePtr texture, TextureMapping mapping)
+    : texture_(std::move(texture)), mapping_(mapping) {
+  require_texture_inputs("a mapped texture", texture_);
+}
+
 CheckerboardSpectralTexture::CheckerboardSpectralTexture(SpectralTexturePtr a, SpectralTexturePtr b,
                                                          TextureMapping mapping)
     : SpectralTexturePair(std::move(a), std::move(b), "a checkerboard texture"), mapping_(mapping) {}

@@ -60,6 +60,20 @@ class DirectionMixSpectralTexture final : public SpectralTexturePair {
   Vec3 direction_;
 };
 
+/// A texture looked up by uv (an image) read at the (s, t) of a mapping instead of the surface's own uv: pbrt-v4's
+/// imagemap with "mapping", "uscale", "vscale", "udelta", "vdelta".
+class MappedSpectralTexture final : public SpectralTextureAtPoint {
+ public:
+  MappedSpectralTexture(SpectralTexturePtr texture, TextureMapping mapping);
+  SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override {
+    return texture_->evaluate(mapping_.image_st(context), lambda);
+  }
+
+ private:
+  SpectralTexturePtr texture_;
+  TextureMapping mapping_;
+};
+
 /// a on the even squares (cubes for a solid mapping), b on the odd ones (pbrt-v4's "checkerboard", point-sampled).
 class CheckerboardSpectralTexture final : public SpectralTexturePair {
  public:

@@ -40,8 +40,18 @@ struct TextureMapping {
     return m;
   }
 
+  /// True for the surface's own (u, v) unchanged: a lookup through it can be skipped.
+  bool is_identity_uv() const { return kind == Kind::uv && uv.su == 1 && uv.sv == 1 && uv.du == 0 && uv.dv == 0; }
+
   /// The 3D texture-space point (every kind: what a solid texture reads).
   Vec3 point(const MaterialContext& c) const { return texture_from_world.point(c.position); }
+
+  /// st() for an image lookup: a mapping can overflow (a huge uv_scale, a far point under a planar mapping) and an
+  /// image's texel index must stay defined, so a non-finite (s, t) reads at (0, 0).
+  Vec2 image_st(const MaterialContext& c) const {
+    const Vec2 s = st(c);
+    return std::isfinite(s.x) && std::isfinite(s.y) ? s : Vec2{0.0f, 0.0f};
+  }
 
   /// The 2D texture coordinates (for `solid`, the point's x and y).
   Vec2 st(const MaterialContext& c) const {

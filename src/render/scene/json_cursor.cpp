@@ -223,6 +223,10 @@ Vec2 JsonCursor::vec2() const {
 }
 
 void JsonCursor::only_keys(std::initializer_list<const char*> allowed) const {
+  only_keys(std::vector<const char*>(allowed));
+}
+
+void JsonCursor::only_keys(const std::vector<const char*>& allowed) const {
   if (!value_->is_object()) fail(std::string("expected an object, found ") + type_name(*value_));
   for (const auto& [key, unused] : value_->items()) {
     bool known = false;

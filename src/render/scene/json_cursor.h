@@ -79,6 +79,8 @@ class JsonCursor {
   Vec2 vec2() const;
   /// Rejects members other than `allowed` (catches typos such as "radious").
   void only_keys(std::initializer_list<const char*> allowed) const;
+  /// The same for a list built at run time (e.g. a texture's own keys plus its mapping's).
+  void only_keys(const std::vector<const char*>& allowed) const;
 
  private:
   const nlohmann::json* value_;

@@ -47,22 +47,28 @@ UvMapping uv_mapping(const JsonCursor& value) {
   return m;
 }
 
-// The mapping keys of a checkerboard or dots texture (docs/scene-format.md "Textures"): "mapping" uv (default:
-// "uv_scale", "uv_offset"), spherical, cylindrical, planar ("planar_axes", "uv_offset") or, where `solid_allowed`,
-// solid (3D); all but uv place texture space by "transform". Keys that the chosen mapping does not read are refused.
-TextureMapping texture_mapping(const JsonCursor& value, const char* combinator, bool solid_allowed) {
+// The mapping keys of a checkerboard, dots or image texture (docs/scene-format.md "Textures"): "mapping" uv
+// (default: "uv_scale", "uv_offset"), spherical, cylindrical, planar ("planar_axes", "uv_offset") or, where
+// `solid_allowed`, solid (3D); all but uv place texture space by "transform". `own_keys` are the texture's other
+// keys; keys that neither it nor the chosen mapping reads are refused.
+TextureMapping texture_mapping(const JsonCursor& value, std::initializer_list<const char*> own_keys, bool solid_allowed) {
   std::string kind = "uv";
   if (value.has("mapping"))
     kind = solid_allowed ? value.at("mapping").choice({"uv", "spherical", "cylindrical", "planar", "solid"})
                          : value.at("mapping").choice({"uv", "spherical", "cylindrical", "planar"});
+  const auto only = [&](std::initializer_list<const char*> mapping_keys) {
+    std::vector<const char*> keys(own_keys);
+    keys.insert(keys.end(), mapping_keys);
+    value.only_keys(keys);
+  };
   if (kind == "uv") {
-    value.only_keys({combinator, "mapping", "uv_scale", "uv_offset"});
+    only({"mapping", "uv_scale", "uv_offset"});
     return uv_mapping(value);
   }
   TextureMapping m;
   m.texture_from_world = parse_transform(value).inverse();
   if (kind == "planar") {
-    value.only_keys({combinator, "mapping", "transform", "planar_axes", "uv_offset"});
+    only({"mapping", "transform", "planar_axes", "uv_offset"});
     m.kind = TextureMapping::Kind::planar;
     if (value.has("planar_axes")) {
       const JsonCursor axes = value.at("planar_axes");
@@ -73,7 +79,7 @@ TextureMapping texture_mapping(const JsonCursor& value, const char* combinator, 
     if (value.has("uv_offset")) m.planar_offset = value.at("uv_offset").vec2();
     return m;
   }
-  value.only_keys({combinator, "mapping", "transform"});
+  only({"mapping", "transform"});
   m.kind = kind == "spherical" ? TextureMapping::Kind::spherical
                                : (kind == "cylindrical" ? TextureMapping::Kind::cylindrical : TextureMapping::Kind::solid);
   return m;
@@ -95,7 +101,7 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
   if (!value.is_object())
     value.fail("expected a number or a float texture ({\"texture\": \"map.png\"}, {\"mix\": [a, b], \"amount\": t}, ...)");
   if (value.has("texture")) {
-    value.only_keys({"texture", "encoding", "invert", "scale"});
+    const TextureMapping mapping = texture_mapping(value, {"texture", "encoding", "invert", "scale"}, false);
     const JsonCursor file = value.at("texture");
     const std::filesystem::path path = context.spectra.scene_directory() / file.string();
     return file.blame([&]() -> FloatTexturePtr {
@@ -105,7 +111,7 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
       // Values as read, not clamped: roughness clamps at use, a mix's amount decides by a ≤ 0 / ≥ 1 test.
       auto values = std::make_shared<const AlphaMask>(AlphaMask::read(path, 0, srgb, false, false));
       return std::make_shared<ImageFloatTexture>(std::move(values), float(value.number_or("scale", 1.0, -1e30, 1e30)),
-                                                 value.boolean_or("invert", false));
+                                                 value.boolean_or("invert", false), mapping);
     });
   }
   if (value.has("noise")) {
@@ -142,23 +148,28 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
       return std::make_shared<DirectionMixFloatTexture>(std::move(a), std::move(b), direction.vec3());
     });
   }
-  if (*kind == "dots") return std::make_shared<DotsFloatTexture>(std::move(a), std::move(b), texture_mapping(value, "dots", false));
-  return std::make_shared<CheckerboardFloatTexture>(std::move(a), std::move(b), texture_mapping(value, "checkerboard", true));
+  if (*kind == "dots") return std::make_shared<DotsFloatTexture>(std::move(a), std::move(b), texture_mapping(value, {"dots"}, false));
+  return std::make_shared<CheckerboardFloatTexture>(std::move(a), std::move(b), texture_mapping(value, {"checkerboard"}, true));
 }
 
 SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& context) {
   if (value.is_object() && value.has("texture")) {
-    value.only_keys({"texture", "colour_space", "encoding", "scale", "invert"});
+    const TextureMapping mapping = texture_mapping(value, {"texture", "colour_space", "encoding", "scale", "invert"}, false);
     const std::filesystem::path path = context.spectra.scene_directory() / value.at("texture").string();
     const std::shared_ptr<const RgbImage> image = load_rgb_image(value, path);
     const std::string space = value.string_or("colour_space", "srgb-linear");
     // Scale, then invert, on the texel RGB before it is upsampled (pbrt-v4's order; render/image_texture.h).
     const float scale = float(value.number_or("scale", 1.0, 0.0, 1e30));
     const bool invert = value.boolean_or("invert", false);
-    if (context.spectra.rgb_transport())
-      return std::make_shared<RgbLaneImageTexture>(image, RgbColourSpace::named(space), scale, invert);
-    const auto upsampler = context.spectra.upsampler(space, value.has("colour_space") ? value.at("colour_space") : value);
-    return std::make_shared<ImageTexture>(image, upsampler, scale, invert);
+    SpectralTexturePtr texture;
+    if (context.spectra.rgb_transport()) {
+      texture = std::make_shared<RgbLaneImageTexture>(image, RgbColourSpace::named(space), scale, invert);
+    } else {
+      const auto upsampler = context.spectra.upsampler(space, value.has("colour_space") ? value.at("colour_space") : value);
+      texture = std::make_shared<ImageTexture>(image, upsampler, scale, invert);
+    }
+    if (mapping.is_identity_uv()) return texture;
+    return std::make_shared<MappedSpectralTexture>(std::move(texture), mapping);
   }
   if (value.is_object() && value.has("noise")) {
     value.at("noise").choice({"marble"});
@@ -190,8 +201,8 @@ SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& c
       return std::make_shared<DirectionMixSpectralTexture>(std::move(a), std::move(b), direction.vec3());
     });
   }
-  if (*kind == "dots") return std::make_shared<DotsSpectralTexture>(std::move(a), std::move(b), texture_mapping(value, "dots", false));
-  return std::make_shared<CheckerboardSpectralTexture>(std::move(a), std::move(b), texture_mapping(value, "checkerboard", true));
+  if (*kind == "dots") return std::make_shared<DotsSpectralTexture>(std::move(a), std::move(b), texture_mapping(value, {"dots"}, false));
+  return std::make_shared<CheckerboardSpectralTexture>(std::move(a), std::move(b), texture_mapping(value, {"checkerboard"}, true));
 }
 
 }  // namespace rimu::scene_loading

@@ -180,11 +180,7 @@ std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string&
     const double scale = tp.real("scale", 1.0);
     if (scale != 1.0) value["scale"] = std::max(0.0, scale);
     if (tp.boolean("invert", false)) value["invert"] = true;
-    if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
-        tp.real("vdelta", 0) != 0)
-      ignore("texture mapping other than plain uv", ts.where);
-    tp.string("filter", "bilinear");  // Rimu filters bilinearly
-    tp.string("wrap", "repeat");
+    image_mapping(tp, value, texture);
     return value;
   }
   ignore("Texture class \"" + texture.texture_class + "\" (the material's default is used)", ts.where);

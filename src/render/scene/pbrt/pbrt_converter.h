@@ -155,6 +155,9 @@ class PbrtConverter {
   /// Counts one lookup of texture `name` at nesting `depth` (0: the parameter's own texture, which starts the
   /// count); InputError at `where` beyond kMaxTextureLookups for one parameter.
   void count_texture_lookup(const std::string& name, int depth, const SourceLocation& where);
+  /// An imagemap's "mapping", "uscale", "vscale", "udelta", "vdelta" as the image texture's mapping keys (none for
+  /// plain uv); its "filter" (Rimu's is bilinear) taken, a "wrap" other than "repeat" listed.
+  void image_mapping(PbrtParams& tp, json& value, const PbrtTexture& texture);
 
   // pbrt_media.cpp
   /// A medium's sigma_a/sigma_s (1/m; pbrt's unbounded RGB becomes a table through Rimu's upsampler).
@@ -232,6 +235,8 @@ class PbrtConverter {
   json film_ = json::object();
   json integrator_ = json::object();
   std::set<std::string> named_materials_;
+  /// NamedMaterial names used before their MakeNamedMaterial → the first such NamedMaterial (checked at finish)
+  std::map<std::string, SourceLocation> forward_materials_;
   std::set<std::string> interface_materials_;  ///< pbrt's "interface": index-matched medium boundaries
   std::map<std::string, json> media_defined_;  ///< MakeNamedMedium name → Rimu medium (no boundary yet); null: not imported
   json media_ = json::object();                ///< the document's "media"

@@ -205,6 +205,10 @@ std::optional<std::string> PbrtConverter::boundary_material(const std::string& m
                        "continues inside it)", where);
   }
   if (inside.empty() || inside == outside) return left_out();  // no medium begins at this surface
+  if (!materials_.contains(material))
+    throw InputError(where, context + ": its material \"" + material + "\" is defined after this shape, which begins the "
+                                      "medium \"" + inside + "\"; Rimu needs the MakeNamedMaterial of a medium's boundary "
+                                      "before the shape");
   const json& medium = media_defined_.at(inside);
   if (medium.is_null()) return left_out();  // a medium type Rimu does not import (listed at MakeNamedMedium)
   interior_media_.insert(inside);

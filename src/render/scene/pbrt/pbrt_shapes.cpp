@@ -56,6 +56,14 @@ void PbrtConverter::shape(const PbrtStatement& s) {
   const std::string context = "Shape \"" + type + "\"";
   const auto defaults = state_.attributes.find("shape");
   const std::vector<PbrtParam>* shape_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
+  // pbrt-v4 takes a singular CTM (exporters scale hidden objects by 0; transparent-machines has such transforms) and
+  // renders what it flattens; Rimu's shapes need an invertible transform, so the shape is left out and listed.
+  // Non-finite and projective transforms stay errors (transform_steps).
+  if (const PbrtMatrix m = object_ ? state_.ctm : world_from_object();
+      m.is_finite() && m.is_affine() && !(std::abs(m.determinant3()) > 1e-30)) {
+    ignore(context + " under a singular transform (pbrt-v4 renders it flattened; left out)", s.where);
+    return;
+  }
   if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
     PbrtParams p(*this, s, context, shape_defaults);
     const int levels = type == "loopsubdiv" ? p.integer("levels", 3) : 0;
@@ -270,10 +278,16 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
   if (!material) return;
   shape["material"] = *material;
   if (!alpha.is_null()) {
-    if (state_.area_light && !object_ && emissive_capable)
-      ignore("\"alpha\" on an area light (Rimu's lights are not cut out: left solid)", where);
-    else
+    if (state_.area_light && !object_ && emissive_capable) {
+      // pbrt-v4 makes a constant alpha of 0 an invisible light that still emits (reached by light sampling only;
+      // kroken's "sun" sphere); Rimu has no invisible emitters.
+      if (alpha.is_number() && alpha.get<double>() <= 0.0)
+        ignore("\"alpha\" 0 on an area light (in pbrt-v4 an invisible emitter; Rimu's is seen: left solid)", where);
+      else
+        ignore("\"alpha\" on an area light (Rimu's lights are not cut out: left solid)", where);
+    } else {
       shape["alpha"] = std::move(alpha);
+    }
   }
   if (shape["type"] != "sphere") {
     const json steps = transform_steps(object_ ? state_.ctm : world_from_object(), where);

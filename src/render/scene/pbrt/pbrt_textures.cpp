@@ -65,6 +65,18 @@ constexpr int kMaxTextureLookups = 4096;
 
 }  // namespace
 
+void PbrtConverter::image_mapping(PbrtParams& tp, json& value, const PbrtTexture& texture) {
+  const PbrtStatement& ts = texture.statement;
+  json mapping = json::object();
+  texture_mapping(tp, mapping, *this, ts.where, [&] { return transform_steps(texture.world_from_texture, ts.where); });
+  // Plain uv (pbrt's default) writes no keys, so that the document stays as short as the file.
+  if (mapping.contains("mapping") || mapping["uv_scale"] != json{1.0, 1.0} || mapping["uv_offset"] != json{0.0, 0.0})
+    value.update(mapping);
+  tp.string("filter", "bilinear");  // Rimu filters bilinearly (pbrt's MIP-map filters have no counterpart)
+  if (const std::string wrap = tp.string("wrap", "repeat"); wrap != "repeat")
+    ignore("imagemap \"wrap\" \"" + wrap + "\" (Rimu's image textures repeat)", ts.where);
+}
+
 void PbrtConverter::count_texture_lookup(const std::string& name, int depth, const SourceLocation& where) {
   if (depth == 0) texture_lookups_ = 0;
   if (++texture_lookups_ > kMaxTextureLookups)
@@ -139,11 +151,7 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
     json value = {{"texture", path_for_document(path)}, {"encoding", image_encoding(tp, path, ts.where)}};
     if (tp.boolean("invert", false)) value["invert"] = true;
     if (const double scale = tp.real("scale", 1.0); scale != 1.0) value["scale"] = scale;
-    if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
-        tp.real("vdelta", 0) != 0)
-      ignore("texture mapping other than plain uv", ts.where);
-    tp.string("filter", "bilinear");  // Rimu filters bilinearly
-    tp.string("wrap", "repeat");
+    image_mapping(tp, value, texture);
     return value;
   }
   ignore("float Texture class \"" + cls + "\" (the parameter's default is used)", ts.where);

@@ -350,11 +350,9 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     material(s, type, "MakeNamedMaterial \"" + name + "\"");
   } else if (k == "NamedMaterial") {
     require_world(true);
-    if (!named_materials_.count(s.strings[0])) {
-      std::string defined;
-      for (const std::string& n : named_materials_) defined += (defined.empty() ? "" : ", ") + n;
-      throw InputError(s.where, "NamedMaterial: no material named \"" + s.strings[0] + "\"; defined: " + (defined.empty() ? "none" : defined));
-    }
+    // pbrt-v4 looks named materials up only after the whole file is read, so a scene may name one before its
+    // MakeNamedMaterial (contemporary-bathroom does, for its lights): checked in finish().
+    if (!named_materials_.count(s.strings[0])) forward_materials_.emplace(s.strings[0], s.where);
     state_.material = s.strings[0];
   } else if (k == "Texture") {
     texture(s);
@@ -395,6 +393,10 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     }
     if (!prototypes_.contains(s.strings[0])) throw InputError(s.where, "ObjectInstance: no object named \"" + s.strings[0] + "\"");
     if (prototypes_[s.strings[0]].empty()) return;  // nothing Rimu could import in it (already reported)
+    if (const PbrtMatrix m = world_from_object(); m.is_finite() && m.is_affine() && !(std::abs(m.determinant3()) > 1e-30)) {
+      ignore("ObjectInstance under a singular transform (pbrt-v4 renders it flattened; left out)", s.where);  // as Shape
+      return;
+    }
     json instance = {{"type", "instance"}, {"prototype", s.strings[0]}};
     const json steps = transform_steps(world_from_object(), s.where);
     if (!steps.is_null()) instance["transform"] = steps;
@@ -437,6 +439,18 @@ void PbrtConverter::film_crop(PbrtParams& p, const PbrtStatement& s) {
 
 json PbrtConverter::finish(const std::string& main_file) {
   if (!world_from_camera_) throw InputError({main_file, 0, ""}, "the scene has no Camera statement before WorldBegin");
+  for (const auto& [name, where] : forward_materials_) {
+    if (!named_materials_.count(name)) {
+      std::string defined;
+      for (const std::string& n : named_materials_) defined += (defined.empty() ? "" : ", ") + n;
+      throw InputError(where, "NamedMaterial: no material named \"" + name + "\"; defined: " + (defined.empty() ? "none" : defined));
+    }
+    // Shapes that used it before its definition were written as ordinary surfaces: an "interface" (no surface,
+    // left out or index-matched by what it bounds) cannot be undone at the end.
+    if (interface_materials_.count(name))
+      throw InputError(where, "NamedMaterial: \"" + name + "\" is an \"interface\" material defined after shapes use it; "
+                              "Rimu needs an interface material's MakeNamedMaterial before its first use");
+  }
   // pbrt's fov spans the shorter image axis; Rimu's vertical_fov_deg always spans the height.
   double vertical_fov_deg = fov_deg_;
   if (width_ < height_) {
