@@ -19,11 +19,9 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+using namespace rimu::test::pbrt_t;
 
-PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_text(text); }
-std::string import_error(const std::string& text) { return test::pbrt_import_error(text); }
-const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n";
+namespace {
 
 // The written EXR's three colour channels (X, Y, Z or the camera's R, G, B, in the file's order), as floats.
 std::array<std::vector<float>, 3> render_channels(const std::filesystem::path& scene, const std::filesystem::path& exr,
