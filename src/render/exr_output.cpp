@@ -184,7 +184,7 @@ std::string half_range_warning(const HalfRangeCounts& counts, const std::string&
   }
   if (problems.empty()) return {};
   return "rimu: warning: " + file + " is written as half floats: " + problems +
-         "; write 32-bit floats (--float) or set an exposure (docs/light-units.md)";
+         "; write 32-bit floats (the default: render without --half) or set an exposure (docs/light-units.md)";
 }
 
 size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options) {

@@ -36,7 +36,9 @@ struct RenderMetadata {
 enum class ExrPixelType { half, float32 };
 
 struct ExrOptions {
-  ExrPixelType pixel_type = ExrPixelType::half;
+  /// 32-bit floats by default: film units put Y = 1 at about 73,000 cd/m², so a scene lit in lux without a physical
+  /// camera's exposure sits near or below half's normal range (see HalfRangeCounts). Half is opt-in (`rimu --half`).
+  ExrPixelType pixel_type = ExrPixelType::float32;
   RenderMetadata metadata;
   /// Name XYZ channels R, G, B instead of X, Y, Z. Some readers take a lone "Y" channel for luminance and ignore
   /// X and Z; with R, G, B and the XYZ chromaticities, colour-managed readers show the right colours.

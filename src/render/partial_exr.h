@@ -16,7 +16,7 @@ struct PartialImage {
   int width = 0, height = 0;   ///< the display window (the full image)
   PixelBounds crop;            ///< the data window: the pixels it holds
   int spectral_bins = 0;
-  ExrPixelType pixel_type = ExrPixelType::half;  ///< of its visible channels
+  ExrPixelType pixel_type = ExrPixelType::float32;  ///< of its visible channels
   int accumulators_per_pixel = 0;
   std::vector<double> sums;    ///< accumulators_per_pixel doubles per pixel of `crop`, row by row (exact)
   FilmSampleCounts counts;     ///< accepted and discarded samples

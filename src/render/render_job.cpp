@@ -254,7 +254,7 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
   // The output after samples [requested.begin, reached) (a checkpoint, or the final image).
   auto exr_options = [&](int reached, bool interrupted) {
     ExrOptions exr;
-    exr.pixel_type = job.float_exr ? ExrPixelType::float32 : ExrPixelType::half;
+    exr.pixel_type = job.half_exr ? ExrPixelType::half : ExrPixelType::float32;
     exr.metadata.samples_per_pixel = reached - requested.begin;
     exr.metadata.seed = settings.seed;
     exr.metadata.render_time_s =

@@ -38,7 +38,8 @@ struct RenderJob {
   std::optional<LightSamplerKind> light_sampler;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
-  bool float_exr = false;
+  /// Write the EXR's image channels as half floats (`--half`); 32-bit floats otherwise (render/exr_output.h).
+  bool half_exr = false;
   double exposure_ev = 0.0;  ///< display exposure of the PNG only (see also compensation_ev)
   /// The physical camera (render/camera_exposure.h); each overrides the scene camera's "exposure" field. Giving any
   /// of them to a scene without "exposure" turns the physical camera on, the others taking sunny-16 values

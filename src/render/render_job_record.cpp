@@ -79,7 +79,7 @@ std::string render_job_json(const RenderJob& job) {
   if (job.samples) j["samples"] = job.samples->text();
   if (job.checkpoint_interval_s) j["checkpoint_s"] = *job.checkpoint_interval_s;
   if (job.png_output) j["png"] = std::filesystem::absolute(*job.png_output).lexically_normal().string();
-  j["float"] = job.float_exr;
+  j["float"] = !job.half_exr;  // the key of the records written when half was the default
   j["exposure_ev"] = job.exposure_ev;
   j["view"] = job.view;
   return j.dump();
@@ -113,7 +113,7 @@ RenderJob render_job_from_json(const std::string& json, const std::string& where
     if (j.contains("samples")) job.samples = parse_sample_range(j["samples"].get<std::string>(), where);
     if (j.contains("checkpoint_s")) job.checkpoint_interval_s = j["checkpoint_s"].get<double>();
     if (j.contains("png")) job.png_output = j["png"].get<std::string>();
-    job.float_exr = j.value("float", false);
+    job.half_exr = !j.value("float", true);
     job.exposure_ev = j.value("exposure_ev", 0.0);
     job.view = j.value("view", std::string("Standard"));
   } catch (const nlohmann::json::exception& e) {

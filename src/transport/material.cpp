@@ -185,26 +185,26 @@ Bsdf CoatedDiffuseMaterial::bsdf(const MaterialContext& context, const SampledWa
 
 CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor,
                                                  float conductor_roughness_u, float conductor_roughness_v, CoatLayer layer)
-    : coat_ior_(std::move(coat_ior)),
-      conductor_(std::move(conductor)),
-      conductor_distribution_(distribution_for(conductor_roughness_u, conductor_roughness_v)),
-      layer_(std::move(layer)) {
-  if (!coat_ior_) throw InputError({}, "a coated conductor needs a coat index");
-  if (!conductor_.n || !conductor_.k) throw InputError({}, "a coated conductor needs both n and k spectra");
-  check_coat_ior(*coat_ior_);
-  check_roughness(conductor_roughness_u, "conductor roughness");
-  check_roughness(conductor_roughness_v, "conductor roughness");
-  check_layer(layer_);
-}
+    : CoatedConductorMaterial(std::move(coat_ior), std::move(conductor), nullptr, conductor_roughness_u,
+                              conductor_roughness_v, std::move(layer), false) {}
 
 CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, SpectralTexturePtr conductor_reflectance,
                                                  float conductor_roughness_u, float conductor_roughness_v, CoatLayer layer)
+    : CoatedConductorMaterial(std::move(coat_ior), ComplexIorSpectra{}, std::move(conductor_reflectance),
+                              conductor_roughness_u, conductor_roughness_v, std::move(layer), true) {}
+
+CoatedConductorMaterial::CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor,
+                                                 SpectralTexturePtr reflectance, float conductor_roughness_u,
+                                                 float conductor_roughness_v, CoatLayer layer, bool by_reflectance)
     : coat_ior_(std::move(coat_ior)),
-      reflectance_(std::move(conductor_reflectance)),
+      conductor_(std::move(conductor)),
+      reflectance_(std::move(reflectance)),
       conductor_distribution_(distribution_for(conductor_roughness_u, conductor_roughness_v)),
       layer_(std::move(layer)) {
   if (!coat_ior_) throw InputError({}, "a coated conductor needs a coat index");
-  if (!reflectance_) throw InputError({}, "a coated conductor by reflectance needs a reflectance");
+  if (by_reflectance && !reflectance_) throw InputError({}, "a coated conductor by reflectance needs a reflectance");
+  if (!by_reflectance && (!conductor_.n || !conductor_.k))
+    throw InputError({}, "a coated conductor needs both n and k spectra");
   check_coat_ior(*coat_ior_);
   check_roughness(conductor_roughness_u, "conductor roughness");
   check_roughness(conductor_roughness_v, "conductor roughness");

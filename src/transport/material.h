@@ -144,6 +144,11 @@ class CoatedConductorMaterial {
   Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
+  /// Both public constructors: `reflectance` (by_reflectance) or `conductor`'s n and k, checked in one order.
+  CoatedConductorMaterial(SpectrumPtr coat_ior, ComplexIorSpectra conductor, SpectralTexturePtr reflectance,
+                          float conductor_roughness_u, float conductor_roughness_v, CoatLayer layer,
+                          bool by_reflectance);
+
   SpectrumPtr coat_ior_;
   ComplexIorSpectra conductor_;
   SpectralTexturePtr reflectance_;  // instead of conductor_ (artist metal)

@@ -36,3 +36,8 @@ rimu_cli_test("rimu nearly black display image is warned about" 0 "100 % of .*bl
 add_test(NAME "cli: rimu output files from the shell"
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/output_files.sh $<TARGET_FILE:rimu> ${out_scene}
                  ${CMAKE_BINARY_DIR}/cli_output_shell)
+# 32-bit float EXR is the default; --half is opt-in and --float (the old opt-in) is still accepted, but not with --half.
+rimu_cli_test("rimu --half and --float together" 1 "--half excludes --float|--float excludes --half"
+              $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/a.exr --half --float ${out_tiny})
+rimu_cli_test("rimu --float of old command lines is accepted" 0 "wrote .*float.exr"
+              $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/float.exr --float ${out_tiny})

@@ -56,7 +56,7 @@ WrittenImage render_job(const json& scene, RenderJob job) {
   std::ofstream(folder / "scene.json") << scene.dump(2);
   job.scene = folder / "scene.json";
   job.exr_output = folder / "out.exr";
-  job.float_exr = true;  // half floats would round the values to 2^-11 relative
+  job.half_exr = false;  // 32-bit floats, the default: half would round the values to 2^-11 relative
   job.quiet = true;
   job.threads = 1;
   std::ostringstream log;

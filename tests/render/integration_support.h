@@ -163,6 +163,12 @@ inline std::vector<double> block_deviations(const std::vector<double>& a, const 
   return deviations;
 }
 
+/// block_deviations of two 32×32 scenes' luminance, each rendered at 16 spp with its own seed (1 and 2): the
+/// comparison of an imported scene with its hand-written equivalent (or a deliberately wrong one).
+inline std::vector<double> render_block_deviations(const Scene& a, const Scene& b) {
+  return block_deviations(luminance_values(*render_xyz(a, 16, 1).film), luminance_values(*render_xyz(b, 16, 2).film));
+}
+
 /// The largest of block_deviations' values.
 inline double worst_deviation(const std::vector<double>& deviations) {
   double worst = 0.0;

@@ -31,7 +31,7 @@ RenderJob tiny_job(const fs::path& out, std::optional<SampleRange> samples, cons
   job.samples_per_pixel = 24;
   job.seed = 7;
   job.threads = 2;
-  job.float_exr = true;
+  job.half_exr = false;  // 32-bit floats (the default)
   job.quiet = true;
   job.film = film;
   job.samples = samples;
@@ -182,6 +182,10 @@ TEST_CASE("partial renders: mismatched, overlapping and missing partials are err
   other_mode.wavelengths = WavelengthMode::single;  // an image option with no check of its own: the scene hash tells
   render(other_mode);
   refused({dir / "a.exr", dir / "mode.exr"}, "the scene (its file, the files it names, or image options) differs: scene hash");
+  RenderJob half = tiny_job(dir / "half.exr", SampleRange{12, 24});
+  half.half_exr = true;  // --half: not an image option (the scene hash is the same), the merge checks it itself
+  render(half);
+  refused({dir / "a.exr", dir / "half.exr"}, "pixel type half here, float there");
 
   render(tiny_job(dir / "overlap.exr", SampleRange{10, 24}));
   refused({dir / "a.exr", dir / "overlap.exr"}, "both hold samples 10:12");
@@ -191,6 +195,25 @@ TEST_CASE("partial renders: mismatched, overlapping and missing partials are err
   RenderJob plain = tiny_job(dir / "plain.exr", std::nullopt);
   render(plain);
   refused({dir / "a.exr", dir / "plain.exr"}, "not a partial render");
+}
+
+TEST_CASE("partial renders: --half partials merge to half, record --half for --resume, and old records still read") {
+  Folder dir("half");
+  RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12}), b = tiny_job(dir / "b.exr", SampleRange{12, 24});
+  a.half_exr = b.half_exr = true;
+  render(a);
+  render(b);
+  merge({dir / "a.exr", dir / "b.exr"}, dir / "ab.exr");
+  const PartialImage merged = read_partial_exr(dir / "ab.exr");
+  CHECK(merged.pixel_type == ExrPixelType::half);  // the partials' type, as one process with --half would write
+  CHECK(render_job_from_json(merged.record.job, "ab.exr").half_exr);  // --resume continues as half
+  CHECK(read_partial_exr(dir / "a.exr").pixel_type == ExrPixelType::half);
+  render(tiny_job(dir / "f.exr", SampleRange{0, 12}));
+  CHECK(read_partial_exr(dir / "f.exr").pixel_type == ExrPixelType::float32);  // the default
+  CHECK_FALSE(render_job_from_json(read_partial_exr(dir / "f.exr").record.job, "f.exr").half_exr);
+  // Records written while half was the default say "float": false for half and true for --float.
+  CHECK(render_job_from_json(R"({"float": false})", "old.exr").half_exr);
+  CHECK_FALSE(render_job_from_json(R"({"float": true})", "old.exr").half_exr);
 }
 
 TEST_CASE("partial renders: --samples beyond the render's spp and malformed ranges are input errors") {

@@ -14,11 +14,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
-PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_text(text); }
-std::string import_error(const std::string& text) { return test::pbrt_import_error(text); }
-const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n";
-}  // namespace
+using namespace rimu::test::pbrt_t;
 
 TEST_CASE("pbrt film: cropwindow and pixelbounds become the film's crop, as pbrt-v4 rounds them") {
   // cropwindow [x0 x1 y0 y1] (either order): ceil(res · value); 10 × 8 → x 3-8, y 0-4.

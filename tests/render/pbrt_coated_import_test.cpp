@@ -24,7 +24,10 @@ PbrtImport import_text(const std::string& text) {
 size_t bsdf_kind(const Scene& scene, const std::string& name) {
   for (size_t i = 0; i < scene.material_names.size(); ++i)
     if (scene.material_names[i] == name)
-      return scene.materials[i].bsdf({0.5f, 0.5f}, SampledWavelengths(Float4(550.0f), Float4(1.0f))).variant().index();
+      return scene.materials[i]
+          .bsdf(MaterialContext::at_uv({0.5f, 0.5f}), SampledWavelengths(Float4(550.0f), Float4(1.0f)))
+          .variant()
+          .index();
   FAIL("no material " << name);
   return 0;
 }

@@ -25,10 +25,9 @@ test::Estimate plane_luminance(const std::string& pbrt_text) {
   return test::estimate_of(test::luminance_values(*test::render_xyz(*scene, 64, 5).film));
 }
 
-// The message of the InputError importing `pbrt_text` (as t.pbrt, resolved in tests/data/pbrt) raises, or "no error".
-std::string import_error(const std::string& pbrt_text) { return test::pbrt_import_error(pbrt_text); }
-
 }  // namespace
+
+using rimu::test::pbrt_t::import_error;  // the message of importing a text as t.pbrt, or "no error"
 
 TEST_CASE("pbrt environment map: one bright texel lights a plane from the direction pbrt's mapping puts it") {
   // tests/data/pbrt/envmap_texel.pbrt: texel (17, 6) of a 32 × 32 map, its centre at light-space direction

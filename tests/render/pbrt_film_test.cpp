@@ -19,11 +19,9 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+using namespace rimu::test::pbrt_t;
 
-PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_text(text); }
-std::string import_error(const std::string& text) { return test::pbrt_import_error(text); }
-const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n";
+namespace {
 
 // The written EXR's three colour channels (X, Y, Z or the camera's R, G, B, in the file's order), as floats.
 std::array<std::vector<float>, 3> render_channels(const std::filesystem::path& scene, const std::filesystem::path& exr,
@@ -31,7 +29,7 @@ std::array<std::vector<float>, 3> render_channels(const std::filesystem::path& s
   RenderJob job;
   job.scene = scene;
   job.exr_output = exr;
-  job.float_exr = true;  // half floats would round to 2^-11 relative
+  job.half_exr = false;  // 32-bit floats, the default: half would round to 2^-11 relative
   job.quiet = true;
   job.threads = 1;
   job.seed = seed;
@@ -118,9 +116,12 @@ TEST_CASE("pbrt film: spectral buckets, gbuffer, savefp16, maxcomponentvalue, di
   REQUIRE(gbuffer.ignored.size() == 1);
   CHECK(gbuffer.ignored[0].what.find("Film \"gbuffer\": the auxiliary channels") == 0);
   CHECK_FALSE(gbuffer.document["film"].contains("spectral_bins"));
-  // Half floats are Rimu's default EXR too; 32-bit floats need --float (listed); a sample clamp is listed.
-  CHECK(import_text(kCamera + "Film \"rgb\" \"bool savefp16\" true \"float diagonal\" 50\nWorldBegin\n").ignored.empty());
-  CHECK(import_text(kCamera + "Film \"rgb\" \"bool savefp16\" false\nWorldBegin\n").ignored.size() == 1);
+  // Rimu writes 32-bit floats unless run with --half: savefp16 false (or unset) is honoured, true is listed; a
+  // sample clamp is listed.
+  CHECK(import_text(kCamera + "Film \"rgb\" \"bool savefp16\" false \"float diagonal\" 50\nWorldBegin\n").ignored.empty());
+  const PbrtImport fp16 = import_text(kCamera + "Film \"rgb\" \"bool savefp16\" true\nWorldBegin\n");
+  REQUIRE(fp16.ignored.size() == 1);
+  CHECK(fp16.ignored[0].what.find("--half") != std::string::npos);
   CHECK(import_text(kCamera + "Film \"rgb\" \"float maxcomponentvalue\" 10\nWorldBegin\n").ignored.size() == 1);
   // "exposuretime" is no pbrt-v4 Film parameter (the time is the camera's shutter): reported as unused.
   CHECK(import_text(kCamera + "Film \"rgb\" \"float exposuretime\" 2\nWorldBegin\n").ignored.size() == 1);

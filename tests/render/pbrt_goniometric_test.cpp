@@ -45,7 +45,7 @@ TEST_CASE("pbrt goniometric light: the intensity towards each pixel's direction 
   const double c = std::cos(std::numbers::pi / 6), s = std::sin(std::numbers::pi / 6);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) {
-      for (const auto [fx, fy] : {std::pair{0.5f, 0.5f}, {0.2f, 0.8f}, {0.85f, 0.1f}}) {
+      for (const auto& [fx, fy] : {std::pair{0.5f, 0.5f}, {0.2f, 0.8f}, {0.85f, 0.1f}}) {
         const Vec3 w = equal_area_square_to_sphere({(float(x) + fx) / 4.0f, (float(y) + fy) / 4.0f});
         const Vec3 light_space{w.x, w.z, w.y};
         const Vec3 world{float(c * light_space.x - s * light_space.y), float(s * light_space.x + c * light_space.y), light_space.z};

@@ -21,11 +21,6 @@ PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_
 
 std::string error_of(const std::string& text) { return test::pbrt_import_error(text, "grid.pbrt"); }
 
-std::vector<double> block_deviations(const Scene& a, const Scene& b) {
-  return test::block_deviations(test::luminance_values(*test::render_xyz(a, 16, 1).film),
-                                test::luminance_values(*test::render_xyz(b, 16, 2).film));
-}
-
 }  // namespace
 
 TEST_CASE("pbrt grid media: a uniformgrid becomes a trilinear Rimu grid medium with its density inline") {
@@ -83,15 +78,13 @@ TEST_CASE("pbrt grid media: a rotated density grid renders the same image as the
   std::ifstream in(test::test_data("pbrt/grid_medium_equivalent.json"));
   const json hand_written = json::parse(in);
   const auto from_json = load_scene(hand_written, "grid_medium_equivalent.json", pbrt_file.parent_path(), test::library());
-  for (double deviation : block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
+  for (double deviation : test::render_block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
 
   // The comparison can fail: the grid without its CTM's translation (0.75 m lower, half under the floor) is caught.
   json unmoved = hand_written;
   unmoved["media"]["haze"]["transform"].erase(1);
   const auto wrong = load_scene(unmoved, "unmoved.json", pbrt_file.parent_path(), test::library());
-  double worst = 0.0;
-  for (double deviation : block_deviations(*from_pbrt, *wrong)) worst = std::max(worst, deviation);
-  CHECK(worst > test::kSigmas);
+  CHECK(test::worst_deviation(test::render_block_deviations(*from_pbrt, *wrong)) > test::kSigmas);
 }
 
 TEST_CASE("grid media in JSON: inline densities are checked at their key") {

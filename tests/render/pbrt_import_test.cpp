@@ -341,19 +341,13 @@ TEST_CASE("pbrt Cornell box renders the same image as the same scene written in 
   REQUIRE(from_pbrt->settings.height == 32);
 
   // 8×8 blocks: the mean difference of the two renders (different seeds) against its standard error.
-  const auto block_deviations = [&](const Scene& a, const Scene& b) {
-    return test::block_deviations(test::luminance_values(*test::render_xyz(a, 16, 1).film),
-                                  test::luminance_values(*test::render_xyz(b, 16, 2).film));
-  };
-  for (double deviation : block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
+  for (double deviation : test::render_block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
 
   // The comparison can fail: the same JSON with the walls' colours swapped (pbrt's image mirrored) is caught.
   json swapped = hand_written;
   std::swap(swapped["materials"]["red"], swapped["materials"]["green"]);
   const auto mirrored = load_scene(swapped, "swapped.json", pbrt_file.parent_path(), test::library());
-  double worst = 0.0;
-  for (double deviation : block_deviations(*from_pbrt, *mirrored)) worst = std::max(worst, deviation);
-  CHECK(worst > test::kSigmas);
+  CHECK(test::worst_deviation(test::render_block_deviations(*from_pbrt, *mirrored)) > test::kSigmas);
 }
 
 TEST_CASE("pbrt loopsubdiv: subdivided to \"levels\" with limit normals; meshes Loop's rules refuse are listed") {

@@ -25,12 +25,6 @@ std::string error_of(const std::string& text) { return test::pbrt_import_error(t
 
 std::string ignored_list(const PbrtImport& imported) { return describe_ignored(imported.ignored); }
 
-// 8×8 blocks of a 32×32 luminance image: |mean difference| of two renders (different seeds) over its standard error.
-std::vector<double> block_deviations(const Scene& a, const Scene& b) {
-  return test::block_deviations(test::luminance_values(*test::render_xyz(a, 16, 1).film),
-                                test::luminance_values(*test::render_xyz(b, 16, 2).film));
-}
-
 }  // namespace
 
 TEST_CASE("pbrt media: a homogeneous medium becomes a Rimu medium bounded by a copy of the shape's material") {
@@ -177,14 +171,12 @@ TEST_CASE("pbrt media: two media spheres render the same image as the same scene
   std::ifstream in(test::test_data("pbrt/media_spheres_equivalent.json"));
   const json hand_written = json::parse(in);
   const auto from_json = load_scene(hand_written, "media_spheres_equivalent.json", pbrt_file.parent_path(), test::library());
-  for (double deviation : block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
+  for (double deviation : test::render_block_deviations(*from_pbrt, *from_json)) CHECK(deviation <= test::kSigmas);
 
   // The comparison can fail: the smoke without pbrt's "scale" 2 (half as dense) is caught.
   json thinner = hand_written;
   thinner["media"]["smoke"]["sigma_s"] = 3;
   thinner["media"]["smoke"]["sigma_a"]["values"] = {0.5, 2};
   const auto wrong = load_scene(thinner, "thinner.json", pbrt_file.parent_path(), test::library());
-  double worst = 0.0;
-  for (double deviation : block_deviations(*from_pbrt, *wrong)) worst = std::max(worst, deviation);
-  CHECK(worst > test::kSigmas);
+  CHECK(test::worst_deviation(test::render_block_deviations(*from_pbrt, *wrong)) > test::kSigmas);
 }

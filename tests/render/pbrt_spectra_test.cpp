@@ -11,8 +11,9 @@
 using namespace rimu;
 using nlohmann::json;
 
+using rimu::test::pbrt_t::import_error;
+
 namespace {
-std::string import_error(const std::string& text) { return test::pbrt_import_error(text); }
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 }  // namespace
 

@@ -1,5 +1,5 @@
 // What the pbrt-v4 import tests share: a text imported as a file in tests/data/pbrt, the message of the InputError
-// an import raises, and a file's text.
+// an import raises, short names for both with the film and camera tests' camera, and a file's text.
 #pragma once
 
 #include <filesystem>
@@ -29,6 +29,15 @@ inline std::string pbrt_import_error(const std::string& text, const std::string&
   }
   return "no error";
 }
+
+/// Short names for tests that import every text as t.pbrt (the film and camera tests: `using namespace
+/// rimu::test::pbrt_t;`; others take a using-declaration of the one they need).
+namespace pbrt_t {
+inline PbrtImport import_text(const std::string& text) { return import_pbrt_test_text(text); }
+inline std::string import_error(const std::string& text) { return pbrt_import_error(text); }
+/// A perspective camera at (0, 0, 5) looking at the origin; the text goes on with Film and WorldBegin.
+inline const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n";
+}  // namespace pbrt_t
 
 /// The whole text of a file.
 inline std::string file_text(const std::filesystem::path& path) {

@@ -208,7 +208,7 @@ TEST_CASE("pbrt sphere: textures land where pbrt-v4 puts them (pole +z, u = φ/2
   const auto scene = load_scene(imported.document, "test.pbrt", std::filesystem::temp_directory_path(), test::library());
   // pbrt's point of (u, v): object o = (sin θ cos φ, sin θ sin φ, cos θ), φ = 2πu, θ = π(1 − v); world =
   // (0, 0, 5) + (o.x, −o.z, o.y) by the CTM (radius 0.5 · scale 2 = 1), then x → −x.
-  for (const auto [u, v] : {std::pair{0.3f, 0.8f}, std::pair{0.05f, 0.4f}, std::pair{0.7f, 0.15f}, std::pair{0.95f, 0.6f}}) {
+  for (const auto& [u, v] : {std::pair{0.3f, 0.8f}, std::pair{0.05f, 0.4f}, std::pair{0.7f, 0.15f}, std::pair{0.95f, 0.6f}}) {
     CAPTURE(u);
     const double phi = 2 * M_PI * u, theta = M_PI * (1 - v);
     const Vec3 o{float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)), float(std::cos(theta))};

@@ -1,11 +1,13 @@
 // The `rimu` job's outputs end to end (run_render_job): options that cannot work fail before the render and leave
 // no file; formats follow the file names; no NaN or Inf reaches an image; a photometric scene without a camera
-// exposure gets a usable display image; a camera film is displayed through its fitted matrix; and the files carry
-// the standard metadata other programs read (the PNG's sRGB chunk, OpenEXR's standard attributes, the spectral
-// layout's emissiveUnits).
+// exposure gets a usable display image; a camera film is displayed through its fitted matrix; the EXR is 32-bit float
+// unless --half; and the files carry the standard metadata other programs read (the PNG's sRGB chunk, OpenEXR's
+// standard attributes, the spectral layout's emissiveUnits).
 #include <doctest/doctest.h>
 
+#include <ImfChannelList.h>
 #include <ImfFloatAttribute.h>
+#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfMatrixAttribute.h>
@@ -307,4 +309,48 @@ TEST_CASE("the files carry the standard metadata: PNG sRGB chunk, EXR standard a
   CHECK(units->value() == "W.m^-2.sr^-1");
   CHECK(h.find("rimu:spectralUnits") == h.end());
   CHECK(h.findTypedAttribute<Imf::StringAttribute>("spectralLayoutVersion")->value() == "1.0");
+}
+
+TEST_CASE("the EXR holds 32-bit floats by default, half floats only with --half, and then a dim scene is warned about") {
+  // An 18 % card under 0.1 lx (a bright moonlit night) without an exposure: L = 0.18·0.1/π cd/m², Y = L/72 983 =
+  // 7.85e-8 in film units, below half's smallest normal value (6.1e-5), where half steps by 2⁻²⁴ ≈ 6e-8: the card
+  // would be written as 1 or 2 of those steps. 16 spp over 64 pixels: the mean's noise is about 1 %; ±5 %.
+  Workspace w("pixel-type");
+  RenderJob job = w.job(card_scene(0.18, {{"spectrum", {{"illuminant", "D65"}}}, {"illuminance_lx", 0.1}}));
+  job.samples_per_pixel = 16;
+  auto y_channel = [&](Imf::PixelType& type) {
+    Imf::InputFile exr((w.folder / "out.exr").c_str());
+    const Imath::Box2i window = exr.header().dataWindow();
+    const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+    REQUIRE(exr.header().channels().findChannel("Y") != nullptr);
+    type = exr.header().channels().findChannel("Y")->type;
+    std::vector<float> y(size_t(width) * size_t(height));
+    Imf::FrameBuffer frame;
+    frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(y.data() - window.min.x - window.min.y * width),
+                                 sizeof(float), sizeof(float) * size_t(width)));
+    exr.setFrameBuffer(frame);
+    exr.readPixels(window.min.y, window.max.y);
+    return y;
+  };
+  const double expected_y = 0.18 * 0.1 / M_PI / 72983.0;
+
+  std::ostringstream log;
+  run_render_job(job, log);
+  Imf::PixelType type{};
+  const std::vector<float> y = y_channel(type);
+  CHECK(type == Imf::FLOAT);
+  double sum = 0;
+  for (float v : y) sum += v;
+  CHECK(sum / double(y.size()) == doctest::Approx(expected_y).epsilon(0.05));
+  CHECK(log.str().find("half floats") == std::string::npos);
+
+  job.half_exr = true;
+  std::ostringstream half_log;
+  run_render_job(job, half_log);
+  const std::vector<float> half_y = y_channel(type);
+  CHECK(type == Imf::HALF);
+  for (float v : half_y) CHECK(std::ldexp(double(v), 24) == std::round(std::ldexp(double(v), 24)));  // whole steps
+  CHECK(half_log.str().find(job.exr_output.string() + " is written as half floats: 100 % of the non-zero values lie "
+                                                      "below half's normal range") != std::string::npos);
+  CHECK(half_log.str().find("without --half") != std::string::npos);
 }

@@ -226,7 +226,7 @@ TEST_CASE("material: a coated conductor by reflectance is the coated conductor o
   const auto ior = std::make_shared<ConstantSpectrum>(1.5);
   CoatLayer rough;
   rough.roughness = 0.3f;
-  for (const auto [r, k] : {std::pair{0.5, 2.0}, std::pair{0.8, 4.0}}) {
+  for (const auto& [r, k] : {std::pair{0.5, 2.0}, std::pair{0.8, 4.0}}) {
     CAPTURE(r);
     const CoatedConductorMaterial by_reflectance(ior, constant_texture(r), 0.2f, 0.2f, rough);
     const CoatedConductorMaterial by_ior(ior, ComplexIorSpectra{std::make_shared<ConstantSpectrum>(1.0), std::make_shared<ConstantSpectrum>(k)},

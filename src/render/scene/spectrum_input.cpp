@@ -35,9 +35,11 @@ void check_range(const JsonCursor& where, const Spectrum& s, SpectrumRole role) 
   }
 }
 
-// One upsampler per (library folder, colour space) for the whole process. Its basis (built on first use) costs
-// ~20 ms, seconds under the fuzz targets' sanitizers, where every input is a new scene of the same library; it holds
-// no reference to the library, and is const and safe to share between threads.
+}  // namespace
+
+// Its basis (built on first use) costs ~20 ms, seconds under the fuzz targets' sanitizers, where every input is a
+// new scene of the same library; it holds no reference to the library, and is const and safe to share between
+// threads.
 std::shared_ptr<const RgbUpsampler> shared_upsampler(SpectralLibrary& library, const std::string& space_name) {
   static std::mutex mutex;
   static std::map<std::pair<std::string, std::string>, std::shared_ptr<const RgbUpsampler>> upsamplers;
@@ -46,8 +48,6 @@ std::shared_ptr<const RgbUpsampler> shared_upsampler(SpectralLibrary& library, c
   if (!upsampler) upsampler = std::make_shared<const RgbUpsampler>(library, RgbColourSpace::named(space_name));
   return upsampler;
 }
-
-}  // namespace
 
 std::string ScaledSpectrum::describe() const {
   std::ostringstream out;

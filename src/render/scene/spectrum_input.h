@@ -23,6 +23,11 @@ enum class SpectrumRole {
                 ///< colour); tables are clamped beyond their ends
 };
 
+/// The upsampler of colour space `space_name` for data library `library`: one per (library folder, colour space)
+/// for the whole process, built on first use, so every scene and pbrt import of a process shares it. Throws
+/// InputError for an unknown colour space (RgbColourSpace::named).
+std::shared_ptr<const RgbUpsampler> shared_upsampler(SpectralLibrary& library, const std::string& space_name);
+
 /// Shared state while a scene loads: the data library, the scene's folder (CSV paths are relative to it),
 /// named spectra from the scene's "spectra" section, and one upsampler per colour space (built on first use).
 class SpectrumInputContext {

@@ -15,7 +15,6 @@
 #include "render/scene/pbrt/pbrt_matrix.h"
 #include "render/scene/pbrt/pbrt_parser.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
-#include "spectral/rgb_upsampler.h"
 
 namespace rimu {
 
@@ -245,7 +244,6 @@ class PbrtConverter {
   std::map<std::string, SourceLocation> exterior_media_;   ///< media some shape has outside, first place
   std::string camera_medium_;                              ///< the outside medium at Camera; empty: vacuum
   SourceLocation camera_medium_where_;
-  std::map<std::string, std::shared_ptr<const RgbUpsampler>> upsamplers_;  ///< by Rimu colour space name
   int anonymous_materials_ = 0;
   std::optional<InputError> unused_parameter_error_;  ///< strict: ignore_unused's first error in this statement
   void statement_body(const PbrtStatement& s);

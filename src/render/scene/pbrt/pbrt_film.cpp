@@ -56,8 +56,10 @@ void PbrtConverter::film(const PbrtStatement& s) {
   film_["resolution"] = {width_, height_};
   film_crop(p, s);
   p.string("filename", "");  // the output is rimu's -o
-  // pbrt writes half floats by default, as Rimu does; 32-bit floats are Rimu's --float option.
-  if (!p.boolean("savefp16", true)) ignore("Film \"savefp16\" false (Rimu writes half floats unless run with --float)", s.where);
+  // pbrt writes half floats by default; Rimu writes 32-bit floats unless run with --half (they hold the same image
+  // and more, so pbrt's implicit default is not listed). An explicit "savefp16" true asks for half floats: listed.
+  if (p.boolean("savefp16", false))
+    ignore("Film \"savefp16\" true (Rimu writes 32-bit floats unless run with --half)", s.where);
   p.real("diagonal", 35.0);     // the sensor's size in mm: only pbrt's "realistic" camera uses it (listed there)
   const double max_component = p.real("maxcomponentvalue", INFINITY);
   if (std::isfinite(max_component))

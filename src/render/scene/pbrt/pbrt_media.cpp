@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "render/scene/pbrt/pbrt_converter.h"
+#include "render/scene/spectrum_input.h"
 #include "spectral/csv_table.h"
 #include "spectral/rgb_upsampler.h"
 
@@ -28,8 +29,7 @@ json PbrtConverter::unbounded_rgb(const Vec3d& c, const std::string& colour_spac
   // pbrt's unbounded RGB (RGBUnboundedSpectrum): the reflectance-like spectrum of rgb / (2·max), times 2·max.
   // Rimu's scene format refuses RGB for coefficients (a coefficient is not a colour), so the importer writes
   // that spectrum as a 5 nm table, through Rimu's reflectance upsampler of the colour space.
-  auto& upsampler = upsamplers_[colour_space];
-  if (!upsampler) upsampler = std::make_shared<const RgbUpsampler>(library_, RgbColourSpace::named(colour_space));
+  const std::shared_ptr<const RgbUpsampler> upsampler = shared_upsampler(library_, colour_space);
   const double scale = 2.0 * std::max({c[0], c[1], c[2]});
   const ReflectanceSpectrum shape = upsampler->reflectance_spectrum({c[0] / scale, c[1] / scale, c[2] / scale}, where);
   json nm = json::array(), values = json::array();
