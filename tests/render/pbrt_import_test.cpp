@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "integration_support.h"
+#include "pbrt_test_support.h"
 #include "render/scene/pbrt/pbrt_parser.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/pbrt/pbrt_tokenizer.h"
@@ -16,14 +17,6 @@
 
 using namespace rimu;
 using nlohmann::json;
-
-// Checks that `text` contains every part, printing the text when it does not.
-#define CHECK_CONTAINS(text, ...)                                                                   \
-  do {                                                                                              \
-    const std::string checked_text = (text);                                                        \
-    for (const std::string& part : std::initializer_list<std::string>{__VA_ARGS__})                 \
-      CHECK_MESSAGE(checked_text.find(part) != std::string::npos, "'" << checked_text << "' lacks '" << part << "'"); \
-  } while (0)
 
 namespace {
 

@@ -14,14 +14,6 @@
 using namespace rimu;
 using nlohmann::json;
 
-// Checks that `text` contains every part, printing the text when it does not.
-#define CHECK_CONTAINS(text, ...)                                                                   \
-  do {                                                                                              \
-    const std::string checked_text = (text);                                                        \
-    for (const std::string& part : std::initializer_list<std::string>{__VA_ARGS__})                 \
-      CHECK_MESSAGE(checked_text.find(part) != std::string::npos, "'" << checked_text << "' lacks '" << part << "'"); \
-  } while (0)
-
 namespace {
 
 const std::string kHeader = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n";

@@ -1,14 +1,26 @@
 // What the pbrt-v4 import tests share: a text imported as a file in tests/data/pbrt, the message of the InputError
-// an import raises, short names for both with the film and camera tests' camera, and a file's text.
+// an import raises, short names for both with the film and camera tests' camera, a file's text, and a check that
+// a message names every expected part.
 #pragma once
+
+#include <doctest/doctest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <string>
 
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_support.h"
+
+// Checks that `text` contains every part, printing the text when it does not.
+#define CHECK_CONTAINS(text, ...)                                                                   \
+  do {                                                                                              \
+    const std::string checked_text = (text);                                                        \
+    for (const std::string& part : std::initializer_list<std::string>{__VA_ARGS__})                 \
+      CHECK_MESSAGE(checked_text.find(part) != std::string::npos, "'" << checked_text << "' lacks '" << part << "'"); \
+  } while (0)
 
 namespace rimu::test {
 
