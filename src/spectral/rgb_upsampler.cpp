@@ -217,7 +217,7 @@ BasisCoefficients RgbUpsampler::reflectance_coefficients(const Rgb& rgb, bool* m
     // its result and hands over to the full fit if a knot ends above 1).
     const bool clamps_at_1 = luminance * peak > 1.0;
     if (bounds.rings || clamps_at_1) {
-      const Xyz target{luminance * bounds.colour.x, luminance, luminance * bounds.colour.z};
+      const Xyz target = scaled(bounds.colour, luminance);
       const double left =
           clamps_at_1 ? basis().fit_clamped(c, basis().correction_directions(bounds, float(luminance)), target, 1.0f,
                                             have_knots ? knots : nullptr, float(luminance))
@@ -252,7 +252,7 @@ BasisCoefficients RgbUpsampler::emission_coefficients(const Rgb& rgb, bool* mapp
     c *= float(xyz.y);
     if (bounds.rings) {
       const double left = basis().fit_zero_clamped(
-          c, bounds, float(xyz.y), {xyz.y * bounds.colour.x, xyz.y, xyz.y * bounds.colour.z}, INFINITY);
+          c, bounds, float(xyz.y), scaled(bounds.colour, xyz.y), INFINITY);
       if (left > kFitTolerance) moved = true;
     }
   }

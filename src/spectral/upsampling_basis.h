@@ -292,8 +292,8 @@ class UpsamplingBasis {
   std::vector<float> rows_;               // (95 + 1 pad) × K, knot-major, 16-byte aligned rows
   // Per table entry, one 320-byte block (five cache lines): first what smooth_coefficients interpolates before
   // anything else (M·c (3), M·D (9, row-major), the peak of the knots of Φc (Y = 1), the clamping offset δ (3)),
-  // then the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z, read only
-  // by a fit). A colour's four corners touch two adjacent lines each.
+  // then the Y = 1 spectrum's coefficients, then its three correction directions D (columns X, Y, Z). Every
+  // setup blends all five lines of its four corners (blend_corners_*), the summary first.
   struct Entry {
     alignas(64) std::array<float, 16> summary{};
     std::array<BasisCoefficients, 4> parts;
