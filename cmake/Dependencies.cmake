@@ -22,8 +22,6 @@ rimu_require(OpenEXR_FOUND libopenexr-dev "OpenEXR 3 (EXR output)")
 find_package(TBB QUIET CONFIG)
 rimu_require(TBB_FOUND libtbb-dev "oneTBB (parallelism)")
 
-find_package(doctest QUIET CONFIG)
-rimu_require(doctest_FOUND doctest-dev "doctest (unit tests)")
 
 find_package(nlohmann_json 3 QUIET CONFIG)
 rimu_require(nlohmann_json_FOUND nlohmann-json3-dev "nlohmann-json (scene files, JSON output)")
@@ -40,6 +38,11 @@ pkg_check_modules(OCIO QUIET IMPORTED_TARGET OpenColorIO)
 rimu_require(OCIO_FOUND libopencolorio-dev "OpenColorIO 2 (display transforms)")
 pkg_check_modules(OIIO QUIET IMPORTED_TARGET OpenImageIO)
 rimu_require(OIIO_FOUND libopenimageio-dev "OpenImageIO 2 (image IO)")
+
+if(RIMU_BUILD_TESTS)
+  find_package(doctest QUIET CONFIG)
+  rimu_require(doctest_FOUND doctest-dev "doctest (unit tests)")
+endif()
 
 if(RIMU_BUILD_BENCHMARKS)
   find_package(benchmark QUIET CONFIG)

@@ -12,7 +12,7 @@ shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then targets=(scene pbrt csv ies ply obj rvol); fi
 
-scripts/install-deps.sh
+scripts/install-deps.sh --test
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 # -O1 and line tables only: the usual fuzzing build (fast to compile, readable stack traces). No NDEBUG, so

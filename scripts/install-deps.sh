@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Rimu builds against, and only those that are missing.
+#   scripts/install-deps.sh          what building and running the tools needs (scripts/main.sh)
+#   scripts/install-deps.sh --test   that, plus what the tests, benchmarks, fuzzers, the Python module and the
+#                                    render-farm test need (scripts/test.sh)
 # Idempotent: when everything is present it does nothing (no apt-get update, no network).
 set -euo pipefail
 
@@ -10,19 +13,26 @@ packages=(
   libopencolorio-dev     # OpenColorIO 2: display transforms
   libopenimageio-dev     # OpenImageIO 2: textures, PNG output
   libtbb-dev             # oneTBB: parallel tiles
-  doctest-dev            # unit tests
   nlohmann-json3-dev     # scene files, --json output
   libcli11-dev           # command-line parsing
-  libbenchmark-dev       # Google Benchmark (benchmarks only)
   libtinyobjloader-dev   # OBJ meshes
   zlib1g-dev             # .ply.gz meshes
-  gnuplot-nox            # plots in benchmark reports and figures
+  gnuplot-nox            # the tools' --plot/--graphic figures
+)
+test_packages=(
+  doctest-dev            # unit tests
+  libbenchmark-dev       # Google Benchmark (benchmarks)
   pybind11-dev python3-dev python3-pybind11  # the rimu Python module
   python3-numpy          # spectra as numpy arrays in the Python module and its tests
   clang                  # fuzz targets (scripts/fuzz.sh): clang++ 14
   libclang-rt-14-dev     # libFuzzer and the sanitizer runtimes for clang 14
   slurm-wlm slurmctld slurmd slurm-client munge  # render-farm tests: a single-node Slurm (scripts/slurm-local.sh)
 )
+case "${1:-}" in
+  "") ;;
+  --test) packages+=("${test_packages[@]}") ;;
+  *) echo "install-deps: unknown option '$1' (expected nothing or --test)" >&2; exit 1 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
+#include "render/scene/pbrt/pbrt_v3_hint.h"
 #include "render/rgb_image.h"
 #include "transport/environment_portal.h"
 #include "transport/equal_area_square.h"
@@ -232,6 +233,9 @@ std::optional<double> PbrtConverter::constant_float_texture(const std::string& n
 
 void PbrtConverter::texture(const PbrtStatement& s) {
   const std::string& kind = s.strings[1];
+  if (kind == "color")
+    throw InputError(s.where, "Texture \"" + s.strings[0] + "\": the type \"color\" is pbrt-v3's (pbrt-v4 says "
+                                                          "\"spectrum\"); " + pbrt_v3_hint());
   if (kind != "spectrum" && kind != "float")
     throw InputError(s.where, "Texture \"" + s.strings[0] + "\": the type must be \"spectrum\" or \"float\", not \"" + kind + "\"");
   textures_[s.strings[0]] = {kind, s.strings[2], s, world_from_object()};
@@ -284,6 +288,10 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     return name;
   }
   if (type == "mix") return mix_material(s, name, context, material_defaults);
+  if (const auto v4 = pbrt_v4_name_of_v3_material(type))
+    throw InputError(s.where, context + ": material \"" + type + "\" is pbrt-v3's" +
+                                  (v4->empty() ? std::string() : " (pbrt-v4's upgrader makes it \"" + *v4 + "\")") +
+                                  "; " + pbrt_v3_hint());
   if (type != "diffuse" && type != "coateddiffuse" && type != "coatedconductor" && type != "conductor" &&
       type != "dielectric" && type != "thindielectric" && type != "diffusetransmission") {
     ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_tokenizer.h"
+#include "render/scene/pbrt/pbrt_v3_hint.h"
 
 namespace rimu {
 
@@ -180,6 +181,9 @@ class Parser {
     if (!(words >> p.type_name >> p.name) || (words >> extra))
       throw InputError(p.where, keyword + ": expected a parameter declaration \"type name\", found \"" + declaration.text + "\"");
     const auto type = param_types().find(p.type_name);
+    if (type == param_types().end() && p.type_name == "color")
+      throw InputError(p.where, keyword + ": parameter type 'color' of \"" + declaration.text +
+                                    "\" is pbrt-v3's (pbrt-v4 says 'rgb'); " + pbrt_v3_hint());
     if (type == param_types().end())
       throw InputError(p.where, keyword + ": unknown parameter type '" + p.type_name + "' of \"" + declaration.text +
                                     "\"; expected integer, float, point2, vector2, point3, vector3, normal, bool, "
