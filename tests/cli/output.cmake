@@ -41,3 +41,15 @@ rimu_cli_test("rimu --half and --float together" 1 "--half excludes --float|--fl
               $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/a.exr --half --float ${out_tiny})
 rimu_cli_test("rimu --float of old command lines is accepted" 0 "wrote .*float.exr"
               $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/float.exr --float ${out_tiny})
+# An output that is one of the tool's inputs (same name, symbolic or hard link) is refused by every tool.
+add_test(NAME "cli: outputs that are inputs are refused by every tool (names, symbolic and hard links)"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/output_not_input.sh ${CMAKE_BINARY_DIR}/bin ${PROJECT_SOURCE_DIR}
+                 ${CMAKE_BINARY_DIR}/cli_output/not_input)
+# -q: nothing on stderr but warnings and errors.
+add_test(NAME "cli: rimu -q prints nothing but warnings and errors"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/quiet.sh $<TARGET_FILE:rimu>
+                 ${CMAKE_CURRENT_SOURCE_DIR}/cli/photometric_card.json ${CMAKE_BINARY_DIR}/cli_output/quiet)
+# A broken PNG texture: one message of Rimu's naming the file; libpng's own line does not reach stderr.
+add_test(NAME "cli: a broken PNG texture is one message naming the file, without libpng's own line"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/image_messages.sh $<TARGET_FILE:rimu>
+                 ${CMAKE_BINARY_DIR}/cli_output/image_messages)
