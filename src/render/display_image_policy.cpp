@@ -53,7 +53,7 @@ void write_policy_display_image(const std::filesystem::path& path, const Film& f
             << "--iso/--shutter/--f-number for a physical exposure (docs/light-units.md)\n";
     }
   }
-  log << notes.str();
+  if (!policy.quiet) log << notes.str();
   const DisplayLevels levels = write_display_image(path, film, options);
   std::ostringstream warnings;
   warnings << std::fixed << std::setprecision(0);

@@ -30,6 +30,7 @@ struct DisplayImagePolicy {
   bool white_balanced = false;                ///< the written R, G, B include a white balance
   bool metered = false;                       ///< photometric scene, no camera exposure
   double nits_per_unit_y = 0;                 ///< of the displayed Y, for the log
+  bool quiet = false;                         ///< log warnings only, not the notes on what was decided
 };
 
 /// A fraction of pixels at or above which an image is "nearly all" black or clipped.

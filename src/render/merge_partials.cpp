@@ -76,6 +76,9 @@ MergeResult merge_partials(const std::vector<std::filesystem::path>& inputs, con
   if (lower_case_extension(output) != "exr")
     throw InputError({output.string(), 0, "-o"}, "the merged image needs a name ending in .exr");
   check_output_path(output);
+  std::vector<InputFile> partials;
+  for (const auto& path : inputs) partials.push_back({path, "a partial"});
+  check_output_not_input(output, "-o", partials);  // -o q0.exr would replace q0.exr's exact sums
   std::vector<PartialImage> parts;
   for (const auto& path : inputs) {
     parts.push_back(read_partial_exr(path, false));  // headers first: every check before any pixel is read

@@ -11,7 +11,8 @@ ProgressReporter::ProgressReporter(uint64_t total, std::string label, Options op
     : total_(total),
       label_(std::move(label)),
       options_(options),
-      terminal_(options.terminal >= 0 ? options.terminal == 1 : ::isatty(::fileno(options.stream)) == 1),
+      terminal_(!options.silent &&
+                (options.terminal >= 0 ? options.terminal == 1 : ::isatty(::fileno(options.stream)) == 1)),
       start_(std::chrono::steady_clock::now()) {}
 
 ProgressReporter::~ProgressReporter() { finish(); }
@@ -75,7 +76,7 @@ void ProgressReporter::draw(bool final_line) {
 void ProgressReporter::finish() {
   std::lock_guard lock(draw_mutex_);
   if (finished_) return;
-  draw(true);
+  if (!options_.silent) draw(true);
   finished_ = true;
 }
 

@@ -22,6 +22,7 @@ class ProgressReporter {
     std::FILE* stream = stderr;
     int terminal = -1;            ///< 1 / 0 force terminal mode on / off; -1 asks isatty() on the stream
     double min_interval_s = 0.25;
+    bool silent = false;          ///< print nothing at all, not even the final line (rimu --quiet)
   };
 
   ProgressReporter(uint64_t total, std::string label, Options options);

@@ -16,6 +16,7 @@
 #include "render/output_file.h"
 #include "render/partial_exr.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
+#include "render/scene/scene_files.h"
 #include "render/scene/scene_frame.h"
 #include "spectral/error.h"
 #include "render/interrupt_flag.h"
@@ -88,6 +89,16 @@ void check_outputs(const RenderJob& job) {
   if (job.png_output) check_output_path(*job.png_output);
 }
 
+// No output may be a file the render reads: the scene, or a file it names (a mesh, a texture, a spectrum), also
+// through a link. Checkpoints are written to -o, so they are covered too.
+void check_outputs_not_inputs(const RenderJob& job, const std::filesystem::path& scene_path) {
+  std::vector<InputFile> inputs{{scene_path, "the scene"}};
+  for (const SceneFile& file : scene_referenced_files(scene_text_for_frame(scene_path, job.frame), scene_path))
+    inputs.push_back({file.path, "named by the scene"});
+  check_output_not_input(job.exr_output, "-o", inputs);
+  if (job.png_output) check_output_not_input(*job.png_output, "--png", inputs);
+}
+
 }  // namespace
 
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& option) {
@@ -120,7 +131,8 @@ namespace {
 
 // The render itself. `previous`: a partial (checkpoint) of this job whose sums the film starts from; the render
 // continues after its last sample.
-RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, std::ostream& log) {
+RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, InterruptFlag& interrupt,
+                           std::ostream& log) {
   // Everything that can be checked without the scene is checked first: a typo costs nothing.
   check_outputs(job);
   DisplayOptions display;
@@ -129,6 +141,7 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
   const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
+  check_outputs_not_inputs(job, scene_path);
   // pbrt-v4 files are translated into a JSON document first; both then go through the same loader.
   const bool pbrt = is_pbrt_scene_path(scene_path);
   if (pbrt && job.frame)
@@ -236,10 +249,9 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
     add_partial_to_film(*previous, film);
   }
 
-  InterruptFlag interrupt;
   const uint64_t total = uint64_t(film.pixel_bounds().area()) * uint64_t(requested.end - start);
   ProgressReporter::Options progress_options;
-  if (job.quiet) progress_options.terminal = 0;
+  progress_options.silent = job.quiet;  // --quiet: nothing on stderr but warnings and errors
   ProgressReporter progress(total, "rendering", progress_options);
 
   RenderOptions options;
@@ -328,6 +340,7 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
     policy.camera_fit = colour_fit;
     policy.white_balanced = settings.camera_exposure.white_balance.kind != WhiteBalanceSettings::Kind::none;
     policy.metered = metered_display;
+    policy.quiet = job.quiet;
     policy.nits_per_unit_y =
         (colour_fit ? SpectralResponse::cie_xyz(library) : film.response()).luminance_nits_per_unit_y();
     write_policy_display_image(*job.png_output, film, display, policy, log);
@@ -345,12 +358,12 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, s
   summary << "rimu: wrote " << job.exr_output.string();
   if (job.png_output) summary << " and " << job.png_output->string();
   summary << "\n";
-  log << summary.str();
+  if (!job.quiet) log << summary.str();
   return result;
 }
 
 // --resume: the recorded job, continued from the file's sums.
-RenderJobResult resume_render_job(const RenderJob& job, std::ostream& log) {
+RenderJobResult resume_render_job(const RenderJob& job, InterruptFlag& interrupt, std::ostream& log) {
   const PartialImage previous = read_partial_exr(*job.resume);
   RenderJob resumed = render_job_from_json(previous.record.job, job.resume->string() + ": rimu:partial:job");
   resumed.threads = job.threads;
@@ -364,24 +377,28 @@ RenderJobResult resume_render_job(const RenderJob& job, std::ostream& log) {
                      "holds samples " + sample_ranges_text(held) + ", not one range starting at " +
                          std::to_string(requested.begin) + " (a merge of partials): render the missing samples with "
                          "--samples and merge them instead");
-  if (held.empty()) return render_job(resumed, nullptr, log);
+  if (held.empty()) return render_job(resumed, nullptr, interrupt, log);
   if (held.front().end >= requested.end) {
-    log << "rimu: " << job.resume->string() << " already holds samples " << requested.text()
+    if (!job.quiet) log << "rimu: " << job.resume->string() << " already holds samples " << requested.text()
         << ": nothing to resume\n";
     return {};
   }
-  return render_job(resumed, &previous, log);
+  return render_job(resumed, &previous, interrupt, log);
 }
 
 }  // namespace
 
 RenderJobResult run_render_job(const RenderJob& job_in, std::ostream& log) {
+  // Ctrl-C and SIGTERM are caught from here on, before anything slow (reading the scene, building the BVH): a
+  // signal while the scene loads stops the render before its first sample, and the output is still written (0
+  // samples; a checkpoint then resumes from the start). Before this line (process start, ~10 ms) it kills.
+  InterruptFlag interrupt;
   RenderJob job = job_in;
   // "${frame}" in the output names, as in the scene (render/scene/scene_frame.h).
   job.exr_output = substitute_frame(job.exr_output.string(), job.frame, "-o");
   if (job.png_output) job.png_output = substitute_frame(job.png_output->string(), job.frame, "--png");
-  if (job.resume) return resume_render_job(job, log);
-  return render_job(job, nullptr, log);
+  if (job.resume) return resume_render_job(job, interrupt, log);
+  return render_job(job, nullptr, interrupt, log);
 }
 
 }  // namespace rimu

@@ -48,7 +48,7 @@ struct RenderJob {
   std::optional<std::string> white_balance;  ///< none | a temperature (2700, 2700K) | an illuminant name
   std::string view = "Standard";
   bool strict = false;  ///< a pbrt-v4 scene: anything Rimu would ignore is an error (docs/pbrt-import.md)
-  bool quiet = false;  ///< no progress bar (it is also off when stderr is not a terminal)
+  bool quiet = false;  ///< nothing on the log but warnings and errors: no progress, no summary, no checkpoint notes
 
   /// Render only sample indices [begin, end) of every pixel (a partial: the EXR also holds the exact sums and the
   /// record a merge needs; docs/farm.md). samples_per_pixel is then the whole render's spp (default: the scene's),

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "spectral/indefinite_article.h"
+
 namespace rimu {
 namespace {
 
@@ -11,7 +13,7 @@ constexpr double kPi = std::numbers::pi;
 double cos_deg(double degrees) { return std::cos(degrees * kPi / 180.0); }
 
 [[noreturn]] void wrong_unit(LightUnit unit, const EmitterGeometry& g, const char* allowed, const SourceLocation& where) {
-  throw InputError(where, "a " + std::string(g.kind_name()) + " light cannot be given in " + unit_symbol(unit) +
+  throw InputError(where, with_article(g.kind_name()) + " light cannot be given in " + unit_symbol(unit) +
                               "; use " + allowed);
 }
 

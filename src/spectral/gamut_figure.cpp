@@ -7,6 +7,7 @@
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/gnuplot_process.h"
+#include "spectral/output_file.h"
 
 namespace rimu {
 namespace {
@@ -79,15 +80,19 @@ void write_gamut_figure(SpectralLibrary& library, const RgbUpsampler& upsampler,
   check_plot_destination(png, {"", 0, "--out"});
   if (const auto folder = csv.parent_path(); !csv.empty() && !folder.empty() && !std::filesystem::is_directory(folder))
     throw InputError({csv.string(), 0, "--csv"}, "the folder '" + folder.string() + "' does not exist");
+  if (!csv.empty()) {
+    check_output_path(csv);
+    if (same_output_file(csv, png))
+      throw InputError({csv.string(), 0, "--csv"}, "--out and --csv name the same file; the plot would replace the table");
+  }
   const double bin_size = 0.005;
   const auto bins = gamut_figure_bins(library, upsampler, bin_size);
   if (!csv.empty()) {
-    std::ofstream out(csv);
+    std::ostringstream out;
     out << "# brightest reflectance per xy bin, X+Y+Z with white Y = 1, under the white of " << upsampler.space().name()
         << "; -1 = none\nx,y,optimal_xyz_sum,smooth_xyz_sum\n";
     for (const auto& b : bins) out << b.xy.x << ',' << b.xy.y << ',' << b.optimal_xyz_sum << ',' << b.smooth_xyz_sum << '\n';
-    out.close();  // the last buffer is written here: a full disk shows only now
-    if (!out) throw std::runtime_error("cannot write '" + csv.string() + "': the write failed (disk full?)");
+    write_text_file(csv, out.str());  // whole or not at all; a full disk is an OutputError naming the file
   }
   // gnuplot inputs: a grid file (blank line between rows, NaN for empty bins), the locus, the triangle.
   std::ostringstream grid, locus, triangle;

@@ -6,7 +6,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
@@ -14,6 +13,8 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+
+#include "spectral/output_file.h"
 
 extern char** environ;
 
@@ -105,22 +106,15 @@ int spawn_and_wait(const std::filesystem::path& binary, const std::filesystem::p
   return status;
 }
 
-// Copies the finished image next to `destination` under a hidden temporary name, then renames it over the
-// destination: a reader never sees a half-written PNG, and a failed copy leaves nothing behind.
+// Installs the finished image at `destination` through the output-file code every tool uses (output_file.h): a
+// hidden temporary beside it renamed over it, or, for a destination that is a device, FIFO or link, a checked copy
+// into it (the device stays a device; a full one is an OutputError). A reader never sees a half-written PNG.
 void install(const std::filesystem::path& image, const std::filesystem::path& destination) {
-  static std::atomic<unsigned> counter{0};
-  std::string name = ".";
-  name += destination.stem().string();
-  name += ".rimu-tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-  name += destination.extension().string();
-  const std::filesystem::path temporary = folder_of(destination) / name;
-  std::error_code error, ignored;
-  std::filesystem::copy_file(image, temporary, std::filesystem::copy_options::overwrite_existing, error);
-  if (!error) std::filesystem::rename(temporary, destination, error);
-  if (error) {
-    std::filesystem::remove(temporary, ignored);
-    throw PlotError("cannot write the plot '" + destination.string() + "': " + error.message());
-  }
+  write_atomically(destination, [&](const std::filesystem::path& temporary) {
+    std::error_code error;
+    std::filesystem::copy_file(image, temporary, std::filesystem::copy_options::overwrite_existing, error);
+    if (error) throw std::runtime_error(error.message());
+  });
 }
 
 }  // namespace
@@ -146,6 +140,12 @@ void check_plot_destination(const std::filesystem::path& png, const SourceLocati
                                 "' is not writable");
   if (std::filesystem::is_directory(png, error))
     throw InputError(where, "cannot write the plot '" + png.string() + "': it is a folder");
+  // The format follows the name, as for the renderer's images: gnuplot draws PNG, so a .jpg (or a device named
+  // without an extension) would get PNG bytes under another format's name.
+  if (lower_case_extension(png) != "png")
+    throw InputError(where, "cannot write the plot '" + png.string() + "': plots are PNG images, so the name must end "
+                            "in .png (got '" + png.extension().string() + "')");
+  check_output_path(png);  // as every output: a device or FIFO must be writable, the folder must take a file
   const std::filesystem::path binary = gnuplot_binary();
   if (!std::filesystem::is_regular_file(binary, error) || ::access(binary.c_str(), X_OK) != 0)
     throw PlotError("cannot plot '" + png.string() + "': gnuplot not found at " + binary.string() +

@@ -42,3 +42,16 @@ rimu_cli_test("rimu camera keyframes without --frame" 1
 add_test(NAME "cli: camera keyframes: frame 6 is the dolly's half-way camera, frames differ"
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/camera_path.sh $<TARGET_FILE:rimu> $<TARGET_FILE:rimu-exr-compare>
                  ${CMAKE_CURRENT_SOURCE_DIR}/cli/camera_path.json ${farm_dir}/camera_path)
+# Values that reach the job scripts (scene and folder names, --out, --partition, --time, ...) with control
+# characters are refused (no #SBATCH line can be cut and turned into a command); --spp and --frames are bounded.
+add_test(NAME "cli: rimu-farm refuses control characters in script values, bounds --spp and --frames"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/farm_hostile.sh ${CMAKE_BINARY_DIR}/bin/rimu-farm
+                 ${CMAKE_CURRENT_SOURCE_DIR}/cli/frame_card.json ${farm_dir}/hostile)
+# --resume continues the recorded job: a scene or --spp given with it is refused, not silently ignored.
+rimu_cli_test("rimu --resume with a scene and --spp" 1
+              "--resume: continues the job recorded in .*resumable.exr.*also given: the scene '.*frame_card.json', --spp"
+              sh -c "'$<TARGET_FILE:rimu>' --resolution 16x12 --spp 8 -q --samples 0:4 -o '${farm_dir}/resumable.exr' && '$<TARGET_FILE:rimu>' '${CMAKE_CURRENT_SOURCE_DIR}/cli/frame_card.json' --resume '${farm_dir}/resumable.exr' --spp 16")
+# SIGTERM before the first sample (while the scene loads) stops the render as documented: exit 0, output written.
+add_test(NAME "cli: rimu SIGTERM while the scene loads: exit 0, output written, resumable"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/early_signal.sh $<TARGET_FILE:rimu> ${farm_dir}/early_signal)
+set_tests_properties("cli: rimu SIGTERM while the scene loads: exit 0, output written, resumable" PROPERTIES TIMEOUT 300)

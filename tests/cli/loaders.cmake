@@ -19,7 +19,7 @@ rimu_cli_test("loaders: voxel grid shorter than its header says" 1
               "/media/fog/file: .*bad_short.rvol: the header announces 1024 × 1024 × 1024 voxels, which take 4294967316 bytes with the header, but the file has 28 bytes"
               $<TARGET_FILE:rimu> ${loaders_dir}/bad_short_grid.json -o ${loaders_exr} -q)
 rimu_cli_test("loaders: a chain of 9 named spectra renders" 0 "discarded samples: 0 NaN"
-              $<TARGET_FILE:rimu> ${loaders_dir}/named_spectra_chain.json -o ${CMAKE_CURRENT_BINARY_DIR}/cli_loaders_chain.exr --spp 1 -q)
+              $<TARGET_FILE:rimu> ${loaders_dir}/named_spectra_chain.json -o ${CMAKE_CURRENT_BINARY_DIR}/cli_loaders_chain.exr --spp 1)
 rimu_cli_test("loaders: IES flux overflow" 1 "bad_overflow.ies:8: the candela values are too large"
               $<TARGET_FILE:rimu-light> inspect ${loaders_dir}/bad_overflow.ies)
 rimu_cli_test("loaders: rimu-light names the light file of a bad spectrum" 1 "bad_light_spectrum.json: /spectrum/blackbody"

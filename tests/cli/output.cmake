@@ -6,6 +6,7 @@ set(out_scene ${CMAKE_CURRENT_SOURCE_DIR}/cli/photometric_card.json)
 set(out_dir ${CMAKE_BINARY_DIR}/cli_output)
 file(MAKE_DIRECTORY ${out_dir})
 set(out_tiny --spp 1 --resolution 8x8 -q)
+set(out_tiny_notes --spp 1 --resolution 8x8)  # without -q: for tests that read the notes and the summary
 rimu_cli_test("rimu -o and --png name the same file" 1 "--png: -o and --png name the same file"
               $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/same.exr --png ${out_dir}/./same.exr ${out_tiny})
 rimu_cli_test("rimu -o needs .exr" 1 "-o: the scene-referred OpenEXR image needs a name ending in .exr"
@@ -26,10 +27,10 @@ rimu_cli_test("rimu --ev 2000" 1 "--ev: expected an exposure compensation in sto
 rimu_cli_test("rimu --iso inf" 1 "--iso: expected an ISO speed in 0.001 to 10000000, got inf"
               $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/a.exr --iso inf ${out_tiny})
 rimu_cli_test("rimu photometric scene without exposure is metered" 0 "the display image is metered"
-              $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/metered.exr --png ${out_dir}/metered.png ${out_tiny})
+              $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/metered.exr --png ${out_dir}/metered.png ${out_tiny_notes})
 rimu_cli_test("rimu camera film displayed through its fitted matrix" 0 "camera-to-XYZ matrix fitted to the 24 ColorChecker"
               $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/camera.exr --png ${out_dir}/camera.png
-              --film camera:nikon_d850 ${out_tiny})
+              --film camera:nikon_d850 ${out_tiny_notes})
 rimu_cli_test("rimu nearly black display image is warned about" 0 "100 % of .*black.png is nearly black"
               $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/black.exr --png ${out_dir}/black.png --exposure -30
               ${out_tiny})
@@ -40,4 +41,16 @@ add_test(NAME "cli: rimu output files from the shell"
 rimu_cli_test("rimu --half and --float together" 1 "--half excludes --float|--float excludes --half"
               $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/a.exr --half --float ${out_tiny})
 rimu_cli_test("rimu --float of old command lines is accepted" 0 "wrote .*float.exr"
-              $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/float.exr --float ${out_tiny})
+              $<TARGET_FILE:rimu> ${out_scene} -o ${out_dir}/float.exr --float ${out_tiny_notes})
+# An output that is one of the tool's inputs (same name, symbolic or hard link) is refused by every tool.
+add_test(NAME "cli: outputs that are inputs are refused by every tool (names, symbolic and hard links)"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/output_not_input.sh ${CMAKE_BINARY_DIR}/bin ${PROJECT_SOURCE_DIR}
+                 ${CMAKE_BINARY_DIR}/cli_output/not_input)
+# -q: nothing on stderr but warnings and errors.
+add_test(NAME "cli: rimu -q prints nothing but warnings and errors"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/quiet.sh $<TARGET_FILE:rimu>
+                 ${CMAKE_CURRENT_SOURCE_DIR}/cli/photometric_card.json ${CMAKE_BINARY_DIR}/cli_output/quiet)
+# A broken PNG texture: one message of Rimu's naming the file; libpng's own line does not reach stderr.
+add_test(NAME "cli: a broken PNG texture is one message naming the file, without libpng's own line"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/image_messages.sh $<TARGET_FILE:rimu>
+                 ${CMAKE_BINARY_DIR}/cli_output/image_messages)

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "test_support.h"
 #include "render/output_file.h"
@@ -115,4 +116,25 @@ TEST_CASE("one file under two names is recognised as one output") {
   CHECK(same_output_file(folder.path / "link.exr", folder.path / "real.exr"));
   CHECK(lower_case_extension("X/Out.EXR") == "exr");
   CHECK(lower_case_extension("noext").empty());
+}
+
+TEST_CASE("an output that is an input is refused: by name, symbolic link and hard link; devices and new files pass") {
+  Folder folder("not_input");
+  folder.touch("scene.json");
+  folder.touch("other.json");
+  const fs::path scene = folder.path / "scene.json";
+  fs::create_symlink(scene, folder.path / "link.exr");
+  fs::create_hard_link(scene, folder.path / "hard.exr");
+  const std::vector<InputFile> inputs{{folder.path / "other.json", "--csv"}, {scene, "the scene"}};
+  for (const char* name : {"scene.json", "link.exr", "hard.exr"}) {
+    CAPTURE(name);
+    CHECK_THROWS_WITH_AS(check_output_not_input(folder.path / name, "-o", inputs),
+                         doctest::Contains("-o: the output is the input"), InputError);
+  }
+  CHECK_THROWS_WITH_AS(check_output_not_input(folder.path / "link.exr", "-o", inputs),
+                       doctest::Contains("(the scene)"), InputError);
+  CHECK_NOTHROW(check_output_not_input(folder.path / "new.exr", "-o", inputs));    // does not exist yet
+  CHECK_NOTHROW(check_output_not_input(folder.path / "other.json", "-o", {{scene, "the scene"}, {"", "none"}}));
+  CHECK_NOTHROW(check_output_not_input("/dev/stdout", "-o", {{"/dev/stdin", "input"}}));  // may be one terminal
+  CHECK(fs::file_size(scene) == 7);  // "partial": untouched
 }

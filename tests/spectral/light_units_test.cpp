@@ -131,6 +131,9 @@ TEST_CASE("units that do not fit the light are errors naming the ones that do") 
                        doctest::Contains("lx or W/m2"), InputError);
   CHECK_THROWS_WITH_AS(shape_scale({100.0, LightUnit::candela}, EmitterGeometry{EmitterKind::environment}, s, {}),
                        doctest::Contains("nt or W/m2/sr"), InputError);
+  // The article follows the light's name: "an environment light", "an area light".
+  CHECK_THROWS_WITH_AS(shape_scale({100.0, LightUnit::lux}, EmitterGeometry{EmitterKind::environment}, s, {}),
+                       doctest::Contains("an environment light cannot be given in lx"), InputError);
 }
 
 TEST_CASE("recolouring keeps lumens; keep radiometric keeps the watts of the reference shape") {

@@ -11,6 +11,7 @@
 #include "spectral/error.h"
 #include "spectral/gamut_figure.h"
 #include "spectral/gnuplot_process.h"
+#include "spectral/output_file.h"
 #include "spectral/reflectance_report.h"
 #include "spectral/rgb_upsampler.h"
 #include "spectral/upsample_report.h"
@@ -177,7 +178,10 @@ void run(const Options& o) {
     std::cout << (o.report.json ? rimu::report_json(r) : rimu::report_text(r));
   } else if (*o.fidelity_cmd) {
     // A graphic that cannot be drawn is refused before anything is computed or printed.
-    if (!o.fidelity_graphic.empty()) rimu::check_plot_destination(o.fidelity_graphic, {"", 0, "--graphic"});
+    if (!o.fidelity_graphic.empty()) {
+      rimu::check_plot_destination(o.fidelity_graphic, {"", 0, "--graphic"});
+      rimu::check_output_not_input(o.fidelity_graphic, "--graphic", {{o.fidelity.csv, "--csv"}});
+    }
     const rimu::SpectrumSource source = source_from(o.fidelity, int(o.fid_name->count() + o.fid_csv->count()));
     const rimu::SpectrumPtr spectrum = rimu::make_emission_spectrum(source, library);
     const rimu::ColourFidelity f = rimu::ColourFidelityEvaluator(library).evaluate(*spectrum);

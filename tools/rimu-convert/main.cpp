@@ -8,8 +8,10 @@
 #include "render/output_file.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
+#include "render/scene/scene_files.h"
 #include "render/text_file_output.h"
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 #include "spectral/spectral_library.h"
 
 int main(int argc, char** argv) {
@@ -29,6 +31,12 @@ int main(int argc, char** argv) {
     if (!rimu::is_pbrt_scene_path(input))
       throw rimu::InputError({input, 0, ""}, "expected a pbrt-v4 scene file ending in .pbrt");
     rimu::check_output_path(output);
+    // Neither the pbrt file nor a file it includes or names may be replaced by the JSON.
+    std::vector<rimu::InputFile> inputs{{input, "the pbrt scene"}};
+    const std::string text = rimu::read_input_file(input, rimu::kMaxJsonFileBytes);
+    for (const rimu::SceneFile& file : rimu::scene_referenced_files(text, input))
+      inputs.push_back({file.path, "named by the pbrt scene"});
+    rimu::check_output_not_input(output, "-o", inputs);
     const std::filesystem::path output_directory = std::filesystem::absolute(output).parent_path();
     const rimu::PbrtImport imported = rimu::import_pbrt(input, library, {strict, output_directory});
     std::cerr << rimu::describe_ignored(imported.ignored);

@@ -19,9 +19,31 @@ import subprocess
 import sys
 
 
+# The renderer's own limits (tools/rimu/main.cpp --spp, render/partial_record.cpp --samples): a farm asking for more
+# would submit tasks that all fail.
+MAX_SPP = 1 << 24
+# Frames per submission: each frame costs one `rimu --print-scene-hash` at submission and its tasks in the array.
+MAX_FRAMES = 10000
+# Slurm's largest possible MaxArraySize is 4000001 (array indices 0-4000000); most clusters allow far fewer (1001 by
+# default), and sbatch then refuses the array itself.
+MAX_ARRAY_TASKS = 4000001
+
+
 def fail(message, code=1):
     print(f"rimu-farm: {message}", file=sys.stderr)
     sys.exit(code)
+
+
+def check_script_value(option, value):
+    """Refuses a value that reaches a job script if it holds a control character (a newline, carriage return, tab,
+    NUL, escape...). In an #SBATCH header line nothing is quoted, so a newline there would end the line and start a
+    command (and cut off the #SBATCH lines after it); in the body the values are quoted, but a script whose lines are
+    exactly the lines it was meant to have is easier to read and to trust. Every such value goes through here."""
+    for i, ch in enumerate(value):
+        if ord(ch) < 32 or ord(ch) == 127 or 0x80 <= ord(ch) < 0xA0 or ch in "\u2028\u2029":
+            fail(f"{option}: the value {value!r} holds the control character {ch!r} (at {i}); a job script line "
+                 f"cannot hold it: rename or choose another value")
+    return value
 
 
 def find_rimu(explicit):
@@ -143,15 +165,37 @@ def sbatch(arguments):
     return result.stdout.strip().split(";")[0]
 
 
+def check_submit_values(args, rimu=None, scene=None, out=None):
+    """Every value that is written into render.sbatch or merge.sbatch, checked before anything runs or is written:
+    first as given, then (rimu, scene, out) made absolute, since the current folder's name becomes part of them."""
+    values = [("scene", args.scene), ("--out", args.out), ("--rimu", args.rimu), ("--partition", args.partition),
+              ("--time", args.time), ("--checkpoint", args.checkpoint), ("scene", scene), ("--out", out),
+              ("--rimu", rimu)] + [("a rimu option after --", value) for value in args.rimu_options]
+    for option, value in values:
+        if value:
+            check_script_value(option, value)
+
+
 def submit(args):
+    check_submit_values(args)
+    if not 1 <= args.spp <= MAX_SPP:
+        fail(f"--spp {args.spp}: expected 1-{MAX_SPP}, the renderer's limit")
+    if args.tasks < 1 or args.spp < args.tasks:
+        fail(f"--tasks {args.tasks} must be in 1-{args.spp} (at least one sample per task)")
+    frames = parse_frames(args.frames)
+    frame_count = frames[1] - frames[0] + 1 if frames else 1
+    if frame_count > MAX_FRAMES:
+        fail(f"--frames {args.frames}: {frame_count} frames; at most {MAX_FRAMES} per submission (each is hashed "
+             f"at submission and gets its own tasks): split the sequence into several submissions")
+    if args.tasks * frame_count > MAX_ARRAY_TASKS:
+        fail(f"--tasks {args.tasks} x {frame_count} frames = {args.tasks * frame_count} array tasks; Slurm allows "
+             f"at most {MAX_ARRAY_TASKS} in one array")
     rimu = find_rimu(args.rimu)
     scene = os.path.abspath(args.scene)
     if not os.path.isfile(scene):
         fail(f"{args.scene}: no such scene file")
-    if args.tasks < 1 or args.spp < args.tasks:
-        fail(f"--tasks {args.tasks} must be in 1-{args.spp} (at least one sample per task)")
-    frames = parse_frames(args.frames)
     out = os.path.abspath(args.out or os.path.splitext(os.path.basename(scene))[0] + ".farm")
+    check_submit_values(args, rimu, scene, out)
     hashes = [scene_hash(rimu, scene, f, args.rimu_options)
               for f in (range(frames[0], frames[1] + 1) if frames else [None])]
     tasks = write_scripts(args, rimu, scene, frames, hashes, out)

@@ -113,11 +113,18 @@ std::string json_text(const nlohmann::json& j) {
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
+// Refuses an output (a definition or a plot) that is one of the files the command reads.
+void check_not_input(const std::string& output, const std::string& option, const std::vector<rimu::InputFile>& inputs) {
+  if (!output.empty() && output != "-") rimu::check_output_not_input(output, option, inputs);
+}
+
 void inspect(const Options& o, rimu::SpectralLibrary& library, const std::filesystem::path& here) {
   // Every output path and every option is checked before anything is computed or written.
   rimu::validate_inspect_point(o.point);
   if (!o.inspect_plot.empty()) rimu::check_plot_png(o.inspect_plot, {"", 0, "--plot"});
   if (!o.inspect_polar.empty()) rimu::check_plot_png(o.inspect_polar, {"", 0, "--plot-polar"});
+  check_not_input(o.inspect_plot, "--plot", {{o.inspect_file, "inspect"}});
+  check_not_input(o.inspect_polar, "--plot-polar", {{o.inspect_file, "inspect"}});
   std::string extension = std::filesystem::path(o.inspect_file).extension().string();
   for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   if (extension == ".ies") {
@@ -149,6 +156,10 @@ void inspect(const Options& o, rimu::SpectralLibrary& library, const std::filesy
 void author(const Options& o, rimu::SpectralLibrary& library, const std::filesystem::path& here) {
   if (!o.output.empty() && o.output != "-") rimu::check_output_path(o.output);
   if (!o.plot.empty()) rimu::check_plot_png(o.plot, {"", 0, "--plot"});
+  check_not_input(o.output, "-o", {{o.shape.csv, "--csv"}});
+  check_not_input(o.plot, "--plot", {{o.shape.csv, "--csv"}});
+  if (!o.output.empty() && !o.plot.empty() && rimu::same_output_file(o.output, o.plot))
+    throw InputError({o.plot, 0, "--plot"}, "-o and --plot name the same file; the plot would replace the definition");
   const rimu::LightDefinition light = rimu::light_from_options(o.type, o.spot, o.amounts, o.shape, library, here);
   write_definition(light, o.output);
   if (!o.plot.empty()) {
@@ -173,6 +184,7 @@ void run(Options& o) {
     const auto s = o.recolor_shape.spectrum();
     if (!s) throw InputError({"", 0, "recolor"}, "give the new colour: --cct, --daylight, --illuminant or --csv");
     if (!o.recolor_output.empty() && o.recolor_output != "-") rimu::check_output_path(o.recolor_output);
+    check_not_input(o.recolor_output, "-o", {{o.recolor_file, "recolor"}, {o.recolor_shape.csv, "--csv"}});
     const rimu::LightDefinition light = read_definition(o.recolor_file);
     rimu::naming_shape_option(o.recolor_shape, [&] {
       write_definition(rimu::recolor_light(light, *s, library, here), o.recolor_output);

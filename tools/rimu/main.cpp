@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
       ->excludes(half);
   app.add_option("--exposure", job.exposure_ev, "exposure of the display image in stops (EV), -60 to 60");
   app.add_option("--view", job.view, "OpenColorIO view of the PNG: Standard, \"ACES 1.0 SDR\" or Raw");
-  app.add_flag("-q,--quiet", job.quiet, "no progress bar");
+  app.add_flag("-q,--quiet", job.quiet, "print nothing on stderr but warnings and errors (no progress, no summary)");
   app.add_flag("--strict", job.strict, "pbrt-v4 scenes: anything Rimu does not support is an error, not a report");
   std::string shutter;
   app.add_option("--iso", job.iso, "physical camera: ISO speed (turns the physical camera on; see docs/light-units.md)");
@@ -103,6 +103,19 @@ int main(int argc, char** argv) {
     if (!samples.empty()) job.samples = rimu::parse_sample_range(samples, "--samples");
     if (!checkpoint.empty()) job.checkpoint_interval_s = rimu::parse_duration_s(checkpoint, "--checkpoint");
     if (!resume.empty()) {
+      // The file records its job (scene, spp, samples, film, every image option): anything else given with
+      // --resume would be silently ignored, so it is refused. Only how to run and where to write may change.
+      std::string also;
+      for (const CLI::Option* option : app.get_options())
+        if (option->count() > 0 && !option->check_name("--resume") && !option->check_name("--threads") &&
+            !option->check_name("--quiet") && !option->check_name("--output") && !option->check_name("--checkpoint"))
+          also += std::string(also.empty() ? "" : ", ") +
+                  (option->check_name("scene") ? "the scene '" + scene + "'" : option->get_name());
+      if (!also.empty())
+        throw rimu::InputError({"", 0, "--resume"},
+                               "continues the job recorded in " + resume + " (its scene, --spp, --samples and image "
+                               "options) and takes only -o, --threads, --checkpoint and -q; also given: " + also +
+                               ". To render with other options, start a new render");
       job.resume = resume;
       if (app.get_option("-o")->count() == 0) job.exr_output = resume;
     }

@@ -1,7 +1,10 @@
 // OpenImageIO behind the ImageModuleApi (image_module_api.h): loaded by render/image_library.cpp on first use.
 #include <OpenImageIO/imageio.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <memory>
+#include <mutex>
 
 #include "render/image_module/image_module_api.h"
 
@@ -9,15 +12,88 @@ namespace {
 
 using rimu::DecodedImage;
 
+// Some of the libraries behind OpenImageIO print their own messages on standard error besides returning an error
+// (libpng: "libpng error: IHDR: CRC error", naming no file), so the user saw a stray line before Rimu's message.
+// While the module reads or writes, standard error goes to an unnamed temporary file; what was written there is
+// then added to the module's error (which Rimu reports naming the file) or, after a read that succeeded, printed as
+// one warning naming the file. A mutex keeps two threads from redirecting at once; Rimu reads images while it
+// loads a scene, when nothing else writes to standard error.
+class CapturedStandardError {
+ public:
+  CapturedStandardError() : lock_(mutex()) {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    saved_ = file_ ? ::dup(STDERR_FILENO) : -1;
+    if (saved_ >= 0 && ::dup2(::fileno(file_), STDERR_FILENO) < 0) {
+      ::close(saved_);
+      saved_ = -1;
+    }
+  }
+  ~CapturedStandardError() {
+    release();
+    if (file_) std::fclose(file_);
+  }
+  CapturedStandardError(const CapturedStandardError&) = delete;
+  CapturedStandardError& operator=(const CapturedStandardError&) = delete;
+
+  /// Restores standard error and returns what was written to it meanwhile, its lines joined by "; ".
+  std::string release() {
+    if (saved_ < 0) return {};
+    std::fflush(stderr);
+    ::dup2(saved_, STDERR_FILENO);
+    ::close(saved_);
+    saved_ = -1;
+    std::string text;
+    std::rewind(file_);
+    char buffer[4096];
+    size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, file_)) > 0 && text.size() < 4000) text.append(buffer, n);
+    std::string joined;
+    size_t start = 0;
+    while (start < text.size()) {
+      size_t end = text.find('\n', start);
+      if (end == std::string::npos) end = text.size();
+      std::string line = text.substr(start, end - start);
+      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+      if (!line.empty()) joined += (joined.empty() ? "" : "; ") + line;
+      start = end + 1;
+    }
+    return joined;
+  }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+
+// The library's own text, captured while `ok` was decided: added to a failure's message (unless the message holds
+// it already), or printed as a warning naming `path` after a read that succeeded.
+// OpenImageIO joins the errors of one call with line breaks: they become "; " so Rimu's message stays one line.
+bool with_library_text(bool ok, const std::string& text, const std::string& path, std::string& error, bool warn) {
+  if (!ok && !text.empty() && error.find(text) == std::string::npos)
+    error += (error.empty() ? "" : " (") + text + (error.empty() ? "" : ")");
+  if (!ok) {
+    while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
+    for (size_t at = error.find('\n'); at != std::string::npos; at = error.find('\n', at)) error.replace(at, 1, "; ");
+  }
+  if (ok && warn && !text.empty()) std::fprintf(stderr, "rimu: warning: %s: %s\n", path.c_str(), text.c_str());
+  return ok;
+}
+
 bool can_write(const std::string& format, std::string& error) {
   if (OIIO::ImageOutput::create(format)) return true;
   error = OIIO::geterror();
   return false;
 }
 
-bool write_rgb8(const std::string& path, const std::string& format, int width, int height,
-                const std::vector<uint8_t>& pixels, const std::string& software, const std::string& view,
-                bool srgb_encoded, std::string& error) {
+bool write_rgb8_uncaptured(const std::string& path, const std::string& format, int width, int height,
+                           const std::vector<uint8_t>& pixels, const std::string& software, const std::string& view,
+                           bool srgb_encoded, std::string& error) {
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
   if (!out) {
     error = "OpenImageIO has no " + format + " writer: " + OIIO::geterror();
@@ -62,14 +138,14 @@ std::unique_ptr<OIIO::ImageInput> open_header(const std::string& path, DecodedIm
   return input;
 }
 
-bool read_header(const std::string& path, DecodedImage& image, std::string& error) {
+bool read_header_uncaptured(const std::string& path, DecodedImage& image, std::string& error) {
   auto input = open_header(path, image, error);
   if (!input) return false;
   input->close();
   return true;
 }
 
-bool read_pixels(const std::string& path, DecodedImage& image, std::string& error) {
+bool read_pixels_uncaptured(const std::string& path, DecodedImage& image, std::string& error) {
   auto input = open_header(path, image, error);
   if (!input) {
     error = "cannot read the image: " + error;
@@ -86,6 +162,27 @@ bool read_pixels(const std::string& path, DecodedImage& image, std::string& erro
   }
   input->close();
   return true;
+}
+
+bool write_rgb8(const std::string& path, const std::string& format, int width, int height,
+                const std::vector<uint8_t>& pixels, const std::string& software, const std::string& view,
+                bool srgb_encoded, std::string& error) {
+  CapturedStandardError captured;
+  const bool ok = write_rgb8_uncaptured(path, format, width, height, pixels, software, view, srgb_encoded, error);
+  // `path` is the writer's temporary file, not a name the user knows: a warning of a write is not printed.
+  return with_library_text(ok, captured.release(), path, error, false);
+}
+
+bool read_header(const std::string& path, DecodedImage& image, std::string& error) {
+  CapturedStandardError captured;
+  const bool ok = read_header_uncaptured(path, image, error);
+  return with_library_text(ok, captured.release(), path, error, true);
+}
+
+bool read_pixels(const std::string& path, DecodedImage& image, std::string& error) {
+  CapturedStandardError captured;
+  const bool ok = read_pixels_uncaptured(path, image, error);
+  return with_library_text(ok, captured.release(), path, error, true);
 }
 
 const rimu::ImageModuleApi kApi{rimu::kImageModuleApiVersion, can_write, write_rgb8, read_header, read_pixels};

@@ -7,6 +7,7 @@
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/spectral_response.h"
+#include "spectral/indefinite_article.h"
 
 namespace rimu {
 
@@ -216,7 +217,7 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     const char kind = k == "AttributeEnd" ? 'a' : 't';
     if (stack_.empty()) throw InputError(s.where, k + " without a matching " + (kind == 'a' ? "AttributeBegin" : "TransformBegin"));
     if (stack_.back().first != kind)
-      throw InputError(s.where, k + " closes a " + (stack_.back().first == 'a' ? "AttributeBegin" : stack_.back().first == 't' ? "TransformBegin" : "ObjectBegin"));
+      throw InputError(s.where, k + " closes " + with_article(stack_.back().first == 'a' ? "AttributeBegin" : stack_.back().first == 't' ? "TransformBegin" : "ObjectBegin"));
     if (kind == 'a') {
       state_ = stack_.back().second;
     } else {

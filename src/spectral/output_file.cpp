@@ -1,7 +1,8 @@
-#include "render/output_file.h"
+#include "spectral/output_file.h"
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -72,7 +73,7 @@ void copy_into(const std::filesystem::path& from, const std::filesystem::path& t
 }  // namespace
 
 OutputError::OutputError(std::filesystem::path path, const std::string& what)
-    : RenderError("cannot write '" + path.string() + "': " + what), path_(std::move(path)) {}
+    : std::runtime_error("cannot write '" + path.string() + "': " + what), path_(std::move(path)) {}
 
 std::filesystem::path temporary_output_path(const std::filesystem::path& path) {
   static std::atomic<unsigned> counter{0};
@@ -144,6 +145,41 @@ bool same_output_file(const std::filesystem::path& a, const std::filesystem::pat
   return normal(a) == normal(b);
 }
 
+namespace {
+
+// The device and inode of the existing regular file `path` names (symbolic links followed); false for anything
+// else. Devices and FIFOs are left out: writing to /dev/stdout destroys nothing, even when /dev/stdin is the same
+// terminal.
+bool regular_file_identity(const std::filesystem::path& path, dev_t& device, ino_t& inode) {
+  struct stat s {};
+  if (::stat(path.c_str(), &s) != 0 || !S_ISREG(s.st_mode)) return false;
+  device = s.st_dev;
+  inode = s.st_ino;
+  return true;
+}
+
+}  // namespace
+
+void check_output_not_input(const std::filesystem::path& output, const std::string& option,
+                            const std::vector<InputFile>& inputs) {
+  dev_t output_device = 0;
+  ino_t output_inode = 0;
+  if (!regular_file_identity(output, output_device, output_inode)) return;  // a new file is no input
+  for (const InputFile& input : inputs) {
+    dev_t device = 0;
+    ino_t inode = 0;
+    if (input.path.empty() || !regular_file_identity(input.path, device, inode) || device != output_device ||
+        inode != output_inode)
+      continue;
+    const std::string named = input.path.string() == output.string() ? "" : " '" + input.path.string() + "'";
+    throw InputError({output.string(), 0, option},
+                     "the output is the input" + named +
+                         (input.option.empty() ? std::string() : " (" + input.option + ")") +
+                         " (the same file, perhaps through a link): writing it would destroy what is being read; "
+                         "choose another output name");
+  }
+}
+
 std::string lower_case_extension(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   if (!extension.empty()) extension.erase(0, 1);
@@ -199,6 +235,21 @@ void write_atomically(const std::filesystem::path& path,
     std::filesystem::remove(temporary, ignored);
     throw OutputError(path, "renaming the finished temporary file failed: " + error.message());
   }
+}
+
+void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  write_atomically(path, [&](const std::filesystem::path& temporary) {
+    // C stdio rather than a stream: fwrite and fclose report why a write failed (ENOSPC, EIO) through errno.
+    std::FILE* file = std::fopen(temporary.c_str(), "wb");
+    if (!file) throw std::runtime_error(std::string("cannot create the file: ") + std::strerror(errno));
+    errno = 0;
+    const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size() && std::fflush(file) == 0;
+    const int write_errno = errno;
+    const bool closed = std::fclose(file) == 0;
+    const int close_errno = errno;
+    if (!written || !closed)
+      throw std::runtime_error(std::strerror(!written && write_errno != 0 ? write_errno : close_errno));
+  });
 }
 
 }  // namespace rimu
