@@ -2,12 +2,14 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "broadcast.h"
 #include "spectral/colorimetry.h"
 #include "spectral/colorimetry_options.h"
 #include "spectral/error.h"
 #include "spectral/light_units.h"
 #include "spectral/planckian_locus.h"
 #include "spectral/reflectance_report.h"
+#include "spectral/spectrum_values_check.h"
 #include "spectral/tabulated_colorimetry.h"
 
 namespace rimu::python {
@@ -28,6 +30,47 @@ E308Table e308_table_of(bool bandpass_corrected) {
 /// that follow may fail too, against `method`).
 void check_illuminant(SpectralLibrary& l, const std::string& name) {
   for_argument("illuminant", [&] { return l.illuminant(name); });
+}
+
+// reflectance_xyz of every spectrum of a stack `v` (..., N) on the wavelengths `wl` (N,): the checks of a single
+// spectrum, each value named by its indices (values[4, 7]), then the sums in C++ without the GIL.
+py::array_t<double> reflectance_stack_xyz(SpectralLibrary& l, const Array& wl, const Array& v,
+                                          const std::string& illuminant, int observer, const std::string& method,
+                                          bool bandpass_corrected) {
+  const TabulatedSpectrum sampling = sampling_from_array(wl);
+  const std::vector<py::ssize_t> shape(v.shape(), v.shape() + v.ndim());
+  if (shape.back() != wl.size())
+    throw InputError(argument("values"), "expected the last axis to hold one value per wavelength (" +
+                                             std::to_string(wl.size()) + "), got " + std::to_string(shape.back()));
+  const std::vector<double> all(v.data(), v.data() + v.size());
+  {
+    py::gil_scoped_release release;
+    check_reflectance_factors(all, [&](size_t i) { return argument(element_name("values", shape, py::ssize_t(i))); });
+  }
+  check_illuminant(l, illuminant);
+  const StandardObserver o = observer_of(observer);
+  const TristimulusMethod used = method_of(method, sampling);
+  const E308Table table = e308_table_of(bandpass_corrected);
+  const size_t n = size_t(wl.size());
+  const auto xyz_of_row = [&](size_t row) {
+    const TabulatedSpectrum s(sampling.wavelengths_nm(), std::vector<double>(all.begin() + row * n, all.begin() + (row + 1) * n),
+                              Extrapolation::clamp, "(wavelengths_nm, values)");
+    return reflectance_xyz(s, illuminant, o, used, l, table);
+  };
+  const std::vector<py::ssize_t> leading(shape.begin(), shape.end() - 1);
+  py::array_t<double> out = result_array(leading, 3);
+  const size_t rows = all.size() / n;
+  if (rows == 0) return out;
+  const Xyz first = for_argument("method", [&] { return xyz_of_row(0); });  // E308's refusals, before the loop
+  double* o3 = out.mutable_data();
+  o3[0] = first.x, o3[1] = first.y, o3[2] = first.z;
+  for_each_range(rows - 1, [&](size_t begin, size_t end) {
+    for (size_t row = begin + 1; row < end + 1; ++row) {
+      const Xyz xyz = xyz_of_row(row);
+      o3[3 * row] = xyz.x, o3[3 * row + 1] = xyz.y, o3[3 * row + 2] = xyz.z;
+    }
+  });
+  return out;
 }
 
 py::tuple cct_tuple(const CctDuv& c) { return py::make_tuple(c.cct_k, c.duv, cct_validity_name(c.validity)); }
@@ -70,8 +113,10 @@ void bind_colorimetry(py::module_& m) {
           "Relative XYZ (Y = 100) of a light's spectral power (CIE 15:2004 §7 / ASTM E308).")
       .def(
           "reflectance_xyz",
-          [](SpectralLibrary& l, const Array& wl, const Array& v, const std::string& illuminant, int observer,
-             const std::string& method, bool bandpass_corrected) {
+          [](SpectralLibrary& l, const py::object& wavelengths_nm, const py::object& values,
+             const std::string& illuminant, int observer, const std::string& method, bool bandpass_corrected) {
+            const Array wl = numeric_array(wavelengths_nm, "wavelengths_nm"), v = numeric_array(values, "values");
+            if (v.ndim() > 1) return reflectance_stack_xyz(l, wl, v, illuminant, observer, method, bandpass_corrected);
             const TabulatedSpectrum s = spectrum_from_arrays(wl, v, SpectrumKind::reflectance, l);
             check_illuminant(l, illuminant);
             const StandardObserver o = observer_of(observer);
@@ -83,7 +128,8 @@ void bind_colorimetry(py::module_& m) {
           },
           py::arg("wavelengths_nm"), py::arg("values"), py::arg("illuminant") = "D50", py::arg("observer") = 2,
           py::arg("method") = "auto", py::arg("bandpass_corrected") = true,
-          "XYZ of a reflectance factor under a CIE illuminant (perfect diffuser Y = 100). For astm-e308, "
+          "XYZ of a reflectance factor under a CIE illuminant (perfect diffuser Y = 100): values of shape (N,) give "
+          "(3,), a stack (..., N) on the shared wavelengths gives (..., 3). For astm-e308, "
           "bandpass_corrected picks E308 Table 6 (True: data corrected for the instrument's bandpass) or Table 5 "
           "(False: uncorrected data, triangular bandpass = interval).")
       .def(

@@ -1,11 +1,9 @@
-// Colour arithmetic that needs no tables: xy, CIELAB, ΔE, RGB spaces and chromatic adaptation; and the RGB
-// upsampler (which does: rimu.Library.upsample_*).
+// RGB spaces' matrices, chromatic adaptation and the sRGB curve; and the RGB upsampler (which needs tables:
+// rimu.Library.upsample_*). xy, CIELAB, ΔE and RGB <-> XYZ over arrays are in bind_colour_arrays.cpp.
 #include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "spectral/chromatic_adaptation.h"
-#include "spectral/cielab.h"
-#include "spectral/delta_e.h"
 #include "spectral/error.h"
 #include "spectral/colour_value_check.h"
 #include "spectral/rgb_upsampler.h"
@@ -19,18 +17,9 @@ Xyz xyz_of(const Array& a, const std::string& name) {
   return {t[0], t[1], t[2]};
 }
 
-Lab lab_of_array(const Array& a, const std::string& name) {
-  const auto t = read_triple(a, name);
-  return {t[0], t[1], t[2]};
-}
-
 Rgb rgb_of(const Array& a, const std::string& name) {
   const auto t = read_triple(a, name);
   return {t[0], t[1], t[2]};
-}
-
-const RgbColourSpace& space_named(const std::string& name, const std::string& argument_name) {
-  return for_argument(argument_name, [&]() -> const RgbColourSpace& { return RgbColourSpace::named(name); });
 }
 
 Xyz white_of(const Array& a, const std::string& name) {
@@ -59,7 +48,7 @@ py::object per_element(const Array& a, const std::string& name, double (*f)(doub
     out.mutable_data()[i] = f(a.data()[i]);
   }
   if (a.ndim() == 0) return py::float_(out.data()[0]);
-  return std::move(out);
+  return out;
 }
 
 py::array_t<double> matrix_array(const Matrix3& m) {
@@ -72,48 +61,7 @@ py::array_t<double> matrix_array(const Matrix3& m) {
 }  // namespace
 
 void bind_spaces(py::module_& m) {
-  m.def(
-      "xy",
-      [](const Array& xyz) {
-        const Xyz v = xyz_of(xyz, "xyz");
-        check_has_chromaticity(v, argument("xyz"));
-        const Chromaticity c = chromaticity_of(v);
-        py::array_t<double> out(2);
-        out.mutable_data()[0] = c.x;
-        out.mutable_data()[1] = c.y;
-        return out;
-      },
-      py::arg("xyz"), "CIE 1931 (x, y) of XYZ.");
-  m.def(
-      "lab",
-      [](const Array& xyz, const Array& white) {
-        const Lab l = lab_of(xyz_of(xyz, "xyz"), white_of(white, "white"));
-        return vec3(l.l, l.a, l.b);
-      },
-      py::arg("xyz"), py::arg("white"), "CIELAB of XYZ relative to a white on the same scale.");
-  m.def(
-      "delta_e_2000",
-      [](const Array& a, const Array& b) { return delta_e_2000(lab_of_array(a, "lab1"), lab_of_array(b, "lab2")); },
-      py::arg("lab1"), py::arg("lab2"), "CIEDE2000 (kL = kC = kH = 1).");
-  m.def(
-      "delta_e_1976",
-      [](const Array& a, const Array& b) { return delta_e_1976(lab_of_array(a, "lab1"), lab_of_array(b, "lab2")); },
-      py::arg("lab1"), py::arg("lab2"), "CIE 1976 ΔE*ab.");
   m.def("colour_spaces", &RgbColourSpace::names, "Names of the built-in RGB spaces.");
-  m.def(
-      "rgb_to_xyz",
-      [](const Array& rgb, const std::string& space) {
-        const Xyz x = space_named(space, "space").to_xyz(rgb_of(rgb, "rgb"));
-        return vec3(x.x, x.y, x.z);
-      },
-      py::arg("rgb"), py::arg("space") = "srgb-linear", "Linear RGB to XYZ (white at Y = 1).");
-  m.def(
-      "xyz_to_rgb",
-      [](const Array& xyz, const std::string& space) {
-        const Rgb c = space_named(space, "space").from_xyz(xyz_of(xyz, "xyz"));
-        return vec3(c.r, c.g, c.b);
-      },
-      py::arg("xyz"), py::arg("space") = "srgb-linear", "XYZ to linear RGB (no adaptation).");
   m.def(
       "rgb_conversion_matrix",
       [](const std::string& source, const std::string& destination, const std::string& cat) {

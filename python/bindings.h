@@ -15,6 +15,7 @@
 
 #include "spectral/chromaticity.h"
 #include "spectral/error.h"
+#include "spectral/rgb_colour_space.h"
 #include "spectral/spectral_library.h"
 #include "spectral/tabulated_spectrum.h"
 
@@ -63,6 +64,9 @@ py::array_t<double> vec3(double a, double b, double c);
 /// The three components of argument `name` (exactly 3 numbers, finite and within ±1e30: check_colour_components).
 std::array<double, 3> read_triple(const Array& a, const std::string& name);
 
+/// The built-in RGB space `name`; an unknown one is reported against `argument_name`.
+const RgbColourSpace& space_named(const std::string& name, const std::string& argument_name);
+
 /// The data folder the module uses unless told otherwise: RIMU_DATA, then the build tree's share/rimu/data, then
 /// the install layout's share/rimu/data beside lib/python3/dist-packages.
 std::string default_data_root();
@@ -70,6 +74,7 @@ std::string default_data_root();
 void bind_colorimetry(py::module_& m);
 void bind_quality(py::module_& m);
 void bind_spaces(py::module_& m);
+void bind_colour_arrays(py::module_& m);
 void bind_render(py::module_& m);
 
 }  // namespace rimu::python

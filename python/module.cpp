@@ -116,6 +116,10 @@ std::array<double, 3> read_triple(const Array& a, const std::string& name) {
   return t;
 }
 
+const RgbColourSpace& space_named(const std::string& name, const std::string& argument_name) {
+  return for_argument(argument_name, [&]() -> const RgbColourSpace& { return RgbColourSpace::named(name); });
+}
+
 std::string default_data_root() {
   if (const char* env = std::getenv("RIMU_DATA")) return env;
   if (std::filesystem::is_directory(std::filesystem::path(RIMU_PYTHON_BUILD_DATA) / "cmf"))
@@ -152,5 +156,6 @@ PYBIND11_MODULE(rimu, m) {
   bind_colorimetry(m);
   bind_quality(m);
   bind_spaces(m);
+  bind_colour_arrays(m);
   bind_render(m);
 }

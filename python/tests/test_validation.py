@@ -139,7 +139,8 @@ class Sweep(unittest.TestCase):
                 ("wavelengths negative", lambda: f(-grid[::-1], values), "wavelengths_nm"),
                 ("empty", lambda: f(np.array([]), np.array([])), "wavelengths_nm"),
                 ("mismatched", lambda: f(grid, values[:-1]), "values"),
-                ("2-D", lambda: f(grid, np.stack([values, values])), "values"),
+                # A stack of reflectances is a stack (..., N); a light is one spectrum.
+                ("2-D", lambda: f(grid, np.stack([values, values])), "values" if kind == "light" else None),
             ]
             rows.append(("zero", lambda: f(grid, zero), "values" if kind == "light" else None))
             return rows
