@@ -2,32 +2,78 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "broadcast.h"
 #include "spectral/colorimetry.h"
+#include "spectral/colorimetry_options.h"
 #include "spectral/error.h"
 #include "spectral/light_units.h"
 #include "spectral/planckian_locus.h"
 #include "spectral/reflectance_report.h"
+#include "spectral/spectrum_values_check.h"
 #include "spectral/tabulated_colorimetry.h"
 
 namespace rimu::python {
 namespace {
 
-StandardObserver observer_of(int degrees) {
-  if (degrees == 2) return StandardObserver::cie1931_2deg;
-  if (degrees == 10) return StandardObserver::cie1964_10deg;
-  throw InputError({}, "observer: expected 2 (CIE 1931) or 10 (CIE 1964), got " + std::to_string(degrees));
-}
+StandardObserver observer_of(int degrees) { return standard_observer_option(degrees, argument("observer")); }
 
 /// "auto" = the default for the data's spacing; otherwise native, 1nm or astm-e308.
 TristimulusMethod method_of(const std::string& name, const TabulatedSpectrum& s) {
-  if (name == "auto") return default_tristimulus_method(s);
-  if (auto m = parse_tristimulus_method(name)) return *m;
-  throw InputError({}, "method: expected auto, native, 1nm or astm-e308, got '" + name + "'");
+  return tristimulus_method_option(name, argument("method")).value_or(default_tristimulus_method(s));
 }
 
 E308Table e308_table_of(bool bandpass_corrected) {
   return bandpass_corrected ? E308Table::table6_bandpass_corrected : E308Table::table5_uncorrected;
 }
+
+/// An illuminant's name is checked first, so that an unknown one is reported against `illuminant` (the E308 weights
+/// that follow may fail too, against `method`).
+void check_illuminant(SpectralLibrary& l, const std::string& name) {
+  for_argument("illuminant", [&] { return l.illuminant(name); });
+}
+
+// reflectance_xyz of every spectrum of a stack `v` (..., N) on the wavelengths `wl` (N,): the checks of a single
+// spectrum, each value named by its indices (values[4, 7]), then the sums in C++ without the GIL.
+py::array_t<double> reflectance_stack_xyz(SpectralLibrary& l, const Array& wl, const Array& v,
+                                          const std::string& illuminant, int observer, const std::string& method,
+                                          bool bandpass_corrected) {
+  const TabulatedSpectrum sampling = sampling_from_array(wl);
+  const std::vector<py::ssize_t> shape(v.shape(), v.shape() + v.ndim());
+  if (shape.back() != wl.size())
+    throw InputError(argument("values"), "expected the last axis to hold one value per wavelength (" +
+                                             std::to_string(wl.size()) + "), got " + std::to_string(shape.back()));
+  const std::vector<double> all(v.data(), v.data() + v.size());
+  {
+    py::gil_scoped_release release;
+    check_reflectance_factors(all, [&](size_t i) { return argument(element_name("values", shape, py::ssize_t(i))); });
+  }
+  check_illuminant(l, illuminant);
+  const StandardObserver o = observer_of(observer);
+  const TristimulusMethod used = method_of(method, sampling);
+  const E308Table table = e308_table_of(bandpass_corrected);
+  const size_t n = size_t(wl.size());
+  const auto xyz_of_row = [&](size_t row) {
+    const TabulatedSpectrum s(sampling.wavelengths_nm(), std::vector<double>(all.begin() + row * n, all.begin() + (row + 1) * n),
+                              Extrapolation::clamp, "(wavelengths_nm, values)");
+    return reflectance_xyz(s, illuminant, o, used, l, table);
+  };
+  const std::vector<py::ssize_t> leading(shape.begin(), shape.end() - 1);
+  py::array_t<double> out = result_array(leading, 3);
+  const size_t rows = all.size() / n;
+  if (rows == 0) return out;
+  const Xyz first = for_argument("method", [&] { return xyz_of_row(0); });  // E308's refusals, before the loop
+  double* o3 = out.mutable_data();
+  o3[0] = first.x, o3[1] = first.y, o3[2] = first.z;
+  for_each_range(rows - 1, [&](size_t begin, size_t end) {
+    for (size_t row = begin + 1; row < end + 1; ++row) {
+      const Xyz xyz = xyz_of_row(row);
+      o3[3 * row] = xyz.x, o3[3 * row + 1] = xyz.y, o3[3 * row + 2] = xyz.z;
+    }
+  });
+  return out;
+}
+
+py::tuple cct_tuple(const CctDuv& c) { return py::make_tuple(c.cct_k, c.duv, cct_validity_name(c.validity)); }
 
 }  // namespace
 
@@ -36,53 +82,67 @@ void bind_colorimetry(py::module_& m) {
   lib.def(
          "illuminant",
          [](SpectralLibrary& l, const std::string& name) {
-           const SpectrumPtr s = l.illuminant(name);
+           const SpectrumPtr s = for_argument("illuminant", [&] { return l.illuminant(name); });
            return arrays_from_spectrum(dynamic_cast<const TabulatedSpectrum&>(*s));
          },
          py::arg("name"), "A CIE illuminant's table (A, D50, D65, E, F1-F12, FL3.x, HP1-5, LED-...) as (wavelengths_nm, power).")
       .def_static("illuminant_names", &SpectralLibrary::illuminant_names)
       .def(
           "colorchecker",
-          [](SpectralLibrary& l, const std::string& patch) { return arrays_from_spectrum(colorchecker_patch(l, patch)); },
+          [](SpectralLibrary& l, const std::string& patch) {
+            return arrays_from_spectrum(colorchecker_patch(l, patch, argument("patch")));
+          },
           py::arg("patch"), "A ColorChecker Classic patch (BabelColor average, 10 nm), e.g. 'dark skin'.")
       .def(
           "tristimulus_method",
-          [](SpectralLibrary&, const Array& wl, const Array& v) {
-            return std::string(method_name(default_tristimulus_method(spectrum_from_arrays(wl, v, Extrapolation::zero, "spectrum"))));
+          [](SpectralLibrary& l, const Array& wl, const Array& v) {
+            return std::string(method_name(default_tristimulus_method(spectrum_from_arrays(wl, v, SpectrumKind::light, l))));
           },
           py::arg("wavelengths_nm"), py::arg("values"),
           "The method 'auto' picks for this sampling: native (1, 5 nm), astm-e308 (10, 20 nm) or 1nm.")
       .def(
           "light_xyz",
           [](SpectralLibrary& l, const Array& wl, const Array& v, int observer, const std::string& method) {
-            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, Extrapolation::zero, "light");
-            const Xyz xyz = light_xyz(s, observer_of(observer), method_of(method, s), l);
+            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, SpectrumKind::light, l);
+            const StandardObserver o = observer_of(observer);
+            const TristimulusMethod used = method_of(method, s);
+            const Xyz xyz = for_argument("method", [&] { return light_xyz(s, o, used, l); });
             return vec3(xyz.x, xyz.y, xyz.z);
           },
           py::arg("wavelengths_nm"), py::arg("values"), py::arg("observer") = 2, py::arg("method") = "auto",
           "Relative XYZ (Y = 100) of a light's spectral power (CIE 15:2004 §7 / ASTM E308).")
       .def(
           "reflectance_xyz",
-          [](SpectralLibrary& l, const Array& wl, const Array& v, const std::string& illuminant, int observer,
-             const std::string& method, bool bandpass_corrected) {
-            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, Extrapolation::clamp, "reflectance");
-            const Xyz xyz = reflectance_xyz(s, illuminant, observer_of(observer), method_of(method, s), l,
-                                            e308_table_of(bandpass_corrected));
+          [](SpectralLibrary& l, const py::object& wavelengths_nm, const py::object& values,
+             const std::string& illuminant, int observer, const std::string& method, bool bandpass_corrected) {
+            const Array wl = numeric_array(wavelengths_nm, "wavelengths_nm"), v = numeric_array(values, "values");
+            if (v.ndim() > 1) return reflectance_stack_xyz(l, wl, v, illuminant, observer, method, bandpass_corrected);
+            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, SpectrumKind::reflectance, l);
+            check_illuminant(l, illuminant);
+            const StandardObserver o = observer_of(observer);
+            const TristimulusMethod used = method_of(method, s);
+            const Xyz xyz = for_argument("method", [&] {
+              return reflectance_xyz(s, illuminant, o, used, l, e308_table_of(bandpass_corrected));
+            });
             return vec3(xyz.x, xyz.y, xyz.z);
           },
           py::arg("wavelengths_nm"), py::arg("values"), py::arg("illuminant") = "D50", py::arg("observer") = 2,
           py::arg("method") = "auto", py::arg("bandpass_corrected") = true,
-          "XYZ of a reflectance factor under a CIE illuminant (perfect diffuser Y = 100). For astm-e308, "
+          "XYZ of a reflectance factor under a CIE illuminant (perfect diffuser Y = 100): values of shape (N,) give "
+          "(3,), a stack (..., N) on the shared wavelengths gives (..., 3). For astm-e308, "
           "bandpass_corrected picks E308 Table 6 (True: data corrected for the instrument's bandpass) or Table 5 "
           "(False: uncorrected data, triangular bandpass = interval).")
       .def(
           "white_xyz",
           [](SpectralLibrary& l, const Array& wl, const std::string& illuminant, int observer, const std::string& method,
              bool bandpass_corrected) {
-            const TabulatedSpectrum s(std::vector<double>(wl.data(), wl.data() + wl.size()),
-                                      std::vector<double>(size_t(wl.size()), 1.0), Extrapolation::clamp, "sampling");
-            const Xyz xyz = perfect_diffuser_xyz(s, illuminant, observer_of(observer), method_of(method, s), l,
-                                                 e308_table_of(bandpass_corrected));
+            const TabulatedSpectrum s = sampling_from_array(wl);
+            check_illuminant(l, illuminant);
+            const StandardObserver o = observer_of(observer);
+            const TristimulusMethod used = method_of(method, s);
+            const Xyz xyz = for_argument("method", [&] {
+              return perfect_diffuser_xyz(s, illuminant, o, used, l, e308_table_of(bandpass_corrected));
+            });
             return vec3(xyz.x, xyz.y, xyz.z);
           },
           py::arg("wavelengths_nm"), py::arg("illuminant") = "D50", py::arg("observer") = 2,
@@ -91,35 +151,50 @@ void bind_colorimetry(py::module_& m) {
       .def(
           "cct_duv",
           [](SpectralLibrary& l, const Array& wl, const Array& v) {
-            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, Extrapolation::zero, "light");
-            const Xyz xyz = light_xyz(s, StandardObserver::cie1931_2deg, default_tristimulus_method(s), l);
-            const CctDuv c = PlanckianLocus(l.observer(StandardObserver::cie1931_2deg)).cct_duv(uv1960_of(xyz));
-            return py::make_tuple(c.cct_k, c.duv);
+            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, SpectrumKind::light, l);
+            const Xyz xyz = for_argument("wavelengths_nm", [&] {
+              return light_xyz(s, StandardObserver::cie1931_2deg, default_tristimulus_method(s), l);
+            });
+            return cct_tuple(PlanckianLocus(l.observer(StandardObserver::cie1931_2deg)).cct_duv(uv1960_of(xyz)));
           },
-          py::arg("wavelengths_nm"), py::arg("values"), "(CCT in K, Duv) by Ohno (2013), CIE 1931 2°.")
+          py::arg("wavelengths_nm"), py::arg("values"),
+          "(CCT in K, Duv, validity) by Ohno (2013), CIE 1931 2°. validity is 'ok', or what the tools print beside a "
+          "CCT that must not be presented as one: 'below 1000 K', 'above 25000 K' (the nearest end of the locus) or "
+          "'|Duv| > 0.05' (too far from the locus for a colour temperature to mean anything).")
       .def(
           "luminous_efficacy",
           [](SpectralLibrary& l, const Array& wl, const Array& v) {
-            return shape_integrals(spectrum_from_arrays(wl, v, Extrapolation::zero, "light"), l.photopic_v()).efficacy_lm_W();
+            return shape_integrals(spectrum_from_arrays(wl, v, SpectrumKind::light, l), l.photopic_v()).efficacy_lm_W();
           },
           py::arg("wavelengths_nm"), py::arg("values"), "Luminous efficacy of radiation, lm/W (360-830 nm).")
       .def(
           "light_scale",
           [](SpectralLibrary& l, const Array& wl, const Array& v, const std::string& amount_text) {
-            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, Extrapolation::zero, "light");
-            const LightAmount amount = parse_light_amount(amount_text, {"", 0, "amount"});
-            const ShapeIntegrals i = shape_integrals(s, l.photopic_v());
-            if (amount.unit == LightUnit::ev100) return luminance_nt_from_ev100(amount.value) / i.luminous;
-            return amount.value / (is_photometric(amount.unit) ? i.luminous : i.radiant);
+            const TabulatedSpectrum s = spectrum_from_arrays(wl, v, SpectrumKind::light, l);
+            const LightAmount amount = parse_light_amount(amount_text, argument("amount"));
+            const ShapeIntegrals i = for_argument("values", [&] { return shape_integrals(s, l.photopic_v()); });
+            return shape_scale(i, amount, argument("values"));
           },
           py::arg("wavelengths_nm"), py::arg("values"), py::arg("amount"),
           "The factor that gives the shape this amount ('800 lm', '2 W/sr', '12 EV' as luminance): "
           "amount / (K_m Σ S V Δλ) for photometric units, amount / ∫ S dλ for radiometric ones.");
 
-  m.def("luminance_from_ev100", &luminance_nt_from_ev100, py::arg("ev100"), "cd/m² a reflected meter reads as EV (ISO 100, K = 12.5).");
-  m.def("ev100_from_luminance", &ev100_from_luminance_nt, py::arg("luminance_nt"));
-  m.def("illuminance_from_ev100", &illuminance_lx_from_ev100, py::arg("ev100"), "lx an incident meter reads as EV (C = 250).");
-  m.def("ev100_from_illuminance", &ev100_from_illuminance_lx, py::arg("illuminance_lx"));
+  // Each takes the amount the tools take (check_light_amount_range: EV in [-50, 50], cd/m² and lx in [1e-30, 1e30]),
+  // so no result is 0, Inf or NaN.
+  const auto checked = [](double (*convert)(double), LightUnit unit, const char* name) {
+    return [convert, unit, name](double value) {
+      check_light_amount_range({value, unit}, argument(name));
+      return convert(value);
+    };
+  };
+  m.def("luminance_from_ev100", checked(&luminance_nt_from_ev100, LightUnit::ev100, "ev100"), py::arg("ev100"),
+        "cd/m² a reflected meter reads as EV (ISO 100, K = 12.5).");
+  m.def("ev100_from_luminance", checked(&ev100_from_luminance_nt, LightUnit::nit, "luminance_nt"),
+        py::arg("luminance_nt"), "The EV at ISO 100 a reflected meter (K = 12.5) reads for this luminance, cd/m².");
+  m.def("illuminance_from_ev100", checked(&illuminance_lx_from_ev100, LightUnit::ev100, "ev100"), py::arg("ev100"),
+        "lx an incident meter reads as EV (C = 250).");
+  m.def("ev100_from_illuminance", checked(&ev100_from_illuminance_lx, LightUnit::lux, "illuminance_lx"),
+        py::arg("illuminance_lx"), "The EV at ISO 100 an incident meter (C = 250) reads for this illuminance, lx.");
 }
 
 }  // namespace rimu::python

@@ -7,6 +7,7 @@
 #include "bindings.h"
 #include "render/camera_exposure.h"
 #include "render/film.h"
+#include "render/render_size.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
 #include "spectral/error.h"
@@ -21,22 +22,25 @@ PixelFilter filter_of(const FilterSettings& f) {
   return PixelFilter::gaussian(f.radius_px, f.sigma_px);
 }
 
-py::array_t<float> render_scene(SpectralLibrary& library, const std::string& scene_path, std::optional<int> width,
-                                std::optional<int> height, std::optional<int> samples_per_pixel,
-                                std::optional<uint64_t> seed, int threads) {
-  const std::unique_ptr<Scene> scene = load_scene(scene_path.empty() ? default_scene_path(library) : std::filesystem::path(scene_path), library);
+py::array_t<float> render_scene(SpectralLibrary& library, const std::string& scene_path, std::optional<long long> width,
+                                std::optional<long long> height, std::optional<long long> samples_per_pixel,
+                                std::optional<uint64_t> seed, long long threads) {
+  // Every number is checked before the scene is loaded, against the limits `rimu` applies to its options.
+  if (samples_per_pixel) check_render_count(*samples_per_pixel, 1, kMaxSamplesPerPixel, argument("samples_per_pixel"));
+  if (threads != 0) check_render_count(threads, 1, kMaxRenderThreads, argument("threads"));
+  const std::unique_ptr<Scene> scene = for_argument("scene", [&] {
+    return load_scene(scene_path.empty() ? default_scene_path(library) : std::filesystem::path(scene_path), library);
+  });
   RenderSettings& s = scene->settings;
-  if (width) s.width = *width;
-  if (height) s.height = *height;
-  if (samples_per_pixel) s.samples_per_pixel = *samples_per_pixel;
+  std::tie(s.width, s.height) =
+      resolution_keeping_aspect(s.width, s.height, width, height, argument("width"), argument("height"));
+  if (samples_per_pixel) s.samples_per_pixel = int(*samples_per_pixel);
   if (seed) s.seed = *seed;
-  if (s.width < 1 || s.height < 1 || s.samples_per_pixel < 1)
-    throw InputError({}, "width, height and samples_per_pixel must be at least 1");
   Film film({s.width, s.height, std::nullopt, 0}, SpectralResponse::from_spec(library, s.film_response));
   film.set_output_transform(film_output_transform(s.camera_exposure, film.response(), library));
   RenderOptions options;
   options.samples_per_pixel = s.samples_per_pixel;
-  options.threads = threads;
+  options.threads = int(threads);
   options.seed = s.seed;
   options.sampler = s.sampler;
   {
@@ -61,6 +65,8 @@ void bind_render(py::module_& m) {
           py::arg("samples_per_pixel") = py::none(), py::arg("seed") = py::none(), py::arg("threads") = 0,
           "Renders a scene file (default: the Cornell box) and returns the film as a float32 array of shape "
           "(height, width, 3): CIE XYZ for the default film, after the scene's exposure and white balance. "
+          "width or height given alone keeps the scene's aspect ratio (the other is scaled and rounded); both at "
+          "most 32768. threads=0 uses every core. "
           "Deterministic for a given seed and sample count.");
 }
 

@@ -1,47 +1,54 @@
-// Colour arithmetic that needs no tables: xy, CIELAB, ΔE, RGB spaces and chromatic adaptation; and the RGB
-// upsampler (which does: rimu.Library.upsample_*).
+// RGB spaces' matrices, chromatic adaptation and the sRGB curve; and the RGB upsampler (which needs tables:
+// rimu.Library.upsample_*). xy, CIELAB, ΔE and RGB <-> XYZ over arrays are in bind_colour_arrays.cpp.
 #include <pybind11/stl.h>
 
 #include "bindings.h"
 #include "spectral/chromatic_adaptation.h"
-#include "spectral/cielab.h"
-#include "spectral/delta_e.h"
 #include "spectral/error.h"
+#include "spectral/colour_value_check.h"
 #include "spectral/rgb_upsampler.h"
+#include "spectral/upsample_report.h"
 
 namespace rimu::python {
 namespace {
 
-Xyz xyz_of(const Array& a, const char* what) {
-  Xyz x;
-  read3(a, x.x, x.y, x.z, what);
-  return x;
+Xyz xyz_of(const Array& a, const std::string& name) {
+  const auto t = read_triple(a, name);
+  return {t[0], t[1], t[2]};
 }
 
-Lab lab_of_array(const Array& a, const char* what) {
-  Lab l;
-  read3(a, l.l, l.a, l.b, what);
-  return l;
+Rgb rgb_of(const Array& a, const std::string& name) {
+  const auto t = read_triple(a, name);
+  return {t[0], t[1], t[2]};
 }
 
-CatMethod cat_of(const std::string& name) {
-  if (name == "bradford") return CatMethod::bradford;
-  if (name == "cat02") return CatMethod::cat02;
-  if (name == "von-kries") return CatMethod::von_kries;
-  if (name == "xyz-scaling") return CatMethod::xyz_scaling;
-  throw InputError({}, "cat: expected bradford, cat02, von-kries or xyz-scaling, got '" + name + "'");
+Xyz white_of(const Array& a, const std::string& name) {
+  const Xyz w = xyz_of(a, name);
+  check_white_xyz(w, argument(name));
+  return w;
 }
 
-// (wavelengths_nm, values at 1 nm, gamut_mapped) of `upsample`(upsampler of `space`, `rgb`): the reflectance and
-// emission upsamplings return the same shape of result.
-template <typename Upsample>
-py::tuple upsampled_arrays(SpectralLibrary& library, const Array& rgb, const std::string& space, Upsample upsample) {
-  Rgb c;
-  read3(rgb, c.r, c.g, c.b, "rgb");
-  const RgbUpsampler upsampler(library, RgbColourSpace::named(space));
-  const auto u = upsample(upsampler, c);
-  const py::tuple arrays = arrays_at_1nm(u.spectrum);
+// (wavelengths_nm, values at 1 nm, gamut_mapped) of upsample_colour, the checks and the upsampling
+// `rimu-colour upsample` uses.
+py::tuple upsampled_arrays(SpectralLibrary& library, const Array& rgb, const std::string& space, bool emission) {
+  const Rgb c = rgb_of(rgb, "rgb");
+  const RgbUpsampler upsampler(library, space_named(space, "space"));
+  const UpsampledColour u = upsample_colour(upsampler, c, emission, argument("rgb"));
+  const py::tuple arrays = arrays_at_1nm(*u.spectrum);
   return py::make_tuple(arrays[0], arrays[1], u.gamut_mapped);
+}
+
+// f of every element of argument `name` (check_colour_component first), in an array of its shape; a number for a
+// number.
+py::object per_element(const Array& a, const std::string& name, double (*f)(double)) {
+  const std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
+  py::array_t<double> out(shape);
+  for (py::ssize_t i = 0; i < a.size(); ++i) {
+    check_colour_component(a.data()[i], argument(element_name(name, shape, i)));
+    out.mutable_data()[i] = f(a.data()[i]);
+  }
+  if (a.ndim() == 0) return py::float_(out.data()[0]);
+  return out;
 }
 
 py::array_t<double> matrix_array(const Matrix3& m) {
@@ -54,81 +61,43 @@ py::array_t<double> matrix_array(const Matrix3& m) {
 }  // namespace
 
 void bind_spaces(py::module_& m) {
-  m.def(
-      "xy",
-      [](const Array& xyz) {
-        const Chromaticity c = chromaticity_of(xyz_of(xyz, "xyz"));
-        py::array_t<double> out(2);
-        out.mutable_data()[0] = c.x;
-        out.mutable_data()[1] = c.y;
-        return out;
-      },
-      py::arg("xyz"), "CIE 1931 (x, y) of XYZ.");
-  m.def(
-      "lab",
-      [](const Array& xyz, const Array& white) {
-        const Lab l = lab_of(xyz_of(xyz, "xyz"), xyz_of(white, "white"));
-        return vec3(l.l, l.a, l.b);
-      },
-      py::arg("xyz"), py::arg("white"), "CIELAB of XYZ relative to a white on the same scale.");
-  m.def(
-      "delta_e_2000",
-      [](const Array& a, const Array& b) { return delta_e_2000(lab_of_array(a, "lab1"), lab_of_array(b, "lab2")); },
-      py::arg("lab1"), py::arg("lab2"), "CIEDE2000 (kL = kC = kH = 1).");
-  m.def(
-      "delta_e_1976",
-      [](const Array& a, const Array& b) { return delta_e_1976(lab_of_array(a, "lab1"), lab_of_array(b, "lab2")); },
-      py::arg("lab1"), py::arg("lab2"), "CIE 1976 ΔE*ab.");
   m.def("colour_spaces", &RgbColourSpace::names, "Names of the built-in RGB spaces.");
-  m.def(
-      "rgb_to_xyz",
-      [](const Array& rgb, const std::string& space) {
-        Rgb c;
-        read3(rgb, c.r, c.g, c.b, "rgb");
-        const Xyz x = RgbColourSpace::named(space).to_xyz(c);
-        return vec3(x.x, x.y, x.z);
-      },
-      py::arg("rgb"), py::arg("space") = "srgb-linear", "Linear RGB to XYZ (white at Y = 1).");
-  m.def(
-      "xyz_to_rgb",
-      [](const Array& xyz, const std::string& space) {
-        const Rgb c = RgbColourSpace::named(space).from_xyz(xyz_of(xyz, "xyz"));
-        return vec3(c.r, c.g, c.b);
-      },
-      py::arg("xyz"), py::arg("space") = "srgb-linear", "XYZ to linear RGB (no adaptation).");
   m.def(
       "rgb_conversion_matrix",
       [](const std::string& source, const std::string& destination, const std::string& cat) {
-        return matrix_array(rgb_conversion_matrix(RgbColourSpace::named(source), RgbColourSpace::named(destination),
-                                                  cat_of(cat)));
+        return matrix_array(rgb_conversion_matrix(space_named(source, "source"), space_named(destination, "destination"),
+                                                  cat_method_option(cat, argument("cat"))));
       },
       py::arg("source"), py::arg("destination"), py::arg("cat") = "bradford",
       "3x3 matrix from linear RGB in one space to another, adapting their whites.");
   m.def(
       "chromatic_adaptation_matrix",
       [](const Array& source_white, const Array& destination_white, const std::string& cat) {
-        return matrix_array(chromatic_adaptation_matrix(xyz_of(source_white, "source_white"),
-                                                        xyz_of(destination_white, "destination_white"), cat_of(cat)));
+        return matrix_array(chromatic_adaptation_matrix(white_of(source_white, "source_white"),
+                                                        white_of(destination_white, "destination_white"),
+                                                        cat_method_option(cat, argument("cat"))));
       },
       py::arg("source_white"), py::arg("destination_white"), py::arg("cat") = "bradford",
       "XYZ->XYZ von Kries-type transform between two whites.");
-  m.def("srgb_encode", py::vectorize(&srgb_encode), py::arg("linear"), "The sRGB transfer function.");
-  m.def("srgb_decode", py::vectorize(&srgb_decode), py::arg("encoded"));
+  m.def(
+      "srgb_encode", [](const Array& linear) { return per_element(linear, "linear", &srgb_encode); }, py::arg("linear"),
+      "The sRGB (IEC 61966-2-1) transfer function, element by element (a number or an array of any shape).");
+  m.def(
+      "srgb_decode", [](const Array& encoded) { return per_element(encoded, "encoded", &srgb_decode); },
+      py::arg("encoded"), "The inverse of srgb_encode, element by element.");
 
   auto lib = py::reinterpret_borrow<py::class_<SpectralLibrary>>(m.attr("Library"));
   lib.def(
          "upsample_reflectance",
          [](SpectralLibrary& l, const Array& rgb, const std::string& space) {
-           return upsampled_arrays(l, rgb, space,
-                                   [](const RgbUpsampler& u, const Rgb& c) { return u.upsample_reflectance(c); });
+           return upsampled_arrays(l, rgb, space, false);
          },
          py::arg("rgb"), py::arg("space") = "srgb-linear",
          "The smoothest reflectance with this linear RGB: (wavelengths_nm, values at 1 nm, gamut_mapped).")
       .def(
           "upsample_emission",
           [](SpectralLibrary& l, const Array& rgb, const std::string& space) {
-            return upsampled_arrays(l, rgb, space,
-                                    [](const RgbUpsampler& u, const Rgb& c) { return u.upsample_emission(c); });
+            return upsampled_arrays(l, rgb, space, true);
           },
           py::arg("rgb"), py::arg("space") = "srgb-linear",
           "An emission spectrum with this linear RGB: (wavelengths_nm, values at 1 nm, gamut_mapped).");

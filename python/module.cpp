@@ -6,17 +6,83 @@
 #include <filesystem>
 
 #include "bindings.h"
+#include "spectral/colour_value_check.h"
 #include "spectral/error.h"
+#include "spectral/spectrum_source.h"
+#include "spectral/spectrum_values_check.h"
 
 namespace rimu::python {
 
-TabulatedSpectrum spectrum_from_arrays(const Array& wavelengths_nm, const Array& values, Extrapolation extrapolation,
-                                       const std::string& what) {
-  if (wavelengths_nm.ndim() != 1 || values.ndim() != 1 || wavelengths_nm.size() != values.size())
-    throw InputError({}, what + ": wavelengths and values must be 1-D arrays of the same length");
-  std::vector<double> l(wavelengths_nm.data(), wavelengths_nm.data() + wavelengths_nm.size());
-  std::vector<double> v(values.data(), values.data() + values.size());
-  return TabulatedSpectrum(std::move(l), std::move(v), extrapolation, what);
+namespace {
+
+// Where element i of argument `name` came from: "values[3]".
+SampleLocation element_of(const std::string& name) {
+  return [name](size_t i) { return argument(name + "[" + std::to_string(i) + "]"); };
+}
+
+std::vector<double> vector_of(const Array& a) { return std::vector<double>(a.data(), a.data() + a.size()); }
+
+}  // namespace
+
+std::string element_name(const std::string& name, const std::vector<py::ssize_t>& shape, py::ssize_t flat_index) {
+  if (shape.empty()) return name;
+  std::string indices;
+  for (size_t d = shape.size(); d-- > 0;) {
+    indices = std::to_string(flat_index % shape[d]) + (indices.empty() ? "" : ", ") + indices;
+    flat_index /= shape[d];
+  }
+  return name + "[" + indices + "]";
+}
+
+namespace {
+
+std::string shape_text(const Array& a) {
+  std::string out = "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) out += (d ? ", " : "") + std::to_string(a.shape(d));
+  return out + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// The table's own checks (at least two samples) reported against the wavelengths argument.
+TabulatedSpectrum table_at_argument(std::vector<double> l, std::vector<double> v, Extrapolation extrapolation) {
+  try {
+    return TabulatedSpectrum(std::move(l), std::move(v), extrapolation, "(wavelengths_nm, values)");
+  } catch (const InputError& e) {
+    throw InputError(argument("wavelengths_nm"), e.explanation());
+  }
+}
+
+void check_one_dimensional(const Array& a, const std::string& name) {
+  if (a.ndim() != 1)
+    throw InputError(argument(name), "expected a 1-D array, got " + std::to_string(a.ndim()) + " dimensions");
+}
+
+}  // namespace
+
+TabulatedSpectrum spectrum_from_arrays(const Array& wavelengths_nm, const Array& values, SpectrumKind kind,
+                                       SpectralLibrary& library) {
+  check_one_dimensional(wavelengths_nm, "wavelengths_nm");
+  check_one_dimensional(values, "values");
+  if (values.size() != wavelengths_nm.size())
+    throw InputError(argument("values"), "expected one value per wavelength (" + std::to_string(wavelengths_nm.size()) +
+                                             "), got " + std::to_string(values.size()));
+  std::vector<double> l = vector_of(wavelengths_nm), v = vector_of(values);
+  check_wavelengths_nm(l, element_of("wavelengths_nm"));
+  if (kind == SpectrumKind::light)
+    check_spectral_power(v, element_of("values"));
+  else
+    check_reflectance_factors(v, element_of("values"));
+  TabulatedSpectrum s = table_at_argument(std::move(l), std::move(v),
+                                          kind == SpectrumKind::light ? Extrapolation::zero : Extrapolation::clamp);
+  if (kind == SpectrumKind::light) check_emission_spectrum(s, library, argument("values"));
+  return s;
+}
+
+TabulatedSpectrum sampling_from_array(const Array& wavelengths_nm) {
+  check_one_dimensional(wavelengths_nm, "wavelengths_nm");
+  std::vector<double> l = vector_of(wavelengths_nm);
+  check_wavelengths_nm(l, element_of("wavelengths_nm"));
+  const size_t n = l.size();
+  return table_at_argument(std::move(l), std::vector<double>(n, 1.0), Extrapolation::clamp);
 }
 
 py::tuple arrays_from_spectrum(const TabulatedSpectrum& s) {
@@ -43,11 +109,15 @@ py::array_t<double> vec3(double a, double b, double c) {
   return out;
 }
 
-void read3(const Array& a, double& x, double& y, double& z, const char* what) {
-  if (a.size() != 3) throw InputError({}, std::string(what) + ": expected 3 values");
-  x = a.data()[0];
-  y = a.data()[1];
-  z = a.data()[2];
+std::array<double, 3> read_triple(const Array& a, const std::string& name) {
+  if (a.size() != 3) throw InputError(argument(name), "expected 3 values, got an array of shape " + shape_text(a));
+  const std::array<double, 3> t{a.data()[0], a.data()[1], a.data()[2]};
+  check_colour_components(t[0], t[1], t[2], argument(name));
+  return t;
+}
+
+const RgbColourSpace& space_named(const std::string& name, const std::string& argument_name) {
+  return for_argument(argument_name, [&]() -> const RgbColourSpace& { return RgbColourSpace::named(name); });
 }
 
 std::string default_data_root() {
@@ -86,5 +156,6 @@ PYBIND11_MODULE(rimu, m) {
   bind_colorimetry(m);
   bind_quality(m);
   bind_spaces(m);
+  bind_colour_arrays(m);
   bind_render(m);
 }

@@ -22,7 +22,8 @@ class Colorimetry(unittest.TestCase):
 
     def test_cct_of_illuminant_a(self):
         # CIE 15:2004: illuminant A has a CCT of about 2856 K (2848 K with the old c2); within 1 K.
-        cct, duv = self.lib.cct_duv(*self.lib.illuminant("A"))
+        cct, duv, validity = self.lib.cct_duv(*self.lib.illuminant("A"))
+        self.assertEqual(validity, "ok")
         self.assertLess(abs(cct - 2856), 1.0)
         self.assertLess(abs(duv), 1e-4)
 

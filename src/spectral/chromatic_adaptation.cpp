@@ -4,6 +4,14 @@
 
 namespace rimu {
 
+CatMethod cat_method_option(const std::string& name, const SourceLocation& where) {
+  if (name == "bradford") return CatMethod::bradford;
+  if (name == "cat02") return CatMethod::cat02;
+  if (name == "von-kries") return CatMethod::von_kries;
+  if (name == "xyz-scaling") return CatMethod::xyz_scaling;
+  throw InputError(where, "expected bradford, cat02, von-kries or xyz-scaling, got '" + name + "'");
+}
+
 Matrix3 cone_response_matrix(CatMethod method) {
   switch (method) {
     case CatMethod::bradford:

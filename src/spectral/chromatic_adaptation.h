@@ -1,7 +1,10 @@
 // Von Kries-type chromatic adaptation transforms (CATs): scale cone-like responses by the ratio of two whites.
 #pragma once
 
+#include <string>
+
 #include "spectral/chromaticity.h"
+#include "spectral/error.h"
 #include "spectral/matrix3.h"
 #include "spectral/rgb_colour_space.h"
 
@@ -14,6 +17,9 @@ enum class CatMethod {
   von_kries,    ///< Hunt-Pointer-Estevez cone fundamentals (D65-normalised)
   xyz_scaling,  ///< the identity: scale X, Y, Z themselves (the crudest CAT, for comparison)
 };
+
+/// A method by name: bradford, cat02, von-kries or xyz-scaling. Throws InputError at `where` for any other.
+CatMethod cat_method_option(const std::string& name, const SourceLocation& where);
 
 /// The XYZ→cone matrix M_A of a method (rows give L, M, S or the method's sharpened equivalents).
 Matrix3 cone_response_matrix(CatMethod method);

@@ -139,6 +139,16 @@ ShapeIntegrals shape_integrals(const Spectrum& shape, const TabulatedSpectrum& v
   return result;
 }
 
+double shape_scale(const ShapeIntegrals& integrals, LightAmount amount, const SourceLocation& where) {
+  const double value = amount.unit == LightUnit::ev100 ? luminance_nt_from_ev100(amount.value) : amount.value;
+  const double scale = value / (is_photometric(amount.unit) ? integrals.luminous : integrals.radiant);
+  if (!(std::isfinite(scale) && scale > 0.0))
+    throw InputError(where, "the factor that gives this spectrum " + format_light_amount(amount) +
+                                " is not a finite number: the spectrum's values are too small; give them in a "
+                                "larger unit");
+  return scale;
+}
+
 double luminance_nt_from_ev100(double ev100) { return kReflectedMeterConstant / 100.0 * std::exp2(ev100); }
 double ev100_from_luminance_nt(double luminance_nt) { return std::log2(100.0 * luminance_nt / kReflectedMeterConstant); }
 double illuminance_lx_from_ev100(double ev100) { return kIncidentMeterConstant / 100.0 * std::exp2(ev100); }

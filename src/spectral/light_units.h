@@ -78,6 +78,11 @@ struct ShapeIntegrals {
 /// Both integrals of `shape`; `v` is the CIE 1924 V(λ) (SpectralLibrary::photopic_v()). Cost: two 471-point sums.
 ShapeIntegrals shape_integrals(const Spectrum& shape, const TabulatedSpectrum& v);
 
+/// The factor that gives a shape with these integrals `amount`: amount / luminous for photometric units (an EV read
+/// as a luminance), amount / radiant for radiometric ones. Throws InputError at `where` if the factor is not a
+/// finite positive number (a shape so faint that even the smallest amount overflows it).
+double shape_scale(const ShapeIntegrals& integrals, LightAmount amount, const SourceLocation& where);
+
 /// Reflected-light meter calibration constant K (ISO 2720:1974; 12.5 as Canon, Nikon and Sekonic use), cd·s/m².
 inline constexpr double kReflectedMeterConstant = 12.5;
 /// Incident-light meter calibration constant C for a flat receptor (ISO 2720:1974 allows 240-400; 250 is usual), lx·s.

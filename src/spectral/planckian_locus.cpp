@@ -141,4 +141,14 @@ CctDuv cct_duv_of(const Spectrum& source, const Observer& observer) {
   return PlanckianLocus(observer).cct_duv(uv1960_of(xyz));
 }
 
+const char* cct_validity_name(CctValidity v) {
+  switch (v) {
+    case CctValidity::ok: return "ok";
+    case CctValidity::below_range: return "below 1000 K";
+    case CctValidity::above_range: return "above 25000 K";
+    case CctValidity::far_from_locus: return "|Duv| > 0.05";
+  }
+  return "?";
+}
+
 }  // namespace rimu

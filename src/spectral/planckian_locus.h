@@ -20,6 +20,9 @@ enum class CctValidity {
   far_from_locus,  ///< |Duv| > 0.05: CCT is computed but ill-defined (Ohno 2013 and CIE 15 limit it to 0.05)
 };
 
+/// "ok", "below 1000 K", "above 25000 K" or "|Duv| > 0.05": how every report names a CctValidity.
+const char* cct_validity_name(CctValidity validity);
+
 /// Correlated colour temperature and distance from the Planckian locus in CIE 1960 (u, v).
 struct CctDuv {
   double cct_k = 0.0;

@@ -9,6 +9,7 @@
 #include "spectral/csv_table.h"
 #include "spectral/delta_e.h"
 #include "spectral/error.h"
+#include "spectral/spectrum_values_check.h"
 #include "spectral/tabulated_colorimetry.h"
 #include "spectral/tristimulus_method_json.h"
 
@@ -59,17 +60,12 @@ TabulatedSpectrum load_reflectance_csv(const std::filesystem::path& path, const 
     throw InputError({path.string(), 0, ""}, "needs a wavelength_nm column and at least one reflectance column");
   const std::string name = column.empty() ? table.header()[1] : column;
   const size_t index = table.column_index(name);
-  const std::vector<double> values = table.numbers(index);
-  for (size_t row = 0; row < values.size(); ++row)
-    if (values[row] > kMaxReflectanceFactor)
-      throw InputError({path.string(), table.line_of_row(row), name},
-                       format("reflectance factor %g is above %.1f: expected a factor in 0-1 (is the file in "
-                              "percent?)",
-                              values[row], kMaxReflectanceFactor));
+  check_reflectance_factors(table.numbers(index),
+                            [&](size_t row) { return SourceLocation{path.string(), table.line_of_row(row), name}; });
   return TabulatedSpectrum::from_csv(table, name, Extrapolation::clamp);
 }
 
-TabulatedSpectrum colorchecker_patch(SpectralLibrary& library, const std::string& name) {
+TabulatedSpectrum colorchecker_patch(SpectralLibrary& library, const std::string& name, const SourceLocation& where) {
   const CsvTable& table = library.table(kColorCheckerFile);
   for (size_t c = 1; c < table.column_count(); ++c) {
     const std::string& column = table.header()[c];
@@ -81,7 +77,7 @@ TabulatedSpectrum colorchecker_patch(SpectralLibrary& library, const std::string
   }
   std::string known;
   for (size_t c = 1; c < table.column_count(); ++c) known += (c == 1 ? "" : ", ") + spaced(table.header()[c]);
-  throw InputError({"", 0, "--patch"}, "unknown ColorChecker patch '" + name + "'; the patches are: " + known);
+  throw InputError(where, "unknown ColorChecker patch '" + name + "'; the patches are: " + known);
 }
 
 ReflectanceColour measure_reflectance(const TabulatedSpectrum& sample, const ReflectanceConditions& conditions,

@@ -9,23 +9,20 @@
 #include "spectral/cielab.h"
 #include "spectral/rgb_colour_space.h"
 #include "spectral/spectral_library.h"
+#include "spectral/spectrum_values_check.h"
 #include "spectral/tabulated_spectrum.h"
 #include "spectral/tristimulus_method.h"
 
 namespace rimu {
 
-/// A reflectance factor above this is refused: fluorescent samples reach ~1.3, anything higher is a file in
-/// percent or a radiance by mistake.
-inline constexpr double kMaxReflectanceFactor = 1.5;
-
 /// Reads one column of a CSV (first column wavelength_nm; `column` empty = the second column) as a reflectance
 /// factor, held at its end values beyond the data (CIE 15:2004 §7.2.2.1). Throws InputError with file:line for
-/// a value above 1.5 and for everything CsvTable / TabulatedSpectrum refuse.
+/// a value outside 0-1.5 (check_reflectance_factors) and for everything CsvTable / TabulatedSpectrum refuse.
 TabulatedSpectrum load_reflectance_csv(const std::filesystem::path& path, const std::string& column);
 
 /// A ColorChecker Classic patch (BabelColor average, 10 nm) by its name with spaces ("dark skin",
-/// "white 9.5 (.05 D)") or its column name ("dark_skin"). Throws InputError listing the 24 names.
-TabulatedSpectrum colorchecker_patch(SpectralLibrary& library, const std::string& name);
+/// "white 9.5 (.05 D)") or its column name ("dark_skin"). Throws InputError at `where` listing the 24 names.
+TabulatedSpectrum colorchecker_patch(SpectralLibrary& library, const std::string& name, const SourceLocation& where = {});
 
 struct ReflectanceConditions {
   std::string illuminant = "D50";

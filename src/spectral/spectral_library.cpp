@@ -215,8 +215,8 @@ const E308WeightTable& SpectralLibrary::e308_weights(std::string_view illuminant
     char step[32];
     std::snprintf(step, sizeof step, "%g", interval_nm);
     throw InputError({}, "no ASTM E308 weights for illuminant '" + std::string(illuminant) + "' at " + step +
-                             " nm; weights exist for " + names + " at 10 and 20 nm (2° and 10°); use --method "
-                             "native or 1nm");
+                             " nm; weights exist for " + names + " at 10 and 20 nm (2° and 10°); use the native "
+                             "or 1nm tristimulus method");
   }
   std::string lower(illuminant);
   for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));

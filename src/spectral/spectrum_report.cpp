@@ -14,16 +14,6 @@
 namespace rimu {
 namespace {
 
-const char* validity_name(CctValidity v) {
-  switch (v) {
-    case CctValidity::ok: return "ok";
-    case CctValidity::below_range: return "below 1000 K";
-    case CctValidity::above_range: return "above 25000 K";
-    case CctValidity::far_from_locus: return "|Duv| > 0.05";
-  }
-  return "?";
-}
-
 Rgb colour_at_unit_luminance(const Xyz& xyz, const RgbColourSpace& space) {
   if (xyz.y <= 0.0) return {};
   return space.from_xyz({xyz.x / xyz.y, 1.0, xyz.z / xyz.y});
@@ -99,7 +89,7 @@ std::string report_text(const SpectrumReport& r) {
   out << format("XYZ (10°, Y=100)   %.4f %.4f %.4f\n", r.xyz_10deg.x, r.xyz_10deg.y, r.xyz_10deg.z);
   out << format("xy  (10°)          %.5f %.5f\n", r.xy_10deg.x, r.xy_10deg.y);
   out << format("CCT                %.1f K   Duv %.5f", r.cct.cct_k, r.cct.duv) << "   ("
-      << validity_name(r.cct.validity) << ")\n";
+      << cct_validity_name(r.cct.validity) << ")\n";
   out << format("luminous efficacy  %.2f lm/W photopic, %.2f lm/W scotopic (of radiation, 360-830 nm)\n",
                 r.luminous_efficacy_lm_w, r.scotopic_luminous_efficacy_lm_w);
   out << format("absolute Y         %.6g (K_m·∫S·ȳ dλ: cd/m² if S is in W/(m²·sr·nm))\n", r.absolute_xyz.y);

@@ -8,6 +8,7 @@
 #include "spectral/csv_table.h"
 #include "spectral/daylight.h"
 #include "spectral/error.h"
+#include "spectral/spectrum_values_check.h"
 
 namespace rimu {
 namespace {
@@ -30,16 +31,29 @@ SpectrumPtr load_csv_emission(const SpectrumSource& source) {
     throw InputError({source.name, 1, ""}, "expected at least two columns: wavelength_nm and a spectral power");
   const std::string column = source.column.empty() ? table.header()[1] : source.column;
   const size_t index = table.column_index(column);
-  const std::vector<double> power = table.numbers(index);
-  for (size_t r = 0; r < power.size(); ++r) {
-    if (power[r] < 0.0)
-      throw InputError({source.name, table.line_of_row(r), ""},
-                       "column '" + column + "': spectral power cannot be negative, found " + table.cell(r, index));
-  }
+  check_spectral_power(table.numbers(index),
+                       [&](size_t row) { return SourceLocation{source.name, table.line_of_row(row), column}; });
   return std::make_shared<TabulatedSpectrum>(TabulatedSpectrum::from_csv(table, column, Extrapolation::zero));
 }
 
 }  // namespace
+
+void check_emission_spectrum(const Spectrum& spectrum, SpectralLibrary& library, const SourceLocation& where) {
+  // A light with no power where any observer can see cannot be given a colour or a luminous intensity.
+  const Observer& o = library.observer(StandardObserver::cie1931_2deg);
+  const Xyz raw = emission_xyz(spectrum, o);
+  // Relative colorimetry scales by 100 / Y: an integral that overflows, or whose reciprocal does, has no colour.
+  const double sum = raw.x + raw.y + raw.z;
+  if (!std::isfinite(sum))
+    throw InputError(where, "the spectrum " + spectrum.describe() + " overflows: its integral over 360-830 nm is not "
+                            "a finite number; give its values in a smaller unit");
+  if (sum > 0.0 && !std::isfinite(1.0 / sum))
+    throw InputError(where, "the spectrum " + spectrum.describe() + " is too faint to compute with: its integral over "
+                            "360-830 nm is below 1e-308; give its values in a larger unit");
+  if (!(sum > 0.0))
+    throw InputError(where, "the spectrum " + spectrum.describe() +
+                                " has no power in 360-830 nm, so it has no colour or luminous value");
+}
 
 std::string SpectrumSource::describe() const {
   std::ostringstream out;
@@ -71,13 +85,8 @@ SpectrumPtr make_emission_spectrum(const SpectrumSource& source, SpectralLibrary
         spectrum = std::make_shared<ConstantSpectrum>(source.number);
         break;
     }
-    // A light with no power where any observer can see cannot be given a colour or a luminous intensity.
-    const Observer& o = library.observer(StandardObserver::cie1931_2deg);
-    const Xyz raw = emission_xyz(*spectrum, o);
-    if (!(raw.x + raw.y + raw.z > 0.0))
-      throw InputError({source.kind == SpectrumSource::Kind::csv_file ? source.name : "", 0, ""},
-                       "the spectrum " + spectrum->describe() +
-                           " has no power in 360-830 nm, so it has no colour or luminous value");
+    check_emission_spectrum(*spectrum, library,
+                            {source.kind == SpectrumSource::Kind::csv_file ? source.name : "", 0, ""});
   } catch (const InputError& error) {
     rethrow_at(source.where, error);
   }

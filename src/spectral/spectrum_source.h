@@ -28,4 +28,9 @@ struct SpectrumSource {
 /// (0, 1e6] K, a daylight CCT outside 4000-25000 K, or a spectrum with no power in 360-830 nm.
 SpectrumPtr make_emission_spectrum(const SpectrumSource& source, SpectralLibrary& library);
 
+/// The checks every emission spectrum passes once built, whatever front end built it (make_emission_spectrum, the
+/// Python module's arrays): it has power in 360-830 nm, and its integrals there are finite numbers whose reciprocals
+/// are finite too (relative colorimetry divides by them). Throws InputError at `where`.
+void check_emission_spectrum(const Spectrum& spectrum, SpectralLibrary& library, const SourceLocation& where);
+
 }  // namespace rimu

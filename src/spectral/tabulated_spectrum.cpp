@@ -5,6 +5,7 @@
 
 #include "spectral/csv_table.h"
 #include "spectral/error.h"
+#include "spectral/spectrum_values_check.h"
 #include "spectral/wavelength_range.h"
 
 namespace rimu {
@@ -42,18 +43,7 @@ TabulatedSpectrum TabulatedSpectrum::from_csv(const CsvTable& table, const std::
                                               Extrapolation extrapolation) {
   std::vector<double> lambda = table.numbers(0);
   std::vector<double> values = table.numbers(table.column_index(column));
-  // Tables from optics databases are often in micrometres (0.38-0.78): read as nanometres they would lie far below
-  // the visible range and give a silently black or constant spectrum. No useful table ends below 100 nm.
-  if (lambda.back() < 100.0)
-    throw InputError({table.name(), table.line_of_row(lambda.size() - 1), ""},
-                     "the wavelengths end at " + table.cell(lambda.size() - 1, 0) +
-                         ", below 100 nm: are they in micrometres? expected " + kExpectedCsvLayout);
-  for (size_t r = 1; r < lambda.size(); ++r) {
-    if (!(lambda[r] > lambda[r - 1]))
-      throw InputError({table.name(), table.line_of_row(r), ""},
-                       "wavelengths must increase strictly down the first column; found " +
-                           table.cell(r, 0) + " nm after " + table.cell(r - 1, 0) + " nm");
-  }
+  check_wavelengths_nm(lambda, [&](size_t row) { return SourceLocation{table.name(), table.line_of_row(row), ""}; });
   return TabulatedSpectrum(std::move(lambda), std::move(values), extrapolation, table.name() + " [" + column + "]");
 }
 

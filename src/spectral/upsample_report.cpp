@@ -6,46 +6,52 @@
 #include <sstream>
 #include <vector>
 
+#include "spectral/colour_value_check.h"
 #include "spectral/error.h"
 #include "spectral/gnuplot_process.h"
 
 namespace rimu {
 
+UpsampledColour upsample_colour(const RgbUpsampler& upsampler, const Rgb& rgb, bool emission,
+                                const SourceLocation& where) {
+  // kMaxColourComponent bounds every component so that luminance and spectrum stay finite doubles.
+  check_colour_components(rgb.r, rgb.g, rgb.b, where);
+  UpsampledColour c;
+  c.knot_values.resize(kUpsampleKnotCount);
+  if (emission) {
+    const UpsampledEmission e = upsampler.upsample_emission(rgb, where);
+    for (int i = 0; i < kUpsampleKnotCount; ++i) c.knot_values[i] = e.spectrum.value(upsample_knot_nm(i));
+    c.gamut_mapped = e.gamut_mapped, c.delta_e2000 = e.delta_e2000;
+    // Round trip of the chromaticity-carrying factor, scaled back to the input luminance.
+    const Xyz shape = upsampler.xyz_of(e.spectrum.shape());
+    const double y = upsampler.space().to_xyz(rgb).y;
+    c.round_trip = upsampler.space().from_xyz({shape.x * y, shape.y * y, shape.z * y});
+    c.spectrum = std::make_shared<EmissionSpectrum>(e.spectrum);
+  } else {
+    const UpsampledReflectance r = upsampler.upsample_reflectance(rgb, where);
+    for (int i = 0; i < kUpsampleKnotCount; ++i) c.knot_values[i] = r.spectrum.samples().knot(i);
+    c.gamut_mapped = r.gamut_mapped, c.delta_e2000 = r.delta_e2000;
+    c.round_trip = upsampler.rgb_of(r.spectrum);
+    c.spectrum = std::make_shared<ReflectanceSpectrum>(r.spectrum);
+  }
+  bool finite = std::isfinite(c.delta_e2000) && std::isfinite(c.round_trip.r) && std::isfinite(c.round_trip.g) &&
+                std::isfinite(c.round_trip.b);
+  for (double v : c.knot_values) finite = finite && std::isfinite(v);
+  if (!finite)
+    throw InputError(where, "the upsampled spectrum or its round trip is not finite: the RGB is too extreme for "
+                            "this colour space");
+  return c;
+}
+
 void write_upsample_report(std::ostream& out, const RgbUpsampler& upsampler, const Rgb& rgb,
                            const UpsampleReportOptions& options) {
   // A plot that cannot be drawn is refused before the report is printed.
   if (!options.plot_png.empty()) check_plot_destination(options.plot_png, {"", 0, "--plot"});
-  // 1e30 bounds every component so that luminance and spectrum stay finite doubles (no "inf" is ever printed).
-  for (double c : {rgb.r, rgb.g, rgb.b})
-    if (!(std::abs(c) <= kMaxUpsampleComponent)) {
-      std::ostringstream m;
-      m << "expected three finite RGB components in [-1e30, 1e30]; got (" << rgb.r << ", " << rgb.g << ", " << rgb.b
-        << ")";
-      throw InputError({"", 0, "rgb"}, m.str());
-    }
-  std::vector<double> values(kUpsampleKnotCount);
-  bool mapped = false;
-  double delta_e = 0;
-  Rgb back;
-  if (options.emission) {
-    const UpsampledEmission e = upsampler.upsample_emission(rgb);
-    for (int i = 0; i < kUpsampleKnotCount; ++i) values[i] = e.spectrum.value(upsample_knot_nm(i));
-    mapped = e.gamut_mapped, delta_e = e.delta_e2000;
-    // Round trip of the chromaticity-carrying factor, scaled back to the input luminance.
-    const Xyz shape = upsampler.xyz_of(e.spectrum.shape());
-    const double y = upsampler.space().to_xyz(rgb).y;
-    back = upsampler.space().from_xyz({shape.x * y, shape.y * y, shape.z * y});
-  } else {
-    const UpsampledReflectance r = upsampler.upsample_reflectance(rgb);
-    for (int i = 0; i < kUpsampleKnotCount; ++i) values[i] = r.spectrum.samples().knot(i);
-    mapped = r.gamut_mapped, delta_e = r.delta_e2000;
-    back = upsampler.rgb_of(r.spectrum);
-  }
-  bool finite = std::isfinite(delta_e) && std::isfinite(back.r) && std::isfinite(back.g) && std::isfinite(back.b);
-  for (double v : values) finite = finite && std::isfinite(v);
-  if (!finite)
-    throw InputError({"", 0, "rgb"}, "the upsampled spectrum or its round trip is not finite: the RGB is too extreme "
-                                     "for this colour space");
+  const UpsampledColour c = upsample_colour(upsampler, rgb, options.emission, {"", 0, "rgb"});
+  const std::vector<double>& values = c.knot_values;
+  const bool mapped = c.gamut_mapped;
+  const double delta_e = c.delta_e2000;
+  const Rgb& back = c.round_trip;
   const char* unit = options.emission ? "W/(m2 sr nm) for RGB luminance in cd/m2" : "reflectance factor";
   if (options.csv) {
     out << "wavelength_nm," << (options.emission ? "spectral_radiance" : "reflectance") << '\n';

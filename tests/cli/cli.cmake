@@ -92,9 +92,9 @@ rimu_cli_test("rimu-light ev -1e308" 1 "--ev: an exposure value must be in"
               $<TARGET_FILE:rimu-light> --type distant --ev -1e308)
 rimu_cli_test("rimu-light cone 1e-300" 1 "--cone: the cone angle must be in"
               $<TARGET_FILE:rimu-light> --type spot --lumens 800 --cone 1e-300)
-rimu_cli_test("rimu-colour upsample 1e308 emission" 1 "rgb: expected three finite RGB components"
+rimu_cli_test("rimu-colour upsample 1e308 emission" 1 "rgb: expected three finite components"
               $<TARGET_FILE:rimu-colour> upsample 1e308 0 0 --emission)
-rimu_cli_test("rimu-colour upsample nan" 1 "rgb: expected three finite RGB components"
+rimu_cli_test("rimu-colour upsample nan" 1 "rgb: expected three finite components"
               $<TARGET_FILE:rimu-colour> upsample nan 0 0)
 
 # rimu-light's first-hour fixes: 2700K as rimu takes it, area only where it works, --json, printed assumptions.

@@ -34,6 +34,8 @@ rimu_cli_test("rimu-colour reflectance unknown illuminant" 1 "unknown illuminant
               $<TARGET_FILE:rimu-colour> reflectance --patch "dark skin" --illuminant D66)
 rimu_cli_test("rimu-colour reflectance above 1.5" 1 "percent_reflectance.csv:3: r: reflectance factor 45 is above 1.5"
               $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/percent_reflectance.csv)
+rimu_cli_test("rimu-colour reflectance below 0" 1 "negative_reflectance.csv:3: r: reflectance factor -0.5 is negative"
+              $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/negative_reflectance.csv)
 rimu_cli_test("rimu-colour reflectance E308 needs data from 380 nm" 1 "ASTM E308 needs data from 380 nm or below"
               $<TARGET_FILE:rimu-colour> reflectance --csv ${colour_csv_dir}/ten_nm_from_400.csv)
 rimu_cli_test("rimu-colour reflectance unknown patch" 1 "unknown ColorChecker patch 'dark skinn'.*bluish green"

@@ -6,6 +6,7 @@
 
 #include "common/tool_main.h"
 
+#include "spectral/colorimetry_options.h"
 #include "spectral/colour_fidelity.h"
 #include "spectral/colour_vector_graphic.h"
 #include "spectral/error.h"
@@ -40,11 +41,9 @@ struct ReflectanceOptions {
   bool json = false;
 };
 
-/// --method NAME as a TristimulusMethod; empty when not given.
+/// --method NAME as a TristimulusMethod; empty when not given (or "auto").
 std::optional<rimu::TristimulusMethod> method_option(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  if (auto m = rimu::parse_tristimulus_method(text)) return m;
-  throw rimu::InputError({"", 0, "--method"}, "unknown tristimulus method '" + text + "'; use native, 1nm or astm-e308");
+  return rimu::tristimulus_method_option(text, {"", 0, "--method"});
 }
 
 /// --bandpass-corrected yes|no: which ASTM E308 table (Table 6 for corrected data, Table 5 for uncorrected data).
@@ -131,7 +130,7 @@ void declare(CLI::App& app, Options& o) {
                                         "a ColorChecker Classic patch (BabelColor average), e.g. \"dark skin\"");
   o.refl_cmd->add_option("--illuminant", refl.illuminant, "CIE illuminant the sample is seen under (default D50)");
   o.refl_cmd->add_option("--observer", refl.observer, "2 (CIE 1931, default) or 10 (CIE 1964)");
-  o.refl_cmd->add_option("--method", refl.method, "native, 1nm or astm-e308 (default from the data's spacing)");
+  o.refl_cmd->add_option("--method", refl.method, "auto (default: from the data's spacing), native, 1nm or astm-e308");
   o.refl_cmd->add_option("--bandpass-corrected", refl.bandpass_corrected,
                          "yes (default): the data were corrected for the instrument's bandpass, or measured with a "
                            "narrow one: ASTM E308 Table 6. no: uncorrected data from an instrument whose triangular "
@@ -192,15 +191,12 @@ void run(const Options& o) {
     const ReflectanceOptions& refl = o.refl;
     if (o.refl_csv->count() + o.refl_patch->count() != 1)
       throw rimu::InputError({"", 0, "reflectance"}, "give exactly one sample: --csv FILE or --patch NAME");
-    if (refl.observer != 2 && refl.observer != 10)
-      throw rimu::InputError({"", 0, "--observer"}, "expected 2 or 10, got " + std::to_string(refl.observer));
     rimu::ReflectanceConditions conditions;
     conditions.illuminant = refl.illuminant;
-    conditions.observer =
-        refl.observer == 10 ? rimu::StandardObserver::cie1964_10deg : rimu::StandardObserver::cie1931_2deg;
+    conditions.observer = rimu::standard_observer_option(refl.observer, {"", 0, "--observer"});
     conditions.method = method_option(refl.method);
     conditions.e308_table = e308_table_option(refl.bandpass_corrected);
-    const rimu::TabulatedSpectrum sample = refl.csv.empty() ? rimu::colorchecker_patch(library, refl.patch)
+    const rimu::TabulatedSpectrum sample = refl.csv.empty() ? rimu::colorchecker_patch(library, refl.patch, {"", 0, "--patch"})
                                                             : rimu::load_reflectance_csv(refl.csv, refl.column);
     std::optional<rimu::TabulatedSpectrum> reference;
     if (!refl.reference.empty()) reference = rimu::load_reflectance_csv(refl.reference, refl.reference_column);

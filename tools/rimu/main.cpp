@@ -9,6 +9,7 @@
 #include "render/render_error.h"
 #include "render/camera_exposure.h"
 #include "render/render_job.h"
+#include "render/render_size.h"
 #include "merge_command.h"
 #include "spectral/error.h"
 
@@ -28,8 +29,8 @@ int main(int argc, char** argv) {
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
                                "by the extension (.png, .jpg, .tif); a photometric scene without a camera exposure "
                                "is metered to 18 % grey");
-  app.add_option("--spp", job.samples_per_pixel, "samples per pixel (overrides the scene)")->check(CLI::Range(1, 1 << 24));
-  app.add_option("--threads", job.threads, "worker threads (default: every core)")->check(CLI::Range(1, 1024));
+  app.add_option("--spp", job.samples_per_pixel, "samples per pixel (overrides the scene)")->check(CLI::Range(1, rimu::kMaxSamplesPerPixel));
+  app.add_option("--threads", job.threads, "worker threads (default: every core)")->check(CLI::Range(1, rimu::kMaxRenderThreads));
   app.add_option("--seed", job.seed, "random seed (the image is identical for the same seed and spp)");
   app.add_option("--sampler", sampler, "sobol (Owen-scrambled Sobol', the default) or independent (overrides the scene)")
       ->check(CLI::IsMember({"sobol", "independent"}));
