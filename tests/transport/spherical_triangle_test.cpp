@@ -69,7 +69,10 @@ TEST_CASE("spherical triangle: samples lie in the triangle and their mean direct
     int outside = 0, not_unit = 0;
     for (int i = 0; i < 100000; ++i) {
       const auto w = sample_spherical_triangle(c.p, c.v0, c.v1, c.v2, {test::uniform01(rng), test::uniform01(rng)});
-      REQUIRE(w.has_value());
+      if (!w) {
+        ++not_unit;
+        continue;
+      }
       if (!(std::abs(length(*w) - 1.0f) < 1e-5f)) ++not_unit;
       // Where the direction meets the triangle's plane: barycentrics ≥ 0 (to rounding).
       const Vec3 q = c.p + *w * (dot(normal, c.v0 - c.p) / dot(normal, *w));
