@@ -18,10 +18,17 @@ bool embree_memory_monitor(void* user, ssize_t bytes, bool /*post*/) {
   return true;
 }
 
-// The texture coordinates at barycentric (u, v) of triangle `primitive`: the mesh's uvs interpolated, or (u, v)
-// itself when the mesh has none (the convention shade_hit reports).
+// The texture coordinates at barycentric (u, v) of triangle `primitive`: the mesh's uvs interpolated; without, its
+// default uvs interpolated (TriangleMesh::DefaultUvs): (u, v) itself, pbrt-v4's (u + v, v), or swapped (u + v, u).
 Vec2 surface_uv(const TriangleMesh& mesh, unsigned primitive, float u, float v) {
-  if (mesh.uvs.empty()) return {u, v};
+  if (mesh.uvs.empty()) {
+    switch (mesh.default_uvs) {
+      case TriangleMesh::DefaultUvs::pbrt: return {u + v, v};
+      case TriangleMesh::DefaultUvs::pbrt_swapped: return {u + v, u};
+      case TriangleMesh::DefaultUvs::barycentric: break;
+    }
+    return {u, v};
+  }
   const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
   const float w = 1.0f - u - v;
   const Vec2 a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
@@ -29,10 +36,19 @@ Vec2 surface_uv(const TriangleMesh& mesh, unsigned primitive, float u, float v) 
 }
 
 // ∂p/∂u, ∂p/∂v of the triangle (a, b, c) in object space. With uvs, the 2×2 system p_i − p_c = (u_i − u_c)·∂p/∂u +
-// (v_i − v_c)·∂p/∂v (as pbrt-v4's Triangle::InteractionFromIntersection); without, uv are the barycentrics
-// (surface_uv), so ∂p/∂u = b − a and ∂p/∂v = c − a. Degenerate uvs give zero tangents (MaterialContext: unknown).
+// (v_i − v_c)·∂p/∂v (as pbrt-v4's Triangle::InteractionFromIntersection); without, uv are the default ones
+// (surface_uv), p = a + b1(b − a) + b2(c − a) written in them: barycentrics give ∂p/∂u = b − a, ∂p/∂v = c − a;
+// pbrt's (s, t) = (b1 + b2, b2) give p = a + s(b − a) + t(c − b); swapped, (b1 + b2, b1), p = a + s(c − a) + t(b − c).
+// Degenerate uvs give zero tangents (MaterialContext: unknown).
 std::pair<Vec3, Vec3> surface_tangents(const TriangleMesh& mesh, const uint32_t* tri, Vec3 a, Vec3 b, Vec3 c) {
-  if (mesh.uvs.empty()) return {b - a, c - a};
+  if (mesh.uvs.empty()) {
+    switch (mesh.default_uvs) {
+      case TriangleMesh::DefaultUvs::pbrt: return {b - a, c - b};
+      case TriangleMesh::DefaultUvs::pbrt_swapped: return {c - a, b - c};
+      case TriangleMesh::DefaultUvs::barycentric: break;
+    }
+    return {b - a, c - a};
+  }
   const Vec2 ta = mesh.uvs[tri[0]], tb = mesh.uvs[tri[1]], tc = mesh.uvs[tri[2]];
   const float du02 = ta.x - tc.x, dv02 = ta.y - tc.y, du12 = tb.x - tc.x, dv12 = tb.y - tc.y;
   const float determinant = du02 * dv12 - dv02 * du12;

@@ -42,8 +42,11 @@ MeterReading measure_illuminance_lx(const TransportScene& scene, Vec3 position_m
       const float cos_theta = dot(normal, s->wi);
       if (!(cos_theta > 0.0f)) continue;
       Ray shadow{offset_ray_origin(position_m, normal, s->wi, scene.scene_scale), s->wi};
-      // Stop just short of the light point so an area light's own surface does not shadow it.
-      if (std::isfinite(s->distance)) shadow.t_max = s->distance * (1.0f - 1e-4f);
+      // Aimed at the light point lifted off the light's surface, and stopped just short of it, so that an area
+      // light's own surface does not shadow it (transport/path_integrator.h, shadow_segment).
+      const ShadowSegment segment = shadow_segment(shadow.origin, position_m, *s, scene.scene_scale);
+      shadow.direction = segment.direction;
+      if (std::isfinite(segment.length)) shadow.t_max = segment.length * (1.0f - 1e-4f);
       if (scene.geometry && scene.geometry->occluded(shadow)) continue;
       irradiance = irradiance + s->radiance * Float4(cos_theta / s->pdf_solid_angle);
     }

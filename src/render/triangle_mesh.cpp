@@ -12,8 +12,12 @@ void TriangleMesh::transform(const Transform& t) {
     const float len = length(m);
     n = len > 0.0f ? m / len : n;
   }
-  if (t.determinant() < 0.0f)
+  if (t.determinant() < 0.0f) {
     for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+    // The swap moves pbrt's default uvs with their vertices.
+    if (default_uvs == DefaultUvs::pbrt) default_uvs = DefaultUvs::pbrt_swapped;
+    else if (default_uvs == DefaultUvs::pbrt_swapped) default_uvs = DefaultUvs::pbrt;
+  }
 }
 
 size_t TriangleMesh::remove_degenerate_triangles() {

@@ -15,6 +15,13 @@ struct TriangleMesh {
   std::vector<Vec3> normals;   ///< per vertex, optional (empty = flat shading)
   std::vector<Vec2> uvs;       ///< per vertex, optional
   std::vector<uint32_t> indices;  ///< three per triangle, counter-clockwise seen from the front
+  /// The texture coordinates of a mesh without uvs, the same for every triangle, at its vertices 0, 1, 2.
+  enum class DefaultUvs : uint8_t {
+    barycentric,   ///< (0,0), (1,0), (0,1): uv = the barycentrics (b1, b2)
+    pbrt,          ///< pbrt-v4's (0,0), (1,0), (1,1) (its Triangle without uv): uv = (b1 + b2, b2)
+    pbrt_swapped,  ///< pbrt's after vertices 1 and 2 were swapped (a mirroring transform): (0,0), (1,1), (1,0)
+  };
+  DefaultUvs default_uvs = DefaultUvs::barycentric;
 
   size_t triangle_count() const { return indices.size() / 3; }
   /// Applies `t` to positions and normals; flips the winding if `t` mirrors (determinant < 0).

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "transport/light_warps.h"
+#include "transport/spherical_triangle.h"
 
 namespace rimu {
 
@@ -41,27 +42,56 @@ AreaLight::AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t>
   by_area_ = Distribution1D(areas);
 }
 
-float AreaLight::solid_angle_pdf(const Triangle& t, Vec3 wi, float distance_squared, double area_m2) const {
+bool AreaLight::samples_solid_angle(const Triangle& t, Vec3 reference) {
+  // A_k / d² against the centroid: a function of (triangle, reference) alone, so sampling and pdf agree on it.
+  const Vec3 centroid = (t.v0 + t.v1 + t.v2) / 3.0f;
+  return t.area_m2 > kSolidAngleSamplingRatio * double(length_squared(centroid - reference));
+}
+
+float AreaLight::triangle_pdf(const Triangle& t, Vec3 reference, Vec3 wi, float distance_squared) const {
   const float cos_light = -dot(t.normal, wi);  // between the normal and y → x
   if (!two_sided_ && !(cos_light > 0.0f)) return 0.0f;
-  const double pdf = double(distance_squared) / (area_m2 * std::fabs(double(cos_light)));
+  double pdf = 0.0;
+  if (samples_solid_angle(t, reference)) {
+    const double omega = spherical_triangle_solid_angle(reference, t.v0, t.v1, t.v2);
+    if (!(omega > 0.0)) return 0.0f;
+    pdf = 1.0 / omega;
+  } else {
+    pdf = double(distance_squared) / (t.area_m2 * std::fabs(double(cos_light)));
+  }
   if (!(pdf > 0.0) || !std::isfinite(pdf) || pdf > double(std::numeric_limits<float>::max())) return 0.0f;
   return float(pdf);
 }
 
 std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const LightReference& ref,
-                                                      const SampledWavelengths& lambda, Vec2 u, double area_m2) const {
-  const Vec3 b = sample_uniform_triangle(u);
-  const Vec3 point = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
-  const Vec3 to_light = point - ref.position;
-  const float distance_squared = length_squared(to_light);
-  if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return std::nullopt;
+                                                      const SampledWavelengths& lambda, Vec2 u, double choice) const {
   LightSample s;
-  s.distance = std::sqrt(distance_squared);
-  s.wi = to_light / s.distance;
-  s.pdf_solid_angle = solid_angle_pdf(t, s.wi, distance_squared, area_m2);
-  if (s.pdf_solid_angle == 0.0f) return std::nullopt;
+  float distance_squared = 0.0f;
+  if (samples_solid_angle(t, ref.position)) {
+    // Behind a one-sided triangle nothing arrives; say so before sampling (triangle_pdf would say 0 anyway).
+    if (!two_sided_ && !(dot(t.normal, ref.position - t.v0) > 0.0f)) return std::nullopt;
+    const std::optional<Vec3> wi = sample_spherical_triangle(ref.position, t.v0, t.v1, t.v2, u);
+    if (!wi) return std::nullopt;
+    // The point where wi meets the triangle's plane (inside the triangle up to rounding).
+    const float along = dot(t.normal, *wi);
+    const float distance = dot(t.normal, t.v0 - ref.position) / along;
+    if (!(distance > 0.0f) || !std::isfinite(distance)) return std::nullopt;
+    s.wi = *wi;
+    s.distance = distance;
+    distance_squared = distance * distance;
+  } else {
+    const Vec3 b = sample_uniform_triangle(u);
+    const Vec3 point = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
+    const Vec3 to_light = point - ref.position;
+    distance_squared = length_squared(to_light);
+    if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return std::nullopt;
+    s.distance = std::sqrt(distance_squared);
+    s.wi = to_light / s.distance;
+  }
+  s.pdf_solid_angle = float(choice * double(triangle_pdf(t, ref.position, s.wi, distance_squared)));
+  if (!(s.pdf_solid_angle > 0.0f) || !std::isfinite(s.pdf_solid_angle)) return std::nullopt;
   s.radiance = radiance_.sample(lambda);
+  s.normal = t.normal;
   return s;
 }
 
@@ -69,7 +99,8 @@ std::optional<LightSample> AreaLight::sample_li(const LightReference& ref, const
                                                 Vec2 u) const {
   if (by_area_.is_zero() || radiance_.is_black()) return std::nullopt;
   const auto pick = by_area_.sample_discrete(u.x);
-  return sample_triangle(triangles_[pick.index], ref, lambda, {pick.u_remapped, u.y}, area_m2_);
+  const Triangle& t = triangles_[pick.index];
+  return sample_triangle(t, ref, lambda, {pick.u_remapped, u.y}, t.area_m2 / area_m2_);
 }
 
 std::optional<LightSample> AreaLight::sample_part_li(int part, const LightReference& ref,
@@ -78,7 +109,7 @@ std::optional<LightSample> AreaLight::sample_part_li(int part, const LightRefere
   if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
   const Triangle& t = triangles_[size_t(part)];
   if (t.area_m2 == 0.0) return std::nullopt;
-  return sample_triangle(t, ref, lambda, u, t.area_m2);
+  return sample_triangle(t, ref, lambda, u, 1.0);
 }
 
 float AreaLight::hit_pdf(size_t k, const LightReference& ref, Vec3 wi, const SurfaceHit* hit, bool whole_mesh) const {
@@ -87,7 +118,8 @@ float AreaLight::hit_pdf(size_t k, const LightReference& ref, Vec3 wi, const Sur
   if (t.area_m2 == 0.0) return 0.0f;
   const float distance_squared = length_squared(hit->position - ref.position);
   if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return 0.0f;
-  return solid_angle_pdf(t, wi, distance_squared, whole_mesh ? area_m2_ : t.area_m2);
+  const float pdf = triangle_pdf(t, ref.position, wi, distance_squared);
+  return whole_mesh ? float(double(pdf) * (t.area_m2 / area_m2_)) : pdf;
 }
 
 float AreaLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {

@@ -1,12 +1,18 @@
 // An emissive triangle mesh: uniform spectral radiance L(λ) over its surface, from its front side or both sides.
 //
-// Sampling (from a reference point x): a triangle with probability A_k / A (Distribution1D over areas), a point y
-// uniform on it, so the area density is p_A = (A_k/A)·(1/A_k) = 1/A everywhere on the mesh. The solid-angle
-// density at x follows from dω = |cos θ_l| dA / d², with θ_l between the light's normal at y and y → x:
-//   p_ω = p_A · d² / |cos θ_l| = d² / (A |cos θ_l|).
-// Grazing directions (cos θ_l → 0) make p_ω infinite; sample_li then returns std::nullopt and pdf_li returns 0, a
-// set of zero measure, so no energy is lost. (Spherical-triangle sampling, which has no such singularity, is not
-// implemented.)
+// Sampling (from a reference point x): a triangle (with probability A_k / A when the whole mesh is sampled, or the
+// light sampler's choice of part), then a direction to it by one of two techniques, fixed per (triangle, x):
+//   - far triangles (A_k ≤ kSolidAngleSamplingRatio · d_c², d_c the distance to its centroid): a point y uniform
+//     on its area, so p_ω = d²/(A_k |cos θ_l|) with θ_l between the light's normal at y and y → x (dω = |cos θ_l|
+//     dA/d²). Grazing directions (cos θ_l → 0) make p_ω infinite; sample_li then returns std::nullopt and pdf_li 0,
+//     a set of zero measure, so no energy is lost;
+//   - near triangles: a direction uniform in the solid angle Ω_k the triangle subtends (spherical_triangle.h),
+//     p_ω = 1/Ω_k. Area sampling there is unbiased but its estimate L cos θ_i cos θ_l A_k/d² is unbounded: its
+//     variance grows as A_k/d² and has no bound at all for receivers that touch the emitter (a socket around a bulb,
+//     a plane a tessellated bulb rests on), where the pixel means of any affordable sample count come out low
+//     (issue 29's bulbs; docs/transport.md, "Emitters seen from close by").
+// The whole-mesh density is (A_k / A)·p_ω; pdf_li and pdf_part_li recompute the same technique's density for a
+// BSDF-sampled hit, so MIS sees exactly the density the light sample had.
 //
 // Front side: the normal n_k = (v1 − v0) × (v2 − v0) / |…|, i.e. counter-clockwise winding seen from the front,
 // as in SurfaceHit::geometric_normal. A one-sided light emits towards w_out only when n·w_out > 0.
@@ -32,8 +38,8 @@ class AreaLight final : public Light {
   AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t> indices, LightSpectrum radiance,
             bool two_sided);
 
-  /// A point uniform by area on the mesh, with p_ω = d²/(A|cos θ_l|). std::nullopt for a reference on the light
-  /// (d = 0), behind a one-sided light, at grazing angles (p_ω not finite), or if the light has no area or power.
+  /// A triangle by area, then a direction to it (see above): p_ω = (A_k/A)·p_k(ω). std::nullopt for a reference on
+  /// the light (d = 0), behind a one-sided light, at grazing angles (p_ω not finite), or without area or power.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                        Vec2 u) const override;
   /// p_ω for a ray from `ref` along wi that hit triangle hit->primitive at hit->position; 0 without a hit, for a
@@ -46,10 +52,11 @@ class AreaLight final : public Light {
 
   /// Parts are the triangles (light samplers may choose them one by one, e.g. the light BVH).
   int part_count() const override { return triangle_count(); }
-  /// A point uniform on triangle `part`: p_ω = d²/(A_k|cos θ_l|); otherwise as sample_li.
+  /// A direction to triangle `part` by its technique at ref (p_k(ω): d²/(A_k|cos θ_l|) or 1/Ω_k); otherwise as
+  /// sample_li.
   std::optional<LightSample> sample_part_li(int part, const LightReference& ref, const SampledWavelengths& lambda,
                                             Vec2 u) const override;
-  /// d²/(A_k|cos θ_l|) for a ray that hit triangle `part` (= hit->primitive); 0 as pdf_li.
+  /// p_k(ω) for a ray that hit triangle `part` (= hit->primitive); 0 as pdf_li.
   float pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const override;
   /// The triangle's box, normal (θo = 0, θe = π/2) and intensity bound L·A_k; none for degenerate triangles.
   std::optional<LightBounds> part_bounds(int part) const override;
@@ -68,13 +75,20 @@ class AreaLight final : public Light {
     Vec3 normal;  // unit front normal; zero for degenerate triangles
     double area_m2 = 0.0;
   };
-  /// p_ω = d²/(area|cos θ_l|) if the point y on triangle k is seen from the emitting side, finite and > 0; else 0.
-  /// `area_m2`: the mesh's area (whole-light sampling) or the triangle's (part sampling).
-  float solid_angle_pdf(const Triangle& t, Vec3 wi, float distance_squared, double area_m2) const;
-  /// A point uniform on triangle t, with the density of choosing it over `area_m2`.
+  /// Triangles at least this large against the squared distance to their centroid are sampled by solid angle.
+  /// At A/d² = 0.01 (a triangle ~1/10 of the distance across) area sampling's relative variance is already below
+  /// ~1e-3 per sample, and the spherical triangle's trigonometry is not needed further away.
+  static constexpr double kSolidAngleSamplingRatio = 0.01;
+  /// Whether triangle t is sampled by solid angle from `reference` (else by area).
+  static bool samples_solid_angle(const Triangle& t, Vec3 reference);
+  /// p_k(ω) of triangle t's technique for a direction wi from `reference` that meets it at squared distance
+  /// `distance_squared`, if seen from the emitting side, finite and > 0; else 0.
+  float triangle_pdf(const Triangle& t, Vec3 reference, Vec3 wi, float distance_squared) const;
+  /// A direction to triangle t by its technique; the density is `choice` (the probability of having chosen t)
+  /// times p_k(ω).
   std::optional<LightSample> sample_triangle(const Triangle& t, const LightReference& ref,
-                                             const SampledWavelengths& lambda, Vec2 u, double area_m2) const;
-  /// The density for a hit on triangle `k` when points are uniform over `area_m2` (0 for bad hits).
+                                             const SampledWavelengths& lambda, Vec2 u, double choice) const;
+  /// The density for a hit on triangle `k`: p_k(ω), times A_k/A for whole-mesh sampling (0 for bad hits).
   float hit_pdf(size_t k, const LightReference& ref, Vec3 wi, const SurfaceHit* hit, bool whole_mesh) const;
 
   std::vector<Triangle> triangles_;

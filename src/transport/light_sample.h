@@ -25,6 +25,9 @@ struct LightSample {
   float distance = std::numeric_limits<float>::infinity();  ///< to the sampled point; infinity for lights at infinity
   float pdf_solid_angle = 0;  ///< density of wi; 1 for delta lights
   bool is_delta = false;      ///< point, spot and distant lights with zero angular size: no MIS with BSDF sampling
+  /// The light's geometric normal at the sampled point, for lights with a surface there (area lights); zero
+  /// otherwise. Shadow rays stop short of that surface along it (shadow_segment in path_integrator.h).
+  Vec3 normal{};
 };
 
 /// Where a light is being sampled from.

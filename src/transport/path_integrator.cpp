@@ -41,6 +41,16 @@ Vec3 offset_ray_origin(const SurfaceHit& hit, Vec3 direction, float scene_scale)
   return hit.position + face_forward(hit.geometric_normal, direction) * (magnitude * 0x1p-18f);
 }
 
+ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls, float scene_scale) {
+  if (!std::isfinite(ls.distance)) return {ls.wi, ls.distance};
+  Vec3 target = reference + ls.wi * ls.distance;
+  if (!(ls.normal == Vec3{})) target = offset_ray_origin(target, ls.normal, -ls.wi, scene_scale);
+  const Vec3 to_target = target - origin;
+  const float distance = length(to_target);
+  if (!(distance > 0.0f) || !std::isfinite(distance)) return {ls.wi, 0.0f};
+  return {to_target / distance, distance};
+}
+
 SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
                                          Sampler& sampler) const {
   const auto& lights = *scene_.lights;
@@ -136,8 +146,9 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
           if (!wrong_side && max_lane(f) > 0.0f) {
             Ray shadow;
             shadow.origin = offset_ray_origin(*hit, ls->wi, scene_.scene_scale);
-            shadow.direction = ls->wi;
-            shadow.t_max = std::isinf(ls->distance) ? ls->distance : ls->distance * (1.0f - 0x1p-12f);
+            const ShadowSegment segment = shadow_segment(shadow.origin, hit->position, *ls, scene_.scene_scale);
+            shadow.direction = segment.direction;
+            shadow.t_max = std::isinf(segment.length) ? segment.length : segment.length * (1.0f - 0x1p-12f);
             if (!scene_.geometry->occluded(shadow)) {
               const float q_light = pick->probability * ls->pdf_solid_angle;
               const float s_light = q_light * sum_ratio;

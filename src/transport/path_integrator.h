@@ -8,6 +8,7 @@
 #include "spectral/sampled_wavelengths.h"
 #include "spectral/wavelength_density.h"
 #include "transport/light.h"
+#include "transport/light_sample.h"
 #include "transport/light_sampler.h"
 #include "transport/material.h"
 #include "transport/ray.h"
@@ -75,5 +76,18 @@ Vec3 offset_ray_origin(Vec3 position, Vec3 geometric_normal, Vec3 direction, flo
 /// The same for a ray leaving a surface hit: the offset also covers the rounding of the coordinates the hit point
 /// was computed from (SurfaceHit::position_scale), which near the world origin exceeds |p|'s.
 Vec3 offset_ray_origin(const SurfaceHit& hit, Vec3 direction, float scene_scale);
+
+/// What a shadow ray for the light sample `ls`, drawn at `reference`, tests: the direction and length from `origin`
+/// (reference lifted off its surface by offset_ray_origin, or reference itself in a medium) to the sampled point,
+/// itself lifted off the light's surface (ls.normal) towards the reference by the same rule. Aiming from the lifted
+/// origin matters near an emitter: a ray along ls.wi from the lifted origin meets a plane the sample lies on earlier
+/// by offset/cos, and for a receiver within a few cm of the light at grazing angles that is more than any relative
+/// margin on the length, so the light's own surface would shadow the sample (docs/transport.md, "Shadow rays near
+/// emitters"). Lights at infinity: ls.wi and an infinite length. Callers shorten the length by 2⁻¹² for rounding.
+struct ShadowSegment {
+  Vec3 direction;
+  float length = 0.0f;
+};
+ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls, float scene_scale);
 
 }  // namespace rimu

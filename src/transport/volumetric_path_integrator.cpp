@@ -272,7 +272,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
             const SampledSpectrum q_dir = lanes.densities(scatterer.pdf(ls->wi));
             const float sum_dir = sum(pdf_ratio * q_dir);
             const SampledSpectrum throughput = sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f;
-            if (const auto tr = shadow(origin_towards(ls->wi), ls->wi, ls->distance, stack_towards(ls->wi), lambda,
+            const Vec3 origin = origin_towards(ls->wi);
+            const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
+            if (const auto tr = shadow(origin, segment.direction, segment.length, stack_towards(ls->wi), lambda,
                                        sampler, throughput)) {
               const float s_light = pick->probability * ls->pdf_solid_angle * sum_ratio;
               const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only

@@ -192,6 +192,49 @@ TEST_CASE("float image texture: values beyond [0, 1] kept as read (pbrt-v4 does 
   CHECK_THROWS_WITH_AS(AlphaMask::read(bad, 0, false, false, false), doctest::Contains("is not a finite number"), InputError);
 }
 
+TEST_CASE("pbrt default uv: a checkerboard on a trianglemesh without uv renders as its twin with pbrt's uvs written out") {
+  // pbrt-v4 gives each triangle without uv (0,0), (1,0), (1,1) at its vertices (shapes.h, Triangle): on the quad
+  // (0 1 2)(0 2 3) the checks of the two triangles do not line up. The twin writes those uvs out on unshared
+  // corners; the barycentric convention (Rimu's default) is the control that the comparison sees the difference.
+  for (const std::string camera : {std::string("LookAt 0 0 0  0 0 1  0 1 0\n"), std::string("Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\n")}) {
+    CAPTURE(camera);
+    const PbrtImport imported = import_text(
+        camera + "Camera \"perspective\" \"float fov\" 50\n"
+                 "Film \"rgb\" \"integer xresolution\" 32 \"integer yresolution\" 32\nWorldBegin\n"
+                 "LightSource \"infinite\" \"rgb L\" [1 1 1]\n"
+                 "Texture \"checks\" \"spectrum\" \"checkerboard\" \"float uscale\" 3 \"float vscale\" 3 "
+                 "\"rgb tex1\" [0.9 0.9 0.9] \"rgb tex2\" [0.05 0.05 0.05]\n"
+                 "Material \"diffuse\" \"texture reflectance\" \"checks\"\n"
+                 "Shape \"trianglemesh\" \"point3 P\" [-2 -2 3  2 -2 3  2 2 3  -2 2 3] \"integer indices\" [0 1 2 0 2 3]\n",
+        std::filesystem::temp_directory_path());
+    CHECK(imported.ignored.empty());
+    const json& shapes = imported.document["shapes"];
+    REQUIRE(shapes.size() == 1);
+    CHECK(shapes[0]["uv_default"] == "pbrt");
+    json twin = imported.document;
+    json& mesh = twin["shapes"][0];
+    json corners = json::array(), indices = json::array(), uvs = json::array();
+    const json pbrt_uv = {{0, 0}, {1, 0}, {1, 1}};
+    for (size_t k = 0; k < mesh["indices"].size(); ++k) {
+      corners.push_back(mesh["positions"][mesh["indices"][k].get<size_t>()]);
+      uvs.push_back(pbrt_uv[k % 3]);
+      indices.push_back(k);
+    }
+    mesh["positions"] = corners;
+    mesh["indices"] = indices;
+    mesh["uvs"] = uvs;
+    mesh.erase("uv_default");
+    json barycentric = imported.document;
+    barycentric["shapes"][0]["uv_default"] = "barycentric";
+    const auto dir = std::filesystem::temp_directory_path();
+    const auto scene = load_scene(imported.document, "test.pbrt", dir, test::library());
+    const auto twin_scene = load_scene(twin, "twin.json", dir, test::library());
+    const auto control = load_scene(barycentric, "control.json", dir, test::library());
+    CHECK(test::worst_deviation(test::render_block_deviations(*scene, *twin_scene)) <= test::kSigmas);
+    CHECK(test::worst_deviation(test::render_block_deviations(*scene, *control)) > test::kSigmas);
+  }
+}
+
 TEST_CASE("pbrt sphere: textures land where pbrt-v4 puts them (pole +z, u = φ/2π, v = 1 − θ/π, in object space)") {
   // Unmirrored header: pbrt's image-right (+x) is Rimu's left, so the importer mirrors the world x → −x.
   const PbrtImport imported = import_text(

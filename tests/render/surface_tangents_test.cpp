@@ -91,6 +91,32 @@ TEST_CASE("surface tangents: a triangle's dp/du, dp/dv reproduce its edges from 
   }
 }
 
+TEST_CASE("surface tangents: pbrt-v4's default uv (0,0), (1,0), (1,1) without uvs, and after a mirroring transform") {
+  // A point with barycentrics (b0, b1, b2) has pbrt's uv b1·(1,0) + b2·(1,1) = (b1 + b2, b2) in the order pbrt read
+  // the vertices; the tangents are then ∂p/∂u = v1 − v0, ∂p/∂v = v2 − v1 (the edges in uv: (1,0) and (0,1)).
+  const Vec3 v0{0, 0, 0}, v1{2, 0, 0}, v2{0.5f, 3, 0};
+  const float b1 = 0.3f, b2 = 0.25f;
+  for (const bool mirrored : {false, true}) {
+    CAPTURE(mirrored);
+    TriangleMesh m = sheared_triangle(false);
+    m.positions = {v0, v1, v2};
+    m.default_uvs = TriangleMesh::DefaultUvs::pbrt;
+    // A mirror (x → −x) rewinds the triangle (vertices 1 and 2 swap); the uvs stay with their vertices.
+    const Transform to_world = mirrored ? Transform::scale({-1, 1, 1}) : Transform();
+    m.transform(to_world);
+    EmbreeScene scene;
+    scene.add_mesh(m, 0, -1);
+    scene.commit();
+    const Vec3 target = to_world.point(v0 * (1 - b1 - b2) + v1 * b1 + v2 * b2);
+    const auto hit = scene.intersect(ray_to(target + Vec3{0, 0, 1}, target));
+    REQUIRE(hit);
+    CHECK(hit->uv.x == doctest::Approx(b1 + b2).epsilon(1e-5));
+    CHECK(hit->uv.y == doctest::Approx(b2).epsilon(1e-5));
+    check_close(hit->dpdu, to_world.vector(v1 - v0), 1e-5f);
+    check_close(hit->dpdv, to_world.vector(v2 - v1), 1e-5f);
+  }
+}
+
 TEST_CASE("surface tangents: a sphere's dp/du, dp/dv match finite differences of its parametrisation") {
   EmbreeScene scene;
   const Vec3 centre{1, 2, 3};

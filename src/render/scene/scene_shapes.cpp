@@ -41,11 +41,13 @@ void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type,
                            "emitter in \"shapes\"");
   }
   if (type == "mesh") {
-    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "two_sided", "alpha",
+                     "uv_default"});
   } else if (type == "quad") {
-    shape.only_keys({"type", "name", "vertices", "uvs", "material", "transform", "emission", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "emission", "two_sided",
+                     "alpha"});
   } else {
-    shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "material", "transform", "emission",
+    shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform", "emission",
                      "two_sided", "alpha"});
   }
 }
@@ -68,7 +70,7 @@ TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadConte
     if (v.size() != 4) v.fail("a quad has 4 vertices, counter-clockwise seen from its front");
     mesh.positions = vec3_array(v);
     mesh.indices = {0, 1, 2, 0, 2, 3};
-    // Without "uvs" a quad's texture coordinates are the triangles' barycentrics, which no texture can follow.
+    // Without "uvs" a quad's texture coordinates are per triangle ("uv_default" below), which no texture can follow.
     if (const auto uvs = shape.find("uvs"))
       for (size_t i = 0; i < uvs->size(); ++i) mesh.uvs.push_back(uvs->at(i).vec2());
   } else {  // triangles
@@ -79,6 +81,10 @@ TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadConte
     if (const auto uvs = shape.find("uvs"))
       for (size_t i = 0; i < uvs->size(); ++i) mesh.uvs.push_back(uvs->at(i).vec2());
   }
+  // Without uvs: every triangle's vertices get (0,0), (1,0), (0,1) (the barycentrics), or pbrt-v4's (0,0), (1,0),
+  // (1,1) (what the pbrt importer asks for, so that textures on uv-less pbrt meshes land where pbrt puts them).
+  if (const auto convention = shape.find("uv_default"); convention && convention->choice({"barycentric", "pbrt"}) == "pbrt")
+    mesh.default_uvs = TriangleMesh::DefaultUvs::pbrt;
   if (const std::string problem = mesh.validate(); !problem.empty()) shape.fail("invalid mesh: " + problem);
   return mesh;
 }

@@ -187,8 +187,11 @@ class PbrtConverter {
   void finish_exposure(json& camera) const;
 
   // pbrt_shapes.cpp
+  /// `pbrt_default_uvs`: a mesh without uvs gets pbrt-v4's per-triangle (0,0), (1,0), (1,1) at its vertices in the
+  /// order pbrt read them ("uv_default": "pbrt", or explicit uvs where triangles are rewound).
   void emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::vector<uint32_t> indices, std::vector<Vec3d> normals,
-                 std::vector<std::array<double, 2>> uvs, const std::string& context, int shape_count);
+                 std::vector<std::array<double, 2>> uvs, const std::string& context, int shape_count,
+                 bool pbrt_default_uvs = false);
   void emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                   double area_m2, int shape_count);
   /// The shape's "alpha" (a float or a float texture) as Rimu's shape "alpha", or null (solid). `has_uvs`: whether

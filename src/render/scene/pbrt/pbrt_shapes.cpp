@@ -103,7 +103,8 @@ void PbrtConverter::shape(const PbrtStatement& s) {
         LoopMesh mesh = loop_subdivide(positions, indices, levels);
         shape_alpha_ = alpha_parameter(p, false);
         const int triangles = int(mesh.indices.size() / 3);
-        emit_mesh(p, std::move(mesh.positions), std::move(mesh.indices), std::move(mesh.normals), {}, context, triangles);
+        emit_mesh(p, std::move(mesh.positions), std::move(mesh.indices), std::move(mesh.normals), {}, context, triangles,
+                  true);
         return;
       } catch (const std::length_error& e) {
         throw InputError(s.where, context + ": " + e.what());
@@ -126,9 +127,11 @@ void PbrtConverter::shape(const PbrtStatement& s) {
       // single patch (the common quad), whose vertices no other patch shares.
       uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
     }
-    shape_alpha_ = alpha_parameter(p, !uvs.empty());
+    shape_alpha_ = alpha_parameter(p, !uvs.empty() || corners == 3);  // triangles without uv have pbrt's default
     const int shape_count = int(raw_indices.empty() ? 1 : raw_indices.size() / corners);
-    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), std::move(uvs), context, shape_count);
+    // A bilinear patch's default uv is per patch, which its two triangles cannot both carry as pbrt's triangle default.
+    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), std::move(uvs), context, shape_count,
+              corners == 3);
   } else if (type == "plymesh") {
     PbrtParams p(*this, s, context, shape_defaults);
     const std::string filename = p.string("filename", "");
@@ -144,10 +147,12 @@ void PbrtConverter::shape(const PbrtStatement& s) {
       for (const Vec3& v : mesh.positions) positions.push_back({v.x, v.y, v.z});
       for (const Vec3& n : mesh.normals) normals.push_back({n.x, n.y, n.z});
       for (const Vec2& uv : mesh.uvs) uvs.push_back({uv.x, uv.y});
-      emit_mesh(p, std::move(positions), mesh.indices, std::move(normals), std::move(uvs), context, int(mesh.triangle_count()));
+      emit_mesh(p, std::move(positions), mesh.indices, std::move(normals), std::move(uvs), context, int(mesh.triangle_count()),
+                true);
       return;
     }
-    emit_shape({{"type", "mesh"}, {"file", path_for_document(path)}}, s.where, context, false, 0.0, 1);
+    // Without uv in the file, pbrt's per-triangle default (Rimu keeps the file's vertex order here).
+    emit_shape({{"type", "mesh"}, {"file", path_for_document(path)}, {"uv_default", "pbrt"}}, s.where, context, false, 0.0, 1);
   } else if (type == "sphere") {
     PbrtParams p(*this, s, context, shape_defaults);
     const double radius = p.real("radius", 1.0);
@@ -238,12 +243,13 @@ void PbrtConverter::count_generated_triangles(double triangles, const SourceLoca
 
 void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::vector<uint32_t> indices,
                               std::vector<Vec3d> normals, std::vector<std::array<double, 2>> uvs, const std::string& context,
-                              int shape_count) {
+                              int shape_count, bool pbrt_default_uvs) {
   // pbrt's front: the side of the shading normals N where given (flipped by ReverseOrientation), else the
   // counter-clockwise side, flipped by ReverseOrientation. Rimu's front is always the counter-clockwise side, so
   // triangles are rewound to match; a mirroring transform is left to Rimu, which rewinds as pbrt flips.
   if (state_.reverse_orientation)
     for (Vec3d& n : normals) n = {-n[0], -n[1], -n[2]};
+  std::vector<bool> flips(indices.size() / 3, false);
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     bool flip = state_.reverse_orientation;
     if (!normals.empty()) {
@@ -253,8 +259,31 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
       const Vec3d& c = normals[indices[t + 2]];
       flip = dot(g, {a[0] + b[0] + c[0], a[1] + b[1] + c[1], a[2] + b[2] + c[2]}) < 0;
     }
-    if (flip) std::swap(indices[t + 1], indices[t + 2]);
+    flips[t / 3] = flip;
   }
+  // pbrt-v4 gives a triangle without uv (0,0), (1,0), (1,1) at its vertices in the order read. Rewinding moves
+  // vertices 1 and 2, so where any triangle is rewound the corners get their own vertices with explicit uvs.
+  bool uv_default_pbrt = false;
+  if (pbrt_default_uvs && uvs.empty()) {
+    if (std::find(flips.begin(), flips.end(), true) == flips.end()) {
+      uv_default_pbrt = true;
+    } else {
+      std::vector<Vec3d> corner_positions, corner_normals;
+      std::vector<uint32_t> corner_indices;
+      for (size_t t = 0; t + 2 < indices.size(); t += 3)
+        for (size_t k = 0; k < 3; ++k) {
+          corner_indices.push_back(uint32_t(corner_positions.size()));
+          corner_positions.push_back(positions[indices[t + k]]);
+          if (!normals.empty()) corner_normals.push_back(normals[indices[t + k]]);
+          uvs.push_back(k == 0 ? std::array<double, 2>{0, 0} : k == 1 ? std::array<double, 2>{1, 0} : std::array<double, 2>{1, 1});
+        }
+      positions = std::move(corner_positions);
+      normals = std::move(corner_normals);
+      indices = std::move(corner_indices);
+    }
+  }
+  for (size_t t = 0; t + 2 < indices.size(); t += 3)
+    if (flips[t / 3]) std::swap(indices[t + 1], indices[t + 2]);
   double area_m2 = 0.0;
   if (state_.area_light && !object_) {
     const PbrtMatrix world = world_from_object();
@@ -267,6 +296,7 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
   json shape = {{"type", "triangles"}, {"positions", positions}, {"indices", indices}};
   if (!normals.empty()) shape["normals"] = normals;
   if (!uvs.empty()) shape["uvs"] = uvs;
+  if (uv_default_pbrt) shape["uv_default"] = "pbrt";
   emit_shape(std::move(shape), p.where(), context, true, area_m2, shape_count);
 }
 
