@@ -101,7 +101,7 @@ class BvhLightSampler final : public LightSampler {
 
  private:
   struct Node {
-    LightBounds bounds;
+    ImportanceBounds bounds;
     uint32_t index = 0;  // interior: the second child (the first is the next node); leaf: into leaves_
     uint32_t representative = 0;  // the node of the subtree's leaf likeliest to score (widest reach, brightest)
     bool is_leaf = false;
