@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include <immintrin.h>
+
 namespace rimu {
 namespace {
 
@@ -23,8 +25,11 @@ inline CosSin angle_difference_clamped(float cos_a, float sin_a, float cos_b, fl
   return {cos_a * cos_b + sin_a * sin_b, sin_a * cos_b - cos_a * sin_b};
 }
 
+// The correctly rounded square root (as std::sqrt) without its errno branch: these inputs are never negative.
+inline float root(float x) { return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))); }
+
 // (std::max, not std::fmax: without -ffast-math fmax is a library call, and these inputs are never NaN.)
-inline float sine_of(float cos_x) { return std::sqrt(std::max(0.0f, 1.0f - cos_x * cos_x)); }
+inline float sine_of(float cos_x) { return root(std::max(0.0f, 1.0f - cos_x * cos_x)); }
 
 double angle_of(float cos_x) { return std::acos(std::clamp(double(cos_x), -1.0, 1.0)); }
 
@@ -171,10 +176,10 @@ float light_importance(const ImportanceBounds& b, Vec3 p, Vec3 normal) {
     if (!(b.radius2_m2 > 0.0f)) return 0.0f;  // p at a point light
     return std::clamp(b.intensity_w_sr / b.radius2_m2, kSmallest, kLargest);
   }
-  const float inverse_distance = 1.0f / std::sqrt(distance2);
+  const float inverse_distance = 1.0f / root(distance2);
   // θu, the half-angle the bounding sphere subtends: sin θu = r/d (0 for a point).
   const float sin_u = std::min(b.radius_m * inverse_distance, 1.0f);
-  const float cos_u = std::sqrt(std::max(0.0f, 1.0f - sin_u * sin_u));
+  const float cos_u = root(std::max(0.0f, 1.0f - sin_u * sin_u));
 
   // θw, from the axis to the direction from the cluster towards p.
   float cos_w = dot(b.axis, to_p) * inverse_distance;
