@@ -27,7 +27,8 @@ constexpr int kCostDepth = 30;
 
 // The bounds of a set of members without a cone union per member (each costs an acos and a rotation), in two
 // sequential passes: the first gathers box, intensity and the mean axis; the second the largest angle from that axis
-// to a member's cone edge, in cosines: cos(α + θo) = cos α cos θo − sin α sin θo. Conservative, like unite().
+// to a member's cone edge, in cosines: cos(α + θo) = cos α cos θo − sin α sin θo, and the lit cone θl (light_bounds.h):
+// the smallest θl_m − α, cos(θl_m − α) = cos θl_m cos α + sin θl_m sin α. Conservative, like unite().
 class BoundsAccumulator {
  public:
   void add_first_pass(const LightBounds& m) {
@@ -40,37 +41,51 @@ class BoundsAccumulator {
       b_.intensity_w_sr += m.intensity_w_sr;
       b_.cos_theta_e = std::fmin(b_.cos_theta_e, m.cos_theta_e);
       b_.two_sided = b_.two_sided || m.two_sided;
-      same_axis_ = same_axis_ && m.axis == b_.axis && m.flat_one_sided && b_.flat_one_sided;
-      if (same_axis_) b_.plane_offset_m = std::fmin(b_.plane_offset_m, m.plane_offset_m);
+      same_axis_ = same_axis_ && m.axis == b_.axis && m.half_space && b_.half_space;
+      if (same_axis_) {
+        // Valid only while every member shares the axis; otherwise the second pass replaces both.
+        b_.plane_offset_m = std::fmin(b_.plane_offset_m, m.plane_offset_m);
+        b_.cos_theta_o = std::fmin(b_.cos_theta_o, m.cos_theta_o);
+        b_.cos_theta_lit = std::fmax(b_.cos_theta_lit, m.cos_theta_lit);
+      }
     }
     axis_sum_ += m.axis;
   }
   /// Between the passes. Returns false when the second pass is not needed (one member, or all facing one way).
   bool needs_second_pass() {
     if (empty_ || same_axis_) return false;
-    b_.flat_one_sided = false;
+    b_.half_space = false;
     const float axis_length = length(axis_sum_);
     if (axis_length > 1e-6f) b_.axis = axis_sum_ / axis_length;
     second_ = true;
     return true;
   }
   void add_second_pass(const LightBounds& m) {
-    if (cos_o_ <= -1.0f) return;
     const float c = std::clamp(dot(b_.axis, m.axis), -1.0f, 1.0f);
+    const float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));
+    if (cos_lit_ <= 1.0f) {
+      // θl_m − α ≤ 0 (cos θl_m ≥ cos α, or no lit cone): nothing is certain.
+      if (!(m.cos_theta_lit < c))
+        cos_lit_ = kNoLitCone;
+      else
+        cos_lit_ = std::fmax(cos_lit_, m.cos_theta_lit * c + std::sqrt(std::fmax(0.0f, 1.0f - m.cos_theta_lit * m.cos_theta_lit)) * s);
+    }
+    if (cos_o_ <= -1.0f) return;
     if (c < -m.cos_theta_o) {  // α + θo ≥ π: the whole sphere
       cos_o_ = -1.0f;
       return;
     }
-    const float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));
     const float sin_o = std::sqrt(std::fmax(0.0f, 1.0f - m.cos_theta_o * m.cos_theta_o));
     cos_o_ = std::fmin(cos_o_, c * m.cos_theta_o - s * sin_o);
   }
   LightBounds result() const {
     LightBounds out = b_;
     if (second_) {
-      // Widened by 1e-4 rad against rounding in the cosines above.
+      // Widened by 1e-4 rad against rounding in the cosines above (θl narrowed by as much).
       const double theta = std::min(std::acos(std::clamp(double(cos_o_), -1.0, 1.0)) + 1e-4, 3.14159265358979323846);
       out.cos_theta_o = float(std::cos(theta));
+      const double lit = cos_lit_ <= 1.0f ? std::acos(std::clamp(double(cos_lit_), -1.0, 1.0)) - 1e-4 : -1.0;
+      out.cos_theta_lit = lit > 0.0 ? float(std::cos(lit)) : kNoLitCone;
     }
     return out;
   }
@@ -79,6 +94,7 @@ class BoundsAccumulator {
   LightBounds b_;
   Vec3 axis_sum_{};
   float cos_o_ = 1.0f;
+  float cos_lit_ = -1.0f;  // cos of the smallest θl_m − α so far (−1: none yet, i.e. π); kNoLitCone: none possible
   bool empty_ = true, same_axis_ = true, second_ = false;
 };
 
@@ -98,44 +114,38 @@ double cluster_cost(const LightBounds& b, double floor_m) {
 
 // True if every leaf below a cluster with bounds `b` scores > 0 at (p, n), decided from the cluster's own bounds
 // (no leaf is read): p lies outside the cluster's bounding sphere, the whole box lies strictly above p's tangent
-// plane (so every member's box does), and p is inside every member's emission cone from every member position:
-// with w the direction from the box centre to p, θu the angle the bounding sphere subtends at p, and each member's
-// cone inside the cluster's (axis within θo of the cluster's), a member's angle to p is at most ∠(axis, w) + θu +
-// θo; that must not exceed θe (the members' smallest falloff reach) less twice the bounds' angular margin. For
-// one-sided flat emitters (θe = π/2) this puts p in front of every member's plane. Two-sided clusters and clusters
-// whose cone plus falloff covers the sphere through an omnidirectional member (θo = π) are never certified here.
-bool every_leaf_scores(const LightBounds& b, Vec3 p, Vec3 normal) {
-  if (b.two_sided) return false;
-  const Vec3 centre = b.centre_m();
-  const Vec3 half = (b.upper_m - b.lower_m) * 0.5f;
-  const Vec3 to_p = p - centre;
-  if (!(normal == Vec3{}) && !(-dot(normal, to_p) - dot(abs(normal), half) > 0.0f)) return false;
-  const float distance2 = length_squared(to_p);
-  const float radius2 = length_squared(half);
-  if (!(distance2 > radius2)) return false;
-  // cos and sin of ∠(axis, w) + θu + θo, by the angle-sum formulas; a sum past π fails (its sine turns negative).
-  const float sin2_u = radius2 / distance2;
-  float c = dot(b.axis, to_p / std::sqrt(distance2));
-  float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
-  for (const float cos_add : {std::sqrt(1.0f - sin2_u), b.cos_theta_o}) {
-    const float sin_add = std::sqrt(std::max(0.0f, 1.0f - cos_add * cos_add));
-    const float c_sum = c * cos_add - s * sin_add;
-    const float s_sum = s * cos_add + c * sin_add;
-    if (!(s_sum >= 0.0f)) return false;
-    c = c_sum;
-    s = s_sum;
-  }
-  // cos(θe − 2·margin), margin 1e-3 rad (light_bounds.cpp).
+// plane (so every member's box does), and every direction from a member's point to p lies within the lit cone θl
+// (light_bounds.h: inside that member's emission cone and falloff). With w the direction from the box centre to p and
+// θu the angle the bounding sphere subtends at p, a direction from any point of the box to p is within ∠(axis, w) +
+// θu of the axis; that must not exceed θl less twice the bounds' angular margin. For one-sided flat emitters (θl =
+// π/2) this puts p in front of every member's plane; for a ceiling of downlights (θl = their γ reach), below it and
+// inside every member's beam. Two-sided clusters are never certified here.
+bool every_leaf_scores(const ImportanceBounds& b, Vec3 p, Vec3 normal) {
+  // cos(θl − 2·margin) below, margin 1e-3 rad (light_bounds.cpp); θl ≤ 2·margin certifies nothing.
   constexpr float kCosMargin = 0.999998f, kSinMargin = 0.002f;
-  const float sin_e = std::sqrt(std::max(0.0f, 1.0f - b.cos_theta_e * b.cos_theta_e));
-  return c >= b.cos_theta_e * kCosMargin + sin_e * kSinMargin;
+  if (b.two_sided || !(b.cos_theta_lit < kCosMargin)) return false;
+  const Vec3 to_p = p - b.centre_m;
+  if (!(normal == Vec3{}) && !(-dot(normal, to_p) - dot(abs(normal), b.half_m) > 0.0f)) return false;
+  const float distance2 = length_squared(to_p);
+  const float radius2 = b.radius2_m2;
+  if (!(distance2 > radius2)) return false;
+  // cos and sin of ∠(axis, w) + θu by the angle-sum formula; a sum past π fails (its sine turns negative).
+  const float sin2_u = radius2 / distance2;
+  const float c = dot(b.axis, to_p / std::sqrt(distance2));
+  const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
+  const float cos_u = std::sqrt(1.0f - sin2_u), sin_u = std::sqrt(sin2_u);
+  const float c_sum = c * cos_u - s * sin_u;
+  const float s_sum = s * cos_u + c * sin_u;
+  if (!(s_sum >= 0.0f)) return false;
+  const float sin_l = std::sqrt(std::max(0.0f, 1.0f - b.cos_theta_lit * b.cos_theta_lit));
+  return c_sum >= b.cos_theta_lit * kCosMargin + sin_l * kSinMargin;
 }
 
 // Whether leaf a is the better representative of a subtree than leaf b: the one more likely to score > 0 at an
 // arbitrary point, i.e. the one whose emission reaches the widest cone (θo + θe: a point light everywhere, a spot
 // its cone, a triangle its hemisphere), then the brighter.
-bool more_likely_to_score(const LightBounds& a, const LightBounds& b) {
-  const auto reach = [](const LightBounds& x) {
+bool more_likely_to_score(const ImportanceBounds& a, const ImportanceBounds& b) {
+  const auto reach = [](const ImportanceBounds& x) {
     return std::min(std::acos(std::clamp(double(x.cos_theta_o), -1.0, 1.0)) +
                         std::acos(std::clamp(double(x.cos_theta_e), -1.0, 1.0)),
                     3.14159265358979323846) + (x.two_sided ? 3.14159265358979323846 : 0.0);
@@ -237,7 +247,7 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
   nodes_.emplace_back();
   if (end - begin == 1) {
     const Leaf& leaf = leaves_[items[begin].leaf];
-    nodes_[index].bounds = items[begin].bounds;
+    nodes_[index].bounds = ImportanceBounds::of(items[begin].bounds);
     nodes_[index].index = items[begin].leaf;
     nodes_[index].is_leaf = true;
     nodes_[index].representative = index;
@@ -340,7 +350,7 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
 
   const uint32_t first = build(items, begin, middle, depth + 1, trail);
   const uint32_t second = build(items, middle, end, depth + 1, trail | (uint64_t(1) << depth));
-  nodes_[index].bounds = bounds;
+  nodes_[index].bounds = ImportanceBounds::of(bounds);
   nodes_[index].index = second;
   if (!node_bands_.empty())
     for (int b = 0; b < kBands; ++b)
@@ -425,7 +435,7 @@ BvhLightSampler::Query BvhLightSampler::query(const LightSamplingPoint& at) cons
 }
 
 float BvhLightSampler::importance(uint32_t index, const Query& at) const {
-  const LightBounds& bounds = nodes_[index].bounds;
+  const ImportanceBounds& bounds = nodes_[index].bounds;
   const float broadband = light_importance(bounds, at.position_m, at.normal);
   if (!at.spectral || !(broadband > 0.0f)) return broadband;
   const std::array<float, kBands>& bands = node_bands_[index];

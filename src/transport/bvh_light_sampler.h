@@ -21,18 +21,18 @@
 // same path, so it still multiplies identical factors. Cost: one extra importance evaluation per level where
 // nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
 //
-// Capped search (an option, off by default). A search may be limited to `search_budget` node visits (importance
-// evaluations; 0, the default: unlimited). If it runs out, the child counts as if it could contribute, with no
-// witness: the descent checks both of its children again. Where such a child has no scoring leaf below, a descent
-// into it finds none and sample() returns std::nullopt: the probabilities then sum to less than 1 at that point, by
-// that child's share, but every leaf that scores > 0 still has probability > 0 (a child holding one is never
-// dropped), so the choice stays unbiased, and pmf() retraces the same checks with the same budget, so it still
-// equals sample()'s probability exactly. The cap bounds a choice's cost at about search_budget importance
-// evaluations per level. Measured with kSearchBudget = 8 (docs/benchmarks.md, "Light sampling"): on 10⁶ randomly
-// oriented triangles sample() 19-25 % faster (two runs) but 3 % of the choices find no light; on the test's 1,050
-// random triangles the sum falls to 0.87 on average. Too small a gain for that loss to be the default; a depth
-// below which nothing is pruned was also tried (12: 10 % of the choices lost, still 9.8 µs per choice), so the cost
-// there is not mainly the searches.
+// Capped search (the default; search_budget 0 turns it off). A search is limited to `search_budget` node visits
+// (importance evaluations). If it runs out, the child counts as if it could contribute, with no witness: the
+// descent checks both of its children again. Where such a child has no scoring leaf below, a descent into it finds
+// none and sample() returns std::nullopt: the probabilities then sum to less than 1 at that point, by that child's
+// share, but every leaf that scores > 0 still has probability > 0 (a child holding one is never dropped), so the
+// choice stays unbiased, and pmf() retraces the same checks with the same budget, so it still equals sample()'s
+// probability exactly. The cap bounds a choice's work at about 2 + 2·search_budget importance evaluations per level
+// (depth ≤ 62), whatever the lights; without it a search may visit every node below a child at every level (10⁶
+// randomly oriented triangles: the bounds certify nothing). Where bounds certify clusters or representatives score
+// (rooms, streets, the Cornell box) searches end within a visit or two and the cap never acts; on 1,050 randomly
+// oriented triangles at random points with random normals the probabilities sum to 0.87 on average
+// (docs/benchmarks.md, "Light sampling").
 //
 // An environment with portals (environment_light.h) is a leaf of the tree: its bounds are the portal rectangles,
 // two-sided, with the intensity of a Lambertian emitter of the environment's mean radiance, so near a window the sky
@@ -81,13 +81,14 @@ class BvhLightSampler final : public LightSampler {
   static constexpr int kBands = 16;  ///< 29.4 nm each: 64 bytes per node
   static constexpr float kSpectralFloor = 1e-3f;
 
-  /// The search cap measured in docs/benchmarks.md (see "Capped search"); not the default.
+  /// The search cap (see "Capped search"), the default: it bounds a choice's work in the worst case.
   static constexpr int kSearchBudget = 8;
 
-  /// Over `lights` (indices as given; they must outlive the sampler). `search_budget`: 0 (the default) for
-  /// unlimited searches, so the probabilities sum to exactly 1 wherever some light can contribute; else the cap.
+  /// Over `lights` (indices as given; they must outlive the sampler). `search_budget`: the cap (default
+  /// kSearchBudget), or 0 for unlimited searches, so the probabilities sum to exactly 1 wherever some light can
+  /// contribute, at a cost that grows with the lights in the worst case.
   explicit BvhLightSampler(std::span<const Light* const> lights, Importance importance = Importance::broadband,
-                           int search_budget = 0);
+                           int search_budget = kSearchBudget);
 
   std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const override;
   float pmf(const LightSamplingPoint& at, int light, int part) const override;
@@ -101,7 +102,7 @@ class BvhLightSampler final : public LightSampler {
 
  private:
   struct Node {
-    LightBounds bounds;
+    ImportanceBounds bounds;
     uint32_t index = 0;  // interior: the second child (the first is the next node); leaf: into leaves_
     uint32_t representative = 0;  // the node of the subtree's leaf likeliest to score (widest reach, brightest)
     bool is_leaf = false;

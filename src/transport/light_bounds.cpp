@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include <immintrin.h>
+
 namespace rimu {
 namespace {
 
@@ -23,8 +25,11 @@ inline CosSin angle_difference_clamped(float cos_a, float sin_a, float cos_b, fl
   return {cos_a * cos_b + sin_a * sin_b, sin_a * cos_b - cos_a * sin_b};
 }
 
+// The correctly rounded square root (as std::sqrt) without its errno branch: these inputs are never negative.
+inline float root(float x) { return _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))); }
+
 // (std::max, not std::fmax: without -ffast-math fmax is a library call, and these inputs are never NaN.)
-inline float sine_of(float cos_x) { return std::sqrt(std::max(0.0f, 1.0f - cos_x * cos_x)); }
+inline float sine_of(float cos_x) { return root(std::max(0.0f, 1.0f - cos_x * cos_x)); }
 
 double angle_of(float cos_x) { return std::acos(std::clamp(double(cos_x), -1.0, 1.0)); }
 
@@ -86,6 +91,14 @@ LightBounds point_light_bounds(Vec3 position_m, double intensity_w_sr, Vec3 axis
   b.axis = normalize(axis);
   b.cos_theta_o = float(std::cos(std::clamp(theta_o_rad, 0.0, kPi)));
   b.cos_theta_e = float(std::cos(std::clamp(theta_e_rad + kAngleMarginRad, 0.0, kPi)));
+  // The reach without the rounding margin: an emitter whose intensity is 0 from 90° on lights nothing behind its
+  // own plane (a downlight's ceiling).
+  const double reach = std::clamp(theta_o_rad, 0.0, kPi) + std::clamp(theta_e_rad, 0.0, kPi);
+  if (reach <= kPi / 2) {
+    b.half_space = true;
+    b.plane_offset_m = dot(b.axis, position_m);
+  }
+  b.cos_theta_lit = float(std::cos(std::min(reach + kAngleMarginRad, kPi)));
   return b;
 }
 
@@ -99,8 +112,9 @@ LightBounds triangle_light_bounds(Vec3 v0, Vec3 v1, Vec3 v2, Vec3 normal, double
   b.cos_theta_o = 1.0f;
   b.cos_theta_e = float(std::cos(kPi / 2 + kAngleMarginRad));
   b.two_sided = two_sided;
-  b.flat_one_sided = !two_sided;
+  b.half_space = !two_sided;
   b.plane_offset_m = std::fmin(dot(normal, v0), std::fmin(dot(normal, v1), dot(normal, v2)));
+  if (!two_sided) b.cos_theta_lit = b.cos_theta_e;  // θo = 0
   return b;
 }
 
@@ -116,46 +130,72 @@ LightBounds unite(const LightBounds& a, const LightBounds& b) {
   u.cos_theta_o = a.axis == b.axis ? std::fmin(a.cos_theta_o, b.cos_theta_o) : float(std::cos(theta_o));
   u.cos_theta_e = std::fmin(a.cos_theta_e, b.cos_theta_e);
   u.two_sided = a.two_sided || b.two_sided;
-  u.flat_one_sided = a.flat_one_sided && b.flat_one_sided && a.axis == b.axis;
-  if (u.flat_one_sided) u.plane_offset_m = std::fmin(a.plane_offset_m, b.plane_offset_m);
+  u.half_space = a.half_space && b.half_space && a.axis == b.axis;
+  if (u.half_space) u.plane_offset_m = std::fmin(a.plane_offset_m, b.plane_offset_m);
   return u;
 }
 
+ImportanceBounds ImportanceBounds::of(const LightBounds& b) {
+  ImportanceBounds q;
+  q.centre_m = b.centre_m();
+  q.half_m = (b.upper_m - b.lower_m) * 0.5f;
+  q.radius2_m2 = length_squared(q.half_m);
+  q.radius_m = std::sqrt(q.radius2_m2);
+  q.axis = b.axis;
+  q.cos_theta_o = b.cos_theta_o;
+  q.sin_theta_o = sine_of(b.cos_theta_o);
+  q.cos_theta_e = b.cos_theta_e;
+  q.cos_theta_lit = b.cos_theta_lit;
+  q.intensity_w_sr = b.intensity_w_sr;
+  q.plane_offset_m = b.plane_offset_m;
+  q.two_sided = b.two_sided;
+  q.half_space = b.half_space;
+  return q;
+}
+
 float light_importance(const LightBounds& b, Vec3 p, Vec3 normal) {
+  return light_importance(ImportanceBounds::of(b), p, normal);
+}
+
+float light_importance(const ImportanceBounds& b, Vec3 p, Vec3 normal) {
   if (!(b.intensity_w_sr > 0.0f)) return 0.0f;
-  const Vec3 centre = b.centre_m();
-  const Vec3 half = (b.upper_m - b.lower_m) * 0.5f;
-  const Vec3 to_p = p - centre;
+  const Vec3 to_p = p - b.centre_m;
   const bool oriented = !(normal == Vec3{});
   // The largest n·(y − p) over the box's corners y: ≤ 0 means the box is on or below the tangent plane.
-  if (oriented && !(-dot(normal, to_p) + dot(abs(normal), half) > 0.0f)) return 0.0f;
-  if (b.flat_one_sided && !(dot(b.axis, p) > b.plane_offset_m)) return 0.0f;
+  const float normal_dot = dot(normal, to_p);
+  if (oriented && !(-normal_dot + dot(abs(normal), b.half_m) > 0.0f)) return 0.0f;
+  if (b.half_space && !(dot(b.axis, p) > b.plane_offset_m)) return 0.0f;
 
   const float distance2 = length_squared(to_p);
-  const float radius2 = length_squared(half);
   constexpr float kLargest = 1e30f;
   // Past the tests above the cluster can contribute, so its importance must not round to 0 (a faint light far away
   // would then never be picked by next-event estimation and, if it is a point light, never reached at all).
   constexpr float kSmallest = std::numeric_limits<float>::min();
-  if (distance2 <= radius2) {
+  if (distance2 <= b.radius2_m2) {
     // p inside the bounding sphere: every direction is possible; the distance is taken as the sphere's radius.
-    if (!(radius2 > 0.0f)) return 0.0f;  // p at a point light
-    return std::clamp(b.intensity_w_sr / radius2, kSmallest, kLargest);
+    if (!(b.radius2_m2 > 0.0f)) return 0.0f;  // p at a point light
+    return std::clamp(b.intensity_w_sr / b.radius2_m2, kSmallest, kLargest);
   }
-  const float sin2_u = radius2 / distance2;
-  const float sin_u = std::sqrt(sin2_u), cos_u = std::sqrt(1.0f - sin2_u);
-  const Vec3 w = to_p / std::sqrt(distance2);  // from the cluster towards p
+  const float inverse_distance = 1.0f / root(distance2);
+  // θu, the half-angle the bounding sphere subtends: sin θu = r/d (0 for a point).
+  const float sin_u = std::min(b.radius_m * inverse_distance, 1.0f);
+  const float cos_u = root(std::max(0.0f, 1.0f - sin_u * sin_u));
 
-  float cos_w = dot(b.axis, w);
+  // θw, from the axis to the direction from the cluster towards p.
+  float cos_w = dot(b.axis, to_p) * inverse_distance;
   if (b.two_sided) cos_w = std::fabs(cos_w);
-  const CosSin beyond_cone = angle_difference_clamped(cos_w, sine_of(cos_w), b.cos_theta_o, sine_of(b.cos_theta_o));
+  // max(0, θw − θo), then less θu (the sines only where the angle is not already 0).
+  const CosSin beyond_cone = cos_w >= b.cos_theta_o
+                                 ? CosSin{1.0f, 0.0f}
+                                 : angle_difference_clamped(cos_w, sine_of(cos_w), b.cos_theta_o, b.sin_theta_o);
   const CosSin emission = angle_difference_clamped(beyond_cone.cos, beyond_cone.sin, cos_u, sin_u);
   if (emission.cos < b.cos_theta_e) return 0.0f;
 
   float receiver = 1.0f;
   if (oriented) {
-    const float cos_i = -dot(normal, w);
-    receiver = std::max(angle_difference_clamped(cos_i, sine_of(cos_i), cos_u, sin_u).cos, kImportanceCosineFloor);
+    const float cos_i = -normal_dot * inverse_distance;
+    receiver = cos_i >= cos_u ? 1.0f
+                              : std::max(cos_i * cos_u + sine_of(cos_i) * sin_u, kImportanceCosineFloor);
   }
   const float importance =
       b.intensity_w_sr * std::max(emission.cos, kImportanceCosineFloor) * receiver / distance2;
