@@ -76,7 +76,7 @@ bool usable_name(const std::string& name) {
   return parts >= 1 && parts <= 3 && name.front() != '/' && name.back() != '/';
 }
 
-// Splits the input at "#file NAME" lines: the main file's bytes and up to 16 named files (a later file of the same
+// Splits the input at "#file NAME" lines: the main file's bytes and up to 32 named files (a later file of the same
 // name replaces an earlier one; a section with an unusable name is dropped).
 std::string_view split_input(std::string_view text, std::vector<ExtraFile>& extra) {
   constexpr std::string_view marker = "#file ";
@@ -84,7 +84,7 @@ std::string_view split_input(std::string_view text, std::vector<ExtraFile>& extr
   std::optional<size_t> section_start;  // of the file being collected
   std::string section_name;
   const auto close_section = [&](size_t end) {
-    if (section_start && usable_name(section_name) && extra.size() < 16)
+    if (section_start && usable_name(section_name) && extra.size() < 32)
       extra.push_back({section_name, text.substr(*section_start, end - *section_start)});
   };
   for (size_t found = text.find(marker); found != std::string_view::npos; found = text.find(marker, found + 1)) {

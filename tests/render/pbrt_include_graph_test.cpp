@@ -81,9 +81,9 @@ TEST_CASE("pbrt include graph: statements are counted over the Include graph, in
   PbrtImportOptions instances;
   instances.max_instances = 1000;
   CHECK(import_error(bomb / "main.pbrt", instances) ==
-        (bomb / "i5.pbrt").string() + ":10: ObjectInstance: the scene places more than 1000 instances, beyond the "
+        (bomb / "i5.pbrt").string() + ":1: ObjectInstance: the scene places more than 1000 instances, beyond the "
         "importer's limit (PbrtImportOptions::max_instances; docs/pbrt-import.md, \"Limits\")");
-  // The default bound (2^20) lets 10^6 through: a forest of a million trees is a real scene, and costs bytes.
+  // (The default bound, 2^20, lets these 10^6 through: a forest of a million trees is a real scene.)
 
   // A file of shapes included over and over: its Shape statements are counted at every read.
   test::ScratchFolder shapes("pbrt_shape_limit");
