@@ -16,9 +16,9 @@
 #include "render/output_file.h"
 #include "render/partial_exr.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
-#include "render/scene/scene_files.h"
 #include "render/scene/scene_frame.h"
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 #include "render/interrupt_flag.h"
 #include "render/scene/json_cursor.h"
 #include "render/progress_reporter.h"
@@ -89,12 +89,12 @@ void check_outputs(const RenderJob& job) {
   if (job.png_output) check_output_path(*job.png_output);
 }
 
-// No output may be a file the render reads: the scene, or a file it names (a mesh, a texture, a spectrum), also
-// through a link. Checkpoints are written to -o, so they are covered too.
-void check_outputs_not_inputs(const RenderJob& job, const std::filesystem::path& scene_path) {
-  std::vector<InputFile> inputs{{scene_path, "the scene"}};
-  for (const SceneFile& file : scene_referenced_files(scene_text_for_frame(scene_path, job.frame), scene_path))
-    inputs.push_back({file.path, "named by the scene"});
+// No output may be a file the render reads: the scene, or a file loading it read (a mesh, a texture, a spectrum,
+// an Include), also through a link — the list is the readers' own (InputFileLog), not a guess from the scene's
+// text. Checkpoints are written to -o, so they are covered too.
+void check_outputs_not_inputs(const RenderJob& job, const std::vector<std::filesystem::path>& files_read) {
+  std::vector<InputFile> inputs;
+  for (const std::filesystem::path& file : files_read) inputs.push_back({file, "read by the scene"});
   check_output_not_input(job.exr_output, "-o", inputs);
   if (job.png_output) check_output_not_input(*job.png_output, "--png", inputs);
 }
@@ -129,6 +129,47 @@ nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrar
 
 namespace {
 
+// The job's scene loaded as a render loads it (the pbrt import or the JSON text with its frame, the job's
+// integrator options, load_scene with errors moved to their pbrt lines), and the hash of what that read: every
+// file the readers opened, recorded as they read it (InputFileLog), so the hash covers exactly the bytes the scene
+// is made of. `library` must be fresh (nothing read through it yet), so its cache hides no read.
+struct JobScene {
+  nlohmann::json document;
+  std::unique_ptr<Scene> scene;
+  std::string hash;
+  std::vector<std::filesystem::path> files_read;  ///< every file the load read, the scene file first
+};
+
+JobScene load_job_scene(const RenderJob& job, const std::filesystem::path& scene_path, SpectralLibrary& library,
+                        std::ostream& log) {
+  JobScene loaded;
+  const InputFileLog files;
+  // pbrt-v4 files are translated into a JSON document first; both then go through the same loader.
+  const bool pbrt = is_pbrt_scene_path(scene_path);
+  if (pbrt && job.frame)
+    throw InputError({"", 0, "--frame"}, "frame numbers are substituted into JSON scenes; a pbrt-v4 scene is read as it is");
+  std::vector<PbrtOrigin> pbrt_origins;  // errors inside files a pbrt scene names are reported at its lines
+  loaded.document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log, &pbrt_origins)
+                         : parse_json_text(scene_text_for_frame(scene_path, job.frame), scene_path.string());
+  nlohmann::json& document = loaded.document;
+  if (job.frame) apply_camera_keyframes(document, *job.frame, scene_path.string());  // a camera path keyed by frame
+  if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
+  if (job.wavelength_density)
+    document["integrator"]["wavelength_density"] =
+        *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
+  if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
+  try {
+    loaded.scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
+  } catch (const InputError& e) {
+    if (std::optional<InputError> at_pbrt = at_pbrt_origin(e, pbrt_origins)) throw *at_pbrt;
+    throw;
+  }
+  loaded.hash = scene_hash_of_files(files, scene_path, library.root(), job);
+  loaded.files_read.push_back(scene_path);
+  for (const auto& [path, digest] : files.files()) loaded.files_read.push_back(path);
+  return loaded;
+}
+
 // The render itself. `previous`: a partial (checkpoint) of this job whose sums the film starts from; the render
 // continues after its last sample.
 RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, InterruptFlag& interrupt,
@@ -141,16 +182,11 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, I
   const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
-  check_outputs_not_inputs(job, scene_path);
-  // pbrt-v4 files are translated into a JSON document first; both then go through the same loader.
-  const bool pbrt = is_pbrt_scene_path(scene_path);
-  if (pbrt && job.frame)
-    throw InputError({"", 0, "--frame"}, "frame numbers are substituted into JSON scenes; a pbrt-v4 scene is read as it is");
-  std::vector<PbrtOrigin> pbrt_origins;  // errors inside files a pbrt scene names are reported at its lines
-  nlohmann::json document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log, &pbrt_origins)
-                                 : parse_json_text(scene_text_for_frame(scene_path, job.frame), scene_path.string());
-  if (job.frame) apply_camera_keyframes(document, *job.frame, scene_path.string());  // a camera path keyed by frame
-  const std::string hash = scene_hash(job);
+  JobScene loaded = load_job_scene(job, scene_path, library, log);
+  check_outputs_not_inputs(job, loaded.files_read);
+  const nlohmann::json& document = loaded.document;
+  const std::unique_ptr<Scene>& scene = loaded.scene;
+  const std::string& hash = loaded.hash;
   if (job.expected_scene_hash && *job.expected_scene_hash != hash)
     throw InputError({scene_path.string(), 0, ""},
                      "the scene (its file, the files it names, or image options) hashes to " + hash +
@@ -161,19 +197,6 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, I
                          previous->path.string() +
                          " was rendered from one that hashed to " + previous->record.scene_hash +
                          ": it changed since; resuming would mix two scenes");
-  if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
-  if (job.wavelength_density)
-    document["integrator"]["wavelength_density"] =
-        *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
-  if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
-  const std::unique_ptr<Scene> scene = [&] {
-    try {
-      return load_scene(document, scene_path.string(), scene_path.parent_path(), library);
-    } catch (const InputError& e) {
-      if (std::optional<InputError> at_pbrt = at_pbrt_origin(e, pbrt_origins)) throw *at_pbrt;
-      throw;
-    }
-  }();
 
   for (const std::string& warning : scene->warnings) log << "rimu: warning: " << warning << "\n";
   RenderSettings& settings = scene->settings;
@@ -387,6 +410,13 @@ RenderJobResult resume_render_job(const RenderJob& job, InterruptFlag& interrupt
 }
 
 }  // namespace
+
+std::string scene_hash(const RenderJob& job) {
+  SpectralLibrary library = SpectralLibrary::at_default_location();
+  const std::filesystem::path scene_path = job.scene ? *job.scene : default_scene_path(library);
+  std::ostringstream ignored_report;  // the import's report of what it ignores: printed by the render, not here
+  return load_job_scene(job, scene_path, library, ignored_report).hash;
+}
 
 RenderJobResult run_render_job(const RenderJob& job_in, std::ostream& log) {
   // Ctrl-C and SIGTERM are caught from here on, before anything slow (reading the scene, building the BVH): a

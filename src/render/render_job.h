@@ -13,6 +13,7 @@
 #include "render/film.h"
 #include "render/partial_record.h"
 #include "render/renderer.h"
+#include "spectral/input_file.h"
 #include "spectral/spectral_library.h"
 #include "transport/light_sampler.h"
 #include "transport/wavelength_modes.h"
@@ -66,11 +67,18 @@ struct RenderJob {
   std::optional<int> frame;
 };
 
-/// The scene file's bytes (with ${frame} substituted), the name and bytes of every file it names (meshes, CSV
-/// spectra, textures, IES profiles, volumes: scene_referenced_files()) and the options that change the image, hashed
-/// (64-bit FNV-1a, 16 hex digits): equal hashes mean the same render. Reads every referenced file once (≈ 1 s per
-/// GB). InputError if the scene cannot be read.
+/// The hash of a render (64-bit FNV-1a, 16 hex digits): equal hashes mean the same render. It covers every file
+/// reading the scene opened (the scene file, what it includes, meshes, spectra, images, IES profiles, voxel grids,
+/// data tables), each by its name and exactly the bytes read, and the options that change the image. It loads the
+/// scene as a render does to learn what that reads (a render computes it from its own load). InputError if the
+/// scene cannot be loaded.
 std::string scene_hash(const RenderJob& job);
+/// The hash of the files in `files` (InputFileLog, input_file.h) and the job's image options. A file is named
+/// relative to the scene's folder when inside it, relative to Rimu's data folder (`data_root`) when inside that,
+/// else by its absolute path, so a moved scene folder or another installation keeps the hash. A file the log holds
+/// without a digest (an image a library read) is read again here.
+std::string scene_hash_of_files(const InputFileLog& files, const std::filesystem::path& scene_path,
+                                const std::filesystem::path& data_root, const RenderJob& job);
 /// The job's options as JSON (what a partial records for --resume) and back.
 std::string render_job_json(const RenderJob& job);
 RenderJob render_job_from_json(const std::string& json, const std::string& where);

@@ -1,14 +1,14 @@
 // What a partial render records about its job: the scene hash and the options as JSON (render_job.h).
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <vector>
 
 #include "render/scene/json_cursor.h"
 #include "render/render_job.h"
-#include "render/scene/scene_files.h"
-#include "render/scene/scene_frame.h"
 
 namespace rimu {
 namespace {
@@ -34,36 +34,48 @@ nlohmann::json image_options(const RenderJob& job) {
   return j;
 }
 
-// 64-bit FNV-1a (Fowler, Noll, Vo): enough to tell a changed scene from an unchanged one, not a security check.
-uint64_t fnv1a(std::string_view bytes, uint64_t h = 0xcbf29ce484222325ULL) {
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return h;
+// `path` relative to `folder` if inside it (no "..").
+std::optional<std::string> relative_inside(const std::filesystem::path& path, const std::filesystem::path& folder) {
+  std::error_code error;
+  const std::filesystem::path base = std::filesystem::absolute(folder, error).lexically_normal();
+  if (error) return std::nullopt;
+  const std::filesystem::path relative = path.lexically_relative(base);
+  if (relative.empty() || *relative.begin() == "..") return std::nullopt;
+  return relative.generic_string();
 }
 
-// A referenced file's name and bytes, read in blocks (a mesh may be hundreds of MB). A file that vanished since it
-// was listed hashes as its name alone; the loader then reports it.
-uint64_t hash_file(const SceneFile& file, uint64_t h) {
-  h = fnv1a(file.name + '\0', h);
-  std::ifstream in(file.path, std::ios::binary);
+// A file a library read itself (an image): its bytes, read in blocks (it may be hundreds of MB). A file that
+// vanished since hashes as nothing; the next load reports it.
+uint64_t hash_file_bytes(const std::filesystem::path& path) {
+  uint64_t h = fnv1a("");
+  std::ifstream in(path, std::ios::binary);
   std::vector<char> block(1 << 20);
   while (in) {
     in.read(block.data(), std::streamsize(block.size()));
     h = fnv1a(std::string_view(block.data(), size_t(in.gcount())), h);
   }
-  return fnv1a(std::string_view("\0", 1), h);
+  return h;
 }
 
 }  // namespace
 
-std::string scene_hash(const RenderJob& job) {
-  SpectralLibrary library = SpectralLibrary::at_default_location();
-  const std::filesystem::path path = job.scene ? *job.scene : default_scene_path(library);
-  const std::string text = scene_text_for_frame(path, job.frame);
-  uint64_t h = fnv1a(text + '\0');
-  for (const SceneFile& file : scene_referenced_files(text, path)) h = hash_file(file, h);
+std::string scene_hash_of_files(const InputFileLog& files, const std::filesystem::path& scene_path,
+                                const std::filesystem::path& data_root, const RenderJob& job) {
+  // By name, so the order the readers happened to read in does not matter.
+  std::map<std::string, uint64_t> named;
+  const std::filesystem::path scene_folder = scene_path.parent_path().empty() ? "." : scene_path.parent_path();
+  for (const auto& [path, digest] : files.files()) {
+    std::string name;
+    if (const auto in_scene = relative_inside(path, scene_folder)) name = *in_scene;
+    else if (const auto in_data = relative_inside(path, data_root)) name = "data:" + *in_data;
+    else name = path.generic_string();
+    named[name] = digest ? *digest : hash_file_bytes(path);
+  }
+  uint64_t h = fnv1a("rimu scene hash 2");  // the files read, not the names a scene's strings hold (version 1)
+  for (const auto& [name, digest] : named) {
+    h = fnv1a(name + '\0', h);
+    for (int byte = 0; byte < 8; ++byte) h = fnv1a(std::string(1, char((digest >> (8 * byte)) & 0xff)), h);
+  }
   h = fnv1a(image_options(job).dump(), h);
   char hex[17];
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(h));

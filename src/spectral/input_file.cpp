@@ -28,6 +28,17 @@ class Descriptor {
   int fd_;
 };
 
+// The logs alive on this thread, innermost last.
+thread_local std::vector<InputFileLog*> active_logs;
+
+void record_in_active_logs(const std::filesystem::path& path, const std::optional<std::uint64_t>& digest) {
+  if (active_logs.empty()) return;
+  std::error_code error;
+  std::filesystem::path absolute = std::filesystem::absolute(path, error);
+  if (error) absolute = path;
+  for (InputFileLog* log : active_logs) log->record(absolute.lexically_normal(), digest);
+}
+
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
   throw InputError({path.string(), 0, ""}, what);
 }
@@ -70,6 +81,23 @@ int open_checked(const std::filesystem::path& path, std::uintmax_t max_bytes, st
 
 }  // namespace
 
+InputFileLog::InputFileLog() { active_logs.push_back(this); }
+
+InputFileLog::~InputFileLog() { std::erase(active_logs, this); }
+
+void InputFileLog::record(const std::filesystem::path& path, const std::optional<std::uint64_t>& digest) {
+  auto [it, inserted] = files_.emplace(path, digest);
+  if (!inserted && digest) it->second = digest;  // read after being admitted: the read bytes' digest wins
+}
+
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
 std::string format_bytes(std::uintmax_t bytes) {
   std::ostringstream out;
   if (bytes < 1024) {
@@ -88,6 +116,7 @@ std::string format_bytes(std::uintmax_t bytes) {
 std::uintmax_t check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
   std::uintmax_t size = 0;
   const Descriptor fd(open_checked(path, max_bytes, size));
+  record_in_active_logs(path, std::nullopt);
   return size;
 }
 
@@ -108,6 +137,7 @@ std::string read_input_file(const std::filesystem::path& path, std::uintmax_t ma
       fail(path, "the file grew past the limit for this kind of input (" + format_bytes(max_bytes) + ") while read");
     bytes.append(buffer, size_t(n));
   }
+  if (!active_logs.empty()) record_in_active_logs(path, fnv1a(bytes));
   return bytes;
 }
 

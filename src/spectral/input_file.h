@@ -9,8 +9,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rimu {
 
@@ -35,6 +38,30 @@ std::string read_input_file(const std::filesystem::path& path, std::uintmax_t ma
 /// Throws InputError "name:line: column C: ..." at the first NUL byte of `text`, if any. Text readers call it on
 /// what they parse: text never holds a NUL, and a parser that stops at one would silently ignore the rest.
 void reject_nul_bytes(std::string_view text, const std::string& name);
+
+/// The files read on this thread while it is alive: every file read_input_file reads (with a digest of exactly the
+/// bytes it returned) and every file check_input_file admits for a library to read (OpenImageIO's images; no
+/// digest: the caller hashes the file itself). The scene hash (render_job.h) is built from it, so it covers what
+/// the readers read and nothing a second parser guesses. Logs nest (each active one records); reads on other
+/// threads are not recorded (the scene readers read on the calling thread).
+class InputFileLog {
+ public:
+  InputFileLog();
+  ~InputFileLog();
+  InputFileLog(const InputFileLog&) = delete;
+  InputFileLog& operator=(const InputFileLog&) = delete;
+
+  /// Absolute, lexically normal path → 64-bit FNV-1a of the bytes read (none: only admitted, not read here).
+  const std::map<std::filesystem::path, std::optional<std::uint64_t>>& files() const { return files_; }
+  void record(const std::filesystem::path& path, const std::optional<std::uint64_t>& digest);
+
+ private:
+  std::map<std::filesystem::path, std::optional<std::uint64_t>> files_;
+};
+
+/// 64-bit FNV-1a (Fowler, Noll, Vo), continuing from `h`: tells changed bytes from unchanged ones; not a security
+/// check.
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 0xcbf29ce484222325ULL);
 
 /// "12.3 MiB" style sizes for messages.
 std::string format_bytes(std::uintmax_t bytes);

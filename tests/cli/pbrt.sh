@@ -23,7 +23,7 @@ expect_bad() {  # file pattern [also-convert]
 
 expect_bad bad_unknown_statement.pbrt "bad_unknown_statement.pbrt:4: unknown statement 'Shpe'" convert
 expect_bad bad_wrong_type.pbrt "bad_wrong_type.pbrt:4: .*expected an integer, found '64.5'"
-expect_bad bad_missing_include.pbrt "bad_missing_include.pbrt:4: Include: cannot open '.*no_such_file.pbrt'"
+expect_bad bad_missing_include.pbrt "bad_missing_include.pbrt:4: Include: '.*no_such_file.pbrt': cannot open the file: it does not exist"
 expect_bad bad_missing_ply.pbrt "bad_missing_ply.pbrt:5: .*cannot find the PLY file '.*no_such_mesh.ply'" convert
 expect_bad bad_mismatched_end.pbrt "bad_mismatched_end.pbrt:6: AttributeEnd without a matching AttributeBegin"
 expect_bad bad_nan_transform.pbrt "bad_nan_transform.pbrt:4: Translate: expected a finite number, found 'nan'"

@@ -8,7 +8,6 @@
 #include "render/output_file.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
-#include "render/scene/scene_files.h"
 #include "render/text_file_output.h"
 #include "spectral/error.h"
 #include "spectral/input_file.h"
@@ -31,12 +30,9 @@ int main(int argc, char** argv) {
     if (!rimu::is_pbrt_scene_path(input))
       throw rimu::InputError({input, 0, ""}, "expected a pbrt-v4 scene file ending in .pbrt");
     rimu::check_output_path(output);
-    // Neither the pbrt file nor a file it includes or names may be replaced by the JSON.
-    std::vector<rimu::InputFile> inputs{{input, "the pbrt scene"}};
-    const std::string text = rimu::read_input_file(input, rimu::kMaxJsonFileBytes);
-    for (const rimu::SceneFile& file : rimu::scene_referenced_files(text, input))
-      inputs.push_back({file.path, "named by the pbrt scene"});
-    rimu::check_output_not_input(output, "-o", inputs);
+    rimu::check_output_not_input(output, "-o", {{input, "the pbrt scene"}});
+    // Every file the import and the check below read (InputFileLog): none of them may be replaced by the JSON.
+    const rimu::InputFileLog files_read;
     const std::filesystem::path output_directory = std::filesystem::absolute(output).parent_path();
     const rimu::PbrtImport imported = rimu::import_pbrt(input, library, {strict, output_directory});
     std::cerr << rimu::describe_ignored(imported.ignored);
@@ -48,6 +44,9 @@ int main(int argc, char** argv) {
       if (std::optional<rimu::InputError> at_pbrt = rimu::at_pbrt_origin(e, imported.origins)) throw *at_pbrt;
       throw;
     }
+    std::vector<rimu::InputFile> inputs;
+    for (const auto& [path, digest] : files_read.files()) inputs.push_back({path, "read by the pbrt scene"});
+    rimu::check_output_not_input(output, "-o", inputs);
     rimu::write_text_file(output, imported.document.dump(2) + "\n");
   });
 }

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
@@ -13,6 +12,7 @@
 #include "render/rgb_image.h"
 #include "transport/environment_portal.h"
 #include "transport/equal_area_square.h"
+#include "spectral/input_file.h"
 #include "spectral/rgb_colour_space.h"
 
 namespace rimu {
@@ -88,8 +88,12 @@ json tabulated_spectrum(const std::vector<double>& pairs, const PbrtParam& param
 // A pbrt spectrum file: numbers separated by white space (or commas), '#' to the end of a line a comment; the
 // numbers are wavelength-value pairs. Errors name the file and line.
 std::vector<double> read_spectrum_file(const std::filesystem::path& path, const PbrtParam& param) {
-  std::ifstream in(path);
-  if (!in) throw InputError(param.where, "cannot read the spectrum file '" + path.string() + "'");
+  std::istringstream in;
+  try {
+    in.str(read_input_file(path, kMaxTableFileBytes));  // the reader every input goes through (input_file.h)
+  } catch (const InputError& e) {
+    throw InputError(param.where, "cannot read the spectrum file '" + path.string() + "': " + e.explanation());
+  }
   std::vector<double> numbers;
   std::string line;
   for (int line_number = 1; std::getline(in, line); ++line_number) {

@@ -77,13 +77,15 @@ struct PbrtTexture {
 class PbrtConverter {
  public:
   PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
-                std::size_t max_generated_triangles);
+                std::size_t max_generated_triangles, std::size_t max_instances, std::size_t max_shapes);
 
   void statement(const PbrtStatement& s);
-  /// The finished document; InputError if the scene has no camera.
+  /// The finished document (the converter's shapes, materials and lights are moved into it); InputError if the
+  /// scene has no camera.
   json finish(const std::string& main_file);
   std::vector<PbrtIgnored> ignored() const { return ignored_; }
-  std::vector<PbrtOrigin> origins() const { return origins_; }
+  /// The origins, moved out (one per shape: a million for a million instances); call once, after finish().
+  std::vector<PbrtOrigin> take_origins() { return std::move(origins_); }
   /// Remembers that the document's part at `pointer` comes from `statement` at `where`.
   void origin(std::string pointer, const SourceLocation& where, std::string statement) {
     origins_.push_back({std::move(pointer), where, std::move(statement)});
@@ -212,6 +214,7 @@ class PbrtConverter {
   bool world_begun_ = false;
   bool end_time_active_ = false;
   std::optional<std::string> object_;  ///< inside ObjectBegin
+  SourceLocation object_where_;        ///< that ObjectBegin
   json shape_alpha_;                   ///< the alpha of the Shape being converted (pbrt_shapes.cpp), or null
   std::map<std::string, PbrtTexture> textures_;
 
@@ -252,6 +255,10 @@ class PbrtConverter {
   void statement_body(const PbrtStatement& s);
   std::size_t max_generated_triangles_;  ///< PbrtImportOptions::max_generated_triangles
   std::size_t generated_triangles_ = 0;  ///< so far: Loop subdivision and sphere/disk stand-ins
+  std::size_t max_instances_;            ///< PbrtImportOptions::max_instances
+  std::size_t instances_ = 0;            ///< ObjectInstance statements imported so far
+  std::size_t max_shapes_;               ///< PbrtImportOptions::max_shapes
+  std::size_t shapes_read_ = 0;          ///< Shape statements so far
   /// Adds `triangles` to the generated count; InputError at `where` if that crosses max_generated_triangles_.
   void count_generated_triangles(double triangles, const SourceLocation& where, const std::string& context);
   /// Texture lookups made for the parameter being converted: textures may share operands, so a graph of n

@@ -3,12 +3,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_tokenizer.h"
 #include "render/scene/pbrt/pbrt_v3_hint.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 
@@ -85,9 +85,27 @@ double parse_number(const PbrtToken& token, const std::string& file, const std::
                    what + ": expected a number, found " + (token.quoted ? "\"" + token.text + "\"" : "'" + token.text + "'"));
 }
 
+// What the whole Include graph has used of PbrtParseLimits so far.
+struct ParseBudget {
+  PbrtParseLimits limits;
+  std::size_t statements = 0;
+  std::size_t included_files = 0;
+};
+
+// "16,777,216"
+std::string with_commas(std::size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
 class Parser {
  public:
-  Parser(const std::function<void(const PbrtStatement&)>& handle, int depth) : handle_(handle), depth_(depth) {}
+  Parser(const std::function<void(const PbrtStatement&)>& handle, int depth, ParseBudget& budget)
+      : handle_(handle), depth_(depth), budget_(budget) {}
 
   void parse(const std::string& text, const std::string& file, const std::filesystem::path& directory) {
     tokens_ = tokenize_pbrt(text, file);
@@ -151,6 +169,11 @@ class Parser {
       include(s);
       return;
     }
+    if (++budget_.statements > budget_.limits.max_statements)
+      throw InputError(s.where, s.keyword + ": the scene expands to more than " +
+                                    with_commas(budget_.limits.max_statements) +
+                                    " statements (counting each time an included file is read; "
+                                    "docs/pbrt-import.md, \"Limits\")");
     handle_(s);
   }
 
@@ -277,22 +300,27 @@ class Parser {
 
   void include(const PbrtStatement& s) {
     if (depth_ >= 64) throw InputError(s.where, s.keyword + ": more than 64 nested includes (does a file include itself?)");
+    if (++budget_.included_files > budget_.limits.max_included_files)
+      throw InputError(s.where, s.keyword + ": the scene reads more than " +
+                                    with_commas(budget_.limits.max_included_files) +
+                                    " included files (counting repeats: do files include each other more than "
+                                    "once?; docs/pbrt-import.md, \"Limits\")");
     const std::filesystem::path path = directory_ / s.strings[0];
-    // Only regular files: a folder reads as empty, and a device (/dev/zero, a FIFO) would read forever or block.
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) throw InputError(s.where, s.keyword + ": cannot open '" + path.string() + "'");
-    if (!std::filesystem::is_regular_file(path, error))
-      throw InputError(s.where, s.keyword + ": '" + path.string() + "' is not a regular file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(s.where, s.keyword + ": cannot open '" + path.string() + "'");
-    std::ostringstream text;
-    text << in.rdbuf();
-    Parser nested(handle_, depth_ + 1);
-    nested.parse(text.str(), path.string(), path.parent_path());
+    // The reader every input goes through: only regular files (a folder, a FIFO or /dev/zero are refused), a size
+    // limit, and the scene hash's record of what was read.
+    std::string text;
+    try {
+      text = read_input_file(path, kMaxPbrtFileBytes);
+    } catch (const InputError& e) {
+      throw InputError(s.where, s.keyword + ": '" + path.string() + "': " + e.explanation());
+    }
+    Parser nested(handle_, depth_ + 1, budget_);
+    nested.parse(text, path.string(), path.parent_path());
   }
 
   const std::function<void(const PbrtStatement&)>& handle_;
   int depth_;
+  ParseBudget& budget_;
   std::vector<PbrtToken> tokens_;
   std::string file_;
   std::filesystem::path directory_;
@@ -308,17 +336,15 @@ const PbrtParam* PbrtStatement::find(const std::string& name) const {
 }
 
 void parse_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
-                     const std::function<void(const PbrtStatement&)>& handle) {
-  Parser parser(handle, 0);
+                     const std::function<void(const PbrtStatement&)>& handle, const PbrtParseLimits& limits) {
+  ParseBudget budget{limits};
+  Parser parser(handle, 0, budget);
   parser.parse(text, file, directory);
 }
 
-void parse_pbrt_file(const std::filesystem::path& file, const std::function<void(const PbrtStatement&)>& handle) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file.string(), 0, ""}, "cannot open the pbrt scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  parse_pbrt_text(text.str(), file.string(), file.parent_path(), handle);
+void parse_pbrt_file(const std::filesystem::path& file, const std::function<void(const PbrtStatement&)>& handle,
+                     const PbrtParseLimits& limits) {
+  parse_pbrt_text(read_input_file(file, kMaxPbrtFileBytes), file.string(), file.parent_path(), handle, limits);
 }
 
 }  // namespace rimu

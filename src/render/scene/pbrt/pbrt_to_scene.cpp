@@ -124,12 +124,14 @@ std::vector<double> PbrtParams::numbers(const std::string& name, std::initialize
 // ---- the converter ------------------------------------------------------------------------------------------
 
 PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
-                             std::size_t max_generated_triangles)
+                             std::size_t max_generated_triangles, std::size_t max_instances, std::size_t max_shapes)
     : library_(library),
       output_directory_(std::move(output_directory)),
       strict_(strict),
       nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()),
-      max_generated_triangles_(max_generated_triangles) {}
+      max_generated_triangles_(max_generated_triangles),
+      max_instances_(max_instances),
+      max_shapes_(max_shapes) {}
 
 void PbrtConverter::ignore_unused(const std::string& what, const SourceLocation& where) {
   if (!strict_) return ignore(what, where);
@@ -336,6 +338,10 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     // pbrt-v3's end marker; pbrt-v4 ends the world at the end of the file.
   } else if (k == "Shape") {
     require_world(true);
+    if (++shapes_read_ > max_shapes_)
+      throw InputError(s.where, "Shape: the scene has more than " + std::to_string(max_shapes_) +
+                                    " Shape statements (counting each read of an included file), beyond the "
+                                    "importer's limit (PbrtImportOptions::max_shapes; docs/pbrt-import.md, \"Limits\")");
     shape(s);
   } else if (k == "Material") {
     require_world(true);
@@ -380,6 +386,7 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     if (prototypes_.contains(s.strings[0])) throw InputError(s.where, "ObjectBegin: \"" + s.strings[0] + "\" is already defined");
     stack_.push_back({'o', state_});
     object_ = s.strings[0];
+    object_where_ = s.where;
     prototypes_[*object_] = json::array();
   } else if (k == "ObjectEnd") {
     if (!object_ || stack_.empty() || stack_.back().first != 'o') throw InputError(s.where, "ObjectEnd without a matching ObjectBegin");
@@ -398,6 +405,11 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
       ignore("ObjectInstance under a singular transform (pbrt-v4 renders it flattened; left out)", s.where);  // as Shape
       return;
     }
+    if (++instances_ > max_instances_)
+      throw InputError(s.where, "ObjectInstance: the scene places more than " + std::to_string(max_instances_) +
+                                    " instances, beyond the importer's limit (PbrtImportOptions::max_instances; "
+                                    "docs/pbrt-import.md, \"Limits\")");
+    // A reference to the prototype and its transform: an instance costs its bytes, never a copy of the object.
     json instance = {{"type", "instance"}, {"prototype", s.strings[0]}};
     const json steps = transform_steps(world_from_object(), s.where);
     if (!steps.is_null()) instance["transform"] = steps;
@@ -439,6 +451,11 @@ void PbrtConverter::film_crop(PbrtParams& p, const PbrtStatement& s) {
 }
 
 json PbrtConverter::finish(const std::string& main_file) {
+  // As pbrt-v4 (a graphics state still pushed at the end of the files is an error): without it every shape after
+  // the ObjectBegin would silently become part of the object.
+  if (object_)
+    throw InputError(object_where_, "ObjectBegin \"" + *object_ +
+                                        "\" has no ObjectEnd: the scene's files end inside the object's definition");
   if (!world_from_camera_) throw InputError({main_file, 0, ""}, "the scene has no Camera statement before WorldBegin");
   for (const auto& [name, where] : forward_materials_) {
     if (!named_materials_.count(name)) {
@@ -476,14 +493,18 @@ json PbrtConverter::finish(const std::string& main_file) {
   if (film_.find("resolution") == film_.end()) film_["resolution"] = {width_, height_};
   if (integrator_.find("max_depth") == integrator_.end()) integrator_["max_depth"] = 5;
   if (integrator_.find("spp") == integrator_.end()) integrator_["spp"] = 16;
+  // Moved, not copied: a scene of a million instances holds a million shapes here (copying took a tenth of its
+  // import and as much memory again). The converter is done after finish().
   json document = {{"description", "imported from the pbrt-v4 file " + std::filesystem::path(main_file).filename().string()},
-                   {"camera", camera}, {"film", film_}, {"integrator", integrator_}, {"materials", materials_},
-                   {"lights", lights_}, {"shapes", shapes_}};
+                   {"camera", camera}, {"film", film_}, {"integrator", integrator_}};
+  document["materials"] = std::move(materials_);
+  document["lights"] = std::move(lights_);
+  document["shapes"] = std::move(shapes_);
   finish_media();
   if (!media_.empty()) document["media"] = media_;
   json prototypes = json::object();
   for (auto& [name, shapes] : prototypes_.items())
-    if (!shapes.empty()) prototypes[name] = shapes;
+    if (!shapes.empty()) prototypes[name] = std::move(shapes);
   if (!prototypes.empty()) document["prototypes"] = prototypes;
   return document;
 }
@@ -493,24 +514,24 @@ json PbrtConverter::finish(const std::string& main_file) {
 PbrtImport import_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
                             SpectralLibrary& library, const PbrtImportOptions& options) {
   PbrtConverter converter(library, options.output_directory.empty() ? directory : options.output_directory, options.strict,
-                          options.max_generated_triangles);
-  parse_pbrt_text(text, file, directory, [&](const PbrtStatement& s) { converter.statement(s); });
+                          options.max_generated_triangles, options.max_instances, options.max_shapes);
+  parse_pbrt_text(text, file, directory, [&](const PbrtStatement& s) { converter.statement(s); }, options.parse_limits);
   PbrtImport result;
   result.document = converter.finish(file);
   result.ignored = converter.ignored();
-  result.origins = converter.origins();
+  result.origins = converter.take_origins();
   return result;
 }
 
 PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& library, const PbrtImportOptions& options) {
   const std::filesystem::path directory = std::filesystem::absolute(file).parent_path();
   PbrtConverter converter(library, options.output_directory.empty() ? directory : std::filesystem::absolute(options.output_directory),
-                          options.strict, options.max_generated_triangles);
-  parse_pbrt_file(file, [&](const PbrtStatement& s) { converter.statement(s); });
+                          options.strict, options.max_generated_triangles, options.max_instances, options.max_shapes);
+  parse_pbrt_file(file, [&](const PbrtStatement& s) { converter.statement(s); }, options.parse_limits);
   PbrtImport result;
   result.document = converter.finish(file.string());
   result.ignored = converter.ignored();
-  result.origins = converter.origins();
+  result.origins = converter.take_origins();
   return result;
 }
 

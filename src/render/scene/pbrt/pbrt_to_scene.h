@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "render/scene/pbrt/pbrt_parser.h"
 #include "spectral/error.h"
 #include "spectral/spectral_library.h"
 
@@ -31,6 +32,16 @@ struct PbrtImportOptions {
   /// 150 bytes of JSON per triangle, then the loader's own copy). Beyond it the import is an InputError at the
   /// shape that crosses it. Triangles the file lists itself do not count (they cost what the file's size does).
   std::size_t max_generated_triangles = std::size_t(1) << 21;
+  /// The most ObjectInstance statements imported for the whole scene (2^20 = 1,048,576): each becomes a reference
+  /// to its prototype with a transform (about 300 bytes of JSON) and an Embree instance. Beyond it the import is an
+  /// InputError at the instance that crosses it.
+  std::size_t max_instances = std::size_t(1) << 20;
+  /// The most Shape statements for the whole scene (2^20), counting each read of an included file: a file of
+  /// shapes included over and over would otherwise fill memory with copies of its shapes (each is an Embree
+  /// geometry of its own; repeated geometry belongs in ObjectBegin/ObjectInstance).
+  std::size_t max_shapes = std::size_t(1) << 20;
+  /// Statements and included files, counted over the whole Include graph (pbrt_parser.h).
+  PbrtParseLimits parse_limits{};
 };
 
 /// Where a part of the imported document came from: the pbrt statement that made it.

@@ -2,6 +2,8 @@
 
 #include <cctype>
 
+#include <nlohmann/json.hpp>
+
 #include "spectral/error.h"
 
 namespace rimu {
@@ -24,6 +26,32 @@ char escaped(char c, const std::string& file, int line) {
     case '\'': return '\'';
     case '"': return '"';
     default: throw InputError({file, line, ""}, std::string("unknown escape '\\") + c + "' in a quoted string");
+  }
+}
+
+// A quoted string becomes a JSON string (a name, a file path) and a message: it must be UTF-8. Comments and
+// bare words may hold anything (a Latin-1 comment is common in old files). The JSON library checks it (its
+// strict serializer refuses what is not UTF-8); only strings with a byte above 127 need the check.
+void check_utf8(const std::string& text, const std::string& file, int line) {
+  bool ascii = true;
+  for (const char c : text) ascii = ascii && static_cast<unsigned char>(c) < 0x80;
+  if (ascii) return;
+  try {
+    (void)nlohmann::json(text).dump();
+  } catch (const nlohmann::json::type_error&) {
+    std::string shown;
+    for (const char c : text) {
+      const auto byte = static_cast<unsigned char>(c);
+      if (byte < 0x80) {
+        shown += c;
+      } else {
+        static const char* hex = "0123456789ABCDEF";
+        shown += std::string("\\x") + hex[byte >> 4] + hex[byte & 15];
+      }
+    }
+    throw InputError({file, line, ""}, "the quoted string \"" + shown +
+                                           "\" is not UTF-8 (bytes above 127 shown as \\xHH; a Latin-1 file?); "
+                                           "pbrt strings are UTF-8: convert the file, e.g. iconv -f latin1 -t utf-8");
   }
 }
 
@@ -65,6 +93,7 @@ std::vector<PbrtToken> tokenize_pbrt(const std::string& contents, const std::str
         }
       }
       ++i;
+      check_utf8(text, file, start_line);
       tokens.push_back({std::move(text), true, start_line});
     } else {
       const size_t start = i;
