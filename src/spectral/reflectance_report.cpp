@@ -60,12 +60,18 @@ TabulatedSpectrum load_reflectance_csv(const std::filesystem::path& path, const 
   const std::string name = column.empty() ? table.header()[1] : column;
   const size_t index = table.column_index(name);
   const std::vector<double> values = table.numbers(index);
-  for (size_t row = 0; row < values.size(); ++row)
+  for (size_t row = 0; row < values.size(); ++row) {
+    // A surface cannot reflect less than nothing: a negative factor is a sign error or a baseline subtracted
+    // past zero, and would give a negative Y (L* far below 0).
+    if (values[row] < 0.0)
+      throw InputError({path.string(), table.line_of_row(row), name},
+                       format("reflectance factor %g is negative: expected a factor in 0-1", values[row]));
     if (values[row] > kMaxReflectanceFactor)
       throw InputError({path.string(), table.line_of_row(row), name},
                        format("reflectance factor %g is above %.1f: expected a factor in 0-1 (is the file in "
                               "percent?)",
                               values[row], kMaxReflectanceFactor));
+  }
   return TabulatedSpectrum::from_csv(table, name, Extrapolation::clamp);
 }
 

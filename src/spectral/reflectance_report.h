@@ -20,7 +20,7 @@ inline constexpr double kMaxReflectanceFactor = 1.5;
 
 /// Reads one column of a CSV (first column wavelength_nm; `column` empty = the second column) as a reflectance
 /// factor, held at its end values beyond the data (CIE 15:2004 §7.2.2.1). Throws InputError with file:line for
-/// a value above 1.5 and for everything CsvTable / TabulatedSpectrum refuse.
+/// a negative value, a value above 1.5, and everything CsvTable / TabulatedSpectrum refuse.
 TabulatedSpectrum load_reflectance_csv(const std::filesystem::path& path, const std::string& column);
 
 /// A ColorChecker Classic patch (BabelColor average, 10 nm) by its name with spaces ("dark skin",

@@ -2,12 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "spectral/csv_table.h"
 #include "spectral/error.h"
+#include "spectral/spectral_value_range.h"
 #include "spectral/wavelength_range.h"
 
 namespace rimu {
+
+std::string spectral_value_range_error(double value) {
+  const double magnitude = std::abs(value);
+  if (value == 0.0 || (magnitude >= kMinSpectralValueMagnitude && magnitude <= kMaxSpectralValueMagnitude)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return std::string(text) + (magnitude < kMinSpectralValueMagnitude ? " is nonzero but smaller" : " is larger") +
+         " in magnitude than Rimu accepts for a spectral value (0, or 1e-30 to 1e30: beyond, colour integrals "
+         "underflow or overflow); scale the data";
+}
 
 TabulatedSpectrum::TabulatedSpectrum(std::vector<double> lambda_nm, std::vector<double> values,
                                      Extrapolation extrapolation, std::string name)
@@ -48,6 +60,9 @@ TabulatedSpectrum TabulatedSpectrum::from_csv(const CsvTable& table, const std::
     throw InputError({table.name(), table.line_of_row(lambda.size() - 1), ""},
                      "the wavelengths end at " + table.cell(lambda.size() - 1, 0) +
                          ", below 100 nm: are they in micrometres? expected " + kExpectedCsvLayout);
+  for (size_t r = 0; r < values.size(); ++r)
+    if (const std::string why = spectral_value_range_error(values[r]); !why.empty())
+      throw InputError({table.name(), table.line_of_row(r), ""}, "column '" + column + "': " + why);
   for (size_t r = 1; r < lambda.size(); ++r) {
     if (!(lambda[r] > lambda[r - 1]))
       throw InputError({table.name(), table.line_of_row(r), ""},
