@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (build-fuzz/: clang, ASan + UBSan, see docs/fuzzing.md) and fuzzes each reader for a
 # bounded time. Fails (exit 1) if any target finds a crash, a sanitizer report, an unexpected exception, a timeout
 # or an out-of-memory; the input is written to fuzz/crashes/<target>/.
-#   scripts/fuzz.sh [seconds-per-target] [target...]     targets: scene pbrt csv ies ply obj rvol (default: all)
+#   scripts/fuzz.sh [seconds-per-target] [target...]     targets: scene pbrt csv ies ply obj rvol (default), image merge
 # Inputs that add coverage accumulate in build-fuzz/corpus/<target>/ (reused by the next run; not committed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,7 +23,8 @@ cmake --build build-fuzz -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]
 
 # The longest input per target: large enough for every seed and for what the readers parse, small enough that one
 # input runs in milliseconds under the sanitizers.
-declare -A max_len=([scene]=8192 [pbrt]=8192 [csv]=4096 [ies]=4096 [ply]=4096 [obj]=4096 [rvol]=1024)
+declare -A max_len=([scene]=8192 [pbrt]=8192 [csv]=4096 [ies]=4096 [ply]=4096 [obj]=4096 [rvol]=1024 [image]=4096
+                   [merge]=8192)
 
 mkdir -p build-fuzz/logs
 failed=()

@@ -5,10 +5,9 @@
 #include <cmath>
 #include <cstdint>
 
-#include "render/image_library.h"
+#include "render/image_file.h"
 #include "spectral/rgb_colour_space.h"
 #include "spectral/error.h"
-#include "spectral/input_file.h"
 
 namespace rimu {
 
@@ -19,11 +18,7 @@ AlphaMask AlphaMask::constant(float alpha) {
 }
 
 AlphaMask AlphaMask::read(const std::filesystem::path& path, int channel, bool srgb, bool invert, bool clamp_to_unit) {
-  check_input_file(path, kMaxBinaryFileBytes);  // OpenImageIO would block on a FIFO
-  DecodedImage image;
-  image.as_stored = true;
-  if (std::string error; !image_library().read_pixels(path.string(), image, error))
-    throw InputError({path.string(), 0, ""}, error);
+  const DecodedImage image = read_image_file(path, true);
   const int w = image.width, h = image.height, channels = image.channels;
   int source = channel;
   if (channel == 3) {

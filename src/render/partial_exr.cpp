@@ -12,9 +12,11 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <set>
 
 #include "spectral/error.h"
+#include "spectral/input_file.h"
 
 namespace rimu {
 namespace {
@@ -73,6 +75,29 @@ void for_each_sum_band(Imf::InputFile& file, const PartialImage& p, const Band& 
   }
 }
 
+// The header's windows and accumulator count size what the merge allocates (a film over the data window, a band
+// of sums): check them against a render Rimu can write and against the file before anything is allocated.
+void check_partial_size(const PartialImage& p, std::uintmax_t file_bytes) {
+  const auto fail = [&p](const std::string& what) { throw partial_error(p.path, what); };
+  // A scene's film is at most 32768 × 32768 pixels with at most 471 spectral bins (docs/scene-format.md).
+  constexpr int kMaxSide = 1 << 15, kMaxAccumulators = FilmTile::kFirstBin + 471;
+  if (p.width < 1 || p.height < 1 || p.width > kMaxSide || p.height > kMaxSide)
+    fail("its display window is " + std::to_string(p.width) + " x " + std::to_string(p.height) +
+         " pixels; a render has 1 to 32768 pixels a side");
+  if (p.crop.empty() || p.crop.x0 < 0 || p.crop.y0 < 0 || p.crop.x1 > p.width || p.crop.y1 > p.height)
+    fail("its data window does not lie inside its display window (a partial render's crop must)");
+  if (p.accumulators_per_pixel > kMaxAccumulators)
+    fail("rimu:partial:accumulators is " + std::to_string(p.accumulators_per_pixel) + "; at most " +
+         std::to_string(kMaxAccumulators) + " (471 spectral bins)");
+  // The sums are two 32-bit words per accumulator per pixel, compressed by deflate (ZIP), which expands at most
+  // 1032:1: a header claiming more than that is damaged, and the merge would allocate for it.
+  const std::uintmax_t sum_bytes = std::uintmax_t(p.crop.area()) * std::uintmax_t(p.accumulators_per_pixel) * 8;
+  if (sum_bytes > 1032 * file_bytes)
+    fail("its header claims " + std::to_string(p.crop.width()) + " x " + std::to_string(p.crop.height()) +
+         " pixels of " + std::to_string(p.accumulators_per_pixel) + " accumulators (" + format_bytes(sum_bytes) +
+         " of sums), more than a file of " + format_bytes(file_bytes) + " can hold (deflate expands at most 1032:1)");
+}
+
 std::unique_ptr<Imf::InputFile> open_exr(const std::filesystem::path& path) {
   try {
     return std::make_unique<Imf::InputFile>(path.c_str());
@@ -86,6 +111,7 @@ std::unique_ptr<Imf::InputFile> open_exr(const std::filesystem::path& path) {
 PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums) {
   PartialImage p;
   p.path = path;
+  const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block OpenEXR
   const std::unique_ptr<Imf::InputFile> file = open_exr(path);
   const Imf::Header& h = file->header();
   PartialRecord& r = p.record;
@@ -113,11 +139,17 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
 
   const Imath::Box2i& display = h.displayWindow();
   const Imath::Box2i& data = h.dataWindow();
-  p.width = display.max.x - display.min.x + 1;
-  p.height = display.max.y - display.min.y + 1;
+  // In 64 bits: a damaged header's corners may be ±2^31 apart. check_partial_size refuses what is out of range.
+  const int64_t display_width = int64_t(display.max.x) - display.min.x + 1;
+  const int64_t display_height = int64_t(display.max.y) - display.min.y + 1;
+  p.width = int(std::clamp<int64_t>(display_width, 0, int64_t(1) << 30));
+  p.height = int(std::clamp<int64_t>(display_height, 0, int64_t(1) << 30));
+  if (int64_t(data.max.x) + 1 > INT32_MAX || int64_t(data.max.y) + 1 > INT32_MAX)
+    throw partial_error(path, "its data window reaches beyond 2^31 pixels");
   p.crop = {data.min.x, data.min.y, data.max.x + 1, data.max.y + 1};
   p.spectral_bins = p.accumulators_per_pixel - FilmTile::kFirstBin;
   if (p.spectral_bins < 0) throw partial_error(path, "rimu:partial:accumulators is below 4");
+  check_partial_size(p, file_bytes);
   const Imf::Channel* first = h.channels().findChannel(h.channels().begin().name());
   p.pixel_type = first && first->type == Imf::FLOAT ? ExrPixelType::float32 : ExrPixelType::half;
 
@@ -137,9 +169,13 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
     });
   }
 
-  auto count = [&](const char* name) {
+  auto count = [&](const char* name) -> uint64_t {
     const auto* a = h.findTypedAttribute<Imf::DoubleAttribute>(name);
-    return a ? uint64_t(a->value()) : 0;
+    if (!a) return 0;
+    // Counts are whole numbers below 2^53 (exact in a double); anything else is a damaged header, not a count.
+    if (!(a->value() >= 0.0 && a->value() <= 0x1p53))
+      throw partial_error(path, std::string(name) + " is not a sample count");
+    return uint64_t(a->value());
   };
   p.counts = {count("rimu:samplesAccepted"), count("rimu:discardedNaN"), count("rimu:discardedInf"),
               count("rimu:discardedNegative")};

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "render/image_file.h"
 #include "render/image_library.h"
 #include "spectral/error.h"
 #include "spectral/input_file.h"
@@ -18,10 +19,7 @@ ImageEncoding default_encoding_for(const std::filesystem::path& path) {
 }
 
 RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
-  check_input_file(path, kMaxBinaryFileBytes);
-  DecodedImage image;
-  if (std::string error; !image_library().read_pixels(path.string(), image, error))
-    throw InputError({path.string(), 0, ""}, error);
+  const DecodedImage image = read_image_file(path, false);
   const int w = image.width, channels = image.channels, h = image.height;
   const std::vector<float>& raw = image.pixels;
 

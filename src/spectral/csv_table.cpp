@@ -106,9 +106,19 @@ size_t CsvTable::column_index(std::string_view column_name) const {
 std::vector<double> CsvTable::numbers(size_t column) const {
   std::vector<double> values(rows_.size());
   for (size_t r = 0; r < rows_.size(); ++r) {
-    if (!parse_finite_number(rows_[r][column], values[r]))
+    if (!parse_finite_number(rows_[r][column], values[r])) {
+      // from_chars refuses what a double cannot hold (1e-400, 1e400, most subnormals): say so, not "not a number".
+      double unused = 0.0;
+      const std::string& text = rows_[r][column];
+      const char* begin = text.data() + (text.starts_with('+') ? 1 : 0);
+      if (std::from_chars(begin, text.data() + text.size(), unused).ec == std::errc::result_out_of_range)
+        throw InputError({name_, lines_[r], ""}, "column '" + header_[column] + "': " + text +
+                                                      " is beyond the range of double-precision numbers (magnitudes "
+                                                      "2.2e-308 to 1.8e308); spectral values must be 0 or 1e-30 to "
+                                                      "1e30");
       throw InputError({name_, lines_[r], ""}, "column '" + header_[column] + "': expected a finite number, found '" +
                                                     rows_[r][column] + "'");
+    }
   }
   return values;
 }

@@ -2,13 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "spectral/csv_table.h"
 #include "spectral/error.h"
 #include "spectral/spectrum_values_check.h"
+#include "spectral/spectral_value_range.h"
 #include "spectral/wavelength_range.h"
 
 namespace rimu {
+
+std::string spectral_value_range_error(double value) {
+  const double magnitude = std::abs(value);
+  if (value == 0.0 || (magnitude >= kMinSpectralValueMagnitude && magnitude <= kMaxSpectralValueMagnitude)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return std::string(text) + (magnitude < kMinSpectralValueMagnitude ? " is nonzero but smaller" : " is larger") +
+         " in magnitude than Rimu accepts for a spectral value (0, or 1e-30 to 1e30: beyond, colour integrals "
+         "underflow or overflow); scale the data";
+}
 
 TabulatedSpectrum::TabulatedSpectrum(std::vector<double> lambda_nm, std::vector<double> values,
                                      Extrapolation extrapolation, std::string name)
@@ -44,6 +56,9 @@ TabulatedSpectrum TabulatedSpectrum::from_csv(const CsvTable& table, const std::
   std::vector<double> lambda = table.numbers(0);
   std::vector<double> values = table.numbers(table.column_index(column));
   check_wavelengths_nm(lambda, [&](size_t row) { return SourceLocation{table.name(), table.line_of_row(row), ""}; });
+  for (size_t r = 0; r < values.size(); ++r)
+    if (const std::string why = spectral_value_range_error(values[r]); !why.empty())
+      throw InputError({table.name(), table.line_of_row(r), ""}, "column '" + column + "': " + why);
   return TabulatedSpectrum(std::move(lambda), std::move(values), extrapolation, table.name() + " [" + column + "]");
 }
 

@@ -122,3 +122,8 @@ rimu_cli_test("rimu-colour F10 native matches CIE 15 Table T.8" 0
               "xy  \\(2°\\) +0\\.(34575|34576|34577|34578|34579|34580|34581|34582|34583|34584) 0\\.(35875|35876|35877|35878|35879|35880|35881|35882|35883|35884)" $<TARGET_FILE:rimu-colour> report F10)
 rimu_cli_test("rimu-colour F12 native matches CIE 15 Table T.8" 0
               "xy  \\(2°\\) +0\\.(43695|43696|43697|43698|43699|43700|43701|43702|43703|43704) 0\\.(40415|40416|40417|40418|40419|40420|40421|40422|40423|40424)" $<TARGET_FILE:rimu-colour> report F12)
+
+# Spectral values at the edges of double precision through every rimu-colour and rimu-light subcommand: exit 0 or 1,
+# never NaN or Inf in any output; values outside 0 or 1e-30 to 1e30 refused with the reason and line.
+add_test(NAME "cli: extreme spectral values never print NaN or Inf"
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/extreme_spectra.sh $<TARGET_FILE:rimu-colour> $<TARGET_FILE:rimu-light>)

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "test_support.h"
+#include "input_error_check.h"
 #include "integration_support.h"
 #include "render/scene/coordinate_limit.h"
 #include "render/scene/ies_file.h"
@@ -30,6 +31,7 @@ using namespace rimu;
 using nlohmann::json;
 using namespace std::string_literals;
 namespace fs = std::filesystem;
+using test::input_error;
 
 namespace {
 
@@ -37,20 +39,6 @@ namespace {
 struct TempDir : test::ScratchFolder {
   TempDir() : ScratchFolder("input_limits") {}
 };
-
-// The InputError `action` throws (the test fails if it throws none), after checking its message holds each fragment.
-InputError input_error(const std::function<void()>& action, std::initializer_list<std::string> fragments) {
-  try {
-    action();
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    CAPTURE(what);
-    for (const std::string& f : fragments) CHECK_MESSAGE(what.find(f) != std::string::npos, "missing: " << f);
-    return e;
-  }
-  FAIL("expected an InputError");
-  return InputError({}, "");
-}
 
 json one_sphere_scene() {
   return json::parse(R"({

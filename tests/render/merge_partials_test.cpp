@@ -1,6 +1,9 @@
 // Partial renders and their merge (render/merge_partials.h, render/partial_exr.h): N sample ranges or crop tiles of
 // a render, merged, give the single process's image (crop tiles bit for bit; sample ranges within the stated bound
 // of one float32 ULP); mismatched, overlapping and missing partials are errors that write nothing.
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -240,4 +243,32 @@ TEST_CASE("passes follow the sample index, so a range starting inside the schedu
   CHECK(sample_pass_end(15) == 31);
   CHECK(sample_pass_end(30) == 31);
   CHECK(sample_pass_end(31) == 47);
+}
+
+TEST_CASE("partial renders: a header whose windows the file cannot hold is refused before the merge allocates") {
+  // A real partial's header with its windows enlarged, and no pixels: before, the merge allocated a film for the
+  // claimed window (30000 x 30000 pixels of 7 accumulators: 50 GB) and failed with std::bad_alloc (exit 2).
+  Folder dir("hostile_header");
+  render(tiny_job(dir / "a.exr", SampleRange{0, 24}));
+  const auto rewrite = [&](const std::string& name, int display_side, int data_side) {
+    Imf::Header header = Imf::InputFile((dir / "a.exr").c_str()).header();
+    header.displayWindow() = Imath::Box2i({0, 0}, {display_side - 1, display_side - 1});
+    header.dataWindow() = Imath::Box2i({0, 0}, {data_side - 1, data_side - 1});
+    { Imf::OutputFile out((dir / name).c_str(), header); }  // the header and an empty offset table only
+    return dir / name;
+  };
+  const auto refused = [&](const fs::path& part, const std::string& message) {
+    CAPTURE(message);
+    try {
+      merge({part}, dir / "out.exr", MergeOptions{true, true});
+      FAIL("merged");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).find(part.string()) != std::string::npos);
+      CHECK(std::string(e.what()).find(message) != std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(dir / "out.exr"));
+  };
+  refused(rewrite("huge.exr", 30000, 30000), "more than a file of");
+  refused(rewrite("wide.exr", 40000, 16), "1 to 32768 pixels a side");
+  refused(rewrite("outside.exr", 16, 24), "does not lie inside its display window");
 }

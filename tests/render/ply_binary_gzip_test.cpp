@@ -14,6 +14,7 @@
 
 #include "render/scene/gzip_bytes.h"
 #include "render/scene/mesh_loader.h"
+#include "render/scene/ply_format.h"
 #include "render/scene/ply_loader.h"
 #include "spectral/error.h"
 #include "test_support.h"
@@ -174,4 +175,32 @@ TEST_CASE(".ply.gz meshes load like the .ply; truncated, corrupt and mislabelled
   expect_input_error([&] { load_mesh(dir.write("inner.ply.gz", gzip(ply.substr(0, ply.size() - 3)))); },
                      {"inner.ply.gz", "face 2", "truncated"});
   expect_input_error([&] { load_mesh(dir.write("mesh.obj.gz", gzip("v 0 0 0\n"))); }, {"mesh.obj.gz", "unsupported"});
+}
+
+TEST_CASE(".ply.gz: decompression stops at what the PLY header can need, not at the 16 GiB file limit") {
+  // A 3-vertex, 1-face header followed by 8 MiB of zeros: deflate shrinks the zeros ~1000:1, so a file of a few
+  // KiB (1 MB would inflate to 1 GB) makes the reader decompress everything before the PLY parser stops it.
+  test::ScratchFolder dir("ply_gzip_bomb");
+  const std::string mesh = compact_ply(Order::native);
+  const ply::Header header = ply::parse_header(mesh, "mesh.ply");
+  const uint64_t body_bound = ply::max_body_bytes(header);
+  // The bound covers the real body (exact binary records, lists of at most 255 items), and is small.
+  CHECK(mesh.size() - header.body_offset <= body_bound);
+  CHECK(body_bound < 64 * 1024);
+  const std::string bomb = gzip(mesh + std::string(size_t(8) << 20, '\0'));
+  CHECK(bomb.size() < 64 * 1024);
+  expect_input_error([&] { load_mesh(dir.write("bomb.ply.gz", bomb)); },
+                     {"bomb.ply.gz", "decompresses to more than", "PLY header"});
+  // The same mesh with its trailing bytes within the bound still reaches the PLY reader (which reads what the
+  // header declares).
+  CHECK(load_mesh(dir.write("mesh.ply.gz", gzip(mesh))).indices == parse_ply(mesh, "mesh.ply").indices);
+  // An ascii header counts 64 characters per value; the header must be in the first 1 MiB.
+  const std::string ascii = compact_ply(Order::ascii);
+  CHECK(ascii.size() - ply::parse_header(ascii, "a.ply").body_offset <= ply::max_body_bytes(ply::parse_header(ascii, "a.ply")));
+  expect_input_error([&] { load_mesh(dir.write("long.ply.gz", gzip("ply\n" + std::string(2 << 20, ' ')))); },
+                     {"long.ply.gz", "end_header"});
+  // Counts near 2^64 saturate rather than wrap to a small bound.
+  ply::Header huge;
+  huge.elements.push_back({"vertex", ~uint64_t(0), {{"x", ply::Type::float64, false, ply::Type::uint8, 3}}, 2});
+  CHECK(ply::max_body_bytes(huge) == ~uint64_t(0));
 }

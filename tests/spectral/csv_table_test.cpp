@@ -163,3 +163,27 @@ TEST_CASE("a CSV that is not a regular file, or holds a NUL byte, is refused by 
                                  "nul.csv", 3),
                  "NUL"));
 }
+
+TEST_CASE("spectral values must be 0 or 1e-30 to 1e30 in magnitude; numbers beyond a double say so") {
+  // Before: a flat 1e-310 W/nm light gave XYZ "inf 100 inf" and xy "nan"; 1.7e308 an unrelated blackbody error.
+  for (const char* bad : {"1e-310", "1e-31", "-1e-31", "1e31", "1.7e308"}) {
+    CAPTURE(bad);
+    const CsvTable t = CsvTable::parse(std::string("wavelength_nm,p\n400,1\n410,") + bad + "\n420,1\n", "range.csv");
+    const std::string what = expect_error_at(
+        [&] { (void)TabulatedSpectrum::from_csv(t, "p", Extrapolation::zero); }, "range.csv", 3);
+    CHECK(contains(what, "column 'p'"));
+    CHECK(contains(what, "1e-30 to 1e30"));
+  }
+  for (const char* edge : {"0", "1e-30", "-1e-30", "1e30"}) {
+    CAPTURE(edge);
+    const CsvTable t = CsvTable::parse(std::string("wavelength_nm,p\n400,1\n410,") + edge + "\n420,1\n", "edge.csv");
+    CHECK_NOTHROW((void)TabulatedSpectrum::from_csv(t, "p", Extrapolation::zero));
+  }
+  // A number a double cannot hold is not "not a number": the message says it is out of range.
+  for (const char* beyond : {"1e-400", "1e400", "+1e-400"}) {
+    CAPTURE(beyond);
+    const CsvTable t = CsvTable::parse(std::string("wavelength_nm,p\n400,1\n410,") + beyond + "\n", "beyond.csv");
+    const std::string what = expect_error_at([&] { (void)t.numbers(1); }, "beyond.csv", 3);
+    CHECK(contains(what, "beyond the range of double-precision numbers"));
+  }
+}

@@ -30,6 +30,7 @@ struct UpsampleFlags {
 struct ReportOptions {
   std::string illuminant;
   double blackbody_k = 0, daylight_k = 0;
+  bool blackbody_given = false;  ///< --blackbody was given (its value may read as 0: 1e-400 underflows)
   std::string csv, column;
   std::string method, bandpass_corrected;
   bool json = false;
@@ -74,7 +75,7 @@ rimu::SpectrumSource source_from(const ReportOptions& o, int given) {
     s.kind = rimu::SpectrumSource::Kind::csv_file;
     s.name = o.csv;
     s.column = o.column;
-  } else if (o.blackbody_k != 0) {
+  } else if (o.blackbody_given) {
     s.kind = rimu::SpectrumSource::Kind::blackbody;
     s.number = o.blackbody_k;
     s.where.key = "--blackbody";
@@ -170,7 +171,9 @@ void run(const Options& o) {
   rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
   if (*o.report_cmd) {
     const int given = int(o.name_opt->count() + o.bb_opt->count() + o.dl_opt->count() + o.csv_opt->count());
-    const rimu::SpectrumSource source = source_from(o.report, given);
+    ReportOptions report = o.report;
+    report.blackbody_given = o.bb_opt->count() > 0;
+    const rimu::SpectrumSource source = source_from(report, given);
     const rimu::SpectrumReport r = rimu::analyse_spectrum(source, library, method_option(o.report.method),
                                                           e308_table_option(o.report.bandpass_corrected));
     check_bandpass_option(o.report.bandpass_corrected, r.e308_table.has_value(), r.tristimulus_method);

@@ -13,13 +13,15 @@
 namespace rimu {
 
 /// Bumped whenever a signature below changes, so that a stale module is refused rather than called wrongly.
-inline constexpr int kImageModuleApiVersion = 2;
+inline constexpr int kImageModuleApiVersion = 3;
 
 /// The pixels of an image file as 32-bit floats, interleaved, row 0 at the top.
 struct DecodedImage {
   int width = 0, height = 0, channels = 0;
   bool stored_as_float = false;  ///< the file holds float/half/double values (not 8/16-bit integer codes)
   int alpha_channel = -1;        ///< the index of the alpha channel, -1 if the file has none
+  int bits_per_sample = 0;       ///< bits one channel of one pixel takes in the file (1 for a bitmap, 32 for float)
+  std::string format_name;       ///< OpenImageIO's name of the file's format: "png", "openexr", "pnm" (PPM/PFM) …
   /// Set by the caller before read_pixels: keep colour channels as stored instead of letting OpenImageIO multiply
   /// them by alpha (a mask read from the red channel must not gain the alpha channel's holes).
   bool as_stored = false;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <mutex>
 
@@ -132,6 +133,14 @@ std::unique_ptr<OIIO::ImageInput> open_header(const std::string& path, DecodedIm
   image.height = spec.height;
   image.channels = spec.nchannels;
   image.alpha_channel = spec.alpha_channel;
+  image.bits_per_sample = spec.get_int_attribute("oiio:BitsPerSample", int(spec.format.size() * 8));
+  image.format_name = input->format_name();
+  // OpenImageIO reports a binary PBM (magic "P4", one bit per pixel, rows padded to a byte) as 8-bit.
+  if (image.format_name == "pnm") {
+    char magic[2] = {0, 0};
+    std::ifstream(path, std::ios::binary).read(magic, 2);
+    if (magic[0] == 'P' && magic[1] == '4') image.bits_per_sample = 1;
+  }
   const auto base = spec.format.basetype;
   image.stored_as_float =
       base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE;
@@ -157,7 +166,9 @@ bool read_pixels_uncaptured(const std::string& path, DecodedImage& image, std::s
   }
   image.pixels.resize(size_t(image.width) * size_t(image.height) * size_t(image.channels));
   if (!input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-    error = "cannot read the pixels: " + input->geterror();
+    const std::string reason = input->geterror();
+    error = "cannot read the pixels: " +
+            (reason.empty() ? std::string("OpenImageIO gives no reason (is the file truncated or damaged?)") : reason);
     return false;
   }
   input->close();

@@ -18,7 +18,11 @@ bool has_gzip_extension(const std::filesystem::path& path) {
   return extension == ".gz";
 }
 
-std::string gunzip(std::string_view compressed, const std::string& file, std::uintmax_t max_bytes) {
+namespace {
+
+// gunzip, or gunzip_prefix when `prefix_only` (then reaching max_bytes ends the output instead of failing).
+std::string inflate_gzip(std::string_view compressed, const std::string& file, std::uintmax_t max_bytes,
+                         const std::string& limit, bool prefix_only) {
   const auto fail = [&file](const std::string& what) -> void { throw InputError({file, 0, ""}, what); };
   // A gzip member starts with the magic bytes 1f 8b (RFC 1952 §2.3.1); checked here so that a plain file with a
   // .gz name gets a message saying so rather than zlib's "incorrect header check".
@@ -38,8 +42,10 @@ std::string gunzip(std::string_view compressed, const std::string& file, std::ui
       // zlib counts in 32-bit uInt: feed and drain in chunks of at most 1 GiB.
       constexpr size_t kChunk = size_t(1) << 30;
       if (produced == out.size()) {
-        if (out.size() >= max_bytes)
-          fail("decompresses to more than " + format_bytes(max_bytes) + ", the limit for meshes");
+        if (out.size() >= max_bytes) {
+          if (prefix_only) break;
+          fail("decompresses to more than " + format_bytes(max_bytes) + ", " + limit);
+        }
         out.resize(size_t(std::min<std::uintmax_t>(max_bytes, 2 * std::uintmax_t(out.size()))));
       }
       stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data() + consumed));
@@ -74,6 +80,17 @@ std::string gunzip(std::string_view compressed, const std::string& file, std::ui
   inflateEnd(&stream);
   out.resize(produced);  // not shrunk: that would copy, and the caller parses and drops the buffer
   return out;
+}
+
+}  // namespace
+
+std::string gunzip(std::string_view compressed, const std::string& file, std::uintmax_t max_bytes,
+                   const std::string& limit) {
+  return inflate_gzip(compressed, file, max_bytes, limit, false);
+}
+
+std::string gunzip_prefix(std::string_view compressed, const std::string& file, std::uintmax_t max_bytes) {
+  return inflate_gzip(compressed, file, max_bytes, "", true);
 }
 
 }  // namespace rimu

@@ -15,6 +15,12 @@ bool has_gzip_extension(const std::filesystem::path& path);
 /// `max_bytes`. Throws InputError naming `file` when the bytes are not gzip, are corrupt (bad deflate data or a
 /// CRC mismatch), end before the stream does (a truncated download), or expand past the limit.
 /// Cost: one pass, memory = the decompressed size.
-std::string gunzip(std::string_view compressed, const std::string& file, std::uintmax_t max_bytes);
+/// `limit` says what max_bytes is, for the message ("the limit for meshes").
+std::string gunzip(std::string_view compressed, const std::string& file, std::uintmax_t max_bytes,
+                   const std::string& limit = "the limit for meshes");
+
+/// The first `max_bytes` of what `compressed` decompresses to (all of it if shorter), for reading a header before
+/// deciding how much of the rest may be decompressed. Errors as gunzip, except that more data is not one.
+std::string gunzip_prefix(std::string_view compressed, const std::string& file, std::uintmax_t max_bytes);
 
 }  // namespace rimu

@@ -69,6 +69,26 @@ size_t size_of(Type type) {
 
 bool is_integer(Type type) { return type != Type::float32 && type != Type::float64; }
 
+uint64_t max_body_bytes(const Header& header) {
+  // In long double (64-bit mantissa): counts up to 2^64 times record sizes, then saturated.
+  long double total = 0;
+  for (const Element& element : header.elements) {
+    long double record = 0;
+    for (const Property& property : element.properties) {
+      if (!property.is_list) {
+        record += header.format == Format::ascii ? kMaxAsciiValueChars : size_of(property.type);
+        continue;
+      }
+      const uint64_t count_max = property.count_type == Type::int8 ? 127 : kMaxMeanListItems;
+      record += header.format == Format::ascii
+                    ? (1 + count_max) * kMaxAsciiValueChars
+                    : size_of(property.count_type) + count_max * size_of(property.type);
+    }
+    total += record * static_cast<long double>(element.count);
+  }
+  return total >= 18446744073709551615.0L ? std::numeric_limits<uint64_t>::max() : static_cast<uint64_t>(total);
+}
+
 const Property* Element::find(std::string_view property_name) const {
   const int i = index_of(property_name);
   return i < 0 ? nullptr : &properties[static_cast<size_t>(i)];

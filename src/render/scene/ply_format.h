@@ -70,6 +70,18 @@ inline double native_value(const char* p, Type type) {
 /// Parses the header at the start of `bytes`; throws InputError naming `file` and the header line.
 Header parse_header(std::string_view bytes, const std::string& file);
 
+/// A list in a compressed PLY is counted at up to this many items on average when bounding its body (a uchar
+/// count's own maximum, and far above a triangle mesh's 3).
+inline constexpr uint64_t kMaxMeanListItems = 255;
+/// An ascii value is counted at up to this many characters, its separator included (a double printed in full,
+/// "-1.2345678901234567e-308 ", takes 25).
+inline constexpr uint64_t kMaxAsciiValueChars = 64;
+
+/// The most bytes a body can hold and still be read by the header (every element's records; lists at most
+/// kMaxMeanListItems items on average, ascii values at most kMaxAsciiValueChars), saturated at UINT64_MAX.
+/// Bounds how far a .ply.gz may decompress: bytes beyond it could not be part of the mesh.
+uint64_t max_body_bytes(const Header& header);
+
 /// Reads body values one at a time, in file order. Every read is bounds-checked: a truncated or garbled body
 /// throws InputError naming the element and record being read (set with `at`), never reads out of range.
 class BodyReader {

@@ -286,9 +286,27 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& file) {
 }
 
 TriangleMesh load_ply(const std::filesystem::path& path) {
-  if (has_gzip_extension(path))
-    return parse_ply(gunzip(read_input_file(path, kMaxBinaryFileBytes), path.string(), kMaxBinaryFileBytes),
+  if (has_gzip_extension(path)) {
+    // Deflate expands up to 1032:1, so a 1 MB .ply.gz can inflate to 1 GB of bytes no mesh reads. The header says
+    // how much body can follow: decompress the header first, then at most what it can need.
+    const std::string compressed = read_input_file(path, kMaxBinaryFileBytes);
+    const std::string head = gunzip_prefix(compressed, path.string(), kMaxCompressedPlyHeaderBytes);
+    const ply::Header header = ply::parse_header(head, path.string());
+    const uint64_t body = ply::max_body_bytes(header);
+    const uint64_t bound = std::min<uint64_t>(kMaxBinaryFileBytes, header.body_offset + std::min<uint64_t>(
+                                                                       body, kMaxBinaryFileBytes));
+    return parse_ply(gunzip(compressed, path.string(), bound,
+                            bound == kMaxBinaryFileBytes
+                                ? "the limit for meshes"
+                                : "the most its PLY header's elements can take (lists of up to " +
+                                      std::to_string(ply::kMaxMeanListItems) + " items on average" +
+                                      (header.format == ply::Format::ascii
+                                           ? ", values of up to " + std::to_string(ply::kMaxAsciiValueChars) +
+                                                 " characters"
+                                           : std::string()) +
+                                      "): the rest cannot be part of the mesh"),
                      path.string());
+  }
   return parse_ply(read_input_file(path, kMaxBinaryFileBytes), path.string());
 }
 

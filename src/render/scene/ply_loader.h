@@ -1,6 +1,7 @@
 // Triangle meshes from PLY files (ascii, binary little-endian, binary big-endian).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -17,6 +18,10 @@ namespace rimu {
 /// Throws InputError naming the file and the header line, or the element and record ("face 17"), for anything
 /// malformed: unknown format, truncated body, out-of-range index, non-finite coordinate. Cost: one pass.
 TriangleMesh load_ply(const std::filesystem::path& path);
+
+/// A .ply.gz's header must lie in its first 1 MiB (a real header takes a few hundred bytes); the file may then
+/// decompress to at most its header plus ply::max_body_bytes of it (docs/scene-format.md, "Limits").
+inline constexpr std::uintmax_t kMaxCompressedPlyHeaderBytes = std::uintmax_t(1) << 20;
 
 /// load_ply on bytes already in memory; `file` is the name errors carry.
 TriangleMesh parse_ply(std::string_view bytes, const std::string& file);

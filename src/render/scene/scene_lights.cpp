@@ -1,5 +1,7 @@
 // The "lights" section of the JSON scene format (radiometric units; see docs/scene-format.md).
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "render/rgb_environment_image.h"
 #include "render/rgb_transport_inputs.h"
@@ -11,6 +13,7 @@
 #include "transport/light_spectrum.h"
 #include "transport/point_light.h"
 #include "transport/spot_light.h"
+#include "spectral/light_units.h"
 
 namespace rimu::scene_loading {
 namespace {
@@ -82,6 +85,26 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
   return load_environment(l, context);
 }
 
+// An environment pixel's RGB times the light's scale is its radiance in film units; single-precision radiance
+// overflows near 3.4e38, so (like a light's amount, kMaxLightAmount) it may be at most 1e30. Without this check a
+// pixel of FLT_MAX upsamples to infinite coefficients and every sample that sees it is discarded: a black map, or a
+// silently missing sun. The first pixel past the limit in reading order is named.
+void check_environment_pixels(const JsonCursor& image_key, const std::string& file, const RgbImage& image,
+                              double scale) {
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const Rgb rgb = image.pixel(x, y);
+      const double largest = std::max({std::abs(rgb.r), std::abs(rgb.g), std::abs(rgb.b)});
+      if (!(largest * scale <= kMaxLightAmount)) {
+        char text[160];
+        std::snprintf(text, sizeof text, "pixel (%d, %d) is (%g, %g, %g)", x, y, rgb.r, rgb.g, rgb.b);
+        image_key.fail("'" + file + "': " + text + (scale == 1.0 ? "" : " times \"scale\" " + std::to_string(scale)) +
+                       ": an environment's radiance may be at most 1e30 per component (beyond, single-precision "
+                       "radiance overflows)");
+      }
+    }
+}
+
 std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context) {
   only_light_keys(l, {"type", "name", "radiance", "image", "colour_space", "encoding", "scale", "mapping", "frame",
                       "portals"});
@@ -96,6 +119,7 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
     const std::string space = l.string_or("colour_space", "srgb-linear");
     const auto upsampler = context.spectra.upsampler(space, l.has("colour_space") ? l.at("colour_space") : l);
     const double scale = l.number_or("scale", 1.0, 0.0, 1e30);
+    check_environment_pixels(l.at("image"), path.string(), *image, scale);
     const EnvironmentMapping mapping = l.has("mapping") && l.at("mapping").choice({"equirectangular", "equal_area_octahedral"}) ==
                                                                   "equal_area_octahedral"
                                            ? EnvironmentMapping::equal_area_octahedral

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -9,9 +10,11 @@
 
 #include "spectral/blackbody_spectrum.h"
 #include "spectral/colorimetry.h"
+#include "spectral/light_units.h"
 #include "spectral/photometry_constants.h"
 #include "spectral/csv_table.h"
 #include "spectral/daylight.h"
+#include "spectral/spectral_value_range.h"
 #include "spectral/tabulated_spectrum.h"
 #include "render/rgb_transport_inputs.h"
 
@@ -28,6 +31,14 @@ void check_range(const JsonCursor& where, const Spectrum& s, SpectrumRole role) 
       where.fail("an index of refraction must be positive; it is " + std::to_string(v) + " at " + std::to_string(nm) + " nm");
     if (role != SpectrumRole::ior && v < 0.0)
       where.fail("the spectrum is negative (" + std::to_string(v) + ") at " + std::to_string(nm) + " nm");
+    // Every input number is at most 1e30, but a product (an RGB or a table times "scale") need not be: beyond 1e30
+    // the light's single-precision radiance overflows and every sample of it is discarded (a black render).
+    if (role == SpectrumRole::emission && v > kMaxLightAmount) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%g at %d nm", v, nm);
+      where.fail("the emission is " + std::string(text) + "; at most 1e30 (beyond, its single-precision radiance "
+                 "overflows): lower \"scale\"");
+    }
     // Materials would clamp a reflectance above 1 (it would create energy); say so instead of changing the input.
     // The 1e-6 allows a product such as 0.5 × 2 rounded in float.
     if (role == SpectrumRole::reflectance && v > 1.0 + 1e-6)
@@ -136,6 +147,8 @@ SpectrumPtr SpectrumInputContext::parse(const JsonCursor& value, SpectrumRole ro
       return out;
     };
     std::vector<double> lambda_nm = list(value.at("wavelengths_nm")), values = list(value.at("values"));
+    for (size_t i = 0; i < values.size(); ++i)
+      if (const std::string why = spectral_value_range_error(values[i]); !why.empty()) value.at("values").at(i).fail(why);
     if (lambda_nm.size() != values.size())
       value.at("values").fail("expected " + std::to_string(lambda_nm.size()) + " values, one per wavelength, not " +
                               std::to_string(values.size()));

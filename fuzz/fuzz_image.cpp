@@ -1,0 +1,35 @@
+// libFuzzer target: image files (PNG, OpenEXR, PFM/PPM, Radiance HDR) read as the renderer reads image textures,
+// environment maps and alpha masks: RgbImage::read and AlphaMask::read, i.e. Rimu's header checks (render/image_file.h)
+// and then OpenImageIO's decoder in the module the renderer loads (librimu_oiio.so, built beside this target).
+#include <cstring>
+
+#include "fuzz_support.h"
+#include "render/alpha_mask.h"
+#include "render/rgb_image.h"
+
+namespace {
+
+// OpenImageIO picks its reader by the file's extension (and tries the others when that one fails): name the
+// input after its signature, so each mutation reaches the decoder of the format it looks like.
+const char* extension_of(const uint8_t* data, size_t size) {
+  const auto starts = [&](const char* magic) { return size >= std::strlen(magic) && std::memcmp(data, magic, std::strlen(magic)) == 0; };
+  if (starts("\x89PNG")) return ".png";
+  if (starts("\x76\x2f\x31\x01")) return ".exr";
+  if (starts("PF") || starts("Pf")) return ".pfm";
+  if (starts("P")) return ".ppm";
+  if (starts("#?")) return ".hdr";
+  return ".png";
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return rimu::fuzz::run_reader("fuzz_image", [&] {
+    const std::filesystem::path file = rimu::fuzz::write_private_file(data, size, extension_of(data, size));
+    // As an image texture or environment map (the encoding the loader would choose), then as an alpha mask.
+    const rimu::RgbImage image = rimu::RgbImage::read(file, rimu::default_encoding_for(file));
+    (void)image.bilinear({0.5f, 0.5f});
+    const rimu::AlphaMask mask = rimu::AlphaMask::read(file, 0, false, false, true);
+    (void)mask.evaluate({0.25f, 0.75f});
+  });
+}
