@@ -218,6 +218,7 @@ TEST_CASE("a photometric scene without a camera exposure gets a metered display 
   Workspace w("metered");
   RenderJob job = w.job(card_scene(0.18, kPhotometricSun));
   job.png_output = w.folder / "v.png";
+  job.quiet = false;  // the note on metering is not printed with -q
   std::ostringstream log;
   run_render_job(job, log);
   CHECK(log.str().find("metered") != std::string::npos);
@@ -256,6 +257,7 @@ TEST_CASE("a camera film is displayed through its fitted camera-to-XYZ matrix, w
   RenderJob job = w.job(card_scene(0.5, kPhotometricSun));
   job.film = "camera:nikon_d850";
   job.png_output = w.folder / "v.png";
+  job.quiet = false;  // the note on the fitted matrix is not printed with -q
   std::ostringstream log;
   run_render_job(job, log);
   CHECK(log.str().find("camera-to-XYZ matrix fitted") != std::string::npos);
