@@ -163,8 +163,8 @@ void check_matches_bsdf_only(bool medium) {
   const auto mis_scene = scene_from_json(document);
   document["integrator"]["direct_lighting"] = "bsdf_only";
   const auto reference_scene = scene_from_json(document);
-  const std::vector<double> mis = luminance_values(*render_xyz(*mis_scene, 16, 3).film);
-  const std::vector<double> reference = luminance_values(*render_xyz(*reference_scene, 64, 4).film);
+  const std::vector<double> mis = luminance_values(*render_xyz(*mis_scene, 32, 3).film);
+  const std::vector<double> reference = luminance_values(*render_xyz(*reference_scene, 128, 4).film);
   const Estimate difference = paired_difference(mis, reference);
   double image_mean = 0;
   for (double v : mis) image_mean += v / double(mis.size());
@@ -181,4 +181,29 @@ void check_matches_bsdf_only(bool medium) {
 TEST_CASE("glazing: a double-glazed room equals its BSDF-only reference (surfaces, and in a medium)") {
   check_matches_bsdf_only(false);
   check_matches_bsdf_only(true);
+}
+
+TEST_CASE("glazing: a sky seen only through refracting glass warns at load; through panes, or past a glass ball, not") {
+  auto warns = [](const json& document) {
+    const auto scene = scene_from_json(document);
+    for (const std::string& w : scene->warnings)
+      if (w.find("only through refracting glass") != std::string::npos) return true;
+    return false;
+  };
+  json refracting = glazed_box(false);
+  refracting["materials"]["glass"] = {{"type", "dielectric"}, {"ior", 1.5}};
+  CHECK(warns(refracting));
+  refracting["materials"]["glass"]["roughness"] = 0.3;
+  CHECK(warns(refracting));
+  CHECK_FALSE(warns(glazed_box(false)));
+  // A glass ball in an open scene under the sky: most of the sky is reached directly.
+  const json ball = json::parse(R"({
+    "camera": {"from": [0, 1, -4], "to": [0, 0.5, 0]},
+    "film": {"resolution": [8, 8]},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}, "glass": {"type": "dielectric", "ior": 1.5}},
+    "lights": [{"type": "environment", "radiance": 1}, {"type": "distant", "direction": [0.3, 1, 0.2], "irradiance": 1, "angular_diameter_deg": 0.53}],
+    "shapes": [{"type": "quad", "material": "floor", "vertices": [[-5, 0, 5], [5, 0, 5], [5, 0, -5], [-5, 0, -5]]},
+               {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "glass"}]
+  })");
+  CHECK_FALSE(warns(ball));
 }
