@@ -6,9 +6,11 @@
 // sun) practically never. The heuristic: for each light at infinity (a sun, a sky), probe points are the camera's
 // position and the first surfaces seen from it along the 26 directions of a 3×3×3 lattice (nudged back towards the
 // camera); from each, 4 light samples are traced to the light, passing panes, cut-outs and (for this check only)
-// refracting surfaces, and stopping at anything opaque. The light is reported when no sample reaches it unobstructed
-// and at least one reaches it through a refracting surface: from where the camera looks, it is seen only through
-// refracting glass (e.g. a sun behind a window modelled as a `dielectric`). Finite lights are not checked (a lamp in
+// refracting surfaces, and stopping at anything opaque. The light is reported when at least 90 % of the samples that
+// reach it pass a refracting surface (not all: a probe on the wall beside a window can see the sky past a pane's
+// edge): from where the camera looks, it is seen through refracting glass (e.g. a sky behind a window modelled as
+// a `dielectric`). A sun whose rays reach none of the probe points (a patch near the window, the camera far from
+// it) is not judged. Finite lights are not checked (a lamp in
 // a glass bulb is a deliberate choice, and its bulb is usually not the only way out).
 #pragma once
 

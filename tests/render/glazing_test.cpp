@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "integration_support.h"
 #include "transport/shadow_passage.h"
@@ -196,6 +197,12 @@ TEST_CASE("glazing: a sky seen only through refracting glass warns at load; thro
   refracting["materials"]["glass"]["roughness"] = 0.3;
   CHECK(warns(refracting));
   CHECK_FALSE(warns(glazed_box(false)));
+  // The daylit room with its panes made refracting: the sky through the window warns (a probe beside the window sees
+  // a little sky past the panes' edges, which must not clear it).
+  json room = json::parse(std::ifstream(library().root() / "scenes" / "interiors" / "daylit_room_glazed.json"));
+  CHECK_FALSE(warns(room));
+  room["materials"]["glass"] = {{"type", "dielectric"}, {"ior", 1.52}};
+  CHECK(warns(room));
   // A glass ball in an open scene under the sky: most of the sky is reached directly.
   const json ball = json::parse(R"({
     "camera": {"from": [0, 1, -4], "to": [0, 0.5, 0]},
