@@ -120,13 +120,15 @@ Bsdf DiffuseTransmissionMaterial::bsdf(const MaterialContext& context, const Sam
   return DiffuseTransmissionBsdf(r * normalise, t * normalise);
 }
 
-ThinDielectricMaterial::ThinDielectricMaterial(SpectrumPtr ior) : ior_(std::move(ior)) {
+ThinDielectricMaterial::ThinDielectricMaterial(SpectrumPtr ior, SpectrumPtr internal_transmittance)
+    : ior_(std::move(ior)), internal_transmittance_(std::move(internal_transmittance)) {
   if (!ior_) throw InputError({}, "a thin dielectric needs an index of refraction");
   if (!(min_over_range(*ior_) > 0.0))
     throw InputError({}, "the index of refraction of " + ior_->describe() + " must be positive over 360-830 nm");
 }
 
 Bsdf ThinDielectricMaterial::bsdf(const MaterialContext&, const SampledWavelengths& lambda) const {
+  if (internal_transmittance_) return ThinDielectricBsdf(ior_->sample(lambda), internal_transmittance_->sample(lambda));
   return ThinDielectricBsdf(ior_->sample(lambda));
 }
 

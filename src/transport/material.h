@@ -82,15 +82,18 @@ class DiffuseTransmissionMaterial {
   float scale_;
 };
 
-/// A thin sheet of glass of index n(λ) in air (ThinDielectricBsdf): smooth only, as in pbrt-v4.
+/// A thin sheet of glass of index n(λ) in air (ThinDielectricBsdf): smooth only, as in pbrt-v4. Optionally tinted:
+/// `internal_transmittance` τₙ(λ) is what one pass through the glass at normal incidence keeps (absorption only,
+/// the surface reflections not included; null: clear). Shadow rays pass it (docs/transport.md, "Glazing").
 class ThinDielectricMaterial {
  public:
   /// Throws InputError if the spectrum is missing or n ≤ 0 somewhere.
-  explicit ThinDielectricMaterial(SpectrumPtr ior);
+  explicit ThinDielectricMaterial(SpectrumPtr ior, SpectrumPtr internal_transmittance = nullptr);
   Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectrumPtr ior_;
+  SpectrumPtr internal_transmittance_;
 };
 
 /// A coat's layer parameters beyond its index: roughness of its surface, the slab under it (LayeredBsdf's
@@ -198,6 +201,9 @@ class Material {
     return std::visit([&](const auto& m) { return m.bsdf(context, lambda); }, material_);
   }
   const Variant& variant() const { return material_; }
+  /// Whether shadow rays pass this material straight through, weighted by its transmittance (a thin dielectric:
+  /// its transmission does not bend rays; docs/transport.md, "Glazing"). Refracting and rough materials block them.
+  bool passes_shadow_rays() const { return std::holds_alternative<ThinDielectricMaterial>(material_); }
 
   /// Gives the material a normal or bump map (null: none). A mix's own modifier is ignored: the chosen
   /// material's applies (pbrt-v4's mix has none).

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "transport/frame.h"
+#include "transport/shadow_passage.h"
 #include "transport/wavelength_modes.h"
 
 namespace rimu {
@@ -90,6 +91,9 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     radiance += beta * emitted * Float4(kLanes * weight);
   };
 
+  // Panes passed straight through (docs/transport.md, "Glazing"): since the last scattering vertex (at most
+  // kMaxShadowPassages, as for shadow rays), and in all (they do not count towards max_depth).
+  int passages_since_vertex = 0, passages = 0;
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
     if (!hit) {
@@ -113,9 +117,14 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
                                                 light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
       add_emission(le, pdf);
     }
-    if (depth >= settings_.max_depth || hit->material < 0) break;
-
+    if (hit->material < 0) break;
     const Material& material = (*scene_.materials)[size_t(hit->material)];
+    // A pane may still be passed at the depth limit: next-event estimation from the last vertex went through it, so
+    // BSDF sampling must be able to as well (or the MIS weights would not sum to one).
+    const bool may_pass = material.passes_shadow_rays() && passages_since_vertex < kMaxShadowPassages;
+    const bool depth_reached = depth - passages >= settings_.max_depth;
+    if (depth_reached && !may_pass) break;
+
     MaterialContext context = MaterialContext::at(*hit, wo_world);
     context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
     const Bsdf bsdf = material.bsdf(context, lambda);
@@ -149,13 +158,16 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
             const ShadowSegment segment = shadow_segment(shadow.origin, hit->position, *ls, scene_.scene_scale);
             shadow.direction = segment.direction;
             shadow.t_max = std::isinf(segment.length) ? segment.length : segment.length * (1.0f - 0x1p-12f);
-            if (!scene_.geometry->occluded(shadow)) {
+            if (const auto passage = trace_shadow(scene_, shadow, lambda)) {
               const float q_light = pick->probability * ls->pdf_solid_angle;
               const float s_light = q_light * sum_ratio;
-              const float s_bsdf =
-                  ls->is_delta || strategy == DirectLighting::nee_only ? 0.0f : sum(pdf_ratio * lanes.densities(bsdf.pdf(wo, wi)));
+              // BSDF sampling reaches this light through the panes only by also choosing each one's straight-through
+              // lobe: its density carries their probabilities (docs/transport.md, "Glazing").
+              const float s_bsdf = ls->is_delta || strategy == DirectLighting::nee_only
+                                       ? 0.0f
+                                       : sum(pdf_ratio * lanes.densities(bsdf.pdf(wo, wi) * passage->pass_probability));
               const float weight = s_light / (s_light * s_light + s_bsdf * s_bsdf);
-              radiance += beta * f * ls->radiance * Float4(kLanes * weight);
+              radiance += beta * f * passage->transmittance * ls->radiance * Float4(kLanes * weight);
             }
           }
         }
@@ -170,6 +182,28 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     const Vec3 wi_world = shading.frame.to_world(bs->wi);
     // Opaque materials: the sampled direction must leave on the geometric front side (shading normals can lie).
     if (!flags.has_transmission && dot(wi_world, shading.geometric_normal) <= 0.0f) break;
+
+    // A pane passed straight through is no vertex for MIS: the segment from the last vertex continues, and the
+    // BSDF technique's density of reaching a light along it gains this lobe's probability (the light technique,
+    // whose shadow rays pass panes deterministically, is unchanged).
+    if (may_pass && bs->wi.z * wo.z < 0.0f) {
+      const SampledSpectrum pass_densities = lanes.densities(bs->pdf);
+      previous_bsdf_sum = previous_hero_pdf * sum(pdf_ratio * pass_densities);
+      previous_hero_pdf *= bs->pdf[0];
+      beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
+      pdf_ratio *= pass_densities / Float4(bs->pdf[0]);
+      ++passages_since_vertex;
+      ++passages;
+      sampler.next_1d();  // Russian roulette's dimension: a pane is no bounce, so no roulette here
+      if (max_lane(abs(beta)) == 0.0f) break;
+      // The same line as before the pane (wi = −wo exactly; the frame's round trip would perturb it by an ulp).
+      ray.origin = offset_ray_origin(*hit, ray.direction, scene_.scene_scale);
+      ray.t_min = 0.0f;
+      ray.t_max = INFINITY;
+      continue;
+    }
+    if (depth_reached) break;
+    passages_since_vertex = 0;
 
     previous_specular = bs->is_delta;
     previous_hero_pdf = bs->pdf[0];

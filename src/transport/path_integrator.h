@@ -26,6 +26,9 @@ struct TransportScene {
   const LightSampler* light_sampler = nullptr;
   std::vector<int> infinite_lights;  ///< indices of lights with is_infinite(): seen by escaping rays
   float scene_scale = 1.0f;          ///< bounding-box diagonal, for scale-aware ray offsets
+  /// Some material lets shadow rays through (Material::passes_shadow_rays: a pane): shadow rays then trace closest
+  /// hits through them (transport/shadow_passage.h); false keeps the single occlusion query.
+  bool passable_surfaces = false;
   /// The density camera paths draw wavelengths from (spectral/wavelength_density.h); nullptr: the visible density.
   const TabulatedWavelengthDensity* wavelength_density = nullptr;
 };

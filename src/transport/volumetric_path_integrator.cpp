@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "transport/frame.h"
+#include "transport/shadow_passage.h"
 
 namespace rimu {
 namespace {
@@ -76,6 +77,7 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
   ShadowResult out{Float4(1.0f), Float4(1.0f)};
   const auto& media = *scene_.media;
   float remaining = std::isinf(distance) ? INFINITY : distance * (1.0f - 0x1p-12f);
+  int panes = 0;
   for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
     Ray ray{origin, direction, 0.0f, remaining};
     const std::optional<SurfaceHit> hit = scene_.surfaces.geometry->intersect(ray);
@@ -91,7 +93,18 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
     }
     if (!hit) return out;
     const MediumBoundary b = boundary(hit->material);
-    if (hit->material < 0 || !b.index_matched) return std::nullopt;
+    if (hit->material < 0) return std::nullopt;
+    if (!b.index_matched) {
+      // A pane (thin dielectric): passed with its transmittance, as the path's straight-through lobe (shadow_passage.h).
+      if (panes == kMaxShadowPassages) return std::nullopt;
+      const auto through =
+          straight_through_at((*scene_.surfaces.materials)[size_t(hit->material)], *hit, direction, lambda);
+      if (!through) return std::nullopt;
+      ++panes;
+      out.transmittance *= through->transmittance;
+      out.pass_probability *= through->probability;
+      if (max_lane(out.transmittance) <= 0.0f) return std::nullopt;
+    }
     stack.cross(b.interior_medium, dot(direction, hit->geometric_normal) < 0.0f);
     origin = offset_ray_origin(*hit, direction, scene_.surfaces.scene_scale);
     remaining -= hit->t;
@@ -145,6 +158,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   };
 
   int surface_depth = 0, vertex_count = 0, medium_events = 0, crossings = 0;
+  int passages_since_vertex = 0;  // panes passed straight through since the last vertex (≤ kMaxShadowPassages)
   for (;;) {
     const std::optional<SurfaceHit> hit = surfaces.geometry->intersect(ray);
     const float t_surface = hit ? hit->t : INFINITY;
@@ -178,6 +192,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     Scatterer scatterer;
     LightReference reference;
     Vec3 shadow_origin;
+    // A pane (Material::passes_shadow_rays) may be passed straight through: then it is no vertex (see path_integrator.cpp).
+    bool may_pass = false, depth_reached = false;
     if (scatter_point) {
       if (++medium_events > settings_.max_medium_events) break;
       scatterer.phase = &media[size_t(medium_index)].phase();
@@ -213,9 +229,12 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         ray.t_max = INFINITY;
         continue;
       }
-      if (surface_depth >= path.max_depth || hit->material < 0) break;
-      ++surface_depth;
+      if (hit->material < 0) break;
       const Material& material = (*surfaces.materials)[size_t(hit->material)];
+      may_pass = material.passes_shadow_rays() && passages_since_vertex < kMaxShadowPassages;
+      depth_reached = surface_depth >= path.max_depth;
+      if (depth_reached && !may_pass) break;
+      ++surface_depth;
       MaterialContext context = MaterialContext::at(*hit, -ray.direction);
       context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
       scatterer.bsdf = material.bsdf(context, lambda);
@@ -239,12 +258,15 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const LightSamplingPoint sampling_point{reference.position, scatterer.opaque() ? reference.normal : Vec3{},
                                             &lambda};
 
-    // Rescale β and R together so that Σ R = 4 (the lane estimates 4β/ΣR do not change).
-    const float rescale = kLanes / sum(pdf_ratio);
-    if (!(rescale > 0.0f) || !std::isfinite(rescale)) break;
-    beta *= Float4(rescale);
-    pdf_ratio *= Float4(rescale);
-    const float sum_ratio = kLanes;
+    // Rescale β and R together so that Σ R = 4 (the lane estimates 4β/ΣR do not change). Not at a pane that may be
+    // passed: the MIS state of the last vertex, which add_emission still uses then, is in the unscaled units.
+    if (!may_pass) {
+      const float rescale = kLanes / sum(pdf_ratio);
+      if (!(rescale > 0.0f) || !std::isfinite(rescale)) break;
+      beta *= Float4(rescale);
+      pdf_ratio *= Float4(rescale);
+    }
+    const float sum_ratio = may_pass ? sum(pdf_ratio) : kLanes;
 
     // The medium stack on the side a direction leaves into (surfaces with transmission may cross).
     auto stack_towards = [&](Vec3 wi_world) {
@@ -299,6 +321,27 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const Vec2 u_direction = sampler.next_2d();
     const std::optional<DirectionSample> ds = sample_direction(scatterer, u_lobe, u_direction);
     if (!ds) break;
+    if (may_pass && dot(ds->wi_world, hit->geometric_normal) * dot(ray.direction, hit->geometric_normal) > 0.0f) {
+      // Straight through the pane: the segment from the last vertex goes on, its direction technique's pass
+      // probability times this lobe's (as a free flight passed; docs/transport.md, "Glazing").
+      pass_product *= ds->pdf[0];
+      beta *= ds->f_cos / Float4(ds->pdf[0]);
+      pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
+      --surface_depth;
+      --vertex_count;
+      ++passages_since_vertex;
+      sampler.next_1d();  // Russian roulette's dimension: no roulette at a pane
+      if (max_lane(abs(beta)) == 0.0f) break;
+      // The same line as before the pane (wi = −wo exactly; the frame's round trip would perturb it by an ulp).
+      const MediumStack next_stack = stack_towards(ray.direction);
+      ray.origin = origin_towards(ray.direction);
+      stack = next_stack;
+      ray.t_min = 0.0f;
+      ray.t_max = INFINITY;
+      continue;
+    }
+    if (depth_reached) break;
+    passages_since_vertex = 0;
     previous_specular = ds->is_delta;
     previous_hero_pdf = ds->pdf[0];
     previous_sum_ratio = sum_ratio;

@@ -115,3 +115,46 @@ TEST_CASE("thin dielectric material: a BK7 pane colours R and T but keeps one di
   CHECK_THROWS_AS(ThinDielectricMaterial(nullptr), InputError);
   CHECK_THROWS_AS(ThinDielectricMaterial(std::make_shared<ConstantSpectrum>(0.0)), InputError);
 }
+
+TEST_CASE("thin dielectric: a tinted sheet absorbs by Beer-Lambert along its refracted path, and reports its lobes") {
+  // τ = τₙ^(1/cos θt); R = R₀ + T₀²R₀τ²/(1 − R₀²τ²), T = T₀²τ/(1 − R₀²τ²) (the incoherent slab with absorption).
+  const Float4 eta(1.5f);
+  const Float4 tau_n(0.2f, 0.9f, 0.5f, 1.0f);
+  const ThinDielectricBsdf tinted(eta, tau_n);
+  const ThinDielectricBsdf clear(eta);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (float c : {1.0f, 0.7f, 0.3f, -0.5f}) {
+    CAPTURE(c);
+    const double cos_i = std::fabs(c);
+    const double r0 = fresnel_dielectric(cos_i, 1.5), t0 = 1.0 - r0;
+    const double cos_t = std::sqrt(1.0 - (1.0 - cos_i * cos_i) / 2.25);
+    const ThinDielectricBsdf::StraightThrough through = tinted.straight_through(float(cos_i));
+    for (int lane = 0; lane < 4; ++lane) {
+      CAPTURE(lane);
+      const double tau = std::pow(double(tau_n[lane]), 1.0 / cos_t);
+      const double r = r0 + t0 * t0 * r0 * tau * tau / (1.0 - r0 * r0 * tau * tau);
+      const double t = t0 * t0 * tau / (1.0 - r0 * r0 * tau * tau);
+      CHECK(tinted.reflectance(float(cos_i))[lane] == doctest::Approx(r).epsilon(1e-5));
+      CHECK(through.transmittance[lane] == doctest::Approx(t).epsilon(1e-5));
+      CHECK(through.probability[lane] == doctest::Approx(t / (r + t)).epsilon(1e-5));
+    }
+    // τₙ = 1 in lane 3: the tinted sheet's lane equals the clear sheet's.
+    CHECK(through.transmittance[3] == doctest::Approx(clear.straight_through(float(cos_i)).transmittance[3]).epsilon(1e-6));
+    CHECK(clear.straight_through(float(cos_i)).probability[0] == clear.straight_through(float(cos_i)).transmittance[0]);
+    // Sampling picks the straight-through lobe with the reported probability, and its sample says the same.
+    constexpr int kCount = 100000;
+    int passed = 0;
+    const Vec3 wo = direction(c);
+    for (int i = 0; i < kCount; ++i) {
+      const auto s = tinted.sample(wo, u(rng), {0.5f, 0.5f});
+      REQUIRE(s);
+      if (s->wi.z * wo.z < 0.0f && passed++ == 0) {
+        CHECK(s->pdf[1] == doctest::Approx(through.probability[1]).epsilon(1e-6));
+        CHECK(s->f[0] * float(cos_i) == doctest::Approx(through.transmittance[0]).epsilon(1e-6));
+      }
+    }
+    const double p = through.probability[0];
+    CHECK(std::fabs(double(passed) / kCount - p) < 4.0 * std::sqrt(p * (1 - p) / kCount) + 1e-9);
+  }
+}

@@ -3,6 +3,7 @@
 
 #include "render/camera_exposure.h"
 #include "render/light_coverage.h"
+#include "render/refracted_light_warning.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_load_context.h"
 #include "transport/emission_wavelength_density.h"
@@ -21,6 +22,7 @@ TransportScene Scene::transport_view() const {
   view.light_sampler = light_sampler.get();
   view.infinite_lights = infinite_lights;
   view.scene_scale = scene_scale;
+  view.passable_surfaces = std::any_of(materials.begin(), materials.end(), [](const Material& m) { return m.passes_shadow_rays(); });
   view.wavelength_density = wavelength_density.get();
   return view;
 }
@@ -189,6 +191,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
         emission_wavelength_density(scene->lights, PowerLightSampler(light_pointers, scene_radius_m),
                                     library.observer(StandardObserver::cie1931_2deg)));
   scene->warnings = light_coverage_warnings(*scene);
+  for (std::string& warning : refracted_light_warnings(*scene)) scene->warnings.push_back(std::move(warning));
   // Zero-area triangles cannot be hit or shaded; removing them is right, but a count the user never sees would
   // hide a broken export.
   if (scene->degenerate_triangles_removed > 0)

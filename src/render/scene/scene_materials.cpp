@@ -153,7 +153,7 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
   if (type == "dielectric" || type == "thin_dielectric") {
     const bool thin = type == "thin_dielectric";
     if (thin)
-      m.only_keys({"type", "normal_map", "displacement", "ior", "glass"});  // a thin sheet is smooth (pbrt-v4 has no rough one either)
+      m.only_keys({"type", "normal_map", "displacement", "ior", "glass", "transmittance"});  // a thin sheet is smooth (pbrt-v4 has no rough one either)
     else
       m.only_keys({"type", "normal_map", "displacement", "ior", "glass", "roughness"});
     SpectrumPtr ior;
@@ -165,7 +165,12 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
     } else {
       ior = context.spectra.parse(m.at("ior"), SpectrumRole::ior);
     }
-    if (thin) return m.blame([&] { return Material(ThinDielectricMaterial(ior)); });
+    if (thin) {
+      // A tinted pane: the glass's internal transmittance at normal incidence (a reflectance-like 0-1 spectrum).
+      SpectrumPtr tint = m.has("transmittance") ? context.spectra.parse(m.at("transmittance"), SpectrumRole::reflectance)
+                                                : nullptr;
+      return m.blame([&] { return Material(ThinDielectricMaterial(ior, std::move(tint))); });
+    }
     if (textured_roughness(m)) {
       FloatTexturePtr roughness = roughness_texture(m, "roughness", context);
       return m.blame([&] { return Material(DielectricMaterial(ior, roughness, roughness)); });
