@@ -529,3 +529,70 @@ TEST_CASE("light BVH, spectral: the lights that emit at the path's wavelengths g
   for (int light = 0; light < 4; ++light) CHECK(spectral.pmf(at, light, 0) == broadband.pmf(at, light, 0));
   CHECK(spectral.memory_bytes() >= broadband.memory_bytes() + size_t(spectral.node_count()) * 64);
 }
+
+namespace {
+
+// A ceiling of downlights: 10 × 5 IES lights 1 cm below a ceiling at y = 3, their tables dark from γ = 90° on.
+TestScene downlight_ceiling() {
+  TestScene s;
+  for (int i = 0; i < 10; ++i)
+    for (int k = 0; k < 5; ++k)
+      s.lights.push_back(std::make_unique<GoniometricLight>(Vec3{-3.6f + 0.8f * float(i), 2.99f, -2.4f + 1.2f * float(k)},
+                                                            Vec3{0, -1, 0}, Vec3{1, 0, 0}, flat(0.01 * (1 + k)),
+                                                            downlight_table()));
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("light bounds: a cluster of downlights is culled behind their plane, where none of them emits") {
+  // The table reaches γ = 90° and no further: each light emits only below its own horizontal plane, so the union of
+  // two has importance 0 just above it (its bounding sphere reaches there, which alone would score > 0).
+  const TestScene scene = downlight_ceiling();
+  const LightBounds a = *scene.lights[0]->part_bounds(0), b = *scene.lights[7]->part_bounds(0);
+  CHECK(a.half_space);
+  const LightBounds both = unite(a, b);
+  REQUIRE(both.half_space);
+  const Vec3 on_ceiling{-3.2f, 3.0f, -1.8f}, below{-3.2f, 2.5f, -1.8f};
+  for (const Vec3 normal : {Vec3{0, -1, 0}, Vec3{}}) {  // the ceiling's normal, or none
+    CHECK(light_importance(both, on_ceiling, normal) == 0.0f);
+    CHECK(light_importance(a, on_ceiling, normal) == 0.0f);
+  }
+  for (const Vec3 normal : {Vec3{0, 1, 0}, Vec3{}}) CHECK(light_importance(both, below, normal) > 0.0f);
+}
+
+TEST_CASE("light BVH: sampled frequencies equal pmf() under a ceiling of 50 downlights (capped search, the default)") {
+  // Points in the room, on its walls and on the ceiling (where no downlight emits), with and without a normal: the
+  // chi-square of sample() against pmf(), pmf() bit-identical to sample()'s probability, P > 0 exactly for the lights
+  // whose own bounds score, and the probabilities summing to 1 wherever one does.
+  const TestScene scene = downlight_ceiling();
+  const auto pointers = scene.pointers();
+  const BvhLightSampler sampler(pointers);
+  std::mt19937 rng(50);
+  constexpr int kPoints = 40, kDraws = 20000;
+  int lit_points = 0;
+  for (int i = 0; i < kPoints; ++i) {
+    Vec3 p = random_in_box(rng, {-4, 0, -3}, {4, 3, 3});
+    Vec3 normal = i % 4 == 0 ? Vec3{} : random_unit(rng);
+    if (i % 5 == 1) {  // on the ceiling, facing down
+      p.y = 3.0f;
+      normal = {0, -1, 0};
+    } else if (i % 5 == 2) {  // on a wall
+      p.x = -4.0f;
+      normal = {1, 0, 0};
+    }
+    double sum = 0.0;
+    int scoring = 0;
+    INFO("point " << i << " at (" << p.x << ", " << p.y << ", " << p.z << ")");
+    const double p_value = chi_square_at(sampler, scene, {p, normal}, kDraws, rng, &sum, &scoring);
+    CHECK(p_value > test::sidak_threshold(test::kChiSquareAlpha, kPoints));
+    if (scoring > 0) {
+      ++lit_points;
+      CHECK(sum == doctest::Approx(1.0).epsilon(64 * 0x1p-24));
+    } else {
+      CHECK(sum == 0.0);
+    }
+    if (i % 5 == 1) CHECK(scoring == 0);
+  }
+  CHECK(lit_points > kPoints / 2);
+}
