@@ -13,16 +13,11 @@ namespace {
 Xyz xyz_at(const Colours& c, std::size_t i) { return {c.at(i)[0], c.at(i)[1], c.at(i)[2]}; }
 Lab lab_at(const Colours& c, std::size_t i) { return {c.at(i)[0], c.at(i)[1], c.at(i)[2]}; }
 
-// The name of colour i of `c` in a message: "white" for a single colour, "white[3, 4]" in an array.
-std::string colour_name(const std::string& name, const Colours& c, std::size_t i) {
-  return c.leading.empty() ? name : element_name(name, c.leading, py::ssize_t(i));
-}
-
-// Every colour of `c` through `check` (named by its indices), in order, without the GIL.
+// Every colour of `c` through `check` (a refusal names the colour's indices), in order, without the GIL.
 template <typename Check>
 void check_each(const Colours& c, const std::string& name, Check check) {
   py::gil_scoped_release release;
-  for (std::size_t i = 0; i < c.count(); ++i) check(xyz_at(c, i), argument(colour_name(name, c, i)));
+  for_each_colour_checked(c, name, [&](const double* v, const SourceLocation& at) { check(Xyz{v[0], v[1], v[2]}, at); });
 }
 
 // out[i·n ...] = f(i) for every colour: n numbers per colour.

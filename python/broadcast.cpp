@@ -36,12 +36,10 @@ Colours colours_of(const py::handle& value, const std::string& name) {
   if (shape.empty() || shape.back() != 3)
     throw InputError(argument(name), "expected 3 values, or an array of shape (..., 3); got shape " + shape_text(shape));
   c.leading.assign(shape.begin(), shape.end() - 1);
-  for (std::size_t i = 0; i < c.count(); ++i) {
-    const double* v = c.at(i);
-    // Named by the colour's indices, e.g. xyz[4, 7] (a single colour by its name alone).
-    check_colour_components(v[0], v[1], v[2],
-                            argument(c.leading.empty() ? name : element_name(name, c.leading, py::ssize_t(i))));
-  }
+  py::gil_scoped_release release;
+  for_each_colour_checked(c, name, [](const double* v, const SourceLocation& at) {
+    check_colour_components(v[0], v[1], v[2], at);
+  });
   return c;
 }
 
@@ -63,6 +61,11 @@ void broadcast_colours(Colours& a, const std::string& a_name, Colours& b, const 
   }
   for (Colours* c : {&a, &b}) {
     if (c->leading == leading) continue;
+    if (c->count() == 1) {  // one colour for all (a white for an image): read in place, no copy
+      c->leading = leading;
+      c->step = 0;
+      continue;
+    }
     // Colour i of the result reads the colour of c whose indices are i's, with 0 along c's dimensions of 1.
     std::vector<py::ssize_t> full = leading;
     full.push_back(3);

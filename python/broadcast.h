@@ -21,10 +21,31 @@ Array numeric_array(const py::handle& value, const std::string& name);
 struct Colours {
   Array values;
   std::vector<py::ssize_t> leading;  ///< the shape before the last axis; empty for a single colour
-  std::size_t count() const { return std::size_t(values.size() / 3); }
-  const double* at(std::size_t i) const { return values.data() + 3 * i; }
+  std::size_t step = 3;              ///< numbers from one colour to the next: 0 once one colour serves them all
+  /// How many colours the leading shape holds (after broadcasting, more than `values` may store).
+  std::size_t count() const {
+    std::size_t n = 1;
+    for (py::ssize_t d : leading) n *= std::size_t(d);
+    return n;
+  }
+  const double* at(std::size_t i) const { return values.data() + step * i; }
 };
 Colours colours_of(const py::handle& value, const std::string& name);
+
+/// check(colour, where) for every colour of `c` in order; a refusal is re-raised naming the colour's indices
+/// ("xyz[4, 7]"; a single colour by `name` alone). The place is built only then: the loop costs the checks alone.
+template <typename Check>
+void for_each_colour_checked(const Colours& c, const std::string& name, Check check) {
+  const SourceLocation nowhere;
+  for (std::size_t i = 0; i < c.count(); ++i) {
+    try {
+      check(c.at(i), nowhere);
+    } catch (const InputError& e) {
+      throw InputError(argument(c.leading.empty() ? name : element_name(name, c.leading, py::ssize_t(i))),
+                       e.explanation());
+    }
+  }
+}
 
 /// `a` and `b` brought to one leading shape by numpy's broadcasting rules (a single colour pairs with every colour
 /// of the other). ValueError naming `b_name` if the shapes do not broadcast.
