@@ -38,16 +38,12 @@ void check_spectral_power(const std::vector<double>& power, const SampleLocation
   check_finite(power, where, "spectral power");
   for (std::size_t i = 0; i < power.size(); ++i)
     if (power[i] < 0.0) throw InputError(where(i), "spectral power cannot be negative, found " + number(power[i]));
-  // A subnormal power (0 < p < DBL_MIN, ~2.2e-308) has lost its precision, and relative colorimetry's 100 / Y of such a
-  // spectrum overflows: NaN chromaticity and fidelity.
-  // The range every front end accepts (spectral_value_range.h): the tools' CSV columns and these arrays alike.
+  // The range every front end accepts (spectral_value_range.h), the tools' CSV columns and these arrays alike. It
+  // refuses subnormal powers too (0 < p < DBL_MIN has lost its precision, and relative colorimetry's 100 / Y of such
+  // a spectrum overflows: NaN chromaticity and fidelity).
   for (std::size_t i = 0; i < power.size(); ++i)
     if (const std::string why = spectral_value_range_error(power[i]); !why.empty())
       throw InputError(where(i), "spectral power: " + why);
-  for (std::size_t i = 0; i < power.size(); ++i)
-    if (power[i] > 0.0 && power[i] < std::numeric_limits<double>::min())
-      throw InputError(where(i), "spectral power " + number(power[i]) + " is too small to compute with (below "
-                                 "2.2e-308, a subnormal number): give the spectrum in a larger unit");
 }
 
 void check_reflectance_factors(const std::vector<double>& factors, const SampleLocation& where) {
