@@ -17,9 +17,9 @@
 #include <thread>
 #include <vector>
 
-#include "render/pixel_filter.h"
+#include "render/film/pixel_filter.h"
 #include "render/scene/scene.h"
-#include "spectral/gnuplot_process.h"
+#include "spectral/io/gnuplot_process.h"
 
 #ifndef RIMU_BENCH_BUILD
 #define RIMU_BENCH_BUILD "(unknown: not built through bench/CMakeLists.txt)"
@@ -79,7 +79,7 @@ inline std::string format(double v, const char* f = "%.4g") {
   return buffer;
 }
 
-/// Draws `job` to `png` with Rimu's plotting runner (spectral/gnuplot_process.h: no shell, data and script in a
+/// Draws `job` to `png` with Rimu's plotting runner (spectral/io/gnuplot_process.h: no shell, data and script in a
 /// private temporary folder); reports (does not throw) when gnuplot is missing or fails: the figures are already
 /// printed and written as tables, the plot is an addition.
 inline bool draw_plot(const GnuplotJob& job, const std::filesystem::path& png) {

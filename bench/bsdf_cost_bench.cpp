@@ -13,11 +13,11 @@
 #include <random>
 #include <vector>
 
-#include "spectral/optical_constants.h"
-#include "spectral/spectral_library.h"
-#include "transport/bsdf.h"
-#include "transport/direction_warps.h"
-#include "transport/fresnel.h"
+#include "spectral/spectra/optical_constants.h"
+#include "spectral/spectra/spectral_library.h"
+#include "transport/bsdfs/bsdf.h"
+#include "transport/sampling/direction_warps.h"
+#include "transport/bsdfs/fresnel.h"
 
 using namespace rimu;
 

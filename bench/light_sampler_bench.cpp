@@ -38,15 +38,15 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "render/camera.h"
-#include "render/film.h"
+#include "render/camera/camera.h"
+#include "render/film/film.h"
 #include "render/scene/json_cursor.h"
 #include "render/render_job.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
 #include "spectral/error.h"
-#include "transport/area_light.h"
-#include "transport/bvh_light_sampler.h"
+#include "transport/lights/area_light.h"
+#include "transport/lights/bvh_light_sampler.h"
 
 using namespace rimu;
 using json = nlohmann::json;

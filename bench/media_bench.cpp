@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "render/image_error.h"
+#include "render/image/image_error.h"
 #include "render/scene/json_cursor.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
   for (size_t i = 0; i < settings.ladder.size(); ++i) md << (i ? ", " : "") << settings.ladder[i];
   md << "}, seed 1, Sobol sampler, box filter of radius 0.5 px (independent pixels).\n"
      << "- relMSE: mean over pixels and X, Y, Z of (v − r)²/(r² + ε²), ε = 0.01·mean reference Y "
-        "(render/image_error.h). The reference's own noise adds about relMSE(" << settings.reference_spp
+        "(render/image/image_error.h). The reference's own noise adds about relMSE(" << settings.reference_spp
      << " spp) to every figure, so ratios between modes at the top of the ladder are what to read.\n\n";
 
   for (const SceneCase& c : kScenes) {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "render/embree_scene.h"
+#include "render/scene/embree_scene.h"
 #include "render/scene/ply_loader.h"
 
 namespace {

@@ -36,7 +36,7 @@
 #include <string>
 #include <vector>
 
-#include "spectral/rgb_colour_space.h"
+#include "spectral/colour_spaces/rgb_colour_space.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 //
 // Each row renders three times with the same seed:
 //  1. plainly, timed: wall seconds, samples/s and peak memory come from this run alone;
-//  2. through RecordingRayQueries (render/ray_recorder.h), which counts every query and records it (rows with
+//  2. through RecordingRayQueries (render/reports/ray_recorder.h), which counts every query and records it (rows with
 //     spp ≤ --record-max-spp). The render is deterministic, so this run issues exactly the rays of run 1; its
 //     image must be bit-identical to run 1's (checked: the decorator must not change the result);
 //  3. the recorded rays replayed through EmbreeScene::intersect/occluded alone with the same thread count, whose
@@ -31,15 +31,15 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "render/film.h"
-#include "render/pixel_filter.h"
-#include "render/ray_recorder.h"
+#include "render/film/film.h"
+#include "render/film/pixel_filter.h"
+#include "render/reports/ray_recorder.h"
 #include "render/render_job.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
 #include "spectral/error.h"
-#include "transport/sampler.h"
-#include "transport/volumetric_path_integrator.h"
+#include "transport/sampling/sampler.h"
+#include "transport/integrators/volumetric_path_integrator.h"
 
 using namespace rimu;
 

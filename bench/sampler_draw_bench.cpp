@@ -9,8 +9,8 @@
 
 #include <memory>
 
-#include "transport/sampler.h"
-#include "transport/sobol_sampler.h"
+#include "transport/sampling/sampler.h"
+#include "transport/sampling/sobol_sampler.h"
 
 namespace {
 

@@ -40,8 +40,8 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "render/film.h"
-#include "render/pixel_filter.h"
+#include "render/film/film.h"
+#include "render/film/pixel_filter.h"
 #include "render/render_job.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"

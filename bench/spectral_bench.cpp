@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "spectral/colorimetry.h"
-#include "spectral/planckian_locus.h"
-#include "spectral/sampled_wavelengths.h"
-#include "spectral/spectral_library.h"
-#include "spectral/tabulated_spectrum.h"
-#include "spectral/wavelength_density.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/colorimetry/planckian_locus.h"
+#include "spectral/wavelengths/sampled_wavelengths.h"
+#include "spectral/spectra/spectral_library.h"
+#include "spectral/spectra/tabulated_spectrum.h"
+#include "spectral/wavelengths/wavelength_density.h"
 
 namespace {
 
@@ -87,7 +87,7 @@ void BM_SampleVisible(benchmark::State& state) {
 }
 BENCHMARK(BM_SampleVisible);
 
-// The same from the emission density of an F11-lit scene (spectral/wavelength_density.h): guide table + scan.
+// The same from the emission density of an F11-lit scene (spectral/wavelengths/wavelength_density.h): guide table + scan.
 void BM_SampleLightsDensity(benchmark::State& state) {
   static const TabulatedWavelengthDensity density = [] {
     const SpectrumPtr f11 = library().illuminant("F11");

@@ -25,17 +25,17 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "render/image_error.h"
+#include "render/image/image_error.h"
 #include "render/scene/json_cursor.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/cielab.h"
-#include "spectral/colorimetry.h"
-#include "spectral/delta_e.h"
-#include "spectral/csv_table.h"
-#include "spectral/tabulated_spectrum.h"
-#include "transport/wavelength_modes.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/colorimetry/delta_e.h"
+#include "spectral/io/csv_table.h"
+#include "spectral/spectra/tabulated_spectrum.h"
+#include "transport/sampling/wavelength_modes.h"
 
 namespace fs = std::filesystem;
 using namespace rimu;

@@ -18,12 +18,12 @@
 #include <vector>
 
 #include "bench_support.h"
-#include "render/image_texture.h"
-#include "spectral/cielab.h"
-#include "spectral/colorimetry.h"
-#include "spectral/delta_e.h"
-#include "spectral/rgb_upsampler.h"
-#include "spectral/smoothest_spectrum.h"
+#include "render/image/image_texture.h"
+#include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/colorimetry/delta_e.h"
+#include "spectral/upsampling/rgb_upsampler.h"
+#include "spectral/upsampling/smoothest_spectrum.h"
 
 using namespace rimu;
 

@@ -2,8 +2,8 @@
 #include <algorithm>
 
 #include "fuzz_support.h"
-#include "spectral/csv_table.h"
-#include "spectral/tabulated_spectrum.h"
+#include "spectral/io/csv_table.h"
+#include "spectral/spectra/tabulated_spectrum.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return rimu::fuzz::run_reader("fuzz_csv", [&] {

@@ -1,11 +1,11 @@
 // libFuzzer target: image files (PNG, OpenEXR, PFM/PPM, Radiance HDR) read as the renderer reads image textures,
-// environment maps and alpha masks: RgbImage::read and AlphaMask::read, i.e. Rimu's header checks (render/image_file.h)
+// environment maps and alpha masks: RgbImage::read and AlphaMask::read, i.e. Rimu's header checks (render/image/image_file.h)
 // and then OpenImageIO's decoder in the module the renderer loads (librimu_oiio.so, built beside this target).
 #include <cstring>
 
 #include "fuzz_support.h"
-#include "render/alpha_mask.h"
-#include "render/rgb_image.h"
+#include "render/image/alpha_mask.h"
+#include "render/image/rgb_image.h"
 
 namespace {
 

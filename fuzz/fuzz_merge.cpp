@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "fuzz_support.h"
-#include "render/merge_partials.h"
+#include "render/output/merge_partials.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return rimu::fuzz::run_reader("fuzz_merge", [&] {

@@ -1,7 +1,7 @@
 // libFuzzer target: the voxel-grid (.rvol) reader and the grid medium built from what it accepts.
 #include "fuzz_support.h"
-#include "spectral/spectrum.h"
-#include "transport/grid_medium.h"
+#include "spectral/spectra/spectrum.h"
+#include "transport/media/grid_medium.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   return rimu::fuzz::run_reader("fuzz_rvol", [&] {

@@ -3,14 +3,14 @@
 
 #include "bindings.h"
 #include "broadcast.h"
-#include "spectral/colorimetry.h"
-#include "spectral/colorimetry_options.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/colorimetry/colorimetry_options.h"
 #include "spectral/error.h"
-#include "spectral/light_units.h"
-#include "spectral/planckian_locus.h"
-#include "spectral/reflectance_report.h"
-#include "spectral/spectrum_values_check.h"
-#include "spectral/tabulated_colorimetry.h"
+#include "spectral/photometry/light_units.h"
+#include "spectral/colorimetry/planckian_locus.h"
+#include "spectral/reports/reflectance_report.h"
+#include "spectral/spectra/spectrum_values_check.h"
+#include "spectral/colorimetry/tabulated_colorimetry.h"
 
 namespace rimu::python {
 namespace {

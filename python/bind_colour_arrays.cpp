@@ -2,10 +2,10 @@
 // (H, W, 3) image alike, through the checks the tools use (colour_value_check.h) and the loop in C++ without the GIL.
 #include "bindings.h"
 #include "broadcast.h"
-#include "spectral/cielab.h"
-#include "spectral/colour_value_check.h"
-#include "spectral/delta_e.h"
-#include "spectral/rgb_colour_space.h"
+#include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/colour_value_check.h"
+#include "spectral/colorimetry/delta_e.h"
+#include "spectral/colour_spaces/rgb_colour_space.h"
 
 namespace rimu::python {
 namespace {

@@ -2,9 +2,9 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "spectral/colour_fidelity.h"
-#include "spectral/colour_rendering_index.h"
-#include "spectral/planckian_locus.h"
+#include "spectral/colour_rendering/colour_fidelity.h"
+#include "spectral/colour_rendering/colour_rendering_index.h"
+#include "spectral/colorimetry/planckian_locus.h"
 
 namespace rimu::python {
 

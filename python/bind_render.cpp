@@ -5,9 +5,9 @@
 #include <optional>
 
 #include "bindings.h"
-#include "render/camera_exposure.h"
-#include "render/film.h"
-#include "render/render_size.h"
+#include "render/camera/camera_exposure.h"
+#include "render/film/film.h"
+#include "render/film/render_size.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
 #include "spectral/error.h"

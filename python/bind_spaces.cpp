@@ -3,11 +3,11 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "spectral/chromatic_adaptation.h"
+#include "spectral/colorimetry/chromatic_adaptation.h"
 #include "spectral/error.h"
-#include "spectral/colour_value_check.h"
-#include "spectral/rgb_upsampler.h"
-#include "spectral/upsample_report.h"
+#include "spectral/colorimetry/colour_value_check.h"
+#include "spectral/upsampling/rgb_upsampler.h"
+#include "spectral/reports/upsample_report.h"
 
 namespace rimu::python {
 namespace {

@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "spectral/chromaticity.h"
+#include "spectral/colorimetry/chromaticity.h"
 #include "spectral/error.h"
-#include "spectral/rgb_colour_space.h"
-#include "spectral/spectral_library.h"
-#include "spectral/tabulated_spectrum.h"
+#include "spectral/colour_spaces/rgb_colour_space.h"
+#include "spectral/spectra/spectral_library.h"
+#include "spectral/spectra/tabulated_spectrum.h"
 
 namespace rimu::python {
 

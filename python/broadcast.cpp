@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "spectral/colour_value_check.h"
+#include "spectral/colorimetry/colour_value_check.h"
 
 namespace rimu::python {
 namespace {

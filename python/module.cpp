@@ -6,10 +6,10 @@
 #include <filesystem>
 
 #include "bindings.h"
-#include "spectral/colour_value_check.h"
+#include "spectral/colorimetry/colour_value_check.h"
 #include "spectral/error.h"
-#include "spectral/spectrum_source.h"
-#include "spectral/spectrum_values_check.h"
+#include "spectral/spectra/spectrum_source.h"
+#include "spectral/spectra/spectrum_values_check.h"
 
 namespace rimu::python {
 

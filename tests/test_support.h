@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "spectral/spectral_library.h"
+#include "spectral/spectra/spectral_library.h"
 
 namespace rimu::test {
 

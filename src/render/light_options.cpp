@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "spectral/error.h"
-#include "spectral/light_units.h"
+#include "spectral/photometry/light_units.h"
 
 namespace rimu {
 

@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "render/film.h"
-#include "render/partial_record.h"
+#include "render/film/film.h"
+#include "render/output/partial_record.h"
 #include "render/renderer.h"
-#include "spectral/input_file.h"
-#include "spectral/spectral_library.h"
-#include "transport/light_sampler.h"
-#include "transport/wavelength_modes.h"
+#include "spectral/io/input_file.h"
+#include "spectral/spectra/spectral_library.h"
+#include "transport/lights/light_sampler.h"
+#include "transport/sampling/wavelength_modes.h"
 
 namespace rimu {
 
@@ -39,10 +39,10 @@ struct RenderJob {
   std::optional<LightSamplerKind> light_sampler;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
-  /// Write the EXR's image channels as half floats (`--half`); 32-bit floats otherwise (render/exr_output.h).
+  /// Write the EXR's image channels as half floats (`--half`); 32-bit floats otherwise (render/output/exr_output.h).
   bool half_exr = false;
   double exposure_ev = 0.0;  ///< display exposure of the PNG only (see also compensation_ev)
-  /// The physical camera (render/camera_exposure.h); each overrides the scene camera's "exposure" field. Giving any
+  /// The physical camera (render/camera/camera_exposure.h); each overrides the scene camera's "exposure" field. Giving any
   /// of them to a scene without "exposure" turns the physical camera on, the others taking sunny-16 values
   /// (ISO 100, 1/100 s, f/16, 0 EV).
   std::optional<double> iso, shutter_s, f_number, compensation_ev;

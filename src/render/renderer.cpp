@@ -12,9 +12,9 @@
 
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
-#include "transport/path_integrator.h"
-#include "transport/volumetric_path_integrator.h"
-#include "transport/wavelength_modes.h"
+#include "transport/integrators/path_integrator.h"
+#include "transport/integrators/volumetric_path_integrator.h"
+#include "transport/sampling/wavelength_modes.h"
 
 namespace rimu {
 namespace {

@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <functional>
 
-#include "render/film.h"
-#include "render/pixel_filter.h"
+#include "render/film/film.h"
+#include "render/film/pixel_filter.h"
 #include "render/scene/scene.h"
-#include "transport/sampler.h"
+#include "transport/sampling/sampler.h"
 
 namespace rimu {
 
@@ -52,11 +52,11 @@ RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& fil
 int sample_pass_end(int sample);
 
 /// The same over a transport view and camera the caller assembles: for wrapping part of a scene, e.g. a ray
-/// counter around `transport.geometry` (render/ray_recorder.h). The overload above is this one with
+/// counter around `transport.geometry` (render/reports/ray_recorder.h). The overload above is this one with
 /// scene.transport_view(), scene.settings.integrator and the scene's camera at its settings' resolution.
 RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options);
-/// The same for a scene with participating media (transport/volumetric_path_integrator.h).
+/// The same for a scene with participating media (transport/integrators/volumetric_path_integrator.h).
 RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options);
 

@@ -1,11 +1,11 @@
 // rimu-exr-compare A.exr B.exr [--max-ulps N] [--image-only]: the test scripts' image comparison
-// (render/exr_compare.h). Prints how many values differ and by how much; exit 0 if no image value is more than N
+// (render/output/exr_compare.h). Prints how many values differ and by how much; exit 0 if no image value is more than N
 // float32 ULPs apart (default 0: bit-identical), 1 otherwise or on bad input.
 #include <cstdlib>
 #include <iostream>
 #include <string>
 
-#include "render/exr_compare.h"
+#include "render/output/exr_compare.h"
 
 int main(int argc, char** argv) {
   if (argc < 3) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # plot_outputs.sh RIMU_LIGHT RIMU_COLOUR IES: every plot goes through the renderer's output-file code
-# (src/spectral/output_file.h):
+# (src/spectral/io/output_file.h):
 #   - a plot's format follows its name: a .jpg (or any name not ending in .png, a device named without one) is
 #     refused with exit 1 and nothing is written, instead of PNG bytes under a JPEG name;
 #   - a destination that is a device (a character device with the numbers of /dev/full, made here with mknod so

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # plots_security.sh CASE RIMU_LIGHT RIMU_COLOUR
-# The plot options with hostile paths and file names (docs: src/spectral/gnuplot_process.h). Every case runs in a
+# The plot options with hostile paths and file names (docs: src/spectral/io/gnuplot_process.h). Every case runs in a
 # fresh folder with a private $TMPDIR and checks that
 #   - no injected command ran: names carry `touch P` (relative, as a user would type it) and `touch $MARK` (an
 #     absolute marker set below, found wherever the command would have run: a shell, or gnuplot's backquotes);

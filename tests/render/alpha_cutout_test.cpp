@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "integration_support.h"
-#include "render/alpha_mask.h"
-#include "render/embree_scene.h"
+#include "render/image/alpha_mask.h"
+#include "render/scene/embree_scene.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_support.h"
 

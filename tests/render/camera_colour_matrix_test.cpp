@@ -2,11 +2,11 @@
 // matrix that reproduces the ColorChecker far better than showing raw R, G, B as Rec.709 did.
 #include <doctest/doctest.h>
 
-#include "render/camera_colour_matrix.h"
-#include "spectral/chromaticity.h"
-#include "spectral/cielab.h"
-#include "spectral/delta_e.h"
-#include "spectral/tabulated_spectrum.h"
+#include "render/film/camera_colour_matrix.h"
+#include "spectral/colorimetry/chromaticity.h"
+#include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/delta_e.h"
+#include "spectral/spectra/tabulated_spectrum.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -17,7 +17,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "render/camera_exposure.h"
+#include "render/camera/camera_exposure.h"
 #include "render/render_job.h"
 #include "spectral/error.h"
 #include "test_support.h"

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "render/display_output.h"
-#include "render/output_file.h"
+#include "render/output/display_output.h"
+#include "render/output/output_file.h"
 #include "spectral/error.h"
 #include "test_support.h"
 

@@ -17,9 +17,9 @@
 #include <map>
 #include <unistd.h>
 
-#include "render/display_output.h"
-#include "render/exr_output.h"
-#include "render/output_file.h"
+#include "render/output/display_output.h"
+#include "render/output/exr_output.h"
+#include "render/output/output_file.h"
 #include "spectral/error.h"
 #include "test_support.h"
 

@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
-#include "render/film.h"
+#include "render/film/film.h"
 #include "test_support.h"
-#include "transport/sampler.h"
+#include "transport/sampling/sampler.h"
 
 using namespace rimu;
 

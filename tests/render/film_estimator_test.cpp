@@ -6,10 +6,10 @@
 #include <random>
 #include <vector>
 
-#include "render/film.h"
+#include "render/film/film.h"
 #include "spectral/error.h"
-#include "spectral/photometry_constants.h"
-#include "spectral/wavelength_range.h"
+#include "spectral/photometry/photometry_constants.h"
+#include "spectral/spectra/wavelength_range.h"
 #include "statistics.h"
 #include "test_support.h"
 

@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "integration_support.h"
-#include "transport/shadow_passage.h"
+#include "transport/integrators/shadow_passage.h"
 
 using namespace rimu;
 using namespace rimu::test;

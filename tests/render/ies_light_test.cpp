@@ -12,13 +12,13 @@
 #include <unistd.h>
 
 #include "render/scene/ies_file.h"
-#include "render/light_meter.h"
+#include "render/reports/light_meter.h"
 #include "render/scene/scene.h"
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/emitter_photometry.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/photometry/emitter_photometry.h"
 #include "spectral/error.h"
 #include "test_support.h"
-#include "transport/goniometric_light.h"
+#include "transport/lights/goniometric_light.h"
 
 using namespace rimu;
 using nlohmann::json;

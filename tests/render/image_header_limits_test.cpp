@@ -1,5 +1,5 @@
 // Image headers are checked against the file's size and the pixel limit before any pixel is allocated
-// (render/image_file.h); environment pixels and light colours whose radiance would overflow are refused by name.
+// (render/image/image_file.h); environment pixels and light colours whose radiance would overflow are refused by name.
 #include <doctest/doctest.h>
 #include <zlib.h>
 
@@ -12,9 +12,9 @@
 
 #include "input_error_check.h"
 #include "integration_support.h"
-#include "render/alpha_mask.h"
-#include "render/image_file.h"
-#include "render/rgb_image.h"
+#include "render/image/alpha_mask.h"
+#include "render/image/image_file.h"
+#include "render/image/rgb_image.h"
 #include "spectral/error.h"
 #include "test_image_files.h"
 #include "test_support.h"

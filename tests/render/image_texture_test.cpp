@@ -11,9 +11,9 @@
 #include <limits>
 #include <vector>
 
-#include "render/image_texture.h"
-#include "render/rgb_environment_image.h"
-#include "render/rgb_image.h"
+#include "render/image/image_texture.h"
+#include "render/image/rgb_environment_image.h"
+#include "render/image/rgb_image.h"
 #include "spectral/error.h"
 #include "test_image_files.h"
 #include "test_support.h"

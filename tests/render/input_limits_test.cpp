@@ -24,8 +24,8 @@
 #include "render/scene/obj_check.h"
 #include "render/scene/obj_loader.h"
 #include "spectral/error.h"
-#include "spectral/input_file.h"
-#include "transport/grid_medium.h"
+#include "spectral/io/input_file.h"
+#include "transport/media/grid_medium.h"
 
 using namespace rimu;
 using nlohmann::json;

@@ -13,7 +13,7 @@
 #include <numbers>
 
 #include "integration_support.h"
-#include "render/camera.h"
+#include "render/camera/camera.h"
 
 using namespace rimu;
 using namespace rimu::test;

@@ -13,8 +13,8 @@
 #include <random>
 
 #include "integration_support.h"
-#include "render/camera.h"
-#include "transport/frame.h"
+#include "render/camera/camera.h"
+#include "transport/geometry/frame.h"
 
 using namespace rimu;
 using namespace rimu::test;

@@ -3,7 +3,7 @@
 //
 // Why pixels are independent samples: the render loop's samplers are pure functions of (seed, pixel, sample
 // index, dimension), and different pixels get independent randomisations (PCG seeds for the independent sampler,
-// Owen scrambles of the same nets for Sobol', transport/sobol_sampler.h), so two pixels' estimates are
+// Owen scrambles of the same nets for Sobol', transport/sampling/sobol_sampler.h), so two pixels' estimates are
 // independent; within a pixel, Sobol' stratification only lowers the variance of that pixel's mean. In a region whose expected value is
 // the same everywhere, the pixel values are therefore i.i.d. and their spread gives the standard error of their
 // mean without any assumption on the integrand.
@@ -20,13 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "render/film.h"
-#include "render/pixel_filter.h"
+#include "render/film/film.h"
+#include "render/film/pixel_filter.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
 #include "test_support.h"
-#include "transport/path_integrator.h"
-#include "transport/sampler.h"
+#include "transport/integrators/path_integrator.h"
+#include "transport/sampling/sampler.h"
 
 namespace rimu::test {
 

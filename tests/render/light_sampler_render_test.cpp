@@ -10,7 +10,7 @@
 
 #include "integration_support.h"
 #include "render/scene/json_cursor.h"
-#include "render/light_coverage.h"
+#include "render/scene/light_coverage.h"
 
 using namespace rimu;
 

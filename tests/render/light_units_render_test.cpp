@@ -9,13 +9,13 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "render/film.h"
-#include "render/light_meter.h"
-#include "render/pixel_filter.h"
+#include "render/film/film.h"
+#include "render/reports/light_meter.h"
+#include "render/film/pixel_filter.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/emitter_photometry.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/photometry/emitter_photometry.h"
 #include "test_support.h"
 
 using namespace rimu;

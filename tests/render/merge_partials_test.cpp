@@ -1,4 +1,4 @@
-// Partial renders and their merge (render/merge_partials.h, render/partial_exr.h): N sample ranges or crop tiles of
+// Partial renders and their merge (render/output/merge_partials.h, render/output/partial_exr.h): N sample ranges or crop tiles of
 // a render, merged, give the single process's image (crop tiles bit for bit; sample ranges within the stated bound
 // of one float32 ULP); mismatched, overlapping and missing partials are errors that write nothing.
 #include <ImfHeader.h>
@@ -11,9 +11,9 @@
 #include <sstream>
 
 #include "test_support.h"
-#include "render/exr_compare.h"
-#include "render/merge_partials.h"
-#include "render/partial_exr.h"
+#include "render/output/exr_compare.h"
+#include "render/output/merge_partials.h"
+#include "render/output/partial_exr.h"
 #include "render/render_job.h"
 #include "spectral/error.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "test_support.h"
-#include "render/output_file.h"
+#include "render/output/output_file.h"
 #include "spectral/error.h"
 
 using namespace rimu;

@@ -7,7 +7,7 @@
 
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
-#include "render/camera.h"
+#include "render/camera/camera.h"
 #include "render/render_job.h"
 #include "pbrt_test_support.h"
 

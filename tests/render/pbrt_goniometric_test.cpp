@@ -12,8 +12,8 @@
 
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
-#include "transport/equal_area_square.h"
-#include "transport/goniometric_light.h"
+#include "transport/sampling/equal_area_square.h"
+#include "transport/lights/goniometric_light.h"
 #include "pbrt_test_support.h"
 
 using namespace rimu;

@@ -12,7 +12,7 @@
 #include "render/scene/pbrt/pbrt_parser.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/pbrt/pbrt_tokenizer.h"
-#include "render/spectral_response.h"
+#include "render/film/spectral_response.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -12,7 +12,7 @@
 #include "pbrt_test_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
-#include "spectral/input_file.h"
+#include "spectral/io/input_file.h"
 #include "test_support.h"
 
 using namespace rimu;

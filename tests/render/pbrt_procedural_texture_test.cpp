@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "integration_support.h"
-#include "render/image_texture.h"
+#include "render/image/image_texture.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_image_files.h"
 

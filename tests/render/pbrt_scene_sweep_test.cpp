@@ -6,10 +6,10 @@
 
 #include "integration_support.h"
 #include "pbrt_test_support.h"
-#include "render/alpha_mask.h"
-#include "render/float_image_texture.h"
+#include "render/image/alpha_mask.h"
+#include "render/image/float_image_texture.h"
 #include "test_image_files.h"
-#include "transport/spectral_texture_ops.h"
+#include "transport/textures/spectral_texture_ops.h"
 
 using namespace rimu;
 using nlohmann::json;

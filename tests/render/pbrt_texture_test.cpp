@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "integration_support.h"
-#include "render/float_image_texture.h"
+#include "render/image/float_image_texture.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_image_files.h"
 

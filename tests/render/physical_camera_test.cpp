@@ -6,13 +6,13 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "render/light_meter.h"
-#include "render/physical_camera.h"
-#include "render/pixel_filter.h"
+#include "render/reports/light_meter.h"
+#include "render/camera/physical_camera.h"
+#include "render/film/pixel_filter.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/light_units.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/photometry/light_units.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "render/pixel_filter.h"
+#include "render/film/pixel_filter.h"
 #include "spectral/error.h"
 #include "statistics.h"
 

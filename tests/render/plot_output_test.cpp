@@ -1,4 +1,4 @@
-// rimu_render's plots (render/plot_output.h, light_definition.h, ies_report.h): titles show file names, not paths;
+// rimu_render's plots (render/output/plot_output.h, light_definition.h, ies_report.h): titles show file names, not paths;
 // bad destinations are InputError and a missing gnuplot a RenderError (exit codes 1 and 2 in the tools).
 #include <doctest/doctest.h>
 
@@ -9,9 +9,9 @@
 #include <string>
 
 #include "render/scene/light_definition.h"
-#include "render/plot_output.h"
+#include "render/output/plot_output.h"
 #include "render/render_error.h"
-#include "spectral/blackbody_spectrum.h"
+#include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/error.h"
 
 using namespace rimu;

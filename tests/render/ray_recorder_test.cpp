@@ -7,9 +7,9 @@
 #include <cmath>
 #include <vector>
 
-#include "render/film.h"
-#include "render/pixel_filter.h"
-#include "render/ray_recorder.h"
+#include "render/film/film.h"
+#include "render/film/pixel_filter.h"
+#include "render/reports/ray_recorder.h"
 #include "render/renderer.h"
 #include "render/scene/scene.h"
 #include "test_support.h"

@@ -23,7 +23,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "render/physical_camera.h"
+#include "render/camera/physical_camera.h"
 #include "render/render_job.h"
 #include "spectral/error.h"
 #include "test_support.h"

@@ -3,7 +3,7 @@
 
 #include <utility>
 
-#include "render/render_size.h"
+#include "render/film/render_size.h"
 
 using namespace rimu;
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "render/embree_scene.h"
-#include "transport/transform.h"
+#include "render/scene/embree_scene.h"
+#include "transport/geometry/transform.h"
 
 using namespace rimu;
 

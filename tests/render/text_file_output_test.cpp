@@ -1,12 +1,12 @@
-// Text outputs (render/text_file_output.h): whole or not at all, and a failed write is an error naming the path.
+// Text outputs (render/output/text_file_output.h): whole or not at all, and a failed write is an error naming the path.
 #include <doctest/doctest.h>
 
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
 
-#include "render/output_file.h"
-#include "render/text_file_output.h"
+#include "render/output/output_file.h"
+#include "render/output/text_file_output.h"
 #include "spectral/error.h"
 
 using namespace rimu;

@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "integration_support.h"
-#include "render/rgb_transport_inputs.h"
+#include "render/image/rgb_transport_inputs.h"
 #include "render/scene/json_cursor.h"
-#include "spectral/colorimetry.h"
-#include "spectral/tabulated_spectrum.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/spectra/tabulated_spectrum.h"
 #include "test_image_files.h"
-#include "transport/wavelength_modes.h"
+#include "transport/sampling/wavelength_modes.h"
 
 namespace rimu::test {
 namespace {

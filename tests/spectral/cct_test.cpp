@@ -4,10 +4,10 @@
 #include <cmath>
 #include <limits>
 
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/colorimetry.h"
-#include "spectral/daylight.h"
-#include "spectral/planckian_locus.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/planckian_locus.h"
 #include "test_support.h"
 
 using namespace rimu;

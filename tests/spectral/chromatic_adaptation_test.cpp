@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "spectral/chromatic_adaptation.h"
+#include "spectral/colorimetry/chromatic_adaptation.h"
 
 using namespace rimu;
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "spectral/cielab.h"
+#include "spectral/colorimetry/cielab.h"
 
 using namespace rimu;
 

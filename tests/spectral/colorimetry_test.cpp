@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "spectral/colorimetry.h"
-#include "spectral/photometry_constants.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/photometry/photometry_constants.h"
 #include "test_support.h"
 
 using namespace rimu;

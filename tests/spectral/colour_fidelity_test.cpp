@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "spectral/colour_fidelity.h"
-#include "spectral/csv_table.h"
+#include "spectral/colour_rendering/colour_fidelity.h"
+#include "spectral/io/csv_table.h"
 #include "spectral/error.h"
 #include "test_support.h"
 

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <string>
 
-#include "spectral/chromatic_adaptation.h"
+#include "spectral/colorimetry/chromatic_adaptation.h"
 #include "spectral/error.h"
-#include "spectral/rgb_colour_space.h"
+#include "spectral/colour_spaces/rgb_colour_space.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include "spectral/colour_vector_graphic.h"
+#include "spectral/colour_rendering/colour_vector_graphic.h"
 #include "spectral/error.h"
 #include "test_support.h"
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/colour_rendering_index.h"
-#include "spectral/daylight.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/colour_rendering/colour_rendering_index.h"
+#include "spectral/spectra/daylight.h"
 #include "spectral/error.h"
 #include "test_support.h"
 

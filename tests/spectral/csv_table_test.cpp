@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <string>
 
-#include "spectral/csv_table.h"
+#include "spectral/io/csv_table.h"
 #include "spectral/error.h"
-#include "spectral/tabulated_spectrum.h"
+#include "spectral/spectra/tabulated_spectrum.h"
 
 using namespace rimu;
 

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "spectral/csv_table.h"
-#include "spectral/delta_e.h"
+#include "spectral/io/csv_table.h"
+#include "spectral/colorimetry/delta_e.h"
 #include "test_support.h"
 
 using namespace rimu;

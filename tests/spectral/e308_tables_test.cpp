@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "spectral/astm_e308.h"
-#include "spectral/cielab.h"
-#include "spectral/colorimetry.h"
-#include "spectral/chromaticity.h"
-#include "spectral/delta_e.h"
-#include "spectral/tabulated_colorimetry.h"
+#include "spectral/colorimetry/astm_e308.h"
+#include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/colorimetry/chromaticity.h"
+#include "spectral/colorimetry/delta_e.h"
+#include "spectral/colorimetry/tabulated_colorimetry.h"
 #include "test_support.h"
 
 using namespace rimu;

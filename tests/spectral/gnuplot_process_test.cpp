@@ -1,4 +1,4 @@
-// The plotting runner (spectral/gnuplot_process.h): no user text is expanded, the PNG lands at exactly the given
+// The plotting runner (spectral/io/gnuplot_process.h): no user text is expanded, the PNG lands at exactly the given
 // path, and the private temporary folder is gone afterwards whether gnuplot succeeded or failed.
 #include <doctest/doctest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "spectral/error.h"
-#include "spectral/gnuplot_process.h"
+#include "spectral/io/gnuplot_process.h"
 
 using namespace rimu;
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "spectral/colorimetry.h"
+#include "spectral/colorimetry/colorimetry.h"
 #include "test_support.h"
 
 using namespace rimu;

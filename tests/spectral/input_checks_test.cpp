@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include "spectral/colorimetry_options.h"
-#include "spectral/colour_value_check.h"
-#include "spectral/spectrum_values_check.h"
+#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/colorimetry/colour_value_check.h"
+#include "spectral/spectra/spectrum_values_check.h"
 
 using namespace rimu;
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "spectral/lanes.h"
+#include "spectral/wavelengths/lanes.h"
 
 using namespace rimu;
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/emitter_photometry.h"
-#include "spectral/light_units.h"
-#include "spectral/photometry_constants.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/photometry/emitter_photometry.h"
+#include "spectral/photometry/light_units.h"
+#include "spectral/photometry/photometry_constants.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "spectral/colorimetry.h"
+#include "spectral/colorimetry/colorimetry.h"
 #include "spectral/error.h"
-#include "spectral/photometry.h"
-#include "spectral/photometry_constants.h"
+#include "spectral/photometry/photometry.h"
+#include "spectral/photometry/photometry_constants.h"
 #include "test_support.h"
 
 using namespace rimu;

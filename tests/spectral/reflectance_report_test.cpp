@@ -5,9 +5,9 @@
 #include <fstream>
 #include <string>
 
-#include "spectral/delta_e.h"
+#include "spectral/colorimetry/delta_e.h"
 #include "spectral/error.h"
-#include "spectral/reflectance_report.h"
+#include "spectral/reports/reflectance_report.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "spectral/colorimetry.h"
-#include "spectral/sampled_wavelengths.h"
-#include "spectral/wavelength_range.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/wavelengths/sampled_wavelengths.h"
+#include "spectral/spectra/wavelength_range.h"
 #include "statistics.h"
 #include "test_support.h"
 

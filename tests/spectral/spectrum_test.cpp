@@ -9,11 +9,11 @@
 #include <random>
 #include <vector>
 
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/csv_table.h"
-#include "spectral/daylight.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/io/csv_table.h"
+#include "spectral/spectra/daylight.h"
 #include "spectral/error.h"
-#include "spectral/tabulated_spectrum.h"
+#include "spectral/spectra/tabulated_spectrum.h"
 #include "test_support.h"
 
 using namespace rimu;

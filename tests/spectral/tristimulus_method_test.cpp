@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "spectral/astm_e308.h"
-#include "spectral/cielab.h"
-#include "spectral/colorimetry.h"
-#include "spectral/csv_table.h"
-#include "spectral/delta_e.h"
+#include "spectral/colorimetry/astm_e308.h"
+#include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/io/csv_table.h"
+#include "spectral/colorimetry/delta_e.h"
 #include "spectral/error.h"
-#include "spectral/planckian_locus.h"
-#include "spectral/tabulated_colorimetry.h"
+#include "spectral/colorimetry/planckian_locus.h"
+#include "spectral/colorimetry/tabulated_colorimetry.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "spectral/rgb_upsampler.h"
+#include "spectral/upsampling/rgb_upsampler.h"
 #include "test_support.h"
 
 namespace rimu::test {

@@ -8,9 +8,9 @@
 #include <memory>
 #include <string>
 
-#include "spectral/colorimetry.h"
-#include "spectral/rgb_upsampler.h"
-#include "spectral/smoothest_spectrum.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/upsampling/rgb_upsampler.h"
+#include "spectral/upsampling/smoothest_spectrum.h"
 #include "test_support.h"
 #include "upsampler_fixture.h"
 

@@ -11,10 +11,10 @@
 #include <numbers>
 #include <string>
 
-#include "spectral/cielab.h"
-#include "spectral/colorimetry.h"
-#include "spectral/delta_e.h"
-#include "spectral/rgb_upsampler.h"
+#include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/colorimetry/delta_e.h"
+#include "spectral/upsampling/rgb_upsampler.h"
 #include "test_support.h"
 #include "upsampler_fixture.h"
 

@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "spectral/colorimetry.h"
-#include "spectral/wavelength_density.h"
-#include "spectral/wavelength_range.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/wavelengths/wavelength_density.h"
+#include "spectral/spectra/wavelength_range.h"
 #include "statistics.h"
 #include "test_support.h"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "light_test_support.h"
-#include "transport/area_light.h"
+#include "transport/lights/area_light.h"
 
 using namespace rimu;
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "transport/bsdf.h"
+#include "transport/bsdfs/bsdf.h"
 
 namespace rimu::test {
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "bsdf_chi_square.h"
-#include "spectral/optical_constants.h"
+#include "spectral/spectra/optical_constants.h"
 #include "statistics.h"
-#include "transport/fresnel.h"
+#include "transport/bsdfs/fresnel.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -6,10 +6,10 @@
 #include <random>
 
 #include "bsdf_test_fixtures.h"
-#include "spectral/optical_constants.h"
+#include "spectral/spectra/optical_constants.h"
 #include "test_support.h"
-#include "transport/bsdf.h"
-#include "transport/fresnel.h"
+#include "transport/bsdfs/bsdf.h"
+#include "transport/bsdfs/fresnel.h"
 
 using namespace rimu;
 

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "bsdf_test_fixtures.h"
-#include "transport/bsdf.h"
+#include "transport/bsdfs/bsdf.h"
 
 using namespace rimu;
 

@@ -4,9 +4,9 @@
 #include <array>
 #include <string_view>
 
-#include "spectral/optical_constants.h"
+#include "spectral/spectra/optical_constants.h"
 #include "test_support.h"
-#include "transport/bsdf.h"
+#include "transport/bsdfs/bsdf.h"
 
 namespace rimu::test {
 

@@ -1,4 +1,4 @@
-// The light BVH (transport/bvh_light_sampler.h): at random shading points of three scenes the sampled frequencies
+// The light BVH (transport/lights/bvh_light_sampler.h): at random shading points of three scenes the sampled frequencies
 // match pmf() (chi-square over every light part plus "no light"), pmf() is bit-identical to the probability
 // sample() returns, the probabilities sum to 1 and a part has probability > 0 exactly where its own bounds score
 // > 0; nothing behind a one-sided emitter, outside a spot's or IES light's cone or below an opaque surface is ever
@@ -14,16 +14,16 @@
 #include <vector>
 
 #include "light_test_support.h"
-#include "transport/area_light.h"
-#include "transport/bvh_light_sampler.h"
-#include "transport/candela_distribution.h"
-#include "transport/distant_light.h"
-#include "transport/environment_light.h"
-#include "transport/goniometric_light.h"
-#include "transport/point_light.h"
-#include "spectral/sampled_wavelengths.h"
-#include "spectral/tabulated_spectrum.h"
-#include "transport/spot_light.h"
+#include "transport/lights/area_light.h"
+#include "transport/lights/bvh_light_sampler.h"
+#include "transport/lights/candela_distribution.h"
+#include "transport/lights/distant_light.h"
+#include "transport/lights/environment_light.h"
+#include "transport/lights/goniometric_light.h"
+#include "transport/lights/point_light.h"
+#include "spectral/wavelengths/sampled_wavelengths.h"
+#include "spectral/spectra/tabulated_spectrum.h"
+#include "transport/lights/spot_light.h"
 
 using namespace rimu;
 

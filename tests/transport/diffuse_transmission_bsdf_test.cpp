@@ -9,8 +9,8 @@
 #include "spectral/error.h"
 #include "statistics.h"
 #include "test_support.h"
-#include "transport/bsdf.h"
-#include "transport/material.h"
+#include "transport/bsdfs/bsdf.h"
+#include "transport/bsdfs/material.h"
 
 using namespace rimu;
 

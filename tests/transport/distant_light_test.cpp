@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "light_test_support.h"
-#include "transport/distant_light.h"
-#include "transport/frame.h"
+#include "transport/lights/distant_light.h"
+#include "transport/geometry/frame.h"
 
 using namespace rimu;
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "light_test_support.h"
-#include "transport/distribution_1d.h"
-#include "transport/distribution_2d.h"
+#include "transport/sampling/distribution_1d.h"
+#include "transport/sampling/distribution_2d.h"
 
 using namespace rimu;
 

@@ -5,10 +5,10 @@
 #include <memory>
 #include <vector>
 
-#include "spectral/blackbody_spectrum.h"
+#include "spectral/spectra/blackbody_spectrum.h"
 #include "test_support.h"
-#include "transport/emission_wavelength_density.h"
-#include "transport/point_light.h"
+#include "transport/lights/emission_wavelength_density.h"
+#include "transport/lights/point_light.h"
 
 using namespace rimu;
 

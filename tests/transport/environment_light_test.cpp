@@ -9,7 +9,7 @@
 
 #include "grey_environment_image.h"
 #include "light_test_support.h"
-#include "transport/environment_light.h"
+#include "transport/lights/environment_light.h"
 
 using namespace rimu;
 

@@ -13,13 +13,13 @@
 #include <vector>
 
 #include "light_test_support.h"
-#include "spectral/spectrum.h"
-#include "transport/area_light.h"
-#include "transport/bvh_light_sampler.h"
-#include "transport/environment_light.h"
-#include "transport/environment_portal.h"
-#include "transport/light_warps.h"
-#include "transport/point_light.h"
+#include "spectral/spectra/spectrum.h"
+#include "transport/lights/area_light.h"
+#include "transport/lights/bvh_light_sampler.h"
+#include "transport/lights/environment_light.h"
+#include "transport/lights/environment_portal.h"
+#include "transport/lights/light_warps.h"
+#include "transport/lights/point_light.h"
 
 using namespace rimu;
 

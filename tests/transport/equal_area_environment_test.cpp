@@ -10,9 +10,9 @@
 
 #include "grey_environment_image.h"
 #include "light_test_support.h"
-#include "transport/environment_light.h"
-#include "transport/equal_area_square.h"
-#include "transport/light_warps.h"
+#include "transport/lights/environment_light.h"
+#include "transport/sampling/equal_area_square.h"
+#include "transport/lights/light_warps.h"
 
 using namespace rimu;
 

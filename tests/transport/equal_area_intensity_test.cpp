@@ -8,10 +8,10 @@
 #include <random>
 
 #include "light_test_support.h"
-#include "spectral/spectrum.h"
-#include "transport/equal_area_intensity.h"
-#include "transport/equal_area_square.h"
-#include "transport/goniometric_light.h"
+#include "spectral/spectra/spectrum.h"
+#include "transport/lights/equal_area_intensity.h"
+#include "transport/sampling/equal_area_square.h"
+#include "transport/lights/goniometric_light.h"
 
 using namespace rimu;
 

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "spectral/optical_constants.h"
+#include "spectral/spectra/optical_constants.h"
 #include "test_support.h"
-#include "transport/fresnel.h"
+#include "transport/bsdfs/fresnel.h"
 
 using namespace rimu;
 

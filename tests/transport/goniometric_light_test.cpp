@@ -7,9 +7,9 @@
 #include <random>
 
 #include "light_test_support.h"
-#include "spectral/spectrum.h"
-#include "transport/candela_distribution.h"
-#include "transport/goniometric_light.h"
+#include "spectral/spectra/spectrum.h"
+#include "transport/lights/candela_distribution.h"
+#include "transport/lights/goniometric_light.h"
 
 using namespace rimu;
 

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "transport/environment_image.h"
+#include "transport/lights/environment_image.h"
 
 namespace rimu::test {
 

@@ -1,4 +1,4 @@
-// The voxel-grid medium's trilinear lookup and its transform (transport/grid_medium.h): values between voxel centres,
+// The voxel-grid medium's trilinear lookup and its transform (transport/media/grid_medium.h): values between voxel centres,
 // majorants that bound every interpolated value, and the ratio-tracking transmittance through a rotated, scaled
 // grid against the closed-form integral of the trilinear density along the ray.
 #include <doctest/doctest.h>
@@ -6,10 +6,10 @@
 #include <cmath>
 #include <random>
 
-#include "transport/grid_medium.h"
-#include "transport/medium.h"
-#include "transport/sampler.h"
-#include "transport/spectral_distance_sampling.h"
+#include "transport/media/grid_medium.h"
+#include "transport/media/medium.h"
+#include "transport/sampling/sampler.h"
+#include "transport/media/spectral_distance_sampling.h"
 
 namespace rimu {
 namespace {

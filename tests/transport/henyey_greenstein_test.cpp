@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "statistics.h"
-#include "transport/frame.h"
-#include "transport/henyey_greenstein.h"
+#include "transport/geometry/frame.h"
+#include "transport/media/henyey_greenstein.h"
 
 namespace rimu {
 namespace {

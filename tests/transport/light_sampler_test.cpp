@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "light_test_support.h"
-#include "transport/area_light.h"
-#include "transport/distant_light.h"
-#include "transport/power_light_sampler.h"
-#include "transport/point_light.h"
+#include "transport/lights/area_light.h"
+#include "transport/lights/distant_light.h"
+#include "transport/lights/power_light_sampler.h"
+#include "transport/lights/point_light.h"
 
 using namespace rimu;
 

@@ -3,11 +3,11 @@
 
 #include <cmath>
 
-#include "spectral/csv_table.h"
+#include "spectral/io/csv_table.h"
 #include "spectral/error.h"
-#include "spectral/optical_constants.h"
+#include "spectral/spectra/optical_constants.h"
 #include "test_support.h"
-#include "transport/dielectric_bsdf.h"
+#include "transport/bsdfs/dielectric_bsdf.h"
 
 using namespace rimu;
 

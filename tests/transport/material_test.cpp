@@ -6,9 +6,9 @@
 #include <variant>
 
 #include "spectral/error.h"
-#include "spectral/optical_constants.h"
+#include "spectral/spectra/optical_constants.h"
 #include "test_support.h"
-#include "transport/material.h"
+#include "transport/bsdfs/material.h"
 
 using namespace rimu;
 

@@ -7,9 +7,9 @@
 
 #include "media_test_scene.h"
 #include "statistics.h"
-#include "transport/point_light.h"
-#include "transport/sampler.h"
-#include "transport/spot_light.h"
+#include "transport/lights/point_light.h"
+#include "transport/sampling/sampler.h"
+#include "transport/lights/spot_light.h"
 
 namespace rimu {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "media_test_scene.h"
-#include "transport/sampler.h"
+#include "transport/sampling/sampler.h"
 
 namespace rimu {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "media_test_scene.h"
-#include "transport/sampler.h"
+#include "transport/sampling/sampler.h"
 
 namespace rimu {
 namespace {

@@ -8,10 +8,10 @@
 #include <numbers>
 #include <vector>
 
-#include "spectral/spectrum.h"
-#include "transport/distant_light.h"
-#include "transport/power_light_sampler.h"
-#include "transport/volumetric_path_integrator.h"
+#include "spectral/spectra/spectrum.h"
+#include "transport/lights/distant_light.h"
+#include "transport/lights/power_light_sampler.h"
+#include "transport/integrators/volumetric_path_integrator.h"
 
 namespace rimu::test {
 

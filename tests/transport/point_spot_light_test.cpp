@@ -5,8 +5,8 @@
 #include <memory>
 #include <numbers>
 
-#include "transport/point_light.h"
-#include "transport/spot_light.h"
+#include "transport/lights/point_light.h"
+#include "transport/lights/spot_light.h"
 
 using namespace rimu;
 

@@ -8,8 +8,8 @@
 #include <random>
 
 #include "spectral/error.h"
-#include "transport/perlin_noise.h"
-#include "transport/procedural_texture.h"
+#include "transport/textures/perlin_noise.h"
+#include "transport/textures/procedural_texture.h"
 
 using namespace rimu;
 

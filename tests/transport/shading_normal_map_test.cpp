@@ -1,11 +1,11 @@
-// Normal and bump maps (transport/shading_normal_map.h): the frame they build, its fallbacks, and no NaN.
+// Normal and bump maps (transport/textures/shading_normal_map.h): the frame they build, its fallbacks, and no NaN.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <random>
 
-#include "transport/material.h"
-#include "transport/shading_normal_map.h"
+#include "transport/bsdfs/material.h"
+#include "transport/textures/shading_normal_map.h"
 
 using namespace rimu;
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "transport/sampler.h"
+#include "transport/sampling/sampler.h"
 
 using namespace rimu;
 

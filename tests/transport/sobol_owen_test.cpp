@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "transport/owen_scrambling.h"
-#include "transport/sampler.h"
-#include "transport/sobol_sampler.h"
+#include "transport/sampling/owen_scrambling.h"
+#include "transport/sampling/sampler.h"
+#include "transport/sampling/sobol_sampler.h"
 
 using namespace rimu;
 

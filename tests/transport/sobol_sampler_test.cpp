@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "sobol_net_check.h"
-#include "transport/sobol_sampler.h"
+#include "transport/sampling/sobol_sampler.h"
 
 using namespace rimu;
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "sobol_net_check.h"
-#include "transport/owen_scrambling.h"
-#include "transport/sampler.h"
-#include "transport/sobol.h"
+#include "transport/sampling/owen_scrambling.h"
+#include "transport/sampling/sampler.h"
+#include "transport/sampling/sobol.h"
 
 using namespace rimu;
 

@@ -1,4 +1,4 @@
-// Directions uniform in a triangle's solid angle (transport/spherical_triangle.h): the solid angle against closed
+// Directions uniform in a triangle's solid angle (transport/sampling/spherical_triangle.h): the solid angle against closed
 // forms, every sample inside the triangle, and the samples' mean direction against the exact first moment
 // ∫ ω dω = ½ Σᵢ Θᵢ Γᵢ over the triangle's edges (Θᵢ the angle edge i subtends, Γᵢ the unit normal of the plane
 // through the point and that edge, pointing into the triangle's cone; Arvo 1995, "Applications of irradiance
@@ -11,7 +11,7 @@
 
 #include "light_test_support.h"
 #include "statistics.h"
-#include "transport/spherical_triangle.h"
+#include "transport/sampling/spherical_triangle.h"
 
 using namespace rimu;
 

@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "spectral/error.h"
-#include "spectral/optical_constants.h"
+#include "spectral/spectra/optical_constants.h"
 #include "test_support.h"
-#include "transport/float_texture.h"
-#include "transport/material.h"
-#include "transport/spectral_texture_ops.h"
+#include "transport/textures/float_texture.h"
+#include "transport/bsdfs/material.h"
+#include "transport/textures/spectral_texture_ops.h"
 
 using namespace rimu;
 

@@ -8,9 +8,9 @@
 #include "bsdf_test_fixtures.h"
 #include "spectral/error.h"
 #include "test_support.h"
-#include "transport/bsdf.h"
-#include "transport/fresnel.h"
-#include "transport/material.h"
+#include "transport/bsdfs/bsdf.h"
+#include "transport/bsdfs/fresnel.h"
+#include "transport/bsdfs/material.h"
 
 using namespace rimu;
 

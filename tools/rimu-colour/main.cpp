@@ -6,19 +6,19 @@
 
 #include "common/tool_main.h"
 
-#include "spectral/colorimetry_options.h"
-#include "spectral/colour_fidelity.h"
-#include "spectral/colour_vector_graphic.h"
+#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/colour_rendering/colour_fidelity.h"
+#include "spectral/colour_rendering/colour_vector_graphic.h"
 #include "spectral/error.h"
-#include "spectral/gamut_figure.h"
-#include "spectral/gnuplot_process.h"
-#include "spectral/output_file.h"
-#include "spectral/reflectance_report.h"
-#include "spectral/rgb_upsampler.h"
-#include "spectral/upsample_report.h"
-#include "spectral/spectrum_report.h"
-#include "spectral/spectrum_source.h"
-#include "spectral/tristimulus_method.h"
+#include "spectral/reports/gamut_figure.h"
+#include "spectral/io/gnuplot_process.h"
+#include "spectral/io/output_file.h"
+#include "spectral/reports/reflectance_report.h"
+#include "spectral/upsampling/rgb_upsampler.h"
+#include "spectral/reports/upsample_report.h"
+#include "spectral/reports/spectrum_report.h"
+#include "spectral/spectra/spectrum_source.h"
+#include "spectral/colorimetry/tristimulus_method.h"
 
 namespace {
 

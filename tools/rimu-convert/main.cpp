@@ -5,13 +5,13 @@
 
 #include "common/tool_main.h"
 
-#include "render/output_file.h"
+#include "render/output/output_file.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
-#include "render/text_file_output.h"
+#include "render/output/text_file_output.h"
 #include "spectral/error.h"
-#include "spectral/input_file.h"
-#include "spectral/spectral_library.h"
+#include "spectral/io/input_file.h"
+#include "spectral/spectra/spectral_library.h"
 
 int main(int argc, char** argv) {
   CLI::App app{

@@ -4,7 +4,7 @@
 //
 // For each illuminant of SpectralLibrary::e308_illuminant_names() (its 1 nm spectrum from
 // SpectralLibrary::e308_illuminant()), both standard observers and 10 and 20 nm, runs compute_e308_weights()
-// (src/spectral/astm_e308.h) over 360-830 nm and writes astm_e308_<illuminant>_<2|10>deg_<10|20>nm.csv with the
+// (src/spectral/colorimetry/astm_e308.h) over 360-830 nm and writes astm_e308_<illuminant>_<2|10>deg_<10|20>nm.csv with the
 // command in its first lines, and beside it the Table 5 counterpart (…_table5.csv: the same weights with the
 // Stearns & Stearns bandpass correction folded in, e308_table5_from_table6()).
 #include <cctype>
@@ -15,9 +15,9 @@
 #include <iostream>
 #include <string>
 
-#include "spectral/astm_e308.h"
+#include "spectral/colorimetry/astm_e308.h"
 #include "spectral/error.h"
-#include "spectral/spectral_library.h"
+#include "spectral/spectra/spectral_library.h"
 
 using namespace rimu;
 

@@ -19,7 +19,7 @@ import subprocess
 import sys
 
 
-# The renderer's own limits (tools/rimu/main.cpp --spp, render/partial_record.cpp --samples): a farm asking for more
+# The renderer's own limits (tools/rimu/main.cpp --spp, render/output/partial_record.cpp --samples): a farm asking for more
 # would submit tasks that all fail.
 MAX_SPP = 1 << 24
 # Frames per submission: each frame costs one `rimu --print-scene-hash` at submission and its tasks in the array.

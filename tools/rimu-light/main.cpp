@@ -1,6 +1,6 @@
 // rimu-light: author lights in lumens, candela, lux or nits, inspect them, convert between units and recolour them
 // at constant lumens. It declares the options and calls render/light_options.h, render/scene/light_definition.h and
-// render/ies_report.h (docs/light-units.md).
+// render/reports/ies_report.h (docs/light-units.md).
 //
 // Exit codes (common/tool_main.h): 0 ok, 1 bad input (the message names the file/option), 2 runtime failure
 // (gnuplot missing, a write that failed).
@@ -8,14 +8,14 @@
 #include <optional>
 
 #include "common/tool_main.h"
-#include "render/ies_report.h"
+#include "render/reports/ies_report.h"
 #include "render/scene/json_cursor.h"
 #include "render/scene/light_definition.h"
-#include "render/plot_output.h"
+#include "render/output/plot_output.h"
 #include "render/render_error.h"
 #include "render/light_options.h"
-#include "render/output_file.h"
-#include "render/text_file_output.h"
+#include "render/output/output_file.h"
+#include "render/output/text_file_output.h"
 #include "spectral/error.h"
 
 namespace {

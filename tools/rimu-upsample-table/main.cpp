@@ -17,9 +17,9 @@
 #include "common/tool_main.h"
 
 #include "spectral/error.h"
-#include "spectral/smoothest_spectrum.h"
-#include "spectral/upsampling_table.h"
-#include "spectral/upsampling_whites.h"
+#include "spectral/upsampling/smoothest_spectrum.h"
+#include "spectral/upsampling/upsampling_table.h"
+#include "spectral/upsampling/upsampling_whites.h"
 
 using namespace rimu;
 

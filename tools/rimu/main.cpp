@@ -7,9 +7,9 @@
 #include "common/tool_main.h"
 
 #include "render/render_error.h"
-#include "render/camera_exposure.h"
+#include "render/camera/camera_exposure.h"
 #include "render/render_job.h"
-#include "render/render_size.h"
+#include "render/film/render_size.h"
 #include "merge_command.h"
 #include "spectral/error.h"
 

@@ -1,11 +1,11 @@
-// `rimu merge PART.exr... -o OUT.exr`: a thin parser in front of rimu::merge_partials (render/merge_partials.h).
+// `rimu merge PART.exr... -o OUT.exr`: a thin parser in front of rimu::merge_partials (render/output/merge_partials.h).
 #include "merge_command.h"
 
 #include <iostream>
 
 #include "common/tool_main.h"
 
-#include "render/merge_partials.h"
+#include "render/output/merge_partials.h"
 #include "spectral/error.h"
 
 int run_merge_command(int argc, char** argv) {

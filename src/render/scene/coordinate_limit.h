@@ -11,9 +11,9 @@
 #include <string>
 
 #include "render/scene/json_cursor.h"
-#include "render/triangle_mesh.h"
-#include "transport/transform.h"
-#include "transport/vector.h"
+#include "render/scene/triangle_mesh.h"
+#include "transport/geometry/transform.h"
+#include "transport/geometry/vector.h"
 
 namespace rimu {
 

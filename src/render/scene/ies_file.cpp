@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "spectral/error.h"
-#include "spectral/input_file.h"
+#include "spectral/io/input_file.h"
 
 namespace rimu {
 namespace {

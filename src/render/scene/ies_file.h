@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "transport/candela_distribution.h"
+#include "transport/lights/candela_distribution.h"
 
 namespace rimu {
 

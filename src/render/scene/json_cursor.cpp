@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "spectral/input_file.h"
+#include "spectral/io/input_file.h"
 
 namespace rimu {
 namespace {

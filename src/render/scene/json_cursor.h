@@ -7,7 +7,7 @@
 #include <string>
 
 #include "spectral/error.h"
-#include "transport/vector.h"
+#include "transport/geometry/vector.h"
 
 namespace rimu {
 

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "render/scene/json_cursor.h"
-#include "spectral/light_units.h"
+#include "spectral/photometry/light_units.h"
 
 namespace rimu {
 

@@ -9,10 +9,10 @@
 
 #include "render/scene/json_cursor.h"
 #include "render/scene/light_amount_key.h"
-#include "render/plot_output.h"
+#include "render/output/plot_output.h"
 #include "render/render_error.h"
 #include "render/scene/spectrum_input.h"
-#include "spectral/spectrum_report.h"
+#include "spectral/reports/spectrum_report.h"
 
 namespace rimu {
 namespace {

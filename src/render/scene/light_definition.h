@@ -7,10 +7,10 @@
 #include <optional>
 #include <string>
 
-#include "render/inspect_point.h"
-#include "spectral/emitter_photometry.h"
-#include "spectral/spectral_library.h"
-#include "spectral/spectrum.h"
+#include "render/reports/inspect_point.h"
+#include "spectral/photometry/emitter_photometry.h"
+#include "spectral/spectra/spectral_library.h"
+#include "spectral/spectra/spectrum.h"
 
 namespace rimu {
 
@@ -68,7 +68,7 @@ nlohmann::json inspect_light_json(const LightDefinition& light, SpectralLibrary&
 /// A spectrum's description as a plot title: a CSV spectrum ("<path> [column]") shown by its file name.
 std::string spectrum_plot_title(const std::string& description);
 
-/// Draws scale × shape over 360-830 nm to a PNG (render/plot_output.h: gnuplot without a shell, $RIMU_GNUPLOT or
+/// Draws scale × shape over 360-830 nm to a PNG (render/output/plot_output.h: gnuplot without a shell, $RIMU_GNUPLOT or
 /// /usr/bin/gnuplot), titled spectrum_plot_title(title). Throws InputError if `png` cannot be written (checked
 /// first), RenderError if gnuplot is missing or fails.
 void plot_spectrum_png(const Spectrum& shape, double scale, const std::string& y_label, const std::string& title,

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "render/triangle_mesh.h"
+#include "render/scene/triangle_mesh.h"
 
 namespace rimu {
 

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "spectral/error.h"
-#include "spectral/input_file.h"
+#include "spectral/io/input_file.h"
 
 namespace rimu::obj {
 

@@ -12,7 +12,7 @@
 
 #include "render/scene/obj_check.h"
 #include "spectral/error.h"
-#include "spectral/input_file.h"
+#include "spectral/io/input_file.h"
 
 namespace rimu {
 

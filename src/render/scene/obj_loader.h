@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "render/triangle_mesh.h"
+#include "render/scene/triangle_mesh.h"
 
 namespace rimu {
 

@@ -9,20 +9,20 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.h"
-#include "render/camera_exposure.h"
-#include "render/embree_scene.h"
-#include "render/film_tile.h"
-#include "spectral/spectral_library.h"
-#include "transport/light.h"
-#include "transport/light_sampler.h"
-#include "transport/material.h"
-#include "transport/path_integrator.h"
-#include "transport/volumetric_path_integrator.h"
+#include "render/camera/camera.h"
+#include "render/camera/camera_exposure.h"
+#include "render/scene/embree_scene.h"
+#include "render/film/film_tile.h"
+#include "spectral/spectra/spectral_library.h"
+#include "transport/lights/light.h"
+#include "transport/lights/light_sampler.h"
+#include "transport/bsdfs/material.h"
+#include "transport/integrators/path_integrator.h"
+#include "transport/integrators/volumetric_path_integrator.h"
 
 namespace rimu {
 
-/// A pixel filter as the scene describes it (render/pixel_filter.h builds it).
+/// A pixel filter as the scene describes it (render/film/pixel_filter.h builds it).
 struct FilterSettings {
   std::string type = "gaussian";  ///< box, gaussian, blackman-harris
   float radius_px = 1.5f;
@@ -32,7 +32,7 @@ struct FilterSettings {
 /// Which density camera paths draw their wavelengths from (the "integrator" section's "wavelength_density").
 enum class WavelengthDensityKind {
   visible,  ///< the closed-form visible density, ≈ the sum of the CIE colour-matching functions (the default)
-  lights,   ///< the scene's emission through each CIE curve, with a defensive share (transport/emission_wavelength_density.h)
+  lights,   ///< the scene's emission through each CIE curve, with a defensive share (transport/lights/emission_wavelength_density.h)
 };
 
 /// How to render: what the scene's "film" and "integrator" sections say, before command-line overrides.
@@ -43,7 +43,7 @@ struct RenderSettings {
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
   DistanceSampling distance_sampling = DistanceSampling::spectral_mis;  ///< media only (integrator.distance_sampling)
-  LightSamplerKind light_sampler = LightSamplerKind::bvh;  ///< integrator.light_sampler (transport/light_sampler.h)
+  LightSamplerKind light_sampler = LightSamplerKind::bvh;  ///< integrator.light_sampler (transport/lights/light_sampler.h)
   WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
@@ -62,7 +62,7 @@ struct Scene {
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<std::string> light_names;  ///< per light: its "name", else where it was defined ("/lights/2")
   std::unique_ptr<LightSampler> light_sampler;
-  /// Load-time warnings (render_job prints them): e.g. lights the light sampler starves (render/light_coverage.h).
+  /// Load-time warnings (render_job prints them): e.g. lights the light sampler starves (render/scene/light_coverage.h).
   std::vector<std::string> warnings;
   std::vector<int> infinite_lights;
   CameraSettings camera;

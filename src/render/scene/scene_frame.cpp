@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "spectral/error.h"
-#include "spectral/input_file.h"
+#include "spectral/io/input_file.h"
 
 namespace rimu {
 

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "render/scene/ies_file.h"
-#include "spectral/light_units.h"
-#include "transport/equal_area_intensity.h"
-#include "transport/goniometric_light.h"
+#include "spectral/photometry/light_units.h"
+#include "transport/lights/equal_area_intensity.h"
+#include "transport/lights/goniometric_light.h"
 
 namespace rimu::scene_loading {
 namespace {

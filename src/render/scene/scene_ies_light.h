@@ -15,8 +15,8 @@
 #include <memory>
 
 #include "render/scene/scene_load_context.h"
-#include "transport/frame.h"
-#include "transport/light.h"
+#include "transport/geometry/frame.h"
+#include "transport/lights/light.h"
 
 namespace rimu::scene_loading {
 
@@ -24,7 +24,7 @@ namespace rimu::scene_loading {
 std::unique_ptr<Light> load_ies_light(const JsonCursor& light, LoadContext& context);
 
 /// Loads a "goniometric" light: pbrt-v4's goniometric light, an equal-area octahedral image of intensities
-/// (transport/equal_area_intensity.h) whose local x, y, z are `frame`'s s, t, n.
+/// (transport/lights/equal_area_intensity.h) whose local x, y, z are `frame`'s s, t, n.
 ///
 ///   {"type": "goniometric", "image": "lamp.exr", "position": [0, 3, 0], "frame": [s, t, n],
 ///    "spectrum": {"blackbody": 3000}, "candela_scale": 2 | "luminous_power_lm": 1200}

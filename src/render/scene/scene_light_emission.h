@@ -13,8 +13,8 @@
 #include <initializer_list>
 
 #include "render/scene/scene_load_context.h"
-#include "spectral/emitter_photometry.h"
-#include "transport/light_spectrum.h"
+#include "spectral/photometry/emitter_photometry.h"
+#include "transport/lights/light_spectrum.h"
 
 namespace rimu::scene_loading {
 

@@ -3,17 +3,17 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render/rgb_environment_image.h"
-#include "render/rgb_transport_inputs.h"
+#include "render/image/rgb_environment_image.h"
+#include "render/image/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_ies_light.h"
 #include "render/scene/scene_light_emission.h"
-#include "transport/distant_light.h"
-#include "transport/environment_light.h"
-#include "transport/light_spectrum.h"
-#include "transport/point_light.h"
-#include "transport/spot_light.h"
-#include "spectral/light_units.h"
+#include "transport/lights/distant_light.h"
+#include "transport/lights/environment_light.h"
+#include "transport/lights/light_spectrum.h"
+#include "transport/lights/point_light.h"
+#include "transport/lights/spot_light.h"
+#include "spectral/photometry/light_units.h"
 
 namespace rimu::scene_loading {
 namespace {
@@ -34,7 +34,7 @@ Frame environment_frame(const JsonCursor& f) {
   return {s, t, n};
 }
 
-/// "portals": [[c0, c1, c2, c3], ...], each four corners of a rectangle in order (transport/environment_portal.h).
+/// "portals": [[c0, c1, c2, c3], ...], each four corners of a rectangle in order (transport/lights/environment_portal.h).
 PortalSet load_portals(const JsonCursor& l) {
   if (!l.has("portals")) return {};
   const JsonCursor list = l.at("portals");
@@ -131,7 +131,7 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
     // s (left edge; middle of the right edge) is +x (environment_light.h). Pixel values are in film units, like
     // every RGB emission (SpectrumInputContext::emission_rgb_scale).
     const Frame frame = l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
-    if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/rgb_transport_inputs.h)
+    if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/image/rgb_transport_inputs.h)
       light = std::make_unique<EnvironmentLight>(
           std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale, frame, mapping);
     else

@@ -7,10 +7,10 @@
 
 #include "render/scene/coordinate_limit.h"
 #include "render/scene/json_cursor.h"
-#include "render/rgb_image.h"
+#include "render/image/rgb_image.h"
 #include "render/scene/scene.h"
 #include "render/scene/spectrum_input.h"
-#include "render/triangle_mesh.h"
+#include "render/scene/triangle_mesh.h"
 
 namespace rimu::scene_loading {
 

@@ -1,14 +1,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/camera_exposure.h"
-#include "render/light_coverage.h"
-#include "render/refracted_light_warning.h"
+#include "render/camera/camera_exposure.h"
+#include "render/scene/light_coverage.h"
+#include "render/reports/refracted_light_warning.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_load_context.h"
-#include "transport/emission_wavelength_density.h"
-#include "transport/power_light_sampler.h"
-#include "transport/wavelength_modes.h"
+#include "transport/lights/emission_wavelength_density.h"
+#include "transport/lights/power_light_sampler.h"
+#include "transport/sampling/wavelength_modes.h"
 
 namespace rimu {
 
@@ -34,12 +34,12 @@ std::filesystem::path default_scene_path(const SpectralLibrary& library) {
 namespace {
 
 void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
-  // render_job resolves "keyframes" for the frame being rendered (render/camera_keyframes.h); here there is none.
+  // render_job resolves "keyframes" for the frame being rendered (render/camera/camera_keyframes.h); here there is none.
   if (c.has("keyframes"))
     c.at("keyframes").fail("a camera path keyed by frame needs a frame number: render with --frame N");
   c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance", "height", "exposure",
                "white_balance"});
-  // The physical camera (render/camera_exposure.h): applied when the film is written.
+  // The physical camera (render/camera/camera_exposure.h): applied when the film is written.
   if (const auto exposure = c.find("exposure")) scene.settings.camera_exposure.exposure = parse_exposure(*exposure);
   if (const auto wb = c.find("white_balance"))
     scene.settings.camera_exposure.white_balance = parse_white_balance(*wb, library);

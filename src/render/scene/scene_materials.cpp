@@ -3,16 +3,16 @@
 #include <map>
 #include <set>
 
-#include "render/image_texture.h"
-#include "render/rgb_normal_map.h"
-#include "render/rgb_transport_inputs.h"
+#include "render/image/image_texture.h"
+#include "render/image/rgb_normal_map.h"
+#include "render/image/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_textures.h"
-#include "spectral/optical_constants.h"
-#include "transport/bit_mixing.h"
-#include "transport/float_texture.h"
-#include "transport/shading_normal_map.h"
-#include "transport/spectral_texture.h"
+#include "spectral/spectra/optical_constants.h"
+#include "transport/sampling/bit_mixing.h"
+#include "transport/textures/float_texture.h"
+#include "transport/textures/shading_normal_map.h"
+#include "transport/textures/spectral_texture.h"
 
 namespace rimu::scene_loading {
 namespace {
@@ -21,7 +21,7 @@ SpectralTexturePtr reflectance_texture(const JsonCursor& value, LoadContext& con
   return load_spectral_texture(value, context);
 }
 
-// Roughness in [0, 1] (perceptual: alpha = roughness²; see transport/microfacet.h).
+// Roughness in [0, 1] (perceptual: alpha = roughness²; see transport/bsdfs/microfacet.h).
 float roughness_of(const JsonCursor& m) { return float(m.number_or("roughness", 0.0, 0.0, 1.0)); }
 
 // Whether any of the material's roughness keys holds a texture (an object) rather than a number.
@@ -47,7 +47,7 @@ ComplexIorSpectra conductor_ior_of(const JsonCursor& m, LoadContext& context) {
     const JsonCursor metal = m.at("metal");
     ior = metal.blame([&] { return conductor_ior(context.spectra.library(), metal.string()); });
   } else {
-    // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/rgb_transport_inputs.h).
+    // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/image/rgb_transport_inputs.h).
     ior.n = context.spectra.parse_spectral(m.at("n"), SpectrumRole::ior);
     // k ≥ 0 and unbounded, like an emission; but RGB would be upsampled (and scaled) as light, so refuse it here.
     const JsonCursor k = m.at("k");

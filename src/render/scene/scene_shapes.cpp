@@ -2,11 +2,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "render/alpha_mask.h"
+#include "render/image/alpha_mask.h"
 #include "render/scene/mesh_loader.h"
-#include "render/rgb_image.h"
-#include "transport/area_light.h"
-#include "transport/light_spectrum.h"
+#include "render/image/rgb_image.h"
+#include "transport/lights/area_light.h"
+#include "transport/lights/light_spectrum.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_light_emission.h"
 

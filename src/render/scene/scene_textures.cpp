@@ -1,12 +1,12 @@
 // Texture values of the JSON scene format: numbers and spectra that vary over a surface.
 #include "render/scene/scene_textures.h"
 
-#include "render/alpha_mask.h"
-#include "render/float_image_texture.h"
-#include "render/image_texture.h"
-#include "render/rgb_transport_inputs.h"
-#include "transport/procedural_texture.h"
-#include "transport/spectral_texture_ops.h"
+#include "render/image/alpha_mask.h"
+#include "render/image/float_image_texture.h"
+#include "render/image/image_texture.h"
+#include "render/image/rgb_transport_inputs.h"
+#include "transport/textures/procedural_texture.h"
+#include "transport/textures/spectral_texture_ops.h"
 
 namespace rimu::scene_loading {
 namespace {
@@ -158,7 +158,7 @@ SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& c
     const std::filesystem::path path = context.spectra.scene_directory() / value.at("texture").string();
     const std::shared_ptr<const RgbImage> image = load_rgb_image(value, path);
     const std::string space = value.string_or("colour_space", "srgb-linear");
-    // Scale, then invert, on the texel RGB before it is upsampled (pbrt-v4's order; render/image_texture.h).
+    // Scale, then invert, on the texel RGB before it is upsampled (pbrt-v4's order; render/image/image_texture.h).
     const float scale = float(value.number_or("scale", 1.0, 0.0, 1e30));
     const bool invert = value.boolean_or("invert", false);
     SpectralTexturePtr texture;

@@ -2,8 +2,8 @@
 #pragma once
 
 #include "render/scene/scene_load_context.h"
-#include "transport/float_texture.h"
-#include "transport/spectral_texture.h"
+#include "transport/textures/float_texture.h"
+#include "transport/textures/spectral_texture.h"
 
 namespace rimu::scene_loading {
 

@@ -8,15 +8,15 @@
 #include <sstream>
 #include <utility>
 
-#include "spectral/blackbody_spectrum.h"
-#include "spectral/colorimetry.h"
-#include "spectral/light_units.h"
-#include "spectral/photometry_constants.h"
-#include "spectral/csv_table.h"
-#include "spectral/daylight.h"
-#include "spectral/spectral_value_range.h"
-#include "spectral/tabulated_spectrum.h"
-#include "render/rgb_transport_inputs.h"
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/colorimetry/colorimetry.h"
+#include "spectral/photometry/light_units.h"
+#include "spectral/photometry/photometry_constants.h"
+#include "spectral/io/csv_table.h"
+#include "spectral/spectra/daylight.h"
+#include "spectral/spectra/spectral_value_range.h"
+#include "spectral/spectra/tabulated_spectrum.h"
+#include "render/image/rgb_transport_inputs.h"
 
 namespace rimu {
 namespace {

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "render/scene/json_cursor.h"
-#include "spectral/rgb_upsampler.h"
-#include "spectral/spectral_library.h"
-#include "spectral/spectrum.h"
+#include "spectral/upsampling/rgb_upsampler.h"
+#include "spectral/spectra/spectral_library.h"
+#include "spectral/spectra/spectrum.h"
 
 namespace rimu {
 
@@ -50,7 +50,7 @@ class SpectrumInputContext {
   SpectrumPtr parse_spectral(const JsonCursor& value, SpectrumRole role);
 
   /// Rgb transport (WavelengthMode::rgb): from now on parse() returns every input in its RGB form
-  /// (render/rgb_transport_inputs.h). Set by the loader from the scene's "integrator" section, before materials.
+  /// (render/image/rgb_transport_inputs.h). Set by the loader from the scene's "integrator" section, before materials.
   void set_rgb_transport(bool on) { rgb_transport_ = on; }
   bool rgb_transport() const { return rgb_transport_; }
   /// `spectrum` as the current mode carries it: unchanged, or its rgb-transport form (for spectra built outside
@@ -65,7 +65,7 @@ class SpectrumInputContext {
   void set_named(const JsonCursor& section) { named_.emplace(section); }
 
   SpectralLibrary& library() { return library_; }
-  /// RGB emission in a scene is in film units: an RGB whose luminance is Y renders with film Y (render/film.h, where
+  /// RGB emission in a scene is in film units: an RGB whose luminance is Y renders with film Y (render/film/film.h, where
   /// an equal-energy radiance of 1 W/(m²·sr·nm) gives Y = 1). The upsampler reads Y as cd/m², so RGB emission is
   /// multiplied by this factor, K_m·∫ȳ dλ ≈ 72 983 cd/m² per film unit (CIE 1931 2°, 360-830 nm at 1 nm).
   double emission_rgb_scale();

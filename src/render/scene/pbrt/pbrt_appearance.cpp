@@ -9,11 +9,11 @@
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/pbrt/pbrt_v3_hint.h"
-#include "render/rgb_image.h"
-#include "transport/environment_portal.h"
-#include "transport/equal_area_square.h"
-#include "spectral/input_file.h"
-#include "spectral/rgb_colour_space.h"
+#include "render/image/rgb_image.h"
+#include "transport/lights/environment_portal.h"
+#include "transport/sampling/equal_area_square.h"
+#include "spectral/io/input_file.h"
+#include "spectral/colour_spaces/rgb_colour_space.h"
 
 namespace rimu {
 
@@ -26,7 +26,7 @@ double rimu_roughness(double pbrt_roughness, bool remap) {
   return std::min(1.0, std::sqrt(alpha));
 }
 
-// pbrt-v4's named metal spectra → Rimu's copies of pbrt's own tables (src/spectral/optical_constants.cpp), so that
+// pbrt-v4's named metal spectra → Rimu's copies of pbrt's own tables (src/spectral/spectra/optical_constants.cpp), so that
 // an imported scene reflects as in pbrt; Rimu's "gold" etc. are other measurements (docs/pbrt-import.md).
 std::optional<std::string> metal_of(const std::string& named, const std::string& suffix) {
   static const std::pair<const char*, const char*> metals[] = {{"Au", "pbrt-au"}, {"Ag", "pbrt-ag"},     {"Cu", "pbrt-cu"},

@@ -2,7 +2,7 @@
 //
 // pbrt-v4 (PixelSensor::Create) records sensor RGB = r · ∫ s̄(λ) L(λ) dλ with the imaging ratio r = t · S / 100
 // (t = the camera's shutterclose − shutteropen, default 1 − 0; S = the film's "iso", default 100), so a pixel
-// value is exactly proportional to t·S. Rimu's physical camera (render/physical_camera.h) writes
+// value is exactly proportional to t·S. Rimu's physical camera (render/camera/physical_camera.h) writes
 // s · film value with s = 0.18 · 2^EC · t S / (K N²) · nits_per_unit_y (K = 12.5): with EC = 0 and
 // N² = 0.18 · 100 · nits_per_unit_y / K the two agree for every t and S, Rimu's film value 1 being pbrt's 1 nit
 // (pbrt_appearance.cpp). pbrt has no aperture in its imaging ratio; that f-number is only the unit conversion.
@@ -12,9 +12,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "render/camera_exposure.h"
+#include "render/camera/camera_exposure.h"
 #include "render/scene/pbrt/pbrt_converter.h"
-#include "render/spectral_response.h"
+#include "render/film/spectral_response.h"
 #include "spectral/error.h"
 
 namespace rimu {

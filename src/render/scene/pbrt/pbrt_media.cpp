@@ -7,8 +7,8 @@
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/spectrum_input.h"
-#include "spectral/csv_table.h"
-#include "spectral/rgb_upsampler.h"
+#include "spectral/io/csv_table.h"
+#include "spectral/upsampling/rgb_upsampler.h"
 
 namespace rimu {
 

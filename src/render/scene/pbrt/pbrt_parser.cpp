@@ -8,7 +8,7 @@
 
 #include "render/scene/pbrt/pbrt_tokenizer.h"
 #include "render/scene/pbrt/pbrt_v3_hint.h"
-#include "spectral/input_file.h"
+#include "spectral/io/input_file.h"
 
 namespace rimu {
 

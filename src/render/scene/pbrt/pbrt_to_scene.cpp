@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
-#include "render/spectral_response.h"
+#include "render/film/spectral_response.h"
 #include "spectral/indefinite_article.h"
 
 namespace rimu {

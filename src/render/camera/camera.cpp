@@ -1,0 +1,60 @@
+#include "render/camera/camera.h"
+
+#include <cmath>
+
+namespace rimu {
+
+Vec2 sample_uniform_disc(Vec2 u) {
+  const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
+  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
+  float r, phi;
+  if (std::fabs(a) > std::fabs(b)) {
+    r = a;
+    phi = float(M_PI / 4.0) * (b / a);
+  } else {
+    r = b;
+    phi = float(M_PI / 2.0) - float(M_PI / 4.0) * (a / b);
+  }
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+Camera::Camera(const CameraSettings& settings, int image_width, int image_height)
+    : settings_(settings), width_(float(image_width)), height_(float(image_height)),
+      tan_half_fov_(std::tan(settings.vertical_fov_deg * float(M_PI / 360.0))) {}
+
+Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u) const {
+  const float aspect = width_ / height_;
+  if (settings_.orthographic_height > 0.0f) {
+    // The film point on the z = 0 plane, the ray along +z; a lens bends it through the focus point straight ahead.
+    const float half = 0.5f * settings_.orthographic_height;
+    Vec3 origin{(2.0f * film_x / width_ - 1.0f) * half * aspect, (1.0f - 2.0f * film_y / height_) * half, 0.0f};
+    Vec3 direction{0.0f, 0.0f, 1.0f};
+    if (settings_.lens_radius > 0.0f) {
+      const Vec3 focus = origin + direction * settings_.focus_distance;
+      const Vec2 d = sample_uniform_disc(lens_u);
+      origin = origin + Vec3{settings_.lens_radius * d.x, settings_.lens_radius * d.y, 0.0f};
+      direction = normalize(focus - origin);
+    }
+    Ray ray;
+    ray.origin = settings_.camera_to_world.point(origin);
+    ray.direction = normalize(settings_.camera_to_world.vector(direction));
+    return ray;
+  }
+  // Point on the z = 1 plane in camera space: y up, x right, image centre on the axis.
+  const float sx = (2.0f * film_x / width_ - 1.0f) * tan_half_fov_ * aspect;
+  const float sy = (1.0f - 2.0f * film_y / height_) * tan_half_fov_;
+  Vec3 origin{0.0f, 0.0f, 0.0f};
+  Vec3 direction = normalize(Vec3{sx, sy, 1.0f});
+  if (settings_.lens_radius > 0.0f) {
+    const Vec3 focus = direction * (settings_.focus_distance / direction.z);
+    const Vec2 d = sample_uniform_disc(lens_u);
+    origin = {settings_.lens_radius * d.x, settings_.lens_radius * d.y, 0.0f};
+    direction = normalize(focus - origin);
+  }
+  Ray ray;
+  ray.origin = settings_.camera_to_world.point(origin);
+  ray.direction = normalize(settings_.camera_to_world.vector(direction));
+  return ray;
+}
+
+}  // namespace rimu

@@ -1,0 +1,42 @@
+// The camera: maps a point on the film and a point on the lens to a primary ray.
+#pragma once
+
+#include "transport/geometry/ray.h"
+#include "transport/geometry/transform.h"
+
+namespace rimu {
+
+/// A pinhole (lens_radius = 0) or thin-lens perspective camera, or an orthographic one (orthographic_height > 0:
+/// parallel rays along +z from the points of a film orthographic_height scene units tall; with lens_radius > 0
+/// they pass a thin lens focused at focus_distance, as pbrt's OrthographicCamera).
+///
+/// Film coordinates are continuous pixels: (0,0) is the top-left corner of the image, (width, height) the
+/// bottom-right. The vertical field of view spans the image height. The thin lens focuses at `focus_distance`
+/// along the view axis (pbrt's model: the ray through the lens centre is undeviated; all rays through a film point
+/// meet on the plane of focus).
+struct CameraSettings {
+  Transform camera_to_world;       ///< see Transform::look_at: +z forward, +y up, +x image right
+  float vertical_fov_deg = 40.0f;
+  float lens_radius = 0.0f;        ///< aperture radius in scene units; 0 = pinhole
+  float focus_distance = 1.0f;     ///< scene units, along +z
+  float orthographic_height = 0.0f;  ///< > 0: orthographic, the film's height in scene units (fov unused)
+};
+
+class Camera {
+ public:
+  Camera(const CameraSettings& settings, int image_width, int image_height);
+  /// The primary ray through film point (x, y) (in pixels) and lens sample u ∈ [0,1)². Direction is unit length.
+  Ray generate_ray(float film_x, float film_y, Vec2 lens_u) const;
+  const CameraSettings& settings() const { return settings_; }
+
+ private:
+  CameraSettings settings_;
+  float width_, height_;
+  float tan_half_fov_;
+};
+
+/// Uniform point on the unit disc from u ∈ [0,1)² (Shirley–Chiu concentric mapping: low distortion keeps
+/// stratification).
+Vec2 sample_uniform_disc(Vec2 u);
+
+}  // namespace rimu

@@ -1,0 +1,157 @@
+#include "render/camera/camera_exposure.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "spectral/spectra/blackbody_spectrum.h"
+#include "spectral/spectra/daylight.h"
+#include "spectral/error.h"
+
+namespace rimu {
+namespace {
+
+// Blackbody CCTs accepted for white balance: the range rimu-light and the scene's {"blackbody": T} accept.
+constexpr double kMinCct_k = 1000.0, kMaxCct_k = 25000.0;
+// CIE daylight (CIE 15:2004 eqs. 3.3-3.4) is defined from 4000 K up.
+constexpr double kMinDaylightCct_k = 4000.0;
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::string WhiteBalanceSettings::describe() const {
+  switch (kind) {
+    case Kind::none: return "none";
+    case Kind::cct: return number_text(cct_k) + " K";
+    case Kind::daylight: return "daylight " + number_text(cct_k) + " K";
+    case Kind::illuminant: return "illuminant " + illuminant;
+  }
+  return "none";
+}
+
+void check_camera_option(double value, const PhysicalCameraRange& range, const std::string& option) {
+  if (value >= range.min && value <= range.max) return;
+  throw InputError({"", 0, option}, std::string("expected ") + range.what + " in " + number_text(range.min) + " to " +
+                                        number_text(range.max) + ", got " + number_text(value));
+}
+
+PhysicalCameraSettings parse_exposure(const JsonCursor& c) {
+  c.only_keys({"iso", "shutter_s", "f_number", "compensation_ev"});
+  PhysicalCameraSettings s;
+  s.iso = c.at("iso").number(kIsoRange.min, kIsoRange.max);
+  s.shutter_s = c.at("shutter_s").number(kShutterRange_s.min, kShutterRange_s.max);
+  s.f_number = c.at("f_number").number(kFNumberRange.min, kFNumberRange.max);
+  s.exposure_compensation_ev =
+      c.number_or("compensation_ev", 0.0, kCompensationRange_ev.min, kCompensationRange_ev.max);
+  return s;
+}
+
+WhiteBalanceSettings parse_white_balance(const JsonCursor& c, SpectralLibrary& library) {
+  WhiteBalanceSettings wb;
+  if (c.is_string()) {
+    if (c.string() != "none") c.fail("expected \"none\", {\"cct\": K}, {\"daylight_cct\": K} or {\"illuminant\": name}");
+    return wb;
+  }
+  if (!c.is_object() || c.size() != 1)
+    c.fail("expected \"none\", {\"cct\": K}, {\"daylight_cct\": K} or {\"illuminant\": name}");
+  c.only_keys({"cct", "daylight_cct", "illuminant"});
+  if (c.has("cct")) {
+    wb.kind = WhiteBalanceSettings::Kind::cct;
+    wb.cct_k = c.at("cct").number(kMinCct_k, kMaxCct_k);
+    return wb;
+  }
+  if (c.has("daylight_cct")) {
+    wb.kind = WhiteBalanceSettings::Kind::daylight;
+    wb.cct_k = c.at("daylight_cct").number(kMinDaylightCct_k, kMaxCct_k);
+    return wb;
+  }
+  wb.kind = WhiteBalanceSettings::Kind::illuminant;
+  wb.illuminant = c.at("illuminant").string();
+  try {
+    library.illuminant(wb.illuminant);
+  } catch (const InputError& e) {
+    c.at("illuminant").fail(e.explanation());
+  }
+  return wb;
+}
+
+WhiteBalanceSettings parse_white_balance_option(const std::string& text, SpectralLibrary& library,
+                                                const std::string& option) {
+  WhiteBalanceSettings wb;
+  if (text == "none") return wb;
+  double k = 0.0;
+  char unit = 0, extra = 0;
+  const int n = std::sscanf(text.c_str(), "%lf%c%c", &k, &unit, &extra);
+  if (n == 1 || (n == 2 && (unit == 'K' || unit == 'k'))) {
+    if (!(k >= kMinCct_k && k <= kMaxCct_k))
+      throw InputError({"", 0, option}, "a white-balance temperature must be in 1000-25000 K, got '" + text + "'");
+    wb.kind = WhiteBalanceSettings::Kind::cct;
+    wb.cct_k = k;
+    return wb;
+  }
+  try {
+    library.illuminant(text);
+  } catch (const InputError& e) {
+    throw InputError({"", 0, option}, "expected none, a temperature in K or an illuminant name: " + e.explanation());
+  }
+  wb.kind = WhiteBalanceSettings::Kind::illuminant;
+  wb.illuminant = text;
+  return wb;
+}
+
+double parse_shutter_time_s(const std::string& text, const std::string& option) {
+  double a = 0.0, b = 1.0;
+  char slash = 0, extra = 0;
+  const int n = std::sscanf(text.c_str(), "%lf%c%lf%c", &a, &slash, &b, &extra);
+  const bool ok = (n == 1) || (n == 3 && slash == '/');
+  const double t = a / b;
+  if (!ok || !std::isfinite(t) || !(t > 0.0))
+    throw InputError({"", 0, option}, "expected a positive shutter time in seconds, e.g. 0.01 or 1/100; got '" + text + "'");
+  return t;
+}
+
+FilmOutputTransform film_output_transform(const CameraExposureSettings& camera, const SpectralResponse& response,
+                                          SpectralLibrary& library) {
+  FilmOutputTransform t;
+  if (camera.exposure) t.scale = film_exposure_scale(*camera.exposure, response);
+  switch (camera.white_balance.kind) {
+    case WhiteBalanceSettings::Kind::none: break;
+    case WhiteBalanceSettings::Kind::cct:
+      t.channel_matrix = white_balance_matrix(
+          BlackbodySpectrum(camera.white_balance.cct_k, BlackbodySpectrum::Scale::peak_one), response, library);
+      break;
+    case WhiteBalanceSettings::Kind::daylight:
+      t.channel_matrix = white_balance_matrix(daylight_spectrum(library.daylight_basis(), camera.white_balance.cct_k),
+                                              response, library);
+      break;
+    case WhiteBalanceSettings::Kind::illuminant:
+      t.channel_matrix = white_balance_matrix(*library.illuminant(camera.white_balance.illuminant), response, library);
+      break;
+  }
+  return t;
+}
+
+std::map<std::string, std::string> exposure_metadata(const CameraExposureSettings& camera,
+                                                     const FilmOutputTransform& transform) {
+  std::map<std::string, std::string> m;
+  if (camera.white_balance.kind != WhiteBalanceSettings::Kind::none)
+    m["whiteBalance"] = camera.white_balance.describe();
+  if (!camera.exposure) return m;
+  const PhysicalCameraSettings& e = *camera.exposure;
+  m["iso"] = number_text(e.iso);
+  m["shutterSeconds"] = number_text(e.shutter_s);
+  m["fNumber"] = number_text(e.f_number);
+  m["exposureCompensationEV"] = number_text(e.exposure_compensation_ev);
+  m["EV"] = number_text(exposure_value(e));
+  m["meteredLuminanceNits"] = number_text(metered_luminance_nt(e));
+  m["exposureScale"] = number_text(transform.scale);
+  return m;
+}
+
+}  // namespace rimu

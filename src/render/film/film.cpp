@@ -1,0 +1,80 @@
+#include "render/film/film.h"
+
+#include <string>
+
+#include "spectral/error.h"
+
+namespace rimu {
+namespace {
+
+PixelBounds checked_crop(const FilmOptions& o) {
+  if (o.width <= 0 || o.height <= 0)
+    throw InputError({"", 0, "--resolution"}, "the film needs a positive size; got " + std::to_string(o.width) +
+                                                  "x" + std::to_string(o.height));
+  if (o.spectral_bins < 0)
+    throw InputError({"", 0, "--film"}, "the number of spectral bins cannot be negative");
+  const PixelBounds whole{0, 0, o.width, o.height};
+  if (!o.crop) return whole;
+  const PixelBounds& c = *o.crop;
+  if (c.empty() || c.intersect(whole) != c)
+    throw InputError({"", 0, "--crop"}, "crop window " + std::to_string(c.x0) + "," + std::to_string(c.y0) + "," +
+                                            std::to_string(c.x1) + "," + std::to_string(c.y1) +
+                                            " must be non-empty and inside the " + std::to_string(o.width) + "x" +
+                                            std::to_string(o.height) + " image (x0,y0,x1,y1, end exclusive)");
+  return c;
+}
+
+}  // namespace
+
+Film::Film(const FilmOptions& options, SpectralResponse response)
+    : width_(options.width),
+      height_(options.height),
+      response_(std::move(response)),
+      pixels_(checked_crop(options), response_, SpectralBinning{options.spectral_bins}) {}
+
+FilmTile Film::make_tile(const PixelBounds& bounds) const {
+  return FilmTile(bounds.intersect(pixel_bounds()), response_, binning());
+}
+
+void Film::merge_tile(const FilmTile& tile) {
+  const PixelBounds& b = tile.bounds();
+  const int n = pixels_.doubles_per_pixel();
+  for (int y = b.y0; y < b.y1; ++y) {
+    for (int x = b.x0; x < b.x1; ++x) {
+      const double* from = tile.pixel(x, y);
+      double* to = pixels_.pixel(x, y);
+      for (int i = 0; i < n; ++i) to[i] += from[i];
+    }
+  }
+  const FilmSampleCounts& c = tile.sample_counts();
+  accepted_.fetch_add(c.accepted, std::memory_order_relaxed);
+  nan_.fetch_add(c.nan, std::memory_order_relaxed);
+  infinite_.fetch_add(c.infinite, std::memory_order_relaxed);
+  negative_.fetch_add(c.negative, std::memory_order_relaxed);
+}
+
+void Film::add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
+                      float filter_weight) {
+  pixels_.add_sample(x, y, radiance, lambda, filter_weight);
+}
+
+std::array<double, 3> Film::pixel_value(int x, int y) const {
+  const double* p = pixels_.pixel(x, y);
+  const double w = p[FilmTile::kWeight];
+  if (w == 0.0) return {0.0, 0.0, 0.0};
+  return {p[0] / w, p[1] / w, p[2] / w};
+}
+
+double Film::spectral_value(int x, int y, int bin) const {
+  const double* p = pixels_.pixel(x, y);
+  const double w = p[FilmTile::kWeight];
+  return w == 0.0 ? 0.0 : p[FilmTile::kFirstBin + bin] / w;
+}
+
+FilmSampleCounts Film::sample_counts() const {
+  FilmSampleCounts c = pixels_.sample_counts();  // from add_sample
+  c += FilmSampleCounts{accepted_.load(), nan_.load(), infinite_.load(), negative_.load()};
+  return c;
+}
+
+}  // namespace rimu

@@ -1,0 +1,82 @@
+#include "render/film/film_tile.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "spectral/spectra/wavelength_range.h"
+
+namespace rimu {
+
+PixelBounds PixelBounds::intersect(const PixelBounds& o) const {
+  PixelBounds r{std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
+  if (r.empty()) r = {};
+  return r;
+}
+
+double SpectralBinning::bin_width_nm() const { return count > 0 ? (kLambdaMaxNm - kLambdaMinNm) / count : 0.0; }
+double SpectralBinning::bin_start_nm(int bin) const { return kLambdaMinNm + bin * bin_width_nm(); }
+double SpectralBinning::bin_centre_nm(int bin) const { return kLambdaMinNm + (bin + 0.5) * bin_width_nm(); }
+
+FilmSampleCounts& FilmSampleCounts::operator+=(const FilmSampleCounts& o) {
+  accepted += o.accepted;
+  nan += o.nan;
+  infinite += o.infinite;
+  negative += o.negative;
+  return *this;
+}
+
+FilmTile::FilmTile(PixelBounds bounds, const SpectralResponse& response, SpectralBinning binning)
+    : bounds_(bounds.empty() ? PixelBounds{} : bounds),
+      response_(&response),
+      binning_(binning),
+      data_(size_t(bounds_.area()) * size_t(doubles_per_pixel()), 0.0) {}
+
+void FilmTile::clear() {
+  std::fill(data_.begin(), data_.end(), 0.0);
+  counts_ = {};
+}
+
+void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
+                          float filter_weight) {
+  assert(bounds_.contains(x, y));
+  const Float4 pdf = lambda.pdf();
+  const Mask4 live = pdf != Float4(0.0f);
+  // Per-lane weight L_j / p_j, with dead lanes forced to 0 (their radiance may be anything).
+  const Float4 lane_value = select(live, radiance / pdf, Float4(0.0f));
+  const Float4 live_radiance = select(live, radiance, Float4(0.0f));
+  const Float4 live_pdf = select(live, pdf, Float4(1.0f));
+  if ((is_nan(live_radiance) | is_nan(live_pdf) | is_nan(lane_value)).any() || std::isnan(filter_weight)) {
+    ++counts_.nan;
+    return;
+  }
+  if (!(is_finite(live_radiance) & is_finite(live_pdf) & is_finite(lane_value)).all() ||
+      !std::isfinite(filter_weight)) {
+    ++counts_.infinite;
+    return;
+  }
+  if ((live_radiance < Float4(0.0f)).any() || (live_pdf < Float4(0.0f)).any()) {
+    ++counts_.negative;
+    return;
+  }
+  ++counts_.accepted;
+
+  const Float4 weighted = lane_value * Float4(filter_weight / float(kLaneCount));
+  const Response4 c = response_->evaluate(lambda);
+  double* p = pixel(x, y);
+  p[0] += double(sum(weighted * c.x));
+  p[1] += double(sum(weighted * c.y));
+  p[2] += double(sum(weighted * c.z));
+  p[kWeight] += double(filter_weight);
+  if (binning_.count == 0) return;
+
+  const double inverse_width = 1.0 / binning_.bin_width_nm();
+  for (int j = 0; j < kLaneCount; ++j) {
+    if (!live[j]) continue;
+    const int bin = int(std::floor((lambda.lambda_nm(j) - kLambdaMinNm) * inverse_width));
+    if (bin < 0 || bin >= binning_.count) continue;  // only wavelengths outside 360-830 nm, which nothing samples
+    p[kFirstBin + bin] += double(weighted[j]) * inverse_width;
+  }
+}
+
+}  // namespace rimu

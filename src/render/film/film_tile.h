@@ -1,0 +1,102 @@
+// One thread's share of the film: the pixel accumulators of a rectangle, filled without locks.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/film/spectral_response.h"
+#include "spectral/wavelengths/sampled_wavelengths.h"
+
+namespace rimu {
+
+/// A half-open pixel rectangle [x0, x1) × [y0, y1) in full-image coordinates (y down, as in EXR).
+struct PixelBounds {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  int64_t area() const { return int64_t(width()) * height(); }
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+  /// The overlap of two rectangles (empty if they do not meet).
+  PixelBounds intersect(const PixelBounds& o) const;
+  friend bool operator==(const PixelBounds&, const PixelBounds&) = default;
+};
+
+/// N equal bins over 360-830 nm for the optional spectral framebuffer.
+struct SpectralBinning {
+  int count = 0;  ///< 0 = no spectral framebuffer
+  double bin_width_nm() const;
+  double bin_start_nm(int bin) const;
+  double bin_centre_nm(int bin) const;
+};
+
+/// How many samples were accepted, and how many were discarded for which reason. A discarded sample is never
+/// written to any pixel. Reasons are checked in this order (a sample is counted once): NaN anywhere in a live
+/// lane (radiance or pdf), then ±Inf (including L/p overflowing), then negative radiance or pdf.
+/// Negative radiance is a bug upstream (radiance and BSDFs are non-negative), so it is counted on its own
+/// rather than clamped: clamping would hide the bug and bias the image.
+struct FilmSampleCounts {
+  uint64_t accepted = 0;
+  uint64_t nan = 0;
+  uint64_t infinite = 0;
+  uint64_t negative = 0;
+
+  uint64_t discarded() const { return nan + infinite + negative; }
+  FilmSampleCounts& operator+=(const FilmSampleCounts& o);
+};
+
+/// Pixel accumulators for one rectangle: per pixel the filter-weighted sums of the three channel values,
+/// the sum of filter weights (= the sample count with importance-sampled positive filters, weight 1), and the
+/// optional spectral bins. Sums are doubles: a render adds thousands of samples per pixel.
+///
+/// Thread model: a tile is owned by one thread at a time; nothing in it is shared, so add_sample needs no lock.
+/// Film::merge_tile adds the tile's sums into the film.
+class FilmTile {
+ public:
+  /// An empty tile over `bounds` (pixels outside the film's crop window must not be given samples).
+  FilmTile(PixelBounds bounds, const SpectralResponse& response, SpectralBinning binning);
+
+  /// Adds one camera sample to pixel (x, y) (full-image coordinates inside bounds()).
+  ///
+  /// `radiance` lane j must be an unbiased estimate of L(λ_j) on its own; the film averages the lanes:
+  ///   value_k = (1/4) Σ_{j: p_j ≠ 0} L_j c_k(λ_j) / p_j,   p_j = lambda.pdf()[j].
+  /// (In docs/transport.md's notation the integrator passes 4·β_j/Σ_k R_k, which is β_j when nothing depends on λ;
+  /// after terminate_secondary() the hero's pdf is p/4 and it passes the single-wavelength estimate.)
+  /// Lanes with p_j = 0 are skipped whatever their radiance. Spectral bin b (width Δ) receives
+  ///   (1/4) Σ_j L_j 1[λ_j ∈ b] / (p_j Δ),
+  /// whose expectation is the mean of L over the bin. A sample with NaN/Inf/negative values is discarded and
+  /// counted (FilmSampleCounts), never written. Cost: a few dozen SSE instructions plus N-bin writes.
+  void add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
+                  float filter_weight = 1.0f);
+
+  const PixelBounds& bounds() const { return bounds_; }
+  const SpectralBinning& binning() const { return binning_; }
+  const FilmSampleCounts& sample_counts() const { return counts_; }
+  /// Adds counts of samples taken elsewhere (a partial render read back from its file, whose sums are loaded with
+  /// pixel()).
+  void add_sample_counts(const FilmSampleCounts& counts) { counts_ += counts; }
+  /// Accumulators per pixel: 3 channel sums, the weight sum, then the spectral bin sums.
+  int doubles_per_pixel() const { return kFirstBin + binning_.count; }
+  /// The accumulators of pixel (x, y), full-image coordinates.
+  const double* pixel(int x, int y) const { return &data_[offset(x, y)]; }
+  double* pixel(int x, int y) { return &data_[offset(x, y)]; }
+  /// Zeroes every accumulator and count (a tile object can be reused for the next rectangle of the same size).
+  void clear();
+
+  static constexpr int kWeight = 3;
+  static constexpr int kFirstBin = 4;
+
+ private:
+  size_t offset(int x, int y) const {
+    return (size_t(y - bounds_.y0) * size_t(bounds_.width()) + size_t(x - bounds_.x0)) * size_t(doubles_per_pixel());
+  }
+
+  PixelBounds bounds_;
+  const SpectralResponse* response_;
+  SpectralBinning binning_;
+  std::vector<double> data_;
+  FilmSampleCounts counts_;
+};
+
+}  // namespace rimu

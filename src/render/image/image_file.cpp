@@ -1,0 +1,57 @@
+#include "render/image/image_file.h"
+
+#include <algorithm>
+
+#include "render/image/image_library.h"
+#include "spectral/error.h"
+#include "spectral/io/input_file.h"
+
+namespace rimu {
+
+void check_image_header(const DecodedImage& header, std::uintmax_t file_bytes, const std::string& file) {
+  const auto fail = [&file](const std::string& what) { throw InputError({file, 0, ""}, what); };
+  if (header.width <= 0 || header.height <= 0 || header.channels <= 0)
+    fail("the image is empty (its header says " + std::to_string(header.width) + " x " +
+         std::to_string(header.height) + " pixels, " + std::to_string(header.channels) + " channels)");
+  const std::uint64_t w = std::uint64_t(header.width), h = std::uint64_t(header.height);
+  const std::uint64_t pixels = w * h;  // both < 2^31: no overflow
+  const std::string size = std::to_string(w) + " x " + std::to_string(h) + " pixels";
+  if (pixels > kMaxImagePixels)
+    fail("the image has " + size + ", more than the limit of " + std::to_string(kMaxImagePixels) +
+         " pixels (16384 x 8192): as a texture it would need about " + format_bytes(100 * pixels) +
+         " of memory; reduce its resolution");
+  if (header.format_name == "pnm") {
+    // PPM, PGM, PBM and PFM store their samples uncompressed (binary: bits_per_sample each, rows padded to a
+    // byte; ascii: at least two characters each), so the pixel data alone must fit in the file.
+    const std::uint64_t bits = std::uint64_t(std::max(header.bits_per_sample, 1));
+    const std::uint64_t row_bytes = (w * std::uint64_t(header.channels) * bits + 7) / 8;
+    if (row_bytes * h > file_bytes)
+      fail("the header says " + size + " of " + std::to_string(header.channels) + " channels (" +
+           format_bytes(row_bytes * h) + " of pixel data), but the file has only " + format_bytes(file_bytes) +
+           " (is it truncated?)");
+  } else if (pixels > kMaxPixelsPerFileByte * file_bytes) {
+    fail("the header says " + size + ", more than a file of " + format_bytes(file_bytes) +
+         " can hold (at most " + std::to_string(kMaxPixelsPerFileByte) +
+         " pixels per byte, beyond any image codec's compression): the header is corrupt");
+  }
+}
+
+DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored) {
+  const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block the library
+  const ImageModuleApi& library = image_library();
+  DecodedImage image;
+  image.as_stored = as_stored;
+  if (std::string error; !library.read_header(path.string(), image, error))
+    throw InputError({path.string(), 0, ""}, "cannot read the image: " + error);
+  check_image_header(image, file_bytes, path.string());
+  const DecodedImage header = image;
+  if (std::string error; !library.read_pixels(path.string(), image, error))
+    throw InputError({path.string(), 0, ""}, error);
+  // The file was read twice: one that changed in between is refused rather than read past its pixels.
+  if (image.width != header.width || image.height != header.height || image.channels != header.channels ||
+      image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels))
+    throw InputError({path.string(), 0, ""}, "the image changed while it was read");
+  return image;
+}
+
+}  // namespace rimu

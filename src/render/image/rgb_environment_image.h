@@ -1,0 +1,34 @@
+// An equirectangular environment image read through OpenImageIO, converted once to spectral radiance per pixel.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "render/image/rgb_image.h"
+#include "spectral/upsampling/rgb_upsampler.h"
+#include "transport/lights/environment_image.h"
+
+namespace rimu {
+
+/// Pixel RGB is read as luminance-scaled colour: RGB with Y = 1 means 1 cd/m² (RgbUpsampler::upsample_emission's
+/// convention), turned into W/(m²·sr·nm) shaped like the colour space's white. Every pixel is upsampled once, at
+/// construction (RgbUpsampler::emission_coefficients, 0.15-0.3 µs per pixel): 64 bytes of basis coefficients per pixel
+/// plus its luminance; a lookup is a 16-term dot product per lane times the white's table (no solve).
+class RgbEnvironmentImage final : public EnvironmentImage {
+ public:
+  RgbEnvironmentImage(std::shared_ptr<const RgbImage> image, std::shared_ptr<const RgbUpsampler> upsampler);
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+  SampledSpectrum radiance(int x, int y, const SampledWavelengths& lambda) const override;
+  float luminance(int x, int y) const override { return luminance_[index(x, y)]; }
+
+ private:
+  size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
+
+  int width_ = 0, height_ = 0;
+  std::vector<BasisCoefficients> pixels_;  // the smooth factor s times the pixel's luminance
+  std::vector<float> luminance_;           // Y ≥ 0 (0 where Y ≤ 0), for importance sampling
+  std::shared_ptr<const RgbUpsampler> upsampler_;
+};
+
+}  // namespace rimu

@@ -1,0 +1,56 @@
+#include "render/image/rgb_image.h"
+
+#include <cmath>
+
+#include "render/image/image_file.h"
+#include "render/image/image_library.h"
+#include "spectral/error.h"
+#include "spectral/io/input_file.h"
+
+namespace rimu {
+
+ImageEncoding default_encoding_for(const std::filesystem::path& path) {
+  check_input_file(path, kMaxBinaryFileBytes);  // OpenImageIO would block on a FIFO
+  ImageEncoding encoding;
+  DecodedImage header;
+  if (std::string error; !image_library().read_header(path.string(), header, error)) return encoding;
+  encoding.srgb_transfer = !header.stored_as_float;
+  return encoding;
+}
+
+RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
+  const DecodedImage image = read_image_file(path, false);
+  const int w = image.width, channels = image.channels, h = image.height;
+  const std::vector<float>& raw = image.pixels;
+
+  std::vector<float> rgb(size_t(w) * size_t(h) * 3);
+  for (size_t i = 0; i < size_t(w) * size_t(h); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      float v = raw[i * size_t(channels) + size_t(channels >= 3 ? c : 0)];
+      if (!std::isfinite(v))
+        throw InputError({path.string(), 0, ""}, "pixel (" + std::to_string(i % size_t(w)) + ", " +
+                                                     std::to_string(i / size_t(w)) + ") is not a finite number");
+      if (encoding.srgb_transfer) v = float(srgb_decode(v));
+      rgb[3 * i + size_t(c)] = v;
+    }
+  }
+  return RgbImage(w, h, std::move(rgb));
+}
+
+Rgb RgbImage::bilinear(Vec2 uv) const {
+  // Texel centres at (i + 0.5)/width; repeat wrapping.
+  const float x = (uv.x - std::floor(uv.x)) * float(width_) - 0.5f;
+  const float y = (1.0f - (uv.y - std::floor(uv.y))) * float(height_) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  auto wrap = [](int i, int n) { return ((i % n) + n) % n; };
+  const int x0 = wrap(int(fx), width_), x1 = wrap(int(fx) + 1, width_);
+  const int y0 = wrap(int(fy), height_), y1 = wrap(int(fy) + 1, height_);
+  const Rgb a = pixel(x0, y0), b = pixel(x1, y0), c = pixel(x0, y1), d = pixel(x1, y1);
+  auto mix = [&](double pa, double pb, double pc, double pd) {
+    return (1 - ty) * ((1 - tx) * pa + tx * pb) + ty * ((1 - tx) * pc + tx * pd);
+  };
+  return {mix(a.r, b.r, c.r, d.r), mix(a.g, b.g, c.g, d.g), mix(a.b, b.b, c.b, d.b)};
+}
+
+}  // namespace rimu

@@ -1,0 +1,72 @@
+#include "render/reports/light_meter.h"
+
+#include <cmath>
+#include <vector>
+
+#include "spectral/error.h"
+#include "spectral/photometry/photometry_constants.h"
+#include "transport/sampling/sampler.h"
+
+namespace rimu {
+namespace {
+
+MeterReading mean_and_error(const std::vector<double>& values) {
+  MeterReading r;
+  r.samples = int(values.size());
+  if (values.empty()) return r;
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  r.value = sum / double(values.size());
+  double squares = 0.0;
+  for (double v : values) squares += (v - r.value) * (v - r.value);
+  if (values.size() > 1) r.standard_error = std::sqrt(squares / double(values.size() - 1) / double(values.size()));
+  return r;
+}
+
+}  // namespace
+
+MeterReading measure_illuminance_lx(const TransportScene& scene, Vec3 position_m, Vec3 normal,
+                                    const TabulatedSpectrum& v, int samples, uint64_t seed) {
+  IndependentSampler sampler(seed);
+  const LightReference ref{position_m, normal};
+  std::vector<double> per_sample(size_t(std::max(samples, 0)), 0.0);
+  for (int i = 0; i < samples; ++i) {
+    sampler.start_pixel_sample(0, 0, uint32_t(i));
+    // Stratified wavelengths: sample i draws its hero from the i-th of `samples` equal-probability strata.
+    const float u = std::min((float(i) + sampler.next_1d()) / float(samples), std::nextafter(1.0f, 0.0f));
+    const SampledWavelengths lambda = SampledWavelengths::sample_visible(u);
+    SampledSpectrum irradiance(0.0f);  // W/(m²·nm) per lane
+    for (const auto& light : *scene.lights) {
+      const auto s = light->sample_li(ref, lambda, sampler.next_2d());
+      if (!s) continue;
+      const float cos_theta = dot(normal, s->wi);
+      if (!(cos_theta > 0.0f)) continue;
+      Ray shadow{offset_ray_origin(position_m, normal, s->wi, scene.scene_scale), s->wi};
+      // Aimed at the light point lifted off the light's surface, and stopped just short of it, so that an area
+      // light's own surface does not shadow it (transport/integrators/path_integrator.h, shadow_segment).
+      const ShadowSegment segment = shadow_segment(shadow.origin, position_m, *s, scene.scene_scale);
+      shadow.direction = segment.direction;
+      if (std::isfinite(segment.length)) shadow.t_max = segment.length * (1.0f - 1e-4f);
+      if (scene.geometry && scene.geometry->occluded(shadow)) continue;
+      irradiance = irradiance + s->radiance * Float4(cos_theta / s->pdf_solid_angle);
+    }
+    // E_v = K_m ∫ E(λ) V(λ) dλ, one lane at a time: E(λ_j) V(λ_j) / p(λ_j), averaged over the lanes.
+    double estimate = 0.0;
+    for (int j = 0; j < kLaneCount; ++j)
+      estimate += double(irradiance[j]) * v.value(lambda.lambda_nm(j)) / double(lambda.pdf()[j]);
+    per_sample[size_t(i)] = kMaxLuminousEfficacy_lm_W * estimate / kLaneCount;
+  }
+  return mean_and_error(per_sample);
+}
+
+MeterReading measure_luminance_nt(const Film& film, const PixelBounds& window) {
+  const double nits_per_y = film.response().luminance_nits_per_unit_y();
+  if (!(nits_per_y > 0.0))
+    throw InputError({}, "a luminance meter needs a CIE XYZ film; this one records " + film.response().description());
+  std::vector<double> pixels;
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x) pixels.push_back(film.pixel_value(x, y)[1] * nits_per_y);
+  return mean_and_error(pixels);
+}
+
+}  // namespace rimu

@@ -1,0 +1,59 @@
+#include "render/scene/triangle_mesh.h"
+
+#include <cmath>
+#include <utility>
+
+namespace rimu {
+
+void TriangleMesh::transform(const Transform& t) {
+  for (Vec3& p : positions) p = t.point(p);
+  for (Vec3& n : normals) {
+    const Vec3 m = t.normal(n);
+    const float len = length(m);
+    n = len > 0.0f ? m / len : n;
+  }
+  if (t.determinant() < 0.0f) {
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+    // The swap moves pbrt's default uvs with their vertices.
+    if (default_uvs == DefaultUvs::pbrt) default_uvs = DefaultUvs::pbrt_swapped;
+    else if (default_uvs == DefaultUvs::pbrt_swapped) default_uvs = DefaultUvs::pbrt;
+  }
+}
+
+size_t TriangleMesh::remove_degenerate_triangles() {
+  std::vector<uint32_t> kept;
+  kept.reserve(indices.size());
+  size_t removed = 0;
+  for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+    const Vec3 a = positions[indices[i]], b = positions[indices[i + 1]], c = positions[indices[i + 2]];
+    const float area2 = length(cross(b - a, c - a));
+    if (area2 > 0.0f && std::isfinite(area2)) {
+      kept.insert(kept.end(), {indices[i], indices[i + 1], indices[i + 2]});
+    } else {
+      ++removed;
+    }
+  }
+  indices = std::move(kept);
+  return removed;
+}
+
+std::string TriangleMesh::validate() const {
+  if (indices.size() % 3 != 0) return "the index count is not a multiple of 3";
+  if (!normals.empty() && normals.size() != positions.size())
+    return "there are " + std::to_string(normals.size()) + " normals for " + std::to_string(positions.size()) +
+           " vertices";
+  if (!uvs.empty() && uvs.size() != positions.size())
+    return "there are " + std::to_string(uvs.size()) + " uvs for " + std::to_string(positions.size()) + " vertices";
+  for (size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] >= positions.size())
+      return "index " + std::to_string(indices[i]) + " (triangle " + std::to_string(i / 3) + ") is out of range: " +
+             std::to_string(positions.size()) + " vertices";
+  for (size_t i = 0; i < positions.size(); ++i)
+    if (!is_finite(positions[i])) return "vertex " + std::to_string(i) + " is not finite";
+  for (size_t i = 0; i < normals.size(); ++i)
+    if (!is_finite(normals[i]) || length_squared(normals[i]) == 0.0f)
+      return "normal " + std::to_string(i) + " is zero or not finite";
+  return {};
+}
+
+}  // namespace rimu

@@ -1,0 +1,35 @@
+// Triangle meshes as the scene holds them (world space after transforms, or a prototype's object space).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "transport/geometry/transform.h"
+#include "transport/geometry/vector.h"
+
+namespace rimu {
+
+struct TriangleMesh {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;   ///< per vertex, optional (empty = flat shading)
+  std::vector<Vec2> uvs;       ///< per vertex, optional
+  std::vector<uint32_t> indices;  ///< three per triangle, counter-clockwise seen from the front
+  /// The texture coordinates of a mesh without uvs, the same for every triangle, at its vertices 0, 1, 2.
+  enum class DefaultUvs : uint8_t {
+    barycentric,   ///< (0,0), (1,0), (0,1): uv = the barycentrics (b1, b2)
+    pbrt,          ///< pbrt-v4's (0,0), (1,0), (1,1) (its Triangle without uv): uv = (b1 + b2, b2)
+    pbrt_swapped,  ///< pbrt's after vertices 1 and 2 were swapped (a mirroring transform): (0,0), (1,1), (1,0)
+  };
+  DefaultUvs default_uvs = DefaultUvs::barycentric;
+
+  size_t triangle_count() const { return indices.size() / 3; }
+  /// Applies `t` to positions and normals; flips the winding if `t` mirrors (determinant < 0).
+  void transform(const Transform& t);
+  /// Removes triangles whose area is zero or not finite (they would give NaN normals) and returns how many.
+  size_t remove_degenerate_triangles();
+  /// Checks indices are in range and every number is finite; returns an empty string or what is wrong.
+  std::string validate() const;
+};
+
+}  // namespace rimu

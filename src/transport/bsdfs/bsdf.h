@@ -1,0 +1,59 @@
+// Any of Rimu's BSDFs, held by value: what a material produces at a hit and the integrator consumes.
+#pragma once
+
+#include <optional>
+#include <variant>
+
+#include "transport/bsdfs/bsdf_flags.h"
+#include "transport/bsdfs/bsdf_sample.h"
+#include "transport/bsdfs/coated_diffuse_bsdf.h"
+#include "transport/bsdfs/conductor_bsdf.h"
+#include "transport/bsdfs/dielectric_bsdf.h"
+#include "transport/bsdfs/diffuse_bsdf.h"
+#include "transport/bsdfs/diffuse_transmission_bsdf.h"
+#include "transport/bsdfs/layered_bsdf.h"
+#include "transport/bsdfs/thin_dielectric_bsdf.h"
+
+namespace rimu {
+
+/// One BSDF of any kind, without heap allocation (a std::variant: its size is that of the largest BSDF).
+/// The contract of every method is the one stated in bsdf_sample.h: local shading frame, wo and wi pointing
+/// away from the surface, eval() without the cosine, pdf() per lane as if that lane were the hero, sample()
+/// driven by the hero wavelength.
+///
+/// Sides: opaque BSDFs (flags().has_transmission == false) are two-sided, and give the same result as if the
+/// frame were flipped so that wo.z > 0; the integrator may flip the shading frame for them. Transmissive BSDFs
+/// (the dielectrics) use the sign of wo.z to know whether the path is inside, so the integrator must pass the
+/// frame of the geometric outside (the normal pointing out of the object).
+class Bsdf {
+ public:
+  using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf, ThinDielectricBsdf,
+                               DiffuseTransmissionBsdf, LayeredBsdf>;
+
+  template <typename T>
+  Bsdf(T bsdf) : bsdf_(std::move(bsdf)) {}  // NOLINT(google-explicit-constructor): any BSDF is a Bsdf
+
+  /// f(wo, wi) per lane, without |cos θi|; 0 for delta lobes.
+  SampledSpectrum eval(Vec3 wo, Vec3 wi) const {
+    return std::visit([&](const auto& b) { return b.eval(wo, wi); }, bsdf_);
+  }
+  /// Per-lane solid-angle density of sample() producing wi; 0 for delta lobes.
+  SampledSpectrum pdf(Vec3 wo, Vec3 wi) const {
+    return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, bsdf_);
+  }
+  /// A direction drawn with the hero wavelength: `u_lobe` chooses the lobe, `u` the direction within it.
+  /// std::nullopt when no direction can be produced; never a sample with pdf[0] = 0.
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
+    return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, bsdf_);
+  }
+  BsdfFlags flags() const {
+    return std::visit([](const auto& b) { return b.flags(); }, bsdf_);
+  }
+
+  const Variant& variant() const { return bsdf_; }
+
+ private:
+  Variant bsdf_;
+};
+
+}  // namespace rimu

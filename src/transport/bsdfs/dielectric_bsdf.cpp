@@ -1,0 +1,130 @@
+#include "transport/bsdfs/dielectric_bsdf.h"
+
+#include <cmath>
+
+#include "transport/bsdfs/fresnel.h"
+
+namespace rimu {
+
+std::optional<Vec3> refract(Vec3 w, Vec3 n, float eta_ratio) {
+  // Snell: sin θt = sin θi / η. The transmitted direction is the tangential part of −w scaled by 1/η plus
+  // −cos θt along the normal: wt = −w/η + (cos θi/η − cos θt) n.
+  const float cos_i = dot(w, n);
+  const float sin2_t = std::fmax(0.0f, 1.0f - cos_i * cos_i) / (eta_ratio * eta_ratio);
+  if (sin2_t >= 1.0f) return std::nullopt;
+  const float cos_t = std::sqrt(1.0f - sin2_t);
+  return -w / eta_ratio + (cos_i / eta_ratio - cos_t) * n;
+}
+
+void DielectricBsdf::eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, float& pdf) const {
+  f = pdf = 0.0f;
+  const float cos_o = wo.z, cos_i = wi.z;
+  if (cos_o == 0.0f || cos_i == 0.0f) return;
+  const bool reflection = cos_o * cos_i > 0.0f;
+  const float eta_ratio = reflection ? 1.0f : (cos_o > 0.0f ? eta : 1.0f / eta);  // η' = n_i / n_o
+  // Generalised half vector (Walter et al. 2007, Eq. 16), oriented to the outside (+z).
+  Vec3 m = wi * eta_ratio + wo;
+  const float len2 = length_squared(m);
+  if (!(len2 > 0.0f)) return;
+  m = m / std::sqrt(len2);
+  if (m.z < 0.0f) m = -m;
+  const float wo_m = dot(wo, m), wi_m = dot(wi, m);
+  // A microfacet seen from its back by either direction contributes nothing (Walter et al. 2007, Eq. 20's χ⁺).
+  if (wo_m * cos_o <= 0.0f || wi_m * cos_i <= 0.0f) return;
+  const float fresnel = fresnel_dielectric(wo_m, eta);
+  const float d = distribution_.d(m), g = distribution_.g2(wo, wi);
+  const float visible = distribution_.visible_d(wo, m);
+  if (reflection) {
+    f = d * g * fresnel / (4.0f * std::fabs(cos_o * cos_i));
+    pdf = visible / (4.0f * std::fabs(wo_m)) * fresnel;
+  } else {
+    const float denom = (wi_m + wo_m / eta_ratio) * (wi_m + wo_m / eta_ratio);
+    if (!(denom > 0.0f)) return;
+    const float transmit = 1.0f - fresnel;
+    f = transmit * d * g * std::fabs(wi_m * wo_m / (cos_i * cos_o * denom)) / (eta_ratio * eta_ratio);
+    pdf = visible * std::fabs(wi_m) / denom * transmit;
+  }
+  if (!std::isfinite(f) || !std::isfinite(pdf)) f = pdf = 0.0f;
+}
+
+void DielectricBsdf::eval_rough(Vec3 wo, Vec3 wi, SampledSpectrum& f, SampledSpectrum& pdf) const {
+  if ((eta_ == Float4(eta_[0])).all()) {
+    float f0, pdf0;
+    eval_rough_lane(wo, wi, eta_[0], f0, pdf0);
+    f = Float4(f0);
+    pdf = Float4(pdf0);
+    return;
+  }
+  alignas(16) float fs[4], pdfs[4];
+  for (int lane = 0; lane < kLaneCount; ++lane) eval_rough_lane(wo, wi, eta_[lane], fs[lane], pdfs[lane]);
+  f = Float4::load(fs);
+  pdf = Float4::load(pdfs);
+}
+
+SampledSpectrum DielectricBsdf::eval(Vec3 wo, Vec3 wi) const {
+  if (is_smooth()) return Float4(0.0f);
+  SampledSpectrum f, pdf;
+  eval_rough(wo, wi, f, pdf);
+  return f;
+}
+
+SampledSpectrum DielectricBsdf::pdf(Vec3 wo, Vec3 wi) const {
+  if (is_smooth()) return Float4(0.0f);
+  SampledSpectrum f, pdf;
+  eval_rough(wo, wi, f, pdf);
+  return pdf;
+}
+
+std::optional<BsdfSample> DielectricBsdf::sample_smooth(Vec3 wo, float u_lobe) const {
+  const float cos_o = wo.z;
+  const SampledSpectrum reflectance = fresnel_dielectric(Float4(cos_o), eta_);
+  if (u_lobe < reflectance[0]) {
+    // Mirror: f = R δ / cos θi, chosen with probability R, so the weight f·cos/pdf is 1 in the hero lane.
+    const Vec3 wi{-wo.x, -wo.y, wo.z};
+    return BsdfSample{wi, reflectance / Float4(std::fabs(cos_o)), reflectance, true};
+  }
+  const SampledSpectrum eta_ratio = select(Float4(cos_o) > Float4(0.0f), eta_, Float4(1.0f) / eta_);
+  const Vec3 normal{0.0f, 0.0f, cos_o > 0.0f ? 1.0f : -1.0f};
+  const auto wi = refract(wo, normal, eta_ratio[0]);
+  // R(hero) < 1 here, so the hero is not totally reflected; a transmitted direction on the horizon would have
+  // cos θi = 0 and an infinite f.
+  if (!wi || wi->z == 0.0f) return std::nullopt;
+  const SampledSpectrum transmittance = Float4(1.0f) - reflectance;
+  SampledSpectrum f = transmittance / (Float4(std::fabs(wi->z)) * eta_ratio * eta_ratio);
+  SampledSpectrum pdf = transmittance;
+  // Lanes with another η refract elsewhere: for them this direction has density 0 and f has no delta here.
+  const Mask4 other_direction = eta_ != Float4(eta_[0]);
+  f = select(other_direction, Float4(0.0f), f);
+  pdf = select(other_direction, Float4(0.0f), pdf);
+  BsdfSample s{*wi, f, pdf, true};
+  s.wavelength_dependent_direction = other_direction.any();
+  return s;
+}
+
+std::optional<BsdfSample> DielectricBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
+  if (wo.z == 0.0f) return std::nullopt;
+  if (is_smooth()) return sample_smooth(wo, u_lobe);
+
+  const Vec3 m = distribution_.sample_visible(wo, u);  // on wo's side: wo·m > 0
+  const float wo_m = dot(wo, m);
+  if (!(wo_m > 0.0f)) return std::nullopt;
+  // Fresnel at this microfacet for the hero, with the facet's normal seen from outside.
+  const float hero_reflectance = fresnel_dielectric(m.z < 0.0f ? -wo_m : wo_m, eta_[0]);
+  Vec3 wi;
+  if (u_lobe < hero_reflectance) {
+    wi = reflect(wo, m);
+    if (!(wi.z * wo.z > 0.0f)) return std::nullopt;
+  } else {
+    const float eta_ratio = wo.z > 0.0f ? eta_[0] : 1.0f / eta_[0];
+    const auto t = refract(wo, m, eta_ratio);
+    if (!t || !(t->z * wo.z < 0.0f)) return std::nullopt;
+    wi = *t;
+  }
+  // f and the four pdfs from the same code as eval()/pdf(), so sample() can never disagree with them.
+  BsdfSample s{wi, Float4(0.0f), Float4(0.0f)};
+  eval_rough(wo, wi, s.f, s.pdf);
+  if (!(s.pdf[0] > 0.0f)) return std::nullopt;
+  return s;
+}
+
+}  // namespace rimu

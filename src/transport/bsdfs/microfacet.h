@@ -1,0 +1,55 @@
+// The Trowbridge-Reitz (GGX) microfacet distribution: normal distribution, Smith masking, visible normals.
+//
+// All directions are in the local shading frame (macro normal +z). The distribution is symmetric under
+// z → −z, so D, Λ and G depend only on |cos θ|; a direction below the surface is treated as its mirror image.
+#pragma once
+
+#include "transport/geometry/vector.h"
+
+namespace rimu {
+
+/// GGX / Trowbridge-Reitz microfacets with anisotropic width α_x, α_y (Walter et al. 2007, "Microfacet Models
+/// for Refraction through Rough Surfaces", Eq. 33; anisotropic form: Heitz 2014, "Understanding the
+/// Masking-Shadowing Function in Microfacet-Based BRDFs", Eq. 85).
+///
+/// Roughness → α: Rimu's materials take a perceptual roughness r ∈ [0, 1] and use α = r² (Burley 2012,
+/// "Physically-Based Shading at Disney", §5.4), so r = 0.5 looks half-way between mirror and matte.
+/// Below kSmoothAlpha the lobe is narrower than float directions resolve; BSDFs then use a delta lobe instead.
+class TrowbridgeReitz {
+ public:
+  static constexpr float kSmoothAlpha = 1e-3f;
+  /// The α of a perceptual roughness r: α = r² (Burley 2012).
+  static float roughness_to_alpha(float roughness) { return roughness * roughness; }
+
+  TrowbridgeReitz(float alpha_x, float alpha_y);
+
+  float alpha_x() const { return alpha_x_; }
+  float alpha_y() const { return alpha_y_; }
+  /// True when both widths are below kSmoothAlpha: treat the surface as a perfect mirror / refractor.
+  bool effectively_smooth() const { return alpha_x_ < kSmoothAlpha && alpha_y_ < kSmoothAlpha; }
+
+  /// The microfacet normal density D(m), per steradian of m, normalised so that the projected microfacet area
+  /// covers the macro surface, ∫ D(m) cos θm dm = 1:  D(m) = 1 / (π αx αy (m_x²/αx² + m_y²/αy² + m_z²)²).
+  float d(Vec3 m) const;
+  /// Smith's auxiliary function Λ(w) = (√(1 + α(φ)² tan²θ) − 1)/2, α(φ)² = cos²φ αx² + sin²φ αy² (Heitz 2014,
+  /// Eq. 86). +∞ at the horizon.
+  float lambda(Vec3 w) const;
+  /// Smith masking G1(w) = 1/(1 + Λ(w)).
+  float g1(Vec3 w) const { return 1.0f / (1.0f + lambda(w)); }
+  /// Height-correlated masking-shadowing G2(wo, wi) = 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014, Eq. 99).
+  float g2(Vec3 wo, Vec3 wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
+
+  /// Density of visible normals seen from w, per steradian of m (Heitz 2018, Eq. 1):
+  ///     D_w(m) = G1(w) |w·m| D(m) / |cos θw|,   zero when m faces away from w.
+  float visible_d(Vec3 w, Vec3 m) const;
+  /// A microfacet normal distributed as D_w (Heitz 2018, "Sampling the GGX Distribution of Visible Normals",
+  /// JCGT 7(4), Listing 1, implemented from the paper's description): stretch w to the α = 1 configuration,
+  /// sample the projected hemisphere of a unit sphere, unstretch. The result lies in w's hemisphere
+  /// (m.z has the sign of w.z, or +z when w.z = 0). `u` in [0,1)².
+  Vec3 sample_visible(Vec3 w, Vec2 u) const;
+
+ private:
+  float alpha_x_, alpha_y_;
+};
+
+}  // namespace rimu

@@ -1,0 +1,242 @@
+#include "transport/integrators/path_integrator.h"
+
+#include <cmath>
+
+#include "transport/geometry/frame.h"
+#include "transport/integrators/shadow_passage.h"
+#include "transport/sampling/wavelength_modes.h"
+
+namespace rimu {
+namespace {
+
+constexpr float kLanes = float(kLaneCount);
+
+// The shading frame at a hit, flipped for opaque (two-sided) materials so that wo is on the +z side.
+struct ShadingContext {
+  Frame frame;
+  Vec3 geometric_normal;  // on the same side as the shading normal
+};
+
+ShadingContext shading_context(const MaterialContext& hit, bool two_sided) {
+  Vec3 ns = hit.shading_normal, ng = hit.geometric_normal;
+  if (two_sided && dot(hit.wo, ng) < 0.0f) {
+    ns = -ns;
+    ng = -ng;
+  }
+  return {Frame::from_normal(ns), ng};
+}
+
+}  // namespace
+
+Vec3 offset_ray_origin(Vec3 position, Vec3 geometric_normal, Vec3 direction, float scene_scale) {
+  // Float coordinates near |p| carry a rounding error of ~|p|·2⁻²⁴ per operation; Embree's hit point adds a few.
+  // 2⁻¹⁸·|p| is a safe margin; the scene-scale term covers points near the origin of a large scene.
+  const float magnitude = std::fmax(max_component(abs(position)), 1e-4f * scene_scale);
+  const float offset = magnitude * 0x1p-18f;
+  return position + face_forward(geometric_normal, direction) * offset;
+}
+
+Vec3 offset_ray_origin(const SurfaceHit& hit, Vec3 direction, float scene_scale) {
+  const float magnitude =
+      std::fmax(std::fmax(max_component(abs(hit.position)), hit.position_scale), 1e-4f * scene_scale);
+  return hit.position + face_forward(hit.geometric_normal, direction) * (magnitude * 0x1p-18f);
+}
+
+ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls, float scene_scale) {
+  if (!std::isfinite(ls.distance)) return {ls.wi, ls.distance};
+  Vec3 target = reference + ls.wi * ls.distance;
+  if (!(ls.normal == Vec3{})) target = offset_ray_origin(target, ls.normal, -ls.wi, scene_scale);
+  const Vec3 to_target = target - origin;
+  const float distance = length(to_target);
+  if (!(distance > 0.0f) || !std::isfinite(distance)) return {ls.wi, 0.0f};
+  return {to_target / distance, distance};
+}
+
+SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
+                                         Sampler& sampler) const {
+  const auto& lights = *scene_.lights;
+  const LightSampler& light_sampler = *scene_.light_sampler;
+
+  SampledSpectrum radiance(0.0f);
+  // R_k = p(x̄ | λ_k) / p(x̄ | hero). Single-wavelength mode makes the partners' techniques absent (R_k = 0), so
+  // the hero's estimate is 4·β·L (the film averages four lanes) and the partners' outputs are masked to zero.
+  // Independent and rgb modes keep R_k = 1 (every lane weighted by the hero's density; transport/sampling/wavelength_modes.h).
+  const LaneTechniques lanes{settings_.wavelengths};
+  const bool single = settings_.wavelengths == WavelengthMode::single;
+  SampledSpectrum pdf_ratio = lanes.initial_ratios();
+  SampledSpectrum beta = pdf_ratio;  // f / p(x̄ | hero), per lane
+  Ray ray = camera_ray;
+
+  // What the previous bounce left for MIS when this segment hits a light.
+  bool previous_specular = true;     // the camera "bounce" cannot be matched by light sampling
+  float previous_hero_pdf = 1.0f;    // q_{0,bsdf}
+  float previous_sum_ratio = sum(pdf_ratio);  // Σ_k R_k before the bounce
+  float previous_bsdf_sum = sum(pdf_ratio);   // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
+  LightReference previous_reference{};
+  LightSamplingPoint previous_sampling_point{};  // where the light sampler chose for the previous vertex
+
+  // Adds an emitter seen along the sampled direction: spectral MIS, and power-heuristic MIS against light sampling.
+  const DirectLighting strategy = settings_.direct_lighting;
+  auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle) {
+    // NEE-only: a non-delta bounce leaves emitters to next-event estimation (which then takes full weight).
+    if (strategy == DirectLighting::nee_only && !previous_specular) return;
+    if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
+    if (previous_specular || light_pdf_solid_angle <= 0.0f) {
+      radiance += beta * emitted * Float4(kLanes / sum(pdf_ratio));
+      return;
+    }
+    const float s_light = light_pdf_solid_angle * previous_sum_ratio;
+    const float s_bsdf = previous_bsdf_sum;
+    const float weight = previous_hero_pdf * s_bsdf / (s_light * s_light + s_bsdf * s_bsdf);
+    radiance += beta * emitted * Float4(kLanes * weight);
+  };
+
+  // Panes passed straight through (docs/transport.md, "Glazing"): since the last scattering vertex (at most
+  // kMaxShadowPassages, as for shadow rays), and in all (they do not count towards max_depth).
+  int passages_since_vertex = 0, passages = 0;
+  for (int depth = 0;; ++depth) {
+    const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
+    if (!hit) {
+      for (int index : scene_.infinite_lights) {
+        const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
+        const float pdf = previous_specular ? 0.0f
+                                            : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0)) *
+                                                  lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
+        add_emission(le, pdf);
+      }
+      break;
+    }
+
+    const Vec3 wo_world = -ray.direction;
+    if (hit->light >= 0) {
+      const Light& light = *lights[size_t(hit->light)];
+      const SampledSpectrum le = light.radiance(*hit, wo_world, lambda);
+      const int part = light_sampler.part_of_hit(hit->primitive);
+      const float pdf = previous_specular ? 0.0f
+                                          : light_sampler.pmf(previous_sampling_point, hit->light, part) *
+                                                light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
+      add_emission(le, pdf);
+    }
+    if (hit->material < 0) break;
+    const Material& material = (*scene_.materials)[size_t(hit->material)];
+    // A pane may still be passed at the depth limit: next-event estimation from the last vertex went through it, so
+    // BSDF sampling must be able to as well (or the MIS weights would not sum to one).
+    const bool may_pass = material.passes_shadow_rays() && passages_since_vertex < kMaxShadowPassages;
+    const bool depth_reached = depth - passages >= settings_.max_depth;
+    if (depth_reached && !may_pass) break;
+
+    MaterialContext context = MaterialContext::at(*hit, wo_world);
+    context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
+    const Bsdf bsdf = material.bsdf(context, lambda);
+    const BsdfFlags flags = bsdf.flags();
+    const ShadingContext shading = shading_context(context, !flags.has_transmission);
+    const Vec3 wo = shading.frame.to_local(wo_world);
+    if (wo.z == 0.0f) break;
+
+    const LightReference reference{hit->position, shading.geometric_normal};
+    // Light from below an opaque surface is dropped (wrong_side below), so the sampler may ignore lights there.
+    // The path's wavelengths go with it (bvh-spectral chooses by power at them; the same for every hero rotation,
+    // so the per-lane light-choice densities are equal and the MIS sums below hold as written).
+    const LightSamplingPoint sampling_point{hit->position, flags.has_transmission ? Vec3{} : shading.geometric_normal,
+                                            &lambda};
+    const float sum_ratio = sum(pdf_ratio);
+
+    // Next-event estimation: one light (and part), chosen by the scene's light sampler.
+    const float u_light_choice = sampler.next_1d();
+    const Vec2 u_light = sampler.next_2d();
+    if (flags.has_non_delta && strategy != DirectLighting::bsdf_only) {
+      if (const auto pick = light_sampler.sample(sampling_point, u_light_choice)) {
+        const Light& light = *lights[size_t(pick->light)];
+        if (const auto ls = light.sample_part_li(pick->part, reference, lambda, u_light)) {
+          const Vec3 wi = shading.frame.to_local(ls->wi);
+          const SampledSpectrum f = bsdf.eval(wo, wi) * Float4(std::fabs(wi.z));
+          // A direction below the geometric surface cannot be reached by an opaque material's light.
+          const bool wrong_side = !flags.has_transmission && dot(ls->wi, shading.geometric_normal) <= 0.0f;
+          if (!wrong_side && max_lane(f) > 0.0f) {
+            Ray shadow;
+            shadow.origin = offset_ray_origin(*hit, ls->wi, scene_.scene_scale);
+            const ShadowSegment segment = shadow_segment(shadow.origin, hit->position, *ls, scene_.scene_scale);
+            shadow.direction = segment.direction;
+            shadow.t_max = std::isinf(segment.length) ? segment.length : segment.length * (1.0f - 0x1p-12f);
+            if (const auto passage = trace_shadow(scene_, shadow, lambda)) {
+              const float q_light = pick->probability * ls->pdf_solid_angle;
+              const float s_light = q_light * sum_ratio;
+              // BSDF sampling reaches this light through the panes only by also choosing each one's straight-through
+              // lobe: its density carries their probabilities (docs/transport.md, "Glazing").
+              const float s_bsdf = ls->is_delta || strategy == DirectLighting::nee_only
+                                       ? 0.0f
+                                       : sum(pdf_ratio * lanes.densities(bsdf.pdf(wo, wi) * passage->pass_probability));
+              const float weight = s_light / (s_light * s_light + s_bsdf * s_bsdf);
+              radiance += beta * f * passage->transmittance * ls->radiance * Float4(kLanes * weight);
+            }
+          }
+        }
+      }
+    }
+
+    // BSDF sampling continues the path.
+    const float u_lobe = sampler.next_1d();
+    const Vec2 u_direction = sampler.next_2d();
+    const std::optional<BsdfSample> bs = bsdf.sample(wo, u_lobe, u_direction);
+    if (!bs || !(bs->pdf[0] > 0.0f)) break;
+    const Vec3 wi_world = shading.frame.to_world(bs->wi);
+    // Opaque materials: the sampled direction must leave on the geometric front side (shading normals can lie).
+    if (!flags.has_transmission && dot(wi_world, shading.geometric_normal) <= 0.0f) break;
+
+    // A pane passed straight through is no vertex for MIS: the segment from the last vertex continues, and the
+    // BSDF technique's density of reaching a light along it gains this lobe's probability (the light technique,
+    // whose shadow rays pass panes deterministically, is unchanged).
+    if (may_pass && bs->wi.z * wo.z < 0.0f) {
+      const SampledSpectrum pass_densities = lanes.densities(bs->pdf);
+      previous_bsdf_sum = previous_hero_pdf * sum(pdf_ratio * pass_densities);
+      previous_hero_pdf *= bs->pdf[0];
+      beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
+      pdf_ratio *= pass_densities / Float4(bs->pdf[0]);
+      ++passages_since_vertex;
+      ++passages;
+      sampler.next_1d();  // Russian roulette's dimension: a pane is no bounce, so no roulette here
+      if (max_lane(abs(beta)) == 0.0f) break;
+      // The same line as before the pane (wi = −wo exactly; the frame's round trip would perturb it by an ulp).
+      ray.origin = offset_ray_origin(*hit, ray.direction, scene_.scene_scale);
+      ray.t_min = 0.0f;
+      ray.t_max = INFINITY;
+      continue;
+    }
+    if (depth_reached) break;
+    passages_since_vertex = 0;
+
+    previous_specular = bs->is_delta;
+    previous_hero_pdf = bs->pdf[0];
+    previous_sum_ratio = sum_ratio;
+    const SampledSpectrum bsdf_densities = lanes.densities(bs->pdf);
+    previous_bsdf_sum = sum(pdf_ratio * bsdf_densities);
+    previous_reference = reference;
+    previous_sampling_point = sampling_point;
+
+    beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
+    pdf_ratio *= bsdf_densities / Float4(bs->pdf[0]);
+    if (bs->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
+      const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
+      pdf_ratio *= hero_only;
+      beta *= hero_only;
+    }
+
+    // Russian roulette on the effective throughput (what the film will see), after a few bounces.
+    const float u_roulette = sampler.next_1d();
+    if (depth + 1 >= settings_.russian_roulette_depth) {
+      const float effective = max_lane(beta) * kLanes / sum(pdf_ratio);
+      const float survive = std::fmin(1.0f, effective);
+      if (!(survive > 0.0f) || u_roulette >= survive) break;
+      beta /= Float4(survive);
+    }
+    if (max_lane(abs(beta)) == 0.0f) break;
+
+    ray.origin = offset_ray_origin(*hit, wi_world, scene_.scene_scale);
+    ray.direction = wi_world;
+    ray.t_min = 0.0f;
+    ray.t_max = INFINITY;
+  }
+  return single ? radiance * Float4(1.0f, 0.0f, 0.0f, 0.0f) : radiance;
+}
+
+}  // namespace rimu

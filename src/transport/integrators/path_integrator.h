@@ -1,0 +1,96 @@
+// The hero-wavelength unidirectional path tracer: spectral MIS over four lanes, NEE + BSDF sampling with MIS.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "spectral/wavelengths/sampled_wavelengths.h"
+#include "spectral/wavelengths/wavelength_density.h"
+#include "transport/lights/light.h"
+#include "transport/lights/light_sample.h"
+#include "transport/lights/light_sampler.h"
+#include "transport/bsdfs/material.h"
+#include "transport/geometry/ray.h"
+#include "transport/integrators/ray_queries.h"
+#include "transport/sampling/sampler.h"
+
+namespace rimu {
+
+/// What the integrator needs of a scene: geometry queries, materials by index, lights by index, and how lights
+/// are picked. Non-owning; the render side owns everything and keeps it alive while rendering.
+struct TransportScene {
+  const RayQueries* geometry = nullptr;
+  const std::vector<Material>* materials = nullptr;
+  const std::vector<std::unique_ptr<Light>>* lights = nullptr;
+  const LightSampler* light_sampler = nullptr;
+  std::vector<int> infinite_lights;  ///< indices of lights with is_infinite(): seen by escaping rays
+  float scene_scale = 1.0f;          ///< bounding-box diagonal, for scale-aware ray offsets
+  /// Some material lets shadow rays through (Material::passes_shadow_rays: a pane): shadow rays then trace closest
+  /// hits through them (transport/integrators/shadow_passage.h); false keeps the single occlusion query.
+  bool passable_surfaces = false;
+  /// The density camera paths draw wavelengths from (spectral/wavelengths/wavelength_density.h); nullptr: the visible density.
+  const TabulatedWavelengthDensity* wavelength_density = nullptr;
+};
+
+/// How the four lanes are used.
+enum class WavelengthMode {
+  hero,    ///< hero + three partners, combined by spectral MIS (the default)
+  single,  ///< the hero alone: partners carry nothing (a baseline, and a reference for unbiasedness tests)
+  independent,  ///< four independently drawn wavelengths, each weighted by the hero's path density (no spectral MIS)
+  rgb,     ///< RGB transport baseline: lanes carry linear sRGB (transport/sampling/wavelength_modes.h, docs/transport.md)
+};
+
+/// How light sources are found (the default combines both; the others exist to check the combination).
+enum class DirectLighting {
+  mis,        ///< next-event estimation and BSDF sampling, power heuristic
+  nee_only,   ///< only next-event estimation sees non-delta emitters (BSDF-sampled hits on lights add nothing)
+  bsdf_only,  ///< no next-event estimation: lights are found only by BSDF sampling (delta lights are then invisible)
+};
+
+struct PathIntegratorSettings {
+  int max_depth = 16;         ///< the number of surface interactions after which a path ends
+  int russian_roulette_depth = 3;  ///< from this depth on, paths are terminated with probability 1 − q
+  WavelengthMode wavelengths = WavelengthMode::hero;
+  DirectLighting direct_lighting = DirectLighting::mis;
+};
+
+/// Estimates the radiance arriving along camera rays, per lane (see docs/transport.md for the estimator).
+///
+/// Dimension order per camera sample (every estimator draws the same dimension for the same decision):
+/// the render loop draws 0-1 film position, 2-3 lens, 4 wavelength; then per bounce, in this order:
+/// light choice (1), light position (2), BSDF lobe (1), BSDF direction (2), Russian roulette (1).
+class PathIntegrator {
+ public:
+  PathIntegrator(const TransportScene& scene, PathIntegratorSettings settings) : scene_(scene), settings_(settings) {}
+
+  /// Radiance along `ray` at the four wavelengths, in W/(m²·sr·nm): lane j is this path's estimate for λⱼ,
+  /// already weighted by spectral MIS, so the film's mean over lanes of Lⱼ c(λⱼ)/p(λⱼ) is unbiased.
+  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const;
+
+ private:
+  const TransportScene& scene_;
+  PathIntegratorSettings settings_;
+};
+
+/// The origin of a ray leaving `position` on the side `normal`·`direction` > 0, offset against self-intersection
+/// by a distance that scales with the magnitude of the coordinates (float spacing) and the scene's size.
+Vec3 offset_ray_origin(Vec3 position, Vec3 geometric_normal, Vec3 direction, float scene_scale);
+/// The same for a ray leaving a surface hit: the offset also covers the rounding of the coordinates the hit point
+/// was computed from (SurfaceHit::position_scale), which near the world origin exceeds |p|'s.
+Vec3 offset_ray_origin(const SurfaceHit& hit, Vec3 direction, float scene_scale);
+
+/// What a shadow ray for the light sample `ls`, drawn at `reference`, tests: the direction and length from `origin`
+/// (reference lifted off its surface by offset_ray_origin, or reference itself in a medium) to the sampled point,
+/// itself lifted off the light's surface (ls.normal) towards the reference by the same rule. Aiming from the lifted
+/// origin matters near an emitter: a ray along ls.wi from the lifted origin meets a plane the sample lies on earlier
+/// by offset/cos, and for a receiver within a few cm of the light at grazing angles that is more than any relative
+/// margin on the length, so the light's own surface would shadow the sample (docs/transport.md, "Shadow rays near
+/// emitters"). Lights at infinity: ls.wi and an infinite length. Callers shorten the length by 2⁻¹² for rounding.
+struct ShadowSegment {
+  Vec3 direction;
+  float length = 0.0f;
+};
+ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls, float scene_scale);
+
+}  // namespace rimu

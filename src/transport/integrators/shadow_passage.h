@@ -1,0 +1,41 @@
+// Shadow rays through glazing: surfaces whose transmission does not bend rays (thin dielectrics) let next-event
+// estimation through, weighted by their transmittance (docs/transport.md, "Glazing: shadow rays through panes").
+#pragma once
+
+#include <optional>
+
+#include "spectral/wavelengths/sampled_wavelengths.h"
+#include "transport/bsdfs/material.h"
+#include "transport/geometry/ray.h"
+#include "transport/geometry/surface_hit.h"
+#include "transport/bsdfs/thin_dielectric_bsdf.h"
+
+namespace rimu {
+
+struct TransportScene;
+
+/// At most this many pass-through surfaces on one shadow ray, and on one path segment between two scattering
+/// vertices: a shadow ray meeting a ninth is blocked, and a path passing a ninth makes it an ordinary specular
+/// vertex, so that next-event estimation and BSDF sampling cover exactly the same paths (the MIS stays exact).
+inline constexpr int kMaxShadowPassages = 8;
+
+/// The straight-through lobe of `material` at `hit` for a ray travelling along `direction` (per lane: what passes,
+/// and the probability BSDF sampling picks that lobe, as the material's own BSDF defines them at that angle), or
+/// nothing if shadow rays cannot pass it (Material::passes_shadow_rays).
+std::optional<ThinDielectricBsdf::StraightThrough> straight_through_at(const Material& material, const SurfaceHit& hit,
+                                                                       Vec3 direction, const SampledWavelengths& lambda);
+
+/// What a shadow ray brings back when nothing opaque blocks it: the product of the transmittances of the surfaces it
+/// passed, and the product of the probabilities that BSDF sampling would have passed them (for the MIS weight).
+struct ShadowPassage {
+  SampledSpectrum transmittance{1.0f};
+  SampledSpectrum pass_probability{1.0f};
+};
+
+/// A shadow ray in a scene without media: one occlusion query when the scene has no pass-through surface
+/// (TransportScene::passable_surfaces false), else closest hits until the light, multiplying the transmittance of
+/// each pass-through surface met. std::nullopt when blocked (an opaque or refracting surface, or more than
+/// kMaxShadowPassages panes).
+std::optional<ShadowPassage> trace_shadow(const TransportScene& scene, const Ray& ray, const SampledWavelengths& lambda);
+
+}  // namespace rimu

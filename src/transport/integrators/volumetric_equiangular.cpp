@@ -1,0 +1,86 @@
+// The equiangular technique of VolumetricPathIntegrator (Kulla & Fajardo 2012) and its MIS with free-flight
+// sampling. The bookkeeping (docs/media.md, "Equiangular sampling"):
+//
+// On a homogeneous segment, the path prefix has throughput β = f/p(prefix|hero) and ratios R_k = p(prefix|λ_k)/
+// p(prefix|hero). Two techniques produce a scattering point at distance s and connect it to a point light ℓ:
+//   distance: lane k as hero scatters at s with density p_k(s) (spectral_distance_sampling.h), then NEE picks ℓ;
+//   equiangular: picks ℓ with probability P_e(ℓ) (the light sampler at the segment's start), then s with density
+//   p_e(s) (same for all lanes); NEE at s picks ℓ with P_n(ℓ | s) (the light sampler at s).
+// Each path runs both, with a hero drawn uniformly among the four lanes, so the balance heuristic over the eight
+// (hero, technique) pairs gives every sample, whichever technique drew it, the lane-j estimate
+//   F_j / ((1/4) Σ_k p(prefix|λ_k) (p_e(s) + p_k(s))) = 4 β_j g_j / (S_equi + S_dist),
+// F_j = f_j(prefix)·g_j the path's contribution, g_j that of the last segment and the light connection, and
+//   S_equi = P_e(ℓ) p_e(s) Σ_k R_k,   S_dist = P_n(ℓ | s) Σ_k R_k p_k(s)   (R before the flight; with a light
+// sampler that ignores the point, P_e = P_n and it cancels). So the equiangular sample contributes
+// 4 β_j T_j(s) σ_s,j ρ T_shadow,j L_j / (S_equi + S_dist), and the distance technique's NEE keeps its usual weight
+// times S_dist / (S_dist + S_equi). With p_e = 0 (area lights,
+// lights at infinity) both reduce to the estimator without equiangular sampling.
+#include <cmath>
+
+#include "transport/integrators/volumetric_path_integrator.h"
+
+namespace rimu {
+
+VolumetricPathIntegrator::VolumetricPathIntegrator(const VolumetricScene& scene, VolumetricIntegratorSettings settings)
+    : scene_(scene), settings_(settings) {
+  settings_.distance = distance_sampling_for(settings.distance, settings.path.wavelengths);
+  for (const auto& light : *scene_.surfaces.lights)
+    if (light->delta_position_m()) has_point_lights_ = true;
+}
+
+bool VolumetricPathIntegrator::uses_equiangular(const Medium& medium) const {
+  return settings_.equiangular && has_point_lights_ && medium.homogeneous() != nullptr &&
+         settings_.distance != DistanceSampling::spectral_tracking &&
+         settings_.path.direct_lighting != DirectLighting::bsdf_only;
+}
+
+SampledSpectrum VolumetricPathIntegrator::equiangular_direct(EquiangularSegment segment, const Medium& medium,
+                                                             const SampledSpectrum& beta,
+                                                             const SampledSpectrum& ratios, const MediumStack& stack,
+                                                             const SampledWavelengths& lambda,
+                                                             Sampler& sampler) const {
+  const float u_light = sampler.next_1d(), u_t = sampler.next_1d();
+  const LightSampler& light_sampler = *scene_.surfaces.light_sampler;
+  const auto pick = light_sampler.sample(equiangular_choice_point(segment), u_light);
+  if (!pick) return Float4(0.0f);
+  const Light& light = *(*scene_.surfaces.lights)[size_t(pick->light)];
+  const std::optional<Vec3> light_m = light.delta_position_m();
+  if (!light_m) return Float4(0.0f);  // the technique has density 0 for other lights
+  segment.light_m = *light_m;
+  const auto es = segment.sample(u_t);
+  if (!es) return Float4(0.0f);
+  const Vec3 point = segment.origin + segment.direction * es->t;
+  const auto ls = light.sample_li({point, Vec3{}}, lambda, Vec2{0.5f, 0.5f});
+  if (!ls) return Float4(0.0f);
+
+  // T_j(s) σ_s,j: the segment's contribution up to a scattering event at s (exact for a homogeneous medium).
+  const MediumCoefficients c = medium.homogeneous()->coefficients(lambda);
+  const float s = es->t - segment.t0;
+  const float phase = medium.phase().eval(-segment.direction, ls->wi);
+  const SampledSpectrum throughput = beta * c.sigma_s_per_m * exp(-c.sigma_t_per_m() * Float4(s)) * Float4(phase);
+  if (!(max_lane(throughput) > 0.0f)) return Float4(0.0f);
+  const auto tr = shadow(point, ls->wi, ls->distance, stack, lambda, sampler, throughput);
+  if (!tr) return Float4(0.0f);
+
+  const float s_equi = pick->probability * es->pdf_per_m * sum(ratios);
+  // The choice next-event estimation makes at a medium point: with the path's wavelengths, as there.
+  const float s_dist = light_sampler.pmf({point, Vec3{}, &lambda}, pick->light, pick->part) *
+                       distance_technique_density(c, settings_.distance, s, ratios);
+  const float denominator = s_equi + s_dist;
+  if (!(denominator > 0.0f)) return Float4(0.0f);
+  return throughput * tr->transmittance * ls->radiance * Float4(float(kLaneCount) / denominator);
+}
+
+float VolumetricPathIntegrator::distance_technique_weight(EquiangularSegment segment, const Medium& medium, float t,
+                                                          Vec3 light_m, const SampledSpectrum& ratios,
+                                                          const SampledWavelengths& lambda, float nee_probability,
+                                                          float equiangular_probability) const {
+  segment.light_m = light_m;
+  const float s_equi = equiangular_probability * segment.pdf(t) * sum(ratios);
+  const float s_dist = nee_probability * distance_technique_density(medium.homogeneous()->coefficients(lambda),
+                                                                    settings_.distance, t - segment.t0, ratios);
+  // Both densities underflowed: the equiangular estimate carries nothing here either, so the event keeps it all.
+  return s_dist + s_equi > 0.0f ? s_dist / (s_dist + s_equi) : 1.0f;
+}
+
+}  // namespace rimu

@@ -1,0 +1,378 @@
+#include "transport/integrators/volumetric_path_integrator.h"
+
+#include <cmath>
+
+#include "transport/geometry/frame.h"
+#include "transport/integrators/shadow_passage.h"
+
+namespace rimu {
+namespace {
+
+constexpr float kLanes = float(kLaneCount);
+// Crossing more index-matched boundaries than this along one segment means broken geometry (a ray stuck on a
+// surface): the segment is then treated as blocked rather than looping.
+constexpr int kMaxCrossings = 256;
+
+// What scatters light at a path vertex: a BSDF in its shading frame, or a medium's phase function.
+struct Scatterer {
+  std::optional<Bsdf> bsdf;  // surface vertex
+  Frame frame{};
+  Vec3 wo_local{}, wo_world{};
+  Vec3 geometric_normal{};  // surface only, on the side of the shading normal
+  const HenyeyGreenstein* phase = nullptr;  // medium vertex
+
+  bool has_non_delta() const { return phase || bsdf->flags().has_non_delta; }
+  bool opaque() const { return !phase && !bsdf->flags().has_transmission; }
+  /// f·|cos θi| (surfaces) or the phase function (media), per lane.
+  SampledSpectrum eval(Vec3 wi_world) const {
+    if (phase) return Float4(phase->eval(wo_world, wi_world));
+    const Vec3 wi = frame.to_local(wi_world);
+    return bsdf->eval(wo_local, wi) * Float4(std::fabs(wi.z));
+  }
+  SampledSpectrum pdf(Vec3 wi_world) const {
+    if (phase) return Float4(phase->eval(wo_world, wi_world));
+    return bsdf->pdf(wo_local, frame.to_local(wi_world));
+  }
+};
+
+struct DirectionSample {
+  Vec3 wi_world;
+  SampledSpectrum f_cos;  // f·|cos θi| or phase
+  SampledSpectrum pdf;
+  bool is_delta = false;
+  bool wavelength_dependent_direction = false;  // a dispersive refraction: only the hero can follow it
+};
+
+std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe, Vec2 u) {
+  if (s.phase) {
+    const PhaseSample ps = s.phase->sample(s.wo_world, u);
+    return DirectionSample{ps.wi, Float4(ps.pdf_solid_angle), Float4(ps.pdf_solid_angle), false};
+  }
+  const std::optional<BsdfSample> bs = s.bsdf->sample(s.wo_local, u_lobe, u);
+  if (!bs || !(bs->pdf[0] > 0.0f)) return std::nullopt;
+  const Vec3 wi_world = s.frame.to_world(bs->wi);
+  if (s.opaque() && dot(wi_world, s.geometric_normal) <= 0.0f) return std::nullopt;
+  return DirectionSample{wi_world, bs->f * Float4(std::fabs(bs->wi.z)), bs->pdf, bs->is_delta,
+                         bs->wavelength_dependent_direction};
+}
+
+}  // namespace
+
+DistanceSampling distance_sampling_for(DistanceSampling requested, WavelengthMode mode) {
+  switch (mode) {
+    case WavelengthMode::hero:
+    case WavelengthMode::single:
+      return requested;
+    case WavelengthMode::independent:
+      return requested == DistanceSampling::spectral_mis ? DistanceSampling::hero_only : requested;
+    case WavelengthMode::rgb:
+      return requested == DistanceSampling::averaged ? requested : DistanceSampling::spectral_tracking;
+  }
+  return requested;
+}
+
+std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::shadow(
+    Vec3 origin, Vec3 direction, float distance, MediumStack stack, const SampledWavelengths& lambda,
+    Sampler& sampler, SampledSpectrum throughput) const {
+  ShadowResult out{Float4(1.0f), Float4(1.0f)};
+  const auto& media = *scene_.media;
+  float remaining = std::isinf(distance) ? INFINITY : distance * (1.0f - 0x1p-12f);
+  int panes = 0;
+  for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
+    Ray ray{origin, direction, 0.0f, remaining};
+    const std::optional<SurfaceHit> hit = scene_.surfaces.geometry->intersect(ray);
+    const int medium = stack.current(media);
+    if (medium >= 0) {
+      // A medium reaching infinity (an open mesh) absorbs everything with σ_t > 0; 1e30 m keeps e^{−σd} defined.
+      const float end = hit ? hit->t : std::fmin(remaining, 1e30f);
+      const SegmentTransmittance tr =
+          estimate_transmittance(media[size_t(medium)], ray, end, lambda, settings_.distance, sampler, throughput);
+      out.transmittance *= tr.transmittance;
+      out.pass_probability *= tr.pass_probability;
+      if (max_lane(out.transmittance) <= 0.0f) return std::nullopt;
+    }
+    if (!hit) return out;
+    const MediumBoundary b = boundary(hit->material);
+    if (hit->material < 0) return std::nullopt;
+    if (!b.index_matched) {
+      // A pane (thin dielectric): passed with its transmittance, as the path's straight-through lobe (shadow_passage.h).
+      if (panes == kMaxShadowPassages) return std::nullopt;
+      const auto through =
+          straight_through_at((*scene_.surfaces.materials)[size_t(hit->material)], *hit, direction, lambda);
+      if (!through) return std::nullopt;
+      ++panes;
+      out.transmittance *= through->transmittance;
+      out.pass_probability *= through->probability;
+      if (max_lane(out.transmittance) <= 0.0f) return std::nullopt;
+    }
+    stack.cross(b.interior_medium, dot(direction, hit->geometric_normal) < 0.0f);
+    origin = offset_ray_origin(*hit, direction, scene_.surfaces.scene_scale);
+    remaining -= hit->t;
+    if (!(remaining > 0.0f)) return out;
+  }
+  return std::nullopt;
+}
+
+SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
+                                                   Sampler& sampler) const {
+  const TransportScene& surfaces = scene_.surfaces;
+  const auto& lights = *surfaces.lights;
+  const auto& media = *scene_.media;
+  const LightSampler& light_sampler = *surfaces.light_sampler;
+  const PathIntegratorSettings& path = settings_.path;
+  const DirectLighting strategy = path.direct_lighting;
+
+  SampledSpectrum radiance(0.0f);
+  // How each decision's per-lane densities enter (transport/sampling/wavelength_modes.h); free flights follow the mode
+  // through settings_.distance (distance_sampling_for).
+  const LaneTechniques lanes{path.wavelengths};
+  const bool single = path.wavelengths == WavelengthMode::single;
+  SampledSpectrum pdf_ratio = lanes.initial_ratios();
+  SampledSpectrum beta = pdf_ratio;
+  Ray ray = camera_ray;
+  MediumStack stack;
+  stack.cross(scene_.camera_medium, true);  // −1: the camera is in vacuum
+
+  // MIS state of the last direction-sampling decision (see docs/media.md, "Lights reached by direction sampling").
+  bool previous_specular = true;
+  float previous_hero_pdf = 1.0f;      // q_dir,0
+  float previous_sum_ratio = 4.0f;     // Σ R_k before the direction decision
+  float pass_product = 1.0f;           // the technique's probability of passing the free flights since then
+  LightReference previous_reference{};
+  LightSamplingPoint previous_sampling_point{};
+
+  auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle) {
+    if (strategy == DirectLighting::nee_only && !previous_specular) return;
+    if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
+    const float sum_ratio = sum(pdf_ratio);
+    if (!(sum_ratio > 0.0f)) return;
+    if (previous_specular || light_pdf_solid_angle <= 0.0f) {
+      radiance += beta * emitted * Float4(kLanes / sum_ratio);
+      return;
+    }
+    // S_dir = q_dir,0 · pass · Σ R_k (R already holds the direction and pass ratios); S_light = q_light · Σ R_before.
+    const float scale = previous_hero_pdf * pass_product;
+    const float s_dir = scale * sum_ratio;
+    const float s_light = light_pdf_solid_angle * previous_sum_ratio;
+    radiance += beta * emitted * Float4(kLanes * scale * s_dir / (s_light * s_light + s_dir * s_dir));
+  };
+
+  int surface_depth = 0, vertex_count = 0, medium_events = 0, crossings = 0;
+  int passages_since_vertex = 0;  // panes passed straight through since the last vertex (≤ kMaxShadowPassages)
+  for (;;) {
+    const std::optional<SurfaceHit> hit = surfaces.geometry->intersect(ray);
+    const float t_surface = hit ? hit->t : INFINITY;
+
+    // Free flight through the current medium up to the surface.
+    std::optional<Vec3> scatter_point;
+    std::optional<EquiangularSegment> equiangular;  // set when the equiangular technique ran on this segment
+    const SampledSpectrum ratios_before_flight = pdf_ratio;
+    float flight_t = 0.0f;
+    const int medium_index = stack.current(media);
+    if (medium_index >= 0) {
+      const Medium& medium = media[size_t(medium_index)];
+      if (uses_equiangular(medium)) {
+        equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}};
+        radiance += equiangular_direct(*equiangular, medium, beta, pdf_ratio, stack, lambda, sampler);
+      }
+      SampledSpectrum throughput = beta;  // β ∝ the effective throughput while R is lane-independent
+      const FreeFlight flight = sample_free_flight(media[size_t(medium_index)], ray, std::fmin(t_surface, 1e30f),
+                                                   lambda, settings_.distance, sampler, throughput);
+      beta *= flight.weight;
+      pdf_ratio *= flight.pdf_ratio;
+      if (flight.terminated()) break;
+      if (flight.scattered) {
+        flight_t = flight.t;
+        scatter_point = ray.origin + ray.direction * flight.t;
+      } else {
+        pass_product *= flight.pass_probability;
+      }
+    }
+
+    Scatterer scatterer;
+    LightReference reference;
+    Vec3 shadow_origin;
+    // A pane (Material::passes_shadow_rays) may be passed straight through: then it is no vertex (see path_integrator.cpp).
+    bool may_pass = false, depth_reached = false;
+    if (scatter_point) {
+      if (++medium_events > settings_.max_medium_events) break;
+      scatterer.phase = &media[size_t(medium_index)].phase();
+      scatterer.wo_world = -ray.direction;
+      reference = {*scatter_point, Vec3{}};
+      shadow_origin = *scatter_point;
+    } else {
+      if (!hit) {
+        for (int index : surfaces.infinite_lights) {
+          const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
+          const float pdf = previous_specular ? 0.0f
+                                              : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0)) *
+                                                    lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
+          add_emission(le, pdf);
+        }
+        break;
+      }
+      if (hit->light >= 0) {
+        const Light& light = *lights[size_t(hit->light)];
+        const int part = light_sampler.part_of_hit(hit->primitive);
+        const float pdf = previous_specular ? 0.0f
+                                            : light_sampler.pmf(previous_sampling_point, hit->light, part) *
+                                                  light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
+        add_emission(light.radiance(*hit, -ray.direction, lambda), pdf);
+      }
+      const MediumBoundary b = boundary(hit->material);
+      if (b.index_matched) {
+        // No BSDF: the ray continues unchanged into (or out of) the enclosed medium; no vertex, no MIS change.
+        if (++crossings > kMaxCrossings * 64) break;
+        stack.cross(b.interior_medium, dot(ray.direction, hit->geometric_normal) < 0.0f);
+        ray.origin = offset_ray_origin(*hit, ray.direction, surfaces.scene_scale);
+        ray.t_min = 0.0f;
+        ray.t_max = INFINITY;
+        continue;
+      }
+      if (hit->material < 0) break;
+      const Material& material = (*surfaces.materials)[size_t(hit->material)];
+      may_pass = material.passes_shadow_rays() && passages_since_vertex < kMaxShadowPassages;
+      depth_reached = surface_depth >= path.max_depth;
+      if (depth_reached && !may_pass) break;
+      ++surface_depth;
+      MaterialContext context = MaterialContext::at(*hit, -ray.direction);
+      context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
+      scatterer.bsdf = material.bsdf(context, lambda);
+      const bool two_sided = !scatterer.bsdf->flags().has_transmission;
+      Vec3 ns = context.shading_normal, ng = hit->geometric_normal;
+      if (two_sided && dot(ray.direction, ng) > 0.0f) {
+        ns = -ns;
+        ng = -ng;
+      }
+      scatterer.frame = Frame::from_normal(ns);
+      scatterer.geometric_normal = ng;
+      scatterer.wo_world = -ray.direction;
+      scatterer.wo_local = scatterer.frame.to_local(scatterer.wo_world);
+      if (scatterer.wo_local.z == 0.0f) break;
+      reference = {hit->position, ng};
+      shadow_origin = hit->position;
+    }
+    ++vertex_count;
+    // Light from below an opaque surface is dropped (wrong_side below), so the sampler may ignore lights there.
+    // With the path's wavelengths (bvh-spectral; path_integrator.cpp says why the MIS needs no change).
+    const LightSamplingPoint sampling_point{reference.position, scatterer.opaque() ? reference.normal : Vec3{},
+                                            &lambda};
+
+    // Rescale β and R together so that Σ R = 4 (the lane estimates 4β/ΣR do not change). Not at a pane that may be
+    // passed: the MIS state of the last vertex, which add_emission still uses then, is in the unscaled units.
+    if (!may_pass) {
+      const float rescale = kLanes / sum(pdf_ratio);
+      if (!(rescale > 0.0f) || !std::isfinite(rescale)) break;
+      beta *= Float4(rescale);
+      pdf_ratio *= Float4(rescale);
+    }
+    const float sum_ratio = may_pass ? sum(pdf_ratio) : kLanes;
+
+    // The medium stack on the side a direction leaves into (surfaces with transmission may cross).
+    auto stack_towards = [&](Vec3 wi_world) {
+      MediumStack s = stack;
+      if (!scatter_point && dot(wi_world, hit->geometric_normal) * dot(-ray.direction, hit->geometric_normal) < 0.0f)
+        s.cross(boundary(hit->material).interior_medium, dot(wi_world, hit->geometric_normal) < 0.0f);
+      return s;
+    };
+    auto origin_towards = [&](Vec3 wi_world) {
+      return scatter_point ? shadow_origin
+                           : offset_ray_origin(*hit, wi_world, surfaces.scene_scale);
+    };
+
+    // Next-event estimation with transmittance.
+    const float u_light_choice = sampler.next_1d();
+    const Vec2 u_light = sampler.next_2d();
+    if (scatterer.has_non_delta() && strategy != DirectLighting::bsdf_only) {
+      if (const auto pick = light_sampler.sample(sampling_point, u_light_choice)) {
+        const Light& light = *lights[size_t(pick->light)];
+        if (const auto ls = light.sample_part_li(pick->part, reference, lambda, u_light)) {
+          const SampledSpectrum f = scatterer.eval(ls->wi);
+          const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
+          if (!wrong_side && max_lane(f) > 0.0f) {
+            // The effective throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi).
+            const SampledSpectrum q_dir = lanes.densities(scatterer.pdf(ls->wi));
+            const float sum_dir = sum(pdf_ratio * q_dir);
+            const SampledSpectrum throughput = sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f;
+            const Vec3 origin = origin_towards(ls->wi);
+            const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
+            if (const auto tr = shadow(origin, segment.direction, segment.length, stack_towards(ls->wi), lambda,
+                                       sampler, throughput)) {
+              const float s_light = pick->probability * ls->pdf_solid_angle * sum_ratio;
+              const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only
+                                      ? 0.0f
+                                      : sum(pdf_ratio * q_dir * tr->pass_probability);
+              float weight = s_light / (s_light * s_light + s_dir * s_dir);
+              if (equiangular && scatter_point)
+                if (const auto light_m = light.delta_position_m())
+                  weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *light_m,
+                                                      ratios_before_flight, lambda,
+                                                      pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),
+                                                                                           pick->light, pick->part));
+              radiance += beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight);
+            }
+          }
+        }
+      }
+    }
+
+    // Direction sampling continues the path.
+    const float u_lobe = sampler.next_1d();
+    const Vec2 u_direction = sampler.next_2d();
+    const std::optional<DirectionSample> ds = sample_direction(scatterer, u_lobe, u_direction);
+    if (!ds) break;
+    if (may_pass && dot(ds->wi_world, hit->geometric_normal) * dot(ray.direction, hit->geometric_normal) > 0.0f) {
+      // Straight through the pane: the segment from the last vertex goes on, its direction technique's pass
+      // probability times this lobe's (as a free flight passed; docs/transport.md, "Glazing").
+      pass_product *= ds->pdf[0];
+      beta *= ds->f_cos / Float4(ds->pdf[0]);
+      pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
+      --surface_depth;
+      --vertex_count;
+      ++passages_since_vertex;
+      sampler.next_1d();  // Russian roulette's dimension: no roulette at a pane
+      if (max_lane(abs(beta)) == 0.0f) break;
+      // The same line as before the pane (wi = −wo exactly; the frame's round trip would perturb it by an ulp).
+      const MediumStack next_stack = stack_towards(ray.direction);
+      ray.origin = origin_towards(ray.direction);
+      stack = next_stack;
+      ray.t_min = 0.0f;
+      ray.t_max = INFINITY;
+      continue;
+    }
+    if (depth_reached) break;
+    passages_since_vertex = 0;
+    previous_specular = ds->is_delta;
+    previous_hero_pdf = ds->pdf[0];
+    previous_sum_ratio = sum_ratio;
+    pass_product = 1.0f;
+    previous_reference = reference;
+    previous_sampling_point = sampling_point;
+    beta *= ds->f_cos / Float4(ds->pdf[0]);
+    pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
+    if (ds->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
+      // Independent mode: the partners' own directions were not followed (see LaneTechniques).
+      beta *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
+      pdf_ratio *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
+    }
+
+    const float u_roulette = sampler.next_1d();
+    if (vertex_count >= path.russian_roulette_depth) {
+      const float effective = max_lane(beta) * kLanes / sum(pdf_ratio);
+      const float survive = std::fmin(1.0f, effective);
+      if (!(survive > 0.0f) || u_roulette >= survive) break;
+      beta /= Float4(survive);
+    }
+    if (max_lane(abs(beta)) == 0.0f) break;
+
+    const MediumStack next_stack = stack_towards(ds->wi_world);
+    ray.origin = origin_towards(ds->wi_world);
+    stack = next_stack;
+    ray.direction = ds->wi_world;
+    ray.t_min = 0.0f;
+    ray.t_max = INFINITY;
+  }
+  return single ? radiance * Float4(1.0f, 0.0f, 0.0f, 0.0f) : radiance;
+}
+
+}  // namespace rimu

@@ -1,0 +1,153 @@
+#include "transport/lights/area_light.h"
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "transport/lights/light_warps.h"
+#include "transport/sampling/spherical_triangle.h"
+
+namespace rimu {
+
+AreaLight::AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t> indices, LightSpectrum radiance,
+                     bool two_sided)
+    : radiance_(std::move(radiance)), two_sided_(two_sided) {
+  assert(indices.size() % 3 == 0);
+  const size_t count = indices.size() / 3;
+  triangles_.resize(count);
+  std::vector<double> areas(count, 0.0);
+  for (size_t k = 0; k < count; ++k) {
+    assert(indices[3 * k] < vertices_m.size() && indices[3 * k + 1] < vertices_m.size() &&
+           indices[3 * k + 2] < vertices_m.size());
+    Triangle& t = triangles_[k];
+    t.v0 = vertices_m[indices[3 * k]];
+    t.v1 = vertices_m[indices[3 * k + 1]];
+    t.v2 = vertices_m[indices[3 * k + 2]];
+    // The cross product in double: a 1e-4 m triangle has |e1 × e2| ~ 1e-8, a 1e5 m one ~ 1e10, both fine in
+    // double, and collinear float vertices give exactly 0 rather than rounding noise.
+    const double e1[3] = {double(t.v1.x) - t.v0.x, double(t.v1.y) - t.v0.y, double(t.v1.z) - t.v0.z};
+    const double e2[3] = {double(t.v2.x) - t.v0.x, double(t.v2.y) - t.v0.y, double(t.v2.z) - t.v0.z};
+    const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double twice_area = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    if (!(twice_area > 0.0) || !std::isfinite(twice_area)) {
+      ++degenerate_count_;
+      continue;
+    }
+    t.normal = Vec3(float(c[0] / twice_area), float(c[1] / twice_area), float(c[2] / twice_area));
+    t.area_m2 = 0.5 * twice_area;
+    areas[k] = t.area_m2;
+    area_m2_ += t.area_m2;
+  }
+  by_area_ = Distribution1D(areas);
+}
+
+bool AreaLight::samples_solid_angle(const Triangle& t, Vec3 reference) {
+  // A_k / d² against the centroid: a function of (triangle, reference) alone, so sampling and pdf agree on it.
+  const Vec3 centroid = (t.v0 + t.v1 + t.v2) / 3.0f;
+  return t.area_m2 > kSolidAngleSamplingRatio * double(length_squared(centroid - reference));
+}
+
+float AreaLight::triangle_pdf(const Triangle& t, Vec3 reference, Vec3 wi, float distance_squared) const {
+  const float cos_light = -dot(t.normal, wi);  // between the normal and y → x
+  if (!two_sided_ && !(cos_light > 0.0f)) return 0.0f;
+  double pdf = 0.0;
+  if (samples_solid_angle(t, reference)) {
+    const double omega = spherical_triangle_solid_angle(reference, t.v0, t.v1, t.v2);
+    if (!(omega > 0.0)) return 0.0f;
+    pdf = 1.0 / omega;
+  } else {
+    pdf = double(distance_squared) / (t.area_m2 * std::fabs(double(cos_light)));
+  }
+  if (!(pdf > 0.0) || !std::isfinite(pdf) || pdf > double(std::numeric_limits<float>::max())) return 0.0f;
+  return float(pdf);
+}
+
+std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const LightReference& ref,
+                                                      const SampledWavelengths& lambda, Vec2 u, double choice) const {
+  LightSample s;
+  float distance_squared = 0.0f;
+  if (samples_solid_angle(t, ref.position)) {
+    // Behind a one-sided triangle nothing arrives; say so before sampling (triangle_pdf would say 0 anyway).
+    if (!two_sided_ && !(dot(t.normal, ref.position - t.v0) > 0.0f)) return std::nullopt;
+    const std::optional<Vec3> wi = sample_spherical_triangle(ref.position, t.v0, t.v1, t.v2, u);
+    if (!wi) return std::nullopt;
+    // The point where wi meets the triangle's plane (inside the triangle up to rounding).
+    const float along = dot(t.normal, *wi);
+    const float distance = dot(t.normal, t.v0 - ref.position) / along;
+    if (!(distance > 0.0f) || !std::isfinite(distance)) return std::nullopt;
+    s.wi = *wi;
+    s.distance = distance;
+    distance_squared = distance * distance;
+  } else {
+    const Vec3 b = sample_uniform_triangle(u);
+    const Vec3 point = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
+    const Vec3 to_light = point - ref.position;
+    distance_squared = length_squared(to_light);
+    if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return std::nullopt;
+    s.distance = std::sqrt(distance_squared);
+    s.wi = to_light / s.distance;
+  }
+  s.pdf_solid_angle = float(choice * double(triangle_pdf(t, ref.position, s.wi, distance_squared)));
+  if (!(s.pdf_solid_angle > 0.0f) || !std::isfinite(s.pdf_solid_angle)) return std::nullopt;
+  s.radiance = radiance_.sample(lambda);
+  s.normal = t.normal;
+  return s;
+}
+
+std::optional<LightSample> AreaLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
+                                                Vec2 u) const {
+  if (by_area_.is_zero() || radiance_.is_black()) return std::nullopt;
+  const auto pick = by_area_.sample_discrete(u.x);
+  const Triangle& t = triangles_[pick.index];
+  return sample_triangle(t, ref, lambda, {pick.u_remapped, u.y}, t.area_m2 / area_m2_);
+}
+
+std::optional<LightSample> AreaLight::sample_part_li(int part, const LightReference& ref,
+                                                     const SampledWavelengths& lambda, Vec2 u) const {
+  if (part == -1) return sample_li(ref, lambda, u);
+  if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
+  const Triangle& t = triangles_[size_t(part)];
+  if (t.area_m2 == 0.0) return std::nullopt;
+  return sample_triangle(t, ref, lambda, u, 1.0);
+}
+
+float AreaLight::hit_pdf(size_t k, const LightReference& ref, Vec3 wi, const SurfaceHit* hit, bool whole_mesh) const {
+  if (!hit || k >= triangles_.size() || by_area_.is_zero() || radiance_.is_black()) return 0.0f;
+  const Triangle& t = triangles_[k];
+  if (t.area_m2 == 0.0) return 0.0f;
+  const float distance_squared = length_squared(hit->position - ref.position);
+  if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return 0.0f;
+  const float pdf = triangle_pdf(t, ref.position, wi, distance_squared);
+  return whole_mesh ? float(double(pdf) * (t.area_m2 / area_m2_)) : pdf;
+}
+
+float AreaLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {
+  return hit ? hit_pdf(hit->primitive, ref, wi, hit, true) : 0.0f;
+}
+
+float AreaLight::pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {
+  if (part == -1) return pdf_li(ref, wi, hit);
+  if (!hit || part < 0 || size_t(part) != size_t(hit->primitive)) return 0.0f;
+  return hit_pdf(size_t(part), ref, wi, hit, false);
+}
+
+std::optional<LightBounds> AreaLight::part_bounds(int part) const {
+  if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
+  const Triangle& t = triangles_[size_t(part)];
+  if (t.area_m2 == 0.0) return std::nullopt;
+  return triangle_light_bounds(t.v0, t.v1, t.v2, t.normal, t.area_m2, radiance_.integral_360_830(), two_sided_);
+}
+
+SampledSpectrum AreaLight::radiance(const SurfaceHit& hit, Vec3 w_out, const SampledWavelengths& lambda) const {
+  if (hit.primitive >= triangles_.size()) return Float4(0.0f);
+  const Triangle& t = triangles_[hit.primitive];
+  if (t.area_m2 == 0.0 || (!two_sided_ && !(dot(t.normal, w_out) > 0.0f))) return Float4(0.0f);
+  return radiance_.sample(lambda);
+}
+
+double AreaLight::total_power_w(double) const {
+  return (two_sided_ ? 2.0 : 1.0) * std::numbers::pi * area_m2_ * radiance_.integral_360_830();
+}
+
+}  // namespace rimu

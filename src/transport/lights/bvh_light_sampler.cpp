@@ -1,0 +1,579 @@
+#include "transport/lights/bvh_light_sampler.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "spectral/wavelengths/sampled_wavelengths.h"
+#include "transport/lights/light.h"
+
+namespace rimu {
+
+struct BvhLightSampler::BuildItem {
+  LightBounds bounds;
+  Vec3 centroid;
+  uint32_t leaf;
+  uint32_t spectrum;  // spectral only: index into the per-light band shapes
+};
+
+namespace {
+
+constexpr int kBins = 12;
+// Below this depth splits minimise the cost; deeper (pathological inputs: thousands of coincident emitters) the
+// items are halved by count, so no leaf is deeper than kCostDepth + log2(n) ≤ 62 and its trail fits 64 bits.
+constexpr int kCostDepth = 30;
+
+// The bounds of a set of members without a cone union per member (each costs an acos and a rotation), in two
+// sequential passes: the first gathers box, intensity and the mean axis; the second the largest angle from that axis
+// to a member's cone edge, in cosines: cos(α + θo) = cos α cos θo − sin α sin θo, and the lit cone θl (light_bounds.h):
+// the smallest θl_m − α, cos(θl_m − α) = cos θl_m cos α + sin θl_m sin α. Conservative, like unite().
+class BoundsAccumulator {
+ public:
+  void add_first_pass(const LightBounds& m) {
+    if (empty_) {
+      b_ = m;
+      empty_ = false;
+    } else {
+      b_.lower_m = {std::fmin(b_.lower_m.x, m.lower_m.x), std::fmin(b_.lower_m.y, m.lower_m.y), std::fmin(b_.lower_m.z, m.lower_m.z)};
+      b_.upper_m = {std::fmax(b_.upper_m.x, m.upper_m.x), std::fmax(b_.upper_m.y, m.upper_m.y), std::fmax(b_.upper_m.z, m.upper_m.z)};
+      b_.intensity_w_sr += m.intensity_w_sr;
+      b_.cos_theta_e = std::fmin(b_.cos_theta_e, m.cos_theta_e);
+      b_.two_sided = b_.two_sided || m.two_sided;
+      same_axis_ = same_axis_ && m.axis == b_.axis && m.half_space && b_.half_space;
+      if (same_axis_) {
+        // Valid only while every member shares the axis; otherwise the second pass replaces both.
+        b_.plane_offset_m = std::fmin(b_.plane_offset_m, m.plane_offset_m);
+        b_.cos_theta_o = std::fmin(b_.cos_theta_o, m.cos_theta_o);
+        b_.cos_theta_lit = std::fmax(b_.cos_theta_lit, m.cos_theta_lit);
+      }
+    }
+    axis_sum_ += m.axis;
+  }
+  /// Between the passes. Returns false when the second pass is not needed (one member, or all facing one way).
+  bool needs_second_pass() {
+    if (empty_ || same_axis_) return false;
+    b_.half_space = false;
+    const float axis_length = length(axis_sum_);
+    if (axis_length > 1e-6f) b_.axis = axis_sum_ / axis_length;
+    second_ = true;
+    return true;
+  }
+  void add_second_pass(const LightBounds& m) {
+    const float c = std::clamp(dot(b_.axis, m.axis), -1.0f, 1.0f);
+    const float s = std::sqrt(std::fmax(0.0f, 1.0f - c * c));
+    if (cos_lit_ <= 1.0f) {
+      // θl_m − α ≤ 0 (cos θl_m ≥ cos α, or no lit cone): nothing is certain.
+      if (!(m.cos_theta_lit < c))
+        cos_lit_ = kNoLitCone;
+      else
+        cos_lit_ = std::fmax(cos_lit_, m.cos_theta_lit * c + std::sqrt(std::fmax(0.0f, 1.0f - m.cos_theta_lit * m.cos_theta_lit)) * s);
+    }
+    if (cos_o_ <= -1.0f) return;
+    if (c < -m.cos_theta_o) {  // α + θo ≥ π: the whole sphere
+      cos_o_ = -1.0f;
+      return;
+    }
+    const float sin_o = std::sqrt(std::fmax(0.0f, 1.0f - m.cos_theta_o * m.cos_theta_o));
+    cos_o_ = std::fmin(cos_o_, c * m.cos_theta_o - s * sin_o);
+  }
+  LightBounds result() const {
+    LightBounds out = b_;
+    if (second_) {
+      // Widened by 1e-4 rad against rounding in the cosines above (θl narrowed by as much).
+      const double theta = std::min(std::acos(std::clamp(double(cos_o_), -1.0, 1.0)) + 1e-4, 3.14159265358979323846);
+      out.cos_theta_o = float(std::cos(theta));
+      const double lit = cos_lit_ <= 1.0f ? std::acos(std::clamp(double(cos_lit_), -1.0, 1.0)) - 1e-4 : -1.0;
+      out.cos_theta_lit = lit > 0.0 ? float(std::cos(lit)) : kNoLitCone;
+    }
+    return out;
+  }
+
+ private:
+  LightBounds b_;
+  Vec3 axis_sum_{};
+  float cos_o_ = 1.0f;
+  float cos_lit_ = -1.0f;  // cos of the smallest θl_m − α so far (−1: none yet, i.e. π); kNoLitCone: none possible
+  bool empty_ = true, same_axis_ = true, second_ = false;
+};
+
+double surface_area(const LightBounds& b, double floor_m) {
+  const double x = double(b.upper_m.x - b.lower_m.x) + floor_m;
+  const double y = double(b.upper_m.y - b.lower_m.y) + floor_m;
+  const double z = double(b.upper_m.z - b.lower_m.z) + floor_m;
+  return 2.0 * (x * y + y * z + z * x);
+}
+
+// Conty & Kulla's cost of a cluster: its intensity × orientation measure × surface area. The floor (a thousandth
+// of the node's diagonal added to each extent) keeps collinear or coplanar point lights from all costing 0.
+double cluster_cost(const LightBounds& b, double floor_m) {
+  if (!(b.intensity_w_sr > 0.0f)) return 0.0;
+  return double(b.intensity_w_sr) * orientation_measure(b) * surface_area(b, floor_m);
+}
+
+// True if every leaf below a cluster with bounds `b` scores > 0 at (p, n), decided from the cluster's own bounds
+// (no leaf is read): p lies outside the cluster's bounding sphere, the whole box lies strictly above p's tangent
+// plane (so every member's box does), and every direction from a member's point to p lies within the lit cone θl
+// (light_bounds.h: inside that member's emission cone and falloff). With w the direction from the box centre to p and
+// θu the angle the bounding sphere subtends at p, a direction from any point of the box to p is within ∠(axis, w) +
+// θu of the axis; that must not exceed θl less twice the bounds' angular margin. For one-sided flat emitters (θl =
+// π/2) this puts p in front of every member's plane; for a ceiling of downlights (θl = their γ reach), below it and
+// inside every member's beam. Two-sided clusters are never certified here.
+bool every_leaf_scores(const ImportanceBounds& b, Vec3 p, Vec3 normal) {
+  // cos(θl − 2·margin) below, margin 1e-3 rad (light_bounds.cpp); θl ≤ 2·margin certifies nothing.
+  constexpr float kCosMargin = 0.999998f, kSinMargin = 0.002f;
+  if (b.two_sided || !(b.cos_theta_lit < kCosMargin)) return false;
+  const Vec3 to_p = p - b.centre_m;
+  if (!(normal == Vec3{}) && !(-dot(normal, to_p) - dot(abs(normal), b.half_m) > 0.0f)) return false;
+  const float distance2 = length_squared(to_p);
+  const float radius2 = b.radius2_m2;
+  if (!(distance2 > radius2)) return false;
+  // cos and sin of ∠(axis, w) + θu by the angle-sum formula; a sum past π fails (its sine turns negative).
+  const float sin2_u = radius2 / distance2;
+  const float c = dot(b.axis, to_p / std::sqrt(distance2));
+  const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
+  const float cos_u = std::sqrt(1.0f - sin2_u), sin_u = std::sqrt(sin2_u);
+  const float c_sum = c * cos_u - s * sin_u;
+  const float s_sum = s * cos_u + c * sin_u;
+  if (!(s_sum >= 0.0f)) return false;
+  const float sin_l = std::sqrt(std::max(0.0f, 1.0f - b.cos_theta_lit * b.cos_theta_lit));
+  return c_sum >= b.cos_theta_lit * kCosMargin + sin_l * kSinMargin;
+}
+
+// Whether leaf a is the better representative of a subtree than leaf b: the one more likely to score > 0 at an
+// arbitrary point, i.e. the one whose emission reaches the widest cone (θo + θe: a point light everywhere, a spot
+// its cone, a triangle its hemisphere), then the brighter.
+bool more_likely_to_score(const ImportanceBounds& a, const ImportanceBounds& b) {
+  const auto reach = [](const ImportanceBounds& x) {
+    return std::min(std::acos(std::clamp(double(x.cos_theta_o), -1.0, 1.0)) +
+                        std::acos(std::clamp(double(x.cos_theta_e), -1.0, 1.0)),
+                    3.14159265358979323846) + (x.two_sided ? 3.14159265358979323846 : 0.0);
+  };
+  const double reach_a = reach(a), reach_b = reach(b);
+  if (std::fabs(reach_a - reach_b) > 1e-6) return reach_a > reach_b;
+  return a.intensity_w_sr > b.intensity_w_sr;
+}
+
+}  // namespace
+
+namespace {
+
+constexpr double kBandLowerNm = 360.0, kBandUpperNm = 830.0;
+
+// A light's emission spectrum in BvhLightSampler::kBands bands: each band's mean over its mean over 360-830 nm
+// (1 nm midpoint sums), so the bands average to 1. Flat for lights without one spectrum or with a black one.
+std::array<float, BvhLightSampler::kBands> band_shape(const Light& light) {
+  std::array<float, BvhLightSampler::kBands> shape;
+  shape.fill(1.0f);
+  const LightSpectrum* spectrum = light.emitted_spectrum();
+  if (!spectrum) return shape;
+  // 30 midpoints per band, 0.98 nm apart: fine enough for 1 nm tables and line spectra a few nm wide.
+  constexpr int kNmPerBand = int(kBandUpperNm - kBandLowerNm) / BvhLightSampler::kBands;
+  const double band_nm = (kBandUpperNm - kBandLowerNm) / BvhLightSampler::kBands;
+  std::array<double, BvhLightSampler::kBands> mean{};
+  double total = 0.0;
+  for (int b = 0; b < BvhLightSampler::kBands; ++b) {
+    const double step = band_nm / (kNmPerBand + 1);
+    for (int i = 0; i <= kNmPerBand; ++i)
+      mean[size_t(b)] += std::max(0.0, spectrum->shape()->value(kBandLowerNm + b * band_nm + (i + 0.5) * step));
+    mean[size_t(b)] /= kNmPerBand + 1;
+    total += mean[size_t(b)] / BvhLightSampler::kBands;
+  }
+  if (!(total > 0.0) || !std::isfinite(total)) return shape;
+  for (int b = 0; b < BvhLightSampler::kBands; ++b) shape[size_t(b)] = float(mean[size_t(b)] / total);
+  return shape;
+}
+
+int band_of(float lambda_nm) {
+  const int b = int((double(lambda_nm) - kBandLowerNm) * (BvhLightSampler::kBands / (kBandUpperNm - kBandLowerNm)));
+  return std::clamp(b, 0, BvhLightSampler::kBands - 1);
+}
+
+}  // namespace
+
+BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importance importance, int search_budget)
+    : search_budget_(search_budget) {
+  const bool spectral = importance == Importance::spectral;
+  std::vector<std::array<float, kBands>> light_bands;  // spectral: per light, band_shape
+  if (spectral)
+    for (const Light* light : lights) light_bands.push_back(light->is_infinite() ? std::array<float, kBands>{} : band_shape(*light));
+  first_part_.resize(lights.size());
+  is_infinite_.resize(lights.size());
+  size_t total_parts = 0;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    first_part_[i] = uint32_t(total_parts);
+    total_parts += size_t(std::max(lights[i]->part_count(), 1));
+  }
+  trails_.assign(total_parts, 0);
+  std::vector<BuildItem> items;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const Light& light = *lights[i];
+    // An environment with portals has bounds (its portals) and is a leaf like any area light.
+    if (light.is_infinite() && !light.part_bounds(0)) {
+      is_infinite_[i] = true;
+      if (light.total_power_w(1.0) > 0.0) infinite_lights_.push_back(int(i));
+      continue;
+    }
+    bool any_bounds = false;
+    for (int k = 0; k < light.part_count(); ++k) {
+      const std::optional<LightBounds> b = light.part_bounds(k);
+      if (!b || !(b->intensity_w_sr > 0.0f) || !std::isfinite(b->intensity_w_sr) || !is_finite(b->lower_m) ||
+          !is_finite(b->upper_m))
+        continue;
+      any_bounds = true;
+      items.push_back({*b, b->centre_m(), uint32_t(leaves_.size()), uint32_t(i)});
+      leaves_.push_back({int(i), k});
+    }
+    // A finite light with power must say where it emits, or the tree could never pick it.
+    assert(any_bounds || !(light.total_power_w(0.0) > 0.0));
+    (void)any_bounds;
+  }
+  leaf_count_ = int(leaves_.size());
+  if (spectral) {
+    light_bands_ = std::move(light_bands);
+    node_bands_.resize(items.empty() ? 0 : 2 * items.size() - 1);
+  }
+  if (!items.empty()) {
+    nodes_.reserve(2 * items.size());
+    build(items, 0, items.size(), 0, 0);
+  }
+  light_bands_.clear();
+  light_bands_.shrink_to_fit();
+}
+
+uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail) {
+  const uint32_t index = uint32_t(nodes_.size());
+  nodes_.emplace_back();
+  if (end - begin == 1) {
+    const Leaf& leaf = leaves_[items[begin].leaf];
+    nodes_[index].bounds = ImportanceBounds::of(items[begin].bounds);
+    nodes_[index].index = items[begin].leaf;
+    nodes_[index].is_leaf = true;
+    nodes_[index].representative = index;
+    trails_[first_part_[size_t(leaf.light)] + uint32_t(leaf.part)] = trail | (uint64_t(1) << depth);
+    max_depth_ = std::max(max_depth_, depth);
+    if (!node_bands_.empty())
+      for (int b = 0; b < kBands; ++b)
+        node_bands_[index][size_t(b)] = items[begin].bounds.intensity_w_sr * light_bands_[items[begin].spectrum][size_t(b)];
+    return index;
+  }
+
+  BoundsAccumulator node_bounds;
+  for (size_t i = begin; i < end; ++i) node_bounds.add_first_pass(items[i].bounds);
+  if (node_bounds.needs_second_pass())
+    for (size_t i = begin; i < end; ++i) node_bounds.add_second_pass(items[i].bounds);
+  const LightBounds bounds = node_bounds.result();
+  Vec3 centroid_lower = items[begin].centroid, centroid_upper = items[begin].centroid;
+  for (size_t i = begin; i < end; ++i) {
+    const Vec3 c = items[i].centroid;
+    centroid_lower = {std::fmin(centroid_lower.x, c.x), std::fmin(centroid_lower.y, c.y), std::fmin(centroid_lower.z, c.z)};
+    centroid_upper = {std::fmax(centroid_upper.x, c.x), std::fmax(centroid_upper.y, c.y), std::fmax(centroid_upper.z, c.z)};
+  }
+  const Vec3 extent = centroid_upper - centroid_lower;
+  const float max_extent = max_component(extent);
+  const double floor_m = 1e-3 * double(length(bounds.upper_m - bounds.lower_m));
+
+  size_t middle = begin;
+  if (depth < kCostDepth && max_extent > 0.0f) {
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_split = 0;
+    // As many bins as items, up to kBins: most nodes are small, and each bin boundary costs two cluster costs.
+    const int bins_here = int(std::min<size_t>(kBins, end - begin));
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(extent[axis] > 0.0f)) continue;
+      std::array<LightBounds, kBins> bins{};
+      std::array<size_t, kBins> counts{};
+      const float scale = float(bins_here) / extent[axis];
+      const auto bin_of = [&](const BuildItem& item) {
+        return std::clamp(int((item.centroid[axis] - centroid_lower[axis]) * scale), 0, bins_here - 1);
+      };
+      std::array<BoundsAccumulator, kBins> accumulators;
+      for (size_t i = begin; i < end; ++i) {
+        const int bin = bin_of(items[i]);
+        accumulators[size_t(bin)].add_first_pass(items[i].bounds);
+        ++counts[size_t(bin)];
+      }
+      std::array<bool, kBins> second{};
+      bool any_second = false;
+      for (int b = 0; b < bins_here; ++b) any_second |= second[size_t(b)] = accumulators[size_t(b)].needs_second_pass();
+      if (any_second)
+        for (size_t i = begin; i < end; ++i) {
+          const int bin = bin_of(items[i]);
+          if (second[size_t(bin)]) accumulators[size_t(bin)].add_second_pass(items[i].bounds);
+        }
+      for (int b = 0; b < bins_here; ++b)
+        if (counts[size_t(b)] > 0) bins[size_t(b)] = accumulators[size_t(b)].result();
+      std::array<double, kBins> cost_above{};  // cost of bins [s, bins_here)
+      LightBounds above;
+      for (int s = bins_here - 1; s >= 1; --s) {
+        above = unite(above, bins[size_t(s)]);
+        cost_above[size_t(s)] = cluster_cost(above, floor_m);
+      }
+      LightBounds below;
+      size_t count_below = 0;
+      // Thin axes are penalised (Conty & Kulla's K_r): a split across a short extent separates little.
+      const double regulariser = double(max_extent) / double(extent[axis]);
+      for (int s = 1; s < bins_here; ++s) {
+        below = unite(below, bins[size_t(s - 1)]);
+        count_below += counts[size_t(s - 1)];
+        if (count_below == 0 || count_below == end - begin) continue;
+        const double cost = regulariser * (cluster_cost(below, floor_m) + cost_above[size_t(s)]);
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_split = s;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      const float scale = float(bins_here) / extent[best_axis];
+      const float lower = centroid_lower[best_axis];
+      middle = size_t(std::partition(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end),
+                                     [&](const BuildItem& item) {
+                                       return std::clamp(int((item.centroid[best_axis] - lower) * scale), 0,
+                                                         bins_here - 1) < best_split;
+                                     }) -
+                      items.begin());
+    }
+  }
+  if (middle == begin || middle == end) {
+    // No useful cost split: halve by count along the longest centroid extent.
+    middle = begin + (end - begin) / 2;
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (extent[a] > extent[axis]) axis = a;
+    std::nth_element(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(middle),
+                     items.begin() + std::ptrdiff_t(end),
+                     [axis](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
+  }
+
+  const uint32_t first = build(items, begin, middle, depth + 1, trail);
+  const uint32_t second = build(items, middle, end, depth + 1, trail | (uint64_t(1) << depth));
+  nodes_[index].bounds = ImportanceBounds::of(bounds);
+  nodes_[index].index = second;
+  if (!node_bands_.empty())
+    for (int b = 0; b < kBands; ++b)
+      node_bands_[index][size_t(b)] = node_bands_[first][size_t(b)] + node_bands_[second][size_t(b)];
+  const uint32_t first_representative = nodes_[first].representative;
+  const uint32_t second_representative = nodes_[second].representative;
+  nodes_[index].representative =
+      more_likely_to_score(nodes_[second_representative].bounds, nodes_[first_representative].bounds)
+          ? second_representative
+          : first_representative;
+  return index;
+}
+
+BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
+                                              const Query& at) const {
+  const uint32_t first = index + 1, second = nodes_[index].index;
+  Split out;
+  float a = 0.0f, b = 0.0f;
+  if (witness == kCertified) {
+    // Every leaf below scores: the plain importances, and both children stay certified.
+    a = importance(first, at);
+    b = importance(second, at);
+    out.first_witness = a > 0.0f ? kCertified : kNoLeaf;
+    out.second_witness = b > 0.0f ? kCertified : kNoLeaf;
+  } else if (witness < kUnknown && witness < second) {
+    // Leaves below the first child have node indices in [first, second) (depth-first order).
+    a = importance(first, at);
+    out.first_witness = a > 0.0f ? witness : kNoLeaf;
+    b = pruned_importance(second, at, &out.second_witness);
+  } else if (witness < kUnknown) {
+    a = pruned_importance(first, at, &out.first_witness);
+    b = importance(second, at);
+    out.second_witness = b > 0.0f ? witness : kNoLeaf;
+  } else {  // kNoLeaf (the root) or kUnknown: both children are checked
+    a = pruned_importance(first, at, &out.first_witness);
+    b = pruned_importance(second, at, &out.second_witness);
+  }
+  if (out.first_witness == kNoLeaf) a = 0.0f;
+  if (out.second_witness == kNoLeaf) b = 0.0f;
+  const float sum = a + b;
+  if (!(sum > 0.0f)) return Split{};
+  out.first = a / sum;
+  out.second = b / sum;
+  return out;
+}
+
+namespace {
+
+// Sums four floats in ascending order: the same result for any order of the inputs (rotated lanes).
+float order_independent_sum(std::array<float, 4> v) {
+  const auto order = [](float& a, float& b) {
+    if (b < a) std::swap(a, b);
+  };
+  order(v[0], v[1]);
+  order(v[2], v[3]);
+  order(v[0], v[2]);
+  order(v[1], v[3]);
+  order(v[1], v[2]);
+  return ((v[0] + v[1]) + v[2]) + v[3];
+}
+
+}  // namespace
+
+BvhLightSampler::Query BvhLightSampler::query(const LightSamplingPoint& at) const {
+  Query q;
+  static_cast<LightSamplingPoint&>(q) = at;
+  if (node_bands_.empty() || !at.wavelengths) return q;
+  static_assert(kLaneCount == 4);
+  const SampledWavelengths& lambda = *at.wavelengths;
+  const Float4 pdf = lambda.pdf();
+  std::array<float, 4> w{};
+  for (int k = 0; k < 4; ++k) {
+    q.band[size_t(k)] = band_of(lambda.lambda_nm(k));
+    // Lanes without a density (terminated) add nothing to the film.
+    w[size_t(k)] = pdf[k] > 0.0f && std::isfinite(pdf[k]) ? 1.0f : 0.0f;
+  }
+  const float total = order_independent_sum(w);
+  if (!(total > 0.0f) || !std::isfinite(total)) return q;
+  for (int k = 0; k < 4; ++k) q.weight[size_t(k)] = w[size_t(k)] / total;
+  q.spectral = true;
+  return q;
+}
+
+float BvhLightSampler::importance(uint32_t index, const Query& at) const {
+  const ImportanceBounds& bounds = nodes_[index].bounds;
+  const float broadband = light_importance(bounds, at.position_m, at.normal);
+  if (!at.spectral || !(broadband > 0.0f)) return broadband;
+  const std::array<float, kBands>& bands = node_bands_[index];
+  std::array<float, 4> terms;
+  for (size_t k = 0; k < 4; ++k) terms[k] = at.weight[k] * bands[size_t(at.band[k])];
+  const float spectral = order_independent_sum(terms) + kSpectralFloor * bounds.intensity_w_sr;
+  return broadband * (spectral / bounds.intensity_w_sr);
+}
+
+float BvhLightSampler::pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const {
+  const Node& node = nodes_[index];
+  const float importance = this->importance(index, at);
+  *witness = kNoLeaf;
+  if (!(importance > 0.0f)) return 0.0f;
+  if (node.is_leaf)
+    *witness = index;
+  else if (every_leaf_scores(node.bounds, at.position_m, at.normal))
+    *witness = kCertified;
+  else {
+    int budget = search_budget_ > 0 ? search_budget_ : -1;
+    *witness = find_scoring_leaf(index, at, &budget);
+  }
+  return *witness == kNoLeaf ? 0.0f : importance;
+}
+
+uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget) const {
+  // One node visit = one importance evaluation; a budget of 0 left means give up (a negative one never does).
+  const auto visit = [budget] {
+    if (*budget == 0) return false;
+    if (*budget > 0) --*budget;
+    return true;
+  };
+  const Node& node = nodes_[index];
+  if (!visit()) return kUnknown;
+  if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
+    return node.representative;
+  // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
+  // too, up to rounding).
+  for (const uint32_t child : {index + 1, node.index}) {
+    const Node& c = nodes_[child];
+    if (!visit()) return kUnknown;
+    if (!(light_importance(c.bounds, at.position_m, at.normal) > 0.0f)) continue;
+    if (c.is_leaf) return child;
+    if (every_leaf_scores(c.bounds, at.position_m, at.normal)) return c.representative;
+    if (const uint32_t leaf = find_scoring_leaf(child, at, budget); leaf != kNoLeaf) return leaf;
+  }
+  return kNoLeaf;
+}
+
+BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
+  bool tree_can_contribute = false;
+  Split root_split;
+  if (!nodes_.empty()) {
+    const Node& root = nodes_[0];
+    if (root.is_leaf) {
+      tree_can_contribute = importance(0, at) > 0.0f;
+    } else {
+      root_split = split(0, kNoLeaf, at);
+      tree_can_contribute = root_split.first > 0.0f || root_split.second > 0.0f;
+    }
+  }
+  const int m = int(infinite_lights_.size());
+  if (m == 0) return {tree_can_contribute ? 1.0f : 0.0f, 0.0f, root_split};
+  if (!tree_can_contribute) return {0.0f, 1.0f / float(m), root_split};
+  return {1.0f / float(m + 1), 1.0f / float(m + 1), root_split};
+}
+
+std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& point, float u_float) const {
+  const Query at = query(point);
+  const Shares shares_here = shares(at);
+  const int m = int(infinite_lights_.size());
+  double u = double(u_float);
+  const double infinite_total = double(shares_here.each_infinite) * m;
+  if (m > 0 && u < infinite_total) {
+    const int k = std::min(int(u / double(shares_here.each_infinite)), m - 1);
+    return LightChoice{infinite_lights_[size_t(k)], 0, shares_here.each_infinite};
+  }
+  if (!(shares_here.tree > 0.0f)) return std::nullopt;
+  constexpr double kBelowOne = 1.0 - 0x1p-53;
+  u = std::min((u - infinite_total) / double(shares_here.tree), kBelowOne);
+  float probability = shares_here.tree;
+  uint32_t node = 0, witness = kNoLeaf;
+  while (!nodes_[node].is_leaf) {
+    const Split s = node == 0 ? shares_here.root : split(node, witness, at);
+    if (u < double(s.first)) {
+      u = u / double(s.first);
+      probability *= s.first;
+      node = node + 1;
+      witness = s.first_witness;
+    } else {
+      if (!(s.second > 0.0f)) return std::nullopt;  // neither child can contribute (only through rounding)
+      u = (u - double(s.first)) / double(s.second);
+      probability *= s.second;
+      node = nodes_[node].index;
+      witness = s.second_witness;
+    }
+    u = std::clamp(u, 0.0, kBelowOne);
+  }
+  if (!(probability > 0.0f)) return std::nullopt;  // underflow far down a deep tree
+  const Leaf& leaf = leaves_[nodes_[node].index];
+  return LightChoice{leaf.light, leaf.part, probability};
+}
+
+float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part) const {
+  const Query at = query(point);
+  if (light < 0 || size_t(light) >= first_part_.size() || part < 0) return 0.0f;
+  if (is_infinite_[size_t(light)]) {
+    if (part != 0 || std::find(infinite_lights_.begin(), infinite_lights_.end(), light) == infinite_lights_.end())
+      return 0.0f;
+    return shares(at).each_infinite;
+  }
+  const size_t end = size_t(light) + 1 < first_part_.size() ? first_part_[size_t(light) + 1] : trails_.size();
+  const size_t slot = first_part_[size_t(light)] + size_t(part);
+  if (slot >= end) return 0.0f;
+  uint64_t trail = trails_[slot];
+  if (trail == 0) return 0.0f;
+  const Shares shares_here = shares(at);
+  if (!(shares_here.tree > 0.0f)) return 0.0f;
+  float probability = shares_here.tree;
+  uint32_t node = 0, witness = kNoLeaf;
+  while (!nodes_[node].is_leaf) {
+    const Split s = node == 0 ? shares_here.root : split(node, witness, at);
+    const bool second = (trail & 1) != 0;
+    trail >>= 1;
+    const float factor = second ? s.second : s.first;
+    if (!(factor > 0.0f)) return 0.0f;
+    probability *= factor;
+    node = second ? nodes_[node].index : node + 1;
+    witness = second ? s.second_witness : s.first_witness;
+  }
+  return probability;
+}
+
+size_t BvhLightSampler::memory_bytes() const {
+  return sizeof(*this) + nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
+         first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
+         infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8 +
+         node_bands_.capacity() * sizeof(node_bands_[0]);
+}
+
+}  // namespace rimu

@@ -1,0 +1,169 @@
+// Chooses a light for a shading point by descending a bounding volume hierarchy over every finite light's parts
+// (each emissive triangle its own leaf), in proportion to each cluster's importance there (light_bounds.h;
+// Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree Splitting").
+//
+// Descent. At an interior node with children a, b of importances I_a, I_b at (p, n), child a is taken with
+// probability I_a / (I_a + I_b); the leaf's probability is the product along its path. pmf() retraces that path
+// (stored per leaf as a bit trail) and multiplies the same factors in the same order, so it returns exactly the
+// sampled probability. Importances are 0 behind one-sided emitters, outside spot/IES cones and below an opaque
+// surface's tangent plane.
+//
+// Pruning. A node's bounds are looser than its children's, so a node can score > 0 while every leaf below it
+// scores 0 (its box straddles the tangent plane, each child's box lies below it). A descent into such a subtree
+// would find no light, and that probability would be lost (~20 % at random points with random normals). So a
+// child's importance counts only if some leaf below it scores > 0. That is decided from the child's own bounds
+// where they guarantee that every leaf scores (the usual case: the cluster wholly above the tangent plane and p
+// inside every member's emission cone; below such a cluster nothing more is checked), else on the subtree's
+// representative (its leaf whose emission reaches the widest cone, then the brightest), else by a depth-first
+// search that stops at the first leaf that scores > 0. The leaf found is carried down as a witness: the child
+// holding it needs no check, so a descent checks one child per level. The probabilities of the leaves that score
+// > 0 then sum to 1 (to float rounding), and no other leaf has any. pmf() carries the same witnesses along the
+// same path, so it still multiplies identical factors. Cost: one extra importance evaluation per level where
+// nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
+//
+// Capped search (an option; search_budget 0, the default, leaves searches unlimited). A search is limited to `search_budget` node visits
+// (importance evaluations). If it runs out, the child counts as if it could contribute, with no witness: the
+// descent checks both of its children again. Where such a child has no scoring leaf below, a descent into it finds
+// none and sample() returns std::nullopt: the probabilities then sum to less than 1 at that point, by that child's
+// share, but every leaf that scores > 0 still has probability > 0 (a child holding one is never dropped), so the
+// choice stays unbiased, and pmf() retraces the same checks with the same budget, so it still equals sample()'s
+// probability exactly. The cap bounds a choice's work at about 2 + 2·search_budget importance evaluations per level
+// (depth ≤ 62), whatever the lights; without it a search may visit every node below a child at every level (10⁶
+// randomly oriented triangles: the bounds certify nothing). Where bounds certify clusters or representatives score
+// (rooms, streets, the Cornell box) searches end within a visit or two and the cap never acts; on 1,050 randomly
+// oriented triangles at random points with random normals the probabilities sum to 0.87 on average
+// (docs/benchmarks.md, "Light sampling").
+//
+// An environment with portals (environment_light.h) is a leaf of the tree: its bounds are the portal rectangles,
+// two-sided, with the intensity of a Lambertian emitter of the environment's mean radiance, so near a window the sky
+// competes with the lamps as a window-sized area light would, and far from it gets little.
+// Other lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
+// with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
+// finite light can contribute (the tree's top split has importance 0 on both sides), each gets 1/m instead.
+//
+// Spectral importance (Importance::spectral, "light_sampler": "bvh-spectral"). Each node also holds its intensity
+// bound's spectral shape in kBands equal bands over 360-830 nm: band b is the cluster's intensity_w_sr times the
+// mean of its members' emission spectra over the band relative to their mean over 360-830 nm (so the bands average
+// to intensity_w_sr; a cluster holds the sum of its members'). Given the path's wavelengths, a node's importance is
+// its geometric factor (light_importance ÷ intensity_w_sr) times
+//   ¼ Σ_k band(λ_k) + kSpectralFloor · intensity_w_sr,
+// the mean over the four lanes of the power there (lanes without a density, if any, left out). Two variants were
+// measured and dropped (docs/sampling.md): weighing each lane by p_vis(λ_k)/p(λ_k), what it adds to the film under
+// "wavelength_density": "lights" (worse: 2.8× higher relMSE than bvh on the red + blue lamps there, 1.6× without),
+// and, with those weights, 47 bands of 10 nm (4 % lower relMSE on the red + blue lamps under the visible density,
+// at 3× the memory). The sum is symmetric in the lanes, so the probabilities are the same whichever lane is the
+// hero: the per-lane light densities of the spectral MIS are all equal, and the
+// integrators' MIS needs no change (each lane's technique density includes the same choice probability). The floor
+// keeps every leaf that can contribute at some wavelength at probability > 0 whatever the bands say (a band mean
+// can be 0 where a tabulated spectrum has one non-zero knot), so the choice stays unbiased; pruning (which leaves
+// score > 0) is geometric and unchanged, so the probabilities still sum to 1. Without wavelengths (nullptr in
+// LightSamplingPoint) the importance is bvh's. Memory: kBands floats more per node.
+//
+// Build: binned (12 bins per axis) top-down splits minimising Conty & Kulla's surface-area-orientation cost
+// Σ_children intensity · M_Ω · area, the area regularised so that collinear point lights still split. Cost
+// O(n log n); memory in memory_bytes().
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "transport/lights/light_bounds.h"
+#include "transport/lights/light_sampler.h"
+
+namespace rimu {
+
+class BvhLightSampler final : public LightSampler {
+ public:
+  /// What a node's importance weighs light by: radiant intensity over 360-830 nm (bvh), or at the path's
+  /// wavelengths (bvh-spectral; see above).
+  enum class Importance { broadband, spectral };
+  static constexpr int kBands = 16;  ///< 29.4 nm each: 64 bytes per node
+  static constexpr float kSpectralFloor = 1e-3f;
+
+  /// The default search cap (see "Capped search"): none. A cap of 8 visits bounds a choice's work in the worst case
+  /// (10⁶ random triangles: 13.4 against 17.0 µs per choice) but wastes probability on empty clusters next to a
+  /// large emitter: a receiver 0.3 mm from a 9,024-triangle bulb got a 2.2× larger standard error with it (32 visits:
+  /// 1.5×; tests/render/integration_emitter_distance_test.cpp), a worse trade than the worst case's 1.3×.
+  static constexpr int kSearchBudget = 0;
+
+  /// Over `lights` (indices as given; they must outlive the sampler). `search_budget`: the cap (default
+  /// kSearchBudget), or 0 for unlimited searches, so the probabilities sum to exactly 1 wherever some light can
+  /// contribute, at a cost that grows with the lights in the worst case.
+  explicit BvhLightSampler(std::span<const Light* const> lights, Importance importance = Importance::broadband,
+                           int search_budget = kSearchBudget);
+
+  std::optional<LightChoice> sample(const LightSamplingPoint& at, float u) const override;
+  float pmf(const LightSamplingPoint& at, int light, int part) const override;
+  bool chooses_parts() const override { return true; }
+
+  /// Leaves (finite light parts with power), nodes, the deepest leaf, and the bytes the sampler holds.
+  int leaf_count() const { return leaf_count_; }
+  int node_count() const { return int(nodes_.size()); }
+  int max_depth() const { return max_depth_; }
+  size_t memory_bytes() const;
+
+ private:
+  struct Node {
+    ImportanceBounds bounds;
+    uint32_t index = 0;  // interior: the second child (the first is the next node); leaf: into leaves_
+    uint32_t representative = 0;  // the node of the subtree's leaf likeliest to score (widest reach, brightest)
+    bool is_leaf = false;
+  };
+  struct Leaf {
+    int light, part;
+  };
+  static constexpr uint32_t kNoLeaf = 0xffffffffu;
+  static constexpr uint32_t kCertified = 0xfffffffeu;  // a witness meaning: every leaf below scores > 0
+  static constexpr uint32_t kUnknown = 0xfffffffdu;  // a witness meaning: the search ran out (see "Capped search")
+  struct Split {
+    float first = 0.0f, second = 0.0f;  // the probabilities of the two children; both 0 if neither can contribute
+    // Per child: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the child cannot contribute).
+    uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;
+  };
+  struct BuildItem;
+  /// A point with what the spectral importance needs of its wavelengths, worked out once per sample()/pmf():
+  /// each lane's band and weight (1/n for the n lanes with a density); spectral = false: the broadband importance.
+  struct Query : LightSamplingPoint {
+    bool spectral = false;
+    std::array<int, 4> band{};
+    std::array<float, 4> weight{};
+  };
+  Query query(const LightSamplingPoint& at) const;
+
+  /// The split at interior node `index`, given `witness`: a leaf node below it known to score > 0 (the child
+  /// holding it needs no search), kCertified (no child needs one), or kNoLeaf.
+  Split split(uint32_t index, uint32_t witness, const Query& at) const;
+  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf,
+  /// kCertified if the node's bounds show that every leaf below scores, or kNoLeaf.
+  float pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const;
+  /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
+  /// representative if every leaf is certified to score or it scores, else depth first; kUnknown once `*budget`
+  /// node visits are spent (a negative budget never runs out).
+  uint32_t find_scoring_leaf(uint32_t index, const Query& at, int* budget) const;
+  /// The probability of the tree as a whole and of each light at infinity at `at`.
+  struct Shares {
+    float tree, each_infinite;
+    Split root;  // the root's split, reused by the descent (unset for a one-leaf tree)
+  };
+  Shares shares(const Query& at) const;
+  uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
+  /// The importance of node `index` at `at` (light_importance, or its spectral form when the sampler is spectral
+  /// and `at` carries wavelengths). Zero exactly where light_importance is zero (up to underflow).
+  float importance(uint32_t index, const Query& at) const;
+
+  std::vector<Node> nodes_;
+  // Spectral only: per node, the band intensities (W/sr, averaging to the node's intensity_w_sr).
+  std::vector<std::array<float, kBands>> node_bands_;
+  std::vector<std::array<float, kBands>> light_bands_;  // during the build only: per light, its band shape
+  std::vector<Leaf> leaves_;
+  std::vector<uint32_t> first_part_;  // per light: the index of its part 0 in trails_
+  std::vector<uint64_t> trails_;      // per (light, part): 1 << depth | the path's bits (1 = second child); 0: none
+  std::vector<int> infinite_lights_;
+  std::vector<bool> is_infinite_;
+  int search_budget_ = 0;
+  int leaf_count_ = 0;
+  int max_depth_ = 0;
+};
+
+}  // namespace rimu

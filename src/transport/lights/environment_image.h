@@ -1,0 +1,26 @@
+// The pixels of an equirectangular (latitude-longitude) environment image, as the environment light reads them.
+//
+// An interface so that the render side can supply OpenImageIO pixels upsampled to spectra (issue 4's scene
+// loader) while transport stays free of image libraries. Pixel (x, y): column x in [0, width), row y in
+// [0, height), row 0 at the TOP of the image. The direction each pixel covers is set by EnvironmentLight
+// (environment_light.h).
+#pragma once
+
+#include "spectral/wavelengths/sampled_wavelengths.h"
+
+namespace rimu {
+
+class EnvironmentImage {
+ public:
+  virtual ~EnvironmentImage() = default;
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  /// Spectral radiance of pixel (x, y) at the four wavelengths, W/(m²·sr·nm) before the light's scale.
+  /// Called per sample: it must be cheap and thread-safe.
+  virtual SampledSpectrum radiance(int x, int y, const SampledWavelengths& lambda) const = 0;
+  /// The pixel's brightness for importance sampling: its luminance (any positive multiple will do), ≥ 0.
+  /// Called once per pixel when the light is built.
+  virtual float luminance(int x, int y) const = 0;
+};
+
+}  // namespace rimu

@@ -1,0 +1,164 @@
+#include "transport/lights/environment_light.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "spectral/spectra/wavelength_range.h"
+#include "transport/sampling/equal_area_square.h"
+#include "transport/lights/light_warps.h"
+
+namespace rimu {
+
+namespace {
+constexpr float kPi = std::numbers::pi_v<float>;
+constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
+/// Share of the mean luminance added to every pixel's sampling weight (see the header).
+constexpr double kLuminanceFloor = 1e-3;
+/// Wavelengths of the power estimate's midpoint rule: 4 lane groups of 4.
+constexpr int kPowerWavelengths = 16;
+}  // namespace
+
+EnvironmentLight::EnvironmentLight(LightSpectrum radiance)
+    : constant_(std::move(radiance)), frame_{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}} {
+  mean_radiance_integral_ = constant_->integral_360_830();
+}
+
+EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentImage> image, double scale, Frame frame,
+                                   EnvironmentMapping mapping)
+    : image_(std::move(image)), image_scale_(scale), frame_(frame), mapping_(mapping) {
+  assert(image_ && image_->width() > 0 && image_->height() > 0 && std::isfinite(scale) && scale >= 0.0);
+  const int w = image_->width(), h = image_->height();
+  std::vector<double> luminance(size_t(w) * h);
+  double mean = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float lum = image_->luminance(x, y);
+      assert(std::isfinite(lum) && lum >= 0.0f);
+      luminance[size_t(y) * w + x] = std::max(0.0, double(lum));
+      mean += luminance[size_t(y) * w + x];
+    }
+  mean /= double(w) * h;
+  // Ω_y = (2π/w)(cos θ_top − cos θ_bottom) of a pixel in row y (equirectangular) or 4π/(w·h) (equal-area), for
+  // the power estimate.
+  const bool equal_area = mapping_ == EnvironmentMapping::equal_area_octahedral;
+  const double band_nm = (kLambdaMaxNm - kLambdaMinNm) / kPowerWavelengths;
+  std::vector<SampledWavelengths> groups;
+  for (int g = 0; g < kPowerWavelengths / kLaneCount; ++g) {
+    Float4 l;
+    for (int j = 0; j < kLaneCount; ++j) l.set(j, float(kLambdaMinNm + (g * kLaneCount + j + 0.5) * band_nm));
+    groups.emplace_back(l, Float4(float(1.0 / (kLambdaMaxNm - kLambdaMinNm))));
+  }
+  double radiance_times_solid_angle = 0.0;
+  for (int y = 0; y < h; ++y) {
+    const double theta_center = std::numbers::pi * (y + 0.5) / h;
+    const double sin_theta = equal_area ? 1.0 : std::sin(theta_center);
+    const double pixel_sr = equal_area ? 4.0 * std::numbers::pi / (double(w) * h)
+                                       : 2.0 * std::numbers::pi / w *
+                                             (std::cos(std::numbers::pi * y / h) - std::cos(std::numbers::pi * (y + 1) / h));
+    for (int x = 0; x < w; ++x) {
+      double& weight = luminance[size_t(y) * w + x];
+      weight = (weight + kLuminanceFloor * mean) * sin_theta;
+      double spectral_sum = 0.0;
+      for (const auto& lambda : groups) spectral_sum += sum(image_->radiance(x, y, lambda));
+      radiance_times_solid_angle += spectral_sum * band_nm * pixel_sr;
+    }
+  }
+  mean_radiance_integral_ = image_scale_ * radiance_times_solid_angle / (4.0 * std::numbers::pi);
+  distribution_ = Distribution2D(luminance, w, h);
+}
+
+Vec2 EnvironmentLight::direction_to_uv(Vec3 direction) const {
+  const Vec3 d = frame_.to_local(direction);
+  const float below_one = std::nextafter(1.0f, 0.0f);
+  if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
+    const Vec2 uv = equal_area_sphere_to_square(d);
+    return {std::min(uv.x, below_one), std::min(uv.y, below_one)};
+  }
+  const float theta = std::acos(std::clamp(d.z, -1.0f, 1.0f));
+  float phi = std::atan2(-d.y, d.x);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  return {std::min(phi / (2.0f * kPi), below_one), std::min(theta / kPi, below_one)};
+}
+
+Vec3 EnvironmentLight::uv_to_direction(Vec2 uv) const {
+  if (mapping_ == EnvironmentMapping::equal_area_octahedral) return frame_.to_world(equal_area_square_to_sphere(uv));
+  const float theta = kPi * uv.y, phi = 2.0f * kPi * uv.x;
+  const float sin_theta = std::sin(theta);
+  return frame_.to_world({sin_theta * std::cos(phi), -sin_theta * std::sin(phi), std::cos(theta)});
+}
+
+SampledSpectrum EnvironmentLight::lookup(Vec2 uv, const SampledWavelengths& lambda) const {
+  const int x = std::min(int(uv.x * float(image_->width())), image_->width() - 1);
+  const int y = std::min(int(uv.y * float(image_->height())), image_->height() - 1);
+  return image_->radiance(x, y, lambda) * Float4(float(image_scale_));
+}
+
+SampledSpectrum EnvironmentLight::radiance_escaped(Vec3 direction, const SampledWavelengths& lambda) const {
+  if (constant_) return constant_->sample(lambda);
+  return lookup(direction_to_uv(direction), lambda);
+}
+
+float EnvironmentLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit*) const {
+  if (!(mean_radiance_integral_ > 0.0)) return 0.0f;
+  if (!portals_.empty()) return portals_.pdf(ref.position, wi);
+  if (distribution_.is_zero()) return kUniformSpherePdf;
+  if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
+    // dω = 4π du dv everywhere (the map preserves area).
+    const float pdf = distribution_.pdf(direction_to_uv(wi)) / (4.0f * kPi);
+    return std::isfinite(pdf) ? pdf : 0.0f;
+  }
+  const Vec3 d = frame_.to_local(wi);
+  const float sin_theta = std::sqrt(std::fmax(0.0f, d.x * d.x + d.y * d.y));
+  if (!(sin_theta > 0.0f)) return 0.0f;
+  const float pdf = distribution_.pdf(direction_to_uv(wi)) / (2.0f * kPi * kPi * sin_theta);
+  return std::isfinite(pdf) ? pdf : 0.0f;
+}
+
+std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
+                                                       Vec2 u) const {
+  if (!(mean_radiance_integral_ > 0.0)) return std::nullopt;
+  LightSample s;
+  if (!portals_.empty()) {
+    const auto through = portals_.sample(ref.position, u);
+    if (!through) return std::nullopt;
+    s.wi = through->wi;
+    s.pdf_solid_angle = through->pdf_sr;
+  } else if (distribution_.is_zero()) {
+    s.wi = sample_uniform_sphere(u);
+    s.pdf_solid_angle = kUniformSpherePdf;
+  } else {
+    // The density and radiance are evaluated from the returned direction, exactly as pdf_li and
+    // radiance_escaped do, so a BSDF-sampled ray along the same direction gets the same numbers even where the
+    // uv → direction → uv round trip crosses a pixel edge by an ulp.
+    s.wi = normalize(uv_to_direction(distribution_.sample(u).uv));
+    s.pdf_solid_angle = pdf_li(ref, s.wi);
+    if (s.pdf_solid_angle == 0.0f) return std::nullopt;
+  }
+  s.radiance = radiance_escaped(s.wi, lambda);
+  return s;
+}
+
+std::optional<LightBounds> EnvironmentLight::part_bounds(int part) const {
+  if (portals_.empty() || part != 0 || !(mean_radiance_integral_ > 0.0)) return std::nullopt;
+  LightBounds all;
+  for (const PortalRectangle& p : portals_.portals()) {
+    // The rectangle as its two triangles (the bounds' area-weighted intensities add up to L̄·A).
+    const Vec3 c0 = p.corner, c1 = p.corner + p.edge_a, c2 = c1 + p.edge_b, c3 = p.corner + p.edge_b;
+    const double half_area = 0.5 * p.area_m2();
+    all = unite(all, triangle_light_bounds(c0, c1, c2, p.normal(), half_area, mean_radiance_integral_, true));
+    all = unite(all, triangle_light_bounds(c0, c2, c3, p.normal(), half_area, mean_radiance_integral_, true));
+  }
+  if (!(all.intensity_w_sr > 0.0f)) return std::nullopt;
+  return all;
+}
+
+double EnvironmentLight::total_power_w(double scene_radius_m) const {
+  // A portal of area A under radiance L from its whole outer hemisphere passes ∫ L cos θ dω dA = π L A.
+  if (!portals_.empty()) return std::numbers::pi * portals_.total_area_m2() * mean_radiance_integral_;
+  return 4.0 * std::numbers::pi * std::numbers::pi * scene_radius_m * scene_radius_m * mean_radiance_integral_;
+}
+
+}  // namespace rimu

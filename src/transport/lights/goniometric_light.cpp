@@ -1,0 +1,58 @@
+#include "transport/lights/goniometric_light.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numbers>
+
+#include "transport/lights/point_light.h"
+
+namespace rimu {
+
+GoniometricLight::GoniometricLight(Vec3 position_m, Vec3 axis, Vec3 c0_direction, LightSpectrum per_unit_intensity,
+                                   std::shared_ptr<const IntensityDistribution> table)
+    : position_m_(position_m), per_unit_intensity_(std::move(per_unit_intensity)), table_(std::move(table)) {
+  const Vec3 n = normalize(axis);
+  const Vec3 s = normalize(c0_direction - n * dot(c0_direction, n));
+  assert(is_finite(s));
+  // C increases counter-clockwise seen from the side opposite the axis (looking down onto a downlight from above),
+  // so C = 90° is the t with s × t = −n: t = s × n (then s × (s × n) = s (s·n) − n (s·s) = −n).
+  frame_ = Frame{s, cross(s, n), n};
+}
+
+GoniometricLight::GoniometricLight(Vec3 position_m, Frame frame, LightSpectrum per_unit_intensity,
+                                   std::shared_ptr<const IntensityDistribution> table)
+    : position_m_(position_m), frame_(frame), per_unit_intensity_(std::move(per_unit_intensity)), table_(std::move(table)) {}
+
+std::optional<LightSample> GoniometricLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
+                                                       Vec2) const {
+  const Vec3 to_ref = ref.position - position_m_;
+  const float d = length(to_ref);
+  if (!(d > 0.0f) || !std::isfinite(d)) return std::nullopt;
+  const double candela = table_value(to_ref / d);
+  if (!(candela > 0.0)) return std::nullopt;
+  return delta_position_sample(position_m_, ref, per_unit_intensity_.sample(lambda) * Float4(float(candela)));
+}
+
+double GoniometricLight::total_power_w(double) const {
+  return per_unit_intensity_.integral_360_830() * table_->integral_sr();
+}
+
+std::optional<LightBounds> GoniometricLight::part_bounds(int part) const {
+  const double intensity = per_unit_intensity_.integral_360_830() * table_->peak();
+  if (part != 0 || !(intensity > 0.0)) return std::nullopt;
+  const auto gamma = table_->nonzero_gamma_rad();
+  if (!gamma) return std::nullopt;
+  const auto [gamma_min, gamma_max] = *gamma;
+  const double i = intensity;
+  if (gamma_max <= std::numbers::pi - gamma_min) return point_light_bounds(position_m_, i, frame_.n, gamma_max, 0.0);
+  return point_light_bounds(position_m_, i, -frame_.n, std::numbers::pi - gamma_min, 0.0);
+}
+
+std::optional<IntensityDistribution::DirectionSample> GoniometricLight::sample_emission_direction(Vec2 u) const {
+  auto s = table_->sample(u);
+  if (s) s->w = frame_.to_world(s->w);
+  return s;
+}
+
+}  // namespace rimu

@@ -1,0 +1,82 @@
+// The interface every light implements (see light_sample.h for the sampling contract).
+//
+// Representation: a small class hierarchy with virtual calls, not a std::variant. A scene has few lights, a
+// light call costs one indirect branch next to a shadow ray (hundreds of ns), and virtual calls let the render
+// side add light types (IES goniometric lights, issue 5) without touching a central variant. Lights are
+// immutable after construction and shared read-only between threads.
+//
+// Directions and sides:
+// - sample_li / pdf_li take wi FROM the reference point TOWARDS the light.
+// - radiance() is asked with w_out pointing FROM the light's surface TOWARDS the receiver (−ray direction).
+// - radiance_escaped() is asked with the escaping ray's own direction (from the scene towards infinity).
+#pragma once
+
+#include <optional>
+
+#include "transport/lights/light_bounds.h"
+#include "transport/lights/light_spectrum.h"
+#include "transport/lights/light_sample.h"
+#include "transport/geometry/surface_hit.h"
+
+namespace rimu {
+
+class Light {
+ public:
+  virtual ~Light() = default;
+
+  /// A direction towards the light with its solid-angle density (wavelength-independent) and the radiance that
+  /// arrives along it, per lane. std::nullopt when the light cannot contribute at `ref` (reference on the light,
+  /// behind a one-sided emitter, grazing so the density would be infinite, black light). Never returns a sample
+  /// with a zero, infinite or NaN density.
+  virtual std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
+                                               Vec2 u) const = 0;
+
+  /// The solid-angle density with which sample_li(ref, ...) would produce wi. `hit` is where the ray along wi
+  /// met this light (area lights need it; lights at infinity ignore it and accept nullptr). 0 for delta lights,
+  /// and 0 wherever sample_li would return std::nullopt.
+  virtual float pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit = nullptr) const = 0;
+
+  /// Radiance leaving a point of an area light towards w_out (unit, away from the surface). 0 for other lights.
+  virtual SampledSpectrum radiance(const SurfaceHit& hit, Vec3 w_out, const SampledWavelengths& lambda) const;
+
+  /// Radiance arriving from infinity along −direction, for a ray that escaped the scene along `direction`
+  /// (unit). Nonzero only for lights at infinity (environment, distant lights with an angular size).
+  virtual SampledSpectrum radiance_escaped(Vec3 direction, const SampledWavelengths& lambda) const;
+
+  /// Radiant power in W over 360-830 nm (∫Φ_λ dλ), for picking lights by power. Lights at infinity count the
+  /// power that crosses a disc (distant) or enters a sphere (environment) of radius `scene_radius_m` around the
+  /// scene; finite lights ignore the radius.
+  virtual double total_power_w(double scene_radius_m) const = 0;
+
+  /// The one spectrum everything the light emits has (its spectral power is this times a factor independent of λ),
+  /// or nullptr when the spectrum varies over the light (an environment image). The scene's wavelength density
+  /// (transport/lights/emission_wavelength_density.h) is built from it. The pointer lives as long as the light.
+  virtual const LightSpectrum* emitted_spectrum() const { return nullptr; }
+
+  /// True if sample_li returns delta samples (point, spot, distant of zero diameter): no MIS with BSDF sampling.
+  virtual bool is_delta() const { return false; }
+  /// The position of a light that emits from one point (point, spot), else std::nullopt. Media use it for
+  /// equiangular sampling along a ray towards the light (transport/media/equiangular_sampling.h).
+  virtual std::optional<Vec3> delta_position_m() const { return std::nullopt; }
+  /// True if the light is at infinity (radiance_escaped may be nonzero).
+  virtual bool is_infinite() const { return false; }
+
+  // Parts. A light sampler may choose the parts of a light separately: the triangles of an emissive mesh (part k
+  // is triangle k, SurfaceHit::primitive). Every other light is one part, and these default to the whole light.
+
+  /// The number of parts (≥ 1).
+  virtual int part_count() const { return 1; }
+  /// sample_li restricted to `part`: its solid-angle density is that of the part alone (for a triangle k,
+  /// d²/(A_k |cos θ_l|)), so the sampler's probability of the part times it is the density of the whole choice.
+  /// Part −1 is the whole light (sample_li, pdf_li), for samplers that choose whole lights.
+  virtual std::optional<LightSample> sample_part_li(int part, const LightReference& ref,
+                                                    const SampledWavelengths& lambda, Vec2 u) const;
+  /// The density sample_part_li(part, ref, ...) has for wi (0 where it would return std::nullopt).
+  virtual float pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit = nullptr) const;
+  /// Where the part can emit, for the light BVH (light_bounds.h); std::nullopt for lights at infinity (except an
+  /// environment with portals: the portals) and for parts that emit nothing (black, degenerate triangles), which the
+  /// BVH then never picks.
+  virtual std::optional<LightBounds> part_bounds(int) const { return std::nullopt; }
+};
+
+}  // namespace rimu

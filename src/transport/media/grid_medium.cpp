@@ -1,0 +1,145 @@
+#include "transport/media/grid_medium.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <random>
+
+#include "spectral/error.h"
+#include "spectral/io/input_file.h"
+
+namespace rimu {
+
+GridMedium::GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec3 bounds_min, Vec3 bounds_max,
+                       SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g, GridInterpolation interpolation,
+                       const std::optional<Transform>& world_from_grid)
+    : nx_(nx), ny_(ny), nz_(nz), density_(std::move(densities)), min_(bounds_min), max_(bounds_max),
+      unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g), interpolation_(interpolation) {
+  if (world_from_grid) {
+    if (!world_from_grid->is_finite() || !(std::fabs(world_from_grid->determinant()) > 1e-30f))
+      throw InputError({}, "the medium's transform must be finite and invertible");
+    grid_from_world_ = world_from_grid->inverse();
+  }
+  if (nx < 1 || ny < 1 || nz < 1) throw InputError({}, "a voxel grid needs at least one voxel per axis");
+  if (density_.size() != size_t(nx) * size_t(ny) * size_t(nz))
+    throw InputError({}, "the voxel grid holds " + std::to_string(density_.size()) + " values, expected nx*ny*nz");
+  for (float d : density_)
+    if (!(d >= 0.0f) || !std::isfinite(d)) throw InputError({}, "voxel densities must be finite and >= 0");
+  const Vec3 extent = max_ - min_;
+  if (!(extent.x > 0.0f && extent.y > 0.0f && extent.z > 0.0f)) throw InputError({}, "the medium's box is empty");
+  voxel_size_ = {extent.x / float(nx), extent.y / float(ny), extent.z / float(nz)};
+  mx_ = (nx + kBlock - 1) / kBlock;
+  my_ = (ny + kBlock - 1) / kBlock;
+  mz_ = (nz + kBlock - 1) / kBlock;
+  majorant_.assign(size_t(mx_) * size_t(my_) * size_t(mz_), 0.0f);
+  // A block's voxels span [b·kBlock, (b+1)·kBlock) in voxel units. Trilinear lookup there reads voxels from one
+  // before the block to one after it (the sample position is x·n − ½, its floor and floor + 1).
+  const int margin = interpolation_ == GridInterpolation::trilinear ? 1 : 0;
+  for (int bz = 0; bz < mz_; ++bz)
+    for (int by = 0; by < my_; ++by)
+      for (int bx = 0; bx < mx_; ++bx) {
+        float m = 0.0f;
+        for (int z = std::max(bz * kBlock - margin, 0); z < std::min((bz + 1) * kBlock + margin, nz); ++z)
+          for (int y = std::max(by * kBlock - margin, 0); y < std::min((by + 1) * kBlock + margin, ny); ++y)
+            for (int x = std::max(bx * kBlock - margin, 0); x < std::min((bx + 1) * kBlock + margin, nx); ++x)
+              m = std::fmax(m, density_[size_t((z * ny + y) * nx + x)]);
+        majorant_[size_t((bz * my_ + by) * mx_ + bx)] = m;
+      }
+}
+
+float GridMedium::density(Vec3 p) const { return density_in_grid(grid_from_world_ ? grid_from_world_->point(p) : p); }
+
+float GridMedium::density_in_grid(Vec3 p) const {
+  const Vec3 local = p - min_;
+  const Vec3 cells{local.x / voxel_size_.x, local.y / voxel_size_.y, local.z / voxel_size_.z};
+  const int x = int(std::floor(cells.x)), y = int(std::floor(cells.y)), z = int(std::floor(cells.z));
+  if (x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_) return 0.0f;
+  if (interpolation_ == GridInterpolation::voxel) return density_[size_t((z * ny_ + y) * nx_ + x)];
+  // Trilinear between voxel centres (at integer + ½ in voxel units).
+  const Vec3 s{cells.x - 0.5f, cells.y - 0.5f, cells.z - 0.5f};
+  const int ix = int(std::floor(s.x)), iy = int(std::floor(s.y)), iz = int(std::floor(s.z));
+  const float fx = s.x - float(ix), fy = s.y - float(iy), fz = s.z - float(iz);
+  const auto lerp = [](float f, float a, float b) { return a + f * (b - a); };
+  const auto row = [&](int yy, int zz) { return lerp(fx, voxel(ix, yy, zz), voxel(ix + 1, yy, zz)); };
+  return lerp(fz, lerp(fy, row(iy, iz), row(iy + 1, iz)), lerp(fy, row(iy, iz + 1), row(iy + 1, iz + 1)));
+}
+
+bool GridMedium::clip(const Ray& ray, float t_max, float& t0, float& t1) const {
+  // Slab test (Kay & Kajiya 1986): intersect the three pairs of planes.
+  t0 = ray.t_min;
+  t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.0f / ray.direction[a];
+    float near = (min_[a] - ray.origin[a]) * inv, far = (max_[a] - ray.origin[a]) * inv;
+    if (near > far) std::swap(near, far);
+    if (std::isnan(near)) continue;  // direction 0 with the origin on a plane: inside along this axis
+    t0 = std::fmax(t0, near);
+    t1 = std::fmin(t1, far);
+  }
+  return t0 < t1;
+}
+
+void parse_grid_bytes(std::string_view bytes, const std::string& name, int& nx, int& ny, int& nz,
+                      std::vector<float>& densities) {
+  constexpr size_t kHeaderBytes = 8 + 3 * sizeof(int32_t);
+  if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), "RIMUVOL1", 8) != 0)
+    throw InputError({name, 0, ""}, "not a RIMUVOL1 voxel grid: expected the 8 bytes \"RIMUVOL1\" and three int32 "
+                                    "sizes, then the densities");
+  int32_t n[3];
+  std::memcpy(n, bytes.data() + 8, sizeof n);
+  for (int32_t v : n)
+    if (v < 1 || v > 4096)
+      throw InputError({name, 0, ""}, "the header's grid sizes are " + std::to_string(n[0]) + " × " +
+                                          std::to_string(n[1]) + " × " + std::to_string(n[2]) +
+                                          "; each must be 1..4096");
+  // The sizes are checked against the bytes present before anything is allocated: a damaged header must not
+  // allocate gigabytes for a file of a few bytes.
+  const uint64_t count = uint64_t(n[0]) * uint64_t(n[1]) * uint64_t(n[2]);
+  const uint64_t expected_bytes = kHeaderBytes + count * sizeof(float);
+  if (bytes.size() != expected_bytes)
+    throw InputError({name, 0, ""}, "the header announces " + std::to_string(n[0]) + " × " + std::to_string(n[1]) +
+                                        " × " + std::to_string(n[2]) + " voxels, which take " +
+                                        std::to_string(expected_bytes) + " bytes with the header, but the file has " +
+                                        std::to_string(bytes.size()) + " bytes");
+  nx = n[0], ny = n[1], nz = n[2];
+  densities.resize(size_t(count));
+  std::memcpy(densities.data(), bytes.data() + kHeaderBytes, size_t(count) * sizeof(float));
+}
+
+void read_grid_file(const std::filesystem::path& path, int& nx, int& ny, int& nz, std::vector<float>& densities) {
+  parse_grid_bytes(read_input_file(path, kMaxBinaryFileBytes), path.string(), nx, ny, nz, densities);
+}
+
+void write_grid_file(const std::filesystem::path& path, int nx, int ny, int nz, const std::vector<float>& densities) {
+  std::ofstream out(path, std::ios::binary);
+  const int32_t n[3] = {nx, ny, nz};
+  out.write("RIMUVOL1", 8);
+  out.write(reinterpret_cast<const char*>(n), sizeof n);
+  out.write(reinterpret_cast<const char*>(densities.data()), std::streamsize(densities.size() * sizeof(float)));
+}
+
+std::vector<float> procedural_cloud_density(int n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> centre(0.3f, 0.7f), radius(0.12f, 0.25f);
+  struct Blob {
+    Vec3 c;
+    float r;
+  };
+  std::vector<Blob> blobs;
+  for (int i = 0; i < 12; ++i) blobs.push_back({{centre(rng), centre(rng) * 0.8f + 0.05f, centre(rng)}, radius(rng)});
+  std::vector<float> d(size_t(n) * size_t(n) * size_t(n));
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const Vec3 p{(float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n), (float(z) + 0.5f) / float(n)};
+        float v = 0.0f;
+        for (const Blob& b : blobs) {
+          const float s = std::clamp(1.0f - length(p - b.c) / b.r, 0.0f, 1.0f);
+          v = std::fmax(v, s * s * (3.0f - 2.0f * s));  // smoothstep: soft edges
+        }
+        d[size_t((z * n + y) * n + x)] = v;
+      }
+  return d;
+}
+
+}  // namespace rimu

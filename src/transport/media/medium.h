@@ -1,0 +1,83 @@
+// A participating medium of any kind, and which medium a path is in (the medium stack).
+#pragma once
+
+#include <array>
+#include <variant>
+
+#include "transport/media/grid_medium.h"
+#include "transport/media/homogeneous_medium.h"
+
+namespace rimu {
+
+/// A homogeneous or voxel-grid medium, held by value, with the priority that resolves overlaps (see MediumStack).
+class Medium {
+ public:
+  using Variant = std::variant<HomogeneousMedium, GridMedium>;
+
+  template <typename T>
+  explicit Medium(T medium, int priority = 0) : medium_(std::move(medium)), priority_(priority) {}
+
+  const HenyeyGreenstein& phase() const {
+    return std::visit([](const auto& m) -> const HenyeyGreenstein& { return m.phase(); }, medium_);
+  }
+  int priority() const { return priority_; }
+  const HomogeneousMedium* homogeneous() const { return std::get_if<HomogeneousMedium>(&medium_); }
+  const GridMedium* grid() const { return std::get_if<GridMedium>(&medium_); }
+
+ private:
+  Variant medium_;
+  int priority_;
+};
+
+/// What a surface does to the medium stack: the medium enclosed by the shape (−1: none) and whether the surface
+/// is an index-matched boundary (no BSDF: rays and shadow rays cross it unchanged). Indexed by material.
+struct MediumBoundary {
+  int interior_medium = -1;
+  bool index_matched = false;
+};
+
+/// The media a path is inside, innermost entry last. Entering a closed shape through its front face pushes its
+/// interior medium; leaving through its back face removes that medium's most recent entry. Where shapes
+/// overlap (nested or intersecting), the CURRENT medium is the entry of highest priority, the most recently
+/// entered one among equals (the priority rule of Schmidt & Budge 2002, "Simple Nested Dielectrics in Ray
+/// Traced Images", without their false-interface skipping: a boundary always applies its own BSDF).
+/// A camera path starts with the scene's camera medium, if any (VolumetricScene::camera_medium). Fixed capacity:
+/// deeper nesting than kCapacity keeps the innermost kCapacity entries.
+class MediumStack {
+ public:
+  static constexpr int kCapacity = 8;
+
+  /// The current medium index, or −1 for vacuum.
+  int current(const std::vector<Medium>& media) const {
+    int best = -1;
+    for (int i = 0; i < size_; ++i)
+      if (best < 0 || media[size_t(entries_[i])].priority() >= media[size_t(best)].priority()) best = entries_[i];
+    return best;
+  }
+  /// Crossing the boundary of `medium` (entering if `entering`, else leaving).
+  void cross(int medium, bool entering) {
+    if (medium < 0) return;
+    if (entering) {
+      if (size_ == kCapacity) {
+        for (int i = 1; i < size_; ++i) entries_[i - 1] = entries_[i];
+        --size_;
+      }
+      entries_[size_++] = medium;
+      return;
+    }
+    for (int i = size_ - 1; i >= 0; --i)
+      if (entries_[i] == medium) {
+        for (int j = i + 1; j < size_; ++j) entries_[j - 1] = entries_[j];
+        --size_;
+        return;
+      }
+    // Leaving a medium never entered (a camera inside a shape, or an open mesh): nothing to remove.
+  }
+  int size() const { return size_; }
+
+ private:
+  std::array<int, kCapacity> entries_{};
+  int size_ = 0;
+};
+
+}  // namespace rimu

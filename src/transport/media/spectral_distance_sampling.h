@@ -1,0 +1,67 @@
+// Free-flight distance sampling and transmittance for four wavelengths at once (docs/media.md has the maths).
+#pragma once
+
+#include "transport/media/medium.h"
+#include "transport/sampling/sampler.h"
+
+namespace rimu {
+
+/// How a path's four lanes share one free-flight decision.
+enum class DistanceSampling {
+  /// The hero's σ_t samples the distance (homogeneous: exactly; grids: null-scattering tracking with the hero's
+  /// collision probabilities, Miller, Georgiev, Jarosz 2019); every lane is weighted by the balance heuristic over
+  /// the four lanes' densities through the ratios R_k (Wilkie et al. 2014; Raab et al. 2008 §3.2).
+  spectral_mis,
+  /// The hero samples as above, the other lanes are divided by the hero's density alone (no spectral MIS): the
+  /// pbrt-v4-style baseline. Unbiased only where the hero's density covers every lane's integrand.
+  hero_only,
+  /// One density for all lanes from the lanes' mean σ_t (homogeneous: exact; grids: null-collision tracking with
+  /// collision probabilities from the lanes' mean coefficients). Lane-independent, so R_k is unchanged.
+  averaged,
+  /// Null-collision tracking for every medium, homogeneous ones included, with the history-aware collision
+  /// probabilities of spectral tracking (Kutz, Habel, Li, Novák 2017, §5.2): P_s ∝ mean_k(σ_s,k·|β̂_k|),
+  /// P_n ∝ mean_k(σ_n,k·|β̂_k|), β̂ the path's effective per-lane throughput. Lane-independent: R_k is unchanged.
+  spectral_tracking,
+};
+
+/// The outcome of one free flight over [ray.t_min, t_max) inside one medium.
+struct FreeFlight {
+  bool scattered = false;  ///< a real scattering event at distance t (else the segment reached t_max)
+  float t = 0;
+  /// Multiplies the path throughput β: (contribution of the segment per lane) / (the technique's density as run).
+  /// For a scattering event it includes σ_s at the event; not the phase function.
+  SampledSpectrum weight = Float4(1.0f);
+  /// Multiplies R_k: lane k's density of the same decisions relative to the density as run (1 where lanes share it).
+  SampledSpectrum pdf_ratio = Float4(1.0f);
+  /// When !scattered: the probability with which the technique as run passed the segment (the hero's, or the
+  /// shared one). MIS against light sampling needs it: S_bsdf = q_dir · pass · Σ R_k (after the update).
+  float pass_probability = 1;
+  bool terminated() const { return max_lane(weight) <= 0.0f; }
+};
+
+/// Transmittance of a shadow-ray segment, and the densities with which free-flight sampling would have passed it.
+struct SegmentTransmittance {
+  SampledSpectrum transmittance = Float4(1.0f);  ///< exact (homogeneous, non-tracking modes) or a ratio-tracking estimate
+  /// Lane k's probability that free-flight sampling (same mode, lane k as hero) passes this segment along the
+  /// same null-collision vertices: S_bsdf for NEE's MIS weight is q_dir · Σ_k R_k · pass_probability_k.
+  SampledSpectrum pass_probability = Float4(1.0f);
+};
+
+/// Samples a free flight from ray.origin along ray.direction (unit) until t_max (the next surface) in `medium`.
+/// Consumes one uniform number (homogeneous analytic modes) or two per tentative collision (trackers).
+/// `throughput` is the path's effective per-lane throughput (only spectral_tracking reads it; any positive
+/// multiple will do); it is updated along the flight's null collisions for the next segment, as a multiple
+/// rescaled so that its largest lane is 1.
+FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
+                              DistanceSampling mode, Sampler& sampler, SampledSpectrum& throughput);
+
+/// The transmittance over [ray.t_min, t_max): exp(−σ_t d) for homogeneous media (analytic modes), else ratio
+/// tracking (Novák, Selle, Jarosz 2014) against the majorant grid. Consumes one number per tentative collision.
+/// `throughput` is what the free-flight technique's throughput would be on this segment (spectral_tracking's
+/// probabilities depend on it, and so do the pass probabilities); updated along the null collisions (rescaled so
+/// that its largest lane is 1: only its direction matters, and this keeps it finite).
+SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
+                                            const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler,
+                                            SampledSpectrum& throughput);
+
+}  // namespace rimu
