@@ -7,7 +7,11 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "test_support.h"
@@ -271,4 +275,31 @@ TEST_CASE("partial renders: a header whose windows the file cannot hold is refus
   refused(rewrite("huge.exr", 30000, 30000), "more than a file of");
   refused(rewrite("wide.exr", 40000, 16), "1 to 32768 pixels a side");
   refused(rewrite("outside.exr", 16, 24), "does not lie inside its display window");
+}
+
+TEST_CASE("partial renders: OpenEXR does not allocate for a data window of 2^29 rows that a damaged header claims") {
+  // The fuzzer's input (fuzz/regressions/merge/): a 2 KB partial whose header made Imf::InputFile allocate its
+  // line-offset table, 1.3-1.9 GB, before Rimu's checks saw the header. Here a real partial's data window is patched
+  // in place to 2^29 rows (the file stays a few KB): OpenEXR must refuse it by the limits Rimu sets, naming the height.
+  Folder dir("tall_header");
+  render(tiny_job(dir / "a.exr", SampleRange{0, 24}));
+  std::ifstream in(dir / "a.exr", std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), {}};
+  const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const std::size_t at = bytes.find(key);
+  REQUIRE(at != std::string::npos);
+  const std::size_t y_max = at + key.size() + 4 + 12;  // the size (4 bytes), then xMin, yMin, xMax, yMax
+  const std::int32_t rows = std::int32_t(1) << 29;  // OpenEXR calls 2^30 itself invalid
+  std::memcpy(bytes.data() + y_max, &rows, 4);  // little-endian, as OpenEXR stores it (and this machine)
+  std::ofstream(dir / "tall.exr", std::ios::binary) << bytes;
+  try {
+    merge({dir / "tall.exr"}, dir / "out.exr", MergeOptions{true, true});
+    FAIL("merged");
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    CAPTURE(message);
+    CHECK(std::string(e.what()).find("cannot read as OpenEXR") != std::string::npos);
+    CHECK(std::string(e.what()).find("height") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(dir / "out.exr"));
 }

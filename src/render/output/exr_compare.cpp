@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "render/output/exr_input.h"
 #include "spectral/error.h"
 
 namespace rimu {
@@ -34,7 +35,7 @@ struct Channels {
 
 Channels open(const std::filesystem::path& path) {
   try {
-    Channels c{std::make_unique<Imf::InputFile>(path.c_str()), {}};
+    Channels c{open_exr_input(path), {}};
     c.window = c.file->header().dataWindow();
     return c;
   } catch (const std::exception& e) {

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <set>
 
+#include "render/output/exr_input.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
 
@@ -100,7 +101,7 @@ void check_partial_size(const PartialImage& p, std::uintmax_t file_bytes) {
 
 std::unique_ptr<Imf::InputFile> open_exr(const std::filesystem::path& path) {
   try {
-    return std::make_unique<Imf::InputFile>(path.c_str());
+    return open_exr_input(path);
   } catch (const std::exception& e) {
     throw partial_error(path, std::string("cannot read as OpenEXR: ") + e.what());
   }
