@@ -3,6 +3,11 @@
 
     PYTHONPATH=build/python taskset -c 1 python3 python/benchmarks/colour_throughput.py [count] [rounds]
 
+For instruction counts (undisturbed by the machine's load), one function alone under callgrind, minus "none":
+
+    PYTHONPATH=build/python valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+        python3 python/benchmarks/colour_throughput.py --only lab_rimu 200000 2
+
 Prints, per round (rimu and numpy alternate, so a change in the machine's load touches both), millions of colours
 (or pairs) per second, then the medians. The numpy versions are checked against rimu first (1e-9).
 """
@@ -57,13 +62,24 @@ def rate(f, count):
 
 
 def main():
-    count = int(sys.argv[1]) if len(sys.argv) > 1 else 1_000_000
-    rounds = int(sys.argv[2]) if len(sys.argv) > 2 else 5
+    args = sys.argv[1:]
+    only = None
+    if args[:1] == ["--only"]:
+        only, args = args[1], args[2:]
+    count = int(args[0]) if args else 1_000_000
+    rounds = int(args[1]) if len(args) > 1 else 5
     rng = np.random.default_rng(1)
     xyz = rng.uniform(0.0, 100.0, size=(count, 3))
     white = np.array([95.047, 100.0, 108.883])
     lab1 = rng.uniform([0, -100, -100], [100, 100, 100], size=(count, 3))
     lab2 = rng.uniform([0, -100, -100], [100, 100, 100], size=(count, 3))
+    if only:
+        f = {"none": lambda: None, "lab_rimu": lambda: rimu.lab(xyz, white), "lab_numpy": lambda: numpy_lab(xyz, white),
+             "de_rimu": lambda: rimu.delta_e_2000(lab1, lab2),
+             "de_numpy": lambda: numpy_ciede2000(lab1, lab2)}[only]
+        for _ in range(rounds):
+            f()
+        return
     np.testing.assert_allclose(numpy_lab(xyz[:1000], white), rimu.lab(xyz[:1000], white), atol=1e-9)
     np.testing.assert_allclose(numpy_ciede2000(lab1[:1000], lab2[:1000]), rimu.delta_e_2000(lab1[:1000], lab2[:1000]),
                                atol=1e-9)
