@@ -18,7 +18,7 @@ namespace rimu::python {
 namespace {
 
 // The viewing conditions from the Python arguments, each checked against its name.
-ViewingConditions viewing_conditions(const py::object& white, double adapting_luminance, double background_y,
+ViewingConditions viewing_conditions(const ArrayLike& white, double adapting_luminance, double background_y,
                                      const std::string& surround, bool discount_illuminant) {
   const Colours w = whites_of(white, "white");
   if (!w.leading.empty()) throw InputError(argument("white"), "expected one white (3 values) for the whole call");
@@ -64,7 +64,7 @@ void bind_model(py::module_& m, AppearanceModel which, const std::string& name, 
                 const std::string& reference) {
   m.def(
       name.c_str(),
-      [which](const py::object& xyz, const py::object& white, double l_a, double y_b, const std::string& surround,
+      [which](const ArrayLike& xyz, const ArrayLike& white, double l_a, double y_b, const std::string& surround,
               bool discount) {
         const ColourAppearanceModel model(which, viewing_conditions(white, l_a, y_b, surround, discount));
         const Colours c = colours_of(xyz, "xyz");
@@ -91,7 +91,7 @@ void bind_model(py::module_& m, AppearanceModel which, const std::string& name, 
           .c_str());
   m.def(
       (name + "_to_xyz").c_str(),
-      [which](const py::object& jmh, const py::object& white, double l_a, double y_b, const std::string& surround,
+      [which](const ArrayLike& jmh, const ArrayLike& white, double l_a, double y_b, const std::string& surround,
               bool discount) {
         const ColourAppearanceModel model(which, viewing_conditions(white, l_a, y_b, surround, discount));
         const Colours c = colours_of(jmh, "jmh");
@@ -108,7 +108,7 @@ void bind_model(py::module_& m, AppearanceModel which, const std::string& name, 
           .c_str());
   m.def(
       ucs_name.c_str(),
-      [which](const py::object& xyz, const py::object& white, double l_a, double y_b, const std::string& surround,
+      [which](const ArrayLike& xyz, const ArrayLike& white, double l_a, double y_b, const std::string& surround,
               bool discount) {
         const ColourAppearanceModel model(which, viewing_conditions(white, l_a, y_b, surround, discount));
         const Colours c = colours_of(xyz, "xyz");
@@ -127,7 +127,7 @@ void bind_model(py::module_& m, AppearanceModel which, const std::string& name, 
           .c_str());
   m.def(
       (ucs_name + "_to_xyz").c_str(),
-      [which](const py::object& jab, const py::object& white, double l_a, double y_b, const std::string& surround,
+      [which](const ArrayLike& jab, const ArrayLike& white, double l_a, double y_b, const std::string& surround,
               bool discount) {
         const ColourAppearanceModel model(which, viewing_conditions(white, l_a, y_b, surround, discount));
         const Colours c = colours_of(jab, "jab");
@@ -145,7 +145,7 @@ void bind_model(py::module_& m, AppearanceModel which, const std::string& name, 
 
 // Argument `name` as numbers of any shape, each checked by `check` (a refusal names its indices).
 template <typename Check>
-Array checked_numbers(const py::object& value, const std::string& name, Check check) {
+Array checked_numbers(const ArrayLike& value, const std::string& name, Check check) {
   const Array a = numeric_array(value, name);
   const std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
   for (py::ssize_t i = 0; i < a.size(); ++i) {
@@ -166,7 +166,7 @@ void bind_appearance(py::module_& m) {
 
   m.def(
       "adapt",
-      [](const py::object& xyz, const py::object& source_white, const py::object& destination_white,
+      [](const ArrayLike& xyz, const ArrayLike& source_white, const ArrayLike& destination_white,
          const std::string& cat) {
         const Colours s = whites_of(source_white, "source_white"), d = whites_of(destination_white, "destination_white");
         if (!s.leading.empty() || !d.leading.empty())
@@ -185,7 +185,7 @@ void bind_appearance(py::module_& m) {
 
   m.def(
       "daylight_xy",
-      [](const py::object& cct_k) {
+      [](const ArrayLike& cct_k) {
         const Array t = checked_numbers(cct_k, "cct_k", [](double v, const SourceLocation& at) {
           for_argument(at.key, [&] { return daylight_chromaticity(v); });
         });
@@ -202,7 +202,7 @@ void bind_appearance(py::module_& m) {
   auto lib = py::reinterpret_borrow<py::class_<SpectralLibrary>>(m.attr("Library"));
   lib.def(
          "planckian_xy",
-         [](SpectralLibrary& l, const py::object& cct_k, double duv, int observer) {
+         [](SpectralLibrary& l, const ArrayLike& cct_k, double duv, int observer) {
            const Array t = checked_numbers(cct_k, "cct_k", [](double v, const SourceLocation& at) {
              if (!(v >= 500.0 && v <= 1e6))
                throw InputError(at, "expected a temperature in 500-1e6 K, got " + std::to_string(v));
@@ -223,7 +223,7 @@ void bind_appearance(py::module_& m) {
          "Example: lib.planckian_xy(2856) -> array([0.4475, 0.4074]) (about illuminant A)")
       .def(
           "xy_to_cct",
-          [](SpectralLibrary& l, const py::object& xy, int observer) {
+          [](SpectralLibrary& l, const ArrayLike& xy, int observer) {
             const Array a = numeric_array(xy, "xy");
             const std::vector<py::ssize_t> shape = shape_of(a);
             if (shape.empty() || shape.back() != 2)

@@ -118,7 +118,7 @@ void bind_colorimetry(py::module_& m) {
           "or 10 (CIE 1964).\n\nExample: rimu.xy(lib.light_xyz(*lib.illuminant('F11'))) -> array([0.3805, 0.3769])")
       .def(
           "reflectance_xyz",
-          [](SpectralLibrary& l, const py::object& wavelengths_nm, const py::object& values,
+          [](SpectralLibrary& l, const ArrayLike& wavelengths_nm, const ArrayLike& values,
              const std::string& illuminant, int observer, const std::string& method, bool bandpass_corrected) {
             const Array wl = numeric_array(wavelengths_nm, "wavelengths_nm"), v = numeric_array(values, "values");
             if (v.ndim() > 1) return reflectance_stack_xyz(l, wl, v, illuminant, observer, method, bandpass_corrected);

@@ -17,7 +17,7 @@ Lab lab_at(const Colours& c, std::size_t i) { return {c.at(i)[0], c.at(i)[1], c.
 
 // A (..., 3) conversion relative to a white (xyz, white) -> (..., 3), the white broadcast like any colour.
 template <typename Convert>
-py::array_t<double> relative_to_white(const py::object& value, const std::string& name, const py::object& white,
+py::array_t<double> relative_to_white(const ArrayLike& value, const std::string& name, const ArrayLike& white,
                                       Convert convert) {
   Colours x = colours_of(value, name), w = whites_of(white, "white");
   broadcast_colours(x, name, w, "white");
@@ -31,7 +31,7 @@ struct BlackPolicy {
   std::array<double, 2> value{};
 };
 
-BlackPolicy black_policy(const py::object& black) {
+BlackPolicy black_policy(const ArrayLike& black) {
   if (black.is_none()) return {};
   if (py::isinstance<py::str>(black)) {
     if (black.cast<std::string>() != "nan")
@@ -47,7 +47,7 @@ BlackPolicy black_policy(const py::object& black) {
 // (x, y)-type coordinates of every XYZ: (..., 3) -> (..., 2). `check` refuses a colour without them (black),
 // naming it; with a black policy that does not refuse, a colour `has` says has none gets the policy's value.
 template <typename Check, typename Has, typename Of>
-py::array_t<double> chromaticities(const py::object& xyz, const py::object& black, Check check, Has has, Of of) {
+py::array_t<double> chromaticities(const ArrayLike& xyz, const ArrayLike& black, Check check, Has has, Of of) {
   const Colours c = colours_of(xyz, "xyz");
   const BlackPolicy policy = black_policy(black);
   if (policy.refuse) check_each(c, "xyz", check);
@@ -62,21 +62,21 @@ bool has_ucs_chromaticity(const Xyz& v) { return has_chromaticity(v) && v.x + 15
 
 // (u, v)-type coordinates of every XYZ: (..., 3) -> (..., 2), black handled as for xy.
 template <typename Uv, Uv (*uv_of)(const Xyz&)>
-py::array_t<double> ucs_chromaticity(const py::object& xyz, const py::object& black) {
+py::array_t<double> ucs_chromaticity(const ArrayLike& xyz, const ArrayLike& black) {
   return chromaticities(xyz, black, &check_has_ucs_chromaticity, &has_ucs_chromaticity, [](const Xyz& v) {
     const Uv uv = uv_of(v);
     return std::array<double, 2>{uv.u, uv.v};
   });
 }
 
-py::array_t<double> lab_of_arrays(const py::object& xyz, const py::object& white) {
+py::array_t<double> lab_of_arrays(const ArrayLike& xyz, const ArrayLike& white) {
   return relative_to_white(xyz, "xyz", white, [](const Xyz& v, const Xyz& w) {
     const Lab l = lab_of(v, w);
     return std::array<double, 3>{l.l, l.a, l.b};
   });
 }
 
-py::array_t<double> luv_of_arrays(const py::object& xyz, const py::object& white) {
+py::array_t<double> luv_of_arrays(const ArrayLike& xyz, const ArrayLike& white) {
   return relative_to_white(xyz, "xyz", white, [](const Xyz& v, const Xyz& w) {
     const Luv l = luv_of(v, w);
     return std::array<double, 3>{l.l, l.u, l.v};
@@ -84,7 +84,7 @@ py::array_t<double> luv_of_arrays(const py::object& xyz, const py::object& white
 }
 
 template <typename Difference>
-FloatOrArray delta_e_of_arrays(const py::object& lab1, const py::object& lab2, Difference difference,
+FloatOrArray delta_e_of_arrays(const ArrayLike& lab1, const ArrayLike& lab2, Difference difference,
                                const char* name1 = "lab1", const char* name2 = "lab2") {
   Colours a = colours_of(lab1, name1), b = colours_of(lab2, name2);
   broadcast_colours(a, name1, b, name2);
@@ -96,7 +96,7 @@ FloatOrArray delta_e_of_arrays(const py::object& lab1, const py::object& lab2, D
 void bind_colour_arrays(py::module_& m) {
   m.def(
       "xy",
-      [](const py::object& xyz, const py::object& black) {
+      [](const ArrayLike& xyz, const ArrayLike& black) {
         return chromaticities(xyz, black, &check_has_chromaticity, &has_chromaticity, [](const Xyz& v) {
           const Chromaticity xy = chromaticity_of(v);
           return std::array<double, 2>{xy.x, xy.y};
@@ -126,7 +126,7 @@ void bind_colour_arrays(py::module_& m) {
   m.def("xyz_to_lab", &lab_of_arrays, py::arg("xyz"), py::arg("white"), "The same as lab(): CIELAB of XYZ.");
   m.def(
       "lab_to_xyz",
-      [](const py::object& lab, const py::object& white) {
+      [](const ArrayLike& lab, const ArrayLike& white) {
         return relative_to_white(lab, "lab", white, [](const Xyz& v, const Xyz& w) {
           const Xyz x = xyz_from_lab(Lab{v.x, v.y, v.z}, w);
           return std::array<double, 3>{x.x, x.y, x.z};
@@ -142,7 +142,7 @@ void bind_colour_arrays(py::module_& m) {
   m.def("xyz_to_luv", &luv_of_arrays, py::arg("xyz"), py::arg("white"), "The same as luv(): CIELUV of XYZ.");
   m.def(
       "luv_to_xyz",
-      [](const py::object& luv, const py::object& white) {
+      [](const ArrayLike& luv, const ArrayLike& white) {
         return relative_to_white(luv, "luv", white, [](const Xyz& v, const Xyz& w) {
           const Xyz x = xyz_from_luv(Luv{v.x, v.y, v.z}, w);
           return std::array<double, 3>{x.x, x.y, x.z};
@@ -151,7 +151,7 @@ void bind_colour_arrays(py::module_& m) {
       py::arg("luv"), py::arg("white"), "XYZ of CIELUV: the inverse of luv(). L* = 0 gives black.");
   m.def(
       "xyz_from_xy",
-      [](const py::object& xy, double luminance_y) {
+      [](const ArrayLike& xy, double luminance_y) {
         check_colour_component(luminance_y, argument("luminance_y"));
         const Array a = numeric_array(xy, "xy");
         const std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
@@ -174,7 +174,7 @@ void bind_colour_arrays(py::module_& m) {
       "Example: rimu.xyz_from_xy([0.3127, 0.3290], 100) -> array([95.04559..., 100., 108.9057...])");
   m.def(
       "delta_e_2000",
-      [](const py::object& lab1, const py::object& lab2) {
+      [](const ArrayLike& lab1, const ArrayLike& lab2) {
         return delta_e_of_arrays(lab1, lab2, [](const Lab& a, const Lab& b) { return delta_e_2000(a, b); });
       },
       py::arg("lab1"), py::arg("lab2"),
@@ -183,7 +183,7 @@ void bind_colour_arrays(py::module_& m) {
       "Example: rimu.delta_e_2000([50, 2.6772, -79.7751], [50, 0, -82.7485]) -> 2.0425 (Sharma et al. 2005, pair 1)");
   m.def(
       "delta_e_1976",
-      [](const py::object& lab1, const py::object& lab2) {
+      [](const ArrayLike& lab1, const ArrayLike& lab2) {
         return delta_e_of_arrays(lab1, lab2, [](const Lab& a, const Lab& b) { return delta_e_1976(a, b); });
       },
       py::arg("lab1"), py::arg("lab2"),
@@ -191,7 +191,7 @@ void bind_colour_arrays(py::module_& m) {
       "Example: rimu.delta_e_1976([50, 0, 0], [53, 4, 0]) -> 5.0");
   m.def(
       "delta_e_1994",
-      [](const py::object& reference, const py::object& sample, bool textiles) {
+      [](const ArrayLike& reference, const ArrayLike& sample, bool textiles) {
         const Cie94Factors f = textiles ? Cie94Factors::textiles() : Cie94Factors::graphic_arts();
         return delta_e_of_arrays(reference, sample, [&](const Lab& a, const Lab& b) { return delta_e_1994(a, b, f); },
                                  "reference", "sample");
@@ -203,7 +203,7 @@ void bind_colour_arrays(py::module_& m) {
       "Example: rimu.delta_e_1994([100, 21.5721, 272.2282], [100, 426.6795, 72.3959]) -> 83.779...");
   m.def(
       "delta_e_cmc",
-      [](const py::object& reference, const py::object& sample, double l, double c) {
+      [](const ArrayLike& reference, const ArrayLike& sample, double l, double c) {
         for (const auto& [value, name] : {std::pair{l, "l"}, std::pair{c, "c"}})
           if (!(value > 0.0 && value <= 100.0))
             throw InputError(argument(name), "expected a weight in (0, 100], got " + std::to_string(value));
@@ -217,7 +217,7 @@ void bind_colour_arrays(py::module_& m) {
       "Example: rimu.delta_e_cmc([100, 21.5721, 272.2282], [100, 426.6795, 72.3959]) -> 172.70...");
   m.def(
       "rgb_to_xyz",
-      [](const py::object& rgb, const std::string& space) {
+      [](const ArrayLike& rgb, const std::string& space) {
         return transform_colours(rgb, "rgb", space_named(space, "space").rgb_to_xyz());
       },
       py::arg("rgb"), py::arg("space") = "srgb-linear",
@@ -225,7 +225,7 @@ void bind_colour_arrays(py::module_& m) {
       "Example: rimu.rgb_to_xyz([1, 1, 1]) -> array([0.9505, 1., 1.089])");
   m.def(
       "xyz_to_rgb",
-      [](const py::object& xyz, const std::string& space) {
+      [](const ArrayLike& xyz, const std::string& space) {
         return transform_colours(xyz, "xyz", space_named(space, "space").xyz_to_rgb());
       },
       py::arg("xyz"), py::arg("space") = "srgb-linear",

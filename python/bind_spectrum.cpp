@@ -42,7 +42,7 @@ SpectralLibrary& default_library() {
   static SpectralLibrary library(default_data_root());
   return library;
 }
-SpectralLibrary& library_of(const py::object& library) {
+SpectralLibrary& library_of(const OptionalLibrary& library) {
   return library.is_none() ? default_library() : library.cast<SpectralLibrary&>();
 }
 py::object library_object(SpectralLibrary& l) { return py::cast(&l, py::return_value_policy::reference); }
@@ -61,7 +61,7 @@ PySpectrum checked(const TabulatedSpectrum& t, SpectrumKind kind, std::string na
   return spectrum_of(t, kind, std::move(name));
 }
 
-std::vector<double> wavelengths_of(const py::object& value, const std::string& name) {
+std::vector<double> wavelengths_of(const ArrayLike& value, const std::string& name) {
   const Array a = numeric_array(value, name);
   return sampling_from_array(a).wavelengths_nm();
 }
@@ -170,7 +170,7 @@ void bind_spectrum(py::module_& m) {
            "A one-line description.")
       .def(
           "__call__",
-          [](const PySpectrum& s, const py::object& wavelengths_nm) {
+          [](const PySpectrum& s, const ArrayLike& wavelengths_nm) {
             const Array a = numeric_array(wavelengths_nm, "wavelengths_nm");
             const std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
             for (py::ssize_t i = 0; i < a.size(); ++i)
@@ -182,7 +182,7 @@ void bind_spectrum(py::module_& m) {
           "continued by the kind's rule.\n\nExample: rimu.illuminant('D65')(560.0) -> 100.0")
       .def(
           "align",
-          [](const PySpectrum& s, const py::object& wavelengths_nm) {
+          [](const PySpectrum& s, const ArrayLike& wavelengths_nm) {
             return checked(resampled(*s.table, wavelengths_of(wavelengths_nm, "wavelengths_nm")), s.kind, s.name,
                            "wavelengths_nm");
           },
@@ -229,7 +229,7 @@ void bind_spectrum(py::module_& m) {
       .def(
           "to_xyz",
           [](const PySpectrum& s, const std::string& illuminant, int observer, const std::string& method,
-             const py::object& library) {
+             const OptionalLibrary& library) {
             const py::object lib = library_object(library_of(library));
             const py::tuple a = arrays_of(s);
             if (s.kind == SpectrumKind::light)
@@ -245,7 +245,7 @@ void bind_spectrum(py::module_& m) {
           "astm-e308.\n\nExample: rimu.colorchecker('dark skin').to_xyz('D65')")
       .def(
           "cct",
-          [](const PySpectrum& s, const py::object& library) {
+          [](const PySpectrum& s, const OptionalLibrary& library) {
             const py::tuple a = arrays_of(s);
             return py::tuple(library_object(library_of(library)).attr("cct_duv")(a[0], a[1]));
           },
@@ -253,7 +253,7 @@ void bind_spectrum(py::module_& m) {
           "(CCT in K, Duv, validity) of a light (Library.cct_duv).\n\nExample: rimu.illuminant('A').cct()")
       .def(
           "cri",
-          [](const PySpectrum& s, const py::object& library) {
+          [](const PySpectrum& s, const OptionalLibrary& library) {
             const py::tuple a = arrays_of(s);
             return py::dict(library_object(library_of(library)).attr("cri")(a[0], a[1]));
           },
@@ -261,7 +261,7 @@ void bind_spectrum(py::module_& m) {
           "CIE 13.3 colour rendering of a light (Library.cri).\n\nExample: rimu.illuminant('F2').cri()['ra']")
       .def(
           "fidelity",
-          [](const PySpectrum& s, const py::object& library) {
+          [](const PySpectrum& s, const OptionalLibrary& library) {
             const py::tuple a = arrays_of(s);
             return py::dict(library_object(library_of(library)).attr("fidelity")(a[0], a[1]));
           },
@@ -271,7 +271,7 @@ void bind_spectrum(py::module_& m) {
 
   m.def(
       "illuminant",
-      [](const std::string& name, const py::object& library) {
+      [](const std::string& name, const OptionalLibrary& library) {
         SpectralLibrary& l = library_of(library);
         const SpectrumPtr s = for_argument("name", [&] { return l.illuminant(name); });
         return spectrum_of(dynamic_cast<const TabulatedSpectrum&>(*s), SpectrumKind::light, name);
@@ -281,7 +281,7 @@ void bind_spectrum(py::module_& m) {
       "... LED-V2 (Library.illuminant_names()).\n\nExample: rimu.illuminant('F11')");
   m.def(
       "cie_led",
-      [](const std::string& name, const py::object& library) {
+      [](const std::string& name, const OptionalLibrary& library) {
         SpectralLibrary& l = library_of(library);
         const std::string full = "LED-" + name;
         const SpectrumPtr s = for_argument("name", [&] { return l.illuminant(full); });
@@ -291,7 +291,7 @@ void bind_spectrum(py::module_& m) {
       "A CIE 15:2018 LED illuminant by its short name (B1-B5, BH1, RGB1, V1, V2).\n\nExample: rimu.cie_led('B3')");
   m.def(
       "colorchecker",
-      [](const std::string& patch, const py::object& library) {
+      [](const std::string& patch, const OptionalLibrary& library) {
         return spectrum_of(colorchecker_patch(library_of(library), patch, argument("patch")),
                            SpectrumKind::reflectance, patch);
       },
@@ -299,11 +299,11 @@ void bind_spectrum(py::module_& m) {
       "A ColorChecker Classic patch's reflectance (BabelColor average, 10 nm) by name, e.g. 'dark skin' "
       "(colorchecker_names()).\n\nExample: rimu.colorchecker('dark skin')");
   m.def(
-      "colorchecker_names", [](const py::object& library) { return library_of(library).colorchecker_patch_names(); },
+      "colorchecker_names", [](const OptionalLibrary& library) { return library_of(library).colorchecker_patch_names(); },
       py::arg("library") = py::none(), "The 24 ColorChecker patch names in chart order.");
   m.def(
       "observer",
-      [](const py::object& which, const py::object& library) {
+      [](const py::object& which, const OptionalLibrary& library) {
         SpectralLibrary& l = library_of(library);
         StandardObserver o = StandardObserver::cie1931_2deg;
         if (py::isinstance<py::str>(which)) {
@@ -324,17 +324,17 @@ void bind_spectrum(py::module_& m) {
       "A CIE standard observer's colour-matching functions (x̄, ȳ, z̄) as three Spectrum objects: which = 2 or "
       "'CIE 1931 2°', 10 or 'CIE 1964 10°'.\n\nExample: x, y, z = rimu.observer('CIE 1964 10°')");
   m.def(
-      "camera", [](const std::string& name, const py::object& library) { return camera_curves(library_of(library), name); },
+      "camera", [](const std::string& name, const OptionalLibrary& library) { return camera_curves(library_of(library), name); },
       py::arg("name"), py::arg("library") = py::none(),
       "A camera's measured R, G, B sensitivities (as in the data file, not normalised) as three Spectrum "
       "objects, by short name ('nikon_d850') or file stem (camera_names()).\n\nExample: r, g, b = rimu.camera('nikon_d850')");
   m.def(
       "camera_names",
-      [](const py::object& library) { return SpectralResponse::camera_file_stems(library_of(library)); },
+      [](const OptionalLibrary& library) { return SpectralResponse::camera_file_stems(library_of(library)); },
       py::arg("library") = py::none(), "Every camera file stem in data/spectra/cameras.");
   m.def(
       "blackbody",
-      [](double temperature_k, const py::object& wavelengths_nm, bool absolute) {
+      [](double temperature_k, const ArrayLike& wavelengths_nm, bool absolute) {
         if (!(temperature_k > 0.0 && temperature_k <= 1e6))
           throw InputError(argument("temperature_k"), "expected a temperature in (0, 1e6] K, got " +
                                                           std::to_string(temperature_k));
@@ -353,7 +353,7 @@ void bind_spectrum(py::module_& m) {
       "a peak of 1, or with absolute=True in W/(m²·sr·nm).\n\nExample: rimu.blackbody(2856).cct()");
   m.def(
       "daylight",
-      [](double cct_k, const py::object& library) {
+      [](double cct_k, const OptionalLibrary& library) {
         SpectralLibrary& l = library_of(library);
         const TabulatedSpectrum s =
             for_argument("cct_k", [&] { return daylight_spectrum(l.daylight_basis(), cct_k); });

@@ -78,6 +78,20 @@ Colours whites_of(const py::handle& value, const std::string& name);
 /// The 3x3 `matrix` applied to every colour of argument `name`: (..., 3) -> (..., 3).
 py::array_t<double> transform_colours(const py::object& value, const std::string& name, const Matrix3& matrix);
 
+/// An argument that takes any array-like (a number, a list, a numpy array of any dtype; converted and checked by
+/// numeric_array): "numpy.typing.ArrayLike" in signatures.
+inline bool accepts_anything(PyObject*) { return true; }
+class ArrayLike : public py::object {
+ public:
+  PYBIND11_OBJECT_DEFAULT(ArrayLike, py::object, accepts_anything)
+};
+
+/// An optional rimu.Library argument (None: the module's shared one): "Library | None" in signatures.
+class OptionalLibrary : public py::object {
+ public:
+  PYBIND11_OBJECT_DEFAULT(OptionalLibrary, py::object, accepts_anything)
+};
+
 /// A float for a single value, an array of the leading shape otherwise; "float | numpy.ndarray" in signatures.
 class FloatOrArray : public py::object {
  public:
@@ -116,5 +130,13 @@ namespace pybind11::detail {
 template <>
 struct handle_type_name<rimu::python::FloatOrArray> {
   static constexpr auto name = const_name("float | numpy.ndarray");
+};
+template <>
+struct handle_type_name<rimu::python::ArrayLike> {
+  static constexpr auto name = const_name("numpy.typing.ArrayLike");
+};
+template <>
+struct handle_type_name<rimu::python::OptionalLibrary> {
+  static constexpr auto name = const_name("Library | None");
 };
 }  // namespace pybind11::detail
