@@ -85,21 +85,25 @@ void bind_colorimetry(py::module_& m) {
            const SpectrumPtr s = for_argument("illuminant", [&] { return l.illuminant(name); });
            return arrays_from_spectrum(dynamic_cast<const TabulatedSpectrum&>(*s));
          },
-         py::arg("name"), "A CIE illuminant's table (A, D50, D65, E, F1-F12, FL3.x, HP1-5, LED-...) as (wavelengths_nm, power).")
-      .def_static("illuminant_names", &SpectralLibrary::illuminant_names)
+         py::arg("name"), "A CIE illuminant's table (A, D50, D65, E, F1-F12, FL3.x, HP1-5, LED-...) as (wavelengths_nm, relative "
+         "power); rimu.illuminant() gives it as a Spectrum.\n\nExample: wl, power = lib.illuminant('F11')")
+      .def_static("illuminant_names", &SpectralLibrary::illuminant_names,
+                  "The names illuminant() accepts (A, D50, D65, F1-F12, FL3.x, HP1-5, LED-B1 ... LED-V2, ...).")
       .def(
           "colorchecker",
           [](SpectralLibrary& l, const std::string& patch) {
             return arrays_from_spectrum(colorchecker_patch(l, patch, argument("patch")));
           },
-          py::arg("patch"), "A ColorChecker Classic patch (BabelColor average, 10 nm), e.g. 'dark skin'.")
+          py::arg("patch"), "A ColorChecker Classic patch's reflectance factor (BabelColor average, 10 nm) as (wavelengths_nm, values)."
+          "\n\nExample: wl, r = lib.colorchecker('dark skin')")
       .def(
           "tristimulus_method",
           [](SpectralLibrary& l, const Array& wl, const Array& v) {
             return std::string(method_name(default_tristimulus_method(spectrum_from_arrays(wl, v, SpectrumKind::light, l))));
           },
           py::arg("wavelengths_nm"), py::arg("values"),
-          "The method 'auto' picks for this sampling: native (1, 5 nm), astm-e308 (10, 20 nm) or 1nm.")
+          "The method 'auto' picks for this sampling: native (1, 5 nm), astm-e308 (10, 20 nm) or 1nm."
+          "\n\nExample: lib.tristimulus_method(*lib.illuminant('F11')) -> 'native'")
       .def(
           "light_xyz",
           [](SpectralLibrary& l, const Array& wl, const Array& v, int observer, const std::string& method) {
@@ -110,10 +114,11 @@ void bind_colorimetry(py::module_& m) {
             return vec3(xyz.x, xyz.y, xyz.z);
           },
           py::arg("wavelengths_nm"), py::arg("values"), py::arg("observer") = 2, py::arg("method") = "auto",
-          "Relative XYZ (Y = 100) of a light's spectral power (CIE 15:2004 §7 / ASTM E308).")
+          "Relative XYZ (Y = 100) of a light's spectral power (CIE 15:2004 §7 / ASTM E308); observer 2 (CIE 1931) "
+          "or 10 (CIE 1964).\n\nExample: rimu.xy(lib.light_xyz(*lib.illuminant('F11'))) -> array([0.3805, 0.3769])")
       .def(
           "reflectance_xyz",
-          [](SpectralLibrary& l, const py::object& wavelengths_nm, const py::object& values,
+          [](SpectralLibrary& l, const ArrayLike& wavelengths_nm, const ArrayLike& values,
              const std::string& illuminant, int observer, const std::string& method, bool bandpass_corrected) {
             const Array wl = numeric_array(wavelengths_nm, "wavelengths_nm"), v = numeric_array(values, "values");
             if (v.ndim() > 1) return reflectance_stack_xyz(l, wl, v, illuminant, observer, method, bandpass_corrected);
@@ -131,7 +136,8 @@ void bind_colorimetry(py::module_& m) {
           "XYZ of a reflectance factor under a CIE illuminant (perfect diffuser Y = 100): values of shape (N,) give "
           "(3,), a stack (..., N) on the shared wavelengths gives (..., 3). For astm-e308, "
           "bandpass_corrected picks E308 Table 6 (True: data corrected for the instrument's bandpass) or Table 5 "
-          "(False: uncorrected data, triangular bandpass = interval).")
+          "(False: uncorrected data, triangular bandpass = interval).\n\n"
+          "Example: lib.reflectance_xyz(*lib.colorchecker('dark skin'), illuminant='D65')")
       .def(
           "white_xyz",
           [](SpectralLibrary& l, const Array& wl, const std::string& illuminant, int observer, const std::string& method,
@@ -147,7 +153,8 @@ void bind_colorimetry(py::module_& m) {
           },
           py::arg("wavelengths_nm"), py::arg("illuminant") = "D50", py::arg("observer") = 2,
           py::arg("method") = "auto", py::arg("bandpass_corrected") = true,
-          "The perfect diffuser's XYZ sampled and summed like reflectance_xyz would (CIELAB's white).")
+          "The perfect diffuser's XYZ sampled and summed like reflectance_xyz would (CIELAB's white)."
+          "\n\nExample: white = lib.white_xyz(np.arange(380, 781, 10), 'D50')")
       .def(
           "cct_duv",
           [](SpectralLibrary& l, const Array& wl, const Array& v) {
@@ -160,13 +167,14 @@ void bind_colorimetry(py::module_& m) {
           py::arg("wavelengths_nm"), py::arg("values"),
           "(CCT in K, Duv, validity) by Ohno (2013), CIE 1931 2°. validity is 'ok', or what the tools print beside a "
           "CCT that must not be presented as one: 'below 1000 K', 'above 25000 K' (the nearest end of the locus) or "
-          "'|Duv| > 0.05' (too far from the locus for a colour temperature to mean anything).")
+          "'|Duv| > 0.05' (too far from the locus for a colour temperature to mean anything)."
+          "\n\nExample: lib.cct_duv(*lib.illuminant('A')) -> (2855.5, 2.4e-08, 'ok')")
       .def(
           "luminous_efficacy",
           [](SpectralLibrary& l, const Array& wl, const Array& v) {
             return shape_integrals(spectrum_from_arrays(wl, v, SpectrumKind::light, l), l.photopic_v()).efficacy_lm_W();
           },
-          py::arg("wavelengths_nm"), py::arg("values"), "Luminous efficacy of radiation, lm/W (360-830 nm).")
+          py::arg("wavelengths_nm"), py::arg("values"), "Luminous efficacy of radiation, lm/W (360-830 nm).\n\nExample: lib.luminous_efficacy(*lib.illuminant('D65'))")
       .def(
           "light_scale",
           [](SpectralLibrary& l, const Array& wl, const Array& v, const std::string& amount_text) {
@@ -177,7 +185,8 @@ void bind_colorimetry(py::module_& m) {
           },
           py::arg("wavelengths_nm"), py::arg("values"), py::arg("amount"),
           "The factor that gives the shape this amount ('800 lm', '2 W/sr', '12 EV' as luminance): "
-          "amount / (K_m Σ S V Δλ) for photometric units, amount / ∫ S dλ for radiometric ones.");
+          "amount / (K_m Σ S V Δλ) for photometric units, amount / ∫ S dλ for radiometric ones."
+          "\n\nExample: lib.light_scale(*lib.illuminant('D65'), '800 lm')");
 
   // Each takes the amount the tools take (check_light_amount_range: EV in [-50, 50], cd/m² and lx in [1e-30, 1e30]),
   // so no result is 0, Inf or NaN.
@@ -188,13 +197,15 @@ void bind_colorimetry(py::module_& m) {
     };
   };
   m.def("luminance_from_ev100", checked(&luminance_nt_from_ev100, LightUnit::ev100, "ev100"), py::arg("ev100"),
-        "cd/m² a reflected meter reads as EV (ISO 100, K = 12.5).");
+        "cd/m² a reflected meter reads as EV (ISO 100, K = 12.5).\n\nExample: rimu.luminance_from_ev100(12.0)");
   m.def("ev100_from_luminance", checked(&ev100_from_luminance_nt, LightUnit::nit, "luminance_nt"),
-        py::arg("luminance_nt"), "The EV at ISO 100 a reflected meter (K = 12.5) reads for this luminance, cd/m².");
+        py::arg("luminance_nt"), "The EV at ISO 100 a reflected meter (K = 12.5) reads for this luminance, cd/m².\n\n"
+        "Example: rimu.ev100_from_luminance(100.0)");
   m.def("illuminance_from_ev100", checked(&illuminance_lx_from_ev100, LightUnit::ev100, "ev100"), py::arg("ev100"),
-        "lx an incident meter reads as EV (C = 250).");
+        "lx an incident meter reads as EV (C = 250).\n\nExample: rimu.illuminance_from_ev100(10.0)");
   m.def("ev100_from_illuminance", checked(&ev100_from_illuminance_lx, LightUnit::lux, "illuminance_lx"),
-        py::arg("illuminance_lx"), "The EV at ISO 100 an incident meter (C = 250) reads for this illuminance, lx.");
+        py::arg("illuminance_lx"), "The EV at ISO 100 an incident meter (C = 250) reads for this illuminance, lx.\n\n"
+        "Example: rimu.ev100_from_illuminance(500.0)");
 }
 
 }  // namespace rimu::python

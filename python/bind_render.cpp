@@ -67,7 +67,8 @@ void bind_render(py::module_& m) {
           "(height, width, 3): CIE XYZ for the default film, after the scene's exposure and white balance. "
           "width or height given alone keeps the scene's aspect ratio (the other is scaled and rounded); both at "
           "most 32768. threads=0 uses every core. "
-          "Deterministic for a given seed and sample count.");
+          "Deterministic for a given seed and sample count.\n\n"
+          "Example: image = lib.render('data/scenes/cornell_box/scene.json', width=32, samples_per_pixel=4)");
 }
 
 }  // namespace rimu::python

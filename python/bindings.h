@@ -47,6 +47,7 @@ auto for_argument(const std::string& name, F&& f) -> decltype(f()) {
 enum class SpectrumKind {
   light,        ///< spectral power: never negative, some power in 360-830 nm (zero outside the data)
   reflectance,  ///< reflectance factor in 0-1.5 (held at its end values outside the data)
+  other,        ///< anything else (a sensitivity, a colour-matching function): finite values, zero outside the data
 };
 
 /// A table from the arguments `wavelengths_nm` and `values` (1-D, the same length), through the tools' checks for
@@ -59,6 +60,8 @@ TabulatedSpectrum sampling_from_array(const Array& wavelengths_nm);
 py::tuple arrays_from_spectrum(const TabulatedSpectrum& spectrum);
 /// Any spectrum sampled at 1 nm over 360-830 nm, as (wavelengths_nm, values).
 py::tuple arrays_at_1nm(const Spectrum& spectrum);
+/// A new 1-D numpy array holding `values`.
+py::array_t<double> array_of(const std::vector<double>& values);
 /// A 3-vector array from three numbers.
 py::array_t<double> vec3(double a, double b, double c);
 /// The three components of argument `name` (exactly 3 numbers, finite and within ±1e30: check_colour_components).
@@ -75,6 +78,8 @@ void bind_colorimetry(py::module_& m);
 void bind_quality(py::module_& m);
 void bind_spaces(py::module_& m);
 void bind_colour_arrays(py::module_& m);
+void bind_appearance(py::module_& m);
+void bind_spectrum(py::module_& m);
 void bind_render(py::module_& m);
 
 }  // namespace rimu::python

@@ -43,6 +43,20 @@ Colours colours_of(const py::handle& value, const std::string& name) {
   return c;
 }
 
+Colours whites_of(const py::handle& value, const std::string& name) {
+  Colours w = colours_of(value, name);
+  check_each(w, name, [](const Xyz& v, const SourceLocation& at) { check_white_xyz(v, at); });
+  return w;
+}
+
+py::array_t<double> transform_colours(const py::object& value, const std::string& name, const Matrix3& matrix) {
+  const Colours c = colours_of(value, name);
+  return map_items<3>(c.leading, c.count(), [&](std::size_t i) {
+    const Xyz v = matrix.apply(xyz_at(c, i));
+    return std::array<double, 3>{v.x, v.y, v.z};
+  });
+}
+
 void broadcast_colours(Colours& a, const std::string& a_name, Colours& b, const std::string& b_name) {
   if (a.leading == b.leading) return;
   // numpy's rule: shapes aligned at the right; each pair of dimensions equal, or one of them 1 or missing.

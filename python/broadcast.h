@@ -2,12 +2,14 @@
 // same leading shape out, with the loop in C++ and the GIL released (parallel chunks for large inputs).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "bindings.h"
+#include "spectral/colour_spaces/matrix3.h"
 
 namespace rimu::python {
 
@@ -61,4 +63,80 @@ py::object scalar_if_single(py::array_t<double> result, const std::vector<py::ss
 inline constexpr std::size_t kParallelCount = 16384;
 void for_each_range(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body);
 
+inline Xyz xyz_at(const Colours& c, std::size_t i) { return {c.at(i)[0], c.at(i)[1], c.at(i)[2]}; }
+
+/// Every colour of `c` through check(Xyz, where) (a refusal names the colour's indices), in order, without the GIL.
+template <typename Check>
+void check_each(const Colours& c, const std::string& name, Check check) {
+  py::gil_scoped_release release;
+  for_each_colour_checked(c, name, [&](const double* v, const SourceLocation& at) { check(Xyz{v[0], v[1], v[2]}, at); });
+}
+
+/// Argument `name` as (..., 3) whites: every one through check_white_xyz.
+Colours whites_of(const py::handle& value, const std::string& name);
+
+/// The 3x3 `matrix` applied to every colour of argument `name`: (..., 3) -> (..., 3).
+py::array_t<double> transform_colours(const py::object& value, const std::string& name, const Matrix3& matrix);
+
+/// An argument that takes any array-like (a number, a list, a numpy array of any dtype; converted and checked by
+/// numeric_array): "numpy.typing.ArrayLike" in signatures.
+inline bool accepts_anything(PyObject*) { return true; }
+class ArrayLike : public py::object {
+ public:
+  PYBIND11_OBJECT_DEFAULT(ArrayLike, py::object, accepts_anything)
+};
+
+/// An optional rimu.Library argument (None: the module's shared one): "Library | None" in signatures.
+class OptionalLibrary : public py::object {
+ public:
+  PYBIND11_OBJECT_DEFAULT(OptionalLibrary, py::object, accepts_anything)
+};
+
+/// A float for a single value, an array of the leading shape otherwise; "float | numpy.ndarray" in signatures.
+class FloatOrArray : public py::object {
+ public:
+  FloatOrArray() = default;
+  explicit FloatOrArray(py::object o) : py::object(std::move(o)) {}
+};
+
+/// out[i·N ...] = f(i) for every item of the leading shape: N numbers each, in an array of shape leading + (N,).
+template <std::size_t N, typename F>
+py::array_t<double> map_items(const std::vector<py::ssize_t>& leading, std::size_t count, F f) {
+  py::array_t<double> out = result_array(leading, py::ssize_t(N));
+  double* o = out.mutable_data();
+  for_each_range(count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::array<double, N> v = f(i);
+      for (std::size_t k = 0; k < N; ++k) o[N * i + k] = v[k];
+    }
+  });
+  return out;
+}
+
+/// One number per item: a float for a single one (no leading shape), an array of the leading shape otherwise.
+template <typename F>
+FloatOrArray map_scalars(const std::vector<py::ssize_t>& leading, std::size_t count, F f) {
+  py::array_t<double> out = result_array(leading, 0);
+  double* o = out.mutable_data();
+  for_each_range(count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) o[i] = f(i);
+  });
+  return FloatOrArray(scalar_if_single(std::move(out), leading));
+}
+
 }  // namespace rimu::python
+
+namespace pybind11::detail {
+template <>
+struct handle_type_name<rimu::python::FloatOrArray> {
+  static constexpr auto name = const_name("float | numpy.ndarray");
+};
+template <>
+struct handle_type_name<rimu::python::ArrayLike> {
+  static constexpr auto name = const_name("numpy.typing.ArrayLike");
+};
+template <>
+struct handle_type_name<rimu::python::OptionalLibrary> {
+  static constexpr auto name = const_name("Library | None");
+};
+}  // namespace pybind11::detail

@@ -10,6 +10,7 @@
 #include "spectral/error.h"
 #include "spectral/spectra/spectrum_source.h"
 #include "spectral/spectra/spectrum_values_check.h"
+#include "spectral/version.h"
 
 namespace rimu::python {
 
@@ -69,10 +70,12 @@ TabulatedSpectrum spectrum_from_arrays(const Array& wavelengths_nm, const Array&
   check_wavelengths_nm(l, element_of("wavelengths_nm"));
   if (kind == SpectrumKind::light)
     check_spectral_power(v, element_of("values"));
-  else
+  else if (kind == SpectrumKind::reflectance)
     check_reflectance_factors(v, element_of("values"));
-  TabulatedSpectrum s = table_at_argument(std::move(l), std::move(v),
-                                          kind == SpectrumKind::light ? Extrapolation::zero : Extrapolation::clamp);
+  else
+    for (size_t i = 0; i < v.size(); ++i) check_colour_component(v[i], element_of("values")(i));
+  TabulatedSpectrum s = table_at_argument(
+      std::move(l), std::move(v), kind == SpectrumKind::reflectance ? Extrapolation::clamp : Extrapolation::zero);
   if (kind == SpectrumKind::light) check_emission_spectrum(s, library, argument("values"));
   return s;
 }
@@ -99,6 +102,12 @@ py::tuple arrays_at_1nm(const Spectrum& s) {
     v.mutable_data()[i] = s.value(360.0 + i);
   }
   return py::make_tuple(l, v);
+}
+
+py::array_t<double> array_of(const std::vector<double>& values) {
+  py::array_t<double> out(py::ssize_t(values.size()));
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
 }
 
 py::array_t<double> vec3(double a, double b, double c) {
@@ -137,8 +146,12 @@ std::string default_data_root() {
 
 PYBIND11_MODULE(rimu, m) {
   using namespace rimu::python;
-  m.doc() = "Rimu: spectral colorimetry (CIE 15, ASTM E308, CIE 13.3, CIE 224 / TM-30), colour spaces, RGB "
-            "upsampling, light units and spectral rendering. Spectra are (wavelengths_nm, values) numpy arrays.";
+  m.doc() = "Rimu: spectral colorimetry (CIE 15, ASTM E308, CIE 13.3, CIE 224 / TM-30), colour appearance (CIECAM02, "
+            "CAM16), colour differences, colour spaces, RGB upsampling, light units and spectral rendering. Colour "
+            "functions broadcast over (..., 3) arrays; spectra are rimu.Spectrum objects or (wavelengths_nm, values) "
+            "numpy arrays. docs/python.md is the tutorial.";
+  m.attr("__version__") = rimu::rimu_version();
+  m.attr("__git_commit__") = rimu::rimu_git_commit();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -151,11 +164,16 @@ PYBIND11_MODULE(rimu, m) {
       .def(py::init([](const std::string& root) {
              return std::make_unique<rimu::SpectralLibrary>(root.empty() ? default_data_root() : root);
            }),
-           py::arg("data_root") = "", "data_root: the data/ folder; default RIMU_DATA or the build/install location")
-      .def_property_readonly("root", [](const rimu::SpectralLibrary& l) { return l.root().string(); });
+           py::arg("data_root") = "",
+           "Opens Rimu's data folder. data_root: the data/ folder; default RIMU_DATA, else the build tree's or the "
+           "install's share/rimu/data.\n\nExample: lib = rimu.Library()")
+      .def_property_readonly(
+          "root", [](const rimu::SpectralLibrary& l) { return l.root().string(); }, "The data folder in use (a path).");
   bind_colorimetry(m);
   bind_quality(m);
   bind_spaces(m);
   bind_colour_arrays(m);
+  bind_appearance(m);
+  bind_spectrum(m);
   bind_render(m);
 }

@@ -181,7 +181,7 @@ class Sweep(unittest.TestCase):
             rows += [(c, call, w) for c, call, _ in triples("chromatic_adaptation_matrix " + w, cam, w)]
         rows += [
             ("rgb_to_xyz: space", lambda: rimu.rgb_to_xyz(rgb, "srgb-lin"), "space"),
-            ("rgb_conversion_matrix: cat", lambda: rimu.rgb_conversion_matrix("srgb-linear", "acescg", "cat16"), "cat"),
+            ("rgb_conversion_matrix: cat", lambda: rimu.rgb_conversion_matrix("srgb-linear", "acescg", "cat97"), "cat"),
             ("rgb_conversion_matrix: destination", lambda: rimu.rgb_conversion_matrix("srgb-linear", "p3"), "destination"),
             ("srgb_encode: NaN", lambda: rimu.srgb_encode(np.array([0.1, np.nan])), "linear[1]"),
             ("srgb_decode: Inf", lambda: rimu.srgb_decode(np.array([[0.1], [np.inf]])), "encoded[1, 0]"),

@@ -122,3 +122,15 @@ TEST_CASE("off the table and far from the locus the answer is defined and flagge
     CHECK(std::isfinite(r.cct_k));
   }
 }
+
+TEST_CASE("chromaticity_at inverts cct_duv: CCT within 0.02 K, Duv within 1e-8") {
+  const PlanckianLocus& locus = locus_2deg();
+  for (double t : {1500.0, 2856.0, 4000.0, 6504.0, 12000.0, 24000.0})
+    for (double duv : {-0.03, 0.0, 0.01, 0.04}) {
+      const CctDuv back = locus.cct_duv(uv1960_of(locus.chromaticity_at(t, duv)));
+      CAPTURE(t);
+      CAPTURE(duv);
+      CHECK(std::abs(back.cct_k - t) <= 0.02);
+      CHECK(std::abs(back.duv - duv) <= 1e-8);
+    }
+}

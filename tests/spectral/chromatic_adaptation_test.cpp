@@ -14,7 +14,7 @@ constexpr Xyz kD65Astm{0.95047, 1.0, 1.08883};
 constexpr Xyz kD50Astm{0.96422, 1.0, 0.82521};
 constexpr Xyz kAAstm{1.09850, 1.0, 0.35585};
 
-constexpr CatMethod kAllMethods[] = {CatMethod::bradford, CatMethod::cat02, CatMethod::von_kries,
+constexpr CatMethod kAllMethods[] = {CatMethod::bradford, CatMethod::cat02, CatMethod::cat16, CatMethod::von_kries,
                                      CatMethod::xyz_scaling};
 
 }  // namespace

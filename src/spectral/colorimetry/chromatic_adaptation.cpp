@@ -7,9 +7,10 @@ namespace rimu {
 CatMethod cat_method_option(const std::string& name, const SourceLocation& where) {
   if (name == "bradford") return CatMethod::bradford;
   if (name == "cat02") return CatMethod::cat02;
+  if (name == "cat16") return CatMethod::cat16;
   if (name == "von-kries") return CatMethod::von_kries;
   if (name == "xyz-scaling") return CatMethod::xyz_scaling;
-  throw InputError(where, "expected bradford, cat02, von-kries or xyz-scaling, got '" + name + "'");
+  throw InputError(where, "expected bradford, cat02, cat16, von-kries or xyz-scaling, got '" + name + "'");
 }
 
 Matrix3 cone_response_matrix(CatMethod method) {
@@ -20,6 +21,10 @@ Matrix3 cone_response_matrix(CatMethod method) {
     case CatMethod::cat02:
       // CIE 159:2004 (CIECAM02) eq. 7, M_CAT02.
       return {{{{0.7328, 0.4296, -0.1624}, {-0.7036, 1.6975, 0.0061}, {0.0030, 0.0136, 0.9834}}}};
+    case CatMethod::cat16:
+      // Li, Li, Wang, Xu, Luo, Cui, Melgosa, Brill & Pointer (2017), "Comprehensive color solutions: CAM16, CAT16,
+      // and CAM16-UCS", Color Res. Appl. 42(6):703-718, eq. 4, M_16.
+      return {{{{0.401288, 0.650173, -0.051461}, {-0.250268, 1.204414, 0.045854}, {-0.002079, 0.048952, 0.953127}}}};
     case CatMethod::von_kries:
       // Hunt-Pointer-Estevez cone fundamentals (Hunt & Pointer 1985), in the form normalised to D65 that
       // Lindbloom's "Chromatic Adaptation" page lists for von Kries: it sends XYZ(D65) to LMS within 3e-4 of

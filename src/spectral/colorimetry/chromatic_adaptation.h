@@ -14,11 +14,12 @@ namespace rimu {
 enum class CatMethod {
   bradford,     ///< Lam (1985) / Luo & Rhodes, the linear part of the Bradford transform (ICC, Photoshop)
   cat02,        ///< CIE 159:2004 CIECAM02, M_CAT02
+  cat16,        ///< Li et al. (2017) CAM16, M_16 (CAT16's one-step form: both whites' cone signals in one space)
   von_kries,    ///< Hunt-Pointer-Estevez cone fundamentals (D65-normalised)
   xyz_scaling,  ///< the identity: scale X, Y, Z themselves (the crudest CAT, for comparison)
 };
 
-/// A method by name: bradford, cat02, von-kries or xyz-scaling. Throws InputError at `where` for any other.
+/// A method by name: bradford, cat02, cat16, von-kries or xyz-scaling. Throws InputError at `where` for any other.
 CatMethod cat_method_option(const std::string& name, const SourceLocation& where);
 
 /// The XYZ→cone matrix M_A of a method (rows give L, M, S or the method's sharpened equivalents).

@@ -42,4 +42,11 @@ void check_has_chromaticity(const Xyz& xyz, const SourceLocation& where) {
                                 " is not positive, so it has no chromaticity (black has none)");
 }
 
+void check_has_ucs_chromaticity(const Xyz& xyz, const SourceLocation& where) {
+  check_has_chromaticity(xyz, where);
+  if (!(xyz.x + 15.0 * xyz.y + 3.0 * xyz.z > 0.0))
+    throw InputError(where, "X + 15Y + 3Z of " + triple(xyz.x, xyz.y, xyz.z) +
+                                " is not positive, so it has no (u, v) or (u', v') chromaticity");
+}
+
 }  // namespace rimu

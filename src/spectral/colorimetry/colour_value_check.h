@@ -26,5 +26,7 @@ void check_white_xyz(const Xyz& white, const SourceLocation& where);
 /// An XYZ whose chromaticity xy is defined: valid components and X + Y + Z > 0 (black, or a sum that is not
 /// positive, has none: chromaticity_of would return (0, 0) or a point outside the diagram). Throws at `where`.
 void check_has_chromaticity(const Xyz& xyz, const SourceLocation& where);
+/// The same for the CIE 1960 and 1976 UCS (u, v), (u', v'): also X + 15Y + 3Z > 0 (their denominator).
+void check_has_ucs_chromaticity(const Xyz& xyz, const SourceLocation& where);
 
 }  // namespace rimu

@@ -53,6 +53,11 @@ Uv1960 PlanckianLocus::uv_at(double temperature_k) const {
   return uv1960_of(xyz);
 }
 
+Chromaticity PlanckianLocus::chromaticity_at(double temperature_k, double duv) const {
+  const Uv1960 on = uv_at(temperature_k), normal = normal_at(temperature_k);
+  return chromaticity_of(Uv1960{on.u + duv * normal.u, on.v + duv * normal.v});
+}
+
 Uv1960 PlanckianLocus::normal_at(double temperature_k) const {
   // Central difference in T; a relative step of 1e-4 keeps the truncation error (∝ h²) and the rounding error
   // (∝ 1e-16/h) both below 1e-8 of the tangent.

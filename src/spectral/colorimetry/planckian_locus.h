@@ -65,6 +65,9 @@ class PlanckianLocus {
   Uv1960 normal_at(double temperature_k) const;
   /// CCT and Duv of a chromaticity (see CctValidity for what happens off the table or far from the locus).
   CctDuv cct_duv(Uv1960 uv) const;
+  /// CIE 1931 (x, y) of the point `duv` off the locus at `temperature_k` along its normal (CCT -> xy, the
+  /// inverse of cct_duv within its accuracy).
+  Chromaticity chromaticity_at(double temperature_k, double duv = 0.0) const;
 
  private:
   struct Node {
