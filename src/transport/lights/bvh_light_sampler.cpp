@@ -516,11 +516,17 @@ BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
   const int m = int(infinite_lights_.size());
   if (m == 0) return {nodes_.empty() ? 0.0f : 1.0f, 0.0f};
   // Whether some leaf scores, decided as for any child (the root's certificate, else its representative, else a
-  // search), not by the root's split: choosing or weighing a light at infinity then costs one or two importance
-  // evaluations, and the witness found spares the descent one slot's check.
+  // search), not by the root's split: choosing or weighing a light at infinity then costs one importance
+  // evaluation where the representative scores, and the witness found spares the descent one slot's check.
+  // The tree's representative first (it scores at most points: the widest-reaching leaf, e.g. a portal sky).
   uint32_t witness = kNoLeaf;
-  if (!nodes_.empty() && light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f)
-    witness = witness_below(0, every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal), at);
+  if (!nodes_.empty()) {
+    const uint32_t representative = nodes_[0].representative;
+    if (light_importance(nodes_[representative].bounds, at.position_m, at.normal) > 0.0f)
+      witness = representative;
+    else if (light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f)
+      witness = witness_below(0, every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal), at);
+  }
   if (witness == kNoLeaf) return {0.0f, 1.0f / float(m)};
   return {1.0f / float(m + 1), 1.0f / float(m + 1), witness};
 }
