@@ -241,8 +241,8 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
       std::vector<uint32_t> subtree_end(nodes_.size());
       for (size_t i = nodes_.size(); i-- > 0;)
         subtree_end[i] = nodes_[i].is_leaf ? uint32_t(i + 1) : subtree_end[nodes_[i].index];
-      wide_nodes_.reserve(nodes_.size() / 2 + 1);
       build_wide(0, subtree_end);
+      wide_nodes_.shrink_to_fit();  // about one wide node per three leaves
     }
   }
   light_bands_.clear();
