@@ -122,8 +122,7 @@ double cluster_cost(const LightBounds& b, double floor_m) {
 // inside every member's beam. Two-sided clusters are never certified here.
 bool every_leaf_scores(const ImportanceBounds& b, Vec3 p, Vec3 normal) {
   // cos(θl − 2·margin) below, margin 1e-3 rad (light_bounds.cpp); θl ≤ 2·margin certifies nothing.
-  constexpr float kCosMargin = 0.999998f, kSinMargin = 0.002f;
-  if (b.two_sided || !(b.cos_theta_lit < kCosMargin)) return false;
+  if (b.two_sided || !(b.cos_theta_lit < kLitConeCosMargin)) return false;
   const Vec3 to_p = p - b.centre_m;
   if (!(normal == Vec3{}) && !(-dot(normal, to_p) - dot(abs(normal), b.half_m) > 0.0f)) return false;
   const float distance2 = length_squared(to_p);
@@ -138,7 +137,7 @@ bool every_leaf_scores(const ImportanceBounds& b, Vec3 p, Vec3 normal) {
   const float s_sum = s * cos_u + c * sin_u;
   if (!(s_sum >= 0.0f)) return false;
   const float sin_l = std::sqrt(std::max(0.0f, 1.0f - b.cos_theta_lit * b.cos_theta_lit));
-  return c_sum >= b.cos_theta_lit * kCosMargin + sin_l * kSinMargin;
+  return c_sum >= b.cos_theta_lit * kLitConeCosMargin + sin_l * kLitConeSinMargin;
 }
 
 // Whether leaf a is the better representative of a subtree than leaf b: the one more likely to score > 0 at an
@@ -237,6 +236,14 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
   if (!items.empty()) {
     nodes_.reserve(2 * items.size());
     build(items, 0, items.size(), 0, 0);
+    if (!nodes_[0].is_leaf) {
+      // Depth-first order: a node's subtree ends where its second child's does (a leaf's right after it).
+      std::vector<uint32_t> subtree_end(nodes_.size());
+      for (size_t i = nodes_.size(); i-- > 0;)
+        subtree_end[i] = nodes_[i].is_leaf ? uint32_t(i + 1) : subtree_end[nodes_[i].index];
+      build_wide(0, subtree_end);
+      wide_nodes_.shrink_to_fit();  // about one wide node per three leaves
+    }
   }
   light_bands_.clear();
   light_bands_.shrink_to_fit();
@@ -364,37 +371,36 @@ uint32_t BvhLightSampler::build(std::vector<BuildItem>& items, size_t begin, siz
   return index;
 }
 
-BvhLightSampler::Split BvhLightSampler::split(uint32_t index, uint32_t witness,
-                                              const Query& at) const {
-  const uint32_t first = index + 1, second = nodes_[index].index;
-  Split out;
-  float a = 0.0f, b = 0.0f;
-  if (witness == kCertified) {
-    // Every leaf below scores: the plain importances, and both children stay certified.
-    a = importance(first, at);
-    b = importance(second, at);
-    out.first_witness = a > 0.0f ? kCertified : kNoLeaf;
-    out.second_witness = b > 0.0f ? kCertified : kNoLeaf;
-  } else if (witness < kUnknown && witness < second) {
-    // Leaves below the first child have node indices in [first, second) (depth-first order).
-    a = importance(first, at);
-    out.first_witness = a > 0.0f ? witness : kNoLeaf;
-    b = pruned_importance(second, at, &out.second_witness);
-  } else if (witness < kUnknown) {
-    a = pruned_importance(first, at, &out.first_witness);
-    b = importance(second, at);
-    out.second_witness = b > 0.0f ? witness : kNoLeaf;
-  } else {  // kNoLeaf (the root) or kUnknown: both children are checked
-    a = pruned_importance(first, at, &out.first_witness);
-    b = pruned_importance(second, at, &out.second_witness);
+uint32_t BvhLightSampler::build_wide(uint32_t index, const std::vector<uint32_t>& subtree_end) {
+  const uint32_t wide = uint32_t(wide_nodes_.size());
+  wide_nodes_.emplace_back();
+  std::array<uint32_t, 4> slots{};
+  int count = 0, first_slots = 0;
+  for (const uint32_t child : {index + 1, nodes_[index].index}) {
+    if (nodes_[child].is_leaf) {
+      slots[size_t(count++)] = child;
+    } else {
+      slots[size_t(count++)] = child + 1;
+      slots[size_t(count++)] = nodes_[child].index;
+    }
+    if (first_slots == 0) first_slots = count;
   }
-  if (out.first_witness == kNoLeaf) a = 0.0f;
-  if (out.second_witness == kNoLeaf) b = 0.0f;
-  const float sum = a + b;
-  if (!(sum > 0.0f)) return Split{};
-  out.first = a / sum;
-  out.second = b / sum;
-  return out;
+  std::array<uint32_t, 4> below{kNoLeaf, kNoLeaf, kNoLeaf, kNoLeaf};
+  for (int j = 0; j < count; ++j) {
+    const uint32_t child = slots[size_t(j)];
+    if (!nodes_[child].is_leaf) below[size_t(j)] = build_wide(child, subtree_end);
+  }
+  WideNode& node = wide_nodes_[wide];  // (after the recursion, which grows the vector)
+  for (int j = 0; j < count; ++j) {
+    const uint32_t child = slots[size_t(j)];
+    node.bounds.set(j, nodes_[child].bounds);
+    node.child[size_t(j)] = child;
+    node.child_end[size_t(j)] = subtree_end[child];
+    node.wide[size_t(j)] = below[size_t(j)];
+  }
+  node.count = uint8_t(count);
+  node.first_slots = uint8_t(first_slots);
+  return wide;
 }
 
 namespace {
@@ -435,30 +441,50 @@ BvhLightSampler::Query BvhLightSampler::query(const LightSamplingPoint& at) cons
 }
 
 float BvhLightSampler::importance(uint32_t index, const Query& at) const {
-  const ImportanceBounds& bounds = nodes_[index].bounds;
-  const float broadband = light_importance(bounds, at.position_m, at.normal);
+  const float broadband = light_importance(nodes_[index].bounds, at.position_m, at.normal);
   if (!at.spectral || !(broadband > 0.0f)) return broadband;
+  return spectral_importance(index, broadband, at);
+}
+
+float BvhLightSampler::spectral_importance(uint32_t index, float broadband, const Query& at) const {
+  const float intensity = nodes_[index].bounds.intensity_w_sr;
   const std::array<float, kBands>& bands = node_bands_[index];
   std::array<float, 4> terms;
   for (size_t k = 0; k < 4; ++k) terms[k] = at.weight[k] * bands[size_t(at.band[k])];
-  const float spectral = order_independent_sum(terms) + kSpectralFloor * bounds.intensity_w_sr;
-  return broadband * (spectral / bounds.intensity_w_sr);
+  const float spectral = order_independent_sum(terms) + kSpectralFloor * intensity;
+  return broadband * (spectral / intensity);
 }
 
-float BvhLightSampler::pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const {
+uint32_t BvhLightSampler::witness_below(uint32_t index, bool certified, const Query& at) const {
   const Node& node = nodes_[index];
-  const float importance = this->importance(index, at);
-  *witness = kNoLeaf;
-  if (!(importance > 0.0f)) return 0.0f;
-  if (node.is_leaf)
-    *witness = index;
-  else if (every_leaf_scores(node.bounds, at.position_m, at.normal))
-    *witness = kCertified;
-  else {
-    int budget = search_budget_ > 0 ? search_budget_ : -1;
-    *witness = find_scoring_leaf(index, at, &budget);
+  if (node.is_leaf) return index;
+  if (certified) return kCertified;
+  int budget = search_budget_ > 0 ? search_budget_ : -1;
+  return find_scoring_leaf(index, at, &budget);
+}
+
+BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness, const Query& at) const {
+  const WideNode& node = wide_nodes_[index];
+  const Importance4 importance4 = light_importance4(node.bounds, at.position_m, at.normal);
+  std::array<float, 4> weight = importance4.value;
+  WideSplit out;
+  for (size_t j = 0; j < node.count; ++j) {
+    if (!(weight[j] > 0.0f)) continue;
+    const uint32_t child = node.child[j];
+    if (at.spectral) weight[j] = spectral_importance(child, weight[j], at);
+    // Below a certified node every leaf scores; the slot holding the witness needs no check; any other is checked.
+    if (witness == kCertified)
+      out.witness[j] = kCertified;
+    else if (witness < kUnknown && child <= witness && witness < node.child_end[j])
+      out.witness[j] = witness;
+    else
+      out.witness[j] = witness_below(child, (importance4.certified >> j) & 1, at);
+    if (out.witness[j] == kNoLeaf) weight[j] = 0.0f;
   }
-  return *witness == kNoLeaf ? 0.0f : importance;
+  const float sum = (weight[0] + weight[1]) + (weight[2] + weight[3]);
+  if (!(sum > 0.0f)) return WideSplit{};
+  for (size_t j = 0; j < 4; ++j) out.probability[j] = weight[j] / sum;
+  return out;
 }
 
 uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget) const {
@@ -486,21 +512,23 @@ uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int
 }
 
 BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
-  bool tree_can_contribute = false;
-  Split root_split;
-  if (!nodes_.empty()) {
-    const Node& root = nodes_[0];
-    if (root.is_leaf) {
-      tree_can_contribute = importance(0, at) > 0.0f;
-    } else {
-      root_split = split(0, kNoLeaf, at);
-      tree_can_contribute = root_split.first > 0.0f || root_split.second > 0.0f;
-    }
-  }
+  // Without lights at infinity the tree takes everything (a descent that finds no slot returns no light).
   const int m = int(infinite_lights_.size());
-  if (m == 0) return {tree_can_contribute ? 1.0f : 0.0f, 0.0f, root_split};
-  if (!tree_can_contribute) return {0.0f, 1.0f / float(m), root_split};
-  return {1.0f / float(m + 1), 1.0f / float(m + 1), root_split};
+  if (m == 0) return {nodes_.empty() ? 0.0f : 1.0f, 0.0f};
+  // Whether some leaf scores, decided as for any child (the root's certificate, else its representative, else a
+  // search), not by the root's split: choosing or weighing a light at infinity then costs one importance
+  // evaluation where the representative scores, and the witness found spares the descent one slot's check.
+  // The tree's representative first (it scores at most points: the widest-reaching leaf, e.g. a portal sky).
+  uint32_t witness = kNoLeaf;
+  if (!nodes_.empty()) {
+    const uint32_t representative = nodes_[0].representative;
+    if (light_importance(nodes_[representative].bounds, at.position_m, at.normal) > 0.0f)
+      witness = representative;
+    else if (light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f)
+      witness = witness_below(0, every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal), at);
+  }
+  if (witness == kNoLeaf) return {0.0f, 1.0f / float(m)};
+  return {1.0f / float(m + 1), 1.0f / float(m + 1), witness};
 }
 
 std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& point, float u_float) const {
@@ -517,22 +545,34 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& poi
   constexpr double kBelowOne = 1.0 - 0x1p-53;
   u = std::min((u - infinite_total) / double(shares_here.tree), kBelowOne);
   float probability = shares_here.tree;
-  uint32_t node = 0, witness = kNoLeaf;
-  while (!nodes_[node].is_leaf) {
-    const Split s = node == 0 ? shares_here.root : split(node, witness, at);
-    if (u < double(s.first)) {
-      u = u / double(s.first);
-      probability *= s.first;
-      node = node + 1;
-      witness = s.first_witness;
-    } else {
-      if (!(s.second > 0.0f)) return std::nullopt;  // neither child can contribute (only through rounding)
-      u = (u - double(s.first)) / double(s.second);
-      probability *= s.second;
-      node = nodes_[node].index;
-      witness = s.second_witness;
+  uint32_t node = 0;  // binary node reached
+  if (nodes_[0].is_leaf) {
+    if (!(importance(0, at) > 0.0f)) return std::nullopt;
+  } else {
+    uint32_t wide = 0, witness = shares_here.root_witness;
+    for (;;) {
+      const WideNode& w = wide_nodes_[wide];
+      const WideSplit s = wide_split(wide, witness, at);
+      // The slot whose interval of [0, 1) holds u (the last slot with probability, against rounding).
+      int chosen = -1;
+      double below = 0.0, chosen_below = 0.0;
+      for (int j = 0; j < w.count; ++j) {
+        const double p = double(s.probability[size_t(j)]);
+        if (!(p > 0.0)) continue;
+        chosen = j;
+        chosen_below = below;
+        if (u < below + p) break;
+        below += p;
+      }
+      if (chosen < 0) return std::nullopt;  // no slot can contribute (only through rounding)
+      const double p = double(s.probability[size_t(chosen)]);
+      u = std::clamp((u - chosen_below) / p, 0.0, kBelowOne);
+      probability *= s.probability[size_t(chosen)];
+      witness = s.witness[size_t(chosen)];
+      node = w.child[size_t(chosen)];
+      if (w.wide[size_t(chosen)] == kNoLeaf) break;
+      wide = w.wide[size_t(chosen)];
     }
-    u = std::clamp(u, 0.0, kBelowOne);
   }
   if (!(probability > 0.0f)) return std::nullopt;  // underflow far down a deep tree
   const Leaf& leaf = leaves_[nodes_[node].index];
@@ -555,22 +595,31 @@ float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part)
   const Shares shares_here = shares(at);
   if (!(shares_here.tree > 0.0f)) return 0.0f;
   float probability = shares_here.tree;
-  uint32_t node = 0, witness = kNoLeaf;
-  while (!nodes_[node].is_leaf) {
-    const Split s = node == 0 ? shares_here.root : split(node, witness, at);
+  if (nodes_[0].is_leaf) return importance(0, at) > 0.0f ? probability : 0.0f;
+  uint32_t wide = 0, witness = shares_here.root_witness;
+  for (;;) {
+    const WideNode& w = wide_nodes_[wide];
+    const WideSplit s = wide_split(wide, witness, at);
+    // The trail's next bit picks the binary child; unless that child is a leaf, the bit after it the grandchild.
     const bool second = (trail & 1) != 0;
     trail >>= 1;
-    const float factor = second ? s.second : s.first;
+    size_t j = second ? w.first_slots : 0;
+    if ((second ? w.count - w.first_slots : w.first_slots) == 2) {
+      j += trail & 1;
+      trail >>= 1;
+    }
+    const float factor = s.probability[j];
     if (!(factor > 0.0f)) return 0.0f;
     probability *= factor;
-    node = second ? nodes_[node].index : node + 1;
-    witness = second ? s.second_witness : s.first_witness;
+    witness = s.witness[j];
+    if (w.wide[j] == kNoLeaf) return probability;
+    wide = w.wide[j];
   }
-  return probability;
 }
 
 size_t BvhLightSampler::memory_bytes() const {
-  return sizeof(*this) + nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(Leaf) +
+  return sizeof(*this) + nodes_.capacity() * sizeof(Node) + wide_nodes_.capacity() * sizeof(WideNode) +
+         leaves_.capacity() * sizeof(Leaf) +
          first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
          infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8 +
          node_bands_.capacity() * sizeof(node_bands_[0]);

@@ -2,16 +2,20 @@
 // (each emissive triangle its own leaf), in proportion to each cluster's importance there (light_bounds.h;
 // Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree Splitting").
 //
-// Descent. At an interior node with children a, b of importances I_a, I_b at (p, n), child a is taken with
-// probability I_a / (I_a + I_b); the leaf's probability is the product along its path. pmf() retraces that path
-// (stored per leaf as a bit trail) and multiplies the same factors in the same order, so it returns exactly the
-// sampled probability. Importances are 0 behind one-sided emitters, outside spot/IES cones and below an opaque
-// surface's tangent plane.
+// Descent, four children at a time. The tree is built binary (below) and descended through its "wide" nodes: a wide
+// node's slots are the grandchildren of a binary node (or a child that is a leaf), 2-4 of them, whose importances
+// I_j at (p, n) are evaluated together in SSE lanes (light_bounds4.h: bit for bit the scalar light_importance), and
+// slot j is taken with probability I_j / Σ I. The leaf's probability is the product along its path. pmf() retraces
+// that path (stored per leaf as the binary tree's bit trail: one bit per binary level, so one or two per wide
+// level) and multiplies the same factors in the same order, so it returns exactly the sampled probability.
+// Importances are 0 behind one-sided emitters, outside spot/IES cones and below an opaque surface's tangent plane.
+// Against a binary descent this halves the levels and evaluates four bounds for about the instructions of one
+// (docs/transport.md, "What the light tree costs").
 //
 // Pruning. A node's bounds are looser than its children's, so a node can score > 0 while every leaf below it
 // scores 0 (its box straddles the tangent plane, each child's box lies below it). A descent into such a subtree
 // would find no light, and that probability would be lost (~20 % at random points with random normals). So a
-// child's importance counts only if some leaf below it scores > 0. That is decided from the child's own bounds
+// slot's importance counts only if some leaf below it scores > 0. That is decided from the child's own bounds
 // where they guarantee that every leaf scores (the usual case: the cluster wholly above the tangent plane and p
 // inside every member's emission cone; below such a cluster nothing more is checked), else on the subtree's
 // representative (its leaf whose emission reaches the widest cone, then the brightest), else by a depth-first
@@ -22,13 +26,13 @@
 // nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
 //
 // Capped search (an option; search_budget 0, the default, leaves searches unlimited). A search is limited to `search_budget` node visits
-// (importance evaluations). If it runs out, the child counts as if it could contribute, with no witness: the
-// descent checks both of its children again. Where such a child has no scoring leaf below, a descent into it finds
+// (importance evaluations). If it runs out, the slot counts as if it could contribute, with no witness: the
+// descent checks every slot below it again. Where such a child has no scoring leaf below, a descent into it finds
 // none and sample() returns std::nullopt: the probabilities then sum to less than 1 at that point, by that child's
 // share, but every leaf that scores > 0 still has probability > 0 (a child holding one is never dropped), so the
 // choice stays unbiased, and pmf() retraces the same checks with the same budget, so it still equals sample()'s
-// probability exactly. The cap bounds a choice's work at about 2 + 2·search_budget importance evaluations per level
-// (depth ≤ 62), whatever the lights; without it a search may visit every node below a child at every level (10⁶
+// probability exactly. The cap bounds a choice's work at about 1 + 4·search_budget importance evaluations per wide
+// level (binary depth ≤ 62), whatever the lights; without it a search may visit every node below a child at every level (10⁶
 // randomly oriented triangles: the bounds certify nothing). Where bounds certify clusters or representatives score
 // (rooms, streets, the Cornell box) searches end within a visit or two and the cap never acts; on 1,050 randomly
 // oriented triangles at random points with random normals the probabilities sum to 0.87 on average
@@ -39,7 +43,10 @@
 // competes with the lamps as a window-sized area light would, and far from it gets little.
 // Other lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
 // with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
-// finite light can contribute (the tree's top split has importance 0 on both sides), each gets 1/m instead.
+// finite light can contribute (no leaf scores > 0), each gets 1/m instead. That is decided as for any child of the
+// descent (the root's certificate, else its representative, else a search), not from the root's split, so choosing
+// a light at infinity, or weighing a BSDF-sampled ray that escaped (pmf()), costs one or two importance evaluations
+// rather than a wide node's; the leaf found is the root split's witness.
 //
 // Spectral importance (Importance::spectral, "light_sampler": "bvh-spectral"). Each node also holds its intensity
 // bound's spectral shape in kBands equal bands over 360-830 nm: band b is the cluster's intensity_w_sr times the
@@ -69,6 +76,7 @@
 #include <vector>
 
 #include "transport/lights/light_bounds.h"
+#include "transport/lights/light_bounds4.h"
 #include "transport/lights/light_sampler.h"
 
 namespace rimu {
@@ -116,10 +124,20 @@ class BvhLightSampler final : public LightSampler {
   static constexpr uint32_t kNoLeaf = 0xffffffffu;
   static constexpr uint32_t kCertified = 0xfffffffeu;  // a witness meaning: every leaf below scores > 0
   static constexpr uint32_t kUnknown = 0xfffffffdu;  // a witness meaning: the search ran out (see "Capped search")
-  struct Split {
-    float first = 0.0f, second = 0.0f;  // the probabilities of the two children; both 0 if neither can contribute
-    // Per child: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the child cannot contribute).
-    uint32_t first_witness = kNoLeaf, second_witness = kNoLeaf;
+  // A node of the 4-wide descent (see "Four children at a time"): up to four children, each a node of the binary
+  // tree: the grandchildren of a binary node, or its child where that child is a leaf.
+  struct WideNode {
+    ImportanceBounds4 bounds;           // of each slot's binary node
+    std::array<uint32_t, 4> child{};    // the slot's binary node
+    std::array<uint32_t, 4> child_end{};  // one past the last binary node of its subtree (depth-first order)
+    std::array<uint32_t, 4> wide{};     // the slot's wide node, or kNoLeaf if the slot is a leaf
+    uint8_t count = 0;                  // slots used (2-4)
+    uint8_t first_slots = 0;            // slots below the binary node's first child (1 if it is a leaf, else 2)
+  };
+  struct WideSplit {
+    std::array<float, 4> probability{};  // per slot; all 0 if no slot can contribute
+    // Per slot: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the slot cannot contribute).
+    std::array<uint32_t, 4> witness{kNoLeaf, kNoLeaf, kNoLeaf, kNoLeaf};
   };
   struct BuildItem;
   /// A point with what the spectral importance needs of its wavelengths, worked out once per sample()/pmf():
@@ -131,12 +149,13 @@ class BvhLightSampler final : public LightSampler {
   };
   Query query(const LightSamplingPoint& at) const;
 
-  /// The split at interior node `index`, given `witness`: a leaf node below it known to score > 0 (the child
-  /// holding it needs no search), kCertified (no child needs one), or kNoLeaf.
-  Split split(uint32_t index, uint32_t witness, const Query& at) const;
-  /// The importance of node `index` at `at` if some leaf below it scores > 0, else 0; `*witness`: such a leaf,
-  /// kCertified if the node's bounds show that every leaf below scores, or kNoLeaf.
-  float pruned_importance(uint32_t index, const Query& at, uint32_t* witness) const;
+  /// The split at wide node `index`, given `witness`: a leaf node below it known to score > 0 (the slot holding it
+  /// needs no search), kCertified (no slot needs one), kNoLeaf or kUnknown.
+  WideSplit wide_split(uint32_t index, uint32_t witness, const Query& at) const;
+  /// For a child whose importance is > 0: a leaf node below binary node `index` that scores > 0, kCertified if its
+  /// bounds show that every leaf below scores (`certified`: light_importance4's certificate), kUnknown if a capped
+  /// search ran out, or kNoLeaf.
+  uint32_t witness_below(uint32_t index, bool certified, const Query& at) const;
   /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
   /// representative if every leaf is certified to score or it scores, else depth first; kUnknown once `*budget`
   /// node visits are spent (a negative budget never runs out).
@@ -144,15 +163,20 @@ class BvhLightSampler final : public LightSampler {
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
-    Split root;  // the root's split, reused by the descent (unset for a one-leaf tree)
+    uint32_t root_witness = kNoLeaf;  // what decided that the tree can contribute, for the root's split
   };
   Shares shares(const Query& at) const;
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
+  /// The wide node over interior binary node `index` and, recursively, those below it; `subtree_end` per binary node.
+  uint32_t build_wide(uint32_t index, const std::vector<uint32_t>& subtree_end);
   /// The importance of node `index` at `at` (light_importance, or its spectral form when the sampler is spectral
   /// and `at` carries wavelengths). Zero exactly where light_importance is zero (up to underflow).
   float importance(uint32_t index, const Query& at) const;
+  /// `broadband` (light_importance of node `index`, > 0) weighed by the node's bands at the path's wavelengths.
+  float spectral_importance(uint32_t index, float broadband, const Query& at) const;
 
   std::vector<Node> nodes_;
+  std::vector<WideNode> wide_nodes_;  // the descent's nodes; [0] over the binary root (none for a one-leaf tree)
   // Spectral only: per node, the band intensities (W/sr, averaging to the node's intensity_w_sr).
   std::vector<std::array<float, kBands>> node_bands_;
   std::vector<std::array<float, kBands>> light_bands_;  // during the build only: per light, its band shape

@@ -43,6 +43,10 @@ namespace rimu {
 inline constexpr float kImportanceCosineFloor = 1e-3f;
 /// cos_theta_lit of bounds that certify nothing (no cosine reaches it).
 inline constexpr float kNoLitCone = 2.0f;
+/// The light tree's certificate (bvh_light_sampler.cpp, every_leaf_scores) tests directions against the lit cone
+/// narrowed by twice the bounds' angular margin (1e-3 rad): cos(θl − 2·margin) ≤ cos θl·kLitConeCosMargin +
+/// sin θl·kLitConeSinMargin.
+inline constexpr float kLitConeCosMargin = 0.999998f, kLitConeSinMargin = 0.002f;
 
 /// The range a part's intensity bound is kept in. The tree only compares intensities, so squeezing an absurd value
 /// (a 1e-50 W/sr point light, a 1e35 W/sr sun stand-in) into it changes how often a light is picked, never whether it
