@@ -234,11 +234,19 @@ TEST_CASE("pbrt \"alpha\": a float imagemap on a bilinear patch, a constant, and
   const PbrtImport solid = import_pbrt_text(header + patch + " \"float alpha\" 1" + backdrop, "s.pbrt", dir.path, test::library());
   CHECK_FALSE(solid.document["shapes"][0].contains("alpha"));
 
-  // An image alpha on a disk (no texture coordinates in Rimu) is listed and the disk left solid.
+  // A disk carries pbrt's uv, so its image alpha is kept.
   const PbrtImport disk = import_pbrt_text(header + "Shape \"disk\" \"texture alpha\" \"holes\"" + backdrop, "d.pbrt", dir.path, test::library());
-  CHECK_FALSE(disk.document["shapes"][0].contains("alpha"));
-  REQUIRE_FALSE(disk.ignored.empty());
-  CHECK(describe_ignored(disk.ignored).find("alpha image texture on a shape without texture coordinates") != std::string::npos);
+  CHECK(disk.document["shapes"][0]["alpha"].contains("texture"));
+  CHECK(disk.ignored.empty());
+  // An image alpha on a shape without texture coordinates in Rimu (bilinear patches sharing vertices, whose default
+  // uv is per patch) is listed and the shape left solid.
+  const PbrtImport patches = import_pbrt_text(
+      header + "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0  2 0 0  2 1 0] \"integer indices\" [0 1 2 3  1 4 3 5] "
+               "\"texture alpha\" \"holes\"" + backdrop,
+      "b.pbrt", dir.path, test::library());
+  CHECK_FALSE(patches.document["shapes"][0].contains("alpha"));
+  REQUIRE_FALSE(patches.ignored.empty());
+  CHECK(describe_ignored(patches.ignored).find("alpha image texture on a shape without texture coordinates") != std::string::npos);
   // A spectrum texture is refused with the line.
   CHECK_THROWS_WITH_AS(import_pbrt_text(header + "Texture \"c\" \"spectrum\" \"constant\"\n" + patch + " \"texture alpha\" \"c\"",
                                         "e.pbrt", dir.path, test::library()),

@@ -1,12 +1,15 @@
-// pbrt-v4 geometry details (docs/pbrt-import.md, Shapes): .ply.gz meshes, bilinear patches, partial spheres listed,
-// degenerate triangles removed and counted.
+// pbrt-v4 geometry details (docs/pbrt-import.md, Shapes): .ply.gz meshes, bilinear patches, partial spheres,
+// cylinders and disks as meshes (emissive too), degenerate triangles removed and counted.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <numbers>
 #include <string>
 
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
 #include "test_support.h"
+#include "transport/lights/area_light.h"
 
 using namespace rimu;
 using nlohmann::json;
@@ -58,14 +61,76 @@ TEST_CASE("pbrt bilinearmesh: two triangles per patch and pbrt's default uv for 
   CHECK_FALSE(two.contains("uvs"));
 }
 
-TEST_CASE("pbrt partial spheres are listed; degenerate triangles are removed and counted") {
-  for (const char* parameter : {"\"float zmin\" -0.5", "\"float zmax\" 0.5", "\"float phimax\" 180"}) {
-    CAPTURE(parameter);
-    const PbrtImport imported = import_text(std::string("Shape \"sphere\" ") + parameter);
-    CHECK(describe_ignored(imported.ignored).find("partial sphere") != std::string::npos);
+TEST_CASE("pbrt partial spheres, cylinders and disks become meshes with pbrt's normals and uv; empty ones are listed") {
+  // A partial sphere: every vertex on the sphere inside zmin/zmax and φ ≤ φmax, nothing listed.
+  const PbrtImport sphere = import_text("Shape \"sphere\" \"float radius\" 2 \"float zmin\" -0.5 \"float zmax\" 1 \"float phimax\" 90");
+  CHECK(sphere.ignored.empty());
+  const json& s = sphere.document["shapes"][0];
+  REQUIRE(s["type"] == "triangles");
+  for (size_t i = 0; i < s["positions"].size(); ++i) {
+    const auto p = s["positions"][i].get<std::array<double, 3>>();
+    CHECK(std::hypot(p[0], p[1], p[2]) == doctest::Approx(2.0).epsilon(1e-6));
+    CHECK(p[2] >= -0.5 - 1e-6);
+    CHECK(p[2] <= 1 + 1e-6);
+    CHECK(p[0] >= -1e-6);
+    CHECK(p[1] >= -1e-6);
+    CHECK(s["uvs"][i][0].get<double>() <= 1.0);
   }
-  CHECK(import_text("Shape \"sphere\" \"float zmin\" -1 \"float zmax\" 1 \"float phimax\" 360").ignored.empty());
+  // A cylinder: outward normals, pbrt's uv; ReverseOrientation turns the normals (and the winding) inward.
+  for (const bool reversed : {false, true}) {
+    CAPTURE(reversed);
+    const PbrtImport imported = import_text(std::string(reversed ? "ReverseOrientation\n" : "") +
+                                            "Shape \"cylinder\" \"float radius\" 0.5 \"float zmin\" 2 \"float zmax\" 0");
+    CHECK(imported.ignored.empty());
+    const json& c = imported.document["shapes"][0];
+    REQUIRE(c["type"] == "triangles");
+    for (size_t i = 0; i < c["positions"].size(); ++i) {
+      const auto p = c["positions"][i].get<std::array<double, 3>>();
+      const auto n = c["normals"][i].get<std::array<double, 3>>();
+      CHECK(n[0] * p[0] + n[1] * p[1] == doctest::Approx(reversed ? -0.5 : 0.5).epsilon(1e-5));
+      CHECK(c["uvs"][i][1].get<double>() == doctest::Approx(p[2] / 2));  // zmin/zmax ordered as pbrt does
+    }
+  }
+  // A disk now carries pbrt's uv (v = 1 at the inner radius).
+  const json disk = import_text("Shape \"disk\" \"float innerradius\" 0.5").document["shapes"][0];
+  CHECK(disk["uvs"][1] == json({0.0, 1.0}));
+  // Shapes of zero area are listed, as pbrt renders nothing there.
+  for (const char* shape : {"\"sphere\" \"float zmin\" 0.5 \"float zmax\" 0.5", "\"cylinder\" \"float phimax\" 0",
+                            "\"disk\" \"float phimax\" 0"}) {
+    CAPTURE(shape);
+    const PbrtImport imported = import_text(std::string("Shape ") + shape);
+    CHECK(imported.document["shapes"].empty());
+    CHECK(describe_ignored(imported.ignored).find("of zero area") != std::string::npos);
+  }
+}
 
+TEST_CASE("pbrt emissive cylinder and disk: area lights with pbrt's area, emitting outward") {
+  const PbrtImport imported = import_text("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n"
+                                          "Shape \"cylinder\" \"float radius\" 0.1 \"float zmin\" 0 \"float zmax\" 1\n"
+                                          "Shape \"disk\" \"float radius\" 0.2\nAttributeEnd\n");
+  CHECK(imported.ignored.empty());
+  const auto scene = load_scene(imported.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
+  REQUIRE(scene->lights.size() == 2);
+  const double cylinder = 2 * std::numbers::pi * 0.1, disk = std::numbers::pi * 0.04;
+  const auto& tube = dynamic_cast<const AreaLight&>(*scene->lights[0]);
+  const auto& lid = dynamic_cast<const AreaLight&>(*scene->lights[1]);
+  CHECK(tube.area_m2() == doctest::Approx(cylinder).epsilon(1e-3));
+  CHECK(lid.area_m2() == doctest::Approx(disk).epsilon(1e-3));
+  // One-sided, outward: the tube lights a point beside it and not one inside it on its axis.
+  const SampledWavelengths lambda(Float4(550.0f), Float4(1.0f));
+  const auto lit_samples = [&](const LightReference& ref) {
+    int lit = 0;
+    for (int i = 0; i < 64; ++i) {
+      const auto sample = tube.sample_li(ref, lambda, {(i % 8 + 0.5f) / 8, (i / 8 + 0.5f) / 8});
+      lit += sample && sample->radiance[0] > 0.0f;
+    }
+    return lit;
+  };
+  CHECK(lit_samples({{1, 0, 0.5}, {-1, 0, 0}}) > 0);
+  CHECK(lit_samples({{0, 0, 0.5}, {1, 0, 0}}) == 0);
+}
+
+TEST_CASE("pbrt degenerate triangles are removed and counted") {
   // Triangle 1 repeats a vertex, triangle 2 has three collinear ones: both have zero area.
   const PbrtImport imported = import_text(
       "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  1 1 0  2 2 0] \"integer indices\" [0 1 2  0 1 1  0 2 3]");

@@ -53,15 +53,15 @@ TEST_CASE("pbrt hardening: a texture graph that unfolds exponentially is refused
   CHECK(error_of(small + "Material \"diffuse\" \"texture displacement\" \"t8\"\nShape \"sphere\"\n") == "no error");
 }
 
-TEST_CASE("pbrt hardening: generated triangles (loopsubdiv, sphere and disk meshes) are bounded per scene") {
+TEST_CASE("pbrt hardening: generated triangles (loopsubdiv, sphere, cylinder and disk meshes) are bounded per scene") {
   const std::string tetrahedron =
       "\"point3 P\" [ 1 1 1  -1 -1 1  -1 1 -1  1 -1 -1 ] \"integer indices\" [ 0 1 2  0 3 1  0 2 3  1 3 2 ]\n";
   // 4 · 4^10 triangles: refused before subdividing, whatever the levels' own bound (0-10) allows.
   CHECK(error_of(kCamera + "WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 10 " + tetrahedron) ==
         "test.pbrt:4: Shape \"loopsubdiv\": would generate 4194304 triangles after 0, beyond the importer's limit of "
-        "2097152 generated triangles per scene (Loop subdivision, sphere and disk meshes; lower \"levels\"?)");
-  // The limit is per scene: a sphere mesh (9024 triangles: reversed spheres are tessellated) and a disk (at most
-  // 192) count too, so the second reversed sphere crosses a limit of 10,000.
+        "2097152 generated triangles per scene (Loop subdivision, sphere, cylinder and disk meshes; lower \"levels\"?)");
+  // The limit is per scene: a sphere mesh (9024 triangles: reversed spheres are tessellated) and a disk (96
+  // triangles, 192 with a hole) count too, so the second reversed sphere crosses a limit of 10,000.
   PbrtImportOptions options;
   options.max_generated_triangles = 10000;
   const auto error_with_limit = [&](const std::string& text) {
@@ -73,7 +73,7 @@ TEST_CASE("pbrt hardening: generated triangles (loopsubdiv, sphere and disk mesh
     return std::string("no error");
   };
   const std::string spheres = kCamera + "WorldBegin\nReverseOrientation\nShape \"sphere\"\nShape \"disk\"\nShape \"sphere\"\n";
-  CHECK(error_with_limit(spheres).find("test.pbrt:7: Shape \"sphere\": would generate 9024 triangles after 9216,") == 0);
+  CHECK(error_with_limit(spheres).find("test.pbrt:7: Shape \"sphere\": would generate 9024 triangles after 9120,") == 0);
   CHECK(error_with_limit(kCamera + "WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 5 " + tetrahedron) == "no error");
   CHECK(error_with_limit(kCamera + "WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 6 " + tetrahedron)
             .find("test.pbrt:4: Shape \"loopsubdiv\": would generate 16384 triangles after 0,") == 0);

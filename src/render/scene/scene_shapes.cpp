@@ -1,8 +1,10 @@
 // Shapes, transforms and instancing of the JSON scene format.
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "render/image/alpha_mask.h"
+#include "render/scene/analytic_shapes.h"
 #include "render/scene/mesh_loader.h"
 #include "render/image/rgb_image.h"
 #include "transport/lights/area_light.h"
@@ -46,10 +48,57 @@ void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type,
   } else if (type == "quad") {
     shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "emission", "two_sided",
                      "alpha"});
+  } else if (type == "box") {
+    shape.only_keys({"type", "name", "min", "max", "material", "transform", "emission", "two_sided", "alpha"});
+  } else if (type == "cylinder") {
+    shape.only_keys({"type", "name", "radius", "zmin", "zmax", "phimax_deg", "caps", "material", "transform", "emission",
+                     "two_sided", "alpha"});
+  } else if (type == "disk") {
+    shape.only_keys({"type", "name", "radius", "inner_radius", "height", "phimax_deg", "material", "transform", "emission",
+                     "two_sided", "alpha"});
   } else {
     shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform", "emission",
                      "two_sided", "alpha"});
   }
+}
+
+// The swept angle of a cylinder or disk in radians: "phimax_deg" in (0, 360], default 360.
+double phimax_of(const JsonCursor& shape) {
+  if (!shape.has("phimax_deg")) return 2.0 * std::numbers::pi;
+  const JsonCursor phimax = shape.at("phimax_deg");
+  const double degrees = phimax.number(0.0, 360.0);
+  if (!(degrees > 0.0)) phimax.fail("the swept angle must be > 0 degrees (at most 360)");
+  return degrees * std::numbers::pi / 180.0;
+}
+
+// A "box", "cylinder" or "disk" shape as its mesh in object space (render/scene/analytic_shapes.h).
+TriangleMesh analytic_mesh_of(const JsonCursor& shape, const std::string& type) {
+  if (type == "box") {
+    const Vec3 lo = shape.at("min").vec3(), hi = shape.at("max").vec3();
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(lo[axis] < hi[axis])) shape.at("max").fail("every coordinate of max must exceed min's (a box has volume)");
+    return box_mesh(lo, hi).to_triangle_mesh();
+  }
+  const double radius = shape.at("radius").number(0.0, 1e30);
+  if (!(radius > 0.0)) shape.at("radius").fail("the radius must be > 0");
+  const double phimax = phimax_of(shape);
+  if (type == "disk") {
+    const double inner = shape.has("inner_radius") ? shape.at("inner_radius").number(0.0, 1e30) : 0.0;
+    if (!(inner < radius)) shape.at("inner_radius").fail("inner_radius must be smaller than radius");
+    const double height = shape.has("height") ? shape.at("height").number(-1e30, 1e30) : 0.0;
+    return disk_mesh(height, radius, inner, phimax).to_triangle_mesh();
+  }
+  const double zmin = shape.at("zmin").number(-1e30, 1e30), zmax = shape.at("zmax").number(-1e30, 1e30);
+  if (!(zmin < zmax)) shape.at("zmax").fail("zmax must exceed zmin (the cylinder has a length)");
+  AnalyticMesh mesh = cylinder_mesh(radius, zmin, zmax, phimax);
+  if (shape.boolean_or("caps", false)) {
+    // The ends closed by disks facing away from the cylinder: +z at zmax, −z at zmin (a wedge's cut faces stay open).
+    append_mesh(mesh, disk_mesh(zmax, radius, 0.0, phimax));
+    AnalyticMesh bottom = disk_mesh(zmin, radius, 0.0, phimax);
+    flip_mesh(bottom);
+    append_mesh(mesh, bottom);
+  }
+  return mesh.to_triangle_mesh();
 }
 
 // The mesh a shape describes, in object space (before its transform).
@@ -73,6 +122,8 @@ TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadConte
     // Without "uvs" a quad's texture coordinates are per triangle ("uv_default" below), which no texture can follow.
     if (const auto uvs = shape.find("uvs"))
       for (size_t i = 0; i < uvs->size(); ++i) mesh.uvs.push_back(uvs->at(i).vec2());
+  } else if (type == "box" || type == "cylinder" || type == "disk") {
+    mesh = analytic_mesh_of(shape, type);
   } else {  // triangles
     mesh.positions = vec3_array(shape.at("positions"));
     const JsonCursor indices = shape.at("indices");
@@ -171,10 +222,10 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
   Scene& scene = context.scene;
   for (size_t i = 0; i < section.size(); ++i) {
     const JsonCursor shape = section.at(i);
-    const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "sphere", "instance"});
+    const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk", "sphere", "instance"});
     if (type == "sphere") {
       if (shape.has("emission"))
-        shape.at("emission").fail("spheres cannot emit light; use a mesh, triangles or quad shape as an area light");
+        shape.at("emission").fail("spheres cannot emit light; use a mesh, triangles, quad, box, cylinder or disk shape as an area light");
       shape.only_keys({"type", "name", "center", "radius", "material", "transform", "uv_axes"});
       if (shape.has("transform")) shape.at("transform").fail("spheres take center and radius, not a transform");
       const Vec3 centre = shape.at("center").vec3();
@@ -253,7 +304,7 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
     BoundsD bounds;
     for (size_t i = 0; i < shapes.size(); ++i) {
       const JsonCursor shape = shapes.at(i);
-      const std::string type = shape.at("type").choice({"mesh", "triangles", "quad"});
+      const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk"});
       check_triangle_shape_keys(shape, type, true);
       TriangleMesh mesh = mesh_of(shape, type, context);
       mesh.transform(parse_transform(shape));

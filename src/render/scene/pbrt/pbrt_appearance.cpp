@@ -153,6 +153,21 @@ std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool i
   }
 }
 
+std::optional<json> PbrtConverter::optical_constant(const PbrtParam& param, PbrtParams& p) {
+  if (param.type != PbrtParamType::rgb) return spectrum_value(param, false, p.directory());
+  // pbrt-v4 reads an RGB eta or k as an unbounded spectrum (RGBUnboundedSpectrum), not as a colour.
+  // The parser has checked three finite numbers >= 0 (as for every RGB).
+  const bool index = param.name.ends_with("eta");
+  if (index && !(std::max({param.numbers[0], param.numbers[1], param.numbers[2]}) > 0))
+    throw InputError(param.where, p.context() + ": \"" + param.name + "\" must not be black (an index of refraction is > 0)");
+  json value = unbounded_rgb({param.numbers[0], param.numbers[1], param.numbers[2]}, state_.colour_space, param.where);
+  // pbrt's sigmoid spectra never reach 0, Rimu's smoothest spectra of saturated colours can; an index must stay > 0,
+  // so it is floored at 1e-3 (below every metal's n in pbrt's tables: silver's lowest is 0.04).
+  if (index && value.is_object())
+    for (json& v : value["values"]) v = std::max(v.get<double>(), 1e-3);
+  return value;
+}
+
 std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string& name, double fallback, int depth) {
   const PbrtParam* param = p.get(name, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real});
   if (!param) return json(fallback);
@@ -347,11 +362,11 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     } else if (eta && k && eta->type == PbrtParamType::spectrum && k->type == PbrtParamType::spectrum && !eta->strings.empty() &&
                !k->strings.empty() && metal_of(eta->strings[0], "-eta") && metal_of(eta->strings[0], "-eta") == metal_of(k->strings[0], "-k")) {
       out["metal"] = *metal_of(eta->strings[0], "-eta");
-    } else if (eta && k && eta->type != PbrtParamType::rgb && eta->type != PbrtParamType::texture && k->type != PbrtParamType::rgb &&
-               k->type != PbrtParamType::texture) {
-      // Floats, inline pairs or spectrum files; a named spectrum Rimu lacks is listed by spectrum_value.
-      const auto n_value = spectrum_value(*eta, false, p.directory());
-      const auto k_value = spectrum_value(*k, false, p.directory());
+    } else if (eta && k && eta->type != PbrtParamType::texture && k->type != PbrtParamType::texture) {
+      // Floats, inline pairs, spectrum files or RGB (pbrt's unbounded RGB); a named spectrum Rimu lacks is listed
+      // by spectrum_value.
+      const auto n_value = optical_constant(*eta, p);
+      const auto k_value = optical_constant(*k, p);
       if (n_value && k_value) {
         out["n"] = *n_value;
         out["k"] = *k_value;
@@ -359,7 +374,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
         out["metal"] = "pbrt-cu";
       }
     } else {
-      ignore(type + " " + prefix + "eta/" + prefix + "k other than a metal-*-eta/-k pair of one metal, floats or tabulated spectra (pbrt's copper is used)", s.where);
+      ignore(type + " " + prefix + "eta/" + prefix + "k other than a metal-*-eta/-k pair of one metal, floats, RGB or tabulated spectra (pbrt's copper is used)", s.where);
       out["metal"] = "pbrt-cu";
     }
   };
@@ -372,14 +387,14 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     if (scale != 1.0) m["scale"] = std::max(0.0, scale);
   } else if (type == "coateddiffuse") {
     m = {{"type", "coated_diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
-    if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum})) {
-      if (const auto v = spectrum_value(*eta, false, p.directory())) m["coat_ior"] = *v;
+    if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb})) {
+      if (const auto v = optical_constant(*eta, p)) m["coat_ior"] = *v;
     }
     coat_layer("", m);
   } else if (type == "coatedconductor") {
     m = {{"type", "coated_conductor"}};
-    if (const PbrtParam* eta = p.get("interface.eta", {PbrtParamType::real, PbrtParamType::spectrum})) {
-      if (const auto v = spectrum_value(*eta, false, p.directory())) m["coat_ior"] = *v;
+    if (const PbrtParam* eta = p.get("interface.eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb})) {
+      if (const auto v = optical_constant(*eta, p)) m["coat_ior"] = *v;
     }
     coat_layer("interface.", m);
     if (p.get("reflectance", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real})) {
@@ -421,12 +436,13 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
   } else {  // dielectric, thindielectric: the same eta
     const bool thin = type == "thindielectric";
     m = {{"type", thin ? "thin_dielectric" : "dielectric"}};
-    const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum});
+    // A spectrally varying eta (RGB, a table, a named glass) disperses, in pbrt-v4 as in Rimu.
+    const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb});
     if (!eta) {
       m["ior"] = 1.5;
     } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && glass_of(eta->strings[0])) {
       m["glass"] = *glass_of(eta->strings[0]);
-    } else if (const auto v = spectrum_value(*eta, false, p.directory())) {
+    } else if (const auto v = optical_constant(*eta, p)) {
       m["ior"] = *v;
     } else {
       m["ior"] = 1.5;  // spectrum_value reported it

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "render/scene/pbrt/pbrt_matrix.h"
+#include "render/scene/analytic_shapes.h"
 #include "render/scene/pbrt/pbrt_parser.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 
@@ -164,6 +165,9 @@ class PbrtConverter {
   /// A medium's sigma_a/sigma_s (1/m; pbrt's unbounded RGB becomes a table through Rimu's upsampler).
   json coefficient_value(PbrtParams& p, const std::string& name, double fallback);
   /// pbrt's unbounded RGB coefficient `c` in `colour_space` (a Rimu colour space name) as a Rimu spectral value.
+  /// A conductor's eta or k, a dielectric's or coat's eta: as spectrum_value, and RGB as pbrt-v4's unbounded RGB
+  /// (unbounded_rgb in the colour space in effect). Throws InputError for a black RGB index of refraction.
+  std::optional<json> optical_constant(const PbrtParam& param, PbrtParams& p);
   json unbounded_rgb(const Vec3d& c, const std::string& colour_space, const SourceLocation& where);
   /// pbrt-v4's named measured medium `name` (data/media/scattering_presets.csv) as {sigma_a, sigma_s}; empty if
   /// pbrt has no such name.
@@ -176,6 +180,17 @@ class PbrtConverter {
   std::optional<std::string> boundary_material(const std::string& material, const SourceLocation& where, const std::string& context);
   /// Lists the outside media that no shape has inside (pbrt's scene-wide media).
   void finish_media();
+  /// Whether the MediumInterface in effect puts an imported medium only in front of shapes of `material`
+  /// (`MediumInterface "" "fog"`: pbrt-v4's exterior, on the side the normal points to), for a shape that is not an
+  /// area light and whose material is defined already: such a shape may be turned inside out to bound it.
+  bool medium_in_front_only(const std::string& material) const;
+  /// Whether the mesh about to be emitted (pbrt's front already counter-clockwise) is turned inside out so that the
+  /// medium in front of it becomes the medium it bounds from behind (pbrt_media.cpp has the rule); lists the shapes
+  /// whose front medium cannot be represented.
+  bool turn_for_front_medium(const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices,
+                             const SourceLocation& where, const std::string& context);
+  /// The material shapes get now: the Material/NamedMaterial in effect, else pbrt's default diffuse.
+  std::string current_material() { return state_.material.empty() ? default_material() : state_.material; }
 
   // pbrt_to_scene.cpp
   void film_crop(PbrtParams& p, const PbrtStatement& s);
@@ -196,6 +211,9 @@ class PbrtConverter {
                  bool pbrt_default_uvs = false);
   void emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                   double area_m2, int shape_count);
+  /// A cylinder, disk or sphere mesh (render/scene/analytic_shapes.h, in object space) through emit_mesh, counted
+  /// against the generated-triangle limit.
+  void emit_analytic_mesh(PbrtParams& p, AnalyticMesh mesh, const SourceLocation& where, const std::string& context);
   /// The shape's "alpha" (a float or a float texture) as Rimu's shape "alpha", or null (solid). `has_uvs`: whether
   /// the shape carries texture coordinates an alpha image can follow.
   json alpha_parameter(PbrtParams& p, bool has_uvs);
@@ -216,6 +234,7 @@ class PbrtConverter {
   std::optional<std::string> object_;  ///< inside ObjectBegin
   SourceLocation object_where_;        ///< that ObjectBegin
   json shape_alpha_;                   ///< the alpha of the Shape being converted (pbrt_shapes.cpp), or null
+  bool shape_turned_for_medium_ = false;  ///< the Shape being converted bounds its front medium (turn_for_front_medium)
   std::map<std::string, PbrtTexture> textures_;
 
   // Camera: world-from-camera at the Camera statement, and its parameters.

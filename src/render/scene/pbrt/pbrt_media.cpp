@@ -4,6 +4,8 @@
 // inside medium differs from its outside one therefore gets a copy of its material that bounds that medium.
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/spectrum_input.h"
@@ -180,10 +182,72 @@ void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
   if (!steps.is_null()) medium["transform"] = steps;
 }
 
+namespace {
+
+// Materials through which paths cross a shape (and so change medium there) other than pbrt's "interface".
+bool transmits(const json& material) {
+  const json type = material.value("type", json());
+  return type == "dielectric" || type == "thin_dielectric" || type == "diffuse_transmission" || type == "mix";
+}
+
+// Whether a triangle mesh is closed: every edge, with vertices welded by position, is shared by exactly two triangles
+// (the seams and poles of the sphere and cylinder meshes repeat vertices at equal positions).
+bool is_closed(const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices) {
+  std::map<std::pair<Vec3d, Vec3d>, int> edges;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3)
+    for (size_t k = 0; k < 3; ++k) {
+      const Vec3d& a = positions[indices[t + k]];
+      const Vec3d& b = positions[indices[t + (k + 1) % 3]];
+      if (a == b) continue;  // a degenerate triangle's collapsed edge
+      ++edges[a < b ? std::pair{a, b} : std::pair{b, a}];
+    }
+  if (edges.empty()) return false;
+  for (const auto& [edge, count] : edges)
+    if (count != 2) return false;
+  return true;
+}
+
+}  // namespace
+
+// pbrt-v4 puts a MediumInterface's interior behind the surface normal and its exterior in front; a ray takes the
+// medium of the side it leaves a surface into. Rimu's media lie behind their boundary's front (a path crossing against
+// the geometric normal enters the medium, crossing along it leaves). The importer makes Rimu's front pbrt's normal
+// side (emit_mesh), so "inside" medium = Rimu's interior. A shape with a medium only in front
+// (`MediumInterface "" "fog"`) is turned inside out (winding and normals) and bounds that medium from behind, which
+// keeps pbrt's answer for every path that crosses it:
+//   - an "interface" shape, open or closed (a box whose faces point inward is filled; a plane with fog in front has
+//     fog on that side for paths crossing it);
+//   - an opaque closed shape (a room whose walls face inward holds its fog; paths do not cross it, so it matters for
+//     the camera's medium, which then starts inside it).
+// Not representable, and listed: an opaque open shape with a medium in front (pbrt gives only the rays leaving that
+// surface the medium; Rimu changes media where paths cross boundaries), and a transmitting material with vacuum
+// behind (turning it would turn its index of refraction around too; listed in boundary_material).
+bool PbrtConverter::medium_in_front_only(const std::string& material) const {
+  if (!state_.inside_medium.empty() || state_.outside_medium.empty() || state_.area_light) return false;
+  const auto medium = media_defined_.find(state_.outside_medium);
+  return medium != media_defined_.end() && !medium->second.is_null() && materials_.contains(material);
+}
+
+bool PbrtConverter::turn_for_front_medium(const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices,
+                                          const SourceLocation& where, const std::string& context) {
+  const std::string material = current_material();
+  if (!medium_in_front_only(material)) return false;
+  if (interface_materials_.count(material)) return true;
+  if (transmits(materials_.at(material))) return false;  // listed by boundary_material
+  if (is_closed(positions, indices)) return true;
+  ignore(context + ": an open opaque shape with a medium only in front of it (MediumInterface \"\" \"" +
+             state_.outside_medium + "\"; pbrt-v4 gives the rays leaving it that medium, Rimu's media change where paths "
+             "cross a closed boundary): not represented",
+         where);
+  return false;
+}
+
 std::optional<std::string> PbrtConverter::boundary_material(const std::string& material, const SourceLocation& where,
                                                              const std::string& context) {
-  const std::string& inside = state_.inside_medium;
-  const std::string& outside = state_.outside_medium;
+  // A shape turned inside out bounds its front medium (turn_for_front_medium): that medium is now behind it.
+  const bool turned = std::exchange(shape_turned_for_medium_, false);
+  const std::string inside = turned ? state_.outside_medium : state_.inside_medium;
+  const std::string outside = turned ? std::string() : state_.outside_medium;
   const bool is_interface = interface_materials_.count(material) > 0;
   for (const std::string* medium : {&inside, &outside})
     if (!medium->empty() && !media_defined_.count(*medium))
@@ -199,8 +263,7 @@ std::optional<std::string> PbrtConverter::boundary_material(const std::string& m
   if (inside.empty() && !outside.empty() && !media_defined_.at(outside).is_null() && materials_.contains(material)) {
     // pbrt: vacuum inside a shape in a medium. Rimu's stack keeps the medium around inside a shape that bounds no
     // medium: the same for opaque surfaces, not for surfaces that transmit.
-    const json type = materials_.at(material).value("type", json());
-    if (type == "dielectric" || type == "thin_dielectric" || type == "diffuse_transmission" || type == "mix")
+    if (transmits(materials_.at(material)))
       ignore(context + ": vacuum inside a transmitting shape that has a medium outside (in Rimu the outside medium "
                        "continues inside it)", where);
   }

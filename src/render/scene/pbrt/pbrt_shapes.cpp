@@ -1,11 +1,12 @@
 // pbrt-v4 shapes → Rimu shapes: meshes inline or by file, spheres analytic where Rimu's sphere can stand for them,
-// tessellated otherwise; disks tessellated.
+// tessellated otherwise (partial spheres always); cylinders and disks tessellated (render/scene/analytic_shapes.h).
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <numbers>
 #include <utility>
 
+#include "render/scene/analytic_shapes.h"
 #include "render/scene/loop_subdivision.h"
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/ply_loader.h"
@@ -13,14 +14,6 @@
 namespace rimu {
 
 namespace {
-
-constexpr int kLatitudeSegments = 48;    // sphere tessellation: ~0.1 % area error, smooth shading normals
-constexpr int kLongitudeSegments = 96;
-constexpr int kDiskSegments = 96;
-// Triangles of the meshes standing in for a sphere (two polar caps of one row each) and a disk (an annulus has two
-// per segment), counted against PbrtImportOptions::max_generated_triangles.
-constexpr int kSphereTriangles = 2 * kLongitudeSegments * (kLatitudeSegments - 1);
-constexpr int kDiskTriangles = 2 * kDiskSegments;  // at most
 
 Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec3d cross(const Vec3d& a, const Vec3d& b) {
@@ -139,8 +132,9 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
     if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the PLY file '" + path.string() + "'");
     shape_alpha_ = alpha_parameter(p, true);  // PLY meshes with cut-outs (leaves) carry uvs
-    if (state_.area_light || state_.reverse_orientation) {
-      // An emitter's side (and a reversed surface) is decided here, triangle by triangle, so the mesh goes inline.
+    if (state_.area_light || state_.reverse_orientation || medium_in_front_only(current_material())) {
+      // An emitter's side (and a reversed surface, or one turned to bound its front medium) is decided here,
+      // triangle by triangle, so the mesh goes inline.
       const TriangleMesh mesh = load_ply(path);
       std::vector<Vec3d> positions, normals;
       std::vector<std::array<double, 2>> uvs;
@@ -157,14 +151,22 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     PbrtParams p(*this, s, context, shape_defaults);
     const double radius = p.real("radius", 1.0);
     if (!(radius > 0)) throw InputError(s.where, context + ": \"radius\" must be > 0");
-    const double zmin = p.real("zmin", -radius), zmax = p.real("zmax", radius), phimax = p.real("phimax", 360.0);
-    if (zmin > -radius || zmax < radius || phimax < 360.0) ignore("partial sphere (zmin, zmax or phimax): rendered whole", s.where);
+    // pbrt-v4 orders zmin/zmax, clamps them to ±radius and φmax to [0, 360].
+    const double z0 = p.real("zmin", -radius), z1 = p.real("zmax", radius);
+    const double zmin = std::clamp(std::min(z0, z1), -radius, radius), zmax = std::clamp(std::max(z0, z1), -radius, radius);
+    const double phimax_rad = std::clamp(p.real("phimax", 360.0), 0.0, 360.0) * std::numbers::pi / 180.0;
     shape_alpha_ = alpha_parameter(p, true);  // an image alpha takes the mesh path below, which carries pbrt's uv
+    if (!(zmin < zmax) || !(phimax_rad > 0)) {
+      ignore(context + " of zero area (zmin = zmax or phimax = 0: pbrt-v4 renders nothing)", s.where);
+      shape_alpha_ = nullptr;
+      return;
+    }
+    const bool whole = zmin <= -radius && zmax >= radius && phimax_rad >= 2 * std::numbers::pi;
     double scale = 1.0;
     const PbrtMatrix world = world_from_object();
     // Rimu's analytic sphere has no cut-outs: a sphere with alpha takes the mesh path below.
-    if (shape_alpha_.is_null() && !object_ && !state_.area_light && !state_.reverse_orientation && world.is_finite() && world.is_affine() &&
-        is_similarity(world, scale)) {
+    if (whole && shape_alpha_.is_null() && !object_ && !state_.area_light && !state_.reverse_orientation &&
+        !medium_in_front_only(current_material()) && world.is_finite() && world.is_affine() && is_similarity(world, scale)) {
       // pbrt's sphere uv is about its object axes (pole +z, u = 0 along +x): carried as their world directions,
       // so textures land where pbrt puts them (a mirroring CTM flips the direction u runs, as in pbrt).
       json axes = json::array();
@@ -176,60 +178,43 @@ void PbrtConverter::shape(const PbrtStatement& s) {
                  context, false, 0.0, 1);
       return;
     }
-    // Rimu's sphere cannot be instanced, emit or be squashed: a fine mesh with the sphere's own normals and pbrt's
-    // uv (u = φ/2π, v = 1 − θ/π) stands in. Rows i = 0…L from the +z pole, columns j = 0…N with the seam column
-    // repeated (u = 0 and u = 1) so that uv interpolates across it; a pole vertex per column, at the column's middle u.
-    count_generated_triangles(kSphereTriangles, s.where, context);
-    std::vector<Vec3d> positions, normals;
-    std::vector<std::array<double, 2>> uvs;
-    std::vector<uint32_t> indices;
-    const auto vertex = [&](int i, double u) {
-      const double theta = std::numbers::pi * i / kLatitudeSegments, phi = 2 * std::numbers::pi * u;
-      const Vec3d n = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
-      positions.push_back({radius * n[0], radius * n[1], radius * n[2]});
-      normals.push_back(n);
-      uvs.push_back({u, 1.0 - double(i) / kLatitudeSegments});
-    };
-    for (int i = 0; i <= kLatitudeSegments; ++i) {
-      const bool pole = i == 0 || i == kLatitudeSegments;
-      for (int j = 0; j < kLongitudeSegments + (pole ? 0 : 1); ++j) vertex(i, (j + (pole ? 0.5 : 0.0)) / kLongitudeSegments);
+    // Rimu's sphere cannot be partial, instanced, emit, be turned inside out or be squashed: a fine mesh with the sphere's own normals and
+    // pbrt's uv stands in (render/scene/analytic_shapes.h states its error).
+    emit_analytic_mesh(p, sphere_mesh(radius, zmin, zmax, phimax_rad), s.where, context);
+  } else if (type == "cylinder") {
+    PbrtParams p(*this, s, context, shape_defaults);
+    const double radius = p.real("radius", 1.0);
+    const double z0 = p.real("zmin", -1.0), z1 = p.real("zmax", 1.0);
+    const double phimax_rad = std::clamp(p.real("phimax", 360.0), 0.0, 360.0) * std::numbers::pi / 180.0;
+    if (!(radius > 0)) throw InputError(s.where, context + ": \"radius\" must be > 0");
+    shape_alpha_ = alpha_parameter(p, true);
+    if (!(z0 != z1) || !(phimax_rad > 0)) {
+      ignore(context + " of zero area (zmin = zmax or phimax = 0: pbrt-v4 renders nothing)", s.where);
+      shape_alpha_ = nullptr;
+      return;
     }
-    // The pole rows hold N vertices (one per column), the others N + 1: row i ≥ 1 starts at N + (i − 1)(N + 1).
-    const auto at = [&](int i, int j) {
-      return uint32_t(i == 0 ? j : kLongitudeSegments + (i - 1) * (kLongitudeSegments + 1) + j);
-    };
-    for (int j = 0; j < kLongitudeSegments; ++j) {
-      indices.insert(indices.end(), {at(0, j), at(1, j), at(1, j + 1)});
-      for (int i = 1; i + 1 < kLatitudeSegments; ++i)
-        indices.insert(indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
-      indices.insert(indices.end(), {at(kLatitudeSegments - 1, j), at(kLatitudeSegments, j), at(kLatitudeSegments - 1, j + 1)});
-    }
-    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), std::move(uvs), context, 1);
+    emit_analytic_mesh(p, cylinder_mesh(radius, std::min(z0, z1), std::max(z0, z1), phimax_rad), s.where, context);
   } else if (type == "disk") {
     PbrtParams p(*this, s, context, shape_defaults);
     const double height = p.real("height", 0.0), radius = p.real("radius", 1.0), inner = p.real("innerradius", 0.0);
     const double phimax_rad = std::clamp(p.real("phimax", 360.0), 0.0, 360.0) * std::numbers::pi / 180.0;
     if (!(radius > 0) || inner < 0 || inner >= radius) throw InputError(s.where, context + ": needs 0 <= innerradius < radius");
-    shape_alpha_ = alpha_parameter(p, false);
-    count_generated_triangles(kDiskTriangles, s.where, context);
-    // Counter-clockwise seen from +z, pbrt's disk normal.
-    std::vector<Vec3d> positions, normals;
-    std::vector<uint32_t> indices;
-    for (int j = 0; j <= kDiskSegments; ++j) {
-      const double phi = phimax_rad * j / kDiskSegments;
-      positions.push_back({radius * std::cos(phi), radius * std::sin(phi), height});
-      positions.push_back({inner * std::cos(phi), inner * std::sin(phi), height});
+    shape_alpha_ = alpha_parameter(p, true);
+    if (!(phimax_rad > 0)) {
+      ignore(context + " of zero area (phimax = 0: pbrt-v4 renders nothing)", s.where);
+      shape_alpha_ = nullptr;
+      return;
     }
-    for (uint32_t j = 0; j < uint32_t(kDiskSegments); ++j) {
-      const uint32_t o0 = 2 * j, i0 = 2 * j + 1, o1 = 2 * j + 2, i1 = 2 * j + 3;
-      indices.insert(indices.end(), {i0, o0, o1});
-      if (inner > 0) indices.insert(indices.end(), {i0, o1, i1});
-    }
-    normals.assign(positions.size(), Vec3d{0, 0, 1});
-    emit_mesh(p, std::move(positions), std::move(indices), std::move(normals), {}, context, 1);
+    emit_analytic_mesh(p, disk_mesh(height, radius, inner, phimax_rad), s.where, context);
   } else {
     ignore(context, s.where);
   }
+}
+
+void PbrtConverter::emit_analytic_mesh(PbrtParams& p, AnalyticMesh mesh, const SourceLocation& where,
+                                       const std::string& context) {
+  count_generated_triangles(double(mesh.triangle_count()), where, context);
+  emit_mesh(p, std::move(mesh.positions), std::move(mesh.indices), std::move(mesh.normals), std::move(mesh.uvs), context, 1);
 }
 
 void PbrtConverter::count_generated_triangles(double triangles, const SourceLocation& where, const std::string& context) {
@@ -237,7 +222,7 @@ void PbrtConverter::count_generated_triangles(double triangles, const SourceLoca
     throw InputError(where, context + ": would generate " + std::to_string(int64_t(triangles)) + " triangles after " +
                                 std::to_string(generated_triangles_) + ", beyond the importer's limit of " +
                                 std::to_string(max_generated_triangles_) +
-                                " generated triangles per scene (Loop subdivision, sphere and disk meshes; lower \"levels\"?)");
+                                " generated triangles per scene (Loop subdivision, sphere, cylinder and disk meshes; lower \"levels\"?)");
   generated_triangles_ += size_t(triangles);
 }
 
@@ -247,11 +232,14 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
   // pbrt's front: the side of the shading normals N where given (flipped by ReverseOrientation), else the
   // counter-clockwise side, flipped by ReverseOrientation. Rimu's front is always the counter-clockwise side, so
   // triangles are rewound to match; a mirroring transform is left to Rimu, which rewinds as pbrt flips.
-  if (state_.reverse_orientation)
+  // A shape that bounds the medium in front of it is turned inside out (pbrt_media.cpp, turn_for_front_medium).
+  const bool turned = turn_for_front_medium(positions, indices, p.where(), context);
+  const bool reverse = state_.reverse_orientation != turned;
+  if (reverse)
     for (Vec3d& n : normals) n = {-n[0], -n[1], -n[2]};
   std::vector<bool> flips(indices.size() / 3, false);
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-    bool flip = state_.reverse_orientation;
+    bool flip = reverse;
     if (!normals.empty()) {
       const Vec3d g = cross(sub(positions[indices[t + 1]], positions[indices[t]]), sub(positions[indices[t + 2]], positions[indices[t]]));
       const Vec3d& a = normals[indices[t]];
@@ -297,6 +285,7 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
   if (!normals.empty()) shape["normals"] = normals;
   if (!uvs.empty()) shape["uvs"] = uvs;
   if (uv_default_pbrt) shape["uv_default"] = "pbrt";
+  shape_turned_for_medium_ = turned;
   emit_shape(std::move(shape), p.where(), context, true, area_m2, shape_count);
 }
 

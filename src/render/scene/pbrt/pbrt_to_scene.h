@@ -28,7 +28,7 @@ struct PbrtImportOptions {
   /// folder of the pbrt file (right for rendering the document in memory).
   std::filesystem::path output_directory;
   /// The most triangles the importer may generate for the whole scene: Loop subdivision (4^levels per control
-  /// triangle) and the meshes standing in for spheres and disks, all written inline into the document (about
+  /// triangle) and the meshes standing in for spheres, cylinders and disks, all written inline into the document (about
   /// 150 bytes of JSON per triangle, then the loader's own copy). Beyond it the import is an InputError at the
   /// shape that crosses it. Triangles the file lists itself do not count (they cost what the file's size does).
   std::size_t max_generated_triangles = std::size_t(1) << 21;
