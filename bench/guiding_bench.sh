@@ -31,16 +31,16 @@ for name, path in scenes.items():
             shape["emission"]["scale"] *= 1000
         elif "emission_scale" in shape: shape["emission_scale"] *= 1000
     s["integrator"].pop("guiding", None)
-    json.dump(s, open(f"{out}/{name}.json", "w"))
-    # Relative paths in the scene (spectra, meshes) resolve against the scene's folder: link it.
-    import os
-    os.symlink(os.path.dirname(path), f"{out}/{name}_dir")
+    # Relative paths in the scene (spectra, meshes) resolve against the scene's folder: work in a copy of it.
+    import os, shutil
+    shutil.copytree(os.path.dirname(path), f"{out}/{name}_dir")
+    json.dump(s, open(f"{out}/{name}_dir/{name}.json", "w"))
 PY
 cputime() { /usr/bin/time -f "%U %S" -o "$scratch/time" nice -n 19 "$@" >/dev/null; awk '{print $1 + $2}' "$scratch/time"; }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); $spp spp at $resolution, reference $ref_spp spp"
 printf "%-14s %-5s %10s %10s %8s %8s %6s\n" scene seed relmse_off relmse_on cpu_off cpu_on gain
 for n in daylit_open daylit_glazed cornell; do
-  scene=$scratch/${n}_dir/$n.json; cp "$scratch/$n.json" "$scene"
+  scene=$scratch/${n}_dir/$n.json
   nice -n 19 "$rimu" -q "$scene" -o "$scratch/ref_$n.exr" --spp "$ref_spp" --seed 99 --threads 2 \
     --resolution "$resolution" --guiding off
   for seed in $seeds; do
@@ -51,6 +51,5 @@ for n in daylit_open daylit_glazed cornell; do
     gain=$(awk -v a="$e_off" -v b="$e_on" -v ta="$t_off" -v tb="$t_on" 'BEGIN { printf "%.2f", a * ta / (b * tb) }')
     printf "%-14s %-5s %10.4g %10.4g %8.2f %8.2f %6s\n" "$n" "$seed" "$e_off" "$e_on" "$t_off" "$t_on" "$gain"
   done
-  rm -f "$scene"
 done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

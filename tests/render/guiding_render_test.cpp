@@ -9,6 +9,7 @@
 
 #include "integration_support.h"
 #include "render/scene/json_cursor.h"
+#include "spectral/error.h"
 
 using namespace rimu;
 using namespace rimu::test;
@@ -72,4 +73,21 @@ TEST_CASE("path guiding is deterministic: the same seed gives a bit-identical im
       if (std::memcmp(&a, &b, sizeof a) != 0 || std::memcmp(&b, &c, sizeof b) != 0) ++differing;
     }
   CHECK(differing == 0);
+}
+
+TEST_CASE("integrator.guiding takes on, off, true or false; anything else is an input error naming the key") {
+  const std::filesystem::path path = library().root() / "scenes" / "cornell_box" / "scene.json";
+  nlohmann::json document = small_version(path, 8, 8);
+  for (const auto& [value, expected] : std::vector<std::pair<nlohmann::json, bool>>{
+           {"on", true}, {"off", false}, {true, true}, {false, false}}) {
+    document["integrator"]["guiding"] = value;
+    CHECK(load_scene(document, "g.json", path.parent_path(), library())->settings.integrator.guiding == expected);
+  }
+  document["integrator"]["guiding"] = "maybe";
+  try {
+    load_scene(document, "g.json", path.parent_path(), library());
+    FAIL("loaded");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("guiding") != std::string::npos);
+  }
 }

@@ -8,6 +8,7 @@
 #include <functional>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "light_test_support.h"
@@ -36,7 +37,7 @@ std::vector<DirectionalSample> training_samples(const std::function<double(Vec3)
 }
 
 struct TrainedField {
-  const char* name;
+  std::string name;
   std::function<double(Vec3)> radiance;
 };
 
@@ -104,15 +105,19 @@ TEST_CASE("A learned directional distribution's pdf integrates to one and its sa
                                          (float(cy * sub + sy) + 0.5f) / float(cells * sub)});
         expected[size_t(cy * cells + cx)] = draws * integral / double(cells * sub * cells * sub);
       }
+    int round_trip_mismatches = 0;
     for (int i = 0; i < draws; ++i) {
       const Vec2 u{test::uniform01(rng), test::uniform01(rng)};
       const Vec2 p = tree.sample_square(u);
       REQUIRE(tree.pdf_square(p) > 0.0f);
-      // The direction round trip: what sample_direction() gives is where pdf_direction() looks.
-      CHECK(tree.pdf_direction(tree.sample_direction(u)) == doctest::Approx(tree.pdf_square(p) / (4.0 * kPi)));
+      // The direction round trip: what sample_direction() gives is where pdf_direction() looks, except for points
+      // within float rounding of a leaf's edge, which the square → sphere → square round trip may move across it.
+      if (std::fabs(tree.pdf_direction(tree.sample_direction(u)) * 4.0 * kPi / tree.pdf_square(p) - 1.0) > 1e-4)
+        ++round_trip_mismatches;
       const int cx = std::min(int(p.x * float(cells)), cells - 1), cy = std::min(int(p.y * float(cells)), cells - 1);
       observed[size_t(cy * cells + cx)] += 1.0;
     }
+    CHECK(round_trip_mismatches <= draws / 10000);
     const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
     CHECK(chi.p_value > test::sidak_threshold(test::kChiSquareAlpha, int(fields.size())));
   }
@@ -136,7 +141,7 @@ TEST_CASE("No energy, no distribution: a field without light guides nowhere") {
   CHECK(DirectionalQuadtree::build(samples, QuadtreeSettings{}).empty());
   std::vector<GuidingSample> field_samples(100, GuidingSample{{0, 0, 0}, {{0.5f, 0.5f}, 0.0f}});
   const GuidingField field = GuidingField::build(field_samples, 1, GuidingFieldSettings{});
-  CHECK(field.distribution_at({0, 0, 0}) == nullptr);
+  for (int facing = 0; facing < kFacings; ++facing) CHECK(field.distribution_at({0, 0, 0}, facing) == nullptr);
 }
 
 TEST_CASE("The spatial tree keeps two places' light apart, within its leaf bound") {
@@ -156,13 +161,15 @@ TEST_CASE("The spatial tree keeps two places' light apart, within its leaf bound
   const GuidingField field = GuidingField::build(samples, 1, settings);
   CHECK(field.leaf_count() <= 16);
   CHECK(field.leaf_count() >= 2);
-  const DirectionalQuadtree* left = field.distribution_at({-0.95f, 0.5f, 0.0f});
-  const DirectionalQuadtree* right = field.distribution_at({1.05f, 0.5f, 0.0f});
+  const DirectionalQuadtree* left = field.distribution_at({-0.95f, 0.5f, 0.0f}, 0);
+  const DirectionalQuadtree* right = field.distribution_at({1.05f, 0.5f, 0.0f}, 0);
+  CHECK(field.distribution_at({-0.95f, 0.5f, 0.0f}, 1) == nullptr);  // nothing learned facing −x
   REQUIRE(left != nullptr);
   REQUIRE(right != nullptr);
-  CHECK(left->pdf_direction({0, 0, 1}) > 5.0f);
+  // The light fills a cap of 2π·0.1 sr: a density of ~1.6/sr there (uniform would be 1/4π ≈ 0.08).
+  CHECK(left->pdf_direction({0, 0, 1}) > 1.0f);
   CHECK(left->pdf_direction({0, 0, -1}) == 0.0f);
-  CHECK(right->pdf_direction({0, 0, -1}) > 5.0f);
+  CHECK(right->pdf_direction({0, 0, -1}) > 1.0f);
   CHECK(right->pdf_direction({0, 0, 1}) == 0.0f);
   CHECK(field.memory_bytes() > 0);
 }

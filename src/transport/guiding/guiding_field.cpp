@@ -53,30 +53,42 @@ struct SpatialBuilder {
 
 }  // namespace
 
+int facing_of(Vec3 n) {
+  const Vec3 a{std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)};
+  const int axis = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+  return 2 * axis + (axis_value(n, axis) < 0.0f ? 1 : 0);
+}
+
 GuidingField GuidingField::build(std::vector<GuidingSample>& samples, int pass_samples_per_pixel,
                                  const GuidingFieldSettings& settings) {
   GuidingField field;
-  // The root box: the bounds of the recorded vertices (a later pass's vertex outside still finds the nearest leaf,
-  // since lookups only compare against split planes).
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (const GuidingSample& s : samples) {
-    lo = {std::fmin(lo.x, s.position.x), std::fmin(lo.y, s.position.y), std::fmin(lo.z, s.position.z)};
-    hi = {std::fmax(hi.x, s.position.x), std::fmax(hi.y, s.position.y), std::fmax(hi.z, s.position.z)};
+  // One tree per facing, each over the bounds of its own vertices (a later pass's vertex outside still finds the
+  // nearest leaf, since lookups only compare against split planes). The leaf bound is shared: the trees draw from
+  // one budget, in facing order.
+  SpatialBuilder builder{settings, settings.split_samples * std::sqrt(double(std::max(pass_samples_per_pixel, 1))),
+                         kFacings, {}};
+  SampleIterator first = samples.begin();
+  for (int f = 0; f < kFacings; ++f) {
+    const SampleIterator last =
+        std::stable_partition(first, samples.end(), [f](const GuidingSample& s) { return s.facing == f; });
+    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    for (auto it = first; it != last; ++it) {
+      lo = {std::fmin(lo.x, it->position.x), std::fmin(lo.y, it->position.y), std::fmin(lo.z, it->position.z)};
+      hi = {std::fmax(hi.x, it->position.x), std::fmax(hi.y, it->position.y), std::fmax(hi.z, it->position.z)};
+    }
+    if (first == last) lo = hi = Vec3{0, 0, 0};
+    field.roots_[f] = uint32_t(field.nodes_.size());
+    field.nodes_.emplace_back();
+    builder.build(field.nodes_, field.leaves_, field.roots_[f], first, last, lo, hi, 0);
+    first = last;
   }
-  field.nodes_.emplace_back();
-  if (samples.empty()) {
-    field.leaves_.emplace_back();
-    return field;
-  }
-  SpatialBuilder builder{settings, settings.split_samples * std::sqrt(double(std::max(pass_samples_per_pixel, 1))), 1, {}};
-  builder.build(field.nodes_, field.leaves_, 0, samples.begin(), samples.end(), lo, hi, 0);
   field.nodes_.shrink_to_fit();
   return field;
 }
 
-const DirectionalQuadtree* GuidingField::distribution_at(Vec3 position) const {
+const DirectionalQuadtree* GuidingField::distribution_at(Vec3 position, int facing) const {
   if (nodes_.empty()) return nullptr;
-  size_t node = 0;
+  size_t node = roots_[facing];
   while (nodes_[node].axis >= 0)
     node = nodes_[node].child + (axis_value(position, nodes_[node].axis) < nodes_[node].split ? 0 : 1);
   const DirectionalQuadtree& leaf = leaves_[nodes_[node].child];

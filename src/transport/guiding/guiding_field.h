@@ -13,11 +13,19 @@
 
 namespace rimu {
 
-/// One path vertex's record: where it was, the direction the path left it by (on the equal-area square) and the
-/// incident luminance that direction brought divided by the density it was sampled with.
+/// Which way a surface faces: the dominant axis of its normal and its sign (0: +x, 1: −x, 2: +y, … 5: −z).
+/// Vertices facing different ways learn separate fields: a floor and the wall beside it see different halves of
+/// the sphere, and a leaf that mixed them would send half of the wall's guided rays into the wall.
+int facing_of(Vec3 normal);
+inline constexpr int kFacings = 6;
+
+/// One path vertex's record: where it was, which way its surface faced (facing_of), the direction the path left it
+/// by (on the equal-area square) and the incident luminance that direction brought divided by the density it was
+/// sampled with.
 struct GuidingSample {
   Vec3 position;
   DirectionalSample direction;
+  int facing = 0;
 };
 
 struct GuidingFieldSettings {
@@ -35,8 +43,8 @@ class GuidingField {
   static GuidingField build(std::vector<GuidingSample>& samples, int pass_samples_per_pixel,
                             const GuidingFieldSettings& settings);
 
-  /// The directional distribution learned near `position`; nullptr where nothing was learned.
-  const DirectionalQuadtree* distribution_at(Vec3 position) const;
+  /// The directional distribution learned near `position` on surfaces facing `facing`; nullptr where nothing was.
+  const DirectionalQuadtree* distribution_at(Vec3 position, int facing) const;
 
   size_t leaf_count() const { return leaves_.size(); }
   size_t directional_node_count() const;
@@ -48,7 +56,8 @@ class GuidingField {
     int8_t axis = -1;      ///< −1: a leaf, whose distribution is leaves_[child]
     uint32_t child = 0;    ///< the first child (the second follows it), or the leaf index
   };
-  std::vector<Node> nodes_;
+  std::vector<Node> nodes_;  ///< kFacings trees: the root of facing f is nodes_[roots_[f]]
+  uint32_t roots_[kFacings] = {};
   std::vector<DirectionalQuadtree> leaves_;
 };
 

@@ -25,7 +25,7 @@ class PathGuidingRecord {
 
   /// A vertex left along `direction` with hero density `pdf`; `throughput` is the path throughput after the bounce
   /// (what later contributions are multiplied by), per lane.
-  void add_vertex(Vec3 position, Vec3 direction, float pdf, const SampledSpectrum& throughput);
+  void add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, const SampledSpectrum& throughput);
   /// A contribution the estimator adds to the pixel: it arrived at every recorded vertex.
   void add_radiance(const SampledSpectrum& contribution);
   /// Appends the vertices' samples to `out`.
@@ -34,6 +34,7 @@ class PathGuidingRecord {
  private:
   struct Vertex {
     Vec3 position;
+    int facing = 0;
     Vec2 square;
     float pdf = 0.0f;
     SampledSpectrum inverse_throughput;  ///< 1/throughput per lane (0 in lanes that carry nothing)

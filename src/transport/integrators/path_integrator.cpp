@@ -157,7 +157,9 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     // Guided vertices: non-delta BSDFs only (a delta lobe cannot be evaluated, so no mixture density exists), and
     // not panes (passed straight through, they are no vertex). Every BSDF density below is the mixture's.
     const bool guidable = guiding_on && flags.has_non_delta && !flags.has_delta && !may_pass;
-    const DirectionalQuadtree* guide = guidable && guiding.field ? guiding.field->distribution_at(hit->position) : nullptr;
+    const int facing = facing_of(shading.geometric_normal);
+    const DirectionalQuadtree* guide =
+        guidable && guiding.field ? guiding.field->distribution_at(hit->position, facing) : nullptr;
     const GuidedBsdf sampling(bsdf, shading.frame, guide, settings_.guiding_probability);
 
     // Next-event estimation: one light (and part), chosen by the scene's light sampler.
@@ -241,7 +243,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     }
 
     // The vertex's throughput before roulette: what arrives along wi_world, divided by it, is the incident radiance.
-    if (record && guidable) record->add_vertex(hit->position, wi_world, bs->pdf[0], beta);
+    if (record && guidable) record->add_vertex(hit->position, facing, wi_world, bs->pdf[0], beta);
 
     // Russian roulette on the effective throughput (what the film will see), after a few bounces.
     const float u_roulette = sampler.next_1d();

@@ -12,11 +12,13 @@
 #include "transport/lights/light_sampler.h"
 #include "transport/bsdfs/material.h"
 #include "transport/geometry/ray.h"
-#include "transport/guiding/guiding_field.h"
 #include "transport/integrators/ray_queries.h"
 #include "transport/sampling/sampler.h"
 
 namespace rimu {
+
+class GuidingField;    // transport/guiding/guiding_field.h
+struct GuidingSample;
 
 /// What the integrator needs of a scene: geometry queries, materials by index, lights by index, and how lights
 /// are picked. Non-owning; the render side owns everything and keeps it alive while rendering.
