@@ -158,6 +158,7 @@ JobScene load_job_scene(const RenderJob& job, const std::filesystem::path& scene
     document["integrator"]["wavelength_density"] =
         *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
   if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
+  if (job.guiding) document["integrator"]["guiding"] = *job.guiding;
   try {
     loaded.scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
   } catch (const InputError& e) {
@@ -301,6 +302,7 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, I
     exr.metadata.extra["wavelengthDensity"] = scene->wavelength_density ? "lights" : "visible";
     exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
     exr.metadata.extra["lightSampler"] = light_sampler_kind_name(settings.light_sampler);
+    exr.metadata.extra["guiding"] = settings.integrator.guiding ? "on" : "off";
     for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, output_transform))
       exr.metadata.extra[key] = value;
     exr.metadata.camera = settings.camera_exposure.exposure;
@@ -378,6 +380,10 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, I
           << (result.statistics.seconds > 0 ? double(result.statistics.camera_samples) / result.statistics.seconds : 0.0)
           << " samples/s; discarded samples: " << c.nan << " NaN, " << c.infinite << " Inf, " << c.negative
           << " negative\n";
+  if (const GuidingStatistics& g = result.statistics.guiding; g.active)
+    summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
+            << " spatial leaves, " << g.directional_nodes << " directional nodes, "
+            << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
   summary << "rimu: wrote " << job.exr_output.string();
   if (job.png_output) summary << " and " << job.png_output->string();
   summary << "\n";

@@ -8,10 +8,12 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
+#include "transport/guiding/guiding_field.h"
 #include "transport/integrators/path_integrator.h"
 #include "transport/integrators/volumetric_path_integrator.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -20,6 +22,9 @@ namespace rimu {
 namespace {
 
 constexpr int kTileSize = 16;
+// The samples one training pass may record (24 bytes each: 96 MiB), shared equally by the tiles so that which
+// samples are kept does not depend on the threads.
+constexpr size_t kGuidingSampleBudget = size_t(1) << 22;
 
 std::vector<PixelBounds> make_tiles(const PixelBounds& b) {
   std::vector<PixelBounds> tiles;
@@ -70,11 +75,19 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
 
   RenderStatistics stats;
+  // Path guiding (surface integrator only): the field the current pass samples from, fitted after the last one.
+  constexpr bool can_guide = std::is_same_v<Integrator, PathIntegrator>;
+  stats.guiding.active = can_guide && integrator_settings.guiding;
+  std::optional<GuidingField> guiding_field;
+  const GuidingFieldSettings guiding_settings;
   while (options.first_sample + stats.samples_per_pixel_done < options.samples_per_pixel) {
     const int first = options.first_sample + stats.samples_per_pixel_done;
     const int count = std::min(sample_pass_end(first), options.samples_per_pixel) - first;
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
     std::atomic<bool> stopped{false};
+    const bool train = stats.guiding.active && stats.guiding.training_passes < kGuidingTrainingPasses &&
+                       first + count < options.samples_per_pixel;
+    std::vector<std::vector<GuidingSample>> guiding_records(train ? tiles.size() : 0);
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
@@ -84,6 +97,12 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
           return;
         }
         auto tile = std::make_unique<FilmTile>(film.make_tile(tiles[t]));
+        [[maybe_unused]] PathGuidingContext guiding;
+        if constexpr (can_guide) {
+          guiding.field = guiding_field ? &*guiding_field : nullptr;
+          guiding.record = train ? &guiding_records[t] : nullptr;
+          guiding.record_limit = kGuidingSampleBudget / tiles.size();
+        }
         const PixelBounds& b = tile->bounds();
         for (int y = b.y0; y < b.y1; ++y) {
           for (int x = b.x0; x < b.x1; ++x) {
@@ -95,7 +114,9 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               const SampledWavelengths lambda =
                   sample_path_wavelengths(integrator_settings.wavelengths, *sampler, wavelength_density);
               const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset_px.x, float(y) + 0.5f + fs.offset_px.y, lens);
-              const SampledSpectrum radiance = integrator.radiance(ray, lambda, *sampler);
+              SampledSpectrum radiance;
+              if constexpr (can_guide) radiance = integrator.radiance(ray, lambda, *sampler, guiding);
+              else radiance = integrator.radiance(ray, lambda, *sampler);
               tile->add_sample(x, y, radiance, lambda, fs.weight);
             }
           }
@@ -109,6 +130,24 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     for (const auto& tile : results) film.merge_tile(*tile);
+    if (train) {
+      std::vector<GuidingSample> samples;
+      size_t total = 0;
+      for (const auto& r : guiding_records) total += r.size();
+      samples.reserve(total);
+      for (auto& r : guiding_records) {
+        samples.insert(samples.end(), r.begin(), r.end());
+        std::vector<GuidingSample>().swap(r);
+      }
+      guiding_field = GuidingField::build(samples, count, guiding_settings);
+      ++stats.guiding.training_passes;
+      stats.guiding.samples_recorded = samples.size();
+      if (guiding_field->memory_bytes() > stats.guiding.memory_bytes) {
+        stats.guiding.memory_bytes = guiding_field->memory_bytes();
+        stats.guiding.spatial_leaves = guiding_field->leaf_count();
+        stats.guiding.directional_nodes = guiding_field->directional_node_count();
+      }
+    }
     stats.samples_per_pixel_done += count;
     stats.camera_samples += uint64_t(film.pixel_bounds().area()) * uint64_t(count);
     if (options.after_pass) options.after_pass(first + count);

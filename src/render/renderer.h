@@ -30,11 +30,20 @@ struct RenderOptions {
   ProgressReporter* progress = nullptr;      ///< counts camera samples
 };
 
+/// What path guiding learned (docs/transport.md, "Path guiding"): the last field fitted, and its memory.
+struct GuidingStatistics {
+  bool active = false;      ///< the integrator was asked to guide (media scenes are not guided: false)
+  int training_passes = 0;  ///< passes whose samples a field was fitted to
+  size_t spatial_leaves = 0, directional_nodes = 0, memory_bytes = 0;  ///< of the largest field fitted
+  size_t samples_recorded = 0;  ///< in the last training pass
+};
+
 struct RenderStatistics {
   int samples_per_pixel_done = 0;  ///< samples taken by this call; < requested if interrupted
   bool interrupted = false;
   double seconds = 0;
   uint64_t camera_samples = 0;
+  GuidingStatistics guiding;
 };
 
 /// Renders `scene` into `film` (which fixes resolution, crop and response). The result depends only on the
@@ -45,6 +54,13 @@ struct RenderStatistics {
 /// [15,31), ...: the pass boundaries depend on the sample index only, see sample_pass_end); an interrupt stops after the current
 /// tile and throws away the unfinished pass, so every pixel of the result has the same number of samples.
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options);
+
+/// Path guiding (PathIntegratorSettings::guiding) trains in the passes of the call: the field fitted to the samples
+/// of each of its first kGuidingTrainingPasses passes (1, 2, 4, 8, 16 samples per pixel from sample 0) guides the
+/// next pass; the last one fitted then guides the rest. Fitting happens between passes on the calling thread, over
+/// the tiles' records in tile order: the image depends on the seed and the samples asked for, not on the threads.
+/// A partial render (first_sample > 0) trains its own field from its own first passes.
+inline constexpr int kGuidingTrainingPasses = 5;
 
 /// The end of the pass that contains sample index `sample`: the smallest pass boundary above it (1, 3, 7, 15, then
 /// every 16). A render of [a, b) cuts its passes at these boundaries (and at b), so a render resumed at a boundary

@@ -300,6 +300,26 @@ TEST_CASE("partial renders: OpenEXR does not allocate for a data window of 2^29 
     CAPTURE(message);
     CHECK(std::string(e.what()).find("cannot read as OpenEXR") != std::string::npos);
     CHECK(std::string(e.what()).find("height") != std::string::npos);
+
+TEST_CASE("partial renders: guided partials merge; a mix of guided and unguided partials is refused") {
+  Folder dir("guiding");
+  RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12});
+  a.guiding = true;
+  render(a);
+  RenderJob b = tiny_job(dir / "b.exr", SampleRange{12, 24});
+  b.guiding = true;
+  render(b);
+  CHECK(read_partial_exr(dir / "a.exr", false).metadata.extra.at("guiding") == "on");
+  // Each partial trained its own field: the merge is an unbiased image of 24 spp (not bit-identical to one process).
+  CHECK(merge({dir / "a.exr", dir / "b.exr"}, dir / "merged.exr").samples_per_pixel == 24);
+
+  render(tiny_job(dir / "plain.exr", SampleRange{12, 24}));
+  CHECK(read_partial_exr(dir / "plain.exr", false).metadata.extra.at("guiding") == "off");
+  try {
+    merge({dir / "a.exr", dir / "plain.exr"}, dir / "out.exr");
+    FAIL("merged");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("path guiding (rimu:guiding) off here, on there") != std::string::npos);
   }
   CHECK_FALSE(fs::exists(dir / "out.exr"));
 }

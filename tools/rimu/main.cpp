@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
       "Partial renders, checkpoints and farms: docs/farm.md; `rimu merge --help` merges partial renders."};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
-      light_sampler;
+      light_sampler, guiding;
   app.add_option("scene", scene, "scene file (.json, or a pbrt-v4 .pbrt: see docs/pbrt-import.md); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "scene-referred OpenEXR output, a name ending in .exr (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
@@ -48,6 +48,10 @@ int main(int argc, char** argv) {
                  "(the same, at the path's four wavelengths; see docs/sampling.md), power (by radiant power only) "
                  "or uniform (see docs/transport.md) (overrides the scene)")
       ->check(CLI::IsMember({"bvh", "bvh-spectral", "power", "uniform"}));
+  app.add_option("--guiding", guiding,
+                 "on: learn where light comes from while rendering and sample directions from it (path guiding; "
+                 "helps interiors lit indirectly, see docs/transport.md), off: the default (overrides the scene)")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");
@@ -94,6 +98,7 @@ int main(int argc, char** argv) {
       job.wavelength_density = wavelength_density == "lights" ? rimu::WavelengthDensityKind::lights
                                                               : rimu::WavelengthDensityKind::visible;
     if (!light_sampler.empty()) job.light_sampler = rimu::parse_light_sampler_kind(light_sampler);
+    if (!guiding.empty()) job.guiding = guiding == "on";
     if (!resolution.empty()) {
       const auto [w, h] = rimu::parse_resolution(resolution, "--resolution");
       job.width = w;

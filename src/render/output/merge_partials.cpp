@@ -38,6 +38,14 @@ void check_same_render(const PartialImage& a, const PartialImage& b) {
                                              b.record.output_transform.channel_matrix(r, c);
   if (!same_transform)
     mismatch("exposure or white balance", "one", "another");
+  // Before the hash (which a guiding option also changes): say plainly why guided and unguided partials do not mix.
+  // Each partial trains its own field, so the merge of guided partials is unbiased; a mix is refused because it
+  // is not the render either command asked for (docs/farm.md).
+  const auto guiding_of = [](const PartialImage& p) {
+    const auto it = p.metadata.extra.find("guiding");
+    return it == p.metadata.extra.end() ? std::string("off") : it->second;
+  };
+  if (guiding_of(a) != guiding_of(b)) mismatch("path guiding (rimu:guiding)", guiding_of(a), guiding_of(b));
   if (a.record.scene_hash != b.record.scene_hash)
     mismatch("the scene (its file, the files it names, or image options) differs: scene hash", a.record.scene_hash,
              b.record.scene_hash);

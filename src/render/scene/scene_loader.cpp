@@ -102,7 +102,8 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
-               "direct_lighting", "distance_sampling", "light_sampler"});
+               "direct_lighting", "distance_sampling", "light_sampler", "guiding"});
+  if (const auto d = c.find("guiding")) s.integrator.guiding = d->is_string() ? d->choice({"on", "off"}) == "on" : d->boolean();
   if (const auto d = c.find("light_sampler"))
     s.light_sampler = *parse_light_sampler_kind(d->choice({"bvh", "bvh-spectral", "power", "uniform"}));
   if (const auto d = c.find("wavelength_density"))
@@ -192,6 +193,9 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
                                     library.observer(StandardObserver::cie1931_2deg)));
   scene->warnings = light_coverage_warnings(*scene);
   for (std::string& warning : refracted_light_warnings(*scene)) scene->warnings.push_back(std::move(warning));
+  if (scene->settings.integrator.guiding && scene->has_media())
+    scene->warnings.push_back("integrator.guiding: path guiding is not applied in scenes with participating media "
+                              "(the volumetric integrator does not guide yet); this scene renders unguided");
   // Zero-area triangles cannot be hit or shaded; removing them is right, but a count the user never sees would
   // hide a broken export.
   if (scene->degenerate_triangles_removed > 0)

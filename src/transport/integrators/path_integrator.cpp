@@ -1,8 +1,11 @@
 #include "transport/integrators/path_integrator.h"
 
 #include <cmath>
+#include <optional>
 
 #include "transport/geometry/frame.h"
+#include "transport/guiding/guided_bsdf.h"
+#include "transport/guiding/path_guiding_record.h"
 #include "transport/integrators/shadow_passage.h"
 #include "transport/sampling/wavelength_modes.h"
 
@@ -52,8 +55,8 @@ ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls,
   return {to_target / distance, distance};
 }
 
-SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
-                                         Sampler& sampler) const {
+SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
+                                         const PathGuidingContext& guiding) const {
   const auto& lights = *scene_.lights;
   const LightSampler& light_sampler = *scene_.light_sampler;
 
@@ -66,6 +69,16 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
   SampledSpectrum pdf_ratio = lanes.initial_ratios();
   SampledSpectrum beta = pdf_ratio;  // f / p(x̄ | hero), per lane
   Ray ray = camera_ray;
+
+  // Path guiding: what this path teaches the field (if it records), and whether it may sample from one.
+  const bool guiding_on = settings_.guiding;
+  const bool recording = guiding_on && guiding.record && guiding.record->size() < guiding.record_limit;
+  std::optional<PathGuidingRecord> record;
+  if (recording) record.emplace(guiding_lane_weights(lambda, settings_.wavelengths == WavelengthMode::rgb));
+  auto contribute = [&](const SampledSpectrum& contribution) {
+    radiance += contribution;
+    if (record) record->add_radiance(contribution);
+  };
 
   // What the previous bounce left for MIS when this segment hits a light.
   bool previous_specular = true;     // the camera "bounce" cannot be matched by light sampling
@@ -82,13 +95,13 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     if (strategy == DirectLighting::nee_only && !previous_specular) return;
     if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
     if (previous_specular || light_pdf_solid_angle <= 0.0f) {
-      radiance += beta * emitted * Float4(kLanes / sum(pdf_ratio));
+      contribute(beta * emitted * Float4(kLanes / sum(pdf_ratio)));
       return;
     }
     const float s_light = light_pdf_solid_angle * previous_sum_ratio;
     const float s_bsdf = previous_bsdf_sum;
     const float weight = previous_hero_pdf * s_bsdf / (s_light * s_light + s_bsdf * s_bsdf);
-    radiance += beta * emitted * Float4(kLanes * weight);
+    contribute(beta * emitted * Float4(kLanes * weight));
   };
 
   // Panes passed straight through (docs/transport.md, "Glazing"): since the last scattering vertex (at most
@@ -141,6 +154,14 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
                                             &lambda};
     const float sum_ratio = sum(pdf_ratio);
 
+    // Guided vertices: non-delta BSDFs only (a delta lobe cannot be evaluated, so no mixture density exists), and
+    // not panes (passed straight through, they are no vertex). Every BSDF density below is the mixture's.
+    const bool guidable = guiding_on && flags.has_non_delta && !flags.has_delta && !may_pass;
+    const int facing = facing_of(shading.geometric_normal);
+    const DirectionalQuadtree* guide =
+        guidable && guiding.field ? guiding.field->distribution_at(hit->position, facing) : nullptr;
+    const GuidedBsdf sampling(bsdf, shading.frame, guide, settings_.guiding_probability);
+
     // Next-event estimation: one light (and part), chosen by the scene's light sampler.
     const float u_light_choice = sampler.next_1d();
     const Vec2 u_light = sampler.next_2d();
@@ -165,9 +186,9 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
               // lobe: its density carries their probabilities (docs/transport.md, "Glazing").
               const float s_bsdf = ls->is_delta || strategy == DirectLighting::nee_only
                                        ? 0.0f
-                                       : sum(pdf_ratio * lanes.densities(bsdf.pdf(wo, wi) * passage->pass_probability));
+                                       : sum(pdf_ratio * lanes.densities(sampling.pdf(wo, wi) * passage->pass_probability));
               const float weight = s_light / (s_light * s_light + s_bsdf * s_bsdf);
-              radiance += beta * f * passage->transmittance * ls->radiance * Float4(kLanes * weight);
+              contribute(beta * f * passage->transmittance * ls->radiance * Float4(kLanes * weight));
             }
           }
         }
@@ -177,7 +198,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     // BSDF sampling continues the path.
     const float u_lobe = sampler.next_1d();
     const Vec2 u_direction = sampler.next_2d();
-    const std::optional<BsdfSample> bs = bsdf.sample(wo, u_lobe, u_direction);
+    const std::optional<BsdfSample> bs = sampling.sample(wo, u_lobe, u_direction);
     if (!bs || !(bs->pdf[0] > 0.0f)) break;
     const Vec3 wi_world = shading.frame.to_world(bs->wi);
     // Opaque materials: the sampled direction must leave on the geometric front side (shading normals can lie).
@@ -221,6 +242,9 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
       beta *= hero_only;
     }
 
+    // The vertex's throughput before roulette: what arrives along wi_world, divided by it, is the incident radiance.
+    if (record && guidable) record->add_vertex(hit->position, facing, wi_world, bs->pdf[0], beta);
+
     // Russian roulette on the effective throughput (what the film will see), after a few bounces.
     const float u_roulette = sampler.next_1d();
     if (depth + 1 >= settings_.russian_roulette_depth) {
@@ -236,6 +260,7 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     ray.t_min = 0.0f;
     ray.t_max = INFINITY;
   }
+  if (record) record->flush(*guiding.record);
   return single ? radiance * Float4(1.0f, 0.0f, 0.0f, 0.0f) : radiance;
 }
 

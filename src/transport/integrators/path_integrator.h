@@ -17,6 +17,9 @@
 
 namespace rimu {
 
+class GuidingField;    // transport/guiding/guiding_field.h
+struct GuidingSample;
+
 /// What the integrator needs of a scene: geometry queries, materials by index, lights by index, and how lights
 /// are picked. Non-owning; the render side owns everything and keeps it alive while rendering.
 struct TransportScene {
@@ -53,6 +56,19 @@ struct PathIntegratorSettings {
   int russian_roulette_depth = 3;  ///< from this depth on, paths are terminated with probability 1 − q
   WavelengthMode wavelengths = WavelengthMode::hero;
   DirectLighting direct_lighting = DirectLighting::mis;
+  /// Path guiding (transport/guiding/, docs/transport.md "Path guiding"): the render loop learns the incident light
+  /// pass by pass and the integrator samples from it at non-delta vertices. Off by default.
+  bool guiding = false;
+  /// α: the probability of drawing a guided vertex's direction from the learned field (else from the BSDF).
+  float guiding_probability = 0.5f;
+};
+
+/// What a path does for guiding: sample from `field` (nullptr: not yet learned) and append what it learned to
+/// `record` (nullptr: nothing is recorded), at most until `record` holds `record_limit` samples.
+struct PathGuidingContext {
+  const GuidingField* field = nullptr;
+  std::vector<GuidingSample>* record = nullptr;
+  size_t record_limit = 0;
 };
 
 /// Estimates the radiance arriving along camera rays, per lane (see docs/transport.md for the estimator).
@@ -66,7 +82,12 @@ class PathIntegrator {
 
   /// Radiance along `ray` at the four wavelengths, in W/(m²·sr·nm): lane j is this path's estimate for λⱼ,
   /// already weighted by spectral MIS, so the film's mean over lanes of Lⱼ c(λⱼ)/p(λⱼ) is unbiased.
-  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const;
+  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const {
+    return radiance(ray, lambda, sampler, PathGuidingContext{});
+  }
+  /// The same, guided by (and teaching) the field in `guiding` when settings.guiding is on.
+  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
+                           const PathGuidingContext& guiding) const;
 
  private:
   const TransportScene& scene_;

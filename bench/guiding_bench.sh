@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# guiding_bench.sh BUILD [SPP] [REFERENCE_SPP] [SEEDS] [RESOLUTION]
+# Path guiding on and off (docs/benchmarks.md, "Path guiding"): the daylit room (open window and glazed,
+# data/scenes/interiors/, their lights ×1000 so that the relMSE's absolute floor of 0.01 in
+# rimu-pbrt-image-compare is negligible; the image only scales) and the Cornell box (the scene guiding cannot
+# help, lights ×1000 likewise). For each scene: a reference of REFERENCE_SPP samples (guiding off, seed 99), then
+# per seed one render with guiding off and one with it on, alternated, each timed in CPU seconds (user + system
+# of the whole process, 2 threads; the machine is shared, so CPU time is less disturbed than wall time but not
+# immune: the table says the load). Prints relMSE at SPP, CPU seconds, and the equal-time gain
+#   (relMSE_off · t_off) / (relMSE_on · t_on)
+# (relMSE ∝ 1/time for an unbiased estimator: the ratio of the relMSE the two would reach in the same time).
+# Renders run at nice 19.
+set -eu
+build=$1; spp=${2:-64}; ref_spp=${3:-2048}; seeds=${4:-"1 2 3"}; resolution=${5:-160x90}
+rimu=$build/bin/rimu; compare=$build/bin/rimu-pbrt-image-compare
+root=$(cd "$(dirname "$0")/.." && pwd); export RIMU_DATA=${RIMU_DATA:-$root/data}
+scratch=$(mktemp -d "${TMPDIR:-/tmp}/rimu-guiding.XXXXXX"); trap 'rm -rf "$scratch"' EXIT
+python3 - "$root/data/scenes" "$scratch" <<'PY'
+import json, sys
+source, out = sys.argv[1], sys.argv[2]
+scenes = {"daylit_open": f"{source}/interiors/daylit_room_open.json",
+          "daylit_glazed": f"{source}/interiors/daylit_room_glazed.json",
+          "cornell": f"{source}/cornell_box/scene.json"}
+for name, path in scenes.items():
+    s = json.load(open(path))
+    for light in s.get("lights", []):
+        for key in ("illuminance_lx", "luminance_nt", "power_w", "scale", "radiance"):
+            if isinstance(light.get(key), (int, float)): light[key] *= 1000
+    for shape in s.get("shapes", []):
+        if "emission" in shape and isinstance(shape["emission"], dict) and "scale" in shape["emission"]:
+            shape["emission"]["scale"] *= 1000
+        elif "emission_scale" in shape: shape["emission_scale"] *= 1000
+    s["integrator"].pop("guiding", None)
+    # Relative paths in the scene (spectra, meshes) resolve against the scene's folder: work in a copy of it.
+    import os, shutil
+    shutil.copytree(os.path.dirname(path), f"{out}/{name}_dir")
+    json.dump(s, open(f"{out}/{name}_dir/{name}.json", "w"))
+PY
+cputime() { /usr/bin/time -f "%U %S" -o "$scratch/time" nice -n 19 "$@" >/dev/null; awk '{print $1 + $2}' "$scratch/time"; }
+echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); $spp spp at $resolution, reference $ref_spp spp"
+printf "%-14s %-5s %10s %10s %8s %8s %6s\n" scene seed relmse_off relmse_on cpu_off cpu_on gain
+for n in daylit_open daylit_glazed cornell; do
+  scene=$scratch/${n}_dir/$n.json
+  nice -n 19 "$rimu" -q "$scene" -o "$scratch/ref_$n.exr" --spp "$ref_spp" --seed 99 --threads 2 \
+    --resolution "$resolution" --guiding off
+  for seed in $seeds; do
+    t_off=$(cputime "$rimu" -q "$scene" -o "$scratch/off.exr" --spp "$spp" --seed "$seed" --threads 2 --resolution "$resolution" --guiding off)
+    t_on=$(cputime "$rimu" -q "$scene" -o "$scratch/on.exr" --spp "$spp" --seed "$seed" --threads 2 --resolution "$resolution" --guiding on)
+    e_off=$("$compare" relmse "$scratch/off.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
+    e_on=$("$compare" relmse "$scratch/on.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
+    gain=$(awk -v a="$e_off" -v b="$e_on" -v ta="$t_off" -v tb="$t_on" 'BEGIN { printf "%.2f", a * ta / (b * tb) }')
+    printf "%-14s %-5s %10.4g %10.4g %8.2f %8.2f %6s\n" "$n" "$seed" "$e_off" "$e_on" "$t_off" "$t_on" "$gain"
+  done
+done
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

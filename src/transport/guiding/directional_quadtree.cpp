@@ -1,0 +1,129 @@
+#include "transport/guiding/directional_quadtree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "transport/sampling/equal_area_square.h"
+
+namespace rimu {
+namespace {
+
+constexpr float kInvFourPi = float(0.25 / std::numbers::pi);
+
+int quadrant_of(Vec2 p) { return (p.x >= 0.5f ? 1 : 0) + (p.y >= 0.5f ? 2 : 0); }
+
+// The point's coordinates inside quadrant q, rescaled to [0, 1)².
+Vec2 into_quadrant(Vec2 p, int q) {
+  return {std::fmin(2.0f * p.x - float(q & 1), 0x1.fffffep-1f), std::fmin(2.0f * p.y - float(q >> 1), 0x1.fffffep-1f)};
+}
+
+using SampleIterator = std::vector<DirectionalSample>::iterator;
+
+struct Builder {
+  const QuadtreeSettings& settings;
+  std::vector<DirectionalSample>& samples;
+  double total = 0.0;
+
+  // Builds the node for samples [first, last) (already in this node's own [0,1)² coordinates) into `nodes`.
+  template <typename Nodes>
+  void build(Nodes& nodes, size_t node, SampleIterator first, SampleIterator last, int depth) {
+    // Split the range into the four quadrants (stable order: the result depends on the input order only).
+    SampleIterator bounds[5];
+    bounds[0] = first;
+    bounds[4] = last;
+    bounds[2] = std::stable_partition(first, last, [](const DirectionalSample& s) { return s.square.y < 0.5f; });
+    bounds[1] = std::stable_partition(first, bounds[2], [](const DirectionalSample& s) { return s.square.x < 0.5f; });
+    bounds[3] = std::stable_partition(bounds[2], last, [](const DirectionalSample& s) { return s.square.x < 0.5f; });
+    double energy[4];
+    for (int q = 0; q < 4; ++q) {
+      energy[q] = 0.0;
+      for (auto it = bounds[q]; it != bounds[q + 1]; ++it) energy[q] += double(it->weight);
+      nodes[node].energy[q] = float(energy[q]);
+    }
+    for (int q = 0; q < 4; ++q) {
+      const bool split = depth < settings.max_depth && energy[q] > settings.subdivision_threshold * total &&
+                         bounds[q + 1] - bounds[q] >= settings.min_samples_to_split &&
+                         nodes.size() < size_t(settings.max_nodes);
+      if (!split) continue;
+      for (auto it = bounds[q]; it != bounds[q + 1]; ++it) it->square = into_quadrant(it->square, q);
+      const size_t child = nodes.size();
+      nodes.emplace_back();
+      nodes[node].child[q] = uint32_t(child);
+      build(nodes, child, bounds[q], bounds[q + 1], depth + 1);
+    }
+  }
+};
+
+}  // namespace
+
+DirectionalQuadtree DirectionalQuadtree::build(std::vector<DirectionalSample>& samples,
+                                               const QuadtreeSettings& settings) {
+  DirectionalQuadtree tree;
+  Builder builder{settings, samples};
+  for (const DirectionalSample& s : samples) builder.total += double(s.weight);
+  if (!(builder.total > 0.0) || !std::isfinite(builder.total)) return tree;
+  tree.nodes_.emplace_back();
+  builder.build(tree.nodes_, 0, samples.begin(), samples.end(), 1);
+  tree.nodes_.shrink_to_fit();
+  return tree;
+}
+
+Vec2 DirectionalQuadtree::sample_square(Vec2 u) const {
+  // Descend: choose the quadrant by its energy (first the row, then the column within it), reusing u rescaled.
+  Vec2 origin{0.0f, 0.0f};
+  float size = 1.0f;
+  size_t node = 0;
+  for (;;) {
+    const float* e = nodes_[node].energy;
+    const float bottom = e[0] + e[1], top = e[2] + e[3];
+    int q = 0;
+    const float p_top = top / (bottom + top);
+    if (u.y < 1.0f - p_top) {
+      u.y = std::fmin(u.y / (1.0f - p_top), 0x1.fffffep-1f);
+    } else {
+      u.y = std::fmin((u.y - (1.0f - p_top)) / p_top, 0x1.fffffep-1f);
+      q = 2;
+    }
+    const float left = e[q], right = e[q + 1];
+    const float p_right = right / (left + right);
+    if (u.x < 1.0f - p_right) {
+      u.x = std::fmin(u.x / (1.0f - p_right), 0x1.fffffep-1f);
+    } else {
+      u.x = std::fmin((u.x - (1.0f - p_right)) / p_right, 0x1.fffffep-1f);
+      q += 1;
+    }
+    size *= 0.5f;
+    origin.x += size * float(q & 1);
+    origin.y += size * float(q >> 1);
+    const uint32_t child = nodes_[node].child[q];
+    if (child == 0) return {origin.x + size * u.x, origin.y + size * u.y};
+    node = child;
+  }
+}
+
+float DirectionalQuadtree::pdf_square(Vec2 p) const {
+  if (nodes_.empty()) return 0.0f;
+  float density = 1.0f;
+  size_t node = 0;
+  p = {std::clamp(p.x, 0.0f, 0x1.fffffep-1f), std::clamp(p.y, 0.0f, 0x1.fffffep-1f)};
+  for (;;) {
+    const float* e = nodes_[node].energy;
+    const int q = quadrant_of(p);
+    const float total = e[0] + e[1] + e[2] + e[3];
+    if (!(e[q] > 0.0f)) return 0.0f;
+    density *= 4.0f * e[q] / total;
+    const uint32_t child = nodes_[node].child[q];
+    if (child == 0) return density;
+    p = into_quadrant(p, q);
+    node = child;
+  }
+}
+
+Vec3 DirectionalQuadtree::sample_direction(Vec2 u) const { return equal_area_square_to_sphere(sample_square(u)); }
+
+float DirectionalQuadtree::pdf_direction(Vec3 direction) const {
+  return pdf_square(equal_area_sphere_to_square(direction)) * kInvFourPi;
+}
+
+}  // namespace rimu

@@ -1,0 +1,32 @@
+#include "transport/guiding/guided_bsdf.h"
+
+#include <cmath>
+
+namespace rimu {
+
+std::optional<BsdfSample> GuidedBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
+  if (!guide_) return bsdf_.sample(wo, u_lobe, u);
+  if (u_lobe < alpha_) {
+    const Vec3 wi = frame_.to_local(guide_->sample_direction(u));
+    BsdfSample s;
+    s.wi = wi;
+    s.f = bsdf_.eval(wo, wi);
+    s.pdf = pdf(wo, wi);
+    if (!(s.pdf[0] > 0.0f)) return std::nullopt;
+    return s;
+  }
+  // The BSDF's own lobe choice gets u_lobe rescaled to [0, 1) (the same stratification, one decision further).
+  const float u_bsdf = std::fmin((u_lobe - alpha_) / (1.0f - alpha_), 0x1.fffffep-1f);
+  std::optional<BsdfSample> s = bsdf_.sample(wo, u_bsdf, u);
+  if (!s || s->is_delta) return s;  // guided BSDFs have no delta lobes; kept exact if one ever does
+  s->pdf = Float4(alpha_ * guide_->pdf_direction(frame_.to_world(s->wi))) + Float4(1.0f - alpha_) * s->pdf;
+  return s;
+}
+
+SampledSpectrum GuidedBsdf::pdf(Vec3 wo, Vec3 wi) const {
+  const SampledSpectrum bsdf_pdf = bsdf_.pdf(wo, wi);
+  if (!guide_) return bsdf_pdf;
+  return Float4(alpha_ * guide_->pdf_direction(frame_.to_world(wi))) + Float4(1.0f - alpha_) * bsdf_pdf;
+}
+
+}  // namespace rimu

@@ -1,0 +1,35 @@
+// A BSDF combined with a learned directional distribution by one-sample MIS (the balance heuristic): a direction is
+// drawn from the guide with probability α, else from the BSDF, and its density is the mixture's,
+// α·p_guide + (1 − α)·p_bsdf, per lane. Every density the path integrator uses for a BSDF-sampled direction (the
+// throughput, the spectral MIS ratios and the weight against next-event estimation) is this one, so the estimator
+// stays unbiased whatever the guide learned — as long as the BSDF covers every direction the guide does not.
+#pragma once
+
+#include <optional>
+
+#include "transport/bsdfs/bsdf.h"
+#include "transport/geometry/frame.h"
+#include "transport/guiding/directional_quadtree.h"
+
+namespace rimu {
+
+class GuidedBsdf {
+ public:
+  /// `guide` nullptr (or α = 0): the BSDF alone. The guide's directions are world-space; the BSDF's local.
+  GuidedBsdf(const Bsdf& bsdf, const Frame& frame, const DirectionalQuadtree* guide, float alpha)
+      : bsdf_(bsdf), frame_(frame), guide_(alpha > 0.0f ? guide : nullptr), alpha_(guide_ ? alpha : 0.0f) {}
+
+  bool guided() const { return guide_ != nullptr; }
+  /// A direction (local frame) with f and the mixture's per-lane density; u_lobe chooses guide or BSDF.
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+  /// The mixture's per-lane density of producing wi (local frame).
+  SampledSpectrum pdf(Vec3 wo, Vec3 wi) const;
+
+ private:
+  const Bsdf& bsdf_;
+  const Frame& frame_;
+  const DirectionalQuadtree* guide_;
+  float alpha_;
+};
+
+}  // namespace rimu

@@ -1,0 +1,64 @@
+// The learned incident-light field of path guiding: a spatial binary tree over the points paths visited, whose
+// leaves each hold a directional quadtree (transport/guiding/directional_quadtree.h) — the SD-tree of Müller,
+// Gross & Novák 2017 ("Practical Path Guiding"). A field is fitted, single-threaded and in a fixed order, to the
+// samples of one render pass; the next pass samples from it (docs/transport.md, "Path guiding").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "transport/geometry/vector.h"
+#include "transport/guiding/directional_quadtree.h"
+
+namespace rimu {
+
+/// Which way a surface faces: the dominant axis of its normal and its sign (0: +x, 1: −x, 2: +y, … 5: −z).
+/// Vertices facing different ways learn separate fields: a floor and the wall beside it see different halves of
+/// the sphere, and a leaf that mixed them would send half of the wall's guided rays into the wall.
+int facing_of(Vec3 normal);
+inline constexpr int kFacings = 6;
+
+/// One path vertex's record: where it was, which way its surface faced (facing_of), the direction the path left it
+/// by (on the equal-area square) and the incident luminance that direction brought divided by the density it was
+/// sampled with.
+struct GuidingSample {
+  Vec3 position;
+  DirectionalSample direction;
+  int facing = 0;
+};
+
+struct GuidingFieldSettings {
+  /// A spatial leaf holding more than this many samples (times √(samples per pixel of the pass), as Müller et al.'s
+  /// c·√(2ᵏ)) is split in two, along its longest side.
+  double split_samples = 4000.0;
+  int max_leaves = 4096;          ///< the memory bound of the spatial tree
+  int min_samples_per_leaf = 32;  ///< fewer and the leaf learns nothing: its vertices stay BSDF-sampled
+  QuadtreeSettings directions;
+};
+
+class GuidingField {
+ public:
+  /// Fits a field to `samples` (reordered in place) recorded in a pass of `pass_samples_per_pixel` samples.
+  static GuidingField build(std::vector<GuidingSample>& samples, int pass_samples_per_pixel,
+                            const GuidingFieldSettings& settings);
+
+  /// The directional distribution learned near `position` on surfaces facing `facing`; nullptr where nothing was.
+  const DirectionalQuadtree* distribution_at(Vec3 position, int facing) const;
+
+  size_t leaf_count() const { return leaves_.size(); }
+  size_t directional_node_count() const;
+  size_t memory_bytes() const;
+
+ private:
+  struct Node {
+    float split = 0.0f;
+    int8_t axis = -1;      ///< −1: a leaf, whose distribution is leaves_[child]
+    uint32_t child = 0;    ///< the first child (the second follows it), or the leaf index
+  };
+  std::vector<Node> nodes_;  ///< kFacings trees: the root of facing f is nodes_[roots_[f]]
+  uint32_t roots_[kFacings] = {};
+  std::vector<DirectionalQuadtree> leaves_;
+};
+
+}  // namespace rimu

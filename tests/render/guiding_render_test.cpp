@@ -1,0 +1,93 @@
+// Path guiding through the real render loop (render/renderer.h, transport/guiding/): the image mean with guiding
+// equals the one without within the standard error (the Cornell box and the daylit room of
+// data/scenes/interiors, the scene guiding is for), the field is trained in the first passes and its memory
+// reported, and the same seed and thread count — or another thread count — give a bit-identical image.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "integration_support.h"
+#include "render/scene/json_cursor.h"
+#include "spectral/error.h"
+
+using namespace rimu;
+using namespace rimu::test;
+
+namespace {
+
+nlohmann::json small_version(const std::filesystem::path& path, int width, int height) {
+  nlohmann::json document = parse_json_file(path);
+  document["film"]["resolution"] = {width, height};
+  document["film"]["filter"] = {{"type", "box"}};
+  return document;
+}
+
+std::unique_ptr<Scene> scene_with_guiding(nlohmann::json document, const std::filesystem::path& directory, bool guiding) {
+  document["integrator"]["guiding"] = guiding ? "on" : "off";
+  return load_scene(document, "guiding_test.json", directory, library());
+}
+
+// Paired luminance difference of guided and unguided renders (different seeds: independent pixels) within
+// kSigmas standard errors, and the guided render trained its field.
+void check_unbiased(const std::filesystem::path& path, int width, int height, int spp) {
+  const nlohmann::json document = small_version(path, width, height);
+  const auto off = scene_with_guiding(document, path.parent_path(), false);
+  const auto on = scene_with_guiding(document, path.parent_path(), true);
+  const RenderedFilm unguided = render_xyz(*off, spp, 1);
+  const RenderedFilm guided = render_xyz(*on, spp, 2);
+  CHECK(!unguided.statistics.guiding.active);
+  CHECK(guided.statistics.guiding.active);
+  CHECK(guided.statistics.guiding.training_passes == 4);  // passes of 1, 2, 4, 8 trained; the 16 is the last
+  CHECK(guided.statistics.guiding.memory_bytes > 0);
+  CHECK(guided.statistics.guiding.spatial_leaves >= 1);
+  const std::vector<double> a = luminance_values(*guided.film), b = luminance_values(*unguided.film);
+  const Estimate d = paired_difference(a, b);
+  INFO(path.string() << ": guided − unguided = " << d.mean << " ± " << d.standard_error << " (mean " << mean_of(b) << ")");
+  CHECK(std::fabs(d.mean) <= kSigmas * d.standard_error);
+  CHECK(d.standard_error > 0.0);
+}
+
+}  // namespace
+
+TEST_CASE("path guiding is unbiased: the Cornell box") {
+  check_unbiased(library().root() / "scenes" / "cornell_box" / "scene.json", 24, 24, 31);
+}
+
+TEST_CASE("path guiding is unbiased: the daylit room (sun and portal sky through a window)") {
+  check_unbiased(library().root() / "scenes" / "interiors" / "daylit_room_open.json", 32, 18, 31);
+}
+
+TEST_CASE("path guiding is deterministic: the same seed gives a bit-identical image on 1 and 2 threads") {
+  const std::filesystem::path path = library().root() / "scenes" / "interiors" / "daylit_room_open.json";
+  const auto scene = scene_with_guiding(small_version(path, 24, 16), path.parent_path(), true);
+  const RenderedFilm one = render_xyz(*scene, 15, 5, 1);
+  const RenderedFilm two = render_xyz(*scene, 15, 5, 2);
+  const RenderedFilm again = render_xyz(*scene, 15, 5, 2);
+  CHECK(one.statistics.guiding.training_passes == 3);
+  const PixelBounds& bounds = one.film->pixel_bounds();
+  int differing = 0;
+  for (int y = bounds.y0; y < bounds.y1; ++y)
+    for (int x = bounds.x0; x < bounds.x1; ++x) {
+      const auto a = one.film->pixel_value(x, y), b = two.film->pixel_value(x, y), c = again.film->pixel_value(x, y);
+      if (std::memcmp(&a, &b, sizeof a) != 0 || std::memcmp(&b, &c, sizeof b) != 0) ++differing;
+    }
+  CHECK(differing == 0);
+}
+
+TEST_CASE("integrator.guiding takes on, off, true or false; anything else is an input error naming the key") {
+  const std::filesystem::path path = library().root() / "scenes" / "cornell_box" / "scene.json";
+  nlohmann::json document = small_version(path, 8, 8);
+  for (const auto& [value, expected] : std::vector<std::pair<nlohmann::json, bool>>{
+           {"on", true}, {"off", false}, {true, true}, {false, false}}) {
+    document["integrator"]["guiding"] = value;
+    CHECK(load_scene(document, "g.json", path.parent_path(), library())->settings.integrator.guiding == expected);
+  }
+  document["integrator"]["guiding"] = "maybe";
+  try {
+    load_scene(document, "g.json", path.parent_path(), library());
+    FAIL("loaded");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("guiding") != std::string::npos);
+  }
+}
