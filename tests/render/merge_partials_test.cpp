@@ -300,6 +300,9 @@ TEST_CASE("partial renders: OpenEXR does not allocate for a data window of 2^29 
     CAPTURE(message);
     CHECK(std::string(e.what()).find("cannot read as OpenEXR") != std::string::npos);
     CHECK(std::string(e.what()).find("height") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(dir / "out.exr"));
+}
 
 TEST_CASE("partial renders: guided partials merge; a mix of guided and unguided partials is refused") {
   Folder dir("guiding");
