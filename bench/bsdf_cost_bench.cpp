@@ -13,8 +13,8 @@
 #include <random>
 #include <vector>
 
-#include "spectral/spectra/optical_constants.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/optical_constants.h"
+#include "spectral/library/spectral_library.h"
 #include "transport/bsdfs/bsdf.h"
 #include "transport/sampling/direction_warps.h"
 #include "transport/bsdfs/fresnel.h"

@@ -12,9 +12,10 @@
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/colorimetry/planckian_locus.h"
 #include "spectral/wavelengths/sampled_wavelengths.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 #include "spectral/wavelengths/wavelength_density.h"
+#include "spectral/colorimetry/light_weighted_wavelength_density.h"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include "fuzz_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include "fuzz_support.h"
 #include "render/scene/json_cursor.h"
 #include "render/scene/scene.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace {
 

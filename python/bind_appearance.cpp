@@ -9,7 +9,7 @@
 #include "broadcast.h"
 #include "spectral/colorimetry/chromatic_adaptation.h"
 #include "spectral/colorimetry/colorimetry_options.h"
-#include "spectral/colorimetry/colour_appearance.h"
+#include "spectral/colour_spaces/colour_appearance.h"
 #include "spectral/colorimetry/colour_value_check.h"
 #include "spectral/colorimetry/planckian_locus.h"
 #include "spectral/spectra/daylight.h"

@@ -4,13 +4,13 @@
 #include "bindings.h"
 #include "broadcast.h"
 #include "spectral/colorimetry/colorimetry.h"
-#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/library/colorimetry_options.h"
 #include "spectral/error.h"
 #include "spectral/photometry/light_units.h"
 #include "spectral/colorimetry/planckian_locus.h"
 #include "spectral/reports/reflectance_report.h"
 #include "spectral/spectra/spectrum_values_check.h"
-#include "spectral/colorimetry/tabulated_colorimetry.h"
+#include "spectral/library/tabulated_colorimetry.h"
 
 namespace rimu::python {
 namespace {

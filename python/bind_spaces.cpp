@@ -4,7 +4,7 @@
 
 #include "bindings.h"
 #include "broadcast.h"
-#include "spectral/colorimetry/chromatic_adaptation.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
 #include "spectral/error.h"
 #include "spectral/colorimetry/colour_value_check.h"
 #include "spectral/upsampling/rgb_upsampler.h"

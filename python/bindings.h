@@ -16,7 +16,7 @@
 #include "spectral/colorimetry/chromaticity.h"
 #include "spectral/error.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 
 namespace rimu::python {

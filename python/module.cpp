@@ -8,7 +8,7 @@
 #include "bindings.h"
 #include "spectral/colorimetry/colour_value_check.h"
 #include "spectral/error.h"
-#include "spectral/spectra/spectrum_source.h"
+#include "spectral/library/spectrum_source.h"
 #include "spectral/spectra/spectrum_values_check.h"
 #include "spectral/version.h"
 

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace rimu::test {
 

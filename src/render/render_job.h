@@ -14,7 +14,7 @@
 #include "render/output/partial_record.h"
 #include "render/renderer.h"
 #include "spectral/io/input_file.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "transport/lights/light_sampler.h"
 #include "transport/sampling/wavelength_modes.h"
 

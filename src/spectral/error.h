@@ -2,7 +2,8 @@
 //
 // Rimu has two tiers of errors (see docs/architecture.md). Invariants are assertions. Everything a user
 // can get wrong -- a scene, a spectrum file, a CLI flag -- is an InputError that names the file, the line
-// and/or the key path, and is raised at load time, never inside the per-sample loop.
+// and/or the key path, and is raised at load time, never inside the per-sample loop. A failure that is not the
+// user's input (a library Rimu uses: Embree, OpenEXR, OCIO, OIIO; or the machine) is a RenderError.
 #pragma once
 
 #include <stdexcept>
@@ -31,6 +32,12 @@ class InputError : public std::runtime_error {
  private:
   SourceLocation where_;
   std::string explanation_;
+};
+
+/// Tools exit with status 2 on a RenderError (1 is reserved for bad input, InputError).
+class RenderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 }  // namespace rimu

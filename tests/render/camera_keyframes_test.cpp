@@ -1,8 +1,8 @@
-// A camera path keyed by frame (render/camera/camera_keyframes.h): linear between keys, exact at a key, held outside the
+// A camera path keyed by frame (render/scene/camera_keyframes.h): linear between keys, exact at a key, held outside the
 // keys, and malformed paths are InputErrors naming the key.
 #include <doctest/doctest.h>
 
-#include "render/camera/camera_keyframes.h"
+#include "render/scene/camera_keyframes.h"
 #include "spectral/error.h"
 
 using namespace rimu;

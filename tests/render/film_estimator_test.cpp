@@ -8,8 +8,8 @@
 
 #include "render/film/film.h"
 #include "spectral/error.h"
-#include "spectral/photometry/photometry_constants.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/colorimetry/photometry_constants.h"
+#include "spectral/wavelengths/wavelength_range.h"
 #include "statistics.h"
 #include "test_support.h"
 

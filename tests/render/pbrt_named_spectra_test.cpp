@@ -1,5 +1,5 @@
 // pbrt-v4's named spectra (metal-*-eta/-k, glass-*) imported onto Rimu's copies of pbrt's own tables
-// (data/spectra/materials/pbrt_*.csv, src/spectral/spectra/optical_constants.cpp), so that an imported scene reflects and
+// (data/spectra/materials/pbrt_*.csv, src/spectral/library/optical_constants.cpp), so that an imported scene reflects and
 // refracts as in pbrt; Rimu's own "gold", "bk7", … keep their names and sources.
 #include <doctest/doctest.h>
 
@@ -7,7 +7,7 @@
 
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 
 using namespace rimu;
 using nlohmann::json;

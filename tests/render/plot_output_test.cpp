@@ -10,7 +10,6 @@
 
 #include "render/scene/light_definition.h"
 #include "render/output/plot_output.h"
-#include "render/render_error.h"
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/error.h"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "integration_support.h"
-#include "render/image/rgb_transport_inputs.h"
+#include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/json_cursor.h"
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/spectra/tabulated_spectrum.h"

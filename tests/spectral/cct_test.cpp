@@ -6,7 +6,7 @@
 
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/colorimetry/colorimetry.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/colorimetry/planckian_locus.h"
 #include "test_support.h"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "spectral/colorimetry/chromatic_adaptation.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
 
 using namespace rimu;
 

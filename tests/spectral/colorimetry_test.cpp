@@ -5,7 +5,7 @@
 #include <string>
 
 #include "spectral/colorimetry/colorimetry.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "spectral/colorimetry/colour_appearance.h"
+#include "spectral/colour_spaces/colour_appearance.h"
 
 using namespace rimu;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "spectral/colorimetry/chromatic_adaptation.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
 #include "spectral/error.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
 #include "test_support.h"

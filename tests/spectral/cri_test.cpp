@@ -6,7 +6,7 @@
 
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/colour_rendering/colour_rendering_index.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/error.h"
 #include "test_support.h"
 

@@ -13,7 +13,7 @@
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/colorimetry/chromaticity.h"
 #include "spectral/colorimetry/delta_e.h"
-#include "spectral/colorimetry/tabulated_colorimetry.h"
+#include "spectral/library/tabulated_colorimetry.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/library/colorimetry_options.h"
 #include "spectral/colorimetry/colour_value_check.h"
 #include "spectral/spectra/spectrum_values_check.h"
 

@@ -7,7 +7,7 @@
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/photometry/emitter_photometry.h"
 #include "spectral/photometry/light_units.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "test_support.h"
 
 using namespace rimu;

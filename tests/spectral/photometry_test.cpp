@@ -8,7 +8,7 @@
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/photometry/photometry.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "test_support.h"
 
 using namespace rimu;

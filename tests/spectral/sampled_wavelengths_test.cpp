@@ -8,7 +8,7 @@
 
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/wavelengths/sampled_wavelengths.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 #include "statistics.h"
 #include "test_support.h"
 

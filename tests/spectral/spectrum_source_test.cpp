@@ -6,7 +6,7 @@
 #include <string>
 
 #include "spectral/error.h"
-#include "spectral/spectra/spectrum_source.h"
+#include "spectral/library/spectrum_source.h"
 #include "test_support.h"
 
 using namespace rimu;

@@ -11,7 +11,7 @@
 
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/io/csv_table.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/error.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 #include "test_support.h"

@@ -16,7 +16,7 @@
 #include "spectral/colorimetry/delta_e.h"
 #include "spectral/error.h"
 #include "spectral/colorimetry/planckian_locus.h"
-#include "spectral/colorimetry/tabulated_colorimetry.h"
+#include "spectral/library/tabulated_colorimetry.h"
 #include "test_support.h"
 
 using namespace rimu;

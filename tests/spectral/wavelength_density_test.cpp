@@ -9,7 +9,8 @@
 
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/wavelengths/wavelength_density.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/colorimetry/light_weighted_wavelength_density.h"
+#include "spectral/wavelengths/wavelength_range.h"
 #include "statistics.h"
 #include "test_support.h"
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bsdf_chi_square.h"
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "statistics.h"
 #include "transport/bsdfs/fresnel.h"
 #include "test_support.h"

@@ -4,7 +4,7 @@
 #include <array>
 #include <string_view>
 
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "test_support.h"
 #include "transport/bsdfs/bsdf.h"
 

@@ -8,6 +8,7 @@
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "test_support.h"
 #include "transport/lights/emission_wavelength_density.h"
+#include "spectral/colorimetry/light_weighted_wavelength_density.h"
 #include "transport/lights/point_light.h"
 
 using namespace rimu;

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "test_support.h"
 #include "transport/bsdfs/fresnel.h"
 

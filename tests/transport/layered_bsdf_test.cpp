@@ -9,7 +9,7 @@
 #include <random>
 
 #include "bsdf_test_fixtures.h"
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "test_support.h"
 #include "transport/bsdfs/bsdf.h"
 #include "transport/bsdfs/fresnel.h"

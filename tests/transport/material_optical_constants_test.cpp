@@ -5,7 +5,7 @@
 
 #include "spectral/io/csv_table.h"
 #include "spectral/error.h"
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "test_support.h"
 #include "transport/bsdfs/dielectric_bsdf.h"
 

@@ -6,7 +6,7 @@
 #include <variant>
 
 #include "spectral/error.h"
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "test_support.h"
 #include "transport/bsdfs/material.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "spectral/error.h"
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "test_support.h"
 #include "transport/textures/float_texture.h"
 #include "transport/bsdfs/material.h"

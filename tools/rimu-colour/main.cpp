@@ -6,7 +6,7 @@
 
 #include "common/tool_main.h"
 
-#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/library/colorimetry_options.h"
 #include "spectral/colour_rendering/colour_fidelity.h"
 #include "spectral/colour_rendering/colour_vector_graphic.h"
 #include "spectral/error.h"
@@ -17,7 +17,7 @@
 #include "spectral/upsampling/rgb_upsampler.h"
 #include "spectral/reports/upsample_report.h"
 #include "spectral/reports/spectrum_report.h"
-#include "spectral/spectra/spectrum_source.h"
+#include "spectral/library/spectrum_source.h"
 #include "spectral/colorimetry/tristimulus_method.h"
 
 namespace {

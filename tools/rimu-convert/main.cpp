@@ -11,7 +11,7 @@
 #include "render/output/text_file_output.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 int main(int argc, char** argv) {
   CLI::App app{

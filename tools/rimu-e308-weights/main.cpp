@@ -17,7 +17,7 @@
 
 #include "spectral/colorimetry/astm_e308.h"
 #include "spectral/error.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 using namespace rimu;
 

@@ -12,7 +12,6 @@
 #include "render/scene/json_cursor.h"
 #include "render/scene/light_definition.h"
 #include "render/output/plot_output.h"
-#include "render/render_error.h"
 #include "render/light_options.h"
 #include "render/output/output_file.h"
 #include "render/output/text_file_output.h"

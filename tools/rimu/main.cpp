@@ -6,7 +6,6 @@
 
 #include "common/tool_main.h"
 
-#include "render/render_error.h"
 #include "render/camera/camera_exposure.h"
 #include "render/render_job.h"
 #include "render/film/render_size.h"

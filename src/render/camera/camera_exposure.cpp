@@ -5,16 +5,11 @@
 #include <sstream>
 
 #include "spectral/spectra/blackbody_spectrum.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/error.h"
 
 namespace rimu {
 namespace {
-
-// Blackbody CCTs accepted for white balance: the range rimu-light and the scene's {"blackbody": T} accept.
-constexpr double kMinCct_k = 1000.0, kMaxCct_k = 25000.0;
-// CIE daylight (CIE 15:2004 eqs. 3.3-3.4) is defined from 4000 K up.
-constexpr double kMinDaylightCct_k = 4000.0;
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -39,46 +34,6 @@ void check_camera_option(double value, const PhysicalCameraRange& range, const s
   if (value >= range.min && value <= range.max) return;
   throw InputError({"", 0, option}, std::string("expected ") + range.what + " in " + number_text(range.min) + " to " +
                                         number_text(range.max) + ", got " + number_text(value));
-}
-
-PhysicalCameraSettings parse_exposure(const JsonCursor& c) {
-  c.only_keys({"iso", "shutter_s", "f_number", "compensation_ev"});
-  PhysicalCameraSettings s;
-  s.iso = c.at("iso").number(kIsoRange.min, kIsoRange.max);
-  s.shutter_s = c.at("shutter_s").number(kShutterRange_s.min, kShutterRange_s.max);
-  s.f_number = c.at("f_number").number(kFNumberRange.min, kFNumberRange.max);
-  s.exposure_compensation_ev =
-      c.number_or("compensation_ev", 0.0, kCompensationRange_ev.min, kCompensationRange_ev.max);
-  return s;
-}
-
-WhiteBalanceSettings parse_white_balance(const JsonCursor& c, SpectralLibrary& library) {
-  WhiteBalanceSettings wb;
-  if (c.is_string()) {
-    if (c.string() != "none") c.fail("expected \"none\", {\"cct\": K}, {\"daylight_cct\": K} or {\"illuminant\": name}");
-    return wb;
-  }
-  if (!c.is_object() || c.size() != 1)
-    c.fail("expected \"none\", {\"cct\": K}, {\"daylight_cct\": K} or {\"illuminant\": name}");
-  c.only_keys({"cct", "daylight_cct", "illuminant"});
-  if (c.has("cct")) {
-    wb.kind = WhiteBalanceSettings::Kind::cct;
-    wb.cct_k = c.at("cct").number(kMinCct_k, kMaxCct_k);
-    return wb;
-  }
-  if (c.has("daylight_cct")) {
-    wb.kind = WhiteBalanceSettings::Kind::daylight;
-    wb.cct_k = c.at("daylight_cct").number(kMinDaylightCct_k, kMaxCct_k);
-    return wb;
-  }
-  wb.kind = WhiteBalanceSettings::Kind::illuminant;
-  wb.illuminant = c.at("illuminant").string();
-  try {
-    library.illuminant(wb.illuminant);
-  } catch (const InputError& e) {
-    c.at("illuminant").fail(e.explanation());
-  }
-  return wb;
 }
 
 WhiteBalanceSettings parse_white_balance_option(const std::string& text, SpectralLibrary& library,

@@ -16,10 +16,9 @@
 #include <string>
 
 #include "render/film/film_output_transform.h"
-#include "render/scene/json_cursor.h"
 #include "render/camera/physical_camera.h"
 #include "render/film/spectral_response.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace rimu {
 
@@ -53,14 +52,14 @@ inline constexpr PhysicalCameraRange kShutterRange_s{"a shutter time in seconds"
 inline constexpr PhysicalCameraRange kFNumberRange{"an f-number", 0.1, 1000.0};
 inline constexpr PhysicalCameraRange kCompensationRange_ev{"an exposure compensation in stops", -30.0, 30.0};
 
+/// Blackbody CCTs accepted for white balance: the range rimu-light and the scene's {"blackbody": T} accept.
+inline constexpr double kMinCct_k = 1000.0, kMaxCct_k = 25000.0;
+/// CIE daylight (CIE 15:2004 eqs. 3.3-3.4) is defined from 4000 K up.
+inline constexpr double kMinDaylightCct_k = 4000.0;
+
 /// Throws InputError naming `option` unless min <= value <= max (so NaN and ±Inf fail too).
 void check_camera_option(double value, const PhysicalCameraRange& range, const std::string& option);
 
-/// Parses a scene camera's "exposure" object: iso, shutter_s, f_number required, compensation_ev optional (0).
-PhysicalCameraSettings parse_exposure(const JsonCursor& exposure);
-/// Parses "white_balance": {"cct": K}, {"daylight_cct": K}, {"illuminant": name} or "none"; unknown illuminants fail
-/// at the key.
-WhiteBalanceSettings parse_white_balance(const JsonCursor& white_balance, SpectralLibrary& library);
 /// Parses the command line's --white-balance: "none", a temperature ("2700" or "2700K"), or an illuminant name.
 WhiteBalanceSettings parse_white_balance_option(const std::string& text, SpectralLibrary& library,
                                                 const std::string& option);

@@ -4,7 +4,7 @@
 
 #include "spectral/error.h"
 #include "spectral/photometry/light_units.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 
 namespace rimu {
 namespace {

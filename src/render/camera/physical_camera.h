@@ -19,7 +19,7 @@
 #pragma once
 
 #include "render/film/spectral_response.h"
-#include "spectral/colorimetry/chromatic_adaptation.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
 #include "spectral/colour_spaces/matrix3.h"
 #include "spectral/spectra/spectrum.h"
 

@@ -15,7 +15,7 @@
 
 #include "render/film/spectral_response.h"
 #include "spectral/colour_spaces/matrix3.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace rimu {
 

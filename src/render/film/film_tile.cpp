@@ -4,7 +4,7 @@
 #include <cassert>
 #include <cmath>
 
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
 

@@ -5,9 +5,9 @@
 #include <regex>
 
 #include "spectral/error.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "spectral/colorimetry/observer.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace rimu {
 

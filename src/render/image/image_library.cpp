@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "render/render_error.h"
+#include "spectral/error.h"
 
 namespace rimu {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "render/image/image_library.h"
 #include "render/output/output_file.h"
-#include "render/version.h"
+#include "spectral/version.h"
 #include "spectral/error.h"
 
 namespace rimu {

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "render/output/output_file.h"
-#include "render/version.h"
+#include "spectral/version.h"
 
 namespace rimu {
 namespace {

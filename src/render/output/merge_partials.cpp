@@ -7,7 +7,7 @@
 #include "render/output/output_file.h"
 #include "render/output/partial_exr.h"
 #include "spectral/error.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace rimu {
 namespace {

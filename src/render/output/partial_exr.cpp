@@ -220,6 +220,13 @@ std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLib
   return film;
 }
 
+ResumePoint resume_on_film(const PartialImage& previous, Film& film) {
+  if (previous.crop != film.pixel_bounds() || previous.spectral_bins != film.binning().count)
+    throw InputError({previous.path.string(), 0, ""}, "its window or spectral bins differ from its recorded job's");
+  add_partial_to_film(previous, film);
+  return {previous.record.samples.front().end, previous.metadata.render_time_s};
+}
+
 void add_partial_to_film(const PartialImage& partial, Film& film) {
   if (partial.sums.empty()) return;  // a header only
   FilmTile tile = film.make_tile(partial.crop);

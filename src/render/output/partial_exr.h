@@ -42,4 +42,13 @@ void add_partial_to_film(const PartialImage& partial, Film& film);
 /// the image (a 4K 47-bin partial's sums are 3.4 GB). Bit for bit the same additions as add_partial_to_film.
 void add_partial_exr_to_film(const PartialImage& header, Film& film);
 
+/// Where a resumed render continues: the samples after the partial's last one, and its render time so far.
+struct ResumePoint {
+  int first_sample = 0;
+  double render_time_s = 0.0;
+};
+/// Starts `film` from `previous` (add_partial_to_film) for --resume. InputError naming the file if its window or
+/// spectral bins differ from the film's (the film was rebuilt from the job it records).
+ResumePoint resume_on_film(const PartialImage& previous, Film& film);
+
 }  // namespace rimu

@@ -1,6 +1,6 @@
 #include "render/output/plot_output.h"
 
-#include "render/render_error.h"
+#include "spectral/error.h"
 
 namespace rimu {
 

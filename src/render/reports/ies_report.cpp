@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include "render/output/plot_output.h"
-#include "render/render_error.h"
 #include "spectral/error.h"
 
 namespace rimu {

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/scene/ies_file.h"
-#include "render/reports/inspect_point.h"
+#include "render/scene/inspect_point.h"
 
 namespace rimu {
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "spectral/error.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "transport/sampling/sampler.h"
 
 namespace rimu {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "render/image/alpha_mask.h"
-#include "render/render_error.h"
+#include "spectral/error.h"
 #include "transport/geometry/surface_hit.h"
 #include "render/scene/triangle_mesh.h"
 #include "transport/geometry/ray.h"

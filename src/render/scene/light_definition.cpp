@@ -10,7 +10,7 @@
 #include "render/scene/json_cursor.h"
 #include "render/scene/light_amount_key.h"
 #include "render/output/plot_output.h"
-#include "render/render_error.h"
+#include "spectral/error.h"
 #include "render/scene/spectrum_input.h"
 #include "spectral/reports/spectrum_report.h"
 

@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "render/reports/inspect_point.h"
+#include "render/scene/inspect_point.h"
 #include "spectral/photometry/emitter_photometry.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/spectrum.h"
 
 namespace rimu {

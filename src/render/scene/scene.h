@@ -13,7 +13,7 @@
 #include "render/camera/camera_exposure.h"
 #include "render/scene/embree_scene.h"
 #include "render/film/film_tile.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "transport/lights/light.h"
 #include "transport/lights/light_sampler.h"
 #include "transport/bsdfs/material.h"

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "render/image/rgb_environment_image.h"
-#include "render/image/rgb_transport_inputs.h"
+#include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_ies_light.h"
 #include "render/scene/scene_light_emission.h"
@@ -131,7 +131,7 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
     // s (left edge; middle of the right edge) is +x (environment_light.h). Pixel values are in film units, like
     // every RGB emission (SpectrumInputContext::emission_rgb_scale).
     const Frame frame = l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
-    if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/image/rgb_transport_inputs.h)
+    if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/scene/rgb_transport_inputs.h)
       light = std::make_unique<EnvironmentLight>(
           std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale, frame, mapping);
     else

@@ -2,8 +2,9 @@
 #include <cmath>
 
 #include "render/camera/camera_exposure.h"
+#include "render/scene/scene_camera.h"
 #include "render/scene/light_coverage.h"
-#include "render/reports/refracted_light_warning.h"
+#include "render/scene/refracted_light_warning.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_load_context.h"
 #include "transport/lights/emission_wavelength_density.h"
@@ -34,7 +35,7 @@ std::filesystem::path default_scene_path(const SpectralLibrary& library) {
 namespace {
 
 void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
-  // render_job resolves "keyframes" for the frame being rendered (render/camera/camera_keyframes.h); here there is none.
+  // render_job resolves "keyframes" for the frame being rendered (render/scene/camera_keyframes.h); here there is none.
   if (c.has("keyframes"))
     c.at("keyframes").fail("a camera path keyed by frame needs a frame number: render with --frame N");
   c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance", "height", "exposure",

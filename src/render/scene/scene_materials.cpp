@@ -5,10 +5,10 @@
 
 #include "render/image/image_texture.h"
 #include "render/image/rgb_normal_map.h"
-#include "render/image/rgb_transport_inputs.h"
+#include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_textures.h"
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "transport/sampling/bit_mixing.h"
 #include "transport/textures/float_texture.h"
 #include "transport/textures/shading_normal_map.h"
@@ -47,7 +47,7 @@ ComplexIorSpectra conductor_ior_of(const JsonCursor& m, LoadContext& context) {
     const JsonCursor metal = m.at("metal");
     ior = metal.blame([&] { return conductor_ior(context.spectra.library(), metal.string()); });
   } else {
-    // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/image/rgb_transport_inputs.h).
+    // Rgb transport point-samples n and k at its lanes' nominal wavelengths (render/scene/rgb_transport_inputs.h).
     ior.n = context.spectra.parse_spectral(m.at("n"), SpectrumRole::ior);
     // k ≥ 0 and unbounded, like an emission; but RGB would be upsampled (and scaled) as light, so refuse it here.
     const JsonCursor k = m.at("k");

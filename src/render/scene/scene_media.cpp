@@ -1,6 +1,6 @@
 // The "media" section of the JSON scene format: homogeneous and voxel-grid media, and the material whose shapes
 // enclose each of them (docs/media.md).
-#include "render/image/rgb_transport_inputs.h"
+#include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "transport/sampling/wavelength_modes.h"
 #include "transport/media/medium.h"

@@ -4,7 +4,7 @@
 #include "render/image/alpha_mask.h"
 #include "render/image/float_image_texture.h"
 #include "render/image/image_texture.h"
-#include "render/image/rgb_transport_inputs.h"
+#include "render/scene/rgb_transport_inputs.h"
 #include "transport/textures/procedural_texture.h"
 #include "transport/textures/spectral_texture_ops.h"
 

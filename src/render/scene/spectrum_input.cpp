@@ -11,12 +11,12 @@
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/photometry/light_units.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "spectral/io/csv_table.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/spectra/spectral_value_range.h"
 #include "spectral/spectra/tabulated_spectrum.h"
-#include "render/image/rgb_transport_inputs.h"
+#include "render/scene/rgb_transport_inputs.h"
 
 namespace rimu {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "render/scene/json_cursor.h"
 #include "spectral/upsampling/rgb_upsampler.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/spectrum.h"
 
 namespace rimu {
@@ -50,7 +50,7 @@ class SpectrumInputContext {
   SpectrumPtr parse_spectral(const JsonCursor& value, SpectrumRole role);
 
   /// Rgb transport (WavelengthMode::rgb): from now on parse() returns every input in its RGB form
-  /// (render/image/rgb_transport_inputs.h). Set by the loader from the scene's "integrator" section, before materials.
+  /// (render/scene/rgb_transport_inputs.h). Set by the loader from the scene's "integrator" section, before materials.
   void set_rgb_transport(bool on) { rgb_transport_ = on; }
   bool rgb_transport() const { return rgb_transport_; }
   /// `spectrum` as the current mode carries it: unchanged, or its rgb-transport form (for spectra built outside

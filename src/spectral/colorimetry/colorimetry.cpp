@@ -1,6 +1,6 @@
 #include "spectral/colorimetry/colorimetry.h"
 
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 
 namespace rimu {
 namespace {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "spectral/spectra/blackbody_spectrum.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/error.h"
 
 namespace rimu {

@@ -9,7 +9,7 @@
 #include "spectral/colorimetry/cam02_ucs.h"
 #include "spectral/colorimetry/observer.h"
 #include "spectral/colorimetry/planckian_locus.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 
 namespace rimu {

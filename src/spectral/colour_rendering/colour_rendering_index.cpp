@@ -7,7 +7,7 @@
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/error.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace rimu {
 namespace {

@@ -4,7 +4,7 @@
 #include <array>
 #include <vector>
 
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/colorimetry/observer.h"
 #include "spectral/colorimetry/planckian_locus.h"
 #include "spectral/spectra/spectrum.h"

@@ -12,7 +12,7 @@
 namespace rimu {
 
 /// An output file could not be written (disk full, permissions, a library failure). The message names the path.
-/// Not an InputError, so tools exit with status 2 (as for render/render_error.h's RenderError).
+/// Not an InputError, so tools exit with status 2 (as for RenderError, spectral/error.h).
 /// A bad destination the user can fix before rendering (a missing folder) is an InputError instead.
 class OutputError : public std::runtime_error {
  public:

@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "spectral/colorimetry/colorimetry.h"
-#include "spectral/photometry/photometry_constants.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/colorimetry/photometry_constants.h"
+#include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
 namespace {

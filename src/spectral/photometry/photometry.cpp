@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "spectral/error.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 
 namespace rimu {
 namespace {

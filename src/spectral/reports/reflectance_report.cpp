@@ -5,12 +5,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "spectral/colorimetry/chromatic_adaptation.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
 #include "spectral/io/csv_table.h"
 #include "spectral/colorimetry/delta_e.h"
 #include "spectral/error.h"
 #include "spectral/spectra/spectrum_values_check.h"
-#include "spectral/colorimetry/tabulated_colorimetry.h"
+#include "spectral/library/tabulated_colorimetry.h"
 #include "spectral/colorimetry/tristimulus_method_json.h"
 
 namespace rimu {

@@ -8,7 +8,7 @@
 
 #include "spectral/colorimetry/cielab.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/spectrum_values_check.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 #include "spectral/colorimetry/tristimulus_method.h"

@@ -8,7 +8,7 @@
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/photometry/photometry.h"
-#include "spectral/colorimetry/tabulated_colorimetry.h"
+#include "spectral/library/tabulated_colorimetry.h"
 #include "spectral/colorimetry/tristimulus_method_json.h"
 
 namespace rimu {

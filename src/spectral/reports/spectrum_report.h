@@ -10,7 +10,7 @@
 #include "spectral/colour_rendering/colour_rendering_index.h"
 #include "spectral/colorimetry/planckian_locus.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
-#include "spectral/spectra/spectrum_source.h"
+#include "spectral/library/spectrum_source.h"
 #include "spectral/colorimetry/tristimulus_method.h"
 
 namespace rimu {

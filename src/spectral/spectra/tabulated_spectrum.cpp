@@ -8,7 +8,7 @@
 #include "spectral/error.h"
 #include "spectral/spectra/spectrum_values_check.h"
 #include "spectral/spectra/spectral_value_range.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
 

@@ -7,7 +7,7 @@
 #include "spectral/colorimetry/cielab.h"
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/colorimetry/delta_e.h"
-#include "spectral/photometry/photometry_constants.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "spectral/upsampling/upsampling_whites.h"
 
 namespace rimu {

@@ -7,7 +7,7 @@
 
 #include "spectral/error.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/upsampling/upsampled_spectrum.h"
 #include "spectral/upsampling/upsampling_basis.h"
 #include "spectral/upsampling/upsampling_table.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "spectral/colorimetry/chromaticity.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 
 namespace rimu {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
 namespace {

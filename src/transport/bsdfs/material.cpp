@@ -5,7 +5,7 @@
 
 #include "spectral/error.h"
 #include "spectral/spectra/tabulated_spectrum.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 #include "transport/bsdfs/fresnel.h"
 
 namespace rimu {

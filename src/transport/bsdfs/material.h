@@ -4,11 +4,11 @@
 #include <memory>
 #include <variant>
 
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 #include "spectral/spectra/spectrum.h"
 #include "transport/bsdfs/bsdf.h"
 #include "transport/textures/float_texture.h"
-#include "transport/bsdfs/material_context.h"
+#include "transport/textures/material_context.h"
 #include "transport/textures/shading_normal_map.h"
 #include "transport/textures/spectral_texture.h"
 

@@ -14,6 +14,7 @@
 #include "transport/geometry/ray.h"
 #include "transport/integrators/ray_queries.h"
 #include "transport/sampling/sampler.h"
+#include "transport/sampling/wavelength_modes.h"
 
 namespace rimu {
 
@@ -34,14 +35,6 @@ struct TransportScene {
   bool passable_surfaces = false;
   /// The density camera paths draw wavelengths from (spectral/wavelengths/wavelength_density.h); nullptr: the visible density.
   const TabulatedWavelengthDensity* wavelength_density = nullptr;
-};
-
-/// How the four lanes are used.
-enum class WavelengthMode {
-  hero,    ///< hero + three partners, combined by spectral MIS (the default)
-  single,  ///< the hero alone: partners carry nothing (a baseline, and a reference for unbiasedness tests)
-  independent,  ///< four independently drawn wavelengths, each weighted by the hero's path density (no spectral MIS)
-  rgb,     ///< RGB transport baseline: lanes carry linear sRGB (transport/sampling/wavelength_modes.h, docs/transport.md)
 };
 
 /// How light sources are found (the default combines both; the others exist to check the combination).

@@ -1,8 +1,9 @@
 #include "transport/lights/emission_wavelength_density.h"
+#include "spectral/colorimetry/light_weighted_wavelength_density.h"
 
 #include <cmath>
 
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
 

@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "spectral/colorimetry/observer.h"
 #include "spectral/wavelengths/wavelength_density.h"
 #include "transport/lights/light.h"
 #include "transport/lights/power_light_sampler.h"

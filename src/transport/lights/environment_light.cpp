@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 #include "transport/sampling/equal_area_square.h"
 #include "transport/lights/light_warps.h"
 

@@ -9,10 +9,18 @@
 #include <string_view>
 
 #include "spectral/wavelengths/sampled_wavelengths.h"
-#include "transport/integrators/path_integrator.h"
+#include "spectral/wavelengths/wavelength_density.h"
 #include "transport/sampling/sampler.h"
 
 namespace rimu {
+
+/// How the four lanes are used.
+enum class WavelengthMode {
+  hero,    ///< hero + three partners, combined by spectral MIS (the default)
+  single,  ///< the hero alone: partners carry nothing (a baseline, and a reference for unbiasedness tests)
+  independent,  ///< four independently drawn wavelengths, each weighted by the hero's path density (no spectral MIS)
+  rgb,     ///< RGB transport baseline: lanes carry linear sRGB (rgb_transport_lanes() below, docs/transport.md)
+};
 
 /// The lanes of rgb transport: lanes 0, 1, 2 carry linear sRGB R, G, B; lane 3 is dead (pdf 0) and ignored.
 ///

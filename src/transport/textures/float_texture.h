@@ -4,7 +4,7 @@
 #include <cmath>
 #include <memory>
 
-#include "transport/bsdfs/material_context.h"
+#include "transport/textures/material_context.h"
 #include "transport/textures/texture_mapping.h"
 
 namespace rimu {

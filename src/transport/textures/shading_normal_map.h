@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "transport/textures/float_texture.h"
-#include "transport/bsdfs/material_context.h"
+#include "transport/textures/material_context.h"
 
 namespace rimu {
 

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "spectral/spectra/spectrum.h"
-#include "transport/bsdfs/material_context.h"
+#include "transport/textures/material_context.h"
 #include "transport/geometry/vector.h"
 
 namespace rimu {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "transport/bsdfs/material_context.h"
+#include "transport/textures/material_context.h"
 #include "transport/geometry/transform.h"
 
 namespace rimu {

@@ -26,7 +26,7 @@ double rimu_roughness(double pbrt_roughness, bool remap) {
   return std::min(1.0, std::sqrt(alpha));
 }
 
-// pbrt-v4's named metal spectra → Rimu's copies of pbrt's own tables (src/spectral/spectra/optical_constants.cpp), so that
+// pbrt-v4's named metal spectra → Rimu's copies of pbrt's own tables (src/spectral/library/optical_constants.cpp), so that
 // an imported scene reflects as in pbrt; Rimu's "gold" etc. are other measurements (docs/pbrt-import.md).
 std::optional<std::string> metal_of(const std::string& named, const std::string& suffix) {
   static const std::pair<const char*, const char*> metals[] = {{"Au", "pbrt-au"}, {"Ag", "pbrt-ag"},     {"Cu", "pbrt-cu"},

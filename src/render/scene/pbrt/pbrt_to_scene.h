@@ -10,7 +10,7 @@
 
 #include "render/scene/pbrt/pbrt_parser.h"
 #include "spectral/error.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 namespace rimu {
 

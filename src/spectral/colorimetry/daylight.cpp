@@ -1,4 +1,4 @@
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 
 #include <cmath>
 #include <sstream>

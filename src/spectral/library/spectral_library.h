@@ -11,7 +11,7 @@
 
 #include "spectral/colorimetry/astm_e308.h"
 #include "spectral/io/csv_table.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/colorimetry/observer.h"
 #include "spectral/spectra/spectrum.h"
 

@@ -1,4 +1,4 @@
-#include "render/camera/camera_keyframes.h"
+#include "render/scene/camera_keyframes.h"
 
 #include <array>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "spectral/error.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/colorimetry/tristimulus_method.h"
 
 namespace rimu {

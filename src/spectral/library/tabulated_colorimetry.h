@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "spectral/colorimetry/chromaticity.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 #include "spectral/colorimetry/tristimulus_method.h"
 

@@ -1,4 +1,4 @@
-#include "spectral/colorimetry/tabulated_colorimetry.h"
+#include "spectral/library/tabulated_colorimetry.h"
 
 #include <cmath>
 

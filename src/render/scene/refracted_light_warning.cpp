@@ -1,4 +1,4 @@
-#include "render/reports/refracted_light_warning.h"
+#include "render/scene/refracted_light_warning.h"
 
 #include <algorithm>
 #include <cmath>

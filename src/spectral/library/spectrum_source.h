@@ -4,7 +4,7 @@
 #include <string>
 
 #include "spectral/error.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/spectrum.h"
 
 namespace rimu {

@@ -1,4 +1,4 @@
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 
 #include <cassert>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "render/reports/inspect_point.h"
+#include "render/scene/inspect_point.h"
 
 #include <sstream>
 

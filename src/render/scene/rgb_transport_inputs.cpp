@@ -1,4 +1,4 @@
-#include "render/image/rgb_transport_inputs.h"
+#include "render/scene/rgb_transport_inputs.h"
 
 #include "render/image/image_texture.h"
 

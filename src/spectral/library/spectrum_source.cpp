@@ -1,4 +1,4 @@
-#include "spectral/spectra/spectrum_source.h"
+#include "spectral/library/spectrum_source.h"
 
 #include <cmath>
 #include <sstream>
@@ -6,7 +6,7 @@
 #include "spectral/spectra/blackbody_spectrum.h"
 #include "spectral/colorimetry/colorimetry.h"
 #include "spectral/io/csv_table.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/error.h"
 #include "spectral/spectra/spectrum_values_check.h"
 

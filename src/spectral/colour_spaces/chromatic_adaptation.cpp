@@ -1,4 +1,4 @@
-#include "spectral/colorimetry/chromatic_adaptation.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
 
 #include <cassert>
 

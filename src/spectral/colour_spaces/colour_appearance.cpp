@@ -1,4 +1,4 @@
-#include "spectral/colorimetry/colour_appearance.h"
+#include "spectral/colour_spaces/colour_appearance.h"
 
 #include <algorithm>
 #include <cmath>

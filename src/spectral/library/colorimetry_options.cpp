@@ -1,4 +1,4 @@
-#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/library/colorimetry_options.h"
 
 namespace rimu {
 

@@ -1,13 +1,13 @@
-#include "spectral/spectra/optical_constants.h"
+#include "spectral/library/optical_constants.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "spectral/io/csv_table.h"
 #include "spectral/error.h"
-#include "spectral/spectra/spectral_library.h"
+#include "spectral/library/spectral_library.h"
 #include "spectral/spectra/tabulated_spectrum.h"
-#include "spectral/spectra/wavelength_range.h"
+#include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
 namespace {

@@ -1,0 +1,29 @@
+// A render's two outputs, the scene-referred OpenEXR image (-o) and the optional display image (--png): checked
+// before anything slow happens, and the EXR written with the warnings its values call for.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <vector>
+
+#include "render/output/exr_output.h"
+
+namespace rimu {
+
+/// -o is OpenEXR and must say so, --png picks its format by its extension, the two are different files, and a
+/// file can be created in each folder. InputError naming the option otherwise.
+void check_render_outputs(const std::filesystem::path& exr, const std::optional<std::filesystem::path>& png);
+
+/// No output may be a file the render reads (`files_read`: the scene and every file loading it read, also through
+/// a link). Checkpoints are written to -o, so they are covered too.
+void check_render_outputs_not_inputs(const std::filesystem::path& exr,
+                                     const std::optional<std::filesystem::path>& png,
+                                     const std::vector<std::filesystem::path>& files_read);
+
+/// write_exr(), with a warning to `log` when half floats lose values and when non-finite or overflowing values
+/// were replaced.
+void write_render_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options, std::ostream& log);
+
+}  // namespace rimu

@@ -1,0 +1,352 @@
+#include "render/render_job_stages.h"
+
+#include <chrono>
+#include <ctime>
+#include <ostream>
+#include <sstream>
+
+#include "render/camera/camera_exposure.h"
+#include "render/interrupt_flag.h"
+#include "render/output/display_image_policy.h"
+#include "render/output/exr_output.h"
+#include "render/output/render_outputs.h"
+#include "render/progress_reporter.h"
+#include "render/scene/camera_keyframes.h"
+#include "render/scene/json_cursor.h"
+#include "render/scene/pbrt/pbrt_to_scene.h"
+#include "render/scene/scene_frame.h"
+#include "spectral/error.h"
+#include "spectral/io/input_file.h"
+
+namespace rimu {
+namespace {
+
+PixelFilter make_filter(const FilterSettings& f) {
+  if (f.type == "box") return PixelFilter::box(f.radius_px);
+  if (f.type == "blackman-harris") return PixelFilter::blackman_harris(f.radius_px);
+  return PixelFilter::gaussian(f.radius_px, f.sigma_px);
+}
+
+// "--film" is either a response (xyz, xyz10, camera:<name>) or spectral:<bins> (XYZ plus a spectral framebuffer).
+void apply_film_option(const std::string& film, RenderSettings& settings) {
+  if (film.rfind("spectral:", 0) == 0) {
+    int bins = 0;
+    try {
+      size_t used = 0;
+      bins = std::stoi(film.substr(9), &used);
+      if (used != film.size() - 9) bins = 0;
+    } catch (const std::exception&) {
+      bins = 0;
+    }
+    if (bins < 1 || bins > 471)
+      throw InputError({"", 0, "--film"}, "spectral:<bins> needs a bin count in 1-471, got '" + film + "'");
+    settings.spectral_bins = bins;
+    return;
+  }
+  settings.film_response = film;
+}
+
+bool has_camera_options(const RenderJob& job) {
+  return job.iso || job.shutter_s || job.f_number || job.compensation_ev;
+}
+
+// --iso, --shutter, --f-number, --ev, --white-balance over the scene camera's exposure and white balance. Each is
+// held to the range the scene's key accepts (camera_exposure.h).
+void apply_camera_options(const RenderJob& job, CameraExposureSettings& camera, SpectralLibrary& library) {
+  if (has_camera_options(job)) {
+    PhysicalCameraSettings e = camera.exposure.value_or(PhysicalCameraSettings{});
+    if (job.iso) check_camera_option(e.iso = *job.iso, kIsoRange, "--iso");
+    if (job.shutter_s) check_camera_option(e.shutter_s = *job.shutter_s, kShutterRange_s, "--shutter");
+    if (job.f_number) check_camera_option(e.f_number = *job.f_number, kFNumberRange, "--f-number");
+    if (job.compensation_ev)
+      check_camera_option(e.exposure_compensation_ev = *job.compensation_ev, kCompensationRange_ev, "--ev");
+    camera.exposure = e;
+  }
+  if (job.white_balance)
+    camera.white_balance = parse_white_balance_option(*job.white_balance, library, "--white-balance");
+}
+
+// The scene's hash against the one the farm expects and the one a resumed partial was rendered from.
+void check_scene_hash(const RenderJobState& s) {
+  const std::string& hash = s.loaded.hash;
+  if (s.job.expected_scene_hash && *s.job.expected_scene_hash != hash)
+    throw InputError({s.scene_path.string(), 0, ""},
+                     "the scene (its file, the files it names, or image options) hashes to " + hash +
+                         ", not the expected " + *s.job.expected_scene_hash + ": it changed after the render was submitted");
+  if (s.previous && s.previous->record.scene_hash != hash)
+    throw InputError({s.scene_path.string(), 0, ""},
+                     "the scene (its file, the files it names, or image options) hashes to " + hash + ", but " +
+                         s.previous->path.string() +
+                         " was rendered from one that hashed to " + s.previous->record.scene_hash +
+                         ": it changed since; resuming would mix two scenes");
+}
+
+// --width, --height, --spp, --seed, --sampler, --film and the camera options over the scene's settings.
+void apply_job_options(const RenderJob& job, RenderSettings& settings, SpectralLibrary& library) {
+  if (job.width) settings.width = *job.width;
+  if (job.height) settings.height = *job.height;
+  if (job.samples_per_pixel) settings.samples_per_pixel = *job.samples_per_pixel;
+  if (job.seed) settings.seed = *job.seed;
+  if (job.sampler) settings.sampler = *job.sampler;
+  if (job.film) apply_film_option(*job.film, settings);
+  apply_camera_options(job, settings.camera_exposure, library);
+}
+
+// --crop, else the scene's film "crop" (checked against the scene's resolution, which --width/--height may change).
+FilmOptions film_options(const RenderJobState& s) {
+  const RenderSettings& settings = s.loaded.scene->settings;
+  FilmOptions options{settings.width, settings.height, std::nullopt, settings.spectral_bins};
+  if (const std::optional<PixelBounds> crop = s.job.crop ? s.job.crop : settings.crop) {
+    if (crop->x1 > settings.width || crop->y1 > settings.height)
+      throw InputError({s.job.crop ? "" : s.scene_path.string(), 0, s.job.crop ? "--crop" : "/film/crop"},
+                       "the crop window reaches outside the " + std::to_string(settings.width) + "x" +
+                           std::to_string(settings.height) + " image");
+    options.crop = *crop;
+  }
+  return options;
+}
+
+// The film's response, its errors named at --film or the scene's /film/response.
+SpectralResponse film_response(RenderJobState& s) {
+  const RenderSettings& settings = s.loaded.scene->settings;
+  try {
+    // Rgb transport's lanes are linear sRGB, not wavelengths: its film converts them with the sRGB matrix.
+    if (settings.integrator.wavelengths == WavelengthMode::rgb) {
+      if (settings.film_response != "xyz") throw InputError({}, "rgb transport renders to an XYZ film only");
+      return SpectralResponse::rgb_transport(s.library);
+    }
+    return SpectralResponse::from_spec(s.library, settings.film_response);
+  } catch (const InputError& e) {
+    throw InputError({"", 0, s.job.film ? "--film" : s.scene_path.string() + ": /film/response"}, e.explanation());
+  }
+}
+
+// What a partial written after samples [requested.begin, reached) records for a merge or --resume.
+PartialRecord job_partial_record(const RenderJobState& s, int reached) {
+  const RenderSettings& settings = s.loaded.scene->settings;
+  PartialRecord record;
+  record.scene_hash = s.loaded.hash;
+  record.seed = settings.seed;
+  if (reached > s.requested.begin) record.samples = {SampleRange{s.requested.begin, reached}};
+  record.requested = s.requested;
+  record.total_spp = s.total_spp;
+  record.film_spec = settings.integrator.wavelengths == WavelengthMode::rgb ? "rgb-transport" : settings.film_response;
+  record.output_transform = s.output_transform;
+  RenderJob recorded = s.job;
+  recorded.samples = s.requested;
+  recorded.samples_per_pixel = s.total_spp;
+  recorded.seed = settings.seed;
+  record.job = render_job_json(recorded);
+  return record;
+}
+
+// The EXR's options after samples [requested.begin, reached) (a checkpoint, or the final image): its metadata and,
+// for a partial, its record.
+ExrOptions job_exr_options(const RenderJobState& s, int reached, bool interrupted) {
+  const Scene& scene = *s.loaded.scene;
+  const RenderSettings& settings = scene.settings;
+  ExrOptions exr;
+  exr.pixel_type = s.job.half_exr ? ExrPixelType::half : ExrPixelType::float32;
+  exr.metadata.samples_per_pixel = reached - s.requested.begin;
+  exr.metadata.seed = settings.seed;
+  exr.metadata.render_time_s =
+      s.previous_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - s.render_start).count();
+  exr.metadata.interrupted = interrupted;
+  exr.metadata.scene = s.scene_path.string();
+  exr.metadata.extra["degenerateTrianglesRemoved"] = std::to_string(scene.degenerate_triangles_removed);
+  exr.metadata.extra["wavelengths"] = wavelength_mode_name(settings.integrator.wavelengths);
+  exr.metadata.extra["wavelengthDensity"] = scene.wavelength_density ? "lights" : "visible";
+  exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
+  exr.metadata.extra["lightSampler"] = light_sampler_kind_name(settings.light_sampler);
+  exr.metadata.extra["guiding"] = settings.integrator.guiding ? "on" : "off";
+  for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, s.output_transform))
+    exr.metadata.extra[key] = value;
+  exr.metadata.camera = settings.camera_exposure.exposure;
+  exr.metadata.finished_at = std::time(nullptr);
+  if (s.colour_fit) {
+    // The written R, G, B are M_wb · raw (times the exposure): undo the white balance to reach the fit's raw input.
+    exr.metadata.camera_to_xyz = s.colour_fit->camera_to_xyz * s.output_transform.channel_matrix.inverse();
+    exr.metadata.camera_to_xyz_mean_delta_e2000 = s.colour_fit->mean_delta_e2000;
+  }
+  if (s.partial_output) exr.partial = job_partial_record(s, reached);
+  return exr;
+}
+
+}  // namespace
+
+JobScene load_job_scene(const RenderJob& job, const std::filesystem::path& scene_path, SpectralLibrary& library,
+                        std::ostream& log) {
+  JobScene loaded;
+  const InputFileLog files;
+  // pbrt-v4 files are translated into a JSON document first; both then go through the same loader.
+  const bool pbrt = is_pbrt_scene_path(scene_path);
+  if (pbrt && job.frame)
+    throw InputError({"", 0, "--frame"}, "frame numbers are substituted into JSON scenes; a pbrt-v4 scene is read as it is");
+  std::vector<PbrtOrigin> pbrt_origins;  // errors inside files a pbrt scene names are reported at its lines
+  loaded.document = pbrt ? read_pbrt_scene(scene_path, library, job.strict, log, &pbrt_origins)
+                         : parse_json_text(scene_text_for_frame(scene_path, job.frame), scene_path.string());
+  nlohmann::json& document = loaded.document;
+  if (job.frame) apply_camera_keyframes(document, *job.frame, scene_path.string());  // a camera path keyed by frame
+  if (job.wavelengths) document["integrator"]["wavelengths"] = wavelength_mode_name(*job.wavelengths);
+  if (job.wavelength_density)
+    document["integrator"]["wavelength_density"] =
+        *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
+  if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
+  if (job.guiding) document["integrator"]["guiding"] = *job.guiding;
+  try {
+    loaded.scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
+  } catch (const InputError& e) {
+    if (std::optional<InputError> at_pbrt = at_pbrt_origin(e, pbrt_origins)) throw *at_pbrt;
+    throw;
+  }
+  loaded.hash = scene_hash_of_files(files, scene_path, library.root(), job);
+  loaded.files_read.push_back(scene_path);
+  for (const auto& [path, digest] : files.files()) loaded.files_read.push_back(path);
+  return loaded;
+}
+
+RenderJobState::RenderJobState(const RenderJob& job_in, const PartialImage* previous_in,
+                               const DisplayOptions& display_in, std::ostream& log_in)
+    : job(job_in),
+      previous(previous_in),
+      log(log_in),
+      display(display_in),
+      library(SpectralLibrary::at_default_location()),
+      scene_path(job.scene ? *job.scene : default_scene_path(library)) {}
+
+DisplayOptions check_job_without_scene(const RenderJob& job) {
+  check_render_outputs(job.exr_output, job.png_output);
+  DisplayOptions display;
+  display.exposure_ev = job.exposure_ev;
+  display.view = job.view;
+  const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
+  return display;
+}
+
+void read_job_scene(RenderJobState& s) {
+  s.loaded = load_job_scene(s.job, s.scene_path, s.library, s.log);
+  check_render_outputs_not_inputs(s.job.exr_output, s.job.png_output, s.loaded.files_read);
+  check_scene_hash(s);
+  for (const std::string& warning : s.loaded.scene->warnings) s.log << "rimu: warning: " << warning << "\n";
+  apply_job_options(s.job, s.loaded.scene->settings, s.library);
+}
+
+void set_up_film(RenderJobState& s) {
+  const RenderJob& job = s.job;
+  const RenderSettings& settings = s.loaded.scene->settings;
+  const FilmOptions options = film_options(s);
+  s.film = std::make_unique<Film>(options, film_response(s));
+  Film& film = *s.film;
+  if (settings.camera_exposure.exposure) {
+    try {
+      film_exposure_scale(*settings.camera_exposure.exposure, film.response());
+    } catch (const InputError& e) {
+      throw InputError({"", 0, has_camera_options(job) ? "--iso/--shutter/--f-number/--ev"
+                                                       : s.scene_path.string() + ": /camera/exposure"},
+                       e.explanation());
+    }
+  }
+  // Exposure and white balance reach the EXR and the PNG through the film's output transform (one place).
+  try {
+    s.output_transform = film_output_transform(settings.camera_exposure, film.response(), s.library);
+  } catch (const InputError& e) {
+    throw InputError({"", 0, job.white_balance ? "--white-balance" : s.scene_path.string() + ": /camera/white_balance"},
+                     e.explanation());
+  }
+  film.set_output_transform(s.output_transform);
+  s.filter = make_filter(settings.filter);
+  if (film.response().kind() == ResponseKind::camera_rgb) s.colour_fit = fit_camera_to_xyz(film.response(), s.library);
+  s.metered_display = !settings.camera_exposure.exposure && uses_photometric_units(s.loaded.document);
+}
+
+void plan_samples(RenderJobState& s) {
+  s.total_spp = s.loaded.scene->settings.samples_per_pixel;
+  s.requested = s.job.samples.value_or(SampleRange{0, s.total_spp});
+  if (s.requested.end > s.total_spp)
+    throw InputError({"", 0, "--samples"}, "--samples " + s.requested.text() + " reaches beyond the render's " +
+                                               std::to_string(s.total_spp) +
+                                               " samples per pixel (the scene's samples_per_pixel, or --spp)");
+  s.partial_output = s.job.samples || s.job.checkpoint_interval_s || s.previous;
+  s.first_sample = s.requested.begin;
+  if (s.previous) {
+    const ResumePoint resume = resume_on_film(*s.previous, *s.film);
+    s.first_sample = resume.first_sample;
+    s.previous_seconds = resume.render_time_s;
+  }
+}
+
+void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
+  const RenderJob& job = s.job;
+  const RenderSettings& settings = s.loaded.scene->settings;
+  const uint64_t total = uint64_t(s.film->pixel_bounds().area()) * uint64_t(s.requested.end - s.first_sample);
+  ProgressReporter::Options progress_options;
+  progress_options.silent = job.quiet;  // --quiet: nothing on stderr but warnings and errors
+  ProgressReporter progress(total, "rendering", progress_options);
+
+  RenderOptions options;
+  options.samples_per_pixel = s.requested.end;
+  options.first_sample = s.first_sample;
+  options.threads = job.threads.value_or(0);
+  options.seed = settings.seed;
+  options.sampler = settings.sampler;
+  options.interrupt = &interrupt;
+  options.progress = &progress;
+  s.render_start = std::chrono::steady_clock::now();
+  auto last_checkpoint = s.render_start;
+  if (job.checkpoint_interval_s) {
+    options.after_pass = [&](int reached) {
+      const auto now = std::chrono::steady_clock::now();
+      if (reached >= s.requested.end || std::chrono::duration<double>(now - last_checkpoint).count() <
+                                            *job.checkpoint_interval_s)
+        return;
+      write_exr(job.exr_output, *s.film, job_exr_options(s, reached, false));
+      last_checkpoint = std::chrono::steady_clock::now();
+      if (!job.quiet) s.log << "\nrimu: checkpoint " << job.exr_output.string() << ": samples " << s.requested.begin
+                            << ":" << reached << "\n";
+    };
+  }
+  s.result.statistics = render(*s.loaded.scene, *s.filter, *s.film, options);
+  progress.finish();
+  s.result.sample_counts = s.film->sample_counts();
+  s.reached = s.first_sample + s.result.statistics.samples_per_pixel_done;
+}
+
+void write_job_outputs(RenderJobState& s) {
+  const RenderJob& job = s.job;
+  write_render_exr(job.exr_output, *s.film, job_exr_options(s, s.reached, s.result.statistics.interrupted), s.log);
+  if (job.png_output) {
+    DisplayImagePolicy policy;
+    policy.camera_fit = s.colour_fit;
+    policy.white_balanced =
+        s.loaded.scene->settings.camera_exposure.white_balance.kind != WhiteBalanceSettings::Kind::none;
+    policy.metered = s.metered_display;
+    policy.quiet = job.quiet;
+    policy.nits_per_unit_y =
+        (s.colour_fit ? SpectralResponse::cie_xyz(s.library) : s.film->response()).luminance_nits_per_unit_y();
+    write_policy_display_image(*job.png_output, *s.film, s.display, policy, s.log);
+  }
+}
+
+void log_job_summary(const RenderJobState& s) {
+  const RenderJob& job = s.job;
+  const RenderStatistics& statistics = s.result.statistics;
+  const FilmSampleCounts& c = s.result.sample_counts;
+  std::ostringstream summary;
+  summary << "rimu: " << s.scene_path.string() << ": " << s.reached - s.requested.begin << " spp";
+  if (job.samples || s.previous) summary << " (samples " << s.requested.begin << ":" << s.reached << ")";
+  if (statistics.interrupted) summary << " (interrupted; requested " << s.requested.count() << ")";
+  summary << " in " << statistics.seconds << " s, "
+          << (statistics.seconds > 0 ? double(statistics.camera_samples) / statistics.seconds : 0.0)
+          << " samples/s; discarded samples: " << c.nan << " NaN, " << c.infinite << " Inf, " << c.negative
+          << " negative\n";
+  if (const GuidingStatistics& g = statistics.guiding; g.active)
+    summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
+            << " spatial leaves, " << g.directional_nodes << " directional nodes, "
+            << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
+  summary << "rimu: wrote " << job.exr_output.string();
+  if (job.png_output) summary << " and " << job.png_output->string();
+  summary << "\n";
+  if (!job.quiet) s.log << summary.str();
+}
+
+}  // namespace rimu

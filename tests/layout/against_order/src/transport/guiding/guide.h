@@ -1,0 +1,2 @@
+// A file in a room the order does not declare: the check must ask for its place.
+#pragma once
