@@ -7,12 +7,12 @@
 
 #include "bindings.h"
 #include "broadcast.h"
-#include "spectral/colorimetry/chromatic_adaptation.h"
-#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
+#include "spectral/library/colorimetry_options.h"
 #include "spectral/colour_spaces/colour_appearance.h"
 #include "spectral/colorimetry/colour_value_check.h"
 #include "spectral/colorimetry/planckian_locus.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 
 namespace rimu::python {
 namespace {

@@ -8,14 +8,14 @@
 #include "bindings.h"
 #include "broadcast.h"
 #include "render/film/spectral_response.h"
-#include "spectral/colorimetry/colorimetry_options.h"
+#include "spectral/library/colorimetry_options.h"
 #include "spectral/colorimetry/colour_value_check.h"
 #include "spectral/io/csv_table.h"
 #include "spectral/reports/reflectance_report.h"
 #include "spectral/spectra/blackbody_spectrum.h"
-#include "spectral/spectra/daylight.h"
+#include "spectral/colorimetry/daylight.h"
 #include "spectral/spectra/spectrum_resampling.h"
-#include "spectral/spectra/spectrum_source.h"
+#include "spectral/library/spectrum_source.h"
 #include "spectral/spectra/spectrum_values_check.h"
 
 namespace rimu::python {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "spectral/colorimetry/chromatic_adaptation.h"
+#include "spectral/colour_spaces/chromatic_adaptation.h"
 #include "spectral/colorimetry/cielab.h"
 
 namespace rimu {
