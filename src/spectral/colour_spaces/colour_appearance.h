@@ -59,6 +59,7 @@ class ColourAppearanceModel {
 
   double luminance_adaptation_factor() const { return f_l_; }
   double degree_of_adaptation() const { return d_; }
+  AppearanceModel model() const { return model_; }
 
  private:
   // Cone signals after adaptation and compression (R'a, G'a, B'a) of XYZ.
