@@ -87,6 +87,15 @@ TEST_CASE("image headers: sizes a file cannot hold are refused before the pixels
   CHECK(RgbImage::read(pbm, {}).width() == 8);
   input_error([&] { RgbImage::read(write_file(dir.path / "cut.pbm", "P4\n64 3\n\xaa\x55"), {}); },
               {"64 x 3", "24 bytes of pixel data", "truncated"});
+  // OpenEXR allocates each header attribute at the size it claims: a 1.2 KB file whose lineOrder claimed 128 MB
+  // took fuzz_image past 2 GB. The attribute list is checked against the file before the library reads it.
+  std::string exr("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+  exr += std::string("lineOrder\0lineOrder\0", 20);
+  const std::uint32_t claimed = 134217729;  // little-endian on this machine, as in the file
+  exr.append(reinterpret_cast<const char*>(&claimed), 4);
+  exr += std::string(16, '\0');
+  const fs::path damaged = write_file(dir.path / "damaged.exr", exr);
+  input_error([&] { RgbImage::read(damaged, {}); }, {damaged.string(), "'lineOrder'", "claims 134217729 bytes"});
   // A complete small PFM still loads.
   const auto good = test::write_pfm("header_ok", 3, 2, std::vector<float>(18, 0.25f));
   CHECK(RgbImage::read(good, {}).width() == 3);

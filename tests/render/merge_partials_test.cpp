@@ -304,6 +304,30 @@ TEST_CASE("partial renders: OpenEXR does not allocate for a data window of 2^29 
   CHECK_FALSE(fs::exists(dir / "out.exr"));
 }
 
+TEST_CASE("partial renders: a header attribute claiming more bytes than the file holds is refused before OpenEXR reads it") {
+  // fuzz_merge: a 2.7 KB partial whose rimu:partial:requested string claimed 1.86 GB, which OpenEXR allocated.
+  Folder dir("attribute_size");
+  render(tiny_job(dir / "a.exr", SampleRange{0, 24}));
+  std::ifstream in(dir / "a.exr", std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), {}};
+  const std::string key = std::string("rimu:partial:requested") + '\0' + "string" + '\0';
+  const std::size_t at = bytes.find(key);
+  REQUIRE(at != std::string::npos);
+  const std::int32_t claimed = 1862270979;
+  std::memcpy(bytes.data() + at + key.size(), &claimed, 4);
+  std::ofstream(dir / "claims.exr", std::ios::binary) << bytes;
+  try {
+    merge({dir / "claims.exr"}, dir / "out.exr", MergeOptions{true, true});
+    FAIL("merged");
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    CAPTURE(message);
+    CHECK(message.find("'rimu:partial:requested'") != std::string::npos);
+    CHECK(message.find("claims 1862270979 bytes") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(dir / "out.exr"));
+}
+
 TEST_CASE("partial renders: guided partials merge; a mix of guided and unguided partials is refused") {
   Folder dir("guiding");
   RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12});

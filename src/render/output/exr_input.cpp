@@ -3,8 +3,10 @@
 #include <ImfHeader.h>
 
 #include <mutex>
+#include <system_error>
 
 #include "render/film/render_size.h"
+#include "render/image/exr_header_check.h"
 
 namespace rimu {
 
@@ -16,6 +18,10 @@ std::unique_ptr<Imf::InputFile> open_exr_input(const std::filesystem::path& path
     Imf::Header::setMaxImageSize(kMaxImageDimension, kMaxImageDimension);
     Imf::Header::setMaxTileSize(kMaxImageDimension, kMaxImageDimension);
   });
+  // OpenEXR allocates each header attribute at the size it claims: refuse sizes the file cannot hold first
+  // (a file whose size cannot be read is left to OpenEXR, which then fails to open it).
+  std::error_code error;
+  if (const std::uintmax_t bytes = std::filesystem::file_size(path, error); !error) check_exr_header_sizes(path, bytes);
   return std::make_unique<Imf::InputFile>(path.c_str());
 }
 

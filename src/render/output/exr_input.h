@@ -13,8 +13,9 @@
 
 namespace rimu {
 
-/// Opens `path` with OpenEXR after setting its process-wide header limits to Rimu's largest film
-/// (kMaxImageDimension on either side). Throws what OpenEXR throws (the caller names the file and the role).
+/// Opens `path` with OpenEXR after checking that its header's attribute sizes fit the file (exr_header_check.h:
+/// InputError) and setting OpenEXR's process-wide header limits to Rimu's largest film (kMaxImageDimension on
+/// either side). Otherwise throws what OpenEXR throws (the caller names the file and the role).
 std::unique_ptr<Imf::InputFile> open_exr_input(const std::filesystem::path& path);
 
 }  // namespace rimu
