@@ -14,14 +14,13 @@ constexpr std::array<unsigned char, 4> kMagic{0x76, 0x2f, 0x31, 0x01};
 constexpr std::uint32_t kMultiPartFlag = 0x1000;  // bit 12 of the version field (OpenEXR file layout)
 constexpr std::size_t kMaxNameBytes = 255;        // with the "long names" flag; 31 without
 
-}  // namespace
-
-bool is_openexr_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::array<unsigned char, 4> magic{};
-  in.read(reinterpret_cast<char*>(magic.data()), magic.size());
-  return in.gcount() == 4 && magic == kMagic;
+// A little-endian 32-bit field, as OpenEXR stores every integer.
+std::uint32_t little_endian_u32(const unsigned char* bytes) {
+  return std::uint32_t(bytes[0]) | std::uint32_t(bytes[1]) << 8 | std::uint32_t(bytes[2]) << 16 |
+         std::uint32_t(bytes[3]) << 24;
 }
+
+}  // namespace
 
 void check_exr_header_sizes(const std::filesystem::path& path, std::uintmax_t file_bytes) {
   const auto fail = [&path](const std::string& what) {
@@ -30,9 +29,9 @@ void check_exr_header_sizes(const std::filesystem::path& path, std::uintmax_t fi
   std::ifstream in(path, std::ios::binary);
   std::array<unsigned char, 8> start{};
   in.read(reinterpret_cast<char*>(start.data()), start.size());
+  if (in.gcount() < 4 || !std::equal(kMagic.begin(), kMagic.end(), start.begin())) return;  // not OpenEXR
   if (in.gcount() != 8) fail("the file ends inside its magic number and version");
-  const std::uint32_t version = std::uint32_t(start[4]) | std::uint32_t(start[5]) << 8 |
-                                std::uint32_t(start[6]) << 16 | std::uint32_t(start[7]) << 24;
+  const std::uint32_t version = little_endian_u32(start.data() + 4);
   std::uintmax_t position = 8;
   // A null-terminated name of at most kMaxNameBytes characters ("" ends a header).
   const auto read_name = [&](const char* what) {
@@ -61,8 +60,7 @@ void check_exr_header_sizes(const std::filesystem::path& path, std::uintmax_t fi
       in.read(reinterpret_cast<char*>(size_bytes.data()), 4);
       if (in.gcount() != 4) fail("the file ends inside the size of attribute '" + name + "'");
       position += 4;
-      const std::int32_t size = std::int32_t(std::uint32_t(size_bytes[0]) | std::uint32_t(size_bytes[1]) << 8 |
-                                             std::uint32_t(size_bytes[2]) << 16 | std::uint32_t(size_bytes[3]) << 24);
+      const std::int32_t size = std::int32_t(little_endian_u32(size_bytes.data()));
       if (size < 0 || std::uintmax_t(size) > file_bytes - std::min(position, file_bytes))
         fail("attribute '" + name + "' (" + type + ") claims " + std::to_string(size) + " bytes, but only " +
              std::to_string(file_bytes - std::min(position, file_bytes)) + " follow it in the file");

@@ -12,12 +12,11 @@
 
 namespace rimu {
 
-/// True if the file starts with OpenEXR's magic number (76 2f 31 01).
-bool is_openexr_file(const std::filesystem::path& path);
-
-/// Throws InputError naming `path` and the attribute if an attribute of the header (of every part's header, for
-/// a multi-part file) claims more bytes than follow it in the file of `file_bytes` bytes, a name or type name runs
-/// past 255 characters, or the header ends before its terminating empty name. Reads only the header.
+/// For a file that starts with OpenEXR's magic number (76 2f 31 01): throws InputError naming `path` and the
+/// attribute if an attribute of the header (of every part's header, for a multi-part file) claims more bytes than
+/// follow it in the file of `file_bytes` bytes, a name or type name runs past 255 characters, or the header ends
+/// before its terminating empty name. Any other file is left to its reader. Reads only the header, opening the
+/// file once.
 void check_exr_header_sizes(const std::filesystem::path& path, std::uintmax_t file_bytes);
 
 }  // namespace rimu

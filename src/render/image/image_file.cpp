@@ -41,7 +41,7 @@ DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored) 
   const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block the library
   const ImageModuleApi& library = image_library();
   // OpenEXR allocates header attributes at their claimed size inside the library: check them first.
-  if (is_openexr_file(path)) check_exr_header_sizes(path, file_bytes);
+  check_exr_header_sizes(path, file_bytes);
   DecodedImage image;
   image.as_stored = as_stored;
   if (std::string error; !library.read_header(path.string(), image, error))

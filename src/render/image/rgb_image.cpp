@@ -13,7 +13,7 @@ namespace rimu {
 ImageEncoding default_encoding_for(const std::filesystem::path& path) {
   const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // OpenImageIO would block on a FIFO
   // OpenEXR allocates header attributes at their claimed size inside the library (exr_header_check.h).
-  if (is_openexr_file(path)) check_exr_header_sizes(path, file_bytes);
+  check_exr_header_sizes(path, file_bytes);
   ImageEncoding encoding;
   DecodedImage header;
   if (std::string error; !image_library().read_header(path.string(), header, error)) return encoding;
