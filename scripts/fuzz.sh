@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (build-fuzz/: clang, ASan + UBSan, see docs/fuzzing.md) and fuzzes each reader for a
 # bounded time. Fails (exit 1) if any target finds a crash, a sanitizer report, an unexpected exception, a timeout
 # or an out-of-memory; the input is written to fuzz/crashes/<target>/.
-#   scripts/fuzz.sh [seconds-per-target] [target...]     targets: scene pbrt csv ies ply obj rvol (default), image merge
+#   scripts/fuzz.sh [seconds-per-target] [target...]     targets (all by default): scene pbrt csv ies ply obj rvol image merge
 # Inputs that add coverage accumulate in build-fuzz/corpus/<target>/ (reused by the next run; not committed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-if [ ${#targets[@]} -eq 0 ]; then targets=(scene pbrt csv ies ply obj rvol); fi
+if [ ${#targets[@]} -eq 0 ]; then targets=(scene pbrt csv ies ply obj rvol image merge); fi
 
 scripts/install-deps.sh --test
 launcher=()
