@@ -159,6 +159,8 @@ ExrOptions job_exr_options(const RenderJobState& s, int reached, bool interrupte
   exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
   exr.metadata.extra["lightSampler"] = light_sampler_kind_name(settings.light_sampler);
   exr.metadata.extra["guiding"] = settings.integrator.guiding ? "on" : "off";
+  // `rimu display` meters the image again as the render did (render/output/exr_display_source.h).
+  if (s.metered_display) exr.metadata.extra["displayMetered"] = "yes";
   for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, s.output_transform))
     exr.metadata.extra[key] = value;
   exr.metadata.camera = settings.camera_exposure.exposure;

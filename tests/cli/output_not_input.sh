@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # output_not_input.sh BUILD_BIN SOURCE_DIR WORKDIR: no tool writes an output over one of its inputs — the same name,
 # a symbolic link or a hard link to it (compared by device and inode) — for every output option: rimu -o/--png
-# against the scene and a file it names, rimu merge -o against a partial (with and without --final), rimu-convert
+# against the scene and a file it names, rimu merge -o against a partial (with and without --final), rimu display --png against the EXR, rimu-convert
 # -o against the pbrt file and a file it includes, rimu-colour --graphic against --csv, rimu-light -o/--plot against
 # the definition, the inspected file and --csv. Each is exit 1 naming the output and the input, and the input is
 # unchanged (the old tools replaced it with exit 0). `rimu --resume FILE` still writes FILE (it continues it).
@@ -45,6 +45,11 @@ refused q1.exr q1.exr "$bin/rimu" merge q0.exr q1.exr -o q1.exr
 ln -s q0.exr q0_link.exr
 refused q0.exr q0_link.exr "$bin/rimu" merge q0.exr q1.exr --final -o q0_link.exr
 "$bin/rimu" merge q0.exr q1.exr --final -o merged.exr 2>/dev/null || fail "a merge to a new file"
+
+# rimu display: --png a link to the EXR it shows.
+ln -s q0.exr q0_link.png
+refused q0.exr q0_link.png "$bin/rimu" display q0.exr --png q0_link.png
+"$bin/rimu" display merged.exr --png merged.png 2>/dev/null || fail "rimu display of a merge"
 
 # rimu --resume: -o defaults to the resumed file, which is continued, not destroyed.
 "$bin/rimu" box/scene.json "${quick[@]}" --spp 4 --samples 0:2 -o part.exr || fail "a partial to resume"

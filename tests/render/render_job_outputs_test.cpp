@@ -2,7 +2,7 @@
 // no file; formats follow the file names; no NaN or Inf reaches an image; a photometric scene without a camera
 // exposure gets a usable display image; a camera film is displayed through its fitted matrix; the EXR is 32-bit float
 // unless --half; and the files carry the standard metadata other programs read (the PNG's sRGB chunk, OpenEXR's
-// standard attributes, the spectral layout's emissiveUnits).
+// standard attributes, the spectral layout's emissiveUnits); `rimu display` makes the same display image from the EXR.
 #include <doctest/doctest.h>
 
 #include <ImfChannelList.h>
@@ -24,6 +24,7 @@
 #include <sstream>
 
 #include "render/camera/physical_camera.h"
+#include "render/output/exr_display_source.h"
 #include "render/render_job.h"
 #include "spectral/error.h"
 #include "test_support.h"
@@ -355,4 +356,91 @@ TEST_CASE("the EXR holds 32-bit floats by default, half floats only with --half,
   CHECK(half_log.str().find(job.exr_output.string() + " is written as half floats: 100 % of the non-zero values lie "
                                                       "below half's normal range") != std::string::npos);
   CHECK(half_log.str().find("without --half") != std::string::npos);
+}
+
+namespace {
+
+// The largest difference of two display images' codes (same size required).
+int largest_code_difference(const Png& a, const Png& b) {
+  REQUIRE(a.rgb.size() == b.rgb.size());
+  int largest = 0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) largest = std::max(largest, std::abs(int(a.rgb[i]) - int(b.rgb[i])));
+  return largest;
+}
+
+}  // namespace
+
+TEST_CASE("rimu display: an EXR's display image equals the render's own, metering and camera matrix included") {
+  // The EXR holds each pixel as a float32 of the film's double value: a code can differ by one where a value lies
+  // on a rounding boundary of the 8-bit encoding, never by more.
+  Workspace w("display");
+  const auto render_and_display = [&](RenderJob job, double exposure_ev, const std::string& name) {
+    job.png_output = w.folder / (name + "_render.png");
+    job.exposure_ev = exposure_ev;
+    std::ostringstream render_log, display_log;
+    run_render_job(job, render_log);
+    DisplayOptions options;
+    options.exposure_ev = exposure_ev;
+    const fs::path shown = w.folder / (name + "_display.png");
+    write_exr_display_image(job.exr_output, shown, options, false, display_log);
+    const Png rendered = read_image(*job.png_output);
+    CHECK(mean_of(rendered.rgb) > 20.0);  // neither black nor clipped, so equal codes say something
+    CHECK(mean_of(rendered.rgb) < 235.0);
+    CHECK(largest_code_difference(rendered, read_image(shown)) <= 1);
+    return display_log.str();
+  };
+  SUBCASE("a photometric scene is metered again, --exposure on top") {
+    const RenderJob job = w.job(card_scene(0.18, kPhotometricSun));
+    CHECK(render_and_display(job, 0.0, "metered").find("metered") != std::string::npos);
+    render_and_display(job, -1.5, "compensated");
+  }
+  SUBCASE("film units, another exposure") {
+    const RenderJob job = w.job(card_scene(0.5, {{"spectrum", {{"illuminant", "D65"}}}, {"irradiance_w_m2", 500.0}}));
+    CHECK(render_and_display(job, 1.0, "film_units").find("metered") == std::string::npos);
+  }
+  SUBCASE("a camera film through its fitted matrix") {
+    RenderJob job = w.job(card_scene(0.5, kPhotometricSun));
+    job.film = "camera:nikon_d850";
+    CHECK(render_and_display(job, 0.0, "camera").find("camera-to-XYZ matrix") != std::string::npos);
+  }
+  SUBCASE("a partial render through its sums") {
+    RenderJob job = w.job(card_scene(0.5, kPhotometricSun));
+    job.samples = SampleRange{0, 2};
+    render_and_display(job, 0.5, "partial");
+  }
+  SUBCASE("bad input: nothing is written") {
+    const RenderJob job = w.job(card_scene(0.5, kPhotometricSun));
+    std::ostringstream log;
+    run_render_job(job, log);
+    const auto refused = [&](const fs::path& exr, const fs::path& shown, const std::string& expected) {
+      try {
+        write_exr_display_image(exr, shown, {}, false, log);
+        FAIL("expected an InputError");
+      } catch (const InputError& e) {
+        CHECK_MESSAGE(std::string(e.what()).find(expected) != std::string::npos, e.what());
+      }
+      CHECK(!fs::exists(shown));
+    };
+    refused(job.exr_output, w.folder / "shown.bmp", "expected .png");
+    refused(w.folder / "missing.exr", w.folder / "shown.png", "missing.exr");
+    // An EXR Rimu did not write (no rimu:filmResponse): written here through OpenImageIO.
+    const fs::path foreign = w.folder / "foreign.exr";
+    {
+      auto out = OIIO::ImageOutput::create(foreign.string());
+      REQUIRE(out);
+      const std::vector<float> pixels(4 * 4 * 3, 0.5f);
+      REQUIRE(out->open(foreign.string(), OIIO::ImageSpec(4, 4, 3, OIIO::TypeDesc::FLOAT)));
+      REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+      out->close();
+    }
+    refused(foreign, w.folder / "shown.png", "is not an image Rimu wrote");
+    // The display image may not replace the EXR it is made from.
+    try {
+      write_exr_display_image(job.exr_output, job.exr_output, {}, false, log);
+      FAIL("expected an InputError");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).find(".exr") != std::string::npos);
+    }
+    CHECK(fs::file_size(job.exr_output) > 0);
+  }
 }

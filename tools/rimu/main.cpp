@@ -9,17 +9,20 @@
 #include "render/camera/camera_exposure.h"
 #include "render/render_job.h"
 #include "render/film/render_size.h"
+#include "display_command.h"
 #include "merge_command.h"
 #include "spectral/error.h"
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "merge") return run_merge_command(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "display") return run_display_command(argc - 1, argv + 1);
   CLI::App app{
       "rimu: spectral hero-wavelength path tracer.\n"
       "Renders SCENE (a JSON file, see docs/scene-format.md; default: the measured Cornell box) to an OpenEXR image\n"
       "of CIE XYZ (or camera RGB) and optionally a PNG for display. Ctrl-C stops early and still writes the image.\n"
       "Example: rimu -o box.exr --png box.png --spp 64\n"
-      "Partial renders, checkpoints and farms: docs/farm.md; `rimu merge --help` merges partial renders."};
+      "Partial renders, checkpoints and farms: docs/farm.md; `rimu merge --help` merges partial renders;\n"
+      "`rimu display --help` re-exposes a rendered EXR without rendering."};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
       light_sampler, guiding;
