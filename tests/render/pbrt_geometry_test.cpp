@@ -130,6 +130,60 @@ TEST_CASE("pbrt emissive cylinder and disk: area lights with pbrt's area, emitti
   CHECK(lit_samples({{0, 0, 0.5}, {1, 0, 0}}) == 0);
 }
 
+TEST_CASE("pbrt quadrics under a mirroring transform emit on the side pbrt's normals face") {
+  // pbrt-v4 flips a shape's normal when its transform swaps handedness (reverseOrientation ^
+  // transformSwapsHandedness), which leaves every quadric's normal equal to its object-space normal transformed as a
+  // normal: a sphere and a cylinder still face away from their centre and axis, and a disk mirrored through its
+  // plane (Scale 1 1 -1) faces −z. ReverseOrientation on top turns it back. An area light emits on that side only.
+  const SampledWavelengths lambda(Float4(550.0f), Float4(1.0f));
+  // Of 64 stratified light samples seen from `position` (a point in space: no surface to cull behind), how many
+  // carry light.
+  const auto lit_samples = [&](const Light& light, Vec3 position) {
+    int lit = 0;
+    for (int i = 0; i < 64; ++i) {
+      const auto sample = light.sample_li({position, {0, 0, 0}}, lambda, {(i % 8 + 0.5f) / 8, (i / 8 + 0.5f) / 8});
+      lit += sample && sample->radiance[0] > 0.0f;
+    }
+    return lit;
+  };
+  const auto only_light = [&](const std::string& transform, const std::string& shape) {
+    const PbrtImport imported = import_text("AttributeBegin\n" + transform + "\nAreaLightSource \"diffuse\" \"rgb L\" "
+                                            "[1 1 1]\nShape " + shape + "\nAttributeEnd\n");
+    CHECK(imported.ignored.empty());
+    auto scene = load_scene(imported.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
+    REQUIRE(scene->lights.size() == 1);
+    return scene;
+  };
+  struct MirroredDisk {
+    const char* transform;
+    float world_z;  // of the disk's plane (object height 0.25)
+    bool faces_down;
+  };
+  for (const MirroredDisk& c : {MirroredDisk{"Scale 1 1 -1", -0.25f, true}, {"Scale 1 1 -1\nReverseOrientation", -0.25f, false},
+                                {"Scale -1 1 1", 0.25f, false}, {"Scale -1 -1 -1", -0.25f, true}}) {
+    CAPTURE(c.transform);
+    const auto scene = only_light(c.transform, "\"disk\" \"float radius\" 0.5 \"float height\" 0.25");
+    const int below = lit_samples(*scene->lights[0], {0, 0, c.world_z - 1});
+    const int above = lit_samples(*scene->lights[0], {0, 0, c.world_z + 1});
+    CHECK((c.faces_down ? below : above) == 64);
+    CHECK((c.faces_down ? above : below) == 0);
+  }
+  for (const char* transform : {"Scale -1 1 1", "Scale 1 1 -1", "Scale -2 2 2"}) {
+    CAPTURE(transform);
+    // A cylinder along z lights a point beside it and not one on its axis inside it.
+    const auto tube = only_light(transform, "\"cylinder\" \"float radius\" 0.1 \"float zmin\" -0.5 \"float zmax\" 0.5");
+    CHECK(lit_samples(*tube->lights[0], {1, 0, 0}) > 0);
+    CHECK(lit_samples(*tube->lights[0], {0, 0, 0}) == 0);
+    // A sphere, full and partial, lights a point outside and none at its centre.
+    for (const char* sphere : {"\"sphere\" \"float radius\" 0.3", "\"sphere\" \"float radius\" 0.3 \"float zmax\" 0.2"}) {
+      CAPTURE(sphere);
+      const auto ball = only_light(transform, sphere);
+      CHECK(lit_samples(*ball->lights[0], {2, 0, 0}) > 0);
+      CHECK(lit_samples(*ball->lights[0], {0, 0, 0}) == 0);
+    }
+  }
+}
+
 TEST_CASE("pbrt degenerate triangles are removed and counted") {
   // Triangle 1 repeats a vertex, triangle 2 has three collinear ones: both have zero area.
   const PbrtImport imported = import_text(
