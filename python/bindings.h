@@ -70,8 +70,9 @@ std::array<double, 3> read_triple(const Array& a, const std::string& name);
 /// The built-in RGB space `name`; an unknown one is reported against `argument_name`.
 const RgbColourSpace& space_named(const std::string& name, const std::string& argument_name);
 
-/// The data folder the module uses unless told otherwise: RIMU_DATA, then the build tree's share/rimu/data, then
-/// the install layout's share/rimu/data beside lib/python3/dist-packages.
+/// The data folder the module uses unless told otherwise: RIMU_DATA, then rimu_data/ beside the module (pip
+/// install), then the build tree's share/rimu/data, then the install layout's share/rimu/data beside
+/// lib/python3/dist-packages.
 std::string default_data_root();
 
 void bind_colorimetry(py::module_& m);

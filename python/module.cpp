@@ -131,12 +131,18 @@ const RgbColourSpace& space_named(const std::string& name, const std::string& ar
 
 std::string default_data_root() {
   if (const char* env = std::getenv("RIMU_DATA")) return env;
+  Dl_info info{};
+  const bool located = dladdr(reinterpret_cast<void*>(&default_data_root), &info) && info.dli_fname;
+  const std::filesystem::path module_folder = located ? std::filesystem::path(info.dli_fname).parent_path() : "";
+  // `pip install ./python` puts the tables beside the module (python/setup.py): first, so an installed module
+  // never reads a build tree's data.
+  if (located && std::filesystem::is_directory(module_folder / "rimu_data" / "cmf"))
+    return (module_folder / "rimu_data").string();
   if (std::filesystem::is_directory(std::filesystem::path(RIMU_PYTHON_BUILD_DATA) / "cmf"))
     return RIMU_PYTHON_BUILD_DATA;
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&default_data_root), &info) && info.dli_fname) {
-    // <prefix>/lib/python3/dist-packages/rimu*.so -> <prefix>/share/rimu/data
-    const auto installed = std::filesystem::path(info.dli_fname).parent_path() / "../../../share/rimu/data";
+  if (located) {
+    // cmake --install: <prefix>/lib/python3/dist-packages/rimu*.so -> <prefix>/share/rimu/data
+    const auto installed = module_folder / "../../../share/rimu/data";
     if (std::filesystem::is_directory(installed / "cmf")) return std::filesystem::weakly_canonical(installed).string();
   }
   throw InputError({}, "cannot find Rimu's data folder: set RIMU_DATA to the repository's data/ folder");
@@ -165,8 +171,8 @@ PYBIND11_MODULE(rimu, m) {
              return std::make_unique<rimu::SpectralLibrary>(root.empty() ? default_data_root() : root);
            }),
            py::arg("data_root") = "",
-           "Opens Rimu's data folder. data_root: the data/ folder; default RIMU_DATA, else the build tree's or the "
-           "install's share/rimu/data.\n\nExample: lib = rimu.Library()")
+           "Opens Rimu's data folder. data_root: the data/ folder; default RIMU_DATA, else rimu_data/ beside the "
+           "module (pip install), else the build tree's or the install's share/rimu/data.\n\nExample: lib = rimu.Library()")
       .def_property_readonly(
           "root", [](const rimu::SpectralLibrary& l) { return l.root().string(); }, "The data folder in use (a path).");
   bind_colorimetry(m);
