@@ -283,12 +283,14 @@ void bind_spectrum(py::module_& m) {
       "cie_led",
       [](const std::string& name, const OptionalLibrary& library) {
         SpectralLibrary& l = library_of(library);
-        const std::string full = "LED-" + name;
+        // "B3" or the table's full name "LED-B3" (what illuminant() and illuminant_names() use).
+        const std::string full = name.rfind("LED-", 0) == 0 ? name : "LED-" + name;
         const SpectrumPtr s = for_argument("name", [&] { return l.illuminant(full); });
         return spectrum_of(dynamic_cast<const TabulatedSpectrum&>(*s), SpectrumKind::light, full);
       },
       py::arg("name"), py::arg("library") = py::none(),
-      "A CIE 15:2018 LED illuminant by its short name (B1-B5, BH1, RGB1, V1, V2).\n\nExample: rimu.cie_led('B3')");
+      "A CIE 15:2018 LED illuminant by its short name (B1-B5, BH1, RGB1, V1, V2) or its full name (LED-B3)."
+      "\n\nExample: rimu.cie_led('B3')");
   m.def(
       "colorchecker",
       [](const std::string& patch, const OptionalLibrary& library) {

@@ -88,6 +88,12 @@ class SpectrumType(unittest.TestCase):
             rimu.camera("nikon_d851")
         self.assertEqual(len(rimu.colorchecker_names()), 24)
         self.assertEqual(rimu.cie_led("B3").name, "LED-B3")
+        # The table's full name works too, and names the same spectrum.
+        full = rimu.cie_led("LED-B3")
+        self.assertEqual(full.name, "LED-B3")
+        np.testing.assert_array_equal(full.values, rimu.cie_led("B3").values)
+        with self.assertRaisesRegex(ValueError, "^name: "):
+            rimu.cie_led("LED-B9")
         with self.assertRaisesRegex(ValueError, "^name: "):
             rimu.illuminant("D66")
 
