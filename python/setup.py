@@ -30,10 +30,15 @@ def project_version():
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
         build = BUILD
-        configure = ["cmake", "-S", str(REPOSITORY), "-B", str(build), "-DRIMU_PYTHON=ON"]
-        if not (build / "CMakeCache.txt").exists():
-            configure += ["-DCMAKE_BUILD_TYPE=Release", "-DRIMU_BUILD_TESTS=OFF", "-DRIMU_BUILD_BENCHMARKS=OFF"]
-        subprocess.run(configure, check=True, stdout=subprocess.DEVNULL)
+        cache = build / "CMakeCache.txt"
+        if not cache.exists():
+            subprocess.run(["cmake", "-S", str(REPOSITORY), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
+                            "-DRIMU_BUILD_TESTS=OFF", "-DRIMU_BUILD_BENCHMARKS=OFF", "-DRIMU_PYTHON=ON"],
+                           check=True, stdout=subprocess.DEVNULL)
+        elif "RIMU_PYTHON:BOOL=ON" not in cache.read_text():
+            # A build folder configured without the module (scripts/main.sh's): turn it on, keep the rest.
+            subprocess.run(["cmake", "-S", str(REPOSITORY), "-B", str(build), "-DRIMU_PYTHON=ON"], check=True,
+                           stdout=subprocess.DEVNULL)
         subprocess.run(["cmake", "--build", str(build), "--target", "rimu_python", "-j", str(os.cpu_count() or 1)],
                        check=True)
         built = sorted((build / "python").glob("rimu*.so"))
