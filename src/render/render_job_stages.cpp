@@ -258,7 +258,7 @@ void set_up_film(RenderJobState& s) {
   film.set_output_transform(s.output_transform);
   s.filter = make_filter(settings.filter);
   if (film.response().kind() == ResponseKind::camera_rgb) s.colour_fit = fit_camera_to_xyz(film.response(), s.library);
-  s.metered_display = !settings.camera_exposure.exposure && uses_photometric_units(s.loaded.document);
+  s.metered_display = !settings.camera_exposure.exposure && s.loaded.scene->photometric_lights;
 }
 
 void plan_samples(RenderJobState& s) {

@@ -233,6 +233,22 @@ TEST_CASE("a photometric scene without a camera exposure gets a metered display 
     run_render_job(job, log2);
     CHECK(mean_of(read_image(w.folder / "v.png").rgb, 1) == doctest::Approx(84.6).epsilon(5.0 / 84.6));
   }
+  SUBCASE("the same light through \"include\" (a rimu-light definition) is metered as well") {
+    // Before, only the scene file was searched for photometric keys: the included sun left the image near black.
+    json sun{{"type", "distant"}, {"direction", {0, 0, 1}}};
+    sun.update(kPhotometricSun);
+    std::ofstream(w.folder / "sun.json") << sun.dump();
+    json scene = card_scene(0.18, kPhotometricSun);
+    scene["lights"] = json::array({{{"include", "sun.json"}}});
+    RenderJob included = w.job(scene);
+    included.png_output = w.folder / "included.png";
+    included.quiet = false;
+    std::ostringstream log2;
+    run_render_job(included, log2);
+    CHECK(log2.str().find("metered") != std::string::npos);
+    const Png png = read_image(w.folder / "included.png");
+    for (int c = 0; c < 3; ++c) CHECK(mean_of(png.rgb, c) == doctest::Approx(117.7).epsilon(6.0 / 117.7));
+  }
 }
 
 TEST_CASE("a nearly black or nearly all clipped display image is warned about, with the fraction") {

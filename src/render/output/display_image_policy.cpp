@@ -10,18 +10,6 @@
 
 namespace rimu {
 
-bool uses_photometric_units(const nlohmann::json& value) {
-  if (value.is_object()) {
-    for (const char* key : {"luminous_power_lm", "luminous_intensity_cd", "illuminance_lx", "luminance_nt"})
-      if (value.contains(key)) return true;
-    if (const auto type = value.find("type"); type != value.end() && (*type == "ies" || *type == "goniometric")) return true;
-  }
-  if (value.is_object() || value.is_array())
-    for (const auto& item : value)
-      if (uses_photometric_units(item)) return true;
-  return false;
-}
-
 std::optional<double> metered_display_exposure_ev(const Film& film, const DisplayOptions& options,
                                                   double compensation_ev) {
   const double mean_y = mean_display_luminance(film, options);

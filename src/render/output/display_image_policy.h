@@ -5,18 +5,12 @@
 
 #include <filesystem>
 #include <iosfwd>
-#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "render/film/camera_colour_matrix.h"
 #include "render/output/display_output.h"
 
 namespace rimu {
-
-/// True if any light of the scene document is given in photometric units (luminous_power_lm,
-/// luminous_intensity_cd, illuminance_lx, luminance_nt, or an "ies" or "goniometric" light). Such scenes are in the tens to
-/// thousands of nits, which film units (Y = 1 ↔ 72 983 nt) show at a few codes of 255.
-bool uses_photometric_units(const nlohmann::json& scene_document);
 
 /// The display exposure that shows the film's mean display luminance (mean_display_luminance()) as 18 % grey, as a
 /// reflected-light meter would (physical_camera.h), plus `compensation_ev`, clamped to ±kMaxDisplayExposure_ev.

@@ -69,6 +69,9 @@ struct Scene {
   RenderSettings settings;
   float scene_scale = 1.0f;              ///< bounding-box diagonal (m)
   size_t degenerate_triangles_removed = 0;
+  /// Some light is given in photometric units (render/scene/photometric_units.h), inline or through "include":
+  /// `rimu` meters the display image of such a scene.
+  bool photometric_lights = false;
   std::vector<Medium> media;                      ///< the "media" section (empty: the surface integrator is used)
   std::vector<MediumBoundary> medium_boundaries;  ///< per material: the medium its shapes enclose
   int camera_medium = -1;                         ///< the medium marked "contains_camera", −1: none

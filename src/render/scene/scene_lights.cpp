@@ -6,6 +6,7 @@
 #include "render/image/rgb_environment_image.h"
 #include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
+#include "render/scene/photometric_units.h"
 #include "render/scene/scene_ies_light.h"
 #include "render/scene/scene_light_emission.h"
 #include "transport/lights/distant_light.h"
@@ -171,6 +172,7 @@ void load_lights(const JsonCursor& section, LoadContext& context) {
                                             : "the light " + where);
     if (light.is_object() && light.has("include")) {
       const nlohmann::json merged = included_light(light, context.spectra.scene_directory());
+      context.scene.photometric_lights = context.scene.photometric_lights || uses_photometric_units(merged);
       context.scene.lights.push_back(load_light(JsonCursor(merged, light.file(), light.path()), context));
     } else {
       context.scene.lights.push_back(load_light(light, context));

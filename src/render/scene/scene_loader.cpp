@@ -4,6 +4,7 @@
 #include "render/camera/camera_exposure.h"
 #include "render/scene/scene_camera.h"
 #include "render/scene/light_coverage.h"
+#include "render/scene/photometric_units.h"
 #include "render/scene/refracted_light_warning.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_load_context.h"
@@ -160,6 +161,8 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
+  // Included light definitions set it too (load_lights), as they are read.
+  scene->photometric_lights = scene->photometric_lights || uses_photometric_units(document);
 
   // ∂p/∂u, ∂p/∂v are read only by normal and bump maps: scenes without one skip their cost per hit.
   scene->geometry.set_surface_tangents(
