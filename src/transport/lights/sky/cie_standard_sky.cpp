@@ -83,14 +83,28 @@ double cie_relative_luminance(const CieSkyParameters& p, double zenith_rad, doub
 
 double cie_relative_luminance(const CieSkyParameters& p, const std::array<double, 3>& element,
                               const std::array<double, 3>& sun) {
-  if (!(element[2] > 0.0)) return 0.0;
-  const double cos_chi = element[0] * sun[0] + element[1] * sun[1] + element[2] * sun[2];
-  // χ by atan2 of |e × s| and e·s: acos loses half its digits near the sun, where the clear sky's indicatrix is steep.
-  const double cx = element[1] * sun[2] - element[2] * sun[1], cy = element[2] * sun[0] - element[0] * sun[2],
-               cz = element[0] * sun[1] - element[1] * sun[0];
-  const double chi = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), cos_chi);
+  return CieSkyLuminance(p, sun)(element);
+}
+
+CieSkyLuminance::CieSkyLuminance(const CieSkyParameters& p, const std::array<double, 3>& sun)
+    : p_(p), sun_(sun), exp_d_half_pi_(std::exp(p.d * std::numbers::pi / 2.0)) {
   const double sun_zenith = std::atan2(std::hypot(sun[0], sun[1]), sun[2]);
-  return cie_indicatrix(p, chi) * cie_gradation(p, element[2]) / (cie_indicatrix(p, sun_zenith) * cie_gradation(p, 1.0));
+  inverse_zenith_ = 1.0 / (cie_indicatrix(p, sun_zenith) * cie_gradation(p, 1.0));
+}
+
+double CieSkyLuminance::operator()(const std::array<double, 3>& element) const {
+  if (!(element[2] > 0.0)) return 0.0;
+  const double cos_chi = element[0] * sun_[0] + element[1] * sun_[1] + element[2] * sun_[2];
+  // χ by atan2 of |e × s| and e·s: acos loses half its digits near the sun, where the clear sky's indicatrix is steep.
+  const double cx = element[1] * sun_[2] - element[2] * sun_[1], cy = element[2] * sun_[0] - element[0] * sun_[2],
+               cz = element[0] * sun_[1] - element[1] * sun_[0];
+  const double chi = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), cos_chi);
+  // The indicatrix without its cos²χ's trigonometry: cos²χ from the (normalised) dot product.
+  const double cos2_chi = cos_chi * cos_chi / (cos_chi * cos_chi + cx * cx + cy * cy + cz * cz);
+  const double indicatrix = p_.c == 0.0 && p_.e == 0.0
+                                ? 1.0
+                                : 1.0 + p_.c * (std::exp(p_.d * chi) - exp_d_half_pi_) + p_.e * cos2_chi;
+  return indicatrix * (1.0 + p_.a * std::exp(p_.b / element[2])) * inverse_zenith_;
 }
 
 }  // namespace rimu

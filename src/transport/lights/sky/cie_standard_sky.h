@@ -55,4 +55,22 @@ double cie_relative_luminance(const CieSkyParameters& p, double zenith_rad, doub
 double cie_relative_luminance(const CieSkyParameters& p, const std::array<double, 3>& element,
                               const std::array<double, 3>& sun);
 
+/// One sky type with the sun fixed: eq. 1 with its denominator f(Z_s) φ(0) computed once (the sky light evaluates
+/// it per sample and integrates it over millions of points at load). Same results as the functions above.
+class CieSkyLuminance {
+ public:
+  /// `sun` a unit vector with +z the zenith (z ≥ 0 for the standard's range).
+  CieSkyLuminance(const CieSkyParameters& p, const std::array<double, 3>& sun);
+  /// L/L_z towards unit `element` (+z zenith); 0 below the horizon (element.z ≤ 0).
+  double operator()(const std::array<double, 3>& element) const;
+  const CieSkyParameters& parameters() const { return p_; }
+  const std::array<double, 3>& sun() const { return sun_; }
+
+ private:
+  CieSkyParameters p_;
+  std::array<double, 3> sun_;
+  double exp_d_half_pi_;    // exp(d π/2)
+  double inverse_zenith_;   // 1 / (f(Z_s) φ(0))
+};
+
 }  // namespace rimu
