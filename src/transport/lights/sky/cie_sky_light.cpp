@@ -41,7 +41,8 @@ CieSkyIntegrals integrate_cie_sky(const CieSkyParameters& p, const std::array<do
   return sums;
 }
 
-CieSkyLight::CieSkyLight(int type, Vec3 up, Vec3 sun_direction, LightSpectrum zenith_radiance)
+CieSkyLight::CieSkyLight(int type, Vec3 up, Vec3 sun_direction, LightSpectrum zenith_radiance,
+                         std::optional<CieSkyIntegrals> integrals)
     : type_(type),
       parameters_(cie_sky_parameters(type)),
       frame_(Frame::from_normal(normalize(up))),
@@ -50,7 +51,8 @@ CieSkyLight::CieSkyLight(int type, Vec3 up, Vec3 sun_direction, LightSpectrum ze
   const double norm = std::sqrt(double(sun.x) * sun.x + double(sun.y) * sun.y + double(sun.z) * sun.z);
   sun_local_ = {sun.x / norm, sun.y / norm, sun.z / norm};
   luminance_.emplace(parameters_, sun_local_);
-  integrals_ = integrate_cie_sky(parameters_, sun_local_);
+  // The integrals depend on the sun's zenith angle only (the hemisphere is symmetric under rotation about up).
+  integrals_ = integrals ? *integrals : integrate_cie_sky(parameters_, sun_local_);
 
   std::vector<double> weights(size_t(kCellsPhi) * kCellsMu);
   double mean = 0.0;

@@ -47,8 +47,10 @@ class CieSkyLight final : public Light {
  public:
   /// Sky type `type` in 1-15 (asserted), zenith along `up` (world, unit), the sun towards `sun_direction` (world,
   /// unit, from the scene towards the sun; may be below the horizon: the formula is then extrapolated, and the loader
-  /// warns), the zenith's spectral radiance `zenith_radiance` W/(m²·sr·nm).
-  CieSkyLight(int type, Vec3 up, Vec3 sun_direction, LightSpectrum zenith_radiance);
+  /// warns), the zenith's spectral radiance `zenith_radiance` W/(m²·sr·nm). `integrals`: integrate_cie_sky's for
+  /// this type and sun elevation if the caller has them (a loader calibrating by illuminance), else computed here.
+  CieSkyLight(int type, Vec3 up, Vec3 sun_direction, LightSpectrum zenith_radiance,
+              std::optional<CieSkyIntegrals> integrals = std::nullopt);
 
   /// A direction over the upper hemisphere by the tabulated luminance (see above); distance ∞.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
