@@ -11,6 +11,7 @@
 #include <numbers>
 #include <unistd.h>
 
+#include "meter_reading_check.h"
 #include "render/scene/ies_file.h"
 #include "render/reports/light_meter.h"
 #include "render/scene/scene.h"
@@ -79,13 +80,7 @@ MeterReading meter(const Scene& scene, Vec3 position) {
   return measure_illuminance_lx(scene.transport_view(), position, {0, 1, 0}, test::library().photopic_v(), 2000, 11);
 }
 
-void check_reading(const MeterReading& r, double expected) {
-  CAPTURE(r.value);
-  CAPTURE(r.standard_error);
-  CAPTURE(expected);
-  CHECK(r.standard_error < 0.01 * expected);
-  CHECK(std::abs(r.value - expected) <= 5.0 * r.standard_error + 1e-9 * expected);
-}
+using test::check_reading;
 
 }  // namespace
 

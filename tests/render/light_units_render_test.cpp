@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "meter_reading_check.h"
 #include "render/film/film.h"
 #include "render/reports/light_meter.h"
 #include "render/film/pixel_filter.h"
@@ -55,13 +56,7 @@ MeterReading camera_luminance(const Scene& scene, int spp = 8) {
   return measure_luminance_nt(film, film.pixel_bounds());
 }
 
-void check_reading(const MeterReading& r, double expected, double max_relative_error = 0.01) {
-  CAPTURE(r.value);
-  CAPTURE(r.standard_error);
-  CAPTURE(expected);
-  CHECK(r.standard_error < max_relative_error * expected);  // the test can tell a 5 % error apart
-  CHECK(std::abs(r.value - expected) <= 5.0 * r.standard_error + 1e-9 * expected);
-}
+using test::check_reading;
 
 json light_quad(json emission, float half_size, bool two_sided = false) {
   // A square in the plane z = 0, facing +z, of side 2·half_size (before a transform that doubles it).

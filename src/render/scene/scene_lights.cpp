@@ -7,6 +7,7 @@
 #include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/photometric_units.h"
+#include "render/scene/scene_daylight.h"
 #include "render/scene/scene_ies_light.h"
 #include "render/scene/scene_light_emission.h"
 #include "transport/lights/distant_light.h"
@@ -56,8 +57,11 @@ PortalSet load_portals(const JsonCursor& l) {
 std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context);
 
 std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
-  const std::string type = l.at("type").choice({"point", "spot", "distant", "environment", "ies", "goniometric"});
+  const std::string type =
+      l.at("type").choice({"point", "spot", "distant", "environment", "ies", "goniometric", "cie_sky", "sun"});
   if (type == "ies") return load_ies_light(l, context);
+  if (type == "cie_sky") return load_cie_sky_light(l, context);
+  if (type == "sun") return load_sun_light(l, context);
   // A goniometric image's default frame: image centre (local +z) along +y, as pbrt's after its y-z swap.
   if (type == "goniometric")
     return load_goniometric_image_light(l, context,

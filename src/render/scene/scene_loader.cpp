@@ -195,7 +195,8 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
     scene->wavelength_density = std::make_shared<const TabulatedWavelengthDensity>(
         emission_wavelength_density(scene->lights, PowerLightSampler(light_pointers, scene_radius_m),
                                     library.observer(StandardObserver::cie1931_2deg)));
-  scene->warnings = light_coverage_warnings(*scene);
+  // Appended: the lights' own load-time warnings (a sun below the horizon) are already there.
+  for (std::string& warning : light_coverage_warnings(*scene)) scene->warnings.push_back(std::move(warning));
   for (std::string& warning : refracted_light_warnings(*scene)) scene->warnings.push_back(std::move(warning));
   if (scene->settings.integrator.guiding && scene->has_media())
     scene->warnings.push_back("integrator.guiding: path guiding is not applied in scenes with participating media "
