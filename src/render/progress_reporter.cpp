@@ -32,9 +32,34 @@ std::string ProgressReporter::format_duration(double seconds) {
   return text;
 }
 
+double ProgressReporter::fraction_done(uint64_t done, double elapsed) const {
+  double fraction = total_ > 0 ? double(std::min(done, total_)) / double(total_) : 1.0;
+  if (options_.time_budget_s > 0)
+    fraction = std::max(fraction, (options_.time_spent_s + elapsed) / options_.time_budget_s);
+  return std::min(fraction, 1.0);
+}
+
+double ProgressReporter::seconds_left(uint64_t done, double elapsed, double rate) const {
+  const double by_samples = rate > 0 ? double(total_ - std::min(done, total_)) / rate : NAN;
+  if (!(options_.time_budget_s > 0)) return by_samples;
+  const double by_budget = std::max(0.0, options_.time_budget_s - options_.time_spent_s - elapsed);
+  return std::isnan(by_samples) ? by_budget : std::min(by_samples, by_budget);
+}
+
 void ProgressReporter::add(uint64_t units) {
-  done_.fetch_add(units, std::memory_order_relaxed);
-  if (!terminal_) return;
+  const uint64_t done = done_.fetch_add(units, std::memory_order_relaxed) + units;
+  if (options_.silent) return;
+  if (!terminal_) {
+    // A render log: one line per step crossed; the thread that crosses it claims it, the others carry on.
+    if (!(options_.log_step_percent > 0)) return;
+    const int step = int(std::floor(100.0 * fraction_done(done, elapsed_s()) / options_.log_step_percent));
+    if (double(step) * options_.log_step_percent >= 100.0) return;  // the final line says 100 %
+    int logged = logged_steps_.load(std::memory_order_relaxed);
+    if (step <= logged || !logged_steps_.compare_exchange_strong(logged, step)) return;
+    std::lock_guard lock(draw_mutex_);
+    if (!finished_) draw(false);
+    return;
+  }
   const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                           std::chrono::steady_clock::now() - start_).count();
   int64_t due = next_draw_ns_.load(std::memory_order_relaxed);
@@ -45,24 +70,32 @@ void ProgressReporter::add(uint64_t units) {
   if (lock.owns_lock() && !finished_) draw(false);
 }
 
+void ProgressReporter::mark_complete() {
+  std::lock_guard lock(draw_mutex_);
+  complete_ = true;
+}
+
 void ProgressReporter::draw(bool final_line) {
-  const uint64_t done = std::min(done_.load(std::memory_order_relaxed), total_);
+  const uint64_t done = done_.load(std::memory_order_relaxed);
   const double elapsed = elapsed_s();
-  const double fraction = total_ > 0 ? double(done) / double(total_) : 1.0;
+  const double fraction = complete_ ? 1.0 : fraction_done(done, elapsed);
   const double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
   char line[256];
   if (final_line) {
     std::snprintf(line, sizeof(line), "%s: %s%.1f%% in %s, %.3g samples/s", label_.c_str(),
-                  done < total_ ? "interrupted at " : "", 100.0 * fraction, format_duration(elapsed).c_str(), rate);
+                  fraction < 1.0 ? "interrupted at " : "", 100.0 * fraction, format_duration(elapsed).c_str(), rate);
+  } else if (!terminal_) {
+    std::snprintf(line, sizeof(line), "%s: %.1f%%, %.3g samples/s, %s elapsed, %s left", label_.c_str(),
+                  100.0 * fraction, rate, format_duration(elapsed).c_str(),
+                  format_duration(seconds_left(done, elapsed, rate)).c_str());
   } else {
     constexpr int kBarWidth = 30;
     char bar[kBarWidth + 1];
     const int filled = int(fraction * kBarWidth);
     for (int i = 0; i < kBarWidth; ++i) bar[i] = i < filled ? '=' : ' ';
     bar[kBarWidth] = '\0';
-    const double eta = rate > 0 ? double(total_ - done) / rate : NAN;
     std::snprintf(line, sizeof(line), "%s [%s] %5.1f%% %.3g samples/s ETA %s", label_.c_str(), bar,
-                  100.0 * fraction, rate, format_duration(eta).c_str());
+                  100.0 * fraction, rate, format_duration(seconds_left(done, elapsed, rate)).c_str());
   }
   // "\r...\033[K": back to the line start, write, clear what a longer previous line left behind.
   if (terminal_)

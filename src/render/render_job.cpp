@@ -65,6 +65,8 @@ RenderJobResult resume_render_job(const RenderJob& job, InterruptFlag& interrupt
   resumed.quiet = job.quiet;
   resumed.exr_output = job.exr_output;
   if (job.checkpoint_interval_s) resumed.checkpoint_interval_s = job.checkpoint_interval_s;
+  resumed.preview_output = job.preview_output;
+  resumed.preview_interval_s = job.preview_interval_s;
   const SampleRange requested = previous.record.requested;
   const std::vector<SampleRange>& held = previous.record.samples;
   if (held.size() > 1 || (held.size() == 1 && held.front().begin != requested.begin))
@@ -99,6 +101,7 @@ RenderJobResult run_render_job(const RenderJob& job_in, std::ostream& log) {
   // "${frame}" in the output names, as in the scene (render/scene/scene_frame.h).
   job.exr_output = substitute_frame(job.exr_output.string(), job.frame, "-o");
   if (job.png_output) job.png_output = substitute_frame(job.png_output->string(), job.frame, "--png");
+  if (job.preview_output) job.preview_output = substitute_frame(job.preview_output->string(), job.frame, "--preview");
   if (job.resume) return resume_render_job(job, interrupt, log);
   return render_job(job, nullptr, interrupt, log);
 }

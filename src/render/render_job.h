@@ -65,6 +65,18 @@ struct RenderJob {
   std::optional<std::filesystem::path> resume;
   /// The scene hash the caller expects (a farm task checks the scene did not change after submission).
   std::optional<std::string> expected_scene_hash;
+  /// Render whole passes until this much render time is spent (`--time`; overrides the scene's
+  /// "integrator.time_limit_s"; render/time_budget.h). samples_per_pixel (--spp) is then the maximum; without --spp
+  /// there is none (the scene's "spp" caps only its own time_limit_s). Not with `samples`.
+  std::optional<double> time_limit_s;
+  /// The display image written while rendering (`--preview`): after a pass once `preview_interval_s` have passed
+  /// since the last one, and at the end, with the display transform and exposure of the final --png.
+  std::optional<std::filesystem::path> preview_output;
+  double preview_interval_s = 5.0;
+  /// Adaptive sampling (`--noise-threshold`; render/film/adaptive_sampling.h): a pixel stops taking samples once
+  /// the relative standard error of its luminance is below this; samples_per_pixel is the maximum. Not with
+  /// `samples` or `checkpoint_interval_s` (its half buffers are not in a partial).
+  std::optional<double> noise_threshold;
   /// The frame number substituted for "${frame}" in the scene file's text (docs/scene-format.md, "Frames").
   std::optional<int> frame;
 };

@@ -91,6 +91,7 @@ std::string render_job_json(const RenderJob& job) {
   if (job.crop) j["crop"] = {job.crop->x0, job.crop->y0, job.crop->x1, job.crop->y1};
   if (job.samples) j["samples"] = job.samples->text();
   if (job.checkpoint_interval_s) j["checkpoint_s"] = *job.checkpoint_interval_s;
+  if (job.time_limit_s) j["time_limit_s"] = *job.time_limit_s;
   if (job.png_output) j["png"] = std::filesystem::absolute(*job.png_output).lexically_normal().string();
   j["float"] = !job.half_exr;  // the key of the records written when half was the default
   j["exposure_ev"] = job.exposure_ev;
@@ -126,6 +127,7 @@ RenderJob render_job_from_json(const std::string& json, const std::string& where
     }
     if (j.contains("samples")) job.samples = parse_sample_range(j["samples"].get<std::string>(), where);
     if (j.contains("checkpoint_s")) job.checkpoint_interval_s = j["checkpoint_s"].get<double>();
+    if (j.contains("time_limit_s")) job.time_limit_s = j["time_limit_s"].get<double>();
     if (j.contains("png")) job.png_output = j["png"].get<std::string>();
     job.half_exr = !j.value("float", true);
     job.exposure_ev = j.value("exposure_ev", 0.0);

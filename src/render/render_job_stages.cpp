@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "render/camera/camera_exposure.h"
+#include "render/film/render_size.h"
 #include "render/interrupt_flag.h"
 #include "render/output/display_image_policy.h"
 #include "render/output/exr_output.h"
@@ -15,6 +16,7 @@
 #include "render/scene/json_cursor.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene_frame.h"
+#include "render/time_budget.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
 
@@ -130,11 +132,14 @@ PartialRecord job_partial_record(const RenderJobState& s, int reached) {
   if (reached > s.requested.begin) record.samples = {SampleRange{s.requested.begin, reached}};
   record.requested = s.requested;
   record.total_spp = s.total_spp;
+  // A render that ended on its time budget is complete at the samples it reached: --resume has nothing left to
+  // do and a merge takes it whole. Stopped earlier (Ctrl-C, a checkpoint), it still asks for the rest of its budget.
+  if (s.budget_spent) record.requested.end = record.total_spp = reached;
   record.film_spec = settings.integrator.wavelengths == WavelengthMode::rgb ? "rgb-transport" : settings.film_response;
   record.output_transform = s.output_transform;
   RenderJob recorded = s.job;
-  recorded.samples = s.requested;
-  recorded.samples_per_pixel = s.total_spp;
+  if (!s.time_limit_s) recorded.samples = s.requested;  // a time budget renders from 0; --samples is refused
+  recorded.samples_per_pixel = record.total_spp;
   recorded.seed = settings.seed;
   record.job = render_job_json(recorded);
   return record;
@@ -171,7 +176,80 @@ ExrOptions job_exr_options(const RenderJobState& s, int reached, bool interrupte
     exr.metadata.camera_to_xyz_mean_delta_e2000 = s.colour_fit->mean_delta_e2000;
   }
   if (s.partial_output) exr.partial = job_partial_record(s, reached);
+  if (s.adaptive) {
+    // Per pixel: the samples it took and its relative standard error (render/film/adaptive_sampling.h).
+    exr.metadata.extra["noiseThreshold"] = std::to_string(s.adaptive->settings().noise_threshold);
+    std::vector<float> spp, error;
+    const PixelBounds& b = s.film->pixel_bounds();
+    for (int y = b.y0; y < b.y1; ++y)
+      for (int x = b.x0; x < b.x1; ++x) {
+        spp.push_back(float(s.adaptive->samples(x, y)));
+        error.push_back(s.adaptive->relative_error(x, y));
+      }
+    exr.extra_channels = {{"spp", std::move(spp)}, {"relativeError", std::move(error)}};
+  }
   return exr;
+}
+
+// What the final display image and the previews show: the same policy, so a preview of the same samples is the
+// same image.
+DisplayImagePolicy display_policy(RenderJobState& s) {
+  DisplayImagePolicy policy;
+  policy.camera_fit = s.colour_fit;
+  policy.white_balanced = s.loaded.scene->settings.camera_exposure.white_balance.kind != WhiteBalanceSettings::Kind::none;
+  policy.metered = s.metered_display;
+  policy.quiet = s.job.quiet;
+  policy.nits_per_unit_y =
+      (s.colour_fit ? SpectralResponse::cie_xyz(s.library) : s.film->response()).luminance_nits_per_unit_y();
+  return policy;
+}
+
+// --preview: the display image of the film as it is (written atomically, so a viewer never reads half a file).
+// Its notes and warnings would repeat every interval: the final --png's are the ones logged.
+void write_preview(RenderJobState& s) {
+  std::ostringstream unlogged;
+  write_policy_display_image(*s.job.preview_output, *s.film, s.display, display_policy(s), unlogged);
+  s.last_preview = std::chrono::steady_clock::now();
+}
+
+// --samples with a time budget (the scene's is checked once it is read) or with adaptive sampling, whose half
+// buffers live only in this process: refused before anything is read.
+[[noreturn]] void refuse_time_budget_with_samples(const std::string& budget) {
+  throw InputError({"", 0, "--samples"},
+                   "a render to a time budget (" + budget + ") renders whole passes from sample 0 until the budget "
+                   "is spent, so it has no fixed sample range to split: give --spp with --samples for a partial "
+                   "render, or drop --samples");
+}
+
+void check_adaptive_sampling_options(const RenderJob& job) {
+  if (job.noise_threshold && (job.samples || job.checkpoint_interval_s))
+    throw InputError({"", 0, job.samples ? "--samples" : "--checkpoint"},
+                     "--noise-threshold stops each pixel on its own noise estimate, which lives in the render's "
+                     "memory, not in a partial: it cannot be split into sample ranges (--samples) for `rimu merge` "
+                     "or checkpointed and resumed (--checkpoint, --resume); render it in one process");
+}
+
+// A time budget (--time, else the scene's) and the maximum spp it renders to: --spp, else the scene's "spp" when
+// the budget is the scene's own, else none (kMaxSamplesPerPixel).
+void plan_time_budget(RenderJobState& s) {
+  const RenderSettings& settings = s.loaded.scene->settings;
+  s.time_limit_s = s.job.time_limit_s ? s.job.time_limit_s : settings.time_limit_s;
+  if (!s.time_limit_s) return;
+  if (s.job.samples)
+    refuse_time_budget_with_samples(s.job.time_limit_s ? "--time" : s.scene_path.string() + ": /integrator/time_limit_s");
+  const bool capped = s.job.samples_per_pixel || (!s.job.time_limit_s && settings.samples_per_pixel_given);
+  if (!capped) s.total_spp = kMaxSamplesPerPixel;
+}
+
+// --noise-threshold: adaptive sampling over the film, the minimum spp from the maximum (or 16 with none, a time
+// budget without --spp). Its half buffers live only in this process: no partials.
+void plan_adaptive_sampling(RenderJobState& s) {
+  if (!s.job.noise_threshold) return;
+  check_adaptive_sampling_options(s.job);
+  AdaptiveSamplingSettings settings;
+  settings.noise_threshold = *s.job.noise_threshold;
+  settings.min_spp = adaptive_min_spp(s.total_spp == kMaxSamplesPerPixel ? 0 : s.total_spp);
+  s.adaptive = std::make_unique<AdaptiveSampling>(*s.film, settings);
 }
 
 }  // namespace
@@ -218,6 +296,9 @@ RenderJobState::RenderJobState(const RenderJob& job_in, const PartialImage* prev
 
 DisplayOptions check_job_without_scene(const RenderJob& job) {
   check_render_outputs(job.exr_output, job.png_output);
+  if (job.preview_output) check_preview_output(*job.preview_output, job.exr_output, job.png_output);
+  if (job.time_limit_s && job.samples) refuse_time_budget_with_samples("--time");
+  check_adaptive_sampling_options(job);
   DisplayOptions display;
   display.exposure_ev = job.exposure_ev;
   display.view = job.view;
@@ -227,7 +308,7 @@ DisplayOptions check_job_without_scene(const RenderJob& job) {
 
 void read_job_scene(RenderJobState& s) {
   s.loaded = load_job_scene(s.job, s.scene_path, s.library, s.log);
-  check_render_outputs_not_inputs(s.job.exr_output, s.job.png_output, s.loaded.files_read);
+  check_render_outputs_not_inputs(s.job.exr_output, s.job.png_output, s.loaded.files_read, s.job.preview_output);
   check_scene_hash(s);
   for (const std::string& warning : s.loaded.scene->warnings) s.log << "rimu: warning: " << warning << "\n";
   apply_job_options(s.job, s.loaded.scene->settings, s.library);
@@ -263,6 +344,8 @@ void set_up_film(RenderJobState& s) {
 
 void plan_samples(RenderJobState& s) {
   s.total_spp = s.loaded.scene->settings.samples_per_pixel;
+  plan_time_budget(s);
+  plan_adaptive_sampling(s);
   s.requested = s.job.samples.value_or(SampleRange{0, s.total_spp});
   if (s.requested.end > s.total_spp)
     throw InputError({"", 0, "--samples"}, "--samples " + s.requested.text() + " reaches beyond the render's " +
@@ -283,6 +366,10 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
   const uint64_t total = uint64_t(s.film->pixel_bounds().area()) * uint64_t(s.requested.end - s.first_sample);
   ProgressReporter::Options progress_options;
   progress_options.silent = job.quiet;  // --quiet: nothing on stderr but warnings and errors
+  if (s.time_limit_s) {
+    progress_options.time_budget_s = *s.time_limit_s;
+    progress_options.time_spent_s = s.previous_seconds;
+  }
   ProgressReporter progress(total, "rendering", progress_options);
 
   RenderOptions options;
@@ -294,20 +381,41 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
   options.interrupt = &interrupt;
   options.progress = &progress;
   s.render_start = std::chrono::steady_clock::now();
+  s.last_preview = s.render_start;
   auto last_checkpoint = s.render_start;
-  if (job.checkpoint_interval_s) {
-    options.after_pass = [&](int reached) {
-      const auto now = std::chrono::steady_clock::now();
-      if (reached >= s.requested.end || std::chrono::duration<double>(now - last_checkpoint).count() <
-                                            *job.checkpoint_interval_s)
-        return;
+  const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  std::optional<TimeBudget> budget;
+  if (s.time_limit_s) budget.emplace(*s.time_limit_s, s.previous_seconds);
+  options.adaptive = s.adaptive.get();
+  if (budget || s.adaptive) {
+    options.start_pass = [&](int first, int count) {
+      if (s.adaptive && s.adaptive->active_count() == 0) {
+        s.converged = true;  // every pixel stopped: the render is complete
+        return false;
+      }
+      return !budget || budget->allows_pass(seconds_since(s.render_start), count, first == s.requested.begin);
+    };
+  }
+  options.after_pass = [&](int reached) {
+    if (s.adaptive) s.adaptive->after_pass(*s.film, reached);
+    if (job.checkpoint_interval_s && reached < s.requested.end &&
+        seconds_since(last_checkpoint) >= *job.checkpoint_interval_s) {
       write_exr(job.exr_output, *s.film, job_exr_options(s, reached, false));
       last_checkpoint = std::chrono::steady_clock::now();
       if (!job.quiet) s.log << "\nrimu: checkpoint " << job.exr_output.string() << ": samples " << s.requested.begin
                             << ":" << reached << "\n";
-    };
-  }
+    }
+    // The first pass's preview at once (something to look at), then one per interval; the last is written with
+    // the outputs.
+    if (job.preview_output && reached < s.requested.end &&
+        (reached == sample_pass_end(s.first_sample) || seconds_since(s.last_preview) >= job.preview_interval_s))
+      write_preview(s);
+  };
   s.result.statistics = render(*s.loaded.scene, *s.filter, *s.film, options);
+  s.budget_spent = budget && budget->spent();
+  if (s.budget_spent || s.converged) progress.mark_complete();
   progress.finish();
   s.result.sample_counts = s.film->sample_counts();
   s.reached = s.first_sample + s.result.statistics.samples_per_pixel_done;
@@ -316,17 +424,8 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
 void write_job_outputs(RenderJobState& s) {
   const RenderJob& job = s.job;
   write_render_exr(job.exr_output, *s.film, job_exr_options(s, s.reached, s.result.statistics.interrupted), s.log);
-  if (job.png_output) {
-    DisplayImagePolicy policy;
-    policy.camera_fit = s.colour_fit;
-    policy.white_balanced =
-        s.loaded.scene->settings.camera_exposure.white_balance.kind != WhiteBalanceSettings::Kind::none;
-    policy.metered = s.metered_display;
-    policy.quiet = job.quiet;
-    policy.nits_per_unit_y =
-        (s.colour_fit ? SpectralResponse::cie_xyz(s.library) : s.film->response()).luminance_nits_per_unit_y();
-    write_policy_display_image(*job.png_output, *s.film, s.display, policy, s.log);
-  }
+  if (job.png_output) write_policy_display_image(*job.png_output, *s.film, s.display, display_policy(s), s.log);
+  if (job.preview_output) write_preview(s);
 }
 
 void log_job_summary(const RenderJobState& s) {
@@ -336,11 +435,24 @@ void log_job_summary(const RenderJobState& s) {
   std::ostringstream summary;
   summary << "rimu: " << s.scene_path.string() << ": " << s.reached - s.requested.begin << " spp";
   if (job.samples || s.previous) summary << " (samples " << s.requested.begin << ":" << s.reached << ")";
-  if (statistics.interrupted) summary << " (interrupted; requested " << s.requested.count() << ")";
+  if (s.converged) summary << " (every pixel below the noise threshold)";
+  else if (s.budget_spent) summary << " (the time budget of " << *s.time_limit_s << " s was spent)";
+  else if (statistics.interrupted && s.time_limit_s)
+    summary << " (interrupted before the time budget of " << *s.time_limit_s << " s was spent)";
+  else if (statistics.interrupted) summary << " (interrupted; requested " << s.requested.count() << ")";
   summary << " in " << statistics.seconds << " s, "
           << (statistics.seconds > 0 ? double(statistics.camera_samples) / statistics.seconds : 0.0)
           << " samples/s; discarded samples: " << c.nan << " NaN, " << c.infinite << " Inf, " << c.negative
           << " negative\n";
+  if (s.adaptive) {
+    const PixelBounds& b = s.film->pixel_bounds();
+    double samples = 0;
+    for (int y = b.y0; y < b.y1; ++y)
+      for (int x = b.x0; x < b.x1; ++x) samples += s.adaptive->samples(x, y);
+    summary << "rimu: adaptive sampling: " << size_t(b.area()) - s.adaptive->active_count() << " of " << b.area()
+            << " pixels stopped below the noise threshold " << s.adaptive->settings().noise_threshold
+            << "; mean " << samples / double(b.area()) << " spp\n";
+  }
   if (const GuidingStatistics& g = statistics.guiding; g.active)
     summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
             << " spatial leaves, " << g.directional_nodes << " directional nodes, "

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "render/film/adaptive_sampling.h"
 #include "render/film/camera_colour_matrix.h"
 #include "render/film/film.h"
 #include "render/film/pixel_filter.h"
@@ -69,11 +70,18 @@ struct RenderJobState {
   int first_sample = 0;            ///< where this run starts: requested.begin, or where a resumed partial stopped
   double previous_seconds = 0.0;   ///< a resumed partial's render time
   bool partial_output = false;     ///< write the sums and the record (--samples, --checkpoint, --resume)
+  /// --time, else the scene's integrator.time_limit_s: render whole passes until this much render time is spent
+  /// (render/time_budget.h); total_spp is then the maximum
+  std::optional<double> time_limit_s;
+  std::unique_ptr<AdaptiveSampling> adaptive;  ///< --noise-threshold: which pixels still take samples
 
   // render_samples
   std::chrono::steady_clock::time_point render_start;
   RenderJobResult result;
   int reached = 0;  ///< the end of the samples now in the film
+  bool budget_spent = false;  ///< the render ended on its time budget (complete, with fewer than total_spp)
+  bool converged = false;     ///< an adaptive render ended with every pixel below the noise threshold
+  std::chrono::steady_clock::time_point last_preview;  ///< when --preview was last written
 };
 
 /// Everything that can be checked without the scene, first (a typo costs nothing): the outputs, the display
@@ -86,9 +94,10 @@ void read_job_scene(RenderJobState& state);
 void set_up_film(RenderJobState& state);
 /// The sample range this run covers; for --resume, the film starts from the partial's sums.
 void plan_samples(RenderJobState& state);
-/// Renders, writing a checkpoint every --checkpoint seconds. Ctrl-C stops it after a whole pass.
+/// Renders, writing a checkpoint every --checkpoint seconds and the preview every --preview-interval; a time
+/// budget ends it after the last whole pass that fits. Ctrl-C stops it after a whole pass.
 void render_samples(RenderJobState& state, InterruptFlag& interrupt);
-/// The EXR (with the partial record when the job is partial) and the display image.
+/// The EXR (with the partial record when the job is partial), the display image and the last preview.
 void write_job_outputs(RenderJobState& state);
 /// One line of time, speed and discarded samples, and the files written (nothing with --quiet).
 void log_job_summary(const RenderJobState& state);

@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "render/film/adaptive_sampling.h"
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
 #include "transport/guiding/guiding_field.h"
@@ -83,8 +84,13 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   while (options.first_sample + stats.samples_per_pixel_done < options.samples_per_pixel) {
     const int first = options.first_sample + stats.samples_per_pixel_done;
     const int count = std::min(sample_pass_end(first), options.samples_per_pixel) - first;
+    if (options.start_pass && !options.start_pass(first, count)) {
+      stats.stopped_by_start_pass = true;
+      break;
+    }
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
     std::atomic<bool> stopped{false};
+    std::atomic<uint64_t> pass_camera_samples{0};
     const bool train = stats.guiding.active && stats.guiding.training_passes < kGuidingTrainingPasses &&
                        first + count < options.samples_per_pixel;
     std::vector<std::vector<GuidingSample>> guiding_records(train ? tiles.size() : 0);
@@ -104,8 +110,11 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
           guiding.record_limit = kGuidingSampleBudget / tiles.size();
         }
         const PixelBounds& b = tile->bounds();
+        uint64_t pixels_sampled = 0;
         for (int y = b.y0; y < b.y1; ++y) {
           for (int x = b.x0; x < b.x1; ++x) {
+            if (options.adaptive && !options.adaptive->active(x, y)) continue;
+            ++pixels_sampled;
             for (int s = first; s < first + count; ++s) {
               sampler->start_pixel_sample(x, y, uint32_t(s));
               // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4); then per-bounce ones.
@@ -121,7 +130,9 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
             }
           }
         }
+        // A stopped pixel counts as done, so the progress still reaches 100 % at the last pass.
         if (options.progress) options.progress->add(uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count));
+        pass_camera_samples += pixels_sampled * uint64_t(count);
         results[t] = std::move(tile);
       }
     });
@@ -149,7 +160,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       }
     }
     stats.samples_per_pixel_done += count;
-    stats.camera_samples += uint64_t(film.pixel_bounds().area()) * uint64_t(count);
+    stats.camera_samples += pass_camera_samples.load();
     if (options.after_pass) options.after_pass(first + count);
     if (options.interrupt && options.interrupt->requested()) {
       stats.interrupted = first + count < options.samples_per_pixel;

@@ -11,6 +11,7 @@
 
 namespace rimu {
 
+class AdaptiveSampling;
 class InterruptFlag;
 class ProgressReporter;
 
@@ -23,11 +24,17 @@ struct RenderOptions {
   /// Called on the calling thread after every whole pass, with the end of the samples now in the film (the film is
   /// consistent there: checkpoints are written from it).
   std::function<void(int samples_end)> after_pass;
+  /// Called on the calling thread before every pass of samples [first, first + count); false ends the render
+  /// there, with whole passes only (a time budget, render/time_budget.h). Unset: every pass is rendered.
+  std::function<bool(int first, int count)> start_pass;
   int threads = 0;           ///< 0 = every core
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::sobol;  ///< where the random numbers come from (docs/sampling.md)
   const InterruptFlag* interrupt = nullptr;  ///< polled between tiles; the image keeps only whole passes
   ProgressReporter* progress = nullptr;      ///< counts camera samples
+  /// Adaptive sampling (render/film/adaptive_sampling.h): only its active pixels take a pass's samples. The caller
+  /// updates it between passes (after_pass); null: every pixel takes every pass.
+  const AdaptiveSampling* adaptive = nullptr;
 };
 
 /// What path guiding learned (docs/transport.md, "Path guiding"): the last field fitted, and its memory.
@@ -41,6 +48,7 @@ struct GuidingStatistics {
 struct RenderStatistics {
   int samples_per_pixel_done = 0;  ///< samples taken by this call; < requested if interrupted
   bool interrupted = false;
+  bool stopped_by_start_pass = false;  ///< start_pass refused a pass (e.g. the time budget was spent)
   double seconds = 0;
   uint64_t camera_samples = 0;
   GuidingStatistics guiding;

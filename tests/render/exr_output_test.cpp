@@ -149,7 +149,7 @@ TEST_CASE("EXR of a camera film: R, G, B channels, no chromaticities, the camera
   Film film(FilmOptions{3, 2, {}, 0}, SpectralResponse::camera_rgb(test::library(), "sony_ilce_9"));
   fill(film);
   const fs::path path = folder.path / "camera.exr";
-  write_exr(path, film, ExrOptions{ExrPixelType::float32, {}, false, std::nullopt});
+  write_exr(path, film, ExrOptions{ExrPixelType::float32, {}, false, std::nullopt, {}});
   Imf::InputFile file(path.c_str());
   const Imf::Header& h = file.header();
   CHECK(h.findTypedAttribute<Imf::ChromaticitiesAttribute>("chromaticities") == nullptr);

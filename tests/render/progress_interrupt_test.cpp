@@ -27,21 +27,62 @@ extern "C" void previous_handler(int) { g_previous_handler_calls = g_previous_ha
 
 }  // namespace
 
-TEST_CASE("progress: quiet off a terminal, one final line") {
+TEST_CASE("progress: off a terminal, a render log of one line per 10 % and the final line") {
   std::FILE* f = std::tmpfile();
   {
     ProgressReporter progress(1000, "Rendering", {f, 0, 0.0});
     CHECK_FALSE(progress.terminal());
     for (int i = 0; i < 100; ++i) progress.add(10);
-    CHECK(progress.redraw_count() == 0);
+    CHECK(progress.redraw_count() == 9);  // 10 % … 90 %; 100 % is the final line
     progress.finish();
     progress.finish();  // idempotent
-    CHECK(progress.redraw_count() == 1);
+    CHECK(progress.redraw_count() == 10);
   }
   const std::string text = contents(f);
-  CHECK(text.find("Rendering: 100.0% in") == 0);
+  CHECK(text.find("Rendering: 10.0%, ") == 0);
+  CHECK(text.find("samples/s, ") != std::string::npos);
+  CHECK(text.find(" elapsed, ") != std::string::npos);
+  CHECK(text.find(" left\n") != std::string::npos);
+  CHECK(text.find("Rendering: 90.0%, ") != std::string::npos);
+  CHECK(text.find("Rendering: 100.0% in") != std::string::npos);
   CHECK(text.find('\r') == std::string::npos);
   CHECK(text.back() == '\n');
+  std::fclose(f);
+}
+
+TEST_CASE("progress: a big step logs once, however many adds cross it, and --quiet logs nothing") {
+  std::FILE* f = std::tmpfile();
+  {
+    ProgressReporter progress(1000, "Rendering", {f, 0, 0.0});
+    progress.add(350);  // 35 %: one line, not three
+    CHECK(progress.redraw_count() == 1);
+    progress.add(10);   // still in the 30 % step
+    CHECK(progress.redraw_count() == 1);
+    ProgressReporter::Options quiet{f, 0, 0.0};
+    quiet.silent = true;
+    ProgressReporter silent(1000, "Silent", quiet);
+    for (int i = 0; i < 10; ++i) silent.add(100);
+    CHECK(silent.redraw_count() == 0);
+  }
+  CHECK(contents(f).find("Silent") == std::string::npos);
+  std::fclose(f);
+}
+
+TEST_CASE("progress: a time budget counts time, and a render that spent it finishes at 100 %") {
+  std::FILE* f = std::tmpfile();
+  {
+    ProgressReporter::Options options{f, 0, 0.0};
+    options.time_budget_s = 1e6;  // far away: the fraction is the samples'
+    options.time_spent_s = 0.5e6;  // half of it spent before: 50 % at once
+    ProgressReporter progress(1000, "Rendering", options);
+    progress.add(1);
+    CHECK(progress.redraw_count() == 1);
+    progress.mark_complete();
+  }
+  const std::string text = contents(f);
+  CHECK(text.find("Rendering: 50.0%, ") == 0);
+  CHECK(text.find("Rendering: 100.0% in") != std::string::npos);
+  CHECK(text.find("interrupted") == std::string::npos);
   std::fclose(f);
 }
 

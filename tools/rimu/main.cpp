@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
                                "by the extension (.png, .jpg, .tif); a photometric scene without a camera exposure "
                                "is metered to 18 % grey");
-  app.add_option("--spp", job.samples_per_pixel, "samples per pixel (overrides the scene)")->check(CLI::Range(1, rimu::kMaxSamplesPerPixel));
+  app.add_option("--spp", job.samples_per_pixel, "samples per pixel (overrides the scene); with --time, the maximum")->check(CLI::Range(1, rimu::kMaxSamplesPerPixel));
   app.add_option("--threads", job.threads, "worker threads (default: every core)")->check(CLI::Range(1, rimu::kMaxRenderThreads));
   app.add_option("--seed", job.seed, "random seed (the image is identical for the same seed and spp)");
   app.add_option("--sampler", sampler, "sobol (Owen-scrambled Sobol', the default) or independent (overrides the scene)")
@@ -76,6 +76,17 @@ int main(int argc, char** argv) {
   app.add_option("--ev", job.compensation_ev, "physical camera: exposure compensation in stops");
   app.add_option("--white-balance", job.white_balance, "none, a temperature (2700 or 2700K) or an illuminant (A, D50...)");
 
+  std::string time_limit, preview, preview_interval;
+  app.add_option("--time", time_limit, "render whole passes until this much render time is spent (90s, 1.5m, 1h, "
+                                       "or seconds); --spp is then the maximum, without it there is none");
+  app.add_option("--preview", preview, "rewrite this display image (PNG, JPEG or TIFF, as --png) while rendering, "
+                                       "so a viewer that reloads it shows the render refining");
+  app.add_option("--preview-interval", preview_interval, "the preview after a pass once this long has passed since "
+                                                         "the last (default 5s), and at the end");
+  app.add_option("--noise-threshold", job.noise_threshold,
+                 "adaptive sampling: a pixel stops taking samples once the relative standard error of its luminance "
+                 "is below this (0.01: 1 %); --spp is the maximum; the EXR gets 'spp' and 'relativeError' channels")
+      ->check(CLI::Range(1e-6, 10.0));
   std::string samples, checkpoint, resume, expect_hash;
   bool print_hash = false;
   app.add_option("--samples", samples, "render only sample indices BEGIN:END of every pixel (END exclusive), a "
@@ -109,6 +120,12 @@ int main(int argc, char** argv) {
     if (!crop.empty()) job.crop = rimu::parse_crop(crop, "--crop");
     if (!shutter.empty()) job.shutter_s = rimu::parse_shutter_time_s(shutter, "--shutter");
     if (!samples.empty()) job.samples = rimu::parse_sample_range(samples, "--samples");
+    if (!time_limit.empty()) job.time_limit_s = rimu::parse_duration_s(time_limit, "--time");
+    if (!preview.empty()) job.preview_output = preview;
+    if (!preview_interval.empty()) {
+      if (preview.empty()) throw rimu::InputError({"", 0, "--preview-interval"}, "needs --preview FILE to write");
+      job.preview_interval_s = rimu::parse_duration_s(preview_interval, "--preview-interval");
+    }
     if (!checkpoint.empty()) job.checkpoint_interval_s = rimu::parse_duration_s(checkpoint, "--checkpoint");
     if (!resume.empty()) {
       // The file records its job (scene, spp, samples, film, every image option): anything else given with
@@ -116,13 +133,15 @@ int main(int argc, char** argv) {
       std::string also;
       for (const CLI::Option* option : app.get_options())
         if (option->count() > 0 && !option->check_name("--resume") && !option->check_name("--threads") &&
-            !option->check_name("--quiet") && !option->check_name("--output") && !option->check_name("--checkpoint"))
+            !option->check_name("--quiet") && !option->check_name("--output") && !option->check_name("--checkpoint") &&
+            !option->check_name("--preview") && !option->check_name("--preview-interval"))
           also += std::string(also.empty() ? "" : ", ") +
                   (option->check_name("scene") ? "the scene '" + scene + "'" : option->get_name());
       if (!also.empty())
         throw rimu::InputError({"", 0, "--resume"},
                                "continues the job recorded in " + resume + " (its scene, --spp, --samples and image "
-                               "options) and takes only -o, --threads, --checkpoint and -q; also given: " + also +
+                               "options, a time budget) and takes only -o, --threads, --checkpoint, --preview, --preview-interval "
+                               "and -q; also given: " + also +
                                ". To render with other options, start a new render");
       job.resume = resume;
       if (app.get_option("-o")->count() == 0) job.exr_output = resume;

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cstdio>
 #include <charconv>
 #include <cmath>
@@ -222,6 +223,13 @@ size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrO
   if (replaced > 0) header.insert("rimu:nonFiniteValuesReplaced", Imf::DoubleAttribute(double(replaced)));
   const Imf::PixelType type = use_half ? Imf::HALF : Imf::FLOAT;
   for (const auto& channel : channels) header.channels().insert(channel.name, Imf::Channel(type));
+  std::vector<std::vector<float>> extra_values;
+  for (const auto& [name, values] : options.extra_channels) {
+    assert(values.size() == pixel_count);
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    extra_values.emplace_back();
+    for (float v : values) extra_values.back().push_back(writable(v, std::numeric_limits<float>::max(), replaced));
+  }
 
   // A partial's accumulators: each double's bits as two 32-bit words (EXR has no 64-bit type; UINT is exact).
   // The slices point into the film's own doubles (high word at byte 4 on a little-endian machine), so the sums,
@@ -251,6 +259,10 @@ size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrO
       frame_buffer.insert(channel.name, Imf::Slice::Make(type, base, header.dataWindow(), element,
                                                          element * size_t(b.width())));
     }
+    for (size_t e = 0; e < extra_values.size(); ++e)
+      frame_buffer.insert(options.extra_channels[e].first,
+                          Imf::Slice::Make(Imf::FLOAT, reinterpret_cast<char*>(extra_values[e].data()),
+                                           header.dataWindow(), sizeof(float), sizeof(float) * size_t(b.width())));
     Imf::OutputFile file(temporary.c_str(), header);
     file.setFrameBuffer(frame_buffer);
     file.writePixels(b.height());

@@ -7,6 +7,8 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "render/film/film.h"
 #include "render/output/partial_record.h"
@@ -45,6 +47,9 @@ struct ExrOptions {
   bool xyz_channels_as_rgb = false;
   /// A partial render (render/output/partial_record.h): also write the film's accumulators exactly and the record.
   std::optional<PartialRecord> partial;
+  /// More 32-bit float channels, each a value per pixel of the film's crop window, row by row (e.g. an adaptive
+  /// render's "spp" and "relativeError"). Written as they are (finite values only, like every channel).
+  std::vector<std::pair<std::string, std::vector<float>>> extra_channels;
 };
 
 /// Writes the film's crop window as the EXR data window (display window = the full image); pixels without samples

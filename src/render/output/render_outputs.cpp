@@ -24,14 +24,26 @@ void check_render_outputs(const std::filesystem::path& exr, const std::optional<
   if (png) check_output_path(*png);
 }
 
+void check_preview_output(const std::filesystem::path& preview, const std::filesystem::path& exr,
+                          const std::optional<std::filesystem::path>& png) {
+  if (same_output_file(exr, preview) || (png && same_output_file(*png, preview)))
+    throw InputError({preview.string(), 0, "--preview"},
+                     std::string("names the same file as ") + (same_output_file(exr, preview) ? "-o" : "--png") +
+                         "; the preview is rewritten while rendering, so it needs a file of its own");
+  display_image_format(preview, "--preview");
+  check_output_path(preview);
+}
+
 // The list is the readers' own (InputFileLog), not a guess from the scene's text.
 void check_render_outputs_not_inputs(const std::filesystem::path& exr,
                                      const std::optional<std::filesystem::path>& png,
-                                     const std::vector<std::filesystem::path>& files_read) {
+                                     const std::vector<std::filesystem::path>& files_read,
+                                     const std::optional<std::filesystem::path>& preview) {
   std::vector<InputFile> inputs;
   for (const std::filesystem::path& file : files_read) inputs.push_back({file, "read by the scene"});
   check_output_not_input(exr, "-o", inputs);
   if (png) check_output_not_input(*png, "--png", inputs);
+  if (preview) check_output_not_input(*preview, "--preview", inputs);
 }
 
 void write_render_exr(const std::filesystem::path& path, const Film& film, const ExrOptions& options, std::ostream& log) {

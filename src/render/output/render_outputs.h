@@ -16,11 +16,17 @@ namespace rimu {
 /// file can be created in each folder. InputError naming the option otherwise.
 void check_render_outputs(const std::filesystem::path& exr, const std::optional<std::filesystem::path>& png);
 
+/// --preview (the display image rewritten while rendering): a display format by its extension, neither -o nor
+/// --png, a file that can be created. InputError naming --preview otherwise.
+void check_preview_output(const std::filesystem::path& preview, const std::filesystem::path& exr,
+                          const std::optional<std::filesystem::path>& png);
+
 /// No output may be a file the render reads (`files_read`: the scene and every file loading it read, also through
 /// a link). Checkpoints are written to -o, so they are covered too.
 void check_render_outputs_not_inputs(const std::filesystem::path& exr,
                                      const std::optional<std::filesystem::path>& png,
-                                     const std::vector<std::filesystem::path>& files_read);
+                                     const std::vector<std::filesystem::path>& files_read,
+                                     const std::optional<std::filesystem::path>& preview = std::nullopt);
 
 /// write_exr(), with a warning to `log` when half floats lose values and when non-finite or overflowing values
 /// were replaced.

@@ -39,6 +39,10 @@ enum class WavelengthDensityKind {
 struct RenderSettings {
   int width = 256, height = 256;
   int samples_per_pixel = 16;
+  bool samples_per_pixel_given = false;  ///< the scene wrote "integrator.spp" (the cap of its time budget)
+  /// integrator "time_limit_s": render whole passes until this much render time is spent (render/time_budget.h);
+  /// samples_per_pixel is then the maximum if the scene gives it, else there is none.
+  std::optional<double> time_limit_s;
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;

@@ -104,7 +104,7 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
-               "direct_lighting", "distance_sampling", "light_sampler", "guiding"});
+               "direct_lighting", "distance_sampling", "light_sampler", "guiding", "time_limit_s"});
   if (const auto d = c.find("guiding")) s.integrator.guiding = d->is_string() ? d->choice({"on", "off"}) == "on" : d->boolean();
   if (const auto d = c.find("light_sampler"))
     s.light_sampler = *parse_light_sampler_kind(d->choice({"bvh", "bvh-spectral", "power", "uniform"}));
@@ -129,6 +129,8 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
   if (const auto mode = c.find("wavelengths"))
     s.integrator.wavelengths = *parse_wavelength_mode(mode->choice({"hero", "single", "independent", "rgb"}));
   s.samples_per_pixel = c.integer_or("spp", s.samples_per_pixel, 1, 1 << 24);
+  s.samples_per_pixel_given = c.has("spp");
+  if (const auto limit = c.find("time_limit_s")) s.time_limit_s = limit->number(1e-3, 1e9);
   s.integrator.max_depth = c.integer_or("max_depth", s.integrator.max_depth, 0, 100000);
   s.integrator.russian_roulette_depth =
       c.integer_or("russian_roulette_depth", s.integrator.russian_roulette_depth, 1, 100000);

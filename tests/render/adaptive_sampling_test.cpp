@@ -1,0 +1,175 @@
+// Adaptive sampling (render/film/adaptive_sampling.h, `rimu --noise-threshold`): samples go where the noise is,
+// stopped pixels really stop, and the image stays unbiased (each pixel its own sum / its own weight).
+#include <doctest/doctest.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "render/film/adaptive_sampling.h"
+#include "render/render_job.h"
+#include "spectral/error.h"
+#include "test_support.h"
+
+using namespace rimu;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+
+constexpr int kWidth = 32, kHeight = 16;
+
+// The left half sees nothing (black: no noise at all); the right half is a diffuse card lit by a small quad light
+// (facing it, out of view) found only by BSDF sampling: few samples hit it, very noisy.
+fs::path write_half_noisy_scene(const fs::path& folder) {
+  const json scene{
+      {"camera", {{"from", {0.0, 0.0, 3.0}}, {"to", {0, 0, 0}}, {"up", {0, 1, 0}}, {"vertical_fov_deg", 10}}},
+      {"film", {{"resolution", {kWidth, kHeight}}, {"filter", {{"type", "box"}}}}},
+      {"integrator", {{"max_depth", 1}, {"direct_lighting", "bsdf_only"}, {"seed", 3}}},
+      {"materials", {{"card", {{"type", "diffuse"}, {"reflectance", 0.5}}}, {"lamp", {{"type", "diffuse"}, {"reflectance", 0}}}}},
+      {"shapes", json::array({{{"type", "quad"},
+                               {"vertices", {{0, -10, 0}, {10, -10, 0}, {10, 10, 0}, {0, 10, 0}}},
+                               {"material", "card"}},
+                              {{"type", "quad"}, {"material", "lamp"}, {"emission", 5},
+                               {"vertices", {{1, -0.5, 1}, {1, 0.5, 1}, {2, 0.5, 1}, {2, -0.5, 1}}}}})}};
+  const fs::path path = folder / "half_noisy.json";
+  std::ofstream(path) << scene.dump(2);
+  return path;
+}
+
+// The EXR's channels by name, each row by row over the (whole-image) data window.
+std::map<std::string, std::vector<float>> read_channels(const fs::path& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  const int w = window.max.x - window.min.x + 1, h = window.max.y - window.min.y + 1;
+  std::map<std::string, std::vector<float>> channels;
+  Imf::FrameBuffer buffer;
+  for (auto c = file.header().channels().begin(); c != file.header().channels().end(); ++c) {
+    if (c.channel().type != Imf::FLOAT) continue;
+    std::vector<float>& values = channels[c.name()];
+    values.assign(size_t(w) * size_t(h), 0.0f);
+    buffer.insert(c.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()) -
+                                                       (window.min.x + size_t(window.min.y) * w) * sizeof(float),
+                                       sizeof(float), sizeof(float) * size_t(w)));
+  }
+  file.setFrameBuffer(buffer);
+  file.readPixels(window.min.y, window.max.y);
+  return channels;
+}
+
+RenderJob job_for(const fs::path& scene, const fs::path& output, int spp) {
+  RenderJob job;
+  job.scene = scene;
+  job.exr_output = output;
+  job.quiet = true;
+  job.threads = 2;
+  job.samples_per_pixel = spp;
+  return job;
+}
+
+// Renders `scene` adaptively to `threshold` with at most `spp` and returns the EXR's channels.
+std::map<std::string, std::vector<float>> render_adaptive(const fs::path& scene, int spp, double threshold) {
+  RenderJob adaptive = job_for(scene, scene.parent_path() / "adaptive.exr", spp);
+  adaptive.noise_threshold = threshold;
+  run_render_job(adaptive, std::cerr);
+  return read_channels(adaptive.exr_output);
+}
+
+double mean_over(const std::vector<float>& values, int x0, int x1) {
+  double sum = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = x0; x < x1; ++x) sum += values[size_t(y) * kWidth + size_t(x)];
+  return sum / double((x1 - x0) * kHeight);
+}
+
+}  // namespace
+
+TEST_CASE("adaptive sampling: the minimum spp is 16 or an eighth of the maximum") {
+  CHECK(adaptive_min_spp(64) == 16);
+  CHECK(adaptive_min_spp(1024) == 128);
+}
+
+TEST_CASE("adaptive sampling: the noisy half gets the samples, the black half stops at the minimum and stays") {
+  test::ScratchFolder folder("adaptive");
+  const fs::path scene = write_half_noisy_scene(folder.path);
+  auto channels = render_adaptive(scene, 128, 0.01);
+  REQUIRE(channels.count("spp") == 1);
+  REQUIRE(channels.count("relativeError") == 1);
+  const std::vector<float>& spp = channels["spp"];
+  // The black quarter stopped after the first pass boundary at or after the minimum (16: sample 31) and never
+  // took another sample; the noisy quarter is far from 1 % at 128 spp and took them all.
+  const double left = mean_over(spp, 0, kWidth / 4), right = mean_over(spp, 3 * kWidth / 4, kWidth);
+  INFO("mean spp, black quarter " << left << ", noisy quarter " << right);
+  CHECK(left == 31.0);
+  CHECK(right == 128.0);
+  for (float e : channels["relativeError"]) CHECK(std::isfinite(e));
+}
+
+TEST_CASE("adaptive sampling: the means agree with a uniform render within their standard error") {
+  test::ScratchFolder folder("adaptive");
+  const fs::path scene = write_half_noisy_scene(folder.path);
+  // A threshold the card reaches in places: its pixels stop at different sample counts.
+  auto a = render_adaptive(scene, 256, 0.3);
+  RenderJob uniform = job_for(scene, folder.path / "uniform.exr", 256);
+  uniform.seed = 11;  // independent samples
+  run_render_job(uniform, std::cerr);
+  auto u = read_channels(uniform.exr_output);
+  const std::vector<float>& spp = a["spp"];
+  int stopped_early = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = kWidth / 2; x < kWidth; ++x) stopped_early += spp[size_t(y) * kWidth + size_t(x)] < 256.0f;
+  INFO("card pixels that stopped before 256 spp: " << stopped_early);
+  CHECK(stopped_early > 0);
+  // The card's mean Y: the difference of the two renders against the standard error of that difference, from the
+  // pixel-to-pixel spread of each (the card is lit unevenly: the spread overstates the noise, a safe side).
+  auto stats = [&](const std::vector<float>& y) {
+    double sum = 0, sum2 = 0;
+    const int n = (kWidth / 2) * kHeight;
+    for (int row = 0; row < kHeight; ++row)
+      for (int x = kWidth / 2; x < kWidth; ++x) {
+        const double v = y[size_t(row) * kWidth + size_t(x)];
+        sum += v;
+        sum2 += v * v;
+      }
+    const double mean = sum / n;
+    return std::pair{mean, (sum2 / n - mean * mean) / n};
+  };
+  const auto [mean_a, var_a] = stats(a["Y"]);
+  const auto [mean_u, var_u] = stats(u["Y"]);
+  const double standard_error = std::sqrt(var_a + var_u);
+  INFO("adaptive " << mean_a << ", uniform " << mean_u << ", standard error " << standard_error);
+  CHECK(mean_a > 0);
+  CHECK(std::abs(mean_a - mean_u) < 4.0 * standard_error);
+}
+
+TEST_CASE("adaptive sampling: refused with --samples and with --checkpoint, naming the options") {
+  test::ScratchFolder folder("adaptive");
+  const fs::path scene = write_half_noisy_scene(folder.path);
+  RenderJob job = job_for(scene, folder.path / "never.exr", 64);
+  job.noise_threshold = 0.01;
+  auto message = [&](const RenderJob& j) -> std::string {
+    try {
+      run_render_job(j, std::cerr);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  RenderJob partial = job;
+  partial.samples = SampleRange{0, 32};
+  CHECK(message(partial).find("--noise-threshold") != std::string::npos);
+  CHECK(message(partial).find("--samples") != std::string::npos);
+  RenderJob checkpoint = job;
+  checkpoint.checkpoint_interval_s = 60.0;
+  CHECK(message(checkpoint).find("--checkpoint") != std::string::npos);
+  CHECK_FALSE(fs::exists(job.exr_output));
+}
