@@ -62,7 +62,7 @@ RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& fil
 /// instead of from one pass of 16. Fitting happens between passes on the calling thread, over the tiles' records
 /// in tile order: the image depends on the seed and the samples asked for, not on the threads. A partial render
 /// (first_sample > 0) trains its own field from its own passes.
-inline constexpr size_t kGuidingSampleBudget = size_t(1) << 22;  ///< 24 bytes each: 96 MiB at most
+inline constexpr size_t kGuidingSampleBudget = size_t(1) << 22;  ///< 28 bytes each (GuidingSample): 112 MiB at most
 
 /// The end of the pass that contains sample index `sample`: the smallest pass boundary above it (1, 3, 7, 15, then
 /// every 16). A render of [a, b) cuts its passes at these boundaries (and at b), so a render resumed at a boundary
