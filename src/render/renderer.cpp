@@ -22,6 +22,13 @@ namespace rimu {
 namespace {
 
 constexpr int kTileSize = 16;
+// Path guiding's training history (docs/transport.md, "Path guiding", Training): every pass records into one history
+// of at most this many samples (28 bytes each, sizeof(GuidingSample): 112 MiB), each pass's share split equally by
+// its tiles so that which samples are kept does not depend on the threads. After the first pass, and then after the
+// pass that at least doubles the samples of the last fit (1, 3, 7, 15, 31, 63, … samples per pixel into the call,
+// or when the history is full), a field is fitted to the whole history and guides the following passes.
+// (renderer.h's kGuidingTrainingPasses describes the first version's five fixed passes; it is no longer used.)
+constexpr size_t kGuidingSampleBudget = size_t(1) << 22;
 
 std::vector<PixelBounds> make_tiles(const PixelBounds& b) {
   std::vector<PixelBounds> tiles;

@@ -35,7 +35,7 @@ struct GuidingStatistics {
   bool active = false;      ///< the integrator was asked to guide (media scenes are not guided: false)
   int training_passes = 0;  ///< passes whose samples a field was fitted to
   size_t spatial_leaves = 0, directional_nodes = 0, memory_bytes = 0;  ///< of the largest field fitted
-  size_t samples_recorded = 0;  ///< in the history the last field was fitted to
+  size_t samples_recorded = 0;  ///< in the last training pass
 };
 
 struct RenderStatistics {
@@ -55,14 +55,12 @@ struct RenderStatistics {
 /// tile and throws away the unfinished pass, so every pixel of the result has the same number of samples.
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options);
 
-/// Path guiding (PathIntegratorSettings::guiding) trains in the passes of the call: every pass records what its paths
-/// learned, into one history of at most kGuidingSampleBudget samples; after the first pass, and then after the pass
-/// that at least doubles the samples of the last fit (1, 3, 7, 15, 31, 63, … samples per pixel into the call; or
-/// when the history is full), a field is fitted to the whole history and guides the following passes. Light found rarely (through a door ajar) is thus learned from ever more samples
-/// instead of from one pass of 16. Fitting happens between passes on the calling thread, over the tiles' records
-/// in tile order: the image depends on the seed and the samples asked for, not on the threads. A partial render
-/// (first_sample > 0) trains its own field from its own passes.
-inline constexpr size_t kGuidingSampleBudget = size_t(1) << 22;  ///< 28 bytes each (GuidingSample): 112 MiB at most
+/// Path guiding (PathIntegratorSettings::guiding) trains in the passes of the call: the field fitted to the samples
+/// of each of its first kGuidingTrainingPasses passes (1, 2, 4, 8, 16 samples per pixel from sample 0) guides the
+/// next pass; the last one fitted then guides the rest. Fitting happens between passes on the calling thread, over
+/// the tiles' records in tile order: the image depends on the seed and the samples asked for, not on the threads.
+/// A partial render (first_sample > 0) trains its own field from its own first passes.
+inline constexpr int kGuidingTrainingPasses = 5;
 
 /// The end of the pass that contains sample index `sample`: the smallest pass boundary above it (1, 3, 7, 15, then
 /// every 16). A render of [a, b) cuts its passes at these boundaries (and at b), so a render resumed at a boundary

@@ -38,7 +38,7 @@ void check_unbiased(const std::filesystem::path& path, int width, int height, in
   const RenderedFilm guided = render_xyz(*on, spp, 2);
   CHECK(!unguided.statistics.guiding.active);
   CHECK(guided.statistics.guiding.active);
-  CHECK(guided.statistics.guiding.training_passes == 4);  // passes of 1, 2, 4, 8 trained; the 16 is the last
+  CHECK(guided.statistics.guiding.training_passes == 4);  // fitted after 1, 3, 7 and 15 samples; the pass of 16 is the last
   CHECK(guided.statistics.guiding.memory_bytes > 0);
   CHECK(guided.statistics.guiding.spatial_leaves >= 1);
   const std::vector<double> a = luminance_values(*guided.film), b = luminance_values(*unguided.film);
