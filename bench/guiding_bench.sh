@@ -2,14 +2,14 @@
 # guiding_bench.sh BUILD [SPP] [REFERENCE_SPP] [SEEDS] [RESOLUTION]
 # Path guiding on and off (docs/benchmarks.md, "Path guiding"): the daylit room (open window and glazed,
 # data/scenes/interiors/, their lights ×1000 so that the relMSE's absolute floor of 0.01 in
-# rimu-pbrt-image-compare is negligible; the image only scales) and the Cornell box (the scene guiding cannot
-# help, lights ×1000 likewise). For each scene: a reference of REFERENCE_SPP samples (guiding off, seed 99), then
+# rimu-pbrt-image-compare is negligible; the image only scales), the door-ajar room (lights ×10⁶: it is ~200×
+# darker) and the Cornell box (the scene guiding cannot help, lights ×1000 likewise). For each scene: a reference of REFERENCE_SPP samples (guiding off, seed 99), then
 # per seed one render with guiding off and one with it on, alternated, each timed in CPU seconds (user + system
 # of the whole process, 2 threads; the machine is shared, so CPU time is less disturbed than wall time but not
 # immune: the table says the load). Prints relMSE at SPP, CPU seconds, and the equal-time gain
 #   (relMSE_off · t_off) / (relMSE_on · t_on)
 # (relMSE ∝ 1/time for an unbiased estimator: the ratio of the relMSE the two would reach in the same time).
-# Renders run at nice 19.
+# Renders run at nice 19. BENCH_SCENES="door_ajar cornell" (say) runs only those.
 set -eu
 build=$1; spp=${2:-64}; ref_spp=${3:-2048}; seeds=${4:-"1 2 3"}; resolution=${5:-160x90}
 rimu=$build/bin/rimu; compare=$build/bin/rimu-pbrt-image-compare
@@ -20,16 +20,18 @@ import json, sys
 source, out = sys.argv[1], sys.argv[2]
 scenes = {"daylit_open": f"{source}/interiors/daylit_room_open.json",
           "daylit_glazed": f"{source}/interiors/daylit_room_glazed.json",
+          "door_ajar": f"{source}/interiors/door_ajar.json",
           "cornell": f"{source}/cornell_box/scene.json"}
 for name, path in scenes.items():
     s = json.load(open(path))
+    factor = 1e6 if name == "door_ajar" else 1000
     for light in s.get("lights", []):
         for key in ("illuminance_lx", "luminance_nt", "power_w", "scale", "radiance"):
-            if isinstance(light.get(key), (int, float)): light[key] *= 1000
+            if isinstance(light.get(key), (int, float)): light[key] *= factor
     for shape in s.get("shapes", []):
         if "emission" in shape and isinstance(shape["emission"], dict) and "scale" in shape["emission"]:
-            shape["emission"]["scale"] *= 1000
-        elif "emission_scale" in shape: shape["emission_scale"] *= 1000
+            shape["emission"]["scale"] *= factor
+        elif "emission_scale" in shape: shape["emission_scale"] *= factor
     s["integrator"].pop("guiding", None)
     # Relative paths in the scene (spectra, meshes) resolve against the scene's folder: work in a copy of it.
     import os, shutil
@@ -39,7 +41,7 @@ PY
 cputime() { /usr/bin/time -f "%U %S" -o "$scratch/time" nice -n 19 "$@" >/dev/null; awk '{print $1 + $2}' "$scratch/time"; }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); $spp spp at $resolution, reference $ref_spp spp"
 printf "%-14s %-5s %10s %10s %8s %8s %6s\n" scene seed relmse_off relmse_on cpu_off cpu_on gain
-for n in daylit_open daylit_glazed cornell; do
+for n in ${BENCH_SCENES:-daylit_open daylit_glazed door_ajar cornell}; do
   scene=$scratch/${n}_dir/$n.json
   nice -n 19 "$rimu" -q "$scene" -o "$scratch/ref_$n.exr" --spp "$ref_spp" --seed 99 --threads 2 \
     --resolution "$resolution" --guiding off

@@ -23,8 +23,11 @@ namespace rimu {
 namespace {
 
 constexpr int kTileSize = 16;
-// The samples one training pass may record (24 bytes each: 96 MiB), shared equally by the tiles so that which
-// samples are kept does not depend on the threads.
+// Path guiding's training history (docs/transport.md, "Path guiding", Training): every pass records into one history
+// of at most this many samples (28 bytes each, sizeof(GuidingSample): 112 MiB), each pass's share split equally by
+// its tiles so that which samples are kept does not depend on the threads. After the first pass, and then after the
+// pass that at least doubles the samples of the last fit (1, 3, 7, 15, 31, 63, … samples per pixel into the call,
+// or when the history is full), a field is fitted to the whole history and guides the following passes.
 constexpr size_t kGuidingSampleBudget = size_t(1) << 22;
 
 std::vector<PixelBounds> make_tiles(const PixelBounds& b) {
@@ -81,6 +84,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   stats.guiding.active = can_guide && integrator_settings.guiding;
   std::optional<GuidingField> guiding_field;
   const GuidingFieldSettings guiding_settings;
+  std::vector<GuidingSample> guiding_history;  // every pass's records, in pass and tile order, up to the budget
+  int next_fit = 1;  // samples per pixel into the call after which the next field is fitted
   while (options.first_sample + stats.samples_per_pixel_done < options.samples_per_pixel) {
     const int first = options.first_sample + stats.samples_per_pixel_done;
     const int count = std::min(sample_pass_end(first), options.samples_per_pixel) - first;
@@ -91,9 +96,14 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
     std::atomic<bool> stopped{false};
     std::atomic<uint64_t> pass_camera_samples{0};
-    const bool train = stats.guiding.active && stats.guiding.training_passes < kGuidingTrainingPasses &&
-                       first + count < options.samples_per_pixel;
+    // Record while the history has room and a field fitted to it could still guide a later pass (the fit after
+    // the pass reaching next_fit must leave a pass to guide).
+    const bool train = stats.guiding.active && guiding_history.size() < kGuidingSampleBudget &&
+                       first + count < options.samples_per_pixel && options.first_sample + next_fit < options.samples_per_pixel;
     std::vector<std::vector<GuidingSample>> guiding_records(train ? tiles.size() : 0);
+    // The pass's share of the remaining budget, split equally by the tiles so that which samples are kept does not
+    // depend on the threads.
+    const size_t tile_record_limit = train ? (kGuidingSampleBudget - guiding_history.size()) / tiles.size() : 0;
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
@@ -107,7 +117,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
         if constexpr (can_guide) {
           guiding.field = guiding_field ? &*guiding_field : nullptr;
           guiding.record = train ? &guiding_records[t] : nullptr;
-          guiding.record_limit = kGuidingSampleBudget / tiles.size();
+          guiding.record_limit = tile_record_limit;
         }
         const PixelBounds& b = tile->bounds();
         uint64_t pixels_sampled = 0;
@@ -142,17 +152,17 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     }
     for (const auto& tile : results) film.merge_tile(*tile);
     if (train) {
-      std::vector<GuidingSample> samples;
-      size_t total = 0;
-      for (const auto& r : guiding_records) total += r.size();
-      samples.reserve(total);
       for (auto& r : guiding_records) {
-        samples.insert(samples.end(), r.begin(), r.end());
+        guiding_history.insert(guiding_history.end(), r.begin(), r.end());
         std::vector<GuidingSample>().swap(r);
       }
-      guiding_field = GuidingField::build(samples, count, guiding_settings);
+    }
+    const int done_in_call = first + count - options.first_sample;
+    if (train && (done_in_call >= next_fit || guiding_history.size() >= kGuidingSampleBudget)) {
+      next_fit = 2 * done_in_call + 1;
+      guiding_field = GuidingField::build(guiding_history, done_in_call, guiding_settings);
       ++stats.guiding.training_passes;
-      stats.guiding.samples_recorded = samples.size();
+      stats.guiding.samples_recorded = guiding_history.size();
       if (guiding_field->memory_bytes() > stats.guiding.memory_bytes) {
         stats.guiding.memory_bytes = guiding_field->memory_bytes();
         stats.guiding.spatial_leaves = guiding_field->leaf_count();

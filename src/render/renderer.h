@@ -63,12 +63,12 @@ struct RenderStatistics {
 /// tile and throws away the unfinished pass, so every pixel of the result has the same number of samples.
 RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& film, const RenderOptions& options);
 
-/// Path guiding (PathIntegratorSettings::guiding) trains in the passes of the call: the field fitted to the samples
-/// of each of its first kGuidingTrainingPasses passes (1, 2, 4, 8, 16 samples per pixel from sample 0) guides the
-/// next pass; the last one fitted then guides the rest. Fitting happens between passes on the calling thread, over
-/// the tiles' records in tile order: the image depends on the seed and the samples asked for, not on the threads.
-/// A partial render (first_sample > 0) trains its own field from its own first passes.
-inline constexpr int kGuidingTrainingPasses = 5;
+/// Path guiding (PathIntegratorSettings::guiding) trains in the passes of the call: after the first pass, and then
+/// after each pass that at least doubles the samples of the last fit, a field is fitted to every sample recorded so
+/// far and guides the following passes (renderer.cpp, kGuidingSampleBudget; docs/transport.md, "Path guiding").
+/// Fitting happens between passes on the calling thread, over the tiles' records in tile order: the image depends on
+/// the seed and the samples asked for, not on the threads. A partial render (first_sample > 0) trains its own field
+/// from its own passes.
 
 /// The end of the pass that contains sample index `sample`: the smallest pass boundary above it (1, 3, 7, 15, then
 /// every 16). A render of [a, b) cuts its passes at these boundaries (and at b), so a render resumed at a boundary

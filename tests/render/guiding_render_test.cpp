@@ -38,7 +38,7 @@ void check_unbiased(const std::filesystem::path& path, int width, int height, in
   const RenderedFilm guided = render_xyz(*on, spp, 2);
   CHECK(!unguided.statistics.guiding.active);
   CHECK(guided.statistics.guiding.active);
-  CHECK(guided.statistics.guiding.training_passes == 4);  // passes of 1, 2, 4, 8 trained; the 16 is the last
+  CHECK(guided.statistics.guiding.training_passes == 4);  // fitted after 1, 3, 7 and 15 samples; the pass of 16 is the last
   CHECK(guided.statistics.guiding.memory_bytes > 0);
   CHECK(guided.statistics.guiding.spatial_leaves >= 1);
   const std::vector<double> a = luminance_values(*guided.film), b = luminance_values(*unguided.film);
@@ -46,6 +46,18 @@ void check_unbiased(const std::filesystem::path& path, int width, int height, in
   INFO(path.string() << ": guided − unguided = " << d.mean << " ± " << d.standard_error << " (mean " << mean_of(b) << ")");
   CHECK(std::fabs(d.mean) <= kSigmas * d.standard_error);
   CHECK(d.standard_error > 0.0);
+}
+
+// Pixels whose values are not bit-identical in `a` and `b`.
+int differing_pixels(const RenderedFilm& a, const RenderedFilm& b) {
+  const PixelBounds& bounds = a.film->pixel_bounds();
+  int differing = 0;
+  for (int y = bounds.y0; y < bounds.y1; ++y)
+    for (int x = bounds.x0; x < bounds.x1; ++x) {
+      const auto va = a.film->pixel_value(x, y), vb = b.film->pixel_value(x, y);
+      if (std::memcmp(&va, &vb, sizeof va) != 0) ++differing;
+    }
+  return differing;
 }
 
 }  // namespace
@@ -65,14 +77,8 @@ TEST_CASE("path guiding is deterministic: the same seed gives a bit-identical im
   const RenderedFilm two = render_xyz(*scene, 15, 5, 2);
   const RenderedFilm again = render_xyz(*scene, 15, 5, 2);
   CHECK(one.statistics.guiding.training_passes == 3);
-  const PixelBounds& bounds = one.film->pixel_bounds();
-  int differing = 0;
-  for (int y = bounds.y0; y < bounds.y1; ++y)
-    for (int x = bounds.x0; x < bounds.x1; ++x) {
-      const auto a = one.film->pixel_value(x, y), b = two.film->pixel_value(x, y), c = again.film->pixel_value(x, y);
-      if (std::memcmp(&a, &b, sizeof a) != 0 || std::memcmp(&b, &c, sizeof b) != 0) ++differing;
-    }
-  CHECK(differing == 0);
+  CHECK(differing_pixels(one, two) == 0);
+  CHECK(differing_pixels(two, again) == 0);
 }
 
 TEST_CASE("integrator.guiding takes on, off, true or false; anything else is an input error naming the key") {
@@ -90,4 +96,19 @@ TEST_CASE("integrator.guiding takes on, off, true or false; anything else is an 
   } catch (const InputError& e) {
     CHECK(std::string(e.what()).find("guiding") != std::string::npos);
   }
+}
+
+TEST_CASE("path guiding pools its passes: a longer render fits more fields to a larger history, bit-identically") {
+  // Fits after 1, 3, 7, 15, 31 (and 63) samples, each to every sample recorded so far: light found rarely is learned
+  // from all of them, not from the last pass alone (docs/transport.md, "Path guiding", Training).
+  const std::filesystem::path path = library().root() / "scenes" / "cornell_box" / "scene.json";
+  const auto scene = scene_with_guiding(small_version(path, 16, 16), path.parent_path(), true);
+  const RenderedFilm shorter = render_xyz(*scene, 32, 3, 1);
+  const RenderedFilm one = render_xyz(*scene, 64, 3, 1);
+  const RenderedFilm two = render_xyz(*scene, 64, 3, 2);
+  CHECK(shorter.statistics.guiding.training_passes == 5);
+  CHECK(one.statistics.guiding.training_passes == 6);
+  // 63 samples per pixel pooled against 31: about twice the history.
+  CHECK(double(one.statistics.guiding.samples_recorded) > 1.8 * double(shorter.statistics.guiding.samples_recorded));
+  CHECK(differing_pixels(one, two) == 0);
 }

@@ -16,6 +16,7 @@
 #include "transport/guiding/directional_quadtree.h"
 #include "transport/guiding/guided_bsdf.h"
 #include "transport/guiding/guiding_field.h"
+#include "transport/guiding/path_guiding_record.h"
 #include "transport/sampling/equal_area_square.h"
 
 using namespace rimu;
@@ -198,4 +199,57 @@ TEST_CASE("The guide/BSDF mixture's density integrates to one and samples with t
     if (!s) continue;
     CHECK(s->pdf[0] == doctest::Approx(guided.pdf(wo, s->wi)[0]).epsilon(1e-3));
   }
+}
+
+TEST_CASE("A few lucky samples among empty ones: the tree does not split down onto them") {
+  // 10⁵ directions that found nothing and three that found a lamp (a door ajar seen from a dark room): the energy
+  // rests on three effective samples, too few to say where the lamp is from the rest of the spatial leaf.
+  std::mt19937 rng(21);
+  std::vector<DirectionalSample> samples;
+  for (int i = 0; i < 100000; ++i) samples.push_back({{test::uniform01(rng), test::uniform01(rng)}, 0.0f});
+  for (float dx : {0.0f, 0.001f, 0.002f}) samples.push_back({{0.3f + dx, 0.6f}, 1000.0f});
+  std::vector<DirectionalSample> lucky = samples;
+  const DirectionalQuadtree sparse = DirectionalQuadtree::build(lucky, QuadtreeSettings{});
+  REQUIRE(!sparse.empty());
+  CHECK(sparse.effective_samples() == doctest::Approx(3.0));
+  CHECK(sparse.node_count() == 1);  // one level: the lamp's quadrant gets all the density, no narrower spike
+  CHECK(sparse.pdf_square({0.3f, 0.6f}) <= 4.0f);
+
+  // The same light found by 200 paths (a cap of 0.02 around the same point): now it is learned, deep and narrow.
+  for (int i = 0; i < 200; ++i)
+    samples.push_back({{0.3f + 0.02f * test::uniform01(rng), 0.6f + 0.02f * test::uniform01(rng)}, 1000.0f});
+  const DirectionalQuadtree supported = DirectionalQuadtree::build(samples, QuadtreeSettings{});
+  CHECK(supported.effective_samples() > 150.0f);
+  CHECK(supported.node_count() > 4);
+  CHECK(supported.pdf_square({0.31f, 0.61f}) > 100.0f);
+  CHECK(square_integral(supported, 4096) == doctest::Approx(1.0).epsilon(2e-3));
+}
+
+TEST_CASE("A spatial leaf whose light rests on too few samples does not guide") {
+  GuidingFieldSettings settings;  // min_effective_samples = 32
+  std::mt19937 rng(5);
+  auto field_with_lucky = [&](int lucky) {
+    std::vector<GuidingSample> samples;
+    for (int i = 0; i < 5000; ++i) {
+      const Vec2 p{test::uniform01(rng), test::uniform01(rng)};
+      samples.push_back({{test::uniform01(rng), test::uniform01(rng), 0.0f}, {p, i < lucky ? 1.0f : 0.0f}, 4});
+    }
+    return GuidingField::build(samples, 1, settings);
+  };
+  CHECK(field_with_lucky(5).distribution_at({0.5f, 0.5f, 0.0f}, 4) == nullptr);
+  const GuidingField learned = field_with_lucky(500);
+  const DirectionalQuadtree* leaf = learned.distribution_at({0.5f, 0.5f, 0.0f}, 4);
+  REQUIRE(leaf != nullptr);
+  CHECK(leaf->effective_samples() >= settings.min_effective_samples);
+}
+
+TEST_CASE("A path's record weighs the light it brought by the cosine over the density it was sampled with") {
+  PathGuidingRecord record(Float4(0.25f));  // lane weights: the luminance of (1, 1, 1, 1) is 1
+  record.add_vertex({1, 2, 3}, 2, {0, 1, 0}, 0.5f, 0.25f, SampledSpectrum(2.0f));
+  record.add_radiance(SampledSpectrum(4.0f));  // arrives through a throughput of 2: incident radiance 2
+  std::vector<GuidingSample> out;
+  record.flush(out);
+  REQUIRE(out.size() == 1);
+  CHECK(out[0].direction.weight == doctest::Approx(2.0 * 0.25 / 0.5));
+  CHECK(out[0].facing == 2);
 }

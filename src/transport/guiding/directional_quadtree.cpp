@@ -11,11 +11,16 @@ namespace {
 
 constexpr float kInvFourPi = float(0.25 / std::numbers::pi);
 
+constexpr float kBelowOne = 0x1.fffffep-1f;
+
 int quadrant_of(Vec2 p) { return (p.x >= 0.5f ? 1 : 0) + (p.y >= 0.5f ? 2 : 0); }
+
+// std::min, not std::fmin: without -ffast-math fmin is a libm call, and these run at every guided vertex.
+float below_one(float x) { return std::min(x, kBelowOne); }
 
 // The point's coordinates inside quadrant q, rescaled to [0, 1)².
 Vec2 into_quadrant(Vec2 p, int q) {
-  return {std::fmin(2.0f * p.x - float(q & 1), 0x1.fffffep-1f), std::fmin(2.0f * p.y - float(q >> 1), 0x1.fffffep-1f)};
+  return {below_one(2.0f * p.x - float(q & 1)), below_one(2.0f * p.y - float(q >> 1))};
 }
 
 using SampleIterator = std::vector<DirectionalSample>::iterator;
@@ -35,15 +40,19 @@ struct Builder {
     bounds[2] = std::stable_partition(first, last, [](const DirectionalSample& s) { return s.square.y < 0.5f; });
     bounds[1] = std::stable_partition(first, bounds[2], [](const DirectionalSample& s) { return s.square.x < 0.5f; });
     bounds[3] = std::stable_partition(bounds[2], last, [](const DirectionalSample& s) { return s.square.x < 0.5f; });
-    double energy[4];
+    double energy[4], squares[4], node_energy = 0.0;
     for (int q = 0; q < 4; ++q) {
-      energy[q] = 0.0;
-      for (auto it = bounds[q]; it != bounds[q + 1]; ++it) energy[q] += double(it->weight);
-      nodes[node].energy[q] = float(energy[q]);
+      energy[q] = squares[q] = 0.0;
+      for (auto it = bounds[q]; it != bounds[q + 1]; ++it) {
+        energy[q] += double(it->weight);
+        squares[q] += double(it->weight) * double(it->weight);
+      }
+      node_energy += energy[q];
     }
+    for (int q = 0; q < 4; ++q) nodes[node].density[q] = float(4.0 * energy[q] / node_energy);
     for (int q = 0; q < 4; ++q) {
       const bool split = depth < settings.max_depth && energy[q] > settings.subdivision_threshold * total &&
-                         bounds[q + 1] - bounds[q] >= settings.min_samples_to_split &&
+                         energy[q] * energy[q] >= double(settings.min_effective_samples_to_split) * squares[q] &&
                          nodes.size() < size_t(settings.max_nodes);
       if (!split) continue;
       for (auto it = bounds[q]; it != bounds[q + 1]; ++it) it->square = into_quadrant(it->square, q);
@@ -61,8 +70,13 @@ DirectionalQuadtree DirectionalQuadtree::build(std::vector<DirectionalSample>& s
                                                const QuadtreeSettings& settings) {
   DirectionalQuadtree tree;
   Builder builder{settings, samples};
-  for (const DirectionalSample& s : samples) builder.total += double(s.weight);
-  if (!(builder.total > 0.0) || !std::isfinite(builder.total)) return tree;
+  double squares = 0.0;
+  for (const DirectionalSample& s : samples) {
+    builder.total += double(s.weight);
+    squares += double(s.weight) * double(s.weight);
+  }
+  if (!(builder.total > 0.0) || !std::isfinite(builder.total) || !std::isfinite(squares)) return tree;
+  tree.effective_samples_ = float(builder.total * builder.total / squares);
   tree.nodes_.emplace_back();
   builder.build(tree.nodes_, 0, samples.begin(), samples.end(), 1);
   tree.nodes_.shrink_to_fit();
@@ -75,22 +89,20 @@ Vec2 DirectionalQuadtree::sample_square(Vec2 u) const {
   float size = 1.0f;
   size_t node = 0;
   for (;;) {
-    const float* e = nodes_[node].energy;
-    const float bottom = e[0] + e[1], top = e[2] + e[3];
+    const float* d = nodes_[node].density;  // sums to 4
+    const float p_bottom = 0.25f * (d[0] + d[1]);
     int q = 0;
-    const float p_top = top / (bottom + top);
-    if (u.y < 1.0f - p_top) {
-      u.y = std::fmin(u.y / (1.0f - p_top), 0x1.fffffep-1f);
+    if (u.y < p_bottom) {
+      u.y = below_one(u.y / p_bottom);
     } else {
-      u.y = std::fmin((u.y - (1.0f - p_top)) / p_top, 0x1.fffffep-1f);
+      u.y = below_one((u.y - p_bottom) / (1.0f - p_bottom));
       q = 2;
     }
-    const float left = e[q], right = e[q + 1];
-    const float p_right = right / (left + right);
-    if (u.x < 1.0f - p_right) {
-      u.x = std::fmin(u.x / (1.0f - p_right), 0x1.fffffep-1f);
+    const float p_left = d[q] / (d[q] + d[q + 1]);
+    if (u.x < p_left) {
+      u.x = below_one(u.x / p_left);
     } else {
-      u.x = std::fmin((u.x - (1.0f - p_right)) / p_right, 0x1.fffffep-1f);
+      u.x = below_one((u.x - p_left) / (1.0f - p_left));
       q += 1;
     }
     size *= 0.5f;
@@ -106,13 +118,12 @@ float DirectionalQuadtree::pdf_square(Vec2 p) const {
   if (nodes_.empty()) return 0.0f;
   float density = 1.0f;
   size_t node = 0;
-  p = {std::clamp(p.x, 0.0f, 0x1.fffffep-1f), std::clamp(p.y, 0.0f, 0x1.fffffep-1f)};
+  p = {std::clamp(p.x, 0.0f, kBelowOne), std::clamp(p.y, 0.0f, kBelowOne)};
   for (;;) {
-    const float* e = nodes_[node].energy;
     const int q = quadrant_of(p);
-    const float total = e[0] + e[1] + e[2] + e[3];
-    if (!(e[q] > 0.0f)) return 0.0f;
-    density *= 4.0f * e[q] / total;
+    const float factor = nodes_[node].density[q];
+    if (!(factor > 0.0f)) return 0.0f;
+    density *= factor;
     const uint32_t child = nodes_[node].child[q];
     if (child == 0) return density;
     p = into_quadrant(p, q);
@@ -125,5 +136,7 @@ Vec3 DirectionalQuadtree::sample_direction(Vec2 u) const { return equal_area_squ
 float DirectionalQuadtree::pdf_direction(Vec3 direction) const {
   return pdf_square(equal_area_sphere_to_square(direction)) * kInvFourPi;
 }
+
+float DirectionalQuadtree::pdf_direction_at_square(Vec2 square) const { return pdf_square(square) * kInvFourPi; }
 
 }  // namespace rimu

@@ -2,16 +2,20 @@
 
 #include <cmath>
 
+#include "transport/sampling/equal_area_square.h"
+
 namespace rimu {
 
 std::optional<BsdfSample> GuidedBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
   if (!guide_) return bsdf_.sample(wo, u_lobe, u);
   if (u_lobe < alpha_) {
-    const Vec3 wi = frame_.to_local(guide_->sample_direction(u));
+    // The guide's density from the square point it drew (no inverse map: an atan2 fewer per guided direction).
+    const Vec2 square = guide_->sample_square(u);
+    const Vec3 wi = frame_.to_local(equal_area_square_to_sphere(square));
     BsdfSample s;
     s.wi = wi;
     s.f = bsdf_.eval(wo, wi);
-    s.pdf = pdf(wo, wi);
+    s.pdf = Float4(alpha_ * guide_->pdf_direction_at_square(square)) + Float4(1.0f - alpha_) * bsdf_.pdf(wo, wi);
     if (!(s.pdf[0] > 0.0f)) return std::nullopt;
     return s;
   }

@@ -62,6 +62,7 @@ int facing_of(Vec3 n) {
 GuidingField GuidingField::build(std::vector<GuidingSample>& samples, int pass_samples_per_pixel,
                                  const GuidingFieldSettings& settings) {
   GuidingField field;
+  field.min_effective_samples_ = settings.min_effective_samples;
   // One tree per facing, each over the bounds of its own vertices (a later pass's vertex outside still finds the
   // nearest leaf, since lookups only compare against split planes). The leaf bound is shared: the trees draw from
   // one budget, in facing order.
@@ -92,7 +93,7 @@ const DirectionalQuadtree* GuidingField::distribution_at(Vec3 position, int faci
   while (nodes_[node].axis >= 0)
     node = nodes_[node].child + (axis_value(position, nodes_[node].axis) < nodes_[node].split ? 0 : 1);
   const DirectionalQuadtree& leaf = leaves_[nodes_[node].child];
-  return leaf.empty() ? nullptr : &leaf;
+  return leaf.empty() || leaf.effective_samples() < min_effective_samples_ ? nullptr : &leaf;
 }
 
 size_t GuidingField::directional_node_count() const {

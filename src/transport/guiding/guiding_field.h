@@ -34,6 +34,10 @@ struct GuidingFieldSettings {
   double split_samples = 4000.0;
   int max_leaves = 4096;          ///< the memory bound of the spatial tree
   int min_samples_per_leaf = 32;  ///< fewer and the leaf learns nothing: its vertices stay BSDF-sampled
+  /// A leaf whose light rests on fewer effective samples ((Σw)²/Σw², DirectionalQuadtree::effective_samples) does
+  /// not guide either: a handful of lucky paths is no estimate of where the light comes from, and guiding by it
+  /// costs variance at every bounce (docs/transport.md, "Path guiding").
+  float min_effective_samples = 32.0f;
   QuadtreeSettings directions;
 };
 
@@ -59,6 +63,7 @@ class GuidingField {
   std::vector<Node> nodes_;  ///< kFacings trees: the root of facing f is nodes_[roots_[f]]
   uint32_t roots_[kFacings] = {};
   std::vector<DirectionalQuadtree> leaves_;
+  float min_effective_samples_ = 0.0f;
 };
 
 }  // namespace rimu

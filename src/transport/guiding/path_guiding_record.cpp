@@ -30,13 +30,14 @@ Float4 guiding_lane_weights(const SampledWavelengths& lambda, bool rgb) {
   return Float4::load(w.data());
 }
 
-void PathGuidingRecord::add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, const SampledSpectrum& throughput) {
+void PathGuidingRecord::add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, float cosine,
+                                   const SampledSpectrum& throughput) {
   if (count_ == kMaxVertices) return;
   Vertex& v = vertices_[size_t(count_++)];
   v.position = position;
   v.facing = facing;
   v.square = equal_area_sphere_to_square(direction);
-  v.pdf = pdf;
+  v.cosine_over_pdf = pdf > 0.0f ? cosine / pdf : 0.0f;
   v.inverse_throughput = select(throughput != Float4(0.0f), Float4(1.0f) / throughput, Float4(0.0f));
   v.incident = SampledSpectrum(0.0f);
 }
@@ -50,7 +51,7 @@ void PathGuidingRecord::flush(std::vector<GuidingSample>& out) const {
     const Vertex& v = vertices_[size_t(i)];
     const float luminance = sum(lane_weights_ * v.incident);
     // Negative lanes (never expected) or rounding: the field learns only non-negative, finite weights.
-    const float weight = luminance > 0.0f && v.pdf > 0.0f ? luminance / v.pdf : 0.0f;
+    const float weight = luminance > 0.0f ? luminance * v.cosine_over_pdf : 0.0f;
     out.push_back({v.position, {v.square, std::isfinite(weight) ? weight : 0.0f}, v.facing});
   }
 }

@@ -24,8 +24,11 @@ class PathGuidingRecord {
   explicit PathGuidingRecord(Float4 lane_weights) : lane_weights_(lane_weights) {}
 
   /// A vertex left along `direction` with hero density `pdf`; `throughput` is the path throughput after the bounce
-  /// (what later contributions are multiplied by), per lane.
-  void add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, const SampledSpectrum& throughput);
+  /// (what later contributions are multiplied by), per lane; `cosine` = |cos θ| of `direction` to the surface.
+  /// The sample's weight is luminance · cosine / pdf: the field learns the light's share of the irradiance, L·cos
+  /// (the product a diffuse vertex would ideally sample), not of the radiance, which would spend guided rays on
+  /// grazing directions that contribute little (docs/transport.md, "Path guiding").
+  void add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, float cosine, const SampledSpectrum& throughput);
   /// A contribution the estimator adds to the pixel: it arrived at every recorded vertex.
   void add_radiance(const SampledSpectrum& contribution);
   /// Appends the vertices' samples to `out`.
@@ -36,7 +39,7 @@ class PathGuidingRecord {
     Vec3 position;
     int facing = 0;
     Vec2 square;
-    float pdf = 0.0f;
+    float cosine_over_pdf = 0.0f;
     SampledSpectrum inverse_throughput;  ///< 1/throughput per lane (0 in lanes that carry nothing)
     SampledSpectrum incident;            ///< the radiance that arrived so far, per lane
   };

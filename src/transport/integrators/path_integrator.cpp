@@ -243,7 +243,9 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
     }
 
     // The vertex's throughput before roulette: what arrives along wi_world, divided by it, is the incident radiance.
-    if (record && guidable) record->add_vertex(hit->position, facing, wi_world, bs->pdf[0], beta);
+    if (record && guidable)
+      record->add_vertex(hit->position, facing, wi_world, bs->pdf[0], std::fabs(dot(wi_world, shading.geometric_normal)),
+                         beta);
 
     // Russian roulette on the effective throughput (what the film will see), after a few bounces.
     const float u_roulette = sampler.next_1d();
