@@ -92,5 +92,11 @@ void render_samples(RenderJobState& state, InterruptFlag& interrupt);
 void write_job_outputs(RenderJobState& state);
 /// One line of time, speed and discarded samples, and the files written (nothing with --quiet).
 void log_job_summary(const RenderJobState& state);
+/// Before rendering (render_job_sensors.cpp): the sensors can be measured in this scene (render/sensors/), their
+/// outputs can be written and are none of the scene's files; --sensors-only needs sensors.
+void check_job_sensors(const RenderJobState& state);
+/// The scene's sensors, measured with the image's integrator, seed and sampler, written as CSV and JSON with a
+/// summary line per grid (not for a --samples partial or an interrupted render, which would mix with others).
+void measure_job_sensors(RenderJobState& state, InterruptFlag& interrupt);
 
 }  // namespace rimu

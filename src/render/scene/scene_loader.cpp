@@ -142,7 +142,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   scene->source = name;
   const JsonCursor root(document, name);
   root.only_keys({"description", "camera", "film", "integrator", "spectra", "materials", "prototypes", "shapes",
-                  "lights", "media"});
+                  "lights", "media", "sensors"});
   LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}, {}, {}};
   if (const auto spectra = root.find("spectra")) {
     if (!spectra->is_object()) spectra->fail("expected an object of name → spectrum");
@@ -160,6 +160,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
+  if (const auto sensors = root.find("sensors")) scene->sensors = load_sensors(*sensors);
 
   // ∂p/∂u, ∂p/∂v are read only by normal and bump maps: scenes without one skip their cost per hit.
   scene->geometry.set_surface_tangents(

@@ -55,8 +55,8 @@ ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls,
   return {to_target / distance, distance};
 }
 
-SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
-                                         const PathGuidingContext& guiding) const {
+SampledSpectrum PathIntegrator::trace(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
+                                      const PathGuidingContext& guiding, const PathStartVertex* start) const {
   const auto& lights = *scene_.lights;
   const LightSampler& light_sampler = *scene_.light_sampler;
 
@@ -87,6 +87,13 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
   float previous_bsdf_sum = sum(pdf_ratio);   // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
   LightReference previous_reference{};
   LightSamplingPoint previous_sampling_point{};  // where the light sampler chose for the previous vertex
+  if (start) {  // a vertex the caller sampled with a wavelength-independent density: S_bsdf = q Σ_k R_k
+    previous_specular = false;
+    previous_hero_pdf = start->direction_pdf;
+    previous_bsdf_sum = start->direction_pdf * previous_sum_ratio;
+    previous_reference = start->reference;
+    previous_sampling_point = start->sampling_point;
+  }
 
   // Adds an emitter seen along the sampled direction: spectral MIS, and power-heuristic MIS against light sampling.
   const DirectLighting strategy = settings_.direct_lighting;

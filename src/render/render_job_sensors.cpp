@@ -1,0 +1,87 @@
+// The render job's sensor stages (declared in render_job_stages.h): the scene's "sensors" measured after the image
+// with the same integrator, seed and sampler, or alone with --sensors-only.
+#include <algorithm>
+#include <ostream>
+
+#include "render/interrupt_flag.h"
+#include "render/render_job_stages.h"
+#include "render/sensors/sensor_measurement.h"
+#include "render/sensors/sensor_outputs.h"
+#include "spectral/error.h"
+#include "spectral/io/output_file.h"
+
+namespace rimu {
+namespace {
+
+SensorOutputPaths job_sensor_paths(const RenderJob& job) {
+  return sensor_output_paths(job.sensors_output ? *job.sensors_output : default_sensor_output_base(job.exr_output));
+}
+
+}  // namespace
+
+void check_job_sensors(const RenderJobState& s) {
+  const Scene& scene = *s.loaded.scene;
+  if (scene.sensors.empty()) {
+    if (s.job.sensors_only)
+      throw InputError({s.scene_path.string(), 0, "--sensors-only"},
+                       "the scene has no \"sensors\" to measure (docs/scene-format.md, \"Sensors\")");
+    return;
+  }
+  check_sensor_scene(scene, s.scene_path.string());
+  const SensorOutputPaths paths = job_sensor_paths(s.job);
+  for (const std::filesystem::path& path : {paths.csv, paths.json}) {
+    check_output_path(path);
+    for (const std::filesystem::path& input : s.loaded.files_read)
+      if (same_output_file(path, input))
+        throw InputError({path.string(), 0, "--sensors-out"}, "is one of the scene's files (" + input.string() +
+                                                                   "): choose another name");
+    if (same_output_file(path, s.job.exr_output))
+      throw InputError({path.string(), 0, "--sensors-out"}, "is the EXR output (-o): choose another name");
+  }
+}
+
+void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
+  const Scene& scene = *s.loaded.scene;
+  if (scene.sensors.empty()) return;
+  const RenderJob& job = s.job;
+  if (!job.sensors_only && (job.samples || s.result.statistics.interrupted)) {
+    if (!job.quiet)
+      s.log << "rimu: sensors not measured: " << (job.samples ? "a --samples partial" : "the render was interrupted")
+            << " (measure them with --sensors-only)\n";
+    return;
+  }
+  SensorMeasureOptions options;
+  options.samples = job.sensor_samples.value_or(scene.sensors.samples);
+  options.seed = scene.settings.seed;
+  options.sampler = scene.settings.sampler;
+  options.threads = job.threads.value_or(0);
+  options.stop_requested = [&interrupt] { return interrupt.requested(); };
+  const SensorReadings readings = measure_sensors(scene, scene.sensors, s.library.photopic_v(), options);
+  if (readings.interrupted) {
+    s.log << "rimu: sensors interrupted: nothing written\n";
+    return;
+  }
+  const SensorOutputPaths paths = job_sensor_paths(job);
+  write_sensor_outputs(paths, scene.sensors, readings, options.samples);
+  if (job.quiet) return;
+  for (size_t g = 0; g < scene.sensors.grids.size(); ++g) {
+    const IlluminanceGrid& grid = scene.sensors.grids[g];
+    const GridReadings& r = readings.grids[g];
+    double largest_error = 0.0;
+    for (const MeterReading& m : r.points) largest_error = std::max(largest_error, m.standard_error);
+    s.log << "rimu: sensor " << grid.name << " (" << grid.count_u << "x" << grid.count_v << "): Emin " << r.e_min_lx
+          << " lx, Eavg " << r.e_avg_lx << " lx, Emax " << r.e_max_lx << " lx, U0 " << r.u0
+          << "; largest standard error " << largest_error << " lx\n";
+  }
+  for (size_t k = 0; k < scene.sensors.points.size(); ++k) {
+    const PointSensor& p = scene.sensors.points[k];
+    const char* unit = p.kind == PointSensor::Kind::illuminance ? " lx" : " nt";
+    s.log << "rimu: sensor " << p.name << ": " << readings.meters[k].value << unit << " ± "
+          << readings.meters[k].standard_error << unit << " (standard error)\n";
+  }
+  s.log << "rimu: sensors: " << options.samples << " samples per point in " << readings.seconds << " s";
+  if (readings.discarded_samples) s.log << ", " << readings.discarded_samples << " discarded (NaN, Inf, negative)";
+  s.log << "; wrote " << paths.csv.string() << " and " << paths.json.string() << "\n";
+}
+
+}  // namespace rimu
