@@ -2,19 +2,41 @@
 // with the same integrator, seed and sampler, or alone with --sensors-only.
 #include <algorithm>
 #include <ostream>
+#include <vector>
 
 #include "render/interrupt_flag.h"
 #include "render/render_job_stages.h"
 #include "render/sensors/sensor_measurement.h"
 #include "render/sensors/sensor_outputs.h"
+#include "render/sensors/sensor_plan.h"
 #include "spectral/error.h"
 #include "spectral/io/output_file.h"
 
 namespace rimu {
 namespace {
 
-SensorOutputPaths job_sensor_paths(const RenderJob& job) {
-  return sensor_output_paths(job.sensors_output ? *job.sensors_output : default_sensor_output_base(job.exr_output));
+std::filesystem::path job_sensor_base(const RenderJob& job) {
+  return job.sensors_output ? *job.sensors_output : default_sensor_output_base(job.exr_output);
+}
+
+SensorOutputPaths job_sensor_paths(const RenderJob& job) { return sensor_output_paths(job_sensor_base(job)); }
+
+// Each grid's false-colour plan (gnuplot); without gnuplot the tables are still written, with a warning.
+std::vector<std::filesystem::path> write_plans(const RenderJobState& s, const SensorReadings& readings) {
+  std::vector<std::filesystem::path> written;
+  const SensorSettings& sensors = s.loaded.scene->sensors;
+  for (size_t g = 0; g < sensors.grids.size(); ++g) {
+    const std::filesystem::path png = grid_plan_path(job_sensor_base(s.job), sensors.grids[g]);
+    try {
+      check_plot_destination(png, {png.string(), 0, "--sensors-out"});
+    } catch (const PlotError& e) {
+      s.log << "rimu: warning: no false-colour plans of the sensor grids: " << e.what() << "\n";
+      return written;
+    }
+    write_grid_plan(png, sensors.grids[g], readings.grids[g]);
+    written.push_back(png);
+  }
+  return written;
 }
 
 }  // namespace
@@ -63,6 +85,7 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
   }
   const SensorOutputPaths paths = job_sensor_paths(job);
   write_sensor_outputs(paths, scene.sensors, readings, options.samples);
+  const std::vector<std::filesystem::path> plans = write_plans(s, readings);
   if (job.quiet) return;
   for (size_t g = 0; g < scene.sensors.grids.size(); ++g) {
     const IlluminanceGrid& grid = scene.sensors.grids[g];
@@ -81,7 +104,9 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
   }
   s.log << "rimu: sensors: " << options.samples << " samples per point in " << readings.seconds << " s";
   if (readings.discarded_samples) s.log << ", " << readings.discarded_samples << " discarded (NaN, Inf, negative)";
-  s.log << "; wrote " << paths.csv.string() << " and " << paths.json.string() << "\n";
+  s.log << "; wrote " << paths.csv.string() << ", " << paths.json.string();
+  for (const std::filesystem::path& png : plans) s.log << ", " << png.string();
+  s.log << "\n";
 }
 
 }  // namespace rimu
