@@ -24,7 +24,7 @@ SensorOutputPaths job_sensor_paths(const RenderJob& job) { return sensor_output_
 // Each grid's false-colour plan (gnuplot); without gnuplot the tables are still written, with a warning.
 std::vector<std::filesystem::path> write_plans(const RenderJobState& s, const SensorReadings& readings) {
   std::vector<std::filesystem::path> written;
-  const SensorSettings& sensors = s.loaded.scene->sensors;
+  const SensorSettings& sensors = s.sensors;
   for (size_t g = 0; g < sensors.grids.size(); ++g) {
     const std::filesystem::path png = grid_plan_path(job_sensor_base(s.job), sensors.grids[g]);
     try {
@@ -41,9 +41,10 @@ std::vector<std::filesystem::path> write_plans(const RenderJobState& s, const Se
 
 }  // namespace
 
-void check_job_sensors(const RenderJobState& s) {
+void check_job_sensors(RenderJobState& s) {
   const Scene& scene = *s.loaded.scene;
-  if (scene.sensors.empty()) {
+  s.sensors = scene_sensors(s.loaded.document, s.scene_path.string());
+  if (s.sensors.empty()) {
     if (s.job.sensors_only)
       throw InputError({s.scene_path.string(), 0, "--sensors-only"},
                        "the scene has no \"sensors\" to measure (docs/scene-format.md, \"Sensors\")");
@@ -64,7 +65,8 @@ void check_job_sensors(const RenderJobState& s) {
 
 void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
   const Scene& scene = *s.loaded.scene;
-  if (scene.sensors.empty()) return;
+  const SensorSettings& sensors = s.sensors;
+  if (sensors.empty()) return;
   const RenderJob& job = s.job;
   if (!job.sensors_only && (job.samples || s.result.statistics.interrupted)) {
     if (!job.quiet)
@@ -73,22 +75,22 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
     return;
   }
   SensorMeasureOptions options;
-  options.samples = job.sensor_samples.value_or(scene.sensors.samples);
+  options.samples = job.sensor_samples.value_or(sensors.samples);
   options.seed = scene.settings.seed;
   options.sampler = scene.settings.sampler;
   options.threads = job.threads.value_or(0);
   options.stop_requested = [&interrupt] { return interrupt.requested(); };
-  const SensorReadings readings = measure_sensors(scene, scene.sensors, s.library.photopic_v(), options);
+  const SensorReadings readings = measure_sensors(scene, sensors, s.library.photopic_v(), options);
   if (readings.interrupted) {
     s.log << "rimu: sensors interrupted: nothing written\n";
     return;
   }
   const SensorOutputPaths paths = job_sensor_paths(job);
-  write_sensor_outputs(paths, scene.sensors, readings, options.samples);
+  write_sensor_outputs(paths, sensors, readings, options.samples);
   const std::vector<std::filesystem::path> plans = write_plans(s, readings);
   if (job.quiet) return;
-  for (size_t g = 0; g < scene.sensors.grids.size(); ++g) {
-    const IlluminanceGrid& grid = scene.sensors.grids[g];
+  for (size_t g = 0; g < sensors.grids.size(); ++g) {
+    const IlluminanceGrid& grid = sensors.grids[g];
     const GridReadings& r = readings.grids[g];
     double largest_error = 0.0;
     for (const MeterReading& m : r.points) largest_error = std::max(largest_error, m.standard_error);
@@ -96,8 +98,8 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
           << " lx, Eavg " << r.e_avg_lx << " lx, Emax " << r.e_max_lx << " lx, U0 " << r.u0
           << "; largest standard error " << largest_error << " lx\n";
   }
-  for (size_t k = 0; k < scene.sensors.points.size(); ++k) {
-    const PointSensor& p = scene.sensors.points[k];
+  for (size_t k = 0; k < sensors.points.size(); ++k) {
+    const PointSensor& p = sensors.points[k];
     const char* unit = p.kind == PointSensor::Kind::illuminance ? " lx" : " nt";
     s.log << "rimu: sensor " << p.name << ": " << readings.meters[k].value << unit << " ± "
           << readings.meters[k].standard_error << unit << " (standard error)\n";

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/scene/scene.h"
+#include "render/scene/scene_sensors.h"
 #include "render/sensors/sensor_measurement.h"
 #include "test_support.h"
 
@@ -76,10 +77,11 @@ json upward_meter(Point p) {
 
 SensorReadings measure(const json& document) {
   const auto scene = load_scene(document, "cie171.json", std::filesystem::current_path(), test::library());
+  const SensorSettings sensors = scene_sensors(document, "cie171.json");
   SensorMeasureOptions options;
-  options.samples = scene->sensors.samples;
+  options.samples = sensors.samples;
   options.seed = 17;
-  return measure_sensors(*scene, scene->sensors, test::library().photopic_v(), options);
+  return measure_sensors(*scene, sensors, test::library().photopic_v(), options);
 }
 
 void check_case(const char* name, const MeterReading& r, double reference) {

@@ -11,6 +11,7 @@
 
 #include "input_error_check.h"
 #include "render/scene/scene.h"
+#include "render/scene/scene_sensors.h"
 #include "render/sensors/sensor_measurement.h"
 #include "render/sensors/sensor_outputs.h"
 #include "test_support.h"
@@ -32,15 +33,21 @@ json scene_with(json lights, json sensors, json shapes = json::array()) {
               {"sensors", std::move(sensors)}};
 }
 
-std::unique_ptr<Scene> load(const json& document, const std::filesystem::path& directory = std::filesystem::current_path()) {
-  return load_scene(document, "sensors.json", directory, test::library());
+// A scene and its sensors, read as a render job reads them (load_scene checks the section; scene_sensors reads it).
+struct Loaded {
+  std::unique_ptr<Scene> scene;
+  SensorSettings sensors;
+};
+
+Loaded load(const json& document, const std::filesystem::path& directory = std::filesystem::current_path()) {
+  return {load_scene(document, "sensors.json", directory, test::library()), scene_sensors(document, "sensors.json")};
 }
 
-SensorReadings measure(const Scene& scene, uint64_t seed = 3) {
+SensorReadings measure(const Loaded& loaded, uint64_t seed = 3) {
   SensorMeasureOptions options;
-  options.samples = scene.sensors.samples;
+  options.samples = loaded.sensors.samples;
   options.seed = seed;
-  return measure_sensors(scene, scene.sensors, test::library().photopic_v(), options);
+  return measure_sensors(*loaded.scene, loaded.sensors, test::library().photopic_v(), options);
 }
 
 void check_reading(const MeterReading& r, double expected) {
@@ -68,7 +75,7 @@ TEST_CASE("sensors: a point source of I cd over a plane gives I cos³θ / h² lx
   const double candela = 1000.0;
   const auto scene = load(scene_with(json::array({point_lamp(candela, {0, 0, 3})}),
                                      {{"samples", 512}, {"grids", {row_grid("floor", 0.0), row_grid("table", 2.0)}}}));
-  const SensorReadings readings = measure(*scene);
+  const SensorReadings readings = measure(scene);
   REQUIRE(readings.grids.size() == 2);
   for (int g = 0; g < 2; ++g) {
     const double h = g == 0 ? 3.0 : 1.0;
@@ -87,7 +94,7 @@ TEST_CASE("sensors: a point source of I cd over a plane gives I cos³θ / h² lx
     const auto away = load(scene_with(json::array({point_lamp(candela, {0, 0, 3})}),
                                       {{"samples", 16},
                                        {"meters", {{{"type", "illuminance"}, {"position", {0, 0, 0}}, {"normal", {0, 0, -1}}}}}}));
-    CHECK(measure(*away).meters[0].value == 0.0);
+    CHECK(measure(away).meters[0].value == 0.0);
   }
 }
 
@@ -100,7 +107,7 @@ TEST_CASE("sensors: a uniform sky of luminance L on an unobstructed upward plane
       {{"samples", 256},
        {"grids", {{{"origin", {-1, -1, 0}}, {"u", {1, 0, 0}}, {"v", {0, 1, 0}}, {"size", {2, 2}}, {"spacing", 1.0}}}},
        {"meters", {{{"name", "up"}, {"type", "luminance"}, {"position", {0, 0, 0}}, {"direction", {0.3, 0.2, 1}}}}}}));
-  const SensorReadings readings = measure(*scene);
+  const SensorReadings readings = measure(scene);
   REQUIRE(readings.grids[0].points.size() == 4);
   for (const MeterReading& r : readings.grids[0].points) check_reading(r, kPi * luminance_nt);
   check_reading(readings.meters[0], luminance_nt);
@@ -119,7 +126,7 @@ TEST_CASE("sensors: lux of a light written inline equals the same light through 
                                  folder);
   const auto included = load(
       scene_with(json::array({{{"include", "lamp.json"}, {"position", {0, 0, 2.5}}}}), sensors), folder);
-  const SensorReadings a = measure(*inline_scene), b = measure(*included);
+  const SensorReadings a = measure(inline_scene), b = measure(included);
   for (size_t i = 0; i < 4; ++i) {
     CAPTURE(i);
     CHECK(a.grids[0].points[i].value > 0.0);
@@ -139,8 +146,8 @@ TEST_CASE("sensors: the readings depend on the seed and sample count, not on the
   one.threads = 1;
   SensorMeasureOptions all = one;
   all.threads = 0;
-  const SensorReadings a = measure_sensors(*scene, scene->sensors, test::library().photopic_v(), one);
-  const SensorReadings b = measure_sensors(*scene, scene->sensors, test::library().photopic_v(), all);
+  const SensorReadings a = measure_sensors(*scene.scene, scene.sensors, test::library().photopic_v(), one);
+  const SensorReadings b = measure_sensors(*scene.scene, scene.sensors, test::library().photopic_v(), all);
   for (size_t i = 0; i < 4; ++i) CHECK(a.grids[0].points[i].value == b.grids[0].points[i].value);
 }
 
@@ -148,12 +155,12 @@ TEST_CASE("sensors: the CSV and JSON hold every point with its standard error an
   const auto scene = load(scene_with(json::array({point_lamp(500, {0, 0, 2})}),
                                      {{"samples", 8}, {"grids", {row_grid("floor", 0.0)}},
                                       {"meters", {{{"name", "desk"}, {"type", "illuminance"}, {"position", {0, 0, 0}}, {"normal", {0, 0, 1}}}}}}));
-  const SensorReadings readings = measure(*scene);
-  const std::string csv = sensor_csv(scene->sensors, readings);
+  const SensorReadings readings = measure(scene);
+  const std::string csv = sensor_csv(scene.sensors, readings);
   CHECK(csv.rfind("sensor,quantity,i,j,x,y,z,dx,dy,dz,value,standard_error,unit,samples\n", 0) == 0);
   CHECK(csv.find("floor,illuminance,3,0,3.5,0,0,0,0,1,") != std::string::npos);
   CHECK(csv.find("desk,illuminance,,,0,0,0,0,0,1,") != std::string::npos);
-  const json doc = sensor_json(scene->sensors, readings, 8);
+  const json doc = sensor_json(scene.sensors, readings, 8);
   CHECK(doc["grids"][0]["points"].size() == 4);
   CHECK(doc["grids"][0]["u0"].get<double>() == doctest::Approx(readings.grids[0].u0));
   CHECK(doc["meters"][0]["value"].get<double>() == doctest::Approx(readings.meters[0].value));

@@ -12,7 +12,6 @@
 #include "render/camera/camera.h"
 #include "render/camera/camera_exposure.h"
 #include "render/scene/embree_scene.h"
-#include "render/scene/scene_sensors.h"
 #include "render/film/film_tile.h"
 #include "spectral/library/spectral_library.h"
 #include "transport/lights/light.h"
@@ -76,8 +75,6 @@ struct Scene {
   bool has_media() const { return !media.empty(); }
   /// Built at load for WavelengthDensityKind::lights (not in rgb mode, whose lanes are fixed); null otherwise.
   std::shared_ptr<const TabulatedWavelengthDensity> wavelength_density;
-  /// The "sensors" section: illuminance grids and meters (render/sensors/ measures them).
-  SensorSettings sensors;
 
   /// The non-owning view the integrator works on.
   TransportScene transport_view() const;

@@ -7,6 +7,7 @@
 #include "render/scene/refracted_light_warning.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_load_context.h"
+#include "render/scene/scene_sensors.h"
 #include "transport/lights/emission_wavelength_density.h"
 #include "transport/lights/power_light_sampler.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -160,7 +161,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
-  if (const auto sensors = root.find("sensors")) scene->sensors = load_sensors(*sensors);
+  if (const auto sensors = root.find("sensors")) load_sensors(*sensors);  // checked here; measured by render/sensors/
 
   // ∂p/∂u, ∂p/∂v are read only by normal and bump maps: scenes without one skip their cost per hit.
   scene->geometry.set_surface_tangents(

@@ -120,4 +120,9 @@ SensorSettings load_sensors(const JsonCursor& sensors) {
   return settings;
 }
 
+SensorSettings scene_sensors(const nlohmann::json& document, const std::string& file) {
+  if (!document.is_object() || !document.contains("sensors")) return {};
+  return load_sensors(JsonCursor(document, file).at("sensors"));
+}
+
 }  // namespace rimu

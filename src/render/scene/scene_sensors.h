@@ -50,7 +50,10 @@ inline constexpr size_t kMaxSensorPoints = size_t(1) << 20;
 /// The largest per-point sample count a scene or --sensor-samples may ask for.
 inline constexpr int kMaxSensorSamples = 1 << 24;
 
-/// Reads the "sensors" object; InputError naming the key and what was expected on anything else.
+/// Reads the "sensors" object; InputError naming the key and what was expected on anything else. load_scene calls
+/// it to check the section with the rest of the scene.
 SensorSettings load_sensors(const JsonCursor& sensors);
+/// The "sensors" of a scene document (`file` names it in errors); empty if it has none.
+SensorSettings scene_sensors(const nlohmann::json& document, const std::string& file);
 
 }  // namespace rimu

@@ -9,6 +9,7 @@
 
 #include "render/reports/light_meter.h"
 #include "render/scene/scene.h"
+#include "render/scene/scene_sensors.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 
 namespace rimu {

@@ -62,7 +62,7 @@ SampledSpectrum IrradianceEstimator::irradiance(Vec3 position_m, Vec3 normal, co
   ray.origin = offset_ray_origin(position_m, normal, wi, scene_.scene_scale);
   ray.direction = wi;
   const PathStartVertex start{cosine_hemisphere_pdf(cos_theta), LightReference{position_m, normal}, at};
-  irradiance += integrator_.radiance_from_vertex(ray, lambda, sampler, start) * Float4(std::numbers::pi_v<float>);
+  irradiance += radiance_from_vertex(scene_, settings_, ray, lambda, sampler, start) * Float4(std::numbers::pi_v<float>);
   return irradiance;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "transport/integrators/path_integrator.h"
+#include "transport/integrators/path_start_vertex.h"
 
 namespace rimu {
 
@@ -13,7 +14,7 @@ namespace rimu {
 /// combined by the power heuristic, as at a Lambertian vertex of the path integrator: next-event estimation (one
 /// light chosen by the scene's light sampler, its shadow ray through panes) and a cosine-distributed direction
 /// (density cos θ/π) whose incident radiance is the integrator's full path estimate, its first emitter weighted
-/// against light sampling (PathIntegrator::radiance_from_vertex). Delta lights (point, spot) are reached by
+/// against light sampling (radiance_from_vertex, path_start_vertex.h). Delta lights (point, spot) are reached by
 /// next-event estimation alone.
 ///
 /// Dimension order per sample, after the caller's wavelengths: light choice (1), light position (2), receptor

@@ -1,4 +1,5 @@
 #include "transport/integrators/path_integrator.h"
+#include "transport/integrators/path_start_vertex.h"
 
 #include <cmath>
 #include <optional>
@@ -55,8 +56,13 @@ ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls,
   return {to_target / distance, distance};
 }
 
-SampledSpectrum PathIntegrator::trace(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
-                                      const PathGuidingContext& guiding, const PathStartVertex* start) const {
+namespace {
+
+// PathIntegrator::radiance, and radiance_from_vertex (path_start_vertex.h) when `start` is given. The scene and
+// settings keep the members' names, so the body reads as the member function it was.
+SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSettings& settings_, const Ray& camera_ray,
+                           const SampledWavelengths& lambda, Sampler& sampler, const PathGuidingContext& guiding,
+                           const PathStartVertex* start) {
   const auto& lights = *scene_.lights;
   const LightSampler& light_sampler = *scene_.light_sampler;
 
@@ -269,6 +275,20 @@ SampledSpectrum PathIntegrator::trace(const Ray& camera_ray, const SampledWavele
   }
   if (record) record->flush(*guiding.record);
   return single ? radiance * Float4(1.0f, 0.0f, 0.0f, 0.0f) : radiance;
+}
+
+}  // namespace
+
+SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
+                                         const PathGuidingContext& guiding) const {
+  return trace_path(scene_, settings_, camera_ray, lambda, sampler, guiding, nullptr);
+}
+
+SampledSpectrum radiance_from_vertex(const TransportScene& scene, const PathIntegratorSettings& settings, const Ray& ray,
+                                     const SampledWavelengths& lambda, Sampler& sampler, const PathStartVertex& start) {
+  PathIntegratorSettings unguided = settings;
+  unguided.guiding = false;
+  return trace_path(scene, unguided, ray, lambda, sampler, PathGuidingContext{}, &start);
 }
 
 }  // namespace rimu

@@ -64,17 +64,6 @@ struct PathGuidingContext {
   size_t record_limit = 0;
 };
 
-/// A path that starts on a scattering vertex the caller sampled (an illuminance meter's receptor,
-/// transport/integrators/irradiance_estimator.h) rather than at a camera: the first ray left `reference` in a
-/// direction drawn with density `direction_pdf` (solid angle, the same at every wavelength), so an emitter it hits
-/// is weighted by the power heuristic against next-event estimation from `sampling_point`, exactly as after a
-/// bounce. The caller estimates next-event estimation at that vertex itself.
-struct PathStartVertex {
-  float direction_pdf = 0.0f;
-  LightReference reference;
-  LightSamplingPoint sampling_point;
-};
-
 /// Estimates the radiance arriving along camera rays, per lane (see docs/transport.md for the estimator).
 ///
 /// Dimension order per camera sample (every estimator draws the same dimension for the same decision):
@@ -91,20 +80,9 @@ class PathIntegrator {
   }
   /// The same, guided by (and teaching) the field in `guiding` when settings.guiding is on.
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
-                           const PathGuidingContext& guiding) const {
-    return trace(ray, lambda, sampler, guiding, nullptr);
-  }
-  /// The radiance arriving at `start.reference` along `ray` (which leaves it), with an emitter hit along the ray
-  /// weighted against light sampling from there (PathStartVertex); lanes as radiance() above. Unguided.
-  SampledSpectrum radiance_from_vertex(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
-                                       const PathStartVertex& start) const {
-    return trace(ray, lambda, sampler, PathGuidingContext{}, &start);
-  }
+                           const PathGuidingContext& guiding) const;
 
  private:
-  SampledSpectrum trace(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
-                        const PathGuidingContext& guiding, const PathStartVertex* start) const;
-
   const TransportScene& scene_;
   PathIntegratorSettings settings_;
 };
