@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <array>
+#include <string>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -85,7 +86,7 @@ SensorReadings measure(const json& document) {
 }
 
 void check_case(const char* name, const MeterReading& r, double reference) {
-  MESSAGE(name << ": reference " << reference << " lx, Rimu " << r.value << " lx, standard error " << r.standard_error
+  MESSAGE(std::string(name) << ": reference " << reference << " lx, Rimu " << r.value << " lx, standard error " << r.standard_error
                << " lx, difference " << 100.0 * (r.value - reference) / reference << " %");
   CHECK(r.standard_error < 0.02 * reference);
   CHECK(std::abs(r.value - reference) <= kSigmas * r.standard_error);
