@@ -98,6 +98,23 @@ TEST_CASE("sensors: a point source of I cd over a plane gives I cos³θ / h² lx
   }
 }
 
+TEST_CASE("sensors: a grid lying on a floor measures the light above it, not the floor") {
+  // Designers put grids on floors. The receptor's rays leave on its normal side, so the grey floor it lies in
+  // neither shadows it nor adds to it (its reflection goes up, away from an upward meter on it): I cos³θ / h².
+  const double candela = 1000.0, h = 2.0;
+  const auto scene = load(scene_with(json::array({point_lamp(candela, {0, 0, h})}),
+                                     {{"samples", 256}, {"grids", {row_grid("floor", 0.0)}}},
+                                     json::array({{{"type", "quad"},
+                                                   {"vertices", {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}},
+                                                   {"material", "grey"}}})));
+  const SensorReadings readings = measure(scene);
+  for (int i = 0; i < 4; ++i) {
+    const double x = 0.5 + i, cos_theta = h / std::sqrt(h * h + x * x);
+    CAPTURE(x);
+    check_reading(readings.grids[0].points[size_t(i)], candela * cos_theta * cos_theta * cos_theta / (h * h));
+  }
+}
+
 TEST_CASE("sensors: a uniform sky of luminance L on an unobstructed upward plane gives π L lx") {
   // E = ∫ L cos θ dω over the hemisphere = π L. Both techniques (the sky sampled as a light, and cosine directions
   // that escape to it) carry weight here, so this checks their MIS weights sum to one.
