@@ -7,9 +7,9 @@
 #include "common/tool_main.h"
 
 #include "render/camera/camera_exposure.h"
+#include "render/scene/scene_sensors.h"
 #include "render/render_job.h"
 #include "render/film/render_size.h"
-#include "render/scene/scene_sensors.h"
 #include "merge_command.h"
 #include "spectral/error.h"
 
