@@ -49,11 +49,15 @@ RenderJobResult render_job(const RenderJob& job, const PartialImage* previous, I
   const DisplayOptions display = check_job_without_scene(job);
   RenderJobState state(job, previous, display, log);
   read_job_scene(state);
-  set_up_film(state);
-  plan_samples(state);
-  render_samples(state, interrupt);
-  write_job_outputs(state);
-  log_job_summary(state);
+  check_job_sensors(state);
+  if (!job.sensors_only) {
+    set_up_film(state);
+    plan_samples(state);
+    render_samples(state, interrupt);
+    write_job_outputs(state);
+    log_job_summary(state);
+  }
+  measure_job_sensors(state, interrupt);
   return state.result;
 }
 

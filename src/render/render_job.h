@@ -79,6 +79,13 @@ struct RenderJob {
   std::optional<double> noise_threshold;
   /// The frame number substituted for "${frame}" in the scene file's text (docs/scene-format.md, "Frames").
   std::optional<int> frame;
+
+  /// The scene's "sensors" (docs/scene-format.md, "Sensors"): measured after the image, or alone (sensors_only,
+  /// `--sensors-only`: no film, no EXR). Their CSV and JSON go to sensors_output + ".csv"/".json" (`--sensors-out`),
+  /// by default beside the EXR ("render.exr" → "render.sensors.csv"); sensor_samples overrides "sensors.samples".
+  bool sensors_only = false;
+  std::optional<std::filesystem::path> sensors_output;
+  std::optional<int> sensor_samples;
 };
 
 /// The hash of a render (64-bit FNV-1a, 16 hex digits): equal hashes mean the same render. It covers every file

@@ -22,6 +22,7 @@
 #include "render/output/partial_exr.h"
 #include "render/render_job.h"
 #include "render/scene/scene.h"
+#include "render/scene/scene_sensors.h"
 
 namespace rimu {
 
@@ -75,6 +76,9 @@ struct RenderJobState {
   std::optional<double> time_limit_s;
   std::unique_ptr<AdaptiveSampling> adaptive;  ///< --noise-threshold: which pixels still take samples
 
+  // check_job_sensors
+  SensorSettings sensors;  ///< the scene's "sensors" (render/scene/scene_sensors.h)
+
   // render_samples
   std::chrono::steady_clock::time_point render_start;
   RenderJobResult result;
@@ -101,5 +105,11 @@ void render_samples(RenderJobState& state, InterruptFlag& interrupt);
 void write_job_outputs(RenderJobState& state);
 /// One line of time, speed and discarded samples, and the files written (nothing with --quiet).
 void log_job_summary(const RenderJobState& state);
+/// Before rendering (render_job_sensors.cpp): the sensors can be measured in this scene (render/sensors/), their
+/// outputs can be written and are none of the scene's files; --sensors-only needs sensors.
+void check_job_sensors(RenderJobState& state);
+/// The scene's sensors, measured with the image's integrator, seed and sampler, written as CSV and JSON with a
+/// summary line per grid (not for a --samples partial or an interrupted render, which would mix with others).
+void measure_job_sensors(RenderJobState& state, InterruptFlag& interrupt);
 
 }  // namespace rimu

@@ -7,6 +7,7 @@
 #include "common/tool_main.h"
 
 #include "render/camera/camera_exposure.h"
+#include "render/scene/scene_sensors.h"
 #include "render/render_job.h"
 #include "render/film/render_size.h"
 #include "display_command.h"
@@ -87,6 +88,14 @@ int main(int argc, char** argv) {
                  "adaptive sampling: a pixel stops taking samples once the relative standard error of its luminance "
                  "is below this (0.01: 1 %); --spp is the maximum; the EXR gets 'spp' and 'relativeError' channels")
       ->check(CLI::Range(1e-6, 10.0));
+  std::string sensors_out;
+  app.add_flag("--sensors-only", job.sensors_only,
+               "measure the scene's \"sensors\" (lux grids and meters, docs/scene-format.md) without rendering the image");
+  app.add_option("--sensors-out", sensors_out, "base name of the sensors' BASE.csv and BASE.json (default: beside the "
+                                               "EXR, render.exr -> render.sensors.csv)");
+  app.add_option("--sensor-samples", job.sensor_samples, "samples per sensor point (overrides the scene's sensors.samples)")
+      ->check(CLI::Range(1, rimu::kMaxSensorSamples));
+
   std::string samples, checkpoint, resume, expect_hash;
   bool print_hash = false;
   app.add_option("--samples", samples, "render only sample indices BEGIN:END of every pixel (END exclusive), a "
@@ -104,6 +113,7 @@ int main(int argc, char** argv) {
     if (!scene.empty()) job.scene = scene;
     job.exr_output = output;
     if (!png.empty()) job.png_output = png;
+    if (!sensors_out.empty()) job.sensors_output = sensors_out;
     if (!film.empty()) job.film = film;
     if (!sampler.empty()) job.sampler = rimu::parse_sampler_kind(sampler);
     if (!wavelengths.empty()) job.wavelengths = rimu::parse_wavelength_mode(wavelengths);

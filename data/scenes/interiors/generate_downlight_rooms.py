@@ -164,9 +164,21 @@ def room(day):
     }
 
 
+def workplane_room():
+    """The night room with a lighting designer's 20 x 20 illuminance grid 0.8 m above the floor (just above the
+    0.75 m table top), kept 0.5 m from the walls, measuring upwards (docs/scene-format.md, "sensors")."""
+    scene = room(False)
+    scene["description"] += " A 20 x 20 lux grid 0.8 m above the floor."
+    scene["sensors"] = {"samples": 256, "grids": [
+        {"name": "workplane", "origin": [-X + 0.5, 0.8, -Z + 0.5], "u": [0, 0, 1], "v": [1, 0, 0],
+         "size": [2 * Z - 1, 2 * X - 1], "counts": [20, 20]}]}
+    return scene
+
+
 def main():
     for name, day in (("night_room_downlights.json", False), ("day_room_downlights.json", True)):
         (HERE / name).write_text(json.dumps(room(day), indent=1) + "\n")
+    (HERE / "night_room_workplane.json").write_text(json.dumps(workplane_room(), indent=1) + "\n")
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@
 #include "render/scene/refracted_light_warning.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_load_context.h"
+#include "render/scene/scene_sensors.h"
 #include "transport/lights/emission_wavelength_density.h"
 #include "transport/lights/power_light_sampler.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -145,7 +146,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   scene->source = name;
   const JsonCursor root(document, name);
   root.only_keys({"description", "camera", "film", "integrator", "spectra", "materials", "prototypes", "shapes",
-                  "lights", "media"});
+                  "lights", "media", "sensors"});
   LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}, {}, {}};
   if (const auto spectra = root.find("spectra")) {
     if (!spectra->is_object()) spectra->fail("expected an object of name → spectrum");
@@ -163,6 +164,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
+  if (const auto sensors = root.find("sensors")) load_sensors(*sensors);  // checked here; measured by render/sensors/
   // Included light definitions set it too (load_lights), as they are read.
   scene->photometric_lights = scene->photometric_lights || uses_photometric_units(document);
 

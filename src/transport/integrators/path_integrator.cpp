@@ -1,4 +1,5 @@
 #include "transport/integrators/path_integrator.h"
+#include "transport/integrators/path_start_vertex.h"
 
 #include <cmath>
 #include <optional>
@@ -55,8 +56,13 @@ ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls,
   return {to_target / distance, distance};
 }
 
-SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
-                                         const PathGuidingContext& guiding) const {
+namespace {
+
+// PathIntegrator::radiance, and radiance_from_vertex (path_start_vertex.h) when `start` is given. The scene and
+// settings keep the members' names, so the body reads as the member function it was.
+SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSettings& settings_, const Ray& camera_ray,
+                           const SampledWavelengths& lambda, Sampler& sampler, const PathGuidingContext& guiding,
+                           const PathStartVertex* start) {
   const auto& lights = *scene_.lights;
   const LightSampler& light_sampler = *scene_.light_sampler;
 
@@ -87,6 +93,13 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
   float previous_bsdf_sum = sum(pdf_ratio);   // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
   LightReference previous_reference{};
   LightSamplingPoint previous_sampling_point{};  // where the light sampler chose for the previous vertex
+  if (start) {  // a vertex the caller sampled with a wavelength-independent density: S_bsdf = q Σ_k R_k
+    previous_specular = false;
+    previous_hero_pdf = start->direction_pdf;
+    previous_bsdf_sum = start->direction_pdf * previous_sum_ratio;
+    previous_reference = start->reference;
+    previous_sampling_point = start->sampling_point;
+  }
 
   // Adds an emitter seen along the sampled direction: spectral MIS, and power-heuristic MIS against light sampling.
   const DirectLighting strategy = settings_.direct_lighting;
@@ -264,6 +277,20 @@ SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWav
   }
   if (record) record->flush(*guiding.record);
   return single ? radiance * Float4(1.0f, 0.0f, 0.0f, 0.0f) : radiance;
+}
+
+}  // namespace
+
+SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
+                                         const PathGuidingContext& guiding) const {
+  return trace_path(scene_, settings_, camera_ray, lambda, sampler, guiding, nullptr);
+}
+
+SampledSpectrum radiance_from_vertex(const TransportScene& scene, const PathIntegratorSettings& settings, const Ray& ray,
+                                     const SampledWavelengths& lambda, Sampler& sampler, const PathStartVertex& start) {
+  PathIntegratorSettings unguided = settings;
+  unguided.guiding = false;
+  return trace_path(scene, unguided, ray, lambda, sampler, PathGuidingContext{}, &start);
 }
 
 }  // namespace rimu

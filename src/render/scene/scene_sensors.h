@@ -1,0 +1,59 @@
+// The scene's "sensors" section (docs/scene-format.md, "Sensors"): where illuminance and luminance are measured.
+// Parsing only; the measurement is render/sensors/.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/scene/json_cursor.h"
+#include "transport/geometry/vector.h"
+
+namespace rimu {
+
+/// A rectangle of illuminance meters: origin is a corner, u and v its unit edge directions (perpendicular),
+/// size_m its edge lengths; the points are the centres of counts[0] × counts[1] equal cells (as EN 12464-1's
+/// grids). Every meter faces `normal` (unit, ±u×v) and sees only the light arriving on that side.
+struct IlluminanceGrid {
+  std::string name;
+  Vec3 origin, u, v, normal;
+  float size_u_m = 0, size_v_m = 0;
+  int count_u = 1, count_v = 1;
+  /// The meter point of cell (i, j), i along u and j along v.
+  Vec3 point(int i, int j) const {
+    return origin + u * ((float(i) + 0.5f) * size_u_m / float(count_u)) +
+           v * ((float(j) + 0.5f) * size_v_m / float(count_v));
+  }
+};
+
+/// One meter at a point: illuminance on a plane facing `direction` (a cosine-corrected receptor), or the luminance
+/// seen looking along `direction` (a luminance meter's line of sight).
+struct PointSensor {
+  enum class Kind { illuminance, luminance };
+  std::string name;
+  Kind kind = Kind::illuminance;
+  Vec3 position, direction;  ///< direction is unit
+};
+
+/// Everything in "sensors". `samples` is the Monte Carlo sample count per meter point (`--sensor-samples` overrides it).
+struct SensorSettings {
+  int samples = 256;
+  std::vector<IlluminanceGrid> grids;
+  std::vector<PointSensor> points;
+  bool empty() const { return grids.empty() && points.empty(); }
+  size_t point_count() const;
+};
+
+/// The most sample points one scene may ask for (grids and meters together), so a typo in a spacing cannot ask for
+/// billions.
+inline constexpr size_t kMaxSensorPoints = size_t(1) << 20;
+/// The largest per-point sample count a scene or --sensor-samples may ask for.
+inline constexpr int kMaxSensorSamples = 1 << 24;
+
+/// Reads the "sensors" object; InputError naming the key and what was expected on anything else. load_scene calls
+/// it to check the section with the rest of the scene.
+SensorSettings load_sensors(const JsonCursor& sensors);
+/// The "sensors" of a scene document (`file` names it in errors); empty if it has none.
+SensorSettings scene_sensors(const nlohmann::json& document, const std::string& file);
+
+}  // namespace rimu

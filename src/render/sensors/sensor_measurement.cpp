@@ -1,0 +1,157 @@
+#include "render/sensors/sensor_measurement.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "spectral/colorimetry/photometry_constants.h"
+#include "spectral/error.h"
+#include "transport/integrators/irradiance_estimator.h"
+#include "transport/sampling/wavelength_modes.h"
+
+namespace rimu {
+namespace {
+
+// One meter point of the flattened list: where, which way, and what it reads.
+struct MeterPoint {
+  Vec3 position, direction;
+  bool illuminance = true;
+};
+
+std::vector<MeterPoint> meter_points(const SensorSettings& sensors) {
+  std::vector<MeterPoint> points;
+  points.reserve(sensors.point_count());
+  for (const IlluminanceGrid& g : sensors.grids)
+    for (int j = 0; j < g.count_v; ++j)
+      for (int i = 0; i < g.count_u; ++i) points.push_back({g.point(i, j), g.normal, true});
+  for (const PointSensor& p : sensors.points)
+    points.push_back({p.position, p.direction, p.kind == PointSensor::Kind::illuminance});
+  return points;
+}
+
+// K_m Σ_j Xⱼ V(λⱼ)/pⱼ / 4: the photometric value of one path's lanes (dead lanes, pdf 0, carry nothing), or
+// nullopt for an estimate the film would discard (NaN, infinite, negative).
+std::optional<double> photometric(const SampledSpectrum& x, const SampledWavelengths& lambda, const TabulatedSpectrum& v) {
+  double sum = 0.0;
+  for (int j = 0; j < kLaneCount; ++j) {
+    const float pdf = lambda.pdf()[j];
+    if (pdf == 0.0f) continue;
+    if (!std::isfinite(x[j]) || x[j] < 0.0f || !std::isfinite(pdf) || pdf < 0.0f) return std::nullopt;
+    sum += double(x[j]) * v.value(lambda.lambda_nm(j)) / double(pdf);
+  }
+  return kMaxLuminousEfficacy_lm_W * sum / double(kLaneCount);
+}
+
+struct Accumulator {
+  double sum = 0, squares = 0;
+  int count = 0;
+  MeterReading reading() const {
+    MeterReading r;
+    r.samples = count;
+    if (count == 0) return r;
+    r.value = sum / count;
+    if (count > 1) {
+      const double variance = std::max(0.0, (squares - sum * r.value) / double(count - 1));
+      r.standard_error = std::sqrt(variance / count);
+    }
+    return r;
+  }
+};
+
+GridReadings grid_statistics(std::vector<MeterReading> points) {
+  GridReadings g;
+  g.points = std::move(points);
+  if (g.points.empty()) return g;
+  g.e_min_lx = g.e_max_lx = g.points.front().value;
+  double sum = 0.0;
+  for (const MeterReading& p : g.points) {
+    g.e_min_lx = std::min(g.e_min_lx, p.value);
+    g.e_max_lx = std::max(g.e_max_lx, p.value);
+    sum += p.value;
+  }
+  g.e_avg_lx = sum / double(g.points.size());
+  g.u0 = g.e_avg_lx > 0.0 ? g.e_min_lx / g.e_avg_lx : 0.0;
+  return g;
+}
+
+}  // namespace
+
+void check_sensor_scene(const Scene& scene, const std::string& where) {
+  if (scene.has_media())
+    throw InputError({where, 0, "/sensors"}, "sensors are not measured in scenes with participating media yet "
+                                             "(\"media\"): remove the media or the sensors");
+  if (scene.settings.integrator.wavelengths == WavelengthMode::rgb)
+    throw InputError({where, 0, "/sensors"}, "sensors need spectral transport: rgb lanes are not wavelengths, so "
+                                             "lux cannot be weighted by V(λ); use integrator.wavelengths \"hero\"");
+}
+
+SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors, const TabulatedSpectrum& v,
+                               const SensorMeasureOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  check_sensor_scene(scene, scene.source);
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
+
+  const TransportScene view = scene.transport_view();
+  PathIntegratorSettings settings = scene.settings.integrator;
+  settings.guiding = false;  // the receptor's paths are unguided (no field is learned for them)
+  const IrradianceEstimator estimator(view, settings);
+  const std::vector<MeterPoint> points = meter_points(sensors);
+  std::vector<Accumulator> sums(points.size());
+  const std::unique_ptr<Sampler> prototype = make_sampler(options.sampler, options.seed);
+  std::atomic<bool> stopped{false};
+  std::atomic<uint64_t> discarded{0};
+
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    std::unique_ptr<Sampler> sampler = prototype->clone();
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      if (options.stop_requested && options.stop_requested()) {
+        stopped = true;
+        return;
+      }
+      const MeterPoint& point = points[p];
+      Accumulator& acc = sums[p];
+      // Each point is its own "pixel" of the sampler (x, y = the index's low and high halves), so its samples are
+      // the same whichever thread takes it.
+      const int x = int(p & 0xffff), y = int(p >> 16);
+      for (int s = 0; s < options.samples; ++s) {
+        sampler->start_pixel_sample(x, y, uint32_t(s));
+        const SampledWavelengths lambda =
+            sample_path_wavelengths(settings.wavelengths, *sampler, scene.wavelength_density.get());
+        const SampledSpectrum value = point.illuminance
+                                          ? estimator.irradiance(point.position, point.direction, lambda, *sampler)
+                                          : estimator.radiance(Ray{point.position, point.direction}, lambda, *sampler);
+        const std::optional<double> photometric_value = photometric(value, lambda, v);
+        if (!photometric_value) {
+          ++discarded;
+          continue;
+        }
+        acc.sum += *photometric_value;
+        acc.squares += *photometric_value * *photometric_value;
+        ++acc.count;
+      }
+    }
+  });
+
+  SensorReadings readings;
+  readings.interrupted = stopped;
+  readings.discarded_samples = discarded;
+  size_t next = 0;
+  for (const IlluminanceGrid& g : sensors.grids) {
+    std::vector<MeterReading> grid_points;
+    for (int k = 0; k < g.count_u * g.count_v; ++k) grid_points.push_back(sums[next++].reading());
+    readings.grids.push_back(grid_statistics(std::move(grid_points)));
+  }
+  for (size_t k = 0; k < sensors.points.size(); ++k) readings.meters.push_back(sums[next++].reading());
+  readings.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return readings;
+}
+
+}  // namespace rimu

@@ -1,0 +1,112 @@
+#include "render/sensors/sensor_outputs.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "spectral/io/output_file.h"
+
+namespace rimu {
+namespace {
+
+// Enough digits to keep a reading's standard error meaningful (a 0.1 % error on 100 000 lx needs 7).
+std::string number_text(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.7g", x);
+  return buffer;
+}
+
+nlohmann::json vec3_json(Vec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+// A number JSON can hold (a reading is finite by construction; this keeps a 0/0 statistic out of the file).
+nlohmann::json finite_json(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+SensorOutputPaths sensor_output_paths(const std::filesystem::path& base) {
+  return {std::filesystem::path(base.string() + ".csv"), std::filesystem::path(base.string() + ".json")};
+}
+
+std::filesystem::path default_sensor_output_base(const std::filesystem::path& exr) {
+  std::filesystem::path base = exr;
+  if (lower_case_extension(base) == "exr") base.replace_extension();
+  return std::filesystem::path(base.string() + ".sensors");
+}
+
+std::string sensor_csv(const SensorSettings& sensors, const SensorReadings& readings) {
+  std::ostringstream csv;
+  csv << "sensor,quantity,i,j,x,y,z,dx,dy,dz,value,standard_error,unit,samples\n";
+  auto row = [&](const std::string& name, bool illuminance, const std::string& i, const std::string& j, Vec3 p, Vec3 d,
+                 const MeterReading& r) {
+    csv << name << ',' << (illuminance ? "illuminance" : "luminance") << ',' << i << ',' << j;
+    for (float c : {p.x, p.y, p.z, d.x, d.y, d.z}) csv << ',' << number_text(c);
+    csv << ',' << number_text(r.value) << ',' << number_text(r.standard_error) << ',' << (illuminance ? "lx" : "nt")
+        << ',' << r.samples << '\n';
+  };
+  for (size_t g = 0; g < sensors.grids.size() && g < readings.grids.size(); ++g) {
+    const IlluminanceGrid& grid = sensors.grids[g];
+    for (int j = 0; j < grid.count_v; ++j)
+      for (int i = 0; i < grid.count_u; ++i)
+        row(grid.name, true, std::to_string(i), std::to_string(j), grid.point(i, j), grid.normal,
+            readings.grids[g].points[size_t(j * grid.count_u + i)]);
+  }
+  for (size_t k = 0; k < sensors.points.size() && k < readings.meters.size(); ++k) {
+    const PointSensor& p = sensors.points[k];
+    row(p.name, p.kind == PointSensor::Kind::illuminance, "", "", p.position, p.direction, readings.meters[k]);
+  }
+  return csv.str();
+}
+
+nlohmann::json sensor_json(const SensorSettings& sensors, const SensorReadings& readings, int samples) {
+  nlohmann::json doc;
+  doc["samples_per_point"] = samples;
+  doc["discarded_samples"] = readings.discarded_samples;
+  doc["seconds"] = readings.seconds;
+  doc["grids"] = nlohmann::json::array();
+  for (size_t g = 0; g < sensors.grids.size() && g < readings.grids.size(); ++g) {
+    const IlluminanceGrid& grid = sensors.grids[g];
+    const GridReadings& r = readings.grids[g];
+    nlohmann::json points = nlohmann::json::array();
+    for (int j = 0; j < grid.count_v; ++j)
+      for (int i = 0; i < grid.count_u; ++i) {
+        const MeterReading& m = r.points[size_t(j * grid.count_u + i)];
+        points.push_back({{"i", i}, {"j", j}, {"position", vec3_json(grid.point(i, j))}, {"value", m.value},
+                          {"standard_error", m.standard_error}});
+      }
+    doc["grids"].push_back({{"name", grid.name},
+                            {"quantity", "illuminance"},
+                            {"unit", "lx"},
+                            {"origin", vec3_json(grid.origin)},
+                            {"u", vec3_json(grid.u)},
+                            {"v", vec3_json(grid.v)},
+                            {"normal", vec3_json(grid.normal)},
+                            {"size_m", {grid.size_u_m, grid.size_v_m}},
+                            {"counts", {grid.count_u, grid.count_v}},
+                            {"e_min", r.e_min_lx},
+                            {"e_avg", r.e_avg_lx},
+                            {"e_max", r.e_max_lx},
+                            {"u0", finite_json(r.u0)},
+                            {"points", points}});
+  }
+  doc["meters"] = nlohmann::json::array();
+  for (size_t k = 0; k < sensors.points.size() && k < readings.meters.size(); ++k) {
+    const PointSensor& p = sensors.points[k];
+    const bool illuminance = p.kind == PointSensor::Kind::illuminance;
+    doc["meters"].push_back({{"name", p.name},
+                             {"quantity", illuminance ? "illuminance" : "luminance"},
+                             {"unit", illuminance ? "lx" : "nt"},
+                             {"position", vec3_json(p.position)},
+                             {illuminance ? "normal" : "direction", vec3_json(p.direction)},
+                             {"value", readings.meters[k].value},
+                             {"standard_error", readings.meters[k].standard_error}});
+  }
+  return doc;
+}
+
+void write_sensor_outputs(const SensorOutputPaths& paths, const SensorSettings& sensors, const SensorReadings& readings,
+                          int samples) {
+  write_text_file(paths.csv, sensor_csv(sensors, readings));
+  write_text_file(paths.json, sensor_json(sensors, readings, samples).dump(2) + "\n");
+}
+
+}  // namespace rimu

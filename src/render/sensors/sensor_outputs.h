@@ -1,0 +1,33 @@
+// What a sensor measurement hands a lighting designer: a CSV table (one row per meter point) and a JSON document
+// (the same with each grid's Emin, Eavg, Emax and U0), written atomically.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "render/scene/scene_sensors.h"
+#include "render/sensors/sensor_measurement.h"
+
+namespace rimu {
+
+/// The files of a measurement with base name `base`: base.csv and base.json.
+struct SensorOutputPaths {
+  std::filesystem::path csv, json;
+};
+SensorOutputPaths sensor_output_paths(const std::filesystem::path& base);
+/// The default base beside the EXR: "render.exr" → "render.sensors" (render.sensors.csv, render.sensors.json).
+std::filesystem::path default_sensor_output_base(const std::filesystem::path& exr);
+
+/// One row per point: sensor, quantity (illuminance | luminance), i, j (grid cell; empty for meters), x, y, z,
+/// the direction, value, standard_error, unit (lx | nt), samples.
+std::string sensor_csv(const SensorSettings& sensors, const SensorReadings& readings);
+/// {"samples", "grids": [{name, origin, u, v, normal, size_m, counts, unit, e_min, e_avg, e_max, u0,
+/// points: [{i, j, position, value, standard_error}]}], "meters": [...]}.
+nlohmann::json sensor_json(const SensorSettings& sensors, const SensorReadings& readings, int samples);
+
+/// Writes both files through write_atomically (spectral/io/output_file.h): each appears complete or not at all.
+void write_sensor_outputs(const SensorOutputPaths& paths, const SensorSettings& sensors, const SensorReadings& readings,
+                          int samples);
+
+}  // namespace rimu

@@ -1,0 +1,23 @@
+// The false-colour plan of an illuminance grid: each cell coloured by its lux on a colour scale with a legend in lx,
+// isolux contours over it, and the grid's Emin, Eavg, Emax and U0 in the title. Drawn by gnuplot
+// (spectral/io/gnuplot_process.h: no shell, private folder, atomic install), as every plot of Rimu's.
+#pragma once
+
+#include <filesystem>
+
+#include "render/scene/scene_sensors.h"
+#include "render/sensors/sensor_measurement.h"
+#include "spectral/io/gnuplot_process.h"
+
+namespace rimu {
+
+/// The gnuplot job that draws `grid`'s plan (axes: metres along u and v from the grid's origin).
+GnuplotJob grid_plan_job(const IlluminanceGrid& grid, const GridReadings& readings);
+
+/// Draws it to `png` (RenderError if gnuplot fails; InputError if `png` cannot be written).
+void write_grid_plan(const std::filesystem::path& png, const IlluminanceGrid& grid, const GridReadings& readings);
+
+/// The plan's name for a grid: "base.<grid name>.png".
+std::filesystem::path grid_plan_path(const std::filesystem::path& base, const IlluminanceGrid& grid);
+
+}  // namespace rimu
