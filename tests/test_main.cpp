@@ -10,4 +10,6 @@ SpectralLibrary& library() {
   return instance;
 }
 
+std::filesystem::path test_data(const std::string& name) { return std::filesystem::path(RIMU_TEST_DATA_DIR) / name; }
+
 }  // namespace rimu::test

@@ -15,7 +15,7 @@ namespace rimu::test {
 SpectralLibrary& library();
 
 /// tests/data, for test-only tables (e.g. the Sharma 2005 CIEDE2000 pairs).
-inline std::filesystem::path test_data(const std::string& name) { return std::filesystem::path(RIMU_TEST_DATA_DIR) / name; }
+std::filesystem::path test_data(const std::string& name);
 
 /// A folder of its own per test case (CTest runs test cases as parallel processes, so the name carries the pid and a
 /// counter): <temp>/rimu_<name>_<pid>_<n>, created empty and removed with its contents afterwards.
