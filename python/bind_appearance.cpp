@@ -223,7 +223,7 @@ void bind_appearance(py::module_& m) {
          "Example: lib.planckian_xy(2856) -> array([0.4475, 0.4074]) (about illuminant A)")
       .def(
           "xy_to_cct",
-          [](SpectralLibrary& l, const ArrayLike& xy, int observer) {
+          [](SpectralLibrary& l, const ArrayLike& xy, int observer, const std::string& method) {
             const Array a = numeric_array(xy, "xy");
             const std::vector<py::ssize_t> shape = shape_of(a);
             if (shape.empty() || shape.back() != 2)
@@ -235,12 +235,12 @@ void bind_appearance(py::module_& m) {
               if (!(a.data()[2 * i + 1] > 0.0 && a.data()[2 * i] >= 0.0))
                 throw InputError(at, "expected a chromaticity with x >= 0 and y > 0");
             }
-            const PlanckianLocus locus(l.observer(standard_observer_option(observer, argument("observer"))));
+            const CctSolver solver = cct_solver(l, method, standard_observer_option(observer, argument("observer")));
             const std::size_t n = size_t(a.size() / 2);
             std::vector<CctDuv> results(n);
             for_each_range(n, [&](std::size_t begin, std::size_t end) {
               for (std::size_t i = begin; i < end; ++i)
-                results[i] = locus.cct_duv(uv1960_of(Chromaticity{a.data()[2 * i], a.data()[2 * i + 1]}));
+                results[i] = solver.cct_duv(uv1960_of(Chromaticity{a.data()[2 * i], a.data()[2 * i + 1]}));
             });
             py::array_t<double> cct = result_array(leading, 0), duv = result_array(leading, 0);
             py::array_t<bool> valid(leading);
@@ -251,10 +251,12 @@ void bind_appearance(py::module_& m) {
             }
             return py::make_tuple(cct, duv, valid);
           },
-          py::arg("xy"), py::arg("observer") = 2,
-          "CCT (K) and Duv of chromaticities (..., 2) by Ohno (2013), with `valid` False where the tools print a "
-          "warning instead of a CCT (below 1000 K, above 25000 K, or |Duv| > 0.05): (cct_k, duv, valid), each of "
-          "the leading shape.\n\n"
+          py::arg("xy"), py::arg("observer") = 2, py::arg("method") = "ohno2013",
+          "CCT (K) and Duv of chromaticities (..., 2) by Ohno (2013) or, with method='robertson1968', by "
+          "Robertson's isotemperature lines (2° observer only; within 0.08 MK⁻¹ of the exact CCT, Duv within "
+          "1.1e-4), with `valid` False where the tools print a warning instead of a CCT (outside the "
+          "method's range: Ohno 1000-25000 K, Robertson 1667 K to infinity; or |Duv| > 0.05): (cct_k, duv, "
+          "valid), each of the leading shape.\n\n"
           "Example: lib.xy_to_cct([0.31271, 0.32902]) -> (array(6503.5...), array(0.0032...), array(True))");
 }
 

@@ -73,9 +73,20 @@ py::array_t<double> reflectance_stack_xyz(SpectralLibrary& l, const Array& wl, c
   return out;
 }
 
-py::tuple cct_tuple(const CctDuv& c) { return py::make_tuple(c.cct_k, c.duv, cct_validity_name(c.validity)); }
+py::tuple cct_tuple(const CctDuv& c, const CctSolver& solver) {
+  return py::make_tuple(c.cct_k, c.duv, solver.validity_name(c.validity));
+}
 
 }  // namespace
+
+CctSolver cct_solver(SpectralLibrary& library, const std::string& method, StandardObserver observer) {
+  if (cct_method_from_name(method, argument("method")) == CctMethod::ohno2013)
+    return CctSolver(library.observer(observer));
+  if (observer != StandardObserver::cie1931_2deg)
+    throw InputError(argument("observer"), "robertson1968 is tabulated for the CIE 1931 2° observer only: "
+                                           "use observer=2, or method='ohno2013' for the 10° observer");
+  return CctSolver(RobertsonCct::from_csv(library.table("cmf/robertson_1968_isotemperature_lines.csv")));
+}
 
 void bind_colorimetry(py::module_& m) {
   auto lib = py::reinterpret_borrow<py::class_<SpectralLibrary>>(m.attr("Library"));
@@ -157,17 +168,21 @@ void bind_colorimetry(py::module_& m) {
           "\n\nExample: white = lib.white_xyz(np.arange(380, 781, 10), 'D50')")
       .def(
           "cct_duv",
-          [](SpectralLibrary& l, const Array& wl, const Array& v) {
+          [](SpectralLibrary& l, const Array& wl, const Array& v, const std::string& method) {
             const TabulatedSpectrum s = spectrum_from_arrays(wl, v, SpectrumKind::light, l);
+            const CctSolver solver = cct_solver(l, method, StandardObserver::cie1931_2deg);
             const Xyz xyz = for_argument("wavelengths_nm", [&] {
               return light_xyz(s, StandardObserver::cie1931_2deg, default_tristimulus_method(s), l);
             });
-            return cct_tuple(PlanckianLocus(l.observer(StandardObserver::cie1931_2deg)).cct_duv(uv1960_of(xyz)));
+            return cct_tuple(solver.cct_duv(uv1960_of(xyz)), solver);
           },
-          py::arg("wavelengths_nm"), py::arg("values"),
-          "(CCT in K, Duv, validity) by Ohno (2013), CIE 1931 2°. validity is 'ok', or what the tools print beside a "
-          "CCT that must not be presented as one: 'below 1000 K', 'above 25000 K' (the nearest end of the locus) or "
-          "'|Duv| > 0.05' (too far from the locus for a colour temperature to mean anything)."
+          py::arg("wavelengths_nm"), py::arg("values"), py::arg("method") = "ohno2013",
+          "(CCT in K, Duv, validity), CIE 1931 2°. method: 'ohno2013' (Ohno 2013 on the exact locus, 1000-25000 K, "
+          "today's c2, within 0.011 K) or 'robertson1968' (Robertson's isotemperature lines, 1667 K to infinity, "
+          "within 0.08 MK⁻¹: 0.5 K at 6500 K). validity is 'ok', or what the tools print "
+          "beside a CCT that must not be presented as one: 'below 1000 K' / 'below 1667 K', 'above 25000 K' / "
+          "'bluer than an infinite temperature' (the nearest end of the method's range) or '|Duv| > 0.05' (too far "
+          "from the locus for a colour temperature to mean anything)."
           "\n\nExample: lib.cct_duv(*lib.illuminant('A')) -> (2855.5, 2.4e-08, 'ok')")
       .def(
           "luminous_efficacy",

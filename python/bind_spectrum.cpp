@@ -245,12 +245,13 @@ void bind_spectrum(py::module_& m) {
           "astm-e308.\n\nExample: rimu.colorchecker('dark skin').to_xyz('D65')")
       .def(
           "cct",
-          [](const PySpectrum& s, const OptionalLibrary& library) {
+          [](const PySpectrum& s, const OptionalLibrary& library, const std::string& method) {
             const py::tuple a = arrays_of(s);
-            return py::tuple(library_object(library_of(library)).attr("cct_duv")(a[0], a[1]));
+            return py::tuple(library_object(library_of(library)).attr("cct_duv")(a[0], a[1], method));
           },
-          py::arg("library") = py::none(),
-          "(CCT in K, Duv, validity) of a light (Library.cct_duv).\n\nExample: rimu.illuminant('A').cct()")
+          py::arg("library") = py::none(), py::arg("method") = "ohno2013",
+          "(CCT in K, Duv, validity) of a light (Library.cct_duv; method 'ohno2013' or 'robertson1968')."
+          "\n\nExample: rimu.illuminant('A').cct(method='robertson1968')")
       .def(
           "cri",
           [](const PySpectrum& s, const OptionalLibrary& library) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "spectral/colorimetry/cct_method.h"
 #include "spectral/colorimetry/chromaticity.h"
 #include "spectral/error.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
@@ -74,6 +75,10 @@ const RgbColourSpace& space_named(const std::string& name, const std::string& ar
 /// install), then the build tree's share/rimu/data, then the install layout's share/rimu/data beside
 /// lib/python3/dist-packages.
 std::string default_data_root();
+
+/// The CCT method named by the Python argument `method` ("ohno2013" or "robertson1968"), set up for `observer`
+/// (Robertson's table exists for the 1931 2° observer only: anything else is a ValueError naming `observer`).
+CctSolver cct_solver(SpectralLibrary& library, const std::string& method, StandardObserver observer);
 
 void bind_colorimetry(py::module_& m);
 void bind_quality(py::module_& m);

@@ -187,6 +187,28 @@ class ColourTemperature(unittest.TestCase):
         self.assertTrue(np.all(valid))
         self.assertFalse(self.lib.xy_to_cct([0.3, 0.5])[2])
 
+    def test_robertson_1968_beside_ohno_2013(self):
+        # Robertson's table lies on today's locus, so the two agree within the 0.1 MK^-1 that
+        # tests/spectral/robertson_cct_test.cpp bounds Robertson's interpolation by (Ohno's error is 0.011 K).
+        xy = self.lib.planckian_xy(np.array([[2000.0, 2856.0], [6500.0, 15000.0]]), duv=0.005)
+        ohno, duv_ohno, _ = self.lib.xy_to_cct(xy)
+        rob, duv_rob, valid = self.lib.xy_to_cct(xy, method="robertson1968")
+        self.assertEqual(rob.shape, (2, 2))
+        self.assertTrue(np.all(valid))
+        np.testing.assert_allclose(1e6 / rob, 1e6 / ohno, atol=0.1)
+        np.testing.assert_allclose(duv_rob, duv_ohno, atol=1.1e-4)
+        # The same method through a spectrum: illuminant A, 2848 K at c2 = 1.435e-2, is 2855.5 K on today's c2;
+        # 0.1 MK^-1 is 0.8 K there.
+        cct, _, validity = rimu.illuminant("A").cct(method="robertson1968")
+        self.assertEqual(validity, "ok")
+        self.assertAlmostEqual(cct, 2848.0 * 1.438777 / 1.435, delta=0.8)
+        # Robertson's range ends at 1667 K, and says so in its own words.
+        self.assertEqual(rimu.blackbody(1200.0).cct(method="robertson1968")[2], "below 1667 K")
+        with self.assertRaisesRegex(ValueError, r"^method: unknown CCT method 'robertson'"):
+            self.lib.xy_to_cct([0.31, 0.33], method="robertson")
+        with self.assertRaisesRegex(ValueError, r"^observer: robertson1968 is tabulated for the CIE 1931 2"):
+            self.lib.xy_to_cct([0.31, 0.33], observer=10, method="robertson1968")
+
 
 class NewFunctionsRefuseOrAnswerFinite(unittest.TestCase):
     """The sweep of test_validation.py, for the functions added with #28."""
