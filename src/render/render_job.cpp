@@ -71,6 +71,8 @@ RenderJobResult resume_render_job(const RenderJob& job, InterruptFlag& interrupt
   if (job.checkpoint_interval_s) resumed.checkpoint_interval_s = job.checkpoint_interval_s;
   resumed.preview_output = job.preview_output;
   resumed.preview_interval_s = job.preview_interval_s;
+  if (job.sensors_output) resumed.sensors_output = job.sensors_output;
+  if (job.sensor_samples) resumed.sensor_samples = job.sensor_samples;
   const SampleRange requested = previous.record.requested;
   const std::vector<SampleRange>& held = previous.record.samples;
   if (held.size() > 1 || (held.size() == 1 && held.front().begin != requested.begin))

@@ -93,6 +93,10 @@ std::string render_job_json(const RenderJob& job) {
   if (job.checkpoint_interval_s) j["checkpoint_s"] = *job.checkpoint_interval_s;
   if (job.time_limit_s) j["time_limit_s"] = *job.time_limit_s;
   if (job.png_output) j["png"] = std::filesystem::absolute(*job.png_output).lexically_normal().string();
+  // The sensors are measured after the image, so a resumed render measures them too: with the same options.
+  if (job.sensors_output)
+    j["sensors_out"] = std::filesystem::absolute(*job.sensors_output).lexically_normal().string();
+  if (job.sensor_samples) j["sensor_samples"] = *job.sensor_samples;
   j["float"] = !job.half_exr;  // the key of the records written when half was the default
   j["exposure_ev"] = job.exposure_ev;
   j["view"] = job.view;
@@ -129,6 +133,8 @@ RenderJob render_job_from_json(const std::string& json, const std::string& where
     if (j.contains("checkpoint_s")) job.checkpoint_interval_s = j["checkpoint_s"].get<double>();
     if (j.contains("time_limit_s")) job.time_limit_s = j["time_limit_s"].get<double>();
     if (j.contains("png")) job.png_output = j["png"].get<std::string>();
+    if (j.contains("sensors_out")) job.sensors_output = j["sensors_out"].get<std::string>();
+    if (j.contains("sensor_samples")) job.sensor_samples = j["sensor_samples"].get<int>();
     job.half_exr = !j.value("float", true);
     job.exposure_ev = j.value("exposure_ev", 0.0);
     job.view = j.value("view", std::string("Standard"));

@@ -223,6 +223,20 @@ TEST_CASE("partial renders: --half partials merge to half, record --half for --r
   CHECK_FALSE(render_job_from_json(R"({"float": true})", "old.exr").half_exr);
 }
 
+TEST_CASE("the recorded job keeps the sensors' options, so --resume measures them as the first run would") {
+  RenderJob job;
+  job.sensors_output = "/tmp/room.sensors";
+  job.sensor_samples = 2048;
+  const RenderJob back = render_job_from_json(render_job_json(job), "record");
+  REQUIRE(back.sensors_output);
+  CHECK(*back.sensors_output == std::filesystem::path("/tmp/room.sensors"));
+  CHECK(back.sensor_samples == std::optional<int>(2048));
+  // Without them the record has neither (the scene's "sensors" defaults then apply, as on the first run).
+  const RenderJob plain = render_job_from_json(render_job_json(RenderJob{}), "record");
+  CHECK_FALSE(plain.sensors_output);
+  CHECK_FALSE(plain.sensor_samples);
+}
+
 TEST_CASE("partial renders: --samples beyond the render's spp and malformed ranges are input errors") {
   CHECK_THROWS_AS(parse_sample_range("5:5", "--samples"), InputError);
   CHECK_THROWS_AS(parse_sample_range("0-64", "--samples"), InputError);
