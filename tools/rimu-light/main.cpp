@@ -192,6 +192,8 @@ void author_ies(const Options& o, rimu::SpectralLibrary& library, const std::fil
       o.spot.power_convention != spot_defaults.power_convention)
     throw InputError({"", 0, "--cone"}, "an ies light's beam is its file's table: --cone, --softness and "
                                         "--power-convention do not apply");
+  check_not_input(o.output, "-o", {{o.ies_file, "--file"}});
+  check_not_input(o.plot, "--plot", {{o.ies_file, "--file"}});
   rimu::IesLightDefinition light;
   rimu::naming_shape_option(o.shape, [&] {
     light = rimu::ies_light_from_options(o.ies_file, a.lumens, o.shape.spectrum(), library, here);

@@ -22,13 +22,19 @@ const char* symmetry_name(const IesPhotometry& ies) {
   return "full (0-360°)";
 }
 
+std::string lumens_text(double lm) {
+  std::ostringstream s;
+  s << lm;
+  return s.str();
+}
+
 }  // namespace
 
 namespace {
 
 // The numbers both report forms print.
 struct IesSummary {
-  double scale = 1, file_lumens = 0;
+  double scale = 1, file_lumens = 0, efficacy_lumens = 0;  // efficacy_lumens: 0 = the total flux
   double peak_cd = 0, peak_gamma_deg = 0, peak_c_deg = 0;
   double lumens = 0, watts = 0, beam_deg = 0, field_deg = 0, intensity_at_point_cd = 0, on_axis_cd = 0;
   std::vector<double> plane_gamma_deg;
@@ -56,6 +62,8 @@ IesSummary summarise(const IesPhotometry& ies, const InspectPoint& point, std::o
         r.peak_c_deg = ies.horizontal_deg[i];
   r.lumens = table->integral_sr();
   r.watts = point.electrical_w.value_or(ies.input_watts);
+  // The file's input watts belong to the file's flux: scaled to other lumens, its efficacy is still the file's.
+  r.efficacy_lumens = luminaire_lumens && !point.electrical_w ? r.file_lumens : 0.0;
   r.beam_deg = ies_spread_angle_deg(*table, 0.5);
   r.field_deg = ies_spread_angle_deg(*table, 0.1);
   const double angle = point.off_axis_deg;
@@ -96,7 +104,9 @@ std::string inspect_ies_text(const IesPhotometry& ies, const InspectPoint& point
       << "); luminaire efficiency " << 100.0 * r.file_lumens / ies.rated_lamp_lumens() << " % (of the file)\n";
   else
     o << "lamp lumens: absolute photometry (-1)\n";
-  if (r.watts > 0) o << "input power: " << r.watts << " W; luminaire efficacy " << r.lumens / r.watts << " lm/W\n";
+  if (r.watts > 0)
+    o << "input power: " << r.watts << " W; luminaire efficacy " << (r.efficacy_lumens > 0 ? r.efficacy_lumens : r.lumens) / r.watts
+      << " lm/W" << (r.efficacy_lumens > 0 ? " (of the file: its flux and input watts)" : "") << "\n";
   o << "beam angle (50 % of peak, C 0-180° plane): " << r.beam_deg << "°\n";
   o << "field angle (10 % of peak, C 0-180° plane): " << r.field_deg << "°\n";
   o << "at " << point.distance_m << " m, " << point.off_axis_deg << "° from the axis (C 0°): " << r.intensity_at_point_cd
@@ -106,8 +116,10 @@ std::string inspect_ies_text(const IesPhotometry& ies, const InspectPoint& point
   o << "\n";
   o << "average intensity: " << r.lumens / (4.0 * std::numbers::pi)
     << " cd (the isotropic point light of the same lumens)\n";
-  o << "intensity (cd) in the main planes:\n" << std::setw(8) << "γ" << std::setw(12) << "C 0°" << std::setw(12)
-    << "C 90°" << std::setw(12) << "C 180°" << std::setw(12) << "C 270°" << "\n";
+  // setw counts bytes: γ and ° are two bytes each in UTF-8, one column on screen.
+  o << "intensity (cd) in the main planes:\n" << std::setw(9) << "γ";
+  for (const char* c : {"C 0°", "C 90°", "C 180°", "C 270°"}) o << std::setw(13) << c;
+  o << "\n";
   for (size_t k = 0; k < r.plane_gamma_deg.size(); ++k) {
     o << std::setw(7) << r.plane_gamma_deg[k] << "°";
     for (const auto& plane : r.plane_cd) o << std::setw(12) << plane[k];
@@ -138,7 +150,9 @@ nlohmann::json inspect_ies_json(const IesPhotometry& ies, const InspectPoint& po
     j["rated_lamp_lumens_lm"] = ies.rated_lamp_lumens();
     j["luminaire_efficiency"] = r.file_lumens / ies.rated_lamp_lumens();
   }
-  if (r.watts > 0) j["input_power_w"] = r.watts, j["luminaire_efficacy_lm_w"] = r.lumens / r.watts;
+  if (r.watts > 0)
+    j["input_power_w"] = r.watts,
+    j["luminaire_efficacy_lm_w"] = (r.efficacy_lumens > 0 ? r.efficacy_lumens : r.lumens) / r.watts;
   j["beam_angle_deg"] = r.beam_deg;
   j["field_angle_deg"] = r.field_deg;
   j["distance_m"] = point.distance_m;
@@ -206,7 +220,8 @@ void plot_ies_polar_png(const IesPhotometry& ies, const std::filesystem::path& p
                  "set grid polar 30\nunset xtics\nunset ytics\nset border 0\nset rrange [0:" + std::to_string(r_max) +
                  "]\nset rtics " + std::to_string(ring) + "\nset ttics (" + ttics + ")\n"
                  "set rlabel '" + unit + "'\nset title " +
-                 gnuplot_text(plot_file_name(ies.name) + ": luminous intensity (" + unit + ") against γ") +
+                 gnuplot_text(plot_file_name(ies.name) + ": luminous intensity (" + unit + ") against γ" +
+                              (luminaire_lumens ? ", scaled to " + lumens_text(*luminaire_lumens) + " lm" : "")) +
                  " noenhanced\nset key below noenhanced\n"
                  "plot 'candela.dat' index 0 using 1:2 with lines lw 2 title 'C 0° (right) and 180° (left)', "
                  "'' index 1 using 1:2 with lines lw 2 dt 2 title 'C 90° (right) and 270° (left)'";
