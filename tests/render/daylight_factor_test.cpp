@@ -79,6 +79,9 @@ TEST_CASE("daylight factor: 100 % unobstructed, 50 % at the foot of a tall black
   check_df(open.points_percent[0], 100.0);
   CHECK(open.df_avg_percent == doctest::Approx(open.points_percent[0].value));
   check_df(readings.grids[1].daylight_factor->points_percent[0], 50.0);
+  for (size_t g = 0; g < 2; ++g)
+    MESSAGE(loaded.sensors.grids[g].name << ": DF " << readings.grids[g].daylight_factor->points_percent[0].value
+                                         << " % +- " << readings.grids[g].daylight_factor->points_percent[0].standard_error);
 
   // The outputs: daylight_factor rows in % after the grid's lux rows, and the grid's DF statistics in the JSON.
   const std::string csv = sensor_csv(loaded.sensors, readings);

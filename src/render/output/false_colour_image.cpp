@@ -89,10 +89,15 @@ FalseColourValues false_colour_values(const ExrDisplaySource& source, FalseColou
   image.quantity = quantity;
   image.values.reserve(size_t(bounds.area()));
   const double per_nt = quantity == FalseColourQuantity::luminance ? 1.0 : std::numbers::pi;
+  // A camera film's Y as its display image (and the metering) takes it: through the fitted matrix, white-balanced
+  // when the file is.
+  const std::optional<Matrix3> camera_to_xyz =
+      source.camera_fit ? std::optional<Matrix3>(display_camera_to_xyz(*source.camera_fit, source.white_balanced))
+                        : std::nullopt;
   for (int y = bounds.y0; y < bounds.y1; ++y)
     for (int x = bounds.x0; x < bounds.x1; ++x) {
       const std::array<double, 3> value = film.output_value(x, y);
-      const double y_value = source.camera_fit ? source.camera_fit->camera_to_xyz.apply(value)[1] : value[1];
+      const double y_value = camera_to_xyz ? camera_to_xyz->apply(value)[1] : value[1];
       const double v = y_value * source.nits_per_unit_y * per_nt;
       image.values.push_back(std::isfinite(v) ? v : std::nan(""));
     }
