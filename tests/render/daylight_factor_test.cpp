@@ -1,7 +1,7 @@
 // Daylight factor grids (render/sensors/daylight_factor.h) under the CIE standard overcast sky: an unobstructed
 // point reads DF = 100 %, a point at the foot of a tall black wall 50 % (the overcast sky is azimuthally uniform, so
-// the wall hides exactly half of the cosine-weighted sky; the wall is 2 km tall and wide and the point 1 cm from it,
-// so the sky seen past its edges is below 1e-5 of the hemisphere). Tolerance: 4.5 standard errors (false alarm
+// the wall hides exactly half of the cosine-weighted sky from either side; the wall is 2 km tall and wide and the
+// points 1 cm from it, so the sky seen past its edges is below 1e-5 of the hemisphere). Tolerance: 4.5 standard errors (false alarm
 // 7e-6 under the normal approximation, fixed seeds); errors name the grid's key.
 #include <doctest/doctest.h>
 
@@ -68,25 +68,31 @@ void check_df(const MeterReading& df, double expected_percent) {
 TEST_CASE("daylight factor: 100 % unobstructed, 50 % at the foot of a tall black wall, under the CIE overcast sky") {
   const json wall = {{"type", "quad"}, {"material", "black"},
                      {"vertices", {{0, 0, -1000}, {0, 0, 1000}, {0, 2000, 1000}, {0, 2000, -1000}}}};
-  const Loaded loaded = load(scene_with(json::array({kOvercast}), {point_grid("open", 50.0), point_grid("wall", 0.01)},
-                                        json::array({wall})));
-  const SensorReadings readings = measure(loaded);
-  REQUIRE(readings.grids.size() == 2);
-  REQUIRE(readings.grids[0].daylight_factor);
-  const DaylightFactors& open = *readings.grids[0].daylight_factor;
+  // Unobstructed (nothing in the scene) and by the wall: two scenes, since the wall hides half the sky from any
+  // point on its side near enough to it.
+  const Loaded open_scene = load(scene_with(json::array({kOvercast}), {point_grid("open", 0.0)}));
+  const SensorReadings open_readings = measure(open_scene);
+  REQUIRE(open_readings.grids[0].daylight_factor);
+  const DaylightFactors& open = *open_readings.grids[0].daylight_factor;
   // E_out is the sky's own calibration: the 10000 lx it was given.
   CHECK(open.outdoor_illuminance_lx == doctest::Approx(10000.0).epsilon(1e-9));
   check_df(open.points_percent[0], 100.0);
   CHECK(open.df_avg_percent == doctest::Approx(open.points_percent[0].value));
-  check_df(readings.grids[1].daylight_factor->points_percent[0], 50.0);
-  for (size_t g = 0; g < 2; ++g)
-    MESSAGE(loaded.sensors.grids[g].name << ": DF " << readings.grids[g].daylight_factor->points_percent[0].value
-                                         << " % +- " << readings.grids[g].daylight_factor->points_percent[0].standard_error);
+  MESSAGE("unobstructed: DF " << open.points_percent[0].value << " % +- " << open.points_percent[0].standard_error);
+
+  const Loaded loaded = load(scene_with(json::array({kOvercast}), {point_grid("behind", -0.01), point_grid("wall", 0.01)},
+                                        json::array({wall})));
+  const SensorReadings readings = measure(loaded);
+  REQUIRE(readings.grids.size() == 2);
+  const MeterReading& by_wall = readings.grids[1].daylight_factor->points_percent[0];
+  check_df(by_wall, 50.0);
+  check_df(readings.grids[0].daylight_factor->points_percent[0], 50.0);  // the wall's other side
+  MESSAGE("by the wall: DF " << by_wall.value << " % +- " << by_wall.standard_error);
 
   // The outputs: daylight_factor rows in % after the grid's lux rows, and the grid's DF statistics in the JSON.
   const std::string csv = sensor_csv(loaded.sensors, readings);
-  CHECK(csv.find("open,illuminance,0,0,") != std::string::npos);
-  CHECK(csv.find("open,daylight_factor,0,0,") != std::string::npos);
+  CHECK(csv.find("wall,illuminance,0,0,") != std::string::npos);
+  CHECK(csv.find("wall,daylight_factor,0,0,") != std::string::npos);
   CHECK(csv.find(",%,4096\n") != std::string::npos);
   const json doc = sensor_json(loaded.sensors, readings, 4096);
   CHECK(doc["grids"][0]["daylight_factor"]["outdoor_illuminance_lx"].get<double>() == doctest::Approx(10000.0));

@@ -18,9 +18,11 @@ namespace {
 // The range a legend may span: beyond, a float pixel cannot hold the value (the EXR is 32-bit).
 constexpr double kMinLegendValue = 1e-30, kMaxLegendValue = 1e30;
 
+// Four significant digits, without an exponent between 1 and 1e9 (a legend reads "20000 nt", not "2e+04").
 std::string number_text(double x) {
-  char buffer[32];
+  char buffer[48];
   std::snprintf(buffer, sizeof buffer, "%.4g", x);
+  if (std::strchr(buffer, 'e') && x >= 1 && x < 1e9) std::snprintf(buffer, sizeof buffer, "%.0f", x);
   return buffer;
 }
 

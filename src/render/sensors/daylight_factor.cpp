@@ -11,16 +11,15 @@ namespace rimu {
 
 double overcast_sky_horizontal_illuminance_lx(const Scene& scene, const TabulatedSpectrum& v, const SourceLocation& where) {
   const CieSkyLight* sky = nullptr;
-  for (size_t k = 0; k < scene.lights.size(); ++k) {
-    const auto* as_sky = dynamic_cast<const CieSkyLight*>(scene.lights[k].get());
-    if (!as_sky || sky)
-      throw InputError(where, "a daylight factor is measured under a CIE overcast sky alone, but the scene also has " +
-                                  scene.light_names[k] + "; remove the other lights (a sun, lamps, emitters)");
-    sky = as_sky;
-  }
+  for (const auto& light : scene.lights)
+    if (!sky) sky = dynamic_cast<const CieSkyLight*>(light.get());
   if (!sky)
     throw InputError(where, "a daylight factor needs a CIE overcast sky: add {\"type\": \"cie_sky\", \"sky_type\": 1, "
                             "\"diffuse_horizontal_illuminance_lx\": 10000} to \"lights\"");
+  for (size_t k = 0; k < scene.lights.size(); ++k)
+    if (scene.lights[k].get() != sky)
+      throw InputError(where, "a daylight factor is measured under a CIE overcast sky alone, but the scene also has " +
+                                  scene.light_names[k] + "; remove the other lights (a sun, lamps, emitters)");
   if (sky->type() != 1)
     throw InputError(where, "a daylight factor is defined under the CIE standard overcast sky (sky_type 1), not sky "
                             "type " + std::to_string(sky->type()) + " (" + cie_sky_description(sky->type()) + ")");
