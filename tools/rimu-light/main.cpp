@@ -145,8 +145,9 @@ void inspect(const Options& o, rimu::SpectralLibrary& library, const std::filesy
     rimu::IesPhotometry ies;
     if (document) {
       const rimu::IesLightDefinition light = rimu::read_ies_light_definition(*document, o.inspect_file);
-      ies = rimu::validate_ies_light_definition(light, library, std::filesystem::path(o.inspect_file).parent_path(),
-                                                {o.inspect_file, 0, ""});
+      // Relative paths in a definition as for the other lights' CSV spectra: from the working folder (rimu-light
+      // writes the IES file's path absolute).
+      ies = rimu::validate_ies_light_definition(light, library, here, {o.inspect_file, 0, ""});
       if (!lumens) lumens = light.luminous_power_lm;
       if (!o.inspect_json) std::cout << "definition: " << o.inspect_file << ", spectrum " << light.spectrum.dump() << "\n";
     } else {
@@ -244,9 +245,9 @@ void run(Options& o) {
     if (rimu::is_ies_light_definition(document)) {
       // Only the colour changes: a scene normalises an ies light's spectrum to one candela per table unit.
       const rimu::IesLightDefinition ies = rimu::read_ies_light_definition(document, o.recolor_file);
+      check_not_input(o.recolor_output, "-o", {{rimu::ies_light_file(ies, here), "the definition's IES file"}});
       rimu::naming_shape_option(o.recolor_shape, [&] {
-        write_text_output(rimu::ies_light_definition_json(rimu::recolor_ies_light(
-                              ies, *s, library, std::filesystem::path(o.recolor_file).parent_path())),
+        write_text_output(rimu::ies_light_definition_json(rimu::recolor_ies_light(ies, *s, library, here)),
                           o.recolor_output);
       });
       return;

@@ -1,5 +1,5 @@
-// Plots drawn by rimu_render's tools (spectra, IES polar plots) through spectral/io/gnuplot_process.h, with its
-// PlotError reported in this library's style (RenderError: tools exit with status 2).
+// Plots drawn by rimu_render's tools (spectra, IES polar plots, false colour) through spectral/io/gnuplot_process.h,
+// with its PlotError reported in this library's style (RenderError: tools exit with status 2).
 #pragma once
 
 #include <array>
@@ -20,8 +20,8 @@ void check_plot_png(const std::filesystem::path& png, const SourceLocation& wher
 /// end points and quartiles and interpolated linearly in 8-bit RGB between them, as gnuplot's `set palette defined`
 /// does.
 struct PaletteStop {
-  double position;               ///< in [0, 1]
-  std::array<int, 3> rgb;        ///< 0-255
+  double position;         ///< in [0, 1]
+  std::array<int, 3> rgb;  ///< 0-255
 };
 const std::array<PaletteStop, 5>& false_colour_palette();
 /// The gnuplot command that sets this palette: "set palette defined (0 '#440154', ...)".
