@@ -51,6 +51,7 @@ void check_job_sensors(RenderJobState& s) {
     return;
   }
   check_sensor_scene(scene, s.scene_path.string());
+  check_daylight_factor_grids(scene, s.sensors, s.library.photopic_v(), s.scene_path.string());
   const SensorOutputPaths paths = job_sensor_paths(s.job);
   for (const std::filesystem::path& path : {paths.csv, paths.json}) {
     check_output_path(path);
@@ -97,6 +98,10 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
     s.log << "rimu: sensor " << grid.name << " (" << grid.count_u << "x" << grid.count_v << "): Emin " << r.e_min_lx
           << " lx, Eavg " << r.e_avg_lx << " lx, Emax " << r.e_max_lx << " lx, U0 " << r.u0
           << "; largest standard error " << largest_error << " lx\n";
+    if (const auto& df = r.daylight_factor)
+      s.log << "rimu: sensor " << grid.name << ": daylight factor min " << df->df_min_percent << " %, avg "
+            << df->df_avg_percent << " %, max " << df->df_max_percent << " % (E_out " << df->outdoor_illuminance_lx
+            << " lx, CIE overcast sky)\n";
   }
   for (size_t k = 0; k < sensors.points.size(); ++k) {
     const PointSensor& p = sensors.points[k];

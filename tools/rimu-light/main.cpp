@@ -9,8 +9,10 @@
 
 #include "common/tool_main.h"
 #include "render/reports/ies_report.h"
+#include "render/scene/ies_light_definition.h"
 #include "render/scene/json_cursor.h"
 #include "render/scene/light_definition.h"
+#include "render/scene/spectrum_input.h"
 #include "render/output/plot_output.h"
 #include "render/light_options.h"
 #include "render/output/output_file.h"
@@ -23,13 +25,14 @@ using rimu::InputError;
 
 struct Options {
   // Authoring: the top-level command.
-  std::string type, output, plot;
+  std::string type, output, plot, ies_file;
   rimu::LightAmountOptions amounts;
   rimu::SpotOptions spot;
   rimu::LightShapeOptions shape;
   // inspect
   CLI::App* inspect = nullptr;
   std::string inspect_file, inspect_plot, inspect_polar;
+  std::optional<double> inspect_lumens;
   rimu::InspectPoint point;
   bool inspect_json = false;
   // convert
@@ -50,8 +53,10 @@ void add_shape_options(CLI::App& app, rimu::LightShapeOptions& shape) {
 }
 
 void declare(CLI::App& app, Options& o) {
-  app.add_option("--type", o.type, "point, spot, distant, environment");
-  app.add_option("--lumens", o.amounts.lumens, "luminous power, lm (point, spot)");
+  app.add_option("--type", o.type, "point, spot, distant, environment, ies");
+  app.add_option("--file", o.ies_file, "ies: the IES LM-63 photometric file (written as an absolute path)");
+  app.add_option("--lumens", o.amounts.lumens,
+                 "luminous power, lm (point, spot; ies: the luminaire's flux, the table scaled to it)");
   app.add_option("--candela", o.amounts.candela, "luminous intensity, cd (point, spot)");
   app.add_option("--lux", o.amounts.lux, "illuminance at normal incidence, lx (distant)");
   app.add_option("--nits", o.amounts.nits, "luminance, cd/m² (environment)");
@@ -74,6 +79,8 @@ void declare(CLI::App& app, Options& o) {
   o.inspect->add_flag("--json", o.inspect_json, "print JSON instead of text");
   o.inspect->add_option("--plot", o.inspect_plot, "draw the spectral power distribution to this PNG (gnuplot)");
   o.inspect->add_option("--plot-polar", o.inspect_polar, "IES files: draw the candela distribution to this PNG (gnuplot)");
+  o.inspect->add_option("--lumens", o.inspect_lumens,
+                        "IES files: scale the table so the luminaire emits this many lm (candela, lux and plot follow)");
 
   rimu::ConvertRequest& r = o.request;
   o.convert = app.add_subcommand("convert", "convert an amount, e.g. --from \"1600 lm\" --to cd --type point; "
@@ -95,17 +102,17 @@ void declare(CLI::App& app, Options& o) {
   add_shape_options(*o.recolor, o.recolor_shape);
 }
 
-rimu::LightDefinition read_definition(const std::string& path) {
-  return rimu::read_light_definition(rimu::parse_json_file(path), path);
-}
-
 // A definition to standard output, or whole to a file (a failed write is reported, never half a file).
-void write_definition(const rimu::LightDefinition& light, const std::string& output) {
-  const std::string text = rimu::light_definition_json(light).dump(2) + "\n";
+void write_text_output(const nlohmann::json& definition, const std::string& output) {
+  const std::string text = definition.dump(2) + "\n";
   if (output.empty() || output == "-")
     std::cout << text;
   else
     rimu::write_text_file(output, text);
+}
+
+void write_definition(const rimu::LightDefinition& light, const std::string& output) {
+  write_text_output(rimu::light_definition_json(light), output);
 }
 
 std::string json_text(const nlohmann::json& j) {
@@ -126,22 +133,41 @@ void inspect(const Options& o, rimu::SpectralLibrary& library, const std::filesy
   check_not_input(o.inspect_polar, "--plot-polar", {{o.inspect_file, "inspect"}});
   std::string extension = std::filesystem::path(o.inspect_file).extension().string();
   for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (extension == ".ies") {
-    if (!o.inspect_plot.empty())
-      throw InputError({"", 0, "--plot"}, "an IES file has no spectrum; use --plot-polar for its candela distribution");
-    const rimu::IesPhotometry ies = rimu::read_ies_file(o.inspect_file);
-    std::cout << (o.inspect_json ? json_text(rimu::inspect_ies_json(ies, o.point)) : rimu::inspect_ies_text(ies, o.point));
-    if (!o.inspect_polar.empty()) rimu::plot_ies_polar_png(ies, o.inspect_polar);
+  // An IES file, or a definition of an ies light: the photometric report, and the polar curve for --plot-polar (or
+  // --plot: an IES table has no spectrum of its own to draw).
+  std::optional<nlohmann::json> document;
+  if (extension != ".ies" && extension != ".csv") document = rimu::parse_json_file(o.inspect_file);
+  if (extension == ".ies" || (document && rimu::is_ies_light_definition(*document))) {
+    if (!o.inspect_plot.empty() && !o.inspect_polar.empty())
+      throw InputError({"", 0, "--plot"}, "for an IES light --plot and --plot-polar both draw the polar curve; give one");
+    const std::string polar = o.inspect_polar.empty() ? o.inspect_plot : o.inspect_polar;
+    std::optional<double> lumens = o.inspect_lumens;
+    rimu::IesPhotometry ies;
+    if (document) {
+      const rimu::IesLightDefinition light = rimu::read_ies_light_definition(*document, o.inspect_file);
+      // Relative paths in a definition as for the other lights' CSV spectra: from the working folder (rimu-light
+      // writes the IES file's path absolute).
+      ies = rimu::validate_ies_light_definition(light, library, here, {o.inspect_file, 0, ""});
+      if (!lumens) lumens = light.luminous_power_lm;
+      if (!o.inspect_json) std::cout << "definition: " << o.inspect_file << ", spectrum " << light.spectrum.dump() << "\n";
+    } else {
+      ies = rimu::read_ies_file(o.inspect_file);
+    }
+    std::cout << (o.inspect_json ? json_text(rimu::inspect_ies_json(ies, o.point, lumens))
+                                 : rimu::inspect_ies_text(ies, o.point, lumens));
+    if (!polar.empty()) rimu::plot_ies_polar_png(ies, polar, lumens, o.inspect_polar.empty() ? "--plot" : "--plot-polar");
     return;
   }
+  if (o.inspect_lumens)
+    throw InputError({"", 0, "--lumens"}, "scales an IES light's table; for other lights give the amount in the definition");
   if (!o.inspect_polar.empty())
-    throw InputError({"", 0, "--plot-polar"}, "a polar candela plot needs an IES file (.ies)");
+    throw InputError({"", 0, "--plot-polar"}, "a polar candela plot needs an IES file (.ies) or an ies light definition");
   rimu::LightDefinition light;
   if (extension == ".csv") {
     light.spectrum = {{"csv", std::filesystem::absolute(o.inspect_file).string()}};
     light.amount = {1.0, rimu::LightUnit::watt};  // the file's own scale: 1 W per unit of its integral
   } else {
-    light = read_definition(o.inspect_file);
+    light = rimu::read_light_definition(*document, o.inspect_file);
   }
   rimu::validate_light_definition(light, library, here, {o.inspect_file, 0, ""});
   std::cout << (o.inspect_json ? json_text(rimu::inspect_light_json(light, library, here, o.point))
@@ -152,6 +178,35 @@ void inspect(const Options& o, rimu::SpectralLibrary& library, const std::filesy
   }
 }
 
+// `--type ies`: the file, its flux (or the file's own candela) and a colour; the other amounts and the spot's cone
+// do not apply to a measured table.
+void author_ies(const Options& o, rimu::SpectralLibrary& library, const std::filesystem::path& here) {
+  const rimu::LightAmountOptions& a = o.amounts;
+  for (const auto& [given, flag] : {std::pair{a.candela.has_value(), "--candela"}, {a.lux.has_value(), "--lux"},
+                                    {a.nits.has_value(), "--nits"}, {a.watts.has_value(), "--watts"},
+                                    {a.ev.has_value(), "--ev"}})
+    if (given)
+      throw InputError({"", 0, flag}, "an ies light takes --lumens (the luminaire's flux) or no amount (the file's "
+                                      "candela as they are)");
+  const rimu::SpotOptions spot_defaults;
+  if (o.spot.cone_deg != spot_defaults.cone_deg || o.spot.softness_deg != spot_defaults.softness_deg ||
+      o.spot.power_convention != spot_defaults.power_convention)
+    throw InputError({"", 0, "--cone"}, "an ies light's beam is its file's table: --cone, --softness and "
+                                        "--power-convention do not apply");
+  check_not_input(o.output, "-o", {{o.ies_file, "--file"}});
+  check_not_input(o.plot, "--plot", {{o.ies_file, "--file"}});
+  rimu::IesLightDefinition light;
+  rimu::naming_shape_option(o.shape, [&] {
+    light = rimu::ies_light_from_options(o.ies_file, a.lumens, o.shape.spectrum(), library, here);
+  });
+  write_text_output(rimu::ies_light_definition_json(light), o.output);
+  if (!o.plot.empty()) {
+    rimu::SpectrumInputContext spectra(library, here);
+    const rimu::SpectrumPtr s = spectra.parse(rimu::JsonCursor(light.spectrum, "", "/spectrum"), rimu::SpectrumRole::emission);
+    rimu::plot_spectrum_png(*s, 1.0 / s->max_value(), "relative spectral power", s->describe(), o.plot);
+  }
+}
+
 void author(const Options& o, rimu::SpectralLibrary& library, const std::filesystem::path& here) {
   if (!o.output.empty() && o.output != "-") rimu::check_output_path(o.output);
   if (!o.plot.empty()) rimu::check_plot_png(o.plot, {"", 0, "--plot"});
@@ -159,6 +214,8 @@ void author(const Options& o, rimu::SpectralLibrary& library, const std::filesys
   check_not_input(o.plot, "--plot", {{o.shape.csv, "--csv"}});
   if (!o.output.empty() && !o.plot.empty() && rimu::same_output_file(o.output, o.plot))
     throw InputError({o.plot, 0, "--plot"}, "-o and --plot name the same file; the plot would replace the definition");
+  if (o.type == "ies") return author_ies(o, library, here);
+  if (!o.ies_file.empty()) throw InputError({"", 0, "--file"}, "an IES file makes an ies light: give --type ies");
   const rimu::LightDefinition light = rimu::light_from_options(o.type, o.spot, o.amounts, o.shape, library, here);
   write_definition(light, o.output);
   if (!o.plot.empty()) {
@@ -184,7 +241,18 @@ void run(Options& o) {
     if (!s) throw InputError({"", 0, "recolor"}, "give the new colour: --cct, --daylight, --illuminant or --csv");
     if (!o.recolor_output.empty() && o.recolor_output != "-") rimu::check_output_path(o.recolor_output);
     check_not_input(o.recolor_output, "-o", {{o.recolor_file, "recolor"}, {o.recolor_shape.csv, "--csv"}});
-    const rimu::LightDefinition light = read_definition(o.recolor_file);
+    const nlohmann::json document = rimu::parse_json_file(o.recolor_file);
+    if (rimu::is_ies_light_definition(document)) {
+      // Only the colour changes: a scene normalises an ies light's spectrum to one candela per table unit.
+      const rimu::IesLightDefinition ies = rimu::read_ies_light_definition(document, o.recolor_file);
+      check_not_input(o.recolor_output, "-o", {{rimu::ies_light_file(ies, here), "the definition's IES file"}});
+      rimu::naming_shape_option(o.recolor_shape, [&] {
+        write_text_output(rimu::ies_light_definition_json(rimu::recolor_ies_light(ies, *s, library, here)),
+                          o.recolor_output);
+      });
+      return;
+    }
+    const rimu::LightDefinition light = rimu::read_light_definition(document, o.recolor_file);
     rimu::naming_shape_option(o.recolor_shape, [&] {
       write_definition(rimu::recolor_light(light, *s, library, here), o.recolor_output);
     });

@@ -3,10 +3,12 @@
 #include "display_command.h"
 
 #include <iostream>
+#include <optional>
 
 #include "common/tool_main.h"
 
 #include "render/output/exr_display_source.h"
+#include "render/output/false_colour_image.h"
 #include "spectral/error.h"
 
 int run_display_command(int argc, char** argv) {
@@ -15,7 +17,8 @@ int run_display_command(int argc, char** argv) {
       "exposure or view, without rendering. The image is made as `rimu --png` makes it: a photometric render that\n"
       "was metered is metered again (--exposure is then the compensation), a camera film is shown through its\n"
       "fitted camera-to-XYZ matrix.\n"
-      "Example: rimu display room.exr --png room_plus1.png --exposure 1"};
+      "Example: rimu display room.exr --png room_plus1.png --exposure 1\n"
+      "False colour: rimu display room.exr --png room_nt.png --false-colour luminance --range 1:10000"};
   std::string input, png;
   rimu::DisplayOptions display;
   bool meter = false;
@@ -28,7 +31,25 @@ int run_display_command(int argc, char** argv) {
   app.add_flag("--meter", meter,
                "meter the image to 18 % grey (plus --exposure) even if the render did not (it does for photometric "
                "scenes without a camera exposure)");
+  // False colour: a lighting designer's view of the same EXR, instead of the display image.
+  std::string false_colour, range;
+  CLI::Option* false_colour_option =
+      app.add_option("--false-colour", false_colour,
+                     "write a false-colour PNG instead: luminance (nt = cd/m²) or illuminance (lx, π × luminance: "
+                     "exact for a white Lambertian surface), on a log scale with its legend");
+  app.add_option("--range", range, "false colour: the legend's range LOW:HIGH in nt or lx (default: the 1st-99th "
+                                   "percentile of the image)")
+      ->needs(false_colour_option);
+  for (const char* name : {"--exposure", "--view", "--meter"}) false_colour_option->excludes(app.get_option(name));
   return rimu::run_tool("rimu display", app, argc, argv, [&] {
+    if (!false_colour.empty()) {
+      const auto quantity = rimu::parse_false_colour_quantity(false_colour, "--false-colour");
+      std::optional<rimu::FalseColourRange> legend;
+      if (!range.empty()) legend = rimu::parse_false_colour_range(range, "--range");
+      rimu::write_exr_false_colour(input, png, quantity, legend, std::cerr);
+      std::cerr << "rimu display: wrote " << png << "\n";
+      return;
+    }
     rimu::write_exr_display_image(input, png, display, meter, std::cerr);
     std::cerr << "rimu display: wrote " << png << "\n";
   });

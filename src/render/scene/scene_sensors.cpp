@@ -57,7 +57,7 @@ void load_grid_counts(const JsonCursor& g, IlluminanceGrid& grid) {
 
 IlluminanceGrid load_grid(const JsonCursor& g, size_t index, std::set<std::string>& names) {
   if (!g.is_object()) g.fail("expected a grid object {\"origin\", \"u\", \"v\", \"size\", \"counts\" or \"spacing\"}");
-  g.only_keys({"name", "origin", "u", "v", "size", "counts", "spacing", "normal"});
+  g.only_keys({"name", "origin", "u", "v", "size", "counts", "spacing", "normal", "daylight_factor"});
   IlluminanceGrid grid;
   grid.name = sensor_name(g, "grid" + std::to_string(index), names);
   grid.origin = g.at("origin").vec3();
@@ -69,6 +69,7 @@ IlluminanceGrid load_grid(const JsonCursor& g, size_t index, std::set<std::strin
   grid.size_u_m = float(size.at(0).number(1e-4, 1e6));
   grid.size_v_m = float(size.at(1).number(1e-4, 1e6));
   load_grid_counts(g, grid);
+  grid.daylight_factor = g.boolean_or("daylight_factor", false);
   const Vec3 plane_normal = normalize(cross(grid.u, grid.v));
   grid.normal = plane_normal;
   if (const auto normal = g.find("normal")) {

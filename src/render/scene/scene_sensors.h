@@ -19,6 +19,9 @@ struct IlluminanceGrid {
   Vec3 origin, u, v, normal;
   float size_u_m = 0, size_v_m = 0;
   int count_u = 1, count_v = 1;
+  /// "daylight_factor": true: also report DF = E / E_out in % at each point, E_out the unobstructed horizontal
+  /// illuminance of the scene's CIE overcast sky (render/sensors/daylight_factor.h).
+  bool daylight_factor = false;
   /// The meter point of cell (i, j), i along u and j along v.
   Vec3 point(int i, int j) const {
     return origin + u * ((float(i) + 0.5f) * size_u_m / float(count_u)) +

@@ -99,6 +99,13 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
 
+  // E_out of the daylight-factor grids first: a scene without its overcast sky fails before any sample.
+  std::vector<std::optional<double>> outdoor_lx;
+  for (size_t g = 0; g < sensors.grids.size(); ++g)
+    outdoor_lx.push_back(sensors.grids[g].daylight_factor
+                             ? std::optional<double>(overcast_sky_horizontal_illuminance_lx(
+                                   scene, v, {"", 0, "/sensors/grids/" + std::to_string(g) + "/daylight_factor"}))
+                             : std::nullopt);
   const TransportScene view = scene.transport_view();
   PathIntegratorSettings settings = scene.settings.integrator;
   settings.guiding = false;  // the receptor's paths are unguided (no field is learned for them)
@@ -148,6 +155,8 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
     std::vector<MeterReading> grid_points;
     for (int k = 0; k < g.count_u * g.count_v; ++k) grid_points.push_back(sums[next++].reading());
     readings.grids.push_back(grid_statistics(std::move(grid_points)));
+    if (const std::optional<double> e_out = outdoor_lx[readings.grids.size() - 1])
+      readings.grids.back().daylight_factor = daylight_factors(readings.grids.back().points, *e_out);
   }
   for (size_t k = 0; k < sensors.points.size(); ++k) readings.meters.push_back(sums[next++].reading());
   readings.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

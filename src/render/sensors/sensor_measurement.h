@@ -7,7 +7,10 @@
 #include <functional>
 #include <vector>
 
+#include <optional>
+
 #include "render/reports/light_meter.h"
+#include "render/sensors/daylight_factor.h"
 #include "render/scene/scene.h"
 #include "render/scene/scene_sensors.h"
 #include "spectral/spectra/tabulated_spectrum.h"
@@ -28,6 +31,7 @@ struct SensorMeasureOptions {
 struct GridReadings {
   std::vector<MeterReading> points;
   double e_min_lx = 0, e_avg_lx = 0, e_max_lx = 0, u0 = 0;
+  std::optional<DaylightFactors> daylight_factor;  ///< for a grid with "daylight_factor"
 };
 
 struct SensorReadings {
@@ -41,8 +45,9 @@ struct SensorReadings {
 /// Estimates every sensor of `scene` (which must have no participating media and spectral lanes: check_sensor_scene)
 /// with `samples` samples per point: each sample is one path estimate from the scene's integrator (hero
 /// wavelengths as the image's), converted to lux or nits as K_m ∫ V(λ) (·) dλ with K_m = 683 lm/W and `v` the
-/// photopic V(λ). The readings depend on the seed and the sample count only, not on the threads. Cost: samples ×
-/// points paths.
+/// photopic V(λ). Grids with "daylight_factor" also get their daylight factors (InputError before any sample if the
+/// scene has not the one CIE overcast sky they need). The readings depend on the seed and the sample count only, not
+/// on the threads. Cost: samples × points paths.
 SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors, const TabulatedSpectrum& v,
                                const SensorMeasureOptions& options);
 

@@ -36,23 +36,31 @@ std::filesystem::path default_sensor_output_base(const std::filesystem::path& ex
 std::string sensor_csv(const SensorSettings& sensors, const SensorReadings& readings) {
   std::ostringstream csv;
   csv << "sensor,quantity,i,j,x,y,z,dx,dy,dz,value,standard_error,unit,samples\n";
-  auto row = [&](const std::string& name, bool illuminance, const std::string& i, const std::string& j, Vec3 p, Vec3 d,
-                 const MeterReading& r) {
-    csv << name << ',' << (illuminance ? "illuminance" : "luminance") << ',' << i << ',' << j;
+  // quantity and unit: illuminance lx, luminance nt, daylight_factor % (a grid's second set of rows).
+  auto row = [&](const std::string& name, const char* quantity, const char* unit, const std::string& i,
+                 const std::string& j, Vec3 p, Vec3 d, const MeterReading& r) {
+    csv << name << ',' << quantity << ',' << i << ',' << j;
     for (float c : {p.x, p.y, p.z, d.x, d.y, d.z}) csv << ',' << number_text(c);
-    csv << ',' << number_text(r.value) << ',' << number_text(r.standard_error) << ',' << (illuminance ? "lx" : "nt")
-        << ',' << r.samples << '\n';
+    csv << ',' << number_text(r.value) << ',' << number_text(r.standard_error) << ',' << unit << ',' << r.samples
+        << '\n';
   };
   for (size_t g = 0; g < sensors.grids.size() && g < readings.grids.size(); ++g) {
     const IlluminanceGrid& grid = sensors.grids[g];
     for (int j = 0; j < grid.count_v; ++j)
       for (int i = 0; i < grid.count_u; ++i)
-        row(grid.name, true, std::to_string(i), std::to_string(j), grid.point(i, j), grid.normal,
+        row(grid.name, "illuminance", "lx", std::to_string(i), std::to_string(j), grid.point(i, j), grid.normal,
             readings.grids[g].points[size_t(j * grid.count_u + i)]);
+    if (const auto& df = readings.grids[g].daylight_factor)
+      for (int j = 0; j < grid.count_v; ++j)
+        for (int i = 0; i < grid.count_u; ++i)
+          row(grid.name, "daylight_factor", "%", std::to_string(i), std::to_string(j), grid.point(i, j), grid.normal,
+              df->points_percent[size_t(j * grid.count_u + i)]);
   }
   for (size_t k = 0; k < sensors.points.size() && k < readings.meters.size(); ++k) {
     const PointSensor& p = sensors.points[k];
-    row(p.name, p.kind == PointSensor::Kind::illuminance, "", "", p.position, p.direction, readings.meters[k]);
+    const bool illuminance = p.kind == PointSensor::Kind::illuminance;
+    row(p.name, illuminance ? "illuminance" : "luminance", illuminance ? "lx" : "nt", "", "", p.position, p.direction,
+        readings.meters[k]);
   }
   return csv.str();
 }
@@ -69,9 +77,14 @@ nlohmann::json sensor_json(const SensorSettings& sensors, const SensorReadings& 
     nlohmann::json points = nlohmann::json::array();
     for (int j = 0; j < grid.count_v; ++j)
       for (int i = 0; i < grid.count_u; ++i) {
-        const MeterReading& m = r.points[size_t(j * grid.count_u + i)];
+        const size_t k = size_t(j * grid.count_u + i);
+        const MeterReading& m = r.points[k];
         points.push_back({{"i", i}, {"j", j}, {"position", vec3_json(grid.point(i, j))}, {"value", m.value},
                           {"standard_error", m.standard_error}});
+        if (r.daylight_factor) {
+          points.back()["daylight_factor_percent"] = r.daylight_factor->points_percent[k].value;
+          points.back()["daylight_factor_standard_error_percent"] = r.daylight_factor->points_percent[k].standard_error;
+        }
       }
     doc["grids"].push_back({{"name", grid.name},
                             {"quantity", "illuminance"},
@@ -87,6 +100,12 @@ nlohmann::json sensor_json(const SensorSettings& sensors, const SensorReadings& 
                             {"e_max", r.e_max_lx},
                             {"u0", finite_json(r.u0)},
                             {"points", points}});
+    if (const auto& df = r.daylight_factor)
+      doc["grids"].back()["daylight_factor"] = {{"sky", "CIE standard overcast sky (type 1)"},
+                                                {"outdoor_illuminance_lx", df->outdoor_illuminance_lx},
+                                                {"df_min_percent", df->df_min_percent},
+                                                {"df_avg_percent", df->df_avg_percent},
+                                                {"df_max_percent", df->df_max_percent}};
   }
   doc["meters"] = nlohmann::json::array();
   for (size_t k = 0; k < sensors.points.size() && k < readings.meters.size(); ++k) {

@@ -19,11 +19,14 @@ SensorOutputPaths sensor_output_paths(const std::filesystem::path& base);
 /// The default base beside the EXR: "render.exr" → "render.sensors" (render.sensors.csv, render.sensors.json).
 std::filesystem::path default_sensor_output_base(const std::filesystem::path& exr);
 
-/// One row per point: sensor, quantity (illuminance | luminance), i, j (grid cell; empty for meters), x, y, z,
-/// the direction, value, standard_error, unit (lx | nt), samples.
+/// One row per point: sensor, quantity (illuminance | luminance | daylight_factor), i, j (grid cell; empty for
+/// meters), x, y, z, the direction, value, standard_error, unit (lx | nt | %), samples. A daylight-factor grid has
+/// its illuminance rows, then one daylight_factor row per point.
 std::string sensor_csv(const SensorSettings& sensors, const SensorReadings& readings);
 /// {"samples", "grids": [{name, origin, u, v, normal, size_m, counts, unit, e_min, e_avg, e_max, u0,
-/// points: [{i, j, position, value, standard_error}]}], "meters": [...]}.
+/// points: [{i, j, position, value, standard_error}]}], "meters": [...]}; a daylight-factor grid adds
+/// "daylight_factor": {sky, outdoor_illuminance_lx, df_min_percent, df_avg_percent, df_max_percent} and each point
+/// daylight_factor_percent and daylight_factor_standard_error_percent.
 nlohmann::json sensor_json(const SensorSettings& sensors, const SensorReadings& readings, int samples);
 
 /// Writes both files through write_atomically (spectral/io/output_file.h): each appears complete or not at all.

@@ -45,8 +45,7 @@ GnuplotJob grid_plan_job(const IlluminanceGrid& grid, const GridReadings& readin
     << " noenhanced\n"
     << "set xlabel 'along u (m)'\nset ylabel 'along v (m)'\nset cblabel 'illuminance (lx)'\n"
     << "set size ratio -1\nset xrange [0:" << grid.size_u_m << "]\nset yrange [0:" << grid.size_v_m << "]\n"
-    // A perceptually ordered scale (the end points and quartiles of matplotlib's viridis).
-    << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n"
+    << false_colour_palette_command()
     << "set cbrange [" << readings.e_min_lx << ":" << std::max(readings.e_max_lx, readings.e_min_lx + 1e-9) << "]\n"
     << "set style fill solid 1.0 noborder\nunset key\n"
     << "plot 'grid.dat' using 1:2:(" << cell_u / 2 << "):(" << cell_v / 2 << "):3 with boxxyerror lc palette";
