@@ -73,6 +73,9 @@ struct RenderJob {
   /// since the last one, and at the end, with the display transform and exposure of the final --png.
   std::optional<std::filesystem::path> preview_output;
   double preview_interval_s = 5.0;
+  /// With noise_threshold: a false-colour heat map of each pixel's remaining error (`--preview-error`,
+  /// render/output/error_heat_map.h), written with every preview and at the end.
+  std::optional<std::filesystem::path> preview_error_output;
   /// Adaptive sampling (`--noise-threshold`; render/film/adaptive_sampling.h): a pixel stops taking samples once
   /// the relative standard error of its luminance is below this; samples_per_pixel is the maximum. Not with
   /// `samples` or `checkpoint_interval_s` (its half buffers are not in a partial).

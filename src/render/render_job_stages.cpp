@@ -9,7 +9,9 @@
 #include "render/film/render_size.h"
 #include "render/interrupt_flag.h"
 #include "render/output/display_image_policy.h"
+#include "render/output/error_heat_map.h"
 #include "render/output/exr_output.h"
+#include "render/output/plot_output.h"
 #include "render/output/render_outputs.h"
 #include "render/progress_reporter.h"
 #include "render/scene/camera_keyframes.h"
@@ -19,6 +21,7 @@
 #include "render/time_budget.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
+#include "spectral/io/output_file.h"
 
 namespace rimu {
 namespace {
@@ -208,7 +211,10 @@ DisplayImagePolicy display_policy(RenderJobState& s) {
 // Its notes and warnings would repeat every interval: the final --png's are the ones logged.
 void write_preview(RenderJobState& s) {
   std::ostringstream unlogged;
-  write_policy_display_image(*s.job.preview_output, *s.film, s.display, display_policy(s), unlogged);
+  if (s.job.preview_output)
+    write_policy_display_image(*s.job.preview_output, *s.film, s.display, display_policy(s), unlogged);
+  if (s.job.preview_error_output && s.adaptive)
+    write_error_heat_map(*s.job.preview_error_output, *s.adaptive, s.film->pixel_bounds());
   s.last_preview = std::chrono::steady_clock::now();
 }
 
@@ -222,6 +228,19 @@ void write_preview(RenderJobState& s) {
 }
 
 void check_adaptive_sampling_options(const RenderJob& job) {
+  if (job.preview_error_output) {
+    if (!job.noise_threshold)
+      throw InputError({job.preview_error_output->string(), 0, "--preview-error"},
+                       "a heat map of the remaining error needs the error estimate of adaptive sampling: give "
+                       "--noise-threshold");
+    check_plot_png(*job.preview_error_output, {job.preview_error_output->string(), 0, "--preview-error"});
+    for (const auto& [other, option] :
+         {std::pair{std::optional<std::filesystem::path>(job.exr_output), "-o"}, {job.png_output, "--png"},
+          {job.preview_output, "--preview"}})
+      if (other && same_output_file(*other, *job.preview_error_output))
+        throw InputError({job.preview_error_output->string(), 0, "--preview-error"},
+                         std::string("names the same file as ") + option + "; the heat map needs a file of its own");
+  }
   if (job.noise_threshold && (job.samples || job.checkpoint_interval_s))
     throw InputError({"", 0, job.samples ? "--samples" : "--checkpoint"},
                      "--noise-threshold stops each pixel on its own noise estimate, which lives in the render's "
@@ -309,6 +328,11 @@ DisplayOptions check_job_without_scene(const RenderJob& job) {
 void read_job_scene(RenderJobState& s) {
   s.loaded = load_job_scene(s.job, s.scene_path, s.library, s.log);
   check_render_outputs_not_inputs(s.job.exr_output, s.job.png_output, s.loaded.files_read, s.job.preview_output);
+  if (s.job.preview_error_output) {
+    std::vector<InputFile> inputs;
+    for (const std::filesystem::path& file : s.loaded.files_read) inputs.push_back({file, "read by the scene"});
+    check_output_not_input(*s.job.preview_error_output, "--preview-error", inputs);
+  }
   check_scene_hash(s);
   for (const std::string& warning : s.loaded.scene->warnings) s.log << "rimu: warning: " << warning << "\n";
   apply_job_options(s.job, s.loaded.scene->settings, s.library);
@@ -409,7 +433,7 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
     }
     // The first pass's preview at once (something to look at), then one per interval; the last is written with
     // the outputs.
-    if (job.preview_output && reached < s.requested.end &&
+    if ((job.preview_output || job.preview_error_output) && reached < s.requested.end &&
         (reached == sample_pass_end(s.first_sample) || seconds_since(s.last_preview) >= job.preview_interval_s))
       write_preview(s);
   };
@@ -425,7 +449,7 @@ void write_job_outputs(RenderJobState& s) {
   const RenderJob& job = s.job;
   write_render_exr(job.exr_output, *s.film, job_exr_options(s, s.reached, s.result.statistics.interrupted), s.log);
   if (job.png_output) write_policy_display_image(*job.png_output, *s.film, s.display, display_policy(s), s.log);
-  if (job.preview_output) write_preview(s);
+  if (job.preview_output || job.preview_error_output) write_preview(s);
 }
 
 void log_job_summary(const RenderJobState& s) {

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/film/adaptive_sampling.h"
+#include "render/output/error_heat_map.h"
 #include "render/render_job.h"
 #include "spectral/error.h"
 #include "test_support.h"
@@ -172,4 +173,48 @@ TEST_CASE("adaptive sampling: refused with --samples and with --checkpoint, nami
   checkpoint.checkpoint_interval_s = 60.0;
   CHECK(message(checkpoint).find("--checkpoint") != std::string::npos);
   CHECK_FALSE(fs::exists(job.exr_output));
+}
+
+TEST_CASE("adaptive sampling: --preview-error draws each pixel's remaining error as a heat map, and is refused "
+          "without --noise-threshold") {
+  test::ScratchFolder folder("adaptive");
+  const fs::path scene = write_half_noisy_scene(folder.path);
+  RenderJob job = job_for(scene, folder.path / "heat.exr", 64);
+  job.noise_threshold = 0.01;
+  job.preview_error_output = folder.path / "heat.png";
+  run_render_job(job, std::cerr);
+  // A PNG by its signature (the drawing itself is gnuplot's; its data are checked below).
+  std::ifstream png(*job.preview_error_output, std::ios::binary);
+  char signature[8] = {};
+  png.read(signature, 8);
+  CHECK(std::string(signature + 1, 3) == "PNG");
+  // The legend is fixed per render: a tenth of the threshold to 100 %, in %.
+  const FalseColourRange range = adaptive_error_range(0.01);
+  CHECK(range.low == doctest::Approx(0.1));
+  CHECK(range.high == doctest::Approx(100.0));
+  CHECK(adaptive_error_range(10.0).high > adaptive_error_range(10.0).low);
+  // The values: the sampler's estimate in %, on the crop window; a pixel without an estimate yet (one half buffer
+  // still empty after the first pass) sits at the top of the scale, not at "converged".
+  Film film(FilmOptions{6, 4, PixelBounds{1, 1, 5, 3}, 0}, SpectralResponse::cie_xyz(test::library()));
+  AdaptiveSampling adaptive(film, AdaptiveSamplingSettings{});
+  adaptive.after_pass(film, 1);
+  const FalseColourValues values = adaptive_error_values(adaptive, film.pixel_bounds());
+  CHECK(values.width == 4);
+  CHECK(values.height == 2);
+  REQUIRE(values.values.size() == 8);
+  for (size_t i = 0; i < values.values.size(); ++i)
+    CHECK(values.values[i] == doctest::Approx(100.0 * adaptive.relative_error(1 + int(i % 4), 1 + int(i / 4))));
+  for (double v : values.values) CHECK(v >= range.high);
+
+  RenderJob without = job_for(scene, folder.path / "never.exr", 64);
+  without.preview_error_output = folder.path / "never.png";
+  CHECK_THROWS_WITH_AS(run_render_job(without, std::cerr), doctest::Contains("--noise-threshold"), InputError);
+  RenderJob clash = without;
+  clash.noise_threshold = 0.01;
+  clash.png_output = folder.path / "same.png";
+  clash.preview_error_output = folder.path / "same.png";
+  CHECK_THROWS_WITH_AS(run_render_job(clash, std::cerr), doctest::Contains("same file as --png"), InputError);
+  clash.preview_error_output = clash.exr_output;  // and an EXR name is not a PNG
+  CHECK_THROWS_WITH_AS(run_render_job(clash, std::cerr), doctest::Contains("must end in .png"), InputError);
+  CHECK_FALSE(fs::exists(without.exr_output));
 }

@@ -88,6 +88,10 @@ int main(int argc, char** argv) {
                  "adaptive sampling: a pixel stops taking samples once the relative standard error of its luminance "
                  "is below this (0.01: 1 %); --spp is the maximum; the EXR gets 'spp' and 'relativeError' channels")
       ->check(CLI::Range(1e-6, 10.0));
+  std::string preview_error;
+  app.add_option("--preview-error", preview_error,
+                 "with --noise-threshold: rewrite this PNG with a false-colour heat map of each pixel's remaining "
+                 "error (%) with every preview and at the end");
   std::string sensors_out;
   app.add_flag("--sensors-only", job.sensors_only,
                "measure the scene's \"sensors\" (lux grids and meters, docs/scene-format.md) without rendering the image");
@@ -132,6 +136,7 @@ int main(int argc, char** argv) {
     if (!samples.empty()) job.samples = rimu::parse_sample_range(samples, "--samples");
     if (!time_limit.empty()) job.time_limit_s = rimu::parse_duration_s(time_limit, "--time");
     if (!preview.empty()) job.preview_output = preview;
+    if (!preview_error.empty()) job.preview_error_output = preview_error;
     if (!preview_interval.empty()) {
       if (preview.empty()) throw rimu::InputError({"", 0, "--preview-interval"}, "needs --preview FILE to write");
       job.preview_interval_s = rimu::parse_duration_s(preview_interval, "--preview-interval");

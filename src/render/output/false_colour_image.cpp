@@ -27,8 +27,12 @@ std::string number_text(double x) {
 }
 
 const char* unit_label(FalseColourQuantity quantity) {
-  return quantity == FalseColourQuantity::luminance ? "luminance (nt = cd/m²)"
-                                                    : "illuminance (lx), π × luminance: white Lambertian reference";
+  switch (quantity) {
+    case FalseColourQuantity::luminance: return "luminance (nt = cd/m²)";
+    case FalseColourQuantity::illuminance: return "illuminance (lx), π × luminance: white Lambertian reference";
+    case FalseColourQuantity::relative_error: return "relative standard error of luminance (%)";
+  }
+  return "";
 }
 
 // Tics of a log legend: every decade inside the range, with 2 and 5 between when it spans less than two decades,

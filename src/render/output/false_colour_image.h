@@ -22,7 +22,11 @@
 
 namespace rimu {
 
-enum class FalseColourQuantity { luminance, illuminance };
+enum class FalseColourQuantity {
+  luminance,       ///< nt
+  illuminance,     ///< lx, π × luminance
+  relative_error,  ///< % of the pixel's luminance: an adaptive render's estimated standard error (error_heat_map.h)
+};
 
 /// "luminance" or "illuminance"; InputError naming `option` otherwise.
 FalseColourQuantity parse_false_colour_quantity(const std::string& text, const std::string& option);
@@ -37,7 +41,7 @@ FalseColourRange parse_false_colour_range(const std::string& text, const std::st
 /// Per-pixel values of a false-colour image, row 0 at the top.
 struct FalseColourValues {
   int width = 0, height = 0;
-  std::vector<double> values;  ///< nt or lx; a pixel that is not a finite number is NaN (drawn as the bottom)
+  std::vector<double> values;  ///< nt, lx or %; a pixel that is not a finite number is NaN (drawn as the bottom)
   FalseColourQuantity quantity = FalseColourQuantity::luminance;
 };
 /// The values of `source`'s pixels (its data window) in nt, or in lx as π × nt.
