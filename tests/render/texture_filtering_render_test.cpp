@@ -142,29 +142,40 @@ TEST_CASE("MIP-mapped checkerboard at grazing angles: its mean far away without 
     CHECK(worst < 1e-3);  // unfiltered, a pixel's 4 samples land on 0.2 or 0.8 checks: deviations of ±30 % and more
     const test::Estimate far = test::paired_difference(far_checker, far_grey);
     CHECK(std::fabs(far.mean) <= 3.0 * far.standard_error + 1e-4 * test::mean_of(far_grey));
-    // Rows 29-31 see it 2.6-3.3 m away: footprints of ~3 texels read level 1-2, whose texels are still pure checks.
-    // The pixels there must keep the pattern (a lookup that always answered the mean would pass the test above).
+    // Rows 29-31 see it 2.6-3.3 m away: footprints of ~3 texels read level 1-2, whose texels are still pure checks
+    // (trilinear blends in some of the next level's, so its contrast is lower). The pixels there must keep the
+    // pattern, ±60 % of the mean at full contrast: a lookup that always answered the mean would pass the test above
+    // and give < 1e-3 here.
     const std::vector<double> near_checker = rows_of(checker, kWidth, 29, 31), near_grey = rows_of(grey, kWidth, 29, 31);
     double spread = 0.0;
     for (size_t i = 0; i < near_grey.size(); ++i) spread = std::max(spread, std::fabs(near_checker[i] / near_grey[i] - 1.0));
-    CHECK(spread > 0.3);
+    CHECK(spread > 0.1);
   }
   // EWA keeps the checks across the line of sight (its ellipse is narrow there), so far pixels are not all the mean;
   // their block average is, within its standard error.
   const auto ewa = test::render_xyz(*test::scene_from_json(checker_floor(checker_image(), {{"filter", "ewa"}})), kSpp, 3);
   const std::vector<double> ewa_far = rows_of(test::luminance_values(*ewa.film), kWidth, 17, 23);
   const test::Estimate block = test::paired_difference(ewa_far, rows_of(grey, kWidth, 17, 23));
-  CAPTURE(block.mean), CAPTURE(block.standard_error);
+  CAPTURE(block.mean);
+  CAPTURE(block.standard_error);
   CHECK(std::fabs(block.mean) <= 3.0 * block.standard_error + 1e-4 * test::mean_of(rows_of(grey, kWidth, 17, 23)));
 }
 
 TEST_CASE("texture filter keys: JSON \"filter\" and \"max_anisotropy\", and pbrt imagemap's \"filter\" and \"maxanisotropy\"") {
   const std::string image = grey_image();
   json scene = checker_floor(image, {{"filter", "ewa"}, {"max_anisotropy", 16}});
-  CHECK(test::scene_from_json(scene)->texture_footprints);
+  // An image texture needs the footprint and so ∂p/∂u, ∂p/∂v (the uv derivatives solve against them); a plain
+  // floor computes neither.
+  const auto textured = test::scene_from_json(scene);
+  CHECK(textured->texture_footprints);
+  CHECK(textured->geometry.has_surface_tangents());
+  CHECK(textured->transport_view().texture_footprints);
   json plain = checker_floor(image, json::object());
   plain["materials"]["floor"]["reflectance"] = 0.5;
-  CHECK_FALSE(test::scene_from_json(plain)->texture_footprints);
+  const auto untextured = test::scene_from_json(plain);
+  CHECK_FALSE(untextured->texture_footprints);
+  CHECK_FALSE(untextured->geometry.has_surface_tangents());
+  CHECK_FALSE(untextured->transport_view().texture_footprints);
   test::input_error([&] { test::scene_from_json(checker_floor(image, {{"filter", "cubic"}})); },
                           {"/materials/floor/reflectance/filter", "cubic"});
   test::input_error([&] { test::scene_from_json(checker_floor(image, {{"max_anisotropy", 0.5}})); },

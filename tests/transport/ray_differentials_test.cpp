@@ -36,7 +36,12 @@ Vec3 refract_through(Vec3 d, Vec3 n, float eta) {
 Vec3 film_direction(float x, float y) { return normalize(Vec3{x, y, 1.0f}); }
 
 void check_close(Vec3 a, Vec3 b, float tolerance) {
-  CAPTURE(a.x), CAPTURE(a.y), CAPTURE(a.z), CAPTURE(b.x), CAPTURE(b.y), CAPTURE(b.z);
+  CAPTURE(a.x);
+  CAPTURE(a.y);
+  CAPTURE(a.z);
+  CAPTURE(b.x);
+  CAPTURE(b.y);
+  CAPTURE(b.z);
   CHECK(length(a - b) <= tolerance);
 }
 
