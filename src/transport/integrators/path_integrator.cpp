@@ -253,8 +253,10 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     passages_since_vertex = 0;
     if (differentials) {
       if (bs->is_delta) {
-        // Mirror or refract the auxiliary rays as the main one was (the relative index from Snell's law on the
-        // main ray's own sines; at normal incidence the aux rays' bend barely depends on it, so 1 is taken there).
+        // Mirror or refract the auxiliary rays as the main one was, the relative index from Snell's law on the main
+        // ray's own sines (a BsdfSample carries no η). Within 1e-4 of normal incidence the sines cannot give it and 1
+        // is taken: the footprint then goes on as if the interface were not there (right for a thin pane; up to η
+        // times too narrow or wide behind a thick refracting surface seen head-on).
         const bool transmitted = bs->wi.z * wo.z < 0.0f;
         const float sin_i = std::sqrt(std::fmax(0.0f, 1.0f - wo.z * wo.z));
         const float sin_t = std::sqrt(std::fmax(0.0f, 1.0f - bs->wi.z * bs->wi.z));
