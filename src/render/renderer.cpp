@@ -4,7 +4,9 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -82,6 +84,13 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   // Path guiding (surface integrator only): the field the current pass samples from, fitted after the last one.
   constexpr bool can_guide = std::is_same_v<Integrator, PathIntegrator>;
   stats.guiding.active = can_guide && integrator_settings.guiding;
+  // Camera rays carry differentials only where a texture reads them (surface integrator), spaced as this render's
+  // samples are: a pixel's spp samples cover it about 1/√spp apart; pbrt-v4's floor of 1/8 keeps high-spp renders
+  // from sharpening the lookup below the texels' own noise-free resolution.
+  float differentials_scale = 0.0f;
+  if constexpr (can_guide)
+    if (integrator.scene().texture_footprints)
+      differentials_scale = std::max(0.125f, 1.0f / std::sqrt(float(std::max(1, options.samples_per_pixel))));
   std::optional<GuidingField> guiding_field;
   const GuidingFieldSettings guiding_settings;
   std::vector<GuidingSample> guiding_history;  // every pass's records, in pass and tile order, up to the budget
@@ -132,10 +141,19 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               const Vec2 lens = sampler->next_2d();
               const SampledWavelengths lambda =
                   sample_path_wavelengths(integrator_settings.wavelengths, *sampler, wavelength_density);
-              const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset_px.x, float(y) + 0.5f + fs.offset_px.y, lens);
+              const float film_x = float(x) + 0.5f + fs.offset_px.x, film_y = float(y) + 0.5f + fs.offset_px.y;
+              const Ray ray = camera.generate_ray(film_x, film_y, lens);
               SampledSpectrum radiance;
-              if constexpr (can_guide) radiance = integrator.radiance(ray, lambda, *sampler, guiding);
-              else radiance = integrator.radiance(ray, lambda, *sampler);
+              if constexpr (can_guide) {
+                if (differentials_scale > 0.0f) {
+                  const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
+                  radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding);
+                } else {
+                  radiance = integrator.radiance(ray, lambda, *sampler, guiding);
+                }
+              } else {
+                radiance = integrator.radiance(ray, lambda, *sampler);
+              }
               tile->add_sample(x, y, radiance, lambda, fs.weight);
             }
           }

@@ -57,4 +57,12 @@ Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u) const {
   return ray;
 }
 
+RayDifferentials Camera::generate_differentials(const Ray& ray, float film_x, float film_y, Vec2 lens_u,
+                                                float scale) const {
+  const Ray rx = generate_ray(film_x + 1.0f, film_y, lens_u), ry = generate_ray(film_x, film_y + 1.0f, lens_u);
+  RayDifferentials d{rx.origin, rx.direction, ry.origin, ry.direction};
+  d.scale_towards(ray.origin, ray.direction, scale);
+  return d;
+}
+
 }  // namespace rimu

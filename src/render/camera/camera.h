@@ -2,6 +2,7 @@
 #pragma once
 
 #include "transport/geometry/ray.h"
+#include "transport/geometry/ray_differentials.h"
 #include "transport/geometry/transform.h"
 
 namespace rimu {
@@ -27,6 +28,10 @@ class Camera {
   Camera(const CameraSettings& settings, int image_width, int image_height);
   /// The primary ray through film point (x, y) (in pixels) and lens sample u ∈ [0,1)². Direction is unit length.
   Ray generate_ray(float film_x, float film_y, Vec2 lens_u) const;
+  /// The differentials of `ray` (= generate_ray(film_x, film_y, lens_u)): the rays through the film points one
+  /// pixel right and one pixel down with the same lens sample (so a thin lens's rays still meet on the plane of
+  /// focus), moved towards `ray` by `scale`. Two more generate_ray calls.
+  RayDifferentials generate_differentials(const Ray& ray, float film_x, float film_y, Vec2 lens_u, float scale) const;
   const CameraSettings& settings() const { return settings_; }
 
  private:

@@ -28,6 +28,11 @@ class AlphaMask {
   /// within [0, 1] when read clamped. Cost: four loads.
   float evaluate(Vec2 uv) const;
 
+  /// The texels (row 0 at the top) and their size; a constant is one texel.
+  int width() const { return values_.empty() ? 1 : width_; }
+  int height() const { return values_.empty() ? 1 : height_; }
+  std::vector<float> texels() const { return values_.empty() ? std::vector<float>{constant_} : values_; }
+
  private:
   int width_ = 0, height_ = 0;
   std::vector<float> values_;  // empty for a constant

@@ -76,6 +76,9 @@ struct Scene {
   /// Some light is given in photometric units (render/scene/photometric_units.h), inline or through "include":
   /// `rimu` meters the display image of such a scene.
   bool photometric_lights = false;
+  /// Some material reads an image texture or a bump map: its hits need ray differentials and ∂p/∂u, ∂p/∂v
+  /// (TransportScene::texture_footprints); false spares every other scene that cost.
+  bool texture_footprints = false;
   std::vector<Medium> media;                      ///< the "media" section (empty: the surface integrator is used)
   std::vector<MediumBoundary> medium_boundaries;  ///< per material: the medium its shapes enclose
   int camera_medium = -1;                         ///< the medium marked "contains_camera", −1: none

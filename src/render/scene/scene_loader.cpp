@@ -27,6 +27,7 @@ TransportScene Scene::transport_view() const {
   view.scene_scale = scene_scale;
   view.passable_surfaces = std::any_of(materials.begin(), materials.end(), [](const Material& m) { return m.passes_shadow_rays(); });
   view.wavelength_density = wavelength_density.get();
+  view.texture_footprints = texture_footprints;
   return view;
 }
 
@@ -168,8 +169,10 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   // Included light definitions set it too (load_lights), as they are read.
   scene->photometric_lights = scene->photometric_lights || uses_photometric_units(document);
 
-  // ∂p/∂u, ∂p/∂v are read only by normal and bump maps: scenes without one skip their cost per hit.
+  // ∂p/∂u, ∂p/∂v are read only by normal and bump maps and by filtered image textures (their uv derivatives):
+  // scenes without one skip their cost per hit.
   scene->geometry.set_surface_tangents(
+      scene->texture_footprints ||
       std::any_of(scene->materials.begin(), scene->materials.end(), [](const Material& m) { return m.uses_tangents(); }));
   scene->geometry.commit();
   if (!context.instance_transforms.empty()) {

@@ -231,8 +231,10 @@ std::shared_ptr<const ShadingNormalModifier> normal_modifier_of(const JsonCursor
       return ShadingNormalModifier::normal_map(std::make_shared<const RgbNormalMap>(std::move(image)));
     });
   }
-  if (m.has("displacement"))
+  if (m.has("displacement")) {
+    context.scene.texture_footprints = true;  // the bump's differencing step follows the footprint
     return ShadingNormalModifier::bump(load_float_texture(m.at("displacement"), context, -1e30, 1e30));
+  }
   return nullptr;
 }
 

@@ -85,6 +85,23 @@ TextureMapping texture_mapping(const JsonCursor& value, std::initializer_list<co
   return m;
 }
 
+// "filter" (point, bilinear, trilinear, ewa; default bilinear, as pbrt-v4's) and "max_anisotropy" (EWA's bound on
+// the footprint ellipse's eccentricity, default 8) of an image texture. Reading one marks the scene as needing hit
+// footprints (ray differentials).
+TextureFilterOptions texture_filter(const JsonCursor& value, LoadContext& context) {
+  TextureFilterOptions options;
+  if (value.has("filter")) {
+    const std::string name = value.at("filter").choice({"point", "bilinear", "trilinear", "ewa"});
+    options.filter = name == "point"       ? TextureFilter::point
+                     : name == "bilinear"  ? TextureFilter::bilinear
+                     : name == "trilinear" ? TextureFilter::trilinear
+                                           : TextureFilter::ewa;
+  }
+  options.max_anisotropy = float(value.number_or("max_anisotropy", 8.0, 1.0, 1e6));
+  context.scene.texture_footprints = true;
+  return options;
+}
+
 NoiseOctaves noise_octaves(const JsonCursor& value) {
   return {value.integer_or("octaves", 8, 0, 30), float(value.number_or("roughness", 0.5, -10.0, 10.0))};
 }
@@ -101,7 +118,9 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
   if (!value.is_object())
     value.fail("expected a number or a float texture ({\"texture\": \"map.png\"}, {\"mix\": [a, b], \"amount\": t}, ...)");
   if (value.has("texture")) {
-    const TextureMapping mapping = texture_mapping(value, {"texture", "encoding", "invert", "scale"}, false);
+    const TextureMapping mapping =
+        texture_mapping(value, {"texture", "encoding", "invert", "scale", "filter", "max_anisotropy"}, false);
+    const TextureFilterOptions filter = texture_filter(value, context);
     const JsonCursor file = value.at("texture");
     const std::filesystem::path path = context.spectra.scene_directory() / file.string();
     return file.blame([&]() -> FloatTexturePtr {
@@ -110,8 +129,8 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
       if (value.has("encoding")) srgb = value.at("encoding").choice({"srgb", "linear"}) == "srgb";
       // Values as read, not clamped: roughness clamps at use, a mix's amount decides by a ≤ 0 / ≥ 1 test.
       auto values = std::make_shared<const AlphaMask>(AlphaMask::read(path, 0, srgb, false, false));
-      return std::make_shared<ImageFloatTexture>(std::move(values), float(value.number_or("scale", 1.0, -1e30, 1e30)),
-                                                 value.boolean_or("invert", false), mapping);
+      return std::make_shared<ImageFloatTexture>(values, float(value.number_or("scale", 1.0, -1e30, 1e30)),
+                                                 value.boolean_or("invert", false), mapping, filter);
     });
   }
   if (value.has("noise")) {
@@ -154,7 +173,9 @@ FloatTexturePtr load_float_texture(const JsonCursor& value, LoadContext& context
 
 SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& context) {
   if (value.is_object() && value.has("texture")) {
-    const TextureMapping mapping = texture_mapping(value, {"texture", "colour_space", "encoding", "scale", "invert"}, false);
+    const TextureMapping mapping = texture_mapping(
+        value, {"texture", "colour_space", "encoding", "scale", "invert", "filter", "max_anisotropy"}, false);
+    const TextureFilterOptions filter = texture_filter(value, context);
     const std::filesystem::path path = context.spectra.scene_directory() / value.at("texture").string();
     const std::shared_ptr<const RgbImage> image = load_rgb_image(value, path);
     const std::string space = value.string_or("colour_space", "srgb-linear");
@@ -166,7 +187,7 @@ SpectralTexturePtr load_spectral_texture(const JsonCursor& value, LoadContext& c
       texture = std::make_shared<RgbLaneImageTexture>(image, RgbColourSpace::named(space), scale, invert);
     } else {
       const auto upsampler = context.spectra.upsampler(space, value.has("colour_space") ? value.at("colour_space") : value);
-      texture = std::make_shared<ImageTexture>(image, upsampler, scale, invert);
+      texture = std::make_shared<ImageTexture>(image, upsampler, scale, invert, filter);
     }
     if (mapping.is_identity_uv()) return texture;
     return std::make_shared<MappedSpectralTexture>(std::move(texture), mapping);

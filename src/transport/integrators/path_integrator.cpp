@@ -61,8 +61,8 @@ namespace {
 // PathIntegrator::radiance, and radiance_from_vertex (path_start_vertex.h) when `start` is given. The scene and
 // settings keep the members' names, so the body reads as the member function it was.
 SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSettings& settings_, const Ray& camera_ray,
-                           const SampledWavelengths& lambda, Sampler& sampler, const PathGuidingContext& guiding,
-                           const PathStartVertex* start) {
+                           const RayDifferentials* camera_differentials, const SampledWavelengths& lambda,
+                           Sampler& sampler, const PathGuidingContext& guiding, const PathStartVertex* start) {
   const auto& lights = *scene_.lights;
   const LightSampler& light_sampler = *scene_.light_sampler;
 
@@ -75,6 +75,11 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
   SampledSpectrum pdf_ratio = lanes.initial_ratios();
   SampledSpectrum beta = pdf_ratio;  // f / p(x̄ | hero), per lane
   Ray ray = camera_ray;
+  // The footprint of the current segment: the camera's, kept through specular bounces and panes, dropped after a
+  // diffuse or glossy one (its spread is then the BSDF's, far wider than a pixel's: textures are point-sampled, and
+  // the Monte Carlo average over many paths filters them).
+  std::optional<RayDifferentials> differentials;
+  if (scene_.texture_footprints && camera_differentials) differentials = *camera_differentials;
 
   // Path guiding: what this path teaches the field (if it records), and whether it may sample from one.
   const bool guiding_on = settings_.guiding;
@@ -152,6 +157,14 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     if (depth_reached && !may_pass) break;
 
     MaterialContext context = MaterialContext::at(*hit, wo_world);
+    if (differentials) {
+      const SurfaceDifferentials d =
+          surface_differentials(hit->position, hit->geometric_normal, hit->dpdu, hit->dpdv, *differentials);
+      context.dpdx = d.dpdx;
+      context.dpdy = d.dpdy;
+      context.duvdx = d.duvdx;
+      context.duvdy = d.duvdy;
+    }
     context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
     const Bsdf bsdf = material.bsdf(context, lambda);
     const BsdfFlags flags = bsdf.flags();
@@ -238,6 +251,24 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     }
     if (depth_reached) break;
     passages_since_vertex = 0;
+    if (differentials) {
+      if (bs->is_delta) {
+        // Mirror or refract the auxiliary rays as the main one was, the relative index from Snell's law on the main
+        // ray's own sines (a BsdfSample carries no η). Within 1e-4 of normal incidence the sines cannot give it and 1
+        // is taken: the footprint then goes on as if the interface were not there (right for a thin pane; up to η
+        // times too narrow or wide behind a thick refracting surface seen head-on).
+        const bool transmitted = bs->wi.z * wo.z < 0.0f;
+        const float sin_i = std::sqrt(std::fmax(0.0f, 1.0f - wo.z * wo.z));
+        const float sin_t = std::sqrt(std::fmax(0.0f, 1.0f - bs->wi.z * bs->wi.z));
+        const float eta = transmitted && sin_t > 1e-4f ? sin_i / sin_t : 1.0f;
+        const SurfaceDifferentials d{context.dpdx, context.dpdy, context.duvdx, context.duvdy};
+        differentials = d.dpdx == Vec3{} ? std::nullopt
+                                         : specular_differentials(*differentials, hit->position, shading.frame.n, d,
+                                                                  transmitted, eta);
+      } else {
+        differentials.reset();
+      }
+    }
 
     previous_specular = bs->is_delta;
     previous_hero_pdf = bs->pdf[0];
@@ -281,16 +312,17 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
 
 }  // namespace
 
-SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& sampler,
+SampledSpectrum PathIntegrator::radiance(const Ray& camera_ray, const RayDifferentials* differentials,
+                                         const SampledWavelengths& lambda, Sampler& sampler,
                                          const PathGuidingContext& guiding) const {
-  return trace_path(scene_, settings_, camera_ray, lambda, sampler, guiding, nullptr);
+  return trace_path(scene_, settings_, camera_ray, differentials, lambda, sampler, guiding, nullptr);
 }
 
 SampledSpectrum radiance_from_vertex(const TransportScene& scene, const PathIntegratorSettings& settings, const Ray& ray,
                                      const SampledWavelengths& lambda, Sampler& sampler, const PathStartVertex& start) {
   PathIntegratorSettings unguided = settings;
   unguided.guiding = false;
-  return trace_path(scene, unguided, ray, lambda, sampler, PathGuidingContext{}, &start);
+  return trace_path(scene, unguided, ray, nullptr, lambda, sampler, PathGuidingContext{}, &start);
 }
 
 }  // namespace rimu

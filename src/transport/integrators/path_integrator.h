@@ -12,6 +12,7 @@
 #include "transport/lights/light_sampler.h"
 #include "transport/bsdfs/material.h"
 #include "transport/geometry/ray.h"
+#include "transport/geometry/ray_differentials.h"
 #include "transport/integrators/ray_queries.h"
 #include "transport/sampling/sampler.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -33,6 +34,10 @@ struct TransportScene {
   /// Some material lets shadow rays through (Material::passes_shadow_rays: a pane): shadow rays then trace closest
   /// hits through them (transport/integrators/shadow_passage.h); false keeps the single occlusion query.
   bool passable_surfaces = false;
+  /// Some material reads an image texture or a bump map: the integrator then computes each hit's footprint
+  /// (MaterialContext::dpdx … duvdy) from the camera ray's differentials, following them through specular bounces.
+  /// False (the default) skips that work and leaves the footprint zero.
+  bool texture_footprints = false;
   /// The density camera paths draw wavelengths from (spectral/wavelengths/wavelength_density.h); nullptr: the visible density.
   const TabulatedWavelengthDensity* wavelength_density = nullptr;
 };
@@ -80,7 +85,14 @@ class PathIntegrator {
   }
   /// The same, guided by (and teaching) the field in `guiding` when settings.guiding is on.
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
-                           const PathGuidingContext& guiding) const;
+                           const PathGuidingContext& guiding) const {
+    return radiance(ray, nullptr, lambda, sampler, guiding);
+  }
+  /// The same with the camera ray's differentials (nullptr: none), which give textured hits their footprint when
+  /// the scene has texture_footprints.
+  SampledSpectrum radiance(const Ray& ray, const RayDifferentials* differentials, const SampledWavelengths& lambda,
+                           Sampler& sampler, const PathGuidingContext& guiding) const;
+  const TransportScene& scene() const { return scene_; }
 
  private:
   const TransportScene& scene_;

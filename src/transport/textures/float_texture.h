@@ -34,7 +34,7 @@ class ConstantFloatTexture final : public FloatTexture {
 inline bool checkerboard_odd_cell(float x) { return std::fmod(std::floor(x), 2.0f) != 0.0f; }
 
 /// Which of a 2D checkerboard's two textures covers (s, t): the first where ⌊s⌋ + ⌊t⌋ is even (pbrt-v4's
-/// checkerboard, point-sampled: Rimu has no ray differentials to box-filter it with).
+/// checkerboard, point-sampled: the footprint is not used to box-filter it).
 inline bool checkerboard_first(Vec2 st) { return checkerboard_odd_cell(st.x) == checkerboard_odd_cell(st.y); }
 
 /// The same for any mapping: a `solid` mapping gives pbrt-v4's 3D checkerboard (the first texture where

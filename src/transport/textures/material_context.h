@@ -25,9 +25,15 @@ struct MaterialContext {
   /// scenes loaded from files where no material has a normal or bump map (EmbreeScene::set_surface_tangents).
   Vec3 dpdu, dpdv;
   Vec3 wo;                ///< unit; towards where the light leaves (the previous vertex)
+  /// The footprint of the path's ray around this point, per film sample step (transport/geometry/ray_differentials.h):
+  /// ∂p/∂x, ∂p/∂y and the texture coordinates' (∂u/∂x, ∂v/∂x), (∂u/∂y, ∂v/∂y). Zero when not known — after a
+  /// diffuse or glossy bounce, or in scenes without image textures or bump maps, which skip computing them
+  /// (TransportScene::texture_footprints): image textures then read their finest level.
+  Vec3 dpdx, dpdy;
+  Vec2 duvdx, duvdy;
 
   static MaterialContext at(const SurfaceHit& hit, Vec3 wo_world) {
-    return {hit.uv, hit.position, hit.geometric_normal, hit.shading_normal, hit.dpdu, hit.dpdv, wo_world};
+    return {hit.uv, hit.position, hit.geometric_normal, hit.shading_normal, hit.dpdu, hit.dpdv, wo_world, {}, {}, {}, {}};
   }
 
   static MaterialContext at_uv(Vec2 uv) {

@@ -14,7 +14,7 @@ float perlin_noise(Vec3 p);
 inline float perlin_noise(float x, float y, float z = 0.5f) { return perlin_noise(Vec3{x, y, z}); }
 
 /// Fractional Brownian motion: Σᵢ ωⁱ·noise(λᵢ·p), λᵢ = 1.99ⁱ, i < octaves (pbrt-v4's FBm with every octave
-/// present: Rimu has no ray differentials to drop the octaves a pixel cannot resolve).
+/// present: Rimu's procedural textures do not use the ray differentials to drop the octaves a pixel cannot resolve).
 float fbm(Vec3 p, float omega, int octaves);
 
 /// Turbulence: Σᵢ ωⁱ·|noise(λᵢ·p)| over the octaves, plus pbrt-v4's 0.2·ω^octaves for the octaves beyond the last

@@ -41,6 +41,14 @@ Vec3 map_tangent_normal(Vec3 ns, Vec3 ng, Vec3 dpdu, Vec3 tangent_normal) {
   return keep_above_surface(n, ng);
 }
 
+Vec2 bump_steps_uv(const MaterialContext& context) {
+  float du = 0.5f * (std::fabs(context.duvdx.x) + std::fabs(context.duvdy.x));
+  float dv = 0.5f * (std::fabs(context.duvdx.y) + std::fabs(context.duvdy.y));
+  if (!(du > 0.0f) || !std::isfinite(du)) du = kBumpStepUv;
+  if (!(dv > 0.0f) || !std::isfinite(dv)) dv = kBumpStepUv;
+  return {du, dv};
+}
+
 Vec3 bump_normal(const MaterialContext& context, const FloatTexture& displacement) {
   const Vec3 ns = context.shading_normal;
   const Vec3 dpdu = tangential(context.dpdu, ns), dpdv = tangential(context.dpdv, ns);
@@ -49,17 +57,18 @@ Vec3 bump_normal(const MaterialContext& context, const FloatTexture& displacemen
   // Parallel or zero tangents (within 1e-3 rad): no surface parametrisation to difference along.
   if (!(area2 > kMinTangentSin2 * dot(dpdu, dpdu) * dot(dpdv, dpdv)) || !finite(unbumped)) return ns;
 
+  const Vec2 step = bump_steps_uv(context);
   const float d = displacement.evaluate(context);
   MaterialContext shifted = context;
-  shifted.position = context.position + context.dpdu * kBumpStepUv;
-  shifted.uv = {context.uv.x + kBumpStepUv, context.uv.y};
+  shifted.position = context.position + context.dpdu * step.x;
+  shifted.uv = {context.uv.x + step.x, context.uv.y};
   const float d_u = displacement.evaluate(shifted);
-  shifted.position = context.position + context.dpdv * kBumpStepUv;
-  shifted.uv = {context.uv.x, context.uv.y + kBumpStepUv};
+  shifted.position = context.position + context.dpdv * step.y;
+  shifted.uv = {context.uv.x, context.uv.y + step.y};
   const float d_v = displacement.evaluate(shifted);
 
-  const Vec3 bumped_dpdu = dpdu + ns * ((d_u - d) / kBumpStepUv);
-  const Vec3 bumped_dpdv = dpdv + ns * ((d_v - d) / kBumpStepUv);
+  const Vec3 bumped_dpdu = dpdu + ns * ((d_u - d) / step.x);
+  const Vec3 bumped_dpdv = dpdv + ns * ((d_v - d) / step.y);
   Vec3 n = normalize(cross(bumped_dpdu, bumped_dpdv));
   if (!finite(n)) return ns;
   if (dot(unbumped, ns) < 0.0f) n = -n;  // uv axes of the other handedness: keep the normal's side

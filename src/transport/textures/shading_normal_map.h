@@ -32,14 +32,19 @@ Vec3 keep_above_surface(Vec3 n, Vec3 ng);
 /// result is unit and kept above the geometric surface (keep_above_surface).
 Vec3 map_tangent_normal(Vec3 ns, Vec3 ng, Vec3 dpdu, Vec3 tangent_normal);
 
-/// The step in (u, v) over which a bump map's displacement is differenced. pbrt-v4 uses half the sum of the
-/// texture coordinates' screen-space derivatives and 0.0005 where it has none; Rimu has no ray differentials and
-/// uses pbrt's fallback everywhere: 1/2000 of the uv square, two texels of a 4096² map — small enough to follow
+/// The step in (u, v) over which a bump map's displacement is differenced where the hit has no footprint (after a
+/// diffuse bounce): pbrt-v4's fallback, 1/2000 of the uv square, two texels of a 4096² map — small enough to follow
 /// detail at film resolutions, large enough that float differences of the displacement stay well above rounding.
 inline constexpr float kBumpStepUv = 0.0005f;
 
+/// The bump map's differencing steps (Δu, Δv) at a surface point: half the footprint along each texture axis,
+/// Δu = ½(|∂u/∂x| + |∂u/∂y|) and likewise Δv (pbrt-v4's rule: the displacement's slope is then taken over about the
+/// area one sample sees, so a distant bumpy floor is not differenced finer than it is filtered), kBumpStepUv
+/// where that is zero.
+Vec2 bump_steps_uv(const MaterialContext& context);
+
 /// The bumped shading normal (pbrt-v4's BumpMap): displacement d(u, v) along ns moves the tangents to
-/// ∂p/∂u + (d(u + Δ, v) − d(u, v))/Δ · ns and likewise along v (Δ = kBumpStepUv; the tangents are first made
+/// ∂p/∂u + (d(u + Δu, v) − d(u, v))/Δu · ns and likewise along v (bump_steps_uv; the tangents are first made
 /// orthogonal to ns); the normal is their cross product, oriented as ∂p/∂u × ∂p/∂v is against ns. pbrt's extra
 /// d·∂n/∂u terms are left out (Rimu does not carry ∂n/∂u; they vanish on flat faces and matter only where the
 /// displacement is a sizeable fraction of the curvature radius). Falls back to ns where a tangent is zero, they are

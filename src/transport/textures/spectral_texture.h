@@ -21,6 +21,12 @@ class SpectralTexture {
   virtual SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const {
     return evaluate(context.uv, lambda);
   }
+  /// The value averaged over a footprint at `st` spanned by (∂s/∂x, ∂t/∂x) and (∂s/∂y, ∂t/∂y): what a filtered
+  /// image texture answers (render/image/mip_pyramid.h). The default ignores the footprint.
+  virtual SampledSpectrum evaluate_footprint(Vec2 st, Vec2 /*dst_dx*/, Vec2 /*dst_dy*/,
+                                             const SampledWavelengths& lambda) const {
+    return evaluate(st, lambda);
+  }
 };
 
 using SpectralTexturePtr = std::shared_ptr<const SpectralTexture>;

@@ -66,7 +66,8 @@ class MappedSpectralTexture final : public SpectralTextureAtPoint {
  public:
   MappedSpectralTexture(SpectralTexturePtr texture, TextureMapping mapping);
   SampledSpectrum evaluate_at(const MaterialContext& context, const SampledWavelengths& lambda) const override {
-    return texture_->evaluate(mapping_.image_st(context), lambda);
+    const TextureFootprint f = mapping_.image_footprint(context);
+    return texture_->evaluate_footprint(f.st, f.dst_dx, f.dst_dy, lambda);
   }
 
  private:

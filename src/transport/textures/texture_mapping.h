@@ -9,6 +9,12 @@
 
 namespace rimu {
 
+/// Texture coordinates and their derivatives per film step: where an image is read, and how wide around it.
+struct TextureFootprint {
+  Vec2 st;
+  Vec2 dst_dx, dst_dy;  ///< (∂s/∂x, ∂t/∂x), (∂s/∂y, ∂t/∂y); zero: no footprint known
+};
+
 /// pbrt-v4's 2D "uv" texture mapping: (s, t) = (su·u + du, sv·v + dv).
 struct UvMapping {
   float su = 1, sv = 1, du = 0, dv = 0;
@@ -51,6 +57,31 @@ struct TextureMapping {
   Vec2 image_st(const MaterialContext& c) const {
     const Vec2 s = st(c);
     return std::isfinite(s.x) && std::isfinite(s.y) ? s : Vec2{0.0f, 0.0f};
+  }
+
+  /// image_st() with its derivatives: the uv mapping's are the surface's scaled; the others' are differenced over
+  /// the footprint (st at p + ∂p/∂x less st at p: exact for planar, the chord for spherical and cylindrical, taken
+  /// the short way round their seams). Zero when the context has no footprint or a coordinate is not finite.
+  TextureFootprint image_footprint(const MaterialContext& c) const {
+    TextureFootprint f{image_st(c), {}, {}};
+    if (kind == Kind::uv) {
+      f.dst_dx = {uv.su * c.duvdx.x, uv.sv * c.duvdx.y};
+      f.dst_dy = {uv.su * c.duvdy.x, uv.sv * c.duvdy.y};
+    } else if (!(c.dpdx == Vec3{}) || !(c.dpdy == Vec3{})) {
+      const auto difference = [&](Vec3 dp) {
+        MaterialContext shifted = c;
+        shifted.position = c.position + dp;
+        const Vec2 s = st(shifted);
+        Vec2 d{s.x - f.st.x, s.y - f.st.y};
+        // Spherical t and cylindrical s are angles over 2π: a step across the seam is the short way round.
+        if (kind == Kind::spherical) d.y -= std::round(d.y);
+        if (kind == Kind::cylindrical) d.x -= std::round(d.x);
+        return std::isfinite(d.x) && std::isfinite(d.y) ? d : Vec2{};
+      };
+      f.dst_dx = difference(c.dpdx);
+      f.dst_dy = difference(c.dpdy);
+    }
+    return f;
   }
 
   /// The 2D texture coordinates (for `solid`, the point's x and y).

@@ -372,7 +372,9 @@ json PbrtConverter::alpha_parameter(PbrtParams& p, bool has_uvs) {
   if (tp.string("mapping", "uv") != "uv" || tp.real("uscale", 1) != 1 || tp.real("vscale", 1) != 1 || tp.real("udelta", 0) != 0 ||
       tp.real("vdelta", 0) != 0)
     ignore("texture mapping other than plain uv", ts.where);
-  tp.string("filter", "bilinear");  // Rimu filters bilinearly
+  // An alpha test runs before the hit has a footprint: cut-outs are read bilinearly from the full-resolution image.
+  tp.string("filter", "bilinear");
+  tp.real("maxanisotropy", 8.0);
   tp.string("wrap", "repeat");
   return value;
 }

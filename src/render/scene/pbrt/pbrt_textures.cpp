@@ -72,7 +72,18 @@ void PbrtConverter::image_mapping(PbrtParams& tp, json& value, const PbrtTexture
   // Plain uv (pbrt's default) writes no keys, so that the document stays as short as the file.
   if (mapping.contains("mapping") || mapping["uv_scale"] != json{1.0, 1.0} || mapping["uv_offset"] != json{0.0, 0.0})
     value.update(mapping);
-  tp.string("filter", "bilinear");  // Rimu filters bilinearly (pbrt's MIP-map filters have no counterpart)
+  // pbrt-v4's MIP-map filter (default bilinear, Rimu's too: written only when another is asked for).
+  const std::string filter = tp.string("filter", "bilinear");
+  if (filter == "point" || filter == "trilinear" || filter == "ewa")
+    value["filter"] = filter;
+  else if (filter != "bilinear")
+    ignore("imagemap \"filter\" \"" + filter + "\" (not point, bilinear, trilinear or ewa: bilinear is used)", ts.where);
+  if (const double anisotropy = tp.real("maxanisotropy", 8.0); anisotropy != 8.0) {
+    if (anisotropy >= 1.0 && anisotropy <= 1e6)
+      value["max_anisotropy"] = anisotropy;
+    else
+      ignore("imagemap \"maxanisotropy\" outside [1, 1e6] (8 is used)", ts.where);
+  }
   if (const std::string wrap = tp.string("wrap", "repeat"); wrap != "repeat")
     ignore("imagemap \"wrap\" \"" + wrap + "\" (Rimu's image textures repeat)", ts.where);
 }
