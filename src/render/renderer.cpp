@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -107,6 +108,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
+      // Light groups (render/film/film.h): each sample's share per group. A film without groups passes an empty
+      // LightGroupRadiance, and the integrator and film skip the per-group work.
+      std::vector<SampledSpectrum> group_slots(film.light_groups().size());
+      const LightGroupRadiance groups{group_slots.empty() ? nullptr : group_slots.data(), int(group_slots.size())};
       for (size_t t = range.begin(); t != range.end(); ++t) {
         if (options.interrupt && options.interrupt->requested()) {
           stopped = true;
@@ -134,9 +139,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
                   sample_path_wavelengths(integrator_settings.wavelengths, *sampler, wavelength_density);
               const Ray ray = camera.generate_ray(float(x) + 0.5f + fs.offset_px.x, float(y) + 0.5f + fs.offset_px.y, lens);
               SampledSpectrum radiance;
-              if constexpr (can_guide) radiance = integrator.radiance(ray, lambda, *sampler, guiding);
-              else radiance = integrator.radiance(ray, lambda, *sampler);
-              tile->add_sample(x, y, radiance, lambda, fs.weight);
+              if (groups.groups) std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
+              if constexpr (can_guide) radiance = integrator.radiance(ray, lambda, *sampler, guiding, groups);
+              else radiance = integrator.radiance(ray, lambda, *sampler, groups);
+              tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
             }
           }
         }

@@ -6,8 +6,39 @@
 
 #include "common/tool_main.h"
 
+#include "render/output/exr_relight.h"
+
 #include "render/output/exr_display_source.h"
 #include "spectral/error.h"
+
+namespace {
+
+// Relighting (render/output/exr_relight.h): the light-group and white-balance options, parsed into `relight` once
+// the command line is read (relight_options_from).
+struct RelightText {
+  std::string groups, white;
+};
+
+void add_relight_options(CLI::App& app, RelightText& text) {
+  app.add_option("--group", text.groups,
+                 "rebalance light groups: name=scale[,name=scale...], e.g. sun=2,lamps=0.5 (groups not named keep 1; "
+                 "0 removes a group's light)");
+  app.add_option("--white-balance", text.white,
+                 "white-balance the display image from this white to D65: a temperature (4500K), an illuminant "
+                 "(D50) or a chromaticity x,y (0.3457,0.3585)");
+}
+
+rimu::ExrRelightOptions relight_options_from(const RelightText& text) {
+  rimu::ExrRelightOptions options;
+  if (!text.groups.empty()) options.groups = rimu::parse_light_group_scales(text.groups, "--group");
+  if (!text.white.empty()) {
+    rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
+    options.white = rimu::parse_display_white(text.white, library, "--white-balance");
+  }
+  return options;
+}
+
+}  // namespace
 
 int run_display_command(int argc, char** argv) {
   CLI::App app{
@@ -28,8 +59,10 @@ int run_display_command(int argc, char** argv) {
   app.add_flag("--meter", meter,
                "meter the image to 18 % grey (plus --exposure) even if the render did not (it does for photometric "
                "scenes without a camera exposure)");
+  RelightText relight;
+  add_relight_options(app, relight);
   return rimu::run_tool("rimu display", app, argc, argv, [&] {
-    rimu::write_exr_display_image(input, png, display, meter, std::cerr);
+    rimu::write_exr_display_image(input, png, display, meter, std::cerr, relight_options_from(relight));
     std::cerr << "rimu display: wrote " << png << "\n";
   });
 }

@@ -12,6 +12,7 @@
 #include "transport/lights/light_sampler.h"
 #include "transport/bsdfs/material.h"
 #include "transport/geometry/ray.h"
+#include "transport/integrators/light_group_radiance.h"
 #include "transport/integrators/ray_queries.h"
 #include "transport/sampling/sampler.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -78,9 +79,10 @@ class PathIntegrator {
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const {
     return radiance(ray, lambda, sampler, PathGuidingContext{});
   }
-  /// The same, guided by (and teaching) the field in `guiding` when settings.guiding is on.
+  /// The same, guided by (and teaching) the field in `guiding` when settings.guiding is on, and with each light
+  /// group's share of the result added to `groups` (light_group_radiance.h; nothing when groups.groups is null).
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
-                           const PathGuidingContext& guiding) const;
+                           const PathGuidingContext& guiding, const LightGroupRadiance& groups = {}) const;
 
  private:
   const TransportScene& scene_;
