@@ -97,8 +97,7 @@ void apply_job_options(const RenderJob& job, RenderSettings& settings, SpectralL
 // --crop, else the scene's film "crop" (checked against the scene's resolution, which --width/--height may change).
 FilmOptions film_options(const RenderJobState& s) {
   const RenderSettings& settings = s.loaded.scene->settings;
-  FilmOptions options{settings.width, settings.height, std::nullopt, settings.spectral_bins,
-                      s.loaded.scene->light_groups};
+  FilmOptions options{settings.width, settings.height, std::nullopt, settings.spectral_bins};
   if (const std::optional<PixelBounds> crop = s.job.crop ? s.job.crop : settings.crop) {
     if (crop->x1 > settings.width || crop->y1 > settings.height)
       throw InputError({s.job.crop ? "" : s.scene_path.string(), 0, s.job.crop ? "--crop" : "/film/crop"},
@@ -319,7 +318,7 @@ void set_up_film(RenderJobState& s) {
   const RenderJob& job = s.job;
   const RenderSettings& settings = s.loaded.scene->settings;
   const FilmOptions options = film_options(s);
-  s.film = std::make_unique<Film>(options, film_response(s));
+  s.film = std::make_unique<Film>(options, film_response(s), s.loaded.scene->light_groups);
   Film& film = *s.film;
   if (settings.camera_exposure.exposure) {
     try {

@@ -24,6 +24,8 @@
 #include "render/output/merge_partials.h"
 #include "render/render_job.h"
 #include "render/scene/scene.h"
+#include "render/camera/physical_camera.h"
+#include "spectral/spectra/blackbody_spectrum.h"
 
 using namespace rimu;
 namespace fs = std::filesystem;
@@ -126,10 +128,14 @@ TEST_CASE("light groups: the layers sum to the beauty (surface integrator: envir
 TEST_CASE("light groups: the layers sum to the beauty in a medium (volumetric integrator, equiangular sampling)") {
   test::ScratchFolder folder("light_groups_medium");
   json scene = json::parse(std::ifstream(example_scene()));
-  // Haze around the camera and everything: the volumetric integrator, with equiangular sampling towards the point
-  // and spot lights.
+  // Haze in an invisible box around the camera and the scene (the sky and sun come in through it): the volumetric
+  // integrator, with equiangular sampling towards the point and spot lights.
+  scene["materials"]["haze_boundary"] = {{"type", "diffuse"}, {"reflectance", 0.5}};
   scene["media"] = {{"haze", {{"type", "homogeneous"}, {"sigma_a", {{"constant", 0.02}}},
-                              {"sigma_s", {{"constant", 0.3}}}, {"contains_camera", true}}}};
+                              {"sigma_s", {{"constant", 0.3}}}, {"boundary_material", "haze_boundary"},
+                              {"index_matched", true}, {"contains_camera", true}}}};
+  scene["shapes"].push_back({{"type", "box"}, {"material", "haze_boundary"}, {"min", {-3.5, -0.1, -3.5}},
+                             {"max", {3.5, 3.0, 3.5}}});
   std::ofstream(folder / "hazy.json") << scene.dump();
   render(tiny_job(folder / "hazy.json", folder / "hazy.exr"));
   check_layers_sum_to_beauty(read_channels(folder / "hazy.exr"), {"sky", "sun", "lamps", "ungrouped"});
@@ -185,7 +191,7 @@ TEST_CASE("light groups: --group x=0 shows the beauty minus layer x exactly; sca
     const ExrDisplaySource plain = read_exr_for_display(folder / name, test::library());
     rebalance_light_groups(*relit.film, {{"lamps", 0.0}, {"sun", 2.0}}, name);
     // The expected film: beauty − lamps + sun, built from the read film's own sums.
-    FilmOptions options{plain.film->width(), plain.film->height(), plain.film->pixel_bounds(), 0, {}};
+    FilmOptions options{plain.film->width(), plain.film->height(), plain.film->pixel_bounds(), 0};
     Film expected(options, plain.film->response());
     expected.set_output_transform(plain.film->output_transform());
     FilmTile tile = expected.make_tile(expected.pixel_bounds());
@@ -225,7 +231,7 @@ TEST_CASE("light groups: --group x=0 shows the beauty minus layer x exactly; sca
   }
   // Through the display image: --group lamps=0 writes the same PNG as the film of beauty − lamps.
   const ExrDisplaySource plain = read_exr_for_display(folder / "final.exr", test::library());
-  FilmOptions options{plain.film->width(), plain.film->height(), plain.film->pixel_bounds(), 0, {}};
+  FilmOptions options{plain.film->width(), plain.film->height(), plain.film->pixel_bounds(), 0};
   Film minus_lamps(options, plain.film->response());
   FilmTile tile = minus_lamps.make_tile(minus_lamps.pixel_bounds());
   const PixelBounds& b = minus_lamps.pixel_bounds();
@@ -284,7 +290,7 @@ TEST_CASE("light groups: --white-balance adapts the chosen white to D65") {
   const std::array<double, 3> w = film_channels(BlackbodySpectrum(2700.0, BlackbodySpectrum::Scale::peak_one),
                                                 source.film->response());
   const std::array<double, 3> d65 = film_channels(*test::library().illuminant("D65"), source.film->response());
-  const std::array<double, 3> mapped = m.apply({w[0] / w[1], 1.0, w[2] / w[1]});
+  const std::array<double, 3> mapped = m.apply(std::array<double, 3>{w[0] / w[1], 1.0, w[2] / w[1]});
   for (int c = 0; c < 3; ++c) CHECK(mapped[size_t(c)] == doctest::Approx(d65[size_t(c)] / d65[1]).epsilon(1e-9));
   const Chromaticity xy = chromaticity_of(Xyz{w[0], w[1], w[2]});
   const DisplayWhite by_xy = parse_display_white(std::to_string(xy.x) + "," + std::to_string(xy.y), test::library(),

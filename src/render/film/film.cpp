@@ -26,11 +26,11 @@ PixelBounds checked_crop(const FilmOptions& o) {
 
 }  // namespace
 
-Film::Film(const FilmOptions& options, SpectralResponse response)
+Film::Film(const FilmOptions& options, SpectralResponse response, std::vector<std::string> light_groups)
     : width_(options.width),
       height_(options.height),
       response_(std::move(response)),
-      light_groups_(options.light_groups),
+      light_groups_(std::move(light_groups)),
       pixels_(checked_crop(options), response_, SpectralBinning{options.spectral_bins}, int(light_groups_.size())) {}
 
 FilmTile Film::make_tile(const PixelBounds& bounds) const {

@@ -18,9 +18,6 @@ struct FilmOptions {
   int width = 0, height = 0;          ///< full image, pixels
   std::optional<PixelBounds> crop;    ///< the pixels actually rendered and stored; the whole image if unset
   int spectral_bins = 0;              ///< N bins over 360-830 nm; 0 = no spectral framebuffer
-  /// The scene's light groups (Scene::light_groups): one layer of channel sums per name besides the beauty, each
-  /// the share of the image its lights emitted; the layers sum to the beauty. Empty: no layers, no cost.
-  std::vector<std::string> light_groups;
 };
 
 /// Per pixel of the crop window, the sums of the samples' channel values (and spectral bins) and of their filter
@@ -39,7 +36,9 @@ struct FilmOptions {
 class Film {
  public:
   /// Throws InputError if the size is not positive, the crop window is empty or leaves the image, or bins < 0.
-  Film(const FilmOptions& options, SpectralResponse response);
+  /// `light_groups`: the scene's light groups (Scene::light_groups): one layer of channel sums per name besides the
+  /// beauty, each the share of the image its lights emitted; the layers sum to the beauty. Empty: no layers, no cost.
+  Film(const FilmOptions& options, SpectralResponse response, std::vector<std::string> light_groups = {});
   Film(const Film&) = delete;
   Film& operator=(const Film&) = delete;
 

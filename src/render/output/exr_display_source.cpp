@@ -60,8 +60,7 @@ std::unique_ptr<Film> film_from_image(const std::filesystem::path& path, Imf::In
   options.width = display.max.x - display.min.x + 1;
   options.height = display.max.y - display.min.y + 1;
   options.crop = PixelBounds{data.min.x, data.min.y, data.max.x + 1, data.max.y + 1};
-  options.light_groups = groups;
-  auto film = std::make_unique<Film>(options, std::move(response));
+  auto film = std::make_unique<Film>(options, std::move(response), groups);
 
   const int width = data.max.x - data.min.x + 1, height = data.max.y - data.min.y + 1;
   const size_t n = names.size();  // 3 beauty channels, then 3 per group

@@ -223,8 +223,8 @@ std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLib
   SpectralResponse response = partial.record.film_spec == "rgb-transport"
                                   ? SpectralResponse::rgb_transport(library)
                                   : SpectralResponse::from_spec(library, partial.record.film_spec);
-  FilmOptions options{partial.width, partial.height, partial.crop, partial.spectral_bins, partial.light_groups};
-  auto film = std::make_unique<Film>(options, std::move(response));
+  FilmOptions options{partial.width, partial.height, partial.crop, partial.spectral_bins};
+  auto film = std::make_unique<Film>(options, std::move(response), partial.light_groups);
   film->set_output_transform(partial.record.output_transform);
   add_partial_to_film(partial, *film);
   return film;
