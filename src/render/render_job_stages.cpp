@@ -342,7 +342,7 @@ void set_up_film(RenderJobState& s) {
   const RenderJob& job = s.job;
   const RenderSettings& settings = s.loaded.scene->settings;
   const FilmOptions options = film_options(s);
-  s.film = std::make_unique<Film>(options, film_response(s));
+  s.film = std::make_unique<Film>(options, film_response(s), s.loaded.scene->light_groups);
   Film& film = *s.film;
   if (settings.camera_exposure.exposure) {
     try {
@@ -481,6 +481,11 @@ void log_job_summary(const RenderJobState& s) {
     summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
             << " spatial leaves, " << g.directional_nodes << " directional nodes, "
             << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
+  if (!s.film->light_groups().empty()) {
+    summary << "rimu: light groups, one EXR layer each (rebalance them with rimu display --group):";
+    for (const std::string& group : s.film->light_groups()) summary << " " << group;
+    summary << "\n";
+  }
   summary << "rimu: wrote " << job.exr_output.string();
   if (job.png_output) summary << " and " << job.png_output->string();
   summary << "\n";

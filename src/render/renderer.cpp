@@ -116,6 +116,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
+      // Light groups (render/film/film.h): each sample's share per group. A film without groups passes an empty
+      // LightGroupRadiance, and the integrator and film skip the per-group work.
+      std::vector<SampledSpectrum> group_slots(film.light_groups().size());
+      const LightGroupRadiance groups{group_slots.empty() ? nullptr : group_slots.data(), int(group_slots.size())};
       for (size_t t = range.begin(); t != range.end(); ++t) {
         if (options.interrupt && options.interrupt->requested()) {
           stopped = true;
@@ -144,17 +148,18 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               const float film_x = float(x) + 0.5f + fs.offset_px.x, film_y = float(y) + 0.5f + fs.offset_px.y;
               const Ray ray = camera.generate_ray(film_x, film_y, lens);
               SampledSpectrum radiance;
+              if (groups.groups) std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
               if constexpr (can_guide) {
                 if (differentials_scale > 0.0f) {
                   const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
-                  radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding);
+                  radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
                 } else {
-                  radiance = integrator.radiance(ray, lambda, *sampler, guiding);
+                  radiance = integrator.radiance(ray, lambda, *sampler, guiding, groups);
                 }
               } else {
-                radiance = integrator.radiance(ray, lambda, *sampler);
+                radiance = integrator.radiance(ray, lambda, *sampler, groups);
               }
-              tile->add_sample(x, y, radiance, lambda, fs.weight);
+              tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
             }
           }
         }

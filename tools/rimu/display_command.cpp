@@ -8,8 +8,38 @@
 #include "common/tool_main.h"
 
 #include "render/output/exr_display_source.h"
+#include "render/output/exr_relight.h"
 #include "render/output/false_colour_image.h"
 #include "spectral/error.h"
+
+namespace {
+
+// Relighting (render/output/exr_relight.h): the light-group and white-balance options, parsed into `relight` once
+// the command line is read (relight_options_from).
+struct RelightText {
+  std::string groups, white;
+};
+
+void add_relight_options(CLI::App& app, RelightText& text) {
+  app.add_option("--group", text.groups,
+                 "rebalance light groups: name=scale[,name=scale...], e.g. sun=2,lamps=0.5 (groups not named keep 1; "
+                 "0 removes a group's light)");
+  app.add_option("--white-balance", text.white,
+                 "white-balance the display image from this white to D65: a temperature (4500K), an illuminant "
+                 "(D50) or a chromaticity x,y (0.3457,0.3585)");
+}
+
+rimu::ExrRelightOptions relight_options_from(const RelightText& text) {
+  rimu::ExrRelightOptions options;
+  if (!text.groups.empty()) options.groups = rimu::parse_light_group_scales(text.groups, "--group");
+  if (!text.white.empty()) {
+    rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
+    options.white = rimu::parse_display_white(text.white, library, "--white-balance");
+  }
+  return options;
+}
+
+}  // namespace
 
 int run_display_command(int argc, char** argv) {
   CLI::App app{
@@ -40,17 +70,23 @@ int run_display_command(int argc, char** argv) {
   app.add_option("--range", range, "false colour: the legend's range LOW:HIGH in nt or lx (default: the 1st-99th "
                                    "percentile of the image)")
       ->needs(false_colour_option);
-  for (const char* name : {"--exposure", "--view", "--meter"}) false_colour_option->excludes(app.get_option(name));
+  RelightText relight;
+  add_relight_options(app, relight);
+  // The false-colour picture shows the file's own light: rebalanced groups and a display white belong to the
+  // display image.
+  for (const char* name : {"--exposure", "--view", "--meter", "--group", "--white-balance"})
+    false_colour_option->excludes(app.get_option(name));
   return rimu::run_tool("rimu display", app, argc, argv, [&] {
     if (!false_colour.empty()) {
       const auto quantity = rimu::parse_false_colour_quantity(false_colour, "--false-colour");
       std::optional<rimu::FalseColourRange> legend;
       if (!range.empty()) legend = rimu::parse_false_colour_range(range, "--range");
       rimu::write_exr_false_colour(input, png, quantity, legend, std::cerr);
-      std::cerr << "rimu display: wrote " << png << "\n";
+      std::cerr << "rimu display: wrote " << png << "
+";
       return;
     }
-    rimu::write_exr_display_image(input, png, display, meter, std::cerr);
+    rimu::write_exr_display_image(input, png, display, meter, std::cerr, relight_options_from(relight));
     std::cerr << "rimu display: wrote " << png << "\n";
   });
 }

@@ -26,14 +26,15 @@ PixelBounds checked_crop(const FilmOptions& o) {
 
 }  // namespace
 
-Film::Film(const FilmOptions& options, SpectralResponse response)
+Film::Film(const FilmOptions& options, SpectralResponse response, std::vector<std::string> light_groups)
     : width_(options.width),
       height_(options.height),
       response_(std::move(response)),
-      pixels_(checked_crop(options), response_, SpectralBinning{options.spectral_bins}) {}
+      light_groups_(std::move(light_groups)),
+      pixels_(checked_crop(options), response_, SpectralBinning{options.spectral_bins}, int(light_groups_.size())) {}
 
 FilmTile Film::make_tile(const PixelBounds& bounds) const {
-  return FilmTile(bounds.intersect(pixel_bounds()), response_, binning());
+  return FilmTile(bounds.intersect(pixel_bounds()), response_, binning(), int(light_groups_.size()));
 }
 
 void Film::merge_tile(const FilmTile& tile) {
@@ -54,8 +55,16 @@ void Film::merge_tile(const FilmTile& tile) {
 }
 
 void Film::add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
-                      float filter_weight) {
-  pixels_.add_sample(x, y, radiance, lambda, filter_weight);
+                      float filter_weight, const SampledSpectrum* group_radiance) {
+  pixels_.add_sample(x, y, radiance, lambda, filter_weight, group_radiance);
+}
+
+std::array<double, 3> Film::group_value(int x, int y, int group) const {
+  const double* p = pixels_.pixel(x, y);
+  const double w = p[FilmTile::kWeight];
+  if (w == 0.0) return {0.0, 0.0, 0.0};
+  const double* g = p + pixels_.first_group_sum() + 3 * group;
+  return {g[0] / w, g[1] / w, g[2] / w};
 }
 
 std::array<double, 3> Film::pixel_value(int x, int y) const {

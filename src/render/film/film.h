@@ -4,6 +4,8 @@
 #include <array>
 #include <atomic>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "render/film/film_output_transform.h"
 #include "render/film/film_tile.h"
@@ -34,7 +36,9 @@ struct FilmOptions {
 class Film {
  public:
   /// Throws InputError if the size is not positive, the crop window is empty or leaves the image, or bins < 0.
-  Film(const FilmOptions& options, SpectralResponse response);
+  /// `light_groups`: the scene's light groups (Scene::light_groups): one layer of channel sums per name besides the
+  /// beauty, each the share of the image its lights emitted; the layers sum to the beauty. Empty: no layers, no cost.
+  Film(const FilmOptions& options, SpectralResponse response, std::vector<std::string> light_groups = {});
   Film(const Film&) = delete;
   Film& operator=(const Film&) = delete;
 
@@ -51,7 +55,16 @@ class Film {
   void merge_tile(const FilmTile& tile);
   /// Adds one sample directly (single-threaded use only; see FilmTile::add_sample for the estimator).
   void add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
-                  float filter_weight = 1.0f);
+                  float filter_weight = 1.0f, const SampledSpectrum* group_radiance = nullptr);
+
+  /// The light groups' names, in layer order (empty: the film has no group layers).
+  const std::vector<std::string>& light_groups() const { return light_groups_; }
+  /// Group `group`'s mean channel values at pixel (x, y), like pixel_value(); they sum over groups to pixel_value().
+  std::array<double, 3> group_value(int x, int y, int group) const;
+  /// The same through output_transform(), as written to the group's EXR layer.
+  std::array<double, 3> group_output_value(int x, int y, int group) const {
+    return output_.apply(group_value(x, y, group));
+  }
 
   /// The mean channel values of pixel (x, y) (full-image coordinates inside pixel_bounds()); 0 without samples.
   std::array<double, 3> pixel_value(int x, int y) const;
@@ -74,6 +87,7 @@ class Film {
  private:
   int width_, height_;
   SpectralResponse response_;
+  std::vector<std::string> light_groups_;
   FilmTile pixels_;  // the whole crop window, in the tile layout
   FilmOutputTransform output_;
   std::atomic<uint64_t> accepted_{0}, nan_{0}, infinite_{0}, negative_{0};

@@ -26,10 +26,11 @@ FilmSampleCounts& FilmSampleCounts::operator+=(const FilmSampleCounts& o) {
   return *this;
 }
 
-FilmTile::FilmTile(PixelBounds bounds, const SpectralResponse& response, SpectralBinning binning)
+FilmTile::FilmTile(PixelBounds bounds, const SpectralResponse& response, SpectralBinning binning, int light_groups)
     : bounds_(bounds.empty() ? PixelBounds{} : bounds),
       response_(&response),
       binning_(binning),
+      light_groups_(light_groups),
       data_(size_t(bounds_.area()) * size_t(doubles_per_pixel()), 0.0) {}
 
 void FilmTile::clear() {
@@ -37,8 +38,27 @@ void FilmTile::clear() {
   counts_ = {};
 }
 
+namespace {
+
+// Light groups' share of one sample (FilmTile::add_sample): the same estimator per group. Contributions are
+// non-negative and sum to the sample's radiance, so a group's values are finite and non-negative whenever the
+// total's are (checked by the caller). Out of line, so that a film without groups keeps add_sample's code as it was.
+[[gnu::noinline]] void add_group_sums(double* g, int groups, const SampledSpectrum* group_radiance, Mask4 live,
+                                      Float4 live_pdf, float filter_weight, const Response4& c) {
+  assert(group_radiance);
+  const Float4 filter_lanes(filter_weight / float(kLaneCount));
+  for (int group = 0; group < groups; ++group, g += 3) {
+    const Float4 w = select(live, group_radiance[group] / live_pdf, Float4(0.0f)) * filter_lanes;
+    g[0] += double(sum(w * c.x));
+    g[1] += double(sum(w * c.y));
+    g[2] += double(sum(w * c.z));
+  }
+}
+
+}  // namespace
+
 void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
-                          float filter_weight) {
+                          float filter_weight, const SampledSpectrum* group_radiance) {
   assert(bounds_.contains(x, y));
   const Float4 pdf = lambda.pdf();
   const Mask4 live = pdf != Float4(0.0f);
@@ -68,6 +88,7 @@ void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const S
   p[1] += double(sum(weighted * c.y));
   p[2] += double(sum(weighted * c.z));
   p[kWeight] += double(filter_weight);
+  if (light_groups_ > 0) add_group_sums(p + first_group_sum(), light_groups_, group_radiance, live, live_pdf, filter_weight, c);
   if (binning_.count == 0) return;
 
   const double inverse_width = 1.0 / binning_.bin_width_nm();

@@ -54,8 +54,9 @@ struct FilmSampleCounts {
 /// Film::merge_tile adds the tile's sums into the film.
 class FilmTile {
  public:
-  /// An empty tile over `bounds` (pixels outside the film's crop window must not be given samples).
-  FilmTile(PixelBounds bounds, const SpectralResponse& response, SpectralBinning binning);
+  /// An empty tile over `bounds` (pixels outside the film's crop window must not be given samples), with
+  /// `light_groups` layers of three channel sums each besides the beauty (0: a scene without light groups).
+  FilmTile(PixelBounds bounds, const SpectralResponse& response, SpectralBinning binning, int light_groups = 0);
 
   /// Adds one camera sample to pixel (x, y) (full-image coordinates inside bounds()).
   ///
@@ -67,8 +68,11 @@ class FilmTile {
   ///   (1/4) Σ_j L_j 1[λ_j ∈ b] / (p_j Δ),
   /// whose expectation is the mean of L over the bin. A sample with NaN/Inf/negative values is discarded and
   /// counted (FilmSampleCounts), never written. Cost: a few dozen SSE instructions plus N-bin writes.
+  /// `group_radiance` (light_group_count() values, required when the tile has light groups, ignored otherwise):
+  /// each group's share of `radiance`, accumulated by the same estimator into the group's three channel sums. A
+  /// discarded sample is discarded from every layer, so the layers keep summing to the beauty.
   void add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
-                  float filter_weight = 1.0f);
+                  float filter_weight = 1.0f, const SampledSpectrum* group_radiance = nullptr);
 
   const PixelBounds& bounds() const { return bounds_; }
   const SpectralBinning& binning() const { return binning_; }
@@ -76,8 +80,11 @@ class FilmTile {
   /// Adds counts of samples taken elsewhere (a partial render read back from its file, whose sums are loaded with
   /// pixel()).
   void add_sample_counts(const FilmSampleCounts& counts) { counts_ += counts; }
-  /// Accumulators per pixel: 3 channel sums, the weight sum, then the spectral bin sums.
-  int doubles_per_pixel() const { return kFirstBin + binning_.count; }
+  int light_group_count() const { return light_groups_; }
+  /// Accumulators per pixel: 3 channel sums, the weight sum, the spectral bin sums, then 3 channel sums per group.
+  int doubles_per_pixel() const { return first_group_sum() + 3 * light_groups_; }
+  /// The index of light group 0's first channel sum among a pixel's accumulators (group g at + 3·g).
+  int first_group_sum() const { return kFirstBin + binning_.count; }
   /// The accumulators of pixel (x, y), full-image coordinates.
   const double* pixel(int x, int y) const { return &data_[offset(x, y)]; }
   double* pixel(int x, int y) { return &data_[offset(x, y)]; }
@@ -95,6 +102,7 @@ class FilmTile {
   PixelBounds bounds_;
   const SpectralResponse* response_;
   SpectralBinning binning_;
+  int light_groups_ = 0;
   std::vector<double> data_;
   FilmSampleCounts counts_;
 };

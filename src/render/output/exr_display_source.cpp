@@ -14,6 +14,7 @@
 #include "render/output/display_image_policy.h"
 #include "render/output/display_output.h"
 #include "render/output/exr_input.h"
+#include "render/output/exr_output.h"
 #include "render/output/partial_exr.h"
 #include "spectral/error.h"
 #include "spectral/io/output_file.h"
@@ -42,23 +43,35 @@ std::unique_ptr<Film> film_from_image(const std::filesystem::path& path, Imf::In
                                                    " writes");
   SpectralResponse response =
       camera ? SpectralResponse::camera_rgb(library, *camera) : SpectralResponse::cie_xyz(library);
+  // Light-group layers ("sun.X", ...; render/output/exr_output.h) come back as the film's group sums.
+  std::vector<std::string> groups;
+  if (const std::string* names = string_attribute(header, "rimu:lightGroups")) groups = parse_light_groups_text(*names);
+  std::vector<std::string> names(channels.begin(), channels.end());
+  for (const std::string& group : groups)
+    for (const char* channel : channels) {
+      names.push_back(group + "." + channel);
+      if (!header.channels().findChannel(names.back()))
+        throw InputError({path.string(), 0, ""}, "has no '" + names.back() + "' channel, which its light group '" +
+                                                     group + "' (rimu:lightGroups) writes");
+    }
 
   const Imath::Box2i display = header.displayWindow(), data = header.dataWindow();
   FilmOptions options;
   options.width = display.max.x - display.min.x + 1;
   options.height = display.max.y - display.min.y + 1;
   options.crop = PixelBounds{data.min.x, data.min.y, data.max.x + 1, data.max.y + 1};
-  auto film = std::make_unique<Film>(options, std::move(response));
+  auto film = std::make_unique<Film>(options, std::move(response), groups);
 
   const int width = data.max.x - data.min.x + 1, height = data.max.y - data.min.y + 1;
-  std::vector<float> values(size_t(width) * size_t(height) * 3);
+  const size_t n = names.size();  // 3 beauty channels, then 3 per group
+  std::vector<float> values(size_t(width) * size_t(height) * n);
   Imf::FrameBuffer frame;
-  const size_t x_stride = 3 * sizeof(float), y_stride = x_stride * size_t(width);
+  const size_t x_stride = n * sizeof(float), y_stride = x_stride * size_t(width);
   // OpenEXR addresses a slice by the data window's origin: base + x·xStride + y·yStride for absolute x, y.
   char* origin = reinterpret_cast<char*>(values.data()) - ptrdiff_t(data.min.x) * ptrdiff_t(x_stride) -
                  ptrdiff_t(data.min.y) * ptrdiff_t(y_stride);
-  for (int c = 0; c < 3; ++c)
-    frame.insert(channels[size_t(c)], Imf::Slice(Imf::FLOAT, origin + size_t(c) * sizeof(float), x_stride, y_stride));
+  for (size_t c = 0; c < n; ++c)
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), x_stride, y_stride));
   file.setFrameBuffer(frame);
   file.readPixels(data.min.y, data.max.y);
 
@@ -66,9 +79,10 @@ std::unique_ptr<Film> film_from_image(const std::filesystem::path& path, Imf::In
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       double* pixel = tile.pixel(data.min.x + x, data.min.y + y);
-      const float* value = &values[(size_t(y) * size_t(width) + size_t(x)) * 3];
+      const float* value = &values[(size_t(y) * size_t(width) + size_t(x)) * n];
       for (int c = 0; c < 3; ++c) pixel[c] = double(value[c]);
       pixel[FilmTile::kWeight] = 1.0;
+      for (size_t c = 3; c < n; ++c) pixel[tile.first_group_sum() + int(c) - 3] = double(value[c]);
     }
   film->merge_tile(tile);
   return film;
@@ -112,15 +126,17 @@ ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, Spectra
 }
 
 void write_exr_display_image(const std::filesystem::path& exr, const std::filesystem::path& display_image,
-                             const DisplayOptions& options, bool meter, std::ostream& log) {
+                             const DisplayOptions& options, bool meter, std::ostream& log,
+                             const ExrRelightOptions& relight) {
   display_image_format(display_image);
   check_output_not_input(display_image, "--png", {{exr, "the image to display"}});
   const DisplayTransform view_check(ResponseKind::cie_xyz, options);  // the view and the config, before reading
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const ExrDisplaySource source = read_exr_for_display(exr, library);
+  relight_exr_film(*source.film, relight, source.white_balanced, exr.string(), library);
   DisplayImagePolicy policy;
   policy.camera_fit = source.camera_fit;
-  policy.white_balanced = source.white_balanced;
+  policy.white_balanced = source.white_balanced || relight.white.has_value();
   policy.metered = source.metered || meter;
   policy.nits_per_unit_y = source.nits_per_unit_y;
   write_policy_display_image(display_image, *source.film, options, policy, log);

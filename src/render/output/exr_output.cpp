@@ -130,6 +130,7 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
     h.insert("rimu:partial:outputMatrix", Imf::M33dAttribute(m));
     h.insert("rimu:partial:outputScale", Imf::DoubleAttribute(p.output_transform.scale));
   }
+  if (!film.light_groups().empty()) add_string(h, "rimu:lightGroups", light_groups_text(film.light_groups()));
   if (film.binning().count > 0) {
     add_string(h, "spectralLayoutVersion", "1.0");
     // Fichet et al. 2021's emissive layout: S0 channels of spectral radiance (per nm: the mean over each bin).
@@ -144,6 +145,24 @@ std::string partial_sum_channel_name(int accumulator, bool high_word) {
   char name[32];
   std::snprintf(name, sizeof(name), "rimu.sum.%02d.%s", accumulator, high_word ? "hi" : "lo");
   return name;
+}
+
+std::string light_groups_text(const std::vector<std::string>& groups) {
+  std::string text;
+  for (const std::string& g : groups) text += (text.empty() ? "" : ",") + g;
+  return text;
+}
+
+std::vector<std::string> parse_light_groups_text(const std::string& text) {
+  std::vector<std::string> groups;
+  if (text.empty()) return groups;
+  size_t start = 0;
+  for (;;) {
+    const size_t comma = text.find(',', start);
+    groups.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) return groups;
+    start = comma + 1;
+  }
 }
 
 std::string spectral_channel_name(const SpectralBinning& binning, int bin) {
@@ -200,6 +219,10 @@ size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrO
   }
   for (int bin = 0; bin < film.binning().count; ++bin)
     channels.push_back({spectral_channel_name(film.binning(), bin), {}, {}});
+  // Light groups: a layer per group, named like the beauty's channels ("sun.X", "sun.Y", "sun.Z").
+  const size_t first_group_channel = channels.size();
+  for (const std::string& group : film.light_groups())
+    for (int c = 0; c < 3; ++c) channels.push_back({group + "." + channels[size_t(c)].name, {}, {}});
 
   const size_t pixel_count = size_t(b.area());
   const float largest = use_half ? kHalfMax : std::numeric_limits<float>::max();
@@ -209,7 +232,10 @@ size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrO
     values.reserve(pixel_count);
     for (int y = b.y0; y < b.y1; ++y)
       for (int x = b.x0; x < b.x1; ++x)
-        values.push_back(writable(c < 3 ? film.output_value(x, y)[c] : film.spectral_value(x, y, int(c) - 3),
+        values.push_back(writable(c < 3                     ? film.output_value(x, y)[c]
+                                  : c < first_group_channel ? film.spectral_value(x, y, int(c) - 3)
+                                                            : film.group_output_value(x, y, int(c - first_group_channel) / 3)
+                                                                  [(c - first_group_channel) % 3],
                                   largest, replaced));
     if (use_half) {
       channels[c].halves.reserve(pixel_count);

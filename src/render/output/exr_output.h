@@ -65,6 +65,10 @@ struct ExrOptions {
 ///   Spectral Images", JCGT 10(3), 2021 (S0 = unpolarised emission), plus "spectralLayoutVersion" = "1.0".
 ///   Values are the mean spectral radiance over the bin (W/(m²·sr·nm) for radiance inputs), and the layout's
 ///   "emissiveUnits" attribute says so: "W.m^-2.sr^-1" (the layout's spelling for spectral radiance, per nm).
+/// - light groups (when the film has them): per group a layer "<group>.X", "<group>.Y", "<group>.Z" (the beauty's
+///   channel names after the group's: "<group>.R" ... for camera films or xyz_channels_as_rgb), with the same
+///   output transform as the beauty, so the layers sum to it; the names in layer order in "rimu:lightGroups"
+///   ("sun,lamps,ungrouped").
 /// Half values are clamped to ±65504 (the largest half) rather than overflowing to Inf. No non-finite value is ever
 /// written: NaN becomes 0 and ±Inf the largest finite value of the type (an exposure scale times a bright pixel can
 /// overflow a float); their number is returned and, when not 0, written as "rimu:nonFiniteValuesReplaced".
@@ -102,6 +106,10 @@ std::string half_range_warning(const HalfRangeCounts& counts, const std::string&
 
 /// The EXR channel holding the high (or low) 32 bits of accumulator `accumulator` of a partial (see write_exr).
 std::string partial_sum_channel_name(int accumulator, bool high_word);
+
+/// "a,b,c": the light groups' names as "rimu:lightGroups" holds them (names never contain a comma), and back.
+std::string light_groups_text(const std::vector<std::string>& groups);
+std::vector<std::string> parse_light_groups_text(const std::string& text);
 
 /// The EXR channel name of spectral bin `bin` (see write_exr).
 std::string spectral_channel_name(const SpectralBinning& binning, int bin);

@@ -31,6 +31,9 @@ void check_same_render(const PartialImage& a, const PartialImage& b) {
   if (a.record.film_spec != b.record.film_spec) mismatch("film", a.record.film_spec, b.record.film_spec);
   if (a.spectral_bins != b.spectral_bins)
     mismatch("spectral bins", std::to_string(a.spectral_bins), std::to_string(b.spectral_bins));
+  if (a.light_groups != b.light_groups)
+    mismatch("light groups (rimu:lightGroups)", "'" + light_groups_text(a.light_groups) + "'",
+             "'" + light_groups_text(b.light_groups) + "'");
   bool same_transform = a.record.output_transform.scale == b.record.output_transform.scale;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)

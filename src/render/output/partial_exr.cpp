@@ -38,7 +38,7 @@ const std::string& string_attribute(const Imf::Header& h, const std::filesystem:
 // other "rimu:*" string is copied as RenderMetadata::extra.
 bool derived_attribute(const std::string& name) {
   static const std::set<std::string> derived = {"rimu:version", "rimu:filmResponse", "rimu:camera", "rimu:seed",
-                                                "rimu:scene", "rimu:interrupted"};
+                                                "rimu:scene", "rimu:interrupted", "rimu:lightGroups"};
   return derived.count(name) > 0 || name.rfind("rimu:partial:", 0) == 0;
 }
 
@@ -80,8 +80,10 @@ void for_each_sum_band(Imf::InputFile& file, const PartialImage& p, const Band& 
 // of sums): check them against a render Rimu can write and against the file before anything is allocated.
 void check_partial_size(const PartialImage& p, std::uintmax_t file_bytes) {
   const auto fail = [&p](const std::string& what) { throw partial_error(p.path, what); };
-  // A scene's film is at most 32768 × 32768 pixels with at most 471 spectral bins (docs/scene-format.md).
-  constexpr int kMaxSide = 1 << 15, kMaxAccumulators = FilmTile::kFirstBin + 471;
+  // A scene's film is at most 32768 × 32768 pixels with at most 471 spectral bins (docs/scene-format.md) and 32
+  // light groups of three sums (render/scene/scene_light_groups.h).
+  constexpr int kMaxLightGroups = 32;
+  constexpr int kMaxSide = 1 << 15, kMaxAccumulators = FilmTile::kFirstBin + 471 + 3 * kMaxLightGroups;
   if (p.width < 1 || p.height < 1 || p.width > kMaxSide || p.height > kMaxSide)
     fail("its display window is " + std::to_string(p.width) + " x " + std::to_string(p.height) +
          " pixels; a render has 1 to 32768 pixels a side");
@@ -89,7 +91,10 @@ void check_partial_size(const PartialImage& p, std::uintmax_t file_bytes) {
     fail("its data window does not lie inside its display window (a partial render's crop must)");
   if (p.accumulators_per_pixel > kMaxAccumulators)
     fail("rimu:partial:accumulators is " + std::to_string(p.accumulators_per_pixel) + "; at most " +
-         std::to_string(kMaxAccumulators) + " (471 spectral bins)");
+         std::to_string(kMaxAccumulators) + " (471 spectral bins and 32 light groups)");
+  if (p.light_groups.size() > size_t(kMaxLightGroups))
+    fail("rimu:lightGroups names " + std::to_string(p.light_groups.size()) + " groups; a scene has at most " +
+         std::to_string(kMaxLightGroups));
   // The sums are two 32-bit words per accumulator per pixel, compressed by deflate (ZIP), which expands at most
   // 1032:1: a header claiming more than that is damaged, and the merge would allocate for it.
   const std::uintmax_t sum_bytes = std::uintmax_t(p.crop.area()) * std::uintmax_t(p.accumulators_per_pixel) * 8;
@@ -148,8 +153,13 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
   if (int64_t(data.max.x) + 1 > INT32_MAX || int64_t(data.max.y) + 1 > INT32_MAX)
     throw partial_error(path, "its data window reaches beyond 2^31 pixels");
   p.crop = {data.min.x, data.min.y, data.max.x + 1, data.max.y + 1};
-  p.spectral_bins = p.accumulators_per_pixel - FilmTile::kFirstBin;
-  if (p.spectral_bins < 0) throw partial_error(path, "rimu:partial:accumulators is below 4");
+  if (const auto* groups = h.findTypedAttribute<Imf::StringAttribute>("rimu:lightGroups"))
+    p.light_groups = parse_light_groups_text(groups->value());
+  // The accumulators: 3 channel sums, the weight, the bins, 3 sums per light group (render/film/film_tile.h).
+  p.spectral_bins = p.accumulators_per_pixel - FilmTile::kFirstBin - 3 * int(std::min<size_t>(p.light_groups.size(), 1024));
+  if (p.spectral_bins < 0)
+    throw partial_error(path, "rimu:partial:accumulators is " + std::to_string(p.accumulators_per_pixel) +
+                                  ", fewer than 4 plus 3 per light group in rimu:lightGroups");
   check_partial_size(p, file_bytes);
   const Imf::Channel* first = h.channels().findChannel(h.channels().begin().name());
   p.pixel_type = first && first->type == Imf::FLOAT ? ExrPixelType::float32 : ExrPixelType::half;
@@ -214,7 +224,7 @@ std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLib
                                   ? SpectralResponse::rgb_transport(library)
                                   : SpectralResponse::from_spec(library, partial.record.film_spec);
   FilmOptions options{partial.width, partial.height, partial.crop, partial.spectral_bins};
-  auto film = std::make_unique<Film>(options, std::move(response));
+  auto film = std::make_unique<Film>(options, std::move(response), partial.light_groups);
   film->set_output_transform(partial.record.output_transform);
   add_partial_to_film(partial, *film);
   return film;
@@ -223,6 +233,10 @@ std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLib
 ResumePoint resume_on_film(const PartialImage& previous, Film& film) {
   if (previous.crop != film.pixel_bounds() || previous.spectral_bins != film.binning().count)
     throw InputError({previous.path.string(), 0, ""}, "its window or spectral bins differ from its recorded job's");
+  if (previous.light_groups != film.light_groups())
+    throw InputError({previous.path.string(), 0, ""},
+                     "its light groups (" + light_groups_text(previous.light_groups) + ") differ from its scene's (" +
+                         light_groups_text(film.light_groups()) + ")");
   add_partial_to_film(previous, film);
   return {previous.record.samples.front().end, previous.metadata.render_time_s};
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "render/output/exr_output.h"
@@ -16,6 +17,7 @@ struct PartialImage {
   int width = 0, height = 0;   ///< the display window (the full image)
   PixelBounds crop;            ///< the data window: the pixels it holds
   int spectral_bins = 0;
+  std::vector<std::string> light_groups;  ///< "rimu:lightGroups": the film's group layers (empty: none)
   ExrPixelType pixel_type = ExrPixelType::float32;  ///< of its visible channels
   int accumulators_per_pixel = 0;
   std::vector<double> sums;    ///< accumulators_per_pixel doubles per pixel of `crop`, row by row (exact)
@@ -47,8 +49,8 @@ struct ResumePoint {
   int first_sample = 0;
   double render_time_s = 0.0;
 };
-/// Starts `film` from `previous` (add_partial_to_film) for --resume. InputError naming the file if its window or
-/// spectral bins differ from the film's (the film was rebuilt from the job it records).
+/// Starts `film` from `previous` (add_partial_to_film) for --resume. InputError naming the file if its window,
+/// spectral bins or light groups differ from the film's (the film was rebuilt from the job it records).
 ResumePoint resume_on_film(const PartialImage& previous, Film& film);
 
 }  // namespace rimu

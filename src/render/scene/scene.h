@@ -65,6 +65,9 @@ struct Scene {
   std::vector<std::string> material_names;
   std::vector<std::unique_ptr<Light>> lights;
   std::vector<std::string> light_names;  ///< per light: its "name", else where it was defined ("/lights/2")
+  /// The light groups' names ("light_group" keys, in order of first use, then "ungrouped" for the lights without
+  /// one); Light::light_group() indexes it. Empty when no light names a group: the film then has no group layers.
+  std::vector<std::string> light_groups;
   std::unique_ptr<LightSampler> light_sampler;
   /// Load-time warnings (render_job prints them): e.g. lights the light sampler starves (render/scene/light_coverage.h).
   std::vector<std::string> warnings;

@@ -20,7 +20,7 @@ constexpr double kDefaultSkyCctK = 6504.0;
 }  // namespace
 
 std::unique_ptr<Light> load_cie_sky_light(const JsonCursor& l, LoadContext& context) {
-  l.only_keys({"type", "name", "sky_type", "sun_position", "diffuse_horizontal_illuminance_lx", "zenith_luminance_nt",
+  l.only_keys({"type", "name", "light_group", "sky_type", "sun_position", "diffuse_horizontal_illuminance_lx", "zenith_luminance_nt",
                "cct", "spectrum", "up", "north"});
   const int type = l.at("sky_type").integer(1, kCieSkyTypeCount);
   const HorizonFrame frame = horizon_frame(l);
@@ -76,7 +76,7 @@ std::unique_ptr<Light> load_cie_sky_light(const JsonCursor& l, LoadContext& cont
 }
 
 std::unique_ptr<Light> load_sun_light(const JsonCursor& l, LoadContext& context) {
-  only_light_keys(l, {"type", "name", "sun_position", "irradiance", "angular_diameter_deg", "up", "north"});
+  only_light_keys(l, {"type", "name", "light_group", "sun_position", "irradiance", "angular_diameter_deg", "up", "north"});
   const HorizonFrame frame = horizon_frame(l);
   const SunPosition sun = parse_sun_position(l.at("sun_position"), frame);
   const EmitterGeometry geometry{EmitterKind::distant};

@@ -38,7 +38,7 @@ LightSpectrum per_candela_spectrum(const JsonCursor& l, LoadContext& context, co
 }  // namespace
 
 std::unique_ptr<Light> load_goniometric_image_light(const JsonCursor& l, LoadContext& context, const Frame& frame) {
-  l.only_keys({"type", "name", "image", "encoding", "position", "frame", "spectrum", "luminous_power_lm", "candela_scale"});
+  l.only_keys({"type", "name", "light_group", "image", "encoding", "position", "frame", "spectrum", "luminous_power_lm", "candela_scale"});
   const JsonCursor file = l.at("image");
   const std::shared_ptr<const RgbImage> image = load_rgb_image(l, context.spectra.scene_directory() / file.string());
   if (image->width() != image->height())
@@ -74,7 +74,7 @@ std::unique_ptr<Light> load_goniometric_image_light(const JsonCursor& l, LoadCon
 }
 
 std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context) {
-  l.only_keys({"type", "name", "file", "position", "direction", "c0_direction", "spectrum", "luminous_power_lm",
+  l.only_keys({"type", "name", "light_group", "file", "position", "direction", "c0_direction", "spectrum", "luminous_power_lm",
                "candela_scale"});
   const JsonCursor file = l.at("file");
   IesPhotometry ies;

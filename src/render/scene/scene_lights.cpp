@@ -10,6 +10,7 @@
 #include "render/scene/scene_daylight.h"
 #include "render/scene/scene_ies_light.h"
 #include "render/scene/scene_light_emission.h"
+#include "render/scene/scene_light_groups.h"
 #include "transport/lights/distant_light.h"
 #include "transport/lights/environment_light.h"
 #include "transport/lights/light_spectrum.h"
@@ -67,13 +68,13 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
     return load_goniometric_image_light(l, context,
                                         l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, 1}, {0, 1, 0}});
   if (type == "point") {
-    only_light_keys(l, {"type", "name", "position", "intensity"});
+    only_light_keys(l, {"type", "name", "light_group", "position", "intensity"});
     const EmitterGeometry geometry{EmitterKind::point};
     return std::make_unique<PointLight>(l.at("position").vec3(),
                                         parse_light_emission(l, "intensity", geometry, context));
   }
   if (type == "spot") {
-    only_light_keys(l, {"type", "name", "position", "direction", "cone_angle_deg", "falloff_start_deg", "intensity"});
+    only_light_keys(l, {"type", "name", "light_group", "position", "direction", "cone_angle_deg", "falloff_start_deg", "intensity"});
     const double outer = l.at("cone_angle_deg").number(0.01, 179.9) / 2.0;
     const double inner = l.has("falloff_start_deg") ? l.at("falloff_start_deg").number(0.0, 2.0 * outer) / 2.0 : outer;
     const EmitterGeometry geometry{EmitterKind::spot, inner, outer, spot_power_convention(l)};
@@ -81,7 +82,7 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
                                        parse_light_emission(l, "intensity", geometry, context));
   }
   if (type == "distant") {
-    only_light_keys(l, {"type", "name", "direction", "irradiance", "angular_diameter_deg"});
+    only_light_keys(l, {"type", "name", "light_group", "direction", "irradiance", "angular_diameter_deg"});
     const EmitterGeometry geometry{EmitterKind::distant};
     return std::make_unique<DistantLight>(unit_direction(l.at("direction")),
                                           parse_light_emission(l, "irradiance", geometry, context),
@@ -111,7 +112,7 @@ void check_environment_pixels(const JsonCursor& image_key, const std::string& fi
 }
 
 std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context) {
-  only_light_keys(l, {"type", "name", "radiance", "image", "colour_space", "encoding", "scale", "mapping", "frame",
+  only_light_keys(l, {"type", "name", "light_group", "radiance", "image", "colour_space", "encoding", "scale", "mapping", "frame",
                       "portals"});
   PortalSet portals = load_portals(l);
   std::unique_ptr<EnvironmentLight> light;
@@ -143,7 +144,7 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
       light = std::make_unique<EnvironmentLight>(std::make_shared<RgbEnvironmentImage>(image, upsampler),
                                                  scale * context.spectra.emission_rgb_scale(), frame, mapping);
   } else {
-    only_light_keys(l, {"type", "name", "radiance", "portals"});
+    only_light_keys(l, {"type", "name", "light_group", "radiance", "portals"});
     const EmitterGeometry geometry{EmitterKind::environment};
     light = std::make_unique<EnvironmentLight>(parse_light_emission(l, "radiance", geometry, context));
   }
@@ -177,9 +178,12 @@ void load_lights(const JsonCursor& section, LoadContext& context) {
     if (light.is_object() && light.has("include")) {
       const nlohmann::json merged = included_light(light, context.spectra.scene_directory());
       context.scene.photometric_lights = context.scene.photometric_lights || uses_photometric_units(merged);
-      context.scene.lights.push_back(load_light(JsonCursor(merged, light.file(), light.path()), context));
+      const JsonCursor definition(merged, light.file(), light.path());
+      context.scene.lights.push_back(load_light(definition, context));
+      read_light_group(definition, context.scene);
     } else {
       context.scene.lights.push_back(load_light(light, context));
+      read_light_group(light, context.scene);
     }
   }
 }

@@ -9,6 +9,7 @@
 #include "render/scene/scene.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_sensors.h"
+#include "render/scene/scene_light_groups.h"
 #include "transport/lights/emission_wavelength_density.h"
 #include "transport/lights/power_light_sampler.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -165,6 +166,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (const auto prototypes = root.find("prototypes")) scene_loading::load_prototypes(*prototypes, context);
   if (const auto lights = root.find("lights")) scene_loading::load_lights(*lights, context);
   if (const auto shapes = root.find("shapes")) scene_loading::load_shapes(*shapes, context);
+  scene_loading::finish_light_groups(*scene);
   if (const auto sensors = root.find("sensors")) load_sensors(*sensors);  // checked here; measured by render/sensors/
   // Included light definitions set it too (load_lights), as they are read.
   scene->photometric_lights = scene->photometric_lights || uses_photometric_units(document);

@@ -11,6 +11,7 @@
 #include "transport/lights/light_spectrum.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_light_emission.h"
+#include "render/scene/scene_light_groups.h"
 
 namespace rimu::scene_loading {
 namespace {
@@ -37,28 +38,28 @@ std::vector<Vec3> vec3_array(const JsonCursor& c) {
 // Emissive keys are allowed only outside prototypes: area lights are not instanced.
 void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type, bool in_prototype) {
   if (in_prototype) {
-    for (const char* key : {"emission", "two_sided"})
+    for (const char* key : {"emission", "light_group", "two_sided"})
       if (shape.has(key))
         shape.at(key).fail("prototypes cannot hold emissive geometry (area lights are not instanced); put the "
                            "emitter in \"shapes\"");
   }
   if (type == "mesh") {
-    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "two_sided", "alpha",
+    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "light_group", "two_sided", "alpha",
                      "uv_default"});
   } else if (type == "quad") {
-    shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "emission", "two_sided",
+    shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "emission", "light_group", "two_sided",
                      "alpha"});
   } else if (type == "box") {
-    shape.only_keys({"type", "name", "min", "max", "material", "transform", "emission", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "min", "max", "material", "transform", "emission", "light_group", "two_sided", "alpha"});
   } else if (type == "cylinder") {
     shape.only_keys({"type", "name", "radius", "zmin", "zmax", "phimax_deg", "caps", "material", "transform", "emission",
-                     "two_sided", "alpha"});
+                     "light_group", "two_sided", "alpha"});
   } else if (type == "disk") {
     shape.only_keys({"type", "name", "radius", "inner_radius", "height", "phimax_deg", "material", "transform", "emission",
-                     "two_sided", "alpha"});
+                     "light_group", "two_sided", "alpha"});
   } else {
     shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform", "emission",
-                     "two_sided", "alpha"});
+                     "light_group", "two_sided", "alpha"});
   }
 }
 
@@ -274,6 +275,8 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     std::optional<LightSpectrum> radiance;
     if (emission) radiance.emplace(area_light_emission(*emission, mesh, two_sided, context));
     if (!emission && shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
+    if (!emission && shape.has("light_group"))
+      shape.at("light_group").fail("light_group applies to emissive shapes (and lights) only");
     const std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
     scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
     if (mesh.triangle_count() == 0) continue;  // only degenerate triangles (counted above)
@@ -281,6 +284,7 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       // Lights were loaded first, so area lights take the indices after them, in the order of the shapes.
       auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
       scene.lights.push_back(std::move(light));
+      read_light_group(shape, scene);
       // Appended rather than built with operator+: GCC 12 warns falsely (-Wrestrict) on "'" + std::string.
       std::string light_name;
       if (shape.has("name"))

@@ -13,6 +13,7 @@
 #include "transport/bsdfs/material.h"
 #include "transport/geometry/ray.h"
 #include "transport/geometry/ray_differentials.h"
+#include "transport/integrators/light_group_radiance.h"
 #include "transport/integrators/ray_queries.h"
 #include "transport/sampling/sampler.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -83,15 +84,17 @@ class PathIntegrator {
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const {
     return radiance(ray, lambda, sampler, PathGuidingContext{});
   }
-  /// The same, guided by (and teaching) the field in `guiding` when settings.guiding is on.
+  /// The same, guided by (and teaching) the field in `guiding` when settings.guiding is on, and with each light
+  /// group's share of the result added to `groups` (light_group_radiance.h; nothing when groups.groups is null).
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
-                           const PathGuidingContext& guiding) const {
-    return radiance(ray, nullptr, lambda, sampler, guiding);
+                           const PathGuidingContext& guiding, const LightGroupRadiance& groups = {}) const {
+    return radiance(ray, nullptr, lambda, sampler, guiding, groups);
   }
   /// The same with the camera ray's differentials (nullptr: none), which give textured hits their footprint when
   /// the scene has texture_footprints.
   SampledSpectrum radiance(const Ray& ray, const RayDifferentials* differentials, const SampledWavelengths& lambda,
-                           Sampler& sampler, const PathGuidingContext& guiding) const;
+                           Sampler& sampler, const PathGuidingContext& guiding,
+                           const LightGroupRadiance& groups = {}) const;
   const TransportScene& scene() const { return scene_; }
 
  private:

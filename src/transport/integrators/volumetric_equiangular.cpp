@@ -38,12 +38,13 @@ SampledSpectrum VolumetricPathIntegrator::equiangular_direct(EquiangularSegment 
                                                              const SampledSpectrum& beta,
                                                              const SampledSpectrum& ratios, const MediumStack& stack,
                                                              const SampledWavelengths& lambda,
-                                                             Sampler& sampler) const {
+                                                             Sampler& sampler, int& light_group) const {
   const float u_light = sampler.next_1d(), u_t = sampler.next_1d();
   const LightSampler& light_sampler = *scene_.surfaces.light_sampler;
   const auto pick = light_sampler.sample(equiangular_choice_point(segment), u_light);
   if (!pick) return Float4(0.0f);
   const Light& light = *(*scene_.surfaces.lights)[size_t(pick->light)];
+  light_group = light.light_group();
   const std::optional<Vec3> light_m = light.delta_position_m();
   if (!light_m) return Float4(0.0f);  // the technique has density 0 for other lights
   segment.light_m = *light_m;

@@ -114,7 +114,7 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
 }
 
 SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
-                                                   Sampler& sampler) const {
+                                                   Sampler& sampler, const LightGroupRadiance& groups) const {
   const TransportScene& surfaces = scene_.surfaces;
   const auto& lights = *surfaces.lights;
   const auto& media = *scene_.media;
@@ -141,20 +141,26 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   LightReference previous_reference{};
   LightSamplingPoint previous_sampling_point{};
 
-  auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle) {
+  // Every emitted contribution, credited to its light's group as well (light_group_radiance.h).
+  auto contribute = [&](const SampledSpectrum& contribution, int light_group) {
+    radiance += contribution;
+    groups.add(light_group, contribution);
+  };
+  auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle, const Light& light) {
     if (strategy == DirectLighting::nee_only && !previous_specular) return;
     if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
     const float sum_ratio = sum(pdf_ratio);
     if (!(sum_ratio > 0.0f)) return;
     if (previous_specular || light_pdf_solid_angle <= 0.0f) {
-      radiance += beta * emitted * Float4(kLanes / sum_ratio);
+      contribute(beta * emitted * Float4(kLanes / sum_ratio), light.light_group());
       return;
     }
     // S_dir = q_dir,0 · pass · Σ R_k (R already holds the direction and pass ratios); S_light = q_light · Σ R_before.
     const float scale = previous_hero_pdf * pass_product;
     const float s_dir = scale * sum_ratio;
     const float s_light = light_pdf_solid_angle * previous_sum_ratio;
-    radiance += beta * emitted * Float4(kLanes * scale * s_dir / (s_light * s_light + s_dir * s_dir));
+    contribute(beta * emitted * Float4(kLanes * scale * s_dir / (s_light * s_light + s_dir * s_dir)),
+               light.light_group());
   };
 
   int surface_depth = 0, vertex_count = 0, medium_events = 0, crossings = 0;
@@ -173,7 +179,10 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       const Medium& medium = media[size_t(medium_index)];
       if (uses_equiangular(medium)) {
         equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}};
-        radiance += equiangular_direct(*equiangular, medium, beta, pdf_ratio, stack, lambda, sampler);
+        int light_group = 0;
+        const SampledSpectrum direct =
+            equiangular_direct(*equiangular, medium, beta, pdf_ratio, stack, lambda, sampler, light_group);
+        contribute(direct, light_group);
       }
       SampledSpectrum throughput = beta;  // β ∝ the effective throughput while R is lane-independent
       const FreeFlight flight = sample_free_flight(media[size_t(medium_index)], ray, std::fmin(t_surface, 1e30f),
@@ -207,7 +216,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
           const float pdf = previous_specular ? 0.0f
                                               : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0)) *
                                                     lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
-          add_emission(le, pdf);
+          add_emission(le, pdf, *lights[size_t(index)]);
         }
         break;
       }
@@ -217,7 +226,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         const float pdf = previous_specular ? 0.0f
                                             : light_sampler.pmf(previous_sampling_point, hit->light, part) *
                                                   light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
-        add_emission(light.radiance(*hit, -ray.direction, lambda), pdf);
+        add_emission(light.radiance(*hit, -ray.direction, lambda), pdf, light);
       }
       const MediumBoundary b = boundary(hit->material);
       if (b.index_matched) {
@@ -309,7 +318,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
                                                       ratios_before_flight, lambda,
                                                       pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),
                                                                                            pick->light, pick->part));
-              radiance += beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight);
+              contribute(beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight), light.light_group());
             }
           }
         }
@@ -372,7 +381,10 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     ray.t_min = 0.0f;
     ray.t_max = INFINITY;
   }
-  return single ? radiance * Float4(1.0f, 0.0f, 0.0f, 0.0f) : radiance;
+  if (!single) return radiance;
+  const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
+  if (groups.groups) groups.mask(hero_only);
+  return radiance * hero_only;
 }
 
 }  // namespace rimu

@@ -59,7 +59,9 @@ class VolumetricPathIntegrator {
  public:
   VolumetricPathIntegrator(const VolumetricScene& scene, VolumetricIntegratorSettings settings);
 
-  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const;
+  /// With each light group's share of the result added to `groups` (light_group_radiance.h).
+  SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
+                           const LightGroupRadiance& groups = {}) const;
 
  private:
   struct ShadowResult {
@@ -77,10 +79,10 @@ class VolumetricPathIntegrator {
   /// The equiangular technique on one homogeneous segment (volumetric_equiangular.cpp): picks a light as NEE
   /// does; for a point or spot light, samples t equiangularly and connects to the light. `beta`, `ratios`: the
   /// path's β and R_k before the segment's free flight. Returns the MIS-weighted radiance per lane.
-  /// Consumes two uniform numbers (light choice, t) plus the shadow ray's.
+  /// Consumes two uniform numbers (light choice, t) plus the shadow ray's. `light_group`: the chosen light's group.
   SampledSpectrum equiangular_direct(EquiangularSegment segment, const Medium& medium, const SampledSpectrum& beta,
                                      const SampledSpectrum& ratios, const MediumStack& stack,
-                                     const SampledWavelengths& lambda, Sampler& sampler) const;
+                                     const SampledWavelengths& lambda, Sampler& sampler, int& light_group) const;
   /// The balance-heuristic weight of free-flight sampling + NEE to a light at `light_m` for a scattering event at
   /// `t` of `segment`, against the equiangular technique: P_nee·S_dist / (P_nee·S_dist + P_equi·S_equi)
   /// (docs/media.md), with P_nee the probability NEE chose the light at the scattering point and P_equi the one

@@ -77,6 +77,14 @@ class Light {
   /// environment with portals: the portals) and for parts that emit nothing (black, degenerate triangles), which the
   /// BVH then never picks.
   virtual std::optional<LightBounds> part_bounds(int) const { return std::nullopt; }
+
+  /// The light group this light's emission is credited to (an index into the scene's group names; see
+  /// transport/integrators/light_group_radiance.h). 0 in a scene without groups. Set once at load time.
+  int light_group() const { return light_group_; }
+  void set_light_group(int group) { light_group_ = group; }
+
+ private:
+  int light_group_ = 0;
 };
 
 }  // namespace rimu

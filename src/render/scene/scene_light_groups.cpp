@@ -1,0 +1,81 @@
+#include "render/scene/scene_light_groups.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+
+namespace rimu::scene_loading {
+namespace {
+
+// Set on a light without the key until finish_light_groups() knows whether the scene has groups at all.
+constexpr int kUnmarked = -1;
+constexpr size_t kMaxNameLength = 64;
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+std::string light_group_name_problem(const std::string& name) {
+  if (name.empty()) return "a light group's name cannot be empty";
+  if (name.size() > kMaxNameLength) return "a light group's name has at most 64 characters";
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'))
+      return "a light group's name may hold only letters, digits, '_' and '-' (it names EXR layers '" + name +
+             ".X' etc.); '" + name + "' does not";
+  // Rimu's own channel names and layer prefixes (render/output/exr_output.h), and the feature buffers' names.
+  static constexpr std::array kReserved{"x",   "y",             "z",      "r",     "g",       "b",
+                                        "a",   "s0",            "rimu",   "spp",   "relativeerror",
+                                        "albedo", "n",          "variance", "noisy", "beauty"};
+  const std::string l = lower(name);
+  for (const char* r : kReserved)
+    if (l == r)
+      return "'" + name + "' is a name Rimu uses for its own EXR channels or layers; choose another light group name";
+  return {};
+}
+
+void read_light_group(const JsonCursor& light, Scene& scene) {
+  Light& loaded = *scene.lights.back();
+  const auto key = light.find("light_group");
+  if (!key) {
+    loaded.set_light_group(kUnmarked);
+    return;
+  }
+  const std::string name = key->string();
+  if (const std::string problem = light_group_name_problem(name); !problem.empty()) key->fail(problem);
+  auto& groups = scene.light_groups;
+  const auto it = std::find(groups.begin(), groups.end(), name);
+  if (it == groups.end()) {
+    // Each group is three more sums per pixel (24 bytes) on every film, tile and partial.
+    if (groups.size() + 1 >= kMaxLightGroups)
+      key->fail("a scene has at most " + std::to_string(kMaxLightGroups - 1) + " named light groups (one more is "
+                "kept for lights without \"light_group\")");
+    groups.push_back(name);
+  }
+  loaded.set_light_group(int(std::find(groups.begin(), groups.end(), name) - groups.begin()));
+}
+
+void finish_light_groups(Scene& scene) {
+  auto& groups = scene.light_groups;
+  if (groups.empty()) {
+    for (auto& light : scene.lights) light->set_light_group(0);
+    return;
+  }
+  int fallback = -1;
+  for (auto& light : scene.lights) {
+    if (light->light_group() != kUnmarked) continue;
+    if (fallback < 0) {
+      auto it = std::find(groups.begin(), groups.end(), std::string(kDefaultLightGroup));
+      if (it == groups.end()) {
+        groups.push_back(kDefaultLightGroup);
+        it = groups.end() - 1;
+      }
+      fallback = int(it - groups.begin());
+    }
+    light->set_light_group(fallback);
+  }
+}
+
+}  // namespace rimu::scene_loading
