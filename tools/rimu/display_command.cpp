@@ -82,8 +82,7 @@ int run_display_command(int argc, char** argv) {
       std::optional<rimu::FalseColourRange> legend;
       if (!range.empty()) legend = rimu::parse_false_colour_range(range, "--range");
       rimu::write_exr_false_colour(input, png, quantity, legend, std::cerr);
-      std::cerr << "rimu display: wrote " << png << "
-";
+      std::cerr << "rimu display: wrote " << png << "\n";
       return;
     }
     rimu::write_exr_display_image(input, png, display, meter, std::cerr, relight_options_from(relight));
