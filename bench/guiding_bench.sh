@@ -15,29 +15,14 @@ build=$1; spp=${2:-64}; ref_spp=${3:-2048}; seeds=${4:-"1 2 3"}; resolution=${5:
 rimu=$build/bin/rimu; compare=$build/bin/rimu-pbrt-image-compare
 root=$(cd "$(dirname "$0")/.." && pwd); export RIMU_DATA=${RIMU_DATA:-$root/data}
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/rimu-guiding.XXXXXX"); trap 'rm -rf "$scratch"' EXIT
-python3 - "$root/data/scenes" "$scratch" <<'PY'
-import json, sys
-source, out = sys.argv[1], sys.argv[2]
-scenes = {"daylit_open": f"{source}/interiors/daylit_room_open.json",
-          "daylit_glazed": f"{source}/interiors/daylit_room_glazed.json",
-          "door_ajar": f"{source}/interiors/door_ajar.json",
-          "cornell": f"{source}/cornell_box/scene.json"}
-for name, path in scenes.items():
-    s = json.load(open(path))
-    factor = 1e6 if name == "door_ajar" else 1000
-    for light in s.get("lights", []):
-        for key in ("illuminance_lx", "luminance_nt", "power_w", "scale", "radiance"):
-            if isinstance(light.get(key), (int, float)): light[key] *= factor
-    for shape in s.get("shapes", []):
-        if "emission" in shape and isinstance(shape["emission"], dict) and "scale" in shape["emission"]:
-            shape["emission"]["scale"] *= factor
-        elif "emission_scale" in shape: shape["emission_scale"] *= factor
-    s["integrator"].pop("guiding", None)
-    # Relative paths in the scene (spectra, meshes) resolve against the scene's folder: work in a copy of it.
-    import os, shutil
-    shutil.copytree(os.path.dirname(path), f"{out}/{name}_dir")
-    json.dump(s, open(f"{out}/{name}_dir/{name}.json", "w"))
-PY
+declare -A sources=([daylit_open]=$root/data/scenes/interiors/daylit_room_open.json
+                    [daylit_glazed]=$root/data/scenes/interiors/daylit_room_glazed.json
+                    [door_ajar]=$root/data/scenes/interiors/door_ajar.json
+                    [cornell]=$root/data/scenes/cornell_box/scene.json)
+for n in "${!sources[@]}"; do
+  factor=1000; if [ "$n" = door_ajar ]; then factor=1e6; fi
+  python3 "$root/bench/scaled_scene.py" "${sources[$n]}" "$scratch" "$n" "$factor"
+done
 cputime() { /usr/bin/time -f "%U %S" -o "$scratch/time" nice -n 19 "$@" >/dev/null; awk '{print $1 + $2}' "$scratch/time"; }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); $spp spp at $resolution, reference $ref_spp spp"
 printf "%-14s %-5s %10s %10s %8s %8s %6s\n" scene seed relmse_off relmse_on cpu_off cpu_on gain
