@@ -46,7 +46,7 @@ echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "set terminal pngcairo size 1200,400 font ',10'; set output '$plot'"
   echo "set multiplot layout 1,$(wc -w <<<"$scenes"); set logscale xy; set xlabel 'render time (s)'; set ylabel 'relMSE'; set key top right"
   for n in $scenes; do
-    echo "set title '$n'"
+    echo "set title '$n' noenhanced"
     echo "plot '$scratch/table' using (strcol(1) eq '$n' ? \$2 : 1/0):3 with linespoints title 'uniform', '' using (strcol(1) eq '$n' ? \$2 : 1/0):4 with linespoints title 'adaptive'"
   done
   echo "unset multiplot"
