@@ -11,7 +11,6 @@
 #include "render/output/display_image_policy.h"
 #include "render/output/error_heat_map.h"
 #include "render/output/exr_output.h"
-#include "render/output/plot_output.h"
 #include "render/output/render_outputs.h"
 #include "render/progress_reporter.h"
 #include "render/scene/camera_keyframes.h"
@@ -21,7 +20,6 @@
 #include "render/time_budget.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
-#include "spectral/io/output_file.h"
 
 namespace rimu {
 namespace {
@@ -228,19 +226,10 @@ void write_preview(RenderJobState& s) {
 }
 
 void check_adaptive_sampling_options(const RenderJob& job) {
-  if (job.preview_error_output) {
-    if (!job.noise_threshold)
-      throw InputError({job.preview_error_output->string(), 0, "--preview-error"},
-                       "a heat map of the remaining error needs the error estimate of adaptive sampling: give "
-                       "--noise-threshold");
-    check_plot_png(*job.preview_error_output, {job.preview_error_output->string(), 0, "--preview-error"});
-    for (const auto& [other, option] :
-         {std::pair{std::optional<std::filesystem::path>(job.exr_output), "-o"}, {job.png_output, "--png"},
-          {job.preview_output, "--preview"}})
-      if (other && same_output_file(*other, *job.preview_error_output))
-        throw InputError({job.preview_error_output->string(), 0, "--preview-error"},
-                         std::string("names the same file as ") + option + "; the heat map needs a file of its own");
-  }
+  if (job.preview_error_output && !job.noise_threshold)
+    throw InputError({job.preview_error_output->string(), 0, "--preview-error"},
+                     "a heat map of the remaining error needs the error estimate of adaptive sampling: give "
+                     "--noise-threshold");
   if (job.noise_threshold && (job.samples || job.checkpoint_interval_s))
     throw InputError({"", 0, job.samples ? "--samples" : "--checkpoint"},
                      "--noise-threshold stops each pixel on its own noise estimate, which lives in the render's "
@@ -316,6 +305,8 @@ RenderJobState::RenderJobState(const RenderJob& job_in, const PartialImage* prev
 DisplayOptions check_job_without_scene(const RenderJob& job) {
   check_render_outputs(job.exr_output, job.png_output);
   if (job.preview_output) check_preview_output(*job.preview_output, job.exr_output, job.png_output);
+  if (job.preview_error_output)
+    check_preview_error_output(*job.preview_error_output, job.exr_output, job.png_output, job.preview_output);
   if (job.time_limit_s && job.samples) refuse_time_budget_with_samples("--time");
   check_adaptive_sampling_options(job);
   DisplayOptions display;
@@ -327,12 +318,8 @@ DisplayOptions check_job_without_scene(const RenderJob& job) {
 
 void read_job_scene(RenderJobState& s) {
   s.loaded = load_job_scene(s.job, s.scene_path, s.library, s.log);
-  check_render_outputs_not_inputs(s.job.exr_output, s.job.png_output, s.loaded.files_read, s.job.preview_output);
-  if (s.job.preview_error_output) {
-    std::vector<InputFile> inputs;
-    for (const std::filesystem::path& file : s.loaded.files_read) inputs.push_back({file, "read by the scene"});
-    check_output_not_input(*s.job.preview_error_output, "--preview-error", inputs);
-  }
+  check_render_outputs_not_inputs(s.job.exr_output, s.job.png_output, s.loaded.files_read, s.job.preview_output,
+                                  s.job.preview_error_output);
   check_scene_hash(s);
   for (const std::string& warning : s.loaded.scene->warnings) s.log << "rimu: warning: " << warning << "\n";
   apply_job_options(s.job, s.loaded.scene->settings, s.library);
