@@ -267,3 +267,28 @@ TEST_CASE("CIE 171 directional source: the sun's illuminance on planes of any or
     check_case(std::string("directional, ") + names[i], readings.meters[i], reference);
   }
 }
+
+TEST_CASE("CIE 171 daylight: the façade case with the window as the sky's portal reads the same, with less noise") {
+  // The window as a portal of the sky: light samples go only through it (directions elsewhere, all blocked here,
+  // are left to BSDF sampling), so the readings converge to the same references with a smaller standard error at
+  // the same sample count.
+  const std::vector<Vec> meters = {{-1, 0.25, 0.85}, {-3, 0.25, 0.85}, {-2, 2.0, 0.85}};
+  const char* places[] = {"1 m in", "3 m in", "off axis"};
+  const SkyType sky = kClear;
+  const Sun sun{120.0, 30.0};
+  json with_portal = sky_light(sky, sun);
+  with_portal["portals"] = json::array({json::array({{0, -0.5, 1}, {0, 1, 1}, {0, 1, 2.5}, {0, -0.5, 2.5}})});
+  const int samples = 4096;
+  const SensorReadings plain = measure(scene_with(room_with_window(), json::array({sky_light(sky, sun)}), meters, samples));
+  const SensorReadings portal = measure(scene_with(room_with_window(), json::array({with_portal}), meters, samples));
+  const double hemisphere = horizontal_integral(sky, sun);
+  for (size_t i = 0; i < meters.size(); ++i) {
+    const double reference = kHorizontalIlluminanceLx *
+                             opening_integral(sky, sun, meters[i], {0, -0.5, 1}, {0, 1.5, 0}, {0, 0, 1.5}, {1, 0, 0}) /
+                             hemisphere;
+    check_case(std::string("façade opening as a portal, ") + sky.name + ", " + places[i], portal.meters[i], reference);
+    MESSAGE("  standard error without the portal " << plain.meters[i].standard_error << " lx, with it "
+                                                   << portal.meters[i].standard_error << " lx");
+    CHECK(portal.meters[i].standard_error < 0.5 * plain.meters[i].standard_error);
+  }
+}

@@ -153,3 +153,52 @@ TEST_CASE("CIE sky light: nothing below the horizon, power, spectrum") {
   // Brightest near the sun.
   CHECK(light.relative_luminance(sun_towards(31.0, 0.0)) > light.relative_luminance(sun_towards(31.0, 120.0)));
 }
+
+TEST_CASE("CIE sky light with a portal: samples only through it, pdf_li agrees, irradiance equals quadrature") {
+  // A 1 m × 2 m horizontal skylight 2 m above a point (y up) and a clear sky with the sun at 40°: light sampling
+  // through the portal estimates ∫_portal L cos θ dω, which a midpoint rule over the rectangle gives independently
+  // (dω = cos θ_o dA / r²). Tolerance 4.5 standard errors.
+  CieSkyLight light = sky(12, sun_towards(40.0, 30.0), 1.5);
+  const auto portal = PortalRectangle::from_corners({-0.5f, 2, -1}, {0.5f, 2, -1}, {0.5f, 2, 1}, {-0.5f, 2, 1});
+  REQUIRE(portal);
+  light.set_portals(PortalSet({*portal}));
+  const Vec3 normal{0, 1, 0};
+  const LightReference ref{{0.2f, 0, 0.3f}, normal};
+  std::mt19937 rng(11);
+  test::MeanEstimate estimate;
+  for (int i = 0; i < 20000; ++i) {
+    const auto s = light.sample_li(ref, kLambda, {test::uniform01(rng), test::uniform01(rng)});
+    REQUIRE(s);  // every direction through a skylight is above the horizon
+    REQUIRE(passes_through(*portal, ref.position, s->wi));
+    REQUIRE(s->pdf_solid_angle == light.pdf_li(ref, s->wi));
+    estimate.add(s->radiance[1] * std::max(0.0f, dot(s->wi, normal)) / s->pdf_solid_angle);
+  }
+  // A direction that misses the portal has density 0 (it is reached by BSDF sampling only).
+  CHECK(light.pdf_li(ref, normalize(Vec3{1, 0.2f, 0})) == 0.0f);
+  double quadrature = 0.0;
+  const int n = 400;
+  for (int j = 0; j < 2 * n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Vec3 q{-0.5f + (i + 0.5f) / n, 2.0f, -1.0f + (j + 0.5f) / n};
+      const Vec3 r = q - ref.position;
+      const double r2 = dot(r, r);
+      const Vec3 w = normalize(r);
+      quadrature += light.radiance_escaped(w, kLambda)[1] * w.y * w.y / r2;
+    }
+  quadrature *= 2.0 / (double(n) * 2 * n);
+  CAPTURE(estimate.mean());
+  CAPTURE(estimate.standard_error());
+  CHECK(std::abs(estimate.mean() - quadrature) <= 4.5 * estimate.standard_error());
+  CHECK(estimate.standard_error() < 0.01 * quadrature);
+
+  // For the light tree: a leaf on the portal, two-sided, of radiance ∫S dλ ∫ L/L_z cos θ dω / π, whose power is
+  // that radiance times π A.
+  const auto bounds = light.part_bounds(0);
+  REQUIRE(bounds);
+  CHECK(bounds->two_sided);
+  const double radiance = 1.5 * 470.0 * light.integrals().cosine_weighted_sr / kPi;
+  CHECK(light.total_power_w(100.0) == doctest::Approx(kPi * 2.0 * radiance).epsilon(1e-6));
+  // Without portals again: no bounds, the whole sky's power.
+  light.set_portals({});
+  CHECK_FALSE(light.part_bounds(0));
+}

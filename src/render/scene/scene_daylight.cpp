@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "render/scene/scene_light_emission.h"
+#include "render/scene/scene_portals.h"
 #include "render/scene/sun_position_input.h"
 #include "spectral/photometry/light_units.h"
 #include "transport/lights/distant_light.h"
@@ -21,7 +22,7 @@ constexpr double kDefaultSkyCctK = 6504.0;
 
 std::unique_ptr<Light> load_cie_sky_light(const JsonCursor& l, LoadContext& context) {
   l.only_keys({"type", "name", "light_group", "sky_type", "sun_position", "diffuse_horizontal_illuminance_lx", "zenith_luminance_nt",
-               "cct", "spectrum", "up", "north"});
+               "cct", "spectrum", "up", "north", "portals"});
   const int type = l.at("sky_type").integer(1, kCieSkyTypeCount);
   const HorizonFrame frame = horizon_frame(l);
   const CieSkyParameters& parameters = cie_sky_parameters(type);
@@ -72,7 +73,9 @@ std::unique_ptr<Light> load_cie_sky_light(const JsonCursor& l, LoadContext& cont
   const double scale = zenith_luminance_nt / shape_luminous.luminous;
   if (!std::isfinite(scale) || !(scale > 0.0))
     l.fail("the calibration gives a spectral scale of " + std::to_string(scale) + " for this spectrum");
-  return std::make_unique<CieSkyLight>(type, frame.up, sun.direction, LightSpectrum(std::move(shape), scale), integrals);
+  auto sky = std::make_unique<CieSkyLight>(type, frame.up, sun.direction, LightSpectrum(std::move(shape), scale), integrals);
+  sky->set_portals(load_portals(l));
+  return sky;
 }
 
 std::unique_ptr<Light> load_sun_light(const JsonCursor& l, LoadContext& context) {

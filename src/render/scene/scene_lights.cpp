@@ -11,6 +11,7 @@
 #include "render/scene/scene_ies_light.h"
 #include "render/scene/scene_light_emission.h"
 #include "render/scene/scene_light_groups.h"
+#include "render/scene/scene_portals.h"
 #include "transport/lights/distant_light.h"
 #include "transport/lights/environment_light.h"
 #include "transport/lights/light_spectrum.h"
@@ -35,24 +36,6 @@ Frame environment_frame(const JsonCursor& f) {
   if (std::fabs(dot(s, t)) > 1e-4f || std::fabs(dot(s, n)) > 1e-4f || std::fabs(dot(t, n)) > 1e-4f)
     f.fail("the three directions must be perpendicular to one another");
   return {s, t, n};
-}
-
-/// "portals": [[c0, c1, c2, c3], ...], each four corners of a rectangle in order (transport/lights/environment_portal.h).
-PortalSet load_portals(const JsonCursor& l) {
-  if (!l.has("portals")) return {};
-  const JsonCursor list = l.at("portals");
-  if (!list.is_array() || list.size() == 0) list.fail("expected a non-empty array of portals, each [c0, c1, c2, c3]");
-  std::vector<PortalRectangle> portals;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const JsonCursor p = list.at(i);
-    if (!p.is_array() || p.size() != 4) p.fail("expected the four corners of a rectangle, in order: [c0, c1, c2, c3]");
-    const auto rectangle = PortalRectangle::from_corners(p.at(0).vec3(), p.at(1).vec3(), p.at(2).vec3(), p.at(3).vec3());
-    if (!rectangle)
-      p.fail("the four corners must form a rectangle in order (c2 = c1 + c3 - c0 and a right angle at c0, to 1e-3 of "
-             "the longer edge), with no edge of zero length");
-    portals.push_back(*rectangle);
-  }
-  return PortalSet(std::move(portals));
 }
 
 std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context);

@@ -142,17 +142,8 @@ std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref
 }
 
 std::optional<LightBounds> EnvironmentLight::part_bounds(int part) const {
-  if (portals_.empty() || part != 0 || !(mean_radiance_integral_ > 0.0)) return std::nullopt;
-  LightBounds all;
-  for (const PortalRectangle& p : portals_.portals()) {
-    // The rectangle as its two triangles (the bounds' area-weighted intensities add up to L̄·A).
-    const Vec3 c0 = p.corner, c1 = p.corner + p.edge_a, c2 = c1 + p.edge_b, c3 = p.corner + p.edge_b;
-    const double half_area = 0.5 * p.area_m2();
-    all = unite(all, triangle_light_bounds(c0, c1, c2, p.normal(), half_area, mean_radiance_integral_, true));
-    all = unite(all, triangle_light_bounds(c0, c2, c3, p.normal(), half_area, mean_radiance_integral_, true));
-  }
-  if (!(all.intensity_w_sr > 0.0f)) return std::nullopt;
-  return all;
+  if (part != 0) return std::nullopt;
+  return portal_light_bounds(portals_, mean_radiance_integral_);
 }
 
 double EnvironmentLight::total_power_w(double scene_radius_m) const {

@@ -167,4 +167,17 @@ float PortalSet::pdf_given_total(Vec3 origin, Vec3 wi, double total) const {
   return std::isfinite(pdf_sr) ? pdf_sr : 0.0f;
 }
 
+std::optional<LightBounds> portal_light_bounds(const PortalSet& portals, double radiance_w_m2_sr) {
+  if (portals.empty() || !(radiance_w_m2_sr > 0.0)) return std::nullopt;
+  LightBounds all;
+  for (const PortalRectangle& p : portals.portals()) {
+    const Vec3 c0 = p.corner, c1 = p.corner + p.edge_a, c2 = c1 + p.edge_b, c3 = p.corner + p.edge_b;
+    const double half_area = 0.5 * p.area_m2();
+    all = unite(all, triangle_light_bounds(c0, c1, c2, p.normal(), half_area, radiance_w_m2_sr, true));
+    all = unite(all, triangle_light_bounds(c0, c2, c3, p.normal(), half_area, radiance_w_m2_sr, true));
+  }
+  if (!(all.intensity_w_sr > 0.0f)) return std::nullopt;
+  return all;
+}
+
 }  // namespace rimu

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "transport/geometry/vector.h"
+#include "transport/lights/light_bounds.h"
 
 namespace rimu {
 
@@ -76,5 +77,10 @@ class PortalSet {
   float pdf_given_total(Vec3 origin, Vec3 wi, double total_solid_angle_sr) const;
   std::vector<PortalRectangle> portals_;
 };
+
+/// A light at infinity that enters through `portals` as the light tree sees it: each rectangle a two-sided area light
+/// (as its two triangles, so the bounds' intensities add up to radiance·A) of `radiance_w_m2_sr`. std::nullopt without
+/// portals or radiance: the light is then one of the tree's lights at infinity.
+std::optional<LightBounds> portal_light_bounds(const PortalSet& portals, double radiance_w_m2_sr);
 
 }  // namespace rimu

@@ -98,8 +98,9 @@ SampledSpectrum CieSkyLight::radiance_escaped(Vec3 direction, const SampledWavel
   return zenith_radiance_.sample(lambda) * Float4(float(g));
 }
 
-float CieSkyLight::pdf_li(const LightReference&, Vec3 wi, const SurfaceHit*) const {
+float CieSkyLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit*) const {
   if (zenith_radiance_.is_black() || !(dot(wi, frame_.n) > 0.0f)) return 0.0f;
+  if (!portals_.empty()) return portals_.pdf(ref.position, wi);
   const float pdf = distribution_.pdf(direction_to_uv(wi)) / float(kTwoPi);
   return std::isfinite(pdf) ? pdf : 0.0f;
 }
@@ -108,6 +109,14 @@ std::optional<LightSample> CieSkyLight::sample_li(const LightReference& ref, con
                                                   Vec2 u) const {
   if (zenith_radiance_.is_black()) return std::nullopt;
   LightSample s;
+  if (!portals_.empty()) {
+    const auto through = portals_.sample(ref.position, u);
+    if (!through || !(dot(through->wi, frame_.n) > 0.0f)) return std::nullopt;  // below the horizon: no sky there
+    s.wi = through->wi;
+    s.pdf_solid_angle = through->pdf_sr;
+    s.radiance = radiance_escaped(s.wi, lambda);
+    return s;
+  }
   // The density and radiance come from the returned direction, as pdf_li and radiance_escaped compute them, so a
   // BSDF-sampled ray along it gets the same numbers.
   s.wi = normalize(uv_to_direction(distribution_.sample(u).uv));
@@ -117,7 +126,17 @@ std::optional<LightSample> CieSkyLight::sample_li(const LightReference& ref, con
   return s;
 }
 
+double CieSkyLight::portal_radiance_w_m2_sr() const {
+  return zenith_radiance_.integral_360_830() * integrals_.cosine_weighted_sr / std::numbers::pi;
+}
+
+std::optional<LightBounds> CieSkyLight::part_bounds(int part) const {
+  if (part != 0) return std::nullopt;
+  return portal_light_bounds(portals_, portal_radiance_w_m2_sr());
+}
+
 double CieSkyLight::total_power_w(double scene_radius_m) const {
+  if (!portals_.empty()) return std::numbers::pi * portals_.total_area_m2() * portal_radiance_w_m2_sr();
   return std::numbers::pi * scene_radius_m * scene_radius_m * zenith_radiance_.integral_360_830() *
          integrals_.solid_angle_sr;
 }
