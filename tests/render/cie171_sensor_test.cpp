@@ -7,6 +7,7 @@
 // report's accuracy target for these cases).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <cmath>
@@ -59,6 +60,30 @@ double polygon_factor(Point p, Point n, const std::vector<Point>& polygon) {
 double parallel_corner_factor(double a, double b, double c) {
   const double x = a / c, y = b / c, sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
   return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2.0 * kPi);
+}
+
+// The part of convex polygon `subject` inside convex polygon `clip` (both in the same plane, `normal` its normal, either
+// winding): Sutherland–Hodgman clipping against each of clip's edges.
+std::vector<Point> clip_convex(std::vector<Point> subject, const std::vector<Point>& clip, Point normal) {
+  // Orient clip so that "inside" is to the left of each edge seen along `normal`.
+  std::vector<Point> c = clip;
+  if (dot(cross(minus(c[1], c[0]), minus(c[2], c[1])), normal) < 0) std::reverse(c.begin(), c.end());
+  for (size_t e = 0; e < c.size() && !subject.empty(); ++e) {
+    const Point a = c[e], b = c[(e + 1) % c.size()];
+    const auto side = [&](Point p) { return dot(cross(minus(b, a), minus(p, a)), normal); };
+    std::vector<Point> out;
+    for (size_t i = 0; i < subject.size(); ++i) {
+      const Point p = subject[i], q = subject[(i + 1) % subject.size()];
+      const double sp = side(p), sq = side(q);
+      if (sp >= 0) out.push_back(p);
+      if ((sp >= 0) != (sq >= 0)) {
+        const double t = sp / (sp - sq);
+        out.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])});
+      }
+    }
+    subject = std::move(out);
+  }
+  return subject;
 }
 
 json base_scene(json shapes, json lights, json sensors, int max_depth = 16) {
@@ -166,5 +191,45 @@ TEST_CASE("CIE 171 closed room: the integrating-sphere relation E_r = Φ ρ / (A
                interreflected);
     // Sideways at (0.5, 0.2, 0.1) facing +y: the lamp (at the origin, along −p) is behind the receptor.
     check_case(rho == 0.5 ? "sphere ρ 0.5, sideways" : "sphere ρ 0.8, sideways", readings.meters[2], interreflected);
+  }
+}
+
+TEST_CASE("CIE 171 internal obstruction: a plate between an area source and the floor hides its shadow's part of the source") {
+  // The parallel 2 m × 1 m panel of 1000 nt at 3 m, and a black 0.6 m × 0.6 m plate at 1.5 m under its middle. From a
+  // floor point p the plate hides the part of the panel inside the plate's central projection from p onto the
+  // panel's plane, so E = π L (F(panel) − F(panel ∩ projected plate)): configuration factors add over disjoint parts
+  // of one plane, and the intersection of the two convex polygons is found by clipping. Meters: under the plate's
+  // centre (the plate's shadow covers part of the panel), under a panel corner, beside, and far enough off that the
+  // plate hides nothing.
+  const double luminance = 1000.0, height = 3.0, plate_height = 1.5;
+  const std::vector<Point> panel = {{0, 0, height}, {0, 1, height}, {2, 1, height}, {2, 0, height}};
+  const std::vector<Point> plate = {{0.7, 0.2, plate_height}, {1.3, 0.2, plate_height}, {1.3, 0.8, plate_height},
+                                    {0.7, 0.8, plate_height}};
+  json panel_vertices = json::array(), plate_vertices = json::array();
+  for (const Point& p : panel) panel_vertices.push_back(p);
+  for (const Point& p : plate) plate_vertices.push_back(p);
+  const std::vector<Point> meters = {{1, 0.5, 0}, {0.3, 0.1, 0}, {2.2, 0.5, 0}, {-1.5, 3.0, 0}};
+  json sensor_list = json::array();
+  for (const Point& p : meters) sensor_list.push_back(upward_meter(p));
+  const SensorReadings readings = measure(base_scene(
+      json::array({{{"type", "quad"}, {"vertices", panel_vertices}, {"material", "black"},
+                    {"emission", {{"spectrum", {{"illuminant", "D65"}}}, {"luminance_nt", luminance}}}},
+                   {{"type", "quad"}, {"vertices", plate_vertices}, {"material", "black"}}}),
+      json::array(), {{"samples", 4096}, {"meters", sensor_list}}));
+  const char* names[] = {"obstruction, under the plate", "obstruction, under a corner", "obstruction, beside",
+                         "obstruction, far off (nothing hidden)"};
+  for (size_t i = 0; i < meters.size(); ++i) {
+    const Point p = meters[i];
+    std::vector<Point> shadow;
+    for (const Point& q : plate) {
+      const double t = (height - p[2]) / (q[2] - p[2]);
+      shadow.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), height});
+    }
+    const std::vector<Point> hidden = clip_convex(shadow, panel, {0, 0, 1});
+    const double visible_factor =
+        polygon_factor(p, {0, 0, 1}, panel) - (hidden.size() >= 3 ? polygon_factor(p, {0, 0, 1}, hidden) : 0.0);
+    if (i == 0) CHECK(hidden.size() >= 3);  // the case is one: the plate hides part of the panel
+    if (i == 3) CHECK(hidden.size() < 3);
+    check_case(names[i], readings.meters[i], kPi * luminance * visible_factor);
   }
 }
