@@ -189,4 +189,29 @@ TEST_CASE("an ies light measured by the light meter: E = I(gamma) cos theta / r^
                                                    {"spectrum", 1.0}, {"luminous_power_lm", 5}, {"candela_scale", 2}}),
                          doctest::Contains("either luminous_power_lm or candela_scale"), InputError);
   }
+  SUBCASE("luminous_opening: the file's disc lights the plane below as a disc, not a point") {
+    // 100 cd over the lower hemisphere from a disc of 0.2 m diameter (LM-63 width = length = −0.2, height 0), 5 cm
+    // above the meter: E = (2I/R²)(1 − h/√(R² + h²)) = 11,056 lx (a Lambertian disc of radiance I/(πR²)); as a point
+    // the same file gives I/h² = 40,000 lx.
+    folder.write("disc.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 -0.2 -0.2 0\n1 1 0\n0 90\n0\n100 100\n");
+    const json light = {{"type", "ies"}, {"file", "disc.ies"}, {"position", {0, 0.05, 0}},
+                        {"spectrum", {{"illuminant", "D65"}}}, {"luminous_opening", true}};
+    const auto scene = scene_with_light(folder, light);
+    const double r = 0.1, h = 0.05;
+    // 1/d² varies across the disc: more samples than the point cases for the 1 % standard error check_reading asks.
+    check_reading(measure_illuminance_lx(scene->transport_view(), {0, 0, 0}, {0, 1, 0}, test::library().photopic_v(), 40000, 11),
+                  2.0 * 100.0 / (r * r) * (1.0 - h / std::sqrt(r * r + h * h)));
+    json point = light;
+    point["luminous_opening"] = false;
+    check_reading(meter(*scene_with_light(folder, point), {0, 0, 0}), 100.0 / (h * h));
+    // A file without an opening, and an ellipse, are refused under the key.
+    folder.write("ellipse.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 -0.2 -0.4 0\n1 1 0\n0 90\n0\n100 100\n");
+    folder.write("point.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n100 100\n");
+    json ellipse = light, no_opening = light;
+    ellipse["file"] = "ellipse.ies";
+    no_opening["file"] = "point.ies";
+    CHECK_THROWS_WITH_AS(scene_with_light(folder, ellipse), doctest::Contains("/lights/0/luminous_opening: "), InputError);
+    CHECK_THROWS_WITH_AS(scene_with_light(folder, ellipse), doctest::Contains("an ellipse"), InputError);
+    CHECK_THROWS_WITH_AS(scene_with_light(folder, no_opening), doctest::Contains("gives no luminous opening"), InputError);
+  }
 }

@@ -75,7 +75,7 @@ std::unique_ptr<Light> load_goniometric_image_light(const JsonCursor& l, LoadCon
 
 std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context) {
   l.only_keys({"type", "name", "light_group", "file", "position", "direction", "c0_direction", "spectrum", "luminous_power_lm",
-               "candela_scale"});
+               "candela_scale", "luminous_opening"});
   const JsonCursor file = l.at("file");
   IesPhotometry ies;
   try {
@@ -113,7 +113,19 @@ std::unique_ptr<Light> load_ies_light(const JsonCursor& l, LoadContext& context)
     table = candela_distribution(ies, scale);
   }
 
-  return std::make_unique<GoniometricLight>(l.at("position").vec3(), n, c0, std::move(per_candela), std::move(table));
+  auto light = std::make_unique<GoniometricLight>(l.at("position").vec3(), n, c0, std::move(per_candela), std::move(table));
+  // "luminous_opening": true: the light leaves from the file's luminous opening (width, length, height) instead of
+  // its photometric centre (transport/lights/luminous_opening.h).
+  if (const auto opening_key = l.find("luminous_opening"); opening_key && opening_key->boolean()) {
+    constexpr double kMetresPerFoot = 0.3048;
+    const auto opening = luminous_opening_from_lm63(ies.width, ies.length, ies.height,
+                                                    ies.units_type == 1 ? kMetresPerFoot : 1.0);
+    if (!opening.opening) opening_key->fail("the IES file's luminous opening (" + opening.error + ")");
+    if (opening.opening->is_point())
+      opening_key->fail("the IES file gives no luminous opening (width, length and height are 0): it is a point");
+    light->set_opening(*opening.opening);
+  }
+  return light;
 }
 
 }  // namespace rimu::scene_loading

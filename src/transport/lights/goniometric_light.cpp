@@ -25,13 +25,21 @@ GoniometricLight::GoniometricLight(Vec3 position_m, Frame frame, LightSpectrum p
     : position_m_(position_m), frame_(frame), per_unit_intensity_(std::move(per_unit_intensity)), table_(std::move(table)) {}
 
 std::optional<LightSample> GoniometricLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
-                                                       Vec2) const {
-  const Vec3 to_ref = ref.position - position_m_;
+                                                       Vec2 u) const {
+  Vec3 origin = position_m_;
+  LuminousOpening::SurfacePoint on_opening{};
+  if (!opening_.is_point()) {
+    on_opening = opening_.sample(u);
+    origin = position_m_ + frame_.to_world(on_opening.position_m);
+  }
+  const Vec3 to_ref = ref.position - origin;
   const float d = length(to_ref);
   if (!(d > 0.0f) || !std::isfinite(d)) return std::nullopt;
-  const double candela = table_value(to_ref / d);
+  const Vec3 w_out = to_ref / d;
+  double candela = table_value(w_out);
+  if (!opening_.is_point()) candela *= opening_.weight(on_opening.normal, frame_.to_local(w_out));
   if (!(candela > 0.0)) return std::nullopt;
-  return delta_position_sample(position_m_, ref, per_unit_intensity_.sample(lambda) * Float4(float(candela)));
+  return delta_position_sample(origin, ref, per_unit_intensity_.sample(lambda) * Float4(float(candela)));
 }
 
 double GoniometricLight::total_power_w(double) const {
@@ -45,8 +53,18 @@ std::optional<LightBounds> GoniometricLight::part_bounds(int part) const {
   if (!gamma) return std::nullopt;
   const auto [gamma_min, gamma_max] = *gamma;
   const double i = intensity;
-  if (gamma_max <= std::numbers::pi - gamma_min) return point_light_bounds(position_m_, i, frame_.n, gamma_max, 0.0);
-  return point_light_bounds(position_m_, i, -frame_.n, std::numbers::pi - gamma_min, 0.0);
+  LightBounds bounds = gamma_max <= std::numbers::pi - gamma_min
+                           ? point_light_bounds(position_m_, i, frame_.n, gamma_max, 0.0)
+                           : point_light_bounds(position_m_, i, -frame_.n, std::numbers::pi - gamma_min, 0.0);
+  if (!opening_.is_point()) {
+    // The opening's local box in world space: half extents |s|·hx + |t|·hy + |n|·hz per axis.
+    const Vec3 h = opening_.half_extent_m();
+    const auto abs3 = [](Vec3 v) { return Vec3{std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; };
+    const Vec3 e = abs3(frame_.s) * h.x + abs3(frame_.t) * h.y + abs3(frame_.n) * h.z;
+    bounds.lower_m = bounds.lower_m - e;
+    bounds.upper_m = bounds.upper_m + e;
+  }
+  return bounds;
 }
 
 std::optional<IntensityDistribution::DirectionSample> GoniometricLight::sample_emission_direction(Vec2 u) const {

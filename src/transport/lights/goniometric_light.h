@@ -13,6 +13,7 @@
 #include "transport/geometry/frame.h"
 #include "transport/lights/light.h"
 #include "transport/lights/light_spectrum.h"
+#include "transport/lights/luminous_opening.h"
 
 namespace rimu {
 
@@ -27,8 +28,8 @@ class GoniometricLight final : public Light {
   GoniometricLight(Vec3 position_m, Frame frame, LightSpectrum per_unit_intensity,
                    std::shared_ptr<const IntensityDistribution> table);
 
-  /// The direction to the light; radiance field shape(λ)·table(−wi)/d², pdf 1, is_delta. std::nullopt at the light
-  /// or where the table is 0.
+  /// The direction to the light; radiance field shape(λ)·table(−wi)/d², pdf 1, is_delta (with an opening: to a point
+  /// on it drawn from u, times the opening's weight). std::nullopt at the light or where the table is 0.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                        Vec2 u) const override;
   float pdf_li(const LightReference&, Vec3, const SurfaceHit*) const override { return 0.0f; }
@@ -37,7 +38,7 @@ class GoniometricLight final : public Light {
   bool is_delta() const override { return true; }
 
   /// The table's peak times ∫shape dλ, in the narrowest cone about ±axis outside which the table is 0
-  /// (IntensityDistribution::nonzero_gamma_rad).
+  /// (IntensityDistribution::nonzero_gamma_rad), over the opening's bounding box.
   std::optional<LightBounds> part_bounds(int part) const override;
 
   /// An emission direction (world space) drawn proportionally to the table (CandelaDistribution::sample), with its
@@ -49,11 +50,16 @@ class GoniometricLight final : public Light {
 
   const LightSpectrum* emitted_spectrum() const override { return &per_unit_intensity_; }
 
+  /// The surface the light leaves from (see above); a point by default.
+  void set_opening(LuminousOpening opening) { opening_ = opening; }
+  const LuminousOpening& opening() const { return opening_; }
+
  private:
   Vec3 position_m_;
   Frame frame_;  // s: C = 0, t: C = 90°, n: γ = 0
   LightSpectrum per_unit_intensity_;
   std::shared_ptr<const IntensityDistribution> table_;
+  LuminousOpening opening_;
 };
 
 }  // namespace rimu
