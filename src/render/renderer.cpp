@@ -84,13 +84,16 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   // Path guiding (surface integrator only): the field the current pass samples from, fitted after the last one.
   constexpr bool can_guide = std::is_same_v<Integrator, PathIntegrator>;
   stats.guiding.active = can_guide && integrator_settings.guiding;
-  // Camera rays carry differentials only where a texture reads them (surface integrator), spaced as this render's
-  // samples are: a pixel's spp samples cover it about 1/√spp apart; pbrt-v4's floor of 1/8 keeps high-spp renders
-  // from sharpening the lookup below the texels' own noise-free resolution.
+  // Camera rays carry differentials only where a texture reads them, spaced as this render's samples are: a pixel's
+  // spp samples cover it about 1/√spp apart; pbrt-v4's floor of 1/8 keeps high-spp renders from sharpening the
+  // lookup below the texels' own noise-free resolution.
+  const bool texture_footprints = [&] {
+    if constexpr (can_guide) return integrator.scene().texture_footprints;
+    else return integrator.scene().surfaces.texture_footprints;
+  }();
   float differentials_scale = 0.0f;
-  if constexpr (can_guide)
-    if (integrator.scene().texture_footprints)
-      differentials_scale = std::max(0.125f, 1.0f / std::sqrt(float(std::max(1, options.samples_per_pixel))));
+  if (texture_footprints)
+    differentials_scale = std::max(0.125f, 1.0f / std::sqrt(float(std::max(1, options.samples_per_pixel))));
   std::optional<GuidingField> guiding_field;
   const GuidingFieldSettings guiding_settings;
   std::vector<GuidingSample> guiding_history;  // every pass's records, in pass and tile order, up to the budget
@@ -156,6 +159,9 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
                 } else {
                   radiance = integrator.radiance(ray, lambda, *sampler, guiding, groups);
                 }
+              } else if (differentials_scale > 0.0f) {
+                const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
+                radiance = integrator.radiance(ray, &d, lambda, *sampler, groups);
               } else {
                 radiance = integrator.radiance(ray, lambda, *sampler, groups);
               }

@@ -7,6 +7,7 @@
 #include "transport/geometry/frame.h"
 #include "transport/guiding/guided_bsdf.h"
 #include "transport/guiding/path_guiding_record.h"
+#include "transport/integrators/path_footprint.h"
 #include "transport/integrators/shadow_passage.h"
 #include "transport/sampling/wavelength_modes.h"
 
@@ -165,14 +166,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     if (depth_reached && !may_pass) break;
 
     MaterialContext context = MaterialContext::at(*hit, wo_world);
-    if (differentials) {
-      const SurfaceDifferentials d =
-          surface_differentials(hit->position, hit->geometric_normal, hit->dpdu, hit->dpdv, *differentials);
-      context.dpdx = d.dpdx;
-      context.dpdy = d.dpdy;
-      context.duvdx = d.duvdx;
-      context.duvdy = d.duvdy;
-    }
+    SurfaceDifferentials footprint{};
+    if (differentials) footprint = set_footprint(context, *hit, *differentials);
     context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
     const Bsdf bsdf = material.bsdf(context, lambda);
     const BsdfFlags flags = bsdf.flags();
@@ -259,24 +254,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     }
     if (depth_reached) break;
     passages_since_vertex = 0;
-    if (differentials) {
-      if (bs->is_delta) {
-        // Mirror or refract the auxiliary rays as the main one was, the relative index from Snell's law on the main
-        // ray's own sines (a BsdfSample carries no η). Within 1e-4 of normal incidence the sines cannot give it and 1
-        // is taken: the footprint then goes on as if the interface were not there (right for a thin pane; up to η
-        // times too narrow or wide behind a thick refracting surface seen head-on).
-        const bool transmitted = bs->wi.z * wo.z < 0.0f;
-        const float sin_i = std::sqrt(std::fmax(0.0f, 1.0f - wo.z * wo.z));
-        const float sin_t = std::sqrt(std::fmax(0.0f, 1.0f - bs->wi.z * bs->wi.z));
-        const float eta = transmitted && sin_t > 1e-4f ? sin_i / sin_t : 1.0f;
-        const SurfaceDifferentials d{context.dpdx, context.dpdy, context.duvdx, context.duvdy};
-        differentials = d.dpdx == Vec3{} ? std::nullopt
-                                         : specular_differentials(*differentials, hit->position, shading.frame.n, d,
-                                                                  transmitted, eta);
-      } else {
-        differentials.reset();
-      }
-    }
+    if (differentials)
+      differentials = footprint_after_bounce(*differentials, footprint, hit->position, shading.frame.n, wo, bs->wi,
+                                             bs->is_delta);
 
     previous_specular = bs->is_delta;
     previous_hero_pdf = bs->pdf[0];

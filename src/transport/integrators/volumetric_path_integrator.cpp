@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "transport/geometry/frame.h"
+#include "transport/integrators/path_footprint.h"
 #include "transport/integrators/shadow_passage.h"
 
 namespace rimu {
@@ -113,8 +114,9 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
   return std::nullopt;
 }
 
-SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
-                                                   Sampler& sampler, const LightGroupRadiance& groups) const {
+SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const RayDifferentials* camera_differentials,
+                                                   const SampledWavelengths& lambda, Sampler& sampler,
+                                                   const LightGroupRadiance& groups) const {
   const TransportScene& surfaces = scene_.surfaces;
   const auto& lights = *surfaces.lights;
   const auto& media = *scene_.media;
@@ -130,6 +132,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   SampledSpectrum pdf_ratio = lanes.initial_ratios();
   SampledSpectrum beta = pdf_ratio;
   Ray ray = camera_ray;
+  std::optional<RayDifferentials> differentials;
+  if (surfaces.texture_footprints && camera_differentials) differentials = *camera_differentials;
   MediumStack stack;
   stack.cross(scene_.camera_medium, true);  // −1: the camera is in vacuum
 
@@ -199,6 +203,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     }
 
     Scatterer scatterer;
+    SurfaceDifferentials footprint{};  // at a surface vertex reached with differentials
     LightReference reference;
     Vec3 shadow_origin;
     // A pane (Material::passes_shadow_rays) may be passed straight through: then it is no vertex (see path_integrator.cpp).
@@ -245,6 +250,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       if (depth_reached && !may_pass) break;
       ++surface_depth;
       MaterialContext context = MaterialContext::at(*hit, -ray.direction);
+      if (differentials) footprint = set_footprint(context, *hit, *differentials);
       context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
       scatterer.bsdf = material.bsdf(context, lambda);
       const bool two_sided = !scatterer.bsdf->flags().has_transmission;
@@ -351,6 +357,11 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     }
     if (depth_reached) break;
     passages_since_vertex = 0;
+    if (differentials)
+      differentials = scatter_point ? std::nullopt
+                                    : footprint_after_bounce(*differentials, footprint, hit->position, scatterer.frame.n,
+                                                             scatterer.wo_local, scatterer.frame.to_local(ds->wi_world),
+                                                             ds->is_delta);
     previous_specular = ds->is_delta;
     previous_hero_pdf = ds->pdf[0];
     previous_sum_ratio = sum_ratio;

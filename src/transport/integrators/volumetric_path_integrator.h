@@ -2,6 +2,8 @@
 // scattering and next-event estimation inside homogeneous and voxel-grid media (docs/media.md).
 #pragma once
 
+#include "transport/geometry/ray_differentials.h"
+
 #include <vector>
 
 #include "transport/media/equiangular_sampling.h"
@@ -61,7 +63,15 @@ class VolumetricPathIntegrator {
 
   /// With each light group's share of the result added to `groups` (light_group_radiance.h).
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
-                           const LightGroupRadiance& groups = {}) const;
+                           const LightGroupRadiance& groups = {}) const {
+    return radiance(ray, nullptr, lambda, sampler, groups);
+  }
+  /// The same with the camera ray's differentials (nullptr: none), which give textured hits their footprint when
+  /// the scene asks for it (transport/integrators/path_footprint.h: through specular bounces and straight passages,
+  /// ended by any other bounce or a scattering in a medium).
+  SampledSpectrum radiance(const Ray& ray, const RayDifferentials* differentials, const SampledWavelengths& lambda,
+                           Sampler& sampler, const LightGroupRadiance& groups = {}) const;
+  const VolumetricScene& scene() const { return scene_; }
 
  private:
   struct ShadowResult {
