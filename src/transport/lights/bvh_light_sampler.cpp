@@ -397,6 +397,8 @@ uint32_t BvhLightSampler::build_wide(uint32_t index, const std::vector<uint32_t>
     node.child[size_t(j)] = child;
     node.child_end[size_t(j)] = subtree_end[child];
     node.wide[size_t(j)] = below[size_t(j)];
+    node.representative[size_t(j)] = nodes_[child].representative;
+    if (!nodes_[child].is_leaf) node.representative_bounds.set(j, nodes_[nodes_[child].representative].bounds);
   }
   node.count = uint8_t(count);
   node.first_slots = uint8_t(first_slots);
@@ -421,8 +423,7 @@ float order_independent_sum(std::array<float, 4> v) {
 }  // namespace
 
 BvhLightSampler::Query BvhLightSampler::query(const LightSamplingPoint& at) const {
-  Query q;
-  static_cast<LightSamplingPoint&>(q) = at;
+  Query q(at);
   if (node_bands_.empty() || !at.wavelengths) return q;
   static_assert(kLaneCount == 4);
   const SampledWavelengths& lambda = *at.wavelengths;
@@ -463,31 +464,49 @@ uint32_t BvhLightSampler::witness_below(uint32_t index, bool certified, const Qu
   return find_scoring_leaf(index, at, &budget);
 }
 
-BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness, const Query& at) const {
+inline BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness, const Query& at) const {
   const WideNode& node = wide_nodes_[index];
-  const Importance4 importance4 = light_importance4(node.bounds, at.position_m, at.normal);
-  std::array<float, 4> weight = importance4.value;
+  const Importance4 importance4 = light_importance4(node.bounds, at.point4);
   WideSplit out;
+  out.weight = importance4.value;
+  // Which scoring slots still need a witness: not a leaf (its own), not certified, not holding the one passed down.
+  int unchecked = 0;
   for (size_t j = 0; j < node.count; ++j) {
-    if (!(weight[j] > 0.0f)) continue;
+    if (!(out.weight[j] > 0.0f)) continue;
     const uint32_t child = node.child[j];
-    if (at.spectral) weight[j] = spectral_importance(child, weight[j], at);
-    // Below a certified node every leaf scores; the slot holding the witness needs no check; any other is checked.
-    if (witness == kCertified)
+    if (node.wide[j] == kNoLeaf)
+      out.witness[j] = child;
+    else if (witness == kCertified || ((importance4.certified >> j) & 1))
       out.witness[j] = kCertified;
     else if (witness < kUnknown && child <= witness && witness < node.child_end[j])
       out.witness[j] = witness;
     else
-      out.witness[j] = witness_below(child, (importance4.certified >> j) & 1, at);
-    if (out.witness[j] == kNoLeaf) weight[j] = 0.0f;
+      unchecked |= 1 << j;
   }
-  const float sum = (weight[0] + weight[1]) + (weight[2] + weight[3]);
-  if (!(sum > 0.0f)) return WideSplit{};
-  for (size_t j = 0; j < 4; ++j) out.probability[j] = weight[j] / sum;
+  if (unchecked != 0) {
+    // Their representatives first, all four in lanes (the scalar search would check each one first, one by one);
+    // a search only below a slot whose representative scores 0.
+    const int representative_scores = light_scores4(node.representative_bounds, at.point4);
+    for (size_t j = 0; j < node.count; ++j) {
+      if (!((unchecked >> j) & 1)) continue;
+      if ((representative_scores >> j) & 1) {
+        out.witness[j] = node.representative[j];
+        continue;
+      }
+      int budget = search_budget_ > 0 ? search_budget_ : -1;
+      out.witness[j] = find_scoring_leaf(node.child[j], at, &budget, /*representative_checked=*/true);
+      if (out.witness[j] == kNoLeaf) out.weight[j] = 0.0f;
+    }
+  }
+  if (at.spectral)
+    for (size_t j = 0; j < node.count; ++j)
+      if (out.weight[j] > 0.0f) out.weight[j] = spectral_importance(node.child[j], out.weight[j], at);
+  out.sum = (out.weight[0] + out.weight[1]) + (out.weight[2] + out.weight[3]);
   return out;
 }
 
-uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget) const {
+uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget,
+                                            bool representative_checked) const {
   // One node visit = one importance evaluation; a budget of 0 left means give up (a negative one never does).
   const auto visit = [budget] {
     if (*budget == 0) return false;
@@ -496,7 +515,7 @@ uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int
   };
   const Node& node = nodes_[index];
   if (!visit()) return kUnknown;
-  if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
+  if (!representative_checked && light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
     return node.representative;
   // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
   // too, up to rounding).
@@ -553,21 +572,23 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& poi
     for (;;) {
       const WideNode& w = wide_nodes_[wide];
       const WideSplit s = wide_split(wide, witness, at);
-      // The slot whose interval of [0, 1) holds u (the last slot with probability, against rounding).
+      if (!(s.sum > 0.0f)) return std::nullopt;  // no slot can contribute (only through rounding)
+      // The slot whose interval of [0, Σ) holds u·Σ (the last slot with weight, against rounding).
+      const double target = u * double(s.sum);
       int chosen = -1;
       double below = 0.0, chosen_below = 0.0;
       for (int j = 0; j < w.count; ++j) {
-        const double p = double(s.probability[size_t(j)]);
-        if (!(p > 0.0)) continue;
+        const double weight = double(s.weight[size_t(j)]);
+        if (!(weight > 0.0)) continue;
         chosen = j;
         chosen_below = below;
-        if (u < below + p) break;
-        below += p;
+        if (target < below + weight) break;
+        below += weight;
       }
-      if (chosen < 0) return std::nullopt;  // no slot can contribute (only through rounding)
-      const double p = double(s.probability[size_t(chosen)]);
-      u = std::clamp((u - chosen_below) / p, 0.0, kBelowOne);
-      probability *= s.probability[size_t(chosen)];
+      if (chosen < 0) return std::nullopt;
+      const float weight = s.weight[size_t(chosen)];
+      u = std::clamp((target - chosen_below) / double(weight), 0.0, kBelowOne);
+      probability *= weight / s.sum;
       witness = s.witness[size_t(chosen)];
       node = w.child[size_t(chosen)];
       if (w.wide[size_t(chosen)] == kNoLeaf) break;
@@ -608,9 +629,8 @@ float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part)
       j += trail & 1;
       trail >>= 1;
     }
-    const float factor = s.probability[j];
-    if (!(factor > 0.0f)) return 0.0f;
-    probability *= factor;
+    if (!(s.weight[j] > 0.0f)) return 0.0f;
+    probability *= s.weight[j] / s.sum;
     witness = s.witness[j];
     if (w.wide[j] == kNoLeaf) return probability;
     wide = w.wide[j];

@@ -128,6 +128,10 @@ class BvhLightSampler final : public LightSampler {
   // tree: the grandchildren of a binary node, or its child where that child is a leaf.
   struct WideNode {
     ImportanceBounds4 bounds;           // of each slot's binary node
+    // Of each slot's representative leaf (an interior slot's only; a leaf slot is its own witness), checked in lanes
+    // for every slot that needs a witness at once: bit for bit the scalar check find_scoring_leaf starts with.
+    ImportanceBounds4 representative_bounds;
+    std::array<uint32_t, 4> representative{};
     std::array<uint32_t, 4> child{};    // the slot's binary node
     std::array<uint32_t, 4> child_end{};  // one past the last binary node of its subtree (depth-first order)
     std::array<uint32_t, 4> wide{};     // the slot's wide node, or kNoLeaf if the slot is a leaf
@@ -135,7 +139,10 @@ class BvhLightSampler final : public LightSampler {
     uint8_t first_slots = 0;            // slots below the binary node's first child (1 if it is a leaf, else 2)
   };
   struct WideSplit {
-    std::array<float, 4> probability{};  // per slot; all 0 if no slot can contribute
+    // Per slot: its importance where some leaf below it scores, else 0; slot j's probability is weight[j] / sum
+    // (one division, for the slot taken: sample() and pmf() divide the same two floats).
+    std::array<float, 4> weight{};
+    float sum = 0.0f;  // (w0 + w1) + (w2 + w3); not > 0 if no slot can contribute
     // Per slot: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the slot cannot contribute).
     std::array<uint32_t, 4> witness{kNoLeaf, kNoLeaf, kNoLeaf, kNoLeaf};
   };
@@ -143,6 +150,8 @@ class BvhLightSampler final : public LightSampler {
   /// A point with what the spectral importance needs of its wavelengths, worked out once per sample()/pmf():
   /// each lane's band and weight (1/n for the n lanes with a density); spectral = false: the broadband importance.
   struct Query : LightSamplingPoint {
+    explicit Query(const LightSamplingPoint& at) : LightSamplingPoint(at), point4(at.position_m, at.normal) {}
+    ImportancePoint4 point4;  // position_m and normal in lanes, for the wide nodes
     bool spectral = false;
     std::array<int, 4> band{};
     std::array<float, 4> weight{};
@@ -158,8 +167,9 @@ class BvhLightSampler final : public LightSampler {
   uint32_t witness_below(uint32_t index, bool certified, const Query& at) const;
   /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
   /// representative if every leaf is certified to score or it scores, else depth first; kUnknown once `*budget`
-  /// node visits are spent (a negative budget never runs out).
-  uint32_t find_scoring_leaf(uint32_t index, const Query& at, int* budget) const;
+  /// node visits are spent (a negative budget never runs out). `representative_checked`: the caller found that the
+  /// representative scores 0 (the visit still counts), so it is not checked again.
+  uint32_t find_scoring_leaf(uint32_t index, const Query& at, int* budget, bool representative_checked = false) const;
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
