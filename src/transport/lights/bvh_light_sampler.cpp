@@ -244,6 +244,7 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
       build_wide(0, subtree_end);
       wide_nodes_.shrink_to_fit();  // about one wide node per three leaves
     }
+    tree_representative4_.set(0, nodes_[nodes_[0].representative].bounds);
   }
   light_bands_.clear();
   light_bands_.shrink_to_fit();
@@ -540,8 +541,9 @@ BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
   // The tree's representative first (it scores at most points: the widest-reaching leaf, e.g. a portal sky).
   uint32_t witness = kNoLeaf;
   if (!nodes_.empty()) {
+    // (In lane 0 of light_scores4: exactly the scalar importance's > 0, without the importance.)
     const uint32_t representative = nodes_[0].representative;
-    if (light_importance(nodes_[representative].bounds, at.position_m, at.normal) > 0.0f)
+    if (light_scores4(tree_representative4_, at.point4) & 1)
       witness = representative;
     else if (light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f)
       witness = witness_below(0, every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal), at);

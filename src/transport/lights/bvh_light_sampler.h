@@ -193,6 +193,7 @@ class BvhLightSampler final : public LightSampler {
   std::vector<Leaf> leaves_;
   std::vector<uint32_t> first_part_;  // per light: the index of its part 0 in trails_
   std::vector<uint64_t> trails_;      // per (light, part): 1 << depth | the path's bits (1 = second child); 0: none
+  ImportanceBounds4 tree_representative4_;  // lane 0: the root's representative (for shares())
   std::vector<int> infinite_lights_;
   std::vector<bool> is_infinite_;
   int search_budget_ = 0;
