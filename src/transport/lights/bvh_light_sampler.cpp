@@ -457,14 +457,6 @@ float BvhLightSampler::spectral_importance(uint32_t index, float broadband, cons
   return broadband * (spectral / intensity);
 }
 
-uint32_t BvhLightSampler::witness_below(uint32_t index, bool certified, const Query& at) const {
-  const Node& node = nodes_[index];
-  if (node.is_leaf) return index;
-  if (certified) return kCertified;
-  int budget = search_budget_ > 0 ? search_budget_ : -1;
-  return find_scoring_leaf(index, at, &budget);
-}
-
 inline BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness, const Query& at) const {
   const WideNode& node = wide_nodes_[index];
   const Importance4 importance4 = light_importance4(node.bounds, at.point4);
@@ -545,8 +537,16 @@ BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
     const uint32_t representative = nodes_[0].representative;
     if (light_scores4(tree_representative4_, at.point4) & 1)
       witness = representative;
-    else if (light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f)
-      witness = witness_below(0, every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal), at);
+    else if (nodes_[0].is_leaf)
+      witness = kNoLeaf;
+    else if (light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f) {
+      if (every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal)) {
+        witness = kCertified;
+      } else {
+        int budget = search_budget_ > 0 ? search_budget_ : -1;
+        witness = find_scoring_leaf(0, at, &budget, /*representative_checked=*/true);
+      }
+    }
   }
   if (witness == kNoLeaf) return {0.0f, 1.0f / float(m)};
   return {1.0f / float(m + 1), 1.0f / float(m + 1), witness};

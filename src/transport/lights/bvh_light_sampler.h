@@ -161,10 +161,6 @@ class BvhLightSampler final : public LightSampler {
   /// The split at wide node `index`, given `witness`: a leaf node below it known to score > 0 (the slot holding it
   /// needs no search), kCertified (no slot needs one), kNoLeaf or kUnknown.
   WideSplit wide_split(uint32_t index, uint32_t witness, const Query& at) const;
-  /// For a child whose importance is > 0: a leaf node below binary node `index` that scores > 0, kCertified if its
-  /// bounds show that every leaf below scores (`certified`: light_importance4's certificate), kUnknown if a capped
-  /// search ran out, or kNoLeaf.
-  uint32_t witness_below(uint32_t index, bool certified, const Query& at) const;
   /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
   /// representative if every leaf is certified to score or it scores, else depth first; kUnknown once `*budget`
   /// node visits are spent (a negative budget never runs out). `representative_checked`: the caller found that the
