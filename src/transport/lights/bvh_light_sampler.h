@@ -173,6 +173,7 @@ class BvhLightSampler final : public LightSampler {
     uint32_t root_witness = kNoLeaf;  // what decided that the tree can contribute, for the root's split
   };
   Shares shares(const Query& at) const;
+  Shares infinite_shares(const Query& at) const;  // shares() where there are lights at infinity
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
   /// The wide node over interior binary node `index` and, recursively, those below it; `subtree_end` per binary node.
   uint32_t build_wide(uint32_t index, const std::vector<uint32_t>& subtree_end);
