@@ -399,6 +399,7 @@ uint32_t BvhLightSampler::build_wide(uint32_t index, const std::vector<uint32_t>
     node.child_end[size_t(j)] = subtree_end[child];
     node.wide[size_t(j)] = below[size_t(j)];
     node.representative[size_t(j)] = nodes_[child].representative;
+    if (!nodes_[child].is_leaf) node.interior_slots = uint8_t(node.interior_slots | (1 << j));
     if (!nodes_[child].is_leaf) node.representative_bounds.set(j, nodes_[nodes_[child].representative].bounds);
   }
   node.count = uint8_t(count);
@@ -463,20 +464,19 @@ float BvhLightSampler::spectral_importance(uint32_t index, float broadband, cons
   const Importance4 importance4 = light_importance4(node.bounds, at.point4);
   WideSplit out;
   out.weight = importance4.value;
-  // Which scoring slots still need a witness: not a leaf (its own), not certified, not holding the one passed down.
-  int unchecked = 0;
-  for (size_t j = 0; j < node.count; ++j) {
-    if (!(out.weight[j] > 0.0f)) continue;
-    const uint32_t child = node.child[j];
-    if (node.wide[j] == kNoLeaf)
-      out.witness[j] = child;
-    else if (witness == kCertified || ((importance4.certified >> j) & 1))
-      out.witness[j] = kCertified;
-    else if (witness < kUnknown && child <= witness && witness < node.child_end[j])
-      out.witness[j] = witness;
-    else
-      unchecked |= 1 << j;
+  // Which scoring slots still need a witness, as bit masks: not a leaf (its own), not certified (by the node's own
+  // bounds, or below a certified node), not holding the witness passed down (a leaf node index within the slot's
+  // depth-first range [child, child_end); node indices are < 2³¹, so signed compares order them).
+  const int scoring = _mm_movemask_ps(_mm_cmpgt_ps(_mm_loadu_ps(importance4.value.data()), _mm_setzero_ps()));
+  out.certified = witness == kCertified ? 0xf : importance4.certified;
+  if (witness < kUnknown) {
+    const __m128i w = _mm_set1_epi32(int(witness));
+    const __m128i first = _mm_loadu_si128(reinterpret_cast<const __m128i*>(node.child.data()));
+    const __m128i end = _mm_loadu_si128(reinterpret_cast<const __m128i*>(node.child_end.data()));
+    out.holder = _mm_movemask_ps(_mm_castsi128_ps(_mm_andnot_si128(_mm_cmpgt_epi32(first, w), _mm_cmpgt_epi32(end, w))));
+    out.passed_down = witness;
   }
+  const int unchecked = scoring & node.interior_slots & ~out.certified & ~out.holder;
   if (unchecked != 0) {
     // Their representatives first, all four in lanes (the scalar search would check each one first, one by one);
     // a search only below a slot whose representative scores 0.
@@ -598,7 +598,7 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& poi
       const float weight = s.weight[size_t(chosen)];
       u = std::clamp((target - chosen_below) / double(weight), 0.0, kBelowOne);
       probability *= weight / s.sum;
-      witness = s.witness[size_t(chosen)];
+      witness = s.witness_of(chosen);
       node = w.child[size_t(chosen)];
       if (w.wide[size_t(chosen)] == kNoLeaf) break;
       wide = w.wide[size_t(chosen)];
@@ -640,7 +640,7 @@ float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part)
     }
     if (!(s.weight[j] > 0.0f)) return 0.0f;
     probability *= s.weight[j] / s.sum;
-    witness = s.witness[j];
+    witness = s.witness_of(int(j));
     if (w.wide[j] == kNoLeaf) return probability;
     wide = w.wide[j];
   }

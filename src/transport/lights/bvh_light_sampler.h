@@ -138,14 +138,24 @@ class BvhLightSampler final : public LightSampler {
     std::array<uint32_t, 4> wide{};     // the slot's wide node, or kNoLeaf if the slot is a leaf
     uint8_t count = 0;                  // slots used (2-4)
     uint8_t first_slots = 0;            // slots below the binary node's first child (1 if it is a leaf, else 2)
+    uint8_t interior_slots = 0;         // bit j: slot j is not a leaf
   };
   struct WideSplit {
     // Per slot: its importance where some leaf below it scores, else 0; slot j's probability is weight[j] / sum
     // (one division, for the slot taken: sample() and pmf() divide the same two floats).
     std::array<float, 4> weight{};
     float sum = 0.0f;  // (w0 + w1) + (w2 + w3); not > 0 if no slot can contribute
-    // Per slot: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the slot cannot contribute).
+    // What shows that a scoring slot holds a leaf that scores, for the descent below it: bit j of `certified`: every
+    // leaf below slot j scores (kCertified); else bit j of `holder`: it holds `passed_down`, the witness this split
+    // was given; else witness[j], the leaf its representative check or search found (leaf slots: none needed).
+    int certified = 0, holder = 0;
+    uint32_t passed_down = kNoLeaf;
     std::array<uint32_t, 4> witness{kNoLeaf, kNoLeaf, kNoLeaf, kNoLeaf};
+    uint32_t witness_of(int j) const {
+      if ((certified >> j) & 1) return kCertified;
+      if ((holder >> j) & 1) return passed_down;
+      return witness[size_t(j)];
+    }
   };
   struct BuildItem;
   /// A point with what the spectral importance needs of its wavelengths, worked out once per sample()/pmf():
