@@ -243,6 +243,7 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
         subtree_end[i] = nodes_[i].is_leaf ? uint32_t(i + 1) : subtree_end[nodes_[i].index];
       build_wide(0, subtree_end);
       wide_nodes_.shrink_to_fit();  // about one wide node per three leaves
+      representatives_.shrink_to_fit();
     }
     tree_representative4_.set(0, nodes_[nodes_[0].representative].bounds);
   }
@@ -398,9 +399,17 @@ uint32_t BvhLightSampler::build_wide(uint32_t index, const std::vector<uint32_t>
     node.child[size_t(j)] = child;
     node.child_end[size_t(j)] = subtree_end[child];
     node.wide[size_t(j)] = below[size_t(j)];
-    node.representative[size_t(j)] = nodes_[child].representative;
     if (!nodes_[child].is_leaf) node.interior_slots = uint8_t(node.interior_slots | (1 << j));
-    if (!nodes_[child].is_leaf) node.representative_bounds.set(j, nodes_[nodes_[child].representative].bounds);
+  }
+  if (node.interior_slots != 0) {
+    node.representatives = uint32_t(representatives_.size());
+    Representatives& r = representatives_.emplace_back();
+    for (int j = 0; j < count; ++j) {
+      const uint32_t child = slots[size_t(j)];
+      if (nodes_[child].is_leaf) continue;
+      r.node[size_t(j)] = nodes_[child].representative;
+      r.bounds.set(j, nodes_[nodes_[child].representative].bounds);
+    }
   }
   node.count = uint8_t(count);
   node.first_slots = uint8_t(first_slots);
@@ -480,11 +489,12 @@ float BvhLightSampler::spectral_importance(uint32_t index, float broadband, cons
   if (unchecked != 0) {
     // Their representatives first, all four in lanes (the scalar search would check each one first, one by one);
     // a search only below a slot whose representative scores 0.
-    const int representative_scores = light_scores4(node.representative_bounds, at.point4);
+    const Representatives& representatives = representatives_[node.representatives];
+    const int representative_scores = light_scores4(representatives.bounds, at.point4);
     for (size_t j = 0; j < node.count; ++j) {
       if (!((unchecked >> j) & 1)) continue;
       if ((representative_scores >> j) & 1) {
-        out.witness[j] = node.representative[j];
+        out.witness[j] = representatives.node[j];
         continue;
       }
       int budget = search_budget_ > 0 ? search_budget_ : -1;
@@ -648,6 +658,7 @@ float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part)
 
 size_t BvhLightSampler::memory_bytes() const {
   return sizeof(*this) + nodes_.capacity() * sizeof(Node) + wide_nodes_.capacity() * sizeof(WideNode) +
+         representatives_.capacity() * sizeof(Representatives) +
          leaves_.capacity() * sizeof(Leaf) +
          first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
          infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8 +

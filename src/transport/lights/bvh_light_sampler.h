@@ -129,16 +129,20 @@ class BvhLightSampler final : public LightSampler {
   // tree: the grandchildren of a binary node, or its child where that child is a leaf.
   struct WideNode {
     ImportanceBounds4 bounds;           // of each slot's binary node
-    // Of each slot's representative leaf (an interior slot's only; a leaf slot is its own witness), checked in lanes
-    // for every slot that needs a witness at once: bit for bit the scalar check find_scoring_leaf starts with.
-    ImportanceBounds4 representative_bounds;
-    std::array<uint32_t, 4> representative{};
     std::array<uint32_t, 4> child{};    // the slot's binary node
     std::array<uint32_t, 4> child_end{};  // one past the last binary node of its subtree (depth-first order)
     std::array<uint32_t, 4> wide{};     // the slot's wide node, or kNoLeaf if the slot is a leaf
     uint8_t count = 0;                  // slots used (2-4)
     uint8_t first_slots = 0;            // slots below the binary node's first child (1 if it is a leaf, else 2)
     uint8_t interior_slots = 0;         // bit j: slot j is not a leaf
+    uint32_t representatives = 0;       // if interior_slots != 0: its Representatives in representatives_
+  };
+  // The representative leaves of a wide node's interior slots (a leaf slot is its own witness), their bounds in
+  // lanes, checked for every slot that needs a witness at once. Kept apart from WideNode: about three in four wide
+  // nodes have only leaf slots and need none (~80 bytes per leaf instead of ~110 inside every wide node).
+  struct Representatives {
+    ImportanceBounds4 bounds;
+    std::array<uint32_t, 4> node{};
   };
   struct WideSplit {
     // Per slot: its importance where some leaf below it scores, else 0; slot j's probability is weight[j] / sum
@@ -195,6 +199,7 @@ class BvhLightSampler final : public LightSampler {
 
   std::vector<Node> nodes_;
   std::vector<WideNode> wide_nodes_;  // the descent's nodes; [0] over the binary root (none for a one-leaf tree)
+  std::vector<Representatives> representatives_;
   // Spectral only: per node, the band intensities (W/sr, averaging to the node's intensity_w_sr).
   std::vector<std::array<float, kBands>> node_bands_;
   std::vector<std::array<float, kBands>> light_bands_;  // during the build only: per light, its band shape
