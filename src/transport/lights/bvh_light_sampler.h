@@ -138,8 +138,8 @@ class BvhLightSampler final : public LightSampler {
     uint32_t representatives = 0;       // if interior_slots != 0: its Representatives in representatives_
   };
   // The representative leaves of a wide node's interior slots (a leaf slot is its own witness), their bounds in
-  // lanes, checked for every slot that needs a witness at once. Kept apart from WideNode: about three in four wide
-  // nodes have only leaf slots and need none (~80 bytes per leaf instead of ~110 inside every wide node).
+  // lanes, checked for every slot that needs a witness at once. Kept apart from WideNode: about three in five wide
+  // nodes have only leaf slots and need none (59 bytes per leaf on a 1,053-triangle scene instead of 155).
   struct Representatives {
     ImportanceBounds4 bounds;
     std::array<uint32_t, 4> node{};
