@@ -468,7 +468,8 @@ float BvhLightSampler::spectral_importance(uint32_t index, float broadband, cons
 }
 
 // Inlined into the descents of sample() and pmf(): a call's register saves were ~20 instructions per level.
-[[gnu::always_inline]] inline BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness, const Query& at) const {
+[[gnu::always_inline]] inline BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness,
+                                                                                     const Query& at) const {
   const WideNode& node = wide_nodes_[index];
   const Importance4 importance4 = light_importance4(node.bounds, at.point4);
   WideSplit out;
@@ -482,7 +483,8 @@ float BvhLightSampler::spectral_importance(uint32_t index, float broadband, cons
     const __m128i w = _mm_set1_epi32(int(witness));
     const __m128i first = _mm_loadu_si128(reinterpret_cast<const __m128i*>(node.child.data()));
     const __m128i end = _mm_loadu_si128(reinterpret_cast<const __m128i*>(node.child_end.data()));
-    out.holder = _mm_movemask_ps(_mm_castsi128_ps(_mm_andnot_si128(_mm_cmpgt_epi32(first, w), _mm_cmpgt_epi32(end, w))));
+    const __m128i holds = _mm_andnot_si128(_mm_cmpgt_epi32(first, w), _mm_cmpgt_epi32(end, w));
+    out.holder = _mm_movemask_ps(_mm_castsi128_ps(holds));
     out.passed_down = witness;
   }
   const int unchecked = scoring & node.interior_slots & ~out.certified & ~out.holder;

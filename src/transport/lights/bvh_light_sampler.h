@@ -20,8 +20,8 @@
 // inside every member's emission cone; below such a cluster nothing more is checked), else on the subtree's
 // representative (its leaf whose emission reaches the widest cone, then the brightest; a wide node keeps its slots'
 // representatives' bounds in lanes too, so every slot that needs the check gets it from one light_scores4), else by
-// a depth-first search that stops at the first leaf that scores > 0. The leaf found is carried down as a witness: the child
-// holding it needs no check, so a descent checks one child per level. The probabilities of the leaves that score
+// a depth-first search that stops at the first leaf that scores > 0. The leaf found is carried down as a witness:
+// the child holding it needs no check, so a descent checks one child per level. The probabilities of the leaves that score
 // > 0 then sum to 1 (to float rounding), and no other leaf has any. pmf() carries the same witnesses along the
 // same path, so it still multiplies identical factors. Cost: one extra importance evaluation per level where
 // nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
