@@ -104,3 +104,32 @@ TEST_CASE("light bounds, 4 wide: the certificate holds only where the member sco
   }
   CHECK(certified > scoring / 2);
 }
+
+TEST_CASE("light bounds, 4 wide: light_scores4 holds exactly where the scalar importance is > 0") {
+  // The light tree checks its slots' representatives with it instead of the importance: a lane it passes must score
+  // (or a slot with no scoring leaf would keep its probability), and one it fails must not (or a light would lose it).
+  std::mt19937 rng(7);
+  int scored = 0, zero = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    ImportanceBounds4 four;
+    std::array<ImportanceBounds, 4> one;
+    const int lanes = 1 + trial % 4;
+    for (int j = 0; j < lanes; ++j) {
+      one[size_t(j)] = ImportanceBounds::of(random_bounds(rng));
+      four.set(j, one[size_t(j)]);
+    }
+    Vec3 p = random_point(rng, 2.5f);
+    if (trial % 7 == 0) p = one[0].centre_m + random_point(rng, 0.05f);  // inside a bounding sphere
+    if (trial % 11 == 0) p = one[0].centre_m;                            // at a point light's centre
+    const Vec3 normal = trial % 5 == 0 ? Vec3{} : random_unit(rng);
+    const int scores = light_scores4(four, p, normal);
+    for (int j = 0; j < 4; ++j) {
+      const bool scalar = j < lanes && light_importance(one[size_t(j)], p, normal) > 0.0f;
+      INFO("trial " << trial << " lane " << j);
+      CHECK(bool((scores >> j) & 1) == scalar);
+      if (j < lanes) (scalar ? scored : zero) += 1;
+    }
+  }
+  CHECK(scored > 5000);
+  CHECK(zero > 5000);
+}

@@ -243,7 +243,9 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
         subtree_end[i] = nodes_[i].is_leaf ? uint32_t(i + 1) : subtree_end[nodes_[i].index];
       build_wide(0, subtree_end);
       wide_nodes_.shrink_to_fit();  // about one wide node per three leaves
+      representatives_.shrink_to_fit();
     }
+    tree_representative4_.set(0, nodes_[nodes_[0].representative].bounds);
   }
   light_bands_.clear();
   light_bands_.shrink_to_fit();
@@ -397,6 +399,17 @@ uint32_t BvhLightSampler::build_wide(uint32_t index, const std::vector<uint32_t>
     node.child[size_t(j)] = child;
     node.child_end[size_t(j)] = subtree_end[child];
     node.wide[size_t(j)] = below[size_t(j)];
+    if (!nodes_[child].is_leaf) node.interior_slots = uint8_t(node.interior_slots | (1 << j));
+  }
+  if (node.interior_slots != 0) {
+    node.representatives = uint32_t(representatives_.size());
+    Representatives& r = representatives_.emplace_back();
+    for (int j = 0; j < count; ++j) {
+      const uint32_t child = slots[size_t(j)];
+      if (nodes_[child].is_leaf) continue;
+      r.node[size_t(j)] = nodes_[child].representative;
+      r.bounds.set(j, nodes_[nodes_[child].representative].bounds);
+    }
   }
   node.count = uint8_t(count);
   node.first_slots = uint8_t(first_slots);
@@ -421,8 +434,7 @@ float order_independent_sum(std::array<float, 4> v) {
 }  // namespace
 
 BvhLightSampler::Query BvhLightSampler::query(const LightSamplingPoint& at) const {
-  Query q;
-  static_cast<LightSamplingPoint&>(q) = at;
+  Query q(at);
   if (node_bands_.empty() || !at.wavelengths) return q;
   static_assert(kLaneCount == 4);
   const SampledWavelengths& lambda = *at.wavelengths;
@@ -455,39 +467,52 @@ float BvhLightSampler::spectral_importance(uint32_t index, float broadband, cons
   return broadband * (spectral / intensity);
 }
 
-uint32_t BvhLightSampler::witness_below(uint32_t index, bool certified, const Query& at) const {
-  const Node& node = nodes_[index];
-  if (node.is_leaf) return index;
-  if (certified) return kCertified;
-  int budget = search_budget_ > 0 ? search_budget_ : -1;
-  return find_scoring_leaf(index, at, &budget);
-}
-
-BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness, const Query& at) const {
+// Inlined into the descents of sample() and pmf(): a call's register saves were ~20 instructions per level.
+[[gnu::always_inline]] inline BvhLightSampler::WideSplit BvhLightSampler::wide_split(uint32_t index, uint32_t witness,
+                                                                                     const Query& at) const {
   const WideNode& node = wide_nodes_[index];
-  const Importance4 importance4 = light_importance4(node.bounds, at.position_m, at.normal);
-  std::array<float, 4> weight = importance4.value;
+  const Importance4 importance4 = light_importance4(node.bounds, at.point4);
   WideSplit out;
-  for (size_t j = 0; j < node.count; ++j) {
-    if (!(weight[j] > 0.0f)) continue;
-    const uint32_t child = node.child[j];
-    if (at.spectral) weight[j] = spectral_importance(child, weight[j], at);
-    // Below a certified node every leaf scores; the slot holding the witness needs no check; any other is checked.
-    if (witness == kCertified)
-      out.witness[j] = kCertified;
-    else if (witness < kUnknown && child <= witness && witness < node.child_end[j])
-      out.witness[j] = witness;
-    else
-      out.witness[j] = witness_below(child, (importance4.certified >> j) & 1, at);
-    if (out.witness[j] == kNoLeaf) weight[j] = 0.0f;
+  out.weight = importance4.value;
+  // Which scoring slots still need a witness, as bit masks: not a leaf (its own), not certified (by the node's own
+  // bounds, or below a certified node), not holding the witness passed down (a leaf node index within the slot's
+  // depth-first range [child, child_end); node indices are < 2³¹, so signed compares order them).
+  const int scoring = _mm_movemask_ps(_mm_cmpgt_ps(_mm_loadu_ps(importance4.value.data()), _mm_setzero_ps()));
+  out.certified = witness == kCertified ? 0xf : importance4.certified;
+  if (witness < kUnknown) {
+    const __m128i w = _mm_set1_epi32(int(witness));
+    const __m128i first = _mm_loadu_si128(reinterpret_cast<const __m128i*>(node.child.data()));
+    const __m128i end = _mm_loadu_si128(reinterpret_cast<const __m128i*>(node.child_end.data()));
+    const __m128i holds = _mm_andnot_si128(_mm_cmpgt_epi32(first, w), _mm_cmpgt_epi32(end, w));
+    out.holder = _mm_movemask_ps(_mm_castsi128_ps(holds));
+    out.passed_down = witness;
   }
-  const float sum = (weight[0] + weight[1]) + (weight[2] + weight[3]);
-  if (!(sum > 0.0f)) return WideSplit{};
-  for (size_t j = 0; j < 4; ++j) out.probability[j] = weight[j] / sum;
+  const int unchecked = scoring & node.interior_slots & ~out.certified & ~out.holder;
+  if (unchecked != 0) {
+    // Their representatives first, all four in lanes (the scalar search would check each one first, one by one);
+    // a search only below a slot whose representative scores 0.
+    const Representatives& representatives = representatives_[node.representatives];
+    const int representative_scores = light_scores4(representatives.bounds, at.point4);
+    for (size_t j = 0; j < node.count; ++j) {
+      if (!((unchecked >> j) & 1)) continue;
+      if ((representative_scores >> j) & 1) {
+        out.witness[j] = representatives.node[j];
+        continue;
+      }
+      int budget = search_budget_ > 0 ? search_budget_ : -1;
+      out.witness[j] = find_scoring_leaf(node.child[j], at, &budget, /*representative_checked=*/true);
+      if (out.witness[j] == kNoLeaf) out.weight[j] = 0.0f;
+    }
+  }
+  if (at.spectral)
+    for (size_t j = 0; j < node.count; ++j)
+      if (out.weight[j] > 0.0f) out.weight[j] = spectral_importance(node.child[j], out.weight[j], at);
+  out.sum = (out.weight[0] + out.weight[1]) + (out.weight[2] + out.weight[3]);
   return out;
 }
 
-uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget) const {
+uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int* budget,
+                                            bool representative_checked) const {
   // One node visit = one importance evaluation; a budget of 0 left means give up (a negative one never does).
   const auto visit = [budget] {
     if (*budget == 0) return false;
@@ -496,7 +521,7 @@ uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int
   };
   const Node& node = nodes_[index];
   if (!visit()) return kUnknown;
-  if (light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
+  if (!representative_checked && light_importance(nodes_[node.representative].bounds, at.position_m, at.normal) > 0.0f)
     return node.representative;
   // Depth first; a child that scores 0 is skipped whole (its leaves' bounds lie inside its own, so they score 0
   // too, up to rounding).
@@ -511,21 +536,36 @@ uint32_t BvhLightSampler::find_scoring_leaf(uint32_t index, const Query& at, int
   return kNoLeaf;
 }
 
-BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
-  // Without lights at infinity the tree takes everything (a descent that finds no slot returns no light).
+inline BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
+  // Without lights at infinity the tree takes everything (a descent that finds no slot returns no light). Inline,
+  // as that case is most scenes'.
   const int m = int(infinite_lights_.size());
-  if (m == 0) return {nodes_.empty() ? 0.0f : 1.0f, 0.0f};
+  if (m == 0) [[likely]] return {nodes_.empty() ? 0.0f : 1.0f, 0.0f};
+  return infinite_shares(at);
+}
+
+BvhLightSampler::Shares BvhLightSampler::infinite_shares(const Query& at) const {
+  const int m = int(infinite_lights_.size());
   // Whether some leaf scores, decided as for any child (the root's certificate, else its representative, else a
   // search), not by the root's split: choosing or weighing a light at infinity then costs one importance
   // evaluation where the representative scores, and the witness found spares the descent one slot's check.
   // The tree's representative first (it scores at most points: the widest-reaching leaf, e.g. a portal sky).
   uint32_t witness = kNoLeaf;
   if (!nodes_.empty()) {
+    // (In lane 0 of light_scores4: exactly the scalar importance's > 0, without the importance.)
     const uint32_t representative = nodes_[0].representative;
-    if (light_importance(nodes_[representative].bounds, at.position_m, at.normal) > 0.0f)
+    if (light_scores4(tree_representative4_, at.point4) & 1)
       witness = representative;
-    else if (light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f)
-      witness = witness_below(0, every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal), at);
+    else if (nodes_[0].is_leaf)
+      witness = kNoLeaf;
+    else if (light_importance(nodes_[0].bounds, at.position_m, at.normal) > 0.0f) {
+      if (every_leaf_scores(nodes_[0].bounds, at.position_m, at.normal)) {
+        witness = kCertified;
+      } else {
+        int budget = search_budget_ > 0 ? search_budget_ : -1;
+        witness = find_scoring_leaf(0, at, &budget, /*representative_checked=*/true);
+      }
+    }
   }
   if (witness == kNoLeaf) return {0.0f, 1.0f / float(m)};
   return {1.0f / float(m + 1), 1.0f / float(m + 1), witness};
@@ -553,22 +593,24 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& poi
     for (;;) {
       const WideNode& w = wide_nodes_[wide];
       const WideSplit s = wide_split(wide, witness, at);
-      // The slot whose interval of [0, 1) holds u (the last slot with probability, against rounding).
+      if (!(s.sum > 0.0f)) return std::nullopt;  // no slot can contribute (only through rounding)
+      // The slot whose interval of [0, Σ) holds u·Σ (the last slot with weight, against rounding).
+      const double target = u * double(s.sum);
       int chosen = -1;
       double below = 0.0, chosen_below = 0.0;
       for (int j = 0; j < w.count; ++j) {
-        const double p = double(s.probability[size_t(j)]);
-        if (!(p > 0.0)) continue;
+        const double weight = double(s.weight[size_t(j)]);
+        if (!(weight > 0.0)) continue;
         chosen = j;
         chosen_below = below;
-        if (u < below + p) break;
-        below += p;
+        if (target < below + weight) break;
+        below += weight;
       }
-      if (chosen < 0) return std::nullopt;  // no slot can contribute (only through rounding)
-      const double p = double(s.probability[size_t(chosen)]);
-      u = std::clamp((u - chosen_below) / p, 0.0, kBelowOne);
-      probability *= s.probability[size_t(chosen)];
-      witness = s.witness[size_t(chosen)];
+      if (chosen < 0) return std::nullopt;
+      const float weight = s.weight[size_t(chosen)];
+      u = std::clamp((target - chosen_below) / double(weight), 0.0, kBelowOne);
+      probability *= weight / s.sum;
+      witness = s.witness_of(chosen);
       node = w.child[size_t(chosen)];
       if (w.wide[size_t(chosen)] == kNoLeaf) break;
       wide = w.wide[size_t(chosen)];
@@ -608,10 +650,9 @@ float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part)
       j += trail & 1;
       trail >>= 1;
     }
-    const float factor = s.probability[j];
-    if (!(factor > 0.0f)) return 0.0f;
-    probability *= factor;
-    witness = s.witness[j];
+    if (!(s.weight[j] > 0.0f)) return 0.0f;
+    probability *= s.weight[j] / s.sum;
+    witness = s.witness_of(int(j));
     if (w.wide[j] == kNoLeaf) return probability;
     wide = w.wide[j];
   }
@@ -619,6 +660,7 @@ float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part)
 
 size_t BvhLightSampler::memory_bytes() const {
   return sizeof(*this) + nodes_.capacity() * sizeof(Node) + wide_nodes_.capacity() * sizeof(WideNode) +
+         representatives_.capacity() * sizeof(Representatives) +
          leaves_.capacity() * sizeof(Leaf) +
          first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
          infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8 +

@@ -18,9 +18,10 @@
 // slot's importance counts only if some leaf below it scores > 0. That is decided from the child's own bounds
 // where they guarantee that every leaf scores (the usual case: the cluster wholly above the tangent plane and p
 // inside every member's emission cone; below such a cluster nothing more is checked), else on the subtree's
-// representative (its leaf whose emission reaches the widest cone, then the brightest), else by a depth-first
-// search that stops at the first leaf that scores > 0. The leaf found is carried down as a witness: the child
-// holding it needs no check, so a descent checks one child per level. The probabilities of the leaves that score
+// representative (its leaf whose emission reaches the widest cone, then the brightest; a wide node keeps its slots'
+// representatives' bounds in lanes too, so every slot that needs the check gets it from one light_scores4), else by
+// a depth-first search that stops at the first leaf that scores > 0. The leaf found is carried down as a witness:
+// the child holding it needs no check, so a descent checks one child per level. The probabilities of the leaves that score
 // > 0 then sum to 1 (to float rounding), and no other leaf has any. pmf() carries the same witnesses along the
 // same path, so it still multiplies identical factors. Cost: one extra importance evaluation per level where
 // nothing is certified; a search only where clusters straddle (docs/benchmarks.md, "Light sampling").
@@ -133,16 +134,39 @@ class BvhLightSampler final : public LightSampler {
     std::array<uint32_t, 4> wide{};     // the slot's wide node, or kNoLeaf if the slot is a leaf
     uint8_t count = 0;                  // slots used (2-4)
     uint8_t first_slots = 0;            // slots below the binary node's first child (1 if it is a leaf, else 2)
+    uint8_t interior_slots = 0;         // bit j: slot j is not a leaf
+    uint32_t representatives = 0;       // if interior_slots != 0: its Representatives in representatives_
+  };
+  // The representative leaves of a wide node's interior slots (a leaf slot is its own witness), their bounds in
+  // lanes, checked for every slot that needs a witness at once. Kept apart from WideNode: about three in five wide
+  // nodes have only leaf slots and need none (59 bytes per leaf on a 1,053-triangle scene instead of 155).
+  struct Representatives {
+    ImportanceBounds4 bounds;
+    std::array<uint32_t, 4> node{};
   };
   struct WideSplit {
-    std::array<float, 4> probability{};  // per slot; all 0 if no slot can contribute
-    // Per slot: a leaf node below it that scores > 0, kCertified, or kNoLeaf (the slot cannot contribute).
+    // Per slot: its importance where some leaf below it scores, else 0; slot j's probability is weight[j] / sum
+    // (one division, for the slot taken: sample() and pmf() divide the same two floats).
+    std::array<float, 4> weight{};
+    float sum = 0.0f;  // (w0 + w1) + (w2 + w3); not > 0 if no slot can contribute
+    // What shows that a scoring slot holds a leaf that scores, for the descent below it: bit j of `certified`: every
+    // leaf below slot j scores (kCertified); else bit j of `holder`: it holds `passed_down`, the witness this split
+    // was given; else witness[j], the leaf its representative check or search found (leaf slots: none needed).
+    int certified = 0, holder = 0;
+    uint32_t passed_down = kNoLeaf;
     std::array<uint32_t, 4> witness{kNoLeaf, kNoLeaf, kNoLeaf, kNoLeaf};
+    uint32_t witness_of(int j) const {
+      if ((certified >> j) & 1) return kCertified;
+      if ((holder >> j) & 1) return passed_down;
+      return witness[size_t(j)];
+    }
   };
   struct BuildItem;
   /// A point with what the spectral importance needs of its wavelengths, worked out once per sample()/pmf():
   /// each lane's band and weight (1/n for the n lanes with a density); spectral = false: the broadband importance.
   struct Query : LightSamplingPoint {
+    explicit Query(const LightSamplingPoint& at) : LightSamplingPoint(at), point4(at.position_m, at.normal) {}
+    ImportancePoint4 point4;  // position_m and normal in lanes, for the wide nodes
     bool spectral = false;
     std::array<int, 4> band{};
     std::array<float, 4> weight{};
@@ -152,20 +176,18 @@ class BvhLightSampler final : public LightSampler {
   /// The split at wide node `index`, given `witness`: a leaf node below it known to score > 0 (the slot holding it
   /// needs no search), kCertified (no slot needs one), kNoLeaf or kUnknown.
   WideSplit wide_split(uint32_t index, uint32_t witness, const Query& at) const;
-  /// For a child whose importance is > 0: a leaf node below binary node `index` that scores > 0, kCertified if its
-  /// bounds show that every leaf below scores (`certified`: light_importance4's certificate), kUnknown if a capped
-  /// search ran out, or kNoLeaf.
-  uint32_t witness_below(uint32_t index, bool certified, const Query& at) const;
   /// A leaf node below interior node `index` (whose importance is > 0) that scores > 0, or kNoLeaf: the
   /// representative if every leaf is certified to score or it scores, else depth first; kUnknown once `*budget`
-  /// node visits are spent (a negative budget never runs out).
-  uint32_t find_scoring_leaf(uint32_t index, const Query& at, int* budget) const;
+  /// node visits are spent (a negative budget never runs out). `representative_checked`: the caller found that the
+  /// representative scores 0 (the visit still counts), so it is not checked again.
+  uint32_t find_scoring_leaf(uint32_t index, const Query& at, int* budget, bool representative_checked = false) const;
   /// The probability of the tree as a whole and of each light at infinity at `at`.
   struct Shares {
     float tree, each_infinite;
     uint32_t root_witness = kNoLeaf;  // what decided that the tree can contribute, for the root's split
   };
   Shares shares(const Query& at) const;
+  Shares infinite_shares(const Query& at) const;  // shares() where there are lights at infinity
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
   /// The wide node over interior binary node `index` and, recursively, those below it; `subtree_end` per binary node.
   uint32_t build_wide(uint32_t index, const std::vector<uint32_t>& subtree_end);
@@ -177,12 +199,14 @@ class BvhLightSampler final : public LightSampler {
 
   std::vector<Node> nodes_;
   std::vector<WideNode> wide_nodes_;  // the descent's nodes; [0] over the binary root (none for a one-leaf tree)
+  std::vector<Representatives> representatives_;
   // Spectral only: per node, the band intensities (W/sr, averaging to the node's intensity_w_sr).
   std::vector<std::array<float, kBands>> node_bands_;
   std::vector<std::array<float, kBands>> light_bands_;  // during the build only: per light, its band shape
   std::vector<Leaf> leaves_;
   std::vector<uint32_t> first_part_;  // per light: the index of its part 0 in trails_
   std::vector<uint64_t> trails_;      // per (light, part): 1 << depth | the path's bits (1 = second child); 0: none
+  ImportanceBounds4 tree_representative4_;  // lane 0: the root's representative (for shares())
   std::vector<int> infinite_lights_;
   std::vector<bool> is_infinite_;
   int search_budget_ = 0;

@@ -1,6 +1,7 @@
 #include "transport/lights/environment_portal.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -121,8 +122,16 @@ double PortalSet::total_solid_angle(Vec3 origin) const {
 
 std::optional<PortalSet::Sample> PortalSet::sample(Vec3 origin, Vec2 u) const {
   if (portals_.empty()) return std::nullopt;
-  // Two passes (ΣΩ, then the choice) instead of keeping the set-ups: no allocation per sample.
-  const double total = total_solid_angle(origin);
+  // ΣΩ first (summed in total_solid_angle's order, so pdf() gets the same number), keeping the first kKept set-ups
+  // for the choice (no allocation per sample; further portals are set up again).
+  constexpr size_t kKept = 4;
+  std::array<std::optional<SphericalRectangle>, kKept> kept;
+  double total = 0.0;
+  for (size_t i = 0; i < portals_.size(); ++i) {
+    const auto rectangle = SphericalRectangle::make(portals_[i], origin);
+    if (i < kKept) kept[i] = rectangle;
+    if (rectangle) total += rectangle->solid_angle_sr();
+  }
   if (!(total > 0.0)) return std::nullopt;
   // Portal k by Ω_k/ΣΩ; u.x is rescaled to [0,1) within the chosen portal's interval (rounding past the last
   // interval lands at its end).
@@ -130,8 +139,8 @@ std::optional<PortalSet::Sample> PortalSet::sample(Vec3 origin, Vec2 u) const {
   const double below_one = double(std::nextafter(1.0f, 0.0f));
   double below = 0.0, ux = below_one;
   std::optional<SphericalRectangle> chosen;
-  for (const auto& p : portals_) {
-    const auto rectangle = SphericalRectangle::make(p, origin);
+  for (size_t i = 0; i < portals_.size(); ++i) {
+    const auto rectangle = i < kKept ? kept[i] : SphericalRectangle::make(portals_[i], origin);
     if (!rectangle) continue;
     chosen = rectangle;
     const double omega = rectangle->solid_angle_sr();

@@ -68,29 +68,41 @@ inline F clamp(F v, F lo, F hi) { return select(_mm_cmplt_ps(v, lo), lo, select(
 inline F dot3(F ax, F ay, F az, F bx, F by, F bz) { return add(add(mul(ax, bx), mul(ay, by)), mul(az, bz)); }
 }  // namespace simd4
 
+/// A shading point and normal in the form the 4-wide functions below take them: each coordinate in all four lanes.
+/// The light tree makes it once per choice rather than once per wide node (a tenth of light_importance4's work).
+struct ImportancePoint4 {
+  simd4::F px, py, pz;           // p
+  simd4::F nx, ny, nz;           // the normal
+  simd4::F abs_nx, abs_ny, abs_nz;  // |normal|, per component
+  bool oriented;                 // a normal was given (not the zero vector)
+  ImportancePoint4(Vec3 p, Vec3 normal)
+      : px(_mm_set1_ps(p.x)), py(_mm_set1_ps(p.y)), pz(_mm_set1_ps(p.z)), nx(_mm_set1_ps(normal.x)),
+        ny(_mm_set1_ps(normal.y)), nz(_mm_set1_ps(normal.z)), abs_nx(_mm_set1_ps(std::fabs(normal.x))),
+        abs_ny(_mm_set1_ps(std::fabs(normal.y))), abs_nz(_mm_set1_ps(std::fabs(normal.z))),
+        oriented(!(normal == Vec3{})) {}
+};
+
 /// The importance of each lane's bounds at (p, normal), and the certificate. Inline: the tree's split calls it once
 /// per wide node, and the call's own stores and loads were a tenth of its cost.
-inline Importance4 light_importance4(const ImportanceBounds4& b, Vec3 p, Vec3 normal) {
+inline Importance4 light_importance4(const ImportanceBounds4& b, const ImportancePoint4& at) {
   using namespace simd4;
   const F zero = _mm_setzero_ps(), one = splat(1.0f), floor = splat(kImportanceCosineFloor);
   const F sign = splat(-0.0f);
   const F intensity = load(b.intensity_w_sr);
   F valid = _mm_cmpgt_ps(intensity, zero);
 
-  const F tx = sub(splat(p.x), load(b.centre_x)), ty = sub(splat(p.y), load(b.centre_y)),
-          tz = sub(splat(p.z), load(b.centre_z));
-  const bool oriented = !(normal == Vec3{});
-  const F normal_dot = dot3(splat(normal.x), splat(normal.y), splat(normal.z), tx, ty, tz);
+  const F tx = sub(at.px, load(b.centre_x)), ty = sub(at.py, load(b.centre_y)), tz = sub(at.pz, load(b.centre_z));
+  const bool oriented = at.oriented;
+  const F normal_dot = dot3(at.nx, at.ny, at.nz, tx, ty, tz);
   F above = _mm_castsi128_ps(_mm_set1_epi32(-1));  // the certificate's box strictly above the tangent plane
   if (oriented) {
     // Some of the box above the tangent plane: the scalar −normal_dot + |n|·half > 0.
-    const F reach = dot3(splat(std::fabs(normal.x)), splat(std::fabs(normal.y)), splat(std::fabs(normal.z)),
-                         load(b.half_x), load(b.half_y), load(b.half_z));
+    const F reach = dot3(at.abs_nx, at.abs_ny, at.abs_nz, load(b.half_x), load(b.half_y), load(b.half_z));
     valid = _mm_and_ps(valid, _mm_cmpgt_ps(add(_mm_xor_ps(normal_dot, sign), reach), zero));
     above = _mm_cmpgt_ps(sub(_mm_xor_ps(normal_dot, sign), reach), zero);
   }
   const F axis_x = load(b.axis_x), axis_y = load(b.axis_y), axis_z = load(b.axis_z);
-  const F in_front = _mm_cmpgt_ps(dot3(axis_x, axis_y, axis_z, splat(p.x), splat(p.y), splat(p.z)), load(b.plane_offset_m));
+  const F in_front = _mm_cmpgt_ps(dot3(axis_x, axis_y, axis_z, at.px, at.py, at.pz), load(b.plane_offset_m));
   valid = _mm_andnot_ps(_mm_andnot_ps(in_front, mask(b.half_space)), valid);
 
   const F smallest = splat(std::numeric_limits<float>::min()), largest = splat(1e30f);
@@ -142,5 +154,56 @@ inline Importance4 light_importance4(const ImportanceBounds4& b, Vec3 p, Vec3 no
   return out;
 }
 
+inline Importance4 light_importance4(const ImportanceBounds4& b, Vec3 p, Vec3 normal) {
+  return light_importance4(b, ImportancePoint4(p, normal));
+}
+
+/// Bit j set exactly where lane j's light_importance at (p, normal) is > 0, without the importance itself: past the
+/// tests that can zero it (the tangent plane, the half-space, p at a point light, the emission cone) the scalar code
+/// clamps it to ≥ the smallest normal float, its numerator is finite (a finite intensity times cosines floored at
+/// kImportanceCosineFloor) and its denominator the positive squared distance, so it is > 0 there. The same operations
+/// as light_importance4 up to that test, less the receiver's cosine, the divisions and the certificate: the light
+/// tree checks its slots' representatives with it (tests/transport/light_bounds4_test.cpp checks it against the
+/// scalar importance).
+inline int light_scores4(const ImportanceBounds4& b, const ImportancePoint4& at) {
+  using namespace simd4;
+  const F zero = _mm_setzero_ps(), one = splat(1.0f);
+  const F sign = splat(-0.0f);
+  F valid = _mm_cmpgt_ps(load(b.intensity_w_sr), zero);
+  const F tx = sub(at.px, load(b.centre_x)), ty = sub(at.py, load(b.centre_y)), tz = sub(at.pz, load(b.centre_z));
+  if (at.oriented) {
+    const F normal_dot = dot3(at.nx, at.ny, at.nz, tx, ty, tz);
+    const F reach = dot3(at.abs_nx, at.abs_ny, at.abs_nz, load(b.half_x), load(b.half_y), load(b.half_z));
+    valid = _mm_and_ps(valid, _mm_cmpgt_ps(add(_mm_xor_ps(normal_dot, sign), reach), zero));
+  }
+  const F axis_x = load(b.axis_x), axis_y = load(b.axis_y), axis_z = load(b.axis_z);
+  const F in_front = _mm_cmpgt_ps(dot3(axis_x, axis_y, axis_z, at.px, at.py, at.pz), load(b.plane_offset_m));
+  valid = _mm_andnot_ps(_mm_andnot_ps(in_front, mask(b.half_space)), valid);
+  if (_mm_movemask_ps(valid) == 0) return 0;
+
+  const F distance2 = dot3(tx, ty, tz, tx, ty, tz);
+  const F radius2 = load(b.radius2_m2);
+  const F inside = _mm_cmple_ps(distance2, radius2);
+  const F inverse_distance = _mm_div_ps(one, _mm_sqrt_ps(distance2));
+  const F sin_u = min_with(mul(load(b.radius_m), inverse_distance), one);
+  const F cos_u = _mm_sqrt_ps(max_with(sub(one, mul(sin_u, sin_u)), zero));
+  const F cos_w_signed = mul(dot3(axis_x, axis_y, axis_z, tx, ty, tz), inverse_distance);
+  const F cos_w = select(mask(b.two_sided), _mm_andnot_ps(sign, cos_w_signed), cos_w_signed);
+  const F cos_o = load(b.cos_theta_o), sin_o = load(b.sin_theta_o);
+  const F in_cone = _mm_cmpge_ps(cos_w, cos_o);
+  const F sin_w = sine_of(cos_w);
+  const F beyond_cos = select(in_cone, one, add(mul(cos_w, cos_o), mul(sin_w, sin_o)));
+  const F beyond_sin = select(in_cone, zero, sub(mul(sin_w, cos_o), mul(cos_w, sin_o)));
+  const F emission_cos =
+      select(_mm_cmpge_ps(beyond_cos, cos_u), one, add(mul(beyond_cos, cos_u), mul(beyond_sin, sin_u)));
+  const F emits = _mm_cmpge_ps(emission_cos, load(b.cos_theta_e));
+  // Inside the bounding sphere: > 0 unless p is at a point light (radius 0).
+  const F scores = select(inside, _mm_cmpgt_ps(radius2, zero), emits);
+  return _mm_movemask_ps(_mm_and_ps(valid, scores));
+}
+
+inline int light_scores4(const ImportanceBounds4& b, Vec3 p, Vec3 normal) {
+  return light_scores4(b, ImportancePoint4(p, normal));
+}
 
 }  // namespace rimu
