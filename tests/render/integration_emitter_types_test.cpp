@@ -1,7 +1,7 @@
 // Light sampling only, BSDF sampling only and their MIS give the exact direct irradiance for every kind of emitter
 // (the tessellated sphere, the square and the point and spot lights are in integration_emitter_distance_test.cpp):
-//   - emissive analytic shapes, which are tessellated meshes (render/scene/analytic_shapes.h): a `disk` and a
-//     `cylinder`, at gaps of 0.01× to 100× their size; the exact value is Lambert's formula summed over the very
+//   - emissive analytic shapes, which are tessellated meshes (render/scene/analytic_shapes.h): a `disk`, a
+//     `cylinder` and pbrt's sphere (the importer's mesh; the JSON `sphere` cannot emit), at gaps of 0.01× to 100× their size; the exact value is Lambert's formula summed over the very
 //     mesh the loader builds (analytic_shapes.h's functions, transformed here as the scene's `matrix` does), and the
 //     disk's also agrees with the on-axis disk's π L r²/(r² + h²) to the tessellation's 1e-3;
 //   - one triangle seen almost edge-on (its normal 87° from the receiver), at the same gaps;
@@ -57,7 +57,8 @@ template <class Shape, class Exact>
 void check_over_gaps(double size, Shape shape_of, Exact exact_of, int light_count, int near_nee_count, int bsdf_count,
                      double bsdf_max_gap_in_sizes) {
   for (double gap_in_sizes : kGapsInSizes) {
-    const double gap = gap_in_sizes * size;
+    const double gap = gap_in_sizes * size, exact = exact_of(gap);
+    const json shape = shape_of(gap);
     for (const std::string mode : {"nee_only", "mis", "bsdf_only"}) {
       // BSDF sampling finds a small far emitter with probability ≈ Φ/π ≪ 1: beyond this gap a fast test cannot
       // resolve 5 % with it (MIS, which includes it, is checked at every gap).
@@ -67,7 +68,7 @@ void check_over_gaps(double size, Shape shape_of, Exact exact_of, int light_coun
       const int count = mode == "bsdf_only"                       ? bsdf_count
                         : mode == "nee_only" && gap_in_sizes < 1.0 ? near_nee_count
                                                                    : light_count;
-      check_estimate(receiver_scene(json::array({shape_of(gap)}), nullptr, mode, "bvh"), gap, count, exact_of(gap), 0.05);
+      check_estimate(receiver_scene(json::array({shape}), nullptr, mode, "bvh"), gap, count, exact, 0.05);
     }
   }
 }
@@ -108,6 +109,22 @@ TEST_CASE("emitter types: an emissive cylinder lying above the plane, the three 
   // light tree, which bounds each by its 0.2 m box, cannot tell those from their neighbours: nee_only's relative
   // standard deviation per ray is 2.4 there (the disk's 0.6), so it takes 80 000 rays (MIS: 0.3 per ray).
   check_over_gaps(2 * radius, shape, exact, 4000, 80000, 40000, 1.0);
+}
+
+TEST_CASE("emitter types: pbrt's emissive sphere as the importer tessellates it, the three strategies agree") {
+  // The JSON `sphere` cannot emit; a pbrt scene's emissive sphere becomes sphere_mesh's triangles (poles with one
+  // vertex per column), which is what is checked here. Size D = 2r.
+  const double radius = 0.05;
+  const AnalyticMesh sphere = sphere_mesh(radius, -radius, radius, 2 * kPi);
+  const auto matrix = [&](double gap) { return std::array<double, 12>{1, 0, 0, 0, 0, 1, 0, radius + gap, 0, 0, 1, 0}; };
+  const auto exact = [&](double gap) {
+    const double phi = mesh_projected_solid_angle(transformed(sphere, matrix(gap)), {0, 0, 0}, {0, 1, 0});
+    const double d = radius + gap;
+    CHECK(phi == doctest::Approx(kPi * (radius / d) * (radius / d)).epsilon(0.005));  // the round sphere's
+    return kAlbedo / kPi * kRadiance * phi;
+  };
+  const auto shape = [&](double gap) { return mesh_json(transformed(sphere, matrix(gap))); };
+  check_over_gaps(2 * radius, shape, exact, 8000, 8000, 40000, 0.1);
 }
 
 TEST_CASE("emitter types: one emissive triangle seen almost edge-on, the three strategies give the exact irradiance") {
