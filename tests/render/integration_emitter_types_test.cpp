@@ -105,9 +105,9 @@ TEST_CASE("emitter types: an emissive cylinder lying above the plane, the three 
     return json{{"type", "cylinder"}, {"radius", radius}, {"zmin", -half_length}, {"zmax", half_length},
                 {"material", "black"}, {"emission", kRadiance}, {"transform", matrix_step(matrix(gap))}};
   };
-  // Its triangles are slivers 3.3 mm × 0.2 m: a receiver 1 mm below sees a few of them fill half its sky, and the
-  // light tree, which bounds each by its 0.2 m box, cannot tell those from their neighbours: nee_only's relative
-  // standard deviation per ray is 2.4 there (the disk's 0.6), so it takes 80 000 rays (MIS: 0.3 per ray).
+  // Its triangles are slivers 3.3 mm × 0.2 m, a few of which fill half the sky of a receiver 1 mm below:
+  // nee_only's relative standard deviation per ray is 2.4 there (the disk's 0.6; 10.8 with the power sampler), so
+  // it takes 80 000 rays (MIS: 0.3 per ray).
   check_over_gaps(2 * radius, shape, exact, 4000, 80000, 40000, 1.0);
 }
 
