@@ -11,8 +11,8 @@
 //   - a constant `environment` of radiance L over an unoccluded plane: E = π L;
 //   - the same environment seen only through a square skylight of a closed room, with and without a portal on it:
 //     E = L Φ(skylight);
-//   - an `ies` light, which BSDF sampling cannot hit: nee_only and mis must agree exactly (both are light sampling
-//     with MIS weight 1).
+//   - an `ies` light, which BSDF sampling cannot hit: nee_only gives ρ/π · I(γ) cos θ/d² (its candela over
+//     K_m ∫V dλ for a flat spectrum) and mis the same (light sampling with MIS weight 1), to float precision.
 // Each statistical check is the distance test's: N i.i.d. per-ray estimates, |mean − exact| ≤ kSigmas (4.5) SE
 // (a false alarm once in ~1.5e5 checks for Gaussian means: there are ~500 lane checks here), and kSigmas·SE ≤ 5 %
 // of the exact value, so a bias of that size cannot hide in the noise. Where BSDF sampling hits the emitter with
@@ -234,7 +234,7 @@ TEST_CASE("emitter types: a constant environment through a skylight, with and wi
     }
 }
 
-TEST_CASE("emitter types: an ies light (delta: BSDF sampling cannot hit it), NEE only and MIS agree exactly") {
+TEST_CASE("emitter types: an ies light (delta: BSDF sampling cannot hit it), NEE only and MIS give I cos theta / d^2") {
   namespace fs = std::filesystem;
   const fs::path folder = fs::temp_directory_path() / ("rimu-emitter-types-" + std::to_string(::getpid()));
   fs::create_directories(folder);
@@ -243,15 +243,20 @@ TEST_CASE("emitter types: an ies light (delta: BSDF sampling cannot hit it), NEE
                                         "0 30 60 90\n0\n1000 1000 0 0\n";
   std::array<std::array<Estimate, 4>, 2> lanes;
   for (int m = 0; m < 2; ++m) {
-    const json light = {{"type", "ies"}, {"file", "down.ies"}, {"position", {0.3, 1.0, 0}}, {"spectrum", {{"blackbody", 3000}}}};
+    const json light = {{"type", "ies"}, {"file", "down.ies"}, {"position", {0.3, 1.0, 0}}, {"spectrum", 1.0}};
     const auto scene = load_scene(receiver_scene(nullptr, json::array({light}), m == 0 ? "nee_only" : "mis", "bvh"),
                                   "ies.json", folder, library());
     lanes[size_t(m)] = lane_radiance(*scene, [](int) { return ray_between({0, 0.01f, 0}, {0, 0, 0}); }, 16);
   }
   fs::remove_all(folder);
+  // 1000 cd towards the receiver (γ = 16.7° < 30°) of a flat spectrum: I(λ) = 1000 / (K_m ∫V dλ) W/(sr·nm).
+  double v_integral = 0.0;
+  for (double l = 360.0; l <= 830.0; l += 1.0) v_integral += library().photopic_v().value(l);
+  const double intensity = 1000.0 / (683.0 * v_integral), d2 = 0.3 * 0.3 + 1.0;
+  const double exact = kAlbedo / kPi * intensity * (1.0 / std::sqrt(d2)) / d2;
   for (int j = 0; j < 4; ++j) {
     CAPTURE(j);
-    CHECK(lanes[0][size_t(j)].mean > 0.0);
+    CHECK(lanes[0][size_t(j)].mean == doctest::Approx(exact).epsilon(1e-5));  // float radiance
     CHECK(lanes[1][size_t(j)].mean == doctest::Approx(lanes[0][size_t(j)].mean).epsilon(1e-6));
   }
 }
