@@ -1,22 +1,24 @@
 // Light sampling only, BSDF sampling only and their MIS give the exact direct irradiance for every kind of emitter
 // (the tessellated sphere, the square and the point and spot lights are in integration_emitter_distance_test.cpp):
 //   - emissive analytic shapes, which are tessellated meshes (render/scene/analytic_shapes.h): a `disk`, a
-//     `cylinder` and pbrt's sphere (the importer's mesh; the JSON `sphere` cannot emit), at gaps of 0.01× to 100× their size; the exact value is Lambert's formula summed over the very
-//     mesh the loader builds (analytic_shapes.h's functions, transformed here as the scene's `matrix` does), and the
-//     disk's also agrees with the on-axis disk's π L r²/(r² + h²) to the tessellation's 1e-3;
+//     `cylinder` and pbrt's sphere (the importer's mesh; the JSON `sphere` cannot emit), at gaps of 0.01× to 100×
+//     their size; the exact value is Lambert's formula summed over the very mesh the loader builds (analytic_shapes.h's
+//     functions, transformed here as the scene's `matrix` does); the disk also agrees with the on-axis disk's
+//     π L r²/(r² + h²) to the tessellation's 1e-3, the sphere with π L (r/d)² to 0.5 %;
 //   - one triangle seen almost edge-on (its normal 87° from the receiver), at the same gaps;
 //   - a `distant` light: delta (E cos θ, light sampling only), the sun's 0.53° disc (E cos θ: BSDF sampling would
-//     need ~10⁸ rays) and a 60° disc (all three), E being the irradiance normal to the disc's centre, so that a tilted
-//     plane wholly below the disc receives E cos θ exactly (∫ ω dω over a cone is its axis times π sin²α);
+//     need ~4·10⁸ rays) and a 60° disc (all three), E being the irradiance normal to the disc's centre, so that a
+//     tilted plane wholly below the disc receives E cos θ exactly (∫ ω dω over a cone is its axis times π sin²α);
 //   - a constant `environment` of radiance L over an unoccluded plane: E = π L;
 //   - the same environment seen only through a square skylight of a closed room, with and without a portal on it:
-//     E = L Φ(skylight);
+//     E = L Φ(skylight); and an environment image, constant above the horizon, in both settings;
 //   - an `ies` light, which BSDF sampling cannot hit: nee_only gives ρ/π · I(γ) cos θ/d² (its candela over
 //     K_m ∫V dλ for a flat spectrum) and mis the same (light sampling with MIS weight 1), to float precision.
 // Each statistical check is the distance test's: N i.i.d. per-ray estimates, |mean − exact| ≤ kSigmas (4.5) SE
-// (a false alarm once in ~1.5e5 checks for Gaussian means: there are ~500 lane checks here), and kSigmas·SE ≤ 5 %
-// of the exact value, so a bias of that size cannot hide in the noise. Where BSDF sampling hits the emitter with
-// probability p per ray, its relative SE is √((1 − p)/(pN)): the counts below are chosen from that.
+// (a false alarm once in ~1.5e5 checks for Gaussian means; there are ~80 independent ones here, the four lanes of
+// one run sharing their rays), and kSigmas·SE ≤ 5 % of the exact value, so a bias of that size cannot hide in the
+// noise. Where BSDF sampling hits the emitter with probability p per ray, its relative SE is √((1 − p)/(pN)): the
+// counts below are chosen from that and from the measured deviations noted beside them.
 #include <doctest/doctest.h>
 
 #include <cmath>
