@@ -12,8 +12,9 @@
 //   - a constant `environment` of radiance L over an unoccluded plane: E = π L;
 //   - the same environment seen only through a square skylight of a closed room, with and without a portal on it:
 //     E = L Φ(skylight); and an environment image, constant above the horizon, in both settings;
-//   - an `ies` light, which BSDF sampling cannot hit: nee_only gives ρ/π · I(γ) cos θ/d² (its candela over
-//     K_m ∫V dλ for a flat spectrum) and mis the same (light sampling with MIS weight 1), to float precision.
+//   - an `ies` and a `goniometric` light, which BSDF sampling cannot hit: nee_only gives ρ/π · I(γ) cos θ/d² (the
+//     candela over K_m ∫V dλ for a flat spectrum) and mis the same (light sampling with MIS weight 1), to float
+//     precision.
 // Each statistical check is the distance test's: N i.i.d. per-ray estimates, |mean − exact| ≤ kSigmas (4.5) SE
 // (a false alarm once in ~1.5e5 checks for Gaussian means; there are ~80 independent ones here, the four lanes of
 // one run sharing their rays), and kSigmas·SE ≤ 5 % of the exact value, so a bias of that size cannot hide in the
@@ -287,29 +288,35 @@ TEST_CASE("emitter types: an environment image, open and through a skylight with
   std::filesystem::remove(image);
 }
 
-TEST_CASE("emitter types: an ies light (delta: BSDF sampling cannot hit it), NEE only and MIS give I cos theta / d^2") {
+TEST_CASE("emitter types: ies and goniometric lights (delta: BSDF sampling cannot hit them), NEE only and MIS give I cos theta / d^2") {
   namespace fs = std::filesystem;
   const fs::path folder = fs::temp_directory_path() / ("rimu-emitter-types-" + std::to_string(::getpid()));
   fs::create_directories(folder);
-  // An axially symmetric downlight: 1000 cd to 30°, linear to 0 at 60°.
+  // An axially symmetric downlight: 1000 cd to 30°, linear to 0 at 60°; and a goniometric light of 1000 cd
+  // everywhere (a uniform 16 × 16 image × candela_scale; its mapping is checked elsewhere, the transport here).
   std::ofstream(folder / "down.ies") << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 4 1 1 2 0.1 0.1 0\n1.0 1.0 15\n"
                                         "0 30 60 90\n0\n1000 1000 0 0\n";
-  std::array<std::array<Estimate, 4>, 2> lanes;
-  for (int m = 0; m < 2; ++m) {
-    const json light = {{"type", "ies"}, {"file", "down.ies"}, {"position", {0.3, 1.0, 0}}, {"spectrum", 1.0}};
-    const auto scene = load_scene(receiver_scene(nullptr, json::array({light}), m == 0 ? "nee_only" : "mis", "bvh"),
-                                  "ies.json", folder, library());
-    lanes[size_t(m)] = lane_radiance(*scene, [](int) { return ray_between({0, 0.01f, 0}, {0, 0, 0}); }, 16);
-  }
-  fs::remove_all(folder);
-  // 1000 cd towards the receiver (γ = 16.7° < 30°) of a flat spectrum: I(λ) = 1000 / (K_m ∫V dλ) W/(sr·nm).
+  const fs::path image = write_pfm("emitter_types_goniometric", 16, 16, std::vector<float>(16 * 16 * 3, 1.0f));
+  const json ies = {{"type", "ies"}, {"file", "down.ies"}, {"position", {0.3, 1.0, 0}}, {"spectrum", 1.0}};
+  const json goniometric = {{"type", "goniometric"}, {"image", image.string()}, {"position", {0.3, 1.0, 0}},
+                            {"spectrum", 1.0}, {"candela_scale", 1000.0}};
+  // 1000 cd towards the receiver (γ = 16.7° < 30° for the downlight) of a flat spectrum: I(λ) = 1000 / (K_m ∫V dλ)
+  // W/(sr·nm).
   double v_integral = 0.0;
   for (double l = 360.0; l <= 830.0; l += 1.0) v_integral += library().photopic_v().value(l);
   const double intensity = 1000.0 / (683.0 * v_integral), d2 = 0.3 * 0.3 + 1.0;
   const double exact = kAlbedo / kPi * intensity * (1.0 / std::sqrt(d2)) / d2;
-  for (int j = 0; j < 4; ++j) {
-    CAPTURE(j);
-    CHECK(lanes[0][size_t(j)].mean == doctest::Approx(exact).epsilon(1e-5));  // float radiance
-    CHECK(lanes[1][size_t(j)].mean == doctest::Approx(lanes[0][size_t(j)].mean).epsilon(1e-6));
-  }
+  for (const json& light : {ies, goniometric})
+    for (const std::string mode : {"nee_only", "mis"}) {
+      CAPTURE(light.dump());
+      CAPTURE(mode);
+      const auto scene = load_scene(receiver_scene(nullptr, json::array({light}), mode, "bvh"), "lights.json", folder, library());
+      const auto lanes = lane_radiance(*scene, [](int) { return ray_between({0, 0.01f, 0}, {0, 0, 0}); }, 16);
+      for (int j = 0; j < 4; ++j) {
+        CAPTURE(j);
+        CHECK(lanes[size_t(j)].mean == doctest::Approx(exact).epsilon(1e-5));  // float radiance
+      }
+    }
+  fs::remove_all(folder);
+  fs::remove(image);
 }
