@@ -12,6 +12,7 @@
 //   - a constant `environment` of radiance L over an unoccluded plane: E = π L;
 //   - the same environment seen only through a square skylight of a closed room, with and without a portal on it:
 //     E = L Φ(skylight); and an environment image, constant above the horizon, in both settings;
+//   - CIE standard skies (overcast, clear) calibrated by their horizontal illuminance, which is then E;
 //   - an `ies` and a `goniometric` light, which BSDF sampling cannot hit: nee_only gives ρ/π · I(γ) cos θ/d² (the
 //     candela over K_m ∫V dλ for a flat spectrum) and mis the same (light sampling with MIS weight 1), to float
 //     precision.
@@ -319,4 +320,23 @@ TEST_CASE("emitter types: ies and goniometric lights (delta: BSDF sampling canno
     }
   fs::remove_all(folder);
   fs::remove(image);
+}
+
+TEST_CASE("emitter types: CIE skies calibrated by their horizontal illuminance, the three strategies give it") {
+  // `diffuse_horizontal_illuminance_lx` is the sky's illuminance on an open horizontal plane (integrated at load to
+  // 2.3e-6): with a flat spectrum, E(λ) = E_v / (K_m ∫V dλ) at every wavelength, so L_out = ρ/π · E(λ).
+  const double illuminance_lx = 10000.0;
+  double v_integral = 0.0;
+  for (double l = 360.0; l <= 830.0; l += 1.0) v_integral += library().photopic_v().value(l);
+  const double exact = kAlbedo / kPi * illuminance_lx / (683.0 * v_integral);
+  for (const int sky_type : {1, 12}) {  // overcast; clear with its circumsolar peak (the sun 40° up)
+    json sky = {{"type", "cie_sky"}, {"sky_type", sky_type}, {"diffuse_horizontal_illuminance_lx", illuminance_lx},
+                {"spectrum", 1.0}};
+    if (sky_type == 12) sky["sun_position"] = {{"azimuth_deg", 135.0}, {"elevation_deg", 40.0}};
+    for (const std::string mode : {"nee_only", "mis", "bsdf_only"}) {
+      CAPTURE(sky_type);
+      CAPTURE(mode);
+      check_estimate(receiver_scene(nullptr, json::array({sky}), mode, "bvh"), 1.0, 8000, exact, 0.05);
+    }
+  }
 }
