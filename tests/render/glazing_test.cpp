@@ -11,6 +11,8 @@
 #include <fstream>
 
 #include "integration_support.h"
+#include "render/reports/light_meter.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "transport/integrators/shadow_passage.h"
 
 using namespace rimu;
@@ -213,4 +215,49 @@ TEST_CASE("glazing: a sky seen only through refracting glass warns at load; thro
                {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "glass"}]
   })");
   CHECK_FALSE(warns(ball));
+}
+
+TEST_CASE("glazing: the light meter reads through panes as the render does: the open value times T(theta)") {
+  // The floor point under the panes, lit by the delta sun 40° from the zenith: without panes every sample reads
+  // K_m Σ V(λ)·E cos θ / p(λ); behind a clear pane (T independent of λ) the same samples times T(40°), to float
+  // precision (the same seed draws the same wavelengths).
+  const auto read = [](const json& document) {
+    const auto scene = scene_from_json(document);
+    return measure_illuminance_lx(scene->transport_view(), {0, 0, 0}, {0, 1, 0}, library().photopic_v(), 256, 11);
+  };
+  const json clear = {{"type", "thin_dielectric"}, {"ior", 1.5}};
+  const double cos_i = std::cos(kSunTiltDeg * kPi / 180.0);
+  const MeterReading open = read(sun_over_panes({}));
+  const MeterReading one = read(sun_over_panes({clear}));
+  const MeterReading two = read(sun_over_panes({clear, clear}));
+  CHECK(open.value > 0.0);
+  CHECK(one.value == doctest::Approx(open.value * sheet_transmittance(cos_i, 1.5)).epsilon(1e-5));
+  CHECK(two.value == doctest::Approx(open.value * std::pow(sheet_transmittance(cos_i, 1.5), 2)).epsilon(1e-5));
+
+  // A tinted pane: T(λ) varies, so the reading is a Monte Carlo estimate over the wavelengths of
+  // K_m ∫ V(λ) E cos θ T(θ, λ) dλ, checked against that integral (1 nm sums; τₙ linear between its points, constant
+  // outside) within kSigmas standard errors, as the open reading against K_m E cos θ ∫ V dλ.
+  const std::vector<double> nm = {400, 500, 600, 700}, tau_n = {0.2, 0.9, 0.5, 0.1};
+  const json green = {{"type", "thin_dielectric"}, {"ior", 1.5},
+                      {"transmittance", {{"wavelengths_nm", nm}, {"values", tau_n}}}};
+  const MeterReading tinted = read(sun_over_panes({green}));
+  double v_integral = 0.0, vt_integral = 0.0;
+  for (double l = 360.0; l <= 830.0; l += 1.0) {
+    double tau = tau_n.front();
+    if (l >= nm.back()) tau = tau_n.back();
+    else if (l > nm.front())
+      for (size_t k = 0; k + 1 < nm.size(); ++k)
+        if (l >= nm[k] && l <= nm[k + 1]) tau = tau_n[k] + (tau_n[k + 1] - tau_n[k]) * (l - nm[k]) / (nm[k + 1] - nm[k]);
+    const double v = library().photopic_v().value(l);
+    v_integral += v;
+    vt_integral += v * sheet_transmittance(cos_i, 1.5, tau);
+  }
+  // E = 1 W/(m²·nm) normal to the sun.
+  const double expected = kMaxLuminousEfficacy_lm_W * cos_i * vt_integral;
+  CHECK(std::abs(open.value - kMaxLuminousEfficacy_lm_W * cos_i * v_integral) <= kSigmas * open.standard_error);
+  CAPTURE(tinted.value);
+  CAPTURE(tinted.standard_error);
+  CAPTURE(expected);
+  CHECK(std::abs(tinted.value - expected) <= kSigmas * tinted.standard_error);
+  CHECK(kSigmas * tinted.standard_error <= 0.05 * expected);
 }

@@ -5,6 +5,7 @@
 
 #include "spectral/error.h"
 #include "spectral/colorimetry/photometry_constants.h"
+#include "transport/integrators/shadow_passage.h"
 #include "transport/sampling/sampler.h"
 
 namespace rimu {
@@ -47,8 +48,15 @@ MeterReading measure_illuminance_lx(const TransportScene& scene, Vec3 position_m
       const ShadowSegment segment = shadow_segment(shadow.origin, position_m, *s, scene.scene_scale);
       shadow.direction = segment.direction;
       if (std::isfinite(segment.length)) shadow.t_max = segment.length * (1.0f - 1e-4f);
-      if (scene.geometry && scene.geometry->occluded(shadow)) continue;
-      irradiance = irradiance + s->radiance * Float4(cos_theta / s->pdf_solid_angle);
+      // Through glazing panes as the path integrator's shadow rays go (transport/integrators/shadow_passage.h), so
+      // lux behind a window agrees with the render: the pane's straight-through transmittance at this angle, per lane.
+      SampledSpectrum transmittance(1.0f);
+      if (scene.geometry) {
+        const std::optional<ShadowPassage> passage = trace_shadow(scene, shadow, lambda);
+        if (!passage) continue;
+        transmittance = passage->transmittance;
+      }
+      irradiance = irradiance + s->radiance * transmittance * Float4(cos_theta / s->pdf_solid_angle);
     }
     // E_v = K_m ∫ E(λ) V(λ) dλ, one lane at a time: E(λ_j) V(λ_j) / p(λ_j), averaged over the lanes.
     double estimate = 0.0;

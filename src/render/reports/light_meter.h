@@ -19,7 +19,8 @@ struct MeterReading {
 
 /// Direct illuminance in lx at `position_m` on the side of `normal` (unit): E_v = K_m ∫ V(λ) Σ_lights ∫ L cos θ dω dλ,
 /// estimated per sample with one hero-wavelength set (stratified over the visible sampling pdf) and one sample_li per
-/// light, with shadow rays. Only light arriving straight from the lights counts (no reflections), like a lux meter
+/// light, with shadow rays that pass glazing panes (thin dielectrics) with their straight-through transmittance, as
+/// the path integrator's do. Only light arriving straight from the lights counts (no reflections), like a lux meter
 /// in a black room. `v` is V(λ) (SpectralLibrary::photopic_v()). Cost: `samples` × lights shadow rays.
 MeterReading measure_illuminance_lx(const TransportScene& scene, Vec3 position_m, Vec3 normal,
                                     const TabulatedSpectrum& v, int samples, uint64_t seed);
