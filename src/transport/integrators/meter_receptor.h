@@ -32,9 +32,8 @@ struct MeterReceptor {
 
   /// w(ω) for a unit ω.
   float response(Vec3 wi) const {
-    const float c = dot(wi, direction);
-    if (shape == Shape::plane) return std::max(0.0f, c);
-    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - c * c));
+    if (shape == Shape::plane) return std::max(0.0f, dot(wi, direction));
+    const float sin_theta = length(cross(wi, direction));  // not √(1 − cos²): that cancels near the axis
     const float around = shape == Shape::cylinder ? sin_theta : std::max(0.0f, sin_theta + dot(wi, facing));
     return around * std::numbers::inv_pi_v<float>;
   }
@@ -44,7 +43,7 @@ struct MeterReceptor {
     if (shape == Shape::plane) return cosine_hemisphere_pdf(std::max(0.0f, dot(wi, direction)));
     const float uniform = 0.25f * std::numbers::inv_pi_v<float>;
     if (shape == Shape::cylinder) return uniform;
-    const float c = dot(wi, direction), sin_theta = std::sqrt(std::max(0.0f, 1.0f - c * c));
+    const float sin_theta = length(cross(wi, direction));
     if (!(sin_theta > 1e-6f)) return uniform;  // along the axis α is undefined; a set of measure zero
     return uniform * std::clamp(1.0f + dot(wi, facing) / sin_theta, 0.0f, 2.0f);
   }
