@@ -81,6 +81,8 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
   options.sampler = scene.settings.sampler;
   options.threads = job.threads.value_or(0);
   options.stop_requested = [&interrupt] { return interrupt.requested(); };
+  if (sensors.quantities.scotopic) options.scotopic_v_prime = &s.library.scotopic_v_prime();
+  if (sensors.quantities.melanopic) options.melanopic = &s.library.melanopic_action_spectrum();
   const SensorReadings readings = measure_sensors(scene, sensors, s.library.photopic_v(), options);
   if (readings.interrupted) {
     s.log << "rimu: sensors interrupted: nothing written\n";
@@ -105,9 +107,16 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
   }
   for (size_t k = 0; k < sensors.points.size(); ++k) {
     const PointSensor& p = sensors.points[k];
-    const char* unit = p.kind == PointSensor::Kind::illuminance ? " lx" : " nt";
-    s.log << "rimu: sensor " << p.name << ": " << readings.meters[k].value << unit << " ± "
-          << readings.meters[k].standard_error << unit << " (standard error)\n";
+    const char* unit = p.kind == PointSensor::Kind::luminance ? " nt" : " lx";
+    s.log << "rimu: sensor " << p.name << ": " << readings.meters[k].value
+          << unit << " ± " << readings.meters[k].standard_error << unit << " (standard error)";
+    if (k < readings.meters_scotopic.size())
+      s.log << "; scotopic " << readings.meters_scotopic[k].value << unit << " ± "
+            << readings.meters_scotopic[k].standard_error;
+    if (k < readings.meters_melanopic.size())
+      s.log << "; melanopic " << (p.kind == PointSensor::Kind::luminance ? "EDL " : "EDI ")
+            << readings.meters_melanopic[k].value << unit << " ± " << readings.meters_melanopic[k].standard_error;
+    s.log << "\n";
   }
   s.log << "rimu: sensors: " << options.samples << " samples per point in " << readings.seconds << " s";
   if (readings.discarded_samples) s.log << ", " << readings.discarded_samples << " discarded (NaN, Inf, negative)";

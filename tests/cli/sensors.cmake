@@ -18,3 +18,9 @@ rimu_cli_test("rimu --sensor-samples out of range" 1 "--sensor-samples"
               $<TARGET_FILE:rimu> ${sensors_scene} --sensor-samples 0 -o ${CMAKE_BINARY_DIR}/cli_never_written.exr)
 rimu_cli_test("rimu --sensors-out into a missing folder" 1 "no_such_folder"
               $<TARGET_FILE:rimu> ${sensors_scene} --sensors-only --sensors-out ${CMAKE_BINARY_DIR}/no_such_folder/x)
+# The example of docs/scene-format.md ("Cylindrical and semi-cylindrical illuminance", "Scotopic and melanopic
+# quantities"): every meter kind with scotopic and melanopic readings, at fewer samples than the scene asks.
+rimu_cli_test("rimu cylindrical meters with scotopic and melanopic EDI" 0
+              "sensor face_towards_lamp: [0-9.]+ lx ± [0-9.]+ lx \\(standard error\\); scotopic [0-9.]+ lx ± [0-9.]+; melanopic EDI [0-9.]+ lx"
+              $<TARGET_FILE:rimu> ${CMAKE_SOURCE_DIR}/data/scenes/examples/pedestrian_meters.json --sensors-only
+              --sensor-samples 64 -o ${CMAKE_BINARY_DIR}/cli_pedestrian.exr)

@@ -83,17 +83,58 @@ IlluminanceGrid load_grid(const JsonCursor& g, size_t index, std::set<std::strin
 PointSensor load_point(const JsonCursor& p, size_t index, std::set<std::string>& names) {
   if (!p.is_object()) p.fail("expected a meter object {\"type\", \"position\", \"normal\" or \"direction\"}");
   PointSensor point;
-  const std::string type = p.at("type").choice({"illuminance", "luminance"});
-  point.kind = type == "illuminance" ? PointSensor::Kind::illuminance : PointSensor::Kind::luminance;
-  const char* facing = point.kind == PointSensor::Kind::illuminance ? "normal" : "direction";
-  p.only_keys({"name", "type", "position", facing});
-  point.name = sensor_name(p, "meter" + std::to_string(index), names);
+  const std::string type = p.at("type").choice({"illuminance", "luminance", "cylindrical", "semi_cylindrical"});
+  point.kind = type == "illuminance"        ? PointSensor::Kind::illuminance
+               : type == "luminance"        ? PointSensor::Kind::luminance
+               : type == "cylindrical"      ? PointSensor::Kind::cylindrical
+                                            : PointSensor::Kind::semi_cylindrical;
   point.position = p.at("position").vec3();
-  point.direction = unit_direction(p.at(facing));
+  if (point.kind == PointSensor::Kind::illuminance || point.kind == PointSensor::Kind::luminance) {
+    const char* facing = point.kind == PointSensor::Kind::illuminance ? "normal" : "direction";
+    p.only_keys({"name", "type", "position", facing});
+    point.direction = unit_direction(p.at(facing));
+  } else {
+    // "axis" is required: scenes differ in which way is up (y-up interiors, z-up models).
+    const bool semi = point.kind == PointSensor::Kind::semi_cylindrical;
+    if (semi) p.only_keys({"name", "type", "position", "axis", "facing"});
+    else p.only_keys({"name", "type", "position", "axis"});
+    point.direction = unit_direction(p.at("axis"));
+    if (semi) {
+      const JsonCursor f = p.at("facing");
+      const Vec3 given = unit_direction(f);
+      const Vec3 across = given - point.direction * dot(given, point.direction);
+      if (!(length(across) > 1e-3f)) f.fail("the semi-cylinder must face across its axis, not along it");
+      point.facing = normalize(across);
+    }
+  }
+  point.name = sensor_name(p, "meter" + std::to_string(index), names);
   return point;
 }
 
+SensorQuantities load_quantities(const JsonCursor& q) {
+  if (!q.is_array()) q.fail("expected an array of \"photopic\", \"scotopic\", \"melanopic_edi\"");
+  SensorQuantities quantities;
+  std::set<std::string> seen;
+  for (size_t i = 0; i < q.size(); ++i) {
+    const std::string name = q.at(i).choice({"photopic", "scotopic", "melanopic_edi"});
+    if (!seen.insert(name).second) q.at(i).fail("\"" + name + "\" is listed twice");
+    if (name == "scotopic") quantities.scotopic = true;
+    if (name == "melanopic_edi") quantities.melanopic = true;
+  }
+  return quantities;
+}
+
 }  // namespace
+
+const char* sensor_quantity_name(PointSensor::Kind kind) {
+  switch (kind) {
+    case PointSensor::Kind::illuminance: return "illuminance";
+    case PointSensor::Kind::luminance: return "luminance";
+    case PointSensor::Kind::cylindrical: return "cylindrical_illuminance";
+    case PointSensor::Kind::semi_cylindrical: return "semi_cylindrical_illuminance";
+  }
+  return "illuminance";
+}
 
 size_t SensorSettings::point_count() const {
   size_t n = points.size();
@@ -102,10 +143,11 @@ size_t SensorSettings::point_count() const {
 }
 
 SensorSettings load_sensors(const JsonCursor& sensors) {
-  if (!sensors.is_object()) sensors.fail("expected an object {\"samples\", \"grids\", \"meters\"}");
-  sensors.only_keys({"samples", "grids", "meters"});
+  if (!sensors.is_object()) sensors.fail("expected an object {\"samples\", \"quantities\", \"grids\", \"meters\"}");
+  sensors.only_keys({"samples", "quantities", "grids", "meters"});
   SensorSettings settings;
   settings.samples = sensors.integer_or("samples", settings.samples, 1, kMaxSensorSamples);
+  if (const auto quantities = sensors.find("quantities")) settings.quantities = load_quantities(*quantities);
   std::set<std::string> names;
   if (const auto grids = sensors.find("grids")) {
     if (!grids->is_array()) grids->fail("expected an array of grids");

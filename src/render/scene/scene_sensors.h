@@ -29,18 +29,33 @@ struct IlluminanceGrid {
   }
 };
 
-/// One meter at a point: illuminance on a plane facing `direction` (a cosine-corrected receptor), or the luminance
-/// seen looking along `direction` (a luminance meter's line of sight).
+/// One meter at a point: illuminance on a plane facing `direction` (a cosine-corrected receptor), the luminance
+/// seen looking along `direction` (a luminance meter's line of sight), or the cylindrical or semi-cylindrical
+/// illuminance of a small cylinder with axis `direction` (EN 12464-1, EN 13201; the semi-cylinder faces `facing`).
 struct PointSensor {
-  enum class Kind { illuminance, luminance };
+  enum class Kind { illuminance, luminance, cylindrical, semi_cylindrical };
   std::string name;
   Kind kind = Kind::illuminance;
   Vec3 position, direction;  ///< direction is unit
+  Vec3 facing;               ///< semi_cylindrical: unit and ⟂ direction (the given facing with its axial part removed)
+};
+
+/// The CSV/JSON name of a meter's quantity: illuminance, luminance, cylindrical_illuminance,
+/// semi_cylindrical_illuminance.
+const char* sensor_quantity_name(PointSensor::Kind kind);
+
+/// The spectral weightings a measurement reports. Photopic (V(λ), lx and nt) is always measured; the others only when
+/// "quantities" lists them: scotopic (V'(λ), K'_m = 1700 lm/W) and melanopic EDI/EDL (CIE S 026's s_mel(λ), as the
+/// D65 illuminance or luminance of the same melanopic effect).
+struct SensorQuantities {
+  bool scotopic = false;
+  bool melanopic = false;
 };
 
 /// Everything in "sensors". `samples` is the Monte Carlo sample count per meter point (`--sensor-samples` overrides it).
 struct SensorSettings {
   int samples = 256;
+  SensorQuantities quantities;
   std::vector<IlluminanceGrid> grids;
   std::vector<PointSensor> points;
   bool empty() const { return grids.empty() && points.empty(); }

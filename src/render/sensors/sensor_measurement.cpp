@@ -5,11 +5,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 #include "spectral/colorimetry/photometry_constants.h"
 #include "spectral/error.h"
@@ -19,34 +21,55 @@
 namespace rimu {
 namespace {
 
-// One meter point of the flattened list: where, which way, and what it reads.
+// One meter point of the flattened list: where, what head it has (plane, cylinder), and whether it reads
+// illuminance (else the luminance along receptor.direction).
 struct MeterPoint {
-  Vec3 position, direction;
+  Vec3 position;
+  MeterReceptor receptor;
   bool illuminance = true;
 };
+
+MeterReceptor point_receptor(const PointSensor& p) {
+  switch (p.kind) {
+    case PointSensor::Kind::cylindrical: return {MeterReceptor::Shape::cylinder, p.direction, {}};
+    case PointSensor::Kind::semi_cylindrical: return {MeterReceptor::Shape::semi_cylinder, p.direction, p.facing};
+    default: return {MeterReceptor::Shape::plane, p.direction, {}};
+  }
+}
 
 std::vector<MeterPoint> meter_points(const SensorSettings& sensors) {
   std::vector<MeterPoint> points;
   points.reserve(sensors.point_count());
   for (const IlluminanceGrid& g : sensors.grids)
     for (int j = 0; j < g.count_v; ++j)
-      for (int i = 0; i < g.count_u; ++i) points.push_back({g.point(i, j), g.normal, true});
+      for (int i = 0; i < g.count_u; ++i)
+        points.push_back({g.point(i, j), {MeterReceptor::Shape::plane, g.normal, {}}, true});
   for (const PointSensor& p : sensors.points)
-    points.push_back({p.position, p.direction, p.kind == PointSensor::Kind::illuminance});
+    points.push_back({p.position, point_receptor(p), p.kind != PointSensor::Kind::luminance});
   return points;
 }
 
-// K_m Σ_j Xⱼ V(λⱼ)/pⱼ / 4: the photometric value of one path's lanes (dead lanes, pdf 0, carry nothing), or
-// nullopt for an estimate the film would discard (NaN, infinite, negative).
-std::optional<double> photometric(const SampledSpectrum& x, const SampledWavelengths& lambda, const TabulatedSpectrum& v) {
-  double sum = 0.0;
+// The spectral weightings of one measurement: photopic always, the others when asked (scale · Σ_j Xⱼ w(λⱼ)/pⱼ / 4).
+struct Weighting {
+  const TabulatedSpectrum* w = nullptr;
+  double scale = 0.0;
+};
+constexpr int kWeightings = 3;  // photopic, scotopic, melanopic
+
+// The weighted values of one path's lanes (dead lanes, pdf 0, carry nothing), or false for an estimate the film
+// would discard (NaN, infinite, negative). Weightings without a function are left at 0.
+bool weighted_values(const SampledSpectrum& x, const SampledWavelengths& lambda, const Weighting (&weightings)[kWeightings],
+                     double (&values)[kWeightings]) {
+  for (double& v : values) v = 0.0;
   for (int j = 0; j < kLaneCount; ++j) {
     const float pdf = lambda.pdf()[j];
     if (pdf == 0.0f) continue;
-    if (!std::isfinite(x[j]) || x[j] < 0.0f || !std::isfinite(pdf) || pdf < 0.0f) return std::nullopt;
-    sum += double(x[j]) * v.value(lambda.lambda_nm(j)) / double(pdf);
+    if (!std::isfinite(x[j]) || x[j] < 0.0f || !std::isfinite(pdf) || pdf < 0.0f) return false;
+    for (int k = 0; k < kWeightings; ++k)
+      if (weightings[k].w) values[k] += double(x[j]) * weightings[k].w->value(lambda.lambda_nm(j)) / double(pdf);
   }
-  return kMaxLuminousEfficacy_lm_W * sum / double(kLaneCount);
+  for (int k = 0; k < kWeightings; ++k) values[k] *= weightings[k].scale / double(kLaneCount);
+  return true;
 }
 
 struct Accumulator {
@@ -110,8 +133,14 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
   PathIntegratorSettings settings = scene.settings.integrator;
   settings.guiding = false;  // the receptor's paths are unguided (no field is learned for them)
   const IrradianceEstimator estimator(view, settings);
+  if ((sensors.quantities.scotopic && !options.scotopic_v_prime) || (sensors.quantities.melanopic && !options.melanopic))
+    throw std::logic_error("measure_sensors: a quantity was asked for without its weighting function");
+  const Weighting weightings[kWeightings] = {
+      {&v, kMaxLuminousEfficacy_lm_W},
+      {sensors.quantities.scotopic ? options.scotopic_v_prime : nullptr, kMaxScotopicLuminousEfficacy_lm_W},
+      {sensors.quantities.melanopic ? options.melanopic : nullptr, 1.0 / kMelanopicEfficacyD65_W_lm}};
   const std::vector<MeterPoint> points = meter_points(sensors);
-  std::vector<Accumulator> sums(points.size());
+  std::vector<std::array<Accumulator, kWeightings>> sums(points.size());
   const std::unique_ptr<Sampler> prototype = make_sampler(options.sampler, options.seed);
   std::atomic<bool> stopped{false};
   std::atomic<uint64_t> discarded{0};
@@ -124,7 +153,7 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
         return;
       }
       const MeterPoint& point = points[p];
-      Accumulator& acc = sums[p];
+      std::array<Accumulator, kWeightings>& acc = sums[p];
       // Each point is its own "pixel" of the sampler (x, y = the index's low and high halves), so its samples are
       // the same whichever thread takes it.
       const int x = int(p & 0xffff), y = int(p >> 16);
@@ -132,17 +161,19 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
         sampler->start_pixel_sample(x, y, uint32_t(s));
         const SampledWavelengths lambda =
             sample_path_wavelengths(settings.wavelengths, *sampler, scene.wavelength_density.get());
-        const SampledSpectrum value = point.illuminance
-                                          ? estimator.irradiance(point.position, point.direction, lambda, *sampler)
-                                          : estimator.radiance(Ray{point.position, point.direction}, lambda, *sampler);
-        const std::optional<double> photometric_value = photometric(value, lambda, v);
-        if (!photometric_value) {
+        const SampledSpectrum value =
+            point.illuminance ? estimator.irradiance(point.position, point.receptor, lambda, *sampler)
+                              : estimator.radiance(Ray{point.position, point.receptor.direction}, lambda, *sampler);
+        double values[kWeightings];
+        if (!weighted_values(value, lambda, weightings, values)) {
           ++discarded;
           continue;
         }
-        acc.sum += *photometric_value;
-        acc.squares += *photometric_value * *photometric_value;
-        ++acc.count;
+        for (int k = 0; k < kWeightings; ++k) {
+          acc[k].sum += values[k];
+          acc[k].squares += values[k] * values[k];
+          ++acc[k].count;
+        }
       }
     }
   });
@@ -150,15 +181,26 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
   SensorReadings readings;
   readings.interrupted = stopped;
   readings.discarded_samples = discarded;
+  const bool scotopic = weightings[1].w != nullptr, melanopic = weightings[2].w != nullptr;
   size_t next = 0;
   for (const IlluminanceGrid& g : sensors.grids) {
-    std::vector<MeterReading> grid_points;
-    for (int k = 0; k < g.count_u * g.count_v; ++k) grid_points.push_back(sums[next++].reading());
+    std::vector<MeterReading> grid_points, scotopic_points, melanopic_points;
+    for (int k = 0; k < g.count_u * g.count_v; ++k, ++next) {
+      grid_points.push_back(sums[next][0].reading());
+      if (scotopic) scotopic_points.push_back(sums[next][1].reading());
+      if (melanopic) melanopic_points.push_back(sums[next][2].reading());
+    }
     readings.grids.push_back(grid_statistics(std::move(grid_points)));
+    readings.grids.back().scotopic_points = std::move(scotopic_points);
+    readings.grids.back().melanopic_points = std::move(melanopic_points);
     if (const std::optional<double> e_out = outdoor_lx[readings.grids.size() - 1])
       readings.grids.back().daylight_factor = daylight_factors(readings.grids.back().points, *e_out);
   }
-  for (size_t k = 0; k < sensors.points.size(); ++k) readings.meters.push_back(sums[next++].reading());
+  for (size_t k = 0; k < sensors.points.size(); ++k, ++next) {
+    readings.meters.push_back(sums[next][0].reading());
+    if (scotopic) readings.meters_scotopic.push_back(sums[next][1].reading());
+    if (melanopic) readings.meters_melanopic.push_back(sums[next][2].reading());
+  }
   readings.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return readings;
 }

@@ -22,6 +22,11 @@ struct SensorMeasureOptions {
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::sobol;
   int threads = 0;                           ///< 0 = every core
+  /// The weighting functions of the extra quantities (SensorSettings::quantities): V'(λ)
+  /// (SpectralLibrary::scotopic_v_prime()) and s_mel(λ) (SpectralLibrary::melanopic_action_spectrum()); each must be
+  /// given when its quantity is asked for.
+  const TabulatedSpectrum* scotopic_v_prime = nullptr;
+  const TabulatedSpectrum* melanopic = nullptr;
   /// Polled between points (Ctrl-C: render/interrupt_flag.h); true stops the measurement, which is then incomplete.
   std::function<bool()> stop_requested;
 };
@@ -30,6 +35,8 @@ struct SensorMeasureOptions {
 /// Eavg is 0 (no light reaches the grid).
 struct GridReadings {
   std::vector<MeterReading> points;
+  /// Scotopic lux and melanopic EDI (lx) of the same points, when SensorSettings::quantities asks for them (else empty).
+  std::vector<MeterReading> scotopic_points, melanopic_points;
   double e_min_lx = 0, e_avg_lx = 0, e_max_lx = 0, u0 = 0;
   std::optional<DaylightFactors> daylight_factor;  ///< for a grid with "daylight_factor"
 };
@@ -37,6 +44,8 @@ struct GridReadings {
 struct SensorReadings {
   std::vector<GridReadings> grids;   ///< in the order of SensorSettings::grids
   std::vector<MeterReading> meters;  ///< SensorSettings::points, in lx or nt by their kind
+  /// The meters' scotopic (scotopic lx or nt) and melanopic EDI or EDL (lx or nt) readings, when asked for (else empty).
+  std::vector<MeterReading> meters_scotopic, meters_melanopic;
   uint64_t discarded_samples = 0;    ///< NaN, infinite or negative estimates, left out of their means (as the film does)
   bool interrupted = false;          ///< stopped by the interrupt: the readings are incomplete
   double seconds = 0;
@@ -45,7 +54,8 @@ struct SensorReadings {
 /// Estimates every sensor of `scene` (which must have no participating media and spectral lanes: check_sensor_scene)
 /// with `samples` samples per point: each sample is one path estimate from the scene's integrator (hero
 /// wavelengths as the image's), converted to lux or nits as K_m ∫ V(λ) (·) dλ with K_m = 683 lm/W and `v` the
-/// photopic V(λ). Grids with "daylight_factor" also get their daylight factors (InputError before any sample if the
+/// photopic V(λ). The extra quantities weight the same path: scotopic K'_m ∫ V'(λ) (·) dλ (K'_m = 1700 lm/W),
+/// melanopic ∫ s_mel(λ) (·) dλ / K_mel,v^D65 (CIE S 026: equivalent daylight (D65) illuminance or luminance). Grids with "daylight_factor" also get their daylight factors (InputError before any sample if the
 /// scene has not the one CIE overcast sky they need). The readings depend on the seed and the sample count only, not
 /// on the threads. Cost: samples × points paths.
 SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors, const TabulatedSpectrum& v,

@@ -1,5 +1,6 @@
 #include "render/sensors/sensor_outputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -20,6 +21,37 @@ nlohmann::json vec3_json(Vec3 v) { return nlohmann::json::array({v.x, v.y, v.z})
 
 // A number JSON can hold (a reading is finite by construction; this keeps a 0/0 statistic out of the file).
 nlohmann::json finite_json(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+// The extra quantities (SensorSettings::quantities): index 0 scotopic, 1 melanopic; their JSON keys.
+constexpr const char* kExtraKeys[2] = {"scotopic", "melanopic_edi"};
+
+// The CSV quantity of an extra weighting of a meter's base quantity: scotopic_<base>; melanopic_edi (illuminance),
+// melanopic_edl (luminance), melanopic_edi_<cylinder kind>.
+std::string extra_quantity(int extra, const std::string& base) {
+  if (extra == 0) return "scotopic_" + base;
+  if (base == "illuminance") return "melanopic_edi";
+  if (base == "luminance") return "melanopic_edl";
+  return "melanopic_edi_" + base.substr(0, base.size() - std::string("_illuminance").size());
+}
+
+const std::vector<MeterReading>& grid_extra(const GridReadings& r, int extra) {
+  return extra == 0 ? r.scotopic_points : r.melanopic_points;
+}
+const std::vector<MeterReading>& meter_extra(const SensorReadings& r, int extra) {
+  return extra == 0 ? r.meters_scotopic : r.meters_melanopic;
+}
+
+// Emin, Eavg, Emax and U0 of an extra quantity's grid readings.
+nlohmann::json extra_statistics(const std::vector<MeterReading>& points) {
+  double lo = points.front().value, hi = lo, sum = 0.0;
+  for (const MeterReading& m : points) {
+    lo = std::min(lo, m.value);
+    hi = std::max(hi, m.value);
+    sum += m.value;
+  }
+  const double avg = sum / double(points.size());
+  return {{"e_min", lo}, {"e_avg", avg}, {"e_max", hi}, {"u0", finite_json(avg > 0.0 ? lo / avg : 0.0)}};
+}
 
 }  // namespace
 
@@ -55,12 +87,25 @@ std::string sensor_csv(const SensorSettings& sensors, const SensorReadings& read
         for (int i = 0; i < grid.count_u; ++i)
           row(grid.name, "daylight_factor", "%", std::to_string(i), std::to_string(j), grid.point(i, j), grid.normal,
               df->points_percent[size_t(j * grid.count_u + i)]);
+    for (int extra = 0; extra < 2; ++extra) {
+      const std::vector<MeterReading>& points = grid_extra(readings.grids[g], extra);
+      if (points.empty()) continue;
+      const std::string quantity = extra_quantity(extra, "illuminance");
+      for (int j = 0; j < grid.count_v; ++j)
+        for (int i = 0; i < grid.count_u; ++i)
+          row(grid.name, quantity.c_str(), "lx", std::to_string(i), std::to_string(j), grid.point(i, j), grid.normal,
+              points[size_t(j * grid.count_u + i)]);
+    }
   }
   for (size_t k = 0; k < sensors.points.size() && k < readings.meters.size(); ++k) {
     const PointSensor& p = sensors.points[k];
-    const bool illuminance = p.kind == PointSensor::Kind::illuminance;
-    row(p.name, illuminance ? "illuminance" : "luminance", illuminance ? "lx" : "nt", "", "", p.position, p.direction,
-        readings.meters[k]);
+    const std::string base = sensor_quantity_name(p.kind);
+    const char* unit = p.kind == PointSensor::Kind::luminance ? "nt" : "lx";
+    row(p.name, base.c_str(), unit, "", "", p.position, p.direction, readings.meters[k]);
+    for (int extra = 0; extra < 2; ++extra)
+      if (k < meter_extra(readings, extra).size())
+        row(p.name, extra_quantity(extra, base).c_str(), unit, "", "", p.position, p.direction,
+            meter_extra(readings, extra)[k]);
   }
   return csv.str();
 }
@@ -85,6 +130,10 @@ nlohmann::json sensor_json(const SensorSettings& sensors, const SensorReadings& 
           points.back()["daylight_factor_percent"] = r.daylight_factor->points_percent[k].value;
           points.back()["daylight_factor_standard_error_percent"] = r.daylight_factor->points_percent[k].standard_error;
         }
+        for (int extra = 0; extra < 2; ++extra)
+          if (!grid_extra(r, extra).empty())
+            points.back()[kExtraKeys[extra]] = {{"value", grid_extra(r, extra)[k].value},
+                                                {"standard_error", grid_extra(r, extra)[k].standard_error}};
       }
     doc["grids"].push_back({{"name", grid.name},
                             {"quantity", "illuminance"},
@@ -106,18 +155,36 @@ nlohmann::json sensor_json(const SensorSettings& sensors, const SensorReadings& 
                                                 {"df_min_percent", df->df_min_percent},
                                                 {"df_avg_percent", df->df_avg_percent},
                                                 {"df_max_percent", df->df_max_percent}};
+    for (int extra = 0; extra < 2; ++extra)
+      if (!grid_extra(r, extra).empty()) {
+        nlohmann::json summary = extra_statistics(grid_extra(r, extra));
+        summary["quantity"] = extra_quantity(extra, "illuminance");
+        summary["unit"] = "lx";
+        doc["grids"].back()[kExtraKeys[extra]] = summary;
+      }
   }
   doc["meters"] = nlohmann::json::array();
   for (size_t k = 0; k < sensors.points.size() && k < readings.meters.size(); ++k) {
     const PointSensor& p = sensors.points[k];
-    const bool illuminance = p.kind == PointSensor::Kind::illuminance;
+    const std::string base = sensor_quantity_name(p.kind);
+    const char* unit = p.kind == PointSensor::Kind::luminance ? "nt" : "lx";
+    const char* direction_key = p.kind == PointSensor::Kind::illuminance ? "normal"
+                                : p.kind == PointSensor::Kind::luminance ? "direction"
+                                                                         : "axis";
     doc["meters"].push_back({{"name", p.name},
-                             {"quantity", illuminance ? "illuminance" : "luminance"},
-                             {"unit", illuminance ? "lx" : "nt"},
+                             {"quantity", base},
+                             {"unit", unit},
                              {"position", vec3_json(p.position)},
-                             {illuminance ? "normal" : "direction", vec3_json(p.direction)},
+                             {direction_key, vec3_json(p.direction)},
                              {"value", readings.meters[k].value},
                              {"standard_error", readings.meters[k].standard_error}});
+    if (p.kind == PointSensor::Kind::semi_cylindrical) doc["meters"].back()["facing"] = vec3_json(p.facing);
+    for (int extra = 0; extra < 2; ++extra)
+      if (k < meter_extra(readings, extra).size())
+        doc["meters"].back()[kExtraKeys[extra]] = {{"quantity", extra_quantity(extra, base)},
+                                                   {"unit", unit},
+                                                   {"value", meter_extra(readings, extra)[k].value},
+                                                   {"standard_error", meter_extra(readings, extra)[k].standard_error}};
   }
   return doc;
 }

@@ -12,4 +12,9 @@ inline constexpr double kMaxLuminousEfficacyCie_lm_W = 683.002;
 /// K'_m for scotopic vision with V'(λ) (CIE 1951), lm/W (1700.06 precisely; 1700 conventionally).
 inline constexpr double kMaxScotopicLuminousEfficacy_lm_W = 1700.0;
 
+/// K_mel,v^D65, the melanopic efficacy of luminous radiation of CIE standard illuminant D65 (CIE S 026/E:2018), in
+/// W/lm (1.3262 mW/lm): melanopic irradiance ∫E(λ) s_mel(λ) dλ in W/m² divided by it is the melanopic equivalent
+/// daylight (D65) illuminance in lx (the illuminance of D65 with the same melanopic effect).
+inline constexpr double kMelanopicEfficacyD65_W_lm = 1.3262e-3;
+
 }  // namespace rimu

@@ -104,6 +104,14 @@ const TabulatedSpectrum& SpectralLibrary::scotopic_v_prime() {
   return *scotopic_v_prime_;
 }
 
+const TabulatedSpectrum& SpectralLibrary::melanopic_action_spectrum() {
+  std::lock_guard lock(mutex_);
+  if (!melanopic_)
+    melanopic_ = std::make_unique<TabulatedSpectrum>(
+        TabulatedSpectrum::from_csv(table_unlocked("cmf/cie_s026_melanopic_1nm.csv"), "smel", Extrapolation::zero));
+  return *melanopic_;
+}
+
 const DaylightBasis& SpectralLibrary::daylight_basis() {
   std::lock_guard lock(mutex_);
   if (!daylight_basis_) {

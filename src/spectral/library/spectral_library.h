@@ -40,6 +40,8 @@ class SpectralLibrary {
   const TabulatedSpectrum& photopic_v();
   /// CIE 1951 scotopic V'(λ), peak 1 at 507 nm.
   const TabulatedSpectrum& scotopic_v_prime();
+  /// CIE S 026/E:2018 melanopic action spectrum s_mel(λ), peak 1 at 490 nm, 380-780 nm (0 outside).
+  const TabulatedSpectrum& melanopic_action_spectrum();
   const DaylightBasis& daylight_basis();
 
   /// A CIE illuminant by name: A, D50, D55, D65, D75, E, F1-F12, FL3.1-FL3.15, HP1-HP5, LED-B1...LED-V2 (relative
@@ -86,7 +88,7 @@ class SpectralLibrary {
   std::map<StandardObserver, std::unique_ptr<Observer>> observers_;
   std::map<std::string, SpectrumPtr, std::less<>> spectra_;
   std::map<std::string, std::unique_ptr<E308WeightTable>> e308_tables_;
-  std::unique_ptr<TabulatedSpectrum> photopic_v_, scotopic_v_prime_;
+  std::unique_ptr<TabulatedSpectrum> photopic_v_, scotopic_v_prime_, melanopic_;
   std::unique_ptr<DaylightBasis> daylight_basis_;
 };
 

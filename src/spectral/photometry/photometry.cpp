@@ -39,4 +39,13 @@ LuminousEfficacy scotopic_luminous_efficacy_lm_W(const Spectrum& spectrum, const
   return efficacy(spectrum, v_prime, kMaxScotopicLuminousEfficacy_lm_W, grid, "scotopic");
 }
 
+double melanopic_daylight_efficacy_ratio(const Spectrum& spectrum, const TabulatedSpectrum& v,
+                                         const TabulatedSpectrum& s_mel, IntegrationGrid grid) {
+  // Both efficacies share the radiant sum, so K_mel / K = Σ S s_mel / (K_m Σ S V) without it.
+  const double photopic_lm_W = luminous_efficacy_of_radiation_lm_W(spectrum, v, grid).lm_W;
+  const double radiant = integrate_on_grid(grid, [&](double l) { return spectrum.value(l); });
+  const double melanopic = integrate_on_grid(grid, [&](double l) { return spectrum.value(l) * s_mel.value(l); });
+  return melanopic / radiant / photopic_lm_W / kMelanopicEfficacyD65_W_lm;
+}
+
 }  // namespace rimu

@@ -84,6 +84,13 @@ LuminousEfficacy luminous_efficacy_of_radiation_lm_W(const Spectrum& spectrum, c
 LuminousEfficacy scotopic_luminous_efficacy_lm_W(const Spectrum& spectrum, const TabulatedSpectrum& v_prime,
                                                  IntegrationGrid grid = IntegrationGrid::cie_1nm());
 
+/// Melanopic daylight (D65) efficacy ratio of `spectrum`'s shape (CIE S 026/E:2018, "melanopic DER"): its melanopic
+/// efficacy of luminous radiation Σ S s_mel Δλ / (K_m Σ S V Δλ) in W/lm over D65's, K_mel,v^D65 = 1.3262 mW/lm.
+/// Melanopic EDI = DER × illuminance (lx). `s_mel` is SpectralLibrary::melanopic_action_spectrum(). Throws
+/// InputError as luminous_efficacy_of_radiation_lm_W does.
+double melanopic_daylight_efficacy_ratio(const Spectrum& spectrum, const TabulatedSpectrum& v,
+                                         const TabulatedSpectrum& s_mel, IntegrationGrid grid = IntegrationGrid::cie_1nm());
+
 /// Φv = K Φe, for a source whose spectral shape has efficacy `k`.
 constexpr LuminousPower to_luminous(RadiantPower p, LuminousEfficacy k) { return LuminousPower(p.w * k.lm_W); }
 /// Φe = Φv / K. `k` must be positive (as every efficacy computed above is).

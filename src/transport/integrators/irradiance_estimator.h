@@ -2,6 +2,7 @@
 // one-sided, cosine-corrected receptor (a lux meter's head) and radiance along a line of sight (a luminance meter).
 #pragma once
 
+#include "transport/integrators/meter_receptor.h"
 #include "transport/integrators/path_integrator.h"
 #include "transport/integrators/path_start_vertex.h"
 
@@ -17,6 +18,9 @@ namespace rimu {
 /// against light sampling (radiance_from_vertex, path_start_vertex.h). Delta lights (point, spot) are reached by
 /// next-event estimation alone.
 ///
+/// The same two techniques serve the cylindrical receptors (meter_receptor.h): E = ∫ L w dω over the sphere, the
+/// light sample weighted by w and the second technique drawing directions by MeterReceptor::sample_direction.
+///
 /// Dimension order per sample, after the caller's wavelengths: light choice (1), light position (2), receptor
 /// direction (2), then the integrator's per-bounce dimensions.
 class IrradianceEstimator {
@@ -27,7 +31,13 @@ class IrradianceEstimator {
 
   /// E at `position_m` on the side of `normal` (unit), in W/(m²·nm) per lane, lanes weighted as
   /// PathIntegrator::radiance's (the mean over lanes of Eⱼ c(λⱼ)/p(λⱼ) is unbiased for ∫E c dλ).
-  SampledSpectrum irradiance(Vec3 position_m, Vec3 normal, const SampledWavelengths& lambda, Sampler& sampler) const;
+  SampledSpectrum irradiance(Vec3 position_m, Vec3 normal, const SampledWavelengths& lambda, Sampler& sampler) const {
+    return irradiance(position_m, MeterReceptor{MeterReceptor::Shape::plane, normal, {}}, lambda, sampler);
+  }
+
+  /// ∫ L w dω at `position_m` for `receptor`'s response w (plane, cylinder or semi-cylinder), lanes as above.
+  SampledSpectrum irradiance(Vec3 position_m, const MeterReceptor& receptor, const SampledWavelengths& lambda,
+                             Sampler& sampler) const;
 
   /// L arriving at `ray.origin` from `ray.direction` (a luminance meter looking along the ray), as a camera ray.
   SampledSpectrum radiance(const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler) const {
@@ -35,8 +45,8 @@ class IrradianceEstimator {
   }
 
  private:
-  SampledSpectrum light_sampled(const LightSamplingPoint& at, const SampledSpectrum& ratios,
-                                const SampledWavelengths& lambda, Sampler& sampler) const;
+  SampledSpectrum light_sampled(const LightSamplingPoint& at, const MeterReceptor& receptor,
+                                const SampledSpectrum& ratios, const SampledWavelengths& lambda, Sampler& sampler) const;
 
   const TransportScene& scene_;
   PathIntegratorSettings settings_;
