@@ -21,10 +21,11 @@ int run_denoise_command(int argc, char** argv) {
   app.add_option("--threads", settings.threads, "worker threads (default: every core)")->check(CLI::Range(1, 4096));
   app.add_option("--window", settings.window_radius, "the regression window's radius in pixels (default 7)")
       ->check(CLI::Range(1, 30));
-  app.add_flag("--feature-weights", settings.feature_weights,
-               "also weigh neighbours by their albedo, normal and depth (joint NL-means; off: colour-only weights, "
-               "as NFOR)");
+  bool colour_weights_only = false;
+  app.add_flag("--colour-weights-only", colour_weights_only,
+               "weigh neighbours by colour alone, as NFOR does (default: also by albedo, normal and depth)");
   return rimu::run_tool("rimu denoise", app, argc, argv, [&] {
+    settings.feature_weights = !colour_weights_only;
     rimu::denoise_exr_file(input, output, settings, std::cerr);
   });
 }

@@ -29,9 +29,10 @@ struct DenoiseSettings {
   /// whose error (estimated from the two halves) is lowest around it. NFOR's choice: 0.5 and 1.
   std::vector<double> colour_bandwidths{0.5, 1.0};
   /// Also weigh neighbours by their features' distance (Rousselle, Manzi & Zwicker 2013's joint weights, the
-  /// smaller of the colour and the feature weight). Off by default, as in NFOR, whose analysis found feature weights
-  /// harmful to first-order regression: the features enter the regression instead.
-  bool feature_weights = false;
+  /// smaller of the colour and the feature weight). NFOR weighs by colour alone; here the feature weights are on by
+  /// default because at low spp the colour weights alone let a noisy lit wall bleed into the black beyond a scene's
+  /// edge, where a relative error measure punishes it most (docs/benchmarks.md, "Denoising").
+  bool feature_weights = true;
   double feature_bandwidth = 1.0;  ///< k_f of the feature weights
   int selection_radius = 3;        ///< the box the candidates' error estimates are averaged over
   int threads = 0;                 ///< 0: every core (oneTBB)
