@@ -251,8 +251,7 @@ void check_feature_options(const RenderJob& job) {
     throw InputError({"", 0, job.samples ? "--samples" : job.checkpoint_interval_s ? "--checkpoint" : "--resume"},
                      std::string(what) + " needs the render's feature buffers and half buffers, which live in its "
                      "memory, not in a partial: it cannot be split into sample ranges (--samples) for `rimu merge` "
-                     "or checkpointed and resumed (--checkpoint, --resume); render it in one process, or denoise a "
-                     "merged image rendered with --aov all by `rimu denoise`");
+                     "or checkpointed and resumed (--checkpoint, --resume); render it in one process");
 }
 
 // A time budget (--time, else the scene's) and the maximum spp it renders to: --spp, else the scene's "spp" when
