@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/film/film.h"
+#include "render/output/aov_channels.h"
 #include "render/output/partial_record.h"
 #include "render/renderer.h"
 #include "spectral/io/input_file.h"
@@ -80,6 +81,13 @@ struct RenderJob {
   /// the relative standard error of its luminance is below this; samples_per_pixel is the maximum. Not with
   /// `samples` or `checkpoint_interval_s` (its half buffers are not in a partial).
   std::optional<double> noise_threshold;
+  /// Feature layers written into the EXR (`--aov albedo,normal,depth,variance,halves` or `all`;
+  /// render/output/aov_channels.h). Not with `samples`, `checkpoint_interval_s` or `resume`: the feature buffers live
+  /// only in this process, as adaptive sampling's half buffers do.
+  AovSelection aovs;
+  /// Denoise the image before writing it (`--denoise`; render/denoise/): the EXR's beauty and the display image are
+  /// denoised, the noisy beauty is kept as the EXR layer "noisy". Same restrictions as `aovs`.
+  bool denoise = false;
   /// The frame number substituted for "${frame}" in the scene file's text (docs/scene-format.md, "Frames").
   std::optional<int> frame;
 

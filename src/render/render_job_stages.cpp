@@ -7,7 +7,9 @@
 
 #include "render/camera/camera_exposure.h"
 #include "render/film/render_size.h"
+#include "render/denoise/denoise_film.h"
 #include "render/interrupt_flag.h"
+#include "render/output/aov_channels.h"
 #include "render/output/display_image_policy.h"
 #include "render/output/error_heat_map.h"
 #include "render/output/exr_output.h"
@@ -189,6 +191,10 @@ ExrOptions job_exr_options(const RenderJobState& s, int reached, bool interrupte
       }
     exr.extra_channels = {{"spp", std::move(spp)}, {"relativeError", std::move(error)}};
   }
+  if (s.features && s.aovs.any()) {
+    for (auto& layer : aov_channels(*s.features, *s.film, s.aovs)) exr.extra_channels.push_back(std::move(layer));
+    exr.metadata.extra["aov"] = aov_list_text(s.aovs);
+  }
   return exr;
 }
 
@@ -233,6 +239,17 @@ void check_adaptive_sampling_options(const RenderJob& job) {
   if (job.noise_threshold && (job.samples || job.checkpoint_interval_s))
     throw InputError({"", 0, job.samples ? "--samples" : "--checkpoint"},
                      "--noise-threshold stops each pixel on its own noise estimate, which lives in the render's "
+                     "memory, not in a partial: it cannot be split into sample ranges (--samples) for `rimu merge` "
+                     "or checkpointed and resumed (--checkpoint, --resume); render it in one process");
+}
+
+// --aov and --denoise: the feature buffers live in the render's memory, not in a partial.
+void check_feature_options(const RenderJob& job) {
+  if (!(job.aovs.any() || job.denoise)) return;
+  const char* what = job.denoise ? "--denoise" : "--aov";
+  if (job.samples || job.checkpoint_interval_s || job.resume)
+    throw InputError({"", 0, job.samples ? "--samples" : job.checkpoint_interval_s ? "--checkpoint" : "--resume"},
+                     std::string(what) + " needs the render's feature buffers and half buffers, which live in its "
                      "memory, not in a partial: it cannot be split into sample ranges (--samples) for `rimu merge` "
                      "or checkpointed and resumed (--checkpoint, --resume); render it in one process");
 }
@@ -309,6 +326,7 @@ DisplayOptions check_job_without_scene(const RenderJob& job) {
     check_preview_error_output(*job.preview_error_output, job.exr_output, job.png_output, job.preview_output);
   if (job.time_limit_s && job.samples) refuse_time_budget_with_samples("--time");
   check_adaptive_sampling_options(job);
+  check_feature_options(job);
   DisplayOptions display;
   display.exposure_ev = job.exposure_ev;
   display.view = job.view;
@@ -348,6 +366,12 @@ void set_up_film(RenderJobState& s) {
                      e.explanation());
   }
   film.set_output_transform(s.output_transform);
+  s.aovs = job.aovs.any() ? job.aovs : settings.aovs;
+  if (s.aovs.any() && !job.aovs.any() && (job.samples || job.checkpoint_interval_s || s.previous))
+    throw InputError({s.scene_path.string(), 0, "/film/aov"},
+                     "feature layers need the render's feature buffers, which live in its memory, not in a partial: "
+                     "render the scene in one process (no --samples, --checkpoint or --resume), or remove \"aov\"");
+  if (s.aovs.any() || job.denoise) s.features = std::make_unique<FeatureBuffers>(film.pixel_bounds());
   s.filter = make_filter(settings.filter);
   if (film.response().kind() == ResponseKind::camera_rgb) s.colour_fit = fit_camera_to_xyz(film.response(), s.library);
   s.metered_display = !settings.camera_exposure.exposure && s.loaded.scene->photometric_lights;
@@ -400,6 +424,7 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
   std::optional<TimeBudget> budget;
   if (s.time_limit_s) budget.emplace(*s.time_limit_s, s.previous_seconds);
   options.adaptive = s.adaptive.get();
+  options.features = s.features.get();
   if (budget || s.adaptive) {
     options.start_pass = [&](int first, int count) {
       if (s.adaptive && s.adaptive->active_count() == 0) {
@@ -434,7 +459,21 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
 
 void write_job_outputs(RenderJobState& s) {
   const RenderJob& job = s.job;
-  write_render_exr(job.exr_output, *s.film, job_exr_options(s, s.reached, s.result.statistics.interrupted), s.log);
+  ExrOptions exr = job_exr_options(s, s.reached, s.result.statistics.interrupted);
+  if (job.denoise) {
+    // The denoised film takes the rendered one's place in the EXR's beauty and the display image.
+    DenoiseSettings settings;
+    settings.threads = job.threads.value_or(0);
+    DenoisedFilm denoised = denoise_film(*s.film, *s.features, settings);
+    for (auto& layer : denoised.noisy_layer) exr.extra_channels.push_back(std::move(layer));
+    exr.metadata.extra["denoised"] =
+        "weighted first-order regression on albedo, normal and depth (NFOR, simplified); noisy beauty in the noisy layer";
+    if (!job.quiet)
+      s.log << "rimu: denoised in " << denoised.seconds << " s ("
+            << denoised.seconds / (double(s.film->pixel_bounds().area()) * 1e-6) << " s per megapixel)\n";
+    s.film = std::move(denoised.film);
+  }
+  write_render_exr(job.exr_output, *s.film, exr, s.log);
   if (job.png_output) write_policy_display_image(*job.png_output, *s.film, s.display, display_policy(s), s.log);
   if (job.preview_output || job.preview_error_output) write_preview(s);
 }

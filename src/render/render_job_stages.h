@@ -16,6 +16,7 @@
 
 #include "render/film/adaptive_sampling.h"
 #include "render/film/camera_colour_matrix.h"
+#include "render/film/feature_buffers.h"
 #include "render/film/film.h"
 #include "render/film/pixel_filter.h"
 #include "render/output/display_transform.h"
@@ -75,6 +76,8 @@ struct RenderJobState {
   /// (render/time_budget.h); total_spp is then the maximum
   std::optional<double> time_limit_s;
   std::unique_ptr<AdaptiveSampling> adaptive;  ///< --noise-threshold: which pixels still take samples
+  std::unique_ptr<FeatureBuffers> features;    ///< --aov, --denoise: the denoiser's feature buffers
+  AovSelection aovs;                           ///< the layers written: --aov, else the scene's film "aov"
 
   // check_job_sensors
   SensorSettings sensors;  ///< the scene's "sensors" (render/scene/scene_sensors.h)

@@ -14,9 +14,11 @@
 #include <vector>
 
 #include "render/film/adaptive_sampling.h"
+#include "render/film/feature_buffers.h"
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
 #include "transport/guiding/guiding_field.h"
+#include "transport/integrators/path_features.h"
 #include "transport/integrators/path_integrator.h"
 #include "transport/integrators/volumetric_path_integrator.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -71,13 +73,17 @@ namespace {
 // The render loop over tiles and passes, for any integrator with radiance(ray, lambda, sampler).
 template <typename Integrator>
 RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorSettings& integrator_settings,
-                             const TabulatedWavelengthDensity* wavelength_density,
+                             const TransportScene& surfaces, const TabulatedWavelengthDensity* wavelength_density,
                              const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
 
   const std::unique_ptr<Sampler> prototype_sampler = make_sampler(options.sampler, options.seed);
+  // Feature rays draw from their own stream (the image's samples stay those of a render without features).
+  constexpr uint64_t kFeatureSeedSalt = 0x9e3779b97f4a7c15ull;
+  const std::unique_ptr<Sampler> feature_prototype =
+      options.features ? make_sampler(SamplerKind::independent, options.seed ^ kFeatureSeedSalt) : nullptr;
   const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
 
   RenderStatistics stats;
@@ -106,6 +112,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
+    std::vector<FeatureTile> feature_results(options.features ? tiles.size() : 0);
     std::atomic<bool> stopped{false};
     std::atomic<uint64_t> pass_camera_samples{0};
     // Record while the history has room and a field fitted to it could still guide a later pass (the fit after
@@ -119,6 +126,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
       std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
+      std::unique_ptr<Sampler> feature_sampler = feature_prototype ? feature_prototype->clone() : nullptr;
       // Light groups (render/film/film.h): each sample's share per group. A film without groups passes an empty
       // LightGroupRadiance, and the integrator and film skip the per-group work.
       std::vector<SampledSpectrum> group_slots(film.light_groups().size());
@@ -129,6 +137,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
           return;
         }
         auto tile = std::make_unique<FilmTile>(film.make_tile(tiles[t]));
+        if (options.features) feature_results[t] = options.features->make_tile(tile->bounds());
         [[maybe_unused]] PathGuidingContext guiding;
         if constexpr (can_guide) {
           guiding.field = guiding_field ? &*guiding_field : nullptr;
@@ -165,7 +174,27 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               } else {
                 radiance = integrator.radiance(ray, lambda, *sampler, groups);
               }
+              if (!options.features) {
+                tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
+                continue;
+              }
+              // The sample's share of the film's sums is read back from the tile, so the half buffers hold exactly
+              // what the film does (discarded samples included).
+              const double* sums = tile->pixel(x, y);
+              const double before[4] = {sums[0], sums[1], sums[2], sums[FilmTile::kWeight]};
               tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
+              FeatureSample feature;
+              feature.half = s & 1;
+              for (int k = 0; k < 3; ++k) feature.beauty_sum[size_t(k)] = sums[k] - before[k];
+              feature.beauty_weight = sums[FilmTile::kWeight] - before[3];
+              if (feature.beauty_weight > 0.0) {
+                feature_sampler->start_pixel_sample(x, y, uint32_t(s));
+                const PathFeatures f = first_diffuse_features(surfaces, ray, lambda, *feature_sampler);
+                feature.albedo = feature_albedo_channels(f, lambda, film.response());
+                feature.normal = f.normal;
+                feature.depth = f.depth;
+              }
+              feature_results[t].add(x, y, feature);
             }
           }
         }
@@ -180,6 +209,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     for (const auto& tile : results) film.merge_tile(*tile);
+    for (const FeatureTile& tile : feature_results) options.features->merge_tile(tile);
     if (train) {
       for (auto& r : guiding_records) {
         guiding_history.insert(guiding_history.end(), r.begin(), r.end());
@@ -215,14 +245,15 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const PathIntegrator integrator(transport, integrator_settings);
-  return render_loop(integrator, integrator_settings, transport.wavelength_density, camera, filter, film, options);
+  return render_loop(integrator, integrator_settings, transport, transport.wavelength_density, camera, filter, film,
+                     options);
 }
 
 RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const VolumetricPathIntegrator integrator(scene, integrator_settings);
-  return render_loop(integrator, integrator_settings.path, scene.surfaces.wavelength_density, camera, filter, film,
-                     options);
+  return render_loop(integrator, integrator_settings.path, scene.surfaces, scene.surfaces.wavelength_density, camera,
+                     filter, film, options);
 }
 
 }  // namespace rimu

@@ -12,6 +12,7 @@
 namespace rimu {
 
 class AdaptiveSampling;
+class FeatureBuffers;  // render/film/feature_buffers.h
 class InterruptFlag;
 class ProgressReporter;
 
@@ -35,6 +36,11 @@ struct RenderOptions {
   /// Adaptive sampling (render/film/adaptive_sampling.h): only its active pixels take a pass's samples. The caller
   /// updates it between passes (after_pass); null: every pixel takes every pass.
   const AdaptiveSampling* adaptive = nullptr;
+  /// Feature buffers for a denoiser (`--aov`, `--denoise`): when set, every camera sample also traces a feature ray
+  /// (transport/integrators/path_features.h) with a sampler of its own, so the image is the same with or without
+  /// them, and its beauty goes to the half buffer of its index's parity. Each pass's tiles are merged with the
+  /// film's, so an interrupted pass is dropped from both. nullptr: no feature work at all.
+  FeatureBuffers* features = nullptr;
 };
 
 /// What path guiding learned (docs/transport.md, "Path guiding"): the last field fitted, and its memory.

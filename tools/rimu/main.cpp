@@ -11,19 +11,21 @@
 #include "render/render_job.h"
 #include "render/film/render_size.h"
 #include "display_command.h"
+#include "denoise_command.h"
 #include "merge_command.h"
 #include "spectral/error.h"
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "merge") return run_merge_command(argc - 1, argv + 1);
   if (argc > 1 && std::string(argv[1]) == "display") return run_display_command(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "denoise") return run_denoise_command(argc - 1, argv + 1);
   CLI::App app{
       "rimu: spectral hero-wavelength path tracer.\n"
       "Renders SCENE (a JSON file, see docs/scene-format.md; default: the measured Cornell box) to an OpenEXR image\n"
       "of CIE XYZ (or camera RGB) and optionally a PNG for display. Ctrl-C stops early and still writes the image.\n"
       "Example: rimu -o box.exr --png box.png --spp 64\n"
       "Partial renders, checkpoints and farms: docs/farm.md; `rimu merge --help` merges partial renders;\n"
-      "`rimu display --help` re-exposes a rendered EXR without rendering."};
+      "`rimu display --help` re-exposes a rendered EXR without rendering; `rimu denoise --help` denoises one."};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
       light_sampler, guiding;
@@ -92,6 +94,11 @@ int main(int argc, char** argv) {
   app.add_option("--preview-error", preview_error,
                  "with --noise-threshold: rewrite this PNG with a false-colour heat map of each pixel's remaining "
                  "error (%) with every preview and at the end");
+  std::string aov;
+  app.add_option("--aov", aov, "write feature layers into the EXR: a comma-separated list of albedo, normal, depth, "
+                               "variance, halves, or all (what `rimu denoise` needs; docs/rendering.md)");
+  app.add_flag("--denoise", job.denoise, "denoise the image (EXR beauty and --png; the noisy beauty is kept as the "
+                                         "EXR layer 'noisy'); costs a feature ray per sample and the denoiser");
   std::string sensors_out;
   app.add_flag("--sensors-only", job.sensors_only,
                "measure the scene's \"sensors\" (lux grids and meters, docs/scene-format.md) without rendering the image");
@@ -118,6 +125,7 @@ int main(int argc, char** argv) {
     job.exr_output = output;
     if (!png.empty()) job.png_output = png;
     if (!sensors_out.empty()) job.sensors_output = sensors_out;
+    if (!aov.empty()) job.aovs = rimu::parse_aov_list(aov, "--aov");
     if (!film.empty()) job.film = film;
     if (!sampler.empty()) job.sampler = rimu::parse_sampler_kind(sampler);
     if (!wavelengths.empty()) job.wavelengths = rimu::parse_wavelength_mode(wavelengths);

@@ -13,6 +13,7 @@
 #include "render/camera/camera_exposure.h"
 #include "render/scene/embree_scene.h"
 #include "render/film/film_tile.h"
+#include "render/output/aov_channels.h"
 #include "spectral/library/spectral_library.h"
 #include "transport/lights/light.h"
 #include "transport/lights/light_sampler.h"
@@ -55,6 +56,9 @@ struct RenderSettings {
   CameraExposureSettings camera_exposure;  ///< the camera's "exposure" and "white_balance" (film units if absent)
   /// film "crop": render only these pixels of the width × height image (the default of `rimu --crop`).
   std::optional<PixelBounds> crop;
+  /// film "aov": the feature layers every render of the scene writes ("albedo,normal", "all"; `rimu --aov` replaces
+  /// them; render/output/aov_channels.h).
+  AovSelection aovs;
 };
 
 /// Everything the renderer needs, owned in one place. Immutable after loading; shared by all render threads.

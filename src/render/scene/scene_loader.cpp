@@ -78,7 +78,7 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
 }
 
 void load_film(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"resolution", "response", "spectral_bins", "filter", "crop"});
+  c.only_keys({"resolution", "response", "spectral_bins", "filter", "crop", "aov"});
   if (c.has("resolution")) {
     const JsonCursor r = c.at("resolution");
     if (r.size() != 2) r.fail("expected [width, height]");
@@ -96,6 +96,14 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
   }
   s.film_response = c.string_or("response", s.film_response);
   s.spectral_bins = c.integer_or("spectral_bins", 0, 0, 471);
+  if (c.has("aov")) {
+    const JsonCursor aov = c.at("aov");
+    try {
+      s.aovs = parse_aov_list(aov.string(), "aov");
+    } catch (const InputError& e) {
+      aov.fail(e.explanation());
+    }
+  }
   if (const auto f = c.find("filter")) {
     f->only_keys({"type", "radius", "sigma"});
     s.filter.type = f->at("type").choice({"box", "gaussian", "blackman-harris"});

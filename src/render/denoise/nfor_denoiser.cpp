@@ -1,0 +1,325 @@
+#include "render/denoise/nfor_denoiser.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "spectral/error.h"
+
+namespace rimu {
+namespace {
+
+constexpr int kFeatures = 7;          // albedo (3), normal (3), depth (1)
+constexpr int kDesign = 1 + kFeatures;  // the intercept and the features' offsets from the centre pixel's
+constexpr int kNormalTerms = kDesign * (kDesign + 1) / 2;
+constexpr int kAccumulators = kNormalTerms + 3 * kDesign;
+// Rousselle, Manzi & Zwicker 2013 ("Robust denoising using feature and color information"): a feature difference
+// within this (in squared units of a feature normalised to about [0, 1]) is not an edge even where the feature is
+// noiseless.
+constexpr double kFeatureThreshold = 1e-3;
+// The ridge on the feature coefficients, relative to the weights' sum: a feature constant over the window then gets
+// coefficient 0 (the fit falls back to the weighted mean) instead of an ill-posed system.
+constexpr double kRidge = 1e-3;
+constexpr int kRowsPerBlock = 4;
+
+float finite(float v) { return std::isfinite(v) ? v : 0.0f; }
+
+// The pixel-wise inputs the filter reads, sanitised and normalised.
+struct Prepared {
+  int width, height;
+  std::array<std::vector<float>, 2> halves;  // 3 channels
+  std::vector<float> half_variance;          // variance of one half's mean ≈ twice the whole's
+  std::vector<float> features;               // kFeatures per pixel
+  std::array<std::vector<float>, 3> feature_variance;
+};
+
+Prepared prepare(const DenoiseInput& in) {
+  const size_t n = size_t(in.width) * size_t(in.height);
+  Prepared p{in.width, in.height, {}, {}, std::vector<float>(n * kFeatures), {}};
+  for (int h = 0; h < 2; ++h) {
+    p.halves[size_t(h)].resize(3 * n);
+    for (size_t i = 0; i < 3 * n; ++i) p.halves[size_t(h)][i] = finite(in.halves[size_t(h)][i]);
+  }
+  p.half_variance.resize(n);
+  for (size_t i = 0; i < n; ++i) p.half_variance[i] = 2.0f * std::max(0.0f, finite(in.variance[i]));
+  // Depth in units of the image's largest depth, so that one threshold and one ridge fit every scene's scale.
+  float max_depth = 0.0f;
+  for (size_t i = 0; i < n; ++i) max_depth = std::max(max_depth, finite(in.depth[i]));
+  const float depth_scale = max_depth > 0.0f ? 1.0f / max_depth : 1.0f;
+  for (size_t i = 0; i < n; ++i) {
+    float* f = &p.features[i * kFeatures];
+    for (int k = 0; k < 3; ++k) {
+      f[k] = finite(in.albedo[3 * i + size_t(k)]);
+      f[3 + k] = finite(in.normal[3 * i + size_t(k)]);
+    }
+    f[6] = finite(in.depth[i]) * depth_scale;
+  }
+  for (auto& v : p.feature_variance) v.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    p.feature_variance[0][i] = std::max(0.0f, finite(in.albedo_variance[i]));
+    p.feature_variance[1][i] = std::max(0.0f, finite(in.normal_variance[i]));
+    p.feature_variance[2][i] = std::max(0.0f, finite(in.depth_variance[i])) * depth_scale * depth_scale;
+  }
+  return p;
+}
+
+// The feature weight of neighbour q for pixel p: exp(−max over the three features of their variance-cancelled
+// squared distance over the bandwidth), as Rousselle et al. 2013 weigh features (without their gradient term).
+double feature_weight(const Prepared& d, size_t p, size_t q, double bandwidth_sq) {
+  static constexpr int kFirst[3] = {0, 3, 6}, kCount[3] = {3, 3, 1};
+  double worst = 0.0;
+  for (int g = 0; g < 3; ++g) {
+    double sq = 0.0;
+    for (int k = kFirst[g]; k < kFirst[g] + kCount[g]; ++k) {
+      const double diff = double(d.features[p * kFeatures + size_t(k)]) - d.features[q * kFeatures + size_t(k)];
+      sq += diff * diff;
+    }
+    sq /= kCount[g];
+    const double vp = d.feature_variance[size_t(g)][p], vq = d.feature_variance[size_t(g)][q];
+    const double distance = (sq - (vp + std::min(vp, vq))) / (bandwidth_sq * std::max(kFeatureThreshold, vp + vq));
+    worst = std::max(worst, distance);
+  }
+  return std::exp(-worst);
+}
+
+// Solves the ridge-regularised weighted normal equations (A β = b, A symmetric, packed) by Cholesky and returns the
+// intercept per channel; the weighted mean when the system is not positive definite or the fit is negative.
+std::array<float, 3> solve_intercept(const double* acc) {
+  const double weight_sum = acc[0];
+  std::array<float, 3> mean{};
+  if (!(weight_sum > 0.0)) return mean;
+  const double* b = acc + kNormalTerms;
+  for (int c = 0; c < 3; ++c) mean[size_t(c)] = float(b[c * kDesign] / weight_sum);
+  double a[kDesign][kDesign];
+  int t = 0;
+  for (int i = 0; i < kDesign; ++i)
+    for (int j = i; j < kDesign; ++j) a[i][j] = a[j][i] = acc[t++];
+  for (int i = 1; i < kDesign; ++i) a[i][i] += kRidge * weight_sum;
+  double l[kDesign][kDesign] = {};
+  for (int j = 0; j < kDesign; ++j) {
+    double s = a[j][j];
+    for (int k = 0; k < j; ++k) s -= l[j][k] * l[j][k];
+    if (!(s > 1e-12 * weight_sum)) return mean;
+    l[j][j] = std::sqrt(s);
+    for (int i = j + 1; i < kDesign; ++i) {
+      double v = a[i][j];
+      for (int k = 0; k < j; ++k) v -= l[i][k] * l[j][k];
+      l[i][j] = v / l[j][j];
+    }
+  }
+  std::array<float, 3> out{};
+  for (int c = 0; c < 3; ++c) {
+    double z[kDesign], x[kDesign];
+    for (int i = 0; i < kDesign; ++i) {
+      double v = b[c * kDesign + i];
+      for (int k = 0; k < i; ++k) v -= l[i][k] * z[k];
+      z[i] = v / l[i][i];
+    }
+    for (int i = kDesign - 1; i >= 0; --i) {
+      double v = z[i];
+      for (int k = i + 1; k < kDesign; ++k) v -= l[k][i] * x[k];
+      x[i] = v / l[i][i];
+    }
+    // A negative intercept is extrapolation past what any neighbour shows (no colour is negative): keep the mean.
+    if (!std::isfinite(x[0]) || x[0] < 0.0) return mean;
+    out[size_t(c)] = float(x[0]);
+  }
+  return out;
+}
+
+}  // namespace
+
+void check_denoise_input(const DenoiseInput& in, const std::string& where) {
+  if (in.width <= 0 || in.height <= 0)
+    throw InputError({where, 0, ""}, "the image to denoise is empty (" + std::to_string(in.width) + "x" +
+                                         std::to_string(in.height) + ")");
+  const size_t n = size_t(in.width) * size_t(in.height);
+  const auto check = [&](const std::vector<float>& v, size_t channels, const char* name) {
+    if (v.size() != n * channels)
+      throw InputError({where, 0, name}, std::string("the denoiser's '") + name + "' buffer holds " +
+                                             std::to_string(v.size()) + " values, not " + std::to_string(n * channels));
+  };
+  check(in.halves[0], 3, "half_even");
+  check(in.halves[1], 3, "half_odd");
+  check(in.variance, 1, "variance");
+  check(in.albedo, 3, "albedo");
+  check(in.normal, 3, "N");
+  check(in.depth, 1, "depth.Z");
+  check(in.albedo_variance, 1, "albedo_variance");
+  check(in.normal_variance, 1, "N_variance");
+  check(in.depth_variance, 1, "depth_variance");
+}
+
+DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings) {
+  check_denoise_input(input, "denoiser input");
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<tbb::global_control> thread_limit;
+  if (settings.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
+
+  const Prepared d = prepare(input);
+  const int w = d.width, h = d.height, r = settings.window_radius, pr = settings.patch_radius;
+  const size_t n = size_t(w) * size_t(h);
+  const int candidates = int(settings.colour_bandwidths.size());
+  std::vector<double> inverse_k_sq;
+  for (double k : settings.colour_bandwidths) inverse_k_sq.push_back(1.0 / (k * k));
+  const double feature_k_sq = settings.feature_bandwidth * settings.feature_bandwidth;
+  // filtered[c][t]: half t filtered with candidate c's weights, computed from the other half.
+  std::vector<std::array<std::vector<float>, 2>> filtered(static_cast<size_t>(candidates));
+  for (auto& f : filtered)
+    for (auto& half : f) half.assign(3 * n, 0.0f);
+
+  const int blocks = (h + kRowsPerBlock - 1) / kRowsPerBlock;
+  tbb::parallel_for(tbb::blocked_range<int>(0, blocks), [&](const tbb::blocked_range<int>& range) {
+    for (int block = range.begin(); block != range.end(); ++block) {
+      const int y0 = block * kRowsPerBlock, y1 = std::min(h, y0 + kRowsPerBlock);
+      // The patch distances need rows y0 − pr … y1 + pr.
+      const int ey0 = std::max(0, y0 - pr), ey1 = std::min(h, y1 + pr), erows = ey1 - ey0;
+      const size_t block_pixels = size_t(y1 - y0) * size_t(w);
+      std::vector<double> acc(block_pixels * size_t(candidates) * 2 * kAccumulators, 0.0);
+      std::array<std::vector<float>, 2> raw, row_box, patch;
+      for (int g = 0; g < 2; ++g) {
+        raw[size_t(g)].resize(size_t(erows) * size_t(w));
+        row_box[size_t(g)].resize(size_t(erows) * size_t(w));
+        patch[size_t(g)].resize(block_pixels);
+      }
+      for (int dy = -r; dy <= r; ++dy) {
+        for (int dx = -r; dx <= r; ++dx) {
+          // Per guide half g: the variance-cancelled squared colour distance of each pixel to its neighbour at
+          // (dx, dy) (Rousselle, Knaus & Zwicker 2012), neighbours outside the image clamped to its border.
+          for (int y = ey0; y < ey1; ++y) {
+            const int qy = std::clamp(y + dy, 0, h - 1);
+            for (int x = 0; x < w; ++x) {
+              const int qx = std::clamp(x + dx, 0, w - 1);
+              const size_t p = size_t(y) * size_t(w) + size_t(x), q = size_t(qy) * size_t(w) + size_t(qx);
+              const double vp = d.half_variance[p], vq = d.half_variance[q];
+              const double cancel = vp + std::min(vp, vq), norm = 1e-10 + vp + vq;
+              for (int g = 0; g < 2; ++g) {
+                const float* c = d.halves[size_t(g)].data();
+                double sq = 0.0;
+                for (int k = 0; k < 3; ++k) {
+                  const double diff = double(c[3 * p + size_t(k)]) - c[3 * q + size_t(k)];
+                  sq += diff * diff;
+                }
+                raw[size_t(g)][size_t(y - ey0) * size_t(w) + size_t(x)] = float((sq / 3.0 - cancel) / norm);
+              }
+            }
+          }
+          // The patch mean: a box over (2pr + 1)² pixels, clipped at the image's edges.
+          for (int g = 0; g < 2; ++g) {
+            for (int y = 0; y < erows; ++y)
+              for (int x = 0; x < w; ++x) {
+                double s = 0.0;
+                const int xa = std::max(0, x - pr), xb = std::min(w - 1, x + pr);
+                for (int xx = xa; xx <= xb; ++xx) s += raw[size_t(g)][size_t(y) * size_t(w) + size_t(xx)];
+                row_box[size_t(g)][size_t(y) * size_t(w) + size_t(x)] = float(s / (xb - xa + 1));
+              }
+            for (int y = y0; y < y1; ++y)
+              for (int x = 0; x < w; ++x) {
+                double s = 0.0;
+                const int ya = std::max(ey0, y - pr), yb = std::min(ey1 - 1, y + pr);
+                for (int yy = ya; yy <= yb; ++yy) s += row_box[size_t(g)][size_t(yy - ey0) * size_t(w) + size_t(x)];
+                patch[size_t(g)][size_t(y - y0) * size_t(w) + size_t(x)] = float(s / (yb - ya + 1));
+              }
+          }
+          for (int y = y0; y < y1; ++y) {
+            const int qy = y + dy;
+            if (qy < 0 || qy >= h) continue;
+            for (int x = 0; x < w; ++x) {
+              const int qx = x + dx;
+              if (qx < 0 || qx >= w) continue;
+              const size_t p = size_t(y) * size_t(w) + size_t(x), q = size_t(qy) * size_t(w) + size_t(qx);
+              const size_t local = size_t(y - y0) * size_t(w) + size_t(x);
+              const double wf = settings.feature_weights ? feature_weight(d, p, q, feature_k_sq) : 1.0;
+              if (wf < 1e-6) continue;
+              double design[kDesign];
+              design[0] = 1.0;
+              for (int k = 0; k < kFeatures; ++k)
+                design[1 + k] = double(d.features[q * kFeatures + size_t(k)]) - d.features[p * kFeatures + size_t(k)];
+              for (int c = 0; c < candidates; ++c) {
+                for (int t = 0; t < 2; ++t) {
+                  // Half t is filtered with weights from the other half: the weights never see the noise they average.
+                  const double dc = std::max(0.0, double(patch[size_t(1 - t)][local]) * inverse_k_sq[size_t(c)]);
+                  const double weight = std::min(std::exp(-dc), wf);
+                  if (weight < 1e-6) continue;
+                  double* a = &acc[((local * size_t(candidates) + size_t(c)) * 2 + size_t(t)) * kAccumulators];
+                  int term = 0;
+                  for (int i = 0; i < kDesign; ++i) {
+                    const double wi = weight * design[i];
+                    for (int j = i; j < kDesign; ++j) a[term++] += wi * design[j];
+                  }
+                  const float* colour = &d.halves[size_t(t)][3 * q];
+                  for (int ch = 0; ch < 3; ++ch) {
+                    const double wy = weight * colour[ch];
+                    for (int i = 0; i < kDesign; ++i) a[kNormalTerms + ch * kDesign + i] += wy * design[i];
+                  }
+                }
+              }
+            }
+          }
+        }
+      }
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+          const size_t p = size_t(y) * size_t(w) + size_t(x), local = size_t(y - y0) * size_t(w) + size_t(x);
+          for (int c = 0; c < candidates; ++c)
+            for (int t = 0; t < 2; ++t) {
+              const std::array<float, 3> v =
+                  solve_intercept(&acc[((local * size_t(candidates) + size_t(c)) * 2 + size_t(t)) * kAccumulators]);
+              for (int ch = 0; ch < 3; ++ch) filtered[size_t(c)][size_t(t)][3 * p + size_t(ch)] = v[size_t(ch)];
+            }
+        }
+    }
+  });
+
+  // Each candidate's error, estimated from the halves: half t filtered (with the other half's weights) against the
+  // other half's noisy values, E[(Â − B)²] = MSE(Â) + Var(B) when Â and B are independent; Var(B) is the same for
+  // every candidate, so the candidate with the least mean of the two comparisons has the least estimated error.
+  std::vector<std::vector<float>> error(size_t(candidates), std::vector<float>(n, 0.0f));
+  for (int c = 0; c < candidates; ++c)
+    for (size_t p = 0; p < n; ++p) {
+      double e = 0.0;
+      for (int t = 0; t < 2; ++t)
+        for (int ch = 0; ch < 3; ++ch) {
+          const double diff = double(filtered[size_t(c)][size_t(t)][3 * p + size_t(ch)]) - d.halves[size_t(1 - t)][3 * p + size_t(ch)];
+          e += diff * diff;
+        }
+      error[size_t(c)][p] = float(e / 6.0);
+    }
+  DenoiseResult result;
+  result.image.assign(3 * n, 0.0f);
+  result.chosen.assign(n, 0);
+  const int sr = settings.selection_radius;
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      for (int x = 0; x < w; ++x) {
+        int best = 0;
+        double best_error = INFINITY;
+        for (int c = 0; c < candidates; ++c) {
+          double s = 0.0;
+          for (int yy = std::max(0, y - sr); yy <= std::min(h - 1, y + sr); ++yy)
+            for (int xx = std::max(0, x - sr); xx <= std::min(w - 1, x + sr); ++xx)
+              s += error[size_t(c)][size_t(yy) * size_t(w) + size_t(xx)];
+          if (s < best_error) {
+            best_error = s;
+            best = c;
+          }
+        }
+        const size_t p = size_t(y) * size_t(w) + size_t(x);
+        result.chosen[p] = best;
+        for (int ch = 0; ch < 3; ++ch) {
+          const float v = 0.5f * (filtered[size_t(best)][0][3 * p + size_t(ch)] + filtered[size_t(best)][1][3 * p + size_t(ch)]);
+          result.image[3 * p + size_t(ch)] =
+              std::isfinite(v) ? v : 0.5f * (d.halves[0][3 * p + size_t(ch)] + d.halves[1][3 * p + size_t(ch)]);
+        }
+      }
+  });
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace rimu

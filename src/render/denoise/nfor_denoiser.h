@@ -1,0 +1,57 @@
+// A Monte Carlo denoiser from published, non-learned methods: nonlinearly weighted first-order regression on the
+// render's features (Bitterli et al. 2016, "Nonlinearly Weighted First-order Regression for Denoising Monte Carlo
+// Renderings", NFOR), simplified as docs/rendering.md ("Denoising") describes.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace rimu {
+
+/// What the denoiser reads, per pixel of a width × height image, row by row. Colours are in the film's space
+/// (CIE XYZ or camera RGB), three interleaved channels.
+struct DenoiseInput {
+  int width = 0, height = 0;
+  std::array<std::vector<float>, 2> halves;  ///< the means of the even and of the odd samples (3 channels)
+  std::vector<float> variance;               ///< variance of the whole beauty's mean (channels averaged; 1 channel)
+  std::vector<float> albedo;                 ///< 3 channels
+  std::vector<float> normal;                 ///< 3 channels
+  std::vector<float> depth;                  ///< 1 channel, any unit (normalised by its largest value)
+  /// The variances of the features' means (1 channel each, components averaged).
+  std::vector<float> albedo_variance, normal_variance, depth_variance;
+};
+
+struct DenoiseSettings {
+  int window_radius = 7;   ///< the regression's window: (2r + 1)² pixels
+  int patch_radius = 2;    ///< the NL-means colour patch: (2p + 1)² pixels
+  /// The colour bandwidths k of the NL-means weights, one filtered candidate each; every pixel takes the candidate
+  /// whose error (estimated from the two halves) is lowest around it. NFOR's choice: 0.5 and 1.
+  std::vector<double> colour_bandwidths{0.5, 1.0};
+  /// Also weigh neighbours by their features' distance (Rousselle, Manzi & Zwicker 2013's joint weights, the
+  /// smaller of the colour and the feature weight). NFOR weighs by colour alone; here the feature weights are on by
+  /// default because at low spp the colour weights alone let a noisy lit wall bleed into the black beyond a scene's
+  /// edge, where a relative error measure punishes it most (docs/benchmarks.md, "Denoising").
+  bool feature_weights = true;
+  double feature_bandwidth = 1.0;  ///< k_f of the feature weights
+  int selection_radius = 3;        ///< the box the candidates' error estimates are averaged over
+  int threads = 0;                 ///< 0: every core (oneTBB)
+};
+
+struct DenoiseResult {
+  std::vector<float> image;                 ///< the denoised beauty, 3 channels
+  std::vector<int> chosen;                  ///< per pixel, the index of the colour bandwidth chosen
+  double seconds = 0.0;
+};
+
+/// Checks the input's sizes (every buffer the right length for width × height, both sizes positive): throws
+/// InputError naming `where` otherwise.
+void check_denoise_input(const DenoiseInput& input, const std::string& where);
+
+/// Denoises: for each candidate bandwidth, each half is filtered with weights computed from the other half (so the
+/// weights do not see the noise they average), by a weighted first-order regression of the colour on the features
+/// around each pixel; the candidate's image is the mean of the two filtered halves. Non-finite inputs are read as 0;
+/// the output is finite. Cost: about (2r+1)² · 250 flops per pixel and candidate, parallel over rows.
+DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings = {});
+
+}  // namespace rimu
