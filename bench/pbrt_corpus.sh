@@ -52,7 +52,7 @@ share() { awk -v t="$1" -v b="$2" 'BEGIN {if (t > 0) printf "%d/%d (%.1f %%)", b
 echo "# pbrt_corpus: $(date -u '+%Y-%m-%d %H:%M UTC'), load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "# SPP=${SPP:-64} REF_SPP=${REF_SPP:-1024} THREADS=${THREADS:-2} RESOLUTION=${RESOLUTION:-scene} NICE=${NICE:-19}"
 rows=()
-while read -r name repo commit path format; do
+while read -r name repo _commit path format; do
   [[ -z "$name" || $name == \#* ]] && continue
   is_wanted "$name" || continue
   src="$SCENES/${repo/\//+}/$path"
@@ -64,7 +64,7 @@ while read -r name repo commit path format; do
   fi
   if [[ $format == v3 ]]; then
     if ! "$PBRT" --upgrade "$src" >"$entry.tmp" 2>"$OUT/$name.upgrade.log"; then
-      rows+=("| $name | v3 | pbrt --upgrade failed: $(grep -m1 -i error "$OUT/$name.upgrade.log" | cut -c1-160) | | | | | | | | |")
+      rows+=("| $name | v3 | pbrt --upgrade failed: $(grep -m1 -i error "$OUT/$name.upgrade.log" | sed "s/\x1b\[[0-9;]*m//g" | cut -c1-160) | | | | | | | | |")
       rm -f "$entry.tmp"
       continue
     fi
@@ -83,7 +83,7 @@ while read -r name repo commit path format; do
       if grep -q "^$r failed" "$log.err"; then
         msg=$(grep -v -e '^\s*$' -e '^ignored: ' "$work/$r-s1.log" 2>/dev/null | grep -m1 -i -e error -e cannot -e refus -e unknown -e fail ||
           tail -1 "$work/$r-s1.log" 2>/dev/null)
-        msg=$(cut -c1-200 <<<"${msg//|/\\|}")
+        msg=$(sed "s/\x1b\[[0-9;]*m//g" <<<"${msg//|/\\|}" | cut -c1-200)
         if [[ $r == pbrt ]]; then pbrt_ok="no: $msg"; rimu_ok="(not run)"; else rimu_ok="no: $msg"; fi
         break
       fi
