@@ -14,7 +14,8 @@
 # [/tmp/pbrt_corpus], SPP, REF_SPP, THREADS, RESOLUTION, SPACE), plus NICE [19]: both renderers run under
 # `nice -n NICE` (the script's own process is reniced, and the renderers inherit it).
 #
-# Summary columns: whether each renderer loaded the scene (else the first error line); the per-channel mean ratio
+# Summary columns: whether each renderer loaded the scene (else the first error line; where pbrt refuses a scene,
+# Rimu is tried with one 1-spp render of the same copy); the per-channel mean ratio
 # Rimu/pbrt of the two REF_SPP references; the share of 8×8 tiles × channels beyond 3σ between the references and,
 # as the test's control, between the two SPP seeds of pbrt and of Rimu; Rimu's time to pbrt's relMSE over pbrt's
 # (below 1: Rimu is faster); peak RSS of each renderer's SPP render; the number of lines Rimu lists as ignored.
@@ -30,6 +31,7 @@ shift 2
 [[ -x "$PBRT" ]] || { echo "$0: $PBRT is not an executable" >&2; exit 1; }
 [[ -d "$SCENES" ]] || { echo "$0: $SCENES is not a folder" >&2; exit 1; }
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD_DIR=$(realpath "${BUILD:-$ROOT/build}")
 LIST="$ROOT/bench/pbrt_corpus.txt"
 OUT=${OUT:-/tmp/pbrt_corpus}
 export OUT
@@ -84,12 +86,29 @@ while read -r name repo _commit path format; do
         msg=$(grep -v -e '^\s*$' -e '^ignored: ' "$work/$r-s1.log" 2>/dev/null | grep -m1 -i -e error -e cannot -e refus -e unknown -e fail ||
           tail -1 "$work/$r-s1.log" 2>/dev/null)
         msg=$(sed "s/\x1b\[[0-9;]*m//g" <<<"${msg//|/\\|}" | cut -c1-200)
-        if [[ $r == pbrt ]]; then pbrt_ok="no: $msg"; rimu_ok="(not run)"; else rimu_ok="no: $msg"; fi
+        if [[ $r == rimu ]]; then
+          rimu_ok="no: $msg"
+          break
+        fi
+        pbrt_ok="no: $msg"
+        # Rimu was not run by the side by side: whether it loads the scene is still worth a row, so one 1-spp
+        # render of the copy the side by side prepared (RESOLUTION applied) says so.
+        res=()
+        [[ -n "${RESOLUTION:-}" ]] && res=(--resolution "$RESOLUTION")
+        if "$BUILD_DIR/bin/rimu" "$work/scene/corpus_$name.pbrt" -o "$work/rimu-probe.exr" -q --spp 1 \
+          --threads "${THREADS:-2}" "${res[@]}" >"$work/rimu-s1.log" 2>&1; then
+          rimu_ok="yes (1-spp probe)"
+        else
+          msg=$(grep -v -e '^\s*$' -e '^ignored: ' "$work/rimu-s1.log" | head -1)
+          rimu_ok="no: $(cut -c1-200 <<<"${msg//|/\\|}")"
+        fi
         break
       fi
     done
     [[ $pbrt_ok == yes && $rimu_ok == yes ]] && rimu_ok="side by side failed: $(tail -1 "$log.err" | cut -c1-160)"
-    rows+=("| $name | $format | $pbrt_ok | $rimu_ok | | | | | | | $(grep -c '^ignored: ' "$work/rimu-s1.log" 2>/dev/null || echo –) |")
+    ignored=–
+    [[ -f "$work/rimu-s1.log" ]] && ignored=$(grep -c '^ignored: ' "$work/rimu-s1.log")
+    rows+=("| $name | $format | $pbrt_ok | $rimu_ok | | | | | | | $ignored |")
     continue
   fi
   refrow=$(grep -m1 "| corpus_$name | rimu-ref / pbrt-ref |" "$log.md")
