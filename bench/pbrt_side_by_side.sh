@@ -109,7 +109,11 @@ for scene in "${scenes[@]}"; do
   # difference of many standard errors, so pbrt writes 32-bit floats too. Rimu lists the parameter as ignored.
   grep -q savefp16 "$file" || sed -i -E 's/^([[:space:]]*Film[[:space:]]+"[a-z]+")/\1 "bool savefp16" false/' "$file"
   if [[ -n "$RESOLUTION" ]]; then
-    sed -i -E "s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION%x*}/; s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION#*x}/" "$file"
+    # Lines that are comments are left alone (published scenes keep old resolutions commented out); a Film without
+    # a resolution of its own (pbrt's default is 1280×720) is given RESOLUTION, so that pbrt renders it too.
+    sed -i -E "/^[[:space:]]*#/! {s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION%x*}/; s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION#*x}/}" "$file"
+    grep -q '^[^#]*"integer xresolution"' "$file" ||
+      sed -i -E "s/^([[:space:]]*Film[[:space:]]+\"[a-z]+\")/\1 \"integer xresolution\" ${RESOLUTION%x*} \"integer yresolution\" ${RESOLUTION#*x}/" "$file"
   fi
   for r in "${renderers[@]}"; do
     run_renderer $r "$file" "$SPP" 1 "$work/$r-s1.exr"
