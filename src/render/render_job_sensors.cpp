@@ -77,6 +77,7 @@ void measure_job_sensors(RenderJobState& s, InterruptFlag& interrupt) {
   }
   SensorMeasureOptions options;
   options.samples = job.sensor_samples.value_or(sensors.samples);
+  options.replicates = sensors.replicates;
   options.seed = scene.settings.seed;
   options.sampler = scene.settings.sampler;
   options.threads = job.threads.value_or(0);

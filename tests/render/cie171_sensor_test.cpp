@@ -18,6 +18,7 @@
 #include "render/scene/scene.h"
 #include "render/scene/scene_sensors.h"
 #include "render/sensors/sensor_measurement.h"
+#include "sensor_test_support.h"
 #include "test_support.h"
 
 using namespace rimu;
@@ -26,7 +27,6 @@ using nlohmann::json;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kSigmas = 4.5;
 
 using Point = std::array<double, 3>;
 
@@ -101,20 +101,13 @@ json upward_meter(Point p) {
   return {{"type", "illuminance"}, {"position", p}, {"normal", {0, 0, 1}}};
 }
 
-SensorReadings measure(const json& document) {
-  const auto scene = load_scene(document, "cie171.json", std::filesystem::current_path(), test::library());
-  const SensorSettings sensors = scene_sensors(document, "cie171.json");
-  SensorMeasureOptions options;
-  options.samples = sensors.samples;
-  options.seed = 17;
-  return measure_sensors(*scene, sensors, test::library().photopic_v(), options);
-}
+SensorReadings measure(const json& document) { return test::measure(test::load_sensors(document, "cie171.json"), 17); }
 
 void check_case(const char* name, const MeterReading& r, double reference) {
   MESSAGE(std::string(name) << ": reference " << reference << " lx, Rimu " << r.value << " lx, standard error " << r.standard_error
                << " lx, difference " << 100.0 * (r.value - reference) / reference << " %");
   CHECK(r.standard_error < 0.02 * reference);
-  CHECK(std::abs(r.value - reference) <= kSigmas * r.standard_error);
+  CHECK(std::abs(r.value - reference) <= test::kSensorSigmas * r.standard_error);
 }
 
 }  // namespace
@@ -232,4 +225,42 @@ TEST_CASE("CIE 171 internal obstruction: a plate between an area source and the 
     if (i == 3) CHECK(hidden.size() < 3);
     check_case(names[i], readings.meters[i], kPi * luminance * visible_factor);
   }
+}
+
+TEST_CASE("Sensor standard errors are honest: a grid's errors over their standard errors have a t distribution's spread") {
+  // The parallel panel (2 m × 1 m, 1000 nt, 2 m up) over a 20 × 10 floor grid reaching well beyond it: 200 readings
+  // with exact references. A reading's standard error comes from the spread of its R = 16 independent replicates'
+  // means (replicates_for), so z = (reading − reference)/SE has a Student t distribution of R − 1 = 15 degrees of
+  // freedom if the replicate means are near normal: E[z²] = ν/(ν − 2) = 1.154, Var[z²] = 3ν²/((ν − 2)(ν − 4)) −
+  // E[z²]² = 3.39, so the mean of 200 z² has standard deviation 0.13. The textbook s/√n of a Sobol' sequence's
+  // samples, which this replaced, gave a mean z² under 0.1 (its errors 3–8× too large); errors too small would give
+  // one far above. The bounds are E[z²] ± 4 standard deviations of the mean.
+  const double luminance = 1000.0, height = 2.0;
+  const std::vector<Point> panel = {{0, 0, height}, {0, 1, height}, {2, 1, height}, {2, 0, height}};
+  json vertices = json::array();
+  for (const Point& p : panel) vertices.push_back(p);
+  const int nu = 20, nv = 10;
+  const double x0 = -1.0, y0 = -1.5, size_u = 4.0, size_v = 4.0;
+  const json grid = {{"origin", {x0, y0, 0}}, {"u", {1, 0, 0}}, {"v", {0, 1, 0}}, {"size", {size_u, size_v}}, {"counts", {nu, nv}}};
+  const SensorReadings readings = measure(base_scene(
+      json::array({{{"type", "quad"}, {"vertices", vertices}, {"material", "black"},
+                    {"emission", {{"spectrum", {{"illuminant", "D65"}}}, {"luminance_nt", luminance}}}}}),
+      json::array(), {{"samples", 256}, {"grids", json::array({grid})}}));
+  REQUIRE(readings.grids.size() == 1);
+  REQUIRE(readings.grids[0].points.size() == size_t(nu * nv));
+  CHECK(replicates_for(256) == 16);
+  double sum_z2 = 0.0;
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const Point p = {x0 + (i + 0.5) * size_u / nu, y0 + (j + 0.5) * size_v / nv, 0.0};
+      const MeterReading& r = readings.grids[0].points[size_t(j * nu + i)];
+      const double reference = kPi * luminance * polygon_factor(p, {0, 0, 1}, panel);
+      REQUIRE(r.standard_error > 0.0);
+      const double z = (r.value - reference) / r.standard_error;
+      sum_z2 += z * z;
+    }
+  const double mean_z2 = sum_z2 / (nu * nv);
+  MESSAGE("mean z² over " << nu * nv << " grid points: " << mean_z2 << " (t distribution of 15 degrees of freedom: 1.154)");
+  CHECK(mean_z2 > 1.154 - 4 * 0.13);
+  CHECK(mean_z2 < 1.154 + 4 * 0.13);
 }

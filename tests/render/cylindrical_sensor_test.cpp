@@ -15,6 +15,7 @@
 #include "render/scene/scene_sensors.h"
 #include "render/sensors/sensor_measurement.h"
 #include "render/sensors/sensor_outputs.h"
+#include "sensor_test_support.h"
 #include "test_support.h"
 #include "transport/integrators/meter_receptor.h"
 
@@ -24,41 +25,9 @@ using nlohmann::json;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-// |reading − reference| ≤ 4.5 standard errors: a correct estimator fails with probability 7e-6 (fixed seeds).
-constexpr double kSigmas = 4.5;
+test::LoadedSensors load(const json& document) { return test::load_sensors(document, "cylinders.json"); }
 
-json scene_with(json lights, json sensors) {
-  return json{{"camera", {{"from", {0, -5, 1}}, {"to", {0, 0, 0}}, {"up", {0, 0, 1}}}},
-              {"materials", {{"grey", {{"type", "diffuse"}, {"reflectance", 0.5}}}}},
-              {"lights", std::move(lights)},
-              {"shapes", json::array()},
-              {"sensors", std::move(sensors)}};
-}
-
-struct Loaded {
-  std::unique_ptr<Scene> scene;
-  SensorSettings sensors;
-};
-
-Loaded load(const json& document) {
-  return {load_scene(document, "cylinders.json", std::filesystem::current_path(), test::library()),
-          scene_sensors(document, "cylinders.json")};
-}
-
-SensorReadings measure(const Loaded& loaded) {
-  SensorMeasureOptions options;
-  options.samples = loaded.sensors.samples;
-  options.seed = 5;
-  return measure_sensors(*loaded.scene, loaded.sensors, test::library().photopic_v(), options);
-}
-
-void check_reading(const MeterReading& r, double expected) {
-  CAPTURE(r.value);
-  CAPTURE(r.standard_error);
-  CAPTURE(expected);
-  CHECK(r.standard_error < 0.02 * expected);
-  CHECK(std::abs(r.value - expected) <= kSigmas * r.standard_error);
-}
+SensorReadings measure(const test::LoadedSensors& loaded) { return test::measure(loaded, 5); }
 
 json cylinder(const std::string& name, std::vector<double> position, std::vector<double> axis) {
   return {{"name", name}, {"type", "cylindrical"}, {"position", position}, {"axis", axis}};
@@ -85,7 +54,7 @@ TEST_CASE("cylindrical sensors: a point source gives I sin θ / (π d²), and (1
                                    semi_cylinder("s90", {2, 0, 1}, {0, 0, 1}, {0, 1, 3}),
                                    semi_cylinder("s180", {2, 0, 1}, {0, 0, 1}, {1, 0, 0}),
                                    semi_cylinder("s60", {2, 0, 1}, {0, 0, 1}, {-0.5, std::sqrt(0.75), 0})});
-  const auto scene = load(scene_with(json::array({lamp}), {{"samples", 256}, {"meters", meters}}));
+  const auto scene = load(test::sensor_scene(json::array({lamp}), {{"samples", 256}, {"meters", meters}}));
   const SensorReadings r = measure(scene);
   REQUIRE(r.meters.size() == 8);
   auto e_cyl = [&](double x, double y, double dz) {
@@ -93,21 +62,21 @@ TEST_CASE("cylindrical sensors: a point source gives I sin θ / (π d²), and (1
     return candela * std::sqrt(x * x + y * y) / std::sqrt(d2) / (kPi * d2);
   };
   SUBCASE("cylindrical") {
-    check_reading(r.meters[0], e_cyl(1, 0, 3));
-    check_reading(r.meters[1], e_cyl(2, 1, 2));
-    check_reading(r.meters[2], e_cyl(0.5, -0.5, 0.5));
+    test::check_sensor_reading(r.meters[0], e_cyl(1, 0, 3));
+    test::check_sensor_reading(r.meters[1], e_cyl(2, 1, 2));
+    test::check_sensor_reading(r.meters[2], e_cyl(0.5, -0.5, 0.5));
     // Axis x: the roles of x and z swap (the distance is the same, sin θ = √(1 + 4) / 3).
-    check_reading(r.meters[3], e_cyl(1, 2, 2));
+    test::check_sensor_reading(r.meters[3], e_cyl(1, 2, 2));
   }
   SUBCASE("semi-cylindrical") {
     const double e = e_cyl(2, 0, 2);
-    check_reading(r.meters[4], 2.0 * e);
-    check_reading(r.meters[5], e);
+    test::check_sensor_reading(r.meters[4], 2.0 * e);
+    test::check_sensor_reading(r.meters[5], e);
     CHECK(r.meters[6].value == 0.0);
-    check_reading(r.meters[7], 1.5 * e);
+    test::check_sensor_reading(r.meters[7], 1.5 * e);
   }
   SUBCASE("a cylinder right under the lamp, along the light, reads nothing") {
-    const auto below = load(scene_with(json::array({lamp}), {{"samples", 16}, {"meters", {cylinder("c", {0, 0, 0}, {0, 0, 1})}}}));
+    const auto below = load(test::sensor_scene(json::array({lamp}), {{"samples", 16}, {"meters", {cylinder("c", {0, 0, 0}, {0, 0, 1})}}}));
     // sin θ rounds to at most ~3e-4 in single precision there: 1e-3 of the scale I / (π d²) bounds it.
     CHECK(measure(below).meters[0].value <= 1e-3 * candela / (kPi * 9.0));
   }
@@ -121,11 +90,11 @@ TEST_CASE("cylindrical sensors: a uniform radiance L all round gives π L whatev
   const json meters = json::array({cylinder("up", {0, 0, 0}, {0, 0, 1}), cylinder("tilted", {1, 2, 3}, {1, 1, 0.3}),
                                    semi_cylinder("semi", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}),
                                    semi_cylinder("semi_tilted", {0, 0, 0}, {0, 1, 1}, {1, 0, 0})});
-  const auto scene = load(scene_with(json::array({sky}), {{"samples", 1024}, {"meters", meters}}));
+  const auto scene = load(test::sensor_scene(json::array({sky}), {{"samples", 1024}, {"meters", meters}}));
   const SensorReadings r = measure(scene);
   for (size_t k = 0; k < r.meters.size(); ++k) {
     CAPTURE(k);
-    check_reading(r.meters[k], kPi * luminance_nt);
+    test::check_sensor_reading(r.meters[k], kPi * luminance_nt);
   }
   const std::string csv = sensor_csv(scene.sensors, r);
   CHECK(csv.find("\nup,cylindrical_illuminance,,,0,0,0,0,0,1,") != std::string::npos);
@@ -184,7 +153,7 @@ TEST_CASE("cylindrical sensors: bad meters are refused by key") {
   const json lamp = json::array({{{"type", "point"}, {"position", {0, 0, 2}}, {"spectrum", {{"blackbody", 3000}}},
                                   {"luminous_intensity_cd", 100}}});
   auto fails = [&](json meter, std::initializer_list<std::string> fragments) {
-    test::input_error([&] { load(scene_with(lamp, {{"meters", {std::move(meter)}}})); }, fragments);
+    test::input_error([&] { load(test::sensor_scene(lamp, {{"meters", {std::move(meter)}}})); }, fragments);
   };
   fails({{"type", "cylindrical"}, {"position", {0, 0, 0}}}, {"/sensors/meters/0", "axis"});
   fails({{"type", "cylindrical"}, {"position", {0, 0, 0}}, {"axis", {0, 0, 1}}, {"normal", {0, 0, 1}}},

@@ -15,6 +15,7 @@
 #include "render/sensors/sensor_measurement.h"
 #include "render/sensors/sensor_outputs.h"
 #include "spectral/error.h"
+#include "sensor_test_support.h"
 #include "test_support.h"
 
 using namespace rimu;
@@ -22,7 +23,6 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kSigmas = 4.5;
 const json kOvercast = {{"type", "cie_sky"}, {"sky_type", 1}, {"diffuse_horizontal_illuminance_lx", 10000}};
 
 // One meter facing up (+y) at (x, 0, 0): u along z, v along x, so u × v = +y.
@@ -39,29 +39,11 @@ json scene_with(json lights, json grids, json shapes = json::array()) {
           {"sensors", {{"samples", 4096}, {"grids", std::move(grids)}}}};
 }
 
-struct Loaded {
-  std::unique_ptr<Scene> scene;
-  SensorSettings sensors;
-};
+test::LoadedSensors load(const json& document) { return test::load_sensors(document, "df.json"); }
 
-Loaded load(const json& document) {
-  return {load_scene(document, "df.json", std::filesystem::current_path(), test::library()),
-          scene_sensors(document, "df.json")};
-}
+SensorReadings measure(const test::LoadedSensors& loaded) { return test::measure(loaded, 5); }
 
-SensorReadings measure(const Loaded& loaded) {
-  SensorMeasureOptions options;
-  options.samples = loaded.sensors.samples;
-  options.seed = 5;
-  return measure_sensors(*loaded.scene, loaded.sensors, test::library().photopic_v(), options);
-}
-
-void check_df(const MeterReading& df, double expected_percent) {
-  CAPTURE(df.value);
-  CAPTURE(df.standard_error);
-  CHECK(df.standard_error < 0.02 * expected_percent);
-  CHECK(std::abs(df.value - expected_percent) <= kSigmas * df.standard_error);
-}
+void check_df(const MeterReading& df, double expected_percent) { test::check_sensor_reading(df, expected_percent); }
 
 }  // namespace
 
@@ -70,7 +52,7 @@ TEST_CASE("daylight factor: 100 % unobstructed, 50 % at the foot of a tall black
                      {"vertices", {{0, 0, -1000}, {0, 0, 1000}, {0, 2000, 1000}, {0, 2000, -1000}}}};
   // Unobstructed (nothing in the scene) and by the wall: two scenes, since the wall hides half the sky from any
   // point on its side near enough to it.
-  const Loaded open_scene = load(scene_with(json::array({kOvercast}), {point_grid("open", 0.0)}));
+  const test::LoadedSensors open_scene = load(scene_with(json::array({kOvercast}), {point_grid("open", 0.0)}));
   const SensorReadings open_readings = measure(open_scene);
   REQUIRE(open_readings.grids[0].daylight_factor);
   const DaylightFactors& open = *open_readings.grids[0].daylight_factor;
@@ -80,7 +62,7 @@ TEST_CASE("daylight factor: 100 % unobstructed, 50 % at the foot of a tall black
   CHECK(open.df_avg_percent == doctest::Approx(open.points_percent[0].value));
   MESSAGE("unobstructed: DF " << open.points_percent[0].value << " % +- " << open.points_percent[0].standard_error);
 
-  const Loaded loaded = load(scene_with(json::array({kOvercast}), {point_grid("behind", -0.01), point_grid("wall", 0.01)},
+  const test::LoadedSensors loaded = load(scene_with(json::array({kOvercast}), {point_grid("behind", -0.01), point_grid("wall", 0.01)},
                                         json::array({wall})));
   const SensorReadings readings = measure(loaded);
   REQUIRE(readings.grids.size() == 2);
@@ -102,7 +84,7 @@ TEST_CASE("daylight factor: 100 % unobstructed, 50 % at the foot of a tall black
 
 TEST_CASE("daylight factor: a scene without the overcast sky alone is refused, naming the grid's key") {
   const auto refused = [](json lights, const std::string& expected) {
-    const Loaded loaded = load(scene_with(std::move(lights), {point_grid("g", 0.0)}));
+    const test::LoadedSensors loaded = load(scene_with(std::move(lights), {point_grid("g", 0.0)}));
     CHECK_THROWS_WITH_AS(
         check_daylight_factor_grids(*loaded.scene, loaded.sensors, test::library().photopic_v(), "df.json"),
         doctest::Contains("/sensors/grids/0/daylight_factor"), InputError);

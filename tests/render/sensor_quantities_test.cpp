@@ -14,6 +14,7 @@
 #include "render/sensors/sensor_measurement.h"
 #include "render/sensors/sensor_outputs.h"
 #include "spectral/photometry/photometry.h"
+#include "sensor_test_support.h"
 #include "test_support.h"
 
 using namespace rimu;
@@ -22,23 +23,6 @@ using nlohmann::json;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kSigmas = 4.5;  // a correct estimator fails with probability 7e-6 (fixed seeds)
-
-json scene_with(json lights, json sensors) {
-  return json{{"camera", {{"from", {0, -5, 1}}, {"to", {0, 0, 0}}, {"up", {0, 0, 1}}}},
-              {"materials", {{"grey", {{"type", "diffuse"}, {"reflectance", 0.5}}}}},
-              {"lights", std::move(lights)},
-              {"shapes", json::array()},
-              {"sensors", std::move(sensors)}};
-}
-
-void check_reading(const MeterReading& r, double expected, double max_relative_error = 0.02) {
-  CAPTURE(r.value);
-  CAPTURE(r.standard_error);
-  CAPTURE(expected);
-  CHECK(r.standard_error < max_relative_error * expected);
-  CHECK(std::abs(r.value - expected) <= kSigmas * r.standard_error);
-}
 
 }  // namespace
 
@@ -67,7 +51,7 @@ TEST_CASE("sensor quantities: scotopic lux and melanopic EDI of a uniform sky ma
     const double scotopic_ratio = scotopic_luminous_efficacy_lm_W(*spectrum, library.scotopic_v_prime()).lm_W /
                                   luminous_efficacy_of_radiation_lm_W(*spectrum, library.photopic_v()).lm_W;
     const double der = melanopic_daylight_efficacy_ratio(*spectrum, library.photopic_v(), library.melanopic_action_spectrum());
-    const json document = scene_with(
+    const json document = test::sensor_scene(
         json::array({{{"type", "environment"}, {"spectrum", {{"illuminant", illuminant}}}, {"luminance_nt", luminance_nt}}}),
         {{"samples", 2048},
          {"quantities", {"photopic", "scotopic", "melanopic_edi"}},
@@ -86,14 +70,14 @@ TEST_CASE("sensor quantities: scotopic lux and melanopic EDI of a uniform sky ma
     REQUIRE(r.grids[0].melanopic_points.size() == 2);
     REQUIRE(r.meters_melanopic.size() == 2);
     for (size_t k = 0; k < 2; ++k) {
-      check_reading(r.grids[0].points[k], e_lx);
-      check_reading(r.grids[0].scotopic_points[k], e_lx * scotopic_ratio);
-      check_reading(r.grids[0].melanopic_points[k], e_lx * der);
+      test::check_sensor_reading(r.grids[0].points[k], e_lx);
+      test::check_sensor_reading(r.grids[0].scotopic_points[k], e_lx * scotopic_ratio);
+      test::check_sensor_reading(r.grids[0].melanopic_points[k], e_lx * der);
     }
-    check_reading(r.meters_scotopic[0], e_lx * scotopic_ratio);
-    check_reading(r.meters_melanopic[0], e_lx * der);
-    check_reading(r.meters_scotopic[1], luminance_nt * scotopic_ratio);
-    check_reading(r.meters_melanopic[1], luminance_nt * der);
+    test::check_sensor_reading(r.meters_scotopic[0], e_lx * scotopic_ratio);
+    test::check_sensor_reading(r.meters_melanopic[0], e_lx * der);
+    test::check_sensor_reading(r.meters_scotopic[1], luminance_nt * scotopic_ratio);
+    test::check_sensor_reading(r.meters_melanopic[1], luminance_nt * der);
 
     const std::string csv = sensor_csv(sensors, r);
     CHECK(csv.find("\nplane,scotopic_illuminance,1,0,") != std::string::npos);
@@ -113,7 +97,7 @@ TEST_CASE("sensor quantities: only what is asked for is measured, and bad lists 
   const json lamp = json::array({{{"type", "point"}, {"position", {0, 0, 2}}, {"spectrum", {{"blackbody", 3000}}},
                                   {"luminous_intensity_cd", 100}}});
   const json meter = {{"type", "illuminance"}, {"position", {0, 0, 0}}, {"normal", {0, 0, 1}}};
-  const json plain = scene_with(lamp, {{"samples", 8}, {"meters", {meter}}});
+  const json plain = test::sensor_scene(lamp, {{"samples", 8}, {"meters", {meter}}});
   const auto scene = load_scene(plain, "q.json", std::filesystem::current_path(), test::library());
   SensorMeasureOptions options;
   options.samples = 8;
@@ -125,7 +109,7 @@ TEST_CASE("sensor quantities: only what is asked for is measured, and bad lists 
   auto fails = [&](json quantities, std::initializer_list<std::string> fragments) {
     test::input_error(
         [&] {
-          load_scene(scene_with(lamp, {{"quantities", quantities}, {"meters", {meter}}}), "q.json",
+          load_scene(test::sensor_scene(lamp, {{"quantities", quantities}, {"meters", {meter}}}), "q.json",
                      std::filesystem::current_path(), test::library());
         },
         fragments);

@@ -14,6 +14,7 @@
 #include "render/scene/scene_sensors.h"
 #include "render/sensors/sensor_measurement.h"
 #include "render/sensors/sensor_outputs.h"
+#include "sensor_test_support.h"
 #include "test_support.h"
 
 using namespace rimu;
@@ -22,41 +23,13 @@ using nlohmann::json;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-// |reading − reference| ≤ 4.5 standard errors: a correct estimator fails with probability 7e-6 (fixed seeds).
-constexpr double kSigmas = 4.5;
+using test::sensor_scene;
 
-json scene_with(json lights, json sensors, json shapes = json::array()) {
-  return json{{"camera", {{"from", {0, -5, 1}}, {"to", {0, 0, 0}}, {"up", {0, 0, 1}}}},
-              {"materials", {{"grey", {{"type", "diffuse"}, {"reflectance", 0.5}}}}},
-              {"lights", std::move(lights)},
-              {"shapes", std::move(shapes)},
-              {"sensors", std::move(sensors)}};
+test::LoadedSensors load(const json& document, const std::filesystem::path& directory = std::filesystem::current_path()) {
+  return test::load_sensors(document, "sensors.json", directory);
 }
 
-// A scene and its sensors, read as a render job reads them (load_scene checks the section; scene_sensors reads it).
-struct Loaded {
-  std::unique_ptr<Scene> scene;
-  SensorSettings sensors;
-};
-
-Loaded load(const json& document, const std::filesystem::path& directory = std::filesystem::current_path()) {
-  return {load_scene(document, "sensors.json", directory, test::library()), scene_sensors(document, "sensors.json")};
-}
-
-SensorReadings measure(const Loaded& loaded, uint64_t seed = 3) {
-  SensorMeasureOptions options;
-  options.samples = loaded.sensors.samples;
-  options.seed = seed;
-  return measure_sensors(*loaded.scene, loaded.sensors, test::library().photopic_v(), options);
-}
-
-void check_reading(const MeterReading& r, double expected) {
-  CAPTURE(r.value);
-  CAPTURE(r.standard_error);
-  CAPTURE(expected);
-  CHECK(r.standard_error < 0.02 * expected);  // precise enough to tell a 2 % error apart
-  CHECK(std::abs(r.value - expected) <= kSigmas * r.standard_error);
-}
+SensorReadings measure(const test::LoadedSensors& loaded, uint64_t seed = 3) { return test::measure(loaded, seed); }
 
 json point_lamp(double candela, std::vector<double> position) {
   return json{{"type", "point"}, {"position", position}, {"spectrum", {{"blackbody", 2856}}}, {"luminous_intensity_cd", candela}};
@@ -73,7 +46,7 @@ TEST_CASE("sensors: a point source of I cd over a plane gives I cos³θ / h² lx
   // The inverse-square and cosine laws (CIE 171:2006, the point-source cases of its section 5): with the lamp at
   // z = 3 and planes at z = 0 and z = 2, h = 3 m and 1 m, and θ from 9.5° to 74°.
   const double candela = 1000.0;
-  const auto scene = load(scene_with(json::array({point_lamp(candela, {0, 0, 3})}),
+  const auto scene = load(sensor_scene(json::array({point_lamp(candela, {0, 0, 3})}),
                                      {{"samples", 512}, {"grids", {row_grid("floor", 0.0), row_grid("table", 2.0)}}}));
   const SensorReadings readings = measure(scene);
   REQUIRE(readings.grids.size() == 2);
@@ -83,7 +56,7 @@ TEST_CASE("sensors: a point source of I cd over a plane gives I cos³θ / h² lx
       const double x = 0.5 + i, cos_theta = h / std::sqrt(h * h + x * x);
       CAPTURE(h);
       CAPTURE(x);
-      check_reading(readings.grids[size_t(g)].points[size_t(i)], candela * cos_theta * cos_theta * cos_theta / (h * h));
+      test::check_sensor_reading(readings.grids[size_t(g)].points[size_t(i)], candela * cos_theta * cos_theta * cos_theta / (h * h));
     }
   }
   const GridReadings& floor = readings.grids[0];
@@ -91,7 +64,7 @@ TEST_CASE("sensors: a point source of I cd over a plane gives I cos³θ / h² lx
   CHECK(floor.e_min_lx == doctest::Approx(floor.points[3].value));
   CHECK(floor.u0 == doctest::Approx(floor.e_min_lx / floor.e_avg_lx));
   SUBCASE("a meter facing away reads nothing; one facing down under the lamp reads nothing either") {
-    const auto away = load(scene_with(json::array({point_lamp(candela, {0, 0, 3})}),
+    const auto away = load(sensor_scene(json::array({point_lamp(candela, {0, 0, 3})}),
                                       {{"samples", 16},
                                        {"meters", {{{"type", "illuminance"}, {"position", {0, 0, 0}}, {"normal", {0, 0, -1}}}}}}));
     CHECK(measure(away).meters[0].value == 0.0);
@@ -102,7 +75,7 @@ TEST_CASE("sensors: a grid lying on a floor measures the light above it, not the
   // Designers put grids on floors. The receptor's rays leave on its normal side, so the grey floor it lies in
   // neither shadows it nor adds to it (its reflection goes up, away from an upward meter on it): I cos³θ / h².
   const double candela = 1000.0, h = 2.0;
-  const auto scene = load(scene_with(json::array({point_lamp(candela, {0, 0, h})}),
+  const auto scene = load(sensor_scene(json::array({point_lamp(candela, {0, 0, h})}),
                                      {{"samples", 256}, {"grids", {row_grid("floor", 0.0)}}},
                                      json::array({{{"type", "quad"},
                                                    {"vertices", {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}},
@@ -111,7 +84,7 @@ TEST_CASE("sensors: a grid lying on a floor measures the light above it, not the
   for (int i = 0; i < 4; ++i) {
     const double x = 0.5 + i, cos_theta = h / std::sqrt(h * h + x * x);
     CAPTURE(x);
-    check_reading(readings.grids[0].points[size_t(i)], candela * cos_theta * cos_theta * cos_theta / (h * h));
+    test::check_sensor_reading(readings.grids[0].points[size_t(i)], candela * cos_theta * cos_theta * cos_theta / (h * h));
   }
 }
 
@@ -119,15 +92,15 @@ TEST_CASE("sensors: a uniform sky of luminance L on an unobstructed upward plane
   // E = ∫ L cos θ dω over the hemisphere = π L. Both techniques (the sky sampled as a light, and cosine directions
   // that escape to it) carry weight here, so this checks their MIS weights sum to one.
   const double luminance_nt = 1000.0;
-  const auto scene = load(scene_with(
+  const auto scene = load(sensor_scene(
       json::array({{{"type", "environment"}, {"spectrum", {{"illuminant", "D65"}}}, {"luminance_nt", luminance_nt}}}),
       {{"samples", 256},
        {"grids", {{{"origin", {-1, -1, 0}}, {"u", {1, 0, 0}}, {"v", {0, 1, 0}}, {"size", {2, 2}}, {"spacing", 1.0}}}},
        {"meters", {{{"name", "up"}, {"type", "luminance"}, {"position", {0, 0, 0}}, {"direction", {0.3, 0.2, 1}}}}}}));
   const SensorReadings readings = measure(scene);
   REQUIRE(readings.grids[0].points.size() == 4);
-  for (const MeterReading& r : readings.grids[0].points) check_reading(r, kPi * luminance_nt);
-  check_reading(readings.meters[0], luminance_nt);
+  for (const MeterReading& r : readings.grids[0].points) test::check_sensor_reading(r, kPi * luminance_nt);
+  test::check_sensor_reading(readings.meters[0], luminance_nt);
   CHECK(readings.grids[0].u0 == doctest::Approx(1.0).epsilon(0.05));
 }
 
@@ -137,12 +110,12 @@ TEST_CASE("sensors: lux of a light written inline equals the same light through 
   std::ofstream(folder / "lamp.json") << json{{"type", "point"}, {"spectrum", {{"blackbody", 3000}}},
                                               {"luminous_power_lm", 800}}.dump();
   const json sensors = {{"samples", 64}, {"grids", {row_grid("floor", 0.0)}}};
-  const auto inline_scene = load(scene_with(json::array({{{"type", "point"}, {"position", {0, 0, 2.5}},
+  const auto inline_scene = load(sensor_scene(json::array({{{"type", "point"}, {"position", {0, 0, 2.5}},
                                                           {"spectrum", {{"blackbody", 3000}}}, {"luminous_power_lm", 800}}}),
                                             sensors),
                                  folder);
   const auto included = load(
-      scene_with(json::array({{{"include", "lamp.json"}, {"position", {0, 0, 2.5}}}}), sensors), folder);
+      sensor_scene(json::array({{{"include", "lamp.json"}, {"position", {0, 0, 2.5}}}}), sensors), folder);
   const SensorReadings a = measure(inline_scene), b = measure(included);
   for (size_t i = 0; i < 4; ++i) {
     CAPTURE(i);
@@ -153,7 +126,7 @@ TEST_CASE("sensors: lux of a light written inline equals the same light through 
 }
 
 TEST_CASE("sensors: the readings depend on the seed and sample count, not on the threads") {
-  const auto scene = load(scene_with(json::array({point_lamp(100, {0.3, 0.2, 1.5})}),
+  const auto scene = load(sensor_scene(json::array({point_lamp(100, {0.3, 0.2, 1.5})}),
                                      {{"samples", 32}, {"grids", {row_grid("floor", 0.0)}}},
                                      json::array({{{"type", "quad"},
                                                    {"vertices", {{-5, -5, -0.01}, {5, -5, -0.01}, {5, 5, -0.01}, {-5, 5, -0.01}}},
@@ -169,7 +142,7 @@ TEST_CASE("sensors: the readings depend on the seed and sample count, not on the
 }
 
 TEST_CASE("sensors: the CSV and JSON hold every point with its standard error and the grid's U0") {
-  const auto scene = load(scene_with(json::array({point_lamp(500, {0, 0, 2})}),
+  const auto scene = load(sensor_scene(json::array({point_lamp(500, {0, 0, 2})}),
                                      {{"samples", 8}, {"grids", {row_grid("floor", 0.0)}},
                                       {"meters", {{{"name", "desk"}, {"type", "illuminance"}, {"position", {0, 0, 0}}, {"normal", {0, 0, 1}}}}}}));
   const SensorReadings readings = measure(scene);
@@ -187,7 +160,7 @@ TEST_CASE("sensors: the CSV and JSON hold every point with its standard error an
 TEST_CASE("sensors: bad \"sensors\" sections are refused by key, saying what was expected") {
   const json lamp = json::array({point_lamp(100, {0, 0, 2})});
   auto fails = [&](json sensors, std::initializer_list<std::string> fragments) {
-    test::input_error([&] { load(scene_with(lamp, std::move(sensors))); }, fragments);
+    test::input_error([&] { load(sensor_scene(lamp, std::move(sensors))); }, fragments);
   };
   const json grid = row_grid("g", 0.0);
   auto with = [&](const char* key, json value) {
@@ -199,6 +172,8 @@ TEST_CASE("sensors: bad \"sensors\" sections are refused by key, saying what was
   fails(json::array(), {"/sensors", "expected an object"});
   fails({{"grid", json::array()}}, {"/sensors", "grid"});
   fails({{"samples", 0}}, {"/sensors/samples"});
+  fails({{"replicates", 0}}, {"/sensors/replicates"});
+  fails({{"replicates", 65}}, {"/sensors/replicates"});
   fails(with("counts", nullptr), {"/sensors/grids/0", "\"counts\"", "\"spacing\""});
   fails(with("spacing", 0.5), {"/sensors/grids/0", "not both"});
   fails(with("counts", {4}), {"/sensors/grids/0/counts", "[nu, nv]"});

@@ -143,10 +143,12 @@ size_t SensorSettings::point_count() const {
 }
 
 SensorSettings load_sensors(const JsonCursor& sensors) {
-  if (!sensors.is_object()) sensors.fail("expected an object {\"samples\", \"quantities\", \"grids\", \"meters\"}");
-  sensors.only_keys({"samples", "quantities", "grids", "meters"});
+  if (!sensors.is_object())
+    sensors.fail("expected an object {\"samples\", \"replicates\", \"quantities\", \"grids\", \"meters\"}");
+  sensors.only_keys({"samples", "replicates", "quantities", "grids", "meters"});
   SensorSettings settings;
   settings.samples = sensors.integer_or("samples", settings.samples, 1, kMaxSensorSamples);
+  settings.replicates = sensors.integer_or("replicates", settings.replicates, 1, 64);
   if (const auto quantities = sensors.find("quantities")) settings.quantities = load_quantities(*quantities);
   std::set<std::string> names;
   if (const auto grids = sensors.find("grids")) {

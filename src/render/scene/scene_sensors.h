@@ -55,6 +55,9 @@ struct SensorQuantities {
 /// Everything in "sensors". `samples` is the Monte Carlo sample count per meter point (`--sensor-samples` overrides it).
 struct SensorSettings {
   int samples = 256;
+  /// Independent replicates the samples are split into for the standard error (0: the default rule,
+  /// render/sensors/sensor_measurement.h replicates_for; 1: one sequence, textbook standard error).
+  int replicates = 0;
   SensorQuantities quantities;
   std::vector<IlluminanceGrid> grids;
   std::vector<PointSensor> points;

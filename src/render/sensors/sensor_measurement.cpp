@@ -16,6 +16,7 @@
 #include "spectral/colorimetry/photometry_constants.h"
 #include "spectral/error.h"
 #include "transport/integrators/irradiance_estimator.h"
+#include "transport/sampling/bit_mixing.h"
 #include "transport/sampling/wavelength_modes.h"
 
 namespace rimu {
@@ -75,18 +76,37 @@ bool weighted_values(const SampledSpectrum& x, const SampledWavelengths& lambda,
 struct Accumulator {
   double sum = 0, squares = 0;
   int count = 0;
-  MeterReading reading() const {
-    MeterReading r;
-    r.samples = count;
-    if (count == 0) return r;
-    r.value = sum / count;
-    if (count > 1) {
-      const double variance = std::max(0.0, (squares - sum * r.value) / double(count - 1));
-      r.standard_error = std::sqrt(variance / count);
-    }
+};
+
+// A point's reading from its replicates' sums: the mean of the replicate means (replicates whose every sample was
+// discarded are left out), its standard error from their spread. One replicate: the textbook s/√n of its samples,
+// which overstates the error of a scrambled Sobol' sequence's mean (SensorMeasureOptions::replicates).
+MeterReading replicate_reading(const Accumulator* replicates, int count) {
+  MeterReading r;
+  if (count == 1) {
+    const Accumulator& a = replicates[0];
+    r.samples = a.count;
+    if (a.count == 0) return r;
+    r.value = a.sum / a.count;
+    if (a.count > 1)
+      r.standard_error = std::sqrt(std::max(0.0, (a.squares - a.sum * r.value) / double(a.count - 1)) / a.count);
     return r;
   }
-};
+  double sum = 0.0, squares = 0.0;
+  int used = 0;
+  for (int k = 0; k < count; ++k) {
+    r.samples += replicates[k].count;
+    if (replicates[k].count == 0) continue;
+    const double mean = replicates[k].sum / replicates[k].count;
+    sum += mean;
+    squares += mean * mean;
+    ++used;
+  }
+  if (used == 0) return r;
+  r.value = sum / used;
+  if (used > 1) r.standard_error = std::sqrt(std::max(0.0, (squares - sum * r.value) / double(used - 1)) / used);
+  return r;
+}
 
 GridReadings grid_statistics(std::vector<MeterReading> points) {
   GridReadings g;
@@ -105,6 +125,11 @@ GridReadings grid_statistics(std::vector<MeterReading> points) {
 }
 
 }  // namespace
+
+int replicates_for(int samples) {
+  if (samples < 2) return 1;
+  return std::clamp(samples / 16, 2, 16);
+}
 
 void check_sensor_scene(const Scene& scene, const std::string& where) {
   if (scene.has_media())
@@ -140,43 +165,57 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
       {sensors.quantities.scotopic ? options.scotopic_v_prime : nullptr, kMaxScotopicLuminousEfficacy_lm_W},
       {sensors.quantities.melanopic ? options.melanopic : nullptr, 1.0 / kMelanopicEfficacyD65_W_lm}};
   const std::vector<MeterPoint> points = meter_points(sensors);
-  std::vector<std::array<Accumulator, kWeightings>> sums(points.size());
-  const std::unique_ptr<Sampler> prototype = make_sampler(options.sampler, options.seed);
+  const int replicates = options.replicates > 0 ? std::min(options.replicates, std::max(options.samples, 1))
+                                                : replicates_for(options.samples);
+  // sums[(p·kWeightings + k)·replicates + r]: point p, weighting k, replicate r.
+  std::vector<Accumulator> sums(points.size() * kWeightings * size_t(replicates));
+  // Replicate r scrambles the sequence with its own seed (a hash of the scene's seed and r), so the replicates are
+  // independent randomisations of the same point set; it takes samples/R samples, the first replicates one more
+  // when R does not divide the count.
+  std::vector<std::unique_ptr<Sampler>> prototypes;
+  for (int r = 0; r < replicates; ++r)
+    prototypes.push_back(make_sampler(options.sampler, mix_bits(options.seed ^ (0x9e3779b97f4a7c15ull * uint64_t(r + 1)))));
   std::atomic<bool> stopped{false};
   std::atomic<uint64_t> discarded{0};
 
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-    std::unique_ptr<Sampler> sampler = prototype->clone();
-    for (size_t p = range.begin(); p != range.end(); ++p) {
-      if (options.stop_requested && options.stop_requested()) {
-        stopped = true;
-        return;
-      }
-      const MeterPoint& point = points[p];
-      std::array<Accumulator, kWeightings>& acc = sums[p];
-      // Each point is its own "pixel" of the sampler (x, y = the index's low and high halves), so its samples are
-      // the same whichever thread takes it.
-      const int x = int(p & 0xffff), y = int(p >> 16);
-      for (int s = 0; s < options.samples; ++s) {
-        sampler->start_pixel_sample(x, y, uint32_t(s));
-        const SampledWavelengths lambda =
-            sample_path_wavelengths(settings.wavelengths, *sampler, scene.wavelength_density.get());
-        const SampledSpectrum value =
-            point.illuminance ? estimator.irradiance(point.position, point.receptor, lambda, *sampler)
-                              : estimator.radiance(Ray{point.position, point.receptor.direction}, lambda, *sampler);
-        double values[kWeightings];
-        if (!weighted_values(value, lambda, weightings, values)) {
-          ++discarded;
-          continue;
+    for (int r = 0; r < replicates; ++r) {
+      std::unique_ptr<Sampler> sampler = prototypes[size_t(r)]->clone();
+      const int replicate_samples = options.samples / replicates + (r < options.samples % replicates ? 1 : 0);
+      for (size_t p = range.begin(); p != range.end(); ++p) {
+        if (options.stop_requested && options.stop_requested()) {
+          stopped = true;
+          return;
         }
-        for (int k = 0; k < kWeightings; ++k) {
-          acc[k].sum += values[k];
-          acc[k].squares += values[k] * values[k];
-          ++acc[k].count;
+        const MeterPoint& point = points[p];
+        // Each point is its own "pixel" of the sampler (x, y = the index's low and high halves), so its samples are
+        // the same whichever thread takes it.
+        const int x = int(p & 0xffff), y = int(p >> 16);
+        for (int s = 0; s < replicate_samples; ++s) {
+          sampler->start_pixel_sample(x, y, uint32_t(s));
+          const SampledWavelengths lambda =
+              sample_path_wavelengths(settings.wavelengths, *sampler, scene.wavelength_density.get());
+          const SampledSpectrum value =
+              point.illuminance ? estimator.irradiance(point.position, point.receptor, lambda, *sampler)
+                                : estimator.radiance(Ray{point.position, point.receptor.direction}, lambda, *sampler);
+          double values[kWeightings];
+          if (!weighted_values(value, lambda, weightings, values)) {
+            ++discarded;
+            continue;
+          }
+          for (int k = 0; k < kWeightings; ++k) {
+            Accumulator& acc = sums[(p * kWeightings + size_t(k)) * size_t(replicates) + size_t(r)];
+            acc.sum += values[k];
+            acc.squares += values[k] * values[k];
+            ++acc.count;
+          }
         }
       }
     }
   });
+  const auto reading = [&](size_t p, int k) {
+    return replicate_reading(&sums[(p * kWeightings + size_t(k)) * size_t(replicates)], replicates);
+  };
 
   SensorReadings readings;
   readings.interrupted = stopped;
@@ -186,9 +225,9 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
   for (const IlluminanceGrid& g : sensors.grids) {
     std::vector<MeterReading> grid_points, scotopic_points, melanopic_points;
     for (int k = 0; k < g.count_u * g.count_v; ++k, ++next) {
-      grid_points.push_back(sums[next][0].reading());
-      if (scotopic) scotopic_points.push_back(sums[next][1].reading());
-      if (melanopic) melanopic_points.push_back(sums[next][2].reading());
+      grid_points.push_back(reading(next, 0));
+      if (scotopic) scotopic_points.push_back(reading(next, 1));
+      if (melanopic) melanopic_points.push_back(reading(next, 2));
     }
     readings.grids.push_back(grid_statistics(std::move(grid_points)));
     readings.grids.back().scotopic_points = std::move(scotopic_points);
@@ -197,9 +236,9 @@ SensorReadings measure_sensors(const Scene& scene, const SensorSettings& sensors
       readings.grids.back().daylight_factor = daylight_factors(readings.grids.back().points, *e_out);
   }
   for (size_t k = 0; k < sensors.points.size(); ++k, ++next) {
-    readings.meters.push_back(sums[next][0].reading());
-    if (scotopic) readings.meters_scotopic.push_back(sums[next][1].reading());
-    if (melanopic) readings.meters_melanopic.push_back(sums[next][2].reading());
+    readings.meters.push_back(reading(next, 0));
+    if (scotopic) readings.meters_scotopic.push_back(reading(next, 1));
+    if (melanopic) readings.meters_melanopic.push_back(reading(next, 2));
   }
   readings.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return readings;
