@@ -25,17 +25,22 @@ SensorOutputPaths job_sensor_paths(const RenderJob& job) { return sensor_output_
 std::vector<std::filesystem::path> write_plans(const RenderJobState& s, const SensorReadings& readings) {
   std::vector<std::filesystem::path> written;
   const SensorSettings& sensors = s.sensors;
-  for (size_t g = 0; g < sensors.grids.size(); ++g) {
-    const std::filesystem::path png = grid_plan_path(job_sensor_base(s.job), sensors.grids[g]);
-    try {
-      check_plot_destination(png, {png.string(), 0, "--sensors-out"});
-    } catch (const PlotError& e) {
-      s.log << "rimu: warning: no false-colour plans of the sensor grids: " << e.what() << "\n";
-      return written;
+  // Photopic lux always; scotopic lux and melanopic EDI as well when the section asks for them.
+  std::vector<PlanQuantity> quantities = {PlanQuantity::photopic};
+  if (sensors.quantities.scotopic) quantities.push_back(PlanQuantity::scotopic);
+  if (sensors.quantities.melanopic) quantities.push_back(PlanQuantity::melanopic_edi);
+  for (size_t g = 0; g < sensors.grids.size(); ++g)
+    for (const PlanQuantity quantity : quantities) {
+      const std::filesystem::path png = grid_plan_path(job_sensor_base(s.job), sensors.grids[g], quantity);
+      try {
+        check_plot_destination(png, {png.string(), 0, "--sensors-out"});
+      } catch (const PlotError& e) {
+        s.log << "rimu: warning: no false-colour plans of the sensor grids: " << e.what() << "\n";
+        return written;
+      }
+      write_grid_plan(png, sensors.grids[g], readings.grids[g], quantity);
+      written.push_back(png);
     }
-    write_grid_plan(png, sensors.grids[g], readings.grids[g]);
-    written.push_back(png);
-  }
   return written;
 }
 

@@ -95,10 +95,11 @@ double horizontal_integral(const SkyType& sky, const Sun& sun) {
       0.0, 2.0 * kPi, 256);
 }
 
-// ∫ (L/L_z) cos θ_r cos θ_o / r² dA over a rectangular opening q(u, v) = origin + u·U + v·V, u, v in [0, 1], seen
+// ∫ (L/L_z) cos θ_r cos θ_o τ(cos θ_o) / r² dA over a rectangular opening (τ: a pane's transmittance, default none) q(u, v) = origin + u·U + v·V, u, v in [0, 1], seen
 // from a receiver at p facing +z; `opening_normal` is the opening's unit normal pointing away from the receiver.
 double opening_integral(const SkyType& sky, const Sun& sun, const Vec& p, const Vec& origin, const Vec& U,
-                        const Vec& V, const Vec& opening_normal) {
+                        const Vec& V, const Vec& opening_normal,
+                        const std::function<double(double)>& transmittance = [](double) { return 1.0; }) {
   const double area = std::sqrt((U[1] * V[2] - U[2] * V[1]) * (U[1] * V[2] - U[2] * V[1]) +
                                 (U[2] * V[0] - U[0] * V[2]) * (U[2] * V[0] - U[0] * V[2]) +
                                 (U[0] * V[1] - U[1] * V[0]) * (U[0] * V[1] - U[1] * V[0]));
@@ -112,7 +113,7 @@ double opening_integral(const SkyType& sky, const Sun& sun, const Vec& p, const 
                             const Vec w = {r[0] / len, r[1] / len, r[2] / len};
                             const double cos_o = w[0] * opening_normal[0] + w[1] * opening_normal[1] + w[2] * opening_normal[2];
                             if (w[2] <= 0.0 || cos_o <= 0.0) return 0.0;
-                            return relative_luminance(sky, sun, w) * w[2] * cos_o / r2;
+                            return relative_luminance(sky, sun, w) * w[2] * cos_o * transmittance(cos_o) / r2;
                           },
                           0.0, 1.0, 64);
                     },
@@ -284,5 +285,63 @@ TEST_CASE("CIE 171 daylight: the façade case with the window as the sky's porta
     MESSAGE("  standard error without the portal " << plain.meters[i].standard_error << " lx, with it "
                                                    << portal.meters[i].standard_error << " lx");
     CHECK(portal.meters[i].standard_error < 0.5 * plain.meters[i].standard_error);
+  }
+}
+
+namespace {
+
+// A clear pane's transmittance for unpolarised light at incidence cos θ: each polarisation's incoherent
+// inter-reflection series (1 − r²)/(1 + r²), r² the single face's Fresnel reflectance (Born & Wolf §1.5.2), averaged.
+double clear_pane_transmittance(double cos_i, double eta) {
+  const double sin2_t = (1.0 - cos_i * cos_i) / (eta * eta), cos_t = std::sqrt(1.0 - sin2_t);
+  const double rs = std::pow((cos_i - eta * cos_t) / (cos_i + eta * cos_t), 2.0);
+  const double rp = std::pow((eta * cos_i - cos_t) / (eta * cos_i + cos_t), 2.0);
+  return 0.5 * ((1.0 - rs) / (1.0 + rs) + (1.0 - rp) / (1.0 + rp));
+}
+
+}  // namespace
+
+TEST_CASE("CIE 171 daylight: a glazed façade opening passes the sky and the sun times the pane's transmittance") {
+  // The façade room's window glazed with a clear pane (η = 1.5) under the CIE clear sky with its sun (50,000 lx
+  // normal) at azimuth 120°, elevation 30°: next-event estimation reaches both through the pane, weighted by its
+  // transmittance at the shadow ray's angle. The sky's part is the opening integral with each direction weighted by
+  // the pane's transmittance at its angle; the sun's is E_n cos θ_r τ(cos θ_pane) where the sun's ray from the
+  // meter passes the window (1 m in: through it 0.17 m from its edge; off axis: 0.16 m; 3 m in: it meets the wall).
+  const std::vector<Vec> meters = {{-1, 0.25, 0.85}, {-3, 0.25, 0.85}, {-2, 2.0, 0.85}};
+  const char* places[] = {"1 m in", "3 m in", "off axis"};
+  const bool sunlit[] = {true, false, true};
+  const SkyType sky = kClear;
+  const Sun sun{120.0, 30.0};
+  const double sun_normal_lx = 50000.0, eta = 1.5;
+  json shapes = room_with_window();
+  shapes.push_back({{"type", "quad"}, {"material", "pane"}, {"vertices", {{0, -0.5, 1}, {0, 1, 1}, {0, 1, 2.5}, {0, -0.5, 2.5}}}});
+  // The window as the sky's portal, as a lighting designer would set it: the sky's samples then go through the pane
+  // (without it the sun-blocked meter 3 m in has a 1.8 % standard error at these samples, with it far less).
+  json sky_through_window = sky_light(sky, sun);
+  sky_through_window["portals"] = json::array({json::array({{0, -0.5, 1}, {0, 1, 1}, {0, 1, 2.5}, {0, -0.5, 2.5}})});
+  json document = scene_with(shapes,
+                             json::array({sky_through_window,
+                                          {{"type", "sun"},
+                                           {"sun_position", {{"azimuth_deg", sun.azimuth_deg}, {"elevation_deg", sun.elevation_deg}}},
+                                           {"spectrum", {{"daylight", 5500}}},
+                                           {"illuminance_lx", sun_normal_lx},
+                                           {"up", {0, 0, 1}},
+                                           {"north", {0, 1, 0}}}}),
+                             meters, kOpeningSamples);
+  document["materials"]["pane"] = {{"type", "thin_dielectric"}, {"ior", eta}};
+  const SensorReadings readings = measure(document);
+  const double hemisphere = horizontal_integral(sky, sun);
+  const auto pane = [&](double cos_o) { return clear_pane_transmittance(cos_o, eta); };
+  const Vec s = sun.direction();
+  for (size_t i = 0; i < meters.size(); ++i) {
+    const double sky_lx = kHorizontalIlluminanceLx *
+                          opening_integral(sky, sun, meters[i], {0, -0.5, 1}, {0, 1.5, 0}, {0, 0, 1.5}, {1, 0, 0}, pane) /
+                          hemisphere;
+    // Where the sun's ray from the meter meets the façade plane x = 0: inside the window or not.
+    const double t = -meters[i][0] / s[0], y = meters[i][1] + t * s[1], z = meters[i][2] + t * s[2];
+    CHECK((y > -0.5 && y < 1.0 && z > 1.0 && z < 2.5) == sunlit[i]);
+    const double sun_lx = sunlit[i] ? sun_normal_lx * s[2] * pane(s[0]) : 0.0;
+    check_case(std::string("glazed façade opening, ") + sky.name + " and sun, " + places[i], readings.meters[i],
+               sky_lx + sun_lx);
   }
 }

@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <utility>
 #include <fstream>
 
 #include "integration_support.h"
@@ -25,20 +26,22 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSunTiltDeg = 40.0;
 constexpr double kFloorReflectance = 0.5;
 
-// Unpolarised Fresnel reflectance of one face (air → glass of index n) at incidence cos θ.
-double fresnel(double cos_i, double n) {
+// The Fresnel reflectances r_s², r_p² of one face (air → glass of index n) at incidence cos θ.
+std::pair<double, double> fresnel_sp(double cos_i, double n) {
   const double sin2_t = (1.0 - cos_i * cos_i) / (n * n);
   const double cos_t = std::sqrt(1.0 - sin2_t);
   const double rs = (cos_i - n * cos_t) / (cos_i + n * cos_t), rp = (n * cos_i - cos_t) / (n * cos_i + cos_t);
-  return 0.5 * (rs * rs + rp * rp);
+  return {rs * rs, rp * rp};
 }
 
-// A thin sheet's straight-through transmittance: T₀²τ/(1 − R₀²τ²), τ = τₙ^(1/cos θt) (τₙ = 1: clear glass).
+// A thin sheet's straight-through transmittance for unpolarised light: T₀²τ/(1 − R₀²τ²) for each polarisation
+// (R₀ = r_s² or r_p², T₀ = 1 − R₀), averaged; τ = τₙ^(1/cos θt) (τₙ = 1: clear glass).
 double sheet_transmittance(double cos_i, double n, double tau_n = 1.0) {
-  const double r0 = fresnel(cos_i, n), t0 = 1.0 - r0;
   const double cos_t = std::sqrt(1.0 - (1.0 - cos_i * cos_i) / (n * n));
   const double tau = std::pow(tau_n, 1.0 / cos_t);
-  return t0 * t0 * tau / (1.0 - r0 * r0 * tau * tau);
+  const auto [rs, rp] = fresnel_sp(cos_i, n);
+  const auto series = [&](double r0) { return (1.0 - r0) * (1.0 - r0) * tau / (1.0 - r0 * r0 * tau * tau); };
+  return 0.5 * (series(rs) + series(rp));
 }
 
 // A 100 m floor at y = 0, `panes` (materials) at y = 1, 1.2, ..., and a delta sun 40° from the zenith with E = 1.
@@ -76,7 +79,9 @@ TEST_CASE("glazing: a shadow ray through two clear panes carries the product of 
   const json clear = {{"type", "thin_dielectric"}, {"ior", 1.5}};
   const double cos_i = std::cos(kSunTiltDeg * kPi / 180.0);
   const double t = sheet_transmittance(cos_i, 1.5);
-  CHECK(t == doctest::Approx((1.0 - fresnel(cos_i, 1.5)) / (1.0 + fresnel(cos_i, 1.5))));  // lossless: 1 − R
+  // Lossless: each polarisation's T is (1 − R₀)/(1 + R₀).
+  const auto [rs, rp] = fresnel_sp(cos_i, 1.5);
+  CHECK(t == doctest::Approx(0.5 * ((1.0 - rs) / (1.0 + rs) + (1.0 - rp) / (1.0 + rp))));
   const std::array<Estimate, 4> one = floor_radiance(sun_over_panes({clear}));
   const std::array<Estimate, 4> two = floor_radiance(sun_over_panes({clear, clear}));
   for (int j = 0; j < 4; ++j) {

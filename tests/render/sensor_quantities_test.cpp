@@ -13,6 +13,7 @@
 #include "render/scene/scene_sensors.h"
 #include "render/sensors/sensor_measurement.h"
 #include "render/sensors/sensor_outputs.h"
+#include "render/sensors/sensor_plan.h"
 #include "spectral/photometry/photometry.h"
 #include "sensor_test_support.h"
 #include "test_support.h"
@@ -117,4 +118,28 @@ TEST_CASE("sensor quantities: only what is asked for is measured, and bad lists 
   fails("scotopic", {"/sensors/quantities", "expected an array"});
   fails({"photopic", "melanopic"}, {"/sensors/quantities/1", "melanopic_edi"});
   fails({"scotopic", "scotopic"}, {"/sensors/quantities/1", "twice"});
+}
+
+TEST_CASE("sensors: the false-colour plan of a grid's scotopic lux or melanopic EDI draws those values, named") {
+  IlluminanceGrid grid;
+  grid.name = "floor";
+  grid.size_u_m = 2.0f;
+  grid.size_v_m = 1.0f;
+  grid.count_u = 2;
+  grid.count_v = 1;
+  GridReadings readings;
+  readings.points = {{100.0, 1.0, 16}, {200.0, 1.0, 16}};
+  readings.scotopic_points = {{250.0, 2.0, 16}, {470.0, 2.0, 16}};
+  const GnuplotJob scotopic = grid_plan_job(grid, readings, PlanQuantity::scotopic);
+  CHECK(scotopic.commands.find("Esmin 250.0 lx, Esavg 360.0 lx, Esmax 470.0 lx, U0 0.69") != std::string::npos);
+  CHECK(scotopic.commands.find("scotopic illuminance (scotopic lx)") != std::string::npos);
+  REQUIRE(scotopic.data_files.size() == 1);
+  CHECK(scotopic.data_files[0].second.find(" 470\n") != std::string::npos);
+  CHECK(scotopic.data_files[0].second.find(" 200\n") == std::string::npos);
+  const GnuplotJob photopic = grid_plan_job(grid, readings);
+  CHECK(photopic.commands.find("Emin 100.0 lx, Eavg 150.0 lx, Emax 200.0 lx, U0 0.67") != std::string::npos);
+  // No melanopic points were measured: asking for their plan is a programming error, not an empty plan.
+  CHECK_THROWS_AS(grid_plan_job(grid, readings, PlanQuantity::melanopic_edi), std::logic_error);
+  CHECK(grid_plan_path("/tmp/office.sensors", grid, PlanQuantity::melanopic_edi).string() ==
+        "/tmp/office.sensors.floor.melanopic_edi.png");
 }

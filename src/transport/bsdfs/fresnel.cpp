@@ -35,7 +35,7 @@ Float4 ratio2(Complex4 num, Complex4 den) {
 
 }  // namespace
 
-SampledSpectrum fresnel_dielectric(SampledSpectrum cos_theta_i, SampledSpectrum eta) {
+PolarisedReflectance fresnel_dielectric_polarised(SampledSpectrum cos_theta_i, SampledSpectrum eta) {
   const Mask4 inside = cos_theta_i < Float4(0.0f);
   const Float4 eta_rel = select(inside, Float4(1.0f) / eta, eta);  // n_t / n_i along this ray
   const Float4 cos_i = min(abs(cos_theta_i), Float4(1.0f));
@@ -45,7 +45,12 @@ SampledSpectrum fresnel_dielectric(SampledSpectrum cos_theta_i, SampledSpectrum 
   // Both denominators are > 0 unless cos θi = cos θt = 0, which is the total-internal branch.
   const Float4 r_s = (cos_i - eta_rel * cos_t) / (cos_i + eta_rel * cos_t);
   const Float4 r_p = (eta_rel * cos_i - cos_t) / (eta_rel * cos_i + cos_t);
-  return select(total_internal, Float4(1.0f), Float4(0.5f) * (r_s * r_s + r_p * r_p));
+  return {select(total_internal, Float4(1.0f), r_s * r_s), select(total_internal, Float4(1.0f), r_p * r_p)};
+}
+
+SampledSpectrum fresnel_dielectric(SampledSpectrum cos_theta_i, SampledSpectrum eta) {
+  const PolarisedReflectance r = fresnel_dielectric_polarised(cos_theta_i, eta);
+  return Float4(0.5f) * (r.s + r.p);
 }
 
 namespace {

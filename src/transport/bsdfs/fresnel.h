@@ -13,6 +13,14 @@ namespace rimu {
 /// the outside, negative = from the inside. `eta` = n_inside / n_outside (> 0).
 /// Total internal reflection (sin θt ≥ 1) returns exactly 1; grazing incidence (cos θi = 0) returns 1, no NaN.
 SampledSpectrum fresnel_dielectric(SampledSpectrum cos_theta_i, SampledSpectrum eta);
+/// The two polarisations' reflectances, r_s² and r_p², per lane (fresnel_dielectric is their mean). For what
+/// averages after combining reflections, like a thin sheet's inter-reflection series, which must be summed per
+/// polarisation: unpolarised light is half s and half p, and each keeps its polarisation at a smooth interface.
+/// Total internal reflection: both 1.
+struct PolarisedReflectance {
+  SampledSpectrum s, p;
+};
+PolarisedReflectance fresnel_dielectric_polarised(SampledSpectrum cos_theta_i, SampledSpectrum eta);
 /// The same for one wavelength, in float (per-lane geometry, e.g. rough refraction) and double (setup-time
 /// integrals and tests).
 float fresnel_dielectric(float cos_theta_i, float eta);

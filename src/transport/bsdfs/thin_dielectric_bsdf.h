@@ -13,7 +13,9 @@ namespace rimu {
 /// negligible thickness. Summing the inter-reflections between the two faces (each with Fresnel reflectance
 /// R₀ = F(|cos θo|, η), transmittance T₀ = 1 − R₀) with τ the internal transmittance of one pass through the glass,
 ///     R = R₀ + T₀² R₀ τ² / (1 − R₀² τ²)      and      T = T₀² τ / (1 − R₀² τ²),
-/// both as delta lobes. A clear sheet (τ = 1) is lossless, T = 1 − R (pbrt-v4's ThinDielectricBxDF). A tinted
+/// per polarisation (R₀ = r_s² or r_p²), then averaged (unpolarised light), both as delta lobes. A clear sheet
+/// (τ = 1) is lossless, T = 1 − R (pbrt-v4's ThinDielectricBxDF sums the series once with the averaged R₀, which
+/// differs at oblique incidence: 1.4 % less T at 60°, 2.9 % at 70° for η = 1.5). A tinted
 /// one has τ = τₙ^(1/cos θt): τₙ(λ) is its internal transmittance at normal incidence and the path through the
 /// glass grows as 1/cos θt (Beer-Lambert), θt the refraction angle inside. The transmitted ray leaves parallel to
 /// the incident one (wi = −wo): the two refractions cancel, so the direction does not depend on λ even for a
