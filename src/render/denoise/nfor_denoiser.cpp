@@ -28,6 +28,9 @@ constexpr double kFeatureThreshold = 1e-3;
 // coefficient 0 (the fit falls back to the weighted mean) instead of an ill-posed system.
 constexpr double kRidge = 1e-3;
 constexpr int kRowsPerBlock = 4;
+constexpr int kMaxCandidates = 16;  // colour × feature bandwidths
+// A neighbour whose weight exp(−exponent) is below 1e-6 is skipped (and its exp not taken).
+constexpr double kMaxExponent = 13.815510557964274;  // −ln 1e-6
 
 float finite(float v) { return std::isfinite(v) ? v : 0.0f; }
 
@@ -206,27 +209,39 @@ FilteredHalves filter_halves(const Prepared& d, const DenoiseSettings& settings,
               const size_t p = size_t(y) * size_t(w) + size_t(x), q = size_t(qy) * size_t(w) + size_t(qx);
               const size_t local = size_t(y - y0) * size_t(w) + size_t(x);
               const double feature_d = settings.feature_weights ? feature_distance(d, p, q) : 0.0;
+              // The weight of each candidate and half; most neighbours of a pixel at an edge have none.
+              double weights[kMaxCandidates][2];
+              bool used[2] = {false, false};
+              for (int c = 0; c < candidates; ++c)
+                for (int t = 0; t < halves; ++t) {
+                  // Half t is filtered with weights from the other half: the weights never see the noise they average.
+                  const double dc = std::max(0.0, double(patch[size_t(1 - t)][local]) * inverse_k_sq[size_t(c)]);
+                  const double exponent = std::max(dc, feature_d * inverse_feature_k_sq[size_t(c)]);
+                  weights[c][t] = exponent > kMaxExponent ? 0.0 : std::exp(-exponent);  // below 1e-6: skipped
+                  used[t] = used[t] || weights[c][t] > 0.0;
+                }
+              if (!used[0] && !used[1]) continue;
               double design[kDesign];
               design[0] = 1.0;
               for (int k = 0; k < kFeatures; ++k)
                 design[1 + k] = double(d.features[q * kFeatures + size_t(k)]) - d.features[p * kFeatures + size_t(k)];
-              for (int c = 0; c < candidates; ++c) {
-                for (int t = 0; t < halves; ++t) {
-                  // Half t is filtered with weights from the other half: the weights never see the noise they average.
-                  const double dc = std::max(0.0, double(patch[size_t(1 - t)][local]) * inverse_k_sq[size_t(c)]);
-                  const double weight = std::exp(-std::max(dc, feature_d * inverse_feature_k_sq[size_t(c)]));
-                  if (weight < 1e-6) continue;
+              // What neighbour q adds to the normal equations at weight 1, per half: the design's outer product
+              // (packed upper triangle) and the colour times the design. Each candidate then adds it times its
+              // weight, one contiguous multiply-add the compiler vectorises.
+              alignas(16) double terms[kAccumulators];
+              int term = 0;
+              for (int i = 0; i < kDesign; ++i)
+                for (int j = i; j < kDesign; ++j) terms[term++] = design[i] * design[j];
+              for (int t = 0; t < halves; ++t) {
+                if (!used[t]) continue;
+                const float* colour = &d.halves[size_t(t)][3 * q];
+                for (int ch = 0; ch < 3; ++ch)
+                  for (int i = 0; i < kDesign; ++i) terms[kNormalTerms + ch * kDesign + i] = double(colour[ch]) * design[i];
+                for (int c = 0; c < candidates; ++c) {
+                  const double weight = weights[c][t];
+                  if (weight == 0.0) continue;
                   double* a = &acc[((local * size_t(candidates) + size_t(c)) * 2 + size_t(t)) * kAccumulators];
-                  int term = 0;
-                  for (int i = 0; i < kDesign; ++i) {
-                    const double wi = weight * design[i];
-                    for (int j = i; j < kDesign; ++j) a[term++] += wi * design[j];
-                  }
-                  const float* colour = &d.halves[size_t(t)][3 * q];
-                  for (int ch = 0; ch < 3; ++ch) {
-                    const double wy = weight * colour[ch];
-                    for (int i = 0; i < kDesign; ++i) a[kNormalTerms + ch * kDesign + i] += wy * design[i];
-                  }
+                  for (int k = 0; k < kAccumulators; ++k) a[k] += weight * terms[k];
                 }
               }
             }
@@ -264,6 +279,10 @@ DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings
   for (double colour : settings.colour_bandwidths)
     for (double feature : settings.feature_bandwidths) bandwidths.push_back({colour, feature});
   const int candidates = int(bandwidths.size());
+  if (candidates < 1 || candidates > kMaxCandidates)
+    throw InputError({"denoiser settings", 0, "colour_bandwidths"},
+                     "the denoiser takes 1 to " + std::to_string(kMaxCandidates) + " candidate filters (colour × feature bandwidths), not " +
+                         std::to_string(candidates));
   const FilteredHalves filtered = filter_halves(d, settings, bandwidths);
 
   // Each candidate's error, estimated from the halves: half t filtered (with the other half's weights) against the
