@@ -60,10 +60,12 @@ struct DenoiseResult {
 /// InputError naming `where` otherwise.
 void check_denoise_input(const DenoiseInput& input, const std::string& where);
 
-/// Denoises: for each candidate bandwidth, each half is filtered with weights computed from the other half (so the
-/// weights do not see the noise they average), by a weighted first-order regression of the colour on the features
-/// around each pixel; the candidate's image is the mean of the two filtered halves. Non-finite inputs are read as 0;
-/// the output is finite. Cost: about (2r+1)² · 250 flops per pixel and candidate, parallel over rows.
+/// Denoises: the features are prefiltered; for each candidate bandwidth, each half is filtered with weights computed
+/// from the other half (so the weights do not see the noise they average), by a weighted first-order regression of
+/// the colour on the features around each pixel; each pixel takes the candidate whose error the halves estimate
+/// lowest, the mean of its two filtered halves; a second pass filters that mean again, and the result is clamped to
+/// the noisy value ± clamp_sigmas standard errors. Non-finite inputs are read as 0; the output is finite. Cost: about
+/// (2r+1)² · 250 flops per pixel and candidate, and a quarter of that for the second pass, parallel over rows.
 DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings = {});
 
 }  // namespace rimu
