@@ -3,6 +3,7 @@
 // alone; and `rimu denoise` refuses files it cannot denoise without writing anything.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -78,7 +79,8 @@ TEST_CASE("denoise: a constant under Gaussian noise with flat features") {
   // noise are exp(−max(0, d/k²)) with d the variance-cancelled patch distance, whose mean is 0: about half the
   // neighbours have d ≤ 0 and weight 1, the rest less, so the effective count (Σw)²/Σw² stays above N/2 away from
   // the image's edges; the edge pixels (two fifths of a 64² image lie within 7 pixels of an edge), the choice
-  // between two bandwidths and the regression's ridge terms cost a little more. The bound is N/2 (measured: 152); a filter that
+  // between two bandwidths and the regression's ridge terms cost a little more; the second pass, which filters the
+  // result again, gains more than they cost. The bound is N/2 (measured: 265); a filter that
   // averaged a 7×7 neighbourhood (49) fails it.
   const double window = double((2 * settings.window_radius + 1) * (2 * settings.window_radius + 1));
   CAPTURE(noisy / denoised);
@@ -119,6 +121,106 @@ TEST_CASE("denoise: a noiseless image changes little") {
   const DenoiseInput in = synthetic(kSize, kSize, 0.0, truth, [](int, int) { return 0.5; }, 3);
   const DenoiseResult out = denoise(in);
   for (size_t i = 0; i < out.image.size(); ++i) CHECK(out.image[i] == doctest::Approx(in.halves[0][i]).epsilon(1e-4));
+}
+
+TEST_CASE("denoise: a step in the colour alone is not blurred beyond one pixel") {
+  // A shadow edge: left half 0.2, right half 0.8, every feature flat, so only the colour weights can stop the filter
+  // at the edge. σ_half = 0.05: the step is 8.5 standard errors of one pixel's noisy mean. Every column from one
+  // pixel beyond the edge on must keep its level: its mean over 48 rows × 3 channels within 4 standard errors of the
+  // noisy column's mean (σ_half/√2/√144 = 2.9e-3); a blur across the edge moves the first columns by a sizeable
+  // part of the 0.6 step (a 3-pixel box: 0.2 at the first column, a 15-pixel window's 0.28).
+  constexpr int kSize = 48, kEdge = 24;
+  constexpr double kSigmaHalf = 0.05;
+  const auto truth = [](int x, int) { return x < kEdge ? 0.2 : 0.8; };
+  const DenoiseInput in = synthetic(kSize, kSize, kSigmaHalf, truth, [](int, int) { return 0.5; }, 4);
+  const DenoiseResult out = denoise(in);
+  for (int x = 0; x < kSize; ++x) {
+    if (x == kEdge - 1) continue;  // the one pixel allowed: its patch straddles the edge
+    double mean = 0.0;
+    for (int y = 0; y < kSize; ++y)
+      for (int k = 0; k < 3; ++k) mean += out.image[3 * (size_t(y) * kSize + size_t(x)) + size_t(k)];
+    mean /= 3.0 * kSize;
+    CAPTURE(x);
+    CHECK(std::fabs(mean - truth(x, 0)) < 4.0 * kSigmaHalf / std::sqrt(2.0) / std::sqrt(3.0 * kSize));
+  }
+}
+
+TEST_CASE("denoise: a firefly in one half is taken out, a small bright feature in both halves is kept") {
+  // Flat grey 1 under noise σ_half = 0.1 (whole mean's variance 0.005). One sample of 200 lands in half 0 of pixel
+  // (20, 20): its noisy mean is about 101 and its variance (the renderer's, from its samples) 100². A 2×2 square of
+  // true value 4 at (40, 40) is in both halves, with the background's noise: it is real, and the features do not
+  // show it (a small light the albedo does not see).
+  constexpr int kSize = 64;
+  constexpr double kSigmaHalf = 0.1;
+  const auto truth = [](int x, int y) { return (x == 40 || x == 41) && (y == 40 || y == 41) ? 4.0 : 1.0; };
+  DenoiseInput in = synthetic(kSize, kSize, kSigmaHalf, truth, [](int, int) { return 0.5; }, 5);
+  const size_t firefly = 20 * kSize + 20;
+  for (int k = 0; k < 3; ++k) in.halves[0][3 * firefly + size_t(k)] += 200.0f;
+  in.variance[firefly] = 100.0f * 100.0f;
+  const DenoiseResult out = denoise(in);
+  // The firefly: nothing within 10 pixels of it stays more than 1 above the background, where the noisy pixel is
+  // 100 above it. Its huge variance makes every patch distance to it small, so the cross-filtered half 0 spreads its
+  // excess (200) over the ~200 neighbours of effective weight in each window: the pixel itself keeps about 1/200 of
+  // it in each half's filter, its mean about 0.5 (measured 0.47); the bound allows twice that.
+  double worst = 0.0;
+  for (int y = 10; y <= 30; ++y)
+    for (int x = 10; x <= 30; ++x)
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, double(out.image[3 * (size_t(y) * kSize + size_t(x)) + size_t(k)]) - 1.0);
+  CAPTURE(worst);
+  CHECK(worst < 1.0);
+  // The square: its mean over 4 pixels × 3 channels stays within 0.3 of 4 (the noisy mean's standard error is
+  // 0.02; a filter that averaged it with its 3×3 neighbourhood would give 2.3, one that ignored the colour 1).
+  double square = 0.0;
+  for (int y = 40; y <= 41; ++y)
+    for (int x = 40; x <= 41; ++x)
+      for (int k = 0; k < 3; ++k) square += out.image[3 * (size_t(y) * kSize + size_t(x)) + size_t(k)];
+  square /= 12.0;
+  CAPTURE(square);
+  CHECK(std::fabs(square - 4.0) < 0.3);
+}
+
+TEST_CASE("denoise: a black region next to a dim, noisy one stays black") {
+  // Left of column 24 a dim surface (0.05) under noise larger than itself (σ_half = 0.1); right of it pixels that
+  // no sample lit (0, variance 0), the features the same on both sides. The colour weights alone let the dim side
+  // in: its squared distance to 0, 0.05², is a quarter of the noise it is measured against. The clamp to the noisy
+  // value ± 5 σ, σ² the median variance of the 3×3 around, holds every pixel two or more columns into the black at
+  // exactly 0.
+  constexpr int kSize = 48, kEdge = 24;
+  const auto truth = [](int x, int) { return x < kEdge ? 0.05 : 0.0; };
+  DenoiseInput in = synthetic(kSize, kSize, 0.1, truth, [](int, int) { return 0.5; }, 7);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = kEdge; x < kSize; ++x) {
+      const size_t p = size_t(y) * kSize + size_t(x);
+      in.variance[p] = 0.0f;
+      for (auto& half : in.halves)
+        for (int k = 0; k < 3; ++k) half[3 * p + size_t(k)] = 0.0f;
+    }
+  const DenoiseResult out = denoise(in);
+  double largest = 0.0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = kEdge + 1; x < kSize; ++x)
+      for (int k = 0; k < 3; ++k) largest = std::max(largest, std::fabs(double(out.image[3 * (size_t(y) * kSize + size_t(x)) + size_t(k)])));
+  CAPTURE(largest);
+  CHECK(largest == 0.0);
+}
+
+TEST_CASE("denoise: NaN and infinite inputs give a finite image") {
+  constexpr int kSize = 32;
+  DenoiseInput in = synthetic(kSize, kSize, 0.1, [](int, int) { return 1.0; }, [](int, int) { return 0.5; }, 6);
+  const float bad[] = {NAN, INFINITY, -INFINITY};
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t p = 37 * (i + 1);
+    in.halves[i % 2][3 * p] = bad[i];
+    in.variance[p + 1] = bad[i];
+    in.albedo[3 * (p + 2)] = bad[i];
+    in.normal[3 * (p + 3) + 1] = bad[i];
+    in.depth[p + 4] = bad[i];
+    in.albedo_variance[p + 5] = bad[i];
+    in.normal_variance[p + 6] = bad[i];
+    in.depth_variance[p + 7] = bad[i];
+  }
+  const DenoiseResult out = denoise(in);
+  for (float v : out.image) CHECK(std::isfinite(v));
 }
 
 TEST_CASE("denoise: rimu denoise refuses a file that is no EXR or lacks the feature layers, writing nothing") {

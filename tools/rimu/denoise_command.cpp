@@ -21,6 +21,10 @@ int run_denoise_command(int argc, char** argv) {
   app.add_option("--threads", settings.threads, "worker threads (default: every core)")->check(CLI::Range(1, 4096));
   app.add_option("--window", settings.window_radius, "the regression window's radius in pixels (default 7)")
       ->check(CLI::Range(1, 30));
+  app.add_option("--clamp-sigmas", settings.clamp_sigmas,
+                 "keep each value within the noisy value +- this many standard errors; 0: no clamp, no bias from it "
+                 "(default 5)")
+      ->check(CLI::Range(0.0, 1e6));
   bool colour_weights_only = false;
   app.add_flag("--colour-weights-only", colour_weights_only,
                "weigh neighbours by colour alone, as NFOR does (default: also by albedo, normal and depth)");

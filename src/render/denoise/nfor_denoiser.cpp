@@ -9,12 +9,14 @@
 #include <cmath>
 #include <optional>
 
+#include "render/denoise/denoise_inputs.h"
 #include "spectral/error.h"
 
 namespace rimu {
 namespace {
 
-constexpr int kFeatures = 7;          // albedo (3), normal (3), depth (1)
+constexpr int kFeatures = kDenoiseFeatures;
+using Prepared = PreparedDenoiseInput;
 constexpr int kDesign = 1 + kFeatures;  // the intercept and the features' offsets from the centre pixel's
 constexpr int kNormalTerms = kDesign * (kDesign + 1) / 2;
 constexpr int kAccumulators = kNormalTerms + 3 * kDesign;
@@ -26,51 +28,16 @@ constexpr double kFeatureThreshold = 1e-3;
 // coefficient 0 (the fit falls back to the weighted mean) instead of an ill-posed system.
 constexpr double kRidge = 1e-3;
 constexpr int kRowsPerBlock = 4;
+constexpr int kMaxCandidates = 16;  // colour × feature bandwidths
+// A neighbour whose weight exp(−exponent) is below 1e-6 is skipped (and its exp not taken).
+constexpr double kMaxExponent = 13.815510557964274;  // −ln 1e-6
 
 float finite(float v) { return std::isfinite(v) ? v : 0.0f; }
 
-// The pixel-wise inputs the filter reads, sanitised and normalised.
-struct Prepared {
-  int width, height;
-  std::array<std::vector<float>, 2> halves;  // 3 channels
-  std::vector<float> half_variance;          // variance of one half's mean ≈ twice the whole's
-  std::vector<float> features;               // kFeatures per pixel
-  std::array<std::vector<float>, 3> feature_variance;
-};
-
-Prepared prepare(const DenoiseInput& in) {
-  const size_t n = size_t(in.width) * size_t(in.height);
-  Prepared p{in.width, in.height, {}, {}, std::vector<float>(n * kFeatures), {}};
-  for (int h = 0; h < 2; ++h) {
-    p.halves[size_t(h)].resize(3 * n);
-    for (size_t i = 0; i < 3 * n; ++i) p.halves[size_t(h)][i] = finite(in.halves[size_t(h)][i]);
-  }
-  p.half_variance.resize(n);
-  for (size_t i = 0; i < n; ++i) p.half_variance[i] = 2.0f * std::max(0.0f, finite(in.variance[i]));
-  // Depth in units of the image's largest depth, so that one threshold and one ridge fit every scene's scale.
-  float max_depth = 0.0f;
-  for (size_t i = 0; i < n; ++i) max_depth = std::max(max_depth, finite(in.depth[i]));
-  const float depth_scale = max_depth > 0.0f ? 1.0f / max_depth : 1.0f;
-  for (size_t i = 0; i < n; ++i) {
-    float* f = &p.features[i * kFeatures];
-    for (int k = 0; k < 3; ++k) {
-      f[k] = finite(in.albedo[3 * i + size_t(k)]);
-      f[3 + k] = finite(in.normal[3 * i + size_t(k)]);
-    }
-    f[6] = finite(in.depth[i]) * depth_scale;
-  }
-  for (auto& v : p.feature_variance) v.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    p.feature_variance[0][i] = std::max(0.0f, finite(in.albedo_variance[i]));
-    p.feature_variance[1][i] = std::max(0.0f, finite(in.normal_variance[i]));
-    p.feature_variance[2][i] = std::max(0.0f, finite(in.depth_variance[i])) * depth_scale * depth_scale;
-  }
-  return p;
-}
-
-// The feature weight of neighbour q for pixel p: exp(−max over the three features of their variance-cancelled
-// squared distance over the bandwidth), as Rousselle et al. 2013 weigh features (without their gradient term).
-double feature_weight(const Prepared& d, size_t p, size_t q, double bandwidth_sq) {
+// The feature distance of neighbour q to pixel p, whose weight at bandwidth k_f is exp(−distance / k_f²): the largest
+// over the three features of their variance-cancelled squared distance, as Rousselle et al. 2013 weigh features
+// (without their gradient term); at least 0.
+double feature_distance(const Prepared& d, size_t p, size_t q) {
   static constexpr int kFirst[3] = {0, 3, 6}, kCount[3] = {3, 3, 1};
   double worst = 0.0;
   for (int g = 0; g < 3; ++g) {
@@ -81,10 +48,10 @@ double feature_weight(const Prepared& d, size_t p, size_t q, double bandwidth_sq
     }
     sq /= kCount[g];
     const double vp = d.feature_variance[size_t(g)][p], vq = d.feature_variance[size_t(g)][q];
-    const double distance = (sq - (vp + std::min(vp, vq))) / (bandwidth_sq * std::max(kFeatureThreshold, vp + vq));
+    const double distance = (sq - (vp + std::min(vp, vq))) / std::max(kFeatureThreshold, vp + vq);
     worst = std::max(worst, distance);
   }
-  return std::exp(-worst);
+  return worst;
 }
 
 // Solves the ridge-regularised weighted normal equations (A β = b, A symmetric, packed) by Cholesky and returns the
@@ -155,21 +122,28 @@ void check_denoise_input(const DenoiseInput& in, const std::string& where) {
   check(in.depth_variance, 1, "depth_variance");
 }
 
-DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings) {
-  check_denoise_input(input, "denoiser input");
-  const auto start = std::chrono::steady_clock::now();
-  std::optional<tbb::global_control> thread_limit;
-  if (settings.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
+namespace {
 
-  const Prepared d = prepare(input);
+// filtered[c][t]: half t filtered with candidate c's weights, computed from the other half.
+using FilteredHalves = std::vector<std::array<std::vector<float>, 2>>;
+
+// One candidate filter: its colour and feature bandwidths.
+struct Bandwidths {
+  double colour, feature;
+};
+
+// `halves` = 1 filters half 0 only (the second pass, whose two halves are the same image).
+FilteredHalves filter_halves(const Prepared& d, const DenoiseSettings& settings, const std::vector<Bandwidths>& bandwidths,
+                             int halves = 2) {
   const int w = d.width, h = d.height, r = settings.window_radius, pr = settings.patch_radius;
   const size_t n = size_t(w) * size_t(h);
-  const int candidates = int(settings.colour_bandwidths.size());
-  std::vector<double> inverse_k_sq;
-  for (double k : settings.colour_bandwidths) inverse_k_sq.push_back(1.0 / (k * k));
-  const double feature_k_sq = settings.feature_bandwidth * settings.feature_bandwidth;
-  // filtered[c][t]: half t filtered with candidate c's weights, computed from the other half.
-  std::vector<std::array<std::vector<float>, 2>> filtered(static_cast<size_t>(candidates));
+  const int candidates = int(bandwidths.size());
+  std::vector<double> inverse_k_sq, inverse_feature_k_sq;
+  for (const Bandwidths& k : bandwidths) {
+    inverse_k_sq.push_back(1.0 / (k.colour * k.colour));
+    inverse_feature_k_sq.push_back(1.0 / (k.feature * k.feature));
+  }
+  FilteredHalves filtered(static_cast<size_t>(candidates));
   for (auto& f : filtered)
     for (auto& half : f) half.assign(3 * n, 0.0f);
 
@@ -234,29 +208,40 @@ DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings
               if (qx < 0 || qx >= w) continue;
               const size_t p = size_t(y) * size_t(w) + size_t(x), q = size_t(qy) * size_t(w) + size_t(qx);
               const size_t local = size_t(y - y0) * size_t(w) + size_t(x);
-              const double wf = settings.feature_weights ? feature_weight(d, p, q, feature_k_sq) : 1.0;
-              if (wf < 1e-6) continue;
+              const double feature_d = settings.feature_weights ? feature_distance(d, p, q) : 0.0;
+              // The weight of each candidate and half; most neighbours of a pixel at an edge have none.
+              double weights[kMaxCandidates][2];
+              bool used[2] = {false, false};
+              for (int c = 0; c < candidates; ++c)
+                for (int t = 0; t < halves; ++t) {
+                  // Half t is filtered with weights from the other half: the weights never see the noise they average.
+                  const double dc = std::max(0.0, double(patch[size_t(1 - t)][local]) * inverse_k_sq[size_t(c)]);
+                  const double exponent = std::max(dc, feature_d * inverse_feature_k_sq[size_t(c)]);
+                  weights[c][t] = exponent > kMaxExponent ? 0.0 : std::exp(-exponent);  // below 1e-6: skipped
+                  used[t] = used[t] || weights[c][t] > 0.0;
+                }
+              if (!used[0] && !used[1]) continue;
               double design[kDesign];
               design[0] = 1.0;
               for (int k = 0; k < kFeatures; ++k)
                 design[1 + k] = double(d.features[q * kFeatures + size_t(k)]) - d.features[p * kFeatures + size_t(k)];
-              for (int c = 0; c < candidates; ++c) {
-                for (int t = 0; t < 2; ++t) {
-                  // Half t is filtered with weights from the other half: the weights never see the noise they average.
-                  const double dc = std::max(0.0, double(patch[size_t(1 - t)][local]) * inverse_k_sq[size_t(c)]);
-                  const double weight = std::min(std::exp(-dc), wf);
-                  if (weight < 1e-6) continue;
+              // What neighbour q adds to the normal equations at weight 1, per half: the design's outer product
+              // (packed upper triangle) and the colour times the design. Each candidate then adds it times its
+              // weight, one contiguous multiply-add the compiler vectorises.
+              alignas(16) double terms[kAccumulators];
+              int term = 0;
+              for (int i = 0; i < kDesign; ++i)
+                for (int j = i; j < kDesign; ++j) terms[term++] = design[i] * design[j];
+              for (int t = 0; t < halves; ++t) {
+                if (!used[t]) continue;
+                const float* colour = &d.halves[size_t(t)][3 * q];
+                for (int ch = 0; ch < 3; ++ch)
+                  for (int i = 0; i < kDesign; ++i) terms[kNormalTerms + ch * kDesign + i] = double(colour[ch]) * design[i];
+                for (int c = 0; c < candidates; ++c) {
+                  const double weight = weights[c][t];
+                  if (weight == 0.0) continue;
                   double* a = &acc[((local * size_t(candidates) + size_t(c)) * 2 + size_t(t)) * kAccumulators];
-                  int term = 0;
-                  for (int i = 0; i < kDesign; ++i) {
-                    const double wi = weight * design[i];
-                    for (int j = i; j < kDesign; ++j) a[term++] += wi * design[j];
-                  }
-                  const float* colour = &d.halves[size_t(t)][3 * q];
-                  for (int ch = 0; ch < 3; ++ch) {
-                    const double wy = weight * colour[ch];
-                    for (int i = 0; i < kDesign; ++i) a[kNormalTerms + ch * kDesign + i] += wy * design[i];
-                  }
+                  for (int k = 0; k < kAccumulators; ++k) a[k] += weight * terms[k];
                 }
               }
             }
@@ -267,7 +252,7 @@ DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings
         for (int x = 0; x < w; ++x) {
           const size_t p = size_t(y) * size_t(w) + size_t(x), local = size_t(y - y0) * size_t(w) + size_t(x);
           for (int c = 0; c < candidates; ++c)
-            for (int t = 0; t < 2; ++t) {
+            for (int t = 0; t < halves; ++t) {
               const std::array<float, 3> v =
                   solve_intercept(&acc[((local * size_t(candidates) + size_t(c)) * 2 + size_t(t)) * kAccumulators]);
               for (int ch = 0; ch < 3; ++ch) filtered[size_t(c)][size_t(t)][3 * p + size_t(ch)] = v[size_t(ch)];
@@ -275,6 +260,30 @@ DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings
         }
     }
   });
+  return filtered;
+}
+
+}  // namespace
+
+DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings) {
+  check_denoise_input(input, "denoiser input");
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<tbb::global_control> thread_limit;
+  if (settings.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(settings.threads));
+
+  Prepared d = prepare_denoise_input(input);
+  prefilter_features(d, settings.feature_prefilter_radius, settings.feature_prefilter_bandwidth);
+  const int w = d.width, h = d.height;
+  const size_t n = size_t(w) * size_t(h);
+  std::vector<Bandwidths> bandwidths;
+  for (double colour : settings.colour_bandwidths)
+    for (double feature : settings.feature_bandwidths) bandwidths.push_back({colour, feature});
+  const int candidates = int(bandwidths.size());
+  if (candidates < 1 || candidates > kMaxCandidates)
+    throw InputError({"denoiser settings", 0, "colour_bandwidths"},
+                     "the denoiser takes 1 to " + std::to_string(kMaxCandidates) + " candidate filters (colour × feature bandwidths), not " +
+                         std::to_string(candidates));
+  const FilteredHalves filtered = filter_halves(d, settings, bandwidths);
 
   // Each candidate's error, estimated from the halves: half t filtered (with the other half's weights) against the
   // other half's noisy values, E[(Â − B)²] = MSE(Â) + Var(B) when Â and B are independent; Var(B) is the same for
@@ -313,11 +322,38 @@ DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings
         result.chosen[p] = best;
         for (int ch = 0; ch < 3; ++ch) {
           const float v = 0.5f * (filtered[size_t(best)][0][3 * p + size_t(ch)] + filtered[size_t(best)][1][3 * p + size_t(ch)]);
-          result.image[3 * p + size_t(ch)] =
-              std::isfinite(v) ? v : 0.5f * (d.halves[0][3 * p + size_t(ch)] + d.halves[1][3 * p + size_t(ch)]);
+          const double a = d.halves[0][3 * p + size_t(ch)], b = d.halves[1][3 * p + size_t(ch)];
+          double out = std::isfinite(v) ? v : 0.5 * (a + b);
+          result.image[3 * p + size_t(ch)] = float(out);
         }
       }
   });
+  if (settings.second_pass) {
+    // Second pass: the mean of the two filtered halves filtered again, guided by itself, with the variance the
+    // halves' difference shows.
+    std::array<std::vector<float>, 2> selected{std::vector<float>(3 * n), std::vector<float>(3 * n)};
+    for (size_t p = 0; p < n; ++p)
+      for (int t = 0; t < 2; ++t)
+        for (int ch = 0; ch < 3; ++ch)
+          selected[size_t(t)][3 * p + size_t(ch)] = filtered[size_t(result.chosen[p])][size_t(t)][3 * p + size_t(ch)];
+    Prepared second = d;
+    for (size_t p = 0; p < n; ++p) {
+      double v = 0.0;
+      for (int ch = 0; ch < 3; ++ch) {
+        const size_t i = 3 * p + size_t(ch);
+        const double diff = finite(selected[0][i]) - finite(selected[1][i]);
+        v += 0.25 * diff * diff / 3.0;
+        second.halves[0][i] = second.halves[1][i] = result.image[i];
+      }
+      second.half_variance[p] = float(v);
+    }
+    const FilteredHalves again = filter_halves(second, settings, {{settings.second_pass_bandwidth, settings.feature_bandwidths.back()}}, 1);
+    for (size_t i = 0; i < 3 * n; ++i) {
+      const float v = again[0][0][i];
+      if (std::isfinite(v)) result.image[i] = v;
+    }
+  }
+  clamp_to_noise(d, settings.clamp_sigmas, result.image);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

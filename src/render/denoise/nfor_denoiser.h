@@ -24,7 +24,9 @@ struct DenoiseInput {
 
 struct DenoiseSettings {
   int window_radius = 7;   ///< the regression's window: (2r + 1)² pixels
-  int patch_radius = 2;    ///< the NL-means colour patch: (2p + 1)² pixels
+  /// The NL-means colour patch: (2p + 1)² pixels. 3×3 rather than NFOR's 7×7: at the benchmarks' 96×54 a lamp is
+  /// 3 pixels tall, and a larger patch makes its neighbours look alike (docs/benchmarks.md, "Denoising").
+  int patch_radius = 1;
   /// The colour bandwidths k of the NL-means weights, one filtered candidate each; every pixel takes the candidate
   /// whose error (estimated from the two halves) is lowest around it. NFOR's choice: 0.5 and 1.
   std::vector<double> colour_bandwidths{0.5, 1.0};
@@ -33,8 +35,18 @@ struct DenoiseSettings {
   /// default because at low spp the colour weights alone let a noisy lit wall bleed into the black beyond a scene's
   /// edge, where a relative error measure punishes it most (docs/benchmarks.md, "Denoising").
   bool feature_weights = true;
-  double feature_bandwidth = 1.0;  ///< k_f of the feature weights
-  int selection_radius = 3;        ///< the box the candidates' error estimates are averaged over
+  /// The feature bandwidths k_f: every pair of a colour and a feature bandwidth is a candidate filter.
+  std::vector<double> feature_bandwidths{1.0};
+  int selection_radius = 1;        ///< the box the candidates' error estimates are averaged over
+  /// The features' NL-means prefilter (NFOR's section 5.1): window radius (0: off) and bandwidth.
+  int feature_prefilter_radius = 3;
+  double feature_prefilter_bandwidth = 0.5;
+  /// NFOR's second pass (section 5.4): the mean of the two filtered halves filtered again, guided by itself, with
+  /// the variance the filtered halves' difference shows, at this colour bandwidth.
+  bool second_pass = true;
+  double second_pass_bandwidth = 1.0;
+  /// The result is kept within the noisy value ± this many standard errors (0: off); see docs/rendering.md.
+  double clamp_sigmas = 5.0;
   int threads = 0;                 ///< 0: every core (oneTBB)
 };
 
@@ -48,10 +60,12 @@ struct DenoiseResult {
 /// InputError naming `where` otherwise.
 void check_denoise_input(const DenoiseInput& input, const std::string& where);
 
-/// Denoises: for each candidate bandwidth, each half is filtered with weights computed from the other half (so the
-/// weights do not see the noise they average), by a weighted first-order regression of the colour on the features
-/// around each pixel; the candidate's image is the mean of the two filtered halves. Non-finite inputs are read as 0;
-/// the output is finite. Cost: about (2r+1)² · 250 flops per pixel and candidate, parallel over rows.
+/// Denoises: the features are prefiltered; for each candidate bandwidth, each half is filtered with weights computed
+/// from the other half (so the weights do not see the noise they average), by a weighted first-order regression of
+/// the colour on the features around each pixel; each pixel takes the candidate whose error the halves estimate
+/// lowest, the mean of its two filtered halves; a second pass filters that mean again, and the result is clamped to
+/// the noisy value ± clamp_sigmas standard errors. Non-finite inputs are read as 0; the output is finite. Cost: about
+/// (2r+1)² · 250 flops per pixel and candidate, and a quarter of that for the second pass, parallel over rows.
 DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings = {});
 
 }  // namespace rimu
