@@ -12,6 +12,7 @@
 #include "render/scene/scene.h"
 #include "test_support.h"
 #include "transport/lights/area_light.h"
+#include "transport/lights/bvh_light_sampler.h"
 #include "transport/lights/sphere_light.h"
 
 using namespace rimu;
@@ -211,6 +212,9 @@ TEST_CASE("pbrt emissive spheres: a whole one under a similarity is one analytic
     CHECK(sphere->centre_m().z == doctest::Approx(3.0));
     CHECK_FALSE(sphere->two_sided());
     CHECK(sphere->part_count() == 1);
+    const auto* tree = dynamic_cast<const BvhLightSampler*>(scene->light_sampler.get());
+    REQUIRE(tree);
+    CHECK(tree->leaf_count() == 1);
     // A ray from above meets the sphere and finds its light.
     Ray r;
     r.origin = {1.0f, 2.0f, 5.0f};
@@ -253,7 +257,12 @@ TEST_CASE("pbrt emissive spheres: a whole one under a similarity is one analytic
       CHECK(imported.document["shapes"][0]["type"] == "triangles");
       const auto scene = load_scene(imported.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
       REQUIRE(scene->lights.size() == 1);
-      CHECK(dynamic_cast<const AreaLight*>(scene->lights[0].get()));
+      const auto* mesh = dynamic_cast<const AreaLight*>(scene->lights[0].get());
+      REQUIRE(mesh);
+      const auto* tree = dynamic_cast<const BvhLightSampler*>(scene->light_sampler.get());
+      REQUIRE(tree);
+      CHECK(tree->leaf_count() == mesh->triangle_count() - mesh->degenerate_triangle_count());
+      CHECK(tree->leaf_count() > 1000);
     }
   }
 }
