@@ -1,10 +1,12 @@
 // Light sampling only, BSDF sampling only and their MIS give the exact direct irradiance for every kind of emitter
 // (the tessellated sphere, the square and the point and spot lights are in integration_emitter_distance_test.cpp):
 //   - emissive analytic shapes, which are tessellated meshes (render/scene/analytic_shapes.h): a `disk`, a
-//     `cylinder` and pbrt's sphere (the importer's mesh; the JSON `sphere` cannot emit), at gaps of 0.01× to 100×
-//     their size; the exact value is Lambert's formula summed over the very mesh the loader builds (analytic_shapes.h's
-//     functions, transformed here as the scene's `matrix` does); the disk also agrees with the on-axis disk's
-//     π L r²/(r² + h²) to the tessellation's 1e-3, the sphere with π L (r/d)² to 0.5 %;
+//     `cylinder` and the tessellated sphere (the pbrt importer's mesh for partial or reversed spheres), at gaps of
+//     0.01× to 100× their size; the exact value is Lambert's formula summed over the very mesh the loader builds
+//     (analytic_shapes.h's functions, transformed here as the scene's `matrix` does); the disk also agrees with the
+//     on-axis disk's π L r²/(r² + h²) to the tessellation's 1e-3, the sphere with π L (r/d)² to 0.5 %;
+//   - the analytic emissive `sphere` (a light of its own, sampled by cone): π L sin²θmax cos β exactly, head-on at the
+//     same gaps, at d = 1.05 r, and grazing (its edge 1° above the horizon);
 //   - one triangle seen almost edge-on (its normal 87° from the receiver), at the same gaps;
 //   - a `distant` light: delta (E cos θ, light sampling only), the sun's 0.53° disc (E cos θ: BSDF sampling would
 //     need ~4·10⁸ rays) and a 60° disc (all three), E being the irradiance normal to the disc's centre, so that a
@@ -116,9 +118,9 @@ TEST_CASE("emitter types: an emissive cylinder lying above the plane, the three 
   check_over_gaps(2 * radius, shape, exact, 4000, 80000, 40000, 1.0);
 }
 
-TEST_CASE("emitter types: pbrt's emissive sphere as the importer tessellates it, the three strategies agree") {
-  // The JSON `sphere` cannot emit; a pbrt scene's emissive sphere becomes sphere_mesh's triangles (poles with one
-  // vertex per column), which is what is checked here. Size D = 2r.
+TEST_CASE("emitter types: a tessellated emissive sphere, the three strategies agree") {
+  // sphere_mesh's triangles (poles with one vertex per column), what a pbrt scene's partial, cut-out or reversed
+  // emissive sphere becomes. Size D = 2r.
   const double radius = 0.05;
   const AnalyticMesh sphere = sphere_mesh(radius, -radius, radius, 2 * kPi);
   const auto matrix = [&](double gap) { return std::array<double, 12>{1, 0, 0, 0, 0, 1, 0, radius + gap, 0, 0, 1, 0}; };
@@ -130,6 +132,60 @@ TEST_CASE("emitter types: pbrt's emissive sphere as the importer tessellates it,
   };
   const auto shape = [&](double gap) { return mesh_json(transformed(sphere, matrix(gap))); };
   check_over_gaps(2 * radius, shape, exact, 8000, 8000, 40000, 0.1);
+}
+
+TEST_CASE("emitter types: an analytic emissive sphere, the three strategies give pi L sin^2(theta_max) cos(beta)") {
+  // The JSON `sphere` with "emission" (transport/lights/sphere_light.h): light sampling draws the cone it subtends.
+  // A sphere wholly above the receiver's tangent plane sends E = π L sin²θmax cos β (β from the normal to the
+  // centre; exact for a uniform Lambertian sphere), so L_out = ρ L (r/d)² cos β. Size D = 2r.
+  const double radius = 0.05;
+  const auto sphere = [&](Vec3d centre) {
+    return json{{"type", "sphere"}, {"center", {centre.x, centre.y, centre.z}}, {"radius", radius}, {"material", "black"},
+                {"emission", kRadiance}};
+  };
+  SUBCASE("head-on, at gaps of 0.01x to 100x its size") {
+    const auto exact = [&](double gap) {
+      const double d = radius + gap;
+      return kAlbedo * kRadiance * (radius / d) * (radius / d);
+    };
+    const auto shape = [&](double gap) { return sphere({0, radius + gap, 0}); };
+    // BSDF sampling hits it with probability (r/d)²: 0.69 at a gap of 0.1×, 0.11 at 1× (which 40 000 rays resolve to
+    // only 6 %).
+    check_over_gaps(2 * radius, shape, exact, 4000, 4000, 40000, 0.1);
+  }
+  SUBCASE("very close: d = 1.05 r") {
+    const double d = 1.05 * radius;
+    for (const std::string mode : {"nee_only", "mis", "bsdf_only"}) {
+      CAPTURE(mode);
+      check_estimate(receiver_scene(json::array({sphere({0, d, 0})}), nullptr, mode, "bvh"), d - radius, 4000,
+                     kAlbedo * kRadiance * (radius / d) * (radius / d), 0.05);
+    }
+  }
+  SUBCASE("grazing: its edge 1 degree above the horizon, d = 1.5 r") {
+    // sin θmax = 1/1.5 (θmax = 41.8°), β = 89° − θmax: the sphere's lowest point is 0.9 mm above the plane, 5.5 cm
+    // to the side of the receiver. BSDF sampling hits it with probability sin²θmax cos β = 0.30.
+    const double d = 1.5 * radius, theta_max = std::asin(radius / d), beta = rad(89.0) - theta_max;
+    const Vec3d centre{d * std::sin(beta), d * std::cos(beta), 0};
+    const double exact = kAlbedo * kRadiance * (radius / d) * (radius / d) * std::cos(beta);
+    for (const std::string mode : {"nee_only", "mis", "bsdf_only"}) {
+      CAPTURE(mode);
+      // From 1 cm above the receiver the camera ray passes 1.9 cm clear of the sphere.
+      check_estimate_at(receiver_scene(json::array({sphere(centre)}), nullptr, mode, "bvh"), {0, 0, 0}, 0.01f,
+                        mode == "bsdf_only" ? 40000 : 8000, exact, 0.05);
+    }
+  }
+  SUBCASE("the power light sampler, and a two-sided sphere seen from outside, agree") {
+    const double d = 3.0 * radius;
+    json two_sided = sphere({0, d, 0});
+    two_sided["two_sided"] = true;
+    for (const std::string mode : {"nee_only", "mis"}) {
+      CAPTURE(mode);
+      check_estimate(receiver_scene(json::array({sphere({0, d, 0})}), nullptr, mode, "power"), d - radius, 4000,
+                     kAlbedo * kRadiance / 9.0, 0.05);
+      check_estimate(receiver_scene(json::array({two_sided}), nullptr, mode, "bvh"), d - radius, 4000,
+                     kAlbedo * kRadiance / 9.0, 0.05);
+    }
+  }
 }
 
 TEST_CASE("emitter types: one emissive triangle seen almost edge-on, the three strategies give the exact irradiance") {

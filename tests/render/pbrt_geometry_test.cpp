@@ -1,15 +1,19 @@
 // pbrt-v4 geometry details (docs/pbrt-import.md, Shapes): .ply.gz meshes, bilinear patches, partial spheres,
-// cylinders and disks as meshes (emissive too), degenerate triangles removed and counted.
+// cylinders and disks as meshes (emissive too), whole emissive spheres as analytic lights, degenerate triangles
+// removed and counted.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
 #include "test_support.h"
 #include "transport/lights/area_light.h"
+#include "transport/lights/bvh_light_sampler.h"
+#include "transport/lights/sphere_light.h"
 
 using namespace rimu;
 using nlohmann::json;
@@ -180,6 +184,85 @@ TEST_CASE("pbrt quadrics under a mirroring transform emit on the side pbrt's nor
       const auto ball = only_light(transform, sphere);
       CHECK(lit_samples(*ball->lights[0], {2, 0, 0}) > 0);
       CHECK(lit_samples(*ball->lights[0], {0, 0, 0}) == 0);
+    }
+  }
+}
+
+TEST_CASE("pbrt emissive spheres: a whole one under a similarity is one analytic light, the others stay meshes") {
+  const auto import_light = [](const std::string& transform, const std::string& light, const std::string& shape) {
+    const PbrtImport imported = import_text("AttributeBegin\n" + transform + "\nAreaLightSource \"diffuse\" " + light +
+                                            "\nShape \"sphere\" " + shape + "\nAttributeEnd\n");
+    CHECK(imported.ignored.empty());
+    return imported;
+  };
+  SUBCASE("whole, translated, rotated and uniformly scaled: one SphereLight, one light tree leaf") {
+    const PbrtImport imported = import_light("Translate 1 2 3\nRotate 30 1 1 0\nScale 2 2 2", "\"rgb L\" [1 1 1]",
+                                             "\"float radius\" 0.25");
+    const json& shape = imported.document["shapes"][0];
+    CHECK(shape["type"] == "sphere");
+    CHECK(shape["radius"].get<double>() == doctest::Approx(0.5));
+    CHECK(shape.contains("emission"));
+    const auto scene = load_scene(imported.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
+    REQUIRE(scene->lights.size() == 1);
+    const auto* sphere = dynamic_cast<const SphereLight*>(scene->lights[0].get());
+    REQUIRE(sphere);
+    CHECK(sphere->radius_m() == doctest::Approx(0.5));
+    CHECK(sphere->centre_m().x == doctest::Approx(1.0));
+    CHECK(sphere->centre_m().y == doctest::Approx(2.0));
+    CHECK(sphere->centre_m().z == doctest::Approx(3.0));
+    CHECK_FALSE(sphere->two_sided());
+    CHECK(sphere->part_count() == 1);
+    const auto* tree = dynamic_cast<const BvhLightSampler*>(scene->light_sampler.get());
+    REQUIRE(tree);
+    CHECK(tree->leaf_count() == 1);
+    // A ray from above meets the sphere and finds its light.
+    Ray r;
+    r.origin = {1.0f, 2.0f, 5.0f};
+    r.direction = {0, 0, -1};
+    r.t_min = 0.0f;
+    r.t_max = 1e30f;
+    const auto hit = scene->geometry.intersect(r);
+    REQUIRE(hit);
+    CHECK(hit->light == 0);
+    CHECK(hit->t == doctest::Approx(1.5));
+  }
+  SUBCASE("twosided carries over") {
+    const PbrtImport imported = import_light("", "\"rgb L\" [1 1 1] \"bool twosided\" true", "\"float radius\" 0.25");
+    const auto scene = load_scene(imported.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
+    const auto* sphere = dynamic_cast<const SphereLight*>(scene->lights.at(0).get());
+    REQUIRE(sphere);
+    CHECK(sphere->two_sided());
+  }
+  SUBCASE("\"power\": pbrt-v4 spreads it over the object-space area, so Scale 2 emits 4 times it") {
+    // (The amount is in the importer's units, pbrt's "nits" times nits_per_unit_y: compared between the two.)
+    std::vector<double> lumens;
+    for (const char* scale : {"1 1 1", "2 2 2"}) {
+      CAPTURE(scale);
+      const PbrtImport imported = import_light(std::string("Scale ") + scale, "\"rgb L\" [1 1 1] \"float power\" 100",
+                                               "\"float radius\" 0.25");
+      const json& emission = imported.document["shapes"][0]["emission"];
+      CAPTURE(emission.dump());
+      REQUIRE(emission.contains("luminous_power_lm"));
+      lumens.push_back(emission["luminous_power_lm"].get<double>());
+    }
+    CHECK(lumens[1] == doctest::Approx(4.0 * lumens[0]).epsilon(1e-12));
+  }
+  SUBCASE("partial, reversed and squashed spheres are tessellated area lights") {
+    for (const auto& [transform, shape] : {std::pair<std::string, std::string>{"", "\"float radius\" 0.25 \"float zmax\" 0.1"},
+                                           {"ReverseOrientation", "\"float radius\" 0.25"},
+                                           {"Scale 1 1 2", "\"float radius\" 0.25"}}) {
+      CAPTURE(transform);
+      CAPTURE(shape);
+      const PbrtImport imported = import_light(transform, "\"rgb L\" [1 1 1]", shape);
+      CHECK(imported.document["shapes"][0]["type"] == "triangles");
+      const auto scene = load_scene(imported.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
+      REQUIRE(scene->lights.size() == 1);
+      const auto* mesh = dynamic_cast<const AreaLight*>(scene->lights[0].get());
+      REQUIRE(mesh);
+      const auto* tree = dynamic_cast<const BvhLightSampler*>(scene->light_sampler.get());
+      REQUIRE(tree);
+      CHECK(tree->leaf_count() == mesh->triangle_count() - mesh->degenerate_triangle_count());
+      CHECK(tree->leaf_count() > 1000);
     }
   }
 }

@@ -153,7 +153,8 @@ unsigned EmbreeScene::add_mesh(TriangleMesh mesh, int material, int light, std::
   return id;
 }
 
-unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material, const std::optional<std::array<Vec3, 3>>& uv_axes) {
+unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material, const std::optional<std::array<Vec3, 3>>& uv_axes,
+                                 int light) {
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
   auto* data = static_cast<float*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
@@ -167,7 +168,7 @@ unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material, const 
   check_error("adding a sphere");
   geometries_.resize(id + 1);
   instance_of_geometry_.resize(id + 1, -1);
-  geometries_[id] = {GeometryInfo::Kind::sphere, material, -1, nullptr, centre, radius, uv_axes.has_value(),
+  geometries_[id] = {GeometryInfo::Kind::sphere, material, light, nullptr, centre, radius, uv_axes.has_value(),
                      uv_axes.value_or(std::array<Vec3, 3>{})};
   return id;
 }

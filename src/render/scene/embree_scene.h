@@ -46,7 +46,9 @@ class EmbreeScene final : public RayQueries {
   /// A sphere (Embree's native sphere primitive). Its uv: without `uv_axes`, Rimu's (u = ½ + atan2(n.z, n.x)/2π,
   /// v = polar angle from +y / π); with orthonormal world directions {x, y, z} of the sphere's object axes,
   /// pbrt-v4's (u = φ/2π, φ = atan2(n·y, n·x) in [0, 2π); v = 1 − θ/π, θ the polar angle from z: v = 1 at +z).
-  unsigned add_sphere(Vec3 centre, float radius, int material, const std::optional<std::array<Vec3, 3>>& uv_axes = std::nullopt);
+  /// `light`: the emitter index of an emissive sphere (transport/lights/sphere_light.h), or -1.
+  unsigned add_sphere(Vec3 centre, float radius, int material, const std::optional<std::array<Vec3, 3>>& uv_axes = std::nullopt,
+                      int light = -1);
 
   /// A prototype: meshes in object space, shared by instances (no lights inside prototypes). Held once however
   /// many instances refer to it; move the meshes in.

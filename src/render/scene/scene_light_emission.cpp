@@ -91,11 +91,17 @@ LightSpectrum parse_light_emission(const JsonCursor& object, const char* legacy_
 
 LightSpectrum area_light_emission(const JsonCursor& emission, const TriangleMesh& mesh, bool two_sided,
                                   LoadContext& context) {
+  // The area only matters to an amount (lumens spread over it): no sum over the triangles otherwise.
+  const double area_m2 = has_light_amount(emission) ? mesh_area_m2(mesh.positions, mesh.indices) : 0.0;
+  return area_light_emission(emission, area_m2, two_sided, context);
+}
+
+LightSpectrum area_light_emission(const JsonCursor& emission, double area_m2, bool two_sided, LoadContext& context) {
   if (!has_light_amount(emission)) return LightSpectrum(context.spectra.parse(emission, SpectrumRole::emission), 1.0);
   only_light_keys(emission, {});
   if (emission.has("power_convention")) emission.at("power_convention").fail("power_convention applies to spot lights");
   EmitterGeometry geometry{EmitterKind::area};
-  geometry.area_m2 = mesh_area_m2(mesh.positions, mesh.indices);
+  geometry.area_m2 = area_m2;
   geometry.two_sided = two_sided;
   return parse_light_emission(emission, "radiance", geometry, context);
 }

@@ -38,6 +38,8 @@ LightSpectrum parse_light_emission(const JsonCursor& object, const char* legacy_
 /// W/m2/sr, EV)} with lumens spread over the mesh's world-space area (both faces if two-sided).
 LightSpectrum area_light_emission(const JsonCursor& emission, const TriangleMesh& mesh, bool two_sided,
                                   LoadContext& context);
+/// The same for an emitting surface of world-space area `area_m2` per side (an analytic sphere's 4πr²).
+LightSpectrum area_light_emission(const JsonCursor& emission, double area_m2, bool two_sided, LoadContext& context);
 
 /// A light with "include": "file.json" (a definition written by rimu-light): the file's object with the scene
 /// light's other keys laid over it (position, direction... or any override). Errors name both files.

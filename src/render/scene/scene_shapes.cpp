@@ -8,6 +8,7 @@
 #include "render/scene/mesh_loader.h"
 #include "render/image/rgb_image.h"
 #include "transport/lights/area_light.h"
+#include "transport/lights/sphere_light.h"
 #include "transport/lights/light_spectrum.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_light_emission.h"
@@ -61,6 +62,17 @@ void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type,
     shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform", "emission",
                      "light_group", "two_sided", "alpha"});
   }
+}
+
+// How messages name an emissive shape's light: its "name" and key path, else its key path.
+std::string emissive_shape_name(const JsonCursor& shape) {
+  // Appended rather than built with operator+: GCC 12 warns falsely (-Wrestrict) on "'" + std::string.
+  std::string light_name;
+  if (shape.has("name"))
+    light_name.append("'").append(shape.at("name").string()).append("' (").append(shape.path()).append(")");
+  else
+    light_name.append("the emissive shape ").append(shape.path());
+  return light_name;
 }
 
 // The swept angle of a cylinder or disk in radians: "phimax_deg" in (0, 360], default 360.
@@ -225,9 +237,8 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     const JsonCursor shape = section.at(i);
     const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk", "sphere", "instance"});
     if (type == "sphere") {
-      if (shape.has("emission"))
-        shape.at("emission").fail("spheres cannot emit light; use a mesh, triangles, quad, box, cylinder or disk shape as an area light");
-      shape.only_keys({"type", "name", "center", "radius", "material", "transform", "uv_axes"});
+      shape.only_keys({"type", "name", "center", "radius", "material", "transform", "uv_axes", "emission", "light_group",
+                       "two_sided"});
       if (shape.has("transform")) shape.at("transform").fail("spheres take center and radius, not a transform");
       const Vec3 centre = shape.at("center").vec3();
       const float radius = float(shape.at("radius").number(1e-30, 1e30));
@@ -247,7 +258,24 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
             if (std::abs(dot((*uv_axes)[k], (*uv_axes)[l]) - (k == l ? 1.0f : 0.0f)) > 1e-4f)
               axes.fail("the three directions must be orthonormal (unit length, at right angles) to within 1e-4");
       }
-      scene.geometry.add_sphere(centre, radius, material_of(shape, context), uv_axes);
+      const int material = material_of(shape, context);
+      int light = -1;
+      if (const auto emission = shape.find("emission")) {
+        // An analytic area light (transport/lights/sphere_light.h): sampled in the cone it subtends, one light tree
+        // leaf; an amount in lm is spread over its 4πr² (per side).
+        const bool two_sided = shape.boolean_or("two_sided", false);
+        const double area_m2 = 4.0 * std::numbers::pi * double(radius) * double(radius);
+        const LightSpectrum radiance = area_light_emission(*emission, area_m2, two_sided, context);
+        scene.lights.push_back(std::make_unique<SphereLight>(centre, radius, radiance, two_sided));
+        read_light_group(shape, scene);
+        scene.light_names.push_back(emissive_shape_name(shape));
+        light = int(scene.lights.size()) - 1;
+      } else {
+        if (shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
+        if (shape.has("light_group"))
+          shape.at("light_group").fail("light_group applies to emissive shapes (and lights) only");
+      }
+      scene.geometry.add_sphere(centre, radius, material, uv_axes, light);
       continue;
     }
     if (type == "instance") {
@@ -285,13 +313,7 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
       scene.lights.push_back(std::move(light));
       read_light_group(shape, scene);
-      // Appended rather than built with operator+: GCC 12 warns falsely (-Wrestrict) on "'" + std::string.
-      std::string light_name;
-      if (shape.has("name"))
-        light_name.append("'").append(shape.at("name").string()).append("' (").append(shape.path()).append(")");
-      else
-        light_name.append("the emissive shape ").append(shape.path());
-      scene.light_names.push_back(std::move(light_name));
+      scene.light_names.push_back(emissive_shape_name(shape));
       scene.geometry.add_mesh(std::move(mesh), material, int(scene.lights.size()) - 1);
     } else {
       scene.geometry.add_mesh(std::move(mesh), material, -1, alpha);

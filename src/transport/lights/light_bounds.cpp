@@ -118,6 +118,22 @@ LightBounds triangle_light_bounds(Vec3 v0, Vec3 v1, Vec3 v2, Vec3 normal, double
   return b;
 }
 
+LightBounds sphere_light_bounds(Vec3 centre_m, float radius_m, double radiance_w_m2_sr) {
+  LightBounds b;
+  // The box widened by a float ulp of its coordinates: centre ± radius rounds, and every surface point must be in it.
+  const Vec3 half{radius_m, radius_m, radius_m};
+  const Vec3 slack = (abs(centre_m) + half) * 1e-6f;
+  b.lower_m = centre_m - half - slack;
+  b.upper_m = centre_m + half + slack;
+  b.intensity_w_sr = intensity_bound(kPi * double(radius_m) * double(radius_m) * radiance_w_m2_sr);
+  b.axis = {0, 0, 1};
+  b.cos_theta_o = -1.0f;  // θo = π: the normals point everywhere
+  b.cos_theta_e = float(std::cos(kPi / 2 + kAngleMarginRad));
+  // Every direction from the sphere is within some emitting point's hemisphere: the lit cone is the whole sphere.
+  b.cos_theta_lit = -1.0f;
+  return b;
+}
+
 LightBounds unite(const LightBounds& a, const LightBounds& b) {
   if (!(a.intensity_w_sr > 0.0f)) return b;
   if (!(b.intensity_w_sr > 0.0f)) return a;

@@ -93,6 +93,12 @@ LightBounds point_light_bounds(Vec3 position_m, double intensity_w_sr, Vec3 axis
 LightBounds triangle_light_bounds(Vec3 v0, Vec3 v1, Vec3 v2, Vec3 normal, double area_m2, double radiance_w_m2_sr,
                                   bool two_sided);
 
+/// Bounds of a Lambertian sphere (outward-facing, or two-sided) of radius `radius_m` and radiance integral
+/// `radiance_w_m2_sr`: its box, every direction as a normal (θo = π, θe = π/2), and the intensity πr²·L it shows in
+/// every direction (its silhouette's area times L). A two-sided sphere's inside is within its box, where the
+/// importance takes every direction anyway, so its bounds are the same.
+LightBounds sphere_light_bounds(Vec3 centre_m, float radius_m, double radiance_w_m2_sr);
+
 /// The bounds of the union of two clusters (a cluster with zero intensity is ignored); its cos_theta_lit is
 /// kNoLitCone (the build's node bounds work it out from the members instead).
 LightBounds unite(const LightBounds& a, const LightBounds& b);

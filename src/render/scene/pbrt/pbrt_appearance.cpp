@@ -506,7 +506,7 @@ json PbrtConverter::light_amount(PbrtParams& p, const char* spectrum_key, const 
   return {{"spectrum", value}, {photometric_key, amount}};
 }
 
-json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m2, int shape_count, bool& two_sided) {
+json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m2, double power_multiple, bool& two_sided) {
   const auto defaults = state_.attributes.find("light");
   PbrtParams p(*this, area_light, "AreaLightSource \"diffuse\"", defaults == state_.attributes.end() ? nullptr : &defaults->second);
   two_sided = p.boolean("twosided", false);
@@ -515,7 +515,7 @@ json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m
   // With triangles of equal area that is a uniform radiance of shape_count · power over the whole mesh.
   const double power = p.real("power", -1.0);
   std::optional<double> lumens;
-  if (power > 0 && area_m2 > 0) lumens = power * shape_count;
+  if (power > 0 && area_m2 > 0) lumens = power * power_multiple;
   const json fields = light_amount(p, "L", "emission", lumens ? "luminous_power_lm" : "luminance_nt", lumens);
   return fields.contains("emission") ? fields["emission"] : fields;
 }

@@ -102,8 +102,10 @@ class PbrtConverter {
   std::string material(const PbrtStatement& s, const std::string& type, const std::string& context);
   void light_source(const PbrtStatement& s);
   /// The "emission" of an area light on a shape of world-space area `area_m2` (needed for "power").
-  /// `shape_count`: how many shapes pbrt makes of it (one per triangle of a mesh), each of which gets "power".
-  json area_emission(const PbrtStatement& area_light, double area_m2, int shape_count, bool& two_sided);
+  /// `power_multiple`: how many times "power" the shape emits in pbrt-v4: the number of shapes pbrt makes of it (one
+  /// per triangle of a mesh), each of which gets "power"; for a sphere under a scale s, s² (pbrt normalises by its
+  /// object-space area).
+  json area_emission(const PbrtStatement& area_light, double area_m2, double power_multiple, bool& two_sided);
   void texture(const PbrtStatement& s);
 
   // pbrt_shapes.cpp
@@ -210,7 +212,7 @@ class PbrtConverter {
                  std::vector<std::array<double, 2>> uvs, const std::string& context, int shape_count,
                  bool pbrt_default_uvs = false);
   void emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
-                  double area_m2, int shape_count);
+                  double area_m2, double power_multiple);
   /// A cylinder, disk or sphere mesh (render/scene/analytic_shapes.h, in object space) through emit_mesh, counted
   /// against the generated-triangle limit.
   void emit_analytic_mesh(PbrtParams& p, AnalyticMesh mesh, const SourceLocation& where, const std::string& context);

@@ -164,8 +164,10 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     const bool whole = zmin <= -radius && zmax >= radius && phimax_rad >= 2 * std::numbers::pi;
     double scale = 1.0;
     const PbrtMatrix world = world_from_object();
-    // Rimu's analytic sphere has no cut-outs: a sphere with alpha takes the mesh path below.
-    if (whole && shape_alpha_.is_null() && !object_ && !state_.area_light && !state_.reverse_orientation &&
+    // Rimu's analytic sphere has no cut-outs (a sphere with alpha takes the mesh path below), is not instanced, and
+    // faces outwards. An emissive one is an analytic area light (transport/lights/sphere_light.h): pbrt-v4's sphere
+    // faces outwards under a mirroring transform too (its normal flips only with ReverseOrientation).
+    if (whole && shape_alpha_.is_null() && !object_ && !state_.reverse_orientation &&
         !medium_in_front_only(current_material()) && world.is_finite() && world.is_affine() && is_similarity(world, scale)) {
       // pbrt's sphere uv is about its object axes (pole +z, u = 0 along +x): carried as their world directions,
       // so textures land where pbrt puts them (a mirroring CTM flips the direction u runs, as in pbrt).
@@ -174,12 +176,15 @@ void PbrtConverter::shape(const PbrtStatement& s) {
         const Vec3d d = world.vector(axis);
         axes.push_back({d[0] / scale, d[1] / scale, d[2] / scale});
       }
-      emit_shape({{"type", "sphere"}, {"center", world.point({0, 0, 0})}, {"radius", radius * scale}, {"uv_axes", axes}}, s.where,
-                 context, false, 0.0, 1);
+      // pbrt-v4 spreads "power" over the sphere's object-space area 4π radius², so under a scale s it emits s² times
+      // "power"; Rimu spreads an amount over the world-space area, which is s² times larger.
+      const double world_radius = radius * scale;
+      emit_shape({{"type", "sphere"}, {"center", world.point({0, 0, 0})}, {"radius", world_radius}, {"uv_axes", axes}}, s.where,
+                 context, true, 4.0 * std::numbers::pi * world_radius * world_radius, scale * scale);
       return;
     }
-    // Rimu's sphere cannot be partial, instanced, emit, be turned inside out or be squashed: a fine mesh with the sphere's own normals and
-    // pbrt's uv stands in (render/scene/analytic_shapes.h states its error).
+    // Rimu's sphere cannot be partial, instanced, have cut-outs, be turned inside out or be squashed: a fine mesh with the
+    // sphere's own normals and pbrt's uv stands in (render/scene/analytic_shapes.h states its error).
     emit_analytic_mesh(p, sphere_mesh(radius, zmin, zmax, phimax_rad), s.where, context);
   } else if (type == "cylinder") {
     PbrtParams p(*this, s, context, shape_defaults);
@@ -290,7 +295,7 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
 }
 
 void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
-                               double area_m2, int shape_count) {
+                               double area_m2, double power_multiple) {
   json alpha = std::exchange(shape_alpha_, nullptr);  // taken first: no early return may leave it to the next shape
   const std::optional<std::string> material =
       boundary_material(state_.material.empty() ? default_material() : state_.material, where, context);
@@ -319,7 +324,7 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
       ignore("AreaLightSource on " + context + " (not emissive in Rimu)", where);
     } else {
       bool two_sided = false;
-      shape["emission"] = area_emission(*state_.area_light, area_m2, shape_count, two_sided);
+      shape["emission"] = area_emission(*state_.area_light, area_m2, power_multiple, two_sided);
       if (two_sided) shape["two_sided"] = true;
     }
   }
