@@ -48,6 +48,9 @@ struct RenderSettings {
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
   DistanceSampling distance_sampling = DistanceSampling::spectral_mis;  ///< media only (integrator.distance_sampling)
+  /// media only (integrator.max_depth_includes_media): medium scattering events count towards max_depth, as in
+  /// pbrt-v4's volpath
+  bool max_depth_includes_media = false;
   LightSamplerKind light_sampler = LightSamplerKind::bvh;  ///< integrator.light_sampler (transport/lights/light_sampler.h)
   WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
