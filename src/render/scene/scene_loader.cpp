@@ -225,6 +225,10 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (scene->degenerate_triangles_removed > 0)
     scene->warnings.push_back(std::to_string(scene->degenerate_triangles_removed) +
                               " degenerate triangles (zero area or not finite) were removed from the meshes");
+  if (scene->meshes_with_normals_near_plane > 0)
+    scene->warnings.push_back(std::to_string(scene->meshes_with_normals_near_plane) +
+                              " meshes have shading normals in (or across) the plane of 1 % or more of their triangles: "
+                              "on opaque surfaces paths that leave below that plane end there, which darkens them");
   return scene;
 }
 
