@@ -277,3 +277,46 @@ TEST_CASE("pbrt degenerate triangles are removed and counted") {
   CHECK(scene->warnings[0].find("2 degenerate triangles") == 0);
   CHECK(hit_distance_down(*scene, 0.8f, 0.2f));
 }
+
+TEST_CASE("pbrt meshes whose shading normals lie in their triangles' plane are listed and warned about") {
+  // buddha-fractal's floor (docs/benchmarks.md, "Real-scene corpus"): a quad in z = 0 with every N along +y.
+  const std::string floor = "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  1 1 0  0 1 0] \"integer indices\" [0 1 2  0 2 3]";
+  const PbrtImport in_plane = import_text(floor + " \"normal N\" [0 1 0  0 1 0  0 1 0  0 1 0]");
+  const std::string listed = describe_ignored(in_plane.ignored);
+  CAPTURE(listed);
+  REQUIRE(in_plane.ignored.size() == 1);
+  CHECK(listed.find("Shape \"trianglemesh\" with shading normals \"N\" in (or across) the plane") != std::string::npos);
+  CHECK(listed.find("pbrt-v4 follows them") != std::string::npos);
+  const auto scene = load_scene(in_plane.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
+  CHECK(scene->meshes_with_normals_near_plane == 1);
+  REQUIRE(scene->warnings.size() == 1);  // the loader says it for JSON meshes too
+  CHECK(scene->warnings[0].find("1 meshes have shading normals in (or across) the plane") == 0);
+
+  // Normals across the plane (one vertex's behind it) are listed too; normals tilted 60° off the face are not.
+  CHECK(import_text(floor + " \"normal N\" [0 0 1  0 0 1  0 0.5 -1  0 0 1]").ignored.size() == 1);
+  const PbrtImport tilted = import_text(floor + " \"normal N\" [0 0.866 0.5  0 0.866 0.5  0 0.866 0.5  0 0.866 0.5]");
+  CHECK_MESSAGE(tilted.ignored.empty(), describe_ignored(tilted.ignored));
+  CHECK(load_scene(tilted.document, "geometry.pbrt", test::test_data("pbrt"), test::library())->warnings.empty());
+}
+
+TEST_CASE("a mesh with shading normals in the plane of under 1 % of its triangles is not listed (a crease)") {
+  // 200 triangles of a strip in z = 0 with normals +z, but one vertex's normal along +x, which only one triangle
+  // uses (0.5 %).
+  std::string p = "\"point3 P\" [", n = "\"normal N\" [", idx = "\"integer indices\" [";
+  for (int i = 0; i <= 100; ++i) {
+    p += std::to_string(i) + " 0 0  " + std::to_string(i) + " 1 0  ";
+    n += i == 100 ? "1 0 0  0 0 1  " : "0 0 1  0 0 1  ";
+  }
+  for (int i = 0; i < 100; ++i) {
+    const int a = 2 * i, b = 2 * i + 2, c = 2 * i + 3, d = 2 * i + 1;
+    idx += std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "  " + std::to_string(a) + " " +
+           std::to_string(c) + " " + std::to_string(d) + "  ";
+  }
+  const PbrtImport strip = import_text("Shape \"trianglemesh\" " + p + "] " + n + "] " + idx + "]");
+  CHECK_MESSAGE(strip.ignored.empty(), describe_ignored(strip.ignored));
+  // The same normal on half of a 2-triangle mesh is listed.
+  const PbrtImport half = import_text(
+      "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  1 1 0  0 1 0] \"integer indices\" [0 1 2  0 2 3] "
+      "\"normal N\" [0 0 1  1 0 0  0 0 1  0 0 1]");
+  CHECK(half.ignored.size() == 1);
+}

@@ -180,3 +180,13 @@ TEST_CASE("pbrt media: two media spheres render the same image as the same scene
   const auto wrong = load_scene(thinner, "thinner.json", pbrt_file.parent_path(), test::library());
   CHECK(test::worst_deviation(test::render_block_deviations(*from_pbrt, *wrong)) > test::kSigmas);
 }
+
+TEST_CASE("pbrt media: a scene with media counts scattering in them towards max_depth, as pbrt-v4's volpath") {
+  const std::string medium = "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
+  const std::string sphere = "AttributeBegin\n MediumInterface \"fog\" \"\"\n Material \"interface\"\n Shape \"sphere\"\nAttributeEnd\n";
+  const PbrtImport with = import_text(kCamera + "Integrator \"volpath\" \"integer maxdepth\" 3\n" + medium + "WorldBegin\n" + sphere);
+  CHECK(with.document["integrator"]["max_depth"] == 3);
+  CHECK(with.document["integrator"]["max_depth_includes_media"] == true);
+  const PbrtImport without = import_text(kCamera + "Integrator \"volpath\" \"integer maxdepth\" 3\nWorldBegin\nShape \"sphere\"\n");
+  CHECK_FALSE(without.document["integrator"].contains("max_depth_includes_media"));
+}

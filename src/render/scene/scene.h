@@ -48,6 +48,9 @@ struct RenderSettings {
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
   DistanceSampling distance_sampling = DistanceSampling::spectral_mis;  ///< media only (integrator.distance_sampling)
+  /// media only (integrator.max_depth_includes_media): medium scattering events count towards max_depth, as in
+  /// pbrt-v4's volpath
+  bool max_depth_includes_media = false;
   LightSamplerKind light_sampler = LightSamplerKind::bvh;  ///< integrator.light_sampler (transport/lights/light_sampler.h)
   WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
@@ -80,6 +83,9 @@ struct Scene {
   RenderSettings settings;
   float scene_scale = 1.0f;              ///< bounding-box diagonal (m)
   size_t degenerate_triangles_removed = 0;
+  /// Meshes with shading normals in (or across) the plane of 1 % or more of their triangles (a warning: see
+  /// TriangleMesh::triangles_with_normals_near_plane)
+  size_t meshes_with_normals_near_plane = 0;
   /// Some light is given in photometric units (render/scene/photometric_units.h), inline or through "include":
   /// `rimu` meters the display image of such a scene.
   bool photometric_lights = false;

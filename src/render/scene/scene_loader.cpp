@@ -115,7 +115,8 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
-               "direct_lighting", "distance_sampling", "light_sampler", "guiding", "time_limit_s"});
+               "direct_lighting", "distance_sampling", "max_depth_includes_media", "light_sampler", "guiding",
+               "time_limit_s"});
   if (const auto d = c.find("guiding")) s.integrator.guiding = d->is_string() ? d->choice({"on", "off"}) == "on" : d->boolean();
   if (const auto d = c.find("light_sampler"))
     s.light_sampler = *parse_light_sampler_kind(d->choice({"bvh", "bvh-spectral", "power", "uniform"}));
@@ -129,6 +130,7 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
                           : v == "spectral_tracking" ? DistanceSampling::spectral_tracking
                                                      : DistanceSampling::spectral_mis;
   }
+  s.max_depth_includes_media = c.boolean_or("max_depth_includes_media", s.max_depth_includes_media);
   if (const auto sampler = c.find("sampler"))
     s.sampler = *parse_sampler_kind(sampler->choice({"sobol", "independent"}));
   if (const auto d = c.find("direct_lighting")) {
@@ -223,6 +225,10 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (scene->degenerate_triangles_removed > 0)
     scene->warnings.push_back(std::to_string(scene->degenerate_triangles_removed) +
                               " degenerate triangles (zero area or not finite) were removed from the meshes");
+  if (scene->meshes_with_normals_near_plane > 0)
+    scene->warnings.push_back(std::to_string(scene->meshes_with_normals_near_plane) +
+                              " meshes have shading normals in (or across) the plane of 1 % or more of their triangles: "
+                              "on opaque surfaces paths that leave below that plane end there, which darkens them");
   return scene;
 }
 

@@ -184,6 +184,12 @@ std::shared_ptr<const AlphaMask> alpha_of(const JsonCursor& shape, LoadContext& 
   }
 }
 
+// A few triangles with such normals are a crease or a sliver; 1 % or more is how the mesh was made.
+void count_normals_near_plane(const TriangleMesh& mesh, Scene& scene) {
+  const size_t near_plane = mesh.triangles_with_normals_near_plane();
+  if (near_plane > 0 && 100 * near_plane >= mesh.triangle_count()) ++scene.meshes_with_normals_near_plane;
+}
+
 }  // namespace
 
 Transform parse_transform(const JsonCursor& shape) {
@@ -308,6 +314,7 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     const std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
     scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
     if (mesh.triangle_count() == 0) continue;  // only degenerate triangles (counted above)
+    count_normals_near_plane(mesh, scene);
     if (radiance) {
       // Lights were loaded first, so area lights take the indices after them, in the order of the shapes.
       auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
@@ -338,6 +345,7 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
       std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
       check_mesh_coordinates(mesh, shape);  // the prototype's own space is a scene too (Embree checks it alike)
       context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
+      count_normals_near_plane(mesh, context.scene);
       for (const Vec3& p : mesh.positions) bounds.extend(p);
       if (mesh.triangle_count() > 0) {
         meshes.emplace_back(std::move(mesh), material);

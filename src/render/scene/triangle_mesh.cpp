@@ -37,6 +37,29 @@ size_t TriangleMesh::remove_degenerate_triangles() {
   return removed;
 }
 
+size_t TriangleMesh::triangles_with_normals_near_plane() const {
+  constexpr float kClearCos = 0.1f;  // cos 84°: a normal 6° or less from the plane is "in" it
+  if (normals.size() != positions.size()) return 0;
+  size_t count = 0;
+  for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+    const Vec3 a = positions[indices[i]], b = positions[indices[i + 1]], c = positions[indices[i + 2]];
+    const Vec3 g = cross(b - a, c - a);
+    const float g_length = length(g);
+    if (!(g_length > 0.0f) || !std::isfinite(g_length)) continue;  // degenerate: removed elsewhere
+    int above = 0, below = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 n = normals[indices[i + size_t(k)]];
+      const float n_length = length(n);
+      if (!(n_length > 0.0f)) continue;
+      const float cos_to_face = dot(n, g) / (n_length * g_length);
+      above += cos_to_face > kClearCos;
+      below += cos_to_face < -kClearCos;
+    }
+    if (above != 3 && below != 3) ++count;
+  }
+  return count;
+}
+
 std::string TriangleMesh::validate() const {
   if (indices.size() % 3 != 0) return "the index count is not a multiple of 3";
   if (!normals.empty() && normals.size() != positions.size())

@@ -28,6 +28,11 @@ struct TriangleMesh {
   void transform(const Transform& t);
   /// Removes triangles whose area is zero or not finite (they would give NaN normals) and returns how many.
   size_t remove_degenerate_triangles();
+  /// Triangles whose shading normals do not all stand clear of the triangle's plane on one side: some vertex normal
+  /// within about 6° of the plane (|cos| to the face normal below 0.1), or normals on both sides. Rimu ends paths
+  /// that leave an opaque surface below its geometric plane, so a diffuse lobe around such a normal loses up to half
+  /// of its light (pbrt-v4 follows those paths through the surface). 0 for meshes without normals.
+  size_t triangles_with_normals_near_plane() const;
   /// Checks indices are in range and every number is finite; returns an empty string or what is wrong.
   std::string validate() const;
 };

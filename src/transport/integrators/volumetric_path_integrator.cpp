@@ -179,9 +179,13 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const SampledSpectrum ratios_before_flight = pdf_ratio;
     float flight_t = 0.0f;
     const int medium_index = stack.current(media);
+    // The depth the next vertex would have; a medium vertex that reaches max_depth ends the path before its NEE.
+    const int depth = surface_depth + (settings_.max_depth_includes_media ? medium_events : 0);
     if (medium_index >= 0) {
       const Medium& medium = media[size_t(medium_index)];
-      if (uses_equiangular(medium)) {
+      // The equiangular technique is NEE from this segment's scattering points: none when those would end the path.
+      const bool medium_vertex_allowed = !settings_.max_depth_includes_media || depth < path.max_depth;
+      if (medium_vertex_allowed && uses_equiangular(medium)) {
         equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}};
         int light_group = 0;
         const SampledSpectrum direct =
@@ -209,6 +213,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     // A pane (Material::passes_shadow_rays) may be passed straight through: then it is no vertex (see path_integrator.cpp).
     bool may_pass = false, depth_reached = false;
     if (scatter_point) {
+      if (settings_.max_depth_includes_media && depth >= path.max_depth) break;
       if (++medium_events > settings_.max_medium_events) break;
       scatterer.phase = &media[size_t(medium_index)].phase();
       scatterer.wo_world = -ray.direction;
@@ -246,7 +251,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       if (hit->material < 0) break;
       const Material& material = (*surfaces.materials)[size_t(hit->material)];
       may_pass = material.passes_shadow_rays() && passages_since_vertex < kMaxShadowPassages;
-      depth_reached = surface_depth >= path.max_depth;
+      depth_reached = depth >= path.max_depth;
       if (depth_reached && !may_pass) break;
       ++surface_depth;
       MaterialContext context = MaterialContext::at(*hit, -ray.direction);

@@ -26,7 +26,11 @@ struct VolumetricScene {
 };
 
 struct VolumetricIntegratorSettings {
-  PathIntegratorSettings path;  ///< max_depth counts surface interactions only; RR counts all vertices
+  PathIntegratorSettings path;  ///< max_depth counts surface interactions (and see below); RR counts all vertices
+  /// Whether scattering events in media count towards path.max_depth too, as pbrt-v4's volpath counts them
+  /// (the pbrt importer sets it for scenes with media). Either way a vertex at depth max_depth gets no next-event
+  /// estimation and no direction: with it, max_depth 0 keeps no medium-scattered light, 1 single scattering.
+  bool max_depth_includes_media = false;
   DistanceSampling distance = DistanceSampling::spectral_mis;
   /// A safety bound on scattering events per path (stuck-path guard; Russian roulette ends paths long before in
   /// any medium with albedo < 1). Paths reaching it end, which truncates at most the 10⁶th-order scattering.

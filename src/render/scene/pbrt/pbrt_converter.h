@@ -213,6 +213,10 @@ class PbrtConverter {
                  bool pbrt_default_uvs = false);
   void emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                   double area_m2, double power_multiple);
+  /// Lists a mesh whose shading normals lie in (or across) the plane of 1 % or more of its triangles
+  /// (TriangleMesh::triangles_with_normals_near_plane): there Rimu's image differs from pbrt-v4's.
+  void list_normals_near_plane(const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices,
+                               const std::vector<Vec3d>& normals, const SourceLocation& where, const std::string& context);
   /// A cylinder, disk or sphere mesh (render/scene/analytic_shapes.h, in object space) through emit_mesh, counted
   /// against the generated-triangle limit.
   void emit_analytic_mesh(PbrtParams& p, AnalyticMesh mesh, const SourceLocation& where, const std::string& context);

@@ -10,6 +10,7 @@
 #include "render/scene/loop_subdivision.h"
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/ply_loader.h"
+#include "render/scene/triangle_mesh.h"
 
 namespace rimu {
 
@@ -277,6 +278,7 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
   }
   for (size_t t = 0; t + 2 < indices.size(); t += 3)
     if (flips[t / 3]) std::swap(indices[t + 1], indices[t + 2]);
+  if (!normals.empty()) list_normals_near_plane(positions, indices, normals, p.where(), context);
   double area_m2 = 0.0;
   if (state_.area_light && !object_) {
     const PbrtMatrix world = world_from_object();
@@ -292,6 +294,23 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
   if (uv_default_pbrt) shape["uv_default"] = "pbrt";
   shape_turned_for_medium_ = turned;
   emit_shape(std::move(shape), p.where(), context, true, area_m2, shape_count);
+}
+
+void PbrtConverter::list_normals_near_plane(const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices,
+                                            const std::vector<Vec3d>& normals, const SourceLocation& where,
+                                            const std::string& context) {
+  TriangleMesh mesh;
+  for (const Vec3d& v : positions) mesh.positions.push_back(Vec3{float(v[0]), float(v[1]), float(v[2])});
+  for (const Vec3d& n : normals) mesh.normals.push_back(Vec3{float(n[0]), float(n[1]), float(n[2])});
+  mesh.indices = indices;
+  // A few such triangles are a crease or a sliver; a share of 1 % or more is how the mesh was made (a floor
+  // whose normals all point along it: pbrt-v3-scenes' buddha-fractal, docs/benchmarks.md "Real-scene corpus").
+  const size_t near_plane = mesh.triangles_with_normals_near_plane();
+  if (near_plane == 0 || 100 * near_plane < mesh.triangle_count()) return;
+  ignore(context + " with shading normals \"N\" in (or across) the plane of 1 % or more of its triangles: on an opaque "
+                   "surface Rimu ends the paths that leave it below that plane, pbrt-v4 follows them through the surface "
+                   "(its image can be brighter there)",
+         where);
 }
 
 void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,

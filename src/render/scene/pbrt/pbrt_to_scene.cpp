@@ -501,7 +501,11 @@ json PbrtConverter::finish(const std::string& main_file) {
   document["lights"] = std::move(lights_);
   document["shapes"] = std::move(shapes_);
   finish_media();
-  if (!media_.empty()) document["media"] = media_;
+  if (!media_.empty()) {
+    document["media"] = media_;
+    // pbrt-v4's volpath counts scattering in media towards "maxdepth" as it counts surface bounces.
+    document["integrator"]["max_depth_includes_media"] = true;
+  }
   json prototypes = json::object();
   for (auto& [name, shapes] : prototypes_.items())
     if (!shapes.empty()) prototypes[name] = std::move(shapes);
