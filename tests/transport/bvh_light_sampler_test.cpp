@@ -2,7 +2,8 @@
 // match pmf() (chi-square over every light part plus "no light"), pmf() is bit-identical to the probability
 // sample() returns, the probabilities sum to 1 and a part has probability > 0 exactly where its own bounds score
 // > 0; nothing behind a one-sided emitter, outside a spot's or IES light's cone or below an opaque surface is ever
-// chosen; lights at infinity get a share independent of the scene's size.
+// chosen; an environment gets the fixed rule's share, a sun one that follows its irradiance against the tree's
+// importance at the point, never below the rule's floor.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -270,7 +271,7 @@ TEST_CASE("light BVH: the probabilities sum to 1 where every cluster can contrib
     double sum = 0.0;
     for (size_t l = 0; l < s.lights.size(); ++l) sum += sampler.pmf(at, int(l), 0);
     CHECK(sum == doctest::Approx(1.0).epsilon(1e-5));
-    CHECK(sampler.pmf(at, 300, 0) == doctest::Approx(0.5));  // one light at infinity: half, as the tree
+    CHECK(sampler.pmf(at, 300, 0) == 0.5f);  // one environment: half, as the tree
   }
 }
 
@@ -401,21 +402,81 @@ TEST_CASE("light BVH: lights below an opaque surface's tangent plane are not cho
   CHECK(sampler.pmf(none, 1, 0) == doctest::Approx(0.5));
 }
 
-TEST_CASE("light BVH: lights at infinity get a share independent of the scene's size") {
-  for (float scale : {1.0f, 100.0f}) {
-    const TestScene scene = outdoor_scene(scale);
-    const auto pointers = scene.pointers();
-    const BvhLightSampler sampler(pointers);
-    // Under the spot, the tree can contribute: the environment and the sun get 1/3 each.
-    const LightSamplingPoint lit{Vec3{0.1f, 0, 0.1f} * scale, {0, 1, 0}};
-    CHECK(sampler.pmf(lit, 0, 0) == doctest::Approx(1.0 / 3.0));
-    CHECK(sampler.pmf(lit, 2, 0) == doctest::Approx(1.0 / 3.0));
-    // Above every finite light, facing up, no finite light can contribute: the two at infinity get 1/2 each.
-    const LightSamplingPoint above{Vec3{0, 3, 0} * scale, {0, 1, 0}};
-    CHECK(sampler.pmf(above, 0, 0) == doctest::Approx(0.5));
-    CHECK(sampler.pmf(above, 1, 0) == 0.0f);
-    CHECK(sampler.pmf(above, 3, 0) == 0.0f);
+TEST_CASE("light BVH: an environment keeps the rule's share; a sun shares with the tree by irradiance") {
+  // outdoor_scene: an environment (0), a spot 2 m up (1), a sun (2), a point light (3). Where the sun and the tree
+  // can contribute, the environment gets the rule's 1/3 and the sun and the tree split the other 2/3 by the sun's
+  // irradiance against the tree root's importance, each keeping at least kInfiniteRuleWeight of its 1/3.
+  const float rule = BvhLightSampler::kInfiniteRuleWeight;
+  const TestScene scene = outdoor_scene();
+  const auto pointers = scene.pointers();
+  const BvhLightSampler sampler(pointers);
+  const auto tree_share = [&](const LightSamplingPoint& at) {
+    return 1.0f - sampler.pmf(at, 0, 0) - sampler.pmf(at, 2, 0);
+  };
+  // Facing up, moving away from the lamps: the tree's share falls towards its floor, the sun's rises.
+  float last = 1.0f;
+  for (float x : {5.0f, 10.0f, 20.0f, 40.0f}) {
+    const LightSamplingPoint at{{x, 0, 0.1f}, {0, 1, 0}};
+    const float tree = tree_share(at);
+    INFO("x = " << x << ": the tree's share " << tree << ", the sun's " << sampler.pmf(at, 2, 0));
+    CHECK(sampler.pmf(at, 0, 0) == doctest::Approx(1.0 / 3.0).epsilon(1e-6));
+    CHECK(tree < last);
+    CHECK(tree >= (2.0f / 3.0f) * rule / 2.0f * (1.0f - 1e-5f));
+    CHECK(sampler.pmf(at, 2, 0) >= (2.0f / 3.0f) * rule / 2.0f * (1.0f - 1e-5f));
+    last = tree;
   }
+  CHECK(last < (2.0f / 3.0f) * 0.2f);  // 40 m away the sun takes most of the 2/3
+  // Next to the point light the tree gets more than twice its share 40 m away (the sun, E⊥ = 470 W/m², still
+  // outshines the root's importance there), the sun still at least its floor.
+  const LightSamplingPoint near{{3, 0.55f, 2}, {}};
+  CHECK(tree_share(near) > 2.0f * last);
+  CHECK(sampler.pmf(near, 2, 0) >= (2.0f / 3.0f) * rule / 2.0f * (1.0f - 1e-5f));
+  // Above every finite light, facing up: the tree cannot contribute; the environment and the sun get half each.
+  const LightSamplingPoint above{{0, 3, 0}, {0, 1, 0}};
+  CHECK(sampler.pmf(above, 0, 0) == 0.5f);
+  CHECK(sampler.pmf(above, 2, 0) == doctest::Approx(0.5));
+  CHECK(sampler.pmf(above, 1, 0) == 0.0f);
+  CHECK(sampler.pmf(above, 3, 0) == 0.0f);
+  // The sun's measure is its irradiance at normal incidence, 1.0 W/(m²·nm) over 360-830 nm; the environment has none.
+  CHECK(*scene.lights[2]->directional_irradiance_w_m2() == doctest::Approx(470.0).epsilon(1e-5));
+  CHECK(!scene.lights[0]->directional_irradiance_w_m2().has_value());
+}
+
+TEST_CASE("light BVH: where the shares of the lights at infinity vary, pmf() equals the sampled frequency") {
+  // Points from under the spot to 60 m away with normals in every direction, so the tree's share varies by more than
+  // 2× (towards the rule's floor far away): chi-square over every part plus "no light", pmf() bit for bit the sampled
+  // probability, Σ = 1 wherever something can contribute (chi_square_at: every part that scores has P > 0), and
+  // the sun's probability > 0 wherever a direction drawn from its disc arrives above the surface.
+  const TestScene scene = outdoor_scene();
+  const auto pointers = scene.pointers();
+  const BvhLightSampler sampler(pointers);
+  std::mt19937 rng(31);
+  constexpr int kPoints = 40, kDraws = 20000;
+  float smallest_tree = 1.0f, largest_tree = 0.0f;
+  const SampledWavelengths lambda(Float4(450.0f, 520.0f, 590.0f, 660.0f), Float4(1.0f / 470.0f));
+  for (int i = 0; i < kPoints; ++i) {
+    const float distance = 60.0f * float(i) / kPoints;
+    const Vec3 p{distance * std::cos(float(i)), 0.05f + 0.5f * test::uniform01(rng), distance * std::sin(float(i))};
+    const LightSamplingPoint at{p, i % 5 == 0 ? Vec3{} : random_unit(rng)};
+    INFO("point " << i << " at (" << p.x << ", " << p.y << ", " << p.z << "), normal (" << at.normal.x << ", "
+                  << at.normal.y << ", " << at.normal.z << ")");
+    double sum = 0.0;
+    int scoring = 0;
+    const double p_value = chi_square_at(sampler, scene, at, kDraws, rng, &sum, &scoring);
+    CHECK(p_value > test::sidak_threshold(test::kChiSquareAlpha, kPoints));
+    if (scoring > 0) CHECK(sum == doctest::Approx(1.0).epsilon(64 * 0x1p-24));
+    const float tree = 1.0f - sampler.pmf(at, 0, 0) - sampler.pmf(at, 2, 0);
+    if (tree > 0.0f) smallest_tree = std::min(smallest_tree, tree);
+    largest_tree = std::max(largest_tree, tree);
+    bool sun_arrives = false;
+    for (int d = 0; d < 64 && !sun_arrives; ++d) {
+      const auto s = scene.lights[2]->sample_li(LightReference{p, Vec3{}}, lambda, {test::uniform01(rng), test::uniform01(rng)});
+      sun_arrives = s && (at.normal == Vec3{} || dot(at.normal, s->wi) > 0.0f);
+    }
+    if (sun_arrives) CHECK(sampler.pmf(at, 2, 0) > 0.0f);
+  }
+  MESSAGE("the tree's share over the points where it can contribute: " << smallest_tree << " to " << largest_tree);
+  CHECK(largest_tree > 2.0f * smallest_tree);  // the test covers points where the share varies
 }
 
 TEST_CASE("light BVH: build statistics of a 1,050-triangle scene") {

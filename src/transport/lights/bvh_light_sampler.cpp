@@ -211,7 +211,16 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
     // An environment with portals has bounds (its portals) and is a leaf like any area light.
     if (light.is_infinite() && !light.part_bounds(0)) {
       is_infinite_[i] = true;
-      if (light.total_power_w(1.0) > 0.0) infinite_lights_.push_back(int(i));
+      if (light.total_power_w(1.0) > 0.0) {
+        infinite_lights_.push_back(int(i));
+        // A directional light with E⊥ ≤ 0 (or NaN) but power counts as a wide one: it keeps the rule's share.
+        const float e = light.directional_irradiance_w_m2().value_or(0.0f);
+        directional_irradiance_.push_back(e > 0.0f && std::isfinite(e) ? e : 0.0f);
+        if (directional_irradiance_.back() > 0.0f) {
+          ++directional_count_;
+          directional_sum_ += directional_irradiance_.back();
+        }
+      }
       continue;
     }
     bool any_bounds = false;
@@ -540,7 +549,11 @@ inline BvhLightSampler::Shares BvhLightSampler::shares(const Query& at) const {
   // Without lights at infinity the tree takes everything (a descent that finds no slot returns no light). Inline,
   // as that case is most scenes'.
   const int m = int(infinite_lights_.size());
-  if (m == 0) [[likely]] return {nodes_.empty() ? 0.0f : 1.0f, 0.0f};
+  if (m == 0) [[likely]] {
+    Shares s;
+    s.tree = nodes_.empty() ? 0.0f : 1.0f;
+    return s;
+  }
   return infinite_shares(at);
 }
 
@@ -567,8 +580,30 @@ BvhLightSampler::Shares BvhLightSampler::infinite_shares(const Query& at) const 
       }
     }
   }
-  if (witness == kNoLeaf) return {0.0f, 1.0f / float(m)};
-  return {1.0f / float(m + 1), 1.0f / float(m + 1), witness};
+  // The fixed rule over the m lights at infinity and the tree (if it can contribute): 1/(m + 1) each. The directional
+  // ones (the sun: only light sampling finds it) and the tree then split their part between them by irradiance (a
+  // sun's E⊥, the tree's root importance at the point) mixed with the rule, so each keeps at least
+  // kInfiniteRuleWeight of its rule's share; the wide ones (environments, skies: BSDF sampling finds them) keep theirs.
+  const bool tree_can = witness != kNoLeaf;
+  Shares s;
+  s.root_witness = witness;
+  const int members = m + (tree_can ? 1 : 0);
+  s.wide = 1.0f / float(members);
+  if (directional_count_ == 0) {
+    s.tree = tree_can ? s.wide : 0.0f;
+    return s;
+  }
+  // The directional lights' and the tree's part of the rule, split by E mixed with the rule.
+  const int splitting = directional_count_ + (tree_can ? 1 : 0);
+  const float pool = float(splitting) / float(members);
+  const float tree_estimate = tree_can ? light_importance(nodes_[0].bounds, at.position_m, at.normal) : 0.0f;
+  const float rule = kInfiniteRuleWeight;
+  const float total = tree_estimate + directional_sum_;
+  s.directional_base = pool * rule / float(splitting);
+  s.directional_scale = total > 0.0f && std::isfinite(total) ? pool * (1.0f - rule) / total : 0.0f;
+  if (!(s.directional_scale > 0.0f)) s.directional_base = pool / float(splitting);
+  if (tree_can) s.tree = s.directional_base + s.directional_scale * tree_estimate;
+  return s;
 }
 
 std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& point, float u_float) const {
@@ -576,10 +611,13 @@ std::optional<LightChoice> BvhLightSampler::sample(const LightSamplingPoint& poi
   const Shares shares_here = shares(at);
   const int m = int(infinite_lights_.size());
   double u = double(u_float);
-  const double infinite_total = double(shares_here.each_infinite) * m;
-  if (m > 0 && u < infinite_total) {
-    const int k = std::min(int(u / double(shares_here.each_infinite)), m - 1);
-    return LightChoice{infinite_lights_[size_t(k)], 0, shares_here.each_infinite};
+  // The lights at infinity first, each an interval of [0, 1) as long as its probability; the tree the rest.
+  double infinite_total = 0.0;
+  for (int k = 0; k < m; ++k) {
+    const float p = infinite_probability(size_t(k), shares_here);
+    if (!(p > 0.0f)) continue;
+    if (u < infinite_total + double(p)) return LightChoice{infinite_lights_[size_t(k)], 0, p};
+    infinite_total += double(p);
   }
   if (!(shares_here.tree > 0.0f)) return std::nullopt;
   constexpr double kBelowOne = 1.0 - 0x1p-53;
@@ -625,9 +663,9 @@ float BvhLightSampler::pmf(const LightSamplingPoint& point, int light, int part)
   const Query at = query(point);
   if (light < 0 || size_t(light) >= first_part_.size() || part < 0) return 0.0f;
   if (is_infinite_[size_t(light)]) {
-    if (part != 0 || std::find(infinite_lights_.begin(), infinite_lights_.end(), light) == infinite_lights_.end())
-      return 0.0f;
-    return shares(at).each_infinite;
+    const auto k = std::find(infinite_lights_.begin(), infinite_lights_.end(), light);
+    if (part != 0 || k == infinite_lights_.end()) return 0.0f;
+    return infinite_probability(size_t(k - infinite_lights_.begin()), shares(at));
   }
   const size_t end = size_t(light) + 1 < first_part_.size() ? first_part_[size_t(light) + 1] : trails_.size();
   const size_t slot = first_part_[size_t(light)] + size_t(part);
@@ -663,7 +701,8 @@ size_t BvhLightSampler::memory_bytes() const {
          representatives_.capacity() * sizeof(Representatives) +
          leaves_.capacity() * sizeof(Leaf) +
          first_part_.capacity() * sizeof(uint32_t) + trails_.capacity() * sizeof(uint64_t) +
-         infinite_lights_.capacity() * sizeof(int) + is_infinite_.capacity() / 8 +
+         infinite_lights_.capacity() * sizeof(int) + directional_irradiance_.capacity() * sizeof(float) +
+         is_infinite_.capacity() / 8 +
          node_bands_.capacity() * sizeof(node_bands_[0]);
 }
 

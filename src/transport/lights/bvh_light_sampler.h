@@ -42,12 +42,24 @@
 // An environment with portals (environment_light.h) is a leaf of the tree: its bounds are the portal rectangles,
 // two-sided, with the intensity of a Lambertian emitter of the environment's mean radiance, so near a window the sky
 // competes with the lamps as a window-sized area light would, and far from it gets little.
-// Other lights at infinity (environment, distant) are not in the tree. Their rule, independent of the scene's size:
-// with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4 does. Where no
-// finite light can contribute (no leaf scores > 0), each gets 1/m instead. That is decided as for any child of the
-// descent (the root's certificate, else its representative, else a search), not from the root's split, so choosing
-// a light at infinity, or weighing a BSDF-sampled ray that escaped (pmf()), costs one or two importance evaluations
-// rather than a wide node's; the leaf found is the root split's witness.
+// Lights at infinity. Other lights at infinity (environment, distant) are not in the tree. The rule, independent of
+// the scene's size: with m of them, each gets probability 1/(m + 1) and the tree the remaining 1/(m + 1), as pbrt-v4
+// does (where no finite light can contribute, no leaf scoring > 0, each gets 1/m). Wide ones (environments, skies)
+// keep that share: a BSDF-sampled ray that escapes finds them, so MIS covers them well (giving an environment its
+// irradiance share made a street under a night sky up to 6× noisier). Directional ones
+// (a distant light, the sun: Light::directional_irradiance_w_m2) are found by light sampling only, and share their
+// part of the rule with the tree by irradiance at the point: of their and the tree's part R, each gets
+//   R · (β/k + (1 − β) · E / (E_T + Σ E⊥)),   β = kInfiniteRuleWeight, k the number of members,
+// E a sun's irradiance at normal incidence E⊥ and E_T the tree root's importance at the point (with the normal).
+// So the sun gets most samples where it outshines the lamps, the tree where they are near, neither less than β/k
+// of R; the probabilities still sum to 1 and pmf() works out the same numbers for the same point. The sun's E
+// leaves out the receiver's cosine on purpose: with it (0 where the disc is below the tangent plane, the tree taking
+// the sun's share there) the day room's error fell a further 10 % but its cost per sample rose 32 %
+// (docs/transport.md, "The sun's share by irradiance"); without it the sun's samples there are rejected below the
+// surface before any shadow ray, as under the fixed rule. Whether the tree can contribute is decided as for any child
+// of the descent (the root's certificate, else its representative, else a search), not from the root's split, so
+// choosing a light at infinity, or weighing a BSDF-sampled ray that escaped (pmf()), costs one or two importance
+// evaluations rather than a wide node's; the leaf found is the root split's witness.
 //
 // Spectral importance (Importance::spectral, "light_sampler": "bvh-spectral"). Each node also holds its intensity
 // bound's spectral shape in kBands equal bands over 360-830 nm: band b is the cluster's intensity_w_sr times the
@@ -89,6 +101,9 @@ class BvhLightSampler final : public LightSampler {
   enum class Importance { broadband, spectral };
   static constexpr int kBands = 16;  ///< 29.4 nm each: 64 bytes per node
   static constexpr float kSpectralFloor = 1e-3f;
+  /// The weight of the fixed rule where a sun and the tree split their share (see "Lights at infinity"): of 0.15,
+  /// 0.25 and 0.3, 0.15 gave the day room the lowest error (docs/transport.md, "The sun's share by irradiance").
+  static constexpr float kInfiniteRuleWeight = 0.15f;
 
   /// The default search cap (see "Capped search"): none. A cap of 8 visits bounds a choice's work in the worst case
   /// (10⁶ random triangles: 13.4 against 17.0 µs per choice) but wastes probability on empty clusters next to a
@@ -181,13 +196,21 @@ class BvhLightSampler final : public LightSampler {
   /// node visits are spent (a negative budget never runs out). `representative_checked`: the caller found that the
   /// representative scores 0 (the visit still counts), so it is not checked again.
   uint32_t find_scoring_leaf(uint32_t index, const Query& at, int* budget, bool representative_checked = false) const;
-  /// The probability of the tree as a whole and of each light at infinity at `at`.
+  /// The probability of the tree as a whole and of each light at infinity at `at` (see "Lights at infinity").
   struct Shares {
-    float tree, each_infinite;
+    float tree = 0.0f;
+    float wide = 0.0f;  // each light at infinity without a directional estimate (environments, skies)
+    // A directional one (the sun): directional_base + directional_scale · E⊥.
+    float directional_base = 0.0f, directional_scale = 0.0f;
     uint32_t root_witness = kNoLeaf;  // what decided that the tree can contribute, for the root's split
   };
   Shares shares(const Query& at) const;
   Shares infinite_shares(const Query& at) const;  // shares() where there are lights at infinity
+  /// The probability of light at infinity `k` (an index into infinite_lights_) under `shares`.
+  float infinite_probability(size_t k, const Shares& shares) const {
+    const float e = directional_irradiance_[k];
+    return e > 0.0f ? shares.directional_base + shares.directional_scale * e : shares.wide;
+  }
   uint32_t build(std::vector<BuildItem>& items, size_t begin, size_t end, int depth, uint64_t trail);
   /// The wide node over interior binary node `index` and, recursively, those below it; `subtree_end` per binary node.
   uint32_t build_wide(uint32_t index, const std::vector<uint32_t>& subtree_end);
@@ -208,6 +231,10 @@ class BvhLightSampler final : public LightSampler {
   std::vector<uint64_t> trails_;      // per (light, part): 1 << depth | the path's bits (1 = second child); 0: none
   ImportanceBounds4 tree_representative4_;  // lane 0: the root's representative (for shares())
   std::vector<int> infinite_lights_;
+  // Per light at infinity: a directional one's irradiance at normal incidence E⊥ (> 0), 0 for a wide one.
+  std::vector<float> directional_irradiance_;
+  int directional_count_ = 0;
+  float directional_sum_ = 0.0f;  // Σ E⊥
   std::vector<bool> is_infinite_;
   int search_budget_ = 0;
   int leaf_count_ = 0;

@@ -36,6 +36,8 @@ class DistantLight final : public Light {
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return one_minus_cos_alpha_ == 0.0; }
   bool is_infinite() const override { return true; }
+  /// ∫E dλ over 360-830 nm, W/m².
+  std::optional<float> directional_irradiance_w_m2() const override { return float(irradiance_.integral_360_830()); }
 
   /// L = E/(π sin²α) per unit of the irradiance spectrum (0 for the delta light).
   double radiance_per_irradiance() const { return radiance_per_irradiance_; }

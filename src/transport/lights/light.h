@@ -60,6 +60,12 @@ class Light {
   virtual std::optional<Vec3> delta_position_m() const { return std::nullopt; }
   /// True if the light is at infinity (radiance_escaped may be nonzero).
   virtual bool is_infinite() const { return false; }
+  /// For a light at infinity whose light arrives from a small cone of directions (a distant light: the sun), which
+  /// only light sampling finds (a BSDF-sampled ray hardly ever hits it): its irradiance at normal incidence ∫E⊥ dλ
+  /// over 360-830 nm (W/m², unoccluded). std::nullopt for every other light, environments and skies included (BSDF
+  /// sampling finds those). The light tree splits the light samples between itself and such lights by it
+  /// (bvh_light_sampler.h, "Lights at infinity").
+  virtual std::optional<float> directional_irradiance_w_m2() const { return std::nullopt; }
 
   // Parts. A light sampler may choose the parts of a light separately: the triangles of an emissive mesh (part k
   // is triangle k, SurfaceHit::primitive). Every other light is one part, and these default to the whole light.
