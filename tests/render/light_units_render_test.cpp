@@ -184,3 +184,26 @@ TEST_CASE("photometric light keys: errors name the key and the units that apply"
   fails_with({{"type", "distant"}, {"direction", {0, 0, 1}}, {"spectrum", 1.0}, {"illuminance_lx", 5}, {"keep", "radiometric"}},
              "needs 'reference_spectrum'");
 }
+
+TEST_CASE("the light meter's standard error is honest: over 100 seeds its errors over it spread like t(15)") {
+  // A 1000 lm, 2856 K point light 2 m above the meter: the only randomness is the hero wavelengths, stratified within
+  // each of the reading's 16 independent batches (replicates_for(256)), so (reading − exact)/SE has a t distribution
+  // of 15 degrees of freedom: E[z²] = 15/13 = 1.154, Var[z²] = 3.39, so the mean of 100 z² has standard deviation
+  // 0.18; the bounds are ±4 of it. The textbook s/√n over the 256 stratified samples, used before, overstated this
+  // error 34-fold (mean z² 0.00086 here).
+  const auto scene = load(scene_with(json::array(
+      {{{"type", "point"}, {"position", {0, 0, 2}}, {"spectrum", {{"blackbody", 2856}}}, {"luminous_power_lm", 1000}}})));
+  const double exact = 1000.0 / (16.0 * kPi);
+  double sum_z2 = 0.0;
+  constexpr int kSeeds = 100;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    const MeterReading r =
+        measure_illuminance_lx(scene->transport_view(), {0, 0, 0}, {0, 0, 1}, test::library().photopic_v(), 256, uint64_t(seed));
+    REQUIRE(r.standard_error > 0.0);
+    sum_z2 += (r.value - exact) * (r.value - exact) / (r.standard_error * r.standard_error);
+  }
+  const double mean_z2 = sum_z2 / kSeeds;
+  MESSAGE("light meter: mean z² over " << kSeeds << " seeds " << mean_z2 << " (t(15): 1.154)");
+  CHECK(mean_z2 > 1.154 - 4 * 0.18);
+  CHECK(mean_z2 < 1.154 + 4 * 0.18);
+}

@@ -44,7 +44,7 @@ constexpr TextureFilter kFilters[] = {TextureFilter::point, TextureFilter::bilin
 }  // namespace
 
 TEST_CASE("MIP pyramid: levels halve down to 1×1 and each keeps the image's mean (odd and even sides)") {
-  for (const auto [w, h] : {std::pair{64, 64}, std::pair{37, 20}, std::pair{5, 1}, std::pair{1, 9}, std::pair{3, 3}}) {
+  for (const auto& [w, h] : {std::pair{64, 64}, std::pair{37, 20}, std::pair{5, 1}, std::pair{1, 9}, std::pair{3, 3}}) {
     CAPTURE(w);
     CAPTURE(h);
     const MipPyramid<float> p = random_pyramid(w, h, uint32_t(w * 100 + h));

@@ -196,7 +196,7 @@ TEST_CASE("pbrt default uv: a checkerboard on a trianglemesh without uv renders 
   // pbrt-v4 gives each triangle without uv (0,0), (1,0), (1,1) at its vertices (shapes.h, Triangle): on the quad
   // (0 1 2)(0 2 3) the checks of the two triangles do not line up. The twin writes those uvs out on unshared
   // corners; the barycentric convention (Rimu's default) is the control that the comparison sees the difference.
-  for (const std::string camera : {std::string("LookAt 0 0 0  0 0 1  0 1 0\n"), std::string("Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\n")}) {
+  for (const std::string& camera : {std::string("LookAt 0 0 0  0 0 1  0 1 0\n"), std::string("Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\n")}) {
     CAPTURE(camera);
     const PbrtImport imported = import_text(
         camera + "Camera \"perspective\" \"float fov\" 50\n"

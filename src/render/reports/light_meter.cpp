@@ -1,5 +1,6 @@
 #include "render/reports/light_meter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -24,17 +25,52 @@ MeterReading mean_and_error(const std::vector<double>& values) {
   return r;
 }
 
+// The mean of `batches` batch means of `values` (consecutive runs of sizes n/batches, the first n % batches one
+// longer), with their spread over √batches as the standard error.
+MeterReading batch_mean_and_error(const std::vector<double>& values, int batches) {
+  MeterReading r;
+  r.samples = int(values.size());
+  if (values.empty()) return r;
+  if (batches <= 1) return mean_and_error(values);
+  const size_t n = values.size(), base = n / size_t(batches), extra = n % size_t(batches);
+  std::vector<double> means;
+  for (size_t b = 0, start = 0; b < size_t(batches); ++b) {
+    const size_t size = base + (b < extra ? 1 : 0);
+    double sum = 0.0;
+    for (size_t k = start; k < start + size; ++k) sum += values[k];
+    means.push_back(sum / double(size));
+    start += size;
+  }
+  MeterReading m = mean_and_error(means);
+  m.samples = r.samples;
+  return m;
+}
+
 }  // namespace
+
+int replicates_for(int samples) {
+  if (samples < 2) return 1;
+  return std::clamp(samples / 16, 2, 16);
+}
 
 MeterReading measure_illuminance_lx(const TransportScene& scene, Vec3 position_m, Vec3 normal,
                                     const TabulatedSpectrum& v, int samples, uint64_t seed) {
   IndependentSampler sampler(seed);
   const LightReference ref{position_m, normal};
   std::vector<double> per_sample(size_t(std::max(samples, 0)), 0.0);
-  for (int i = 0; i < samples; ++i) {
+  const int batches = replicates_for(samples);
+  const int base = samples / batches, extra = samples % batches;
+  for (int i = 0, batch = 0, first = 0; i < samples; ++i) {
+    const int batch_size = base + (batch < extra ? 1 : 0);
+    const int k = i - first;  // the sample's place in its batch
+    if (k + 1 == batch_size) {
+      ++batch;
+      first = i + 1;
+    }
     sampler.start_pixel_sample(0, 0, uint32_t(i));
-    // Stratified wavelengths: sample i draws its hero from the i-th of `samples` equal-probability strata.
-    const float u = std::min((float(i) + sampler.next_1d()) / float(samples), std::nextafter(1.0f, 0.0f));
+    // Stratified wavelengths within the batch: its k-th sample draws its hero from the k-th of the batch's
+    // equal-probability strata.
+    const float u = std::min((float(k) + sampler.next_1d()) / float(batch_size), std::nextafter(1.0f, 0.0f));
     const SampledWavelengths lambda = SampledWavelengths::sample_visible(u);
     SampledSpectrum irradiance(0.0f);  // W/(m²·nm) per lane
     for (const auto& light : *scene.lights) {
@@ -64,7 +100,7 @@ MeterReading measure_illuminance_lx(const TransportScene& scene, Vec3 position_m
       estimate += double(irradiance[j]) * v.value(lambda.lambda_nm(j)) / double(lambda.pdf()[j]);
     per_sample[size_t(i)] = kMaxLuminousEfficacy_lm_W * estimate / kLaneCount;
   }
-  return mean_and_error(per_sample);
+  return batch_mean_and_error(per_sample, batches);
 }
 
 MeterReading measure_luminance_nt(const Film& film, const PixelBounds& window) {

@@ -126,11 +126,6 @@ GridReadings grid_statistics(std::vector<MeterReading> points) {
 
 }  // namespace
 
-int replicates_for(int samples) {
-  if (samples < 2) return 1;
-  return std::clamp(samples / 16, 2, 16);
-}
-
 void check_sensor_scene(const Scene& scene, const std::string& where) {
   if (scene.has_media())
     throw InputError({where, 0, "/sensors"}, "sensors are not measured in scenes with participating media yet "

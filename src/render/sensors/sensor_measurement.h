@@ -20,7 +20,7 @@ namespace rimu {
 struct SensorMeasureOptions {
   int samples = 256;  ///< per meter point
   /// Independent randomisations the samples are split into (0: replicates_for(samples)). The standard error comes
-  /// from the spread of their means: see replicates_for. 1 keeps the whole sequence in one scramble, which is the
+  /// from the spread of their means: see replicates_for (render/reports/light_meter.h). 1 keeps the whole sequence in one scramble, which is the
   /// more accurate for smooth integrands (a sky through an opening: 2-3× lower error at 32,768 samples than 16
   /// replicates, docs/lighting-validation.md), but then the standard error is the textbook s/√n, which overstates
   /// that error several-fold.
@@ -57,15 +57,6 @@ struct SensorReadings {
   double seconds = 0;
 };
 
-/// How many independent replicates `samples` are split into by default: samples/16, at least 2 and at most 16 (1 for
-/// a single sample). Why replicates: the samples of one point come from an Owen-scrambled Sobol' sequence, whose
-/// points are not independent, so the textbook standard error s/√n of its n values overstates the error of their
-/// mean (3-8× measured on the CIE 171 cases). Randomised quasi-Monte Carlo's remedy (Owen 1997; L'Ecuyer & Lemieux
-/// 2002) is R independent scrambles of n/R points each: their R means are independent and identically distributed,
-/// so the standard deviation of the means over √R is an unbiased-variance standard error of their average. At least
-/// 16 points per replicate keep most of the sequence's stratification; 16 replicates give the error estimate itself
-/// ~18 % relative spread (a t distribution of 15 degrees of freedom for the reading's error over it).
-int replicates_for(int samples);
 
 /// Estimates every sensor of `scene` (which must have no participating media and spectral lanes: check_sensor_scene)
 /// with `samples` samples per point, split into independent replicates (replicates_for): each sample is one path estimate from the scene's integrator (hero
