@@ -34,21 +34,9 @@ double square_irradiance(double a, double h, double radiance) {
   return 4.0 * radiance * s * std::atan(s);
 }
 
-/// Monte Carlo irradiance ∫ L cos θ dω at `ref` by light sampling.
+/// Monte Carlo irradiance ∫ L cos θ dω at `ref` by light sampling (samples below the tangent plane count 0).
 test::MeanEstimate irradiance_estimate(const AreaLight& light, const LightReference& ref, int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  test::MeanEstimate e;
-  for (int i = 0; i < n; ++i) {
-    const auto s = light.sample_li(ref, kLambda, {test::uniform01(rng), test::uniform01(rng)});
-    if (!s) {
-      e.add(0.0);
-      continue;
-    }
-    REQUIRE(std::isfinite(s->pdf_solid_angle));
-    REQUIRE(s->pdf_solid_angle > 0.0f);
-    e.add(s->radiance[0] * std::max(0.0f, dot(s->wi, ref.normal)) / s->pdf_solid_angle);
-  }
-  return e;
+  return test::light_sampling_irradiance(light, ref, kLambda, n, seed);
 }
 }  // namespace
 

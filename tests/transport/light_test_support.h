@@ -3,10 +3,14 @@
 // their standard error.
 #pragma once
 
+#include <doctest/doctest.h>
+
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "statistics.h"
+#include "transport/lights/light.h"
 
 namespace rimu::test {
 
@@ -33,5 +37,24 @@ struct MeanEstimate {
 /// How many standard errors a Monte Carlo mean may lie from the exact value: 5σ (a Gaussian two-sided tail of
 /// 6e-7), so the check fails only for a real bias, not for an unlucky seed.
 inline constexpr double kMonteCarloSigmas = 5.0;
+
+/// Monte Carlo irradiance ∫ L cos θ dω (lane 0 of `lambda`) at `ref` by the light's own sampling, n samples with
+/// `seed`; samples below the tangent plane and failed samples count 0. Every sample's density must be finite, > 0.
+inline MeanEstimate light_sampling_irradiance(const Light& light, const LightReference& ref,
+                                              const SampledWavelengths& lambda, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  MeanEstimate e;
+  for (int i = 0; i < n; ++i) {
+    const auto s = light.sample_li(ref, lambda, {uniform01(rng), uniform01(rng)});
+    if (!s) {
+      e.add(0.0);
+      continue;
+    }
+    REQUIRE(std::isfinite(s->pdf_solid_angle));
+    REQUIRE(s->pdf_solid_angle > 0.0f);
+    e.add(s->radiance[0] * std::max(0.0f, dot(s->wi, ref.normal)) / s->pdf_solid_angle);
+  }
+  return e;
+}
 
 }  // namespace rimu::test

@@ -12,7 +12,31 @@
 namespace rimu {
 namespace {
 
-MeterReading mean_and_error(const std::vector<double>& values) {
+
+// The mean of `batches` batch means of `values` (consecutive runs of sizes n/batches, the first n % batches one
+// longer), with their spread over √batches as the standard error.
+MeterReading batch_mean_and_standard_error(const std::vector<double>& values, int batches) {
+  MeterReading r;
+  r.samples = int(values.size());
+  if (values.empty()) return r;
+  if (batches <= 1) return mean_and_standard_error(values);
+  const size_t n = values.size(), base = n / size_t(batches), extra = n % size_t(batches);
+  std::vector<double> means;
+  for (size_t b = 0, start = 0; b < size_t(batches); ++b) {
+    const size_t size = base + (b < extra ? 1 : 0);
+    double sum = 0.0;
+    for (size_t k = start; k < start + size; ++k) sum += values[k];
+    means.push_back(sum / double(size));
+    start += size;
+  }
+  MeterReading m = mean_and_standard_error(means);
+  m.samples = r.samples;
+  return m;
+}
+
+}  // namespace
+
+MeterReading mean_and_standard_error(std::span<const double> values) {
   MeterReading r;
   r.samples = int(values.size());
   if (values.empty()) return r;
@@ -24,29 +48,6 @@ MeterReading mean_and_error(const std::vector<double>& values) {
   if (values.size() > 1) r.standard_error = std::sqrt(squares / double(values.size() - 1) / double(values.size()));
   return r;
 }
-
-// The mean of `batches` batch means of `values` (consecutive runs of sizes n/batches, the first n % batches one
-// longer), with their spread over √batches as the standard error.
-MeterReading batch_mean_and_error(const std::vector<double>& values, int batches) {
-  MeterReading r;
-  r.samples = int(values.size());
-  if (values.empty()) return r;
-  if (batches <= 1) return mean_and_error(values);
-  const size_t n = values.size(), base = n / size_t(batches), extra = n % size_t(batches);
-  std::vector<double> means;
-  for (size_t b = 0, start = 0; b < size_t(batches); ++b) {
-    const size_t size = base + (b < extra ? 1 : 0);
-    double sum = 0.0;
-    for (size_t k = start; k < start + size; ++k) sum += values[k];
-    means.push_back(sum / double(size));
-    start += size;
-  }
-  MeterReading m = mean_and_error(means);
-  m.samples = r.samples;
-  return m;
-}
-
-}  // namespace
 
 int replicates_for(int samples) {
   if (samples < 2) return 1;
@@ -100,7 +101,7 @@ MeterReading measure_illuminance_lx(const TransportScene& scene, Vec3 position_m
       estimate += double(irradiance[j]) * v.value(lambda.lambda_nm(j)) / double(lambda.pdf()[j]);
     per_sample[size_t(i)] = kMaxLuminousEfficacy_lm_W * estimate / kLaneCount;
   }
-  return batch_mean_and_error(per_sample, batches);
+  return batch_mean_and_standard_error(per_sample, batches);
 }
 
 MeterReading measure_luminance_nt(const Film& film, const PixelBounds& window) {
@@ -110,7 +111,7 @@ MeterReading measure_luminance_nt(const Film& film, const PixelBounds& window) {
   std::vector<double> pixels;
   for (int y = window.y0; y < window.y1; ++y)
     for (int x = window.x0; x < window.x1; ++x) pixels.push_back(film.pixel_value(x, y)[1] * nits_per_y);
-  return mean_and_error(pixels);
+  return mean_and_standard_error(pixels);
 }
 
 }  // namespace rimu

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "render/film/film.h"
 #include "spectral/spectra/tabulated_spectrum.h"
@@ -16,6 +17,10 @@ struct MeterReading {
   double standard_error = 0;
   int samples = 0;
 };
+
+/// The mean of `values`, taken as independent and identically distributed estimates, and its standard error
+/// s/√n (0 for fewer than two values); `samples` = their count.
+MeterReading mean_and_standard_error(std::span<const double> values);
 
 /// How many independent replicates `samples` are split into by default: samples/16, at least 2 and at most 16 (1 for
 /// a single sample). Why replicates: the samples of one point come from a stratified or Owen-scrambled Sobol' design,

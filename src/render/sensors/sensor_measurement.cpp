@@ -92,19 +92,14 @@ MeterReading replicate_reading(const Accumulator* replicates, int count) {
       r.standard_error = std::sqrt(std::max(0.0, (a.squares - a.sum * r.value) / double(a.count - 1)) / a.count);
     return r;
   }
-  double sum = 0.0, squares = 0.0;
-  int used = 0;
+  std::vector<double> means;
+  int samples = 0;
   for (int k = 0; k < count; ++k) {
-    r.samples += replicates[k].count;
-    if (replicates[k].count == 0) continue;
-    const double mean = replicates[k].sum / replicates[k].count;
-    sum += mean;
-    squares += mean * mean;
-    ++used;
+    samples += replicates[k].count;
+    if (replicates[k].count > 0) means.push_back(replicates[k].sum / replicates[k].count);
   }
-  if (used == 0) return r;
-  r.value = sum / used;
-  if (used > 1) r.standard_error = std::sqrt(std::max(0.0, (squares - sum * r.value) / double(used - 1)) / used);
+  r = mean_and_standard_error(means);
+  r.samples = samples;
   return r;
 }
 
