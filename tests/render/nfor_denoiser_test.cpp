@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "render/denoise/denoise_exr.h"
+#include "render/denoise/denoise_inputs.h"
+#include "render/denoise/denoise_selection.h"
 #include "render/denoise/nfor_denoiser.h"
 #include "spectral/error.h"
 
@@ -68,7 +70,7 @@ TEST_CASE("denoise: a constant under Gaussian noise with flat features") {
   constexpr int kSize = 64;
   constexpr double kSigmaHalf = 0.2, kTruth = 1.0;
   const DenoiseInput in = synthetic(kSize, kSize, kSigmaHalf, [](int, int) { return kTruth; }, [](int, int) { return 0.5; }, 1);
-  const DenoiseSettings settings;  // window radius 7: 225 pixels
+  const DenoiseSettings settings;  // window radius 5: 121 pixels
   const DenoiseResult out = denoise(in, settings);
   const std::vector<float> truth(out.image.size(), float(kTruth));
   const double noisy = mean_squared_error(noisy_mean(in), truth);
@@ -160,8 +162,8 @@ TEST_CASE("denoise: a firefly in one half is taken out, a small bright feature i
   const DenoiseResult out = denoise(in);
   // The firefly: nothing within 10 pixels of it stays more than 1 above the background, where the noisy pixel is
   // 100 above it. Its huge variance makes every patch distance to it small, so the cross-filtered half 0 spreads its
-  // excess (200) over the ~200 neighbours of effective weight in each window: the pixel itself keeps about 1/200 of
-  // it in each half's filter, its mean about 0.5 (measured 0.47); the bound allows twice that.
+  // excess (200) over the ~120 neighbours of effective weight in its 11×11 window: the pixel itself keeps about 1/120
+  // of it in half 0's filter, 200/120/2 ≈ 0.8 in the mean of the halves (measured 0.84).
   double worst = 0.0;
   for (int y = 10; y <= 30; ++y)
     for (int x = 10; x <= 30; ++x)
@@ -202,6 +204,96 @@ TEST_CASE("denoise: a black region next to a dim, noisy one stays black") {
       for (int k = 0; k < 3; ++k) largest = std::max(largest, std::fabs(double(out.image[3 * (size_t(y) * kSize + size_t(x)) + size_t(k)])));
   CAPTURE(largest);
   CHECK(largest == 0.0);
+}
+
+TEST_CASE("denoise: the dim channel of a saturated colour stays dim at an albedo edge") {
+  // Left of column 24 an orange surface, right of it a cyan one (colour = albedo per channel: a white light); the
+  // third channel of the orange and the first of the cyan are 0.02, the others up to 0.8. Noise σ_half = 0.05 in every
+  // channel. In the columns on either side of the edge the dim channel's mean over 48 rows must stay within 4
+  // standard errors of the noisy column's mean (σ_half/√2/√48 = 5.1e-3) of 0.02: letting 3 % of the other side's
+  // 0.8 in moves it by 0.024.
+  constexpr int kSize = 48, kEdge = 24;
+  constexpr double kSigmaHalf = 0.05;
+  const auto colour = [](int x, int k) {
+    static constexpr double kOrange[3] = {0.8, 0.4, 0.02}, kCyan[3] = {0.02, 0.4, 0.8};
+    return x < kEdge ? kOrange[k] : kCyan[k];
+  };
+  DenoiseInput in = synthetic(kSize, kSize, kSigmaHalf, [](int, int) { return 0.0; }, [](int, int) { return 0.0; }, 8);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      for (int k = 0; k < 3; ++k) {
+        const size_t i = 3 * (size_t(y) * kSize + size_t(x)) + size_t(k);
+        for (auto& half : in.halves) half[i] += float(colour(x, k));
+        in.albedo[i] = float(colour(x, k));
+      }
+  const DenoiseResult out = denoise(in);
+  for (const int x : {kEdge - 2, kEdge - 1, kEdge, kEdge + 1}) {
+    const int dim = x < kEdge ? 2 : 0;
+    double mean = 0.0;
+    for (int y = 0; y < kSize; ++y) mean += out.image[3 * (size_t(y) * kSize + size_t(x)) + size_t(dim)];
+    mean /= kSize;
+    CAPTURE(x);
+    CHECK(std::fabs(mean - 0.02) < 4.0 * kSigmaHalf / std::sqrt(2.0) / std::sqrt(double(kSize)));
+  }
+}
+
+TEST_CASE("denoise: the features' prefilter lowers their variance as much as it averages their noise") {
+  // A flat albedo of 0.5 under Gaussian noise of variance 10⁻³ per component, reported as its variance; normal and
+  // depth noiseless. The prefilter's output variance, Σw²·Var/(Σw)², lies between Var/N (N = 49 pixels in the 7×7
+  // window, equal weights) and Var (the pixel alone), and its mean over the interior must match the spread of the
+  // prefiltered albedo about 0.5 within a factor 1.5 (measured: 1.05). The formula reads the weights as fixed while
+  // NL-means weights depend on the noise; and the spread is a mean of correlated values (neighbours share most of
+  // their window: about 42²/49 · 3 ≈ 100 independent ones), whose own relative standard error is about 15 %: 1.5 is
+  // 3 of those. Without the update the variance stays 10⁻³, about 50 times the spread.
+  constexpr int kSize = 48, kRadius = 3;
+  constexpr double kVariance = 1e-3;
+  DenoiseInput in = synthetic(kSize, kSize, 0.1, [](int, int) { return 1.0; }, [](int, int) { return 0.5; }, 9);
+  std::mt19937 rng(10);
+  std::normal_distribution<double> noise(0.0, std::sqrt(kVariance));
+  for (float& a : in.albedo) a += float(noise(rng));
+  in.albedo_variance.assign(in.albedo_variance.size(), float(kVariance));
+  PreparedDenoiseInput d = prepare_denoise_input(in);
+  prefilter_features(d, kRadius, 1.0);
+  double spread = 0.0, reported = 0.0;
+  int count = 0;
+  for (int y = kRadius; y < kSize - kRadius; ++y)
+    for (int x = kRadius; x < kSize - kRadius; ++x) {
+      const size_t p = size_t(y) * kSize + size_t(x);
+      const double v = d.feature_variance[0][p];
+      CHECK(v <= kVariance * (1 + 1e-6));
+      CHECK(v >= kVariance / 49.0 * (1 - 1e-6));
+      for (int k = 0; k < 3; ++k) spread += (d.features[p * kDenoiseFeatures + size_t(k)] - 0.5) * (d.features[p * kDenoiseFeatures + size_t(k)] - 0.5);
+      reported += v;
+      ++count;
+    }
+  spread /= 3.0 * count;
+  reported /= count;
+  CAPTURE(spread);
+  CAPTURE(reported);
+  CHECK(spread / reported < 1.5);
+  CHECK(spread / reported > 1.0 / 1.5);
+}
+
+TEST_CASE("denoise: candidates are chosen by relative error, so a dim channel counts as much as a bright one") {
+  // One pixel, channel 0 bright (100), channel 1 dim (1), channel 2 at 10; both halves exact. Candidate A is off by
+  // 1 on the bright channel (1 %), candidate B by 0.5 on the dim one (50 %). An absolute error prefers B (0.25 < 1);
+  // the relative one A, and keeps preferring it when a channel's unit changes (channel 0 × 1000).
+  for (const double scale : {1.0, 1000.0}) {
+    DenoiseInput in = synthetic(1, 1, 0.0, [](int, int) { return 0.0; }, [](int, int) { return 0.5; }, 11);
+    const float truth[3] = {float(100 * scale), 1.0f, 10.0f};
+    for (auto& half : in.halves) std::copy(truth, truth + 3, half.begin());
+    const PreparedDenoiseInput d = prepare_denoise_input(in);
+    FilteredHalves filtered(2);
+    for (auto& half : filtered[0]) half = {float(101 * scale), 1.0f, 10.0f};
+    for (auto& half : filtered[1]) half = {float(100 * scale), 1.5f, 10.0f};
+    const std::vector<std::vector<float>> error = candidate_errors(d, filtered);
+    CAPTURE(scale);
+    CAPTURE(error[0][0]);
+    CAPTURE(error[1][0]);
+    CHECK(error[0][0] < error[1][0]);
+    // (1/101)² (the scale is the first candidate's estimate, 101) averaged over 3 channels; the halves agree.
+    CHECK(error[0][0] == doctest::Approx(1.0 / (101.0 * 101.0) / 3.0).epsilon(1e-5));
+  }
 }
 
 TEST_CASE("denoise: NaN and infinite inputs give a finite image") {

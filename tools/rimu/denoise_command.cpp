@@ -19,7 +19,7 @@ int run_denoise_command(int argc, char** argv) {
   app.add_option("input", input, "a render written with --aov all (.exr)")->required();
   app.add_option("-o,--output", output, "the denoised OpenEXR image (written atomically)")->required();
   app.add_option("--threads", settings.threads, "worker threads (default: every core)")->check(CLI::Range(1, 4096));
-  app.add_option("--window", settings.window_radius, "the regression window's radius in pixels (default 7)")
+  app.add_option("--window", settings.window_radius, "the regression window's radius in pixels (default 5)")
       ->check(CLI::Range(1, 30));
   app.add_option("--clamp-sigmas", settings.clamp_sigmas,
                  "keep each value within the noisy value +- this many standard errors; 0: no clamp, no bias from it "

@@ -52,6 +52,8 @@ void prefilter_features(PreparedDenoiseInput& p, int radius, double bandwidth) {
   const int w = p.width, h = p.height;
   const double inverse_k_sq = 1.0 / (bandwidth * bandwidth);
   std::vector<float> out(p.features.size());
+  std::array<std::vector<float>, 3> out_variance;
+  for (auto& v : out_variance) v.resize(p.feature_variance[0].size());
   const int blocks = (h + kRows - 1) / kRows;
   tbb::parallel_for(tbb::blocked_range<int>(0, blocks), [&](const tbb::blocked_range<int>& range) {
     for (int block = range.begin(); block != range.end(); ++block) {
@@ -62,6 +64,7 @@ void prefilter_features(PreparedDenoiseInput& p, int radius, double bandwidth) {
       const int ey0 = std::max(0, y0 - kPatch), ey1 = std::min(h, y1 + kPatch), erows = ey1 - ey0;
       const size_t block_pixels = size_t(y1 - y0) * size_t(w), extended = size_t(erows) * size_t(w);
       std::vector<double> sum(block_pixels * kFeatures, 0.0), weight_sum(block_pixels, 0.0);
+      std::vector<double> variance_sum(block_pixels * 3, 0.0);  // Σ w² Var, per feature group
       std::vector<float> raw(3 * extended), row_box(3 * extended);
       for (int dy = -radius; dy <= radius; ++dy)
         for (int dx = -radius; dx <= radius; ++dx) {
@@ -106,6 +109,7 @@ void prefilter_features(PreparedDenoiseInput& p, int radius, double bandwidth) {
               const size_t q = size_t(qy) * size_t(w) + size_t(qx), local = size_t(y - y0) * size_t(w) + size_t(x);
               for (int k = 0; k < kFeatures; ++k) sum[local * kFeatures + size_t(k)] += weight * p.features[q * kFeatures + size_t(k)];
               weight_sum[local] += weight;
+              for (int g = 0; g < 3; ++g) variance_sum[local * 3 + size_t(g)] += weight * weight * p.feature_variance[size_t(g)][q];
             }
           }
         }
@@ -113,10 +117,13 @@ void prefilter_features(PreparedDenoiseInput& p, int radius, double bandwidth) {
       for (size_t local = 0; local < block_pixels; ++local) {
         const size_t i = size_t(y0) * size_t(w) + local;
         for (int k = 0; k < kFeatures; ++k) out[i * kFeatures + size_t(k)] = float(sum[local * kFeatures + size_t(k)] / weight_sum[local]);
+        for (int g = 0; g < 3; ++g)
+          out_variance[size_t(g)][i] = float(variance_sum[local * 3 + size_t(g)] / (weight_sum[local] * weight_sum[local]));
       }
     }
   });
   p.features = std::move(out);
+  p.feature_variance = std::move(out_variance);
 }
 
 void clamp_to_noise(const PreparedDenoiseInput& d, double sigmas, std::vector<float>& image) {

@@ -29,7 +29,10 @@ PreparedDenoiseInput prepare_denoise_input(const DenoiseInput& in);
 /// depth of the variance-cancelled squared distance of 3×3 patches over k²(Var p + Var q). A noiseless feature
 /// (variance 0) differs from every other value by infinitely many "sigmas" and stays as it is; a noisy one (the
 /// albedo of a pixel that only one of its 16 samples saw a wall in) is averaged with its like, so the regression
-/// below does not trust its sampling noise as a partial coverage.
+/// below does not trust its sampling noise as a partial coverage. The features' variances become the prefiltered
+/// means' own, Σ w² Var / (Σ w)² (the weights read as fixed), so that the feature weights downstream compare what is
+/// left of the noise rather than the raw noise: with the raw variance they let a neighbour across an edge in as
+/// "within the noise" where the prefilter has already averaged the noise away.
 void prefilter_features(PreparedDenoiseInput& p, int radius, double bandwidth);
 
 /// Limits each denoised value to the noisy value ± z σ (per channel), σ² the largest of the pixel's variance, its two

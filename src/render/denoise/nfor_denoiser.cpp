@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "render/denoise/denoise_inputs.h"
+#include "render/denoise/denoise_selection.h"
 #include "spectral/error.h"
 
 namespace rimu {
@@ -22,8 +23,9 @@ constexpr int kNormalTerms = kDesign * (kDesign + 1) / 2;
 constexpr int kAccumulators = kNormalTerms + 3 * kDesign;
 // Rousselle, Manzi & Zwicker 2013 ("Robust denoising using feature and color information"): a feature difference
 // within this (in squared units of a feature normalised to about [0, 1]) is not an edge even where the feature is
-// noiseless.
-constexpr double kFeatureThreshold = 1e-3;
+// noiseless. 2e-3 rather than 1e-3 since the prefiltered features' variance is the small one left after the
+// prefilter (docs/benchmarks.md, "Denoising").
+constexpr double kFeatureThreshold = 2e-3;
 // The ridge on the feature coefficients, relative to the weights' sum: a feature constant over the window then gets
 // coefficient 0 (the fit falls back to the weighted mean) instead of an ill-posed system.
 constexpr double kRidge = 1e-3;
@@ -123,9 +125,6 @@ void check_denoise_input(const DenoiseInput& in, const std::string& where) {
 }
 
 namespace {
-
-// filtered[c][t]: half t filtered with candidate c's weights, computed from the other half.
-using FilteredHalves = std::vector<std::array<std::vector<float>, 2>>;
 
 // One candidate filter: its colour and feature bandwidths.
 struct Bandwidths {
@@ -285,20 +284,7 @@ DenoiseResult denoise(const DenoiseInput& input, const DenoiseSettings& settings
                          std::to_string(candidates));
   const FilteredHalves filtered = filter_halves(d, settings, bandwidths);
 
-  // Each candidate's error, estimated from the halves: half t filtered (with the other half's weights) against the
-  // other half's noisy values, E[(Â − B)²] = MSE(Â) + Var(B) when Â and B are independent; Var(B) is the same for
-  // every candidate, so the candidate with the least mean of the two comparisons has the least estimated error.
-  std::vector<std::vector<float>> error(size_t(candidates), std::vector<float>(n, 0.0f));
-  for (int c = 0; c < candidates; ++c)
-    for (size_t p = 0; p < n; ++p) {
-      double e = 0.0;
-      for (int t = 0; t < 2; ++t)
-        for (int ch = 0; ch < 3; ++ch) {
-          const double diff = double(filtered[size_t(c)][size_t(t)][3 * p + size_t(ch)]) - d.halves[size_t(1 - t)][3 * p + size_t(ch)];
-          e += diff * diff;
-        }
-      error[size_t(c)][p] = float(e / 6.0);
-    }
+  const std::vector<std::vector<float>> error = candidate_errors(d, filtered);
   DenoiseResult result;
   result.image.assign(3 * n, 0.0f);
   result.chosen.assign(n, 0);
