@@ -86,7 +86,7 @@ struct ExrOptions {
 /// three channel sums in film units before the output transform, the filter-weight sum, the spectral bin sums, each
 /// light group's channel and bin sums; "rimu:partial:spectralBins" = N gives the layout) is
 /// stored exactly, the 64 bits of its double split over two UINT channels "rimu.sum.<k>.hi" and "rimu.sum.<k>.lo"
-/// (k = 0, 1, ..., two digits), and the record as "rimu:partial:*" attributes (docs/farm.md lists them).
+/// (k = 0, 1, ..., at least two digits), and the record as "rimu:partial:*" attributes (docs/farm.md lists them).
 /// Written to a temporary file in the same folder and renamed (write_atomically): on failure no file is left at
 /// `path`. Throws InputError for a missing folder, OutputError for anything else. Returns the number of non-finite
 /// values replaced (see above).
