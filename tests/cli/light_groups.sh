@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # light_groups.sh RIMU WORKDIR SOURCE_DIR: light groups from the command line (docs/rendering.md, "Light groups").
 # 1. The shipped example renders with a layer per group; `rimu display` rebalances it: every group at 1 is the
-#    image as rendered (byte for byte), `--group lamps=0` changes it, --white-balance runs.
+#    image as rendered (byte for byte), `--group lamps=0` changes it, --white-balance runs, also on an image
+#    white-balanced when rendered.
 # 2. The docs' commands run as written (from the source folder, with build/bin/rimu pointing at this build).
 # 3. Errors: an unknown group lists the file's groups; --group on an image without groups; malformed options.
 set -u
@@ -18,6 +19,11 @@ cmp -s ones.png groups.png || fail "every group at 1 is not the image as rendere
 cmp -s no_lamps.png groups.png && fail "--group lamps=0 left the image unchanged"
 "$rimu" display groups.exr --png warm.png --white-balance 3200K 2>warm.log || fail "white balance: $(cat warm.log)"
 cmp -s warm.png groups.png && fail "--white-balance 3200K left the image unchanged"
+# An image white-balanced when rendered: display undoes its balance first (the equality to the unbalanced render's
+# display is asserted in tests/render/light_groups_relight_test.cpp, where float rounding can be bounded).
+"$rimu" "$scene" --resolution 40x30 --spp 4 --threads 2 -q -o balanced.exr --white-balance A || fail "render balanced"
+"$rimu" display balanced.exr --png rebalanced.png --white-balance D65 --group sun=0 2>rebalanced.log ||
+  fail "--white-balance on a white-balanced render: $(cat rebalanced.log)"
 echo "rebalanced and white-balanced"
 
 # 2. The commands docs/rendering.md shows for light groups, run as written in a copy of the layout they expect.

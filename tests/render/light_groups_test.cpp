@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "input_error_check.h"
+#include "light_groups_support.h"
 #include "test_support.h"
 #include "render/output/display_output.h"
 #include "render/output/exr_display_source.h"
@@ -31,89 +32,11 @@ using namespace rimu;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
+using namespace rimu::test;
+
 namespace {
 
-fs::path example_scene() { return test::library().root() / "scenes" / "examples" / "light_groups.json"; }
-
-RenderJob tiny_job(const fs::path& scene, const fs::path& out, std::optional<SampleRange> samples = std::nullopt) {
-  RenderJob job;
-  job.scene = scene;
-  job.width = 24;
-  job.height = 16;
-  job.samples_per_pixel = 8;
-  job.threads = 2;
-  job.quiet = true;
-  job.samples = samples;
-  job.exr_output = out;
-  return job;
-}
-
-void render(const RenderJob& job) {
-  std::ostringstream log;
-  run_render_job(job, log);
-}
-
-// An EXR's float channels by name, and its header's light groups ("" when it has none).
-struct ExrChannels {
-  std::map<std::string, std::vector<float>> channels;
-  std::string light_groups;
-  bool has_layer = false;  // some channel name holds a '.' (a layer)
-};
-
-ExrChannels read_channels(const fs::path& path) {
-  Imf::InputFile file(path.c_str());
-  const Imf::Header& h = file.header();
-  ExrChannels out;
-  if (const auto* a = h.findTypedAttribute<Imf::StringAttribute>("rimu:lightGroups")) out.light_groups = a->value();
-  const Imath::Box2i dw = h.dataWindow();
-  const int width = dw.max.x - dw.min.x + 1, height = dw.max.y - dw.min.y + 1;
-  Imf::FrameBuffer frame;
-  for (auto it = h.channels().begin(); it != h.channels().end(); ++it) {
-    const std::string name = it.name();
-    if (it.channel().type == Imf::UINT) continue;  // a partial's exact sums
-    out.has_layer = out.has_layer || name.find('.') != std::string::npos;
-    auto& values = out.channels[name];
-    values.resize(size_t(width) * size_t(height));
-    char* origin = reinterpret_cast<char*>(values.data()) - (ptrdiff_t(dw.min.y) * width + dw.min.x) * ptrdiff_t(sizeof(float));
-    frame.insert(name, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(width)));
-  }
-  file.setFrameBuffer(frame);
-  file.readPixels(dw.min.y, dw.max.y);
-  return out;
-}
-
-// The layers' sum against the beauty. Each camera sample's beauty is a float sum of at most n emitted contributions
-// (NEE and an emitter hit per vertex, every light at infinity on escape: n ≤ 2·(max_depth + 1) + 2 = 16 here), each
-// group's the float sum of its share, so they differ by ≤ (n − 1)·2⁻²⁴ of the sum of contributions; the film's
-// estimator rounds each layer ~5 more times in float (÷ pdf, × filter weight, × response, the 4-lane sum), the
-// double sums add nothing visible, and the EXR's float32 rounds each of the 1 + G written values once more. With
-// G = 4: (15 + 5 + 5)·2⁻²⁴ relative to beauty + Σ layers; 32·2⁻²⁴ covers it.
-void check_layers_sum_to_beauty(const ExrChannels& exr, const std::vector<std::string>& groups) {
-  constexpr double kBound = 32.0 * 0x1p-24;
-  size_t nonzero_layers = 0;
-  for (const char* c : {"X", "Y", "Z"}) {
-    const auto& beauty = exr.channels.at(c);
-    double worst = 0.0;
-    for (size_t i = 0; i < beauty.size(); ++i) {
-      double sum = 0.0, magnitude = double(beauty[i]);
-      for (const std::string& g : groups) {
-        const float v = exr.channels.at(g + "." + c)[i];
-        REQUIRE(v >= 0.0f);
-        sum += double(v);
-        magnitude += double(v);
-      }
-      if (magnitude > 0.0) worst = std::max(worst, std::abs(sum - double(beauty[i])) / magnitude);
-    }
-    CAPTURE(c);
-    CHECK(worst <= kBound);
-  }
-  for (const std::string& g : groups) {
-    double total = 0.0;
-    for (float v : exr.channels.at(g + ".Y")) total += double(v);
-    if (total > 0.0) ++nonzero_layers;
-  }
-  CHECK(nonzero_layers == groups.size());  // every group lit something: the test sees every kind of light
-}
+fs::path example_scene() { return light_groups_example(); }
 
 }  // namespace
 
@@ -299,20 +222,22 @@ TEST_CASE("light groups: --white-balance adapts the chosen white to D65") {
   // std::to_string keeps 6 decimals: the whites differ by ≤ 5e-7 in x and y, the matrices by about as much.
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) CHECK(m_xy(r, c) == doctest::Approx(m(r, c)).epsilon(1e-5));
-  relight_exr_film(*source.film, ExrRelightOptions{{}, kelvin}, false, "groups.exr", test::library());
+  relight_exr_film(*source.film, ExrRelightOptions{{}, kelvin}, false, std::nullopt, "groups.exr", test::library());
   const PixelBounds& b = source.film->pixel_bounds();
   const std::array<double, 3> raw = source.film->pixel_value(b.x0, b.y0);
   const std::array<double, 3> shown = source.film->output_value(b.x0, b.y0);
   const std::array<double, 3> expected = m.apply(raw);
   for (int c = 0; c < 3; ++c) CHECK(shown[size_t(c)] == doctest::Approx(expected[size_t(c)]).epsilon(1e-12));
-  test::input_error([&] { relight_exr_film(*source.film, ExrRelightOptions{{}, kelvin}, true, "groups.exr", test::library()); },
-                    {"--white-balance", "rendered with a white balance"});
+  // A white-balanced file whose balance is not known cannot be undone (light_groups_relight_test.cpp: one that is).
+  test::input_error([&] {
+    relight_exr_film(*source.film, ExrRelightOptions{{}, kelvin}, true, std::nullopt, "groups.exr", test::library());
+  }, {"--white-balance", "cannot be undone"});
 }
 
 TEST_CASE("light groups: bad names and misplaced keys are errors naming the key") {
   auto load = [](const json& document) { return load_scene(document, "scene.json", ".", test::library()); };
   json base = json::parse(std::ifstream(example_scene()));
-  for (const char* bad : {"", "two words", "sun.x", "X", "rimu", "S0", "albedo", "naïve"}) {
+  for (const char* bad : {"", "two words", "sun.x", "X", "rimu", "S0", "albedo", "depth", "Half_Even", "naïve"}) {
     CAPTURE(bad);
     json scene = base;
     scene["lights"][0]["light_group"] = bad;

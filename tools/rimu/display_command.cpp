@@ -26,7 +26,8 @@ void add_relight_options(CLI::App& app, RelightText& text) {
                  "0 removes a group's light)");
   app.add_option("--white-balance", text.white,
                  "white-balance the display image from this white to D65: a temperature (4500K), an illuminant "
-                 "(D50) or a chromaticity x,y (0.3457,0.3585)");
+                 "(D50) or a chromaticity x,y (0.3457,0.3585); an image white-balanced when rendered has that "
+                 "balance undone first");
 }
 
 rimu::ExrRelightOptions relight_options_from(const RelightText& text) {

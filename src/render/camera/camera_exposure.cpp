@@ -30,6 +30,25 @@ std::string WhiteBalanceSettings::describe() const {
   return "none";
 }
 
+std::optional<WhiteBalanceSettings> WhiteBalanceSettings::from_description(const std::string& text) {
+  WhiteBalanceSettings wb;
+  if (text == "none") return wb;
+  const std::string illuminant = "illuminant ", daylight = "daylight ";
+  if (text.rfind(illuminant, 0) == 0 && text.size() > illuminant.size()) {
+    wb.kind = Kind::illuminant;
+    wb.illuminant = text.substr(illuminant.size());
+    return wb;
+  }
+  const bool is_daylight = text.rfind(daylight, 0) == 0;
+  const std::string kelvin = is_daylight ? text.substr(daylight.size()) : text;
+  double k = 0.0;
+  char unit = 0, extra = 0;
+  if (std::sscanf(kelvin.c_str(), "%lf %c%c", &k, &unit, &extra) != 2 || unit != 'K' || !(k > 0.0)) return std::nullopt;
+  wb.kind = is_daylight ? Kind::daylight : Kind::cct;
+  wb.cct_k = k;
+  return wb;
+}
+
 void check_camera_option(double value, const PhysicalCameraRange& range, const std::string& option) {
   if (value >= range.min && value <= range.max) return;
   throw InputError({"", 0, option}, std::string("expected ") + range.what + " in " + number_text(range.min) + " to " +

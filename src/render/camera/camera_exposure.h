@@ -32,6 +32,8 @@ struct WhiteBalanceSettings {
 
   /// "none", "2700 K", "daylight 6504 K", "illuminant A": for metadata and messages.
   std::string describe() const;
+  /// The settings describe() gave `text` for (an EXR's rimu:whiteBalance), or nothing if it is not such a text.
+  static std::optional<WhiteBalanceSettings> from_description(const std::string& text);
 };
 
 /// The physical camera of a render: no exposure means film units.

@@ -63,8 +63,14 @@ std::array<double, 3> Film::group_value(int x, int y, int group) const {
   const double* p = pixels_.pixel(x, y);
   const double w = p[FilmTile::kWeight];
   if (w == 0.0) return {0.0, 0.0, 0.0};
-  const double* g = p + pixels_.first_group_sum() + 3 * group;
+  const double* g = p + pixels_.first_group_sum() + pixels_.group_stride() * group;
   return {g[0] / w, g[1] / w, g[2] / w};
+}
+
+double Film::group_spectral_value(int x, int y, int group, int bin) const {
+  const double* p = pixels_.pixel(x, y);
+  const double w = p[FilmTile::kWeight];
+  return w == 0.0 ? 0.0 : p[pixels_.first_group_sum() + pixels_.group_stride() * group + 3 + bin] / w;
 }
 
 std::array<double, 3> Film::pixel_value(int x, int y) const {

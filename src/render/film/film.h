@@ -36,8 +36,9 @@ struct FilmOptions {
 class Film {
  public:
   /// Throws InputError if the size is not positive, the crop window is empty or leaves the image, or bins < 0.
-  /// `light_groups`: the scene's light groups (Scene::light_groups): one layer of channel sums per name besides the
-  /// beauty, each the share of the image its lights emitted; the layers sum to the beauty. Empty: no layers, no cost.
+  /// `light_groups`: the scene's light groups (Scene::light_groups): one layer of channel sums (and, with spectral
+  /// bins, bin sums) per name besides the beauty, each the share of the image its lights emitted; the layers sum to
+  /// the beauty. Empty: no layers, no cost.
   Film(const FilmOptions& options, SpectralResponse response, std::vector<std::string> light_groups = {});
   Film(const Film&) = delete;
   Film& operator=(const Film&) = delete;
@@ -75,10 +76,12 @@ class Film {
   const FilmOutputTransform& output_transform() const { return output_; }
   /// The mean spectral radiance (W/(m²·sr·nm) if the input was) estimated in bin `bin` of pixel (x, y).
   double spectral_value(int x, int y, int bin) const;
+  /// Group `group`'s share of spectral_value(x, y, bin); they sum over groups to it.
+  double group_spectral_value(int x, int y, int group, int bin) const;
   /// The sum of filter weights of pixel (x, y) (its sample count with weight-1 filters).
   double weight_sum(int x, int y) const { return pixels_.pixel(x, y)[FilmTile::kWeight]; }
-  /// The raw accumulators of pixel (x, y) (FilmTile layout: 3 channel sums, the weight sum, the bin sums): what a
-  /// partial render writes so that merging partials is summation.
+  /// The raw accumulators of pixel (x, y) (FilmTile layout: 3 channel sums, the weight sum, the bin sums, the light
+  /// groups' channel and bin sums): what a partial render writes so that merging partials is summation.
   const double* accumulators(int x, int y) const { return pixels_.pixel(x, y); }
   int accumulators_per_pixel() const { return pixels_.doubles_per_pixel(); }
   /// Accepted and discarded samples over everything merged or added so far.

@@ -40,18 +40,22 @@ void FilmTile::clear() {
 
 namespace {
 
-// Light groups' share of one sample (FilmTile::add_sample): the same estimator per group. Contributions are
-// non-negative and sum to the sample's radiance, so a group's values are finite and non-negative whenever the
-// total's are (checked by the caller). Out of line, so that a film without groups keeps add_sample's code as it was.
-[[gnu::noinline]] void add_group_sums(double* g, int groups, const SampledSpectrum* group_radiance, Mask4 live,
-                                      Float4 live_pdf, float filter_weight, const Response4& c) {
+// Light groups' share of one sample (FilmTile::add_sample): the same estimator per group, into its channel sums and
+// (bin[j] ≥ 0: lane j's spectral bin) its bin sums. Contributions are non-negative and sum to the sample's radiance,
+// so a group's values are finite and non-negative whenever the total's are (checked by the caller). Out of line, so
+// that a film without groups keeps add_sample's code as it was.
+[[gnu::noinline]] void add_group_sums(double* g, int groups, int stride, const SampledSpectrum* group_radiance,
+                                      Mask4 live, Float4 live_pdf, float filter_weight, const Response4& c,
+                                      const int* bin, double inverse_width) {
   assert(group_radiance);
   const Float4 filter_lanes(filter_weight / float(kLaneCount));
-  for (int group = 0; group < groups; ++group, g += 3) {
+  for (int group = 0; group < groups; ++group, g += stride) {
     const Float4 w = select(live, group_radiance[group] / live_pdf, Float4(0.0f)) * filter_lanes;
     g[0] += double(sum(w * c.x));
     g[1] += double(sum(w * c.y));
     g[2] += double(sum(w * c.z));
+    for (int j = 0; j < kLaneCount; ++j)
+      if (bin[j] >= 0) g[3 + bin[j]] += double(w[j]) * inverse_width;
   }
 }
 
@@ -88,16 +92,27 @@ void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const S
   p[1] += double(sum(weighted * c.y));
   p[2] += double(sum(weighted * c.z));
   p[kWeight] += double(filter_weight);
-  if (light_groups_ > 0) add_group_sums(p + first_group_sum(), light_groups_, group_radiance, live, live_pdf, filter_weight, c);
-  if (binning_.count == 0) return;
+  static constexpr int kNoBins[kLaneCount] = {-1, -1, -1, -1};
+  if (binning_.count == 0) {
+    if (light_groups_ > 0)
+      add_group_sums(p + first_group_sum(), light_groups_, group_stride(), group_radiance, live, live_pdf,
+                     filter_weight, c, kNoBins, 0.0);
+    return;
+  }
 
+  // Each live lane's spectral bin (-1: none), for the beauty's bins and then the groups'.
+  int bin[kLaneCount] = {-1, -1, -1, -1};
   const double inverse_width = 1.0 / binning_.bin_width_nm();
   for (int j = 0; j < kLaneCount; ++j) {
     if (!live[j]) continue;
-    const int bin = int(std::floor((lambda.lambda_nm(j) - kLambdaMinNm) * inverse_width));
-    if (bin < 0 || bin >= binning_.count) continue;  // only wavelengths outside 360-830 nm, which nothing samples
-    p[kFirstBin + bin] += double(weighted[j]) * inverse_width;
+    const int b = int(std::floor((lambda.lambda_nm(j) - kLambdaMinNm) * inverse_width));
+    if (b < 0 || b >= binning_.count) continue;  // only wavelengths outside 360-830 nm, which nothing samples
+    bin[j] = b;
+    p[kFirstBin + b] += double(weighted[j]) * inverse_width;
   }
+  if (light_groups_ > 0)
+    add_group_sums(p + first_group_sum(), light_groups_, group_stride(), group_radiance, live, live_pdf, filter_weight,
+                   c, bin, inverse_width);
 }
 
 }  // namespace rimu

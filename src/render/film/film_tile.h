@@ -55,7 +55,8 @@ struct FilmSampleCounts {
 class FilmTile {
  public:
   /// An empty tile over `bounds` (pixels outside the film's crop window must not be given samples), with
-  /// `light_groups` layers of three channel sums each besides the beauty (0: a scene without light groups).
+  /// `light_groups` layers besides the beauty (0: a scene without light groups), each of three channel sums and, on a
+  /// spectral film, its own binning.count bin sums.
   FilmTile(PixelBounds bounds, const SpectralResponse& response, SpectralBinning binning, int light_groups = 0);
 
   /// Adds one camera sample to pixel (x, y) (full-image coordinates inside bounds()).
@@ -69,8 +70,8 @@ class FilmTile {
   /// whose expectation is the mean of L over the bin. A sample with NaN/Inf/negative values is discarded and
   /// counted (FilmSampleCounts), never written. Cost: a few dozen SSE instructions plus N-bin writes.
   /// `group_radiance` (light_group_count() values, required when the tile has light groups, ignored otherwise):
-  /// each group's share of `radiance`, accumulated by the same estimator into the group's three channel sums. A
-  /// discarded sample is discarded from every layer, so the layers keep summing to the beauty.
+  /// each group's share of `radiance`, accumulated by the same estimator into the group's three channel sums and
+  /// spectral bins. A discarded sample is discarded from every layer, so the layers keep summing to the beauty.
   void add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
                   float filter_weight = 1.0f, const SampledSpectrum* group_radiance = nullptr);
 
@@ -81,10 +82,14 @@ class FilmTile {
   /// pixel()).
   void add_sample_counts(const FilmSampleCounts& counts) { counts_ += counts; }
   int light_group_count() const { return light_groups_; }
-  /// Accumulators per pixel: 3 channel sums, the weight sum, the spectral bin sums, then 3 channel sums per group.
-  int doubles_per_pixel() const { return first_group_sum() + 3 * light_groups_; }
-  /// The index of light group 0's first channel sum among a pixel's accumulators (group g at + 3·g).
+  /// Accumulators per pixel: 3 channel sums, the weight sum, the N spectral bin sums, then per group its 3 channel
+  /// sums and its N bin sums: 4 + N + G·(3 + N).
+  int doubles_per_pixel() const { return first_group_sum() + group_stride() * light_groups_; }
+  /// The index of light group 0's first channel sum among a pixel's accumulators (group g at + group_stride()·g,
+  /// its bins after its 3 channel sums).
   int first_group_sum() const { return kFirstBin + binning_.count; }
+  /// Accumulators per light group: 3 channel sums and the spectral bins.
+  int group_stride() const { return 3 + binning_.count; }
   /// The accumulators of pixel (x, y), full-image coordinates.
   const double* pixel(int x, int y) const { return &data_[offset(x, y)]; }
   double* pixel(int x, int y) { return &data_[offset(x, y)]; }

@@ -3,6 +3,7 @@
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfFrameBuffer.h>
+#include <ImfMatrixAttribute.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 
@@ -88,11 +89,28 @@ std::unique_ptr<Film> film_from_image(const std::filesystem::path& path, Imf::In
   return film;
 }
 
+// A file written before rimu:whiteBalanceMatrix: the matrix its rimu:whiteBalance gave, by the render's own code
+// (camera_exposure.h) on the film's response, the same numbers the render computed. Nothing if the text is not one
+// Rimu writes (relight_exr_film then refuses --white-balance).
+std::optional<Matrix3> rebuilt_white_balance_matrix(const std::string& description, const SpectralResponse& response,
+                                                    SpectralLibrary& library) {
+  const std::optional<WhiteBalanceSettings> settings = WhiteBalanceSettings::from_description(description);
+  if (!settings) return std::nullopt;
+  CameraExposureSettings camera;
+  camera.white_balance = *settings;
+  try {
+    return film_output_transform(camera, response, library).channel_matrix;
+  } catch (const InputError&) {
+    return std::nullopt;  // an illuminant this library does not have
+  }
+}
+
 }  // namespace
 
 ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, SpectralLibrary& library) {
   ExrDisplaySource source;
   std::optional<double> nits_per_unit_y;
+  std::string white_balance_text;
   try {
     const std::unique_ptr<Imf::InputFile> file = open_exr_input(path);
     const Imf::Header& header = file->header();
@@ -101,6 +119,13 @@ ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, Spectra
                                                "display it with any EXR viewer");
     const std::string* white_balance = string_attribute(header, "rimu:whiteBalance");
     source.white_balanced = white_balance && *white_balance != "none";
+    if (source.white_balanced) white_balance_text = *white_balance;
+    if (const auto* m = header.findTypedAttribute<Imf::M33dAttribute>("rimu:whiteBalanceMatrix")) {
+      Matrix3 matrix;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) matrix(r, c) = m->value()[r][c];
+      source.white_balance_matrix = matrix;
+    }
     const std::string* metered = string_attribute(header, "rimu:displayMetered");
     source.metered = metered && *metered == "yes";
     if (const auto* nits = header.findTypedAttribute<Imf::DoubleAttribute>("rimu:luminanceNitsPerUnitY"))
@@ -117,6 +142,8 @@ ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, Spectra
     throw InputError({path.string(), 0, ""}, std::string("cannot be read as an OpenEXR image: ") + e.what());
   }
   const SpectralResponse& response = source.film->response();
+  if (source.white_balanced && !source.white_balance_matrix)
+    source.white_balance_matrix = rebuilt_white_balance_matrix(white_balance_text, response, library);
   if (response.kind() == ResponseKind::camera_rgb) source.camera_fit = fit_camera_to_xyz(response, library);
   // Of the displayed Y (the film's output values): an XYZ file records it; a camera film is shown through XYZ.
   source.nits_per_unit_y = nits_per_unit_y ? *nits_per_unit_y
@@ -133,7 +160,7 @@ void write_exr_display_image(const std::filesystem::path& exr, const std::filesy
   const DisplayTransform view_check(ResponseKind::cie_xyz, options);  // the view and the config, before reading
   SpectralLibrary library = SpectralLibrary::at_default_location();
   const ExrDisplaySource source = read_exr_for_display(exr, library);
-  relight_exr_film(*source.film, relight, source.white_balanced, exr.string(), library);
+  relight_exr_film(*source.film, relight, source.white_balanced, source.white_balance_matrix, exr.string(), library);
   DisplayImagePolicy policy;
   policy.camera_fit = source.camera_fit;
   policy.white_balanced = source.white_balanced || relight.white.has_value();

@@ -20,6 +20,10 @@ struct ExrDisplaySource {
   std::unique_ptr<Film> film;                 ///< output_value() of every pixel is the image's written value
   std::optional<CameraColourFit> camera_fit;  ///< camera films: refitted from the camera named in the file
   bool white_balanced = false;                ///< the file records a white balance (rimu:whiteBalance)
+  /// With white_balanced: the matrix the render applied to the written channels (rimu:whiteBalanceMatrix; for a
+  /// file written before that attribute, rebuilt from rimu:whiteBalance by the render's own code; empty if that
+  /// fails), which `--white-balance` undoes before adapting the white it is given.
+  std::optional<Matrix3> white_balance_matrix;
   bool metered = false;                       ///< the render metered its display image (rimu:displayMetered)
   double nits_per_unit_y = 0;                 ///< luminance of the written Y = 1 (rimu:luminanceNitsPerUnitY)
 };
@@ -34,8 +38,8 @@ ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, Spectra
 /// `rimu display`: checks the display image's name (format by extension, not the input) and the view first, reads
 /// `exr` and writes its display image to `display_image` as `rimu --png` would have (write_policy_display_image:
 /// metered if the render was, or if `meter`, with `options.exposure_ev` as the compensation), logging to `log`.
-/// `relight`: light groups rebalanced and a white balance applied first (render/output/exr_relight.h), so metering
-/// sees the relit image.
+/// `relight`: light groups rebalanced and a white balance applied first (render/output/exr_relight.h; a render's own
+/// white balance undone first), so metering sees the relit image.
 void write_exr_display_image(const std::filesystem::path& exr, const std::filesystem::path& display_image,
                              const DisplayOptions& options, bool meter, std::ostream& log,
                              const ExrRelightOptions& relight = {});

@@ -16,9 +16,10 @@
 #include <algorithm>
 #include <bit>
 #include <cassert>
-#include <cstdio>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -102,6 +103,17 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
   }
   if (options.metadata.finished_at != 0) add_capture_time(h, options.metadata.finished_at);
   add_string(h, "rimu:filmResponse", response.description());
+  // The white balance the written channels carry (v = scale · M · film value), exactly, so that `rimu display
+  // --white-balance` can undo it and show another white; rimu:whiteBalance names the white it adapts from.
+  const Matrix3& white_balance = film.output_transform().channel_matrix;
+  if (white_balance.m != Matrix3::identity().m) {
+    Imath::M33d m;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = white_balance(r, c);
+    h.insert("rimu:whiteBalanceMatrix", Imf::M33dAttribute(m));
+    add_string(h, "rimu:whiteBalanceTarget",
+               response.kind() == ResponseKind::cie_xyz ? "D65" : "equal R, G, B (G kept)");
+  }
 
   const RenderMetadata& m = options.metadata;
   h.insert("rimu:spp", Imf::IntAttribute(m.samples_per_pixel));
@@ -124,6 +136,9 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
     add_string(h, "rimu:partial:film", p.film_spec);
     add_string(h, "rimu:partial:job", p.job);
     h.insert("rimu:partial:accumulators", Imf::IntAttribute(film.accumulators_per_pixel()));
+    // The layout of the accumulators (4 + N + G·(3 + N)): with it the reader needs no arithmetic guess, and a
+    // partial written before light groups carried spectral bins (no such attribute) is told apart.
+    h.insert("rimu:partial:spectralBins", Imf::IntAttribute(film.binning().count));
     Imath::M33d m;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) m[r][c] = p.output_transform.channel_matrix(r, c);
@@ -212,17 +227,31 @@ size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrO
   const bool use_half = options.pixel_type == ExrPixelType::half;
   const SpectralResponse& response = film.response();
 
+  // Each channel and where its values come from: the beauty's 3 channels and N bins, then per light group its 3
+  // channels ("sun.X", ...) and N bins ("sun.S0.362,35nm", ...).
   std::vector<ChannelBuffer> channels;
+  std::vector<std::function<double(int, int)>> sources;
   for (int c = 0; c < 3; ++c) {
     const bool rename = options.xyz_channels_as_rgb && response.kind() == ResponseKind::cie_xyz;
     channels.push_back({rename ? std::string(1, "RGB"[c]) : response.channel_names()[c], {}, {}});
+    sources.push_back([&film, c](int x, int y) { return film.output_value(x, y)[size_t(c)]; });
   }
-  for (int bin = 0; bin < film.binning().count; ++bin)
+  const int bins = film.binning().count;
+  for (int bin = 0; bin < bins; ++bin) {
     channels.push_back({spectral_channel_name(film.binning(), bin), {}, {}});
-  // Light groups: a layer per group, named like the beauty's channels ("sun.X", "sun.Y", "sun.Z").
-  const size_t first_group_channel = channels.size();
-  for (const std::string& group : film.light_groups())
-    for (int c = 0; c < 3; ++c) channels.push_back({group + "." + channels[size_t(c)].name, {}, {}});
+    sources.push_back([&film, bin](int x, int y) { return film.spectral_value(x, y, bin); });
+  }
+  for (int g = 0; g < int(film.light_groups().size()); ++g) {
+    const std::string& group = film.light_groups()[size_t(g)];
+    for (int c = 0; c < 3; ++c) {
+      channels.push_back({group + "." + channels[size_t(c)].name, {}, {}});
+      sources.push_back([&film, g, c](int x, int y) { return film.group_output_value(x, y, g)[size_t(c)]; });
+    }
+    for (int bin = 0; bin < bins; ++bin) {
+      channels.push_back({group + "." + spectral_channel_name(film.binning(), bin), {}, {}});
+      sources.push_back([&film, g, bin](int x, int y) { return film.group_spectral_value(x, y, g, bin); });
+    }
+  }
 
   const size_t pixel_count = size_t(b.area());
   const float largest = use_half ? kHalfMax : std::numeric_limits<float>::max();
@@ -231,12 +260,7 @@ size_t write_exr(const std::filesystem::path& path, const Film& film, const ExrO
     std::vector<float> values;
     values.reserve(pixel_count);
     for (int y = b.y0; y < b.y1; ++y)
-      for (int x = b.x0; x < b.x1; ++x)
-        values.push_back(writable(c < 3                     ? film.output_value(x, y)[c]
-                                  : c < first_group_channel ? film.spectral_value(x, y, int(c) - 3)
-                                                            : film.group_output_value(x, y, int(c - first_group_channel) / 3)
-                                                                  [(c - first_group_channel) % 3],
-                                  largest, replaced));
+      for (int x = b.x0; x < b.x1; ++x) values.push_back(writable(sources[c](x, y), largest, replaced));
     if (use_half) {
       channels[c].halves.reserve(pixel_count);
       for (float v : values) channels[c].halves.emplace_back(v);

@@ -67,7 +67,8 @@ struct ExrOptions {
 ///   "emissiveUnits" attribute says so: "W.m^-2.sr^-1" (the layout's spelling for spectral radiance, per nm).
 /// - light groups (when the film has them): per group a layer "<group>.X", "<group>.Y", "<group>.Z" (the beauty's
 ///   channel names after the group's: "<group>.R" ... for camera films or xyz_channels_as_rgb), with the same
-///   output transform as the beauty, so the layers sum to it; the names in layer order in "rimu:lightGroups"
+///   output transform as the beauty, and on a spectral film the group's bins "<group>.S0.<centre>nm", so the layers
+///   sum to the beauty channel by channel and bin by bin; the names in layer order in "rimu:lightGroups"
 ///   ("sun,lamps,ungrouped").
 /// Half values are clamped to ±65504 (the largest half) rather than overflowing to Inf. No non-finite value is ever
 /// written: NaN becomes 0 and ±Inf the largest finite value of the type (an exposure scale times a bright pixel can
@@ -78,11 +79,14 @@ struct ExrOptions {
 /// Attributes: rimu:version, rimu:filmResponse, rimu:camera, rimu:spp (int), rimu:seed (string: 64 bits),
 /// rimu:renderTimeSeconds (double), rimu:samplesAccepted / rimu:discardedNaN / rimu:discardedInf /
 /// rimu:discardedNegative (double: exact to 2⁵³), rimu:luminanceNitsPerUnitY (XYZ films), rimu:scene,
-/// rimu:interrupted, rimu:<extra keys>.
+/// rimu:interrupted, rimu:<extra keys>; with a white balance (an output transform whose matrix M is not the
+/// identity) rimu:whiteBalanceMatrix (m33d: M, row-major, acting on column vectors) and rimu:whiteBalanceTarget
+/// (the white M adapts to: "D65" on XYZ films, "equal R, G, B (G kept)" on camera films).
 /// With options.partial, the file is also a partial render: every accumulator of the film (Film::accumulators: the
-/// three channel sums in film units before the output transform, the filter-weight sum, the spectral bin sums) is
+/// three channel sums in film units before the output transform, the filter-weight sum, the spectral bin sums, each
+/// light group's channel and bin sums; "rimu:partial:spectralBins" = N gives the layout) is
 /// stored exactly, the 64 bits of its double split over two UINT channels "rimu.sum.<k>.hi" and "rimu.sum.<k>.lo"
-/// (k = 0, 1, ..., two digits), and the record as "rimu:partial:*" attributes (docs/farm.md lists them).
+/// (k = 0, 1, ..., at least two digits), and the record as "rimu:partial:*" attributes (docs/farm.md lists them).
 /// Written to a temporary file in the same folder and renamed (write_atomically): on failure no file is left at
 /// `path`. Throws InputError for a missing folder, OutputError for anything else. Returns the number of non-finite
 /// values replaced (see above).

@@ -75,9 +75,12 @@ void rebalance_light_groups(Film& film, const std::vector<LightGroupScale>& scal
     scale[size_t(it - groups.begin())] = s.scale;
   }
   // Film::merge_tile adds: the tile holds the change of every sum, (s − 1)·layer, which is exact for s = 0 and 1.
+  // A group's sums are its 3 channels, then its spectral bins (render/film/film_tile.h): each changes the beauty's
+  // sum of the same channel or bin, so the spectral layers follow the balance too.
   const PixelBounds& b = film.pixel_bounds();
   FilmTile change = film.make_tile(b);
-  const int first_group = change.first_group_sum();
+  const int first_group = change.first_group_sum(), stride = change.group_stride();
+  auto beauty_index = [](int k) { return k < 3 ? k : FilmTile::kFirstBin + (k - 3); };
   for (int y = b.y0; y < b.y1; ++y)
     for (int x = b.x0; x < b.x1; ++x) {
       const double* from = film.accumulators(x, y);
@@ -85,10 +88,11 @@ void rebalance_light_groups(Film& film, const std::vector<LightGroupScale>& scal
       for (size_t g = 0; g < groups.size(); ++g) {
         const double factor = scale[g] - 1.0;
         if (factor == 0.0) continue;
-        for (int c = 0; c < 3; ++c) {
-          const double delta = factor * from[first_group + 3 * int(g) + c];
-          to[c] += delta;
-          to[first_group + 3 * int(g) + c] = delta;
+        const int base = first_group + stride * int(g);
+        for (int k = 0; k < stride; ++k) {
+          const double delta = factor * from[base + k];
+          to[beauty_index(k)] += delta;
+          to[base + k] = delta;
         }
       }
     }
@@ -115,16 +119,23 @@ Matrix3 display_white_balance_matrix(const DisplayWhite& white, const SpectralRe
   }
 }
 
-void relight_exr_film(Film& film, const ExrRelightOptions& options, bool white_balanced, const std::string& file,
+void relight_exr_film(Film& film, const ExrRelightOptions& options, bool white_balanced,
+                      const std::optional<Matrix3>& render_white_balance, const std::string& file,
                       SpectralLibrary& library) {
   rebalance_light_groups(film, options.groups, file);
   if (!options.white) return;
-  if (white_balanced)
-    throw InputError({file, 0, "--white-balance"},
-                     "was rendered with a white balance (rimu:whiteBalance); --white-balance adapts an image rendered "
-                     "without one (render it with --white-balance none, or display it as it is)");
+  // The written channels are scale · M_r · film: M_r⁻¹ takes them back to the film's unbalanced channels (M_r is a
+  // Bradford adaptation or a positive diagonal, always invertible), and the new white's matrix adapts those.
+  Matrix3 undo = Matrix3::identity();
+  if (white_balanced) {
+    if (!render_white_balance)
+      throw InputError({file, 0, "--white-balance"},
+                       "was rendered with a white balance (rimu:whiteBalance) that cannot be undone: it has no "
+                       "rimu:whiteBalanceMatrix and its rimu:whiteBalance is not one Rimu can rebuild");
+    undo = render_white_balance->inverse();
+  }
   FilmOutputTransform transform = film.output_transform();
-  transform.channel_matrix = display_white_balance_matrix(*options.white, film.response(), library) *
+  transform.channel_matrix = display_white_balance_matrix(*options.white, film.response(), library) * undo *
                              transform.channel_matrix;
   film.set_output_transform(transform);
 }

@@ -41,8 +41,8 @@ std::vector<LightGroupScale> parse_light_group_scales(const std::string& text, c
 /// InputError naming `option` otherwise.
 DisplayWhite parse_display_white(const std::string& text, SpectralLibrary& library, const std::string& option);
 
-/// Rebalances `film`'s light groups: the beauty's sums become beauty + Σ_g (s_g − 1)·layer_g and each named layer's
-/// sums s_g·layer_g (groups not named keep 1), so the layers still sum to the beauty and `--group x=0` shows the
+/// Rebalances `film`'s light groups: the beauty's sums (channels and spectral bins) become beauty + Σ_g (s_g − 1)·layer_g
+/// and each named layer's sums s_g·layer_g (groups not named keep 1), so the layers still sum to the beauty and `--group x=0` shows the
 /// beauty minus layer x exactly (one subtraction in double per channel). InputError naming `file` if the film has
 /// no light groups, or a name is not one of them (the message lists them).
 void rebalance_light_groups(Film& film, const std::vector<LightGroupScale>& scales, const std::string& file);
@@ -55,9 +55,12 @@ Matrix3 display_white_balance_matrix(const DisplayWhite& white, const SpectralRe
                                      SpectralLibrary& library);
 
 /// Both: rebalances the groups and puts the white balance in front of the film's output transform. `white_balanced`
-/// says whether the file records a white balance already: a second one is refused (InputError naming `file`),
-/// since adapting twice would not show the white asked for.
-void relight_exr_film(Film& film, const ExrRelightOptions& options, bool white_balanced, const std::string& file,
+/// says whether the file records a white balance already, `render_white_balance` the matrix M_r the render applied
+/// to the written channels: the display's matrix is then M_new · M_r⁻¹ (the render's adaptation undone first), so the
+/// image shows the white asked for as if the render had none. InputError naming `file` and --white-balance if the
+/// file is white-balanced but M_r is unknown.
+void relight_exr_film(Film& film, const ExrRelightOptions& options, bool white_balanced,
+                      const std::optional<Matrix3>& render_white_balance, const std::string& file,
                       SpectralLibrary& library);
 
 }  // namespace rimu

@@ -38,7 +38,8 @@ const std::string& string_attribute(const Imf::Header& h, const std::filesystem:
 // other "rimu:*" string is copied as RenderMetadata::extra.
 bool derived_attribute(const std::string& name) {
   static const std::set<std::string> derived = {"rimu:version", "rimu:filmResponse", "rimu:camera", "rimu:seed",
-                                                "rimu:scene", "rimu:interrupted", "rimu:lightGroups"};
+                                                "rimu:scene", "rimu:interrupted", "rimu:lightGroups",
+                                                "rimu:whiteBalanceTarget"};
   return derived.count(name) > 0 || name.rfind("rimu:partial:", 0) == 0;
 }
 
@@ -80,21 +81,24 @@ void for_each_sum_band(Imf::InputFile& file, const PartialImage& p, const Band& 
 // of sums): check them against a render Rimu can write and against the file before anything is allocated.
 void check_partial_size(const PartialImage& p, std::uintmax_t file_bytes) {
   const auto fail = [&p](const std::string& what) { throw partial_error(p.path, what); };
-  // A scene's film is at most 32768 × 32768 pixels with at most 471 spectral bins (docs/scene-format.md) and 32
-  // light groups of three sums (render/scene/scene_light_groups.h).
-  constexpr int kMaxLightGroups = 32;
-  constexpr int kMaxSide = 1 << 15, kMaxAccumulators = FilmTile::kFirstBin + 471 + 3 * kMaxLightGroups;
+  // A scene's film is at most 32768 × 32768 pixels with at most 471 spectral bins (docs/scene-format.md). The
+  // number of light groups has no cap: the sums' size is bounded by the file's (below).
+  constexpr int kMaxSide = 1 << 15, kMaxBins = 471;
   if (p.width < 1 || p.height < 1 || p.width > kMaxSide || p.height > kMaxSide)
     fail("its display window is " + std::to_string(p.width) + " x " + std::to_string(p.height) +
          " pixels; a render has 1 to 32768 pixels a side");
   if (p.crop.empty() || p.crop.x0 < 0 || p.crop.y0 < 0 || p.crop.x1 > p.width || p.crop.y1 > p.height)
     fail("its data window does not lie inside its display window (a partial render's crop must)");
-  if (p.accumulators_per_pixel > kMaxAccumulators)
-    fail("rimu:partial:accumulators is " + std::to_string(p.accumulators_per_pixel) + "; at most " +
-         std::to_string(kMaxAccumulators) + " (471 spectral bins and 32 light groups)");
-  if (p.light_groups.size() > size_t(kMaxLightGroups))
-    fail("rimu:lightGroups names " + std::to_string(p.light_groups.size()) + " groups; a scene has at most " +
-         std::to_string(kMaxLightGroups));
+  if (p.spectral_bins < 0 || p.spectral_bins > kMaxBins)
+    fail("rimu:partial:spectralBins is " + std::to_string(p.spectral_bins) + "; a film has 0 to 471 spectral bins");
+  // The accumulators: 3 channel sums, the weight, the N bins, and per light group 3 channel sums and N bins
+  // (render/film/film_tile.h), in 64 bits: a damaged header's group list may be long.
+  const int64_t expected = int64_t(FilmTile::kFirstBin) + p.spectral_bins +
+                           int64_t(p.light_groups.size()) * (3 + int64_t(p.spectral_bins));
+  if (p.accumulators_per_pixel != expected)
+    fail("rimu:partial:accumulators is " + std::to_string(p.accumulators_per_pixel) + ", but " +
+         std::to_string(p.spectral_bins) + " spectral bins and " + std::to_string(p.light_groups.size()) +
+         " light groups (rimu:lightGroups) make " + std::to_string(expected));
   // The sums are two 32-bit words per accumulator per pixel, compressed by deflate (ZIP), which expands at most
   // 1032:1: a header claiming more than that is damaged, and the merge would allocate for it.
   const std::uintmax_t sum_bytes = std::uintmax_t(p.crop.area()) * std::uintmax_t(p.accumulators_per_pixel) * 8;
@@ -155,11 +159,21 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
   p.crop = {data.min.x, data.min.y, data.max.x + 1, data.max.y + 1};
   if (const auto* groups = h.findTypedAttribute<Imf::StringAttribute>("rimu:lightGroups"))
     p.light_groups = parse_light_groups_text(groups->value());
-  // The accumulators: 3 channel sums, the weight, the bins, 3 sums per light group (render/film/film_tile.h).
-  p.spectral_bins = p.accumulators_per_pixel - FilmTile::kFirstBin - 3 * int(std::min<size_t>(p.light_groups.size(), 1024));
-  if (p.spectral_bins < 0)
-    throw partial_error(path, "rimu:partial:accumulators is " + std::to_string(p.accumulators_per_pixel) +
-                                  ", fewer than 4 plus 3 per light group in rimu:lightGroups");
+  if (const auto* bins = h.findTypedAttribute<Imf::IntAttribute>("rimu:partial:spectralBins")) {
+    p.spectral_bins = bins->value();
+  } else {
+    // Written before the attribute existed, when a light group kept 3 sums and no bins: 4 + N + 3·G. Its sums are
+    // laid out as a film now lays out only a partial without bins or without groups.
+    const int64_t bins_before = int64_t(p.accumulators_per_pixel) - FilmTile::kFirstBin -
+                                3 * int64_t(p.light_groups.size());
+    if (bins_before > 0 && !p.light_groups.empty())
+      throw partial_error(path, "was written by an older Rimu whose light-group layers had no spectral bins "
+                                "(no rimu:partial:spectralBins); render it again to merge, resume or display it");
+    if (bins_before < 0)
+      throw partial_error(path, "rimu:partial:accumulators is " + std::to_string(p.accumulators_per_pixel) +
+                                    ", fewer than 4 plus 3 per light group in rimu:lightGroups");
+    p.spectral_bins = int(std::min<int64_t>(bins_before, 1 << 20));
+  }
   check_partial_size(p, file_bytes);
   const Imf::Channel* first = h.channels().findChannel(h.channels().begin().name());
   p.pixel_type = first && first->type == Imf::FLOAT ? ExrPixelType::float32 : ExrPixelType::half;

@@ -26,9 +26,9 @@ std::string light_group_name_problem(const std::string& name) {
       return "a light group's name may hold only letters, digits, '_' and '-' (it names EXR layers '" + name +
              ".X' etc.); '" + name + "' does not";
   // Rimu's own channel names and layer prefixes (render/output/exr_output.h), and the feature buffers' names.
-  static constexpr std::array kReserved{"x",   "y",             "z",      "r",     "g",       "b",
-                                        "a",   "s0",            "rimu",   "spp",   "relativeerror",
-                                        "albedo", "n",          "variance", "noisy", "beauty"};
+  static constexpr std::array kReserved{"x",      "y", "z",     "r",        "g",     "b",      "a",
+                                        "s0",     "rimu", "spp", "relativeerror", "albedo", "n", "depth",
+                                        "variance", "half_even", "half_odd", "noisy", "beauty"};
   const std::string l = lower(name);
   for (const char* r : kReserved)
     if (l == r)
@@ -47,13 +47,8 @@ void read_light_group(const JsonCursor& light, Scene& scene) {
   if (const std::string problem = light_group_name_problem(name); !problem.empty()) key->fail(problem);
   auto& groups = scene.light_groups;
   const auto it = std::find(groups.begin(), groups.end(), name);
-  if (it == groups.end()) {
-    // Each group is three more sums per pixel (24 bytes) on every film, tile and partial.
-    if (groups.size() + 1 >= kMaxLightGroups)
-      key->fail("a scene has at most " + std::to_string(kMaxLightGroups - 1) + " named light groups (one more is "
-                "kept for lights without \"light_group\")");
-    groups.push_back(name);
-  }
+  // No cap on the number of groups: each costs memory and time in proportion (docs/rendering.md, "Cost").
+  if (it == groups.end()) groups.push_back(name);
   loaded.set_light_group(int(std::find(groups.begin(), groups.end(), name) - groups.begin()));
 }
 

@@ -11,11 +11,9 @@ namespace rimu::scene_loading {
 /// The group every light without a "light_group" key joins in a scene that names groups, so the layers always sum
 /// to the beauty. A light may also name it.
 inline constexpr const char* kDefaultLightGroup = "ungrouped";
-/// At most this many groups, the default one included (render/film/film.h keeps three sums per group per pixel).
-inline constexpr size_t kMaxLightGroups = 32;
 
 /// Checks a group name: 1 to 64 characters of A-Z, a-z, 0-9, '_' and '-', and not a name Rimu gives its own EXR
-/// channels or layers (X, Y, Z, R, G, B, A, S0, rimu, spp, relativeError and the feature buffers, in any case),
+/// channels or layers (X, Y, Z, R, G, B, A, S0, rimu, spp, relativeError and the feature buffers' layers, in any case),
 /// so that `<group>.X` can never be taken for another channel. Returns the reason it is refused, or "" if valid.
 std::string light_group_name_problem(const std::string& name);
 
