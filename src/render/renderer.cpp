@@ -105,6 +105,9 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   const GuidingFieldSettings guiding_settings;
   std::vector<GuidingSample> guiding_history;  // every pass's records, in pass and tile order, up to the budget
   int next_fit = 1;  // samples per pixel into the call after which the next field is fitted
+  // Each tile's records of the current pass. Kept across passes (cleared, not freed): allocating them anew every
+  // pass cost a guided render ~9 % of its time in page faults (perf, daylit room 160×90, 64 spp).
+  std::vector<std::vector<GuidingSample>> guiding_records;
   while (options.first_sample + stats.samples_per_pixel_done < options.samples_per_pixel) {
     const int first = options.first_sample + stats.samples_per_pixel_done;
     const int count = std::min(sample_pass_end(first), options.samples_per_pixel) - first;
@@ -120,7 +123,14 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     // the pass reaching next_fit must leave a pass to guide).
     const bool train = stats.guiding.active && guiding_history.size() < kGuidingSampleBudget &&
                        first + count < options.samples_per_pixel && options.first_sample + next_fit < options.samples_per_pixel;
-    std::vector<std::vector<GuidingSample>> guiding_records(train ? tiles.size() : 0);
+    if (train) {
+      guiding_records.resize(tiles.size());
+    } else if (!guiding_history.empty()) {
+      // Training is over for this call (it never resumes: every condition above only becomes false): the field
+      // stays, the samples it was fitted to go.
+      std::vector<std::vector<GuidingSample>>().swap(guiding_records);
+      std::vector<GuidingSample>().swap(guiding_history);
+    }
     // The pass's share of the remaining budget, split equally by the tiles so that which samples are kept does not
     // depend on the threads.
     const size_t tile_record_limit = train ? (kGuidingSampleBudget - guiding_history.size()) / tiles.size() : 0;
@@ -214,7 +224,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     if (train) {
       for (auto& r : guiding_records) {
         guiding_history.insert(guiding_history.end(), r.begin(), r.end());
-        std::vector<GuidingSample>().swap(r);
+        r.clear();
       }
     }
     const int done_in_call = first + count - options.first_sample;

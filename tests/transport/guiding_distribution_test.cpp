@@ -253,3 +253,25 @@ TEST_CASE("A path's record weighs the light it brought by the cosine over the de
   CHECK(out[0].direction.weight == doctest::Approx(2.0 * 0.25 / 0.5));
   CHECK(out[0].facing == 2);
 }
+
+TEST_CASE("An emitter a vertex's own ray hit is indirect light for the vertices before it, not direct for it") {
+  // Two vertices; the second one's ray hits a light (MIS-weighted against next-event estimation: skip_last). The
+  // first vertex learns it (it arrived there by a bounce), the second does not (NEE samples it).
+  PathGuidingRecord record(Float4(0.25f));
+  REQUIRE(record.add_vertex({0, 0, 0}, 2, {0, 1, 0}, 1.0f, 1.0f, SampledSpectrum(1.0f)));
+  REQUIRE(record.add_vertex({0, 1, 0}, 3, {0, -1, 0}, 1.0f, 1.0f, SampledSpectrum(0.5f)));
+  record.add_radiance(SampledSpectrum(3.0f), true);
+  record.add_radiance(SampledSpectrum(1.0f));  // later light (say, NEE at a third vertex) reaches both
+  std::vector<GuidingSample> out;
+  record.flush(out);
+  REQUIRE(out.size() == 2);
+  CHECK(out[0].direction.weight == doctest::Approx(4.0));  // (3 + 1) / throughput 1
+  CHECK(out[1].direction.weight == doctest::Approx(2.0));  // 1 / throughput 0.5: the hit light is left out
+}
+
+TEST_CASE("A full record takes no more vertices and says so") {
+  PathGuidingRecord record(Float4(0.25f));
+  for (int i = 0; i < PathGuidingRecord::kMaxVertices; ++i)
+    REQUIRE(record.add_vertex({0, 0, 0}, 2, {0, 1, 0}, 1.0f, 1.0f, SampledSpectrum(1.0f)));
+  CHECK_FALSE(record.add_vertex({0, 0, 0}, 2, {0, 1, 0}, 1.0f, 1.0f, SampledSpectrum(1.0f)));
+}

@@ -33,13 +33,15 @@ struct Builder {
   // Builds the node for samples [first, last) (already in this node's own [0,1)² coordinates) into `nodes`.
   template <typename Nodes>
   void build(Nodes& nodes, size_t node, SampleIterator first, SampleIterator last, int depth) {
-    // Split the range into the four quadrants (stable order: the result depends on the input order only).
+    // Split the range into the four quadrants. std::partition, not stable_partition: both are deterministic (the
+    // result depends on the input order only), and the stable one allocates a buffer of the range at every node,
+    // which was 30 % of a guided render's time (page faults included; perf, daylit room 160×90, 64 spp).
     SampleIterator bounds[5];
     bounds[0] = first;
     bounds[4] = last;
-    bounds[2] = std::stable_partition(first, last, [](const DirectionalSample& s) { return s.square.y < 0.5f; });
-    bounds[1] = std::stable_partition(first, bounds[2], [](const DirectionalSample& s) { return s.square.x < 0.5f; });
-    bounds[3] = std::stable_partition(bounds[2], last, [](const DirectionalSample& s) { return s.square.x < 0.5f; });
+    bounds[2] = std::partition(first, last, [](const DirectionalSample& s) { return s.square.y < 0.5f; });
+    bounds[1] = std::partition(first, bounds[2], [](const DirectionalSample& s) { return s.square.x < 0.5f; });
+    bounds[3] = std::partition(bounds[2], last, [](const DirectionalSample& s) { return s.square.x < 0.5f; });
     double energy[4], squares[4], node_energy = 0.0;
     for (int q = 0; q < 4; ++q) {
       energy[q] = squares[q] = 0.0;

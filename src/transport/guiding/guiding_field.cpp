@@ -36,7 +36,7 @@ struct SpatialBuilder {
     ++leaves_planned;
     const float middle = 0.5f * (axis_value(lo, axis) + axis_value(hi, axis));
     const SampleIterator cut =
-        std::stable_partition(first, last, [&](const GuidingSample& s) { return axis_value(s.position, axis) < middle; });
+        std::partition(first, last, [&](const GuidingSample& s) { return axis_value(s.position, axis) < middle; });
     const size_t child = nodes.size();
     nodes[node].axis = int8_t(axis);
     nodes[node].split = middle;
@@ -71,7 +71,7 @@ GuidingField GuidingField::build(std::vector<GuidingSample>& samples, int pass_s
   SampleIterator first = samples.begin();
   for (int f = 0; f < kFacings; ++f) {
     const SampleIterator last =
-        std::stable_partition(first, samples.end(), [f](const GuidingSample& s) { return s.facing == f; });
+        std::partition(first, samples.end(), [f](const GuidingSample& s) { return s.facing == f; });
     Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
     for (auto it = first; it != last; ++it) {
       lo = {std::fmin(lo.x, it->position.x), std::fmin(lo.y, it->position.y), std::fmin(lo.z, it->position.z)};

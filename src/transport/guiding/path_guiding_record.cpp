@@ -30,9 +30,9 @@ Float4 guiding_lane_weights(const SampledWavelengths& lambda, bool rgb) {
   return Float4::load(w.data());
 }
 
-void PathGuidingRecord::add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, float cosine,
+bool PathGuidingRecord::add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, float cosine,
                                    const SampledSpectrum& throughput) {
-  if (count_ == kMaxVertices) return;
+  if (count_ == kMaxVertices) return false;
   Vertex& v = vertices_[size_t(count_++)];
   v.position = position;
   v.facing = facing;
@@ -40,10 +40,11 @@ void PathGuidingRecord::add_vertex(Vec3 position, int facing, Vec3 direction, fl
   v.cosine_over_pdf = pdf > 0.0f ? cosine / pdf : 0.0f;
   v.inverse_throughput = select(throughput != Float4(0.0f), Float4(1.0f) / throughput, Float4(0.0f));
   v.incident = SampledSpectrum(0.0f);
+  return true;
 }
 
-void PathGuidingRecord::add_radiance(const SampledSpectrum& contribution) {
-  for (int i = 0; i < count_; ++i) vertices_[size_t(i)].incident += contribution * vertices_[size_t(i)].inverse_throughput;
+void PathGuidingRecord::add_radiance(const SampledSpectrum& contribution, bool skip_last) {
+  for (int i = 0, n = count_ - (skip_last ? 1 : 0); i < n; ++i) vertices_[size_t(i)].incident += contribution * vertices_[size_t(i)].inverse_throughput;
 }
 
 void PathGuidingRecord::flush(std::vector<GuidingSample>& out) const {

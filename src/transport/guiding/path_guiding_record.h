@@ -28,9 +28,11 @@ class PathGuidingRecord {
   /// The sample's weight is luminance · cosine / pdf: the field learns the light's share of the irradiance, L·cos
   /// (the product a diffuse vertex would ideally sample), not of the radiance, which would spend guided rays on
   /// grazing directions that contribute little (docs/transport.md, "Path guiding").
-  void add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, float cosine, const SampledSpectrum& throughput);
-  /// A contribution the estimator adds to the pixel: it arrived at every recorded vertex.
-  void add_radiance(const SampledSpectrum& contribution);
+  /// False when the record is full (the vertex is not recorded).
+  bool add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, float cosine, const SampledSpectrum& throughput);
+  /// A contribution the estimator adds to the pixel: it arrived at every recorded vertex. `skip_last`: not at the
+  /// last one (an emitter its own ray hit, which next-event estimation samples: path_integrator.cpp).
+  void add_radiance(const SampledSpectrum& contribution, bool skip_last = false);
   /// Appends the vertices' samples to `out`.
   void flush(std::vector<GuidingSample>& out) const;
 

@@ -94,10 +94,16 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
   std::optional<PathGuidingRecord> record;
   if (recording) record.emplace(guiding_lane_weights(lambda, settings_.wavelengths == WavelengthMode::rgb));
   // Every emitted contribution, credited to its light's group as well (light_group_radiance.h).
-  auto contribute = [&](const SampledSpectrum& contribution, const Light& light) {
+  // What the field learns at a vertex is the light next-event estimation does not already sample well: an
+  // emitter that the vertex's own sampled ray hit, weighted by MIS against NEE (`direct_by_mis`), is left out of
+  // that vertex's record (it is indirect light for the vertices before it, and kept there). Learning it sent half
+  // of the guided rays of a wall towards the window, whose sky NEE samples through its portal anyway
+  // (docs/benchmarks.md, "Path guiding"). previous_recorded: the last bounce's vertex is the record's last one.
+  bool previous_recorded = false;
+  auto contribute = [&](const SampledSpectrum& contribution, const Light& light, bool direct_by_mis = false) {
     radiance += contribution;
     if constexpr (kGrouped) groups.add(light.light_group(), contribution);
-    if (record) record->add_radiance(contribution);
+    if (record) record->add_radiance(contribution, direct_by_mis && previous_recorded);
   };
 
   // What the previous bounce left for MIS when this segment hits a light.
@@ -128,7 +134,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     const float s_light = light_pdf_solid_angle * previous_sum_ratio;
     const float s_bsdf = previous_bsdf_sum;
     const float weight = previous_hero_pdf * s_bsdf / (s_light * s_light + s_bsdf * s_bsdf);
-    contribute(beta * emitted * Float4(kLanes * weight), light);
+    contribute(beta * emitted * Float4(kLanes * weight), light, true);
   };
 
   // Panes passed straight through (docs/transport.md, "Glazing"): since the last scattering vertex (at most
@@ -275,9 +281,10 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     }
 
     // The vertex's throughput before roulette: what arrives along wi_world, divided by it, is the incident radiance.
-    if (record && guidable)
-      record->add_vertex(hit->position, facing, wi_world, bs->pdf[0], std::fabs(dot(wi_world, shading.geometric_normal)),
-                         beta);
+    previous_recorded =
+        record && guidable &&
+        record->add_vertex(hit->position, facing, wi_world, bs->pdf[0], std::fabs(dot(wi_world, shading.geometric_normal)),
+                           beta);
 
     // Russian roulette on the effective throughput (what the film will see), after a few bounces.
     const float u_roulette = sampler.next_1d();
