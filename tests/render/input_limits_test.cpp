@@ -110,6 +110,36 @@ TEST_CASE("input limits: coordinates beyond Embree's range are refused at the ke
   CHECK(rendered.film->sample_counts().discarded() == 0);
 }
 
+TEST_CASE("input limits: each placement of an \"instances\" shape is checked at its own matrix") {
+  json s = one_sphere_scene();
+  s["prototypes"] = json::parse(R"({"tile": [{"type": "quad", "material": "white",
+      "vertices": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]}]})");
+  s["shapes"].push_back(json::parse(R"({"type": "instances", "prototype": "tile", "matrices": [
+      [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0], [1e17, 0, 0, 9.5e17,  0, 1, 0, 0,  0, 0, 1, 0]]})"));
+  scene_error(s, "/shapes/1/matrices/1", {"prototype's bounding box"});
+  // The world seen from the prototype is checked once the world is known, still at the placement's own key.
+  s["shapes"][1]["matrices"][1] = {1, 0, 0, 5, 0, 1e-9, 0, 0, 0, 0, 1, 0};
+  s["camera"]["from"] = {0.0, -1e10, -1.0};
+  s["camera"]["to"] = {0.0, 0.0, 0.0};
+  scene_error(s, "/shapes/1/matrices/1", {"prototype's space"});
+  s = one_sphere_scene();
+  s["prototypes"] = json::parse(R"({"tile": [{"type": "quad", "material": "white",
+      "vertices": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]}]})");
+  s["shapes"].push_back(json::parse(R"({"type": "instances", "prototype": "tile", "matrices": [[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]]})"));
+  scene_error(s, "/shapes/1/matrices/0", {"expected 12 numbers"});
+  s["shapes"][1]["matrices"][0] = {1e-12, 0, 0, 0, 0, 1e-12, 0, 0, 0, 0, 1e-12, 0};
+  scene_error(s, "/shapes/1/matrices/0", {"singular"});
+  s["shapes"][1]["matrices"][0] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  s["shapes"][1]["prototype"] = "tiles";
+  scene_error(s, "/shapes/1/prototype", {"unknown prototype 'tiles'"});
+  // Two placements are two instances: a ray down the axis of the second hits it.
+  s["shapes"][1]["prototype"] = "tile";
+  s["shapes"][1]["matrices"].push_back({1, 0, 0, 100, 0, 1, 0, 0, 0, 0, 1, 0});
+  const auto scene = test::scene_from_json(s, "instances.json");
+  CHECK(scene->geometry.intersect(Ray{{100.0f, 0.0f, 5.0f}, {0.0f, 0.0f, -1.0f}}).has_value());
+  CHECK_FALSE(scene->geometry.intersect(Ray{{50.0f, 0.0f, 5.0f}, {0.0f, 0.0f, -1.0f}}).has_value());
+}
+
 TEST_CASE("input limits: deep JSON nesting is refused before parsing, and error messages print a bounded value") {
   // 100 000 nested arrays where a number is expected: the dump in the message used to recurse through all of them.
   const std::string deep = std::string(100000, '[') + "1" + std::string(100000, ']');

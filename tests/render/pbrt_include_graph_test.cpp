@@ -98,19 +98,68 @@ TEST_CASE("pbrt include graph: statements are counted over the Include graph, in
   CHECK(import_error(shapes / "main.pbrt", few_shapes) == "no error");
 }
 
-TEST_CASE("pbrt include graph: an instance is a reference to its prototype, not a copy") {
+TEST_CASE("pbrt include graph: instances are placements of their prototype, a matrix each, never copies") {
   test::ScratchFolder folder("pbrt_instance_reference");
-  std::string text = kScene + "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\n";
+  std::string text = kScene + "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\n";  // lines 4-6
   for (int i = 0; i < 100; ++i) text += "AttributeBegin\nTranslate " + std::to_string(i) + " 0 0\nObjectInstance \"ball\"\nAttributeEnd\n";
   folder.write("main.pbrt", text);
   const PbrtImport imported = import_pbrt(folder / "main.pbrt", test::library());
-  REQUIRE(imported.document["shapes"].size() == 100);
   REQUIRE(imported.document["prototypes"]["ball"].size() == 1);  // the sphere's mesh, once
-  for (const auto& shape : imported.document["shapes"]) {
-    CHECK(shape["type"] == "instance");
-    CHECK(shape["prototype"] == "ball");
-    CHECK(shape.dump().size() < 400);  // a reference and a transform: bytes, not the 9,024-triangle sphere
+  // Consecutive instances of one object are one shape with one origin: a line per instance, not 200 bytes.
+  REQUIRE(imported.document["shapes"].size() == 1);
+  const auto& batch = imported.document["shapes"][0];
+  CHECK(batch["type"] == "instances");
+  CHECK(batch["prototype"] == "ball");
+  REQUIRE(batch["matrices"].size() == 100);
+  CHECK(batch.dump().size() < 100 * 120);  // twelve numbers an instance: bytes, not the 9,024-triangle sphere
+  for (int i = 0; i < 100; ++i) {
+    // The camera looks along +z with up +y, where pbrt's image-right is Rimu's left: the importer mirrors x.
+    const auto& m = batch["matrices"][size_t(i)];
+    REQUIRE(m.size() == 12);
+    CHECK(m[3].get<double>() == doctest::Approx(-i));
+    CHECK(m[0].get<double>() == -1.0);
   }
+  REQUIRE(imported.origins.size() == 2);  // the object's sphere, and the instances
+  const PbrtOrigin& batch_origin = imported.origins[1];
+  CHECK(batch_origin.pointer == "/shapes/0");
+  CHECK(batch_origin.statement == "ObjectInstance \"ball\"");
+  REQUIRE(batch_origin.element_lines.size() == 100);
+  CHECK(batch_origin.element_lines[0] == 9);
+  CHECK(batch_origin.element_lines[99] == 9 + 99 * 4);
+  // Another object, another file or a shape in between starts a new batch; the JSON loads.
+  folder.write("more.pbrt", "ObjectInstance \"ball\"\n");
+  folder.write("mixed.pbrt", kScene + "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\nObjectBegin \"box\"\n"
+                             "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\nObjectEnd\n"
+                             "ObjectInstance \"ball\"\nObjectInstance \"box\"\nObjectInstance \"box\"\nInclude \"more.pbrt\"\n"
+                             "ObjectInstance \"ball\"\nShape \"sphere\"\nObjectInstance \"ball\"\n");
+  const PbrtImport mixed = import_pbrt(folder / "mixed.pbrt", test::library());
+  const auto& shapes = mixed.document["shapes"];
+  REQUIRE(shapes.size() == 6);
+  const std::vector<std::pair<std::string, size_t>> expected = {{"ball", 1}, {"box", 2}, {"ball", 1}, {"ball", 1}, {"", 0}, {"ball", 1}};
+  for (size_t k = 0; k < shapes.size(); ++k) {
+    if (expected[k].second == 0) continue;  // the sphere
+    CHECK(shapes[k]["prototype"] == expected[k].first);
+    CHECK(shapes[k]["matrices"].size() == expected[k].second);
+  }
+  CHECK_NOTHROW(load_scene(mixed.document, (folder / "mixed.pbrt").string(), folder.path, test::library()));
+}
+
+TEST_CASE("pbrt include graph: an instance the loader refuses is reported at its own ObjectInstance line") {
+  // The second of three instances in one batch places the ball beyond Embree's coordinate range.
+  const std::string text = kScene + "ObjectBegin \"ball\"\nShape \"sphere\"\nObjectEnd\n"
+                           "ObjectInstance \"ball\"\nTranslate 1e19 0 0\nObjectInstance \"ball\"\nIdentity\nObjectInstance \"ball\"\n";
+  const PbrtImport imported = import_pbrt_text(text, "far.pbrt", test::test_data("pbrt"), test::library());
+  REQUIRE(imported.document["shapes"].size() == 1);
+  std::string moved = "no error";
+  try {
+    load_scene(imported.document, "far.pbrt", test::test_data("pbrt"), test::library());
+  } catch (const InputError& e) {
+    const std::optional<InputError> at_pbrt = at_pbrt_origin(e, imported.origins);
+    REQUIRE(at_pbrt);
+    moved = at_pbrt->what();
+  }
+  CHECK_CONTAINS(moved, "far.pbrt:9: ObjectInstance \"ball\": ", "coordinates must lie within",
+                 "(the converted scene's /shapes/0/matrices/1)");
 }
 
 TEST_CASE("pbrt include graph: an ObjectBegin without ObjectEnd is an error at the ObjectBegin") {

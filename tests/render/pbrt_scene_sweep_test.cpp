@@ -150,7 +150,8 @@ TEST_CASE("pbrt shapes and instances under a singular transform are left out and
           kQuad + "ObjectInstance \"bolt\"\nAttributeEnd\n" + kQuad + "ObjectInstance \"bolt\"\n");
   const json& shapes = imported.document["shapes"];
   REQUIRE(shapes.size() == 2);  // the quad and the instance outside the singular block
-  CHECK(shapes[1]["type"] == "instance");
+  CHECK(shapes[1]["type"] == "instances");
+  CHECK(shapes[1]["matrices"].size() == 1);
   REQUIRE(imported.ignored.size() == 2);
   CHECK(imported.ignored[0].what == "Shape \"trianglemesh\" under a singular transform (pbrt-v4 renders it flattened; left out)");
   CHECK(imported.ignored[0].first.line == 10);

@@ -147,9 +147,8 @@ unsigned EmbreeScene::attach_mesh(RTCScene scene, TriangleMesh& mesh, std::share
 unsigned EmbreeScene::add_mesh(TriangleMesh mesh, int material, int light, std::shared_ptr<const AlphaMask> alpha) {
   meshes_.push_back(std::make_unique<TriangleMesh>(std::move(mesh)));
   const unsigned id = attach_mesh(scene_, *meshes_.back(), std::move(alpha));
-  geometries_.resize(id + 1);
-  instance_of_geometry_.resize(id + 1, -1);
-  geometries_[id] = {GeometryInfo::Kind::mesh, material, light, meshes_.back().get(), Vec3{}, 0.0f};
+  set_slot(id, int(geometries_.size()));
+  geometries_.push_back({GeometryInfo::Kind::mesh, material, light, meshes_.back().get(), Vec3{}, 0.0f});
   return id;
 }
 
@@ -166,10 +165,9 @@ unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material, const 
   const unsigned id = rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);
   check_error("adding a sphere");
-  geometries_.resize(id + 1);
-  instance_of_geometry_.resize(id + 1, -1);
-  geometries_[id] = {GeometryInfo::Kind::sphere, material, light, nullptr, centre, radius, uv_axes.has_value(),
-                     uv_axes.value_or(std::array<Vec3, 3>{})};
+  set_slot(id, int(geometries_.size()));
+  geometries_.push_back({GeometryInfo::Kind::sphere, material, light, nullptr, centre, radius, uv_axes.has_value(),
+                         uv_axes.value_or(std::array<Vec3, 3>{})});
   return id;
 }
 
@@ -199,10 +197,13 @@ void EmbreeScene::add_instance(int prototype, const Transform& object_to_world) 
   const unsigned id = rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);
   check_error("adding an instance");
+  set_slot(id, -1 - int(instances_.size()));
   instances_.push_back({prototype, object_to_world});
-  geometries_.resize(id + 1);
-  instance_of_geometry_.resize(id + 1, -1);
-  instance_of_geometry_[id] = int(instances_.size()) - 1;
+}
+
+void EmbreeScene::set_slot(unsigned geometry_id, int slot) {
+  if (slot_of_geometry_.size() <= geometry_id) slot_of_geometry_.resize(geometry_id + 1, 0);
+  slot_of_geometry_[geometry_id] = slot;
 }
 
 void EmbreeScene::commit() {
@@ -245,11 +246,11 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
   const GeometryInfo* info = nullptr;
   const Transform* object_to_world = nullptr;
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-    const Instance& instance = instances_[size_t(instance_of_geometry_[rh.hit.instID[0]])];
+    const Instance& instance = instances_[size_t(-1 - slot_of_geometry_[rh.hit.instID[0]])];
     info = &prototypes_[size_t(instance.prototype)].geometries[rh.hit.geomID];
     object_to_world = &instance.object_to_world;
   } else {
-    info = &geometries_[rh.hit.geomID];
+    info = &geometries_[size_t(slot_of_geometry_[rh.hit.geomID])];
   }
   hit.material = info->material;
   hit.light = info->light;

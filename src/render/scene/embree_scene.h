@@ -55,8 +55,11 @@ class EmbreeScene final : public RayQueries {
   /// `alphas`: empty, or one cut-out mask (or null) per mesh.
   int add_prototype(std::vector<std::pair<TriangleMesh, int /*material*/>> meshes,
                     const std::vector<std::shared_ptr<const AlphaMask>>& alphas = {});
-  /// An instance of a prototype placed by `object_to_world`.
+  /// An instance of a prototype placed by `object_to_world`. Costs ≈ 0.5 KB (Embree's instance geometry and its
+  /// share of the top-level BVH, and this scene's record of it), however large the prototype.
   void add_instance(int prototype, const Transform& object_to_world);
+  /// The placement of the instance added `instance`-th (0-based).
+  const Transform& instance_to_world(size_t instance) const { return instances_.at(instance).object_to_world; }
 
   /// Builds the BVH. No geometry may be added afterwards.
   void commit();
@@ -102,16 +105,20 @@ class EmbreeScene final : public RayQueries {
   };
 
   unsigned attach_mesh(RTCScene scene, TriangleMesh& mesh, std::shared_ptr<const AlphaMask> alpha);
+  /// Records what top-level geometry `geometry_id` is (slot_of_geometry_).
+  void set_slot(unsigned geometry_id, int slot);
   SurfaceHit shade_hit(const RTCRayHit& rh) const;
   void check_error(const char* what) const;
 
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
-  std::vector<GeometryInfo> geometries_;  // indexed by top-level geomID
+  std::vector<GeometryInfo> geometries_;  // the top-level meshes and spheres, found through slot_of_geometry_
   std::vector<std::unique_ptr<TriangleMesh>> meshes_;
   std::vector<Prototype> prototypes_;
-  std::vector<Instance> instances_;       // indexed by instance geomID via instance_of_geometry_
-  std::vector<int> instance_of_geometry_;
+  std::vector<Instance> instances_;       // found through slot_of_geometry_
+  /// Per top-level geomID: ≥ 0, the index in geometries_; < 0, the instance −1 − value. An int per instance,
+  /// where a GeometryInfo apiece cost 80 bytes.
+  std::vector<int> slot_of_geometry_;
   Vec3 bounds_min_, bounds_max_;
   mutable std::string last_error_;
   std::atomic<int64_t> embree_bytes_{0};

@@ -83,8 +83,8 @@ struct Scene {
   RenderSettings settings;
   float scene_scale = 1.0f;              ///< bounding-box diagonal (m)
   size_t degenerate_triangles_removed = 0;
-  /// Meshes with shading normals in (or across) the plane of 1 % or more of their triangles (a warning: see
-  /// TriangleMesh::triangles_with_normals_near_plane)
+  /// Meshes with shading normals in (or across) the plane of 1 % or more of their area (a warning: see
+  /// TriangleMesh::normals_near_plane_area_share)
   size_t meshes_with_normals_near_plane = 0;
   /// Some light is given in photometric units (render/scene/photometric_units.h), inline or through "include":
   /// `rimu` meters the display image of such a scene.

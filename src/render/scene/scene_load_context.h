@@ -1,6 +1,7 @@
 // Internal to scene loading: the state shared by the parts of the loader (one file per section).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,15 +15,28 @@
 
 namespace rimu::scene_loading {
 
+/// An instance's place in the document: the index of its shape in "shapes" and, for "instances", of its matrix.
+struct InstanceKey {
+  static constexpr uint32_t kNoMatrix = ~uint32_t(0);  ///< a shape of type "instance"
+  uint32_t shape;
+  uint32_t matrix;
+};
+
 struct LoadContext {
   Scene& scene;
   SpectrumInputContext spectra;
   std::map<std::string, int> material_index;
   std::map<std::string, int> prototype_index;
   std::map<int, BoundsD> prototype_bounds;  ///< object-space bounds of each prototype, to check its instances
-  /// Every instance's transform and its key, checked against the whole scene's extent once it is known.
-  std::vector<std::pair<Transform, JsonCursor>> instance_transforms;
+  /// Where each instance of the scene came from, in the order of EmbreeScene's instances: their transforms are
+  /// checked against the whole scene's extent once it is known. Indices, not cursors (a cursor holds two strings:
+  /// 300 bytes an instance).
+  std::vector<InstanceKey> instance_keys;
 };
+
+/// The key of an instance's placement (for its errors): its "transform" (or the shape, without one), or the
+/// element of "matrices". `shapes` is the document's "shapes".
+JsonCursor instance_cursor(const JsonCursor& shapes, InstanceKey key);
 
 /// "transform": an array of operations applied in order to the object ({"translate": v}, {"scale": v or s},
 /// {"rotate": {"angle_deg": a, "axis": v}}, {"matrix": 12 row-major numbers}); absent = identity.

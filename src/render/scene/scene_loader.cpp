@@ -187,7 +187,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
       scene->texture_footprints ||
       std::any_of(scene->materials.begin(), scene->materials.end(), [](const Material& m) { return m.uses_tangents(); }));
   scene->geometry.commit();
-  if (!context.instance_transforms.empty()) {
+  if (!context.instance_keys.empty()) {
     // Every ray starts at the camera's lens or on a surface: the box of those is what instances must see in range.
     BoundsD world;
     const Vec3 lo = scene->geometry.bounds_min(), hi = scene->geometry.bounds_max();
@@ -196,8 +196,10 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
     const float lens = scene->camera.lens_radius;
     world.extend(eye - Vec3{lens, lens, lens});
     world.extend(eye + Vec3{lens, lens, lens});
-    for (const auto& [object_to_world, where] : context.instance_transforms)
-      check_instance_ray_space(world, object_to_world, where);
+    const JsonCursor shapes = root.at("shapes");
+    for (size_t i = 0; i < context.instance_keys.size(); ++i)
+      check_instance_ray_space(world, scene->geometry.instance_to_world(i),
+                               scene_loading::instance_cursor(shapes, context.instance_keys[i]));
   }
   const Vec3 extent = scene->geometry.bounds_max() - scene->geometry.bounds_min();
   scene->scene_scale = is_finite(extent) && length(extent) > 0.0f ? length(extent) : 1.0f;
@@ -227,7 +229,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
                               " degenerate triangles (zero area or not finite) were removed from the meshes");
   if (scene->meshes_with_normals_near_plane > 0)
     scene->warnings.push_back(std::to_string(scene->meshes_with_normals_near_plane) +
-                              " meshes have shading normals in (or across) the plane of 1 % or more of their triangles: "
+                              " meshes have shading normals in (or across) the plane of 1 % or more of their area: "
                               "on opaque surfaces paths that leave below that plane end there, which darkens them");
   return scene;
 }

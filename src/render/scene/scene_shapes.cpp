@@ -184,13 +184,55 @@ std::shared_ptr<const AlphaMask> alpha_of(const JsonCursor& shape, LoadContext& 
   }
 }
 
-// A few triangles with such normals are a crease or a sliver; 1 % or more is how the mesh was made.
 void count_normals_near_plane(const TriangleMesh& mesh, Scene& scene) {
-  const size_t near_plane = mesh.triangles_with_normals_near_plane();
-  if (near_plane > 0 && 100 * near_plane >= mesh.triangle_count()) ++scene.meshes_with_normals_near_plane;
+  if (mesh.normals_near_plane_area_share() >= TriangleMesh::kNormalsNearPlaneWarningShare)
+    ++scene.meshes_with_normals_near_plane;
+}
+
+// A "matrix": 12 numbers, three rows of a 3 × 4 matrix; InputError if singular.
+Transform matrix_transform(const JsonCursor& m) {
+  if (!m.is_array() || m.size() != 12) m.fail("expected 12 numbers: three rows of a 3x4 matrix");
+  std::array<float, 12> rows{};
+  for (size_t k = 0; k < 12; ++k) rows[k] = float(m.at(k).number());
+  bool invertible = false;
+  const Transform step = Transform::from_rows(rows, invertible);
+  if (!invertible) m.fail("the matrix is singular (it flattens the shape)");
+  return step;
+}
+
+// Transform inverts only matrices whose determinant exceeds 1e-30 in magnitude (below, its inverse would be left
+// as the identity while Embree inverts the matrix itself): nearer-singular ones are refused as singular.
+void check_placement(const Transform& t, const JsonCursor& where, const char* what) {
+  if (!t.is_finite() || !std::isfinite(t.determinant()) || !(std::fabs(t.determinant()) > 1e-30f)) {
+    std::ostringstream msg;
+    msg << "the " << what << " is singular or not finite (determinant " << t.determinant()
+        << "; it must be finite and exceed 1e-30 in magnitude)";
+    where.fail(msg.str());
+  }
+}
+
+int prototype_of(const JsonCursor& shape, const LoadContext& context) {
+  const JsonCursor p = shape.at("prototype");
+  const auto it = context.prototype_index.find(p.string());
+  if (it == context.prototype_index.end()) p.fail("unknown prototype '" + p.string() + "'");
+  return it->second;
+}
+
+// An instance of `prototype` placed by `object_to_world`, whose key is `where`.
+void place_instance(int prototype, const Transform& object_to_world, const JsonCursor& where, LoadContext& context,
+                    InstanceKey key) {
+  check_instance_coordinates(context.prototype_bounds[prototype], object_to_world, where);
+  context.scene.geometry.add_instance(prototype, object_to_world);
+  context.instance_keys.push_back(key);
 }
 
 }  // namespace
+
+JsonCursor instance_cursor(const JsonCursor& shapes, InstanceKey key) {
+  const JsonCursor shape = shapes.at(size_t(key.shape));
+  if (key.matrix != InstanceKey::kNoMatrix) return shape.at("matrices").at(size_t(key.matrix));
+  return shape.has("transform") ? shape.at("transform") : shape;
+}
 
 Transform parse_transform(const JsonCursor& shape) {
   Transform t;
@@ -216,24 +258,11 @@ Transform parse_transform(const JsonCursor& shape) {
       if (length(axis) == 0.0f) r.at("axis").fail("the rotation axis is zero");
       step = Transform::rotate(float(r.at("angle_deg").number()), axis);
     } else {
-      const JsonCursor m = op.at("matrix");
-      if (m.size() != 12) m.fail("expected 12 numbers: three rows of a 3x4 matrix");
-      std::array<float, 12> rows{};
-      for (size_t k = 0; k < 12; ++k) rows[k] = float(m.at(k).number());
-      bool invertible = false;
-      step = Transform::from_rows(rows, invertible);
-      if (!invertible) m.fail("the matrix is singular (it flattens the shape)");
+      step = matrix_transform(op.at("matrix"));
     }
     t = step * t;  // later steps apply after earlier ones
   }
-  // Transform inverts only matrices whose determinant exceeds 1e-30 in magnitude (below, its inverse would be left
-  // as the identity while Embree inverts the matrix itself): nearer-singular ones are refused as singular.
-  if (!t.is_finite() || !std::isfinite(t.determinant()) || !(std::fabs(t.determinant()) > 1e-30f)) {
-    std::ostringstream msg;
-    msg << "the combined transform is singular or not finite (determinant " << t.determinant()
-        << "; it must be finite and exceed 1e-30 in magnitude)";
-    ops->fail(msg.str());
-  }
+  check_placement(t, *ops, "combined transform");
   return t;
 }
 
@@ -241,7 +270,8 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
   Scene& scene = context.scene;
   for (size_t i = 0; i < section.size(); ++i) {
     const JsonCursor shape = section.at(i);
-    const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk", "sphere", "instance"});
+    const std::string type =
+        shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk", "sphere", "instance", "instances"});
     if (type == "sphere") {
       shape.only_keys({"type", "name", "center", "radius", "material", "transform", "uv_axes", "emission", "light_group",
                        "two_sided"});
@@ -286,14 +316,23 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     }
     if (type == "instance") {
       shape.only_keys({"type", "name", "prototype", "transform"});
-      const JsonCursor p = shape.at("prototype");
-      const auto it = context.prototype_index.find(p.string());
-      if (it == context.prototype_index.end()) p.fail("unknown prototype '" + p.string() + "'");
-      const Transform object_to_world = parse_transform(shape);
-      check_instance_coordinates(context.prototype_bounds[it->second], object_to_world,
-                                 shape.has("transform") ? shape.at("transform") : shape);
-      scene.geometry.add_instance(it->second, object_to_world);
-      context.instance_transforms.emplace_back(object_to_world, shape.has("transform") ? shape.at("transform") : shape);
+      const int prototype = prototype_of(shape, context);
+      place_instance(prototype, parse_transform(shape), shape.has("transform") ? shape.at("transform") : shape, context,
+                     {uint32_t(i), InstanceKey::kNoMatrix});
+      continue;
+    }
+    if (type == "instances") {
+      // Many placements of one prototype, a matrix each: what the pbrt importer writes for ObjectInstances.
+      shape.only_keys({"type", "name", "prototype", "matrices"});
+      const int prototype = prototype_of(shape, context);
+      const JsonCursor matrices = shape.at("matrices");
+      if (!matrices.is_array()) matrices.fail("expected an array of matrices (12 numbers each: three rows of a 3x4 matrix)");
+      for (size_t k = 0; k < matrices.size(); ++k) {
+        const JsonCursor m = matrices.at(k);
+        const Transform object_to_world = matrix_transform(m);
+        check_placement(object_to_world, m, "matrix");
+        place_instance(prototype, object_to_world, m, context, {uint32_t(i), uint32_t(k)});
+      }
       continue;
     }
     check_triangle_shape_keys(shape, type, false);

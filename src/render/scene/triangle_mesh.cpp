@@ -37,15 +37,16 @@ size_t TriangleMesh::remove_degenerate_triangles() {
   return removed;
 }
 
-size_t TriangleMesh::triangles_with_normals_near_plane() const {
+double TriangleMesh::normals_near_plane_area_share() const {
   constexpr float kClearCos = 0.1f;  // cos 84°: a normal 6° or less from the plane is "in" it
   if (normals.size() != positions.size()) return 0;
-  size_t count = 0;
+  double near_area2 = 0, area2 = 0;  // twice the areas
   for (size_t i = 0; i + 2 < indices.size(); i += 3) {
     const Vec3 a = positions[indices[i]], b = positions[indices[i + 1]], c = positions[indices[i + 2]];
     const Vec3 g = cross(b - a, c - a);
     const float g_length = length(g);
     if (!(g_length > 0.0f) || !std::isfinite(g_length)) continue;  // degenerate: removed elsewhere
+    area2 += g_length;
     int above = 0, below = 0;
     for (int k = 0; k < 3; ++k) {
       const Vec3 n = normals[indices[i + size_t(k)]];
@@ -55,9 +56,9 @@ size_t TriangleMesh::triangles_with_normals_near_plane() const {
       above += cos_to_face > kClearCos;
       below += cos_to_face < -kClearCos;
     }
-    if (above != 3 && below != 3) ++count;
+    if (above != 3 && below != 3) near_area2 += g_length;
   }
-  return count;
+  return area2 > 0 ? near_area2 / area2 : 0.0;
 }
 
 std::string TriangleMesh::validate() const {

@@ -28,11 +28,16 @@ struct TriangleMesh {
   void transform(const Transform& t);
   /// Removes triangles whose area is zero or not finite (they would give NaN normals) and returns how many.
   size_t remove_degenerate_triangles();
-  /// Triangles whose shading normals do not all stand clear of the triangle's plane on one side: some vertex normal
-  /// within about 6° of the plane (|cos| to the face normal below 0.1), or normals on both sides. Rimu ends paths
-  /// that leave an opaque surface below its geometric plane, so a diffuse lobe around such a normal loses up to half
-  /// of its light (pbrt-v4 follows those paths through the surface). 0 for meshes without normals.
-  size_t triangles_with_normals_near_plane() const;
+  /// The share of the mesh's area (0-1) in triangles whose shading normals do not all stand clear of the
+  /// triangle's plane on one side: some vertex normal within about 6° of the plane (|cos| to the face normal below
+  /// 0.1), or normals on both sides. Rimu ends paths that leave an opaque surface below its geometric plane, so a
+  /// diffuse lobe around such a normal loses up to half of its light (pbrt-v4 follows those paths through the
+  /// surface): what that changes in an image goes with the area, not the number of triangles (a scanned mesh's
+  /// slivers are many and small). 0 for meshes without normals.
+  double normals_near_plane_area_share() const;
+  /// Warnings about normals near the plane are given from this share of a mesh's area (1 %): a few such triangles
+  /// are a crease or a sliver, 1 % of the area or more is how the mesh was made (a floor whose normals lie along it).
+  static constexpr double kNormalsNearPlaneWarningShare = 0.01;
   /// Checks indices are in range and every number is finite; returns an empty string or what is wrong.
   std::string validate() const;
 };

@@ -89,7 +89,7 @@ class PbrtConverter {
   std::vector<PbrtOrigin> take_origins() { return std::move(origins_); }
   /// Remembers that the document's part at `pointer` comes from `statement` at `where`.
   void origin(std::string pointer, const SourceLocation& where, std::string statement) {
-    origins_.push_back({std::move(pointer), where, std::move(statement)});
+    origins_.push_back({std::move(pointer), where, std::move(statement), {}});
   }
 
   /// Records something unsupported (or, strict, throws at `where`).
@@ -213,8 +213,8 @@ class PbrtConverter {
                  bool pbrt_default_uvs = false);
   void emit_shape(json shape, const SourceLocation& where, const std::string& context, bool emissive_capable,
                   double area_m2, double power_multiple);
-  /// Lists a mesh whose shading normals lie in (or across) the plane of 1 % or more of its triangles
-  /// (TriangleMesh::triangles_with_normals_near_plane): there Rimu's image differs from pbrt-v4's.
+  /// Lists a mesh whose shading normals lie in (or across) the plane of 1 % or more of its area
+  /// (TriangleMesh::normals_near_plane_area_share): there Rimu's image differs from pbrt-v4's.
   void list_normals_near_plane(const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices,
                                const std::vector<Vec3d>& normals, const SourceLocation& where, const std::string& context);
   /// A cylinder, disk or sphere mesh (render/scene/analytic_shapes.h, in object space) through emit_mesh, counted
@@ -223,7 +223,14 @@ class PbrtConverter {
   /// The shape's "alpha" (a float or a float texture) as Rimu's shape "alpha", or null (solid). `has_uvs`: whether
   /// the shape carries texture coordinates an alpha image can follow.
   json alpha_parameter(PbrtParams& p, bool has_uvs);
+  /// The 12 numbers of `m`'s rows (the placement of a shape or instance); InputError at `where` if it is not finite,
+  /// projective or singular.
+  json matrix_rows(const PbrtMatrix& m, const SourceLocation& where) const;
+  /// `m` as a shape's "transform" steps (null for the identity), checked as matrix_rows.
   json transform_steps(const PbrtMatrix& m, const SourceLocation& where) const;
+  /// An ObjectInstance (already checked): appended to the "instances" shape of the statement before it when that
+  /// placed the same object from the same file, else a new one.
+  void object_instance(const PbrtStatement& s);
   PbrtMatrix world_from_object() const { return mirror_ * state_.ctm; }
   std::string path_for_document(const std::filesystem::path& absolute) const;
 
@@ -282,6 +289,13 @@ class PbrtConverter {
   std::size_t generated_triangles_ = 0;  ///< so far: Loop subdivision and sphere/disk stand-ins
   std::size_t max_instances_;            ///< PbrtImportOptions::max_instances
   std::size_t instances_ = 0;            ///< ObjectInstance statements imported so far
+  /// The "instances" shape the last ObjectInstance went to.
+  struct InstanceBatch {
+    std::string prototype;
+    std::size_t shape;   ///< index in shapes_
+    std::size_t origin;  ///< index in origins_
+  };
+  std::optional<InstanceBatch> instance_batch_;
   std::size_t max_shapes_;               ///< PbrtImportOptions::max_shapes
   std::size_t shapes_read_ = 0;          ///< Shape statements so far
   /// Adds `triangles` to the generated count; InputError at `where` if that crosses max_generated_triangles_.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_tokenizer.h"
@@ -108,21 +109,26 @@ class Parser {
       : handle_(handle), depth_(depth), budget_(budget) {}
 
   void parse(const std::string& text, const std::string& file, const std::filesystem::path& directory) {
-    tokens_ = tokenize_pbrt(text, file);
     file_ = file;
     directory_ = directory;
-    pos_ = 0;
-    while (pos_ < tokens_.size()) statement();
+    PbrtTokenizer tokenizer(text, file_);
+    tokenizer_ = &tokenizer;
+    next_ = tokenizer.next();
+    while (next_) statement();
+    tokenizer_ = nullptr;
   }
 
  private:
-  const PbrtToken* peek() const { return pos_ < tokens_.size() ? &tokens_[pos_] : nullptr; }
-  int last_line() const { return tokens_.empty() ? 1 : tokens_.back().line; }
+  const PbrtToken* peek() const { return next_ ? &*next_ : nullptr; }
+  /// The line of the token taken last: at the end of the file, the file's last token.
+  int last_line() const { return last_line_; }
 
-  const PbrtToken& take(const std::string& what) {
-    if (pos_ >= tokens_.size())
-      throw InputError({file_, last_line(), ""}, "the file ends where " + what + " was expected");
-    return tokens_[pos_++];
+  PbrtToken take(const std::string& what) {
+    if (!next_) throw InputError({file_, last_line(), ""}, "the file ends where " + what + " was expected");
+    PbrtToken token = std::move(*next_);
+    last_line_ = token.line;
+    next_ = tokenizer_->next();
+    return token;
   }
 
   void statement() {
@@ -155,8 +161,7 @@ class Parser {
           if (!t || !t->quoted)
             throw InputError({file_, t ? t->line : last_line(), ""},
                              s.keyword + ": expected a quoted string" + (t ? ", found '" + t->text + "'" : ""));
-          s.strings.push_back(t->text);
-          ++pos_;
+          s.strings.push_back(take("a quoted string").text);
         }
         break;
     }
@@ -180,7 +185,7 @@ class Parser {
   // Transform and ConcatTransform may bracket their numbers; the others list them bare.
   void numbers(PbrtStatement& s, int count) {
     const bool bracketed = peek() && !peek()->quoted && peek()->text == "[";
-    if (bracketed) ++pos_;
+    if (bracketed) take("'['");
     for (int i = 0; i < count; ++i) {
       const PbrtToken& t = take(std::to_string(count) + " numbers after " + s.keyword);
       if (bracketed && !t.quoted && t.text == "]")
@@ -321,10 +326,11 @@ class Parser {
   const std::function<void(const PbrtStatement&)>& handle_;
   int depth_;
   ParseBudget& budget_;
-  std::vector<PbrtToken> tokens_;
+  PbrtTokenizer* tokenizer_ = nullptr;  ///< of the file being parsed
+  std::optional<PbrtToken> next_;       ///< the token after the ones taken: one token of lookahead is all pbrt needs
+  int last_line_ = 1;
   std::string file_;
   std::filesystem::path directory_;
-  size_t pos_ = 0;
 };
 
 }  // namespace

@@ -49,7 +49,7 @@ struct PbrtParseLimits {
   std::size_t max_included_files = std::size_t(1) << 16;  ///< Include and Import statements followed (65,536)
 };
 
-/// The most bytes of one pbrt file: the tokenizer holds the whole file as tokens (several times its size).
+/// The most bytes of one pbrt file: its text is held while it is parsed (each Include level holds its own file).
 inline constexpr std::uintmax_t kMaxPbrtFileBytes = std::uintmax_t(1) << 30;
 
 /// Reads `file` and calls `handle` on each statement in order, following Include and Import (paths relative to the

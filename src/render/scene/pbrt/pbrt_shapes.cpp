@@ -303,11 +303,9 @@ void PbrtConverter::list_normals_near_plane(const std::vector<Vec3d>& positions,
   for (const Vec3d& v : positions) mesh.positions.push_back(Vec3{float(v[0]), float(v[1]), float(v[2])});
   for (const Vec3d& n : normals) mesh.normals.push_back(Vec3{float(n[0]), float(n[1]), float(n[2])});
   mesh.indices = indices;
-  // A few such triangles are a crease or a sliver; a share of 1 % or more is how the mesh was made (a floor
-  // whose normals all point along it: pbrt-v3-scenes' buddha-fractal, docs/benchmarks.md "Real-scene corpus").
-  const size_t near_plane = mesh.triangles_with_normals_near_plane();
-  if (near_plane == 0 || 100 * near_plane < mesh.triangle_count()) return;
-  ignore(context + " with shading normals \"N\" in (or across) the plane of 1 % or more of its triangles: on an opaque "
+  // A floor whose normals all point along it: pbrt-v3-scenes' buddha-fractal, docs/benchmarks.md "Real-scene corpus".
+  if (mesh.normals_near_plane_area_share() < TriangleMesh::kNormalsNearPlaneWarningShare) return;
+  ignore(context + " with shading normals \"N\" in (or across) the plane of 1 % or more of its area: on an opaque "
                    "surface Rimu ends the paths that leave it below that plane, pbrt-v4 follows them through the surface "
                    "(its image can be brighter there)",
          where);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
@@ -151,16 +152,39 @@ std::string PbrtConverter::path_for_document(const std::filesystem::path& absolu
   return error || relative.empty() ? absolute.string() : relative.generic_string();
 }
 
-json PbrtConverter::transform_steps(const PbrtMatrix& m, const SourceLocation& where) const {
+json PbrtConverter::matrix_rows(const PbrtMatrix& m, const SourceLocation& where) const {
   if (!m.is_finite()) throw InputError(where, "the current transform is not finite (check for huge numbers)");
   if (!m.is_affine()) throw InputError(where, "the current transform is projective; only affine transforms place shapes");
   const double det = m.determinant3();
   if (!(std::abs(det) > 1e-30)) throw InputError(where, "the current transform is singular (determinant 0): it collapses the shape");
-  if (m.is_identity()) return json();
   json rows = json::array();
+  rows.get_ref<json::array_t&>().reserve(12);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j) rows.push_back(m.m[i][j]);
-  return json::array({{{"matrix", rows}}});
+  return rows;
+}
+
+json PbrtConverter::transform_steps(const PbrtMatrix& m, const SourceLocation& where) const {
+  json rows = matrix_rows(m, where);
+  if (m.is_identity()) return json();
+  return json::array({{{"matrix", std::move(rows)}}});
+}
+
+void PbrtConverter::object_instance(const PbrtStatement& s) {
+  const std::string& name = s.strings[0];
+  json matrix = matrix_rows(world_from_object(), s.where);
+  // Consecutive instances of one object from one file are one "instances" shape, a 3×4 matrix each, with one
+  // origin holding a line per instance: 25,000 placed buddhas took 2 KB each as a shape object and an origin apiece.
+  if (instance_batch_ && instance_batch_->shape + 1 == shapes_.size() && instance_batch_->prototype == name &&
+      origins_[instance_batch_->origin].where.file == s.where.file) {
+    shapes_.back()["matrices"].push_back(std::move(matrix));
+    origins_[instance_batch_->origin].element_lines.push_back(s.where.line);
+    return;
+  }
+  instance_batch_ = InstanceBatch{name, shapes_.size(), origins_.size()};
+  origin("/shapes/" + std::to_string(shapes_.size()), s.where, "ObjectInstance \"" + name + "\"");
+  origins_.back().element_lines.push_back(s.where.line);
+  shapes_.push_back({{"type", "instances"}, {"prototype", name}, {"matrices", json::array({std::move(matrix)})}});
 }
 
 void PbrtConverter::statement(const PbrtStatement& s) {
@@ -410,11 +434,7 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
                                     " instances, beyond the importer's limit (PbrtImportOptions::max_instances; "
                                     "docs/pbrt-import.md, \"Limits\")");
     // A reference to the prototype and its transform: an instance costs its bytes, never a copy of the object.
-    json instance = {{"type", "instance"}, {"prototype", s.strings[0]}};
-    const json steps = transform_steps(world_from_object(), s.where);
-    if (!steps.is_null()) instance["transform"] = steps;
-    origin("/shapes/" + std::to_string(shapes_.size()), s.where, "ObjectInstance \"" + s.strings[0] + "\"");
-    shapes_.push_back(std::move(instance));
+    object_instance(s);
   } else {
     ignore(k, s.where);
   }
@@ -502,14 +522,14 @@ json PbrtConverter::finish(const std::string& main_file) {
   document["shapes"] = std::move(shapes_);
   finish_media();
   if (!media_.empty()) {
-    document["media"] = media_;
+    document["media"] = std::move(media_);
     // pbrt-v4's volpath counts scattering in media towards "maxdepth" as it counts surface bounces.
     document["integrator"]["max_depth_includes_media"] = true;
   }
   json prototypes = json::object();
   for (auto& [name, shapes] : prototypes_.items())
     if (!shapes.empty()) prototypes[name] = std::move(shapes);
-  if (!prototypes.empty()) document["prototypes"] = prototypes;
+  if (!prototypes.empty()) document["prototypes"] = std::move(prototypes);  // moved: objects hold inline meshes
   return document;
 }
 
@@ -546,10 +566,19 @@ std::optional<InputError> at_pbrt_origin(const InputError& error, const std::vec
     if (key.compare(0, o.pointer.size(), o.pointer) == 0 && (key.size() == o.pointer.size() || key[o.pointer.size()] == '/'))
       if (!best || o.pointer.size() > best->pointer.size()) best = &o;
   if (!best) return std::nullopt;
+  SourceLocation where = best->where;
+  if (!best->element_lines.empty()) {
+    // "/shapes/3/matrices/7…": the eighth ObjectInstance of the batch.
+    const std::string elements = best->pointer + "/matrices/";
+    if (key.compare(0, elements.size(), elements) == 0) {
+      const size_t k = std::strtoul(key.c_str() + elements.size(), nullptr, 10);
+      if (k < best->element_lines.size()) where.line = best->element_lines[k];
+    }
+  }
   // The problem's own place (a PLY's file:line) stays in the message; the document's key goes last, in brackets.
   const SourceLocation inner{error.where().file == best->where.file ? "" : error.where().file, error.where().line, ""};
   const std::string place = inner.file.empty() ? "" : inner.describe() + ": ";
-  return InputError(best->where, best->statement + ": " + place + error.explanation() + " (the converted scene's " + key + ")");
+  return InputError(where, best->statement + ": " + place + error.explanation() + " (the converted scene's " + key + ")");
 }
 
 std::string describe_ignored(const std::vector<PbrtIgnored>& ignored) {

@@ -32,8 +32,8 @@ struct PbrtImportOptions {
   /// 150 bytes of JSON per triangle, then the loader's own copy). Beyond it the import is an InputError at the
   /// shape that crosses it. Triangles the file lists itself do not count (they cost what the file's size does).
   std::size_t max_generated_triangles = std::size_t(1) << 21;
-  /// The most ObjectInstance statements imported for the whole scene (2^20 = 1,048,576): each becomes a reference
-  /// to its prototype with a transform (about 300 bytes of JSON) and an Embree instance. Beyond it the import is an
+  /// The most ObjectInstance statements imported for the whole scene (2^20 = 1,048,576): each becomes a placement
+  /// of its prototype (a 3×4 matrix in an "instances" shape, about 250 bytes of JSON) and an Embree instance. Beyond it the import is an
   /// InputError at the instance that crosses it.
   std::size_t max_instances = std::size_t(1) << 20;
   /// The most Shape statements for the whole scene (2^20), counting each read of an included file: a file of
@@ -49,6 +49,9 @@ struct PbrtOrigin {
   std::string pointer;    ///< key path of the part as the JSON loader writes it, names unescaped ("/shapes/3", "/materials/gold")
   SourceLocation where;   ///< the pbrt file and line of the statement
   std::string statement;  ///< e.g. Shape "plymesh"
+  /// For an "instances" shape (consecutive ObjectInstances of one object in one file): the line of each of its
+  /// "matrices", in order; `where` holds the first. 4 bytes an instance, where an origin apiece took 200.
+  std::vector<int> element_lines;
 };
 
 struct PbrtImport {

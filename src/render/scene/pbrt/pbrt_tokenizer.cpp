@@ -57,11 +57,12 @@ void check_utf8(const std::string& text, const std::string& file, int line) {
 
 }  // namespace
 
-std::vector<PbrtToken> tokenize_pbrt(const std::string& contents, const std::string& file) {
-  std::vector<PbrtToken> tokens;
-  int line = 1;
-  size_t i = 0;
+std::optional<PbrtToken> PbrtTokenizer::next() {
+  const std::string& contents = contents_;
+  const std::string& file = file_;
   const size_t n = contents.size();
+  size_t& i = i_;
+  int& line = line_;
   while (i < n) {
     const char c = contents[i];
     if (c == '\n') {
@@ -72,8 +73,8 @@ std::vector<PbrtToken> tokenize_pbrt(const std::string& contents, const std::str
     } else if (c == '#') {
       while (i < n && contents[i] != '\n') ++i;
     } else if (c == '[' || c == ']') {
-      tokens.push_back({std::string(1, c), false, line});
       ++i;
+      return PbrtToken{std::string(1, c), false, line};
     } else if (c == '"' || c == '\'') {
       const int start_line = line;
       std::string text;
@@ -94,13 +95,20 @@ std::vector<PbrtToken> tokenize_pbrt(const std::string& contents, const std::str
       }
       ++i;
       check_utf8(text, file, start_line);
-      tokens.push_back({std::move(text), true, start_line});
+      return PbrtToken{std::move(text), true, start_line};
     } else {
       const size_t start = i;
       while (i < n && !is_delimiter(contents[i])) ++i;
-      tokens.push_back({contents.substr(start, i - start), false, line});
+      return PbrtToken{contents.substr(start, i - start), false, line};
     }
   }
+  return std::nullopt;
+}
+
+std::vector<PbrtToken> tokenize_pbrt(const std::string& contents, const std::string& file) {
+  PbrtTokenizer tokenizer(contents, file);
+  std::vector<PbrtToken> tokens;
+  while (std::optional<PbrtToken> token = tokenizer.next()) tokens.push_back(std::move(*token));
   return tokens;
 }
 
