@@ -98,8 +98,8 @@ for scene in $scenes; do
   unset last_t last_e
   # relMSE against CPU time, one line per configuration
   {
-    echo "set terminal pngcairo size 640,420 font ',10'; set output '$out/interior_$scene.png'"
-    echo "set logscale xy; set xlabel 'CPU time (s, user + system, 2 threads)'; set ylabel 'relMSE'; set key outside right; set title '$scene, $resolution'"
+    echo "set terminal pngcairo size 560,400 font ',10' noenhanced; set output '$out/interior_$scene.png'"
+    echo "set datafile separator tab; set logscale xy; set xlabel 'CPU time (s, user + system, 2 threads)'; set ylabel 'relMSE'; set key bottom left; set title '$scene, $resolution'"
     plot="plot"
     for config in "${configs[@]}"; do
       plot+=" '$out/runs.tsv' using (strcol(1) eq '$scene' && strcol(2) eq '$config' ? \$4 : 1/0):5 with linespoints title '$config',"

@@ -220,7 +220,8 @@ def convert(json_name, iso):
            'Film "rgb" "integer xresolution" %d "integer yresolution" %d "float iso" %s "bool savefp16" false'
            % (width, height, fmt([iso])),
            'PixelFilter "box"',
-           'Sampler "zsobol" "integer pixelsamples" %d "integer seed" %d' % (integ.get("spp", 16), integ.get("seed", 0)),
+           # No "seed": a Sampler's seed overrides pbrt's --seed, which the benchmark sets per render.
+           'Sampler "zsobol" "integer pixelsamples" %d' % integ.get("spp", 16),
            'Integrator "path" "integer maxdepth" %d' % integ.get("max_depth", 5),
            "WorldBegin", ""]
     for l in scene["lights"]:
