@@ -28,8 +28,8 @@ int adaptive_min_spp(int max_spp);
 /// The active pixels of an adaptive render and the error estimate that decides them.
 ///
 /// Estimate: the renderer's passes alternate between two half buffers (even and odd passes). After each pass the
-/// film's luminance sum and weight sum of every pixel (Y for XYZ films, R + G + B for camera films) are compared with
-/// their values before it, and the difference goes to the pass's half. With half means a, b over n_a, n_b samples,
+/// film's channel sums and weight sum of every pixel are compared with their values before it, and the difference
+/// goes to the pass's half. The threshold reads luminance (Y for XYZ films, R + G + B for camera films). With half means a, b over n_a, n_b samples,
 /// the pixel's mean over n = n_a + n_b samples has the standard error estimated by
 ///   SE = |a − b| / sqrt((1/n_a + 1/n_b) · n)      (= |a − b| / 2 for n_a = n_b),
 /// since Var(a − b) = σ²(1/n_a + 1/n_b) and SE² = σ²/n. The relative error is SE / mean (0 for a black pixel with
@@ -44,8 +44,10 @@ int adaptive_min_spp(int max_spp);
 /// n_i samples, is smallest for a given Σ n_i at n_i ∝ σ_i / μ_i = relative error · sqrt(n_i) (Lagrange). Each pass
 /// moves the counts toward that: every active pixel gets one sample (no pixel starves; both halves keep getting
 /// samples), the rest goes to the pixels below their target share in proportion to how far below they are, at most
-/// max_pass_share · s per pixel, and fractions carry over to the pixel's next pass. Every pixel's samples are its own
-/// sample indices 0, 1, 2, … in order, whatever it takes per pass.
+/// max_pass_share · s per pixel, and fractions carry over to the pixel's next pass. The error here is the RMS over
+/// linear R, G, B (each channel's mean at least 1 % of the largest; a camera film's own channels) and over the
+/// (2·allocation_radius_px + 1)² neighbourhood: relMSE counts every channel, so chroma noise draws samples too.
+/// Every pixel's samples are its own sample indices 0, 1, 2, … in order, whatever it takes per pass.
 ///
 /// Deterministic: decided from the film's sums on the calling thread between passes, so the image depends on the
 /// seed and the settings, not on the threads.
