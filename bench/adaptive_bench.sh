@@ -10,7 +10,8 @@
 #   samples  relMSE(uniform, same samples) / relMSE(adaptive)        the allocation alone, immune to load;
 #   cpu      relMSE·CPU s (uniform, same samples) / relMSE·CPU s (adaptive)   equal CPU time, the bookkeeping
 #            included (relMSE ∝ 1/time for either: both are unbiased Monte Carlo);
-#   wall     relMSE(uniform, --time T) / relMSE(adaptive)           equal wall time, noisy on a loaded machine.
+#   wall     relMSE(uniform, --time T) / relMSE(adaptive)           equal wall time, noisy on a loaded machine;
+# and samples_fc, the samples gain with the floor taken off both (n/a when the adaptive relMSE is under it).
 # and draws relMSE against the camera samples per pixel, one panel per scene, to OUT.png (gnuplot; default
 # adaptive_sampling.png). Scenes, lights ×1000 (bench/scaled_scene.py) so relMSE's floor of 0.01 is negligible: the
 # Cornell box (difficulty fairly even), the ColorChecker room under F11, and the daylit room with an open window
@@ -40,8 +41,8 @@ render() {
 }
 relmse() { "$compare" relmse "$1" "$2" | sed 's/.*=//'; }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); budgets ${budgets} s at $resolution, references $ref_spp spp, threshold $threshold"
-printf "%-17s %6s %7s %9s %11s %11s %11s %6s %6s %6s\n" scene budget floor spp_mean relmse_adapt relmse_same relmse_wall \
-  samples cpu wall | tee "$scratch/table"
+printf "%-17s %6s %7s %9s %11s %11s %11s %6s %6s %6s %9s\n" scene budget floor spp_mean relmse_adapt relmse_same \
+  relmse_wall samples cpu wall samples_fc | tee "$scratch/table"
 for n in $scenes; do
   python3 "$root/bench/scaled_scene.py" "${sources[$n]}" "$scratch" "$n" "${factors[$n]}"
   scene=$scratch/${n}_dir/$n.json
@@ -60,7 +61,8 @@ for n in $scenes; do
     e_s=$(relmse "$scratch/same.exr" "$scratch/ref99_$n.exr")
     e_w=$(relmse "$scratch/wall.exr" "$scratch/ref99_$n.exr")
     awk -v n="$n" -v t="$t" -v f="$floor" -v m="$spp_a" -v a="$e_a" -v s="$e_s" -v w="$e_w" -v ca="$cpu_a" -v cu="$cpu_u" \
-      'BEGIN { printf "%-17s %6s %7s %9.1f %11.4g %11.4g %11.4g %6.2f %6.2f %6.2f\n", n, t, f, m, a, s, w, s / a, s * cu / (a * ca), w / a }' |
+      'BEGIN { fc = a > f ? sprintf("%.2f", (s - f) / (a - f)) : "n/a"
+               printf "%-17s %6s %7s %9.1f %11.4g %11.4g %11.4g %6.2f %6.2f %6.2f %9s\n", n, t, f, m, a, s, w, s / a, s * cu / (a * ca), w / a, fc }' |
       tee -a "$scratch/table"
   done
 done
