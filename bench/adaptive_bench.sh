@@ -1,53 +1,79 @@
 #!/usr/bin/env bash
 # adaptive_bench.sh BUILD [BUDGETS_S] [REFERENCE_SPP] [RESOLUTION] [THRESHOLD] [OUT.png]
-# Adaptive sampling against uniform sampling at equal time (issue #26 §1; docs/benchmarks.md, "Adaptive sampling"):
-# for each scene a uniform reference of REFERENCE_SPP samples (seed 99), then for each render-time budget
-# (`rimu --time T`, whole passes; the render time is what the EXR records) one uniform render and one with
-# `--noise-threshold THRESHOLD`, both with seed 1 and 2 threads. THRESHOLD is set low enough that the budget, not the
-# threshold, ends the adaptive render, so the two spend the same time and differ only in where the samples go.
-# Prints relMSE (rimu-pbrt-image-compare relmse, against the reference) and the spp reached, and the equal-time gain
-#   relMSE_uniform / relMSE_adaptive,
-# and draws relMSE against render time, one panel per scene, to OUT.png (gnuplot; default adaptive_sampling.png).
-# Scenes, lights ×1000 (bench/scaled_scene.py) so the relMSE floor of 0.01 is negligible: the Cornell box (difficulty
-# fairly even), the ColorChecker room under F11, and the daylit room with an open window (a bright sun patch and
-# dark corners). BENCH_SCENES="cornell daylit_open" (say) runs only those. The machine should be otherwise idle:
-# the budgets are wall-clock render time.
+# Adaptive sampling against uniform sampling (docs/benchmarks.md, "Adaptive sampling"). For each scene two uniform
+# references of REFERENCE_SPP samples (seeds 98 and 99; relMSE between them over 2 is the reference's own share of
+# every figure, the "floor"), then for each render-time budget T (`rimu --time T`, seed 1, 2 threads):
+#   adaptive   --time T --noise-threshold THRESHOLD: the budget, not the threshold, ends it; mean spp m reached;
+#   uniform    --spp round(m): the same camera samples (within half a sample per pixel);
+#   uniform    --time T: the same wall-clock budget.
+# Prints relMSE against the seed-99 reference (rimu-pbrt-image-compare relmse) and three gains:
+#   samples  relMSE(uniform, same samples) / relMSE(adaptive)        the allocation alone, immune to load;
+#   cpu      relMSE·CPU s (uniform, same samples) / relMSE·CPU s (adaptive)   equal CPU time, the bookkeeping
+#            included (relMSE ∝ 1/time for either: both are unbiased Monte Carlo);
+#   wall     relMSE(uniform, --time T) / relMSE(adaptive)           equal wall time, noisy on a loaded machine;
+# and samples_fc, the samples gain with the floor taken off both (n/a when the adaptive relMSE is under it).
+# and draws relMSE against the camera samples per pixel, one panel per scene, to OUT.png (gnuplot; default
+# adaptive_sampling.png). Scenes, lights ×1000 (bench/scaled_scene.py) so relMSE's floor of 0.01 is negligible: the
+# Cornell box (difficulty fairly even), the ColorChecker room under F11, and the daylit room with an open window
+# (a bright sun patch and dark corners). BENCH_SCENES="cornell daylit_open" (say) runs only those.
 set -eu
-build=$1; budgets=${2:-"2 4 8 16"}; ref_spp=${3:-4096}; resolution=${4:-160x90}; threshold=${5:-0.002}
+build=$1; budgets=${2:-"4 16"}; ref_spp=${3:-8192}; resolution=${4:-120x68}; threshold=${5:-0.001}
 plot=${6:-adaptive_sampling.png}
 rimu=$build/bin/rimu; compare=$build/bin/rimu-pbrt-image-compare
 root=$(cd "$(dirname "$0")/.." && pwd); export RIMU_DATA=${RIMU_DATA:-$root/data}
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/rimu-adaptive.XXXXXX"); trap 'rm -rf "$scratch"' EXIT
 declare -A sources=([cornell]=$root/data/scenes/cornell_box/scene.json
                     [colorchecker_f11]=$root/data/scenes/colorchecker_room/colorchecker_f11.json
-                    [daylit_open]=$root/data/scenes/interiors/daylit_room_open.json)
-scenes=${BENCH_SCENES:-"cornell colorchecker_f11 daylit_open"}
-# Renders and prints the spp reached (from rimu's summary line: "rimu: SCENE: N spp ...").
-render_spp() { "$rimu" "$@" 2>&1 >/dev/null | sed -n 's/^rimu: .*: \([0-9]*\) spp.*/\1/p' | head -1; }
-echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); budgets ${budgets} s at $resolution, reference $ref_spp spp, threshold $threshold"
-printf "%-17s %6s %12s %12s %8s %8s %6s\n" scene budget relmse_unif relmse_adapt spp_unif spp_adapt gain | tee "$scratch/table"
+                    [daylit_open]=$root/data/scenes/interiors/daylit_room_open.json
+                    [night_room]=$root/data/scenes/interiors/night_room_downlights.json)
+# The night room's 800 lm downlights give film values near 0.002: ×1e5 to bring them, as ×1000 does the others,
+# far above relMSE's floor.
+declare -A factors=([cornell]=1000 [colorchecker_f11]=1000 [daylit_open]=1000 [night_room]=100000)
+scenes=${BENCH_SCENES:-"cornell colorchecker_f11 daylit_open night_room"}
+pixels=$(awk -F'x' '{ print $1 * $2 }' <<<"$resolution")
+# Renders; sets cpu_s (user + system CPU seconds of the whole process) and mean_spp (rimu's summary: the adaptive
+# line's mean, else the spp line's count).
+render() {
+  /usr/bin/time -f "%U %S" -o "$scratch/time" "$rimu" "$@" 2>"$scratch/log" >/dev/null
+  cpu_s=$(awk '{ print $1 + $2 }' "$scratch/time")
+  mean_spp=$(sed -n 's/^rimu: adaptive sampling: .*; mean \([0-9.e+]*\) spp$/\1/p' "$scratch/log")
+  [ -n "$mean_spp" ] || mean_spp=$(sed -n 's/^rimu: .*: \([0-9]*\) spp.*/\1/p' "$scratch/log" | head -1)
+}
+relmse() { "$compare" relmse "$1" "$2" | sed 's/.*=//'; }
+echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); budgets ${budgets} s at $resolution, references $ref_spp spp, threshold $threshold"
+printf "%-17s %6s %7s %9s %11s %11s %11s %6s %6s %6s %9s\n" scene budget floor spp_mean relmse_adapt relmse_same \
+  relmse_wall samples cpu wall samples_fc | tee "$scratch/table"
 for n in $scenes; do
-  python3 "$root/bench/scaled_scene.py" "${sources[$n]}" "$scratch" "$n" 1000
+  python3 "$root/bench/scaled_scene.py" "${sources[$n]}" "$scratch" "$n" "${factors[$n]}"
   scene=$scratch/${n}_dir/$n.json
-  "$rimu" -q "$scene" -o "$scratch/ref_$n.exr" --spp "$ref_spp" --seed 99 --threads 2 --resolution "$resolution"
+  for seed in 98 99; do
+    "$rimu" -q "$scene" -o "$scratch/ref${seed}_$n.exr" --spp "$ref_spp" --seed $seed --threads 2 --resolution "$resolution"
+  done
+  floor=$(awk -v e="$(relmse "$scratch/ref98_$n.exr" "$scratch/ref99_$n.exr")" 'BEGIN { printf "%.3g", e / 2 }')
   for t in $budgets; do
-    common=("$scene" --seed 1 --threads 2 --resolution "$resolution" --time "${t}s")
-    s_u=$(render_spp "${common[@]}" -o "$scratch/uniform.exr")
-    s_a=$(render_spp "${common[@]}" --noise-threshold "$threshold" -o "$scratch/adaptive.exr")
-    e_u=$("$compare" relmse "$scratch/uniform.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
-    e_a=$("$compare" relmse "$scratch/adaptive.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
-    gain=$(awk -v a="$e_u" -v b="$e_a" 'BEGIN { printf "%.2f", a / b }')
-    printf "%-17s %6s %12.4g %12.4g %8s %8s %6s\n" "$n" "$t" "$e_u" "$e_a" "$s_u" "$s_a" "$gain" | tee -a "$scratch/table"
+    common=("$scene" --seed 1 --threads 2 --resolution "$resolution")
+    render "${common[@]}" --time "${t}s" --noise-threshold "$threshold" -o "$scratch/adaptive.exr"
+    cpu_a=$cpu_s; spp_a=$mean_spp
+    render "${common[@]}" --spp "$(printf '%.0f' "$spp_a")" -o "$scratch/same.exr"
+    cpu_u=$cpu_s
+    render "${common[@]}" --time "${t}s" -o "$scratch/wall.exr"
+    e_a=$(relmse "$scratch/adaptive.exr" "$scratch/ref99_$n.exr")
+    e_s=$(relmse "$scratch/same.exr" "$scratch/ref99_$n.exr")
+    e_w=$(relmse "$scratch/wall.exr" "$scratch/ref99_$n.exr")
+    awk -v n="$n" -v t="$t" -v f="$floor" -v m="$spp_a" -v a="$e_a" -v s="$e_s" -v w="$e_w" -v ca="$cpu_a" -v cu="$cpu_u" \
+      'BEGIN { fc = a > f ? sprintf("%.2f", (s - f) / (a - f)) : "n/a"
+               printf "%-17s %6s %7s %9.1f %11.4g %11.4g %11.4g %6.2f %6.2f %6.2f %9s\n", n, t, f, m, a, s, w, s / a, s * cu / (a * ca), w / a, fc }' |
+      tee -a "$scratch/table"
   done
 done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
-# One panel per scene: relMSE against the budget, log-log, uniform and adaptive.
+# One panel per scene: relMSE against the mean spp, log-log, adaptive and uniform at the same samples.
 {
   echo "set terminal pngcairo size 1200,400 font ',10'; set output '$plot'"
-  echo "set multiplot layout 1,$(wc -w <<<"$scenes"); set logscale xy; set xlabel 'render time (s)'; set ylabel 'relMSE'; set key top right"
+  echo "set multiplot layout 1,$(wc -w <<<"$scenes"); set logscale xy; set xlabel 'camera samples per pixel (mean)'; set ylabel 'relMSE'; set key top right"
   for n in $scenes; do
     echo "set title '$n' noenhanced"
-    echo "plot '$scratch/table' using (strcol(1) eq '$n' ? \$2 : 1/0):3 with linespoints title 'uniform', '' using (strcol(1) eq '$n' ? \$2 : 1/0):4 with linespoints title 'adaptive'"
+    echo "plot '$scratch/table' using (strcol(1) eq '$n' ? \$4 : 1/0):6 with linespoints title 'uniform', '' using (strcol(1) eq '$n' ? \$4 : 1/0):5 with linespoints title 'adaptive', '' using (strcol(1) eq '$n' ? \$4 : 1/0):(\$3 + 0) with lines dt 2 title 'reference floor'"
   done
   echo "unset multiplot"
 } | gnuplot

@@ -10,7 +10,8 @@ import json
 import os
 import sys
 
-AMOUNT_KEYS = ("illuminance_lx", "luminance_nt", "power_w", "scale", "radiance")
+AMOUNT_KEYS = ("illuminance_lx", "luminance_nt", "power_w", "scale", "radiance", "luminous_power_lm",
+               "luminous_intensity_cd", "candela_scale")
 
 
 def scale_amounts(scene, factor):
@@ -20,8 +21,10 @@ def scale_amounts(scene, factor):
                 light[key] *= factor
     for shape in scene.get("shapes", []):
         emission = shape.get("emission")
-        if isinstance(emission, dict) and "scale" in emission:
-            emission["scale"] *= factor
+        if isinstance(emission, dict) and any(k in emission for k in ("scale", "luminous_power_lm")):
+            for key in ("scale", "luminous_power_lm"):
+                if isinstance(emission.get(key), (int, float)):
+                    emission[key] *= factor
         elif "emission_scale" in shape:
             shape["emission_scale"] *= factor
 

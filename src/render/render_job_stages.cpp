@@ -274,6 +274,7 @@ void plan_adaptive_sampling(RenderJobState& s) {
   AdaptiveSamplingSettings settings;
   settings.noise_threshold = *s.job.noise_threshold;
   settings.min_spp = adaptive_min_spp(s.total_spp == kMaxSamplesPerPixel ? 0 : s.total_spp);
+  settings.max_spp = s.total_spp;
   s.adaptive = std::make_unique<AdaptiveSampling>(*s.film, settings);
 }
 
@@ -431,7 +432,10 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
         s.converged = true;  // every pixel stopped: the render is complete
         return false;
       }
-      return !budget || budget->allows_pass(seconds_since(s.render_start), count, first == s.requested.begin);
+      // Adaptive: the pass's samples shared among the pixels, and their mean for the budget's prediction.
+      const double pass_samples =
+          s.adaptive ? double(s.adaptive->plan_pass(count)) / double(s.film->pixel_bounds().area()) : double(count);
+      return !budget || budget->allows_pass(seconds_since(s.render_start), pass_samples, first == s.requested.begin);
     };
   }
   options.after_pass = [&](int reached) {
@@ -445,7 +449,7 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
     }
     // The first pass's preview at once (something to look at), then one per interval; the last is written with
     // the outputs.
-    if ((job.preview_output || job.preview_error_output) && reached < s.requested.end &&
+    if ((job.preview_output || job.preview_error_output) && (reached < s.requested.end || s.adaptive) &&
         (reached == sample_pass_end(s.first_sample) || seconds_since(s.last_preview) >= job.preview_interval_s))
       write_preview(s);
   };
@@ -455,6 +459,8 @@ void render_samples(RenderJobState& s, InterruptFlag& interrupt) {
   progress.finish();
   s.result.sample_counts = s.film->sample_counts();
   s.reached = s.first_sample + s.result.statistics.samples_per_pixel_done;
+  // Adaptive: the schedule's position is no pixel's count; the render reached the most any pixel took.
+  if (s.adaptive) s.reached = s.first_sample + s.adaptive->max_samples();
 }
 
 void write_job_outputs(RenderJobState& s) {

@@ -108,9 +108,16 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   // Each tile's records of the current pass. Kept across passes (cleared, not freed): allocating them anew every
   // pass cost a guided render ~9 % of its time in page faults (perf, daylit room 160×90, 64 spp).
   std::vector<std::vector<GuidingSample>> guiding_records;
-  while (options.first_sample + stats.samples_per_pixel_done < options.samples_per_pixel) {
+  // Adaptive sampling ends when every pixel stopped (converged or at its maximum): its pixels take unequal counts, so
+  // the schedule's position is no pixel's count and may pass the maximum.
+  const auto more_passes = [&] {
+    if (options.adaptive) return options.adaptive->active_count() > 0;
+    return options.first_sample + stats.samples_per_pixel_done < options.samples_per_pixel;
+  };
+  while (more_passes()) {
     const int first = options.first_sample + stats.samples_per_pixel_done;
-    const int count = std::min(sample_pass_end(first), options.samples_per_pixel) - first;
+    const int pass_end = sample_pass_end(first);
+    const int count = (options.adaptive ? pass_end : std::min(pass_end, options.samples_per_pixel)) - first;
     if (options.start_pass && !options.start_pass(first, count)) {
       stats.stopped_by_start_pass = true;
       break;
@@ -156,12 +163,14 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
           guiding.record_limit = tile_record_limit;
         }
         const PixelBounds& b = tile->bounds();
-        uint64_t pixels_sampled = 0;
+        uint64_t tile_samples = 0;
         for (int y = b.y0; y < b.y1; ++y) {
           for (int x = b.x0; x < b.x1; ++x) {
-            if (options.adaptive && !options.adaptive->active(x, y)) continue;
-            ++pixels_sampled;
-            for (int s = first; s < first + count; ++s) {
+            // Adaptive sampling: the pixel's own count for this pass, continuing its own sample indices.
+            const int pixel_first = options.adaptive ? options.adaptive->samples(x, y) : first;
+            const int pixel_count = options.adaptive ? options.adaptive->pass_samples(x, y) : count;
+            tile_samples += uint64_t(pixel_count);
+            for (int s = pixel_first; s < pixel_first + pixel_count; ++s) {
               sampler->start_pixel_sample(x, y, uint32_t(s));
               // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4); then per-bounce ones.
               const FilterSample fs = filter.sample(sampler->next_2d());
@@ -209,9 +218,11 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
             }
           }
         }
-        // A stopped pixel counts as done, so the progress still reaches 100 % at the last pass.
-        if (options.progress) options.progress->add(uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count));
-        pass_camera_samples += pixels_sampled * uint64_t(count);
+        // Uniform: every pixel's samples. Adaptive: the samples taken (a render that ends with every pixel stopped
+        // is marked complete by its caller).
+        if (options.progress)
+          options.progress->add(options.adaptive ? tile_samples : uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count));
+        pass_camera_samples += tile_samples;
         results[t] = std::move(tile);
       }
     });
@@ -243,7 +254,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     stats.camera_samples += pass_camera_samples.load();
     if (options.after_pass) options.after_pass(first + count);
     if (options.interrupt && options.interrupt->requested()) {
-      stats.interrupted = first + count < options.samples_per_pixel;
+      stats.interrupted = more_passes();
       break;
     }
   }

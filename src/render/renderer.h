@@ -33,8 +33,10 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::sobol;  ///< where the random numbers come from (docs/sampling.md)
   const InterruptFlag* interrupt = nullptr;  ///< polled between tiles; the image keeps only whole passes
   ProgressReporter* progress = nullptr;      ///< counts camera samples
-  /// Adaptive sampling (render/film/adaptive_sampling.h): only its active pixels take a pass's samples. The caller
-  /// updates it between passes (after_pass); null: every pixel takes every pass.
+  /// Adaptive sampling (render/film/adaptive_sampling.h): each pixel takes the samples the caller planned for the
+  /// pass (plan_pass, in start_pass), continuing its own sample indices, and the render ends when every pixel has
+  /// stopped. The caller plans every pass in start_pass and updates it in after_pass; null: every pixel takes every
+  /// pass.
   const AdaptiveSampling* adaptive = nullptr;
   /// Feature buffers for a denoiser (`--aov`, `--denoise`): when set, every camera sample also traces a feature ray
   /// (transport/integrators/path_features.h) with a sampler of its own, so the image is the same with or without

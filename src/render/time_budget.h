@@ -18,9 +18,10 @@ class TimeBudget {
   /// `limit_s` > 0: the whole render's budget of render time. `spent_s`: what a resumed render already spent.
   TimeBudget(double limit_s, double spent_s) : limit_s_(limit_s), spent_s_(spent_s) {}
 
-  /// Called before each pass, `elapsed_s` after this run started, for a pass of `pass_samples` samples per pixel;
-  /// `film_empty`: nothing rendered yet. True: render it. Each call is taken to start the pass it allows.
-  bool allows_pass(double elapsed_s, int pass_samples, bool film_empty);
+  /// Called before each pass, `elapsed_s` after this run started, for a pass of `pass_samples` samples per pixel
+  /// (a mean over the pixels when they take unequal counts, as in adaptive sampling); `film_empty`: nothing
+  /// rendered yet. True: render it. Each call is taken to start the pass it allows.
+  bool allows_pass(double elapsed_s, double pass_samples, bool film_empty);
 
   double limit_s() const { return limit_s_; }
   /// True once a pass was refused: the render ended on its budget.
@@ -29,7 +30,7 @@ class TimeBudget {
  private:
   double limit_s_, spent_s_;
   double pass_start_s_ = -1.0;  ///< when the last allowed pass started (−1: none yet)
-  int pass_samples_ = 0;        ///< its samples per pixel
+  double pass_samples_ = 0;     ///< its samples per pixel
   bool spent_ = false;
 };
 

@@ -14,6 +14,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "integration_support.h"
 #include "render/film/adaptive_sampling.h"
 #include "render/output/error_heat_map.h"
 #include "render/render_job.h"
@@ -83,6 +84,61 @@ std::map<std::string, std::vector<float>> render_adaptive(const fs::path& scene,
   adaptive.noise_threshold = threshold;
   run_render_job(adaptive, std::cerr);
   return read_channels(adaptive.exr_output);
+}
+
+// A card lit by a lamp facing it just out of view and found only by BSDF sampling: about one sample in five hits
+// it from the right half (a relative error per sample of about 2; rarer hits would leave many pixels with no hit in
+// either half buffer after the minimum, and so with no error to show). The card's left half also glows (emission
+// 1, above the lamp's reflection): the same kind of noise on a larger mean, a relative error about 4 times smaller.
+json glowing_half_scene() {
+  // Facing −z for x0 < x1 (the lamp, toward the card), +z for x0 > x1 (the glowing half, toward the camera).
+  auto quad = [](double x0, double x1, double half_height, double z) {
+    return json::array({{x0, -half_height, z}, {x0, half_height, z}, {x1, half_height, z}, {x1, -half_height, z}});
+  };
+  return json{
+      {"camera", {{"from", {0.0, 0.0, 3.0}}, {"to", {0, 0, 0}}, {"up", {0, 1, 0}}, {"vertical_fov_deg", 10}}},
+      {"film", {{"resolution", {kWidth, kHeight}}, {"filter", {{"type", "box"}}}}},
+      {"integrator", {{"max_depth", 1}, {"direct_lighting", "bsdf_only"}}},
+      {"materials", {{"card", {{"type", "diffuse"}, {"reflectance", 0.5}}}, {"lamp", {{"type", "diffuse"}, {"reflectance", 0}}}}},
+      {"shapes", json::array({{{"type", "quad"}, {"vertices", quad(0, -10, 10, 0)}, {"material", "card"}, {"emission", 1}},
+                              {{"type", "quad"}, {"vertices", quad(0, 10, 10, 0)}, {"material", "card"}},
+                              {{"type", "quad"}, {"vertices", quad(0.4, 1.4, 1.0, 1)}, {"material", "lamp"}, {"emission", 5}}})}};
+}
+
+// Renders `scene` with adaptive sampling (a threshold no pixel reaches) for `passes` whole passes of the renderer's
+// schedule, planned as rimu's render job plans them; returns the film and fills `sampling`.
+std::unique_ptr<Film> render_adaptive_passes(const Scene& scene, int passes, uint64_t seed,
+                                             std::unique_ptr<AdaptiveSampling>& sampling, uint64_t& planned) {
+  auto film = std::make_unique<Film>(FilmOptions{kWidth, kHeight, std::nullopt, 0},
+                                     SpectralResponse::cie_xyz(test::library()));
+  AdaptiveSamplingSettings settings;
+  settings.noise_threshold = 1e-6;
+  settings.max_spp = 1 << 20;
+  sampling = std::make_unique<AdaptiveSampling>(*film, settings);
+  RenderOptions options;
+  options.samples_per_pixel = 1 << 20;
+  options.threads = 2;
+  options.seed = seed;
+  options.adaptive = sampling.get();
+  int started = 0;
+  planned = 0;
+  options.start_pass = [&](int, int count) {
+    if (started++ == passes) return false;
+    planned += sampling->plan_pass(count);
+    return true;
+  };
+  options.after_pass = [&](int reached) { sampling->after_pass(*film, reached); };
+  render(scene, test::filter_of(scene), *film, options);
+  return film;
+}
+
+// Mean of `values` (one per pixel, row by row) over columns [x0, x1).
+template <typename Values>
+double column_mean(const Values& values, int x0, int x1) {
+  double sum = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = x0; x < x1; ++x) sum += values(x, y);
+  return sum / double((x1 - x0) * kHeight);
 }
 
 double mean_over(const std::vector<float>& values, int x0, int x1) {
@@ -217,4 +273,53 @@ TEST_CASE("adaptive sampling: --preview-error draws each pixel's remaining error
   clash.preview_error_output = clash.exr_output;  // and an EXR name is not a PNG
   CHECK_THROWS_WITH_AS(run_render_job(clash, std::cerr), doctest::Contains("must end in .png"), InputError);
   CHECK_FALSE(fs::exists(without.exr_output));
+}
+
+TEST_CASE("adaptive sampling: past the minimum, a pass's samples go to the noisy half, in total a uniform pass's") {
+  const std::unique_ptr<Scene> scene = test::scene_from_json(glowing_half_scene());
+  std::unique_ptr<AdaptiveSampling> sampling;
+  uint64_t planned = 0;
+  // Passes of 1, 2, 4, 8, 16 (31 samples: the minimum), then 20 passes of 16: 351 samples per pixel on average.
+  const std::unique_ptr<Film> film = render_adaptive_passes(*scene, 25, 5, sampling, planned);
+  auto spp = [&](int x, int y) { return double(sampling->samples(x, y)); };
+  const double quiet = column_mean(spp, 0, kWidth / 4), noisy = column_mean(spp, 3 * kWidth / 4, kWidth);
+  INFO("mean spp, glowing quarter " << quiet << ", lamp-lit quarter " << noisy << "; mean " << sampling->mean_samples());
+  // Every pixel took the minimum and one sample per later pass at least; the lamp-lit quarter took far more than
+  // the glowing one (its relative error per sample is about 4 times larger: relMSE-optimal counts differ as much).
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) CHECK(sampling->samples(x, y) >= 31 + 20);
+  CHECK(noisy > 2.0 * quiet);
+  // The samples taken are the ones planned, and each pass shares out a uniform pass's samples (to within a sample
+  // per pixel of rounding carried to the next pass; none is capped here).
+  CHECK(uint64_t(sampling->mean_samples() * kWidth * kHeight + 0.5) == planned);
+  CHECK(std::abs(sampling->mean_samples() - 351.0) <= 1.0);
+  CHECK(sampling->max_samples() > 351);
+}
+
+TEST_CASE("adaptive sampling: with unequal counts each pixel's mean agrees with a uniform render's within its "
+          "standard error") {
+  const std::unique_ptr<Scene> scene = test::scene_from_json(glowing_half_scene());
+  std::unique_ptr<AdaptiveSampling> sampling;
+  uint64_t planned = 0;
+  const std::unique_ptr<Film> adaptive = render_adaptive_passes(*scene, 25, 5, sampling, planned);
+  Film uniform(FilmOptions{kWidth, kHeight, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
+  RenderOptions options;
+  options.samples_per_pixel = 351;
+  options.threads = 2;
+  options.seed = 17;  // independent of the adaptive render's samples
+  render(*scene, test::filter_of(*scene), uniform, options);
+  // Each half's mean Y over its pixels: lit evenly along y within a column, unevenly along x, so the standard error
+  // comes from the pixel-to-pixel spread of the difference of the two renders (each pixel's difference has mean 0
+  // if both are unbiased, whatever the pixel's expected value).
+  for (const auto& [x0, x1] : {std::pair{0, kWidth / 2}, std::pair{kWidth / 2, kWidth}}) {
+    std::vector<double> differences;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = x0; x < x1; ++x) differences.push_back(adaptive->pixel_value(x, y)[1] - uniform.pixel_value(x, y)[1]);
+    const test::Estimate d = test::estimate_of(differences);
+    const auto luminance = [&](int x, int y) { return double(uniform.pixel_value(x, y)[1]); };
+    INFO("columns " << x0 << "–" << x1 << ": mean Y " << column_mean(luminance, x0, x1) << ", adaptive − uniform "
+                    << d.mean << " ± " << d.standard_error);
+    CHECK(column_mean(luminance, x0, x1) > 0.0);
+    CHECK(std::abs(d.mean) <= test::kSigmas * d.standard_error);
+  }
 }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include "spectral/colour_spaces/rgb_colour_space.h"
 
 namespace rimu {
 
@@ -10,77 +13,179 @@ int adaptive_min_spp(int max_spp) { return std::max(16, max_spp / 8); }
 AdaptiveSampling::AdaptiveSampling(const Film& film, const AdaptiveSamplingSettings& settings)
     : bounds_(film.pixel_bounds()),
       settings_(settings),
-      camera_film_(film.response().kind() == ResponseKind::camera_rgb) {
+      camera_film_(film.response().kind() == ResponseKind::camera_rgb),
+      to_rgb_(camera_film_ ? Matrix3::identity() : RgbColourSpace::named("srgb-linear").xyz_to_rgb()) {
   const size_t n = size_t(bounds_.area());
-  last_luminance_.assign(n, 0.0);
+  last_channels_.assign(3 * n, 0.0);
   last_weight_.assign(n, 0.0);
   for (int h = 0; h < 2; ++h) {
-    half_luminance_[h].assign(n, 0.0);
+    half_channels_[h].assign(3 * n, 0.0);
     half_weight_[h].assign(n, 0.0);
   }
   samples_.assign(n, 0);
+  pass_samples_.assign(n, 0);
+  carried_.assign(n, 0.0);
   error_.assign(n, 0.0f);
+  relative_squared_.assign(n, INFINITY);
+  colour_squared_.assign(n, INFINITY);
   active_.assign(n, 1);
   active_count_ = n;
 }
 
-double AdaptiveSampling::luminance_sum(const Film& film, int x, int y) const {
-  const double* sums = film.accumulators(x, y);
-  return camera_film_ ? sums[0] + sums[1] + sums[2] : sums[1];
+namespace {
+
+// The colour error's floor on a channel's mean, as a fraction of the pixel's largest channel: a saturated colour's
+// small channels still count (relMSE counts them whole), but a channel near 0 cannot take every sample.
+constexpr double kChannelFloor = 0.01;
+
+// The relative standard error² of a pixel's mean from its half sums a, b over half weights n_a, n_b (see the header);
+// `floor` bounds the mean from below (0 for a black pixel without variation, ∞ with an empty half).
+double relative_error_squared(double a_sum, double b_sum, double na, double nb, double floor) {
+  if (!(na > 0) || !(nb > 0)) return INFINITY;
+  const double a = a_sum / na, b = b_sum / nb, mean = (a_sum + b_sum) / (na + nb);
+  const double standard_error = std::abs(a - b) / std::sqrt((1.0 / na + 1.0 / nb) * (na + nb));
+  if (standard_error == 0.0) return 0.0;
+  const double relative = standard_error / std::max({std::abs(mean), floor, 1e-30});
+  return relative * relative;
+}
+
+}  // namespace
+
+uint64_t AdaptiveSampling::plan_pass(int pass_samples) {
+  const size_t n = active_.size();
+  const int max_spp = settings_.max_spp > 0 ? settings_.max_spp : INT32_MAX;
+  uint64_t total = 0;
+  if (!spreading_) {  // before the minimum: every active pixel takes the pass, as a uniform render would
+    for (size_t i = 0; i < n; ++i) {
+      pass_samples_[i] = active_[i] ? std::min(pass_samples, max_spp - samples_[i]) : 0;
+      total += uint64_t(pass_samples_[i]);
+    }
+    return total;
+  }
+  // Each pixel's per-sample relative standard deviation, relative error · sqrt(n): its target share of the counts.
+  // The relative error is the root mean square over a (2r + 1)² window (r = allocation_radius_px): each pixel's
+  // own is a one-degree-of-freedom estimate, and weights that noisy would cost more than they gain where the
+  // difficulty is even.
+  std::vector<double> deviation(n, -1.0);  // −1: no estimate (one half empty), the pixel takes a uniform share
+  double deviation_sum = 0.0, samples_sum = 0.0;
+  const int w = bounds_.width(), h = bounds_.height(), r = settings_.allocation_radius_px;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      if (!active_[i]) continue;
+      samples_sum += samples_[i];
+      double sum = 0.0;
+      int count = 0;
+      for (int v = std::max(0, y - r); v <= std::min(h - 1, y + r); ++v)
+        for (int u = std::max(0, x - r); u <= std::min(w - 1, x + r); ++u, ++count)
+          sum += colour_squared_[size_t(v) * size_t(w) + size_t(u)];
+      if (std::isfinite(sum)) {
+        deviation[i] = std::sqrt(sum / count) * std::sqrt(double(samples_[i]));
+        deviation_sum += deviation[i];
+      }
+    }
+  // Targets after the pass: the counts, pass included, shared in proportion to the deviations. The pass gives each
+  // pixel one sample and the rest to the pixels short of their targets, in proportion to the shortfall.
+  const double budget = double(pass_samples) * double(active_count_);
+  const double rest = std::max(0.0, budget - double(active_count_));
+  std::vector<double> shortfall(n, 0.0);
+  double shortfall_sum = 0.0;
+  if (deviation_sum > 0.0)
+    for (size_t i = 0; i < n; ++i) {
+      if (!active_[i] || deviation[i] < 0.0) continue;
+      const double target = (samples_sum + budget) * deviation[i] / deviation_sum;
+      shortfall[i] = std::max(0.0, target - samples_[i] - 1.0);
+      shortfall_sum += shortfall[i];
+    }
+  const double cap = double(settings_.max_pass_share) * pass_samples;
+  for (size_t i = 0; i < n; ++i) {
+    pass_samples_[i] = 0;
+    if (!active_[i]) continue;
+    double share = double(pass_samples);  // no estimate, or no pixel short of its target: a uniform share
+    if (deviation[i] >= 0.0 && shortfall_sum > 0.0) share = 1.0 + rest * shortfall[i] / shortfall_sum;
+    share = std::min({share, cap, double(max_spp - samples_[i])});
+    const double owed = carried_[i] + share;
+    pass_samples_[i] = int(std::floor(owed));
+    carried_[i] = owed - pass_samples_[i];
+    total += uint64_t(pass_samples_[i]);
+  }
+  return total;
 }
 
 size_t AdaptiveSampling::after_pass(const Film& film, int samples_end) {
-  const int pass_samples = samples_end - samples_end_;
   samples_end_ = samples_end;
   const int half = passes_++ % 2;
   for (int y = bounds_.y0; y < bounds_.y1; ++y)
     for (int x = bounds_.x0; x < bounds_.x1; ++x) {
       const size_t i = index(x, y);
       if (!active_[i]) continue;
-      const double luminance = luminance_sum(film, x, y), weight = film.weight_sum(x, y);
-      half_luminance_[half][i] += luminance - last_luminance_[i];
+      const double* sums = film.accumulators(x, y);
+      for (size_t c = 0; c < 3; ++c) {
+        half_channels_[half][3 * i + c] += sums[c] - last_channels_[3 * i + c];
+        last_channels_[3 * i + c] = sums[c];
+      }
+      const double weight = film.weight_sum(x, y);
       half_weight_[half][i] += weight - last_weight_[i];
-      last_luminance_[i] = luminance;
       last_weight_[i] = weight;
-      samples_[i] += pass_samples;
+      samples_[i] += pass_samples_[i];
+      pass_samples_[i] = 0;
     }
   update_errors();
-  if (samples_end < settings_.min_spp || passes_ < 2) return active_count_;
+  const bool past_minimum = samples_end >= settings_.min_spp && passes_ >= 2;
+  if (past_minimum) spreading_ = true;
 
-  // Converged: the 3×3 error at or under the threshold. Stopped: converged along with its whole neighbourhood.
+  // Converged: the 3×3 error at or under the threshold. Stopped: converged along with its whole neighbourhood, or
+  // at the maximum.
   const int w = bounds_.width(), h = bounds_.height(), r = settings_.dilation_px;
   std::vector<uint8_t> converged(size_t(w) * size_t(h));
   for (size_t i = 0; i < converged.size(); ++i) converged[i] = error_[i] <= float(settings_.noise_threshold);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      uint8_t& a = active_[size_t(y) * size_t(w) + size_t(x)];
-      if (!a) continue;
-      bool all = true;
+      const size_t i = size_t(y) * size_t(w) + size_t(x);
+      if (!active_[i]) continue;
+      bool all = past_minimum;
       for (int v = std::max(0, y - r); all && v <= std::min(h - 1, y + r); ++v)
         for (int u = std::max(0, x - r); all && u <= std::min(w - 1, x + r); ++u)
           all = converged[size_t(v) * size_t(w) + size_t(u)] != 0;
-      if (all) {
-        a = 0;
+      if (all || (settings_.max_spp > 0 && samples_[i] >= settings_.max_spp)) {
+        active_[i] = 0;
         --active_count_;
       }
     }
   return active_count_;
 }
 
+int AdaptiveSampling::max_samples() const {
+  return samples_.empty() ? 0 : *std::max_element(samples_.begin(), samples_.end());
+}
+
+double AdaptiveSampling::mean_samples() const {
+  double sum = 0.0;
+  for (int s : samples_) sum += s;
+  return samples_.empty() ? 0.0 : sum / double(samples_.size());
+}
+
 void AdaptiveSampling::update_errors() {
   const int w = bounds_.width(), h = bounds_.height();
-  std::vector<double> relative_squared(size_t(w) * size_t(h), 0.0);
-  for (size_t i = 0; i < relative_squared.size(); ++i) {
+  for (size_t i = 0; i < relative_squared_.size(); ++i) {
     const double na = half_weight_[0][i], nb = half_weight_[1][i];
-    if (!(na > 0) || !(nb > 0)) {
-      relative_squared[i] = INFINITY;  // one half empty: no estimate yet
-      continue;
+    const double* a = &half_channels_[0][3 * i];
+    const double* b = &half_channels_[1][3 * i];
+    // Luminance: Y of an XYZ film, R + G + B of a camera film.
+    const double a_luminance = camera_film_ ? a[0] + a[1] + a[2] : a[1];
+    const double b_luminance = camera_film_ ? b[0] + b[1] + b[2] : b[1];
+    relative_squared_[i] = relative_error_squared(a_luminance, b_luminance, na, nb, 0.0);
+    // Colour: the mean over linear R, G, B, each channel's mean bounded below by kChannelFloor of the largest.
+    double a_rgb[3], b_rgb[3], largest = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      a_rgb[c] = to_rgb_(c, 0) * a[0] + to_rgb_(c, 1) * a[1] + to_rgb_(c, 2) * a[2];
+      b_rgb[c] = to_rgb_(c, 0) * b[0] + to_rgb_(c, 1) * b[1] + to_rgb_(c, 2) * b[2];
+      largest = std::max(largest, std::abs(a_rgb[c] + b_rgb[c]));
     }
-    const double a = half_luminance_[0][i] / na, b = half_luminance_[1][i] / nb;
-    const double mean = (half_luminance_[0][i] + half_luminance_[1][i]) / (na + nb);
-    const double standard_error = std::abs(a - b) / std::sqrt((1.0 / na + 1.0 / nb) * (na + nb));
-    const double relative = standard_error == 0.0 ? 0.0 : standard_error / std::max(std::abs(mean), 1e-30);
-    relative_squared[i] = relative * relative;
+    const double floor = kChannelFloor * largest / std::max(na + nb, 1e-300);
+    double colour = 0.0;
+    for (int c = 0; c < 3; ++c) colour += relative_error_squared(a_rgb[c], b_rgb[c], na, nb, floor) / 3.0;
+    colour_squared_[i] = colour;
   }
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -88,7 +193,7 @@ void AdaptiveSampling::update_errors() {
       int count = 0;
       for (int v = std::max(0, y - 1); v <= std::min(h - 1, y + 1); ++v)
         for (int u = std::max(0, x - 1); u <= std::min(w - 1, x + 1); ++u, ++count)
-          sum += relative_squared[size_t(v) * size_t(w) + size_t(u)];
+          sum += relative_squared_[size_t(v) * size_t(w) + size_t(u)];
       const double rms = std::sqrt(sum / count);
       error_[size_t(y) * size_t(w) + size_t(x)] = std::isfinite(rms) ? float(std::min(rms, 3.0e38)) : 3.0e38f;
     }

@@ -1,11 +1,12 @@
-// Adaptive sampling (`rimu --noise-threshold 0.01`): which pixels still need samples, decided between passes from
-// the film's sums of two half buffers.
+// Adaptive sampling (`rimu --noise-threshold 0.01`): which pixels still need samples and how many each takes in the
+// next pass, decided between passes from the film's sums of two half buffers.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "render/film/film.h"
+#include "spectral/colour_spaces/matrix3.h"
 
 namespace rimu {
 
@@ -13,6 +14,11 @@ struct AdaptiveSamplingSettings {
   double noise_threshold = 0.01;  ///< the relative standard error of a pixel's luminance at which it may stop
   int min_spp = 16;               ///< no pixel stops before this many samples (adaptive_min_spp)
   int dilation_px = 2;            ///< a pixel stops only when every pixel this close (a square) has converged
+  int max_spp = 0;                ///< a pixel stops at this many samples (0: no maximum, e.g. a time budget alone)
+  /// After the minimum, a pass of s samples per pixel takes at most this many times s in any one pixel: one pass's
+  /// error estimate, wrong by luck, cannot pour a whole pass into a few pixels.
+  int max_pass_share = 8;
+  int allocation_radius_px = 1;  ///< the error that shares out a pass is the RMS over a (2r + 1)² square
 };
 
 /// The samples every pixel takes before any may stop, for a render of at most `max_spp`: max(16, max_spp / 8).
@@ -22,8 +28,8 @@ int adaptive_min_spp(int max_spp);
 /// The active pixels of an adaptive render and the error estimate that decides them.
 ///
 /// Estimate: the renderer's passes alternate between two half buffers (even and odd passes). After each pass the
-/// film's luminance sum and weight sum of every pixel (Y for XYZ films, R + G + B for camera films) are compared with
-/// their values before it, and the difference goes to the pass's half. With half means a, b over n_a, n_b samples,
+/// film's channel sums and weight sum of every pixel are compared with their values before it, and the difference
+/// goes to the pass's half. The threshold reads luminance (Y for XYZ films, R + G + B for camera films). With half means a, b over n_a, n_b samples,
 /// the pixel's mean over n = n_a + n_b samples has the standard error estimated by
 ///   SE = |a − b| / sqrt((1/n_a + 1/n_b) · n)      (= |a − b| / 2 for n_a = n_b),
 /// since Var(a − b) = σ²(1/n_a + 1/n_b) and SE² = σ²/n. The relative error is SE / mean (0 for a black pixel with
@@ -32,39 +38,65 @@ int adaptive_min_spp(int max_spp);
 /// for every pixel within dilation_px (no isolated stopped pixels: no blotches). A stopped pixel stays stopped:
 /// its sums stop changing, and its value, sum / its own weight sum, stays an unbiased estimate.
 ///
+/// Where the samples go (plan_pass): until the minimum every active pixel takes every pass's samples. From then
+/// on a pass of s samples per pixel is s times the active pixels' count, shared among them by their remaining
+/// error. The image's relMSE, Σ σ_i² / (n_i μ_i²) over pixels with per-sample standard deviation σ_i, mean μ_i and
+/// n_i samples, is smallest for a given Σ n_i at n_i ∝ σ_i / μ_i = relative error · sqrt(n_i) (Lagrange). Each pass
+/// moves the counts toward that: every active pixel gets one sample (no pixel starves; both halves keep getting
+/// samples), the rest goes to the pixels below their target share in proportion to how far below they are, at most
+/// max_pass_share · s per pixel, and fractions carry over to the pixel's next pass. The error here is the RMS over
+/// linear R, G, B (each channel's mean at least 1 % of the largest; a camera film's own channels) and over the
+/// (2·allocation_radius_px + 1)² neighbourhood: relMSE counts every channel, so chroma noise draws samples too.
+/// Every pixel's samples are its own sample indices 0, 1, 2, … in order, whatever it takes per pass.
+///
 /// Deterministic: decided from the film's sums on the calling thread between passes, so the image depends on the
 /// seed and the settings, not on the threads.
 class AdaptiveSampling {
  public:
   AdaptiveSampling(const Film& film, const AdaptiveSamplingSettings& settings);
 
-  /// After each whole pass, with `samples_end` the end of the samples now in the film: moves the pass into its half
-  /// buffer and, from min_spp on, stops the pixels that converged. Returns the pixels still active. Cost: a few
+  /// Before each pass of the renderer's schedule (`pass_samples` per pixel, render/renderer.h): how many samples
+  /// each active pixel takes in it (pass_samples() below). Returns the pass's samples over all pixels. Cost: a few
   /// passes over the film's pixels.
+  uint64_t plan_pass(int pass_samples);
+
+  /// After each whole pass: moves the pass into its half buffer and, from min_spp on, stops the pixels that
+  /// converged; a pixel also stops at max_spp. `samples_end` is the renderer's end of the pass in its schedule
+  /// (which, with unequal counts, is no pixel's count). Returns the pixels still active. Cost: a few passes over the
+  /// film's pixels.
   size_t after_pass(const Film& film, int samples_end);
 
   /// Whether pixel (x, y) (inside the film's crop window) takes the next pass's samples.
   bool active(int x, int y) const { return active_[index(x, y)] != 0; }
   size_t active_count() const { return active_count_; }
-  /// The samples per pixel (x, y) received.
+  /// The samples pixel (x, y) received: its next pass takes its sample indices from this one on.
   int samples(int x, int y) const { return samples_[index(x, y)]; }
+  /// The samples pixel (x, y) takes in the pass planned last (0 once it stopped).
+  int pass_samples(int x, int y) const { return active_[index(x, y)] ? pass_samples_[index(x, y)] : 0; }
+  /// The most samples any pixel received, and their mean over the pixels.
+  int max_samples() const;
+  double mean_samples() const;
   /// Its relative standard error after the last pass (the 3×3 root mean square the decision used).
   float relative_error(int x, int y) const { return error_[index(x, y)]; }
   const AdaptiveSamplingSettings& settings() const { return settings_; }
 
  private:
   size_t index(int x, int y) const { return size_t(y - bounds_.y0) * size_t(bounds_.width()) + size_t(x - bounds_.x0); }
-  double luminance_sum(const Film& film, int x, int y) const;
   void update_errors();
 
   PixelBounds bounds_;
   AdaptiveSamplingSettings settings_;
   bool camera_film_;
   int passes_ = 0, samples_end_ = 0;
-  std::vector<double> last_luminance_, last_weight_;   ///< the film's sums after the previous pass
-  std::vector<double> half_luminance_[2], half_weight_[2];
-  std::vector<int> samples_;
+  bool spreading_ = false;  ///< past the minimum: passes share their samples by error (plan_pass)
+  Matrix3 to_rgb_;  ///< film channels to linear sRGB (identity for a camera film): the colour error's channels
+  std::vector<double> last_channels_, last_weight_;   ///< the film's sums after the previous pass (3 channels a pixel)
+  std::vector<double> half_channels_[2], half_weight_[2];
+  std::vector<int> samples_, pass_samples_;
+  std::vector<double> carried_;  ///< each pixel's fraction of a sample not yet taken (plan_pass)
   std::vector<float> error_;
+  std::vector<double> relative_squared_;  ///< each pixel's own squared relative error of luminance (∞: none yet)
+  std::vector<double> colour_squared_;    ///< the same, the mean over linear R, G, B (plan_pass)
   std::vector<uint8_t> active_;
   size_t active_count_;
 };
