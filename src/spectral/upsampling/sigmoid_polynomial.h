@@ -33,7 +33,7 @@ struct SigmoidSpectrum {
 
 /// Fits sigmoid polynomials to the RGB of one colour space, as pbrt-v4's RGBAlbedoSpectrum and
 /// RGBUnboundedSpectrum do (pbrt reads its coefficients from a precomputed grid; here each colour is fitted on
-/// demand, ~0.1–1 ms, so callers that see a colour often should keep the result).
+/// demand, about 1 ms, so callers that see a colour often should keep the result).
 ///
 /// The colour of a spectrum s is its CIE 1931 2° XYZ as a reflectance under the space's white illuminant (the
 /// spectrum upsampling_illuminant gives: D65, E or the ACES white), on a 1 nm grid over 360–830 nm, normalised to
@@ -41,10 +41,12 @@ struct SigmoidSpectrum {
 /// own RGB → XYZ and the space's white (Y = 1), so RGB (1, 1, 1) and the constant 1 are both L* = 100, a* = b* = 0
 /// exactly, whatever the few 1e-5 by which the tabulated illuminant misses the space's stated white chromaticity.
 ///
-/// The fit minimises the CIELAB difference by Gauss–Newton (three residuals, three unknowns: Newton steps on the
-/// residual with a backtracking line search), starting from the constant ½ and walking the target from the grey
-/// of the same mean in 16 steps to the colour (a continuation, as the paper's table optimiser walks its grid from
-/// the centre), so saturated colours converge from a nearby solution.
+/// The fit minimises the CIELAB difference (three residuals, three unknowns) by Gauss–Newton steps damped
+/// Levenberg–Marquardt style (a plain Newton step with a line search stalled on saturated colours, where the
+/// sigmoid flattens and the Jacobian is nearly singular), in the variable t = (λ − 360)/470 for conditioning. It
+/// starts from the constant ½ and walks the target along the straight RGB line from (½, ½, ½) to the colour in 16
+/// steps, each solved from the previous one (a continuation, as the paper's table optimiser walks its grid from
+/// the centre), so saturated colours converge from a nearby solution. ~1 ms a colour.
 class SigmoidFitter {
  public:
   /// Throws InputError if the space's white has no illuminant (upsampling_white_for).
