@@ -29,7 +29,8 @@ const SigmoidFitter& fitter(const std::string& space) {
 const Rgb kSrgbColours[] = {{0.63, 0.065, 0.05}, {0.14, 0.45, 0.091}, {0.1, 0.2, 0.5},  {0.8, 0.7, 0.2},
                             {0.3, 0.31, 0.29},   {0.001, 0.002, 0.003}, {0.05, 0.05, 0.9}, {0.95, 0.05, 0.05},
                             {0.05, 0.9, 0.05},   {0.9, 0.9, 0.05},    {0.05, 0.9, 0.9},  {0.9, 0.05, 0.9},
-                            {1, 0, 0},           {0, 1, 0},           {0, 0, 1},         {1, 1, 0}};
+                            {1, 0, 0},           {0, 1, 0},           {0, 0, 1},         {1, 1, 0},
+                            {0, 1, 1},           {1, 0, 1}};
 // Rec.2020's primaries lie on the spectral locus, so its saturated corners are beyond any reflectance: only
 // moderate colours there.
 const Rgb kRec2020Colours[] = {{0.63, 0.065, 0.05}, {0.14, 0.45, 0.091}, {0.1, 0.2, 0.5}, {0.8, 0.7, 0.2},
