@@ -216,7 +216,10 @@ TEST_CASE("pbrt lights: pbrt's luminance-normalised amounts become Rimu's photom
   CHECK(lights[0]["position"] == json({0.0, 1.0, 0.0}));
   CHECK(lights[0]["spectrum"] == json({{"blackbody", 3000.0}}));
   CHECK(lights[0]["luminous_intensity_cd"].get<double>() == doctest::Approx(2 * k));
-  CHECK(lights[1]["intensity"] == json({{"rgb", {1.0, 0.5, 0.25}}, {"space", "srgb-linear"}, {"scale", 3.0}}));
+  // An RGB light: pbrt's spectrum of the RGB at its own luminance (pbrt_rgb_spectra_test.cpp has the spectrum).
+  CHECK(lights[1]["spectrum"].contains("wavelengths_nm"));
+  CHECK(lights[1]["luminous_intensity_cd"].get<double>() ==
+        doctest::Approx(3 * k * RgbColourSpace::named("srgb-linear").to_xyz({1.0, 0.5, 0.25}).y));
   CHECK(lights[2]["cone_angle_deg"] == 40.0);
   CHECK(lights[2]["falloff_start_deg"] == 24.0);  // 2·(20 − 8): pbrt-v4 names the delta "conedeltaangle"
   CHECK(lights[2]["direction"] == json({0.0, -2.0, 0.0}));
@@ -274,7 +277,7 @@ TEST_CASE("pbrt diffusetransmission: reflectance, transmittance and scale, with 
   CHECK(paper["type"] == "diffuse_transmission");
   CHECK(paper["reflectance"] == 0.25);
   CHECK(paper["scale"] == 1.5);
-  CHECK(paper["transmittance"].is_object());  // RGB: through the reflectance upsampler
+  CHECK(paper["transmittance"] == 0.5);  // a grey RGB is its constant
   CHECK(d["materials"][d["shapes"][0]["material"].get<std::string>()] ==
         json({{"type", "diffuse_transmission"}, {"reflectance", 0.25}, {"transmittance", 0.25}}));
   CHECK(imported.ignored.empty());
@@ -391,7 +394,7 @@ TEST_CASE("pbrt ColorSpace, Attribute defaults, disks and imagemap textures") {
   const json& d = imported.document;
   CHECK(d["shapes"][0]["radius"] == 2.0);  // from the Attribute
   const json& first = d["materials"][d["shapes"][0]["material"].get<std::string>()];
-  CHECK(first["reflectance"]["space"] == "rec2020");
+  CHECK(first["reflectance"].contains("wavelengths_nm"));  // fitted in rec2020 (pbrt_rgb_spectra_test.cpp)
   const json& disk = d["shapes"][1];
   CHECK(d["materials"][disk["material"].get<std::string>()]["reflectance"] == json({{"texture", "../../../data/scenes/textured/colour_bars.png"}, {"encoding", "linear"}}));
   // An annulus of 96 segments: two triangles each, all at z = 0.25, facing +z, between radii 0.5 and 1.

@@ -69,9 +69,9 @@ TEST_CASE("pbrt media: an unbounded RGB coefficient becomes a smooth spectrum of
                                           "MakeNamedMedium \"red\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [4 1 0.5]\n"
                                           "WorldBegin\nMediumInterface \"red\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n");
   const json& table = imported.document["media"]["red"]["sigma_a"];
-  REQUIRE(table["wavelengths_nm"].size() == 95);  // 360-830 nm every 5 nm
+  REQUIRE(table["wavelengths_nm"].size() == 471);  // 360-830 nm every 1 nm (pbrt's sigmoid fit)
   std::vector<double> v = table["values"].get<std::vector<double>>();
-  const auto at = [&](int nm) { return v[size_t((nm - 360) / 5)]; };
+  const auto at = [&](int nm) { return v[size_t(nm - 360)]; };
   // pbrt's RGBUnboundedSpectrum: a reflectance-like shape of rgb / (2·max) scaled by 2·max = 8, so every value is
   // at most 8, and a red coefficient absorbs more at 650 nm than at 450 nm.
   for (double x : v) CHECK((x >= 0 && x <= 8.0 + 1e-9));
@@ -91,7 +91,7 @@ TEST_CASE("pbrt media: a named preset gives pbrt's measured coefficients (Jensen
   const json& ketchup = imported.document["media"]["k"];
   // Ketchup, per mm: σ'_s (0.18, 0.07, 0.03), σ_a (0.061, 0.97, 1.45), times "scale" 10: at most 2·max·10 per
   // channel shape, red absorbs least and scatters most.
-  const auto at = [](const json& table, int nm) { return table["values"][size_t((nm - 360) / 5)].get<double>(); };
+  const auto at = [](const json& table, int nm) { return table["values"][size_t(nm - 360)].get<double>(); };  // 1 nm
   const json& a = ketchup["sigma_a"];
   CHECK(a["scale"].get<double>() == doctest::Approx(10.0));
   CHECK(at(a, 650) < 0.3 * at(a, 450));

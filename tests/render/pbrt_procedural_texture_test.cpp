@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "integration_support.h"
+#include "pbrt_test_support.h"
 #include "render/image/image_texture.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_image_files.h"
@@ -74,7 +75,7 @@ TEST_CASE("pbrt procedural spectrum textures: marble, dots, 3D checkerboard; bad
       "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"texture reflectance\" \"cubes\"\n");
   CHECK(imported.ignored.empty());
   const json stone = {{"noise", "marble"}, {"octaves", 6}, {"roughness", 0.5}, {"scale", 3.0}, {"variation", 0.4}};
-  const json spots = {{"dots", {{{"rgb", {0.1, 0.2, 0.3}}, {"space", "srgb-linear"}}, stone}}, {"uv_scale", {1.0, 1.0}}, {"uv_offset", {0.0, 0.0}}};
+  const json spots = {{"dots", {test::pbrt_rgb_reflectance(0.1, 0.2, 0.3), stone}}, {"uv_scale", {1.0, 1.0}}, {"uv_offset", {0.0, 0.0}}};
   CHECK(imported.document["materials"]["a"]["reflectance"] == json({{"checkerboard", {1.0, spots}}, {"mapping", "solid"}}));
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", std::filesystem::temp_directory_path(), test::library()));
 
@@ -212,7 +213,7 @@ TEST_CASE("pbrt coatedconductor with reflectance: the artist metal under the coa
   CHECK(imported.ignored.empty());
   const json& a = imported.document["materials"]["a"];
   CHECK(a["type"] == "coated_conductor");
-  CHECK(a["reflectance"] == json({{"rgb", {0.9, 0.6, 0.2}}, {"space", "srgb-linear"}}));
+  CHECK(a["reflectance"] == test::pbrt_rgb_reflectance(0.9, 0.6, 0.2));
   CHECK(!a.contains("metal"));
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", std::filesystem::temp_directory_path(), test::library()));
   CHECK_THROWS_WITH_AS(import_text(kHeader + "MakeNamedMaterial \"a\" \"string type\" \"coatedconductor\" \"rgb reflectance\" [0.9 0.6 0.2] "

@@ -11,6 +11,7 @@
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
 #include "render/scene/spectrum_input.h"
+#include "spectral/upsampling/sigmoid_polynomial.h"
 
 using namespace rimu;
 using nlohmann::json;
@@ -19,8 +20,14 @@ namespace {
 
 const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 
-// pbrt-v4's RGBUnboundedSpectrum of `rgb` (in linear sRGB) at λ, through Rimu's reflectance upsampler.
+// pbrt-v4's RGBUnboundedSpectrum of `rgb` (in linear sRGB) at λ: the sigmoid fit the importer uses by default.
 double unbounded(const std::array<double, 3>& rgb, double lambda_nm) {
+  static const SigmoidFitter fitter(test::library(), RgbColourSpace::named("srgb-linear"));
+  return fitter.fit_unbounded({rgb[0], rgb[1], rgb[2]}).value(lambda_nm);
+}
+
+// The same shape through Rimu's reflectance upsampler (the importer's --rgb-upsampler rimu).
+double rimu_unbounded(const std::array<double, 3>& rgb, double lambda_nm) {
   const double scale = 2.0 * std::max({rgb[0], rgb[1], rgb[2]});
   const auto upsampler = shared_upsampler(test::library(), "srgb-linear");
   return scale * upsampler->reflectance_spectrum({rgb[0] / scale, rgb[1] / scale, rgb[2] / scale}).value(lambda_nm);
@@ -57,7 +64,7 @@ TEST_CASE("pbrt conductor with rgb eta and k: pbrt's unbounded RGB, and the Fres
   const json& materials = imported.document["materials"];
   CHECK_FALSE(materials["silver"].contains("metal"));  // not pbrt's copper
   const auto scene = load_scene(imported.document, "t.pbrt", test::test_data("pbrt"), test::library());
-  // At the 5 nm knots of the written table the spectra are the upsampler's, so F is the formula's to single-precision rounding.
+  // At the 1 nm knots of the written table the spectra are the fit's, so F is the formula's to single-precision rounding.
   const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 700.0f), Float4(1.0f));
   for (const auto& [name, eta, k] : {std::tuple{"silver", silver_eta, silver_k}, std::tuple{"gold", gold_eta, gold_k}}) {
     CAPTURE(name);
@@ -90,6 +97,15 @@ TEST_CASE("pbrt dielectric with rgb eta: accepted as pbrt's unbounded RGB (grey:
   const std::vector<double> nm = flint["wavelengths_nm"], values = flint["values"];
   for (size_t i = 0; i < nm.size(); ++i) CHECK(values[i] == doctest::Approx(unbounded({1.60, 1.62, 1.66}, nm[i])));
   CHECK(materials["coat"]["coat_ior"].contains("values"));
+  // With Rimu's upsampler instead: its reflectance shape of rgb/(2·max), on a 5 nm table.
+  PbrtImportOptions rimu_upsampler;
+  rimu_upsampler.rgb_upsampler = PbrtRgbUpsampler::rimu;
+  const json rimu_flint = test::import_pbrt_test_text(kCamera + "MakeNamedMaterial \"flint\" \"string type\" \"dielectric\" "
+                                                      "\"rgb eta\" [1.60 1.62 1.66]\n", "t.pbrt", rimu_upsampler)
+                              .document["materials"]["flint"]["ior"];
+  const std::vector<double> rimu_nm = rimu_flint["wavelengths_nm"], rimu_values = rimu_flint["values"];
+  CHECK(rimu_nm[1] - rimu_nm[0] == 5.0);
+  for (size_t i = 0; i < rimu_nm.size(); ++i) CHECK(rimu_values[i] == doctest::Approx(rimu_unbounded({1.60, 1.62, 1.66}, rimu_nm[i])));
   const auto scene = load_scene(imported.document, "t.pbrt", test::test_data("pbrt"), test::library());
   CHECK(scene->materials.size() >= 1);
   // Negative RGB is the parser's error (as for every RGB); a black index is an error at the parameter.

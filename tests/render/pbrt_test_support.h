@@ -12,6 +12,7 @@
 #include <string>
 
 #include "render/scene/pbrt/pbrt_to_scene.h"
+#include "spectral/upsampling/sigmoid_polynomial.h"
 #include "test_support.h"
 
 // Checks that `text` contains every part, printing the text when it does not.
@@ -23,6 +24,19 @@
   } while (0)
 
 namespace rimu::test {
+
+/// What the importer writes for a constant `rgb reflectance` (r, g, b) of linear sRGB (not grey, components ≤ 1):
+/// pbrt's sigmoid-polynomial albedo spectrum as a 1 nm table (docs/pbrt-import.md, "RGB parameters").
+inline nlohmann::json pbrt_rgb_reflectance(double r, double g, double b) {
+  static const SigmoidFitter fitter(library(), RgbColourSpace::named("srgb-linear"));
+  const SigmoidSpectrum s = fitter.fit_albedo({r, g, b});
+  nlohmann::json nm = nlohmann::json::array(), values = nlohmann::json::array();
+  for (int wavelength_nm = 360; wavelength_nm <= 830; ++wavelength_nm) {
+    nm.push_back(wavelength_nm);
+    values.push_back(s.value(wavelength_nm));
+  }
+  return {{"wavelengths_nm", nm}, {"values", values}};
+}
 
 /// `text` imported as the pbrt-v4 file `name` in tests/data/pbrt: its Includes, meshes and images resolve there,
 /// and its messages name `name`.

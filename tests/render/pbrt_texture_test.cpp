@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "integration_support.h"
+#include "pbrt_test_support.h"
 #include "render/image/float_image_texture.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_image_files.h"
@@ -77,10 +78,10 @@ TEST_CASE("pbrt spectrum textures and the conductor's reflectance") {
       dir.path);
   CHECK(imported.ignored.empty());
   const json& m = imported.document["materials"];
-  const json tiles = {{"checkerboard", {{{"rgb", {0.8, 0.1, 0.1}}, {"space", "srgb-linear"}}, 0.2}}, {"uv_scale", {4.0, 4.0}}, {"uv_offset", {0.0, 0.0}}};
+  const json tiles = {{"checkerboard", {test::pbrt_rgb_reflectance(0.8, 0.1, 0.1), 0.2}}, {"uv_scale", {4.0, 4.0}}, {"uv_offset", {0.0, 0.0}}};
   const json faded = {{"mix", {{{"product", {tiles, 0.5}}}, 0.9}}, {"amount", 0.25}};
   CHECK(m["floor"]["reflectance"] == json({{"direction_mix", {0.7, faded}}, {"direction", {0.0, 1.0, 0.0}}}));
-  CHECK(m["gilt"]["reflectance"] == json({{"rgb", {0.9, 0.7, 0.3}}, {"space", "srgb-linear"}}));
+  CHECK(m["gilt"]["reflectance"] == test::pbrt_rgb_reflectance(0.9, 0.7, 0.3));
   CHECK(!m["gilt"].contains("metal"));
   CHECK(m["gilt"]["roughness"].get<double>() == doctest::Approx(std::sqrt(std::sqrt(0.01))));
   CHECK(m["leaf"]["transmittance"] == tiles);

@@ -25,6 +25,11 @@ int main(int argc, char** argv) {
   app.add_option("scene", input, "the pbrt-v4 file")->required();
   app.add_option("-o,--output", output, "the JSON scene to write")->required();
   app.add_flag("--strict", strict, "anything Rimu does not support is an error, not a report");
+  std::string rgb_upsampler = "sigmoid";
+  app.add_option("--rgb-upsampler", rgb_upsampler,
+                 "how constant RGB parameters become spectra: sigmoid (pbrt-v4's sigmoid polynomials, the default) or\n"
+                 "rimu (Rimu's smoothest-spectrum upsampler); image textures always use Rimu's")
+      ->check(CLI::IsMember({"sigmoid", "rimu"}));
   return rimu::run_tool("rimu-convert", app, argc, argv, [&] {
     rimu::SpectralLibrary library = rimu::SpectralLibrary::at_default_location();
     if (!rimu::is_pbrt_scene_path(input))
@@ -34,7 +39,9 @@ int main(int argc, char** argv) {
     // Every file the import and the check below read (InputFileLog): none of them may be replaced by the JSON.
     const rimu::InputFileLog files_read;
     const std::filesystem::path output_directory = std::filesystem::absolute(output).parent_path();
-    const rimu::PbrtImport imported = rimu::import_pbrt(input, library, {strict, output_directory});
+    rimu::PbrtImportOptions options{strict, output_directory};
+    if (rgb_upsampler == "rimu") options.rgb_upsampler = rimu::PbrtRgbUpsampler::rimu;
+    const rimu::PbrtImport imported = rimu::import_pbrt(input, library, options);
     std::cerr << rimu::describe_ignored(imported.ignored);
     // Rimu's own loader checks the document (and reads its meshes) before anything is written: a JSON that
     // rimu-convert writes always loads.

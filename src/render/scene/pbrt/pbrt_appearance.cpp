@@ -171,6 +171,7 @@ std::optional<json> PbrtConverter::optical_constant(const PbrtParam& param, Pbrt
 std::optional<json> PbrtConverter::reflectance(PbrtParams& p, const std::string& name, double fallback, int depth) {
   const PbrtParam* param = p.get(name, {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture, PbrtParamType::real});
   if (!param) return json(fallback);
+  if (param->type == PbrtParamType::rgb) return rgb_reflectance(*param);
   if (param->type != PbrtParamType::texture) {
     if (auto v = spectrum_value(*param, false, p.directory())) return v;
     return json(fallback);
@@ -489,8 +490,15 @@ json PbrtConverter::light_amount(PbrtParams& p, const char* spectrum_key, const 
   if (!sp) {
     value = {{"rgb", {1.0, 1.0, 1.0}}, {"space", state_.colour_space}};  // pbrt's default: the colour space's white
   } else if (sp->type == PbrtParamType::rgb) {
-    value = *spectrum_value(*sp, true, p.directory());
     rgb_y = rgb_luminance(*sp);
+    if (auto shape = rgb_illuminant_shape(*sp)) {
+      // pbrt's spectrum for the RGB, whose luminance the photometric key sets to the RGB's own Y (as the scene
+      // format's RGB emission renders): the same film Y as before, with pbrt's spectral shape.
+      value = std::move(*shape);
+      if (!photometric_amount) photometric_amount = 1.0;
+    } else {
+      value = *spectrum_value(*sp, true, p.directory());
+    }
   } else if (const auto v = spectrum_value(*sp, true, p.directory())) {
     value = *v;
     is_rgb = false;

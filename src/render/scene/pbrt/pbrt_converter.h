@@ -6,16 +6,19 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "render/scene/pbrt/pbrt_matrix.h"
 #include "render/scene/analytic_shapes.h"
 #include "render/scene/pbrt/pbrt_parser.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
+#include "spectral/upsampling/sigmoid_polynomial.h"
 
 namespace rimu {
 
@@ -78,7 +81,8 @@ struct PbrtTexture {
 class PbrtConverter {
  public:
   PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
-                std::size_t max_generated_triangles, std::size_t max_instances, std::size_t max_shapes);
+                std::size_t max_generated_triangles, std::size_t max_instances, std::size_t max_shapes,
+                PbrtRgbUpsampler rgb_upsampler = PbrtRgbUpsampler::sigmoid);
 
   void statement(const PbrtStatement& s);
   /// The finished document (the converter's shapes, materials and lights are moved into it); InputError if the
@@ -171,6 +175,18 @@ class PbrtConverter {
   /// (unbounded_rgb in the colour space in effect). Throws InputError for a black RGB index of refraction.
   std::optional<json> optical_constant(const PbrtParam& param, PbrtParams& p);
   json unbounded_rgb(const Vec3d& c, const std::string& colour_space, const SourceLocation& where);
+
+  // pbrt_rgb_spectra.cpp: pbrt-v4's RGB spectra (RGBAlbedoSpectrum, RGBUnboundedSpectrum, RGBIlluminantSpectrum)
+  /// The sigmoid fit of `rgb` in `colour_space` (albedo or unbounded), fitted once per distinct input.
+  const SigmoidSpectrum& sigmoid_fit(const Rgb& rgb, bool unbounded, const std::string& colour_space, const SourceLocation& where);
+  /// A constant RGB reflectance in the colour space in effect: pbrt's albedo spectrum as a 1 nm table (sigmoid
+  /// upsampler), or the scene format's {"rgb", "space"} (Rimu's upsampler, and any RGB with a component above 1).
+  json rgb_reflectance(const PbrtParam& rgb);
+  /// The spectral shape of an RGB light (pbrt's RGBIlluminantSpectrum: the unbounded fit times the colour space's
+  /// illuminant) as a 1 nm table, for a photometric key that sets its luminance; empty under Rimu's upsampler.
+  std::optional<json> rgb_illuminant_shape(const PbrtParam& rgb);
+  /// `s` (times `illuminant` if given) on a 1 nm grid over 360–830 nm as an inline table.
+  static json sigmoid_table(const SigmoidSpectrum& s, const Spectrum* illuminant = nullptr);
   /// pbrt-v4's named measured medium `name` (data/media/scattering_presets.csv) as {sigma_a, sigma_s}; empty if
   /// pbrt has no such name.
   std::optional<std::pair<json, json>> scattering_preset(const std::string& name, const SourceLocation& where);
@@ -235,6 +251,9 @@ class PbrtConverter {
   std::string path_for_document(const std::filesystem::path& absolute) const;
 
   SpectralLibrary& library_;
+  PbrtRgbUpsampler rgb_upsampler_;
+  std::map<std::string, std::unique_ptr<SigmoidFitter>> sigmoid_fitters_;  ///< per colour space
+  std::map<std::tuple<std::string, bool, double, double, double>, SigmoidSpectrum> sigmoid_fits_;
   std::filesystem::path output_directory_;
   bool strict_;
   double nits_per_unit_y_;

@@ -28,9 +28,11 @@ json scaled(json value, double k) {
 
 json PbrtConverter::unbounded_rgb(const Vec3d& c, const std::string& colour_space, const SourceLocation& where) {
   if (c[0] == c[1] && c[1] == c[2]) return c[0];
+  if (rgb_upsampler_ == PbrtRgbUpsampler::sigmoid) return sigmoid_table(sigmoid_fit({c[0], c[1], c[2]}, true, colour_space, where));
   // pbrt's unbounded RGB (RGBUnboundedSpectrum): the reflectance-like spectrum of rgb / (2·max), times 2·max.
   // Rimu's scene format refuses RGB for coefficients (a coefficient is not a colour), so the importer writes
-  // that spectrum as a 5 nm table, through Rimu's reflectance upsampler of the colour space.
+  // that spectrum as a table: pbrt's own sigmoid fit (pbrt_rgb_spectra.cpp), or, with Rimu's upsampler, its
+  // reflectance upsampler of the colour space at 5 nm.
   const std::shared_ptr<const RgbUpsampler> upsampler = shared_upsampler(library_, colour_space);
   const double scale = 2.0 * std::max({c[0], c[1], c[2]});
   const ReflectanceSpectrum shape = upsampler->reflectance_spectrum({c[0] / scale, c[1] / scale, c[2] / scale}, where);

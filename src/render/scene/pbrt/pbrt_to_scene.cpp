@@ -125,8 +125,10 @@ std::vector<double> PbrtParams::numbers(const std::string& name, std::initialize
 // ---- the converter ------------------------------------------------------------------------------------------
 
 PbrtConverter::PbrtConverter(SpectralLibrary& library, std::filesystem::path output_directory, bool strict,
-                             std::size_t max_generated_triangles, std::size_t max_instances, std::size_t max_shapes)
+                             std::size_t max_generated_triangles, std::size_t max_instances, std::size_t max_shapes,
+                             PbrtRgbUpsampler rgb_upsampler)
     : library_(library),
+      rgb_upsampler_(rgb_upsampler),
       output_directory_(std::move(output_directory)),
       strict_(strict),
       nits_per_unit_y_(SpectralResponse::from_spec(library, "xyz").luminance_nits_per_unit_y()),
@@ -538,7 +540,7 @@ json PbrtConverter::finish(const std::string& main_file) {
 PbrtImport import_pbrt_text(const std::string& text, const std::string& file, const std::filesystem::path& directory,
                             SpectralLibrary& library, const PbrtImportOptions& options) {
   PbrtConverter converter(library, options.output_directory.empty() ? directory : options.output_directory, options.strict,
-                          options.max_generated_triangles, options.max_instances, options.max_shapes);
+                          options.max_generated_triangles, options.max_instances, options.max_shapes, options.rgb_upsampler);
   parse_pbrt_text(text, file, directory, [&](const PbrtStatement& s) { converter.statement(s); }, options.parse_limits);
   PbrtImport result;
   result.document = converter.finish(file);
@@ -550,7 +552,7 @@ PbrtImport import_pbrt_text(const std::string& text, const std::string& file, co
 PbrtImport import_pbrt(const std::filesystem::path& file, SpectralLibrary& library, const PbrtImportOptions& options) {
   const std::filesystem::path directory = std::filesystem::absolute(file).parent_path();
   PbrtConverter converter(library, options.output_directory.empty() ? directory : std::filesystem::absolute(options.output_directory),
-                          options.strict, options.max_generated_triangles, options.max_instances, options.max_shapes);
+                          options.strict, options.max_generated_triangles, options.max_instances, options.max_shapes, options.rgb_upsampler);
   parse_pbrt_file(file, [&](const PbrtStatement& s) { converter.statement(s); }, options.parse_limits);
   PbrtImport result;
   result.document = converter.finish(file.string());

@@ -21,6 +21,13 @@ struct PbrtIgnored {
   SourceLocation first; ///< file and line of the first occurrence
 };
 
+/// How the importer turns pbrt's constant RGB parameters (reflectances, RGB lights, RGB optical constants and
+/// medium coefficients) into spectra (docs/pbrt-import.md, "RGB parameters").
+enum class PbrtRgbUpsampler {
+  sigmoid,  ///< pbrt-v4's own function space (Jakob & Hanika 2019 sigmoid polynomials), fitted per colour: the default
+  rimu,     ///< Rimu's smoothest-spectrum upsampler, as the scene format's "rgb" form (the importer before Dec 2026)
+};
+
 struct PbrtImportOptions {
   /// Any ignored statement, parameter or type is an InputError at its location instead of a report entry.
   bool strict = false;
@@ -42,6 +49,8 @@ struct PbrtImportOptions {
   std::size_t max_shapes = std::size_t(1) << 20;
   /// Statements and included files, counted over the whole Include graph (pbrt_parser.h).
   PbrtParseLimits parse_limits{};
+  /// RGB → spectrum for the file's constant RGB parameters; image textures always use Rimu's upsampler.
+  PbrtRgbUpsampler rgb_upsampler = PbrtRgbUpsampler::sigmoid;
 };
 
 /// Where a part of the imported document came from: the pbrt statement that made it.
