@@ -5,8 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "spectral/colorimetry/cielab.h"
+#include "spectral/colorimetry/delta_e.h"
+#include "spectral/upsampling/dense_linear_solve.h"
 #include "spectral/upsampling/upsampling_whites.h"
 
 namespace rimu {
@@ -28,33 +31,6 @@ SigmoidPolynomial in_nanometres(const std::array<double, 3>& a) {
   const double s = 1.0 / kSpanNm, o = kFirstNm;
   // a0 t² + a1 t + a2 with t = s(λ − o)
   return {a[0] * s * s, a[1] * s - 2.0 * a[0] * s * s * o, a[0] * s * s * o * o - a[1] * s * o + a[2]};
-}
-
-double distance(const Lab& p, const Lab& q) {
-  return std::sqrt((p.l - q.l) * (p.l - q.l) + (p.a - q.a) * (p.a - q.a) + (p.b - q.b) * (p.b - q.b));
-}
-
-// Solves the 3×3 system m·x = v by Gaussian elimination with partial pivoting; false if it is singular.
-bool solve3(std::array<std::array<double, 3>, 3> m, std::array<double, 3> v, std::array<double, 3>& x) {
-  for (int col = 0; col < 3; ++col) {
-    int pivot = col;
-    for (int row = col + 1; row < 3; ++row)
-      if (std::abs(m[row][col]) > std::abs(m[pivot][col])) pivot = row;
-    if (!(std::abs(m[pivot][col]) > 1e-300)) return false;
-    std::swap(m[col], m[pivot]);
-    std::swap(v[col], v[pivot]);
-    for (int row = col + 1; row < 3; ++row) {
-      const double f = m[row][col] / m[col][col];
-      for (int k = col; k < 3; ++k) m[row][k] -= f * m[col][k];
-      v[row] -= f * v[col];
-    }
-  }
-  for (int row = 2; row >= 0; --row) {
-    double sum = v[row];
-    for (int k = row + 1; k < 3; ++k) sum -= m[row][k] * x[k];
-    x[row] = sum / m[row][row];
-  }
-  return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
 }
 
 std::string describe(const Rgb& rgb) {
@@ -127,7 +103,7 @@ Rgb SigmoidFitter::rgb_of(const SigmoidSpectrum& s) const {
 double SigmoidFitter::delta_e_ab(const Rgb& rgb, const SigmoidSpectrum& s) const {
   const double k = s.scale > 0 ? 1.0 / s.scale : 0.0;
   const Lab target = lab_of(space_.to_xyz({rgb.r * k, rgb.g * k, rgb.b * k}), space_white_);
-  return distance(target, lab_of(xyz_of(s.polynomial), illuminant_white_));
+  return delta_e_1976(target, lab_of(xyz_of(s.polynomial), illuminant_white_));
 }
 
 SigmoidSpectrum SigmoidFitter::fit(const Rgb& rgb) const {
@@ -187,8 +163,11 @@ SigmoidSpectrum SigmoidFitter::fit(const Rgb& rgb) const {
       for (int attempt = 0; attempt < 40 && !improved; ++attempt) {
         std::array<std::array<double, 3>, 3> damped = jtj;
         for (int i = 0; i < 3; ++i) damped[i][i] += mu * std::max(jtj[i][i], 1e-12);
-        std::array<double, 3> delta{};
-        if (solve3(damped, jtr, delta)) {
+        std::vector<double> m{damped[0][0], damped[0][1], damped[0][2], damped[1][0], damped[1][1], damped[1][2],
+                              damped[2][0], damped[2][1], damped[2][2]};
+        std::vector<double> delta(jtr.begin(), jtr.end());
+        if (solve_dense(m, delta, 3) &&
+            std::isfinite(delta[0]) && std::isfinite(delta[1]) && std::isfinite(delta[2])) {
           const std::array<double, 3> trial{a[0] + delta[0], a[1] + delta[1], a[2] + delta[2]};
           const std::array<double, 3> rt = residual(trial, target);
           const double rt_norm = norm(rt);
