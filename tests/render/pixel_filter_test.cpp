@@ -1,10 +1,12 @@
 // Pixel filters: importance-sampled offsets follow the filter (chi-square), with weight 1.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "render/film/piecewise_linear_distribution.h"
 #include "render/film/pixel_filter.h"
 #include "spectral/error.h"
 #include "statistics.h"
@@ -84,4 +86,34 @@ TEST_CASE("filter shapes: Blackman-Harris is positive, the Gaussian reaches zero
   CHECK_THROWS_AS(PixelFilter::gaussian(1.0f, 0.0f), InputError);
   CHECK_THROWS_AS(PixelFilter::box(-1.0f), InputError);
   CHECK_THROWS_AS(PixelFilter::blackman_harris(std::nanf("")), InputError);
+}
+
+TEST_CASE("the guide table finds the segment a binary search would: the same offsets bit for bit") {
+  // A CDF with flat stretches (zero-valued knots) and steep ones, where a start in the wrong segment would show.
+  std::vector<double> knots(65);
+  for (size_t i = 0; i < knots.size(); ++i) knots[i] = (i % 16 < 5) ? 0.0 : double(i % 7) + 0.25 * double(i);
+  const PiecewiseLinearDistribution d(-1.5, 1.5, knots);
+  // The reference: the same inversion with std::upper_bound over the unnormalised CDF.
+  std::vector<double> cdf(knots.size(), 0.0);
+  const double step = 3.0 / 64.0;
+  for (size_t i = 1; i < knots.size(); ++i) cdf[i] = cdf[i - 1] + 0.5 * step * (knots[i - 1] + knots[i]);
+  auto reference = [&](double u) {
+    const double target = u * cdf.back();
+    size_t i = size_t(std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin());
+    i = std::clamp<size_t>(i, 1, knots.size() - 1) - 1;
+    while (i + 1 < knots.size() - 1 && cdf[i + 1] == cdf[i]) ++i;
+    const double a = knots[i], b = knots[i + 1];
+    const double s = std::max(0.0, target - cdf[i]) / step;
+    const double root = std::sqrt(std::max(0.0, a * a + 2.0 * (b - a) * s));
+    const double t = a + root > 0.0 ? std::clamp(2.0 * s / (a + root), 0.0, 1.0) : 0.0;
+    return std::min(1.5, -1.5 + (double(i) + t) * step);
+  };
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<double> us{0.0, 1.0 / 256.0, 0.5, 255.0 / 256.0, std::nextafter(1.0, 0.0)};
+  for (int i = 0; i < 100000; ++i) us.push_back(uniform(rng));
+  for (int k = 0; k < 256; ++k) us.push_back(std::nextafter(double(k) / 256.0, 1.0));
+  int mismatches = 0;
+  for (double u : us) mismatches += d.sample(u) != reference(u) ? 1 : 0;
+  CHECK(mismatches == 0);
 }

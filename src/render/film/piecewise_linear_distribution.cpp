@@ -17,12 +17,22 @@ PiecewiseLinearDistribution::PiecewiseLinearDistribution(double lo, double hi, s
   for (size_t i = 1; i < f_.size(); ++i) cdf_[i] = cdf_[i - 1] + 0.5 * step_ * (f_[i - 1] + f_[i]);
   integral_ = cdf_.back();
   if (!(integral_ > 0.0)) throw std::invalid_argument("piecewise-linear distribution has zero integral");
+  guide_.resize(kGuideCells);
+  for (int k = 0; k < kGuideCells; ++k) {
+    const double cell_start = double(k) / kGuideCells * integral_;
+    guide_[size_t(k)] = unsigned(std::upper_bound(cdf_.begin(), cdf_.end(), cell_start) - cdf_.begin());
+  }
 }
 
 double PiecewiseLinearDistribution::sample(double u) const {
   const double target = u * integral_;
-  // The segment [i, i+1] with cdf_[i] <= target < cdf_[i+1]; zero-area segments are never chosen.
-  size_t i = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin());
+  // The segment [i, i+1] with cdf_[i] <= target < cdf_[i+1]; zero-area segments are never chosen. The first knot
+  // whose CDF exceeds the target (what std::upper_bound would return), scanning from the guide cell's start: u is
+  // at least the cell's lower end k/kGuideCells (exact), so the target is at least the end's CDF value and the scan
+  // only moves forward.
+  const size_t cell = std::min(size_t(u * kGuideCells), size_t(kGuideCells - 1));
+  size_t i = guide_[cell];
+  while (i < cdf_.size() && cdf_[i] <= target) ++i;
   i = std::clamp<size_t>(i, 1, f_.size() - 1) - 1;
   while (i + 1 < f_.size() - 1 && cdf_[i + 1] == cdf_[i]) ++i;
   // Within the segment, with t ∈ [0, 1] and a = f_i, b = f_{i+1}, the area up to t is h(a t + (b − a) t²/2) = s.

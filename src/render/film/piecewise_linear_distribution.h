@@ -13,7 +13,8 @@ class PiecewiseLinearDistribution {
   /// Needs at least two knots, all values finite and ≥ 0, and a positive integral.
   PiecewiseLinearDistribution(double lo, double hi, std::vector<double> knot_values);
 
-  /// Maps u in [0, 1) to x in [lo, hi] with density pdf(x). Cost: a binary search over the knots.
+  /// Maps u in [0, 1) to x in [lo, hi] with density pdf(x). Cost: a table lookup and, on average, about one step
+  /// of a forward scan over the knots (the same segment a binary search finds, so the same x bit for bit).
   double sample(double u) const;
   /// The normalised density at x (0 outside [lo, hi]).
   double pdf(double x) const;
@@ -24,6 +25,11 @@ class PiecewiseLinearDistribution {
   double lo_, hi_, step_;
   std::vector<double> f_;
   std::vector<double> cdf_;  // unnormalised ∫ f from lo to knot i
+  // Where sample()'s search starts for u in [k/kGuideCells, (k+1)/kGuideCells): the first knot whose CDF exceeds
+  // the cell's lower end. A power of two, so that k = ⌊u·kGuideCells⌋ and the cell's lower end are exact. A pixel
+  // filter's two binary searches were 7 % of a render's CPU time (perf, daylit room, 256 spp).
+  static constexpr int kGuideCells = 256;
+  std::vector<unsigned> guide_;
   double integral_ = 0.0;
 };
 
