@@ -39,7 +39,7 @@ struct RenderJob {
   /// builds the sampler.
   std::optional<LightSamplerKind> light_sampler;
   /// Overrides "integrator.guiding" (`--guiding on|off`; docs/transport.md, "Path guiding").
-  std::optional<bool> guiding;
+  std::optional<std::string> guiding;  ///< "on", "off" or "mixture"
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
   /// Write the EXR's image channels as half floats (`--half`); 32-bit floats otherwise (render/output/exr_output.h).

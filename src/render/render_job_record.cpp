@@ -30,7 +30,7 @@ nlohmann::json image_options(const RenderJob& job) {
   if (job.white_balance) j["white_balance"] = *job.white_balance;
   if (job.frame) j["frame"] = *job.frame;
   if (job.light_sampler) j["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
-  if (job.guiding) j["guiding"] = *job.guiding ? "on" : "off";
+  if (job.guiding) j["guiding"] = *job.guiding;
   if (job.strict) j["strict"] = true;
   return j;
 }
@@ -124,7 +124,7 @@ RenderJob render_job_from_json(const std::string& json, const std::string& where
     if (j.contains("ev")) job.compensation_ev = j["ev"].get<double>();
     if (j.contains("white_balance")) job.white_balance = j["white_balance"].get<std::string>();
     if (j.contains("frame")) job.frame = j["frame"].get<int>();
-    if (j.contains("guiding")) job.guiding = j["guiding"] == "on";
+    if (j.contains("guiding")) job.guiding = j["guiding"].get<std::string>();
     if (j.contains("crop")) {
       const auto& c = j["crop"];
       job.crop = PixelBounds{c[0].get<int>(), c[1].get<int>(), c[2].get<int>(), c[3].get<int>()};

@@ -166,7 +166,8 @@ ExrOptions job_exr_options(const RenderJobState& s, int reached, bool interrupte
   exr.metadata.extra["wavelengthDensity"] = scene.wavelength_density ? "lights" : "visible";
   exr.metadata.extra["sampler"] = sampler_kind_name(settings.sampler);
   exr.metadata.extra["lightSampler"] = light_sampler_kind_name(settings.light_sampler);
-  exr.metadata.extra["guiding"] = settings.integrator.guiding ? "on" : "off";
+  exr.metadata.extra["guiding"] =
+      !settings.integrator.guiding ? "off" : settings.integrator.guiding_mixture ? "mixture" : "on";
   // `rimu display` meters the image again as the render did (render/output/exr_display_source.h).
   if (s.metered_display) exr.metadata.extra["displayMetered"] = "yes";
   for (const auto& [key, value] : exposure_metadata(settings.camera_exposure, s.output_transform))
@@ -511,7 +512,7 @@ void log_job_summary(const RenderJobState& s) {
   }
   if (const GuidingStatistics& g = statistics.guiding; g.active)
     summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
-            << " spatial leaves, " << g.directional_nodes << " directional nodes, "
+            << " spatial leaves, " << g.directional_nodes << " directional nodes (or lobes), "
             << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
   if (!s.film->light_groups().empty()) {
     summary << "rimu: light groups, one EXR layer each (rebalance them with rimu display --group):";

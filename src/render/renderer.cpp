@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -102,7 +103,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   if (texture_footprints)
     differentials_scale = std::max(0.125f, 1.0f / std::sqrt(float(std::max(1, options.samples_per_pixel))));
   std::optional<GuidingField> guiding_field;
-  const GuidingFieldSettings guiding_settings;
+  GuidingFieldSettings guiding_settings;
+  guiding_settings.parallax_mixture = integrator_settings.guiding_mixture;
   std::vector<GuidingSample> guiding_history;  // every pass's records, in pass and tile order, up to the budget
   int next_fit = 1;  // samples per pixel into the call after which the next field is fitted
   // Each tile's records of the current pass. Kept across passes (cleared, not freed): allocating them anew every
@@ -241,7 +243,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     const int done_in_call = first + count - options.first_sample;
     if (train && (done_in_call >= next_fit || guiding_history.size() >= kGuidingSampleBudget)) {
       next_fit = 2 * done_in_call + 1;
-      guiding_field = GuidingField::build(guiding_history, done_in_call, guiding_settings);
+      guiding_field = GuidingField::build(guiding_history, done_in_call, guiding_settings,
+                                          [](size_t leaves, const std::function<void(size_t)>& fit) {
+                                            tbb::parallel_for(size_t(0), leaves, [&](size_t leaf) { fit(leaf); });
+                                          });
       ++stats.guiding.training_passes;
       stats.guiding.samples_recorded = guiding_history.size();
       if (guiding_field->memory_bytes() > stats.guiding.memory_bytes) {

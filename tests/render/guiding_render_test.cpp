@@ -23,17 +23,19 @@ nlohmann::json small_version(const std::filesystem::path& path, int width, int h
   return document;
 }
 
-std::unique_ptr<Scene> scene_with_guiding(nlohmann::json document, const std::filesystem::path& directory, bool guiding) {
-  document["integrator"]["guiding"] = guiding ? "on" : "off";
+// `mode`: "on" (quadtrees), "mixture" (parallax-aware vMF mixtures) or "off".
+std::unique_ptr<Scene> scene_with_guiding(nlohmann::json document, const std::filesystem::path& directory,
+                                          const char* mode) {
+  document["integrator"]["guiding"] = mode;
   return load_scene(document, "guiding_test.json", directory, library());
 }
 
 // Paired luminance difference of guided and unguided renders (different seeds: independent pixels) within
 // kSigmas standard errors, and the guided render trained its field.
-void check_unbiased(const std::filesystem::path& path, int width, int height, int spp) {
+void check_unbiased(const std::filesystem::path& path, int width, int height, int spp, const char* mode = "on") {
   const nlohmann::json document = small_version(path, width, height);
-  const auto off = scene_with_guiding(document, path.parent_path(), false);
-  const auto on = scene_with_guiding(document, path.parent_path(), true);
+  const auto off = scene_with_guiding(document, path.parent_path(), "off");
+  const auto on = scene_with_guiding(document, path.parent_path(), mode);
   const RenderedFilm unguided = render_xyz(*off, spp, 1);
   const RenderedFilm guided = render_xyz(*on, spp, 2);
   CHECK(!unguided.statistics.guiding.active);
@@ -70,24 +72,34 @@ TEST_CASE("path guiding is unbiased: the daylit room (sun and portal sky through
   check_unbiased(library().root() / "scenes" / "interiors" / "daylit_room_open.json", 32, 18, 31);
 }
 
-TEST_CASE("path guiding is deterministic: the same seed gives a bit-identical image on 1 and 2 threads") {
-  const std::filesystem::path path = library().root() / "scenes" / "interiors" / "daylit_room_open.json";
-  const auto scene = scene_with_guiding(small_version(path, 24, 16), path.parent_path(), true);
-  const RenderedFilm one = render_xyz(*scene, 15, 5, 1);
-  const RenderedFilm two = render_xyz(*scene, 15, 5, 2);
-  const RenderedFilm again = render_xyz(*scene, 15, 5, 2);
-  CHECK(one.statistics.guiding.training_passes == 3);
-  CHECK(differing_pixels(one, two) == 0);
-  CHECK(differing_pixels(two, again) == 0);
+TEST_CASE("path guiding with parallax-aware mixtures is unbiased: the Cornell box and the daylit room") {
+  check_unbiased(library().root() / "scenes" / "cornell_box" / "scene.json", 24, 24, 31, "mixture");
+  check_unbiased(library().root() / "scenes" / "interiors" / "daylit_room_open.json", 32, 18, 31, "mixture");
 }
 
-TEST_CASE("integrator.guiding takes on, off, true or false; anything else is an input error naming the key") {
+TEST_CASE("path guiding is deterministic: the same seed gives a bit-identical image on 1 and 2 threads") {
+  const std::filesystem::path path = library().root() / "scenes" / "interiors" / "daylit_room_open.json";
+  for (const char* mode : {"on", "mixture"}) {  // the mixtures are fitted leaf by leaf in parallel
+    CAPTURE(mode);
+    const auto scene = scene_with_guiding(small_version(path, 24, 16), path.parent_path(), mode);
+    const RenderedFilm one = render_xyz(*scene, 15, 5, 1);
+    const RenderedFilm two = render_xyz(*scene, 15, 5, 2);
+    const RenderedFilm again = render_xyz(*scene, 15, 5, 2);
+    CHECK(one.statistics.guiding.training_passes == 3);
+    CHECK(differing_pixels(one, two) == 0);
+    CHECK(differing_pixels(two, again) == 0);
+  }
+}
+
+TEST_CASE("integrator.guiding takes on, off, mixture, true or false; anything else is an input error naming the key") {
   const std::filesystem::path path = library().root() / "scenes" / "cornell_box" / "scene.json";
   nlohmann::json document = small_version(path, 8, 8);
   for (const auto& [value, expected] : std::vector<std::pair<nlohmann::json, bool>>{
-           {"on", true}, {"off", false}, {true, true}, {false, false}}) {
+           {"on", true}, {"off", false}, {"mixture", true}, {true, true}, {false, false}}) {
     document["integrator"]["guiding"] = value;
-    CHECK(load_scene(document, "g.json", path.parent_path(), library())->settings.integrator.guiding == expected);
+    const auto scene = load_scene(document, "g.json", path.parent_path(), library());
+    CHECK(scene->settings.integrator.guiding == expected);
+    CHECK(scene->settings.integrator.guiding_mixture == (value == "mixture"));
   }
   document["integrator"]["guiding"] = "maybe";
   try {
@@ -102,7 +114,7 @@ TEST_CASE("path guiding pools its passes: a longer render fits more fields to a 
   // Fits after 1, 3, 7, 15, 31 (and 63) samples, each to every sample recorded so far: light found rarely is learned
   // from all of them, not from the last pass alone (docs/transport.md, "Path guiding", Training).
   const std::filesystem::path path = library().root() / "scenes" / "cornell_box" / "scene.json";
-  const auto scene = scene_with_guiding(small_version(path, 16, 16), path.parent_path(), true);
+  const auto scene = scene_with_guiding(small_version(path, 16, 16), path.parent_path(), "on");
   const RenderedFilm shorter = render_xyz(*scene, 32, 3, 1);
   const RenderedFilm one = render_xyz(*scene, 64, 3, 1);
   const RenderedFilm two = render_xyz(*scene, 64, 3, 2);

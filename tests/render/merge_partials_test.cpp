@@ -345,10 +345,10 @@ TEST_CASE("partial renders: a header attribute claiming more bytes than the file
 TEST_CASE("partial renders: guided partials merge; a mix of guided and unguided partials is refused") {
   Folder dir("guiding");
   RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12});
-  a.guiding = true;
+  a.guiding = "on";
   render(a);
   RenderJob b = tiny_job(dir / "b.exr", SampleRange{12, 24});
-  b.guiding = true;
+  b.guiding = "on";
   render(b);
   CHECK(read_partial_exr(dir / "a.exr", false).metadata.extra.at("guiding") == "on");
   // Each partial trained its own field: the merge is an unbiased image of 24 spp (not bit-identical to one process).

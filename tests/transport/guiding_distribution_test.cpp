@@ -142,7 +142,7 @@ TEST_CASE("No energy, no distribution: a field without light guides nowhere") {
   CHECK(DirectionalQuadtree::build(samples, QuadtreeSettings{}).empty());
   std::vector<GuidingSample> field_samples(100, GuidingSample{{0, 0, 0}, {{0.5f, 0.5f}, 0.0f}});
   const GuidingField field = GuidingField::build(field_samples, 1, GuidingFieldSettings{});
-  for (int facing = 0; facing < kFacings; ++facing) CHECK(field.distribution_at({0, 0, 0}, facing) == nullptr);
+  for (int facing = 0; facing < kFacings; ++facing) CHECK(!field.distribution_at({0, 0, 0}, facing));
 }
 
 TEST_CASE("The spatial tree keeps two places' light apart, within its leaf bound") {
@@ -162,9 +162,9 @@ TEST_CASE("The spatial tree keeps two places' light apart, within its leaf bound
   const GuidingField field = GuidingField::build(samples, 1, settings);
   CHECK(field.leaf_count() <= 16);
   CHECK(field.leaf_count() >= 2);
-  const DirectionalQuadtree* left = field.distribution_at({-0.95f, 0.5f, 0.0f}, 0);
-  const DirectionalQuadtree* right = field.distribution_at({1.05f, 0.5f, 0.0f}, 0);
-  CHECK(field.distribution_at({-0.95f, 0.5f, 0.0f}, 1) == nullptr);  // nothing learned facing −x
+  const DirectionalQuadtree* left = field.distribution_at({-0.95f, 0.5f, 0.0f}, 0).tree;
+  const DirectionalQuadtree* right = field.distribution_at({1.05f, 0.5f, 0.0f}, 0).tree;
+  CHECK(!field.distribution_at({-0.95f, 0.5f, 0.0f}, 1));  // nothing learned facing −x
   REQUIRE(left != nullptr);
   REQUIRE(right != nullptr);
   // The light fills a cap of 2π·0.1 sr: a density of ~1.6/sr there (uniform would be 1/4π ≈ 0.08).
@@ -180,7 +180,8 @@ TEST_CASE("The guide/BSDF mixture's density integrates to one and samples with t
   const DirectionalQuadtree tree = DirectionalQuadtree::build(samples, QuadtreeSettings{});
   const Bsdf bsdf{DiffuseBsdf(SampledSpectrum(0.5f))};
   const Frame frame = Frame::from_normal(normalize(Vec3{0.2f, -0.1f, 1.0f}));
-  const GuidedBsdf guided(bsdf, frame, &tree, 0.5f);
+  const VertexGuide guide(LeafGuide{&tree, nullptr}, Vec3{0, 0, 0});
+  const GuidedBsdf guided(bsdf, frame, &guide, 0.5f);
   REQUIRE(guided.guided());
   const Vec3 wo = normalize(Vec3{0.3f, 0.1f, 0.9f});
   // ∫ p dω by importance sampling from the mixture itself: E[p_reported(wi)/p_true(wi)] = 1 only if they agree;
@@ -236,9 +237,9 @@ TEST_CASE("A spatial leaf whose light rests on too few samples does not guide") 
     }
     return GuidingField::build(samples, 1, settings);
   };
-  CHECK(field_with_lucky(5).distribution_at({0.5f, 0.5f, 0.0f}, 4) == nullptr);
+  CHECK(!field_with_lucky(5).distribution_at({0.5f, 0.5f, 0.0f}, 4));
   const GuidingField learned = field_with_lucky(500);
-  const DirectionalQuadtree* leaf = learned.distribution_at({0.5f, 0.5f, 0.0f}, 4);
+  const DirectionalQuadtree* leaf = learned.distribution_at({0.5f, 0.5f, 0.0f}, 4).tree;
   REQUIRE(leaf != nullptr);
   CHECK(leaf->effective_samples() >= settings.min_effective_samples);
 }

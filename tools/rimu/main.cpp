@@ -55,8 +55,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"bvh", "bvh-spectral", "power", "uniform"}));
   app.add_option("--guiding", guiding,
                  "on: learn where light comes from while rendering and sample directions from it (path guiding; "
-                 "helps interiors lit indirectly, see docs/transport.md), off: the default (overrides the scene)")
-      ->check(CLI::IsMember({"on", "off"}));
+                 "helps interiors lit indirectly, see docs/transport.md), mixture: the same with a parallax-aware "
+                 "mixture of lobes per region instead of a quadtree, off: the default (overrides the scene)")
+      ->check(CLI::IsMember({"on", "off", "mixture"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
       job.wavelength_density = wavelength_density == "lights" ? rimu::WavelengthDensityKind::lights
                                                               : rimu::WavelengthDensityKind::visible;
     if (!light_sampler.empty()) job.light_sampler = rimu::parse_light_sampler_kind(light_sampler);
-    if (!guiding.empty()) job.guiding = guiding == "on";
+    if (!guiding.empty()) job.guiding = guiding;
     if (!resolution.empty()) {
       const auto [w, h] = rimu::parse_resolution(resolution, "--resolution");
       job.width = w;

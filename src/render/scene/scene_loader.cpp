@@ -117,7 +117,11 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
                "direct_lighting", "distance_sampling", "max_depth_includes_media", "light_sampler", "guiding",
                "time_limit_s"});
-  if (const auto d = c.find("guiding")) s.integrator.guiding = d->is_string() ? d->choice({"on", "off"}) == "on" : d->boolean();
+  if (const auto d = c.find("guiding")) {
+    const std::string mode = d->is_string() ? d->choice({"on", "off", "mixture"}) : d->boolean() ? "on" : "off";
+    s.integrator.guiding = mode != "off";
+    s.integrator.guiding_mixture = mode == "mixture";
+  }
   if (const auto d = c.find("light_sampler"))
     s.light_sampler = *parse_light_sampler_kind(d->choice({"bvh", "bvh-spectral", "power", "uniform"}));
   if (const auto d = c.find("wavelength_density"))

@@ -10,14 +10,34 @@
 #include "transport/bsdfs/bsdf.h"
 #include "transport/geometry/frame.h"
 #include "transport/guiding/directional_quadtree.h"
+#include "transport/guiding/guiding_field.h"
+#include "transport/guiding/vmf_mixture.h"
 
 namespace rimu {
+
+/// The guide at one vertex: a leaf's quadtree, or its mixture re-aimed from the vertex (VmfMixture::at), or none.
+class VertexGuide {
+ public:
+  VertexGuide() = default;
+  VertexGuide(const LeafGuide& leaf, Vec3 position) : tree_(leaf.tree), has_mixture_(leaf.mixture != nullptr) {
+    if (has_mixture_) mixture_ = leaf.mixture->at(position);
+  }
+  explicit operator bool() const { return tree_ || has_mixture_; }
+  /// A world direction and its solid-angle density; u_select ∈ [0, 1) picks a mixture's lobe.
+  Vec3 sample(float u_select, Vec2 u, float& pdf) const;
+  float pdf(Vec3 direction) const;
+
+ private:
+  const DirectionalQuadtree* tree_ = nullptr;
+  bool has_mixture_ = false;
+  VertexMixture mixture_;
+};
 
 class GuidedBsdf {
  public:
   /// `guide` nullptr (or α = 0): the BSDF alone. The guide's directions are world-space; the BSDF's local.
-  GuidedBsdf(const Bsdf& bsdf, const Frame& frame, const DirectionalQuadtree* guide, float alpha)
-      : bsdf_(bsdf), frame_(frame), guide_(alpha > 0.0f ? guide : nullptr), alpha_(guide_ ? alpha : 0.0f) {}
+  GuidedBsdf(const Bsdf& bsdf, const Frame& frame, const VertexGuide* guide, float alpha)
+      : bsdf_(bsdf), frame_(frame), guide_(alpha > 0.0f && guide && *guide ? guide : nullptr), alpha_(guide_ ? alpha : 0.0f) {}
 
   bool guided() const { return guide_ != nullptr; }
   /// A direction (local frame) with f and the mixture's per-lane density; u_lobe chooses guide or BSDF.
@@ -28,7 +48,7 @@ class GuidedBsdf {
  private:
   const Bsdf& bsdf_;
   const Frame& frame_;
-  const DirectionalQuadtree* guide_;
+  const VertexGuide* guide_;
   float alpha_;
 };
 

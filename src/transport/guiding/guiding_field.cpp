@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "transport/sampling/equal_area_square.h"
 
 namespace rimu {
 namespace {
@@ -15,6 +18,7 @@ struct SpatialBuilder {
   double split_count = 0.0;
   int leaves_planned = 1;  // leaves the tree will have once the recursion settles (bounded by max_leaves)
   std::vector<DirectionalSample> scratch;
+  std::vector<std::pair<SampleIterator, SampleIterator>> leaf_ranges;
 
   // The node at `node` for samples [first, last) inside [lo, hi].
   template <typename Nodes, typename Leaves>
@@ -27,6 +31,12 @@ struct SpatialBuilder {
     if (!split) {
       nodes[node].axis = -1;
       nodes[node].child = uint32_t(leaves.size());
+      if (settings.parallax_mixture) {
+        // Fitted once the tree is complete (the ranges of finished leaves no longer move).
+        leaf_ranges.push_back({first, last});
+        leaves.emplace_back();
+        return;
+      }
       scratch.clear();
       if (last - first >= settings.min_samples_per_leaf)
         for (auto it = first; it != last; ++it) scratch.push_back(it->direction);
@@ -60,14 +70,14 @@ int facing_of(Vec3 n) {
 }
 
 GuidingField GuidingField::build(std::vector<GuidingSample>& samples, int pass_samples_per_pixel,
-                                 const GuidingFieldSettings& settings) {
+                                 const GuidingFieldSettings& settings, const LeafLoop& for_each_leaf) {
   GuidingField field;
   field.min_effective_samples_ = settings.min_effective_samples;
   // One tree per facing, each over the bounds of its own vertices (a later pass's vertex outside still finds the
   // nearest leaf, since lookups only compare against split planes). The leaf bound is shared: the trees draw from
   // one budget, in facing order.
   SpatialBuilder builder{settings, settings.split_samples * std::sqrt(double(std::max(pass_samples_per_pixel, 1))),
-                         kFacings, {}};
+                         kFacings, {}, {}};
   SampleIterator first = samples.begin();
   for (int f = 0; f < kFacings; ++f) {
     const SampleIterator last =
@@ -84,27 +94,54 @@ GuidingField GuidingField::build(std::vector<GuidingSample>& samples, int pass_s
     first = last;
   }
   field.nodes_.shrink_to_fit();
+  if (settings.parallax_mixture) {
+    field.mixtures_.resize(builder.leaf_ranges.size());
+    const auto fit = [&](size_t leaf) {
+      const auto [first_sample, last_sample] = builder.leaf_ranges[leaf];
+      if (last_sample - first_sample < settings.min_samples_per_leaf) return;
+      std::vector<ParallaxSample> leaf_samples;
+      leaf_samples.reserve(size_t(last_sample - first_sample));
+      for (auto it = first_sample; it != last_sample; ++it)
+        leaf_samples.push_back({it->position, equal_area_square_to_sphere(it->direction.square), it->distance,
+                                it->direction.weight});
+      field.mixtures_[leaf] = VmfMixture::fit(leaf_samples, settings.mixture);
+    };
+    if (for_each_leaf)
+      for_each_leaf(builder.leaf_ranges.size(), fit);
+    else
+      for (size_t leaf = 0; leaf < builder.leaf_ranges.size(); ++leaf) fit(leaf);
+  }
   return field;
 }
 
-const DirectionalQuadtree* GuidingField::distribution_at(Vec3 position, int facing) const {
-  if (nodes_.empty()) return nullptr;
+LeafGuide GuidingField::distribution_at(Vec3 position, int facing) const {
+  if (nodes_.empty()) return {};
   size_t node = roots_[facing];
   while (nodes_[node].axis >= 0)
     node = nodes_[node].child + (axis_value(position, nodes_[node].axis) < nodes_[node].split ? 0 : 1);
-  const DirectionalQuadtree& leaf = leaves_[nodes_[node].child];
-  return leaf.empty() || leaf.effective_samples() < min_effective_samples_ ? nullptr : &leaf;
+  const uint32_t index = nodes_[node].child;
+  if (!mixtures_.empty()) {
+    const VmfMixture& mixture = mixtures_[index];
+    if (mixture.empty() || mixture.effective_samples() < min_effective_samples_) return {};
+    return {nullptr, &mixture};
+  }
+  const DirectionalQuadtree& leaf = leaves_[index];
+  if (leaf.empty() || leaf.effective_samples() < min_effective_samples_) return {};
+  return {&leaf, nullptr};
 }
 
 size_t GuidingField::directional_node_count() const {
   size_t count = 0;
   for (const DirectionalQuadtree& leaf : leaves_) count += leaf.node_count();
+  for (const VmfMixture& mixture : mixtures_) count += mixture.lobes().size();
   return count;
 }
 
 size_t GuidingField::memory_bytes() const {
   size_t bytes = nodes_.capacity() * sizeof(Node) + leaves_.capacity() * sizeof(DirectionalQuadtree);
   for (const DirectionalQuadtree& leaf : leaves_) bytes += leaf.memory_bytes();
+  bytes += mixtures_.capacity() * sizeof(VmfMixture);
+  for (const VmfMixture& mixture : mixtures_) bytes += mixture.memory_bytes();
   return bytes;
 }
 

@@ -5,11 +5,14 @@
 #pragma once
 
 #include <cstddef>
+#include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "transport/geometry/vector.h"
 #include "transport/guiding/directional_quadtree.h"
+#include "transport/guiding/vmf_mixture.h"
 
 namespace rimu {
 
@@ -26,6 +29,7 @@ struct GuidingSample {
   Vec3 position;
   DirectionalSample direction;
   int facing = 0;
+  float distance = INFINITY;  ///< to the next vertex along the direction (∞: none; the mixture's parallax)
 };
 
 struct GuidingFieldSettings {
@@ -39,19 +43,32 @@ struct GuidingFieldSettings {
   /// costs variance at every bounce (docs/transport.md, "Path guiding").
   float min_effective_samples = 32.0f;
   QuadtreeSettings directions;
+  /// Leaves learn a parallax-aware vMF mixture (vmf_mixture.h) instead of a directional quadtree.
+  bool parallax_mixture = false;
+  VmfMixtureSettings mixture;
+};
+
+/// What a leaf learned, for one vertex: a quadtree or a mixture (one of them non-null), or nothing.
+struct LeafGuide {
+  const DirectionalQuadtree* tree = nullptr;
+  const VmfMixture* mixture = nullptr;
+  explicit operator bool() const { return tree || mixture; }
 };
 
 class GuidingField {
  public:
   /// Fits a field to `samples` (reordered in place) recorded in a pass of `pass_samples_per_pixel` samples.
+  /// `for_each_leaf(n, fit)` calls fit(0) … fit(n − 1) in any order or in parallel (the leaves' fits are independent,
+  /// so the field is the same either way); by default one after the other. Used for the mixtures' fits.
+  using LeafLoop = std::function<void(size_t, const std::function<void(size_t)>&)>;
   static GuidingField build(std::vector<GuidingSample>& samples, int pass_samples_per_pixel,
-                            const GuidingFieldSettings& settings);
+                            const GuidingFieldSettings& settings, const LeafLoop& for_each_leaf = {});
 
   /// The directional distribution learned near `position` on surfaces facing `facing`; nullptr where nothing was.
-  const DirectionalQuadtree* distribution_at(Vec3 position, int facing) const;
+  LeafGuide distribution_at(Vec3 position, int facing) const;
 
   size_t leaf_count() const { return leaves_.size(); }
-  size_t directional_node_count() const;
+  size_t directional_node_count() const;  ///< quadtree nodes, or mixture lobes
   size_t memory_bytes() const;
 
  private:
@@ -63,6 +80,7 @@ class GuidingField {
   std::vector<Node> nodes_;  ///< kFacings trees: the root of facing f is nodes_[roots_[f]]
   uint32_t roots_[kFacings] = {};
   std::vector<DirectionalQuadtree> leaves_;
+  std::vector<VmfMixture> mixtures_;  ///< parallel to leaves_ when the field learns mixtures
   float min_effective_samples_ = 0.0f;
 };
 

@@ -33,6 +33,7 @@ Float4 guiding_lane_weights(const SampledWavelengths& lambda, bool rgb) {
 bool PathGuidingRecord::add_vertex(Vec3 position, int facing, Vec3 direction, float pdf, float cosine,
                                    const SampledSpectrum& throughput) {
   if (count_ == kMaxVertices) return false;
+  if (count_ > 0) vertices_[size_t(count_ - 1)].open = false;
   Vertex& v = vertices_[size_t(count_++)];
   v.position = position;
   v.facing = facing;
@@ -40,6 +41,8 @@ bool PathGuidingRecord::add_vertex(Vec3 position, int facing, Vec3 direction, fl
   v.cosine_over_pdf = pdf > 0.0f ? cosine / pdf : 0.0f;
   v.inverse_throughput = select(throughput != Float4(0.0f), Float4(1.0f) / throughput, Float4(0.0f));
   v.incident = SampledSpectrum(0.0f);
+  v.distance = 0.0f;
+  v.open = true;
   return true;
 }
 
@@ -53,7 +56,8 @@ void PathGuidingRecord::flush(std::vector<GuidingSample>& out) const {
     const float luminance = sum(lane_weights_ * v.incident);
     // Negative lanes (never expected) or rounding: the field learns only non-negative, finite weights.
     const float weight = luminance > 0.0f ? luminance * v.cosine_over_pdf : 0.0f;
-    out.push_back({v.position, {v.square, std::isfinite(weight) ? weight : 0.0f}, v.facing});
+    out.push_back({v.position, {v.square, std::isfinite(weight) ? weight : 0.0f}, v.facing,
+                   v.distance > 0.0f ? v.distance : INFINITY});
   }
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "spectral/wavelengths/sampled_wavelengths.h"
@@ -33,6 +34,14 @@ class PathGuidingRecord {
   /// A contribution the estimator adds to the pixel: it arrived at every recorded vertex. `skip_last`: not at the
   /// last one (an emitter its own ray hit, which next-event estimation samples: path_integrator.cpp).
   void add_radiance(const SampledSpectrum& contribution, bool skip_last = false);
+  /// The ray leaving the last recorded vertex travelled `t` further (a hit; panes passed add up) or escaped: the
+  /// distance of the light it brought (GuidingSample::distance). Ignored once a later vertex is recorded.
+  void travel(float t) {
+    if (count_ > 0 && vertices_[size_t(count_ - 1)].open) vertices_[size_t(count_ - 1)].distance += t;
+  }
+  void escape() {
+    if (count_ > 0 && vertices_[size_t(count_ - 1)].open) vertices_[size_t(count_ - 1)].distance = INFINITY;
+  }
   /// Appends the vertices' samples to `out`.
   void flush(std::vector<GuidingSample>& out) const;
 
@@ -44,6 +53,8 @@ class PathGuidingRecord {
     float cosine_over_pdf = 0.0f;
     SampledSpectrum inverse_throughput;  ///< 1/throughput per lane (0 in lanes that carry nothing)
     SampledSpectrum incident;            ///< the radiance that arrived so far, per lane
+    float distance = 0.0f;               ///< to the next vertex (travel, escape)
+    bool open = true;                    ///< the path has not reached its next recorded vertex yet
   };
   Float4 lane_weights_;
   std::array<Vertex, kMaxVertices> vertices_;

@@ -142,6 +142,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
   int passages_since_vertex = 0, passages = 0;
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
+    if (record && previous_recorded) hit ? record->travel(hit->t) : record->escape();
     if (!hit) {
       for (int index : scene_.infinite_lights) {
         const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
@@ -193,9 +194,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     // not panes (passed straight through, they are no vertex). Every BSDF density below is the mixture's.
     const bool guidable = guiding_on && flags.has_non_delta && !flags.has_delta && !may_pass;
     const int facing = facing_of(shading.geometric_normal);
-    const DirectionalQuadtree* guide =
-        guidable && guiding.field ? guiding.field->distribution_at(hit->position, facing) : nullptr;
-    const GuidedBsdf sampling(bsdf, shading.frame, guide, settings_.guiding_probability);
+    const LeafGuide leaf = guidable && guiding.field ? guiding.field->distribution_at(hit->position, facing) : LeafGuide{};
+    const VertexGuide guide = leaf ? VertexGuide(leaf, hit->position) : VertexGuide();
+    const GuidedBsdf sampling(bsdf, shading.frame, &guide, settings_.guiding_probability);
 
     // Next-event estimation: one light (and part), chosen by the scene's light sampler.
     const float u_light_choice = sampler.next_1d();

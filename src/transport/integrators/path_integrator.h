@@ -58,6 +58,9 @@ struct PathIntegratorSettings {
   /// Path guiding (transport/guiding/, docs/transport.md "Path guiding"): the render loop learns the incident light
   /// pass by pass and the integrator samples from it at non-delta vertices. Off by default.
   bool guiding = false;
+  /// What the field's leaves learn: a directional quadtree (Müller et al. 2017) or a parallax-aware vMF mixture
+  /// (Ruppert et al. 2020; transport/guiding/vmf_mixture.h). `"guiding": "mixture"` in a scene.
+  bool guiding_mixture = false;
   /// α: the probability of drawing a guided vertex's direction from the learned field (else from the BSDF).
   float guiding_probability = 0.5f;
 };
