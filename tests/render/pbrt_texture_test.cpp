@@ -49,10 +49,10 @@ TEST_CASE("pbrt float textures: roughness and mix amounts from scale, mix, direc
   const json scaled = {{"product", {board, 0.5}}};
   // "dir" goes through the CTM of the Texture statement (here "Scale -1 1 1" then the camera: the world's z).
   const json sideways = {{"direction_mix", {0.2, board}}, {"direction", {0.0, 0.0, 2.0}}};
-  // The first channel of a PPM: linear by pbrt's default (sRGB only for PNG), inverted, scaled.
+  // The first channel of a PPM: sRGB, as pbrt-v4 reads every 8-bit image but a PNG, inverted, scaled.
   const json map = m["frosted"]["roughness"]["power"][0];
   CHECK(map["texture"].get<std::string>().find("rough.ppm") != std::string::npos);
-  CHECK(map["encoding"] == "linear");
+  CHECK(map["encoding"] == "srgb");
   CHECK(map["invert"] == true);
   CHECK(map["scale"] == 0.5);
   // Under remaproughness pbrt's α = roughness^½, Rimu's r = α^½: the texture is raised to ¼ per hit.
@@ -88,29 +88,42 @@ TEST_CASE("pbrt spectrum textures and the conductor's reflectance") {
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
 }
 
-TEST_CASE("pbrt spectrum imagemap: encoding defaults to sRGB for .png names only, as pbrt-v4's imagemap") {
+TEST_CASE("pbrt imagemap encoding: a PNG takes \"encoding\" (sRGB by default), any other 8-bit file is sRGB, as pbrt-v4 reads it") {
+  // pbrt-v4's texture defaults "encoding" to linear for a name not ending in .png, but its Image::Read hands that
+  // encoding to the PNG reader only: TGA, JPEG, PPM, ... go through stb_image and are sRGB whatever is asked (the
+  // Bitterli interiors' TGA textures render at pbrt's brightness only so).
   test::ScratchFolder dir("pbrt_spectrum_encoding");
   const auto ppm = test::write_ppm("pbrt_spectrum_encoding", 2, 1, {128, 128, 128, 255, 255, 255});
   std::filesystem::copy_file(ppm, dir / "paint.ppm", std::filesystem::copy_options::overwrite_existing);
-  // The importer decides by the file name (pbrt does too); the bytes of this one are never read.
+  // The importer decides by the file name (pbrt does too); the bytes of these are never read.
   std::ofstream(dir / "paint.PNG") << "not read";
+  std::ofstream(dir / "wood.tga") << "not read";
   const PbrtImport imported = import_text(
       kHeader +
           "Texture \"ppm\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.ppm\"\n"
           "Texture \"ppmsrgb\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.ppm\" \"string encoding\" \"sRGB\"\n"
           "Texture \"png\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.PNG\"\n"
           "Texture \"pnglinear\" \"spectrum\" \"imagemap\" \"string filename\" \"paint.PNG\" \"string encoding\" \"linear\"\n"
+          "Texture \"tga\" \"spectrum\" \"imagemap\" \"string filename\" \"wood.tga\"\n"
+          "Texture \"tgalinear\" \"float\" \"imagemap\" \"string filename\" \"wood.tga\" \"string encoding\" \"linear\"\n"
           "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"texture reflectance\" \"ppm\"\n"
           "MakeNamedMaterial \"b\" \"string type\" \"diffuse\" \"texture reflectance\" \"ppmsrgb\"\n"
           "MakeNamedMaterial \"c\" \"string type\" \"diffuse\" \"texture reflectance\" \"png\"\n"
-          "MakeNamedMaterial \"d\" \"string type\" \"diffuse\" \"texture reflectance\" \"pnglinear\"\n",
+          "MakeNamedMaterial \"d\" \"string type\" \"diffuse\" \"texture reflectance\" \"pnglinear\"\n"
+          "MakeNamedMaterial \"e\" \"string type\" \"diffuse\" \"texture reflectance\" \"tga\"\n"
+          "MakeNamedMaterial \"f\" \"string type\" \"conductor\" \"texture roughness\" \"tgalinear\"\n",
       dir.path);
-  CHECK(imported.ignored.empty());
   const json& m = imported.document["materials"];
-  CHECK(m["a"]["reflectance"]["encoding"] == "linear");  // was sRGB for every file before
+  CHECK(m["a"]["reflectance"]["encoding"] == "srgb");  // was linear, by the texture's default alone
   CHECK(m["b"]["reflectance"]["encoding"] == "srgb");
   CHECK(m["c"]["reflectance"]["encoding"] == "srgb");
   CHECK(m["d"]["reflectance"]["encoding"] == "linear");
+  CHECK(m["e"]["reflectance"]["encoding"] == "srgb");
+  CHECK(m["f"]["roughness"]["power"][0]["encoding"] == "srgb");
+  // Only the explicit "linear" on the TGA has no effect in either renderer: listed, once.
+  REQUIRE(imported.ignored.size() == 1);
+  CHECK(imported.ignored[0].what.find("linear") != std::string::npos);
+  CHECK(imported.ignored[0].what.find(".tga") != std::string::npos);
 }
 
 TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON") {

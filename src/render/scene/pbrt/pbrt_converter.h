@@ -134,8 +134,9 @@ class PbrtConverter {
   /// Spectrum texture `texture` of a class other than constant/imagemap (scale, mix, directionmix, checkerboard)
   /// as a Rimu reflectance value; empty when not imported (listed).
   std::optional<json> spectrum_combinator(const PbrtTexture& texture, int depth);
-  /// An imagemap's "encoding" as Rimu's "srgb" or "linear": pbrt-v4 defaults to sRGB for a .png file name and to
-  /// linear for any other (its imagemap texture creation); other encodings ("gamma g") are listed and read as sRGB.
+  /// An imagemap's encoding as Rimu's "srgb" or "linear", as pbrt-v4's image reader applies it: EXR/PFM/HDR linear;
+  /// a PNG by its "encoding" (default sRGB; "gamma g" listed and read as sRGB); any other file sRGB whatever
+  /// "encoding" says (one that is not sRGB is listed).
   std::string image_encoding(PbrtParams& tp, const std::filesystem::path& image, const SourceLocation& where);
   /// pbrt's roughness value (number or texture) as Rimu's perceptual roughness: r = α^½ with pbrt's α = roughness^½
   /// under remaproughness, else α = roughness (a texture is raised to that power per hit: {"power": [t, e]}).

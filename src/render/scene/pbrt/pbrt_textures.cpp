@@ -172,9 +172,16 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
 std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem::path& image, const SourceLocation& where) {
   std::string extension = image.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
-  // pbrt-v4 applies an encoding to 8-bit images only: a float image (EXR, PFM, HDR) is linear whatever is asked.
+  // pbrt-v4's Image::Read decides, not the texture: a float image (EXR, PFM, HDR) is linear; a PNG takes the
+  // texture's "encoding" (its default is sRGB for a .png name); every other file (TGA, JPEG, PPM, BMP, ...) is read
+  // by stb_image as 8-bit sRGB whatever "encoding" says (the texture's default, "linear", never reaches it).
+  const std::string encoding = tp.string("encoding", "sRGB");  // read (and so not listed) for every format
   if (extension == ".exr" || extension == ".pfm" || extension == ".hdr") return "linear";
+  if (extension != ".png") {
+    if (encoding != "sRGB")
+      ignore("imagemap encoding \"" + encoding + "\" of a " + extension + " image (pbrt-v4 reads it as sRGB too)", where);
+    return "srgb";
+  }
   if (encoding == "linear") return "linear";
   if (encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", where);
   return "srgb";
