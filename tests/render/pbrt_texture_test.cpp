@@ -49,10 +49,10 @@ TEST_CASE("pbrt float textures: roughness and mix amounts from scale, mix, direc
   const json scaled = {{"product", {board, 0.5}}};
   // "dir" goes through the CTM of the Texture statement (here "Scale -1 1 1" then the camera: the world's z).
   const json sideways = {{"direction_mix", {0.2, board}}, {"direction", {0.0, 0.0, 2.0}}};
-  // The first channel of a PPM: linear by pbrt's default (sRGB only for PNG), inverted, scaled.
+  // The first channel of a PPM: sRGB, as pbrt-v4 reads every file stb_image decodes (below), inverted, scaled.
   const json map = m["frosted"]["roughness"]["power"][0];
   CHECK(map["texture"].get<std::string>().find("rough.ppm") != std::string::npos);
-  CHECK(map["encoding"] == "linear");
+  CHECK(map["encoding"] == "srgb");
   CHECK(map["invert"] == true);
   CHECK(map["scale"] == 0.5);
   // Under remaproughness pbrt's α = roughness^½, Rimu's r = α^½: the texture is raised to ¼ per hit.
@@ -88,7 +88,9 @@ TEST_CASE("pbrt spectrum textures and the conductor's reflectance") {
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
 }
 
-TEST_CASE("pbrt spectrum imagemap: encoding defaults to sRGB for .png names only, as pbrt-v4's imagemap") {
+TEST_CASE("pbrt spectrum imagemap: PNG takes \"encoding\" (default sRGB); TGA, JPEG, PPM are sRGB whatever it says, as pbrt-v4 reads them") {
+  // pbrt-v4's imagemap defaults "encoding" to linear for names other than .png, but its Image::Read hands the
+  // encoding to PNG (and QOI) only and makes every file stb_image decodes an sRGB image, whatever was asked.
   test::ScratchFolder dir("pbrt_spectrum_encoding");
   const auto ppm = test::write_ppm("pbrt_spectrum_encoding", 2, 1, {128, 128, 128, 255, 255, 255});
   std::filesystem::copy_file(ppm, dir / "paint.ppm", std::filesystem::copy_options::overwrite_existing);
@@ -107,10 +109,23 @@ TEST_CASE("pbrt spectrum imagemap: encoding defaults to sRGB for .png names only
       dir.path);
   CHECK(imported.ignored.empty());
   const json& m = imported.document["materials"];
-  CHECK(m["a"]["reflectance"]["encoding"] == "linear");  // was sRGB for every file before
+  CHECK(m["a"]["reflectance"]["encoding"] == "srgb");  // was linear, by the texture's documented default
   CHECK(m["b"]["reflectance"]["encoding"] == "srgb");
   CHECK(m["c"]["reflectance"]["encoding"] == "srgb");
   CHECK(m["d"]["reflectance"]["encoding"] == "linear");
+  // A TGA and a JPEG asked to be linear are sRGB in pbrt-v4 too (the bytes are not read here either).
+  std::ofstream(dir / "wood.tga") << "not read";
+  std::ofstream(dir / "wood.JPG") << "not read";
+  const PbrtImport stb = import_text(
+      kHeader +
+          "Texture \"tga\" \"spectrum\" \"imagemap\" \"string filename\" \"wood.tga\"\n"
+          "Texture \"jpg\" \"spectrum\" \"imagemap\" \"string filename\" \"wood.JPG\" \"string encoding\" \"linear\"\n"
+          "MakeNamedMaterial \"e\" \"string type\" \"diffuse\" \"texture reflectance\" \"tga\"\n"
+          "MakeNamedMaterial \"f\" \"string type\" \"diffuse\" \"texture reflectance\" \"jpg\"\n",
+      dir.path);
+  CHECK(stb.ignored.empty());
+  CHECK(stb.document["materials"]["e"]["reflectance"]["encoding"] == "srgb");
+  CHECK(stb.document["materials"]["f"]["reflectance"]["encoding"] == "srgb");
 }
 
 TEST_CASE("pbrt textured ball renders as the same scene written in Rimu's JSON") {
