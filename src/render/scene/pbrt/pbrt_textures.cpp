@@ -175,9 +175,9 @@ std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem:
   const std::string encoding = tp.string("encoding", extension == ".png" ? "sRGB" : "linear");
   // pbrt-v4 applies an encoding to 8-bit images only: a float image (EXR, PFM, HDR) is linear whatever is asked.
   if (extension == ".exr" || extension == ".pfm" || extension == ".hdr") return "linear";
-  // Its Image::Read passes the encoding to PNG (and QOI) only; every other format goes through stb_image (TGA, JPEG,
-  // BMP, PPM, ...) and is made an sRGB image whatever "encoding" says, so the texture's "linear" default never
-  // reaches those files (Bitterli's veach-ajar: its door's TGA was 20 % brighter in Rimu, read linearly).
+  // Its Image::Read passes the encoding to PNG only (a QOI file carries its own); every other format goes through
+  // stb_image (TGA, JPEG, BMP, PPM, ...) and is made an sRGB image whatever "encoding" says, so the texture's
+  // "linear" default never reaches those files (Bitterli's veach-ajar: its door's TGA was 20 % brighter in Rimu).
   if (extension != ".png" && extension != ".qoi") return "srgb";
   if (encoding == "linear") return "linear";
   if (encoding != "sRGB") ignore("imagemap encoding \"" + encoding + "\" (sRGB is used)", where);
