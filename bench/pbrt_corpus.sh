@@ -10,7 +10,9 @@
 # repositories' files as SCENES/OWNER+REPO/PATH (the columns of bench/pbrt_corpus.txt). NAMEs pick scenes of the
 # list (default: all). Scenes of FORMAT v3 are first rewritten by `PBRT_BINARY --upgrade` into
 # corpus_NAME.pbrt next to the original, and v4 scenes copied to corpus_NAME.pbrt there (unique names: the side by
-# side names its work folders after the file). Environment: as bench/pbrt_side_by_side.sh (BUILD, OUT
+# side names its work folders after the file). FORMAT v4-standins: a v4 scene some of whose files are absent from
+# the snapshot, copied by bench/pbrt_corpus_standins.py with those statements replaced (its header says how; the
+# format cell counts the replacements, listed in $OUT/NAME.standins.log). Environment: as bench/pbrt_side_by_side.sh (BUILD, OUT
 # [/tmp/pbrt_corpus], SPP, REF_SPP, THREADS, RESOLUTION, SPACE), plus NICE [19]: both renderers run under
 # `nice -n NICE` (the script's own process is reniced, and the renderers inherit it).
 #
@@ -71,6 +73,13 @@ while read -r name repo _commit path format; do
       continue
     fi
     mv "$entry.tmp" "$entry"
+  elif [[ $format == v4-standins ]]; then
+    # Files absent from the snapshot get stand-ins (bench/pbrt_corpus_standins.py); the cell counts them.
+    if ! python3 "$ROOT/bench/pbrt_corpus_standins.py" "$src" "$entry" >"$OUT/$name.standins.log" 2>&1; then
+      rows+=("| $name | $format | stand-ins failed: $(tail -1 "$OUT/$name.standins.log" | cut -c1-160) | | | | | | | | |")
+      continue
+    fi
+    format="$format ($(grep -c '^standin: ' "$OUT/$name.standins.log"))"
   else
     cp "$src" "$entry"
   fi

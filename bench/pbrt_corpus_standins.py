@@ -1,94 +1,103 @@
 #!/usr/bin/env python3
-"""Stand-ins for the files a corpus scene names but its snapshot lacks (bench/pbrt_corpus.txt, "-standins" rows).
+"""Copy a pbrt-v4 scene with stand-ins for the files it names that are absent (bench/pbrt_corpus.sh, FORMAT v4-standins).
 
-    bench/pbrt_corpus_standins.py SCENE.pbrt [...]
+    python3 bench/pbrt_corpus_standins.py SCENE.pbrt OUT.pbrt
 
-Writes SCENE-standins.pbrt next to each SCENE.pbrt (pbrt-v4 syntax, one directive a line with its parameters on
-the lines below, as the Bitterli files are written), with every statement that names a file that is not there
-rewritten so that pbrt-v4 and Rimu both load the same, smaller scene:
+The snapshots the corpus was taken from lack every file of 4 MiB or more, so most of Bitterli's object scenes name
+a mesh, an environment map or a texture that is not there, and neither renderer would load them. Both renderers
+then read the same derived file, in which:
 
-- an image `Texture` becomes a `constant` one of value 0.5 (grey; the image's own mean is unknown);
-- a `Shape` whose mesh file is missing is left out (commented);
-- an `infinite` `LightSource` whose map is missing becomes a uniform one of `rgb L` [1 1 1] (its `scale` kept);
-- an `Include` of a missing file is left out.
+- a `Shape` whose `filename` is absent (a `plymesh`) is commented out;
+- an `Import` or `Include` of an absent file is commented out;
+- a `LightSource "infinite"` whose `filename` is absent becomes a uniform one, `"rgb L" [1 1 1]` (its other
+  parameters, such as `scale`, and its transform kept);
+- a `Texture ... "imagemap"` whose `filename` is absent becomes a `constant` texture of 0.5 (grey for a spectrum).
 
-Each rewrite leaves a comment "# stand-in: ..." in place, and the script prints one line per rewrite. The result
-is not the published scene: its rows compare the two renderers on the same input, not on the author's image.
-(Files missing from this workplace's snapshots: those of 4 MiB and more, and the repository's .xz files, which
-the scenes name without the .xz; a full clone, with the .xz files decompressed, needs no stand-ins.)
+The comparison then covers what the scene still holds; what was replaced is printed, one line each, to stdout
+(`standin: LINE: WHAT`), so that the summary can count it. The statement grammar used is pbrt-v4's: a statement is a
+capitalised keyword followed by its quoted strings, numbers and bracketed lists; `#` starts a comment.
 """
-import os
 import re
 import sys
+from pathlib import Path
 
-FILENAME = re.compile(r'"string (filename|mapname)"\s*\[?\s*"([^"]*)"\s*\]?')
-DIRECTIVE = re.compile(r'^\s*[A-Z][A-Za-z]*\b')
+TOKEN = re.compile(r'"[^"]*"|\[|\]|#[^\n]*|[^\s\[\]"#]+')
+KEYWORD = re.compile(r'[A-Z][A-Za-z]*$')
 
 
-def statements(lines):
-    """Groups lines into statements: a line that starts with a directive begins one."""
-    current = []
-    for line in lines:
-        if DIRECTIVE.match(line) and current:
-            yield current
-            current = []
-        current.append(line)
+def statements(text):
+    """(start, end, tokens) per statement; comments belong to no statement."""
+    current = None
+    for m in TOKEN.finditer(text):
+        tok = m.group(0)
+        if tok.startswith('#'):
+            continue
+        if KEYWORD.match(tok):
+            if current:
+                yield current
+            current = [m.start(), m.end(), [tok]]
+        elif current:
+            current[1] = m.end()
+            current[2].append(tok)
     if current:
         yield current
 
 
-def missing_files(statement, folder):
-    # Only the inputs: a Film's filename is an output.
-    if not re.match(r'^\s*(Texture|Shape|LightSource|Include|Import)\b', statement[0]):
-        return []
-    names = []
-    for line in statement:
-        if line.lstrip().startswith('#'):
-            continue
-        for m in FILENAME.finditer(line):
-            names.append(m.group(2))
-        inc = re.match(r'^\s*(Include|Import)\s+"([^"]*)"', line)
-        if inc:
-            names.append(inc.group(2))
-    return [n for n in names if not os.path.isfile(os.path.join(folder, n))]
+def parameter(tokens, type_name):
+    """The first value of the parameter "type_name" (either spelling, with or without brackets), or None."""
+    for i, tok in enumerate(tokens):
+        if tok.startswith('"') and tok[1:-1].split() == type_name.split():
+            j = i + 1
+            if j < len(tokens) and tokens[j] == '[':
+                j += 1
+            return tokens[j].strip('"') if j < len(tokens) else None
+    return None
 
 
-def rewrite(statement, missing):
-    head = statement[0]
-    indent = re.match(r'^(\s*)', head).group(1)
-    note = f'{indent}# stand-in: {", ".join(missing)} missing\n'
-    tex = re.match(r'^(\s*Texture\s+"[^"]*"\s+"(spectrum|float)")\s+"imagemap"', head)
-    if tex:
-        value = '"float value" 0.5' if tex.group(2) == 'float' else '"rgb value" [ 0.5 0.5 0.5 ]'
-        return [note, f'{tex.group(1)} "constant" {value}\n'], 'image texture -> constant 0.5'
-    if re.match(r'^\s*LightSource\s+"infinite"', head):
-        kept = [l for l in statement[1:] if not FILENAME.search(l)]
-        return [note, head, f'{indent}    "rgb L" [ 1 1 1 ]\n'] + kept, 'infinite light map -> uniform rgb L 1'
-    if re.match(r'^\s*(Shape|Include|Import)\b', head):
-        return [note] + ['# ' + l for l in statement], 'left out'
-    raise SystemExit(f'{head.strip()}: no stand-in for a missing {missing}')
+def without_parameter(text, type_name):
+    """The statement's text with the parameter "type_name" and its value removed."""
+    words = r'\s+'.join(map(re.escape, type_name.split()))
+    return re.sub(r'"\s*' + words + r'\s*"\s*(\[[^\]]*\]|"[^"]*")', '', text, count=1)
 
 
-def main():
-    if len(sys.argv) < 2:
-        raise SystemExit(__doc__)
-    for path in sys.argv[1:]:
-        folder = os.path.dirname(os.path.abspath(path))
-        with open(path) as f:
-            lines = f.readlines()
-        out = []
-        for statement in statements(lines):
-            missing = missing_files(statement, folder)
-            if missing:
-                replaced, what = rewrite(statement, missing)
-                print(f'{path}: {statement[0].strip()[:60]} ({", ".join(missing)}): {what}')
-                out.extend(replaced)
-            else:
-                out.extend(statement)
-        target = os.path.splitext(path)[0] + '-standins.pbrt'
-        with open(target, 'w') as f:
-            f.writelines(out)
+def main(src, out):
+    src = Path(src)
+    text = src.read_text()
+    base = src.parent
+    pieces, last = [], 0
+    for start, end, tokens in statements(text):
+        keyword = tokens[0]
+        line = text.count('\n', 0, start) + 1
+        replacement = None
+        if keyword in ('Import', 'Include') and len(tokens) > 1:
+            name = tokens[1].strip('"')
+            if not (base / name).is_file():
+                replacement = f'# stand-in: {keyword} of absent {name} removed'
+        elif keyword == 'Shape':
+            name = parameter(tokens, 'string filename')
+            if name and not (base / name).is_file():
+                replacement = f'# stand-in: Shape {tokens[1]} of absent {name} removed'
+        elif keyword == 'LightSource' and len(tokens) > 1 and tokens[1] == '"infinite"':
+            name = parameter(tokens, 'string filename')
+            if name and not (base / name).is_file():
+                body = without_parameter(text[start:end], 'string filename')
+                replacement = f'{body}\n    "rgb L" [ 1 1 1 ] # stand-in: uniform, {name} absent'
+        elif keyword == 'Texture' and len(tokens) > 3 and tokens[3] == '"imagemap"':
+            name = parameter(tokens, 'string filename')
+            if name and not (base / name).is_file():
+                value = '"rgb value" [ 0.5 0.5 0.5 ]' if tokens[2] == '"spectrum"' else '"float value" [ 0.5 ]'
+                replacement = (f'Texture {tokens[1]} {tokens[2]} "constant" {value} '
+                               f'# stand-in: constant, {name} absent')
+        if replacement is not None:
+            print(f'standin: {src.name}:{line}: {replacement.split("# stand-in: ")[1]}')
+            pieces.append(text[last:start])
+            pieces.append(replacement)
+            last = end
+    pieces.append(text[last:])
+    Path(out).write_text(''.join(pieces))
 
 
 if __name__ == '__main__':
-    main()
+    if len(sys.argv) != 3:
+        sys.exit(f'usage: {sys.argv[0]} SCENE.pbrt OUT.pbrt')
+    main(sys.argv[1], sys.argv[2])

@@ -346,3 +346,44 @@ TEST_CASE("normals in the plane are counted by area: a scanned mesh's slivers ar
   const auto scene = load_scene(floor.document, "geometry.pbrt", test::test_data("pbrt"), test::library());
   CHECK(scene->meshes_with_normals_near_plane == 1);
 }
+
+TEST_CASE("pbrt plymesh: a vertex normal that is NaN (as in pbrt-v4) or zero shades its triangles flat; the others keep theirs") {
+  // Bitterli's lamp exports NaN normals at some vertices; pbrt-v4 interpolates them into a NaN normal, which falls
+  // back to the geometric one (Triangle::InteractionFromIntersection), and Rimu refused the file. (A zero normal,
+  // which pbrt-v4 leaves out of the blend of the other two, is flat in Rimu too: one "no normal" mark.) Three separate
+  // triangles in z = 0, counter-clockwise from +z; normals tilted towards +x except vertex 0 (NaN) and 5 (zero).
+  test::ScratchFolder dir("pbrt_nan_normals");
+  const std::string tilted = " 0.6 0 0.8\n";
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 9\nproperty float x\nproperty float y\nproperty float z\n"
+                          "property float nx\nproperty float ny\nproperty float nz\nelement face 3\n"
+                          "property list uchar int vertex_indices\nend_header\n"
+                          "0 0 0 nan nan nan\n1 0 0" + tilted + "0 1 0" + tilted +
+                          "2 0 0" + tilted + "3 0 0" + tilted + "2 1 0 0 0 0\n" +
+                          "4 0 0" + tilted + "5 0 0" + tilted + "4 1 0" + tilted +
+                          "3 0 1 2\n3 3 4 5\n3 6 7 8\n";
+  dir.write("odd_normals.ply", ply);
+  const PbrtImport imported = import_pbrt_text(kCamera + "Shape \"plymesh\" \"string filename\" \"odd_normals.ply\"",
+                                               "geometry.pbrt", dir.path, test::library());
+  const auto scene = load_scene(imported.document, "geometry.pbrt", dir.path, test::library());
+  REQUIRE(scene->warnings.size() == 1);
+  CHECK(scene->warnings[0].find("2 mesh vertices have no normal") == 0);
+  const auto shading_normal_at = [&](float x) {
+    Ray r;
+    r.origin = {x, 0.25f, 1.0f};
+    r.direction = {0, 0, -1};
+    r.t_min = 0.0f;
+    r.t_max = 1e30f;
+    const auto hit = scene->geometry.intersect(r);
+    REQUIRE(hit);
+    return hit->shading_normal;
+  };
+  for (const float x : {0.25f, 2.25f}) {  // the NaN and the zero corner: flat, the geometric normal
+    CAPTURE(x);
+    const Vec3 n = shading_normal_at(x);
+    CHECK(n.x == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(n.z == doctest::Approx(1.0));
+  }
+  const Vec3 n = shading_normal_at(4.25f);  // all three normals: interpolated as before
+  CHECK(n.x == doctest::Approx(0.6));
+  CHECK(n.z == doctest::Approx(0.8));
+}

@@ -328,7 +328,10 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
     hit.dpdu = object_to_world ? object_to_world->vector(dpdu) : dpdu;
     hit.dpdv = object_to_world ? object_to_world->vector(dpdv) : dpdv;
   }
-  if (!mesh.normals.empty()) {
+  const auto has_normal = [&](uint32_t vertex) { return length_squared(mesh.normals[vertex]) > 0.0f; };
+  // A corner without a normal (TriangleMesh::normals) makes the triangle flat: pbrt-v4 interpolates the file's NaN
+  // there, and a NaN normal falls back to the geometric one.
+  if (!mesh.normals.empty() && has_normal(tri[0]) && has_normal(tri[1]) && has_normal(tri[2])) {
     Vec3 n = mesh.normals[tri[0]] * w + mesh.normals[tri[1]] * u + mesh.normals[tri[2]] * v;
     if (object_to_world) n = object_to_world->normal(n);
     const float len = length(n);

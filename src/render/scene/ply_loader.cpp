@@ -81,8 +81,8 @@ void read_record(ply::BodyReader& reader, const ply::Element& element, std::vect
   }
 }
 
-// Appends one vertex, `value(i)` being the record's property i; checks what the mesh needs (finite in single
-// precision, non-zero normals) and fails at `record` otherwise.
+// Appends one vertex, `value(i)` being the record's property i; checks what the mesh needs (positions and uvs finite
+// in single precision) and fails at `record` otherwise.
 template <typename Value>
 void append_vertex(ply::BodyReader& reader, const ply::Element& element, uint64_t record, const VertexLayout& layout,
                    Value&& value, TriangleMesh& mesh) {
@@ -100,9 +100,11 @@ void append_vertex(ply::BodyReader& reader, const ply::Element& element, uint64_
   if (layout.normal[0] >= 0) {
     // Normals are normalised in double so that large but finite components do not overflow the length.
     const double nx = value(layout.normal[0]), ny = value(layout.normal[1]), nz = value(layout.normal[2]);
+    // A zero or non-finite normal (exporters write NaN where a vertex's normal is undefined) is kept as (0, 0, 0),
+    // "no normal here": triangles at that vertex are shaded flat, as pbrt-v4 shades them (TriangleMesh::normals).
     const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
-    if (!(len > 0.0) || !std::isfinite(len)) fail("the normal is zero or not finite");
-    mesh.normals.push_back({static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)});
+    if (!(len > 0.0) || !std::isfinite(len)) mesh.normals.push_back({0.0f, 0.0f, 0.0f});
+    else mesh.normals.push_back({static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)});
   }
   if (layout.uv[0] >= 0) {
     const double u = value(layout.uv[0]), v = value(layout.uv[1]);

@@ -86,6 +86,8 @@ struct Scene {
   /// Meshes with shading normals in (or across) the plane of 1 % or more of their area (a warning: see
   /// TriangleMesh::normals_near_plane_area_share)
   size_t meshes_with_normals_near_plane = 0;
+  /// Vertices whose normal was zero or not finite in their file (a warning: their triangles are shaded flat)
+  size_t vertices_without_normal = 0;
   /// Some light is given in photometric units (render/scene/photometric_units.h), inline or through "include":
   /// `rimu` meters the display image of such a scene.
   bool photometric_lights = false;

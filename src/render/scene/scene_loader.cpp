@@ -231,6 +231,10 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   if (scene->degenerate_triangles_removed > 0)
     scene->warnings.push_back(std::to_string(scene->degenerate_triangles_removed) +
                               " degenerate triangles (zero area or not finite) were removed from the meshes");
+  if (scene->vertices_without_normal > 0)
+    scene->warnings.push_back(std::to_string(scene->vertices_without_normal) +
+                              " mesh vertices have no normal (zero or not finite in the file): the triangles at "
+                              "them are shaded flat");
   if (scene->meshes_with_normals_near_plane > 0)
     scene->warnings.push_back(std::to_string(scene->meshes_with_normals_near_plane) +
                               " meshes have shading normals in (or across) the plane of 1 % or more of their area: "

@@ -187,6 +187,7 @@ std::shared_ptr<const AlphaMask> alpha_of(const JsonCursor& shape, LoadContext& 
 void count_normals_near_plane(const TriangleMesh& mesh, Scene& scene) {
   if (mesh.normals_near_plane_area_share() >= TriangleMesh::kNormalsNearPlaneWarningShare)
     ++scene.meshes_with_normals_near_plane;
+  scene.vertices_without_normal += mesh.vertices_without_normal();
 }
 
 // A "matrix": 12 numbers, three rows of a 3 × 4 matrix; InputError if singular.

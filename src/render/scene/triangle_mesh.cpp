@@ -47,16 +47,19 @@ double TriangleMesh::normals_near_plane_area_share() const {
     const float g_length = length(g);
     if (!(g_length > 0.0f) || !std::isfinite(g_length)) continue;  // degenerate: removed elsewhere
     area2 += g_length;
-    int above = 0, below = 0;
+    int above = 0, below = 0, without = 0;
     for (int k = 0; k < 3; ++k) {
       const Vec3 n = normals[indices[i + size_t(k)]];
       const float n_length = length(n);
-      if (!(n_length > 0.0f)) continue;
+      if (!(n_length > 0.0f)) {
+        ++without;  // no normal at this corner: the triangle is shaded flat (normals), nothing lies in its plane
+        continue;
+      }
       const float cos_to_face = dot(n, g) / (n_length * g_length);
       above += cos_to_face > kClearCos;
       below += cos_to_face < -kClearCos;
     }
-    if (above != 3 && below != 3) near_area2 += g_length;
+    if (without == 0 && above != 3 && below != 3) near_area2 += g_length;
   }
   return area2 > 0 ? near_area2 / area2 : 0.0;
 }
@@ -75,9 +78,14 @@ std::string TriangleMesh::validate() const {
   for (size_t i = 0; i < positions.size(); ++i)
     if (!is_finite(positions[i])) return "vertex " + std::to_string(i) + " is not finite";
   for (size_t i = 0; i < normals.size(); ++i)
-    if (!is_finite(normals[i]) || length_squared(normals[i]) == 0.0f)
-      return "normal " + std::to_string(i) + " is zero or not finite";
+    if (!is_finite(normals[i])) return "normal " + std::to_string(i) + " is not finite";
   return {};
+}
+
+size_t TriangleMesh::vertices_without_normal() const {
+  size_t count = 0;
+  for (const Vec3& n : normals) count += length_squared(n) == 0.0f;
+  return count;
 }
 
 }  // namespace rimu

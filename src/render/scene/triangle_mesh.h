@@ -12,7 +12,9 @@ namespace rimu {
 
 struct TriangleMesh {
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;   ///< per vertex, optional (empty = flat shading)
+  /// Per vertex, optional (empty = flat shading). (0, 0, 0) = no normal at this vertex (a PLY file's zero or NaN
+  /// normal): a triangle with such a corner is shaded flat, as pbrt-v4 shades one whose interpolated normal is NaN.
+  std::vector<Vec3> normals;
   std::vector<Vec2> uvs;       ///< per vertex, optional
   std::vector<uint32_t> indices;  ///< three per triangle, counter-clockwise seen from the front
   /// The texture coordinates of a mesh without uvs, the same for every triangle, at its vertices 0, 1, 2.
@@ -38,6 +40,8 @@ struct TriangleMesh {
   /// Warnings about normals near the plane are given from this share of a mesh's area (1 %): a few such triangles
   /// are a crease or a sliver, 1 % of the area or more is how the mesh was made (a floor whose normals lie along it).
   static constexpr double kNormalsNearPlaneWarningShare = 0.01;
+  /// How many vertices have the normal (0, 0, 0) ("no normal here"), 0 for meshes without normals.
+  size_t vertices_without_normal() const;
   /// Checks indices are in range and every number is finite; returns an empty string or what is wrong.
   std::string validate() const;
 };

@@ -251,7 +251,10 @@ void PbrtConverter::emit_mesh(PbrtParams& p, std::vector<Vec3d> positions, std::
       const Vec3d& a = normals[indices[t]];
       const Vec3d& b = normals[indices[t + 1]];
       const Vec3d& c = normals[indices[t + 2]];
-      flip = dot(g, {a[0] + b[0] + c[0], a[1] + b[1] + c[1], a[2] + b[2] + c[2]}) < 0;
+      // A corner without a normal (a PLY file's zero or NaN, read as (0, 0, 0)) leaves pbrt's normal NaN, which
+      // orients nothing: such a triangle keeps its winding's front.
+      const bool all_normals = dot(a, a) > 0 && dot(b, b) > 0 && dot(c, c) > 0;
+      if (all_normals) flip = dot(g, {a[0] + b[0] + c[0], a[1] + b[1] + c[1], a[2] + b[2] + c[2]}) < 0;
     }
     flips[t / 3] = flip;
   }

@@ -177,7 +177,7 @@ std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem:
   // by stb_image as 8-bit sRGB whatever "encoding" says (the texture's default, "linear", never reaches it).
   const std::string encoding = tp.string("encoding", "sRGB");  // read (and so not listed) for every format
   if (extension == ".exr" || extension == ".pfm" || extension == ".hdr") return "linear";
-  if (extension != ".png") {
+  if (extension != ".png" && extension != ".qoi") {  // (a QOI file carries its own)
     if (encoding != "sRGB")
       ignore("imagemap encoding \"" + encoding + "\" of a " + extension + " image (pbrt-v4 reads it as sRGB too)", where);
     return "srgb";
