@@ -23,10 +23,11 @@ namespace rimu {
 /// level 0): each texel it reads is decoded to linear RGB, scaled and inverted (below), and weighted; the weighted
 /// RGB is upsampled once (RgbUpsampler::reflectance_coefficients: the smoothest spectrum, gamut-mapped into [0, 1],
 /// 0.15-0.3 µs) and evaluated at the path's four wavelengths, clamped to [0, 1]. This is pbrt-v4's order (filter
-/// the RGB, then upsample): the lookup's colour is the filtered colour of the texels, exactly as when the texels'
-/// spectra were blended; a blend of several colours gets the smoothest spectrum of the blended colour instead of
-/// the blend of the texels' smoothest spectra (a metamer of it). docs/upsampling.md ("Fast path") has the error
-/// of the upsampling added.
+/// the RGB, then upsample): the lookup's colour is the filtered colour of the texels, as when the texels' spectra
+/// were blended (apart from colours the upsampler moves: beyond the brightness limit, the blend is mapped rather
+/// than the texels); a blend of several colours gets the smoothest spectrum of the blended colour instead of the
+/// blend of the texels' smoothest spectra (a metamer of it). docs/upsampling.md ("Fast path") has the error of the
+/// upsampling added. A coarser level's texel is scaled and clamped as one texel (pbrt-v4 scales after filtering).
 /// `scale` (≥ 0) and `invert` act on each texel's RGB as it is read, in pbrt-v4's order for a reflectance image:
 /// v = scale·rgb, then max(0, 1 − v) if inverted, then clamped to [0, 1] per channel (a scale above 1 brightens
 /// the texels up to white, as pbrt's does; a reflectance spectrum cannot exceed 1).
