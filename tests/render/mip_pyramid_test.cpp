@@ -1,13 +1,17 @@
 // MIP maps (render/image/mip_pyramid.h): every level keeps the image's mean, filtered lookups are weighted means
-// (exact on a constant image), the level follows the footprint, and a texture's lookup blends upsampled spectra.
+// (exact on a constant image), the level follows the footprint, 8-bit levels are their region's linear mean to half a
+// code, and a texture's lookup upsamples the filtered RGB once.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
 #include "render/image/image_texture.h"
 #include "render/image/mip_pyramid.h"
+#include "render/image/rgb_texels.h"
 #include "test_support.h"
 
 using namespace rimu;
@@ -124,29 +128,89 @@ TEST_CASE("MIP pyramid: EWA follows an anisotropic footprint, bounded by max_ani
   CHECK(filtered(p, {TextureFilter::ewa, 1.0f}, centre, across_thin, along) == doctest::Approx(0.5f).epsilon(0.05));
 }
 
-TEST_CASE("image texture: a filtered lookup is the blend of the texels' upsampled spectra, clamped once") {
+TEST_CASE("image texture: a filtered lookup upsamples the filtered RGB once") {
   SpectralLibrary& library = test::library();
   auto upsampler = std::make_shared<const RgbUpsampler>(library, RgbColourSpace::named("srgb-linear"));
-  // 2×2 texels of two colours in a checker: level 1 is their mean, whose spectrum is the mean of their spectra.
+  // 2×2 texels of two colours in a checker: level 1 is their mean.
   const Rgb a{0.7, 0.2, 0.1}, b{0.1, 0.4, 0.8};
   std::vector<float> rgb;
   for (const Rgb& t : {a, b, b, a}) rgb.insert(rgb.end(), {float(t.r), float(t.g), float(t.b)});
   auto image = std::make_shared<const RgbImage>(2, 2, rgb);
   const SampledWavelengths lambda{Float4(420.0f, 510.0f, 580.0f, 660.0f), Float4(1.0f / 470.0f)};
+  const auto upsampled = [&](Rgb c) {
+    return upsampler->basis().evaluate(upsampler->reflectance_coefficients(c), lambda.lambda_nm(), Float4(0.0f), Float4(1.0f));
+  };
+  const SampledSpectrum mean = upsampled({0.5 * (a.r + b.r), 0.5 * (a.g + b.g), 0.5 * (a.b + b.b)});
+  const SampledSpectrum at_a = upsampled(a);
   for (const TextureFilter filter : kFilters) {
     CAPTURE(int(filter));
     const ImageTexture texture(image, upsampler, 1.0f, false, {filter, 8.0f});
-    CHECK(texture.pyramid().levels() == 2);
+    CHECK(texture.levels() == 2);
     const Vec2 st{0.25f, 0.75f};  // texel (0, 0): colour a
     const SampledSpectrum sharp = texture.evaluate_footprint(st, {}, {}, lambda);
     const SampledSpectrum plain = texture.evaluate(st, lambda);
     const SampledSpectrum wide = texture.evaluate_footprint(st, {1.0f, 0.0f}, {0.0f, 1.0f}, lambda);
-    const SampledSpectrum ta = texture.evaluate({0.25f, 0.75f}, lambda), tb = texture.evaluate({0.75f, 0.75f}, lambda);
     for (int lane = 0; lane < 4; ++lane) {
       CAPTURE(lane);
       CHECK(sharp[lane] == doctest::Approx(plain[lane]).epsilon(1e-5));
-      // Both texels' spectra lie inside [0, 1] at these wavelengths, so the clamp is inactive and the mean is exact.
-      CHECK(wide[lane] == doctest::Approx(0.5f * (ta[lane] + tb[lane])).epsilon(1e-4));
+      CHECK(plain[lane] == doctest::Approx(at_a[lane]).epsilon(1e-5));
+      // The coarsest level is the mean colour (float rounding), upsampled once.
+      CHECK(wide[lane] == doctest::Approx(mean[lane]).epsilon(1e-4));
     }
   }
+}
+
+TEST_CASE("image texture: 8-bit texels are kept as codes, their levels the linear mean to half a code") {
+  SpectralLibrary& library = test::library();
+  auto upsampler = std::make_shared<const RgbUpsampler>(library, RgbColourSpace::named("srgb-linear"));
+  // 4×2 sRGB codes with mixed values: level 1 (2×1) averages 2×2 blocks in linear light, level 2 both blocks.
+  const std::vector<std::uint8_t> codes = {200, 30, 10,  10, 90, 220, 255, 255, 255, 0,   0,  0,
+                                           17,  128, 64, 240, 5, 99,  1,   2,   3,   250, 128, 60};
+  const float* table = RgbImage::decode_table(true);
+  auto image = std::make_shared<const RgbImage>(4, 2, codes, true);
+  const ImageTexture texture(image, upsampler, 1.0f, false, {TextureFilter::trilinear, 8.0f});
+  CHECK(texture.levels() == 3);
+  CHECK(texture.texel_bytes() == (8 + 2 + 1) * 3);
+  // Level 0: a lookup at a texel centre decodes its codes exactly as RgbImage::pixel does.
+  const SampledWavelengths lambda{Float4(430.0f, 500.0f, 570.0f, 640.0f), Float4(1.0f / 470.0f)};
+  const auto upsampled = [&](Rgb c) {
+    return upsampler->basis().evaluate(upsampler->reflectance_coefficients(c), lambda.lambda_nm(), Float4(0.0f), Float4(1.0f));
+  };
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const SampledSpectrum got = texture.evaluate({(x + 0.5f) / 4.0f, 1.0f - (y + 0.5f) / 2.0f}, lambda);
+      const SampledSpectrum want = upsampled(image->pixel(x, y));
+      for (int lane = 0; lane < 4; ++lane) CHECK(got[lane] == doctest::Approx(want[lane]).epsilon(1e-6));
+    }
+  // The coarsest level, stored as codes: each channel is the nearest code to the image's linear mean, so within
+  // half a code step of it. Read back through a footprint wider than the image.
+  const Rgb8Codec codec{table};
+  Rgb mean;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const Rgb p = image->pixel(x, y);
+      mean.r += p.r / 8, mean.g += p.g / 8, mean.b += p.b / 8;
+    }
+  for (double m : {mean.r, mean.g, mean.b}) {
+    const std::uint8_t code = codec.nearest(float(m));
+    CHECK(std::abs(double(table[code]) - m) <=
+          0.5 * double(table[std::min(255, code + 1)] - table[std::max(0, code - 1)]) + 1e-6);
+  }
+  // Level 1's two texels hold codes nearest their blocks' means, and level 2 their mean's nearest code: the
+  // coarsest lookup is the upsampled colour of those codes.
+  const auto block = [&](int x0) {
+    Rgb m;
+    for (int y = 0; y < 2; ++y)
+      for (int x = x0; x < x0 + 2; ++x) {
+        const Rgb p = image->pixel(x, y);
+        m.r += p.r / 4, m.g += p.g / 4, m.b += p.b / 4;
+      }
+    return codec.decode(codec.encode({float(m.r), float(m.g), float(m.b)}));
+  };
+  const LinearRgbTexel left = block(0), right = block(2);
+  const LinearRgbTexel top = codec.decode(codec.encode(
+      {0.5f * (left.r + right.r), 0.5f * (left.g + right.g), 0.5f * (left.b + right.b)}));
+  const SampledSpectrum coarsest = texture.evaluate_footprint({0.5f, 0.5f}, {4.0f, 0.0f}, {0.0f, 4.0f}, lambda);
+  const SampledSpectrum want = upsampled({top.r, top.g, top.b});
+  for (int lane = 0; lane < 4; ++lane) CHECK(coarsest[lane] == doctest::Approx(want[lane]).epsilon(1e-6));
 }

@@ -37,13 +37,14 @@ void check_image_header(const DecodedImage& header, std::uintmax_t file_bytes, c
   }
 }
 
-DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored) {
+DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit) {
   const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block the library
   const ImageModuleApi& library = image_library();
   // OpenEXR allocates header attributes at their claimed size inside the library: check them first.
   check_exr_header_sizes(path, file_bytes);
   DecodedImage image;
   image.as_stored = as_stored;
+  image.bytes_if_8bit = bytes_if_8bit;
   if (std::string error; !library.read_header(path.string(), image, error))
     throw InputError({path.string(), 0, ""}, "cannot read the image: " + error);
   check_image_header(image, file_bytes, path.string());
@@ -52,7 +53,7 @@ DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored) 
     throw InputError({path.string(), 0, ""}, error);
   // The file was read twice: one that changed in between is refused rather than read past its pixels.
   if (image.width != header.width || image.height != header.height || image.channels != header.channels ||
-      image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels))
+      image.pixels.size() + image.bytes.size() != std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels))
     throw InputError({path.string(), 0, ""}, "the image changed while it was read");
   return image;
 }

@@ -15,7 +15,7 @@
 namespace rimu {
 
 /// The most pixels an image may have: 2^27 = 134,217,728 (16384 × 8192, the largest common environment map).
-/// A texture costs up to about 100 bytes per texel while loading and 64-76 bytes kept (docs/scene-format.md,
+/// An environment map costs up to about 100 bytes per texel while loading and 68-76 bytes kept (docs/scene-format.md,
 /// "Limits"), so this bounds one image at about 13 GB; 16384 × 16384 (27 GB) is refused.
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 27;
 
@@ -30,9 +30,9 @@ inline constexpr std::uint64_t kMaxPixelsPerFileByte = 16384;
 /// more than kMaxPixelsPerFileByte pixels per byte of file.
 void check_image_header(const DecodedImage& header, std::uintmax_t file_bytes, const std::string& file);
 
-/// The pixels of `path` as floats (DecodedImage), after check_input_file and check_image_header. `as_stored` as in
-/// DecodedImage. Throws InputError naming the file for a file that is not a regular image file, a header that fails
+/// The pixels of `path` as floats (DecodedImage), or as bytes for a file of 8-bit samples if `bytes_if_8bit`, after
+/// check_input_file and check_image_header. `as_stored` as in DecodedImage. Throws InputError naming the file for a file that is not a regular image file, a header that fails
 /// the checks, or pixels the library cannot decode.
-DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored);
+DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit = false);
 
 }  // namespace rimu

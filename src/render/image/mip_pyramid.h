@@ -9,7 +9,6 @@
 #include <cmath>
 #include <vector>
 
-#include "spectral/upsampling/upsampling_basis.h"
 #include "transport/geometry/vector.h"
 
 namespace rimu {
@@ -28,11 +27,18 @@ struct TextureFilterOptions {
   float max_anisotropy = 8.0f;
 };
 
-/// acc += w·t for the texel types a pyramid holds.
+/// acc += w·t for the values a pyramid averages.
 inline void add_scaled(float& acc, float t, float w) { acc += w * t; }
-inline void add_scaled(BasisCoefficients& acc, const BasisCoefficients& t, float w) {
-  for (int k = 0; k < kUpsamplingBasisSize; ++k) acc.c[size_t(k)] += w * t.c[size_t(k)];
-}
+
+/// How a pyramid's texels are averaged into a coarser level: `decode` gives the value averaged (`Linear`), `encode`
+/// stores the average. This one averages texels as they are stored (floats, linear RGB floats); 8-bit texels
+/// average in linear light and round back to their code (render/image/rgb_texels.h).
+template <typename Texel>
+struct StoredTexelCodec {
+  using Linear = Texel;
+  const Texel& decode(const Texel& t) const { return t; }
+  Texel encode(const Linear& v) const { return v; }
+};
 
 /// The weight Heckbert's EWA gives a texel at squared elliptical radius r² ∈ [0, 1): a Gaussian exp(−α r²) − exp(−α)
 /// with α = 2 (zero at the ellipse's edge), from a 128-entry table.
@@ -48,11 +54,14 @@ template <typename Texel>
 class MipPyramid {
  public:
   MipPyramid() = default;
-  /// `base` holds width × height texels, row 0 at the top. Cost: ⅓ of the image's texels, once.
-  MipPyramid(int width, int height, std::vector<Texel> base) {
+  /// `base` holds width × height texels, row 0 at the top; `codec` says how texels are averaged (StoredTexelCodec).
+  /// Cost: ⅓ of the image's texels, once, plus one level's rows of `Codec::Linear` while a level is made.
+  template <typename Codec = StoredTexelCodec<Texel>>
+  MipPyramid(int width, int height, std::vector<Texel> base, const Codec& codec = {}) {
     assert(width > 0 && height > 0 && base.size() == size_t(width) * size_t(height));
     levels_.push_back({width, height, std::move(base)});
-    while (levels_.back().width > 1 || levels_.back().height > 1) levels_.push_back(downsampled(levels_.back()));
+    while (levels_.back().width > 1 || levels_.back().height > 1)
+      levels_.push_back(downsampled(levels_.back(), codec));
   }
 
   int levels() const { return int(levels_.size()); }
@@ -236,32 +245,37 @@ class MipPyramid {
     return taps;
   }
 
-  static Level downsampled(const Level& fine) {
+  template <typename Codec>
+  static Level downsampled(const Level& fine, const Codec& codec) {
+    using Linear = typename Codec::Linear;
     Level coarse;
     coarse.width = std::max(1, fine.width / 2);
     coarse.height = std::max(1, fine.height / 2);
     const std::vector<AxisTap> tx = axis_taps(fine.width, coarse.width), ty = axis_taps(fine.height, coarse.height);
-    // Rows first (fine.height × coarse.width), then columns.
-    std::vector<Texel> rows(size_t(fine.height) * size_t(coarse.width));
-    for (int y = 0; y < fine.height; ++y)
-      for (int x = 0; x < coarse.width; ++x) {
-        Texel acc{};
-        const AxisTap& tap = tx[size_t(x)];
-        for (int k = 0; k < 3; ++k)
-          if (tap.weight[size_t(k)] > 0.0f)
-            add_scaled(acc, fine.texels[size_t(y) * size_t(fine.width) + size_t(tap.first + k)], tap.weight[size_t(k)]);
-        rows[size_t(y) * size_t(coarse.width) + size_t(x)] = acc;
-      }
+    // Rows first, then columns, one coarse row at a time: the fine rows it covers are filtered across into `across`
+    // and summed into `sum` (two coarse rows of Linear values, not a whole level: a fine row shared by two coarse
+    // rows is filtered twice).
     coarse.texels.resize(size_t(coarse.width) * size_t(coarse.height));
-    for (int y = 0; y < coarse.height; ++y)
-      for (int x = 0; x < coarse.width; ++x) {
-        Texel acc{};
-        const AxisTap& tap = ty[size_t(y)];
-        for (int k = 0; k < 3; ++k)
-          if (tap.weight[size_t(k)] > 0.0f)
-            add_scaled(acc, rows[size_t(tap.first + k) * size_t(coarse.width) + size_t(x)], tap.weight[size_t(k)]);
-        coarse.texels[size_t(y) * size_t(coarse.width) + size_t(x)] = acc;
+    std::vector<Linear> across(size_t(coarse.width)), sum(size_t(coarse.width));
+    for (int y = 0; y < coarse.height; ++y) {
+      std::fill(sum.begin(), sum.end(), Linear{});
+      const AxisTap& row_tap = ty[size_t(y)];
+      for (int k = 0; k < 3; ++k) {
+        if (!(row_tap.weight[size_t(k)] > 0.0f)) continue;
+        const size_t fine_row = size_t(row_tap.first + k) * size_t(fine.width);
+        for (int x = 0; x < coarse.width; ++x) {
+          Linear acc{};
+          const AxisTap& tap = tx[size_t(x)];
+          for (int j = 0; j < 3; ++j)
+            if (tap.weight[size_t(j)] > 0.0f)
+              add_scaled(acc, codec.decode(fine.texels[fine_row + size_t(tap.first + j)]), tap.weight[size_t(j)]);
+          across[size_t(x)] = acc;
+        }
+        for (int x = 0; x < coarse.width; ++x) add_scaled(sum[size_t(x)], across[size_t(x)], row_tap.weight[size_t(k)]);
       }
+      for (int x = 0; x < coarse.width; ++x)
+        coarse.texels[size_t(y) * size_t(coarse.width) + size_t(x)] = codec.encode(sum[size_t(x)]);
+    }
     return coarse;
   }
 };

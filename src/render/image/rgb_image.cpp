@@ -1,5 +1,6 @@
 #include "render/image/rgb_image.h"
 
+#include <array>
 #include <cmath>
 
 #include "render/image/image_file.h"
@@ -21,15 +22,41 @@ ImageEncoding default_encoding_for(const std::filesystem::path& path) {
   return encoding;
 }
 
-RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
-  const DecodedImage image = read_image_file(path, false);
-  const int w = image.width, channels = image.channels, h = image.height;
-  const std::vector<float>& raw = image.pixels;
+const float* RgbImage::decode_table(bool srgb_transfer) {
+  // The float OpenImageIO gives for a code (code/255 as a float), then decoded as RgbImage::read decodes floats.
+  struct Tables {
+    std::array<float, 256> linear{}, srgb{};
+    Tables() {
+      for (int code = 0; code < 256; ++code) {
+        const float v = float(code) / 255.0f;
+        linear[size_t(code)] = v;
+        srgb[size_t(code)] = float(srgb_decode(v));
+      }
+    }
+  };
+  static const Tables tables;  // a pure function's cache, filled on first use
+  return srgb_transfer ? tables.srgb.data() : tables.linear.data();
+}
 
-  std::vector<float> rgb(size_t(w) * size_t(h) * 3);
-  for (size_t i = 0; i < size_t(w) * size_t(h); ++i) {
+RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
+  DecodedImage image = read_image_file(path, false, true);
+  const int w = image.width, channels = image.channels, h = image.height;
+  const size_t count = size_t(w) * size_t(h);
+  const auto channel = [channels](int c) { return size_t(channels >= 3 ? c : 0); };
+  if (!image.bytes.empty()) {
+    // 8-bit codes kept as they are (every code is finite): RGB as read, or grey repeated, or RGB without alpha.
+    if (channels == 3) return RgbImage(w, h, std::move(image.bytes), encoding.srgb_transfer);
+    std::vector<std::uint8_t> rgb8(count * 3);
+    for (size_t i = 0; i < count; ++i)
+      for (int c = 0; c < 3; ++c) rgb8[3 * i + size_t(c)] = image.bytes[i * size_t(channels) + channel(c)];
+    image.bytes = {};  // freed before the caller's texels are made
+    return RgbImage(w, h, std::move(rgb8), encoding.srgb_transfer);
+  }
+  const std::vector<float>& raw = image.pixels;
+  std::vector<float> rgb(count * 3);
+  for (size_t i = 0; i < count; ++i) {
     for (int c = 0; c < 3; ++c) {
-      float v = raw[i * size_t(channels) + size_t(channels >= 3 ? c : 0)];
+      float v = raw[i * size_t(channels) + channel(c)];
       if (!std::isfinite(v))
         throw InputError({path.string(), 0, ""}, "pixel (" + std::to_string(i % size_t(w)) + ", " +
                                                      std::to_string(i / size_t(w)) + ") is not a finite number");

@@ -164,8 +164,19 @@ bool read_pixels_uncaptured(const std::string& path, DecodedImage& image, std::s
     error = "the image is empty";
     return false;
   }
-  image.pixels.resize(size_t(image.width) * size_t(image.height) * size_t(image.channels));
-  if (!input->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+  const size_t samples = size_t(image.width) * size_t(image.height) * size_t(image.channels);
+  // 8-bit files are read as they are stored: OpenImageIO then needs no conversion buffer (it allocates up to 64 MiB
+  // to convert to floats) and the caller keeps a quarter of the floats' memory.
+  const bool bytes = image.bytes_if_8bit && input->spec().format == OIIO::TypeDesc::UINT8;
+  void* destination = nullptr;
+  if (bytes) {
+    image.bytes.resize(samples);
+    destination = image.bytes.data();
+  } else {
+    image.pixels.resize(samples);
+    destination = image.pixels.data();
+  }
+  if (!input->read_image(0, 0, 0, image.channels, bytes ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT, destination)) {
     const std::string reason = input->geterror();
     error = "cannot read the pixels: " +
             (reason.empty() ? std::string("OpenImageIO gives no reason (is the file truncated or damaged?)") : reason);
