@@ -323,3 +323,81 @@ TEST_CASE("adaptive sampling: with unequal counts each pixel's mean agrees with 
     CHECK(std::abs(d.mean) <= test::kSigmas * d.standard_error);
   }
 }
+
+namespace {
+
+// A film whose pixels take samples from a rule instead of a scene: passes of 16 samples per pixel planned by
+// `sampling`, as rimu's render job plans them. Every sample is 1 (at one fixed wavelength, so Y is the sample times
+// a constant), except in pixels for which `rare(x, y)` holds, where a sample is 32 with probability 1/32 (a
+// deterministic hash of the pixel and its sample index): a rare bright path, 16 % relative error per sample.
+struct RarePathFilm {
+  static constexpr int kW = 32, kH = 16;
+  Film film{FilmOptions{kW, kH, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library())};
+  AdaptiveSampling sampling;
+  int reached = 0;
+
+  explicit RarePathFilm(const AdaptiveSamplingSettings& settings) : sampling(film, settings) {}
+
+  static bool bright(int x, int y, int index) {
+    uint64_t z = uint64_t(x) * 0x9E3779B97F4A7C15ull + uint64_t(y) * 0xBF58476D1CE4E5B9ull + uint64_t(index) + 1;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;  // splitmix64's finaliser
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return ((z ^ (z >> 31)) & 31) == 0;
+  }
+
+  template <typename Rare>
+  void run_passes(int passes, const Rare& rare) {
+    const SampledWavelengths lambda = SampledWavelengths::sample_visible(0.5f);
+    for (int p = 0; p < passes; ++p) {
+      sampling.plan_pass(16);
+      reached += 16;
+      for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+          for (int k = 0, first = sampling.samples(x, y); k < sampling.pass_samples(x, y); ++k)
+            film.add_sample(x, y, Float4(rare(x, y) && bright(x, y, first + k) ? 32.0f : 1.0f), lambda);
+      sampling.after_pass(film, reached);
+    }
+  }
+};
+
+}  // namespace
+
+TEST_CASE("adaptive sampling: a pixel whose neighbourhood finds rare bright paths is not converged until its own "
+          "samples are enough for the neighbourhood's variance") {
+  // Columns 0–15 find rare bright paths, except a 7 × 7 block (x, y in 4–10) whose pixels, by construction, never
+  // do: each looks converged on its own (both halves exactly 1), and so do its 3 × 3 windows up to the block's
+  // centre's dilation radius (2). Columns 16–31 are exactly 1 everywhere: truly converged.
+  auto rare = [](int x, int y) { return x < 16 && !(x >= 4 && x <= 10 && y >= 4 && y <= 10); };
+  AdaptiveSamplingSettings settings;
+  settings.noise_threshold = 0.05;
+  settings.min_spp = 16;
+  settings.max_spp = 1 << 20;
+  SUBCASE("with the neighbourhood's floor") {
+    RarePathFilm f(settings);
+    f.run_passes(4, rare);  // 64 samples a pixel before any shares
+    // The quiet right side, 7 or more columns from any rare path (no neighbourhood variance), stopped at the
+    // first decision (after pass 2: 32 samples).
+    for (int y = 0; y < RarePathFilm::kH; ++y) CHECK(f.sampling.samples(28, y) == 32);
+    // The block's centre stops only when every pixel within 2 of it has converged. (5, 7) is one: its own 3 × 3
+    // window is exactly 1, but its 7 × 7 neighbourhood holds 14 pixels with a bright sample in 32 (variance per
+    // sample 31²·p(1 − p) ≈ 29 on a mean 1 + 31p ≈ 2) and 35 without: pooled, 14 · 29 / (14 · 3.9 + 35) ≈ 4.6 per
+    // sample. A quarter of that over its 64 samples is an error of ≈ 0.13, over the 5 % threshold.
+    INFO("(5, 7)'s error " << f.sampling.relative_error(5, 7) << " at " << f.sampling.samples(5, 7) << " spp");
+    CHECK(f.sampling.relative_error(5, 7) > 0.05f);
+    CHECK(f.sampling.relative_error(5, 7) < 0.3f);
+    CHECK(f.sampling.active(7, 7));
+    // Enough samples for the neighbourhood's variance: the corners (5, 5) etc. pool ≈ 5.9 and converge past
+    // 0.25 · 5.9 / 0.05² ≈ 600 samples; then the centre stops.
+    f.run_passes(200, rare);  // enough samples for the neighbourhood's variance: the centre converges
+    INFO("centre's error " << f.sampling.relative_error(7, 7) << " at " << f.sampling.samples(7, 7) << " spp");
+    CHECK_FALSE(f.sampling.active(7, 7));
+    CHECK(f.sampling.samples(5, 5) > 500);
+  }
+  SUBCASE("without it (neighbourhood_share 0) the centre stops with the quiet side: what the floor prevents") {
+    settings.neighbourhood_share = 0.0;
+    RarePathFilm f(settings);
+    f.run_passes(4, rare);
+    CHECK(f.sampling.samples(28, 0) == 32);
+    CHECK(f.sampling.samples(7, 7) == 32);
+  }
+}

@@ -28,6 +28,7 @@ AdaptiveSampling::AdaptiveSampling(const Film& film, const AdaptiveSamplingSetti
   error_.assign(n, 0.0f);
   relative_squared_.assign(n, INFINITY);
   colour_squared_.assign(n, INFINITY);
+  colour_floor_.assign(n, 0.0);
   active_.assign(n, 1);
   active_count_ = n;
 }
@@ -38,15 +39,43 @@ namespace {
 // small channels still count (relMSE counts them whole), but a channel near 0 cannot take every sample.
 constexpr double kChannelFloor = 0.01;
 
-// The relative standard error² of a pixel's mean from its half sums a, b over half weights n_a, n_b (see the header);
-// `floor` bounds the mean from below (0 for a black pixel without variation, ∞ with an empty half).
-double relative_error_squared(double a_sum, double b_sum, double na, double nb, double floor) {
-  if (!(na > 0) || !(nb > 0)) return INFINITY;
-  const double a = a_sum / na, b = b_sum / nb, mean = (a_sum + b_sum) / (na + nb);
-  const double standard_error = std::abs(a - b) / std::sqrt((1.0 / na + 1.0 / nb) * (na + nb));
-  if (standard_error == 0.0) return 0.0;
-  const double relative = standard_error / std::max({std::abs(mean), floor, 1e-30});
-  return relative * relative;
+// A pixel's mean from its half sums a, b over half weights n_a, n_b (see the header): the squared standard error of
+// the mean and the squared mean, the latter bounded below by `floor` (0 for a black pixel without variation).
+struct ErrorTerms {
+  double squared_error = INFINITY;  ///< +∞ with an empty half: no estimate
+  double squared_mean = 0.0;
+  double relative_squared() const {
+    if (squared_error == 0.0) return 0.0;
+    return squared_error / std::max(squared_mean, 1e-60);
+  }
+};
+
+ErrorTerms error_terms(double a_sum, double b_sum, double na, double nb, double floor) {
+  if (!(na > 0) || !(nb > 0)) return {};
+  const double a = a_sum / na, b = b_sum / nb, mean = std::max(std::abs((a_sum + b_sum) / (na + nb)), floor);
+  const double difference = a - b;
+  return {difference * difference / ((1.0 / na + 1.0 / nb) * (na + nb)), mean * mean};
+}
+
+// The mean of `values` (w × h, row by row) over the (2r + 1)² square around each pixel, clipped to the image.
+// Summed directly (rows, then columns: (2r + 1) additions a pixel each way), not from a summed-area table, whose
+// differences would lose a dark pixel's small error next to a huge one; a window holding +∞ has the mean +∞.
+std::vector<double> window_means(const std::vector<double>& values, int w, int h, int r) {
+  std::vector<double> rows(values.size()), means(values.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double sum = 0.0;
+      for (int u = std::max(0, x - r); u <= std::min(w - 1, x + r); ++u) sum += values[size_t(y) * size_t(w) + size_t(u)];
+      rows[size_t(y) * size_t(w) + size_t(x)] = sum;
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double sum = 0.0;
+      for (int v = std::max(0, y - r); v <= std::min(h - 1, y + r); ++v) sum += rows[size_t(v) * size_t(w) + size_t(x)];
+      const int count = (std::min(w - 1, x + r) - std::max(0, x - r) + 1) * (std::min(h - 1, y + r) - std::max(0, y - r) + 1);
+      means[size_t(y) * size_t(w) + size_t(x)] = sum / count;
+    }
+  return means;
 }
 
 }  // namespace
@@ -68,22 +97,17 @@ uint64_t AdaptiveSampling::plan_pass(int pass_samples) {
   // difficulty is even.
   std::vector<double> deviation(n, -1.0);  // −1: no estimate (one half empty), the pixel takes a uniform share
   double deviation_sum = 0.0, samples_sum = 0.0;
-  const int w = bounds_.width(), h = bounds_.height(), r = settings_.allocation_radius_px;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = size_t(y) * size_t(w) + size_t(x);
-      if (!active_[i]) continue;
-      samples_sum += samples_[i];
-      double sum = 0.0;
-      int count = 0;
-      for (int v = std::max(0, y - r); v <= std::min(h - 1, y + r); ++v)
-        for (int u = std::max(0, x - r); u <= std::min(w - 1, x + r); ++u, ++count)
-          sum += colour_squared_[size_t(v) * size_t(w) + size_t(u)];
-      if (std::isfinite(sum)) {
-        deviation[i] = std::sqrt(sum / count) * std::sqrt(double(samples_[i]));
-        deviation_sum += deviation[i];
-      }
+  const std::vector<double> colour_window =
+      window_means(colour_squared_, bounds_.width(), bounds_.height(), settings_.allocation_radius_px);
+  for (size_t i = 0; i < n; ++i) {
+    if (!active_[i]) continue;
+    samples_sum += samples_[i];
+    const double squared = std::max(colour_window[i], colour_floor_[i]);  // the neighbourhood's floor: update_errors
+    if (std::isfinite(squared)) {
+      deviation[i] = std::sqrt(squared * double(samples_[i]));
+      deviation_sum += deviation[i];
     }
+  }
   // Targets after the pass: the counts, pass included, shared in proportion to the deviations. The pass gives each
   // pixel one sample and the rest to the pixels short of their targets, in proportion to the shortfall.
   const double budget = double(pass_samples) * double(active_count_);
@@ -167,14 +191,29 @@ double AdaptiveSampling::mean_samples() const {
 
 void AdaptiveSampling::update_errors() {
   const int w = bounds_.width(), h = bounds_.height();
-  for (size_t i = 0; i < relative_squared_.size(); ++i) {
+  const size_t n = relative_squared_.size();
+  // Each pixel's variance per sample (SE² · n) and squared mean, for the neighbourhood's floor: luminance, then
+  // linear R, G, B. A pixel without an estimate yet (an empty half) adds nothing to them.
+  std::vector<double> variance[4], mean_squared[4];
+  for (int k = 0; k < 4; ++k) {
+    variance[k].assign(n, 0.0);
+    mean_squared[k].assign(n, 0.0);
+  }
+  auto add = [&](int k, size_t i, const ErrorTerms& terms, double samples) {
+    if (!std::isfinite(terms.squared_error)) return;
+    variance[k][i] = terms.squared_error * samples;
+    mean_squared[k][i] = terms.squared_mean;
+  };
+  for (size_t i = 0; i < n; ++i) {
     const double na = half_weight_[0][i], nb = half_weight_[1][i];
     const double* a = &half_channels_[0][3 * i];
     const double* b = &half_channels_[1][3 * i];
     // Luminance: Y of an XYZ film, R + G + B of a camera film.
     const double a_luminance = camera_film_ ? a[0] + a[1] + a[2] : a[1];
     const double b_luminance = camera_film_ ? b[0] + b[1] + b[2] : b[1];
-    relative_squared_[i] = relative_error_squared(a_luminance, b_luminance, na, nb, 0.0);
+    const ErrorTerms luminance = error_terms(a_luminance, b_luminance, na, nb, 0.0);
+    relative_squared_[i] = luminance.relative_squared();
+    add(0, i, luminance, na + nb);
     // Colour: the mean over linear R, G, B, each channel's mean bounded below by kChannelFloor of the largest.
     double a_rgb[3], b_rgb[3], largest = 0.0;
     for (int c = 0; c < 3; ++c) {
@@ -184,19 +223,32 @@ void AdaptiveSampling::update_errors() {
     }
     const double floor = kChannelFloor * largest / std::max(na + nb, 1e-300);
     double colour = 0.0;
-    for (int c = 0; c < 3; ++c) colour += relative_error_squared(a_rgb[c], b_rgb[c], na, nb, floor) / 3.0;
+    for (int c = 0; c < 3; ++c) {
+      const ErrorTerms channel = error_terms(a_rgb[c], b_rgb[c], na, nb, floor);
+      colour += channel.relative_squared() / 3.0;
+      add(1 + c, i, channel, na + nb);
+    }
     colour_squared_[i] = colour;
   }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double sum = 0.0;
-      int count = 0;
-      for (int v = std::max(0, y - 1); v <= std::min(h - 1, y + 1); ++v)
-        for (int u = std::max(0, x - 1); u <= std::min(w - 1, x + 1); ++u, ++count)
-          sum += relative_squared_[size_t(v) * size_t(w) + size_t(u)];
-      const double rms = std::sqrt(sum / count);
-      error_[size_t(y) * size_t(w) + size_t(x)] = std::isfinite(rms) ? float(std::min(rms, 3.0e38)) : 3.0e38f;
-    }
+  // The floor (see the header): the neighbourhood's pooled relative variance per sample, Σ variance / Σ mean², over
+  // the pixel's own samples, times neighbourhood_share. Pooled, not the mean of the pixels' relative variances: a
+  // nearly black pixel's huge relative error does not lift its neighbours'.
+  const int r = settings_.neighbourhood_radius_px;
+  std::vector<double> pooled[4];
+  for (int k = 0; k < 4; ++k) {
+    pooled[k] = window_means(variance[k], w, h, r);
+    const std::vector<double> means = window_means(mean_squared[k], w, h, r);
+    for (size_t i = 0; i < n; ++i) pooled[k][i] = pooled[k][i] > 0.0 ? pooled[k][i] / std::max(means[i], 1e-60) : 0.0;
+  }
+  const std::vector<double> luminance_window = window_means(relative_squared_, w, h, 1);
+  for (size_t i = 0; i < n; ++i) {
+    const double samples = half_weight_[0][i] + half_weight_[1][i];
+    // No samples: no floor (the pixel has no estimate, its own error is +∞).
+    const double share = samples > 0.0 ? settings_.neighbourhood_share / samples : 0.0;
+    colour_floor_[i] = share * (pooled[1][i] + pooled[2][i] + pooled[3][i]) / 3.0;
+    const double rms = std::sqrt(std::max(luminance_window[i], share * pooled[0][i]));
+    error_[i] = std::isfinite(rms) ? float(std::min(rms, 3.0e38)) : 3.0e38f;
+  }
 }
 
 }  // namespace rimu

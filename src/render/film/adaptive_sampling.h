@@ -19,6 +19,10 @@ struct AdaptiveSamplingSettings {
   /// error estimate, wrong by luck, cannot pour a whole pass into a few pixels.
   int max_pass_share = 8;
   int allocation_radius_px = 1;  ///< the error that shares out a pass is the RMS over a (2r + 1)² square
+  /// The neighbourhood's floor on each pixel's error (see AdaptiveSampling): its share of what the pixel's samples
+  /// would give at the neighbourhood's mean relative variance per sample, and the neighbourhood's radius (a square).
+  double neighbourhood_share = 0.25;
+  int neighbourhood_radius_px = 3;
 };
 
 /// The samples every pixel takes before any may stop, for a render of at most `max_spp`: max(16, max_spp / 8).
@@ -37,6 +41,19 @@ int adaptive_min_spp(int max_spp);
 /// the relative errors over the pixel's 3×3 neighbourhood; a pixel stops once that is ≤ the threshold for it and
 /// for every pixel within dilation_px (no isolated stopped pixels: no blotches). A stopped pixel stays stopped:
 /// its sums stop changing, and its value, sum / its own weight sum, stays an unbiased estimate.
+///
+/// The neighbourhood's floor: a pixel whose light comes through rare paths (a caustic, a gap) shows no error at all
+/// until one of its samples finds one: both halves agree, and the pixel would stop, or take one sample a pass, long
+/// before it had the samples its variance needs. Its neighbours, pooled, find those paths many times sooner. So
+/// the error a pixel is judged by, for stopping and for its share, is at least
+///   relative error² ≥ neighbourhood_share · V / n,   V = Σ σ_j² / Σ μ_j²
+/// over the (2·neighbourhood_radius_px + 1)² square around it, with σ_j² = SE_j² · n_j each pixel's variance per
+/// sample and μ_j its mean (the same for R, G, B in the allocation): what n samples would give at the
+/// neighbourhood's relative variance per sample, times a share (¼: the error is at least half of that). Pooled
+/// sums, not a mean of the pixels' relative variances, so that a nearly black pixel's huge relative error does not
+/// lift its neighbours'. The floor falls as 1/n, so a pixel whose neighbourhood is noisy still stops, but only
+/// once its own samples are enough for that noise; where the neighbourhood is quiet it is no higher than the
+/// pixels' own errors and changes nothing.
 ///
 /// Where the samples go (plan_pass): until the minimum every active pixel takes every pass's samples. From then
 /// on a pass of s samples per pixel is s times the active pixels' count, shared among them by their remaining
@@ -97,6 +114,7 @@ class AdaptiveSampling {
   std::vector<float> error_;
   std::vector<double> relative_squared_;  ///< each pixel's own squared relative error of luminance (∞: none yet)
   std::vector<double> colour_squared_;    ///< the same, the mean over linear R, G, B (plan_pass)
+  std::vector<double> colour_floor_;      ///< the neighbourhood's floor on colour_squared_'s window RMS (plan_pass)
   std::vector<uint8_t> active_;
   size_t active_count_;
 };
