@@ -1,10 +1,12 @@
 // Pixel filters: importance-sampled offsets follow the filter (chi-square), with weight 1.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "render/film/piecewise_linear_distribution.h"
 #include "render/film/pixel_filter.h"
 #include "spectral/error.h"
 #include "statistics.h"
@@ -84,4 +86,47 @@ TEST_CASE("filter shapes: Blackman-Harris is positive, the Gaussian reaches zero
   CHECK_THROWS_AS(PixelFilter::gaussian(1.0f, 0.0f), InputError);
   CHECK_THROWS_AS(PixelFilter::box(-1.0f), InputError);
   CHECK_THROWS_AS(PixelFilter::blackman_harris(std::nanf("")), InputError);
+}
+
+TEST_CASE("piecewise-linear sampling: the guide table finds the segment a binary search finds") {
+  // The guide table only says where the scan starts; the result must be the inversion of the CDF over the segment
+  // upper_bound picks, for every u: at the guide's bucket edges j/G, just below and above them, and at random u, on
+  // knots with zero runs (segments of zero area at the ends and inside, which are never chosen) and a spike.
+  std::vector<double> knots(65, 0.0);
+  for (int i = 10; i < 30; ++i) knots[i] = 1.0 + 0.1 * i;
+  knots[40] = 50.0;  // one spike between zero runs: its two segments hold most of the mass
+  for (int i = 50; i < 60; ++i) knots[i] = 0.5;
+  const PiecewiseLinearDistribution d(-2.0, 3.0, knots);
+  // The reference: the segment from std::upper_bound over the CDF, then the same in-segment inversion.
+  const double step = 5.0 / 64.0;
+  std::vector<double> cdf(knots.size(), 0.0);
+  for (size_t i = 1; i < knots.size(); ++i) cdf[i] = cdf[i - 1] + 0.5 * step * (knots[i - 1] + knots[i]);
+  const auto reference = [&](double u) {
+    const double target = u * cdf.back();
+    size_t i = size_t(std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin());
+    i = std::clamp<size_t>(i, 1, knots.size() - 1) - 1;
+    while (i + 1 < knots.size() - 1 && cdf[i + 1] == cdf[i]) ++i;
+    const double a = knots[i], b = knots[i + 1], s = std::max(0.0, target - cdf[i]) / step;
+    const double denominator = a + std::sqrt(std::max(0.0, a * a + 2.0 * (b - a) * s));
+    const double t = denominator > 0.0 ? std::clamp(2.0 * s / denominator, 0.0, 1.0) : 0.0;
+    return std::min(3.0, -2.0 + (double(i) + t) * step);
+  };
+  std::vector<double> us = {0.0, 1.0 - 1e-16, std::nextafter(1.0, 0.0)};
+  for (int j = 0; j <= 65; ++j) {
+    const double edge = double(j) / 65.0;
+    us.insert(us.end(), {edge, std::nextafter(edge, 0.0), std::nextafter(edge, 1.0)});
+  }
+  std::mt19937 rng(7);
+  for (int k = 0; k < 20000; ++k) us.push_back(test::uniform01(rng));
+  int mismatches = 0;
+  for (double u : us) {
+    if (!(u >= 0.0 && u < 1.0)) continue;
+    const double got = d.sample(u), want = reference(u);
+    if (got != want) {
+      ++mismatches;
+      CAPTURE(u);
+      CHECK(got == want);
+    }
+  }
+  CHECK(mismatches == 0);
 }

@@ -17,12 +17,23 @@ PiecewiseLinearDistribution::PiecewiseLinearDistribution(double lo, double hi, s
   for (size_t i = 1; i < f_.size(); ++i) cdf_[i] = cdf_[i - 1] + 0.5 * step_ * (f_[i - 1] + f_[i]);
   integral_ = cdf_.back();
   if (!(integral_ > 0.0)) throw std::invalid_argument("piecewise-linear distribution has zero integral");
+  guide_.resize(f_.size());
+  for (size_t j = 0; j < guide_.size(); ++j) {
+    const double target = integral_ * double(j) / double(guide_.size());
+    guide_[j] = unsigned(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin());
+  }
 }
 
 double PiecewiseLinearDistribution::sample(double u) const {
   const double target = u * integral_;
   // The segment [i, i+1] with cdf_[i] <= target < cdf_[i+1]; zero-area segments are never chosen.
-  size_t i = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin());
+  // The index upper_bound(cdf_, target) would return, found from the guide: start at or before it, step forward
+  // past every knot whose CDF is ≤ target (stepping back first guards the bucket index against rounding).
+  const size_t n = cdf_.size();
+  const double scaled = u * double(guide_.size());
+  size_t i = guide_[std::min(guide_.size() - 1, size_t(std::max(0.0, scaled)))];
+  while (i > 0 && cdf_[i - 1] > target) --i;
+  while (i < n && cdf_[i] <= target) ++i;
   i = std::clamp<size_t>(i, 1, f_.size() - 1) - 1;
   while (i + 1 < f_.size() - 1 && cdf_[i + 1] == cdf_[i]) ++i;
   // Within the segment, with t ∈ [0, 1] and a = f_i, b = f_{i+1}, the area up to t is h(a t + (b − a) t²/2) = s.
