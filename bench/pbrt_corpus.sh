@@ -20,7 +20,8 @@
 # Rimu is tried with one 1-spp render of the same copy); the per-channel mean ratio
 # Rimu/pbrt of the two REF_SPP references; the share of 8×8 tiles × channels beyond 3σ between the references and,
 # as the test's control, between the two SPP seeds of pbrt and of Rimu; Rimu's time to pbrt's relMSE over pbrt's
-# (below 1: Rimu is faster); peak RSS of each renderer's SPP render; the number of lines Rimu lists as ignored.
+# (below 1: Rimu is faster), in render CPU time (the side by side's CPU table) and, in brackets, in the renderers'
+# own wall-clock render times; peak RSS of each renderer's SPP render; the number of lines Rimu lists as ignored.
 set -uo pipefail
 
 if [[ $# -lt 2 ]]; then
@@ -126,11 +127,12 @@ while read -r name repo _commit path format; do
   prow=$(grep -m1 "| corpus_$name | pbrt |" "$log.md")
   rrow=$(grep -m1 "| corpus_$name | rimu |" "$log.md")
   eq=$(grep -m1 "| corpus_$name | time to pbrt's relMSE |" "$log.md" | sed -n 's/.*Rimu\/pbrt \([0-9.e+-]*\)).*/\1/p')
+  eq_cpu=$(field "$(grep -m1 "| corpus_$name | Rimu/pbrt |" "$log.md")" 10)
   ratio=$(field "$refrow" 5)
-  rows+=("| $name | $format | yes | yes | ${ratio//,/, } | $(share "$(field "$refrow" 6)" "$(field "$refrow" 7)") | $(share "$(field "$pctl" 6)" "$(field "$pctl" 7)") | $(share "$(field "$rctl" 6)" "$(field "$rctl" 7)") | $eq | $(field "$prow" 7) / $(field "$rrow" 7) | $(field "$rrow" 9) |")
+  rows+=("| $name | $format | yes | yes | ${ratio//,/, } | $(share "$(field "$refrow" 6)" "$(field "$refrow" 7)") | $(share "$(field "$pctl" 6)" "$(field "$pctl" 7)") | $(share "$(field "$rctl" 6)" "$(field "$rctl" 7)") | $eq_cpu ($eq) | $(field "$prow" 7) / $(field "$rrow" 7) | $(field "$rrow" 9) |")
 done <"$LIST"
 
 echo
-echo "| scene | format | loads in pbrt | loads in Rimu | mean ratio Rimu/pbrt (R, G, B) | tiles >3σ refs | >3σ pbrt seeds | >3σ Rimu seeds | time to equal error Rimu/pbrt | peak RSS MiB pbrt / Rimu | ignored |"
+echo "| scene | format | loads in pbrt | loads in Rimu | mean ratio Rimu/pbrt (R, G, B) | tiles >3σ refs | >3σ pbrt seeds | >3σ Rimu seeds | time to equal error Rimu/pbrt: render CPU (wall) | peak RSS MiB pbrt / Rimu | ignored |"
 echo "|---|---|---|---|---|---|---|---|--:|---|--:|"
 printf '%s\n' "${rows[@]}"

@@ -11,7 +11,8 @@
 //       A and B side by side, enlarged 3×, one exposure for both (A's mean luminance shown as 18 % grey),
 //       clipped and sRGB-encoded, 8 bits: the pictures next to the numbers in docs/benchmarks.md
 //   rimu-pbrt-image-compare info IMAGE.exr
-//       render_time_s: pbrt's "renderTimeSeconds" or Rimu's "rimu:renderTimeSeconds" header attribute
+//       render_time_s: pbrt's "renderTimeSeconds" or Rimu's "rimu:renderTimeSeconds" header attribute; pixels: the
+//       data window's pixel count
 //   --crop X0 Y0 X1 Y1 (compare, relmse, png): only the pixels x0 ≤ x < x1, y0 ≤ y < y1 of both images (e.g. one
 //       object's pixels, so that its mean is not diluted by the rest of the frame)
 //
@@ -202,6 +203,9 @@ void info(const std::filesystem::path& path) {
       std::printf("render_time_s=%.6g\n", rimu->value());
     else
       fail(path.string() + ": no renderTimeSeconds attribute");
+    // The pixel count, for per-sample costs (bench/pbrt_side_by_side.sh's CPU table).
+    const Imath::Box2i window = file.header().dataWindow();
+    std::printf("pixels=%lld\n", (long long)(window.max.x - window.min.x + 1) * (long long)(window.max.y - window.min.y + 1));
   } catch (const std::exception& e) {
     fail(path.string() + ": " + e.what());
   }

@@ -21,6 +21,17 @@
 # references (and between the two SPP renders of each renderer as a control of the test itself), per-channel mean
 # ratio Rimu/pbrt and the 8×8-block paired differences in units of their standard error; and $OUT/SCENE/
 # pbrt_vs_rimu.png, the two references side by side (pbrt left) at one exposure.
+#
+# Time to equal error in CPU time (the table after the timing table): REPEATS [2] renders at SPP per renderer (seeds
+# 1 … REPEATS) and REPEATS load probes at 1 spp (seeds 101 …), each under /usr/bin/time. CPU = user + sys, which a
+# shared machine disturbs far less than wall time. Per renderer: the median CPU of the SPP renders; load CPU =
+# the median of the probes less one sample's share, cpu(1) − (cpu(SPP) − cpu(1)) / (SPP − 1) (parsing, BVH,
+# start-up, writing); render CPU = cpu(SPP) − load, and CPU per sample = render CPU / (SPP · pixels); relMSE =
+# the mean over the REPEATS renders against the renderer's reference, over 1 + SPP/REF_SPP (the reference's own
+# noise, the same factor for both renderers). Ratios Rimu/pbrt: relMSE at equal spp, CPU per sample, and their
+# product, the render CPU each needs to the same relMSE (relMSE ∝ 1/spp); and the same with each renderer's load
+# CPU added to the render CPU pbrt spends at SPP and Rimu at the spp it needs for pbrt's relMSE. TABULATE_ONLY=1
+# renders nothing and prints the tables again from the images and logs already in $OUT (same settings).
 set -euo pipefail
 
 if [[ $# -lt 1 ]]; then
@@ -50,6 +61,9 @@ THREADS=${THREADS:-2}
 SPACE=${SPACE:-srgb-linear}
 RESOLUTION=${RESOLUTION:-}
 MESH_N=${MESH_N:-0}
+REPEATS=${REPEATS:-2}
+TABULATE_ONLY=${TABULATE_ONLY:-0}
+[[ $REPEATS -ge 2 ]] || { echo "$0: REPEATS must be 2 or more (the seed control compares seeds 1 and 2)" >&2; exit 1; }
 mkdir -p "$OUT"
 
 scenes=("$@")
@@ -68,6 +82,10 @@ value() { sed -n "s/^$1=//p" <<<"$2"; }
 # /usr/bin/time -v fields
 wall_s() { awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; ++i) s = s * 60 + t[i]; print s}' "$1"; }
 cpu_s() { awk -F': ' '/User time/ {u = $2} /System time/ {s = $2} END {printf "%.2f", u + s}' "$1"; }
+# median of the numbers given as arguments
+median() { printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+# min–max of the numbers given as arguments
+spread() { printf '%s\n' "$@" | sort -g | awk 'NR == 1 {lo = $1} {hi = $1} END {printf "%s–%s", lo, hi}'; }
 rss_mib() { awk -F': ' '/Maximum resident set size/ {printf "%.0f", $2 / 1024}' "$1"; }
 
 # run_renderer NAME SCENE SPP SEED OUTPUT.exr: one render under /usr/bin/time -v, its log next to the image.
@@ -95,31 +113,60 @@ compare_row() {
 echo "# pbrt_side_by_side: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)), load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "# rimu: $("$RIMU" --version 2>/dev/null | head -1); pbrt: $PBRT; SPP=$SPP REF_SPP=$REF_SPP THREADS=$THREADS RESOLUTION=${RESOLUTION:-scene} SPACE=$SPACE"
 timing_rows=()
+cpu_rows=()
 image_rows=()
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .pbrt)
   work="$OUT/$name"
-  rm -rf "$work"
-  mkdir -p "$work/scene"
-  # Both renderers read one copy of the scene's folder (its Includes and meshes), with RESOLUTION applied to it.
-  cp -r "$(dirname "$scene")"/. "$work/scene/"
-  file="$work/scene/$(basename "$scene")"
-  # pbrt-v4 writes half floats unless told otherwise (Film "savefp16" defaults to true); Rimu writes 32-bit floats
-  # here (--float). Half rounding is the same in every pixel of a flat region (a uniform sky), where it shows as a
-  # difference of many standard errors, so pbrt writes 32-bit floats too. Rimu lists the parameter as ignored.
-  grep -q savefp16 "$file" || sed -i -E 's/^([[:space:]]*Film[[:space:]]+"[a-z]+")/\1 "bool savefp16" false/' "$file"
-  if [[ -n "$RESOLUTION" ]]; then
-    # Lines that are comments are left alone (published scenes keep old resolutions commented out); a Film without
-    # a resolution of its own (pbrt's default is 1280×720) is given RESOLUTION, so that pbrt renders it too.
-    sed -i -E "/^[[:space:]]*#/! {s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION%x*}/; s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION#*x}/}" "$file"
-    grep -q '^[^#]*"integer xresolution"' "$file" ||
-      sed -i -E "s/^([[:space:]]*Film[[:space:]]+\"[a-z]+\")/\1 \"integer xresolution\" ${RESOLUTION%x*} \"integer yresolution\" ${RESOLUTION#*x}/" "$file"
+  if [[ $TABULATE_ONLY != 0 ]]; then
+    [[ -d "$work" ]] || { echo "$0: TABULATE_ONLY: $work missing" >&2; exit 1; }
+  else
+    rm -rf "$work"
+    mkdir -p "$work/scene"
+    # Both renderers read one copy of the scene's folder (its Includes and meshes), with RESOLUTION applied to it.
+    cp -r "$(dirname "$scene")"/. "$work/scene/"
+    file="$work/scene/$(basename "$scene")"
+    # pbrt-v4 writes half floats unless told otherwise (Film "savefp16" defaults to true); Rimu writes 32-bit floats
+    # here (--float). Half rounding is the same in every pixel of a flat region (a uniform sky), where it shows as a
+    # difference of many standard errors, so pbrt writes 32-bit floats too. Rimu lists the parameter as ignored.
+    grep -q savefp16 "$file" || sed -i -E 's/^([[:space:]]*Film[[:space:]]+"[a-z]+")/\1 "bool savefp16" false/' "$file"
+    if [[ -n "$RESOLUTION" ]]; then
+      # Lines that are comments are left alone (published scenes keep old resolutions commented out); a Film without
+      # a resolution of its own (pbrt's default is 1280×720) is given RESOLUTION, so that pbrt renders it too.
+      sed -i -E "/^[[:space:]]*#/! {s/(\"integer xresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION%x*}/; s/(\"integer yresolution\"[[:space:]]*\[?[[:space:]]*)[0-9]+/\1${RESOLUTION#*x}/}" "$file"
+      grep -q '^[^#]*"integer xresolution"' "$file" ||
+        sed -i -E "s/^([[:space:]]*Film[[:space:]]+\"[a-z]+\")/\1 \"integer xresolution\" ${RESOLUTION%x*} \"integer yresolution\" ${RESOLUTION#*x}/" "$file"
+    fi
+    for r in "${renderers[@]}"; do
+      for ((k = 1; k <= REPEATS; ++k)); do
+        run_renderer $r "$file" "$SPP" $k "$work/$r-s$k.exr"
+        run_renderer $r "$file" 1 $((100 + k)) "$work/$r-load$k.exr"
+      done
+      run_renderer $r "$file" "$REF_SPP" 7 "$work/$r-ref.exr"
+    done
   fi
+  # CPU-time figures (header comment): median CPU of the SPP renders and of the 1-spp probes, mean relMSE.
+  declare -A load_cpu render_cpu per_sample rel
+  pixels=$(value pixels "$("$COMPARE" info "$work/${renderers[0]}-ref.exr")")
   for r in "${renderers[@]}"; do
-    run_renderer $r "$file" "$SPP" 1 "$work/$r-s1.exr"
-    run_renderer $r "$file" "$SPP" 2 "$work/$r-s2.exr"
-    run_renderer $r "$file" "$REF_SPP" 7 "$work/$r-ref.exr"
+    cpus=() probes=() errs=()
+    for ((k = 1; k <= REPEATS; ++k)); do
+      cpus+=("$(cpu_s "$work/$r-s$k.log.time")")
+      probes+=("$(cpu_s "$work/$r-load$k.log.time")")
+      errs+=("$(value relmse "$("$COMPARE" relmse "$work/$r-s$k.exr" "$work/$r-ref.exr" --space "$SPACE")")")
+    done
+    c=$(median "${cpus[@]}")
+    p=$(median "${probes[@]}")
+    load_cpu[$r]=$(awk -v c="$c" -v p="$p" -v n="$SPP" 'BEGIN {l = p - (c - p) / (n - 1); printf "%.3f", (l > 0 ? l : 0)}')
+    render_cpu[$r]=$(awk -v c="$c" -v l="${load_cpu[$r]}" 'BEGIN {printf "%.3f", c - l}')
+    per_sample[$r]=$(awk -v t="${render_cpu[$r]}" -v n="$SPP" -v px="$pixels" 'BEGIN {printf "%.4g", 1e9 * t / (n * px)}')
+    rel[$r]=$(printf '%s\n' "${errs[@]}" | awk -v n="$SPP" -v m="$REF_SPP" '{s += $1} END {printf "%.4g", s / NR / (1 + n / m)}')
+    cpu_rows+=("| $name | $r | ${load_cpu[$r]} | ${render_cpu[$r]} | $c ($(spread "${cpus[@]}")) | ${per_sample[$r]} | ${rel[$r]} ($(spread "${errs[@]}")) | | | | |")
   done
+  if [[ ${#renderers[@]} -eq 2 ]]; then
+    cpu_rows+=("| $name | Rimu/pbrt | | | | | | $(awk -v a="${rel[rimu]}" -v b="${rel[pbrt]}" 'BEGIN {printf "%.3g", a / b}') | $(awk -v a="${per_sample[rimu]}" -v b="${per_sample[pbrt]}" 'BEGIN {printf "%.3g", a / b}') | $(awk -v ea="${rel[rimu]}" -v eb="${rel[pbrt]}" -v ta="${render_cpu[rimu]}" -v tb="${render_cpu[pbrt]}" 'BEGIN {printf "%.3g", ta * ea / (tb * eb)}') | $(awk -v ea="${rel[rimu]}" -v eb="${rel[pbrt]}" -v ta="${render_cpu[rimu]}" -v tb="${render_cpu[pbrt]}" -v la="${load_cpu[rimu]}" -v lb="${load_cpu[pbrt]}" 'BEGIN {printf "%.3g", (la + ta * ea / eb) / (lb + tb)}') |")
+  fi
+  unset load_cpu render_cpu per_sample rel
   declare -A render relmse
   for r in "${renderers[@]}"; do
     t="$work/$r-s1.log.time"
@@ -153,6 +200,12 @@ echo
 echo "| scene | renderer | load s | render s | wall s | CPU s | peak RSS MiB | relMSE at $SPP spp | ignored |"
 echo "|---|---|--:|--:|--:|--:|--:|--:|--:|"
 printf '%s\n' "${timing_rows[@]}"
+echo
+echo "CPU time (user + sys; $REPEATS renders at $SPP spp and $REPEATS 1-spp load probes per renderer; medians, min–max in brackets; relMSE over 1 + SPP/REF_SPP; per sample = render CPU / (spp × pixels); ratios Rimu/pbrt, below 1 = Rimu better):"
+echo
+echo "| scene | renderer | load CPU s | render CPU s | CPU s at $SPP spp | CPU ns / sample | relMSE at $SPP spp | relMSE ratio at equal spp | CPU / sample ratio | render CPU to equal error | with load |"
+echo "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
+printf '%s\n' "${cpu_rows[@]}"
 echo
 echo "Images in $SPACE (Rimu's XYZ converted with its xyz_to_rgb matrix); b / a: ratio = mean(b)/mean(a) per channel; blocks: 8×8 tiles × 3 channels, paired mean difference / standard error:"
 echo

@@ -5,6 +5,7 @@
 // tensors"), which a sampler with the wrong density would miss.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -91,4 +92,53 @@ TEST_CASE("spherical triangle: samples lie in the triangle and their mean direct
     CHECK(std::abs(y.mean() - exact.y) <= 4.5 * y.standard_error());
     CHECK(std::abs(z.mean() - exact.z) <= 4.5 * z.standard_error());
   }
+}
+
+TEST_CASE("spherical triangle: Van Oosterom-Strackee's solid angle equals Girard's excess, and sampling reports it") {
+  // Ω is computed as 2 atan2(|a·(b×c)|, 1 + a·b + b·c + c·a); Girard's α + β + γ − π (each corner angle between
+  // the tangents of its two arcs, in long double here) is an independent closed form of the same quantity. Random
+  // triangles from near (Ω up to ~2π) to far (Ω ~ 1e-6) and thin ones; the sampler must report the same Ω.
+  const auto girard = [](Vec3 p, Vec3 v0, Vec3 v1, Vec3 v2) {
+    using L = long double;
+    struct V {
+      L x, y, z;
+    };
+    const auto unit = [&](Vec3 v) {
+      const V d{L(v.x) - p.x, L(v.y) - p.y, L(v.z) - p.z};
+      const L l = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+      return V{d.x / l, d.y / l, d.z / l};
+    };
+    const auto dotl = [](V a, V b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+    const auto angle = [&](V a, V b, V c) {
+      const V tb{b.x - a.x * dotl(a, b), b.y - a.y * dotl(a, b), b.z - a.z * dotl(a, b)};
+      const V tc{c.x - a.x * dotl(a, c), c.y - a.y * dotl(a, c), c.z - a.z * dotl(a, c)};
+      const V x{tb.y * tc.z - tb.z * tc.y, tb.z * tc.x - tb.x * tc.z, tb.x * tc.y - tb.y * tc.x};
+      return std::atan2(std::sqrt(dotl(x, x)), dotl(tb, tc));
+    };
+    const V a = unit(v0), b = unit(v1), c = unit(v2);
+    return double(angle(a, b, c) + angle(b, c, a) + angle(c, a, b) - std::numbers::pi_v<long double>);
+  };
+  std::mt19937 rng(29);
+  int checked = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const float scale = std::pow(10.0f, -3.0f + 4.0f * test::uniform01(rng));  // triangle size / distance
+    const auto point = [&] {
+      return Vec3{scale * (test::uniform01(rng) - 0.5f), scale * (test::uniform01(rng) - 0.5f),
+                  1.0f + scale * (test::uniform01(rng) - 0.5f)};
+    };
+    const Vec3 p{0, 0, 0}, v0 = point(), v1 = point(), v2 = k % 3 == 0 ? v0 + (v1 - v0) * 0.5f + Vec3{0, 1e-4f * scale, 0}
+                                                                       : point();
+    const double omega = spherical_triangle_solid_angle(p, v0, v1, v2), reference = girard(p, v0, v1, v2);
+    CAPTURE(scale);
+    CAPTURE(reference);
+    // Both in double-or-better from the same float corners: agreement to ~1e-9 relative, or 1e-15 sr absolute.
+    CHECK(std::fabs(omega - reference) <= 1e-9 * reference + 1e-15);
+    double reported = -1.0;
+    const auto w = sample_spherical_triangle(p, v0, v1, v2, {test::uniform01(rng), test::uniform01(rng)}, &reported);
+    CHECK(reported == omega);
+    if (omega > 1e-9) CHECK(w.has_value());
+    if (!(omega > 0.0)) CHECK_FALSE(w.has_value());
+    ++checked;
+  }
+  CHECK(checked == 3000);
 }

@@ -66,11 +66,11 @@ float AreaLight::triangle_pdf(const Triangle& t, Vec3 reference, Vec3 wi, float 
 std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const LightReference& ref,
                                                       const SampledWavelengths& lambda, Vec2 u, double choice) const {
   LightSample s;
-  float distance_squared = 0.0f;
   if (samples_solid_angle(t, ref.position)) {
     // Behind a one-sided triangle nothing arrives; say so before sampling (triangle_pdf would say 0 anyway).
     if (!two_sided_ && !(dot(t.normal, ref.position - t.v0) > 0.0f)) return std::nullopt;
-    const std::optional<Vec3> wi = sample_spherical_triangle(ref.position, t.v0, t.v1, t.v2, u);
+    double omega = 0.0;
+    const std::optional<Vec3> wi = sample_spherical_triangle(ref.position, t.v0, t.v1, t.v2, u, &omega);
     if (!wi) return std::nullopt;
     // The point where wi meets the triangle's plane (inside the triangle up to rounding).
     const float along = dot(t.normal, *wi);
@@ -78,17 +78,22 @@ std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const L
     if (!(distance > 0.0f) || !std::isfinite(distance)) return std::nullopt;
     s.wi = *wi;
     s.distance = distance;
-    distance_squared = distance * distance;
+    // triangle_pdf's value without computing Ω again (the same function of the same corners gave omega): 1/Ω, 0
+    // behind a one-sided triangle.
+    if (!two_sided_ && !(-dot(t.normal, s.wi) > 0.0f)) return std::nullopt;
+    const double pdf = 1.0 / omega;
+    if (!(pdf > 0.0) || !std::isfinite(pdf) || pdf > double(std::numeric_limits<float>::max())) return std::nullopt;
+    s.pdf_solid_angle = float(choice * double(float(pdf)));
   } else {
     const Vec3 b = sample_uniform_triangle(u);
     const Vec3 point = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
     const Vec3 to_light = point - ref.position;
-    distance_squared = length_squared(to_light);
+    const float distance_squared = length_squared(to_light);
     if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return std::nullopt;
     s.distance = std::sqrt(distance_squared);
     s.wi = to_light / s.distance;
+    s.pdf_solid_angle = float(choice * double(triangle_pdf(t, ref.position, s.wi, distance_squared)));
   }
-  s.pdf_solid_angle = float(choice * double(triangle_pdf(t, ref.position, s.wi, distance_squared)));
   if (!(s.pdf_solid_angle > 0.0f) || !std::isfinite(s.pdf_solid_angle)) return std::nullopt;
   s.radiance = radiance_.sample(lambda);
   s.normal = t.normal;
