@@ -29,6 +29,7 @@ namespace {
 PixelFilter make_filter(const FilterSettings& f) {
   if (f.type == "box") return PixelFilter::box(f.radius_px);
   if (f.type == "blackman-harris") return PixelFilter::blackman_harris(f.radius_px);
+  if (f.type == "triangle") return PixelFilter::triangle(f.radius_px);
   return PixelFilter::gaussian(f.radius_px, f.sigma_px);
 }
 

@@ -198,6 +198,21 @@ TEST_CASE("pbrt camera and film: fov spans the shorter axis, resolution, samples
   CHECK_CONTAINS(error_of("WorldBegin\nShape \"sphere\"", true), "no Camera");
 }
 
+TEST_CASE("pbrt pixel filters: box, gaussian and triangle with pbrt-v4's default radii; others listed") {
+  const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
+  const PbrtImport triangle = import_text("PixelFilter \"triangle\"\n" + camera);
+  CHECK(triangle.ignored.empty());
+  CHECK(triangle.document["film"]["filter"] == json({{"type", "triangle"}, {"radius", 2.0}}));
+  const json wide = import_text("PixelFilter \"triangle\" \"float xradius\" 1 \"float yradius\" 1\n" + camera).document;
+  CHECK(wide["film"]["filter"]["radius"] == 1.0);
+  CHECK(import_text("PixelFilter \"box\"\n" + camera).document["film"]["filter"]["radius"] == 0.5);
+  const json gaussian = import_text("PixelFilter \"gaussian\"\n" + camera).document;
+  CHECK(gaussian["film"]["filter"] == json({{"type", "gaussian"}, {"radius", 1.5}, {"sigma", 0.5}}));
+  const PbrtImport mitchell = import_text("PixelFilter \"mitchell\"\n" + camera);
+  REQUIRE(mitchell.ignored.size() == 1);
+  CHECK(mitchell.ignored[0].what.find("mitchell") != std::string::npos);
+}
+
 TEST_CASE("pbrt lights: pbrt's luminance-normalised amounts become Rimu's photometric keys") {
   const double k = nits_per_unit_y();
   const PbrtImport imported = import_text(

@@ -37,6 +37,11 @@ PixelFilter PixelFilter::box(float radius_px) {
   return PixelFilter(Kind::box, radius_px, 0.0f);
 }
 
+PixelFilter PixelFilter::triangle(float radius_px) {
+  require_positive(radius_px, "radius");
+  return PixelFilter(Kind::triangle, radius_px, 0.0f);
+}
+
 PixelFilter PixelFilter::gaussian(float radius_px, float sigma_px) {
   require_positive(radius_px, "radius");
   require_positive(sigma_px, "sigma");
@@ -54,6 +59,8 @@ double PixelFilter::profile(double x) const {
   switch (kind_) {
     case Kind::box:
       return 1.0;
+    case Kind::triangle:
+      return r - std::abs(x);
     case Kind::gaussian: {
       const double s2 = 2.0 * double(sigma_px_) * sigma_px_;
       return std::max(0.0, std::exp(-x * x / s2) - std::exp(-r * r / s2));
@@ -76,6 +83,7 @@ std::string PixelFilter::description() const {
   std::ostringstream s;
   switch (kind_) {
     case Kind::box: s << "box (radius " << radius_px_ << " px)"; break;
+    case Kind::triangle: s << "triangle (radius " << radius_px_ << " px)"; break;
     case Kind::gaussian: s << "gaussian (radius " << radius_px_ << " px, sigma " << sigma_px_ << " px)"; break;
     case Kind::blackman_harris: s << "blackman-harris (radius " << radius_px_ << " px)"; break;
   }

@@ -26,16 +26,19 @@ struct FilterSample {
 /// the box exactly, a smooth filter within h²/8·max|f₁''| (h = r/128): < 1e-4 of the peak for the defaults.
 /// f₁ per filter:
 /// - box:             1
+/// - triangle:        r − |x|  (pbrt-v4's TriangleFilter; piecewise linear, so the tabulation is exact)
 /// - Gaussian:        exp(−x²/2σ²) − exp(−r²/2σ²)  (shifted so it reaches 0 at the radius instead of jumping)
 /// - Blackman–Harris: a₀ + a₁cos(πx/r) + a₂cos(2πx/r) + a₃cos(3πx/r) with the 4-term −92 dB coefficients
 ///   (0.35875, 0.48829, 0.14128, 0.01168) of Harris 1978 (Proc. IEEE 66(1)), centred on 0: the window
 ///   ends at a₀ − a₁ + a₂ − a₃ = 6e-5 > 0, so it is positive everywhere.
 class PixelFilter {
  public:
-  enum class Kind { box, gaussian, blackman_harris };
+  enum class Kind { box, triangle, gaussian, blackman_harris };
 
   /// The box of half-width radius_px (0.5 = the pixel itself). Throws InputError unless radius > 0.
   static PixelFilter box(float radius_px = 0.5f);
+  /// The tent of half-width radius_px (pbrt-v4's default: 2). Throws InputError unless radius > 0.
+  static PixelFilter triangle(float radius_px = 2.0f);
   /// Truncated Gaussian of standard deviation sigma_px, cut at radius_px. Throws InputError unless both > 0.
   static PixelFilter gaussian(float radius_px = 1.5f, float sigma_px = 0.5f);
   /// Blackman–Harris window of half-width radius_px. Throws InputError unless radius > 0.

@@ -25,7 +25,7 @@ namespace rimu {
 
 /// A pixel filter as the scene describes it (render/film/pixel_filter.h builds it).
 struct FilterSettings {
-  std::string type = "gaussian";  ///< box, gaussian, blackman-harris
+  std::string type = "gaussian";  ///< box, triangle, gaussian, blackman-harris
   float radius_px = 1.5f;
   float sigma_px = 0.5f;
 };

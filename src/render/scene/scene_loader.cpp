@@ -106,8 +106,9 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
   }
   if (const auto f = c.find("filter")) {
     f->only_keys({"type", "radius", "sigma"});
-    s.filter.type = f->at("type").choice({"box", "gaussian", "blackman-harris"});
-    s.filter.radius_px = float(f->number_or("radius", s.filter.type == "box" ? 0.5 : 1.5, 0.01, 16.0));
+    s.filter.type = f->at("type").choice({"box", "triangle", "gaussian", "blackman-harris"});
+    const double default_radius = s.filter.type == "box" ? 0.5 : s.filter.type == "triangle" ? 2.0 : 1.5;
+    s.filter.radius_px = float(f->number_or("radius", default_radius, 0.01, 16.0));
     if (s.filter.type != "gaussian" && f->has("sigma")) f->at("sigma").fail("sigma applies to the gaussian filter only");
     s.filter.sigma_px = float(f->number_or("sigma", 0.5, 0.01, 16.0));
   }

@@ -324,8 +324,9 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     require_world(false);
     PbrtParams p(*this, s, "PixelFilter \"" + s.strings[0] + "\"");
     const std::string& type = s.strings[0];
-    if (type == "gaussian" || type == "box") {
-      const double fallback = type == "box" ? 0.5 : 1.5;
+    if (type == "gaussian" || type == "box" || type == "triangle") {
+      // pbrt-v4's default radii: box 0.5, gaussian 1.5, triangle 2.
+      const double fallback = type == "box" ? 0.5 : type == "triangle" ? 2.0 : 1.5;
       const double rx = p.real("xradius", fallback), ry = p.real("yradius", fallback);
       if (rx != ry) ignore("PixelFilter with xradius != yradius (the larger is used)", s.where);
       film_["filter"] = {{"type", type}, {"radius", std::max(rx, ry)}};
