@@ -195,8 +195,11 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     const bool guidable = guiding_on && flags.has_non_delta && !flags.has_delta && !may_pass;
     const int facing = facing_of(shading.geometric_normal);
     const LeafGuide leaf = guidable && guiding.field ? guiding.field->distribution_at(hit->position, facing) : LeafGuide{};
-    const VertexGuide guide = leaf ? VertexGuide(leaf, hit->position) : VertexGuide();
-    const GuidedBsdf sampling(bsdf, shading.frame, &guide, settings_.guiding_probability);
+    // Built only where a leaf guides: a VertexGuide holds a mixture's 16 lobe slots, which every unguided vertex
+    // (all of them with guiding off) would otherwise initialise for nothing.
+    std::optional<VertexGuide> guide;
+    if (leaf) guide.emplace(leaf, hit->position);
+    const GuidedBsdf sampling(bsdf, shading.frame, guide ? &*guide : nullptr, settings_.guiding_probability);
 
     // Next-event estimation: one light (and part), chosen by the scene's light sampler.
     const float u_light_choice = sampler.next_1d();
