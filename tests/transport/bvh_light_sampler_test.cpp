@@ -41,13 +41,6 @@ struct TestScene {
   }
 };
 
-Vec3 random_unit(std::mt19937& rng) {
-  const float z = 1.0f - 2.0f * test::uniform01(rng);
-  const float phi = 6.2831853f * test::uniform01(rng);
-  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
 Vec3 random_in_box(std::mt19937& rng, Vec3 lower, Vec3 upper) {
   return {lower.x + (upper.x - lower.x) * test::uniform01(rng), lower.y + (upper.y - lower.y) * test::uniform01(rng),
           lower.z + (upper.z - lower.z) * test::uniform01(rng)};
@@ -102,7 +95,7 @@ TestScene many_scene(std::vector<Triangle>* one_sided = nullptr) {
   for (int k = 0; k < 1000; ++k) {
     const Vec3 c = random_in_box(rng, {-5, 0, -5}, {5, 4, 5});
     const float size = 0.05f + 0.3f * test::uniform01(rng);
-    const Vec3 v0 = c + random_unit(rng) * size, v1 = c + random_unit(rng) * size, v2 = c + random_unit(rng) * size;
+    const Vec3 v0 = c + test::uniform_sphere_direction(rng) * size, v1 = c + test::uniform_sphere_direction(rng) * size, v2 = c + test::uniform_sphere_direction(rng) * size;
     for (Vec3 v : {v0, v1, v2}) {
       indices.push_back(uint32_t(vertices.size()));
       vertices.push_back(v);
@@ -116,7 +109,7 @@ TestScene many_scene(std::vector<Triangle>* one_sided = nullptr) {
     const Vec3 c = random_in_box(rng, {-5, 0, -5}, {5, 4, 5});
     for (int j = 0; j < 3; ++j) {
       indices.push_back(uint32_t(vertices.size()));
-      vertices.push_back(c + random_unit(rng) * 0.2f);
+      vertices.push_back(c + test::uniform_sphere_direction(rng) * 0.2f);
     }
   }
   s.lights.push_back(std::make_unique<AreaLight>(vertices, indices, flat(0.5), true));
@@ -202,7 +195,7 @@ TEST_CASE("light BVH: sampled frequencies equal pmf() at random points of three 
     for (int i = 0; i < kPoints; ++i) {
       // A quarter of the points have no normal (media, transmissive surfaces).
       const Vec3 p = random_in_box(rng, {-4, 0.05f, -4}, {4, 3.5f, 4});
-      const LightSamplingPoint at{p, i % 4 == 0 ? Vec3{} : random_unit(rng)};
+      const LightSamplingPoint at{p, i % 4 == 0 ? Vec3{} : test::uniform_sphere_direction(rng)};
       double sum = 0.0;
       int scoring = 0;
       INFO(std::string(name) << " point " << i << " at (" << p.x << ", " << p.y << ", " << p.z << ")");
@@ -238,7 +231,7 @@ TEST_CASE("light BVH, capped search: pmf() still equals the sampled frequency; t
   int short_of_one = 0;
   for (int i = 0; i < kPoints; ++i) {
     const Vec3 p = random_in_box(rng, {-4, 0.05f, -4}, {4, 3.5f, 4});
-    const LightSamplingPoint at{p, random_unit(rng)};
+    const LightSamplingPoint at{p, test::uniform_sphere_direction(rng)};
     double sum = 0.0;
     int scoring = 0;
     INFO("point " << i << " at (" << p.x << ", " << p.y << ", " << p.z << ")");
@@ -323,7 +316,7 @@ TEST_CASE("light BVH: nothing behind a one-sided emitter is ever chosen") {
   std::mt19937 rng(11);
   int behind_checked = 0;
   for (int i = 0; i < 40; ++i) {
-    const LightSamplingPoint at{random_in_box(rng, {-5, 0, -5}, {5, 4, 5}), i % 2 ? Vec3{} : random_unit(rng)};
+    const LightSamplingPoint at{random_in_box(rng, {-5, 0, -5}, {5, 4, 5}), i % 2 ? Vec3{} : test::uniform_sphere_direction(rng)};
     std::vector<bool> behind(triangles.size());
     for (size_t k = 0; k < triangles.size(); ++k) {
       const Triangle& t = triangles[k];
@@ -346,7 +339,7 @@ TEST_CASE("light BVH: nothing behind a one-sided emitter is ever chosen") {
   const auto room_pointers = room.pointers();
   const BvhLightSampler room_sampler(room_pointers);
   for (int i = 0; i < 100; ++i) {
-    const LightSamplingPoint at{random_in_box(rng, {-0.5f, 2.0f, -0.5f}, {0.5f, 3.0f, 0.5f}), random_unit(rng)};
+    const LightSamplingPoint at{random_in_box(rng, {-0.5f, 2.0f, -0.5f}, {0.5f, 3.0f, 0.5f}), test::uniform_sphere_direction(rng)};
     CHECK(room_sampler.pmf(at, 0, 0) == 0.0f);
     CHECK(room_sampler.pmf(at, 0, 1) == 0.0f);
   }
@@ -361,7 +354,7 @@ TEST_CASE("light BVH: spot and IES lights are never chosen outside their cones")
   std::mt19937 rng(3);
   int inside = 0, outside = 0, ies_outside = 0;
   for (int i = 0; i < 4000; ++i) {
-    const Vec3 w = random_unit(rng);
+    const Vec3 w = test::uniform_sphere_direction(rng);
     const float distance = 0.2f + 3.0f * test::uniform01(rng);
     const LightSamplingPoint at{spot_position + w * distance, Vec3{}};
     const double angle_deg = std::acos(std::clamp(double(-w.y), -1.0, 1.0)) * 180.0 / 3.14159265358979;
@@ -460,7 +453,7 @@ TEST_CASE("light BVH: where the shares of the lights at infinity vary, pmf() equ
   for (int i = 0; i < kPoints; ++i) {
     const float distance = 60.0f * float(i) / kPoints;
     const Vec3 p{distance * std::cos(float(i)), 0.05f + 0.5f * test::uniform01(rng), distance * std::sin(float(i))};
-    const LightSamplingPoint at{p, i % 5 == 0 ? Vec3{} : random_unit(rng)};
+    const LightSamplingPoint at{p, i % 5 == 0 ? Vec3{} : test::uniform_sphere_direction(rng)};
     INFO("point " << i << " at (" << p.x << ", " << p.y << ", " << p.z << "), normal (" << at.normal.x << ", "
                   << at.normal.y << ", " << at.normal.z << ")");
     double sum = 0.0;
@@ -519,7 +512,7 @@ TestScene coloured_scene() {
     const Vec3 c = random_in_box(rng, {-3, 0, -3}, {3, 3, 3});
     for (int j = 0; j < 3; ++j) {
       indices.push_back(uint32_t(vertices.size()));
-      vertices.push_back(c + random_unit(rng) * 0.1f);
+      vertices.push_back(c + test::uniform_sphere_direction(rng) * 0.1f);
     }
   }
   s.lights.push_back(std::make_unique<AreaLight>(vertices, indices, line(530, 2.0), false));
@@ -540,7 +533,7 @@ TEST_CASE("light BVH, spectral: sampled frequencies equal pmf() and sum to 1 at 
   for (int i = 0; i < kPoints; ++i) {
     const SampledWavelengths lambda = SampledWavelengths::sample_visible(test::uniform01(rng));
     const Vec3 p = random_in_box(rng, {-3, 0.05f, -3}, {3, 2.4f, 3});
-    LightSamplingPoint at{p, i % 4 == 0 ? Vec3{} : random_unit(rng), &lambda};
+    LightSamplingPoint at{p, i % 4 == 0 ? Vec3{} : test::uniform_sphere_direction(rng), &lambda};
     double sum = 0.0;
     int scoring = 0;
     INFO("point " << i << " at (" << p.x << ", " << p.y << ", " << p.z << "), hero " << lambda.hero_nm() << " nm");
@@ -637,7 +630,7 @@ TEST_CASE("light BVH: sampled frequencies equal pmf() under a ceiling of 50 down
   int lit_points = 0;
   for (int i = 0; i < kPoints; ++i) {
     Vec3 p = random_in_box(rng, {-4, 0, -3}, {4, 3, 3});
-    Vec3 normal = i % 4 == 0 ? Vec3{} : random_unit(rng);
+    Vec3 normal = i % 4 == 0 ? Vec3{} : test::uniform_sphere_direction(rng);
     if (i % 5 == 1) {  // on the ceiling, facing down
       p.y = 3.0f;
       normal = {0, -1, 0};

@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <numbers>
 #include <random>
 #include <vector>
 
 #include "light_test_support.h"
+#include "square_chi_square.h"
 #include "transport/lights/sky/cie_sky_light.h"
 
 using namespace rimu;
@@ -63,26 +65,16 @@ TEST_CASE("CIE sky light: sampling matches pdf_li, by chi-square over the hemisp
     CAPTURE(type);
     const CieSkyLight light = sky(type, sun_towards(type == 15 ? 8.0 : 35.0, 70.0));
     const int nu = 64, nv = 32, sub = 4, n = 200000;
-    std::vector<double> observed(nu * nv, 0.0), expected(nu * nv, 0.0);
-    double total = 0;
-    for (int cy = 0; cy < nv; ++cy)
-      for (int cx = 0; cx < nu; ++cx) {
-        double integral = 0;
-        for (int j = 0; j < sub; ++j)
-          for (int i = 0; i < sub; ++i) {
-            const Vec2 uv{(cx + (i + 0.5f) / sub) / nu, (cy + (j + 0.5f) / sub) / nv};
-            integral += light.pdf_li({}, light.uv_to_direction(uv)) * 2 * kPi / (double(nu) * nv * sub * sub);
-          }
-        expected[cy * nu + cx] = n * integral;
-        total += integral;
-      }
-    CHECK(total == doctest::Approx(1.0).epsilon(1e-4));
+    std::vector<double> observed(nu * nv, 0.0);
+    const std::vector<double> expected = test::square_expected_counts(
+        [&](Vec2 uv) { return light.pdf_li({}, light.uv_to_direction(uv)) * 2 * kPi; }, nu, nv, sub, n);
+    CHECK(std::accumulate(expected.begin(), expected.end(), 0.0) / n == doctest::Approx(1.0).epsilon(1e-4));
     std::mt19937 rng(41);
     for (int s = 0; s < n; ++s) {
       const auto ls = light.sample_li({}, kLambda, {test::uniform01(rng), test::uniform01(rng)});
       if (!ls) continue;  // a direction rounded onto the horizon (measure zero)
       const Vec2 uv = light.direction_to_uv(ls->wi);
-      observed[std::min(nv - 1, int(uv.y * nv)) * nu + std::min(nu - 1, int(uv.x * nu))] += 1;
+      observed[test::square_cell(uv, nu, nv)] += 1;
     }
     const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
     CAPTURE(chi.statistic);

@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <numbers>
 #include <vector>
 
 #include "grey_environment_image.h"
 #include "light_test_support.h"
+#include "square_chi_square.h"
 #include "transport/lights/environment_light.h"
 
 using namespace rimu;
@@ -97,21 +99,12 @@ TEST_CASE("environment image sampling matches pdf_li, by chi-square over image c
     const Frame frame = rotated ? Frame::from_normal(normalize({0.3f, 1.0f, -0.4f})) : Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     const EnvironmentLight env(test_image(), 2.0, frame);
     const int nu = 32, nv = 16, sub = 4, n = 200000;
-    std::vector<double> observed(nu * nv, 0.0), expected(nu * nv, 0.0);
-    double total = 0;
-    for (int cy = 0; cy < nv; ++cy)
-      for (int cx = 0; cx < nu; ++cx) {
-        double integral = 0;
-        for (int j = 0; j < sub; ++j)
-          for (int i = 0; i < sub; ++i) {
-            const Vec2 uv{(cx + (i + 0.5f) / sub) / nu, (cy + (j + 0.5f) / sub) / nv};
-            integral += env.pdf_li({}, env.uv_to_direction(uv)) * 2 * kPi * kPi * std::sin(kPi * uv.y) /
-                        (double(nu) * nv * sub * sub);
-          }
-        expected[cy * nu + cx] = n * integral;
-        total += integral;
-      }
-    CHECK(total == doctest::Approx(1.0).epsilon(1e-4));
+    std::vector<double> observed(nu * nv, 0.0);
+    // dω = 2π² sin(πv) du dv on the equirectangular image.
+    const std::vector<double> expected = test::square_expected_counts(
+        [&](Vec2 uv) { return env.pdf_li({}, env.uv_to_direction(uv)) * 2 * kPi * kPi * std::sin(kPi * uv.y); }, nu,
+        nv, sub, n);
+    CHECK(std::accumulate(expected.begin(), expected.end(), 0.0) / n == doctest::Approx(1.0).epsilon(1e-4));
     std::mt19937 rng(31);
     for (int s = 0; s < n; ++s) {
       const auto ls = env.sample_li({}, kLambda, {test::uniform01(rng), test::uniform01(rng)});
@@ -119,7 +112,7 @@ TEST_CASE("environment image sampling matches pdf_li, by chi-square over image c
       REQUIRE(std::isinf(ls->distance));
       REQUIRE(ls->pdf_solid_angle == env.pdf_li({}, ls->wi));
       const Vec2 uv = env.direction_to_uv(ls->wi);
-      observed[std::min(nv - 1, int(uv.y * nv)) * nu + std::min(nu - 1, int(uv.x * nu))] += 1;
+      observed[test::square_cell(uv, nu, nv)] += 1;
     }
     const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
     CAPTURE(chi.statistic);

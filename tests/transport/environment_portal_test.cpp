@@ -18,7 +18,6 @@
 #include "transport/lights/bvh_light_sampler.h"
 #include "transport/lights/environment_light.h"
 #include "transport/lights/environment_portal.h"
-#include "transport/lights/light_warps.h"
 #include "transport/lights/point_light.h"
 
 using namespace rimu;
@@ -142,7 +141,7 @@ TEST_CASE("portal set: sampled frequencies match pdf, and pdf integrates to 1 ov
     CHECK(chi.p_value > test::kChiSquareAlpha);
     // The same integral by uniform sphere sampling: E[4π pdf] = 1, within 5 standard errors.
     test::MeanEstimate e;
-    for (int s = 0; s < 400000; ++s) e.add(4 * kPi * set.pdf(origin, sample_uniform_sphere({test::uniform01(rng), test::uniform01(rng)})));
+    for (int s = 0; s < 400000; ++s) e.add(4 * kPi * set.pdf(origin, test::uniform_sphere_direction(rng)));
     CAPTURE(e.mean());
     CHECK(std::fabs(e.mean() - 1.0) <= test::kMonteCarloSigmas * e.standard_error());
   }

@@ -5,14 +5,15 @@
 
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <numbers>
 #include <vector>
 
 #include "grey_environment_image.h"
 #include "light_test_support.h"
+#include "square_chi_square.h"
 #include "transport/lights/environment_light.h"
 #include "transport/sampling/equal_area_square.h"
-#include "transport/lights/light_warps.h"
 
 using namespace rimu;
 
@@ -75,8 +76,8 @@ TEST_CASE("equal-area square: uniform directions land uniformly on the square (c
   std::vector<double> observed(cells * cells, 0.0), expected(cells * cells, double(n) / (cells * cells));
   std::mt19937 rng(41);
   for (int s = 0; s < n; ++s) {
-    const Vec2 p = equal_area_sphere_to_square(sample_uniform_sphere({test::uniform01(rng), test::uniform01(rng)}));
-    observed[std::min(cells - 1, int(p.y * cells)) * cells + std::min(cells - 1, int(p.x * cells))] += 1;
+    const Vec2 p = equal_area_sphere_to_square(test::uniform_sphere_direction(rng));
+    observed[test::square_cell(p, cells)] += 1;
   }
   const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
   CAPTURE(chi.statistic);
@@ -93,23 +94,18 @@ TEST_CASE("equal-area environment: sampling matches pdf_li (chi-square), pdf = p
     // The bright pixel's centre is where its radiance comes from.
     CHECK(env.radiance_escaped(env.uv_to_direction({3.5f / 16, 12.5f / 16}), kLambda)[0] == doctest::Approx(2.0 * 60.7));
     const int cells = 32, n = 200000;
-    std::vector<double> observed(cells * cells, 0.0), expected(cells * cells, 0.0);
-    double total = 0;
-    for (int cy = 0; cy < cells; ++cy)
-      for (int cx = 0; cx < cells; ++cx) {
-        // dω = 4π du dv; pdf_li is constant on a cell (a quarter pixel), so one midpoint is exact.
-        const double integral = env.pdf_li({}, env.uv_to_direction({(cx + 0.5f) / cells, (cy + 0.5f) / cells})) * 4 * kPi / (cells * cells);
-        expected[cy * cells + cx] = n * integral;
-        total += integral;
-      }
-    CHECK(total == doctest::Approx(1.0).epsilon(1e-4));
+    std::vector<double> observed(cells * cells, 0.0);
+    // dω = 4π du dv; pdf_li is constant on a cell (a quarter pixel), so one midpoint is exact.
+    const std::vector<double> expected = test::square_expected_counts(
+        [&](Vec2 uv) { return env.pdf_li({}, env.uv_to_direction(uv)) * 4 * kPi; }, cells, 1, n);
+    CHECK(std::accumulate(expected.begin(), expected.end(), 0.0) / n == doctest::Approx(1.0).epsilon(1e-4));
     std::mt19937 rng(43);
     for (int s = 0; s < n; ++s) {
       const auto ls = env.sample_li({}, kLambda, {test::uniform01(rng), test::uniform01(rng)});
       REQUIRE(ls);
       REQUIRE(ls->pdf_solid_angle == env.pdf_li({}, ls->wi));
       const Vec2 uv = env.direction_to_uv(ls->wi);
-      observed[std::min(cells - 1, int(uv.y * cells)) * cells + std::min(cells - 1, int(uv.x * cells))] += 1;
+      observed[test::square_cell(uv, cells)] += 1;
     }
     const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
     CAPTURE(chi.statistic);

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "light_test_support.h"
+#include "square_chi_square.h"
 #include "spectral/spectra/spectrum.h"
 #include "transport/lights/equal_area_intensity.h"
 #include "transport/sampling/equal_area_square.h"
@@ -59,8 +60,7 @@ TEST_CASE("equal-area intensity sampling: chi-square by pixel against I/∫I, an
     const auto s = t.sample({test::uniform01(rng), test::uniform01(rng)});
     REQUIRE(s);
     const Vec2 uv = equal_area_sphere_to_square(s->w);
-    const int x = std::min(int(uv.x * 6), 5), y = std::min(int(uv.y * 6), 5);
-    observed[size_t(y * 6 + x)] += 1;
+    observed[test::square_cell(uv, 6)] += 1;
     if (k % 64 == 0) {
       // p(ω) = I(ω)/∫I exactly.
       CHECK(s->pdf == doctest::Approx(t.pdf(s->w)).epsilon(1e-4));

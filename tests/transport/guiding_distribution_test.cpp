@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "light_test_support.h"
+#include "square_chi_square.h"
 #include "transport/bsdfs/diffuse_bsdf.h"
 #include "transport/guiding/directional_quadtree.h"
 #include "transport/guiding/guided_bsdf.h"
@@ -86,26 +87,16 @@ TEST_CASE("A learned directional distribution's pdf integrates to one and its sa
     std::mt19937 rng(uint32_t(100 + f));
     const int n_mc = 200000;
     std::vector<double> values;
-    for (int i = 0; i < n_mc; ++i) {
-      const float u1 = test::uniform01(rng), u2 = test::uniform01(rng);
-      const float z = 1.0f - 2.0f * u1, r = std::sqrt(std::fmax(0.0f, 1.0f - z * z)), phi = float(2.0 * kPi) * u2;
-      values.push_back(double(tree.pdf_direction({r * std::cos(phi), r * std::sin(phi), z})) * 4.0 * kPi);
-    }
+    for (int i = 0; i < n_mc; ++i)
+      values.push_back(double(tree.pdf_direction(test::uniform_sphere_direction(rng))) * 4.0 * kPi);
     const auto [mean, standard_error] = test::mean_and_standard_error(values);
     CHECK(std::fabs(mean - 1.0) <= 4.5 * standard_error);
 
     // Chi-square: 64² cells of the square; the expected count of a cell is its pdf integral (sub-grid of 4², exact).
     const int cells = 64, sub = 4, draws = 400000;
-    std::vector<double> observed(size_t(cells * cells), 0.0), expected(size_t(cells * cells), 0.0);
-    for (int cy = 0; cy < cells; ++cy)
-      for (int cx = 0; cx < cells; ++cx) {
-        double integral = 0.0;
-        for (int sy = 0; sy < sub; ++sy)
-          for (int sx = 0; sx < sub; ++sx)
-            integral += tree.pdf_square({(float(cx * sub + sx) + 0.5f) / float(cells * sub),
-                                         (float(cy * sub + sy) + 0.5f) / float(cells * sub)});
-        expected[size_t(cy * cells + cx)] = draws * integral / double(cells * sub * cells * sub);
-      }
+    std::vector<double> observed(size_t(cells * cells), 0.0);
+    const std::vector<double> expected =
+        test::square_expected_counts([&](Vec2 p) { return tree.pdf_square(p); }, cells, sub, draws);
     int round_trip_mismatches = 0;
     for (int i = 0; i < draws; ++i) {
       const Vec2 u{test::uniform01(rng), test::uniform01(rng)};
@@ -115,8 +106,7 @@ TEST_CASE("A learned directional distribution's pdf integrates to one and its sa
       // within float rounding of a leaf's edge, which the square → sphere → square round trip may move across it.
       if (std::fabs(tree.pdf_direction(tree.sample_direction(u)) * 4.0 * kPi / tree.pdf_square(p) - 1.0) > 1e-4)
         ++round_trip_mismatches;
-      const int cx = std::min(int(p.x * float(cells)), cells - 1), cy = std::min(int(p.y * float(cells)), cells - 1);
-      observed[size_t(cy * cells + cx)] += 1.0;
+      observed[test::square_cell(p, cells)] += 1.0;
     }
     CHECK(round_trip_mismatches <= draws / 10000);
     const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
@@ -188,11 +178,8 @@ TEST_CASE("The guide/BSDF mixture's density integrates to one and samples with t
   // and ∫ p dω over uniform directions = 1.
   std::mt19937 rng(9);
   std::vector<double> uniform_values;
-  for (int i = 0; i < 200000; ++i) {
-    const float u1 = test::uniform01(rng), u2 = test::uniform01(rng);
-    const float z = 1.0f - 2.0f * u1, r = std::sqrt(std::fmax(0.0f, 1.0f - z * z)), phi = float(2.0 * kPi) * u2;
-    uniform_values.push_back(double(guided.pdf(wo, {r * std::cos(phi), r * std::sin(phi), z})[0]) * 4.0 * kPi);
-  }
+  for (int i = 0; i < 200000; ++i)
+    uniform_values.push_back(double(guided.pdf(wo, test::uniform_sphere_direction(rng))[0]) * 4.0 * kPi);
   const auto [mean, standard_error] = test::mean_and_standard_error(uniform_values);
   CHECK(std::fabs(mean - 1.0) <= 4.5 * standard_error);
   for (int i = 0; i < 2000; ++i) {

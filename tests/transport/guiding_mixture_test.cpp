@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "light_test_support.h"
+#include "square_chi_square.h"
 #include "transport/guiding/vmf_mixture.h"
 #include "transport/sampling/equal_area_square.h"
 
@@ -18,18 +19,12 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Vec3 uniform_direction(std::mt19937& rng) {
-  const float z = 1.0f - 2.0f * test::uniform01(rng), phi = float(2.0 * kPi) * test::uniform01(rng);
-  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
 // Uniformly sampled directions from the origin weighted by radiance·4π (escaping rays: no parallax).
 std::vector<ParallaxSample> distant_light_samples(double (*radiance)(Vec3), int count, uint32_t seed) {
   std::mt19937 rng(seed);
   std::vector<ParallaxSample> samples;
   for (int i = 0; i < count; ++i) {
-    const Vec3 d = uniform_direction(rng);
+    const Vec3 d = test::uniform_sphere_direction(rng);
     samples.push_back({{0, 0, 0}, d, INFINITY, float(radiance(d) * 4.0 * kPi)});
   }
   return samples;
@@ -52,29 +47,21 @@ TEST_CASE("A fitted vMF mixture's density integrates to one and its samples foll
     const VertexMixture at = mixture.at({0.3f, -0.2f, 0.1f});  // distances ∞: the same lobes anywhere
     std::mt19937 rng(uint32_t(40 + f));
     std::vector<double> values;
-    for (int i = 0; i < 200000; ++i) values.push_back(double(at.pdf(uniform_direction(rng))) * 4.0 * kPi);
+    for (int i = 0; i < 200000; ++i) values.push_back(double(at.pdf(test::uniform_sphere_direction(rng))) * 4.0 * kPi);
     const auto [mean, standard_error] = test::mean_and_standard_error(values);
     CHECK(std::fabs(mean - 1.0) <= 4.5 * standard_error);
 
     // Chi-square over 32² cells of the equal-area square; a cell's expected count integrates the pdf over 8² points.
     const int cells = 32, sub = 8, draws = 200000;
-    std::vector<double> observed(size_t(cells * cells), 0.0), expected(size_t(cells * cells), 0.0);
-    for (int cy = 0; cy < cells; ++cy)
-      for (int cx = 0; cx < cells; ++cx) {
-        double integral = 0.0;
-        for (int sy = 0; sy < sub; ++sy)
-          for (int sx = 0; sx < sub; ++sx)
-            integral += at.pdf(equal_area_square_to_sphere({(float(cx * sub + sx) + 0.5f) / float(cells * sub),
-                                                            (float(cy * sub + sy) + 0.5f) / float(cells * sub)}));
-        expected[size_t(cy * cells + cx)] = draws * integral * 4.0 * kPi / double(cells * sub * cells * sub);
-      }
+    std::vector<double> observed(size_t(cells * cells), 0.0);
+    const std::vector<double> expected = test::square_expected_counts(
+        [&](Vec2 p) { return double(at.pdf(equal_area_square_to_sphere(p))) * 4.0 * kPi; }, cells, sub, draws);
     for (int i = 0; i < draws; ++i) {
       const Vec3 d = at.sample(test::uniform01(rng), {test::uniform01(rng), test::uniform01(rng)});
       REQUIRE(std::fabs(length(d) - 1.0f) < 1e-4f);
       REQUIRE(at.pdf(d) > 0.0f);
       const Vec2 p = equal_area_sphere_to_square(d);
-      const int cx = std::min(int(p.x * float(cells)), cells - 1), cy = std::min(int(p.y * float(cells)), cells - 1);
-      observed[size_t(cy * cells + cx)] += 1.0;
+      observed[test::square_cell(p, cells)] += 1.0;
     }
     const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
     CHECK(chi.p_value > test::sidak_threshold(test::kChiSquareAlpha, 3));
@@ -97,7 +84,7 @@ TEST_CASE("Parallax: a lobe learned across a wide leaf is re-aimed at its light 
   std::vector<ParallaxSample> samples;
   for (int i = 0; i < 40000; ++i) {
     const Vec3 p{2.0f * test::uniform01(rng) - 1.0f, 2.0f * test::uniform01(rng) - 1.0f, 0.0f};
-    const Vec3 d = uniform_direction(rng);
+    const Vec3 d = test::uniform_sphere_direction(rng);
     // The ray reaches the light's plane; it counts if it lands within 0.15 m of the light.
     float weight = 0.0f, distance = INFINITY;
     if (d.z < 0.0f) {

@@ -14,13 +14,6 @@ using namespace rimu;
 
 namespace {
 
-Vec3 random_unit(std::mt19937& rng) {
-  const float z = 1.0f - 2.0f * test::uniform01(rng);
-  const float phi = 6.2831853f * test::uniform01(rng);
-  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
-  return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
 Vec3 random_point(std::mt19937& rng, float extent) {
   return {extent * (2 * test::uniform01(rng) - 1), extent * (2 * test::uniform01(rng) - 1),
           extent * (2 * test::uniform01(rng) - 1)};
@@ -32,14 +25,14 @@ LightBounds random_bounds(std::mt19937& rng) {
   const int kind = int(test::uniform01(rng) * 4.0f);
   const Vec3 p = random_point(rng, 2.0f);
   if (kind == 0)
-    return point_light_bounds(p, 0.1 + 10 * test::uniform01(rng), random_unit(rng), 3.2 * test::uniform01(rng),
+    return point_light_bounds(p, 0.1 + 10 * test::uniform01(rng), test::uniform_sphere_direction(rng), 3.2 * test::uniform01(rng),
                               0.5 * test::uniform01(rng));
   const Vec3 a = p + random_point(rng, 0.3f), b = p + random_point(rng, 0.3f);
   const Vec3 normal = normalize(cross(a - p, b - p));
   const LightBounds triangle = triangle_light_bounds(p, a, b, normal, 0.5 * length(cross(a - p, b - p)),
                                                      1.0 + test::uniform01(rng), kind == 2);
   if (kind != 3) return triangle;
-  return unite(triangle, point_light_bounds(random_point(rng, 2.0f), 1.0, random_unit(rng), 0.7, 0.2));
+  return unite(triangle, point_light_bounds(random_point(rng, 2.0f), 1.0, test::uniform_sphere_direction(rng), 0.7, 0.2));
 }
 
 }  // namespace
@@ -57,7 +50,7 @@ TEST_CASE("light bounds, 4 wide: every lane equals the scalar importance bit for
     }
     Vec3 p = random_point(rng, 2.5f);
     if (trial % 7 == 0) p = one[0].centre_m + random_point(rng, 0.05f);  // inside a bounding sphere
-    const Vec3 normal = trial % 5 == 0 ? Vec3{} : random_unit(rng);
+    const Vec3 normal = trial % 5 == 0 ? Vec3{} : test::uniform_sphere_direction(rng);
     const std::array<float, 4> wide = light_importance4(four, p, normal).value;
     for (int j = 0; j < 4; ++j) {
       const float scalar = j < lanes ? light_importance(one[size_t(j)], p, normal) : 0.0f;
@@ -84,14 +77,14 @@ TEST_CASE("light bounds, 4 wide: the certificate holds only where the member sco
       const Vec3 p = random_point(rng, 2.0f);
       const Vec3 a = p + random_point(rng, 0.3f), b = p + random_point(rng, 0.3f);
       const LightBounds bounds =
-          kind == 0 ? point_light_bounds(p, 1.0, random_unit(rng), 1.5 * test::uniform01(rng), 0.3 * test::uniform01(rng))
+          kind == 0 ? point_light_bounds(p, 1.0, test::uniform_sphere_direction(rng), 1.5 * test::uniform01(rng), 0.3 * test::uniform01(rng))
                     : triangle_light_bounds(p, a, b, normalize(cross(a - p, b - p)),
                                             0.5 * length(cross(a - p, b - p)), 1.0, false);
       one[size_t(j)] = ImportanceBounds::of(bounds);
       four.set(j, one[size_t(j)]);
     }
     const Vec3 p = random_point(rng, 3.0f);
-    const Vec3 normal = trial % 5 == 0 ? Vec3{} : random_unit(rng);
+    const Vec3 normal = trial % 5 == 0 ? Vec3{} : test::uniform_sphere_direction(rng);
     const Importance4 wide = light_importance4(four, p, normal);
     for (int j = 0; j < 4; ++j) {
       const bool is_certified = (wide.certified >> j) & 1;
@@ -121,7 +114,7 @@ TEST_CASE("light bounds, 4 wide: light_scores4 holds exactly where the scalar im
     Vec3 p = random_point(rng, 2.5f);
     if (trial % 7 == 0) p = one[0].centre_m + random_point(rng, 0.05f);  // inside a bounding sphere
     if (trial % 11 == 0) p = one[0].centre_m;                            // at a point light's centre
-    const Vec3 normal = trial % 5 == 0 ? Vec3{} : random_unit(rng);
+    const Vec3 normal = trial % 5 == 0 ? Vec3{} : test::uniform_sphere_direction(rng);
     const int scores = light_scores4(four, p, normal);
     for (int j = 0; j < 4; ++j) {
       const bool scalar = j < lanes && light_importance(one[size_t(j)], p, normal) > 0.0f;

@@ -11,12 +11,19 @@
 
 #include "statistics.h"
 #include "transport/lights/light.h"
+#include "transport/lights/light_warps.h"
 
 namespace rimu::test {
 
 /// Significance level of every chi-square test here. The seeds are fixed, so a test is deterministic; 1e-3 keeps
 /// the chance that a correct sampler was unlucky with the chosen seed small.
 inline constexpr double kChiSquareAlpha = 1e-3;
+
+/// A direction uniform on the unit sphere from two draws of `rng` (z from the first, φ from the second), for Monte
+/// Carlo integrals over the sphere (∫ p dω = 1 is the mean of 4π·p at such directions).
+inline Vec3 uniform_sphere_direction(std::mt19937& rng) {
+  return sample_uniform_sphere({uniform01(rng), uniform01(rng)});  // braced: evaluated left to right
+}
 
 /// Mean and standard error of the mean of a stream of Monte Carlo samples.
 struct MeanEstimate {

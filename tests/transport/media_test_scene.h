@@ -10,6 +10,7 @@
 
 #include "spectral/spectra/spectrum.h"
 #include "transport/lights/distant_light.h"
+#include "transport/lights/light_warps.h"
 #include "transport/lights/power_light_sampler.h"
 #include "transport/integrators/volumetric_path_integrator.h"
 
@@ -67,10 +68,8 @@ class UniformSky final : public Light {
  public:
   explicit UniformSky(float radiance) : radiance_(radiance) {}
   std::optional<LightSample> sample_li(const LightReference&, const SampledWavelengths&, Vec2 u) const override {
-    const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
-    const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
     LightSample s;
-    s.wi = {r * std::cos(phi), r * std::sin(phi), z};
+    s.wi = sample_uniform_sphere(u);
     s.radiance = Float4(radiance_);
     s.pdf_solid_angle = float(0.25 * std::numbers::inv_pi);
     return s;
