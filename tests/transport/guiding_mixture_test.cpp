@@ -20,12 +20,18 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // Uniformly sampled directions from the origin weighted by radiance·4π (escaping rays: no parallax).
-std::vector<ParallaxSample> distant_light_samples(double (*radiance)(Vec3), int count, uint32_t seed) {
+// The record a path vertex at `position` leaves when its ray goes along `direction` and meets its light `distance`
+// further (∞: escaped) with luminance weight `weight`.
+GuidingSample record(Vec3 position, Vec3 direction, float distance, float weight) {
+  return {position, {equal_area_sphere_to_square(direction), weight}, 0, distance};
+}
+
+std::vector<GuidingSample> distant_light_samples(double (*radiance)(Vec3), int count, uint32_t seed) {
   std::mt19937 rng(seed);
-  std::vector<ParallaxSample> samples;
+  std::vector<GuidingSample> samples;
   for (int i = 0; i < count; ++i) {
     const Vec3 d = test::uniform_sphere_direction(rng);
-    samples.push_back({{0, 0, 0}, d, INFINITY, float(radiance(d) * 4.0 * kPi)});
+    samples.push_back(record({0, 0, 0}, d, INFINITY, float(radiance(d) * 4.0 * kPi)));
   }
   return samples;
 }
@@ -81,7 +87,7 @@ TEST_CASE("Parallax: a lobe learned across a wide leaf is re-aimed at its light 
   // the learned directions differ by ~40° across the leaf. From any vertex the guide must point at the patch.
   const Vec3 light{0.0f, 0.0f, -2.5f};
   std::mt19937 rng(17);
-  std::vector<ParallaxSample> samples;
+  std::vector<GuidingSample> samples;
   for (int i = 0; i < 40000; ++i) {
     const Vec3 p{2.0f * test::uniform01(rng) - 1.0f, 2.0f * test::uniform01(rng) - 1.0f, 0.0f};
     const Vec3 d = test::uniform_sphere_direction(rng);
@@ -92,7 +98,7 @@ TEST_CASE("Parallax: a lobe learned across a wide leaf is re-aimed at its light 
       const Vec3 q = p + d * distance;
       if (length(q - light) < 0.15f) weight = 100.0f;
     }
-    samples.push_back({p, d, distance, weight});
+    samples.push_back(record(p, d, distance, weight));
   }
   const VmfMixture mixture = VmfMixture::fit(samples, {});
   REQUIRE(!mixture.empty());
@@ -110,7 +116,7 @@ TEST_CASE("Parallax: a lobe learned across a wide leaf is re-aimed at its light 
 }
 
 TEST_CASE("vMF hard cases: no light, extreme concentrations") {
-  std::vector<ParallaxSample> dark(100, ParallaxSample{{0, 0, 0}, {0, 0, 1}, 1.0f, 0.0f});
+  std::vector<GuidingSample> dark(100, record({0, 0, 0}, {0, 0, 1}, 1.0f, 0.0f));
   CHECK(VmfMixture::fit(dark, {}).empty());
   for (float kappa : {0.0f, 1e-7f, 1e-3f, 1.0f, 100.0f, 1e5f}) {
     CAPTURE(kappa);

@@ -12,15 +12,9 @@
 #include <vector>
 
 #include "transport/geometry/vector.h"
+#include "transport/guiding/guiding_sample.h"
 
 namespace rimu {
-
-/// One recorded direction: where it lies on the equal-area square and what it brought (incident luminance divided
-/// by the density it was sampled with: an estimate of that direction's share of the incident flux).
-struct DirectionalSample {
-  Vec2 square;
-  float weight = 0.0f;
-};
 
 struct QuadtreeSettings {
   float subdivision_threshold = 0.01f;  ///< ρ: a quadrant with more than this share of the energy is split

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <utility>
 
-#include "transport/sampling/equal_area_square.h"
 
 namespace rimu {
 namespace {
@@ -99,12 +98,7 @@ GuidingField GuidingField::build(std::vector<GuidingSample>& samples, int pass_s
     const auto fit = [&](size_t leaf) {
       const auto [first_sample, last_sample] = builder.leaf_ranges[leaf];
       if (last_sample - first_sample < settings.min_samples_per_leaf) return;
-      std::vector<ParallaxSample> leaf_samples;
-      leaf_samples.reserve(size_t(last_sample - first_sample));
-      for (auto it = first_sample; it != last_sample; ++it)
-        leaf_samples.push_back({it->position, equal_area_square_to_sphere(it->direction.square), it->distance,
-                                it->direction.weight});
-      field.mixtures_[leaf] = VmfMixture::fit(leaf_samples, settings.mixture);
+      field.mixtures_[leaf] = VmfMixture::fit({first_sample, last_sample}, settings.mixture);
     };
     if (for_each_leaf)
       for_each_leaf(builder.leaf_ranges.size(), fit);

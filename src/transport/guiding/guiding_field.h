@@ -5,13 +5,13 @@
 #pragma once
 
 #include <cstddef>
-#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "transport/geometry/vector.h"
 #include "transport/guiding/directional_quadtree.h"
+#include "transport/guiding/guiding_sample.h"
 #include "transport/guiding/vmf_mixture.h"
 
 namespace rimu {
@@ -21,16 +21,6 @@ namespace rimu {
 /// the sphere, and a leaf that mixed them would send half of the wall's guided rays into the wall.
 int facing_of(Vec3 normal);
 inline constexpr int kFacings = 6;
-
-/// One path vertex's record: where it was, which way its surface faced (facing_of), the direction the path left it
-/// by (on the equal-area square) and the incident luminance that direction brought divided by the density it was
-/// sampled with.
-struct GuidingSample {
-  Vec3 position;
-  DirectionalSample direction;
-  int facing = 0;
-  float distance = INFINITY;  ///< to the next vertex along the direction (∞: none; the mixture's parallax)
-};
 
 struct GuidingFieldSettings {
   /// A spatial leaf holding more than this many samples (times √(samples per pixel of the pass), as Müller et al.'s

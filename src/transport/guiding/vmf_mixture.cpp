@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "transport/geometry/frame.h"
+#include "transport/sampling/equal_area_square.h"
 
 namespace rimu {
 namespace {
@@ -57,16 +58,17 @@ float VertexMixture::pdf(Vec3 direction) const {
   return density;
 }
 
-VmfMixture VmfMixture::fit(const std::vector<ParallaxSample>& samples, const VmfMixtureSettings& settings) {
+VmfMixture VmfMixture::fit(std::span<const GuidingSample> samples, const VmfMixtureSettings& settings) {
   VmfMixture mixture;
   double total = 0.0, total_squared = 0.0;
   size_t weighted = 0;
   Vec3 pivot_sum{0, 0, 0};
-  for (const ParallaxSample& s : samples) {
-    if (!(s.weight > 0.0f)) continue;
-    total += s.weight;
-    total_squared += double(s.weight) * s.weight;
-    pivot_sum = pivot_sum + s.position * s.weight;
+  for (const GuidingSample& s : samples) {
+    const float w = s.direction.weight;
+    if (!(w > 0.0f)) continue;
+    total += w;
+    total_squared += double(w) * w;
+    pivot_sum = pivot_sum + s.position * w;
     ++weighted;
   }
   if (!(total > 0.0)) return mixture;
@@ -79,12 +81,13 @@ VmfMixture VmfMixture::fit(const std::vector<ParallaxSample>& samples, const Vmf
   std::vector<PivotSample> fit_samples;
   fit_samples.reserve(weighted / stride + 1);
   size_t index = 0;
-  for (const ParallaxSample& s : samples) {
-    if (!(s.weight > 0.0f)) continue;
+  for (const GuidingSample& s : samples) {
+    if (!(s.direction.weight > 0.0f)) continue;
     if (index++ % stride != 0) continue;
-    PivotSample p{s.direction, 0.0f, s.weight};
+    const Vec3 direction = equal_area_square_to_sphere(s.direction.square);
+    PivotSample p{direction, 0.0f, s.direction.weight};
     if (std::isfinite(s.distance)) {
-      const Vec3 to_light = s.position + s.direction * s.distance - mixture.pivot_;
+      const Vec3 to_light = s.position + direction * s.distance - mixture.pivot_;
       const float d = length(to_light);
       if (d > 0.0f) {
         p.direction = to_light / d;

@@ -10,20 +10,13 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "transport/geometry/vector.h"
+#include "transport/guiding/guiding_sample.h"
 
 namespace rimu {
-
-/// One recorded direction for the mixture's fit: where the vertex was, the unit direction the path left it by, how
-/// far the next vertex was (∞: the ray escaped) and its weight (incident luminance · cos / pdf).
-struct ParallaxSample {
-  Vec3 position;
-  Vec3 direction;
-  float distance = 0.0f;
-  float weight = 0.0f;
-};
 
 struct VmfLobe {
   Vec3 mean;                 ///< unit mean direction as seen from the pivot
@@ -61,8 +54,9 @@ class VertexMixture {
 
 class VmfMixture {
  public:
-  /// Fits the mixture to `samples` (weights ≥ 0). Empty when their weights sum to zero.
-  static VmfMixture fit(const std::vector<ParallaxSample>& samples, const VmfMixtureSettings& settings);
+  /// Fits the mixture to `samples` (weights ≥ 0; a leaf's records, read where they are: only the ones the fit keeps,
+  /// at most max_fit_samples, are copied, as seen from the pivot). Empty when their weights sum to zero.
+  static VmfMixture fit(std::span<const GuidingSample> samples, const VmfMixtureSettings& settings);
 
   bool empty() const { return lobes_.empty(); }
   float effective_samples() const { return effective_samples_; }
