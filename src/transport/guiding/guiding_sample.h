@@ -22,7 +22,8 @@ struct GuidingSample {
   Vec3 position;
   DirectionalSample direction;
   int facing = 0;
-  float distance = INFINITY;  ///< to the next vertex along the direction (∞: none; the mixture's parallax)
+  /// To the next vertex along the direction: the mixture's parallax (∞: none, or not recorded: quadtree fields).
+  float distance = INFINITY;
 };
 
 }  // namespace rimu

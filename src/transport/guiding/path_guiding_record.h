@@ -35,7 +35,8 @@ class PathGuidingRecord {
   /// last one (an emitter its own ray hit, which next-event estimation samples: path_integrator.cpp).
   void add_radiance(const SampledSpectrum& contribution, bool skip_last = false);
   /// The ray leaving the last recorded vertex travelled `t` further (a hit; panes passed add up) or escaped: the
-  /// distance of the light it brought (GuidingSample::distance). Ignored once a later vertex is recorded.
+  /// distance of the light it brought (GuidingSample::distance). Ignored once a later vertex is recorded. Called
+  /// only for mixture fields (path_integrator.cpp); without it a vertex's distance is recorded as ∞.
   void travel(float t) {
     if (count_ > 0 && vertices_[size_t(count_ - 1)].open) vertices_[size_t(count_ - 1)].distance += t;
   }

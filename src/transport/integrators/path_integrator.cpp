@@ -142,7 +142,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
   int passages_since_vertex = 0, passages = 0;
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
-    if (record && previous_recorded) hit ? record->travel(hit->t) : record->escape();
+    // How far the recorded vertex's light was: the mixture's parallax (quadtree fields do not read it).
+    if (record && previous_recorded && settings_.guiding_mixture) hit ? record->travel(hit->t) : record->escape();
     if (!hit) {
       for (int index : scene_.infinite_lights) {
         const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
