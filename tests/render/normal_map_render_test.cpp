@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
@@ -76,6 +78,45 @@ TEST_CASE("normal map render: a constant tilted map scales a floor's brightness 
   CHECK(mean_luminance(floor_scene(flat)) / reference == doctest::Approx(1.0).epsilon(1e-4));
 }
 
+TEST_CASE("normal map render: an 8-bit map is read linearly unless the scene asks for the sRGB curve") {
+  // One texel, the sRGB codes of (n + 1)/2 for n tilted 20° away from the light: (155, 188, 252). sRGB-decoded,
+  // n = (−0.344, 0.006, 0.947), and the floor darkens to ≈ cos 60°/cos 40° = 0.653; read as v/255 (the default),
+  // n = (0.216, 0.475, 0.976) leans towards the light instead (1.046).
+  const std::vector<uint8_t> codes = {155, 188, 252};
+  const std::string file = test::write_ppm("nmap_8bit", 1, 1, codes).string();
+  const auto linear = [](uint8_t c) { return c / 255.0; };
+  const auto srgb = [](uint8_t c) {  // IEC 61966-2-1
+    const double v = c / 255.0;
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
+  const double light = kLightDeg * kPi / 180.0;
+  // The map's x is ∂p/∂u = +x (towards the light), its z the floor's normal; its y lies across the light's plane.
+  const auto expected_ratio = [&](auto decode) {
+    const double x = 2 * decode(codes[0]) - 1, y = 2 * decode(codes[1]) - 1, z = 2 * decode(codes[2]) - 1;
+    return (x * std::sin(light) + z * std::cos(light)) / std::sqrt(x * x + y * y + z * z) / std::cos(light);
+  };
+  const json plain = {{"type", "diffuse"}, {"reflectance", 0.5}};
+  const double reference = mean_luminance(floor_scene(plain));
+  const auto ratio = [&](const json& normal_map) {
+    json mapped = plain;
+    mapped["normal_map"] = normal_map;
+    return mean_luminance(floor_scene(mapped)) / reference;
+  };
+  // As in the tilted-map test, the renders share their samples: 0.1 % is rounding, and the two decodings differ by 60 %.
+  CHECK(ratio(file) == doctest::Approx(expected_ratio(linear)).epsilon(1e-3));
+  CHECK(ratio({{"image", file}, {"encoding", "linear"}}) == doctest::Approx(expected_ratio(linear)).epsilon(1e-3));
+  CHECK(ratio({{"image", file}, {"encoding", "srgb"}}) == doctest::Approx(expected_ratio(srgb)).epsilon(1e-3));
+  // Bad forms name the key.
+  const auto load = [&](const json& normal_map) {
+    json mapped = plain;
+    mapped["normal_map"] = normal_map;
+    return test::scene_from_json(floor_scene(mapped));
+  };
+  CHECK_THROWS_WITH_AS(load({{"image", file}, {"encoding", "gamma"}}), doctest::Contains("normal_map/encoding"), InputError);
+  CHECK_THROWS_WITH_AS(load({{"file", file}}), doctest::Contains("normal_map"), InputError);
+  CHECK_THROWS_WITH_AS(load(3), doctest::Contains("normal_map"), InputError);
+}
+
 TEST_CASE("bump map render: a linear ramp displacement of slope tan(tilt) renders as the same tilt") {
   const json plain = {{"type", "diffuse"}, {"reflectance", 0.5}};
   const double reference = mean_luminance(floor_scene(plain));
@@ -119,6 +160,8 @@ TEST_CASE("pbrt normalmap and displacement: imported as the material's normal_ma
   test::ScratchFolder dir("pbrt_normal_maps");
   std::filesystem::copy_file(tilted_normal_map("pbrt_nmap", 0.2), dir / "normals.pfm",
                              std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(test::write_ppm("pbrt_nmap_8bit", 1, 1, {188, 188, 255}), dir / "normals.ppm",
+                             std::filesystem::copy_options::overwrite_existing);
   const std::string header = "LookAt 0 3 -1  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
   const PbrtImport imported = import_pbrt_text(
       header +
@@ -126,12 +169,17 @@ TEST_CASE("pbrt normalmap and displacement: imported as the material's normal_ma
           "MakeNamedMaterial \"mapped\" \"string type\" \"diffuse\" \"string normalmap\" \"normals.pfm\"\n"
           "MakeNamedMaterial \"bumped\" \"string type\" \"conductor\" \"texture displacement\" \"bumps\"\n"
           "MakeNamedMaterial \"both\" \"string type\" \"diffuse\" \"string normalmap\" \"normals.pfm\" \"float displacement\" 0.1\n"
+          "MakeNamedMaterial \"stb\" \"string type\" \"diffuse\" \"string normalmap\" \"normals.ppm\"\n"
           "NamedMaterial \"mapped\"\n"
           "Shape \"bilinearmesh\" \"point3 P\" [-1 0 -1  1 0 -1  -1 0 1  1 0 1] \"point2 uv\" [0 0 1 0 0 1 1 1]\n",
       "test.pbrt", dir.path, test::library());
   const json& m = imported.document["materials"];
   CHECK(m["mapped"]["normal_map"].get<std::string>().find("normals.pfm") != std::string::npos);
   CHECK_FALSE(m["mapped"].contains("displacement"));
+  // pbrt-v4 reads normal maps asking for linear values, which only its PNG reader honours (a float file is linear
+  // anyway): a PPM (like a TGA, JPEG or BMP) is sRGB-decoded by its stb_image path, and is imported so.
+  CHECK(m["stb"]["normal_map"]["image"].get<std::string>().find("normals.ppm") != std::string::npos);
+  CHECK(m["stb"]["normal_map"]["encoding"] == "srgb");
   CHECK(m["bumped"]["displacement"]["checkerboard"] == json({1.0, 0.01}));  // pbrt's default tex1 is 1
   CHECK(m["both"].contains("normal_map"));
   CHECK_FALSE(m["both"].contains("displacement"));
@@ -140,6 +188,11 @@ TEST_CASE("pbrt normalmap and displacement: imported as the material's normal_ma
   CHECK(imported.ignored[0].what.find("displacement") != std::string::npos);
   const auto scene = load_scene(imported.document, "test.pbrt", dir.path, test::library());
   CHECK(scene->geometry.has_surface_tangents());
+  // A PNG normal map stays linear, as pbrt-v4's PNG reader is asked (only the file's presence is checked here).
+  std::filesystem::copy_file(dir / "normals.ppm", dir / "normals.png", std::filesystem::copy_options::overwrite_existing);
+  const PbrtImport png = import_pbrt_text(header + "MakeNamedMaterial \"png\" \"string type\" \"diffuse\" \"string normalmap\" \"normals.png\"\n",
+                                          "test.pbrt", dir.path, test::library());
+  CHECK(png.document["materials"]["png"]["normal_map"].is_string());
   // A missing normal map is an error at the statement.
   CHECK_THROWS_WITH_AS(import_pbrt_text(header + "Material \"diffuse\" \"string normalmap\" \"nowhere.png\"\n", "test.pbrt",
                                         dir.path, test::library()),

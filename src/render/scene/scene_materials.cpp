@@ -218,16 +218,26 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
   });
 }
 
-// "normal_map": an RGB image in tangent space (always read linearly, pbrt-v4's convention), or "displacement": a
+// "normal_map": an RGB image in tangent space, a file name or {"image": file, "encoding": "linear"|"srgb"} (read
+// linearly unless it says "srgb": pbrt-v4's convention for normal maps, whose values are vectors, not colours; the
+// pbrt importer says "srgb" where pbrt-v4's reader decodes the file as sRGB all the same), or "displacement": a
 // float texture (a bump map, in scene units along the normal); not both, and not on a mix (its materials' own apply).
 std::shared_ptr<const ShadingNormalModifier> normal_modifier_of(const JsonCursor& m, LoadContext& context) {
   if (m.has("normal_map") && m.has("displacement"))
     m.at("displacement").fail("a material takes a \"normal_map\" or a \"displacement\", not both");
   if (m.has("normal_map")) {
-    const JsonCursor file = m.at("normal_map");
+    const JsonCursor value = m.at("normal_map");
+    bool srgb = false;
+    if (value.is_object()) {
+      value.only_keys({"image", "encoding"});
+      if (value.has("encoding")) srgb = value.at("encoding").choice({"srgb", "linear"}) == "srgb";
+    } else if (!value.is_string()) {
+      value.fail("expected an image file name or {\"image\": \"normals.png\", \"encoding\": \"linear\"}");
+    }
+    const JsonCursor file = value.is_object() ? value.at("image") : value;
     const std::filesystem::path path = context.spectra.scene_directory() / file.string();
     return file.blame([&] {
-      auto image = std::make_shared<const RgbImage>(RgbImage::read(path, ImageEncoding{"srgb-linear", false}));
+      auto image = std::make_shared<const RgbImage>(RgbImage::read(path, ImageEncoding{"srgb-linear", srgb}));
       return ShadingNormalModifier::normal_map(std::make_shared<const RgbNormalMap>(std::move(image)));
     });
   }

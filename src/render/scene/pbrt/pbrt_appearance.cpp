@@ -463,15 +463,19 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       }
     }
   }
-  // pbrt-v4's "normalmap" (an RGB image in tangent space, which pbrt reads linearly: so does Rimu's "normal_map")
-  // and bump map ("displacement", a float texture). pbrt's GetBSDF uses the normal map when both are given.
+  // pbrt-v4's "normalmap" (an RGB image in tangent space) and bump map ("displacement", a float texture). pbrt's
+  // GetBSDF uses the normal map when both are given.
   const std::string normal_map = p.string("normalmap", "");
   const bool displaced = p.get("displacement", {PbrtParamType::real, PbrtParamType::texture}) != nullptr;
   if (!normal_map.empty()) {
     const std::filesystem::path path = std::filesystem::absolute(p.directory() / normal_map);
     if (!std::filesystem::is_regular_file(path))
       throw InputError(s.where, p.context() + ": cannot find the normal map '" + path.string() + "'");
-    m["normal_map"] = path_for_document(path);
+    // pbrt-v4 asks its Image::Read for linear values, but only its PNG reader takes the request: a TGA, PPM, JPEG or
+    // BMP file comes out sRGB-decoded before n = 2·rgb − 1. Rimu's "normal_map" is linear unless told otherwise.
+    m["normal_map"] = read_as_srgb_regardless(path)
+                          ? json{{"image", path_for_document(path)}, {"encoding", "srgb"}}
+                          : json(path_for_document(path));
     if (displaced) ignore("\"displacement\" given with \"normalmap\" (the normal map is used, as in pbrt-v4)", s.where);
   } else if (displaced) {
     m["displacement"] = float_value(p, "displacement", 0.0);

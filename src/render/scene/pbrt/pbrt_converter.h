@@ -138,6 +138,9 @@ class PbrtConverter {
   /// a PNG by its "encoding" (default sRGB; "gamma g" listed and read as sRGB); any other file sRGB whatever
   /// "encoding" says (one that is not sRGB is listed).
   std::string image_encoding(PbrtParams& tp, const std::filesystem::path& image, const SourceLocation& where);
+  /// True for the files pbrt-v4's Image::Read decodes as 8-bit sRGB whatever encoding it is asked for: all but
+  /// EXR, PFM, HDR (float, linear), PNG (the encoding asked for) and QOI (its own) go through stb_image so.
+  static bool read_as_srgb_regardless(const std::filesystem::path& image);
   /// pbrt's roughness value (number or texture) as Rimu's perceptual roughness: r = α^½ with pbrt's α = roughness^½
   /// under remaproughness, else α = roughness (a texture is raised to that power per hit: {"power": [t, e]}).
   json roughness_value(const json& pbrt_roughness, bool remap) const;

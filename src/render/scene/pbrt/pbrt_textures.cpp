@@ -169,6 +169,12 @@ std::optional<json> PbrtConverter::float_texture_value(const std::string& textur
   return std::nullopt;
 }
 
+bool PbrtConverter::read_as_srgb_regardless(const std::filesystem::path& image) {
+  std::string extension = image.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return extension != ".exr" && extension != ".pfm" && extension != ".hdr" && extension != ".png" && extension != ".qoi";
+}
+
 std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem::path& image, const SourceLocation& where) {
   std::string extension = image.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -177,7 +183,7 @@ std::string PbrtConverter::image_encoding(PbrtParams& tp, const std::filesystem:
   // by stb_image as 8-bit sRGB whatever "encoding" says (the texture's default, "linear", never reaches it).
   const std::string encoding = tp.string("encoding", "sRGB");  // read (and so not listed) for every format
   if (extension == ".exr" || extension == ".pfm" || extension == ".hdr") return "linear";
-  if (extension != ".png" && extension != ".qoi") {  // (a QOI file carries its own)
+  if (read_as_srgb_regardless(image)) {
     if (encoding != "sRGB")
       ignore("imagemap encoding \"" + encoding + "\" of a " + extension + " image (pbrt-v4 reads it as sRGB too)", where);
     return "srgb";
