@@ -331,8 +331,10 @@ void BM_TextureLookup_PerLookupExact(benchmark::State& state) {
 }
 BENCHMARK(BM_TextureLookup_PerLookupExact);
 
-// 2^`shift` lookups per wavelength set: 1 refills the per-thread basis cache at every lookup (the worst case), 8 is
-// what a path that meets textures several times pays per lookup.
+// The texture lookup as rendered (ImageTexture::evaluate): the bilinear RGB of 4 texels, that colour's coefficients by
+// the fast path (reflectance_coefficients, once per lookup: a texture keeps RGB, not coefficients), evaluated at the
+// path's wavelengths. 2^`shift` lookups per wavelength set: 1 refills the per-thread basis cache at every lookup (the
+// worst case), 8 is what a path that meets textures several times pays per lookup.
 void time_texture_lookups(benchmark::State& state, int shift) {
   auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));
   const ImageTexture texture(random_image(int(state.range(0))), shared, 1.0f);
@@ -340,10 +342,10 @@ void time_texture_lookups(benchmark::State& state, int shift) {
   const auto lambdas = wavelength_sets();
   time_each(state, [&](size_t i) { return texture.evaluate(uvs[i & 4095], lambdas[(i >> shift) & 4095]); });
 }
-void BM_TextureLookup_Basis(benchmark::State& state) { time_texture_lookups(state, 0); }
-BENCHMARK(BM_TextureLookup_Basis)->Arg(64)->Arg(1024);
-void BM_TextureLookup_Basis_SameWavelengths(benchmark::State& state) { time_texture_lookups(state, 3); }
-BENCHMARK(BM_TextureLookup_Basis_SameWavelengths)->Arg(64);
+void BM_TextureLookup_PerLookupFast(benchmark::State& state) { time_texture_lookups(state, 0); }
+BENCHMARK(BM_TextureLookup_PerLookupFast)->Arg(64)->Arg(1024);
+void BM_TextureLookup_PerLookupFast_SameWavelengths(benchmark::State& state) { time_texture_lookups(state, 3); }
+BENCHMARK(BM_TextureLookup_PerLookupFast_SameWavelengths)->Arg(64);
 
 void BM_TextureConversion_PerTexel(benchmark::State& state) {
   auto shared = std::make_shared<const RgbUpsampler>(library(), RgbColourSpace::named("srgb-linear"));
