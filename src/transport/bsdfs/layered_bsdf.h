@@ -43,9 +43,10 @@ struct LayerWalk {
 ///   the adjoint, without the radiance factor 1/η²). At every scattering event (base or medium) the walk
 ///   connects to that companion (next-event estimation, weighted by the power heuristic against the walk's own
 ///   next direction reaching the coat and leaving through it towards wi, whose density from wi's side is
-///   evaluated exactly; pbrt-v4 uses the reverse density there). Distances in the slab are sampled
-///   exponentially when the albedo is non-zero, else the slab only attenuates, by exp(−thickness/|cos θ|) per
-///   crossing. Russian roulette after 3 events when the throughput falls below 0.25.
+///   evaluated exactly; pbrt-v4 uses the reverse density there, a density over the other side's directions, so
+///   its two weights sum to more than 1 and its f() is biased high: docs/pbrt-import.md). Distances in the slab
+///   are sampled exponentially when the albedo is non-zero, else the slab only attenuates, by
+///   exp(−thickness/|cos θ|) per crossing. Russian roulette after 3 events when the throughput falls below 0.25.
 /// - sample(wo): the walk itself: the coat's sample (a reflection is returned as it is), then medium distances,
 ///   base and coat samples until the walk leaves through the coat. The returned weight f·|cos θi|/pdf is the
 ///   walk's (exact in expectation); the returned pdf is the pdf() estimate below, with f scaled to keep the
