@@ -12,7 +12,8 @@
 #   cpu      relMSE·CPU s (uniform, same samples) / relMSE·CPU s (adaptive)   equal CPU time, the bookkeeping
 #            included (relMSE ∝ 1/time for either: both are unbiased Monte Carlo);
 #   wall     relMSE(uniform, --time T) / relMSE(adaptive)           equal wall time, noisy on a loaded machine;
-# and samples_fc, the samples gain with the floor taken off both (n/a when the adaptive relMSE is under it).
+# and samples_fc and cpu_fc, the samples and CPU gains with the floor taken off both relMSEs (n/a when the adaptive
+# relMSE is under it): at long budgets the references' own noise is most of every relMSE and hides the gains.
 # and draws relMSE against the camera samples per pixel, one panel per scene, to OUT.png (gnuplot; default
 # adaptive_sampling.png). Scenes, lights ×1000 (bench/scaled_scene.py) so relMSE's floor of 0.01 is negligible: the
 # Cornell box, the ColorChecker room under F11, the daylit room with an open window (its difficulty is even: the
@@ -51,8 +52,8 @@ render() {
 }
 relmse() { "$compare" relmse "$1" "$2" | sed 's/.*=//'; }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); budgets ${budgets} s at $resolution, references $ref_spp spp, threshold $threshold"
-printf "%-17s %4s %6s %7s %9s %11s %11s %11s %6s %6s %6s %9s\n" scene seed budget floor spp_mean relmse_adapt relmse_same \
-  relmse_wall samples cpu wall samples_fc | tee "$scratch/table"
+printf "%-17s %4s %6s %7s %9s %11s %11s %11s %6s %6s %6s %9s %7s\n" scene seed budget floor spp_mean relmse_adapt relmse_same \
+  relmse_wall samples cpu wall samples_fc cpu_fc | tee "$scratch/table"
 for n in $scenes; do
   python3 "$root/bench/scaled_scene.py" "${sources[$n]}" "$scratch" "$n" "${factors[$n]}"
   scene=$scratch/${n}_dir/$n.json
@@ -79,7 +80,8 @@ for n in $scenes; do
     fi
     awk -v n="$n" -v seed="$seed" -v t="$t" -v f="$floor" -v m="$spp_a" -v a="$e_a" -v s="$e_s" -v w="$e_w" -v ca="$cpu_a" -v cu="$cpu_u" \
       'BEGIN { fc = a > f ? sprintf("%.2f", (s - f) / (a - f)) : "n/a"; wg = w == "nan" ? "n/a" : sprintf("%.2f", w / a)
-               printf "%-17s %4s %6s %7s %9.1f %11.4g %11.4g %11s %6.2f %6.2f %6s %9s\n", n, seed, t, f, m, a, s, w, s / a, s * cu / (a * ca), wg, fc }' |
+               cfc = a > f ? sprintf("%.2f", (s - f) * cu / ((a - f) * ca)) : "n/a"
+               printf "%-17s %4s %6s %7s %9.1f %11.4g %11.4g %11s %6.2f %6.2f %6s %9s %7s\n", n, seed, t, f, m, a, s, w, s / a, s * cu / (a * ca), wg, fc, cfc }' |
       tee -a "$scratch/table"
   done
   done

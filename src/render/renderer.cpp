@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "render/film/adaptive_sampling.h"
+#include "render/scene/ray_tally.h"
 #include "render/film/feature_buffers.h"
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
@@ -172,6 +173,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
             const int pixel_first = options.adaptive ? options.adaptive->samples(x, y) : first;
             const int pixel_count = options.adaptive ? options.adaptive->pass_samples(x, y) : count;
             tile_samples += uint64_t(pixel_count);
+            const uint64_t rays_before = rays_traced_by_this_thread();
             for (int s = pixel_first; s < pixel_first + pixel_count; ++s) {
               sampler->start_pixel_sample(x, y, uint32_t(s));
               // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4); then per-bounce ones.
@@ -196,7 +198,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               } else {
                 radiance = integrator.radiance(ray, lambda, *sampler, groups);
               }
-              if (!options.features) {
+              if (!options.features && !options.adaptive) {
                 tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
                 continue;
               }
@@ -205,6 +207,13 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               const double* sums = tile->pixel(x, y);
               const double before[4] = {sums[0], sums[1], sums[2], sums[FilmTile::kWeight]};
               tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
+              if (options.adaptive && sums[FilmTile::kWeight] - before[3] > 0.0) {
+                const double weight = sums[FilmTile::kWeight] - before[3];
+                const double value[3] = {(sums[0] - before[0]) / weight, (sums[1] - before[1]) / weight,
+                                         (sums[2] - before[2]) / weight};
+                options.adaptive->add_sample_value(x, y, value);
+              }
+              if (!options.features) continue;
               FeatureSample feature;
               feature.half = s & 1;
               for (int k = 0; k < 3; ++k) feature.beauty_sum[size_t(k)] = sums[k] - before[k];
@@ -218,6 +227,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               }
               feature_results[t].add(x, y, feature);
             }
+            if (options.adaptive) options.adaptive->add_rays(x, y, rays_traced_by_this_thread() - rays_before);
           }
         }
         // Uniform: every pixel's samples. Adaptive: the samples taken (a render that ends with every pixel stopped

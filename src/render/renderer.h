@@ -35,9 +35,9 @@ struct RenderOptions {
   ProgressReporter* progress = nullptr;      ///< counts camera samples
   /// Adaptive sampling (render/film/adaptive_sampling.h): each pixel takes the samples the caller planned for the
   /// pass (plan_pass, in start_pass), continuing its own sample indices, and the render ends when every pixel has
-  /// stopped. The caller plans every pass in start_pass and updates it in after_pass; null: every pixel takes every
-  /// pass.
-  const AdaptiveSampling* adaptive = nullptr;
+  /// stopped. The caller plans every pass in start_pass and updates it in after_pass; the renderer reports the rays
+  /// each pixel's samples traced (add_rays), their cost. Null: every pixel takes every pass.
+  AdaptiveSampling* adaptive = nullptr;
   /// Feature buffers for a denoiser (`--aov`, `--denoise`): when set, every camera sample also traces a feature ray
   /// (transport/integrators/path_features.h) with a sampler of its own, so the image is the same with or without
   /// them, and its beauty goes to the half buffer of its index's parity. Each pass's tiles are merged with the

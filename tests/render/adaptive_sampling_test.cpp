@@ -18,6 +18,7 @@
 #include "render/film/adaptive_sampling.h"
 #include "render/output/error_heat_map.h"
 #include "render/render_job.h"
+#include "render/scene/ray_tally.h"
 #include "spectral/error.h"
 #include "test_support.h"
 
@@ -345,16 +346,27 @@ struct RarePathFilm {
     return ((z ^ (z >> 31)) & 31) == 0;
   }
 
+  // One sample of the constant spectrum `value` in pixel (x, y), given to the film and, as the renderer does, its
+  // share of the film's sums to the sampler.
+  void add(int x, int y, float value) {
+    const SampledWavelengths lambda = SampledWavelengths::sample_visible(0.5f);
+    const double* sums = film.accumulators(x, y);
+    const double before[3] = {sums[0], sums[1], sums[2]}, weight_before = film.weight_sum(x, y);
+    film.add_sample(x, y, Float4(value), lambda);
+    const double weight = film.weight_sum(x, y) - weight_before;
+    const double channels[3] = {(sums[0] - before[0]) / weight, (sums[1] - before[1]) / weight, (sums[2] - before[2]) / weight};
+    sampling.add_sample_value(x, y, channels);
+  }
+
   template <typename Rare>
   void run_passes(int passes, const Rare& rare) {
-    const SampledWavelengths lambda = SampledWavelengths::sample_visible(0.5f);
     for (int p = 0; p < passes; ++p) {
       sampling.plan_pass(16);
       reached += 16;
       for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
           for (int k = 0, first = sampling.samples(x, y); k < sampling.pass_samples(x, y); ++k)
-            film.add_sample(x, y, Float4(rare(x, y) && bright(x, y, first + k) ? 32.0f : 1.0f), lambda);
+            add(x, y, rare(x, y) && bright(x, y, first + k) ? 32.0f : 1.0f);
       sampling.after_pass(film, reached);
     }
   }
@@ -400,4 +412,100 @@ TEST_CASE("adaptive sampling: a pixel whose neighbourhood finds rare bright path
     CHECK(f.sampling.samples(28, 0) == 32);
     CHECK(f.sampling.samples(7, 7) == 32);
   }
+}
+
+namespace {
+// A deterministic uniform number in [0, 1) for pixel (x, y)'s sample `index` (splitmix64's finaliser).
+float uniform_of(int x, int y, int index) {
+  uint64_t z = uint64_t(x) * 0x9E3779B97F4A7C15ull + uint64_t(y) * 0xBF58476D1CE4E5B9ull + uint64_t(index) + 7;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return float((z ^ (z >> 31)) >> 40) / float(1 << 24);
+}
+}  // namespace
+
+TEST_CASE("adaptive sampling: where samples cost more rays, a pixel takes fewer of them, in proportion to "
+          "1 / sqrt(cost)") {
+  // Every pixel has the same relative noise (values uniform in [0, 2]: relative variance 1/3 per sample). The left
+  // half's samples trace 15 rays each, the right half's 3: with kSampleOverheadRays = 1 a sample costs 16 against
+  // 4, and the relMSE for a given time is smallest at counts ∝ 1 / sqrt(cost): twice as many on the right. With
+  // equal costs (the control) the halves take the same.
+  AdaptiveSamplingSettings settings;
+  settings.noise_threshold = 1e-6;  // no pixel stops
+  settings.min_spp = 16;
+  settings.max_spp = 1 << 20;
+  REQUIRE(AdaptiveSampling::kSampleOverheadRays == 1.0);
+  auto run = [&](uint64_t left_rays, uint64_t right_rays) {
+    RarePathFilm f(settings);
+    for (int p = 0; p < 60; ++p) {
+      f.sampling.plan_pass(16);
+      f.reached += 16;
+      for (int y = 0; y < RarePathFilm::kH; ++y)
+        for (int x = 0; x < RarePathFilm::kW; ++x) {
+          const int first = f.sampling.samples(x, y), count = f.sampling.pass_samples(x, y);
+          for (int k = 0; k < count; ++k) f.add(x, y, 2.0f * uniform_of(x, y, first + k));
+          f.sampling.add_rays(x, y, uint64_t(count) * (x < RarePathFilm::kW / 2 ? left_rays : right_rays));
+        }
+      f.sampling.after_pass(f.film, f.reached);
+    }
+    double left = 0, right = 0;
+    for (int y = 0; y < RarePathFilm::kH; ++y)
+      for (int x = 0; x < RarePathFilm::kW; ++x) (x < RarePathFilm::kW / 2 ? left : right) += f.sampling.samples(x, y);
+    return right / left;
+  };
+  // Each pixel's error is estimated from its two halves over a 3 × 3 window (9 degrees of freedom: its deviation
+  // is known to about ±24 %), and 256 pixels a side average that to about ±2 %; counts also only grow, so they lag
+  // their targets by up to a pass. ±15 % holds both; the control shows the ratio is not 2 by construction.
+  const double costed = run(15, 3), control = run(3, 3);
+  INFO("samples right / left: with costs 16 and 4 " << costed << ", with equal costs " << control);
+  CHECK(costed == doctest::Approx(2.0).epsilon(0.15));
+  CHECK(control == doctest::Approx(1.0).epsilon(0.15));
+}
+
+TEST_CASE("adaptive sampling: a pass spends a uniform pass's samples even when the pixels short of their targets "
+          "are capped") {
+  // A 2 × 2 block is very noisy (values 0 or 40, 40 one time in 32: relative deviation ≈ 5.6 per sample); every other pixel
+  // is nearly constant (uniform in 0.99–1.01). Past the minimum the block's targets take most of the counts, but a pixel takes at
+  // most 8 × 16 samples a pass: the block can take 4 · 128 of the pass's 16 · 512. The rest must go to the other
+  // pixels (which have room), not be left out: left out, passes shrink, a time budget runs more of them, and the one
+  // sample every pixel takes each pass becomes most of the samples.
+  AdaptiveSamplingSettings settings;
+  settings.noise_threshold = 1e-9;  // no pixel stops
+  settings.min_spp = 16;
+  settings.max_spp = 1 << 20;
+  RarePathFilm f(settings);
+  auto block = [](int x, int y) { return x >= 20 && x < 22 && y >= 6 && y < 8; };
+  uint64_t planned_total = 0;
+  for (int p = 0; p < 12; ++p) {
+    const uint64_t planned = f.sampling.plan_pass(16);
+    planned_total += planned;
+    f.reached += 16;
+    // Each pass shares out what a uniform pass would take, to within a sample per pixel of fractions carried to the
+    // next pass.
+    const uint64_t uniform = uint64_t(16) * RarePathFilm::kW * RarePathFilm::kH;
+    INFO("pass " << p << ": planned " << planned << " against " << uniform);
+    CHECK(std::abs(double(planned) - double(uniform)) < RarePathFilm::kW * RarePathFilm::kH);
+    for (int y = 0; y < RarePathFilm::kH; ++y)
+      for (int x = 0; x < RarePathFilm::kW; ++x)
+        for (int k = 0, first = f.sampling.samples(x, y); k < f.sampling.pass_samples(x, y); ++k) {
+          const int index = first + k;
+          const float value = block(x, y) ? (RarePathFilm::bright(x, y, index) ? 40.0f : 0.0f) : 0.99f + 0.02f * uniform_of(x, y, index);
+          f.add(x, y, value);
+        }
+    f.sampling.after_pass(f.film, f.reached);
+  }
+  // The block took the cap (128) in each of the 10 passes past the minimum (32), and the passes' rest went elsewhere.
+  CHECK(f.sampling.samples(20, 6) >= 32 + 10 * 128 - 1);
+  CHECK(f.sampling.mean_samples() * RarePathFilm::kW * RarePathFilm::kH == doctest::Approx(double(planned_total)));
+  CHECK(std::abs(double(planned_total) - 12.0 * 16 * RarePathFilm::kW * RarePathFilm::kH) < RarePathFilm::kW * RarePathFilm::kH);
+}
+
+TEST_CASE("ray tally: every intersect and occluded call counts one ray on the calling thread") {
+  const std::unique_ptr<Scene> scene = test::scene_from_json(glowing_half_scene());
+  const uint64_t before = rays_traced_by_this_thread();
+  const Ray towards_card = test::ray_between({0.5, 0.0, 3.0}, {0.5, 0.0, 0.0});
+  CHECK(scene->geometry.intersect(towards_card).has_value());
+  CHECK_FALSE(scene->geometry.intersect(test::ray_between({0.5, 0.0, 3.0}, {0.5, 0.0, 6.0})).has_value());
+  CHECK(scene->geometry.occluded(towards_card));
+  CHECK(rays_traced_by_this_thread() - before == 3);
 }

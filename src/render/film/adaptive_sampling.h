@@ -56,14 +56,23 @@ int adaptive_min_spp(int max_spp);
 /// pixels' own errors and changes nothing.
 ///
 /// Where the samples go (plan_pass): until the minimum every active pixel takes every pass's samples. From then
-/// on a pass of s samples per pixel is s times the active pixels' count, shared among them by their remaining
-/// error. The image's relMSE, Σ σ_i² / (n_i μ_i²) over pixels with per-sample standard deviation σ_i, mean μ_i and
-/// n_i samples, is smallest for a given Σ n_i at n_i ∝ σ_i / μ_i = relative error · sqrt(n_i) (Lagrange). Each pass
-/// moves the counts toward that: every active pixel gets one sample (no pixel starves; both halves keep getting
-/// samples), the rest goes to the pixels below their target share in proportion to how far below they are, at most
-/// max_pass_share · s per pixel, and fractions carry over to the pixel's next pass. The error here is the RMS over
-/// linear R, G, B (each channel's mean at least 1 % of the largest; a camera film's own channels) and over the
-/// (2·allocation_radius_px + 1)² neighbourhood: relMSE counts every channel, so chroma noise draws samples too.
+/// on a pass of s samples per pixel is s times the active pixels' count, shared among them by their noise and
+/// their cost. The image's relMSE, Σ σ_i² / (n_i μ_i²) over pixels with per-sample standard deviation σ_i, mean μ_i
+/// and n_i samples, is smallest for a given time Σ n_i c_i, with c_i a sample's cost in pixel i, at
+/// n_i ∝ σ_i / (μ_i sqrt(c_i)) (Lagrange). σ_i² / μ_i² is estimated from the pixel's own samples' second moments
+/// (add_sample_value), over linear R, G, B (each channel's mean at least 1 % of the largest; a camera film's own
+/// channels), averaged over the (2·allocation_radius_px + 1)² neighbourhood and at least the neighbourhood's floor
+/// times n: relMSE counts every channel, so chroma noise draws samples too. (Not from the two halves: their
+/// difference is one degree of freedom however many samples they hold, so shares decided from it stayed as noisy
+/// after thousands of samples as after 32; the second moments have n − 1.) The cost is the rays the pixel's
+/// samples traced per sample (render/scene/ray_tally.h: a dark corner's long paths cost more than a sample of the
+/// sky) plus kSampleOverheadRays for what a sample costs besides its rays (add_rays); counted, not timed, so the
+/// counts stay deterministic. Each pass moves the counts toward that: every active pixel gets one sample (no
+/// pixel starves; both halves keep getting samples), the rest goes to the pixels below their target share in
+/// proportion to how far below they are, at most max_pass_share · s per pixel; what capped pixels cannot take
+/// goes to the others, and what is left once every target is met goes in proportion to the targets, so a pass
+/// always spends s samples per active pixel (a pass that spent less would make a time budget run more passes, and
+/// their one sample per pixel would add up to uniform sampling). Fractions carry over to the pixel's next pass.
 /// Every pixel's samples are its own sample indices 0, 1, 2, … in order, whatever it takes per pass.
 ///
 /// Deterministic: decided from the film's sums on the calling thread between passes, so the image depends on the
@@ -86,6 +95,25 @@ class AdaptiveSampling {
   /// Whether pixel (x, y) (inside the film's crop window) takes the next pass's samples.
   bool active(int x, int y) const { return active_[index(x, y)] != 0; }
   size_t active_count() const { return active_count_; }
+  /// The renderer, after pixel (x, y)'s samples of a pass: the rays they traced (rays_traced_by_this_thread()'s
+  /// difference). Tiles are disjoint, so threads write different pixels.
+  void add_rays(int x, int y, uint64_t rays) { rays_[index(x, y)] += rays; }
+  /// The renderer, after each sample of pixel (x, y): the sample's own value in the film's channels (its share of
+  /// the film's sums over its share of the weight; not called for a sample of weight 0). Its square goes into the
+  /// pixel's second moments, from which the pass's shares are decided (plan_pass).
+  void add_sample_value(int x, int y, const double channels[3]) {
+    double* m = &moments_[kMoments * index(x, y)];
+    for (int c = 0; c < 3; ++c) {
+      const double v = to_rgb_(c, 0) * channels[0] + to_rgb_(c, 1) * channels[1] + to_rgb_(c, 2) * channels[2];
+      m[c] += v;
+      m[3 + c] += v * v;
+    }
+    m[6] += 1.0;
+  }
+  /// What a sample costs besides the rays it traces (camera ray generation, wavelengths, the film's splat), in
+  /// rays: a sample of pixel i is taken to cost rays_i / samples_i + this.
+  static constexpr double kSampleOverheadRays = 1.0;
+
   /// The samples pixel (x, y) received: its next pass takes its sample indices from this one on.
   int samples(int x, int y) const { return samples_[index(x, y)]; }
   /// The samples pixel (x, y) takes in the pass planned last (0 once it stopped).
@@ -110,11 +138,16 @@ class AdaptiveSampling {
   std::vector<double> last_channels_, last_weight_;   ///< the film's sums after the previous pass (3 channels a pixel)
   std::vector<double> half_channels_[2], half_weight_[2];
   std::vector<int> samples_, pass_samples_;
+  std::vector<uint64_t> rays_;   ///< the rays each pixel's samples traced (add_rays): their cost
+  /// Per pixel: Σ v, Σ v² of its samples' linear R, G, B (add_sample_value), and their count.
+  static constexpr size_t kMoments = 7;
+  std::vector<double> moments_;
   std::vector<double> carried_;  ///< each pixel's fraction of a sample not yet taken (plan_pass)
   std::vector<float> error_;
   std::vector<double> relative_squared_;  ///< each pixel's own squared relative error of luminance (∞: none yet)
-  std::vector<double> colour_squared_;    ///< the same, the mean over linear R, G, B (plan_pass)
-  std::vector<double> colour_floor_;      ///< the neighbourhood's floor on colour_squared_'s window RMS (plan_pass)
+  /// The neighbourhood's floor on a pixel's squared relative error over linear R, G, B (plan_pass multiplies it by
+  /// the pixel's samples: a floor on its relative variance per sample).
+  std::vector<double> colour_floor_;
   std::vector<uint8_t> active_;
   size_t active_count_;
 };

@@ -4,6 +4,8 @@
 #include <utility>
 #include <limits>
 
+#include "render/scene/ray_tally.h"
+
 namespace rimu {
 namespace {
 
@@ -222,6 +224,7 @@ std::optional<SurfaceHit> EmbreeScene::intersect(const Ray& ray) const {
   rh.ray = to_embree(ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  tally_traced_ray();
   rtcIntersect1(scene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   return shade_hit(rh);
@@ -231,6 +234,7 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = to_embree(ray);
+  tally_traced_ray();
   rtcOccluded1(scene_, &context, &r);
   return r.tfar == -std::numeric_limits<float>::infinity();
 }
