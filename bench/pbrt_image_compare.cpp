@@ -6,7 +6,9 @@
 //       channel means of both, their ratio B/A per channel, and per block×block tile and channel the mean
 //       paired difference in units of its standard error (sd of the 64 pixel differences / 8)
 //   rimu-pbrt-image-compare relmse IMAGE.exr REFERENCE.exr [--space srgb-linear]
-//       relMSE = mean over pixels and channels of (x − r)² / (r² + 0.01)
+//       relMSE = mean over pixels and channels of (x − r)² / (r² + 0.01); also the same without the worst 0.1 %
+//       of the pixels, and those pixels' share of the sum (fireflies). --denominator D.exr: r taken from D instead
+//       (two renders of one renderer compared with each other, weighted alike for both renderers)
 //   rimu-pbrt-image-compare png A.exr B.exr OUT.png [--space srgb-linear]
 //       A and B side by side, enlarged 3×, one exposure for both (A's mean luminance shown as 18 % grey),
 //       clipped and sRGB-encoded, 8 bits: the pictures next to the numbers in docs/benchmarks.md
@@ -33,6 +35,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -153,14 +156,27 @@ void compare(const LinearRgbImage& a, const LinearRgbImage& b, int block) {
               worst_where.c_str());
 }
 
-void relmse(const LinearRgbImage& image, const LinearRgbImage& reference) {
+void relmse(const LinearRgbImage& image, const LinearRgbImage& reference, const LinearRgbImage& denominator) {
   require_same_size(image, reference);
+  require_same_size(image, denominator);
+  std::vector<double> per_pixel(image.rgb.size() / 3, 0.0);
   double sum = 0;
   for (size_t i = 0; i < image.rgb.size(); ++i) {
-    const double d = image.rgb[i] - reference.rgb[i], r = reference.rgb[i];
-    sum += d * d / (r * r + 0.01);
+    const double d = image.rgb[i] - reference.rgb[i], r = denominator.rgb[i];
+    const double e = d * d / (r * r + 0.01);
+    sum += e;
+    per_pixel[i / 3] += e;
   }
   std::printf("relmse=%.6g\n", sum / double(image.rgb.size()));
+  // How much of it a few pixels carry (fireflies): relMSE without the worst 0.1 % of the pixels (at least one),
+  // and their share of the sum. relMSE is unbounded per pixel, so one firefly can decide a comparison.
+  const size_t worst = std::max<size_t>(1, per_pixel.size() / 1000);
+  std::nth_element(per_pixel.begin(), per_pixel.begin() + std::ptrdiff_t(worst), per_pixel.end(), std::greater<>());
+  double top = 0;
+  for (size_t i = 0; i < worst; ++i) top += per_pixel[i];
+  const size_t rest = std::max<size_t>(1, per_pixel.size() - worst);  // a 1-pixel crop has no rest: 0
+  std::printf("relmse_without_worst_0.1pct=%.6g\nworst_0.1pct_share=%.4g\n", std::max(0.0, sum - top) / double(3 * rest),
+              sum > 0 ? top / sum : 0.0);
 }
 
 void side_by_side_png(const LinearRgbImage& a, const LinearRgbImage& b, const rimu::RgbColourSpace& space,
@@ -231,6 +247,7 @@ int main(int argc, char** argv) {
   std::string space_name = "srgb-linear";
   int block = 8;
   std::optional<std::array<int, 4>> crop_box;
+  std::string denominator_path;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--space" && i + 1 < argc) space_name = argv[++i];
@@ -239,6 +256,7 @@ int main(int argc, char** argv) {
       for (int& v : *crop_box) v = std::atoi(argv[++i]);
     }
     else if (arg == "--block" && i + 1 < argc) block = std::atoi(argv[++i]);
+    else if (arg == "--denominator" && i + 1 < argc) denominator_path = argv[++i];
     else if (arg.rfind("--", 0) == 0) fail("unknown option " + arg);
     else positional.push_back(arg);
   }
@@ -247,7 +265,7 @@ int main(int argc, char** argv) {
   if ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
       positional.size() != expected || block < 2)
     fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr | png A.exr B.exr OUT.png | info A.exr "
-         "[--space NAME] [--block N] [--crop X0 Y0 X1 Y1]");
+         "[--space NAME] [--block N] [--crop X0 Y0 X1 Y1] [--denominator D.exr]");
   if (command == "info") {
     info(positional[1]);
     return 0;
@@ -266,6 +284,10 @@ int main(int argc, char** argv) {
   }
   if (command == "png") side_by_side_png(a, b, *space, positional[3]);
   else if (command == "compare") compare(a, b, block);
-  else relmse(a, b);
+  else {
+    LinearRgbImage d = denominator_path.empty() ? b : read_linear_rgb(denominator_path, *space);
+    if (crop_box && !denominator_path.empty()) d = crop(d, *crop_box);
+    relmse(a, b, d);
+  }
   return 0;
 }

@@ -28,6 +28,16 @@ out=$("$compare" compare "$work/s1.exr" "$work/s2.exr")
 awk -v r="$(value rms_z "$out")" 'BEGIN {exit !(r > 0.5 && r < 2)}' || fail "two seeds: rms z not ≈ 1: $out"
 relmse=$(value relmse "$("$compare" relmse "$work/s1.exr" "$work/s2.exr")")
 awk -v e="$relmse" 'BEGIN {exit !(e > 0)}' || fail "two seeds: relMSE $relmse, expected > 0"
+# Without the worst 0.1 % of the pixels (1 of 1,024 here) the relMSE can only fall, by their share of the sum:
+# relmse·(1 − share)·1024/1023 = the rest's mean. With the image itself as --denominator, the relMSE is unchanged.
+out=$("$compare" relmse "$work/s1.exr" "$work/s2.exr")
+awk -v e="$relmse" -v w="$(value 'relmse_without_worst_0.1pct' "$out")" -v f="$(value 'worst_0.1pct_share' "$out")" \
+  'BEGIN {rest = e * (1 - f) * 1024 / 1023; exit !(f > 0 && f < 1 && w <= e * 1024 / 1023 && w > 0.999 * rest && w < 1.001 * rest)}' ||
+  fail "worst 0.1 %: $out"
+[ "$(value relmse "$("$compare" relmse "$work/s1.exr" "$work/s2.exr" --denominator "$work/s2.exr")")" = "$relmse" ] ||
+  fail "--denominator of the reference itself changed the relMSE"
+d=$(value relmse "$("$compare" relmse "$work/s1.exr" "$work/s2.exr" --denominator "$work/s1.exr")")
+awk -v d="$d" -v e="$relmse" 'BEGIN {exit !(d > 0 && d != e)}' || fail "--denominator ignored: $d vs $relmse"
 
 # The JSON twin has its geometry inline, so it renders from the work folder.
 sed -e 's/"red": {/"tmp": {/; s/"green": {/"red": {/; s/"tmp": {/"green": {/' "$data/cornell_equivalent.json" >"$work/swapped.json"

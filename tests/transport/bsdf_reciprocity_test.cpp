@@ -53,3 +53,36 @@ TEST_CASE("reciprocity: rough refraction satisfies f(wo, wi)/n_o^2 = f(wi, wo)/n
     CHECK(nonzero > 100);  // the check above must not pass vacuously on zeros
   }
 }
+
+TEST_CASE("radiance scaling: a sampled refraction reports η' = n(wi's side)/n(wo's side), the factor 1/η'² in its f") {
+  // Russian roulette divides the radiance scaling out of the throughput with BsdfSample::eta, so it must be the
+  // factor f carries: for a rough refraction f(wo, wi)·η'² = f(wi, wo) (the reciprocity above), and for a smooth
+  // one f·|cos θi|/pdf = 1/η'² in the hero lane (pdf = T, f = T/(|cos θi| η'²)). Reflections report 1.
+  const Float4 eta = test::bk7_eta(test::four_visible_wavelengths());
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (float alpha : {0.0f, 0.1f, 0.5f}) {
+    const DielectricBsdf glass(Float4(eta[0]), TrowbridgeReitz(alpha, alpha));  // one η: no dispersion
+    int refractions = 0, reflections = 0;
+    for (int i = 0; i < 400; ++i) {
+      const Vec3 wo = random_direction(rng, i % 2 == 0);
+      const auto s = glass.sample(wo, u(rng), Vec2{u(rng), u(rng)});
+      if (!s) continue;
+      if (s->wi.z * wo.z > 0.0f) {
+        CHECK(s->eta == 1.0f);
+        ++reflections;
+        continue;
+      }
+      ++refractions;
+      const float expected = wo.z > 0.0f ? eta[0] : 1.0f / eta[0];
+      CHECK(s->eta == doctest::Approx(expected).epsilon(1e-6));
+      if (alpha == 0.0f) {
+        CHECK(s->hero_weight()[0] * s->eta * s->eta == doctest::Approx(1.0f).epsilon(1e-4));
+      } else {
+        CHECK(glass.eval(wo, s->wi)[0] * s->eta * s->eta == doctest::Approx(glass.eval(s->wi, wo)[0]).epsilon(1e-4));
+      }
+    }
+    CHECK(refractions > 100);  // both kinds happen, so neither check passes vacuously
+    CHECK(reflections > 5);
+  }
+}

@@ -26,6 +26,10 @@ struct BsdfSample {
   /// True when wi depends on the wavelength (dispersive refraction): the other lanes could not have produced
   /// this direction, so their pdf lanes are 0 and spectral MIS gives their contributions zero weight.
   bool wavelength_dependent_direction = false;
+  /// A transmission's index ratio η' = n(wi's side)/n(wo's side), hero lane; 1 for a reflection or where no
+  /// radiance scaling applies. f carries 1/η'² (radiance scaling), which is no loss of energy: the path regains it
+  /// on leaving the medium, so Russian roulette divides it out of the throughput (pbrt-v4's etaScale).
+  float eta = 1.0f;
 
   /// The weight f·|cos θi| / pdf of the hero lane — what a single-wavelength estimator multiplies by.
   SampledSpectrum hero_weight() const { return f * Float4(std::fabs(wi.z) / pdf[0]); }

@@ -98,6 +98,7 @@ std::optional<BsdfSample> DielectricBsdf::sample_smooth(Vec3 wo, float u_lobe) c
   pdf = select(other_direction, Float4(0.0f), pdf);
   BsdfSample s{*wi, f, pdf, true};
   s.wavelength_dependent_direction = other_direction.any();
+  s.eta = eta_ratio[0];
   return s;
 }
 
@@ -111,6 +112,7 @@ std::optional<BsdfSample> DielectricBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) 
   // Fresnel at this microfacet for the hero, with the facet's normal seen from outside.
   const float hero_reflectance = fresnel_dielectric(m.z < 0.0f ? -wo_m : wo_m, eta_[0]);
   Vec3 wi;
+  float eta = 1.0f;
   if (u_lobe < hero_reflectance) {
     wi = reflect(wo, m);
     if (!(wi.z * wo.z > 0.0f)) return std::nullopt;
@@ -119,11 +121,13 @@ std::optional<BsdfSample> DielectricBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) 
     const auto t = refract(wo, m, eta_ratio);
     if (!t || !(t->z * wo.z < 0.0f)) return std::nullopt;
     wi = *t;
+    eta = eta_ratio;
   }
   // f and the four pdfs from the same code as eval()/pdf(), so sample() can never disagree with them.
   BsdfSample s{wi, Float4(0.0f), Float4(0.0f)};
   eval_rough(wo, wi, s.f, s.pdf);
   if (!(s.pdf[0] > 0.0f)) return std::nullopt;
+  s.eta = eta;
   return s;
 }
 

@@ -42,6 +42,7 @@ struct DirectionSample {
   SampledSpectrum pdf;
   bool is_delta = false;
   bool wavelength_dependent_direction = false;  // a dispersive refraction: only the hero can follow it
+  float eta = 1.0f;                              // BsdfSample::eta (1 for a phase function)
 };
 
 std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe, Vec2 u) {
@@ -54,7 +55,7 @@ std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe
   const Vec3 wi_world = s.frame.to_world(bs->wi);
   if (s.opaque() && dot(wi_world, s.geometric_normal) <= 0.0f) return std::nullopt;
   return DirectionSample{wi_world, bs->f * Float4(std::fabs(bs->wi.z)), bs->pdf, bs->is_delta,
-                         bs->wavelength_dependent_direction};
+                         bs->wavelength_dependent_direction, bs->eta};
 }
 
 }  // namespace
@@ -131,6 +132,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   const bool single = path.wavelengths == WavelengthMode::single;
   SampledSpectrum pdf_ratio = lanes.initial_ratios();
   SampledSpectrum beta = pdf_ratio;
+  float eta_scale = 1.0f;  // Π η'² over the refractions: beta × eta_scale has no radiance scaling (BsdfSample::eta)
   Ray ray = camera_ray;
   std::optional<RayDifferentials> differentials;
   if (surfaces.texture_footprints && camera_differentials) differentials = *camera_differentials;
@@ -346,6 +348,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       // probability times this lobe's (as a free flight passed; docs/transport.md, "Glazing").
       pass_product *= ds->pdf[0];
       beta *= ds->f_cos / Float4(ds->pdf[0]);
+      eta_scale *= ds->eta * ds->eta;
       pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
       --surface_depth;
       --vertex_count;
@@ -374,6 +377,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     previous_reference = reference;
     previous_sampling_point = sampling_point;
     beta *= ds->f_cos / Float4(ds->pdf[0]);
+    eta_scale *= ds->eta * ds->eta;
     pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
     if (ds->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
       // Independent mode: the partners' own directions were not followed (see LaneTechniques).
@@ -383,7 +387,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
 
     const float u_roulette = sampler.next_1d();
     if (vertex_count >= path.russian_roulette_depth) {
-      const float effective = max_lane(beta) * kLanes / sum(pdf_ratio);
+      // Radiance scaling is regained on leaving a denser medium: it does not count (pbrt-v4's etaScale).
+      const float effective = max_lane(beta) * eta_scale * kLanes / sum(pdf_ratio);
       const float survive = std::fmin(1.0f, effective);
       if (!(survive > 0.0f) || u_roulette >= survive) break;
       beta /= Float4(survive);
