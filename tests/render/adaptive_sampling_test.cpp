@@ -339,12 +339,16 @@ struct RarePathFilm {
 
   explicit RarePathFilm(const AdaptiveSamplingSettings& settings) : sampling(film, settings) {}
 
-  static bool bright(int x, int y, int index) {
-    uint64_t z = uint64_t(x) * 0x9E3779B97F4A7C15ull + uint64_t(y) * 0xBF58476D1CE4E5B9ull + uint64_t(index) + 1;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;  // splitmix64's finaliser
+  // A deterministic hash of pixel (x, y)'s sample `index` (splitmix64's finaliser), `salt` choosing the stream.
+  static uint64_t hash(int x, int y, int index, uint64_t salt) {
+    uint64_t z = uint64_t(x) * 0x9E3779B97F4A7C15ull + uint64_t(y) * 0xBF58476D1CE4E5B9ull + uint64_t(index) + salt;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return ((z ^ (z >> 31)) & 31) == 0;
+    return z ^ (z >> 31);
   }
+  static bool bright(int x, int y, int index) { return (hash(x, y, index, 1) & 31) == 0; }
+  // A deterministic uniform number in [0, 1).
+  static float uniform(int x, int y, int index) { return float(hash(x, y, index, 7) >> 40) / float(1 << 24); }
 
   // One sample of the constant spectrum `value` in pixel (x, y), given to the film and, as the renderer does, its
   // share of the film's sums to the sampler.
@@ -358,17 +362,26 @@ struct RarePathFilm {
     sampling.add_sample_value(x, y, channels);
   }
 
+  // One pass of 16 samples a pixel as the renderer runs it: planned, each sample of pixel (x, y) with index i worth
+  // value(x, y, i) and tracing rays(x, y) rays, then decided. Returns the samples the pass planned.
+  template <typename Value, typename Rays>
+  uint64_t run_pass(const Value& value, const Rays& rays) {
+    const uint64_t planned = sampling.plan_pass(16);
+    reached += 16;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const int first = sampling.samples(x, y), count = sampling.pass_samples(x, y);
+        for (int k = 0; k < count; ++k) add(x, y, value(x, y, first + k));
+        sampling.add_rays(x, y, uint64_t(count) * rays(x, y));
+      }
+    sampling.after_pass(film, reached);
+    return planned;
+  }
+
   template <typename Rare>
   void run_passes(int passes, const Rare& rare) {
-    for (int p = 0; p < passes; ++p) {
-      sampling.plan_pass(16);
-      reached += 16;
-      for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x)
-          for (int k = 0, first = sampling.samples(x, y); k < sampling.pass_samples(x, y); ++k)
-            add(x, y, rare(x, y) && bright(x, y, first + k) ? 32.0f : 1.0f);
-      sampling.after_pass(film, reached);
-    }
+    const auto value = [&](int x, int y, int index) { return rare(x, y) && bright(x, y, index) ? 32.0f : 1.0f; };
+    for (int p = 0; p < passes; ++p) run_pass(value, [](int, int) { return uint64_t(1); });
   }
 };
 
@@ -414,16 +427,6 @@ TEST_CASE("adaptive sampling: a pixel whose neighbourhood finds rare bright path
   }
 }
 
-namespace {
-// A deterministic uniform number in [0, 1) for pixel (x, y)'s sample `index` (splitmix64's finaliser).
-float uniform_of(int x, int y, int index) {
-  uint64_t z = uint64_t(x) * 0x9E3779B97F4A7C15ull + uint64_t(y) * 0xBF58476D1CE4E5B9ull + uint64_t(index) + 7;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return float((z ^ (z >> 31)) >> 40) / float(1 << 24);
-}
-}  // namespace
-
 TEST_CASE("adaptive sampling: where samples cost more rays, a pixel takes fewer of them, in proportion to "
           "1 / sqrt(cost)") {
   // Every pixel has the same relative noise (values uniform in [0, 2]: relative variance 1/3 per sample). The left
@@ -437,25 +440,17 @@ TEST_CASE("adaptive sampling: where samples cost more rays, a pixel takes fewer 
   REQUIRE(AdaptiveSampling::kSampleOverheadRays == 1.0);
   auto run = [&](uint64_t left_rays, uint64_t right_rays) {
     RarePathFilm f(settings);
-    for (int p = 0; p < 60; ++p) {
-      f.sampling.plan_pass(16);
-      f.reached += 16;
-      for (int y = 0; y < RarePathFilm::kH; ++y)
-        for (int x = 0; x < RarePathFilm::kW; ++x) {
-          const int first = f.sampling.samples(x, y), count = f.sampling.pass_samples(x, y);
-          for (int k = 0; k < count; ++k) f.add(x, y, 2.0f * uniform_of(x, y, first + k));
-          f.sampling.add_rays(x, y, uint64_t(count) * (x < RarePathFilm::kW / 2 ? left_rays : right_rays));
-        }
-      f.sampling.after_pass(f.film, f.reached);
-    }
+    const auto value = [](int x, int y, int index) { return 2.0f * RarePathFilm::uniform(x, y, index); };
+    const auto rays = [&](int x, int) { return x < RarePathFilm::kW / 2 ? left_rays : right_rays; };
+    for (int p = 0; p < 60; ++p) f.run_pass(value, rays);
     double left = 0, right = 0;
     for (int y = 0; y < RarePathFilm::kH; ++y)
       for (int x = 0; x < RarePathFilm::kW; ++x) (x < RarePathFilm::kW / 2 ? left : right) += f.sampling.samples(x, y);
     return right / left;
   };
-  // Each pixel's error is estimated from its two halves over a 3 × 3 window (9 degrees of freedom: its deviation
-  // is known to about ±24 %), and 256 pixels a side average that to about ±2 %; counts also only grow, so they lag
-  // their targets by up to a pass. ±15 % holds both; the control shows the ratio is not 2 by construction.
+  // Each pixel's relative variance is estimated from its own samples' second moments (hundreds of degrees of
+  // freedom) averaged over a 3 × 3 window, and 256 pixels a side average that further; counts also only grow, so
+  // they lag their targets by up to a pass. ±15 % holds both; the control shows the ratio is not 2 by construction.
   const double costed = run(15, 3), control = run(3, 3);
   INFO("samples right / left: with costs 16 and 4 " << costed << ", with equal costs " << control);
   CHECK(costed == doctest::Approx(2.0).epsilon(0.15));
@@ -476,23 +471,17 @@ TEST_CASE("adaptive sampling: a pass spends a uniform pass's samples even when t
   RarePathFilm f(settings);
   auto block = [](int x, int y) { return x >= 20 && x < 22 && y >= 6 && y < 8; };
   uint64_t planned_total = 0;
+  const auto value = [&](int x, int y, int index) {
+    return block(x, y) ? (RarePathFilm::bright(x, y, index) ? 40.0f : 0.0f) : 0.99f + 0.02f * RarePathFilm::uniform(x, y, index);
+  };
   for (int p = 0; p < 12; ++p) {
-    const uint64_t planned = f.sampling.plan_pass(16);
+    const uint64_t planned = f.run_pass(value, [](int, int) { return uint64_t(1); });
     planned_total += planned;
-    f.reached += 16;
     // Each pass shares out what a uniform pass would take, to within a sample per pixel of fractions carried to the
     // next pass.
     const uint64_t uniform = uint64_t(16) * RarePathFilm::kW * RarePathFilm::kH;
     INFO("pass " << p << ": planned " << planned << " against " << uniform);
     CHECK(std::abs(double(planned) - double(uniform)) < RarePathFilm::kW * RarePathFilm::kH);
-    for (int y = 0; y < RarePathFilm::kH; ++y)
-      for (int x = 0; x < RarePathFilm::kW; ++x)
-        for (int k = 0, first = f.sampling.samples(x, y); k < f.sampling.pass_samples(x, y); ++k) {
-          const int index = first + k;
-          const float value = block(x, y) ? (RarePathFilm::bright(x, y, index) ? 40.0f : 0.0f) : 0.99f + 0.02f * uniform_of(x, y, index);
-          f.add(x, y, value);
-        }
-    f.sampling.after_pass(f.film, f.reached);
   }
   // The block took the cap (128) in each of the 10 passes past the minimum (32), and the passes' rest went elsewhere.
   CHECK(f.sampling.samples(20, 6) >= 32 + 10 * 128 - 1);
