@@ -453,8 +453,8 @@ TEST_CASE("pbrt: a problem inside a file or value the pbrt scene names is report
     CHECK_CONTAINS(at_pbrt->what(), "test.pbrt:6: Material \"diffuse\": ", "a reflectance cannot exceed 1");
   }
   // Pointers match whole steps only: an error under /shapes/10 is not /shapes/1's.
-  const std::vector<PbrtOrigin> origins = {{"/shapes/1", {"a.pbrt", 3, ""}, "Shape \"sphere\""},
-                                           {"/shapes/10", {"a.pbrt", 30, ""}, "Shape \"disk\""}};
+  const std::vector<PbrtOrigin> origins = {{"/shapes/1", {"a.pbrt", 3, ""}, "Shape \"sphere\"", {}},
+                                           {"/shapes/10", {"a.pbrt", 30, ""}, "Shape \"disk\"", {}}};
   const std::optional<InputError> tenth = at_pbrt_origin(InputError({"a.pbrt", 0, "/shapes/10/radius"}, "too small"), origins);
   REQUIRE(tenth);
   CHECK(std::string(tenth->what()) == "a.pbrt:30: Shape \"disk\": too small (the converted scene's /shapes/10/radius)");
