@@ -46,10 +46,22 @@ class Bsdf {
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
     return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, bsdf_);
   }
+  /// sample(), except that a costly BSDF (evaluation_is_costly) leaves a non-delta sample's density to the caller
+  /// (BsdfSample::density_deferred): the layered BSDF's density is a second random walk (pdf()), which only MIS
+  /// reads, and a path needs it only where its next segment reaches a light. The same sample and weight as sample().
+  std::optional<BsdfSample> sample_deferring_density(Vec3 wo, float u_lobe, Vec2 u) const {
+    if (const auto* layered = std::get_if<LayeredBsdf>(&bsdf_)) return layered->sample(wo, u_lobe, u, false);
+    return sample(wo, u_lobe, u);
+  }
   BsdfFlags flags() const {
     return std::visit([](const auto& b) { return b.flags(); }, bsdf_);
   }
 
+  /// Whether eval() and pdf() cost more than a shadow ray: the layered BSDF runs a random walk in each (≈ 1 µs per
+  /// call with a rough coat, docs/benchmarks.md "BSDF cost"), so the volumetric integrator's next-event estimation
+  /// tests the light's visibility first and evaluates the BSDF only towards lights it sees. Every other BSDF is a few to ~100 ns, and
+  /// a direction where it is 0 (a black diffuse) then saves the shadow ray.
+  bool evaluation_is_costly() const { return std::holds_alternative<LayeredBsdf>(bsdf_); }
   const Variant& variant() const { return bsdf_; }
 
  private:

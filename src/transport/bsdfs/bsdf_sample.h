@@ -30,6 +30,11 @@ struct BsdfSample {
   /// radiance scaling applies. f carries 1/η'² (radiance scaling), which is no loss of energy: the path regains it
   /// on leaving the medium, so Russian roulette divides it out of the throughput (pbrt-v4's etaScale).
   float eta = 1.0f;
+  /// Set only by Bsdf::sample_deferring_density, on a non-delta sample of a BSDF whose pdf() is costly: the density
+  /// was not computed. `pdf` then holds 1 in every lane and `f` the weight f·|cos θi|/pdf divided by |cos θi|, so
+  /// that f·|cos θi|/pdf is still the weight and the lanes' density ratios are 1 (such a BSDF's density is equal
+  /// in every lane); the density itself is pdf(wo, wi), for the integrator to evaluate where MIS needs it.
+  bool density_deferred = false;
 
   /// The weight f·|cos θi| / pdf of the hero lane — what a single-wavelength estimator multiplies by.
   SampledSpectrum hero_weight() const { return f * Float4(std::fabs(wi.z) / pdf[0]); }

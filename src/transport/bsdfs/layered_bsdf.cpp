@@ -244,13 +244,20 @@ SampledSpectrum LayeredBsdf::pdf(Vec3 wo, Vec3 wi) const {
   return Float4(kUniformShare * uniform + (1.0f - kUniformShare) * pdf_sum / float(walk_.samples));
 }
 
-std::optional<BsdfSample> LayeredBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
+std::optional<BsdfSample> LayeredBsdf::sample(Vec3 wo, float u_lobe, Vec2 u, bool with_density) const {
   if (wo.z == 0.0f) return std::nullopt;
   const float side = side_of(wo);
   wo = flip_z(wo, side);
 
-  // The result with weight f·|cos θi|/pdf = `weight`: non-delta results carry pdf()'s density (see the header).
+  // The result with weight f·|cos θi|/pdf = `weight`: non-delta results carry pdf()'s density (see the header),
+  // or 1 with density_deferred set (pdf(wo, wi) of the caller's wo and the returned wi flips both back to these).
   const auto finish = [&](Vec3 wi, SampledSpectrum weight, bool is_delta, float delta_pdf) -> std::optional<BsdfSample> {
+    if (!is_delta && !with_density) {
+      if (!is_finite(weight).all()) return std::nullopt;
+      BsdfSample s{flip_z(wi, side), weight / Float4(std::fabs(wi.z)), Float4(1.0f), false};
+      s.density_deferred = true;
+      return s;
+    }
     const float density = is_delta ? delta_pdf : pdf(wo, wi)[0];
     if (!(density > 0.0f) || !std::isfinite(density) || !is_finite(weight).all()) return std::nullopt;
     return BsdfSample{flip_z(wi, side), weight * Float4(density / std::fabs(wi.z)), Float4(density), is_delta};

@@ -72,8 +72,9 @@ class LayeredBsdf {
   SampledSpectrum eval(Vec3 wo, Vec3 wi) const;
   /// The approximate density described above (equal in all lanes); 0 across the surface.
   SampledSpectrum pdf(Vec3 wo, Vec3 wi) const;
-  /// One random walk; std::nullopt when it is absorbed, terminated or exceeds max_depth.
-  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+  /// One random walk; std::nullopt when it is absorbed, terminated or exceeds max_depth. `with_density` false:
+  /// a non-delta result skips pdf()'s walk and has BsdfSample::density_deferred set (its density is pdf(wo, wi)).
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, bool with_density = true) const;
   BsdfFlags flags() const;
 
  private:

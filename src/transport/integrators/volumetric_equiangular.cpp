@@ -26,6 +26,8 @@ VolumetricPathIntegrator::VolumetricPathIntegrator(const VolumetricScene& scene,
   settings_.distance = distance_sampling_for(settings.distance, settings.path.wavelengths);
   for (const auto& light : *scene_.surfaces.lights)
     if (light->delta_position_m()) has_point_lights_ = true;
+  for (const Medium& medium : *scene_.media)
+    if (uses_tracking(medium, settings_.distance)) shadow_reads_throughput_ = true;
 }
 
 bool VolumetricPathIntegrator::uses_equiangular(const Medium& medium) const {

@@ -43,6 +43,15 @@ struct DirectionSample {
   bool is_delta = false;
   bool wavelength_dependent_direction = false;  // a dispersive refraction: only the hero can follow it
   float eta = 1.0f;                              // BsdfSample::eta (1 for a phase function)
+  bool density_deferred = false;                 // BsdfSample::density_deferred: pdf holds 1, the density is
+  Vec3 wi_local{};                               // bsdf->pdf(wo_local, wi_local) with the BSDF's own wi
+};
+
+// The density of a direction-sampling decision whose BSDF deferred it (Bsdf::sample_deferring_density), kept with
+// the BSDF until the path's next segment reaches a light and MIS reads it.
+struct DeferredDensity {
+  Bsdf bsdf;
+  Vec3 wo_local, wi_local;
 };
 
 std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe, Vec2 u) {
@@ -50,12 +59,12 @@ std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe
     const PhaseSample ps = s.phase->sample(s.wo_world, u);
     return DirectionSample{ps.wi, Float4(ps.pdf_solid_angle), Float4(ps.pdf_solid_angle), false};
   }
-  const std::optional<BsdfSample> bs = s.bsdf->sample(s.wo_local, u_lobe, u);
+  const std::optional<BsdfSample> bs = s.bsdf->sample_deferring_density(s.wo_local, u_lobe, u);
   if (!bs || !(bs->pdf[0] > 0.0f)) return std::nullopt;
   const Vec3 wi_world = s.frame.to_world(bs->wi);
   if (s.opaque() && dot(wi_world, s.geometric_normal) <= 0.0f) return std::nullopt;
   return DirectionSample{wi_world, bs->f * Float4(std::fabs(bs->wi.z)), bs->pdf, bs->is_delta,
-                         bs->wavelength_dependent_direction, bs->eta};
+                         bs->wavelength_dependent_direction, bs->eta, bs->density_deferred, bs->wi};
 }
 
 }  // namespace
@@ -141,7 +150,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
 
   // MIS state of the last direction-sampling decision (see docs/media.md, "Lights reached by direction sampling").
   bool previous_specular = true;
-  float previous_hero_pdf = 1.0f;      // q_dir,0
+  float previous_hero_pdf = 1.0f;      // q_dir,0 (unless deferred: then previous_density's)
+  std::optional<DeferredDensity> previous_density;  // the last decision's density, not yet evaluated
   float previous_sum_ratio = 4.0f;     // Σ R_k before the direction decision
   float pass_product = 1.0f;           // the technique's probability of passing the free flights since then
   LightReference previous_reference{};
@@ -162,6 +172,12 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       return;
     }
     // S_dir = q_dir,0 · pass · Σ R_k (R already holds the direction and pass ratios); S_light = q_light · Σ R_before.
+    if (previous_density) {  // evaluated once, where a light is reached (its R_k ratios were 1: equal in all lanes)
+      previous_hero_pdf = previous_density->bsdf.pdf(previous_density->wo_local, previous_density->wi_local)[0];
+      previous_density.reset();
+    }
+    // sample() drops a direction whose density is not positive and finite; a deferred one is dropped here.
+    if (!(previous_hero_pdf > 0.0f) || !std::isfinite(previous_hero_pdf)) return;
     const float scale = previous_hero_pdf * pass_product;
     const float s_dir = scale * sum_ratio;
     const float s_light = light_pdf_solid_angle * previous_sum_ratio;
@@ -309,17 +325,34 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       if (const auto pick = light_sampler.sample(sampling_point, u_light_choice)) {
         const Light& light = *lights[size_t(pick->light)];
         if (const auto ls = light.sample_part_li(pick->part, reference, lambda, u_light)) {
-          const SampledSpectrum f = scatterer.eval(ls->wi);
-          const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
-          if (!wrong_side && max_lane(f) > 0.0f) {
-            // The effective throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi).
+          // f·|cos θi| towards the light, the direction technique's densities q_k there, and the effective
+          // throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi). None where f = 0.
+          struct Towards {
+            SampledSpectrum f, q_dir, throughput;
+          };
+          auto evaluate = [&]() -> std::optional<Towards> {
+            const SampledSpectrum f = scatterer.eval(ls->wi);
+            if (!(max_lane(f) > 0.0f)) return std::nullopt;
             const SampledSpectrum q_dir = lanes.densities(scatterer.pdf(ls->wi));
             const float sum_dir = sum(pdf_ratio * q_dir);
-            const SampledSpectrum throughput = sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f;
+            return Towards{f, q_dir, sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f};
+          };
+          const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
+          // A costly BSDF is evaluated only if the light is visible, unless the shadow ray needs the throughput
+          // (tracked media). Same estimate either way: without tracking, shadow() draws no random numbers.
+          const bool visibility_first =
+              scatterer.bsdf && scatterer.bsdf->evaluation_is_costly() && !shadow_reads_throughput_;
+          std::optional<Towards> towards;
+          if (!wrong_side && !visibility_first) towards = evaluate();
+          if (!wrong_side && (visibility_first || towards)) {
             const Vec3 origin = origin_towards(ls->wi);
             const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
-            if (const auto tr = shadow(origin, segment.direction, segment.length, stack_towards(ls->wi), lambda,
-                                       sampler, throughput)) {
+            const auto tr = shadow(origin, segment.direction, segment.length, stack_towards(ls->wi), lambda, sampler,
+                                   towards ? towards->throughput : beta);  // β: read by tracked media only
+            if (tr && visibility_first) towards = evaluate();
+            if (tr && towards) {
+              const SampledSpectrum& f = towards->f;
+              const SampledSpectrum& q_dir = towards->q_dir;
               const float s_light = pick->probability * ls->pdf_solid_angle * sum_ratio;
               const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only
                                       ? 0.0f
@@ -372,6 +405,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
                                                              ds->is_delta);
     previous_specular = ds->is_delta;
     previous_hero_pdf = ds->pdf[0];
+    previous_density.reset();
+    if (ds->density_deferred) previous_density.emplace(DeferredDensity{*scatterer.bsdf, scatterer.wo_local, ds->wi_local});
     previous_sum_ratio = sum_ratio;
     pass_product = 1.0f;
     previous_reference = reference;

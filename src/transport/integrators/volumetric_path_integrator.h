@@ -117,6 +117,9 @@ class VolumetricPathIntegrator {
   const VolumetricScene& scene_;
   VolumetricIntegratorSettings settings_;
   bool has_point_lights_ = false;  ///< any light with a delta position (point, spot)
+  /// Some medium is tracked (uses_tracking): shadow() then reads the NEE throughput, which needs the BSDF's f and
+  /// density first; else NEE may trace the shadow ray before evaluating a costly BSDF (Bsdf::evaluation_is_costly).
+  bool shadow_reads_throughput_ = false;
 };
 
 }  // namespace rimu

@@ -101,9 +101,6 @@ Float4 tracking_weights_after_null(Float4 throughput, Float4 sigma_n) {
   return largest > 0.0f && std::isfinite(largest) ? w / Float4(largest) : w;
 }
 
-bool uses_tracking(const Medium& medium, DistanceSampling mode) {
-  return medium.grid() != nullptr || mode == DistanceSampling::spectral_tracking;
-}
 
 // Homogeneous media, analytic: one exponential distance from the hero's σ_t or the lanes' mean.
 FreeFlight homogeneous_free_flight(const HomogeneousMedium& medium, const Ray& ray, float t_max,
@@ -136,6 +133,10 @@ FreeFlight homogeneous_free_flight(const HomogeneousMedium& medium, const Ray& r
 }
 
 }  // namespace
+
+bool uses_tracking(const Medium& medium, DistanceSampling mode) {
+  return medium.grid() != nullptr || mode == DistanceSampling::spectral_tracking;
+}
 
 FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
                               DistanceSampling mode, Sampler& sampler, SampledSpectrum& throughput) {

@@ -47,6 +47,11 @@ struct SegmentTransmittance {
   SampledSpectrum pass_probability = Float4(1.0f);
 };
 
+/// Whether free flights and transmittance in `medium` are tracked through null collisions (grid media, or the
+/// spectral_tracking mode): then they consume random numbers per tentative collision and read the throughput; else
+/// they are analytic (homogeneous media) and read neither.
+bool uses_tracking(const Medium& medium, DistanceSampling mode);
+
 /// Samples a free flight from ray.origin along ray.direction (unit) until t_max (the next surface) in `medium`.
 /// Consumes one uniform number (homogeneous analytic modes) or two per tentative collision (trackers).
 /// `throughput` is the path's effective per-lane throughput (only spectral_tracking reads it; any positive
