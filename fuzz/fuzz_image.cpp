@@ -1,6 +1,6 @@
 // libFuzzer target: image files (PNG, JPEG, TGA, BMP, OpenEXR, PFM/PPM, Radiance HDR) read as the renderer reads
 // image textures, environment maps and alpha masks: RgbImage::read and AlphaMask::read, i.e. Rimu's header checks
-// (render/image/image_file.h) and then stb_image (PNG, JPEG, TGA, BMP, HDR: render/image/stb_image_decoder.h) or
+// (render/image/image_file.h) and then stb_image (PNG, JPEG, TGA, BMP: render/image/stb_image_decoder.h) or
 // OpenImageIO's decoder in the module the renderer loads (librimu_oiio.so, built beside this target). Debian's
 // libstb and OpenImageIO are not instrumented: the fuzzer sees Rimu's side of each call (the header checks, the
 // truncation check, the conversions), and a decoder's own overflow shows only if it corrupts Rimu's memory.

@@ -54,7 +54,7 @@ void check_same_image(const DecodedImage& image, const DecodedImage& header, con
 
 DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit) {
   const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block the library
-  // PNG, JPEG, TGA, BMP and HDR in-process, without loading OpenImageIO (stb_image_decoder.h).
+  // PNG, JPEG, TGA and BMP in-process, without loading OpenImageIO (stb_image_decoder.h).
   if (const std::optional<DecodedImage> header = stb_image_header(path, as_stored)) {
     check_image_header(*header, file_bytes, path.string());
     DecodedImage image = stb_image_pixels(path, *header, bytes_if_8bit);

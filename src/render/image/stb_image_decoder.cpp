@@ -35,16 +35,15 @@ bool ends_with_tga(const std::filesystem::path& path) {
 }
 
 // OpenImageIO's name for the format of a file starting with `head` (n bytes), if it is one stb_image_decoder.h
-// takes; "" otherwise (PNM among them: stb_image 2.27 reads a 16-bit PNM's samples in the machine's byte order and
-// keeps the codes of a maximum other than 255 unscaled, where OpenImageIO scales them to 255). Signatures decide, except for TGA, which has none: there the extension (as OpenImageIO tries
-// the extension's reader first) and the header fields that select what stb_image reads as OpenImageIO does.
+// takes; "" otherwise (PNM and Radiance HDR among them: stb_image_decoder.h says why). Signatures decide, except
+// for TGA, which has none: there the extension (as OpenImageIO tries the extension's reader first) and the header
+// fields that select what stb_image reads as OpenImageIO does.
 std::string format_of(const std::filesystem::path& path, const unsigned char* head, size_t n) {
   const auto starts = [&](const char* magic, size_t length) {
     return n >= length && std::memcmp(head, magic, length) == 0;
   };
   if (starts("\x89PNG\r\n\x1a\n", 8)) return "png";
   if (starts("\xff\xd8\xff", 3)) return "jpeg";
-  if (starts("#?RADIANCE\n", 11) || starts("#?RGBE\n", 7)) return "hdr";
   // BMP: a BITMAPINFOHEADER or later (size ≥ 40), 24 bits per pixel, uncompressed (BI_RGB).
   if (starts("BM", 2) && n >= 34 && little_endian(head + 14, 4) >= 40 && little_endian(head + 28, 2) == 24 &&
       little_endian(head + 30, 4) == 0)
@@ -111,8 +110,8 @@ std::optional<DecodedImage> stb_image_header(const std::filesystem::path& path, 
   header.height = height;
   header.channels = channels;
   header.format_name = format;
-  header.stored_as_float = format == "hdr";
-  header.bits_per_sample = header.stored_as_float ? 32 : stbi_is_16_bit_from_file(file.get()) ? 16 : 8;
+  header.stored_as_float = false;  // integer codes in every format taken
+  header.bits_per_sample = stbi_is_16_bit_from_file(file.get()) ? 16 : 8;
   // Grey + alpha or RGB + alpha, alpha last (a PNG's, or a palette's or colour key's tRNS chunk made one).
   header.alpha_channel = channels == 2 || channels == 4 ? channels - 1 : -1;
   if (header.alpha_channel >= 0 && !as_stored) return std::nullopt;  // OpenImageIO premultiplies it
@@ -128,9 +127,7 @@ DecodedImage stb_image_pixels(const std::filesystem::path& path, const DecodedIm
   image.bytes_if_8bit = bytes_if_8bit;
   int width = 0, height = 0, channels = 0;
   std::unique_ptr<void, StbFree> decoded;
-  if (header.stored_as_float)
-    decoded.reset(stbi_loadf_from_callbacks(&kCallbacks, &reader, &width, &height, &channels, 0));
-  else if (header.bits_per_sample == 16)
+  if (header.bits_per_sample == 16)
     decoded.reset(stbi_load_16_from_callbacks(&kCallbacks, &reader, &width, &height, &channels, 0));
   else
     decoded.reset(stbi_load_from_callbacks(&kCallbacks, &reader, &width, &height, &channels, 0));
@@ -144,10 +141,7 @@ DecodedImage stb_image_pixels(const std::filesystem::path& path, const DecodedIm
     fail(path, "the image changed while it was read");
   const size_t samples = size_t(width) * size_t(height) * size_t(channels);
   // Integer codes become floats as OpenImageIO converts them: code times the float 1/max (not code / max).
-  if (header.stored_as_float) {
-    const auto* values = static_cast<const float*>(decoded.get());
-    image.pixels.assign(values, values + samples);
-  } else if (header.bits_per_sample == 16) {
+  if (header.bits_per_sample == 16) {
     const auto* codes = static_cast<const stbi_us*>(decoded.get());
     image.pixels.resize(samples);
     for (size_t i = 0; i < samples; ++i) image.pixels[i] = float(codes[i]) * (1.0f / 65535.0f);

@@ -1,5 +1,5 @@
-// The common texture formats decoded in-process with stb_image (Debian's libstb): PNG (8 and 16 bit), JPEG, TGA,
-// BMP and Radiance HDR, formats pbrt-v4 reads with stb_image. Every other image goes to the OpenImageIO module
+// The common texture formats decoded in-process with stb_image (Debian's libstb): PNG (8 and 16 bit), JPEG, TGA and
+// BMP, formats pbrt-v4 reads with stb_image. Every other image goes to the OpenImageIO module
 // (image_library.h), whose loading costs ~120 MiB of resident memory and ~0.25 s of CPU once per process: a scene
 // whose images are all of these formats never pays it (docs/architecture.md, "Libraries loaded on demand").
 //
@@ -14,6 +14,9 @@
 // - PNM: stb_image 2.27 reads 16-bit samples in the machine's byte order (wrong on x86) and leaves the codes of a
 //   maximum other than 255 unscaled (OpenImageIO scales 15 to 255); telling those apart needs the header's maximum,
 //   which stb_image does not report;
+// - Radiance HDR: stb_image 2.27 loops for ever on a truncated run-length-encoded scanline (past the end it reads
+//   zeros, and a run of length 0 never advances; found by mutating a 52-byte file), so a damaged .hdr would hang
+//   the load instead of failing;
 // - any file whose header stb_image refuses (12-bit or arithmetic-coded JPEG …): OpenImageIO may read it.
 #pragma once
 
