@@ -227,6 +227,14 @@ TEST_CASE("stb_image: a truncated or damaged file is an InputError naming it") {
   for (size_t i = 60; i + 20 < bytes.size(); ++i) bytes[i] = char(bytes[i] ^ 0x5a);
   const fs::path damaged = dir.write("damaged.png", bytes);
   test::input_error([&] { RgbImage::read(damaged, {}); }, {damaged.string()});
+  // One bit flipped in the image data: stb_image checks neither the chunk's CRC nor zlib's Adler-32, Rimu the CRC.
+  std::ifstream whole(png, std::ios::binary);
+  std::string flipped((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  const size_t idat = flipped.find("IDAT");
+  REQUIRE(idat != std::string::npos);
+  flipped[idat + 40] = char(flipped[idat + 40] ^ 0x01);
+  const fs::path bit = dir.write("bit.png", flipped);
+  test::input_error([&] { RgbImage::read(bit, {}); }, {bit.string(), "IDAT chunk's CRC"});
 }
 
 TEST_CASE("stb_image: reading a PNG or a TGA does not load the OpenImageIO module") {

@@ -1,12 +1,15 @@
 #include "render/image/stb_image_decoder.h"
 
 #include <stb_image.h>
+#include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "spectral/error.h"
 
@@ -89,6 +92,36 @@ int at_end(void* user) {
 
 const stbi_io_callbacks kCallbacks{read_bytes, skip_bytes, at_end};
 
+// stb_image skips a PNG chunk's CRC-32 and does not check zlib's Adler-32, so a damaged PNG whose data still inflate
+// would decode to wrong pixels without a word; libpng (OpenImageIO) refuses it. So every chunk's CRC (PNG spec §5.3:
+// CRC-32 of the type and data) is checked first, walking the chunks' framing (length, type, data, CRC) up to IEND.
+// Returns "" or what is wrong.
+std::string png_chunk_error(std::FILE* file) {
+  std::fseek(file, 8, SEEK_SET);  // after the signature
+  std::vector<unsigned char> block(65536);  // a chunk is read in blocks: an IDAT may hold the whole image
+  for (;;) {
+    unsigned char length_and_type[8];
+    if (std::fread(length_and_type, 1, 8, file) != 8) return "the file ends before its IEND chunk (is it truncated?)";
+    const std::uint32_t length = std::uint32_t(length_and_type[0]) << 24 | std::uint32_t(length_and_type[1]) << 16 |
+                                 std::uint32_t(length_and_type[2]) << 8 | length_and_type[3];
+    if (length > 0x7fffffffu) return "a chunk claims more than 2^31 bytes";
+    uLong crc = crc32(0L, length_and_type + 4, 4);
+    for (std::uint32_t left = length; left > 0;) {
+      const size_t n = std::min<size_t>(left, block.size());
+      if (std::fread(block.data(), 1, n, file) != n) return "the file ends inside a chunk (is it truncated?)";
+      crc = crc32(crc, block.data(), uInt(n));
+      left -= std::uint32_t(n);
+    }
+    unsigned char stored_crc[4];
+    if (std::fread(stored_crc, 1, 4, file) != 4) return "the file ends inside a chunk (is it truncated?)";
+    const std::uint32_t stored = std::uint32_t(stored_crc[0]) << 24 | std::uint32_t(stored_crc[1]) << 16 |
+                                 std::uint32_t(stored_crc[2]) << 8 | stored_crc[3];
+    const std::string type(reinterpret_cast<const char*>(length_and_type + 4), 4);
+    if (std::uint32_t(crc) != stored) return "the " + type + " chunk's CRC does not match its data (the file is damaged)";
+    if (type == "IEND") return "";
+  }
+}
+
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
   throw InputError({path.string(), 0, ""}, what);
 }
@@ -122,6 +155,9 @@ std::optional<DecodedImage> stb_image_header(const std::filesystem::path& path, 
 DecodedImage stb_image_pixels(const std::filesystem::path& path, const DecodedImage& header, bool bytes_if_8bit) {
   const File file(std::fopen(path.c_str(), "rb"));
   if (!file) fail(path, std::string("cannot open the image: ") + std::strerror(errno));
+  if (header.format_name == "png")
+    if (const std::string error = png_chunk_error(file.get()); !error.empty()) fail(path, error);
+  std::rewind(file.get());
   Reader reader{file.get()};
   DecodedImage image = header;
   image.bytes_if_8bit = bytes_if_8bit;

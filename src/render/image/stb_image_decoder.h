@@ -35,7 +35,8 @@ std::optional<DecodedImage> stb_image_header(const std::filesystem::path& path, 
 
 /// The pixels of `path` decoded by stb_image, `header` being what stb_image_header gave: bytes for an 8-bit file if
 /// `bytes_if_8bit`, floats otherwise (DecodedImage). Throws InputError naming the file if stb_image cannot decode
-/// it or the file ends before its pixels do (stb_image itself reads zeros past the end of a TGA or BMP).
+/// it, the file ends before its pixels do (stb_image itself reads zeros past the end of a TGA or BMP), or a PNG
+/// chunk's CRC does not match (stb_image does not check it; libpng did).
 DecodedImage stb_image_pixels(const std::filesystem::path& path, const DecodedImage& header, bool bytes_if_8bit);
 
 }  // namespace rimu
