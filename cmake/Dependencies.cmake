@@ -38,6 +38,10 @@ pkg_check_modules(OCIO QUIET IMPORTED_TARGET OpenColorIO)
 rimu_require(OCIO_FOUND libopencolorio-dev "OpenColorIO 2 (display transforms)")
 pkg_check_modules(OIIO QUIET IMPORTED_TARGET OpenImageIO)
 rimu_require(OIIO_FOUND libopenimageio-dev "OpenImageIO 2 (image IO)")
+# stb_image decodes PNG, JPEG, TGA and BMP in-process (render/image/stb_image_decoder.h); Debian ships it as
+# a shared libstb with a pkg-config file.
+pkg_check_modules(STB QUIET IMPORTED_TARGET stb)
+rimu_require(STB_FOUND libstb-dev "stb_image (PNG, JPEG, TGA and BMP textures)")
 
 if(RIMU_BUILD_TESTS)
   find_package(doctest QUIET CONFIG)

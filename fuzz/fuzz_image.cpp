@@ -1,6 +1,9 @@
-// libFuzzer target: image files (PNG, OpenEXR, PFM/PPM, Radiance HDR) read as the renderer reads image textures,
-// environment maps and alpha masks: RgbImage::read and AlphaMask::read, i.e. Rimu's header checks (render/image/image_file.h)
-// and then OpenImageIO's decoder in the module the renderer loads (librimu_oiio.so, built beside this target).
+// libFuzzer target: image files (PNG, JPEG, TGA, BMP, OpenEXR, PFM/PPM, Radiance HDR) read as the renderer reads
+// image textures, environment maps and alpha masks: RgbImage::read and AlphaMask::read, i.e. Rimu's header checks
+// (render/image/image_file.h) and then stb_image (PNG, JPEG, TGA, BMP: render/image/stb_image_decoder.h) or
+// OpenImageIO's decoder in the module the renderer loads (librimu_oiio.so, built beside this target). Debian's
+// libstb and OpenImageIO are not instrumented: the fuzzer sees Rimu's side of each call (the header checks, the
+// truncation check, the conversions), and a decoder's own overflow shows only if it corrupts Rimu's memory.
 #include <cstring>
 
 #include "fuzz_support.h"
@@ -9,8 +12,9 @@
 
 namespace {
 
-// OpenImageIO picks its reader by the file's extension (and tries the others when that one fails): name the
-// input after its signature, so each mutation reaches the decoder of the format it looks like.
+// OpenImageIO picks its reader by the file's extension (and tries the others when that one fails), and Rimu sends a
+// TGA to stb_image by its extension: name the input after its signature, so each mutation reaches the decoder of
+// the format it looks like.
 const char* extension_of(const uint8_t* data, size_t size) {
   const auto starts = [&](const char* magic) { return size >= std::strlen(magic) && std::memcmp(data, magic, std::strlen(magic)) == 0; };
   if (starts("\x89PNG")) return ".png";
@@ -18,6 +22,10 @@ const char* extension_of(const uint8_t* data, size_t size) {
   if (starts("PF") || starts("Pf")) return ".pfm";
   if (starts("P")) return ".ppm";
   if (starts("#?")) return ".hdr";
+  if (starts("\xff\xd8\xff")) return ".jpg";
+  if (starts("BM")) return ".bmp";
+  // TGA has no signature: no colour map and an image type of true colour or grey, raw or RLE (byte 2).
+  if (size >= 18 && data[1] == 0 && (data[2] == 2 || data[2] == 3 || data[2] == 10 || data[2] == 11)) return ".tga";
   return ".png";
 }
 

@@ -1,9 +1,11 @@
 #include "render/image/image_file.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "render/image/exr_header_check.h"
 #include "render/image/image_library.h"
+#include "render/image/stb_image_decoder.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
 
@@ -37,8 +39,28 @@ void check_image_header(const DecodedImage& header, std::uintmax_t file_bytes, c
   }
 }
 
+namespace {
+
+// The file was read twice (header, then pixels): one that changed in between is refused rather than read past its
+// pixels.
+void check_same_image(const DecodedImage& image, const DecodedImage& header, const std::filesystem::path& path) {
+  if (image.width != header.width || image.height != header.height || image.channels != header.channels ||
+      image.pixels.size() + image.bytes.size() !=
+          std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels))
+    throw InputError({path.string(), 0, ""}, "the image changed while it was read");
+}
+
+}  // namespace
+
 DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit) {
   const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block the library
+  // PNG, JPEG, TGA and BMP in-process, without loading OpenImageIO (stb_image_decoder.h).
+  if (const std::optional<DecodedImage> header = stb_image_header(path, as_stored)) {
+    check_image_header(*header, file_bytes, path.string());
+    DecodedImage image = stb_image_pixels(path, *header, bytes_if_8bit);
+    check_same_image(image, *header, path);
+    return image;
+  }
   const ImageModuleApi& library = image_library();
   // OpenEXR allocates header attributes at their claimed size inside the library: check them first.
   check_exr_header_sizes(path, file_bytes);
@@ -51,10 +73,7 @@ DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, 
   const DecodedImage header = image;
   if (std::string error; !library.read_pixels(path.string(), image, error))
     throw InputError({path.string(), 0, ""}, error);
-  // The file was read twice: one that changed in between is refused rather than read past its pixels.
-  if (image.width != header.width || image.height != header.height || image.channels != header.channels ||
-      image.pixels.size() + image.bytes.size() != std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels))
-    throw InputError({path.string(), 0, ""}, "the image changed while it was read");
+  check_same_image(image, header, path);
   return image;
 }
 

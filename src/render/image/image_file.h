@@ -1,5 +1,6 @@
-// Reading an image file's pixels through the OpenImageIO module, with its header checked first: the one way image
-// textures, environment maps, normal maps and alpha masks are read (RgbImage::read, AlphaMask::read).
+// Reading an image file's pixels, with its header checked first: the one way image textures, environment maps,
+// normal maps and alpha masks are read (RgbImage::read, AlphaMask::read). PNG, JPEG, TGA and BMP are
+// decoded in-process by stb_image (stb_image_decoder.h); every other format by the OpenImageIO module.
 //
 // An image header states the size of what follows, and the decoder allocates that much before it finds the file
 // short: a 69-byte PNG claiming 65535 × 65535 pixels would allocate 51 GB. So the header's size is checked against
@@ -31,8 +32,9 @@ inline constexpr std::uint64_t kMaxPixelsPerFileByte = 16384;
 void check_image_header(const DecodedImage& header, std::uintmax_t file_bytes, const std::string& file);
 
 /// The pixels of `path` as floats (DecodedImage), or as bytes for a file of 8-bit samples if `bytes_if_8bit`, after
-/// check_input_file and check_image_header. `as_stored` as in DecodedImage. Throws InputError naming the file for a file that is not a regular image file, a header that fails
-/// the checks, or pixels the library cannot decode.
+/// check_input_file and check_image_header. `as_stored` as in DecodedImage. Loads OpenImageIO only for a file that
+/// stb_image_header leaves to it. Throws InputError naming the file for a file that is not a regular image file,
+/// a header that fails the checks, or pixels the library cannot decode.
 DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit = false);
 
 }  // namespace rimu

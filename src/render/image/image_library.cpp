@@ -2,6 +2,8 @@
 
 #include <dlfcn.h>
 
+#include <atomic>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -11,6 +13,8 @@
 
 namespace rimu {
 namespace {
+
+std::atomic<bool> module_loaded{false};
 
 constexpr const char* kModuleName = "librimu_oiio.so";
 
@@ -51,6 +55,7 @@ const ImageModuleApi& load() {
       tried += "\n  " + path.string() + ": not a module of this Rimu build (rebuild or reinstall it)";
       continue;
     }
+    module_loaded.store(true);
     return *api;  // the handle stays open for the life of the process
   }
   throw RenderError("cannot load Rimu's OpenImageIO module (needed to read image textures and write PNG, JPEG "
@@ -63,5 +68,7 @@ const ImageModuleApi& image_library() {
   static const ImageModuleApi& api = load();
   return api;
 }
+
+bool image_library_loaded() { return module_loaded.load(); }
 
 }  // namespace rimu

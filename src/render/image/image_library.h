@@ -14,4 +14,7 @@ namespace rimu {
 /// installation, not the user's input) naming the places tried and dlopen's message if none loads.
 const ImageModuleApi& image_library();
 
+/// True once image_library() has loaded the module in this process (tests check that reading a PNG does not).
+bool image_library_loaded();
+
 }  // namespace rimu

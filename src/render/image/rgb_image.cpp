@@ -2,10 +2,12 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "render/image/image_file.h"
 #include "render/image/exr_header_check.h"
 #include "render/image/image_library.h"
+#include "render/image/stb_image_decoder.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
 
@@ -16,6 +18,11 @@ ImageEncoding default_encoding_for(const std::filesystem::path& path) {
   // OpenEXR allocates header attributes at their claimed size inside the library (exr_header_check.h).
   check_exr_header_sizes(path, file_bytes);
   ImageEncoding encoding;
+  // Only the header is needed: as stored, so that stb_image takes a file with alpha too.
+  if (const std::optional<DecodedImage> stb = stb_image_header(path, true)) {
+    encoding.srgb_transfer = !stb->stored_as_float;
+    return encoding;
+  }
   DecodedImage header;
   if (std::string error; !image_library().read_header(path.string(), header, error)) return encoding;
   encoding.srgb_transfer = !header.stored_as_float;
