@@ -257,3 +257,22 @@ TEST_CASE("stb_image: reading a PNG or a TGA does not load the OpenImageIO modul
   (void)RgbImage::read(tiff, default_encoding_for(tiff));
   CHECK(image_library_loaded());
 }
+
+TEST_CASE("a colour texture with alpha keeps its stored colour, not multiplied by alpha, as pbrt-v4 reads it") {
+  // Read through stb_image (PNG, TGA) and through OpenImageIO (TIFF with unassociated alpha): the same texels.
+  test::ScratchFolder dir("unassociated_colour");
+  for (const char* name : {"rgba.png", "rgba.tif"}) {
+    CAPTURE(name);
+    const fs::path file = write_image(dir / name, 4, 3, 4, 8);
+    const std::vector<uint16_t> codes = test_codes(4, 3, 4, 8);
+    const RgbImage image = RgbImage::read(file, ImageEncoding{});  // linear: texel = code/255
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 4; ++x) {
+        const size_t i = 4 * (size_t(y) * 4 + size_t(x));
+        const Rgb texel = image.pixel(x, y);
+        CHECK(texel.r == doctest::Approx(codes[i] / 255.0).epsilon(1e-6));
+        CHECK(texel.g == doctest::Approx(codes[i + 1] / 255.0).epsilon(1e-6));
+        CHECK(texel.b == doctest::Approx(codes[i + 2] / 255.0).epsilon(1e-6));
+      }
+  }
+}

@@ -46,7 +46,10 @@ const float* RgbImage::decode_table(bool srgb_transfer) {
 }
 
 RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
-  DecodedImage image = read_image_file(path, false, true);
+  // Colour as stored, not multiplied by alpha: a texture's colour is a reflectance, and a cut-out applies its alpha
+  // separately (stochastically, as pbrt-v4 does), so premultiplied texels would darken the edges of a leaf twice.
+  // pbrt-v4 reads PNG and TGA colour unassociated too. (It also keeps stb_image's in-process path open to such files.)
+  DecodedImage image = read_image_file(path, true, true);
   const int w = image.width, channels = image.channels, h = image.height;
   const size_t count = size_t(w) * size_t(h);
   const auto channel = [channels](int c) { return size_t(channels >= 3 ? c : 0); };

@@ -22,7 +22,8 @@ struct ImageEncoding {
 /// The encoding a file most likely has: 8/16-bit integer formats are sRGB-encoded sRGB, float formats linear sRGB.
 ImageEncoding default_encoding_for(const std::filesystem::path& path);
 
-/// A linear RGB image, row 0 at the top. Grey images are expanded to RGB; alpha and other channels are dropped.
+/// A linear RGB image, row 0 at the top. Grey images are expanded to RGB; alpha and other channels are dropped,
+/// and colour is kept as the file stores it (a PNG's colour is not multiplied by its alpha).
 /// Pixels are held as floats, or, for a file of 8-bit samples, as its bytes (3 per pixel instead of 12), decoded
 /// by pixel() through a 256-entry table (the sRGB curve or code/255): the same floats, bit for bit, as decoding
 /// the file to floats first.

@@ -7,8 +7,8 @@
 // OpenImageIO names the format, alpha_channel, bits_per_sample) and the same codes, scaled to floats as OpenImageIO
 // scales them (code · (1/255), code · (1/65535)). JPEG is the exception: two IDCTs and upsamplers differ by a few
 // codes (tests/render/stb_image_decoder_test.cpp states the bound). What is left to OpenImageIO, and why:
-// - colour with alpha unless the caller reads it as stored: OpenImageIO premultiplies a PNG's or TGA's colour by
-//   its alpha (with the file's gamma), stb_image never does;
+// - colour with alpha if a caller asks for it not as stored: OpenImageIO premultiplies a PNG's or TGA's colour by
+//   its alpha (with the file's gamma), stb_image never does (Rimu's readers all read as stored);
 // - TGA other than 8-bit grey or 24-bit colour without a colour map, or stored right to left (stb_image ignores
 //   that flag and reads 16-bit colour without its alpha bit); BMP other than 24-bit uncompressed;
 // - PNM: stb_image 2.27 reads 16-bit samples in the machine's byte order (wrong on x86) and leaves the codes of a
