@@ -11,7 +11,7 @@
 #include <ostream>
 
 #include "render/denoise/denoise_layers.h"
-#include "render/output/exr_input.h"
+#include "render/image/exr_input.h"
 #include "spectral/error.h"
 #include "spectral/io/output_file.h"
 

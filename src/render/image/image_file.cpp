@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "render/image/exr_header_check.h"
+#include "render/image/exr_image_decoder.h"
 #include "render/image/image_library.h"
 #include "render/image/stb_image_decoder.h"
 #include "spectral/error.h"
@@ -58,6 +59,13 @@ DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, 
   if (const std::optional<DecodedImage> header = stb_image_header(path, as_stored)) {
     check_image_header(*header, file_bytes, path.string());
     DecodedImage image = stb_image_pixels(path, *header, bytes_if_8bit);
+    check_same_image(image, *header, path);
+    return image;
+  }
+  // OpenEXR images of R, G, B (A) or Y (A) with OpenEXR itself, which Rimu links anyway (exr_image_decoder.h).
+  if (const std::optional<DecodedImage> header = exr_image_header(path)) {
+    check_image_header(*header, file_bytes, path.string());
+    DecodedImage image = exr_image_pixels(path, *header);
     check_same_image(image, *header, path);
     return image;
   }

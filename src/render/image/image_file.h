@@ -1,6 +1,7 @@
 // Reading an image file's pixels, with its header checked first: the one way image textures, environment maps,
 // normal maps and alpha masks are read (RgbImage::read, AlphaMask::read). PNG, JPEG, TGA and BMP are
-// decoded in-process by stb_image (stb_image_decoder.h); every other format by the OpenImageIO module.
+// decoded in-process by stb_image (stb_image_decoder.h), OpenEXR files of R, G, B (A) or Y (A) by OpenEXR
+// (exr_image_decoder.h); every other file by the OpenImageIO module.
 //
 // An image header states the size of what follows, and the decoder allocates that much before it finds the file
 // short: a 69-byte PNG claiming 65535 × 65535 pixels would allocate 51 GB. So the header's size is checked against

@@ -6,6 +6,7 @@
 
 #include "render/image/image_file.h"
 #include "render/image/exr_header_check.h"
+#include "render/image/exr_image_decoder.h"
 #include "render/image/image_library.h"
 #include "render/image/stb_image_decoder.h"
 #include "spectral/error.h"
@@ -23,6 +24,7 @@ ImageEncoding default_encoding_for(const std::filesystem::path& path) {
     encoding.srgb_transfer = !stb->stored_as_float;
     return encoding;
   }
+  if (exr_image_header(path)) return encoding;  // float: linear
   DecodedImage header;
   if (std::string error; !image_library().read_header(path.string(), header, error)) return encoding;
   encoding.srgb_transfer = !header.stored_as_float;

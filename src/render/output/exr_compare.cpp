@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "render/output/exr_input.h"
+#include "render/image/exr_input.h"
 #include "spectral/error.h"
 
 namespace rimu {

@@ -14,7 +14,7 @@
 
 #include "render/output/display_image_policy.h"
 #include "render/output/display_output.h"
-#include "render/output/exr_input.h"
+#include "render/image/exr_input.h"
 #include "render/output/exr_output.h"
 #include "render/output/partial_exr.h"
 #include "spectral/error.h"

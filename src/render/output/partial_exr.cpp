@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <set>
 
-#include "render/output/exr_input.h"
+#include "render/image/exr_input.h"
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
 

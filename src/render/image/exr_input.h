@@ -1,5 +1,6 @@
 #pragma once
-// Opening an OpenEXR file Rimu did not necessarily write (partials for `rimu merge`, images for `rimu compare`).
+// Opening an OpenEXR file Rimu did not necessarily write (partials for `rimu merge`, images for `rimu compare`,
+// image textures and environment maps).
 //
 // OpenEXR's header reader allocates for what the header claims (the line-offset table of a data window of 2³¹ rows
 // is gigabytes) before any of Rimu's checks see the header: a 2 KB damaged partial made `Imf::InputFile` allocate

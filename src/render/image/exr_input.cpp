@@ -1,4 +1,4 @@
-#include "render/output/exr_input.h"
+#include "render/image/exr_input.h"
 
 #include <ImfHeader.h>
 

@@ -1,0 +1,161 @@
+// OpenEXR images read by OpenEXR itself (render/image/exr_image_decoder.h) decode to what the OpenImageIO module
+// gives for the same file, header fields and floats bit for bit; other channel sets go to the module; a short file
+// is an error naming it; and reading an EXR leaves OpenImageIO unloaded.
+#include <doctest/doctest.h>
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "input_error_check.h"
+#include "render/image/exr_image_decoder.h"
+#include "render/image/image_file.h"
+#include "render/image/image_library.h"
+#include "render/image/rgb_image.h"
+#include "test_support.h"
+
+using namespace rimu;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Values that vary from pixel to pixel and channel to channel over many octaves (HDR: 1e-3 to 1e4), some negative.
+std::vector<float> test_values(size_t count) {
+  std::vector<float> v(count);
+  uint32_t h = 0x2545f491u;
+  for (size_t i = 0; i < count; ++i) {
+    h ^= uint32_t(i) * 0x85ebca6bu;
+    h = (h ^ (h >> 13)) * 0xc2b2ae35u;
+    h ^= h >> 16;
+    const float octave = float(h % 8) - 3.0f;
+    v[i] = std::pow(10.0f, octave) * float((h >> 8) % 1000) / 999.0f * ((h & 0x10000) && i % 7 == 0 ? -1.0f : 1.0f);
+  }
+  return v;
+}
+
+struct ExrSpec {
+  ExrSpec(std::vector<std::string> names, OIIO::TypeDesc all = OIIO::TypeDesc::HALF)
+      : channels(std::move(names)), type(all) {}
+  std::vector<std::string> channels;
+  OIIO::TypeDesc type;
+  bool tiled = false;
+  int x = 0, y = 0;  // the data window's origin
+  std::vector<OIIO::TypeDesc> channel_types;  // per channel, if not all `type`
+};
+
+// An EXR written by OpenImageIO's writer (OpenEXR underneath), width × height, channels as named.
+fs::path write_exr(const fs::path& path, int width, int height, const ExrSpec& e) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  REQUIRE(out);
+  OIIO::ImageSpec spec(width, height, int(e.channels.size()), e.type);
+  spec.channelnames = e.channels;
+  spec.alpha_channel = -1;
+  for (size_t c = 0; c < e.channels.size(); ++c)
+    if (e.channels[c] == "A") spec.alpha_channel = int(c);
+  spec.x = e.x;
+  spec.y = e.y;
+  spec.full_x = 0;
+  spec.full_y = 0;
+  if (!e.channel_types.empty()) spec.channelformats = e.channel_types;
+  if (e.tiled) {
+    spec.tile_width = 16;
+    spec.tile_height = 16;
+  }
+  REQUIRE(out->open(path.string(), spec));
+  const std::vector<float> values = test_values(size_t(width) * size_t(height) * e.channels.size());
+  REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+  REQUIRE(out->close());
+  return path;
+}
+
+DecodedImage module_decode(const fs::path& path) {
+  DecodedImage image;
+  image.as_stored = true;
+  std::string error;
+  REQUIRE_MESSAGE(image_library().read_pixels(path.string(), image, error), error);
+  return image;
+}
+
+void check_identical(const fs::path& path, int bits) {
+  CAPTURE(path.string());
+  const std::optional<DecodedImage> header = exr_image_header(path);
+  REQUIRE(header);
+  CHECK(header->bits_per_sample == bits);
+  const DecodedImage exr = read_image_file(path, true);
+  const DecodedImage oiio = module_decode(path);
+  CHECK(exr.width == oiio.width);
+  CHECK(exr.height == oiio.height);
+  CHECK(exr.channels == oiio.channels);
+  CHECK(exr.alpha_channel == oiio.alpha_channel);
+  CHECK(exr.bits_per_sample == oiio.bits_per_sample);
+  CHECK(exr.stored_as_float == oiio.stored_as_float);
+  CHECK(exr.format_name == oiio.format_name);
+  CHECK(exr.bytes.empty());
+  // Bit for bit: memcmp, so that -0 and NaN would count too.
+  REQUIRE(exr.pixels.size() == oiio.pixels.size());
+  CHECK(std::memcmp(exr.pixels.data(), oiio.pixels.data(), exr.pixels.size() * sizeof(float)) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("OpenEXR images decode bit for bit as OpenImageIO decodes them") {
+  test::ScratchFolder dir("exr_decoder");
+  check_identical(write_exr(dir / "rgb_half.exr", 37, 23, {{"R", "G", "B"}}), 16);
+  check_identical(write_exr(dir / "rgba_float.exr", 37, 23, {{"R", "G", "B", "A"}, OIIO::TypeDesc::FLOAT}), 32);
+  check_identical(write_exr(dir / "y.exr", 37, 23, {{"Y"}}), 16);
+  check_identical(write_exr(dir / "ya.exr", 37, 23, {{"Y", "A"}, OIIO::TypeDesc::FLOAT}), 32);
+  ExrSpec tiled{{"R", "G", "B"}};
+  tiled.tiled = true;
+  check_identical(write_exr(dir / "tiled.exr", 37, 23, tiled), 16);
+  ExrSpec offset{{"R", "G", "B"}};
+  offset.x = 5;
+  offset.y = -3;
+  check_identical(write_exr(dir / "offset.exr", 37, 23, offset), 16);
+  ExrSpec mixed{{"R", "G", "B"}};
+  mixed.channel_types = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::HALF};
+  check_identical(write_exr(dir / "mixed.exr", 37, 23, mixed), 32);
+}
+
+TEST_CASE("OpenEXR images with other channels are left to OpenImageIO") {
+  test::ScratchFolder dir("exr_decoder_other");
+  CHECK_FALSE(exr_image_header(write_exr(dir / "rgbz.exr", 8, 8, {{"R", "G", "B", "Z"}})));
+  CHECK_FALSE(exr_image_header(write_exr(dir / "layer.exr", 8, 8, {{"diffuse.R", "diffuse.G", "diffuse.B"}})));
+  CHECK_FALSE(exr_image_header(write_exr(dir / "rg.exr", 8, 8, {{"R", "G"}})));
+  ExrSpec uint{{"R", "G", "B"}, OIIO::TypeDesc::UINT};
+  CHECK_FALSE(exr_image_header(write_exr(dir / "uint.exr", 8, 8, uint)));
+  // Not an EXR at all.
+  CHECK_FALSE(exr_image_header(dir.write("text.exr", "not an image")));
+}
+
+TEST_CASE("a truncated OpenEXR image is an InputError naming it") {
+  test::ScratchFolder dir("exr_decoder_bad");
+  const fs::path whole = write_exr(dir / "whole.exr", 64, 64, {{"R", "G", "B"}, OIIO::TypeDesc::FLOAT});
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const fs::path cut = dir.write("short.exr", bytes.substr(0, bytes.size() * 6 / 10));
+  test::input_error([&] { RgbImage::read(cut, {}); }, {cut.string()});
+}
+
+TEST_CASE("reading an OpenEXR image does not load the OpenImageIO module") {
+  if (image_library_loaded()) {
+    // An earlier test of this process loaded the module (ctest runs each test alone; a plain run of the binary
+    // does not): this test runs again by itself, in a new process.
+    const std::string self = fs::read_symlink("/proc/self/exe").string();
+    const std::string command = "'" + self + "' '--test-case=reading an OpenEXR image does not*' >/dev/null 2>&1";
+    CHECK(std::system(command.c_str()) == 0);
+    return;
+  }
+  // The file is written with OpenImageIO's library, which this test binary links; what is checked is the module, a
+  // separate shared object that only image_library() loads.
+  test::ScratchFolder dir("exr_decoder_unloaded");
+  const fs::path exr = write_exr(dir / "sky.exr", 8, 4, {{"R", "G", "B"}});
+  (void)RgbImage::read(exr, default_encoding_for(exr));
+  CHECK_FALSE(image_library_loaded());
+}
