@@ -5,15 +5,14 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "image_module_test_support.h"
 #include "input_error_check.h"
 #include "render/image/exr_image_decoder.h"
 #include "render/image/image_file.h"
@@ -75,21 +74,13 @@ fs::path write_exr(const fs::path& path, int width, int height, const ExrSpec& e
   return path;
 }
 
-DecodedImage module_decode(const fs::path& path) {
-  DecodedImage image;
-  image.as_stored = true;
-  std::string error;
-  REQUIRE_MESSAGE(image_library().read_pixels(path.string(), image, error), error);
-  return image;
-}
-
 void check_identical(const fs::path& path, int bits) {
   CAPTURE(path.string());
   const std::optional<DecodedImage> header = exr_image_header(path);
   REQUIRE(header);
   CHECK(header->bits_per_sample == bits);
   const DecodedImage exr = read_image_file(path, true);
-  const DecodedImage oiio = module_decode(path);
+  const DecodedImage oiio = test::module_decode(path, true, false);
   CHECK(exr.width == oiio.width);
   CHECK(exr.height == oiio.height);
   CHECK(exr.channels == oiio.channels);
@@ -137,21 +128,13 @@ TEST_CASE("OpenEXR images with other channels are left to OpenImageIO") {
 TEST_CASE("a truncated OpenEXR image is an InputError naming it") {
   test::ScratchFolder dir("exr_decoder_bad");
   const fs::path whole = write_exr(dir / "whole.exr", 64, 64, {{"R", "G", "B"}, OIIO::TypeDesc::FLOAT});
-  std::ifstream in(whole, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = test::file_bytes(whole);
   const fs::path cut = dir.write("short.exr", bytes.substr(0, bytes.size() * 6 / 10));
   test::input_error([&] { RgbImage::read(cut, {}); }, {cut.string()});
 }
 
 TEST_CASE("reading an OpenEXR image does not load the OpenImageIO module") {
-  if (image_library_loaded()) {
-    // An earlier test of this process loaded the module (ctest runs each test alone; a plain run of the binary
-    // does not): this test runs again by itself, in a new process.
-    const std::string self = fs::read_symlink("/proc/self/exe").string();
-    const std::string command = "'" + self + "' '--test-case=reading an OpenEXR image does not*' >/dev/null 2>&1";
-    CHECK(std::system(command.c_str()) == 0);
-    return;
-  }
+  if (test::reran_alone_as_module_is_loaded("reading an OpenEXR image does not*")) return;
   // The file is written with OpenImageIO's library, which this test binary links; what is checked is the module, a
   // separate shared object that only image_library() loads.
   test::ScratchFolder dir("exr_decoder_unloaded");

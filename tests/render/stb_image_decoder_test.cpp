@@ -10,11 +10,11 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "image_module_test_support.h"
 #include "input_error_check.h"
 #include "render/image/image_file.h"
 #include "render/image/image_library.h"
@@ -65,16 +65,6 @@ fs::path write_image(const fs::path& path, int width, int height, int channels, 
   return path;
 }
 
-// The OpenImageIO module's decode, as read_image_file made it before stb_image (floats, or bytes if asked).
-DecodedImage module_decode(const fs::path& path, bool as_stored, bool bytes_if_8bit) {
-  DecodedImage image;
-  image.as_stored = as_stored;
-  image.bytes_if_8bit = bytes_if_8bit;
-  std::string error;
-  REQUIRE_MESSAGE(image_library().read_pixels(path.string(), image, error), error);
-  return image;
-}
-
 void check_same_header(const DecodedImage& stb, const DecodedImage& oiio) {
   CHECK(stb.width == oiio.width);
   CHECK(stb.height == oiio.height);
@@ -101,7 +91,7 @@ void check_identical(const fs::path& path, const std::string& format, int bits) 
   CAPTURE(path.string());
   for (const bool as_stored : {true, false}) {
     const std::optional<DecodedImage> header = stb_image_header(path, as_stored);
-    const DecodedImage oiio_header = module_decode(path, as_stored, false);
+    const DecodedImage oiio_header = test::module_decode(path, as_stored, false);
     // Colour with alpha, read as not stored, is OpenImageIO's (premultiplied); all else is stb_image's.
     const bool with_alpha = oiio_header.alpha_channel >= 0;
     REQUIRE(header.has_value() == (as_stored || !with_alpha));
@@ -112,7 +102,7 @@ void check_identical(const fs::path& path, const std::string& format, int bits) 
       CAPTURE(as_stored);
       CAPTURE(bytes);
       const DecodedImage stb = read_image_file(path, as_stored, bytes);
-      const DecodedImage oiio = module_decode(path, as_stored, bytes);
+      const DecodedImage oiio = test::module_decode(path, as_stored, bytes);
       check_same_header(stb, oiio);
       CHECK(stb.bytes.size() == oiio.bytes.size());
       CHECK(stb.pixels.size() == oiio.pixels.size());
@@ -187,7 +177,7 @@ TEST_CASE("stb_image: JPEG decodes within 8 codes (grey: 2) of OpenImageIO's dec
       REQUIRE(out->write_image(OIIO::TypeDesc::UINT8, bytes.data()));
       REQUIRE(out->close());
       const DecodedImage stb = read_image_file(path, false, true);
-      const DecodedImage oiio = module_decode(path, false, true);
+      const DecodedImage oiio = test::module_decode(path, false, true);
       check_same_header(stb, oiio);
       // Where the two can differ: both IDCTs are integer versions of libjpeg's accurate one (jidctint; stb_image
       // says so), within 1 code of the exact transform (IEEE 1180's peak error), so Y, Cb and Cr differ by at most
@@ -200,7 +190,7 @@ TEST_CASE("stb_image: JPEG decodes within 8 codes (grey: 2) of OpenImageIO's dec
       MESSAGE("JPEG " << std::string(noise ? "noise" : "smooth") << ", " << channels
                       << " channels: largest code difference stb_image - libjpeg = " << worst);
       CHECK(worst <= bound);
-      CHECK(max_code_difference(read_image_file(path, true, false), module_decode(path, true, false), 255.0) <= bound);
+      CHECK(max_code_difference(read_image_file(path, true, false), test::module_decode(path, true, false), 255.0) <= bound);
     }
   }
 }
@@ -208,8 +198,7 @@ TEST_CASE("stb_image: JPEG decodes within 8 codes (grey: 2) of OpenImageIO's dec
 TEST_CASE("stb_image: a truncated or damaged file is an InputError naming it") {
   test::ScratchFolder dir("stb_image_bad");
   const auto cut = [&](const fs::path& file, const std::string& name, double keep) {
-    std::ifstream in(file, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = test::file_bytes(file);
     return dir.write(name, bytes.substr(0, size_t(double(bytes.size()) * keep)));
   };
   const fs::path png = write_image(dir / "whole.png", 64, 64, 3, 8);
@@ -222,14 +211,12 @@ TEST_CASE("stb_image: a truncated or damaged file is an InputError naming it") {
   const fs::path short_rle = cut(write_image(dir / "rle.tga", 64, 64, 3, 8, {{"compression", "rle"}}), "rle_short.tga", 0.6);
   test::input_error([&] { RgbImage::read(short_rle, {}); }, {short_rle.string(), "truncated"});
   // A PNG whose pixel data are noise: zlib refuses them.
-  std::ifstream in(png, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes = test::file_bytes(png);
   for (size_t i = 60; i + 20 < bytes.size(); ++i) bytes[i] = char(bytes[i] ^ 0x5a);
   const fs::path damaged = dir.write("damaged.png", bytes);
   test::input_error([&] { RgbImage::read(damaged, {}); }, {damaged.string()});
   // One bit flipped in the image data: stb_image checks neither the chunk's CRC nor zlib's Adler-32, Rimu the CRC.
-  std::ifstream whole(png, std::ios::binary);
-  std::string flipped((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  std::string flipped = test::file_bytes(png);
   const size_t idat = flipped.find("IDAT");
   REQUIRE(idat != std::string::npos);
   flipped[idat + 40] = char(flipped[idat + 40] ^ 0x01);
@@ -238,14 +225,7 @@ TEST_CASE("stb_image: a truncated or damaged file is an InputError naming it") {
 }
 
 TEST_CASE("stb_image: reading a PNG or a TGA does not load the OpenImageIO module") {
-  if (image_library_loaded()) {
-    // An earlier test of this process loaded the module (ctest runs each test alone; a plain run of the binary
-    // does not): this test runs again by itself, in a new process.
-    const std::string self = fs::read_symlink("/proc/self/exe").string();
-    const std::string command = "'" + self + "' '--test-case=stb_image: reading a PNG or a TGA*' >/dev/null 2>&1";
-    CHECK(std::system(command.c_str()) == 0);
-    return;
-  }
+  if (test::reran_alone_as_module_is_loaded("stb_image: reading a PNG or a TGA*")) return;
   test::ScratchFolder dir("stb_image_unloaded");
   const fs::path png = write_image(dir / "rgb.png", 8, 8, 3, 8);
   const fs::path tga = write_image(dir / "rgb.tga", 8, 8, 3, 8);

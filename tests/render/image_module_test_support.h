@@ -1,0 +1,45 @@
+// What the tests of the in-process image decoders (stb_image, OpenEXR) share: the OpenImageIO module's decode to
+// compare with, a file's bytes to damage, and a fresh process for the checks that the module stays unloaded.
+#pragma once
+
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "render/image/image_library.h"
+
+namespace rimu::test {
+
+/// The OpenImageIO module's decode of `path` (floats, or bytes if asked), as read_image_file made it before the
+/// in-process decoders.
+inline DecodedImage module_decode(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit) {
+  DecodedImage image;
+  image.as_stored = as_stored;
+  image.bytes_if_8bit = bytes_if_8bit;
+  std::string error;
+  REQUIRE_MESSAGE(image_library().read_pixels(path.string(), image, error), error);
+  return image;
+}
+
+/// The whole content of `path`.
+inline std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// For a test that checks the module stays unloaded: if an earlier test of this process loaded it (ctest runs each
+/// test alone; a plain run of the binary does not), runs the test cases matching `test_case_pattern` again by
+/// themselves in a new process, checks that they pass and returns true (the caller then returns).
+inline bool reran_alone_as_module_is_loaded(const std::string& test_case_pattern) {
+  if (!image_library_loaded()) return false;
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string command = "'" + self + "' '--test-case=" + test_case_pattern + "' >/dev/null 2>&1";
+  CHECK(std::system(command.c_str()) == 0);
+  return true;
+}
+
+}  // namespace rimu::test
