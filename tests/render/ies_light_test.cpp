@@ -143,6 +143,12 @@ TEST_CASE("IES malformed files: InputError with the file and line") {
   fails(head + "1 -1 1 2 1 2 2 0 0 0\n1 1 10\n0 90\n0\n100 5\n", "bad.ies:4: photometric type B is not supported");
   fails(head + "1 -1 1 2 2 1 2 0 0 0\n1 1 10\n0 90\n0 30\n1 2 3 4\n", "bad.ies:7: horizontal angles must run");
   fails(head + "1 0 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n1 2\n", "bad.ies:4: the lumens per lamp must be positive, or -1");
+  // One value near the largest double beside a small one: each is finite, but the table's flux (and the sampling
+  // weights, which average cell corners) overflow. Must be an InputError, not the distribution's assertion.
+  fails(head + "1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n1e308 100\n", "bad.ies:8: the candela values are too large");
+  // 1e306 cd is absurd but representable: 16π·1e306 ≈ 5e307 is finite, so it loads with a finite flux.
+  CHECK(std::isfinite(candela_distribution(parse_ies(head + "1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n1e306 100\n", "big.ies"))
+                          ->integral_sr()));
   fails("IESNA:LM-63-2002\n[TEST] x\n1 -1 1 2 1\n", "bad.ies:3: no TILT= line");
   fails("IESNA:LM-63-2002\nTILT=lamp.tlt\n", "bad.ies:2: TILT=lamp.tlt");
 }

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "spectral/error.h"
@@ -201,9 +202,12 @@ IesPhotometry parse_ies(const std::string& text, const std::string& name) {
     in.fail(in.line(), "more values than the " + std::to_string(expected) + " the counts announce (" +
                            std::to_string(horizontal_count) + " horizontal × " + std::to_string(vertical_count) +
                            " vertical angles)");
-  // Values that are each finite can still sum to infinity; a lamp of infinite flux is not a measurement.
-  const double flux_lm = candela_distribution(ies)->integral_sr();
-  if (!std::isfinite(flux_lm))
+  // Values that are each finite can still sum to infinity; a lamp of infinite flux is not a measurement. The flux
+  // of the bilinear table is at most 4π·peak, and building its sampling distribution averages four corners (≤ 4·peak)
+  // before weighting by solid angle, so 16π·peak finite keeps every sum finite. The check comes before the table
+  // is built: the distribution asserts finite weights.
+  const double peak_cd = ies.candela.empty() ? 0.0 : *std::max_element(ies.candela.begin(), ies.candela.end());
+  if (!std::isfinite(16.0 * std::numbers::pi * peak_cd))
     in.fail(table_line, "the candela values are too large: the total luminous flux they give overflows a double "
                         "(check the candela multiplier and the values' units)");
   return ies;
