@@ -102,6 +102,48 @@ TEST_CASE("pbrt coatedconductor: interface.* and conductor.* parameters, copper 
   CHECK(bsdf_kind(*scene, "brushed") == walk);
 }
 
+TEST_CASE("pbrt coated materials: textured coat and metal roughness become Rimu float textures, nothing listed") {
+  // zero-day's materials texture "uroughness" of 22 coated materials; these were listed and made smooth.
+  const PbrtImport imported = import_text(
+      kCamera +
+      "Texture \"rough\" \"float\" \"checkerboard\" \"float tex1\" 0 \"float tex2\" 0.0625 \"float uscale\" 4 "
+      "\"float vscale\" 4\n"
+      "MakeNamedMaterial \"varnish\" \"string type\" \"coateddiffuse\" \"texture roughness\" \"rough\"\n"
+      "MakeNamedMaterial \"satin\" \"string type\" \"coateddiffuse\" \"texture uroughness\" \"rough\" "
+      "\"texture vroughness\" \"rough\" \"bool remaproughness\" false\n"
+      "MakeNamedMaterial \"metal\" \"string type\" \"coatedconductor\" \"texture interface.roughness\" \"rough\" "
+      "\"texture conductor.roughness\" \"rough\"\n"
+      "NamedMaterial \"varnish\"\nShape \"sphere\"\n");
+  const json& m = imported.document["materials"];
+  // pbrt's α = √roughness (remapped), Rimu's r = √α: the texture to the power ¼ (½ without remapping).
+  REQUIRE(m["varnish"]["roughness"].is_object());
+  CHECK(m["varnish"]["roughness"]["power"][1] == 0.25);
+  CHECK(m["varnish"]["roughness"]["power"][0].contains("checkerboard"));
+  CHECK(m["satin"]["roughness"]["power"][1] == 0.5);
+  CHECK(m["metal"]["roughness"]["power"][1] == 0.25);
+  CHECK(m["metal"]["conductor_roughness"]["power"][1] == 0.25);
+  CHECK(imported.ignored.empty());
+
+  // Loaded: the smooth squares get the closed form, the rough ones the walk.
+  const auto scene = load_scene(imported.document, "test.pbrt", test::test_data("pbrt"), test::library());
+  const size_t closed = Bsdf::Variant(CoatedDiffuseBsdf(Float4(0.5f), Float4(1.5f), Float4(0.09f))).index();
+  const size_t walk = Bsdf::Variant(LayeredBsdf(1.5f, TrowbridgeReitz(0, 0), DiffuseBsdf(Float4(0.5f)), {}, {})).index();
+  size_t varnish = 0;
+  while (scene->material_names[varnish] != "varnish") ++varnish;
+  int closed_count = 0, walk_count = 0;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const size_t kind = scene->materials[varnish]
+                              .bsdf(MaterialContext::at_uv({(i + 0.5f) / 8, (j + 0.5f) / 8}), SampledWavelengths(Float4(550.0f), Float4(1.0f)))
+                              .variant()
+                              .index();
+      closed_count += kind == closed;
+      walk_count += kind == walk;
+    }
+  CHECK(closed_count == 32);  // a 4×4 checkerboard sampled at 8×8 points: half of each
+  CHECK(walk_count == 32);
+}
+
 TEST_CASE("scene format: coated materials refuse bad layer parameters with their JSON key") {
   const auto error_of = [](const json& material) -> std::string {
     json scene = {{"camera", {{"from", {0, 0, 5}}, {"to", {0, 0, 0}}, {"up", {0, 1, 0}}, {"vertical_fov_deg", 40}}},
@@ -123,4 +165,11 @@ TEST_CASE("scene format: coated materials refuse bad layer parameters with their
   CHECK(error_of({{"type", "coated_conductor"}, {"metal", "gold"}, {"reflectance", 0.5}}).find("reflectance") != std::string::npos);
   CHECK(error_of({{"type", "coated_conductor"}, {"metal", "gold"}, {"roughness", 0.2}, {"albedo", 0.5}, {"thickness", 0.1}}) ==
         "no error");
+  // Textured roughness: a float texture, checked like any other.
+  CHECK(error_of({{"type", "coated_diffuse"}, {"reflectance", 0.5}, {"roughness", {{"checkerboard", {0.0, 0.3}}, {"uv_scale", {4, 4}}}}}) ==
+        "no error");
+  CHECK(error_of({{"type", "coated_diffuse"}, {"reflectance", 0.5}, {"roughness", {{"bogus", 1}}}}).find("roughness") !=
+        std::string::npos);
+  CHECK(error_of({{"type", "coated_conductor"}, {"metal", "gold"}, {"conductor_roughness_u", {{"bogus", 1}}}}).find(
+            "conductor_roughness_u") != std::string::npos);
 }

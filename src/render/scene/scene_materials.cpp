@@ -66,7 +66,10 @@ SpectrumPtr coat_ior_of(const JsonCursor& m, LoadContext& context) {
 // allowed), "g", and the walk's "max_depth" and "samples" (pbrt-v4's defaults 10 and 1).
 CoatLayer coat_layer_of(const JsonCursor& m, LoadContext& context) {
   CoatLayer layer;
-  layer.roughness = roughness_of(m);
+  if (m.has("roughness") && !m.at("roughness").is_number())
+    layer.roughness_texture = load_float_texture(m.at("roughness"), context, 0.0, 1.0);
+  else
+    layer.roughness = roughness_of(m);
   layer.thickness = float(m.number_or("thickness", 0.0, 0.0, 1e6));
   if (m.has("albedo")) layer.albedo = reflectance_texture(m.at("albedo"), context);
   layer.g = float(m.number_or("g", 0.0, -0.99, 0.99));
@@ -192,20 +195,39 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
     m.only_keys({"type", "normal_map", "displacement", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
                  "reflectance", "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});
     const SpectrumPtr coat = coat_ior_of(m, context);
-    const float r = float(m.number_or("conductor_roughness", 0.0, 0.0, 1.0));
-    const float ru = float(m.number_or("conductor_roughness_u", r, 0.0, 1.0));
-    const float rv = float(m.number_or("conductor_roughness_v", r, 0.0, 1.0));
+    // The metal's roughness: numbers, or float textures along either tangent (then all three keys may be either).
+    bool textured_metal = false;
+    for (const char* key : {"conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"})
+      textured_metal = textured_metal || (m.has(key) && !m.at(key).is_number());
+    const auto metal_roughness_texture = [&](const char* key) -> FloatTexturePtr {
+      if (m.has(key)) return load_float_texture(m.at(key), context, 0.0, 1.0);
+      if (m.has("conductor_roughness")) return load_float_texture(m.at("conductor_roughness"), context, 0.0, 1.0);
+      return std::make_shared<ConstantFloatTexture>(0.0f);
+    };
+    float ru = 0.0f, rv = 0.0f;
+    FloatTexturePtr ru_texture, rv_texture;
+    if (textured_metal) {
+      ru_texture = metal_roughness_texture("conductor_roughness_u");
+      rv_texture = metal_roughness_texture("conductor_roughness_v");
+    } else {
+      const float r = float(m.number_or("conductor_roughness", 0.0, 0.0, 1.0));
+      ru = float(m.number_or("conductor_roughness_u", r, 0.0, 1.0));
+      rv = float(m.number_or("conductor_roughness_v", r, 0.0, 1.0));
+    }
     const CoatLayer layer = coat_layer_of(m, context);
+    const auto textured = [&](CoatedConductorMaterial material) {
+      return textured_metal ? std::move(material).with_conductor_roughness(ru_texture, rv_texture) : std::move(material);
+    };
     if (m.has("reflectance")) {
       // pbrt-v4's artist metal under the coat, as the conductor's "reflectance".
       for (const char* key : {"metal", "n", "k"})
         if (m.has(key)) m.at(key).fail("give either reflectance or metal or n and k, not several");
       SpectralTexturePtr reflectance = load_spectral_texture(m.at("reflectance"), context);
-      return m.blame([&] { return Material(CoatedConductorMaterial(coat, std::move(reflectance), ru, rv, layer)); });
+      return m.blame([&] { return Material(textured(CoatedConductorMaterial(coat, std::move(reflectance), ru, rv, layer))); });
     }
     const ComplexIorSpectra ior = conductor_ior_of(m, context);
     return (m.has("coat_ior") ? m.at("coat_ior") : m).blame([&] {
-      return Material(CoatedConductorMaterial(coat, ior, ru, rv, layer));
+      return Material(textured(CoatedConductorMaterial(coat, ior, ru, rv, layer)));
     });
   }
   m.only_keys({"type", "normal_map", "displacement", "reflectance", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples"});

@@ -143,6 +143,14 @@ void check_layer(const CoatLayer& layer) {
     throw InputError({}, "coat max_depth and samples must be at least 1");
 }
 
+}  // namespace
+
+float CoatLayer::roughness_at(const MaterialContext& context) const {
+  return roughness_texture ? clamp_roughness(roughness_texture->evaluate(context)) : roughness;
+}
+
+namespace {
+
 /// The coat's index at the hero wavelength: the walk's interfaces have one index for all lanes.
 float hero_coat_eta(const Spectrum& coat_ior, const SampledWavelengths& lambda) { return float(coat_ior.value(lambda.hero_nm())); }
 
@@ -151,7 +159,7 @@ LayerMedium layer_medium(const CoatLayer& layer, const MaterialContext& context,
   return {layer.thickness, albedo, layer.g};
 }
 
-TrowbridgeReitz coat_distribution(const CoatLayer& layer) { return distribution_for(layer.roughness, layer.roughness); }
+TrowbridgeReitz coat_distribution(float roughness) { return distribution_for(roughness, roughness); }
 
 void check_coat_ior(const Spectrum& coat_ior) {
   // η < 1 would make the coat's internal reflectance formula describe a coat less dense than air: not a coat.
@@ -166,7 +174,9 @@ CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, Spe
   if (!reflectance_ || !coat_ior_) throw InputError({}, "a coated diffuse material needs a reflectance and a coat index");
   check_coat_ior(*coat_ior_);
   check_layer(layer_);
-  if (!layer_.smooth_and_clear()) return;
+  // The closed form serves every hit where the coat is smooth: all of them, or with a textured roughness those
+  // where it reads 0.
+  if (!layer_.clear() || (!layer_.roughness_texture && layer_.roughness != 0.0f)) return;
   std::vector<double> lambda_nm, internal;
   for (double l = kLambdaMinNm; l <= kLambdaMaxNm; l += 5.0) {
     lambda_nm.push_back(l);
@@ -178,10 +188,11 @@ CoatedDiffuseMaterial::CoatedDiffuseMaterial(SpectralTexturePtr reflectance, Spe
 
 Bsdf CoatedDiffuseMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
   const Float4 base = clamp_unit(reflectance_->evaluate_at(context, lambda));
-  if (layer_.smooth_and_clear())
+  const float roughness = layer_.roughness_at(context);
+  if (roughness == 0.0f && coat_internal_reflectance_)
     return CoatedDiffuseBsdf::absorbing(base, coat_ior_->sample(lambda), coat_internal_reflectance_->sample(lambda),
                                         layer_.thickness);
-  return LayeredBsdf(hero_coat_eta(*coat_ior_, lambda), coat_distribution(layer_), DiffuseBsdf(base),
+  return LayeredBsdf(hero_coat_eta(*coat_ior_, lambda), coat_distribution(roughness), DiffuseBsdf(base),
                      layer_medium(layer_, context, lambda), layer_.walk);
 }
 
@@ -225,8 +236,20 @@ Bsdf CoatedConductorMaterial::bsdf(const MaterialContext& context, const Sampled
     n = conductor_.n->sample(lambda);
     k = conductor_.k->sample(lambda);
   }
-  const ConductorBsdf base(n / Float4(eta), k / Float4(eta), conductor_distribution_);
-  return LayeredBsdf(eta, coat_distribution(layer_), base, layer_medium(layer_, context, lambda), layer_.walk);
+  const TrowbridgeReitz metal = conductor_roughness_u_ ? distribution_for(clamp_roughness(conductor_roughness_u_->evaluate(context)),
+                                                                           clamp_roughness(conductor_roughness_v_->evaluate(context)))
+                                                       : conductor_distribution_;
+  const ConductorBsdf base(n / Float4(eta), k / Float4(eta), metal);
+  return LayeredBsdf(eta, coat_distribution(layer_.roughness_at(context)), base, layer_medium(layer_, context, lambda),
+                     layer_.walk);
+}
+
+CoatedConductorMaterial CoatedConductorMaterial::with_conductor_roughness(FloatTexturePtr roughness_u,
+                                                                          FloatTexturePtr roughness_v) && {
+  if (!roughness_u || !roughness_v) throw InputError({}, "a coated conductor needs both conductor roughness textures");
+  conductor_roughness_u_ = std::move(roughness_u);
+  conductor_roughness_v_ = std::move(roughness_v);
+  return std::move(*this);
 }
 
 MixMaterial::MixMaterial(std::shared_ptr<const Material> first, std::shared_ptr<const Material> second,

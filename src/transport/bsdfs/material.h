@@ -99,21 +99,26 @@ class ThinDielectricMaterial {
 /// A coat's layer parameters beyond its index: roughness of its surface, the slab under it (LayeredBsdf's
 /// LayerMedium, with a textured albedo) and the random walk's limits.
 struct CoatLayer {
-  float roughness = 0.0f;     ///< perceptual, α = r² (isotropic)
+  float roughness = 0.0f;             ///< perceptual, α = r² (isotropic)
+  /// A roughness that varies over the surface instead of `roughness` (null: `roughness` everywhere); clamped to
+  /// [0, 1] per hit. pbrt-v4 scenes texture their coats' roughness (zero-day: 22 coated materials).
+  FloatTexturePtr roughness_texture;
   float thickness = 0.0f;     ///< in mean free paths (σt = 1)
   SpectralTexturePtr albedo;  ///< single-scattering albedo of the slab; null = 0 (clear: absorbing only)
   float g = 0.0f;             ///< Henyey-Greenstein asymmetry of the slab
   LayerWalk walk;
-  /// A smooth coat whose slab only absorbs (no albedo, or zero thickness) has an exact closed form over a
-  /// Lambertian base (CoatedDiffuseBsdf).
-  bool smooth_and_clear() const { return roughness == 0.0f && (thickness == 0.0f || !albedo); }
+  /// The slab only absorbs (no albedo, or zero thickness).
+  bool clear() const { return thickness == 0.0f || !albedo; }
+  /// The coat's roughness at a hit.
+  float roughness_at(const MaterialContext& context) const;
 };
 
 /// A Lambertian base of reflectance ρ(λ) under a dielectric coat of index n(λ).
 /// Rule: a smooth coat whose slab does not scatter (no albedo given, or zero thickness) uses the exact closed
-/// form (CoatedDiffuseBsdf, absorbing when thickness > 0: fast, noiseless); any other coat (rough, or a
-/// scattering slab) the stochastic LayeredBsdf, with the coat index of the hero wavelength
-/// for the whole walk (the coat's dispersion, ~1 % in n for lacquers and glasses, is neglected there).
+/// form (CoatedDiffuseBsdf, absorbing when thickness > 0: fast, noiseless); any other coat (rough, or a scattering
+/// slab) the stochastic LayeredBsdf, with the coat index of the hero wavelength for the whole walk (the coat's
+/// dispersion, ~1 % in n for lacquers and glasses, is neglected there). Under a textured roughness the rule is
+/// applied per hit: the closed form where the texture reads 0.
 /// The closed form's internal reflectance K(n(λ), thickness) is tabulated at 5 nm at construction (a smooth
 /// function of n, which varies by about 1% over the visible for glasses).
 class CoatedDiffuseMaterial {
@@ -144,6 +149,10 @@ class CoatedConductorMaterial {
   /// the coat's index (the metal borders the coat). Throws as the other constructor.
   CoatedConductorMaterial(SpectrumPtr coat_ior, SpectralTexturePtr conductor_reflectance, float conductor_roughness_u,
                           float conductor_roughness_v, CoatLayer layer);
+  /// The conductor's roughness varies over the surface (each texture clamped to [0, 1] per hit; pbrt-v4's
+  /// textured conductor.roughness). Either form of the metal; throws as the constructors above and if a roughness
+  /// texture is missing.
+  CoatedConductorMaterial with_conductor_roughness(FloatTexturePtr roughness_u, FloatTexturePtr roughness_v) &&;
   Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
@@ -156,6 +165,7 @@ class CoatedConductorMaterial {
   ComplexIorSpectra conductor_;
   SpectralTexturePtr reflectance_;  // instead of conductor_ (artist metal)
   TrowbridgeReitz conductor_distribution_;
+  FloatTexturePtr conductor_roughness_u_, conductor_roughness_v_;  // null: conductor_distribution_ everywhere
   CoatLayer layer_;
 };
 

@@ -331,16 +331,27 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
   const bool remap = p.boolean("remaproughness", true);
   // pbrt's "roughness" is the default of "uroughness" and "vroughness" (with a prefix for the coated conductor's
   // "interface." and "conductor." parameters).
+  // Each is a number or a float texture (JSON, for roughness_value).
   const auto roughness_pair = [&](const std::string& prefix) {
-    const double r = scalar(prefix + "roughness", 0.0);
-    return std::pair{scalar(prefix + "uroughness", r), scalar(prefix + "vroughness", r)};
+    const json r = float_value(p, prefix + "roughness", 0.0);
+    const auto one = [&](const std::string& key) {
+      return p.get(key, {PbrtParamType::real, PbrtParamType::texture}) ? float_value(p, key, 0.0) : r;
+    };
+    return std::pair{one(prefix + "uroughness"), one(prefix + "vroughness")};
   };
   // The coat and slab of coateddiffuse / coatedconductor, with pbrt-v4's defaults (thickness 0.01, albedo 0,
-  // g 0, maxdepth 10, nsamples 1). Rimu's coat is isotropic: anisotropic roughness becomes the mean.
+  // g 0, maxdepth 10, nsamples 1). Rimu's coat is isotropic: anisotropic roughness becomes the mean (of numbers;
+  // of textures, uroughness stands in).
   const auto coat_layer = [&](const std::string& prefix, json& out) {
     const auto [u, v] = roughness_pair(prefix);
-    if (u != v) ignore("anisotropic coat roughness of " + type + " (the mean is used)", s.where);
-    if (u + v > 0) out["roughness"] = rimu_roughness(0.5 * (u + v), remap);
+    if (u.is_number() && v.is_number()) {
+      const double mean = 0.5 * (u.get<double>() + v.get<double>());
+      if (u != v) ignore("anisotropic coat roughness of " + type + " (the mean is used)", s.where);
+      if (mean > 0) out["roughness"] = rimu_roughness(mean, remap);
+    } else {
+      if (u != v) ignore("anisotropic textured coat roughness of " + type + " (uroughness is used)", s.where);
+      out["roughness"] = roughness_value(u, remap);
+    }
     out["thickness"] = std::max(0.0, scalar("thickness", 0.01));
     if (const PbrtParam* albedo = p.get("albedo", {PbrtParamType::real, PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::texture})) {
       if (!(albedo->type == PbrtParamType::real && albedo->numbers[0] == 0.0)) out["albedo"] = *reflectance(p, "albedo", 0.0);
@@ -409,10 +420,10 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     }
     const auto [u, v] = roughness_pair("conductor.");
     if (u == v) {
-      if (u > 0) m["conductor_roughness"] = rimu_roughness(u, remap);
+      if (u != json(0.0)) m["conductor_roughness"] = roughness_value(u, remap);
     } else {
-      m["conductor_roughness_u"] = rimu_roughness(u, remap);
-      m["conductor_roughness_v"] = rimu_roughness(v, remap);
+      m["conductor_roughness_u"] = roughness_value(u, remap);
+      m["conductor_roughness_v"] = roughness_value(v, remap);
     }
   } else if (type == "conductor") {
     m = {{"type", "conductor"}};
