@@ -14,7 +14,8 @@ using nlohmann::json;
 
 namespace {
 
-// A straight fibre along x (2 m, 2 cm wide) in a uniform environment of radiance 1, seen from +z.
+// A straight fibre along x (2 m, 2 cm wide) in a uniform environment of radiance 1, seen from +z; `curves` replaces
+// keys of its shape (null removes one).
 json fibre_scene(const json& curves) {
   json scene = json::parse(R"({
     "camera": {"from": [0, 0, 3], "to": [0, 0, 0]},
@@ -25,7 +26,12 @@ json fibre_scene(const json& curves) {
   })");
   json shape = {{"type", "curves"}, {"material", "fibre"}, {"points", {-1, 0, 0, -1 / 3.0, 0, 0, 1 / 3.0, 0, 0, 1, 0, 0}},
                {"width", 0.02}};
-  for (const auto& [key, value] : curves.items()) shape[key] = value;
+  for (const auto& [key, value] : curves.items()) {
+    if (value.is_null())
+      shape.erase(key);  // null: leave the key out
+    else
+      shape[key] = value;
+  }
   scene["shapes"] = json::array({shape});
   return scene;
 }
@@ -102,8 +108,9 @@ TEST_CASE("pbrt Shape \"curve\": imported as curves, widths linear from width0 t
   }
   SUBCASE("consecutive curves of one material and kind are one shape, a count and a line each") {
     std::string text = head;
-    for (int k = 0; k < 3; ++k) text += "Shape \"curve\" \"point3 P\" [0 0 0  1 0 0  2 0 0  3 " + std::to_string(k) + " 0] \"float width\" 0.1\n";
-    text += "Shape \"curve\" \"string type\" \"cylinder\" \"point3 P\" [0 0 0  1 0 0  2 0 0  3 0 0]\n";
+    // Along y, which the importer's mirror (pbrt's image-right made Rimu's: x → −x) leaves in place.
+    for (int k = 0; k < 3; ++k) text += "Shape \"curve\" \"point3 P\" [0 0 0  0 1 0  0 2 0  " + std::to_string(k) + " 3 0] \"float width\" 0.1\n";
+    text += "Shape \"curve\" \"string type\" \"cylinder\" \"point3 P\" [0 0 0  0 1 0  0 2 0  0 3 0]\n";
     const PbrtImport imported = import_pbrt_test_text(text);
     const json& shapes = imported.document["shapes"];
     REQUIRE(shapes.size() == 2);
@@ -111,7 +118,11 @@ TEST_CASE("pbrt Shape \"curve\": imported as curves, widths linear from width0 t
     CHECK(shapes[0]["points"].size() == 36);
     CHECK(shapes[1]["curve_type"] == "cylinder");
     const auto scene = scene_from_json(imported.document);
-    CHECK(scene->geometry.intersect(ray_between({1.5f, 0.0f, 3.0f}, {1.5f, 0.0f, 0.0f})));
+    CHECK(scene->geometry.intersect(ray_between({0.0f, 1.5f, 3.0f}, {0.0f, 1.5f, 0.0f})));
+    // The curves' lines: the origin of shape 0 holds one per statement, so an error at /shapes/0/counts/2 names line 6.
+    REQUIRE(imported.origins.size() >= 2);
+    CHECK(imported.origins[0].pointer == "/shapes/0");
+    CHECK(imported.origins[0].element_lines == std::vector<int>{4, 5, 6});
   }
   SUBCASE("a B-spline is written as the same curve in Bezier form; a bad point count is listed") {
     const PbrtImport imported = import_pbrt_test_text(
@@ -127,14 +138,21 @@ TEST_CASE("pbrt Shape \"curve\": imported as curves, widths linear from width0 t
   }
 }
 
-TEST_CASE("curves render: a diffuse fibre in a uniform environment reflects albedo x radiance, without NaN") {
-  // Every direction brings radiance 1, so one bounce off a Lambertian of albedo 0.5 gives exactly 0.5; a ray that
-  // stopped on the fibre it left would bounce again and darken it (0.25 per extra bounce).
+TEST_CASE("curves render: a fibre in a uniform environment scatters albedo x radiance, without NaN") {
+  // Every direction brings radiance 1, so one scattering off a Lambertian of albedo R + T = 0.5 (half reflected,
+  // half transmitted) gives exactly 0.5. A ray that stopped on the fibre it left would scatter again and darken it
+  // (×0.5 per extra event): a transmitted ray meets a tube's far side, and a flat fibre turns to face every ray.
   for (const char* kind : {"flat", "cylinder"}) {
     CAPTURE(kind);
-    const auto scene = scene_from_json(fibre_scene({{"curve_type", kind}}));
+    json document = fibre_scene({{"curve_type", kind}});
+    document["materials"]["fibre"] = {{"type", "diffuse_transmission"}, {"reflectance", 0.25}, {"transmittance", 0.25}};
+    const auto scene = scene_from_json(document);
     const auto lanes = lane_radiance(
-        *scene, [](int i) { return ray_between({0.0f, 0.0f, 3.0f}, {-0.8f + 1.6f * float(i % 97) / 96.0f, 0.0f, 0.0f}); }, 2048);
+        *scene,
+        [](int i) {  // across the whole 2 cm width, not only the centreline
+          return ray_between({0.0f, 0.0f, 3.0f}, {-0.8f + 1.6f * float(i % 97) / 96.0f, 0.0095f * std::sin(1.7f * float(i)), 0.0f});
+        },
+        2048);
     for (const Estimate& lane : lanes) {
       CHECK(std::isfinite(lane.mean));
       CHECK(std::fabs(lane.mean - 0.5) <= kSigmas * lane.standard_error + 1e-6);

@@ -1,4 +1,5 @@
 #include "render/scene/curve_set.h"
+#include "render/scene/curve_self_hit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -177,6 +178,15 @@ bool is_self_hit(const CurveSet& set, uint32_t segment, float t, Vec3 ray_origin
   // The slack covers offset_ray_origin's lift (2⁻¹⁸ of the coordinates' magnitude) with room to spare.
   const float slack = 0x1p-14f * (max_component(abs(s.position)) + s.radius);
   return ray_t <= 4.0f * s.radius + slack && length(ray_origin - s.position) <= 2.0f * s.radius + slack;
+}
+
+bool leaves_cylinder(const CurveSet& set, uint32_t segment, float t, Vec3 ray_origin, Vec3 ray_direction, float ray_t) {
+  if (set.kind != CurveKind::cylinder) return false;
+  const CurveSample s = evaluate_bezier(&set.points[set.first_point[segment]], std::clamp(t, 0.0f, 1.0f));
+  if (!(length_squared(s.derivative) > 0.0f)) return false;
+  const Vec3 tangent = normalize(s.derivative);
+  const Vec3 from_axis = ray_origin + ray_direction * ray_t - s.position;
+  return dot(from_axis - tangent * dot(from_axis, tangent), ray_direction) > 0.0f;
 }
 
 }  // namespace rimu

@@ -1,4 +1,5 @@
 #include "render/scene/embree_scene.h"
+#include "render/scene/curve_self_hit.h"
 
 #include <cmath>
 #include <utility>
@@ -93,15 +94,19 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// Embree calls this for every candidate hit on a curve set: a ray leaving a fibre must not stop on that fibre.
+// Embree calls this for every candidate hit on a curve set: a ray leaving a fibre must not stop on that fibre
+// (is_self_hit: it starts on it, the hit is near; leaves_cylinder: it was transmitted into a tube).
 void curve_self_hit_filter(const RTCFilterFunctionNArguments* args) {
   const auto* curves = static_cast<const CurveSet*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const Vec3 origin{RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
                       RTCRayN_org_z(args->ray, args->N, i)};
-    if (is_self_hit(*curves, RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i), origin,
-                    RTCRayN_tfar(args->ray, args->N, i)))
+    const Vec3 direction{RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                         RTCRayN_dir_z(args->ray, args->N, i)};
+    const uint32_t segment = RTCHitN_primID(args->hit, args->N, i);
+    const float t = RTCHitN_u(args->hit, args->N, i), ray_t = RTCRayN_tfar(args->ray, args->N, i);
+    if (is_self_hit(*curves, segment, t, origin, ray_t) || leaves_cylinder(*curves, segment, t, origin, direction, ray_t))
       args->valid[i] = 0;
   }
 }
