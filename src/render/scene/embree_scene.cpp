@@ -1,4 +1,5 @@
 #include "render/scene/embree_scene.h"
+#include "render/scene/curve_self_hit.h"
 
 #include <cmath>
 #include <utility>
@@ -93,6 +94,32 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Embree calls this for every candidate hit on a curve set: a ray leaving a fibre must not stop on that fibre
+// (is_self_hit: it starts on it, the hit is near; leaves_cylinder: it was transmitted into a tube).
+void curve_self_hit_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* curves = static_cast<const CurveSet*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const Vec3 origin{RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                      RTCRayN_org_z(args->ray, args->N, i)};
+    const Vec3 direction{RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                         RTCRayN_dir_z(args->ray, args->N, i)};
+    const uint32_t segment = RTCHitN_primID(args->hit, args->N, i);
+    const float t = RTCHitN_u(args->hit, args->N, i), ray_t = RTCRayN_tfar(args->ray, args->N, i);
+    if (is_self_hit(*curves, segment, t, origin, ray_t) || leaves_cylinder(*curves, segment, t, origin, direction, ray_t))
+      args->valid[i] = 0;
+  }
+}
+
+RTCGeometryType embree_curve_type(CurveKind kind) {
+  switch (kind) {
+    case CurveKind::flat: return RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE;
+    case CurveKind::cylinder: return RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE;
+    case CurveKind::ribbon: return RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE;
+  }
+  return RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE;
+}
+
 }  // namespace
 
 EmbreeScene::EmbreeScene() {
@@ -170,6 +197,38 @@ unsigned EmbreeScene::add_sphere(Vec3 centre, float radius, int material, const 
   set_slot(id, int(geometries_.size()));
   geometries_.push_back({GeometryInfo::Kind::sphere, material, light, nullptr, centre, radius, uv_axes.has_value(),
                          uv_axes.value_or(std::array<Vec3, 3>{})});
+  return id;
+}
+
+unsigned EmbreeScene::add_curves(CurveSet curves, int material) {
+  curve_sets_.push_back(std::make_unique<CurveSet>(std::move(curves)));
+  CurveSet& set = *curve_sets_.back();
+  static_assert(sizeof(CurveControlPoint) == 4 * sizeof(float), "a control point must be Embree's FLOAT4 (x, y, z, r)");
+  RTCGeometry geometry = rtcNewGeometry(device_, embree_curve_type(set.kind));
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, set.points.data(), 0,
+                             sizeof(CurveControlPoint), set.points.size());
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, set.first_point.data(), 0,
+                             sizeof(uint32_t), set.first_point.size());
+  if (set.kind == CurveKind::ribbon) {
+    // Normals are FLOAT3 read like positions (a 16-byte load may pass the last one): one spare element.
+    if (set.normals.capacity() == set.normals.size()) set.normals.reserve(set.normals.size() + 1);
+    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, set.normals.data(), 0,
+                               sizeof(Vec3), set.normals.size());
+  }
+  check_error("sharing curve buffers with Embree");
+  rtcSetGeometryUserData(geometry, &set);
+  rtcSetGeometryIntersectFilterFunction(geometry, curve_self_hit_filter);
+  rtcSetGeometryOccludedFilterFunction(geometry, curve_self_hit_filter);
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  check_error("adding curves");
+  set_slot(id, int(geometries_.size()));
+  GeometryInfo info;
+  info.kind = GeometryInfo::Kind::curves;
+  info.material = material;
+  info.curves = &set;
+  geometries_.push_back(info);
   return id;
 }
 
@@ -265,6 +324,12 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
   hit.geometric_normal = normalize(ng);
   hit.shading_normal = hit.geometric_normal;
 
+  if (info->kind == GeometryInfo::Kind::curves) {
+    // Curves are top-level only (no instance transform); their tangents are set whatever surface_tangents_ says,
+    // since a fibre's BSDF is built around ∂p/∂u.
+    curve_surface(*info->curves, rh.hit.primID, rh.hit.u, origin, direction, hit.t, ng, hit);
+    return hit;
+  }
   if (info->kind == GeometryInfo::Kind::sphere) {
     // o + t·d carries the rounding of the ray's origin, which can be far larger than the sphere: put the point
     // back on the sphere, so its error is that of the centre and radius.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "render/image/alpha_mask.h"
+#include "render/scene/curve_set.h"
 #include "spectral/error.h"
 #include "transport/geometry/surface_hit.h"
 #include "render/scene/triangle_mesh.h"
@@ -50,6 +51,12 @@ class EmbreeScene final : public RayQueries {
   unsigned add_sphere(Vec3 centre, float radius, int material, const std::optional<std::array<Vec3, 3>>& uv_axes = std::nullopt,
                       int light = -1);
 
+  /// World-space curves (Embree's native Bézier curves of the set's kind; not instanced, not emissive). Hits follow
+  /// curve_surface's contract (uv, h across the fibre, ∂p/∂u always set); a ray leaving a fibre passes through it
+  /// (is_self_hit, applied by Embree filter functions to camera and shadow rays alike). Move the set in: Embree
+  /// reads its points in place. Returns the geometry id.
+  unsigned add_curves(CurveSet curves, int material);
+
   /// A prototype: meshes in object space, shared by instances (no lights inside prototypes). Held once however
   /// many instances refer to it; move the meshes in.
   /// `alphas`: empty, or one cut-out mask (or null) per mesh.
@@ -85,7 +92,7 @@ class EmbreeScene final : public RayQueries {
  private:
   bool surface_tangents_ = true;
   struct GeometryInfo {
-    enum class Kind { mesh, sphere } kind = Kind::mesh;
+    enum class Kind { mesh, sphere, curves } kind = Kind::mesh;
     int material = -1;
     int light = -1;
     const TriangleMesh* mesh = nullptr;  // owned by meshes_ (kept for positions, normals and uvs)
@@ -93,6 +100,7 @@ class EmbreeScene final : public RayQueries {
     float radius = 0;
     bool pbrt_uv = false;                // spheres: uv about uv_axes (pbrt-v4's convention), else Rimu's
     std::array<Vec3, 3> uv_axes{};
+    const CurveSet* curves = nullptr;    // owned by curve_sets_
   };
   struct Prototype {
     RTCScene scene = nullptr;
@@ -122,6 +130,7 @@ class EmbreeScene final : public RayQueries {
   Vec3 bounds_min_, bounds_max_;
   mutable std::string last_error_;
   std::atomic<int64_t> embree_bytes_{0};
+  std::vector<std::unique_ptr<CurveSet>> curve_sets_;
   std::vector<std::unique_ptr<EmbreeAlphaFilter>> alpha_filters_;  // Embree's filter functions point at these
 };
 

@@ -48,6 +48,8 @@ void load_materials(const JsonCursor& section, LoadContext& context);
 /// Loads the "media" section (render/scene/scene_media.cpp); runs after the materials, which media name as boundaries.
 void load_media(const JsonCursor& section, LoadContext& context);
 void load_shapes(const JsonCursor& section, LoadContext& context);
+/// A "curves" shape (scene_curves.cpp), its material already resolved: Embree curves, not instanced, not emissive.
+void load_curves(const JsonCursor& shape, int material, LoadContext& context);
 void load_prototypes(const JsonCursor& section, LoadContext& context);
 /// Loads the "lights" section. Runs before load_shapes, which appends an AreaLight per emissive shape.
 void load_lights(const JsonCursor& section, LoadContext& context);

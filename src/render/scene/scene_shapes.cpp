@@ -272,7 +272,11 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
   for (size_t i = 0; i < section.size(); ++i) {
     const JsonCursor shape = section.at(i);
     const std::string type =
-        shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk", "sphere", "instance", "instances"});
+        shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk", "sphere", "instance", "instances", "curves"});
+    if (type == "curves") {
+      load_curves(shape, material_of(shape, context), context);
+      continue;
+    }
     if (type == "sphere") {
       shape.only_keys({"type", "name", "center", "radius", "material", "transform", "uv_axes", "emission", "light_group",
                        "two_sided"});

@@ -240,6 +240,9 @@ class PbrtConverter {
   /// A cylinder, disk or sphere mesh (render/scene/analytic_shapes.h, in object space) through emit_mesh, counted
   /// against the generated-triangle limit.
   void emit_analytic_mesh(PbrtParams& p, AnalyticMesh mesh, const SourceLocation& where, const std::string& context);
+  /// Shape "curve" (pbrt_curves.cpp) → a "curves" shape, merged into the one before when that holds curves of the
+  /// same kind, basis, degree, material and transform from the same file (hair files hold tens of thousands).
+  void curve_shape(const PbrtStatement& s, const std::string& context, const std::vector<PbrtParam>* shape_defaults);
   /// The shape's "alpha" (a float or a float texture) as Rimu's shape "alpha", or null (solid). `has_uvs`: whether
   /// the shape carries texture coordinates an alpha image can follow.
   json alpha_parameter(PbrtParams& p, bool has_uvs);
@@ -319,6 +322,12 @@ class PbrtConverter {
     std::size_t origin;  ///< index in origins_
   };
   std::optional<InstanceBatch> instance_batch_;
+  /// The "curves" shape the last Shape "curve" went to (its origin holds a line per curve).
+  struct CurveBatch {
+    std::size_t shape;   ///< index in shapes_
+    std::size_t origin;  ///< index in origins_
+  };
+  std::optional<CurveBatch> curve_batch_;
   std::size_t max_shapes_;               ///< PbrtImportOptions::max_shapes
   std::size_t shapes_read_ = 0;          ///< Shape statements so far
   /// Adds `triangles` to the generated count; InputError at `where` if that crosses max_generated_triangles_.

@@ -212,6 +212,8 @@ void PbrtConverter::shape(const PbrtStatement& s) {
       return;
     }
     emit_analytic_mesh(p, disk_mesh(height, radius, inner, phimax_rad), s.where, context);
+  } else if (type == "curve") {
+    curve_shape(s, context, shape_defaults);
   } else {
     ignore(context, s.where);
   }

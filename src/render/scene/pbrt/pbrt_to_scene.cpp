@@ -571,11 +571,13 @@ std::optional<InputError> at_pbrt_origin(const InputError& error, const std::vec
   if (!best) return std::nullopt;
   SourceLocation where = best->where;
   if (!best->element_lines.empty()) {
-    // "/shapes/3/matrices/7…": the eighth ObjectInstance of the batch.
-    const std::string elements = best->pointer + "/matrices/";
-    if (key.compare(0, elements.size(), elements) == 0) {
-      const size_t k = std::strtoul(key.c_str() + elements.size(), nullptr, 10);
-      if (k < best->element_lines.size()) where.line = best->element_lines[k];
+    // "/shapes/3/matrices/7…": the eighth ObjectInstance of the batch; "/shapes/3/counts/7": its eighth curve.
+    for (const char* member : {"/matrices/", "/counts/"}) {
+      const std::string elements = best->pointer + member;
+      if (key.compare(0, elements.size(), elements) == 0) {
+        const size_t k = std::strtoul(key.c_str() + elements.size(), nullptr, 10);
+        if (k < best->element_lines.size()) where.line = best->element_lines[k];
+      }
     }
   }
   // The problem's own place (a PLY's file:line) stays in the message; the document's key goes last, in brackets.

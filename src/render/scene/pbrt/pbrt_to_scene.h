@@ -16,7 +16,7 @@ namespace rimu {
 
 /// Something of the pbrt file that Rimu does not render (or renders approximately), counted.
 struct PbrtIgnored {
-  std::string what;     ///< e.g. Shape "curve", parameter "float alpha" of Shape "trianglemesh"
+  std::string what;     ///< e.g. Material "measured", parameter "float alpha" of Shape "trianglemesh"
   int count = 0;
   SourceLocation first; ///< file and line of the first occurrence
 };
@@ -82,7 +82,7 @@ PbrtImport import_pbrt_text(const std::string& text, const std::string& file, co
 /// vertex 2: …", with the document's key kept at the end. Empty when the error names no imported part.
 std::optional<InputError> at_pbrt_origin(const InputError& error, const std::vector<PbrtOrigin>& origins);
 
-/// The report printed after loading: one line per entry, `ignored: Shape "curve" (12 times), first at a.pbrt:1234`.
+/// The report printed after loading: one line per entry, `ignored: Shape "bilinearmesh" under a singular transform (12 times), first at a.pbrt:1234`.
 std::string describe_ignored(const std::vector<PbrtIgnored>& ignored);
 
 /// True for a path ending in .pbrt (case-insensitive): the scene readers dispatch on it.
