@@ -15,30 +15,40 @@ float safe_sqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
 float safe_asin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }
 
 // log I0(x), the modified Bessel function of the first kind, order 0, for x ≥ 0. The power series
-// Σ (x²/4)^i / (i!)² summed to double precision up to x = 20 (pbrt stops at ten terms, which at x = 10 misses 0.3 %
-// of I0 and so of the furnace); beyond, the asymptotic series e^x/√(2πx)·(1 + 1/(8x) + 9/(128x²) + 225/(3072x³)),
-// whose next term is < 1e-6 there (Abramowitz & Stegun 9.7.1).
+// Σ (x²/4)^i / (i!)² summed to double precision up to x = 12 (pbrt stops at ten terms, which at x = 10 misses 0.3 %
+// of I0 and so of the furnace); beyond, the asymptotic series e^x/√(2πx)·Σ_k c_k/x^k with
+// c_k = ((2k−1)!!)²/(k! 8^k) to k = 4, whose next term is < 1e-6 there (Abramowitz & Stegun 9.7.1).
 double log_bessel_i0(double x) {
-  if (x > 20.0) {
+  if (x > 12.0) {
     const double r = 1.0 / x;
-    return x - 0.5 * std::log(2.0 * kPi * x) + std::log1p(r * (1.0 / 8.0 + r * (9.0 / 128.0 + r * 225.0 / 3072.0)));
+    const double tail = r * (1.0 / 8.0 + r * (9.0 / 128.0 + r * (225.0 / 3072.0 + r * 11025.0 / 98304.0)));
+    return x - 0.5 * std::log(2.0 * kPi * x) + std::log1p(tail);
   }
+  // Mp is returned in float: terms below 1e-12 of the sum cannot change it. At x = 12 that is 30 terms; the
+  // divisions by i² come from a table (a division per term was a third of eval()'s cost).
+  static constexpr auto kInverseSquares = [] {
+    std::array<double, 48> table{};
+    for (size_t i = 1; i < table.size(); ++i) table[i] = 1.0 / (double(i) * double(i));
+    return table;
+  }();
   const double q = 0.25 * x * x;
   double term = 1.0, sum = 1.0;
-  for (int i = 1; i < 80 && term > 1e-17 * sum; ++i) {
-    term *= q / (double(i) * double(i));
+  for (size_t i = 1; i < kInverseSquares.size() && term > 1e-12 * sum; ++i) {
+    term *= q * kInverseSquares[i];
     sum += term;
   }
   return std::log(sum);
 }
 
+// log(2 v sinh(1/v)) = log v + 1/v + log(1 − e^(−2/v)), Mp's normalisation, without overflow at small v.
+double log_longitudinal_norm(double v) { return std::log(v) + 1.0 / v + std::log1p(-std::exp(-2.0 / v)); }
+
 // d'Eon et al. 2011's longitudinal scattering, normalised so that ∫ Mp cos θi dθi = 1 over [−π/2, π/2]:
 //   Mp = exp(−sin θi sin θo / v) I0(cos θi cos θo / v) / (2 v sinh(1/v)),
-// evaluated as one exponential of logs so that small variances (v ~ 1e-6 at β_m = 0.001) neither overflow the
-// Bessel function nor sinh: log(2 v sinh(1/v)) = log v + 1/v + log(1 − e^(−2/v)).
-float longitudinal(float cos_i, float cos_o, float sin_i, float sin_o, float v) {
+// evaluated as one exponential of logs so that small variances (v ~ 1e-6 at β_m = 0.001) overflow neither the
+// Bessel function nor sinh. `log_norm` = log_longitudinal_norm(v).
+float longitudinal(float cos_i, float cos_o, float sin_i, float sin_o, float v, double log_norm) {
   const double a = double(cos_i) * cos_o / v, b = double(sin_i) * sin_o / v;
-  const double log_norm = std::log(double(v)) + 1.0 / v + std::log1p(-std::exp(-2.0 / v));
   return float(std::exp(log_bessel_i0(a) - b - log_norm));
 }
 
@@ -49,9 +59,6 @@ double logistic(double x, double s) {
 }
 double logistic_cdf(double x, double s) { return 1.0 / (1.0 + std::exp(-x / s)); }
 
-double trimmed_logistic(double x, double s) {
-  return logistic(x, s) / (logistic_cdf(kPi, s) - logistic_cdf(-kPi, s));
-}
 
 // Inverts the trimmed CDF; the clamp absorbs log(0) at u = 0 or 1 when s is tiny.
 double sample_trimmed_logistic(double u, double s) {
@@ -63,8 +70,9 @@ double sample_trimmed_logistic(double u, double s) {
 // The azimuth at which lobe p leaves a smooth fibre (Marschner et al. 2003): Φ = 2pγt − 2γo + pπ.
 double exit_azimuth(int p, double gamma_o, double gamma_t) { return 2.0 * p * gamma_t - 2.0 * gamma_o + p * kPi; }
 
-double azimuthal(double phi, int p, double s, double gamma_o, double gamma_t) {
-  return trimmed_logistic(std::remainder(phi - exit_azimuth(p, gamma_o, gamma_t), 2.0 * kPi), s);
+// Np: the logistic trimmed to [−π, π] (`inverse_mass` = 1/(CDF(π) − CDF(−π))) around lobe p's exit azimuth.
+double azimuthal(double phi, int p, double s, double inverse_mass, double gamma_o, double gamma_t) {
+  return logistic(std::remainder(phi - exit_azimuth(p, gamma_o, gamma_t), 2.0 * kPi), s) * inverse_mass;
 }
 
 }  // namespace
@@ -92,6 +100,9 @@ HairBsdf::HairBsdf(Vec2 fibre_direction, float h, SampledSpectrum sigma_a, const
   const float m = 0.726f * bm + 0.812f * bm * bm + 3.7f * std::pow(bm, 20.0f);
   variance_ = {m * m, 0.25f * m * m, 4.0f * m * m, 4.0f * m * m};
   logistic_scale_ = float(std::sqrt(kPi / 8.0)) * (0.265f * bn + 1.194f * bn * bn + 5.372f * std::pow(bn, 22.0f));
+  // Per-BSDF constants of Mp and Np, so that eval() and pdf() pay only for what depends on the directions.
+  for (size_t p = 0; p <= kMaxP; ++p) log_longitudinal_norm_[p] = log_longitudinal_norm(variance_[p]);
+  logistic_inverse_mass_ = 1.0 / (logistic_cdf(kPi, logistic_scale_) - logistic_cdf(-kPi, logistic_scale_));
   // The tilt doubles per lobe: sin/cos of α, 2α, 4α by the double-angle formulas.
   sin_2k_alpha_[0] = std::sin(parameters.alpha_deg * float(kPi / 180.0));
   cos_2k_alpha_[0] = safe_sqrt(1.0f - sin_2k_alpha_[0] * sin_2k_alpha_[0]);
@@ -153,11 +164,13 @@ std::array<float, HairBsdf::kMaxP + 1> HairBsdf::lobe_densities(const Incidence&
   for (int p = 0; p < kMaxP; ++p) {
     float sin_op, cos_op;
     tilted(p, in.sin_o, in.cos_o, sin_op, cos_op);
-    density[size_t(p)] = longitudinal(cos_i, cos_op, sin_i, sin_op, variance_[size_t(p)]) *
-                         float(azimuthal(phi, p, logistic_scale_, gamma_o_, in.gamma_t));
+    density[size_t(p)] =
+        longitudinal(cos_i, cos_op, sin_i, sin_op, variance_[size_t(p)], log_longitudinal_norm_[size_t(p)]) *
+        float(azimuthal(phi, p, logistic_scale_, logistic_inverse_mass_, gamma_o_, in.gamma_t));
   }
   // Longer paths: no tilt, uniform in φ.
-  density[kMaxP] = longitudinal(cos_i, in.cos_o, sin_i, in.sin_o, variance_[kMaxP]) * float(0.5 / kPi);
+  density[kMaxP] = longitudinal(cos_i, in.cos_o, sin_i, in.sin_o, variance_[kMaxP], log_longitudinal_norm_[kMaxP]) *
+                   float(0.5 / kPi);
   return density;
 }
 

@@ -89,6 +89,8 @@ class HairBsdf {
   SampledSpectrum sigma_a_;
   std::array<float, kMaxP + 1> variance_;    // Mp's v per lobe
   float logistic_scale_;                     // Np's s
+  std::array<double, kMaxP + 1> log_longitudinal_norm_;  // log(2v sinh(1/v)) per lobe
+  double logistic_inverse_mass_;             // 1/(CDF(π) − CDF(−π)) of Np's logistic
   std::array<float, 3> sin_2k_alpha_, cos_2k_alpha_;  // k = 0, 1, 2: α, 2α, 4α
 };
 
