@@ -60,7 +60,9 @@ class HairBsdf {
   SampledSpectrum eval(Vec3 wo, Vec3 wi) const;
   /// Per-lane solid-angle density of sample(): Σ_p P_p(lane) Mp Np.
   SampledSpectrum pdf(Vec3 wo, Vec3 wi) const;
-  /// A direction from lobe p (chosen by the hero's Ap); std::nullopt only when wi lands exactly on wi.z = 0.
+  /// A direction from lobe p (chosen by the hero's Ap), with f and the per-lane pdf of that direction. std::nullopt
+  /// when wi lands exactly on wi.z = 0, when the density underflows to 0 far in a tail, or when the hero's Ap all
+  /// vanish (η = 1 with total absorption).
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
   /// Glossy, and light passes through the fibre (TT): the integrator keeps the frame of the shading normal
   /// unflipped, which the fibre direction computed at bsdf() time relies on.
