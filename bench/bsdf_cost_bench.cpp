@@ -59,13 +59,16 @@ Bsdf make(int which) {
     case 3: return LayeredBsdf(kEta, TrowbridgeReitz(0, 0), DiffuseBsdf(kBase), {0.01f, Float4(0.0f), 0.0f}, {10, 1});
     case 4: return LayeredBsdf(kEta, TrowbridgeReitz(rough, rough), DiffuseBsdf(kBase), {0.01f, Float4(0.0f), 0.0f}, {10, 1});
     case 5: return LayeredBsdf(kEta, TrowbridgeReitz(rough, rough), metal, {0.01f, Float4(0.0f), 0.0f}, {10, 1});
-    default: return LayeredBsdf(kEta, TrowbridgeReitz(rough, rough), DiffuseBsdf(kBase), {0.5f, Float4(0.8f), 0.3f}, {10, 1});
+    case 6: return LayeredBsdf(kEta, TrowbridgeReitz(rough, rough), DiffuseBsdf(kBase), {0.5f, Float4(0.8f), 0.3f}, {10, 1});
+    // pbrt-v4's default hair (β_m = β_n = 0.3, α = 2°, η = 1.55) with a brown σa, the fibre across the frame.
+    default: return HairBsdf({0.6f, 0.8f}, 0.3f, Float4(0.55f, 0.95f, 1.8f, 2.4f), HairParameters{});
   }
 }
 
 const char* const kNames[] = {"diffuse", "coated_diffuse closed form (clear)", "coated_diffuse closed form (thickness 0.01)",
                               "layered: smooth coat, diffuse, thickness 0.01", "layered: rough coat 0.3, diffuse, thickness 0.01",
-                              "layered: rough coat 0.3, rough gold 0.3", "layered: rough coat 0.3, diffuse, scattering slab 0.5"};
+                              "layered: rough coat 0.3, rough gold 0.3", "layered: rough coat 0.3, diffuse, scattering slab 0.5",
+                              "hair (pbrt-v4's defaults, brown)"};
 
 void BM_EvalPdf(benchmark::State& state) {
   const Bsdf bsdf = make(int(state.range(0)));
@@ -78,7 +81,7 @@ void BM_EvalPdf(benchmark::State& state) {
   }
   state.SetLabel(kNames[state.range(0)]);
 }
-BENCHMARK(BM_EvalPdf)->DenseRange(0, 6);
+BENCHMARK(BM_EvalPdf)->DenseRange(0, 7);
 
 void BM_Sample(benchmark::State& state) {
   const Bsdf bsdf = make(int(state.range(0)));
@@ -90,7 +93,7 @@ void BM_Sample(benchmark::State& state) {
   }
   state.SetLabel(kNames[state.range(0)]);
 }
-BENCHMARK(BM_Sample)->DenseRange(0, 6);
+BENCHMARK(BM_Sample)->DenseRange(0, 7);
 
 }  // namespace
 

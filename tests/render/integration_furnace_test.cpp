@@ -155,6 +155,14 @@ TEST_CASE("furnace: a diffuse transmitter with R + T = 1 is invisible, and pbrt'
   check_furnace(nlohmann::json::parse(R"({"type": "diffuse_transmission", "reflectance": 0.3, "transmittance": 0.4, "scale": 2})"), true);
 }
 
+TEST_CASE("furnace: a white hair material (σa = 0) on a sphere is invisible, whatever its roughness and tilt") {
+  // Σ Ap = 1 for every wo and h, so every path escapes with weight 1. On a sphere the fibre runs along ∂p/∂u
+  // (the parallels) and h = 2v − 1 sweeps the latitudes: every fibre geometry is met, through both the
+  // reflection and the transmission lobes (the path crosses the sphere through TT).
+  check_furnace(nlohmann::json::parse(R"({"type": "hair", "sigma_a": 0})"), true);
+  check_furnace(nlohmann::json::parse(R"({"type": "hair", "sigma_a": 0, "beta_m": 0.1, "beta_n": 0.9, "alpha": 10})"), true);
+}
+
 TEST_CASE("furnace: nearly smooth rough conductor and dielectric (roughness 0.1, alpha 0.01) are invisible within the MC bound") {
   // At α = 0.01 the single-scattering loss is far below the ≈0.5 % error bars (it vanishes as α → 0, Kulla &
   // Conty 2017; bsdf_energy_test bounds it below 1 % already at α = 0.05), so the expectation 1 is used as is.

@@ -5,6 +5,7 @@
 
 #include "render/image/image_texture.h"
 #include "render/image/rgb_normal_map.h"
+#include "render/scene/hair_absorption.h"
 #include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_textures.h"
@@ -96,6 +97,39 @@ class MaterialResolver {
 
 Material load_material(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver);
 
+// {"type": "hair"}: the fibre's absorption from one of "sigma_a" (per unit fibre radius), "reflectance" (the
+// colour, Chiang et al.'s inversion) or "eumelanin"/"pheomelanin" (concentrations), else eumelanin 1.3 (pbrt-v4's
+// brown default); "eta", "beta_m", "beta_n", "alpha" (degrees) with pbrt-v4's defaults 1.55, 0.3, 0.3, 2.
+Material load_hair(const JsonCursor& m, LoadContext& context) {
+  m.only_keys({"type", "sigma_a", "reflectance", "eumelanin", "pheomelanin", "eta", "beta_m", "beta_n", "alpha"});
+  HairParameters parameters;
+  parameters.eta = float(m.number_or("eta", 1.55, 1.0));
+  parameters.beta_m = float(m.number_or("beta_m", 0.3, 1e-3, 1.0));
+  parameters.beta_n = float(m.number_or("beta_n", 0.3, 1e-3, 1.0));
+  parameters.alpha_deg = float(m.number_or("alpha", 2.0, -45.0, 45.0));
+  const bool melanin = m.has("eumelanin") || m.has("pheomelanin");
+  if (int(m.has("sigma_a")) + int(m.has("reflectance")) + int(melanin) > 1)
+    (m.has("sigma_a") ? m.at("sigma_a") : m.at("reflectance"))
+        .fail("give one of sigma_a, reflectance or eumelanin/pheomelanin, not several");
+  if (m.has("reflectance")) {
+    SpectrumPtr colour = context.spectra.parse(m.at("reflectance"), SpectrumRole::reflectance);
+    return m.blame([&] { return Material(HairMaterial::from_reflectance(std::move(colour), parameters)); });
+  }
+  SpectrumPtr sigma_a;
+  if (m.has("sigma_a")) {
+    const JsonCursor value = m.at("sigma_a");
+    if (value.is_object() && value.has("rgb"))
+      value.at("rgb").fail("give sigma_a as a spectrum; for a colour use reflectance or eumelanin/pheomelanin");
+    sigma_a = context.spectra.parse(value, SpectrumRole::coefficient);
+  } else {
+    const double eumelanin = melanin ? m.number_or("eumelanin", 0.0, 0.0) : 1.3;
+    const double pheomelanin = m.number_or("pheomelanin", 0.0, 0.0);
+    sigma_a = context.spectra.transport_form(melanin_sigma_a(context.spectra.library(), eumelanin, pheomelanin),
+                                             SpectrumRole::coefficient);
+  }
+  return m.blame([&] { return Material(HairMaterial(std::move(sigma_a), parameters)); });
+}
+
 // {"type": "mix", "materials": ["a", "b"], "amount": a}: per hit "b" with probability a, else "a" (MixMaterial).
 Material load_mix(const JsonCursor& m, MaterialResolver& resolver, uint32_t salt) {
   m.only_keys({"type", "materials", "amount"});
@@ -119,7 +153,7 @@ std::shared_ptr<const Material> MaterialResolver::named(const std::string& name,
 
 Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver) {
   const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "thin_dielectric", "coated_diffuse",
-                                                    "diffuse_transmission", "coated_conductor", "mix"});
+                                                    "diffuse_transmission", "coated_conductor", "mix", "hair"});
   // Each mix decorrelates its choice from other mixes' by its own salt: its key path, hashed.
   if (type == "mix") {
     uint32_t salt = 0;
@@ -191,6 +225,7 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
     const float scale = float(m.number_or("scale", 1.0, 0.0));
     return m.blame([&] { return Material(DiffuseTransmissionMaterial(std::move(reflectance), std::move(transmittance), scale)); });
   }
+  if (type == "hair") return load_hair(m, context);
   if (type == "coated_conductor") {
     m.only_keys({"type", "normal_map", "displacement", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
                  "reflectance", "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});

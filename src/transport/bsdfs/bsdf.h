@@ -11,6 +11,7 @@
 #include "transport/bsdfs/dielectric_bsdf.h"
 #include "transport/bsdfs/diffuse_bsdf.h"
 #include "transport/bsdfs/diffuse_transmission_bsdf.h"
+#include "transport/bsdfs/hair_bsdf.h"
 #include "transport/bsdfs/layered_bsdf.h"
 #include "transport/bsdfs/thin_dielectric_bsdf.h"
 
@@ -28,7 +29,7 @@ namespace rimu {
 class Bsdf {
  public:
   using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf, ThinDielectricBsdf,
-                               DiffuseTransmissionBsdf, LayeredBsdf>;
+                               DiffuseTransmissionBsdf, LayeredBsdf, HairBsdf>;
 
   template <typename T>
   Bsdf(T bsdf) : bsdf_(std::move(bsdf)) {}  // NOLINT(google-explicit-constructor): any BSDF is a Bsdf

@@ -111,6 +111,39 @@ DiffuseTransmissionMaterial::DiffuseTransmissionMaterial(SpectralTexturePtr refl
   if (!(scale_ >= 0.0f)) throw InputError({}, "scale must be at least 0, got " + std::to_string(scale_));
 }
 
+HairMaterial::HairMaterial(SpectrumPtr sigma_a, SpectrumPtr reflectance, HairParameters parameters)
+    : sigma_a_(std::move(sigma_a)), reflectance_(std::move(reflectance)), parameters_(parameters) {
+  if (!sigma_a_ && !reflectance_) throw InputError({}, "a hair material needs sigma_a or a reflectance");
+  // η < 1 would make the fibre's Bravais index undefined at grazing angles; β = 0 is a variance of 0 (a delta
+  // lobe, which this glossy model cannot represent); the paper's mapping is fitted for β ≤ 1. Tilts beyond 45°
+  // would fold the TRT lobe (4α) past the pole.
+  if (!(parameters_.eta >= 1.0f && std::isfinite(parameters_.eta)))
+    throw InputError({}, "hair eta must be a finite number ≥ 1, got " + std::to_string(parameters_.eta));
+  for (const auto& [value, name] : {std::pair{parameters_.beta_m, "beta_m"}, std::pair{parameters_.beta_n, "beta_n"}})
+    if (!(value > 0.0f && value <= 1.0f))
+      throw InputError({}, std::string("hair ") + name + " must lie in (0, 1], got " + std::to_string(value));
+  if (!(std::fabs(parameters_.alpha_deg) <= 45.0f))
+    throw InputError({}, "hair alpha must lie in [-45, 45] degrees, got " + std::to_string(parameters_.alpha_deg));
+}
+
+HairMaterial::HairMaterial(SpectrumPtr sigma_a, HairParameters parameters)
+    : HairMaterial(std::move(sigma_a), nullptr, parameters) {}
+
+HairMaterial HairMaterial::from_reflectance(SpectrumPtr reflectance, HairParameters parameters) {
+  if (!reflectance) throw InputError({}, "a hair material by reflectance needs a reflectance");
+  return HairMaterial(nullptr, std::move(reflectance), parameters);
+}
+
+Bsdf HairMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
+  // The integrator shades a transmissive BSDF in Frame::from_normal(shading normal), unflipped (bsdf.h): the same
+  // frame here gives the fibre's direction in the coordinates eval() and sample() will receive.
+  const Vec2 fibre = hair_fibre_direction(Frame::from_normal(context.shading_normal), context.dpdu);
+  const SampledSpectrum sigma_a =
+      sigma_a_ ? max(sigma_a_->sample(lambda), Float4(0.0f))
+               : HairBsdf::sigma_a_from_reflectance(reflectance_->sample(lambda), parameters_.beta_n);
+  return HairBsdf(fibre, 2.0f * context.uv.y - 1.0f, sigma_a, parameters_);
+}
+
 Bsdf DiffuseTransmissionMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
   const Float4 r = clamp_unit(reflectance_->evaluate_at(context, lambda) * Float4(scale_));
   const Float4 t = clamp_unit(transmittance_->evaluate_at(context, lambda) * Float4(scale_));
@@ -275,7 +308,8 @@ bool MixMaterial::uses_tangents() const { return first_->uses_tangents() || seco
 
 bool Material::uses_tangents() const {
   if (const auto* mix = std::get_if<MixMaterial>(&material_)) return mix->uses_tangents();
-  return normal_modifier_ != nullptr;
+  // Hair reads ∂p/∂u as the fibre's direction (curves provide it; on other surfaces it is better than the fallback).
+  return normal_modifier_ != nullptr || std::holds_alternative<HairMaterial>(material_);
 }
 
 Vec3 Material::shading_normal(const MaterialContext& context) const {

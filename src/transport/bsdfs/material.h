@@ -82,6 +82,28 @@ class DiffuseTransmissionMaterial {
   float scale_;
 };
 
+/// pbrt-v4's "hair": a fibre scattering by Chiang et al. 2016 (HairBsdf), with absorption σa(λ) per unit of the
+/// fibre's radius, or σa derived per wavelength from a desired colour (`from_reflectance`, Chiang et al. Eq. 9).
+/// At each hit the fibre's direction is the hit's ∂p/∂u (a curve's tangent) and h = 2v − 1 across its width
+/// (MaterialContext::uv.y); on a surface without ∂p/∂u the shading frame's first axis stands in
+/// (hair_fibre_direction).
+class HairMaterial {
+ public:
+  /// Throws InputError if sigma_a is missing, or η < 1, β_m or β_n outside (0, 1], or |α| > 45°.
+  HairMaterial(SpectrumPtr sigma_a, HairParameters parameters);
+  /// σa from the fibre colour c(λ) (clamped to [1e-4, 1] per lane) and β_n. Throws as above.
+  static HairMaterial from_reflectance(SpectrumPtr reflectance, HairParameters parameters);
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
+  const HairParameters& parameters() const { return parameters_; }
+
+ private:
+  HairMaterial(SpectrumPtr sigma_a, SpectrumPtr reflectance, HairParameters parameters);
+
+  SpectrumPtr sigma_a_;
+  SpectrumPtr reflectance_;  // instead of sigma_a_ (from_reflectance)
+  HairParameters parameters_;
+};
+
 /// A thin sheet of glass of index n(λ) in air (ThinDielectricBsdf): smooth only, as in pbrt-v4. Optionally tinted:
 /// `internal_transmittance` τₙ(λ) is what one pass through the glass at normal incidence keeps (absorption only,
 /// the surface reflections not included; null: clear). Shadow rays pass it (docs/transport.md, "Glazing").
@@ -201,7 +223,8 @@ class MixMaterial {
 class Material {
  public:
   using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial,
-                               ThinDielectricMaterial, DiffuseTransmissionMaterial, CoatedConductorMaterial, MixMaterial>;
+                               ThinDielectricMaterial, DiffuseTransmissionMaterial, CoatedConductorMaterial, MixMaterial,
+                               HairMaterial>;
 
   template <typename T>
   Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)
@@ -219,8 +242,8 @@ class Material {
   /// material's applies (pbrt-v4's mix has none).
   void set_normal_modifier(std::shared_ptr<const ShadingNormalModifier> modifier) { normal_modifier_ = std::move(modifier); }
   bool has_normal_modifier() const { return normal_modifier_ != nullptr; }
-  /// Whether a hit on this material needs ∂p/∂u, ∂p/∂v (a normal or bump map, here or in a mix's materials): the
-  /// scene computes them only then (EmbreeScene::set_surface_tangents).
+  /// Whether a hit on this material needs ∂p/∂u, ∂p/∂v (a normal or bump map, hair's fibre direction, here or in a
+  /// mix's materials): the scene computes them only then (EmbreeScene::set_surface_tangents).
   bool uses_tangents() const;
   /// The shading normal the BSDF is to be built around: the hit's, or the normal/bump map's (unit, on the geometric
   /// normal's side). Integrators call this before bsdf() and pass the result in the context and shading frame.

@@ -290,6 +290,72 @@ std::string PbrtConverter::mix_material(const PbrtStatement& s, const std::strin
   return name;
 }
 
+json PbrtConverter::hair_material(PbrtParams& p, const PbrtStatement& s) {
+  json m = {{"type", "hair"}};
+  // pbrt-v4's HairMaterial::Create takes the first of sigma_a, reflectance, eumelanin/pheomelanin that is given
+  // (warning about the rest), and brown hair, eumelanin 1.3, when none is; Rimu's material wants exactly one.
+  const PbrtParam* sigma_a = p.get("sigma_a", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture});
+  const PbrtParam* colour = p.get("reflectance", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::texture, PbrtParamType::real});
+  const PbrtParam* eumelanin = p.get("eumelanin", {PbrtParamType::real, PbrtParamType::texture});
+  const PbrtParam* pheomelanin = p.get("pheomelanin", {PbrtParamType::real, PbrtParamType::texture});
+  const auto constant = [&](const PbrtParam* q) -> std::optional<double> {
+    if (q->type == PbrtParamType::real) return q->numbers.at(0);
+    if (const auto c = constant_float_texture(q->strings.at(0), q->where, 0)) return *c;
+    ignore("texture for hair \"" + q->name + "\" (pbrt-v4's brown hair, eumelanin 1.3, is used)", q->where);
+    return std::nullopt;
+  };
+  if (sigma_a) {
+    if (colour || eumelanin || pheomelanin)
+      ignore("hair reflectance or melanin given with sigma_a (sigma_a is used, as in pbrt-v4)", s.where);
+    // pbrt reads an RGB sigma_a as an unbounded spectrum (RGBUnboundedSpectrum), per unit fibre radius.
+    if (sigma_a->type == PbrtParamType::rgb)
+      m["sigma_a"] = unbounded_rgb({sigma_a->numbers[0], sigma_a->numbers[1], sigma_a->numbers[2]}, state_.colour_space, sigma_a->where);
+    else if (sigma_a->type == PbrtParamType::spectrum)
+      if (const auto v = spectrum_value(*sigma_a, false, p.directory())) m["sigma_a"] = *v;
+    if (sigma_a->type == PbrtParamType::texture)
+      ignore("texture for hair \"sigma_a\" (pbrt-v4's brown hair, eumelanin 1.3, is used)", sigma_a->where);
+  } else if (colour) {
+    if (eumelanin || pheomelanin) ignore("hair melanin given with reflectance (the reflectance is used, as in pbrt-v4)", s.where);
+    if (colour->type == PbrtParamType::rgb)
+      m["reflectance"] = rgb_reflectance(*colour);
+    else if (colour->type == PbrtParamType::real)
+      m["reflectance"] = colour->numbers.at(0);
+    else if (colour->type == PbrtParamType::spectrum) {
+      if (const auto v = spectrum_value(*colour, false, p.directory())) m["reflectance"] = *v;
+    } else {
+      ignore("texture for hair \"reflectance\" (pbrt-v4's brown hair, eumelanin 1.3, is used)", colour->where);
+    }
+  } else if (eumelanin || pheomelanin) {
+    const auto e = eumelanin ? constant(eumelanin) : std::optional<double>(0.0);
+    const auto h = pheomelanin ? constant(pheomelanin) : std::optional<double>(0.0);
+    if (e && h) {
+      m["eumelanin"] = std::max(0.0, *e);
+      m["pheomelanin"] = std::max(0.0, *h);
+    }
+  }
+  // Neither: the JSON material's own default is pbrt-v4's eumelanin 1.3.
+  const auto scalar = [&](const std::string& key, double fallback) {
+    const PbrtParam* q = p.get(key, {PbrtParamType::real, PbrtParamType::texture});
+    if (!q) return fallback;
+    if (q->type == PbrtParamType::real) return q->numbers.at(0);
+    if (const auto c = constant_float_texture(q->strings.at(0), q->where, 0)) return *c;
+    ignore("texture for hair \"" + key + "\" (" + std::to_string(fallback) + " is used)", q->where);
+    return fallback;
+  };
+  // pbrt-v4 takes any value; Rimu's material refuses what its model cannot represent (β = 0 is a delta lobe), so
+  // values are brought into its ranges here, and listed when that changes them.
+  const auto ranged = [&](const char* key, double fallback, double low, double high) {
+    const double value = scalar(key, fallback), kept = std::clamp(value, low, high);
+    if (kept != value) ignore(std::string("hair \"") + key + "\" " + std::to_string(value) + " (" + std::to_string(kept) + " is used)", s.where);
+    if (kept != fallback) m[key] = kept;
+  };
+  ranged("eta", 1.55, 1.0, 10.0);
+  ranged("beta_m", 0.3, 1e-3, 1.0);
+  ranged("beta_n", 0.3, 1e-3, 1.0);
+  ranged("alpha", 2.0, -45.0, 45.0);
+  return m;
+}
+
 std::string PbrtConverter::material(const PbrtStatement& s, const std::string& type, const std::string& context) {
   const bool named = s.keyword == "MakeNamedMaterial";
   std::string name = named ? s.strings[0]
@@ -313,7 +379,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
                                   (v4->empty() ? std::string() : " (pbrt-v4's upgrader makes it \"" + *v4 + "\")") +
                                   "; " + pbrt_v3_hint());
   if (type != "diffuse" && type != "coateddiffuse" && type != "coatedconductor" && type != "conductor" &&
-      type != "dielectric" && type != "thindielectric" && type != "diffusetransmission") {
+      type != "dielectric" && type != "thindielectric" && type != "diffusetransmission" && type != "hair") {
     ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
     return name;
@@ -390,7 +456,9 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       out["metal"] = "pbrt-cu";
     }
   };
-  if (type == "diffuse") {
+  if (type == "hair") {
+    m = hair_material(p, s);
+  } else if (type == "diffuse") {
     m = {{"type", "diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
   } else if (type == "diffusetransmission") {
     m = {{"type", "diffuse_transmission"}, {"reflectance", *reflectance(p, "reflectance", 0.25)},

@@ -164,6 +164,8 @@ class PbrtConverter {
   /// pbrt's "infinite" light with an equal-area octahedral image `filename`, in the light transform `world`.
   json image_environment(PbrtParams& p, const PbrtStatement& s, const std::string& filename, const PbrtMatrix& world);
   std::string default_material();
+  /// pbrt-v4's "hair" material as the scene format's "hair" (pbrt_appearance.cpp).
+  json hair_material(PbrtParams& p, const PbrtStatement& s);
   /// Counts one lookup of texture `name` at nesting `depth` (0: the parameter's own texture, which starts the
   /// count); InputError at `where` beyond kMaxTextureLookups for one parameter.
   void count_texture_lookup(const std::string& name, int depth, const SourceLocation& where);
