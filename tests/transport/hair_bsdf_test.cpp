@@ -289,6 +289,46 @@ TEST_CASE("hair material: the fibre's direction comes from dpdu and h from v, in
   CHECK(is_finite(fallback.eval({0.0f, 0.6f, 0.8f}, {0.0f, -0.6f, 0.8f})).all());
 }
 
+TEST_CASE("hair material: at a curve hit the result does not depend on which way the normal faces about the fibre") {
+  // A curve hit gives h relative to the ray (the offset along d × t, pbrt-v4's v) and a normal that faces the ray
+  // (flat), points away from it (pbrt-v4's flat curves) or is the tube's (round). The model is symmetric about the
+  // fibre and h is measured relative to wo, so all three must give the same f: were h read along a frame axis, the
+  // first two would mirror each other's highlights across the fibre (the cuticle tilt and h ≠ 0 make f asymmetric).
+  const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+  const Material hair = HairMaterial(std::make_shared<ConstantSpectrum>(0.3), parameters(0.2f, 0.3f, 3.0f));
+  const Vec3 t = normalize(Vec3{0.2f, 1.0f, 0.1f});                       // the fibre
+  const Vec3 d = normalize(Vec3{0.1f, -0.3f, 1.0f});                      // the camera ray
+  const Vec3 b = normalize(d - t * dot(d, t));                            // d across the fibre
+  const Vec3 a = cross(b, t);                                             // = normalize(d × t): the side h > 0
+  const float h = 0.55f, s = std::sqrt(1.0f - h * h);
+  const Vec3 normals[] = {-b, b, normalize(a * h - b * s)};               // facing, away, round tube
+  MaterialContext context;
+  context.dpdu = t * 2.0f;
+  context.uv = {0.3f, 0.5f * (1.0f + h)};
+  context.wo = -d;
+  std::mt19937 rng(11);
+  int asymmetric = 0;
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 wi = normalize(Vec3{test::uniform01(rng) - 0.5f, test::uniform01(rng) - 0.5f, test::uniform01(rng) - 0.5f});
+    Float4 first{};
+    for (int k = 0; k < 3; ++k) {
+      context.shading_normal = context.geometric_normal = normals[k];
+      const Frame frame = Frame::from_normal(normals[k]);
+      const Float4 f = hair.bsdf(context, lambda).eval(frame.to_local(-d), frame.to_local(wi));
+      if (k == 0) first = f;
+      for (int l = 0; l < 4; ++l) CHECK(f[l] == doctest::Approx(first[l]).epsilon(1e-3));
+    }
+    // The mirror image of wi across the plane of the fibre and the ray: not the same value (else the test could
+    // not see a mirrored h).
+    const Vec3 mirrored = wi - a * (2.0f * dot(wi, a));
+    context.shading_normal = context.geometric_normal = normals[0];
+    const Frame frame = Frame::from_normal(normals[0]);
+    const Float4 m = hair.bsdf(context, lambda).eval(frame.to_local(-d), frame.to_local(mirrored));
+    asymmetric += std::fabs(m[1] - first[1]) > 0.05f * std::fmax(m[1], first[1]);
+  }
+  CHECK(asymmetric > 10);
+}
+
 TEST_CASE("hair material: parameters out of range name what was expected") {
   const SpectrumPtr grey = std::make_shared<ConstantSpectrum>(0.4);
   HairParameters p;
