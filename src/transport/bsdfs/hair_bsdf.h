@@ -32,8 +32,10 @@ Vec2 hair_fibre_direction(const Frame& frame, Vec3 dpdu);
 /// The hair BSDF in Rimu's local frame. Internally each direction is expressed in the fibre's frame (pbrt's
 /// convention): x along the fibre (sin θ = x, θ the angle from the plane perpendicular to the fibre), z the
 /// shading normal, y = z × x, and the azimuth φ = atan2(z, y). `h` ∈ [−1, 1] is where the ray met the fibre
-/// across its width, the signed offset from the centreline over the radius, measured along +y: a curve hit's
-/// h = 2v − 1 with v increasing along n × tangent (pbrt-v4's flat and cylinder curves).
+/// across its width, the signed offset from the centreline over the radius, relative to the ray: positive along
+/// x × wo⊥ (wo⊥ = wo's part across the fibre), i.e. along d × tangent for a ray of direction d — a curve hit's
+/// h = 2v − 1 (pbrt-v4's v). Only azimuth differences enter the model, so the frame's orientation about the fibre
+/// (which way the normal faces) does not matter.
 ///
 /// f(wo, wi) = Σ_p Mp(θo, θi) Ap(wo) Np(φ) / |cos θi|, where cos θi is wi.z (the integrator's cosine, which the
 /// division cancels, as in pbrt). Mp is normalised over cos θ dθ and Np over φ, so the white furnace
