@@ -292,8 +292,9 @@ TEST_CASE("hair material: the fibre's direction comes from dpdu and h from v, in
 TEST_CASE("hair material: at a curve hit the result does not depend on which way the normal faces about the fibre") {
   // A curve hit gives h relative to the ray (the offset along d × t, pbrt-v4's v) and a normal that faces the ray
   // (flat), points away from it (pbrt-v4's flat curves) or is the tube's (round). The model is symmetric about the
-  // fibre and h is measured relative to wo, so all three must give the same f: were h read along a frame axis, the
-  // first two would mirror each other's highlights across the fibre (the cuticle tilt and h ≠ 0 make f asymmetric).
+  // fibre and h is measured relative to wo, so all three must give the same f·|cos θi| (what the integrator uses):
+  // were h read along a frame axis, the first two would mirror each other's highlights across the fibre (the
+  // cuticle tilt and h ≠ 0 make f asymmetric).
   const SampledWavelengths lambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
   const Material hair = HairMaterial(std::make_shared<ConstantSpectrum>(0.3), parameters(0.2f, 0.3f, 3.0f));
   const Vec3 t = normalize(Vec3{0.2f, 1.0f, 0.1f});                       // the fibre
@@ -314,7 +315,9 @@ TEST_CASE("hair material: at a curve hit the result does not depend on which way
     for (int k = 0; k < 3; ++k) {
       context.shading_normal = context.geometric_normal = normals[k];
       const Frame frame = Frame::from_normal(normals[k]);
-      const Float4 f = hair.bsdf(context, lambda).eval(frame.to_local(-d), frame.to_local(wi));
+      // f carries 1/|cos θi| about the shading normal, which the integrator's cosine cancels: compare f·|cos θi|.
+      const Vec3 wi_local = frame.to_local(wi);
+      const Float4 f = hair.bsdf(context, lambda).eval(frame.to_local(-d), wi_local) * Float4(std::fabs(wi_local.z));
       if (k == 0) first = f;
       for (int l = 0; l < 4; ++l) CHECK(f[l] == doctest::Approx(first[l]).epsilon(1e-3));
     }
@@ -323,7 +326,8 @@ TEST_CASE("hair material: at a curve hit the result does not depend on which way
     const Vec3 mirrored = wi - a * (2.0f * dot(wi, a));
     context.shading_normal = context.geometric_normal = normals[0];
     const Frame frame = Frame::from_normal(normals[0]);
-    const Float4 m = hair.bsdf(context, lambda).eval(frame.to_local(-d), frame.to_local(mirrored));
+    const Vec3 mirrored_local = frame.to_local(mirrored);
+    const Float4 m = hair.bsdf(context, lambda).eval(frame.to_local(-d), mirrored_local) * Float4(std::fabs(mirrored_local.z));
     asymmetric += std::fabs(m[1] - first[1]) > 0.05f * std::fmax(m[1], first[1]);
   }
   CHECK(asymmetric > 10);
