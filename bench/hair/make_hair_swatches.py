@@ -2,7 +2,7 @@
 """Writes a JSON scene of four hanging hair swatches (Rimu's `curves` shape and `hair` material) in sunlight and
 skylight: black, red, brown and blond by eumelanin concentration as in Bitterli's hair-curl scene (8, 2, 0.8, 0.2).
 
-    python3 bench/hair/make_hair_swatches.py OUT.json [STRANDS_PER_SWATCH] [CURVE_TYPE]
+    python3 bench/hair/make_hair_swatches.py OUT.json [STRANDS_PER_SWATCH] [CURVE_TYPE] [WIDTH_M]
 
 Each strand is a wavy cubic Bezier curve of 3 segments, 0.5 m long, 0.2 mm wide (widths grow with the scene's
 scale: real hair is 50-100 um, which needs far more strands per pixel than a small test render affords).
@@ -44,7 +44,7 @@ def main():
         for _ in range(strands):
             points += strand(rng, centre + rng.uniform(-0.1, 0.1), rng.uniform(-0.03, 0.03))
         shapes.append({"type": "curves", "name": name + " swatch", "material": name, "curve_type": curve_type,
-                       "points": points, "counts": [10] * strands, "width": 0.0002})
+                       "points": points, "counts": [10] * strands, "width": float(sys.argv[4]) if len(sys.argv) > 4 else 0.0002})
     scene = {
         "description": "Four hanging hair swatches (eumelanin 8, 2, 0.8, 0.2) in sun and sky; written by "
                        "bench/hair/make_hair_swatches.py.",
