@@ -61,8 +61,9 @@ TEST_CASE("radiance scaling: a sampled refraction reports η' = n(wi's side)/n(w
   const Float4 eta = test::bk7_eta(test::four_visible_wavelengths());
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const Float4 hero_eta(eta[0]);  // one η: no dispersion
   for (float alpha : {0.0f, 0.1f, 0.5f}) {
-    const DielectricBsdf glass(Float4(eta[0]), TrowbridgeReitz(alpha, alpha));  // one η: no dispersion
+    const DielectricBsdf glass(hero_eta, TrowbridgeReitz(alpha, alpha));
     int refractions = 0, reflections = 0;
     for (int i = 0; i < 400; ++i) {
       const Vec3 wo = random_direction(rng, i % 2 == 0);
