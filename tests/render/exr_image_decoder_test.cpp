@@ -81,13 +81,7 @@ void check_identical(const fs::path& path, int bits) {
   CHECK(header->bits_per_sample == bits);
   const DecodedImage exr = read_image_file(path, true);
   const DecodedImage oiio = test::module_decode(path, true, false);
-  CHECK(exr.width == oiio.width);
-  CHECK(exr.height == oiio.height);
-  CHECK(exr.channels == oiio.channels);
-  CHECK(exr.alpha_channel == oiio.alpha_channel);
-  CHECK(exr.bits_per_sample == oiio.bits_per_sample);
-  CHECK(exr.stored_as_float == oiio.stored_as_float);
-  CHECK(exr.format_name == oiio.format_name);
+  test::check_same_header(exr, oiio);
   CHECK(exr.bytes.empty());
   // Bit for bit: memcmp, so that -0 and NaN would count too.
   REQUIRE(exr.pixels.size() == oiio.pixels.size());

@@ -25,11 +25,7 @@ json scene_with(const json& material) {
   return scene;
 }
 
-const Material& fibre_of(const Scene& scene) {
-  const auto at = std::find(scene.material_names.begin(), scene.material_names.end(), "fibre");
-  REQUIRE(at != scene.material_names.end());
-  return scene.materials[size_t(at - scene.material_names.begin())];
-}
+const Material& fibre_of(const Scene& scene) { return test::material_named(scene, "fibre"); }
 
 const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 700.0f), Float4(1.0f / 470.0f));
 

@@ -25,6 +25,17 @@ inline DecodedImage module_decode(const std::filesystem::path& path, bool as_sto
   return image;
 }
 
+/// A decoder's header fields are those the OpenImageIO module gives for the same file.
+inline void check_same_header(const DecodedImage& decoded, const DecodedImage& oiio) {
+  CHECK(decoded.width == oiio.width);
+  CHECK(decoded.height == oiio.height);
+  CHECK(decoded.channels == oiio.channels);
+  CHECK(decoded.alpha_channel == oiio.alpha_channel);
+  CHECK(decoded.bits_per_sample == oiio.bits_per_sample);
+  CHECK(decoded.stored_as_float == oiio.stored_as_float);
+  CHECK(decoded.format_name == oiio.format_name);
+}
+
 /// The whole content of `path`.
 inline std::string file_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

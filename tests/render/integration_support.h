@@ -11,6 +11,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -41,6 +42,13 @@ inline std::unique_ptr<Scene> scene_from_json(const nlohmann::json& document, co
 }
 
 /// The scene's own pixel filter (tests use a box of radius 0.5: pixel value = mean over the pixel's area).
+/// The loaded material named `name` (fails the test if there is none).
+inline const Material& material_named(const Scene& scene, const std::string& name) {
+  const auto at = std::find(scene.material_names.begin(), scene.material_names.end(), name);
+  REQUIRE_MESSAGE(at != scene.material_names.end(), "no material " << name);
+  return scene.materials[size_t(at - scene.material_names.begin())];
+}
+
 inline PixelFilter filter_of(const Scene& scene) {
   const FilterSettings& f = scene.settings.filter;
   if (f.type == "box") return PixelFilter::box(f.radius_px);

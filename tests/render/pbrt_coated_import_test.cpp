@@ -23,14 +23,10 @@ PbrtImport import_text(const std::string& text) {
 
 /// The BSDF alternative a loaded material gives at 550 nm.
 size_t bsdf_kind(const Scene& scene, const std::string& name) {
-  for (size_t i = 0; i < scene.material_names.size(); ++i)
-    if (scene.material_names[i] == name)
-      return scene.materials[i]
-          .bsdf(MaterialContext::at_uv({0.5f, 0.5f}), SampledWavelengths(Float4(550.0f), Float4(1.0f)))
-          .variant()
-          .index();
-  FAIL("no material " << name);
-  return 0;
+  return test::material_named(scene, name)
+      .bsdf(MaterialContext::at_uv({0.5f, 0.5f}), SampledWavelengths(Float4(550.0f), Float4(1.0f)))
+      .variant()
+      .index();
 }
 
 }  // namespace
@@ -128,15 +124,12 @@ TEST_CASE("pbrt coated materials: textured coat and metal roughness become Rimu 
   const auto scene = load_scene(imported.document, "test.pbrt", test::test_data("pbrt"), test::library());
   const size_t closed = Bsdf::Variant(CoatedDiffuseBsdf(Float4(0.5f), Float4(1.5f), Float4(0.09f))).index();
   const size_t walk = Bsdf::Variant(LayeredBsdf(1.5f, TrowbridgeReitz(0, 0), DiffuseBsdf(Float4(0.5f)), {}, {})).index();
-  size_t varnish = 0;
-  while (scene->material_names[varnish] != "varnish") ++varnish;
+  const Material& varnish = test::material_named(*scene, "varnish");
   int closed_count = 0, walk_count = 0;
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j) {
-      const size_t kind = scene->materials[varnish]
-                              .bsdf(MaterialContext::at_uv({(i + 0.5f) / 8, (j + 0.5f) / 8}), SampledWavelengths(Float4(550.0f), Float4(1.0f)))
-                              .variant()
-                              .index();
+      const MaterialContext at = MaterialContext::at_uv({(i + 0.5f) / 8, (j + 0.5f) / 8});
+      const size_t kind = varnish.bsdf(at, SampledWavelengths(Float4(550.0f), Float4(1.0f))).variant().index();
       closed_count += kind == closed;
       walk_count += kind == walk;
     }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integration_support.h"
 #include "pbrt_test_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene.h"
@@ -36,16 +37,11 @@ double rimu_unbounded(const std::array<double, 3>& rgb, double lambda_nm) {
 // The reflectance at normal incidence of the smooth material `name` for the four wavelengths `lambda`: the weight
 // f·cos/pdf of its one (delta) sample, which for a conductor is the Fresnel reflectance.
 Float4 normal_incidence_reflectance(const Scene& scene, const std::string& name, const SampledWavelengths& lambda) {
-  for (size_t i = 0; i < scene.material_names.size(); ++i) {
-    if (scene.material_names[i] != name) continue;
-    const Bsdf bsdf = scene.materials[i].bsdf(MaterialContext::at_uv({0.5f, 0.5f}), lambda);
-    const auto sample = bsdf.sample({0, 0, 1}, 0.5f, {0.5f, 0.5f});
-    REQUIRE(sample);
-    REQUIRE(sample->is_delta);
-    return sample->f * Float4(std::fabs(sample->wi.z)) / sample->pdf;
-  }
-  FAIL("no material " << name);
-  return Float4(0.0f);
+  const Bsdf bsdf = test::material_named(scene, name).bsdf(MaterialContext::at_uv({0.5f, 0.5f}), lambda);
+  const auto sample = bsdf.sample({0, 0, 1}, 0.5f, {0.5f, 0.5f});
+  REQUIRE(sample);
+  REQUIRE(sample->is_delta);
+  return sample->f * Float4(std::fabs(sample->wi.z)) / sample->pdf;
 }
 
 }  // namespace

@@ -65,16 +65,6 @@ fs::path write_image(const fs::path& path, int width, int height, int channels, 
   return path;
 }
 
-void check_same_header(const DecodedImage& stb, const DecodedImage& oiio) {
-  CHECK(stb.width == oiio.width);
-  CHECK(stb.height == oiio.height);
-  CHECK(stb.channels == oiio.channels);
-  CHECK(stb.alpha_channel == oiio.alpha_channel);
-  CHECK(stb.bits_per_sample == oiio.bits_per_sample);
-  CHECK(stb.stored_as_float == oiio.stored_as_float);
-  CHECK(stb.format_name == oiio.format_name);
-}
-
 // The largest difference between the two decodes in codes of `max_code` (floats), or in bytes.
 double max_code_difference(const DecodedImage& a, const DecodedImage& b, double max_code) {
   REQUIRE(a.pixels.size() == b.pixels.size());
@@ -103,7 +93,7 @@ void check_identical(const fs::path& path, const std::string& format, int bits) 
       CAPTURE(bytes);
       const DecodedImage stb = read_image_file(path, as_stored, bytes);
       const DecodedImage oiio = test::module_decode(path, as_stored, bytes);
-      check_same_header(stb, oiio);
+      test::check_same_header(stb, oiio);
       CHECK(stb.bytes.size() == oiio.bytes.size());
       CHECK(stb.pixels.size() == oiio.pixels.size());
       CHECK(stb.bytes == oiio.bytes);
@@ -178,7 +168,7 @@ TEST_CASE("stb_image: JPEG decodes within 8 codes (grey: 2) of OpenImageIO's dec
       REQUIRE(out->close());
       const DecodedImage stb = read_image_file(path, false, true);
       const DecodedImage oiio = test::module_decode(path, false, true);
-      check_same_header(stb, oiio);
+      test::check_same_header(stb, oiio);
       // Where the two can differ: both IDCTs are integer versions of libjpeg's accurate one (jidctint; stb_image
       // says so), within 1 code of the exact transform (IEEE 1180's peak error), so Y, Cb and Cr differ by at most
       // 2; chroma upsampling averages (still at most 2 apart) and rounds once more (3); the conversion to RGB
