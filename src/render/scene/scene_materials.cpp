@@ -25,17 +25,20 @@ SpectralTexturePtr reflectance_texture(const JsonCursor& value, LoadContext& con
 // Roughness in [0, 1] (perceptual: alpha = roughness²; see transport/bsdfs/microfacet.h).
 float roughness_of(const JsonCursor& m) { return float(m.number_or("roughness", 0.0, 0.0, 1.0)); }
 
-// Whether any of the material's roughness keys holds a texture (an object) rather than a number.
-bool textured_roughness(const JsonCursor& m) {
+// Whether any of the roughness keys `<prefix>roughness`, `<prefix>roughness_u`, `<prefix>roughness_v` holds a
+// texture (an object) rather than a number (prefix "conductor_" for the coated conductor's metal).
+bool textured_roughness(const JsonCursor& m, const std::string& prefix = "") {
   for (const char* key : {"roughness", "roughness_u", "roughness_v"})
-    if (m.has(key) && !m.at(key).is_number()) return true;
+    if (m.has(prefix + key) && !m.at(prefix + key).is_number()) return true;
   return false;
 }
 
-// The roughness along one tangent as a texture: `key` if given, else "roughness", else 0.
-FloatTexturePtr roughness_texture(const JsonCursor& m, const char* key, LoadContext& context) {
-  if (m.has(key)) return load_float_texture(m.at(key), context, 0.0, 1.0);
-  if (m.has("roughness")) return load_float_texture(m.at("roughness"), context, 0.0, 1.0);
+// The roughness along one tangent (`axis` "_u" or "_v") as a texture: `<prefix>roughness<axis>` if given, else
+// `<prefix>roughness`, else 0.
+FloatTexturePtr roughness_texture(const JsonCursor& m, const std::string& axis, LoadContext& context,
+                                  const std::string& prefix = "") {
+  for (const std::string& key : {prefix + "roughness" + axis, prefix + "roughness"})
+    if (m.has(key)) return load_float_texture(m.at(key), context, 0.0, 1.0);
   return std::make_shared<ConstantFloatTexture>(0.0f);
 }
 
@@ -174,14 +177,14 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
         if (m.has(key)) m.at(key).fail("give either reflectance or metal or n and k, not several");
       SpectralTexturePtr reflectance = load_spectral_texture(m.at("reflectance"), context);
       return m.blame([&] {
-        return Material(ConductorMaterial::from_reflectance(std::move(reflectance), roughness_texture(m, "roughness_u", context),
-                                                            roughness_texture(m, "roughness_v", context)));
+        return Material(ConductorMaterial::from_reflectance(std::move(reflectance), roughness_texture(m, "_u", context),
+                                                            roughness_texture(m, "_v", context)));
       });
     }
     const ComplexIorSpectra ior = conductor_ior_of(m, context);
     if (textured)
       return m.blame([&] {
-        return Material(ConductorMaterial(ior, roughness_texture(m, "roughness_u", context), roughness_texture(m, "roughness_v", context)));
+        return Material(ConductorMaterial(ior, roughness_texture(m, "_u", context), roughness_texture(m, "_v", context)));
       });
     const float r = roughness_of(m);
     const float ru = float(m.number_or("roughness_u", r, 0.0, 1.0)), rv = float(m.number_or("roughness_v", r, 0.0, 1.0));
@@ -209,7 +212,7 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
       return m.blame([&] { return Material(ThinDielectricMaterial(ior, std::move(tint))); });
     }
     if (textured_roughness(m)) {
-      FloatTexturePtr roughness = roughness_texture(m, "roughness", context);
+      FloatTexturePtr roughness = roughness_texture(m, "", context);
       return m.blame([&] { return Material(DielectricMaterial(ior, roughness, roughness)); });
     }
     const float roughness = roughness_of(m);
@@ -231,19 +234,12 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
                  "reflectance", "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});
     const SpectrumPtr coat = coat_ior_of(m, context);
     // The metal's roughness: numbers, or float textures along either tangent (then all three keys may be either).
-    bool textured_metal = false;
-    for (const char* key : {"conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"})
-      textured_metal = textured_metal || (m.has(key) && !m.at(key).is_number());
-    const auto metal_roughness_texture = [&](const char* key) -> FloatTexturePtr {
-      if (m.has(key)) return load_float_texture(m.at(key), context, 0.0, 1.0);
-      if (m.has("conductor_roughness")) return load_float_texture(m.at("conductor_roughness"), context, 0.0, 1.0);
-      return std::make_shared<ConstantFloatTexture>(0.0f);
-    };
+    const bool textured_metal = textured_roughness(m, "conductor_");
     float ru = 0.0f, rv = 0.0f;
     FloatTexturePtr ru_texture, rv_texture;
     if (textured_metal) {
-      ru_texture = metal_roughness_texture("conductor_roughness_u");
-      rv_texture = metal_roughness_texture("conductor_roughness_v");
+      ru_texture = roughness_texture(m, "_u", context, "conductor_");
+      rv_texture = roughness_texture(m, "_v", context, "conductor_");
     } else {
       const float r = float(m.number_or("conductor_roughness", 0.0, 0.0, 1.0));
       ru = float(m.number_or("conductor_roughness_u", r, 0.0, 1.0));
