@@ -190,3 +190,64 @@ TEST_CASE("pbrt media: a scene with media counts scattering in them towards max_
   const PbrtImport without = import_text(kCamera + "Integrator \"volpath\" \"integer maxdepth\" 3\nWorldBegin\nShape \"sphere\"\n");
   CHECK_FALSE(without.document["integrator"].contains("max_depth_includes_media"));
 }
+
+TEST_CASE("pbrt subsurface: a dielectric around its own medium, whose walk does not count towards max_depth") {
+  // sssdragon's material (pbrt-v4-scenes): a named measured medium per mm, times "scale", g = 0.
+  const PbrtImport named = import_text(
+      kCamera + "WorldBegin\nMakeNamedMaterial \"skin\" \"string type\" \"subsurface\" \"string name\" \"Skin1\"\n"
+                "  \"float scale\" 50 \"float eta\" 1.5 \"float roughness\" 0.1\nNamedMaterial \"skin\"\nShape \"sphere\"\n");
+  CHECK_MESSAGE(named.ignored.empty(), ignored_list(named));
+  const json& d = named.document;
+  CHECK(d["materials"]["skin"]["type"] == "dielectric");
+  CHECK(d["materials"]["skin"]["ior"] == 1.5);
+  CHECK(d["materials"]["skin"].contains("roughness"));
+  CHECK(d["shapes"][0]["material"] == "skin");
+  REQUIRE(d["media"].size() == 1);
+  const json& skin = d["media"]["subsurface of skin"];
+  CHECK(skin["boundary_material"] == "skin");
+  CHECK(skin["counts_towards_max_depth"] == false);
+  CHECK(skin["g"] == 0.0);
+  // Skin1 per mm: σ_a (0.032, 0.17, 0.48), σ'_s (0.74, 0.88, 1.01): red absorbs least, both scaled by 50.
+  const auto at = [](const json& table, int nm) { return table["values"][size_t(nm - 360)].get<double>(); };  // 1 nm
+  CHECK(skin["sigma_a"]["scale"].get<double>() == doctest::Approx(50.0));
+  CHECK(skin["sigma_s"]["scale"].get<double>() == doctest::Approx(50.0));
+  CHECK(at(skin["sigma_a"], 650) < 0.3 * at(skin["sigma_a"], 450));
+  CHECK(d["integrator"]["max_depth_includes_media"] == true);
+  const auto scene = load_scene(d, "media.pbrt", test::test_data("pbrt"), test::library());
+  REQUIRE(scene->media.size() == 1);
+  CHECK_FALSE(scene->media[0].counts_towards_max_depth());
+
+  // σ_a and σ_s given (unbounded RGB) with g; reflectance with a coloured mean free path (its shape and its largest
+  // component × scale in metres); nothing given: pbrt-v4's defaults. Each a dielectric of pbrt's eta 1.33.
+  const PbrtImport given = import_text(
+      kCamera + "WorldBegin\n"
+                "Material \"subsurface\" \"rgb sigma_a\" [0.1 0.2 0.3] \"rgb sigma_s\" [2 2 2] \"float g\" 0.3 \"float scale\" 4\nShape \"sphere\"\n"
+                "Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.3] \"rgb mfp\" [0.5 1 2] \"float scale\" 0.1\nShape \"sphere\"\n"
+                "Material \"subsurface\"\nShape \"sphere\"\n");
+  CHECK_MESSAGE(given.ignored.empty(), ignored_list(given));
+  REQUIRE(given.document["media"].size() == 3);
+  std::vector<json> media;
+  for (const auto& [name, medium] : given.document["media"].items()) {
+    CHECK(given.document["materials"][medium["boundary_material"].get<std::string>()]["ior"] == 1.33);
+    media.push_back(medium);
+  }
+  std::sort(media.begin(), media.end(), [](const json& a, const json& b) { return a["boundary_material"] < b["boundary_material"]; });
+  // Material names carry their line: 6, 8, 10.
+  CHECK(media[0]["sigma_a"]["scale"].get<double>() == doctest::Approx(4.0));
+  CHECK(media[0]["sigma_s"].get<double>() == doctest::Approx(8.0));
+  CHECK(media[0]["g"].get<double>() == doctest::Approx(0.3));
+  CHECK(media[1]["mean_free_path_scale_m"].get<double>() == doctest::Approx(0.2));
+  CHECK(media[1].contains("albedo"));
+  CHECK_FALSE(media[1].contains("sigma_a"));
+  CHECK(media[2]["sigma_s"].is_object());  // (2.55, 3.21, 3.77): a coloured spectrum
+  CHECK_NOTHROW(load_scene(given.document, "media.pbrt", test::test_data("pbrt"), test::library()));
+
+  // What pbrt-v4 also refuses, and g beside a name (pbrt warns and uses 0).
+  const std::string world = kCamera + "WorldBegin\n";
+  CHECK(error_of(world + "Material \"subsurface\" \"rgb sigma_a\" [1 1 1]\n") ==
+        "media.pbrt:5: Material \"subsurface\" (subsurface): give \"sigma_a\" and \"sigma_s\" together (pbrt-v4 refuses one without the other)");
+  CHECK(error_of(world + "Material \"subsurface\" \"string name\" \"Skin9\"\n").find("\"name\" \"Skin9\" is not one of pbrt-v4's named media") !=
+        std::string::npos);
+  const PbrtImport g = import_text(world + "Material \"subsurface\" \"string name\" \"Apple\" \"float g\" 0.5\nShape \"sphere\"\n");
+  CHECK(ignored_list(g).find("\"g\" beside \"name\"") != std::string::npos);
+}

@@ -15,8 +15,11 @@ namespace {
 // Optical thicknesses of the 1 m slab per lane (σ_s in 1/m, σ_a = 0).
 const Float4 kTau(0.25f, 0.5f, 1.0f, 2.0f);
 
-test::LaneStatistics render_slab(int max_depth, bool includes_media, int count, uint64_t seed) {
-  const test::SlabScene slab(1.0f, Medium(HomogeneousMedium(test::bands(Float4(0.0f)), test::bands(kTau), 0.0f)),
+test::LaneStatistics render_slab(int max_depth, bool includes_media, int count, uint64_t seed,
+                                 bool medium_counts_towards_max_depth = true) {
+  const test::SlabScene slab(1.0f,
+                             Medium(HomogeneousMedium(test::bands(Float4(0.0f)), test::bands(kTau), 0.0f), 0,
+                                    medium_counts_towards_max_depth),
                              std::make_unique<test::UniformSky>(1.0f));
   VolumetricIntegratorSettings s;
   s.path.max_depth = max_depth;
@@ -103,6 +106,20 @@ TEST_CASE("max_depth_includes_media: the mean rises with max_depth towards the f
   const test::LaneStatistics deep = render_slab(6, true, 20000, 11);
   CHECK(deep.mean[0] == doctest::Approx(1.0).epsilon(0.01));
   CHECK(deep.mean[3] < 1.0 - 5.0 * deep.standard_error[3]);
+}
+
+TEST_CASE("max_depth_includes_media: a medium whose events do not count (a subsurface walk) keeps every order") {
+  // The walk is one vertex for the depth budget: at max_depth 1 it scatters as often as it likes, so the furnace's
+  // 1 is kept where the counted medium keeps single scattering only (the first test case); max_depth 0 ends the
+  // path at its first event either way.
+  const double furnace[4] = {1.0, 1.0, 1.0, 1.0};
+  check_lanes(render_slab(1, true, 20000, 13, false), furnace);
+  double unscattered[4];
+  for (int k = 0; k < 4; ++k) unscattered[k] = std::exp(-double(kTau[k]));
+  check_lanes(render_slab(0, true, 20000, 13, false), unscattered);
+  // The same seeds with the events counted lose the higher orders: at τ = 2 far more than 5 standard errors.
+  const test::LaneStatistics counted = render_slab(1, true, 20000, 13, true);
+  CHECK(counted.mean[3] < 1.0 - 5.0 * counted.standard_error[3]);
 }
 
 }  // namespace rimu

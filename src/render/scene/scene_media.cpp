@@ -60,6 +60,8 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   const std::string type = m.at("type").choice({"homogeneous", "grid"});
   const float g = float(m.number_or("g", 0.0, -0.99, 0.99));
   const int priority = m.integer_or("priority", 0, -1000, 1000);
+  // false: a subsurface walk, whose scattering events are no path vertices for max_depth (medium.h says why).
+  const bool counts_towards_max_depth = m.boolean_or("counts_towards_max_depth", true);
   SpectrumPtr sigma_a, sigma_s;
   if (m.has("albedo")) {
     // Chiang et al. 2016: surface albedo colour (a reflectance) and mean free path colour × scale in metres.
@@ -86,12 +88,13 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   }
   if (type == "homogeneous") {
     m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
-                 "boundary_material", "index_matched", "contains_camera"});
-    return Medium(HomogeneousMedium(sigma_a, sigma_s, g), priority);
+                 "boundary_material", "index_matched", "contains_camera", "counts_towards_max_depth"});
+    return Medium(HomogeneousMedium(sigma_a, sigma_s, g), priority, counts_towards_max_depth);
   }
   m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
                "boundary_material", "index_matched", "file", "procedural", "resolution", "bounds_min", "bounds_max",
-               "seed", "voxels", "density", "interpolation", "transform", "contains_camera"});
+               "seed", "voxels", "density", "interpolation", "transform", "contains_camera",
+               "counts_towards_max_depth"});
   int nx = 0, ny = 0, nz = 0;
   std::vector<float> density;
   const int sources = int(m.has("file")) + int(m.has("procedural")) + int(m.has("density"));
@@ -118,7 +121,7 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   try {
     return Medium(GridMedium(nx, ny, nz, std::move(density), m.at("bounds_min").vec3(), m.at("bounds_max").vec3(),
                              sigma_a, sigma_s, g, interpolation, world_from_grid),
-                  priority);
+                  priority, counts_towards_max_depth);
   } catch (const InputError& e) {
     m.fail(e.explanation());
   }

@@ -186,6 +186,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   };
 
   int surface_depth = 0, vertex_count = 0, medium_events = 0, crossings = 0;
+  int depth_medium_events = 0;  // the medium events that count towards max_depth (Medium::counts_towards_max_depth)
   int passages_since_vertex = 0;  // panes passed straight through since the last vertex (≤ kMaxShadowPassages)
   for (;;) {
     const std::optional<SurfaceHit> hit = surfaces.geometry->intersect(ray);
@@ -198,7 +199,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     float flight_t = 0.0f;
     const int medium_index = stack.current(media);
     // The depth the next vertex would have; a medium vertex that reaches max_depth ends the path before its NEE.
-    const int depth = surface_depth + (settings_.max_depth_includes_media ? medium_events : 0);
+    const int depth = surface_depth + (settings_.max_depth_includes_media ? depth_medium_events : 0);
     if (medium_index >= 0) {
       const Medium& medium = media[size_t(medium_index)];
       // The equiangular technique is NEE from this segment's scattering points: none when those would end the path.
@@ -233,6 +234,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     if (scatter_point) {
       if (settings_.max_depth_includes_media && depth >= path.max_depth) break;
       if (++medium_events > settings_.max_medium_events) break;
+      if (media[size_t(medium_index)].counts_towards_max_depth()) ++depth_medium_events;
       scatterer.phase = &media[size_t(medium_index)].phase();
       scatterer.wo_world = -ray.direction;
       reference = {*scatter_point, Vec3{}};

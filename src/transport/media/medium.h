@@ -9,24 +9,32 @@
 
 namespace rimu {
 
-/// A homogeneous or voxel-grid medium, held by value, with the priority that resolves overlaps (see MediumStack).
+/// A homogeneous or voxel-grid medium, held by value, with the priority that resolves overlaps (see MediumStack)
+/// and whether its scattering events count towards the path's max_depth.
 class Medium {
  public:
   using Variant = std::variant<HomogeneousMedium, GridMedium>;
 
   template <typename T>
-  explicit Medium(T medium, int priority = 0) : medium_(std::move(medium)), priority_(priority) {}
+  explicit Medium(T medium, int priority = 0, bool counts_towards_max_depth = true)
+      : medium_(std::move(medium)), priority_(priority), counts_towards_max_depth_(counts_towards_max_depth) {}
 
   const HenyeyGreenstein& phase() const {
     return std::visit([](const auto& m) -> const HenyeyGreenstein& { return m.phase(); }, medium_);
   }
   int priority() const { return priority_; }
+  /// Whether a scattering event here is a path vertex for max_depth when the integrator counts media at all
+  /// (VolumetricIntegratorSettings::max_depth_includes_media). False for a subsurface walk under a dielectric:
+  /// pbrt-v4 spends one bounce on a BSSRDF however many times light scatters beneath it, and a walk of dozens of
+  /// events cut at pbrt's max depth of 5 would leave a translucent object nearly black.
+  bool counts_towards_max_depth() const { return counts_towards_max_depth_; }
   const HomogeneousMedium* homogeneous() const { return std::get_if<HomogeneousMedium>(&medium_); }
   const GridMedium* grid() const { return std::get_if<GridMedium>(&medium_); }
 
  private:
   Variant medium_;
   int priority_;
+  bool counts_towards_max_depth_;
 };
 
 /// What a surface does to the medium stack: the medium enclosed by the shape (−1: none) and whether the surface

@@ -379,7 +379,8 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
                                   (v4->empty() ? std::string() : " (pbrt-v4's upgrader makes it \"" + *v4 + "\")") +
                                   "; " + pbrt_v3_hint());
   if (type != "diffuse" && type != "coateddiffuse" && type != "coatedconductor" && type != "conductor" &&
-      type != "dielectric" && type != "thindielectric" && type != "diffusetransmission" && type != "hair") {
+      type != "dielectric" && type != "thindielectric" && type != "diffusetransmission" && type != "hair" &&
+      type != "subsurface") {
     ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
     return name;
@@ -513,12 +514,16 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       m["roughness_u"] = roughness_value(u, remap);
       m["roughness_v"] = roughness_value(v, remap);
     }
-  } else {  // dielectric, thindielectric: the same eta
+  } else {  // dielectric, thindielectric: the same eta; subsurface: a dielectric around its medium (subsurface_medium)
     const bool thin = type == "thindielectric";
     m = {{"type", thin ? "thin_dielectric" : "dielectric"}};
     // A spectrally varying eta (RGB, a table, a named glass) disperses, in pbrt-v4 as in Rimu.
-    const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb});
-    if (!eta) {
+    const PbrtParam* eta = type == "subsurface" ? nullptr : p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb});
+    if (type == "subsurface") {
+      const double ior = p.real("eta", 1.33);  // pbrt-v4 reads one float here
+      if (!(ior > 0) || !(ior < 1e3)) throw InputError(s.where, context + " (subsurface): \"eta\" must be in (0, 1000)");
+      m["ior"] = ior;
+    } else if (!eta) {
       m["ior"] = 1.5;
     } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && glass_of(eta->strings[0])) {
       m["glass"] = *glass_of(eta->strings[0]);
@@ -560,6 +565,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     m["displacement"] = float_value(p, "displacement", 0.0);
   }
   materials_[name] = m;
+  if (type == "subsurface") subsurface_medium(p, name);
   return name;
 }
 

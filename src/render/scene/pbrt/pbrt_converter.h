@@ -196,6 +196,10 @@ class PbrtConverter {
   /// pbrt-v4's named measured medium `name` (data/media/scattering_presets.csv) as {sigma_a, sigma_s}; empty if
   /// pbrt has no such name.
   std::optional<std::pair<json, json>> scattering_preset(const std::string& name, const SourceLocation& where);
+  /// The interior of pbrt-v4's "subsurface" material `material` (its scattering properties: "name", "sigma_a" and
+  /// "sigma_s", or "reflectance" and "mfp"; "scale", "g"): a homogeneous medium bounded by that material (the
+  /// dielectric surface made of its "eta" and roughness), added to the scene's media.
+  void subsurface_medium(PbrtParams& p, const std::string& material);
   /// A "uniformgrid" medium's density grid, box and transform onto `medium` (a Rimu "grid" medium with its density
   /// inline, trilinear like pbrt's). InputError at the statement for a wrong voxel count or a negative density.
   void add_density_grid(PbrtParams& p, json& medium);
@@ -303,6 +307,7 @@ class PbrtConverter {
   /// NamedMaterial names used before their MakeNamedMaterial → the first such NamedMaterial (checked at finish)
   std::map<std::string, SourceLocation> forward_materials_;
   std::set<std::string> interface_materials_;  ///< pbrt's "interface": index-matched medium boundaries
+  std::set<std::string> subsurface_materials_;  ///< pbrt's "subsurface": dielectrics that bound their own medium
   std::map<std::string, json> media_defined_;  ///< MakeNamedMedium name → Rimu medium (no boundary yet); null: not imported
   json media_ = json::object();                ///< the document's "media"
   std::map<std::string, std::string> boundary_materials_;  ///< material + '\n' + medium → the bounding copy's name

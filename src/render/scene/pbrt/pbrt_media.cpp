@@ -132,6 +132,85 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
   media_defined_[name] = std::move(medium);
 }
 
+// pbrt-v4's subsurface material is a dielectric surface over a BSSRDF: photon beam diffusion tables (d'Eon & Irving
+// 2011) standing in for light that scatters beneath the surface. Rimu renders what that model approximates: the
+// same dielectric around a homogeneous medium, traced by a random walk (a walk is exact where diffusion is not:
+// thin parts, edges, low albedo). Its scattering events are one bounce for the path's depth, as pbrt's BSSRDF is.
+void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material) {
+  const SourceLocation& where = p.where();
+  const std::string& context = p.context();
+  double g = p.real("g", 0.0);
+  const double scale = p.real("scale", 1.0);
+  if (!(scale >= 0)) throw InputError(where, context + ": \"scale\" must be >= 0");
+  json medium = {{"type", "homogeneous"}};
+  const std::initializer_list<PbrtParamType> spectral = {PbrtParamType::rgb, PbrtParamType::spectrum,
+                                                         PbrtParamType::blackbody, PbrtParamType::texture};
+  // pbrt evaluates these as textures per hit; a homogeneous medium takes one value: a texture is listed and pbrt's
+  // default for the input stands in.
+  const auto textured = [&](const char* key) {
+    const PbrtParam* q = p.get(key, spectral);
+    if (!q || q->type != PbrtParamType::texture) return false;
+    ignore(context + ": texture for \"" + std::string(key) + "\" (a homogeneous medium takes one value: pbrt-v4's default is used)", q->where);
+    return true;
+  };
+  // pbrt-v4's four ways, in its order: a named measured medium, σ_a and σ_s, reflectance and mean free path, defaults.
+  const std::string name = p.string("name", "");
+  const bool has_sigma_a = p.get("sigma_a", spectral) != nullptr, has_sigma_s = p.get("sigma_s", spectral) != nullptr;
+  const bool has_reflectance = p.get("reflectance", spectral) != nullptr;
+  if (!name.empty()) {
+    const auto coefficients = scattering_preset(name, where);
+    if (!coefficients) throw InputError(where, context + ": \"name\" \"" + name + "\" is not one of pbrt-v4's named media (data/media/scattering_presets.csv)");
+    if (g != 0.0) ignore(context + ": \"g\" beside \"name\" (the table holds reduced scattering coefficients: g = 0, as in pbrt-v4)", where);
+    g = 0.0;
+    medium["sigma_a"] = scaled(coefficients->first, scale);
+    medium["sigma_s"] = scaled(coefficients->second, scale);
+  } else if (has_sigma_a || has_sigma_s) {
+    if (!has_sigma_a || !has_sigma_s)
+      throw InputError(where, context + ": give \"sigma_a\" and \"sigma_s\" together (pbrt-v4 refuses one without the other)");
+    const bool textures = int(textured("sigma_a")) + int(textured("sigma_s")) > 0;
+    medium["sigma_a"] = scaled(textures ? unbounded_rgb({.0011, .0024, .014}, "srgb-linear", where) : coefficient_value(p, "sigma_a", 1.0), scale);
+    medium["sigma_s"] = scaled(textures ? unbounded_rgb({2.55, 3.21, 3.77}, "srgb-linear", where) : coefficient_value(p, "sigma_s", 1.0), scale);
+  } else if (has_reflectance) {
+    // Reflectance = the surface albedo A (the total diffuse reflectance of a thick slab) and pbrt's mean free path ×
+    // scale: Rimu's Chiang, Kutz & Burley 2016 parameterisation of a medium (docs/media.md). pbrt inverts A with
+    // its own diffusion tables; Chiang's fit of random walks gives a somewhat different single-scattering albedo.
+    medium["albedo"] = textured("reflectance") ? json(0.5) : *reflectance(p, "reflectance", 0.5);
+    double mfp_scale = scale;
+    json mfp_shape = 1.0;
+    if (const PbrtParam* mfp = p.get("mfp", spectral); mfp && !textured("mfp")) {
+      if (mfp->type == PbrtParamType::rgb && mfp->numbers.size() == 3) {
+        // The colour's shape (≤ 1) and its largest component as the length.
+        const double largest = std::max({mfp->numbers[0], mfp->numbers[1], mfp->numbers[2]});
+        if (!(largest > 0) || !(std::min({mfp->numbers[0], mfp->numbers[1], mfp->numbers[2]}) >= 0))
+          throw InputError(mfp->where, context + ": \"mfp\" must be > 0 (a length)");
+        PbrtParam shape = *mfp;
+        for (double& v : shape.numbers) v /= largest;
+        mfp_shape = rgb_reflectance(shape);
+        mfp_scale *= largest;
+      } else {
+        ignore(context + ": \"mfp\" other than an RGB colour (a mean free path of 1 is used)", mfp->where);
+      }
+    }
+    if (!(mfp_scale > 0)) throw InputError(where, context + ": the mean free path (\"mfp\" × \"scale\") must be > 0");
+    medium["mean_free_path"] = mfp_shape;
+    medium["mean_free_path_scale_m"] = std::clamp(mfp_scale, 1e-9, 1e9);
+  } else {
+    // pbrt-v4's defaults (unbounded sRGB, per scene unit).
+    if (p.get("mfp", spectral)) ignore(context + ": \"mfp\" without \"reflectance\" (unused, as in pbrt-v4)", where);
+    medium["sigma_a"] = scaled(unbounded_rgb({.0011, .0024, .014}, "srgb-linear", where), scale);
+    medium["sigma_s"] = scaled(unbounded_rgb({2.55, 3.21, 3.77}, "srgb-linear", where), scale);
+  }
+  if (!(g > -1 && g < 1)) throw InputError(where, context + ": \"g\" must be in (-1, 1)");
+  medium["g"] = std::clamp(g, -0.99, 0.99);
+  medium["boundary_material"] = material;
+  medium["counts_towards_max_depth"] = false;
+  std::string rimu_name = "subsurface of " + material;
+  for (int n = 2; media_.contains(rimu_name); ++n) rimu_name = "subsurface of " + material + " #" + std::to_string(n);
+  media_[rimu_name] = std::move(medium);
+  origin("/media/" + rimu_name, where, context);
+  subsurface_materials_.insert(material);
+}
+
 void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
   const SourceLocation& where = p.where();
   const std::string& context = p.context();
@@ -265,7 +344,7 @@ std::optional<std::string> PbrtConverter::boundary_material(const std::string& m
   if (inside.empty() && !outside.empty() && !media_defined_.at(outside).is_null() && materials_.contains(material)) {
     // pbrt: vacuum inside a shape in a medium. Rimu's stack keeps the medium around inside a shape that bounds no
     // medium: the same for opaque surfaces, not for surfaces that transmit.
-    if (transmits(materials_.at(material)))
+    if (transmits(materials_.at(material)) && !subsurface_materials_.count(material))
       ignore(context + ": vacuum inside a transmitting shape that has a medium outside (in Rimu the outside medium "
                        "continues inside it)", where);
   }
@@ -275,7 +354,10 @@ std::optional<std::string> PbrtConverter::boundary_material(const std::string& m
                                       "medium \"" + inside + "\"; Rimu needs the MakeNamedMaterial of a medium's boundary "
                                       "before the shape");
   const json& medium = media_defined_.at(inside);
-  if (medium.is_null()) return left_out();  // a medium type Rimu does not import (listed at MakeNamedMedium)
+  if (medium.is_null()) return left_out();
+  if (subsurface_materials_.count(material))
+    ignore(context + ": a \"subsurface\" material around the medium \"" + inside + "\" (that medium fills the shape "
+                     "instead of the material's own scattering)", where);  // a medium type Rimu does not import (listed at MakeNamedMedium)
   interior_media_.insert(inside);
   const std::string key = material + '\n' + inside;
   if (const auto it = boundary_materials_.find(key); it != boundary_materials_.end()) return it->second;
