@@ -22,14 +22,7 @@ void denoise_exr_file(const std::filesystem::path& input, const std::filesystem:
   if (same_output_file(input, output))
     throw InputError({output.string(), 0, "-o"}, "is the image being denoised: write the result to another file");
   check_output_path(output);
-  std::unique_ptr<Imf::InputFile> file;
-  try {
-    file = open_exr_input(input);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw InputError({input.string(), 0, ""}, std::string("cannot read as OpenEXR: ") + e.what());
-  }
+  const std::unique_ptr<Imf::InputFile> file = open_exr_input(input);
   const Imf::Header& header = file->header();
   const Imath::Box2i window = header.dataWindow();
   const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;

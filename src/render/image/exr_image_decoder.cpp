@@ -56,14 +56,7 @@ std::vector<std::string> channels_taken(const Imf::Header& header) {
 
 std::optional<DecodedImage> exr_image_header(const std::filesystem::path& path) {
   if (!starts_with_exr_magic(path)) return std::nullopt;
-  std::unique_ptr<Imf::InputFile> file;
-  try {
-    file = open_exr_input(path);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    fail(path, e.what());
-  }
+  const std::unique_ptr<Imf::InputFile> file = open_exr_input(path);
   const Imf::Header& header = file->header();
   if (header.hasType() && Imf::isDeepData(header.type())) return std::nullopt;
   const std::vector<std::string> names = channels_taken(header);

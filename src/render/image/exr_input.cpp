@@ -7,6 +7,7 @@
 
 #include "render/film/render_size.h"
 #include "render/image/exr_header_check.h"
+#include "spectral/error.h"
 
 namespace rimu {
 
@@ -22,7 +23,11 @@ std::unique_ptr<Imf::InputFile> open_exr_input(const std::filesystem::path& path
   // (a file whose size cannot be read is left to OpenEXR, which then fails to open it).
   std::error_code error;
   if (const std::uintmax_t bytes = std::filesystem::file_size(path, error); !error) check_exr_header_sizes(path, bytes);
-  return std::make_unique<Imf::InputFile>(path.c_str());
+  try {
+    return std::make_unique<Imf::InputFile>(path.c_str());
+  } catch (const std::exception& e) {
+    throw InputError({path.string(), 0, ""}, std::string("cannot read as OpenEXR: ") + e.what());
+  }
 }
 
 }  // namespace rimu

@@ -14,9 +14,10 @@
 
 namespace rimu {
 
-/// Opens `path` with OpenEXR after checking that its header's attribute sizes fit the file (exr_header_check.h:
-/// InputError) and setting OpenEXR's process-wide header limits to Rimu's largest film (kMaxImageDimension on
-/// either side). Otherwise throws what OpenEXR throws (the caller names the file and the role).
+/// Opens `path` with OpenEXR after checking that its header's attribute sizes fit the file (exr_header_check.h)
+/// and setting OpenEXR's process-wide header limits to Rimu's largest film (kMaxImageDimension on either side).
+/// Every failure is an InputError naming the file: "cannot read as OpenEXR: " and OpenEXR's reason (a missing
+/// file, not an EXR, a damaged header, a size beyond the limits).
 std::unique_ptr<Imf::InputFile> open_exr_input(const std::filesystem::path& path);
 
 }  // namespace rimu

@@ -34,13 +34,9 @@ struct Channels {
 };
 
 Channels open(const std::filesystem::path& path) {
-  try {
-    Channels c{open_exr_input(path), {}};
-    c.window = c.file->header().dataWindow();
-    return c;
-  } catch (const std::exception& e) {
-    throw InputError({path.string(), 0, ""}, std::string("cannot read as OpenEXR: ") + e.what());
-  }
+  Channels c{open_exr_input(path), {}};
+  c.window = c.file->header().dataWindow();
+  return c;
 }
 
 }  // namespace

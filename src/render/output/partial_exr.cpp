@@ -108,21 +108,13 @@ void check_partial_size(const PartialImage& p, std::uintmax_t file_bytes) {
          " of sums), more than a file of " + format_bytes(file_bytes) + " can hold (deflate expands at most 1032:1)");
 }
 
-std::unique_ptr<Imf::InputFile> open_exr(const std::filesystem::path& path) {
-  try {
-    return open_exr_input(path);
-  } catch (const std::exception& e) {
-    throw partial_error(path, std::string("cannot read as OpenEXR: ") + e.what());
-  }
-}
-
 }  // namespace
 
 PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums) {
   PartialImage p;
   p.path = path;
   const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block OpenEXR
-  const std::unique_ptr<Imf::InputFile> file = open_exr(path);
+  const std::unique_ptr<Imf::InputFile> file = open_exr_input(path);
   const Imf::Header& h = file->header();
   PartialRecord& r = p.record;
   r.scene_hash = string_attribute(h, path, "rimu:partial:sceneHash");
@@ -268,7 +260,7 @@ void add_partial_to_film(const PartialImage& partial, Film& film) {
 }
 
 void add_partial_exr_to_film(const PartialImage& header, Film& film) {
-  const std::unique_ptr<Imf::InputFile> file = open_exr(header.path);
+  const std::unique_ptr<Imf::InputFile> file = open_exr_input(header.path);
   const int n = header.accumulators_per_pixel;
   bool counted = false;
   for_each_sum_band(*file, header, [&](int first_row, int rows, const double* sums) {
