@@ -250,4 +250,12 @@ TEST_CASE("pbrt subsurface: a dielectric around its own medium, whose walk does 
         std::string::npos);
   const PbrtImport g = import_text(world + "Material \"subsurface\" \"string name\" \"Apple\" \"float g\" 0.5\nShape \"sphere\"\n");
   CHECK(ignored_list(g).find("\"g\" beside \"name\"") != std::string::npos);
+
+  // A smooth surface beside a light no path can hit: that light is missing beneath it, and said so; a rough one is
+  // crossed by next-event estimation from the walk's exit (its transmission lobe is not a delta).
+  const std::string sun = "LightSource \"distant\" \"point3 to\" [0 0 1]\n";
+  const PbrtImport smooth = import_text(world + sun + "Material \"subsurface\"\nShape \"sphere\"\n");
+  CHECK(ignored_list(smooth).find("with a smooth surface (no roughness) beside point, spot, distant") != std::string::npos);
+  const PbrtImport rough = import_text(world + sun + "Material \"subsurface\" \"float roughness\" 0.2\nShape \"sphere\"\n");
+  CHECK_MESSAGE(rough.ignored.empty(), ignored_list(rough));
 }

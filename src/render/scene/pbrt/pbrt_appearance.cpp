@@ -565,7 +565,10 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     m["displacement"] = float_value(p, "displacement", 0.0);
   }
   materials_[name] = m;
-  if (type == "subsurface") subsurface_medium(p, name);
+  if (type == "subsurface") {
+    subsurface_medium(p, name);
+    if (!m.contains("roughness") && !smooth_subsurface_where_) smooth_subsurface_where_ = s.where;
+  }
   return name;
 }
 
