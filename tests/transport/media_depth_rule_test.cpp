@@ -16,11 +16,11 @@ namespace {
 const Float4 kTau(0.25f, 0.5f, 1.0f, 2.0f);
 
 test::LaneStatistics render_slab(int max_depth, bool includes_media, int count, uint64_t seed,
-                                 bool medium_counts_towards_max_depth = true) {
+                                 bool medium_counts_towards_max_depth = true, float boundary_ior = 0.0f) {
   const test::SlabScene slab(1.0f,
                              Medium(HomogeneousMedium(test::bands(Float4(0.0f)), test::bands(kTau), 0.0f), 0,
                                     medium_counts_towards_max_depth),
-                             std::make_unique<test::UniformSky>(1.0f));
+                             std::make_unique<test::UniformSky>(1.0f), boundary_ior);
   VolumetricIntegratorSettings s;
   s.path.max_depth = max_depth;
   s.max_depth_includes_media = includes_media;
@@ -108,18 +108,20 @@ TEST_CASE("max_depth_includes_media: the mean rises with max_depth towards the f
   CHECK(deep.mean[3] < 1.0 - 5.0 * deep.standard_error[3]);
 }
 
-TEST_CASE("max_depth_includes_media: a medium whose events do not count (a subsurface walk) keeps every order") {
-  // The walk is one vertex for the depth budget: at max_depth 1 it scatters as often as it likes, so the furnace's
-  // 1 is kept where the counted medium keeps single scattering only (the first test case); max_depth 0 ends the
-  // path at its first event either way.
+TEST_CASE("max_depth_includes_media: a medium whose vertices do not count (a subsurface walk) keeps every order") {
+  // The walk has no depth of its own: in the index-matched slab (no entry vertex at all) max_depth 0 and 1 keep
+  // the furnace's 1, where the counted medium keeps the unscattered light and single scattering (the first case).
   const double furnace[4] = {1.0, 1.0, 1.0, 1.0};
+  check_lanes(render_slab(0, true, 20000, 13, false), furnace);
   check_lanes(render_slab(1, true, 20000, 13, false), furnace);
-  double unscattered[4];
-  for (int k = 0; k < 4; ++k) unscattered[k] = std::exp(-double(kTau[k]));
-  check_lanes(render_slab(0, true, 20000, 13, false), unscattered);
-  // The same seeds with the events counted lose the higher orders: at τ = 2 far more than 5 standard errors.
   const test::LaneStatistics counted = render_slab(1, true, 20000, 13, true);
   CHECK(counted.mean[3] < 1.0 - 5.0 * counted.standard_error[3]);
+  // Behind glass faces (η 1.5: light reflects inside them, totally beyond 41.8°) the entry is a surface vertex of
+  // depth 1; the walk's scattering and its internal reflections add none, so max_depth 1 still keeps all of the
+  // lossless furnace. Counted, the same seeds lose the higher orders and the reflected light.
+  check_lanes(render_slab(1, true, 20000, 17, false, 1.5f), furnace);
+  const test::LaneStatistics counted_glass = render_slab(1, true, 20000, 17, true, 1.5f);
+  for (int k = 0; k < 4; ++k) CHECK(counted_glass.mean[k] < 1.0 - 5.0 * counted_glass.standard_error[k]);
 }
 
 }  // namespace rimu

@@ -200,10 +200,15 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const int medium_index = stack.current(media);
     // The depth the next vertex would have; a medium vertex that reaches max_depth ends the path before its NEE.
     const int depth = surface_depth + (settings_.max_depth_includes_media ? depth_medium_events : 0);
+    // Inside a subsurface walk (Medium::counts_towards_max_depth false) every vertex, in the medium or on its
+    // boundary seen from inside, belongs to the surface vertex where the path entered, which max_depth allowed: as
+    // pbrt-v4 spends one bounce on a BSSRDF, internal reflections included. Russian roulette and
+    // max_medium_events bound the walk.
+    const bool in_walk = medium_index >= 0 && !media[size_t(medium_index)].counts_towards_max_depth();
     if (medium_index >= 0) {
       const Medium& medium = media[size_t(medium_index)];
       // The equiangular technique is NEE from this segment's scattering points: none when those would end the path.
-      const bool medium_vertex_allowed = !settings_.max_depth_includes_media || depth < path.max_depth;
+      const bool medium_vertex_allowed = !settings_.max_depth_includes_media || in_walk || depth < path.max_depth;
       if (medium_vertex_allowed && uses_equiangular(medium)) {
         equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}};
         int light_group = 0;
@@ -232,9 +237,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     // A pane (Material::passes_shadow_rays) may be passed straight through: then it is no vertex (see path_integrator.cpp).
     bool may_pass = false, depth_reached = false;
     if (scatter_point) {
-      if (settings_.max_depth_includes_media && depth >= path.max_depth) break;
+      if (settings_.max_depth_includes_media && !in_walk && depth >= path.max_depth) break;
       if (++medium_events > settings_.max_medium_events) break;
-      if (media[size_t(medium_index)].counts_towards_max_depth()) ++depth_medium_events;
+      if (!in_walk) ++depth_medium_events;
       scatterer.phase = &media[size_t(medium_index)].phase();
       scatterer.wo_world = -ray.direction;
       reference = {*scatter_point, Vec3{}};
@@ -271,9 +276,14 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       if (hit->material < 0) break;
       const Material& material = (*surfaces.materials)[size_t(hit->material)];
       may_pass = material.passes_shadow_rays() && passages_since_vertex < kMaxShadowPassages;
-      depth_reached = depth >= path.max_depth;
-      if (depth_reached && !may_pass) break;
-      ++surface_depth;
+      if (in_walk) {
+        // A boundary reached from inside the walk: no depth of its own (above); bounded like the walk's events.
+        if (++medium_events > settings_.max_medium_events) break;
+      } else {
+        depth_reached = depth >= path.max_depth;
+        if (depth_reached && !may_pass) break;
+        ++surface_depth;
+      }
       MaterialContext context = MaterialContext::at(*hit, -ray.direction);
       if (differentials) footprint = set_footprint(context, *hit, *differentials);
       context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
@@ -385,7 +395,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       beta *= ds->f_cos / Float4(ds->pdf[0]);
       eta_scale *= ds->eta * ds->eta;
       pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
-      --surface_depth;
+      if (!in_walk) --surface_depth;
       --vertex_count;
       ++passages_since_vertex;
       sampler.next_1d();  // Russian roulette's dimension: no roulette at a pane

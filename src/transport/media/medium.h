@@ -23,10 +23,11 @@ class Medium {
     return std::visit([](const auto& m) -> const HenyeyGreenstein& { return m.phase(); }, medium_);
   }
   int priority() const { return priority_; }
-  /// Whether a scattering event here is a path vertex for max_depth when the integrator counts media at all
-  /// (VolumetricIntegratorSettings::max_depth_includes_media). False for a subsurface walk under a dielectric:
-  /// pbrt-v4 spends one bounce on a BSSRDF however many times light scatters beneath it, and a walk of dozens of
-  /// events cut at pbrt's max depth of 5 would leave a translucent object nearly black.
+  /// Whether the vertices of a path inside this medium count towards max_depth (its scattering events when the
+  /// integrator counts media, VolumetricIntegratorSettings::max_depth_includes_media; its boundary's hits from
+  /// inside always). False for a subsurface walk under a dielectric: the walk belongs to the vertex where the path
+  /// entered, as pbrt-v4 spends one bounce on a BSSRDF however often light scatters and reflects beneath it; a
+  /// walk of dozens of events cut at pbrt's usual max depth of 5 would leave a translucent object nearly black.
   bool counts_towards_max_depth() const { return counts_towards_max_depth_; }
   const HomogeneousMedium* homogeneous() const { return std::get_if<HomogeneousMedium>(&medium_); }
   const GridMedium* grid() const { return std::get_if<GridMedium>(&medium_); }
