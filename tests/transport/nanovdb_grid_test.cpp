@@ -5,16 +5,17 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <random>
 
 #include <nanovdb/util/GridBuilder.h>
-#include <nanovdb/util/IO.h>
 
 #include "spectral/error.h"
 #include "test_support.h"
 #include "transport/media/medium.h"
 #include "transport/media/nanovdb_grid.h"
+#include "transport/media/nanovdb_io.h"
 #include "transport/media/spectral_distance_sampling.h"
 #include "transport/sampling/sampler.h"
 
@@ -205,7 +206,8 @@ TEST_CASE("nanovdb grid: load errors name the file and what was expected") {
 
   // The file of another major version: the header's version word (bytes 8-11) rewritten to 29.3.0.
   std::ifstream in(good, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string original((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes = original;
   const uint32_t old_version = 29u << 21 | 3u << 10;
   bytes.replace(8, 4, reinterpret_cast<const char*>(&old_version), 4);
   const std::string version = load_error(folder.write("old.nvdb", bytes));
@@ -214,6 +216,28 @@ TEST_CASE("nanovdb grid: load errors name the file and what was expected") {
   CHECK(version.find("written by NanoVDB 29.3.0") != std::string::npos);
   CHECK(version.find("this build reads NanoVDB " + std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x") !=
         std::string::npos);
+
+  // A damaged metadata block claiming a 1 TB grid (its first uint64, after the 16-byte header): refused before
+  // NanoVDB would allocate it.
+  std::string huge = original;
+  const uint64_t terabyte = uint64_t(1) << 40;
+  huge.replace(16, 8, reinterpret_cast<const char*>(&terabyte), 8);
+  const std::string size = load_error(folder.write("huge.nvdb", huge));
+  CAPTURE(size);
+  CHECK(size.find("huge.nvdb") != std::string::npos);
+  CHECK(size.find("claims 1099511627776 bytes, more than the file holds") != std::string::npos);
+
+  // A flipped byte inside the grid's buffer (uncompressed: the file's last gridSize bytes), in the tree's data (its
+  // node offsets and counts, bytes 672-735 of the buffer), which NanoVDB's stored checksum covers: refused before
+  // any lookup follows a damaged offset.
+  uint64_t grid_bytes = 0;
+  std::memcpy(&grid_bytes, original.data() + 16, 8);
+  std::string flipped = original;
+  flipped[original.size() - size_t(grid_bytes) + 700] ^= 0x5a;
+  const std::string damaged = load_error(folder.write("flipped.nvdb", flipped));
+  CAPTURE(damaged);
+  CHECK(damaged.find("flipped.nvdb") != std::string::npos);
+  CHECK(damaged.find("grid \"density\" is damaged: ") != std::string::npos);
 
   const std::string name = load_error(good, "temperature");
   CAPTURE(name);

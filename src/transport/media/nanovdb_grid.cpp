@@ -3,15 +3,17 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iostream>  // GridValidator.h uses std::cerr without including it
 #include <stdexcept>
 
-// NanoVDB's reader decompresses ZIP and BLOSC files only with these defined (CMake: the rimu_nanovdb target).
 #include <nanovdb/NanoVDB.h>
 #include <nanovdb/util/GridHandle.h>
-#include <nanovdb/util/IO.h>
+#include <nanovdb/util/GridValidator.h>
 #include <nanovdb/util/SampleFromVoxels.h>
 
 #include "spectral/error.h"
+#include "spectral/io/input_file.h"
+#include "transport/media/nanovdb_io.h"
 
 namespace rimu {
 
@@ -57,6 +59,46 @@ std::string grid_names(const std::filesystem::path& path) {
   return names.empty() ? "no grid" : names;
 }
 
+// NanoVDB allocates the size a grid's metadata states before reading it: a damaged header must not allocate
+// gigabytes for a small file. An uncompressed grid is stored as is, so its size cannot exceed the file's; a
+// compressed one may (deflate expands up to 1032:1), up to the limit of every binary input.
+void check_grid_size(const std::filesystem::path& path, const std::string& name, const std::string& grid_name) {
+  const uint64_t file_bytes = std::filesystem::file_size(path);
+  for (const nanovdb::io::GridMetaData& m : nanovdb::io::readGridMetaData(path.string())) {
+    if (m.gridName != grid_name) continue;
+    const uint64_t limit = m.codec == nanovdb::io::Codec::NONE ? file_bytes : uint64_t(kMaxBinaryFileBytes);
+    if (m.gridSize > limit)
+      throw InputError({name, 0, ""}, "grid \"" + grid_name + "\" claims " + std::to_string(m.gridSize) +
+                                          " bytes, more than " +
+                                          (m.codec == nanovdb::io::Codec::NONE ? "the file holds (" : "the limit (") +
+                                          std::to_string(limit) + " bytes): the file is damaged");
+    return;
+  }
+}
+
+// Whether the tree's node arrays lie inside the grid's buffer, checked before anything follows their offsets (NanoVDB's
+// own validator reads the root through them first). Offsets inside the nodes (children, tiles) are not checked.
+bool layout_inside(const nanovdb::FloatGrid& grid, uint64_t buffer_bytes) {
+  using Tree = nanovdb::FloatTree;
+  const auto* base = reinterpret_cast<const uint8_t*>(&grid);
+  const auto inside = [&](uint64_t offset, uint64_t bytes) {
+    return offset <= buffer_bytes && bytes <= buffer_bytes - offset;
+  };
+  const uint64_t tree_at = uint64_t(reinterpret_cast<const uint8_t*>(&grid.tree()) - base);
+  if (grid.gridSize() > buffer_bytes || !inside(tree_at, sizeof(Tree::DataType))) return false;
+  const Tree::DataType& tree = *grid.tree().data();
+  const uint64_t root_at = tree_at + tree.mNodeOffset[3];
+  if (tree.mNodeOffset[3] > buffer_bytes || !inside(root_at, sizeof(Tree::RootType::DataType))) return false;
+  const auto* root = reinterpret_cast<const Tree::RootType*>(base + root_at);
+  if (!inside(root_at, Tree::RootType::memUsage(root->tileCount()))) return false;
+  const uint64_t node_bytes[3] = {sizeof(Tree::LeafNodeType), sizeof(Tree::Node1), sizeof(Tree::Node2)};
+  for (int level = 0; level < 3; ++level)
+    if (tree.mNodeCount[level] > 0 && (tree.mNodeOffset[level] > buffer_bytes ||
+                                       !inside(tree_at + tree.mNodeOffset[level], tree.mNodeCount[level] * node_bytes[level])))
+      return false;
+  return true;
+}
+
 int floor_div8(int v) { return v >= 0 ? v / 8 : -((7 - v) / 8); }
 
 }  // namespace
@@ -69,6 +111,7 @@ std::shared_ptr<const NanoVdbGrid> NanoVdbGrid::load(const std::filesystem::path
   std::shared_ptr<NanoVdbGrid> result(new NanoVdbGrid());
   result->handle_ = std::make_unique<Handle>();
   try {
+    check_grid_size(path, name, grid_name);
     result->handle_->grid = nanovdb::io::readGrid<nanovdb::HostBuffer>(name, grid_name);
     if (!result->handle_->grid)
       throw InputError({name, 0, ""}, "no grid named \"" + grid_name + "\"; the file holds " + grid_names(path));
@@ -82,6 +125,14 @@ std::shared_ptr<const NanoVdbGrid> NanoVdbGrid::load(const std::filesystem::path
     throw InputError({name, 0, ""}, "grid \"" + grid_name + "\" holds " +
                                         nanovdb::toStr(result->handle_->grid.gridMetaData()->gridType()) +
                                         " values; a density grid must hold float values");
+  if (!layout_inside(*grid, result->handle_->grid.size()))
+    throw InputError({name, 0, ""}, "grid \"" + grid_name + "\" is damaged: its tree's nodes lie outside its data");
+  // Lookups follow the tree's node offsets unchecked, so damage should be refused here. NanoVDB's quick check
+  // verifies the headers and the checksum of the grid, tree and root data, where the offsets to the node arrays
+  // are; its detailed check would follow the offsets inside the nodes, which nothing has bounded, so damage inside
+  // the nodes is not caught.
+  if (const std::string damage = nanovdb::GridValidator<float>::check(*grid, false); !damage.empty())
+    throw InputError({name, 0, ""}, "grid \"" + grid_name + "\" is damaged: " + damage);
   result->grid_ = grid;
   result->active_voxels_ = grid->activeVoxelCount();
   if (result->active_voxels_ == 0)

@@ -21,7 +21,10 @@ class NanoVdbGrid {
   /// Reads the float grid `grid_name` from the .nvdb file at `path` (uncompressed, ZIP or BLOSC). Throws InputError
   /// naming the file if it is missing, is not a NanoVDB file, was written by another major version of NanoVDB than
   /// this build reads, has no grid of that name or no active voxel, holds a grid that is not float, or holds a
-  /// value that is not finite (the first one's voxel is named). Negative values are allowed; lookups clamp at 0.
+  /// value that is not finite (the first one's voxel is named), or if the grid's stated size exceeds the file's
+  /// (uncompressed) or 16 GiB (checked before NanoVDB allocates it), or fails NanoVDB's quick validation (headers
+  /// and the checksum of the grid, tree and root data; not the nodes). Negative values are allowed; lookups clamp
+  /// at 0.
   static std::shared_ptr<const NanoVdbGrid> load(const std::filesystem::path& path, const std::string& grid_name);
   ~NanoVdbGrid();
   NanoVdbGrid(const NanoVdbGrid&) = delete;
