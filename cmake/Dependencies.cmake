@@ -42,6 +42,18 @@ rimu_require(OIIO_FOUND libopenimageio-dev "OpenImageIO 2 (image IO)")
 # a shared libstb with a pkg-config file.
 pkg_check_modules(STB QUIET IMPORTED_TARGET stb)
 rimu_require(STB_FOUND libstb-dev "stb_image (PNG, JPEG, TGA and BMP textures)")
+# NanoVDB (sparse volumes, transport/media/nanovdb_grid.h) is header-only and Debian ships no CMake or pkg-config
+# file for it, so its header is found directly. Its reader inflates ZIP (zlib) and BLOSC files only when told to
+# (transport/media/nanovdb_io.h defines the switches; the codecs' libraries are linked here).
+find_path(NANOVDB_INCLUDE_DIR nanovdb/NanoVDB.h)
+rimu_require(NANOVDB_INCLUDE_DIR libnanovdb-dev "NanoVDB (sparse volume files, .nvdb)")
+find_package(ZLIB QUIET)
+rimu_require(ZLIB_FOUND zlib1g-dev "zlib (ZIP-compressed .nvdb files)")
+pkg_check_modules(BLOSC QUIET IMPORTED_TARGET blosc)
+rimu_require(BLOSC_FOUND libblosc-dev "Blosc (BLOSC-compressed .nvdb files)")
+add_library(rimu_nanovdb INTERFACE)
+target_include_directories(rimu_nanovdb SYSTEM INTERFACE ${NANOVDB_INCLUDE_DIR})
+target_link_libraries(rimu_nanovdb INTERFACE ZLIB::ZLIB PkgConfig::BLOSC)
 
 if(RIMU_BUILD_TESTS)
   find_package(doctest QUIET CONFIG)

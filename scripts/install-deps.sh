@@ -17,7 +17,8 @@ packages=(
   nlohmann-json3-dev     # scene files, --json output
   libcli11-dev           # command-line parsing
   libtinyobjloader-dev   # OBJ meshes
-  zlib1g-dev             # .ply.gz meshes
+  zlib1g-dev             # .ply.gz meshes, ZIP-compressed .nvdb volumes
+  libnanovdb-dev         # NanoVDB: sparse .nvdb volumes (header-only; brings libblosc-dev for BLOSC files)
   gnuplot-nox            # the tools' --plot/--graphic figures
 )
 test_packages=(

@@ -1,13 +1,17 @@
 // pbrt-v4 "uniformgrid" media in the importer (src/render/scene/pbrt/pbrt_media.cpp, docs/pbrt-import.md "Media"):
 // the density grid inline in the document, trilinear like pbrt's, placed by the CTM at MakeNamedMedium; bad grids
 // with file:line; and a pbrt scene with a rotated grid rendering the same image as the same scene in Rimu's JSON.
+// "nanovdb" media: the JSON grid medium reading the .nvdb file (written here with NanoVDB's builder), emission listed.
 #include <doctest/doctest.h>
 
 #include <fstream>
 
+#include <nanovdb/util/GridBuilder.h>
+
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_support.h"
+#include "transport/media/nanovdb_io.h"
 #include "pbrt_test_support.h"
 
 using namespace rimu;
@@ -20,6 +24,17 @@ const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"
 PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_text(text, "grid.pbrt"); }
 
 std::string error_of(const std::string& text) { return test::pbrt_import_error(text, "grid.pbrt"); }
+
+// A 2³ "density" grid at index [0, 1]³ (0.25 m voxels from the origin), voxel (1, 0, 1) holding 4 and the rest 1.
+void write_cloud(const std::filesystem::path& path) {
+  nanovdb::GridBuilder<float> builder(0.0f, nanovdb::GridClass::FogVolume);
+  auto accessor = builder.getAccessor();
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 2; ++x) accessor.setValue(nanovdb::Coord(x, y, z), x == 1 && y == 0 && z == 1 ? 4.0f : 1.0f);
+  nanovdb::io::writeGrid(path.string(), builder.getHandle<>(0.25, nanovdb::Vec3d(0.0), "density"),
+                         nanovdb::io::Codec::ZIP);
+}
 
 }  // namespace
 
@@ -115,4 +130,78 @@ TEST_CASE("grid media in JSON: inline densities are checked at their key") {
   CHECK(error_of_json({{"voxels", {1, 1, 1}}, {"density", {1}}, {"interpolation", "cubic"}}).find("/media/m/interpolation") != std::string::npos);
   CHECK(error_of_json({{"voxels", {1, 1, 1}}, {"density", {1}}, {"transform", json::array({json{{"scale", 0}}})}}).find("/media/m/transform") !=
         std::string::npos);
+}
+
+TEST_CASE("pbrt grid media: a nanovdb medium becomes a trilinear grid medium reading the .nvdb file, emission listed") {
+  const test::ScratchFolder folder("pbrt_nanovdb");
+  write_cloud(folder / "cloud.nvdb");
+  const std::string text =
+      kCamera + "WorldBegin\nAttributeBegin\nTranslate 1 2 3\n"
+                "MakeNamedMedium \"smoke\" \"string type\" \"nanovdb\" \"string filename\" \"cloud.nvdb\"\n"
+                "  \"rgb sigma_a\" [0.5 0.5 0.5] \"rgb sigma_s\" [1 1 1] \"float g\" 0.877 \"float scale\" 4\n"
+                "  \"float Lescale\" 0.1 \"float temperaturecutoff\" 100 \"float temperaturescale\" 2000\nAttributeEnd\n"
+                "MediumInterface \"smoke\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n";
+  const PbrtImport imported = import_pbrt_text(text, "cloud.pbrt", folder.path, test::library());
+  REQUIRE(imported.ignored.size() == 1);
+  CHECK(imported.ignored[0].what.find("\"nanovdb\" emission (the file's \"temperature\" grid") != std::string::npos);
+  const json& smoke = imported.document["media"]["smoke"];
+  CHECK(smoke["type"] == "grid");
+  CHECK(smoke["interpolation"] == "trilinear");
+  CHECK(std::filesystem::path(smoke["file"].get<std::string>()).filename() == "cloud.nvdb");
+  CHECK(!smoke.contains("grid"));  // pbrt-v4 reads "density", the loader's default
+  CHECK(!smoke.contains("bounds_min"));
+  CHECK(smoke["g"].get<double>() == doctest::Approx(0.877));
+  CHECK(smoke.contains("transform"));
+  const auto scene = load_scene(imported.document, "cloud.pbrt", folder.path, test::library());
+  REQUIRE(scene->media.size() == 1);
+  const GridMedium* grid = scene->media[0].grid();
+  REQUIRE(grid != nullptr);
+  // Voxel (1, 0, 1)'s centre is (0.25, 0, 0.25) in the file's world, (1.25, 2, 3.25) after the Translate, and
+  // x-mirrored into Rimu's world by the camera's "Scale -1 1 1" as in the uniformgrid case above.
+  CHECK(grid->density({1.25f, 2.0f, 3.25f}) == doctest::Approx(4.0f).epsilon(1e-5));
+  CHECK(grid->density({1.0f, 2.0f, 3.0f}) == doctest::Approx(1.0f).epsilon(1e-5));
+  CHECK(grid->density({2.0f, 2.0f, 3.0f}) == 0.0f);
+
+  CHECK(test::pbrt_import_error(kCamera + "WorldBegin\nMakeNamedMedium \"m\" \"string type\" \"nanovdb\" "
+                                          "\"string filename\" \"absent.nvdb\"\n",
+                                "grid.pbrt")
+            .find("grid.pbrt:5: MakeNamedMedium \"m\" (nanovdb): cannot find the NanoVDB file '") == 0);
+}
+
+TEST_CASE("grid media in JSON: a .nvdb file, and its errors at the key with the file's path") {
+  const test::ScratchFolder folder("json_nanovdb");
+  write_cloud(folder / "cloud.nvdb");
+  folder.write("text.nvdb", "plain text");
+  const auto error_of_json = [&](const json& keys) {
+    json m = {{"type", "grid"}, {"boundary_material", "edge"}, {"index_matched", true}, {"sigma_a", 1}, {"sigma_s", 0}};
+    m.update(keys);
+    const json document = {
+        {"camera", {{"from", {0, 0, -3}}, {"to", {0, 0, 0}}}},
+        {"film", {{"resolution", {8, 8}}}},
+        {"materials", {{"edge", {{"type", "diffuse"}, {"reflectance", 0.5}}}}},
+        {"media", {{"m", m}}},
+        {"shapes", json::array({{{"type", "sphere"}, {"center", {0.25, 0.25, 0.25}}, {"radius", 1}, {"material", "edge"}}})}};
+    try {
+      load_scene(document, "s.json", folder.path, test::library());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(error_of_json({{"file", "cloud.nvdb"}, {"interpolation", "trilinear"}}) == "no error");
+  CHECK(error_of_json({{"file", "cloud.nvdb"}, {"grid", "density"}, {"transform", json::array({json{{"scale", 2}}})}}) ==
+        "no error");
+  const std::string missing = error_of_json({{"file", "none.nvdb"}});
+  CAPTURE(missing);
+  CHECK(missing.find("/media/m/file") != std::string::npos);
+  CHECK(missing.find("none.nvdb: no such file") != std::string::npos);
+  const std::string text = error_of_json({{"file", "text.nvdb"}});
+  CHECK(text.find("/media/m/file") != std::string::npos);
+  CHECK(text.find("text.nvdb: not a NanoVDB file") != std::string::npos);
+  const std::string name = error_of_json({{"file", "cloud.nvdb"}, {"grid", "temperature"}});
+  CHECK(name.find("cloud.nvdb: no grid named \"temperature\"; the file holds \"density\" (float)") != std::string::npos);
+  CHECK(error_of_json({{"file", "cloud.nvdb"}, {"bounds_min", {0, 0, 0}}}).find("/media/m/bounds_min: a .nvdb grid's box comes from the file") !=
+        std::string::npos);
+  CHECK(error_of_json({{"procedural", "cloud"}, {"grid", "density"}, {"bounds_min", {0, 0, 0}}, {"bounds_max", {1, 1, 1}}})
+            .find("/media/m/grid: \"grid\" names a grid of a .nvdb file") != std::string::npos);
 }

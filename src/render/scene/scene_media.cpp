@@ -1,9 +1,13 @@
 // The "media" section of the JSON scene format: homogeneous and voxel-grid media, and the material whose shapes
 // enclose each of them (docs/media.md).
+#include <cctype>
+#include <filesystem>
+
 #include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "transport/sampling/wavelength_modes.h"
 #include "transport/media/medium.h"
+#include "transport/media/nanovdb_grid.h"
 
 namespace rimu::scene_loading {
 namespace {
@@ -56,6 +60,13 @@ void load_inline_density(const JsonCursor& m, int& nx, int& ny, int& nz, std::ve
   }
 }
 
+// A "file" ending in .nvdb (any case) is read by NanoVDB; any other is an .rvol file.
+bool is_nanovdb_file(const std::string& file) {
+  std::string extension = std::filesystem::path(file).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".nvdb";
+}
+
 Medium load_medium(const JsonCursor& m, LoadContext& context) {
   const std::string type = m.at("type").choice({"homogeneous", "grid"});
   const float g = float(m.number_or("g", 0.0, -0.99, 0.99));
@@ -93,12 +104,37 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   }
   m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
                "boundary_material", "index_matched", "file", "procedural", "resolution", "bounds_min", "bounds_max",
-               "seed", "voxels", "density", "interpolation", "transform", "contains_camera",
+               "seed", "voxels", "density", "interpolation", "transform", "contains_camera", "grid",
                "counts_towards_max_depth"});
   int nx = 0, ny = 0, nz = 0;
   std::vector<float> density;
   const int sources = int(m.has("file")) + int(m.has("procedural")) + int(m.has("density"));
   if (sources != 1) m.fail("a grid medium takes exactly one of \"file\", \"procedural\" or \"voxels\" + \"density\"");
+  const GridInterpolation interpolation = m.has("interpolation") && m.at("interpolation").choice({"voxel", "trilinear"}) == "trilinear"
+                                              ? GridInterpolation::trilinear
+                                              : GridInterpolation::voxel;
+  std::optional<Transform> world_from_grid;
+  if (m.has("transform")) world_from_grid = parse_transform(m);
+  const bool nanovdb = m.has("file") && is_nanovdb_file(m.at("file").string());
+  if (m.has("grid") && !nanovdb) m.at("grid").fail("\"grid\" names a grid of a .nvdb file; \"file\" names none");
+  if (nanovdb) {
+    // The file's active voxels and index-to-world map place the grid; a box from the scene would contradict them.
+    for (const char* key : {"bounds_min", "bounds_max"})
+      if (m.has(key)) m.at(key).fail("a .nvdb grid's box comes from the file; place it with \"transform\"");
+    const JsonCursor file = m.at("file");
+    std::shared_ptr<const NanoVdbGrid> sparse;
+    try {
+      sparse = NanoVdbGrid::load(context.spectra.scene_directory() / file.string(), m.string_or("grid", "density"));
+    } catch (const InputError& e) {
+      file.fail(e.what());  // "cloud.nvdb: ..." under the key that named the file
+    }
+    try {
+      return Medium(GridMedium(std::move(sparse), sigma_a, sigma_s, g, interpolation, world_from_grid), priority,
+                    counts_towards_max_depth);
+    } catch (const InputError& e) {
+      m.fail(e.explanation());
+    }
+  }
   if (m.has("file")) {
     const JsonCursor file = m.at("file");
     try {
@@ -113,11 +149,6 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
     nx = ny = nz = m.integer_or("resolution", 64, 1, 512);
     density = procedural_cloud_density(nx, uint32_t(m.integer_or("seed", 1, 0, 1 << 30)));
   }
-  const GridInterpolation interpolation = m.has("interpolation") && m.at("interpolation").choice({"voxel", "trilinear"}) == "trilinear"
-                                              ? GridInterpolation::trilinear
-                                              : GridInterpolation::voxel;
-  std::optional<Transform> world_from_grid;
-  if (m.has("transform")) world_from_grid = parse_transform(m);
   try {
     return Medium(GridMedium(nx, ny, nz, std::move(density), m.at("bounds_min").vec3(), m.at("bounds_max").vec3(),
                              sigma_a, sigma_s, g, interpolation, world_from_grid),

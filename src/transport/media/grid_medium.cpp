@@ -7,6 +7,7 @@
 
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
+#include "transport/media/nanovdb_grid.h"
 
 namespace rimu {
 
@@ -14,12 +15,9 @@ GridMedium::GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec
                        SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g, GridInterpolation interpolation,
                        const std::optional<Transform>& world_from_grid)
     : nx_(nx), ny_(ny), nz_(nz), density_(std::move(densities)), min_(bounds_min), max_(bounds_max),
-      unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g), interpolation_(interpolation) {
-  if (world_from_grid) {
-    if (!world_from_grid->is_finite() || !(std::fabs(world_from_grid->determinant()) > 1e-30f))
-      throw InputError({}, "the medium's transform must be finite and invertible");
-    grid_from_world_ = world_from_grid->inverse();
-  }
+      majorant_min_(bounds_min), unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g),
+      interpolation_(interpolation) {
+  set_transform(world_from_grid);
   if (nx < 1 || ny < 1 || nz < 1) throw InputError({}, "a voxel grid needs at least one voxel per axis");
   if (density_.size() != size_t(nx) * size_t(ny) * size_t(nz))
     throw InputError({}, "the voxel grid holds " + std::to_string(density_.size()) + " values, expected nx*ny*nz");
@@ -47,9 +45,42 @@ GridMedium::GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec
       }
 }
 
+GridMedium::GridMedium(std::shared_ptr<const NanoVdbGrid> sparse, SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m,
+                       float g, GridInterpolation interpolation, const std::optional<Transform>& world_from_medium)
+    : sparse_(std::move(sparse)), unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g),
+      interpolation_(interpolation) {
+  static_assert(kBlock == 8, "the sparse grid's majorant blocks are NanoVDB's 8³ leaves");
+  set_transform(world_from_medium ? *world_from_medium * sparse_->world_from_index() : sparse_->world_from_index());
+  const auto& lo = sparse_->index_min();
+  const auto& hi = sparse_->index_max();
+  nx_ = hi[0] - lo[0] + 1, ny_ = hi[1] - lo[1] + 1, nz_ = hi[2] - lo[2] + 1;
+  // Voxel v spans [v − ½, v + ½] in index space.
+  min_ = {float(lo[0]) - 0.5f, float(lo[1]) - 0.5f, float(lo[2]) - 0.5f};
+  max_ = {float(hi[0]) + 0.5f, float(hi[1]) + 0.5f, float(hi[2]) + 0.5f};
+  voxel_size_ = {1.0f, 1.0f, 1.0f};
+  const NanoVdbGrid::Blocks& blocks = sparse_->blocks();
+  majorant_min_ = {float(blocks.first_voxel[0]) - 0.5f, float(blocks.first_voxel[1]) - 0.5f,
+                   float(blocks.first_voxel[2]) - 0.5f};
+  mx_ = blocks.count[0], my_ = blocks.count[1], mz_ = blocks.count[2];
+  majorant_ = interpolation_ == GridInterpolation::trilinear ? blocks.trilinear_max : blocks.voxel_max;
+}
+
+void GridMedium::set_transform(const std::optional<Transform>& world_from_grid) {
+  if (!world_from_grid) return;
+  if (!world_from_grid->is_finite() || !(std::fabs(world_from_grid->determinant()) > 1e-30f))
+    throw InputError({}, "the medium's transform must be finite and invertible");
+  grid_from_world_ = world_from_grid->inverse();
+}
+
 float GridMedium::density(Vec3 p) const { return density_in_grid(grid_from_world_ ? grid_from_world_->point(p) : p); }
 
 float GridMedium::density_in_grid(Vec3 p) const {
+  if (sparse_) {
+    // Clipped at the box as a dense grid is: the trilinear density fades over the outer half voxel.
+    if (!(p.x >= min_.x && p.y >= min_.y && p.z >= min_.z && p.x < max_.x && p.y < max_.y && p.z < max_.z))
+      return 0.0f;
+    return sparse_->density({p.x, p.y, p.z}, interpolation_);
+  }
   const Vec3 local = p - min_;
   const Vec3 cells{local.x / voxel_size_.x, local.y / voxel_size_.y, local.z / voxel_size_.z};
   const int x = int(std::floor(cells.x)), y = int(std::floor(cells.y)), z = int(std::floor(cells.z));

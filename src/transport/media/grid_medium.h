@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,6 +14,8 @@
 #include "transport/geometry/transform.h"
 
 namespace rimu {
+
+class NanoVdbGrid;
 
 /// How densities between voxel centres are found.
 enum class GridInterpolation {
@@ -34,6 +37,10 @@ enum class GridInterpolation {
 ///     3 × int32 nx, ny, nz (each 1..4096)
 ///     nx·ny·nz × float32 densities, x fastest, then y, then z; finite and ≥ 0.
 /// The box and the spectra come from the scene file, so one density file can be reused at any size.
+///
+/// The densities may instead be a sparse NanoVDB grid (nanovdb_grid.h): the grid's space is then the file's index
+/// space (voxel centres at integers), the box is the active voxels' box (half a voxel beyond the outer centres,
+/// as for a dense grid), and the majorant blocks are NanoVDB's leaves, computed from the tree at load.
 class GridMedium {
  public:
   /// Throws InputError if a size is 0, the data size is not nx·ny·nz, a density is negative or not finite,
@@ -42,6 +49,10 @@ class GridMedium {
              SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g,
              GridInterpolation interpolation = GridInterpolation::voxel,
              const std::optional<Transform>& world_from_grid = std::nullopt);
+  /// Densities from a NanoVDB grid, placed in the world by `world_from_medium` after the file's own
+  /// index-to-world map. Throws InputError if the combined map is not invertible.
+  GridMedium(std::shared_ptr<const NanoVdbGrid> sparse, SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g,
+             GridInterpolation interpolation, const std::optional<Transform>& world_from_medium = std::nullopt);
 
   /// The density at a world point (0 outside the box).
   float density(Vec3 p) const;
@@ -66,6 +77,7 @@ class GridMedium {
   static constexpr int kBlock = 8;
 
  private:
+  void set_transform(const std::optional<Transform>& world_from_grid);
   bool clip(const Ray& ray, float t_max, float& t0, float& t1) const;
   /// The density at a point of the grid's space.
   float density_in_grid(Vec3 p) const;
@@ -73,8 +85,10 @@ class GridMedium {
     return x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_ ? 0.0f : density_[size_t((z * ny_ + y) * nx_ + x)];
   }
   int nx_, ny_, nz_;
-  std::vector<float> density_;
+  std::vector<float> density_;                // empty when sparse_ holds the densities
+  std::shared_ptr<const NanoVdbGrid> sparse_;  // shared: copies of a Medium share one tree
   Vec3 min_, max_, voxel_size_;
+  Vec3 majorant_min_;                 // the majorant grid's corner: min_, or NanoVDB's leaf-aligned corner
   int mx_, my_, mz_;                  // majorant grid size
   std::vector<float> majorant_;       // max density per block
   HomogeneousMedium unit_;
@@ -115,16 +129,16 @@ void GridMedium::for_each_majorant_segment(const Ray& world_ray, float t_max, F&
   int cell[3], step[3];
   float t_next[3], t_delta[3];
   for (int a = 0; a < 3; ++a) {
-    const float local = (entry[a] - min_[a]) / cell_size[a];
+    const float local = (entry[a] - majorant_min_[a]) / cell_size[a];
     cell[a] = std::clamp(int(local), 0, size[a] - 1);
     const float d = ray.direction[a];
     if (d > 0.0f) {
       step[a] = 1;
-      t_next[a] = t0 + ((float(cell[a] + 1)) * cell_size[a] + min_[a] - entry[a]) / d;
+      t_next[a] = t0 + ((float(cell[a] + 1)) * cell_size[a] + majorant_min_[a] - entry[a]) / d;
       t_delta[a] = cell_size[a] / d;
     } else if (d < 0.0f) {
       step[a] = -1;
-      t_next[a] = t0 + (float(cell[a]) * cell_size[a] + min_[a] - entry[a]) / d;
+      t_next[a] = t0 + (float(cell[a]) * cell_size[a] + majorant_min_[a] - entry[a]) / d;
       t_delta[a] = -cell_size[a] / d;
     } else {
       step[a] = 0;

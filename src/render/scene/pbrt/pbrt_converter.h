@@ -203,6 +203,8 @@ class PbrtConverter {
   /// A "uniformgrid" medium's density grid, box and transform onto `medium` (a Rimu "grid" medium with its density
   /// inline, trilinear like pbrt's). InputError at the statement for a wrong voxel count or a negative density.
   void add_density_grid(PbrtParams& p, json& medium);
+  /// A "nanovdb" medium: the JSON grid medium reading the .nvdb file's "density" grid (relative to the pbrt file).
+  void add_nanovdb_grid(PbrtParams& p, json& medium);
   /// The material a shape of `material` gets under the MediumInterface in effect: a copy bounding the inside medium
   /// where one begins at the shape; empty for an "interface" shape with no medium to bound (left out, listed).
   std::optional<std::string> boundary_material(const std::string& material, const SourceLocation& where, const std::string& context);

@@ -89,12 +89,12 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
   if (media_defined_.count(name)) throw InputError(s.where, "MakeNamedMedium: \"" + name + "\" is already defined");
   const std::string context = "MakeNamedMedium \"" + name + "\" (" + type + ")";
   media_where_[name] = s.where;
-  if (type == "rgbgrid" || type == "nanovdb" || type == "cloud") {
+  if (type == "rgbgrid" || type == "cloud") {
     ignore("MakeNamedMedium \"" + type + "\" (not imported: shapes it fills render without a medium)", s.where);
     media_defined_[name] = nullptr;
     return;
   }
-  if (type != "homogeneous" && type != "uniformgrid") throw InputError(s.where, context + ": unknown medium type; pbrt-v4 has homogeneous, uniformgrid, rgbgrid, nanovdb and cloud");
+  if (type != "homogeneous" && type != "uniformgrid" && type != "nanovdb") throw InputError(s.where, context + ": unknown medium type; pbrt-v4 has homogeneous, uniformgrid, rgbgrid, nanovdb and cloud");
   PbrtParams p(*this, s, context);
   p.string("type", "");
   json sigma_a = coefficient_value(p, "sigma_a", 1.0);
@@ -129,6 +129,7 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
   if (type == "homogeneous") p.real("Lescale", 1.0);  // only meaningful with Le
   json medium = {{"type", "homogeneous"}, {"sigma_a", scaled(sigma_a, scale)}, {"sigma_s", scaled(sigma_s, scale)}, {"g", g}};
   if (type == "uniformgrid") add_density_grid(p, medium);
+  if (type == "nanovdb") add_nanovdb_grid(p, medium);
   media_defined_[name] = std::move(medium);
 }
 
@@ -209,6 +210,32 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
   media_[rimu_name] = std::move(medium);
   origin("/media/" + rimu_name, where, context);
   subsurface_materials_.insert(material);
+}
+
+void PbrtConverter::add_nanovdb_grid(PbrtParams& p, json& medium) {
+  const SourceLocation& where = p.where();
+  const std::string filename = p.string("filename", "");
+  if (filename.empty()) throw InputError(where, p.context() + ": needs \"string filename\"");
+  const std::filesystem::path path = std::filesystem::absolute(p.directory() / filename);
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(where, p.context() + ": cannot find the NanoVDB file '" + path.string() + "'");
+  // pbrt-v4 turns the file's "temperature" grid into blackbody emission scaled by these; Rimu's media do not emit.
+  bool emission = false;
+  for (const char* unused : {"Lescale", "temperaturecutoff", "temperatureoffset", "temperaturescale"})
+    emission |= p.get(unused, {PbrtParamType::real}) != nullptr;
+  if (emission)
+    ignore("MakeNamedMedium \"nanovdb\" emission (the file's \"temperature\" grid with \"Lescale\", "
+           "\"temperaturecutoff\", \"temperaturescale\": Rimu's media do not emit, so only the density is imported)",
+           where);
+  for (const char* unused : {"Lescale", "temperaturecutoff", "temperatureoffset", "temperaturescale"}) p.real(unused, 0.0);
+  medium["type"] = "grid";
+  // pbrt-v4 reads the grid named "density", the JSON loader's default.
+  medium["file"] = path_for_document(path);
+  // pbrt-v4's NanoVDBMedium samples the grid trilinearly (SampleFromVoxels of order 1).
+  medium["interpolation"] = "trilinear";
+  // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium), after the file's own map.
+  const json steps = transform_steps(world_from_object(), where);
+  if (!steps.is_null()) medium["transform"] = steps;
 }
 
 void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
