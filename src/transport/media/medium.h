@@ -24,8 +24,8 @@ class Medium {
   }
   int priority() const { return priority_; }
   /// Whether the vertices of a path inside this medium count towards max_depth (its scattering events when the
-  /// integrator counts media, VolumetricIntegratorSettings::max_depth_includes_media; its boundary's hits from
-  /// inside always). False for a subsurface walk under a dielectric: the walk belongs to the vertex where the path
+  /// integrator counts media, VolumetricIntegratorSettings::max_depth_includes_media; the surfaces a path hits
+  /// from inside it, its boundary's internal reflections or anything embedded in it, always). False for a subsurface walk under a dielectric: the walk belongs to the vertex where the path
   /// entered, as pbrt-v4 spends one bounce on a BSSRDF however often light scatters and reflects beneath it; a
   /// walk of dozens of events cut at pbrt's usual max depth of 5 would leave a translucent object nearly black.
   bool counts_towards_max_depth() const { return counts_towards_max_depth_; }
