@@ -8,8 +8,7 @@
 
 #include "transport/media/grid_medium.h"
 #include "transport/media/medium.h"
-#include "transport/sampling/sampler.h"
-#include "transport/media/spectral_distance_sampling.h"
+#include "transmittance_statistics.h"
 
 namespace rimu {
 namespace {
@@ -120,21 +119,8 @@ TEST_CASE("grid medium: ratio-tracking transmittance through a placed trilinear 
 
   const Medium medium(grid(GridInterpolation::trilinear, world_from_grid));
   const Ray ray{world_from_grid.point({-1.0f, 1.2f, 1.45f}), normalize(axis_world)};
-  const float t_max = float(5.0 * metres_per_grid_unit);
-  const SampledWavelengths lambda(Float4(450.0f, 520.0f, 600.0f, 680.0f), Float4(1.0f));
-  IndependentSampler sampler(17);
-  sampler.start_pixel_sample(0, 0, 0);
-  const int n = 200000;
-  double sum = 0.0, sum2 = 0.0;
-  for (int i = 0; i < n; ++i) {
-    SampledSpectrum throughput = Float4(1.0f);
-    const double t =
-        estimate_transmittance(medium, ray, t_max, lambda, DistanceSampling::spectral_mis, sampler, throughput)
-            .transmittance[0];
-    sum += t;
-    sum2 += t * t;
-  }
-  const double mean = sum / n, standard_error = std::sqrt(std::max(sum2 / n - mean * mean, 0.0) / n);
+  const test::TransmittanceStatistics s = test::transmittance_statistics(medium, ray, float(5.0 * metres_per_grid_unit), 200000);
+  const double mean = s.mean, standard_error = s.standard_error;
   CAPTURE(mean);
   CAPTURE(expected);
   CAPTURE(standard_error);

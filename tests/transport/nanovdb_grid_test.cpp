@@ -16,8 +16,7 @@
 #include "transport/media/medium.h"
 #include "transport/media/nanovdb_grid.h"
 #include "transport/media/nanovdb_io.h"
-#include "transport/media/spectral_distance_sampling.h"
-#include "transport/sampling/sampler.h"
+#include "transmittance_statistics.h"
 
 namespace rimu {
 namespace {
@@ -170,20 +169,8 @@ TEST_CASE("nanovdb grid: ratio-tracking transmittance through a constant box equ
                                  GridInterpolation::trilinear));
   const double sigma_t = 0.8, expected = std::exp(-sigma_t * 1.575);
   const Ray ray{{float(kOrigin[0] - 2.0), float(kOrigin[1] + 7 * kVoxelM), float(kOrigin[2] + 7 * kVoxelM)}, {1, 0, 0}};
-  const SampledWavelengths lambda(Float4(450.0f, 520.0f, 600.0f, 680.0f), Float4(1.0f));
-  IndependentSampler sampler(17);
-  sampler.start_pixel_sample(0, 0, 0);
-  const int n = 100000;
-  double sum = 0.0, sum2 = 0.0;
-  for (int i = 0; i < n; ++i) {
-    SampledSpectrum throughput = Float4(1.0f);
-    const double t =
-        estimate_transmittance(medium, ray, 20.0f, lambda, DistanceSampling::spectral_mis, sampler, throughput)
-            .transmittance[0];
-    sum += t;
-    sum2 += t * t;
-  }
-  const double mean = sum / n, standard_error = std::sqrt(std::max(sum2 / n - mean * mean, 0.0) / n);
+  const test::TransmittanceStatistics s = test::transmittance_statistics(medium, ray, 20.0f, 100000);
+  const double mean = s.mean, standard_error = s.standard_error;
   CAPTURE(mean);
   CAPTURE(expected);
   CAPTURE(standard_error);
