@@ -518,12 +518,11 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     const bool thin = type == "thindielectric";
     m = {{"type", thin ? "thin_dielectric" : "dielectric"}};
     // A spectrally varying eta (RGB, a table, a named glass) disperses, in pbrt-v4 as in Rimu.
-    const PbrtParam* eta = type == "subsurface" ? nullptr : p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb});
     if (type == "subsurface") {
       const double ior = p.real("eta", 1.33);  // pbrt-v4 reads one float here
       if (!(ior > 0) || !(ior < 1e3)) throw InputError(s.where, context + " (subsurface): \"eta\" must be in (0, 1000)");
       m["ior"] = ior;
-    } else if (!eta) {
+    } else if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb}); !eta) {
       m["ior"] = 1.5;
     } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && glass_of(eta->strings[0])) {
       m["glass"] = *glass_of(eta->strings[0]);

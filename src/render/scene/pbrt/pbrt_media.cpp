@@ -144,6 +144,9 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
   const double scale = p.real("scale", 1.0);
   if (!(scale >= 0)) throw InputError(where, context + ": \"scale\" must be >= 0");
   json medium = {{"type", "homogeneous"}};
+  // pbrt-v4's defaults when nothing (or a texture) is given: unbounded sRGB, per scene unit.
+  const auto default_sigma_a = [&] { return unbounded_rgb({.0011, .0024, .014}, "srgb-linear", where); };
+  const auto default_sigma_s = [&] { return unbounded_rgb({2.55, 3.21, 3.77}, "srgb-linear", where); };
   const std::initializer_list<PbrtParamType> spectral = {PbrtParamType::rgb, PbrtParamType::spectrum,
                                                          PbrtParamType::blackbody, PbrtParamType::texture};
   // pbrt evaluates these as textures per hit; a homogeneous medium takes one value: a texture is listed and pbrt's
@@ -169,8 +172,8 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
     if (!has_sigma_a || !has_sigma_s)
       throw InputError(where, context + ": give \"sigma_a\" and \"sigma_s\" together (pbrt-v4 refuses one without the other)");
     const bool textures = int(textured("sigma_a")) + int(textured("sigma_s")) > 0;
-    medium["sigma_a"] = scaled(textures ? unbounded_rgb({.0011, .0024, .014}, "srgb-linear", where) : coefficient_value(p, "sigma_a", 1.0), scale);
-    medium["sigma_s"] = scaled(textures ? unbounded_rgb({2.55, 3.21, 3.77}, "srgb-linear", where) : coefficient_value(p, "sigma_s", 1.0), scale);
+    medium["sigma_a"] = scaled(textures ? default_sigma_a() : coefficient_value(p, "sigma_a", 1.0), scale);
+    medium["sigma_s"] = scaled(textures ? default_sigma_s() : coefficient_value(p, "sigma_s", 1.0), scale);
   } else if (has_reflectance) {
     // Reflectance = the surface albedo A (the total diffuse reflectance of a thick slab) and pbrt's mean free path ×
     // scale: Rimu's Chiang, Kutz & Burley 2016 parameterisation of a medium (docs/media.md). pbrt inverts A with
@@ -196,10 +199,9 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
     medium["mean_free_path"] = mfp_shape;
     medium["mean_free_path_scale_m"] = std::clamp(mfp_scale, 1e-9, 1e9);
   } else {
-    // pbrt-v4's defaults (unbounded sRGB, per scene unit).
     if (p.get("mfp", spectral)) ignore(context + ": \"mfp\" without \"reflectance\" (unused, as in pbrt-v4)", where);
-    medium["sigma_a"] = scaled(unbounded_rgb({.0011, .0024, .014}, "srgb-linear", where), scale);
-    medium["sigma_s"] = scaled(unbounded_rgb({2.55, 3.21, 3.77}, "srgb-linear", where), scale);
+    medium["sigma_a"] = scaled(default_sigma_a(), scale);
+    medium["sigma_s"] = scaled(default_sigma_s(), scale);
   }
   if (!(g > -1 && g < 1)) throw InputError(where, context + ": \"g\" must be in (-1, 1)");
   medium["g"] = std::clamp(g, -0.99, 0.99);
@@ -227,7 +229,6 @@ void PbrtConverter::add_nanovdb_grid(PbrtParams& p, json& medium) {
     ignore("MakeNamedMedium \"nanovdb\" emission (the file's \"temperature\" grid with \"Lescale\", "
            "\"temperaturecutoff\", \"temperaturescale\": Rimu's media do not emit, so only the density is imported)",
            where);
-  for (const char* unused : {"Lescale", "temperaturecutoff", "temperatureoffset", "temperaturescale"}) p.real(unused, 0.0);
   medium["type"] = "grid";
   // pbrt-v4 reads the grid named "density", the JSON loader's default.
   medium["file"] = path_for_document(path);
