@@ -158,3 +158,21 @@ TEST_CASE("chi-square: coated diffuse chooses coat and base with the probabiliti
   }
   run_all(cases);
 }
+
+TEST_CASE("chi-square: a diffuse-entry boundary, from inside: the mirror and the way out with the density it reports") {
+  // From inside: a delta cell (the mirror, R(hero), all of it beyond the critical angle: cos θ < 0.75 for BK7)
+  // and the Fresnel-weighted cosine lobe outside; from outside: the smooth dielectric's two delta cells.
+  const SpectrumPtr bk7 = dielectric_ior(test::library(), "bk7");
+  std::vector<Case> cases;
+  for (float hero : kHeroes) {
+    const Float4 eta = bk7->sample(wavelengths_with_hero(hero));
+    Float4 norm;
+    for (int lane = 0; lane < 4; ++lane) norm.set(lane, float(DielectricBsdf::diffuse_entry_normalisation(eta[lane])));
+    for (float c : kCosines)
+      for (float side : {-1.0f, 1.0f})
+        for (float alpha : {0.0f, 0.3f})
+          cases.push_back({DielectricBsdf(eta, TrowbridgeReitz(alpha, alpha), norm), direction(side * c),
+                           label("diffuse-entry BK7", alpha, side * c, hero)});
+  }
+  run_all(cases);
+}

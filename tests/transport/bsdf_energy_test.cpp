@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "bsdf_test_fixtures.h"
@@ -204,4 +205,61 @@ TEST_CASE("robustness: grazing and degenerate directions never give NaN or Inf")
       }
     }
   }
+}
+
+TEST_CASE("diffuse entry: from inside, the way out holds (1 − F(wo)) η² of the radiance, as the flux balance needs") {
+  // ∫ f cos θi dωi over the outside = (1 − F(wo)) (1 − F̄_ext) / (1 − F̄_int) = (1 − F(wo)) η² (reciprocity of the
+  // hemispherical Fresnel averages): the lobe carries radiance η² times denser out, as a refraction out would, so
+  // flux is conserved (the white furnace in media_slab_reference_test.cpp closes the loop). Quadrature of eval()
+  // in μ = cos θi (the lobe is isotropic in φ), and the mean sample weight of the non-delta samples.
+  for (float eta : {1.33f, 1.5f, 2.4f}) {
+    const Float4 norm(float(DielectricBsdf::diffuse_entry_normalisation(eta)));
+    const DielectricBsdf boundary(Float4(eta), TrowbridgeReitz(0, 0), norm);
+    for (float c : {0.95f, 0.7f, 0.3f}) {
+      CAPTURE(eta);
+      CAPTURE(c);
+      const Vec3 wo = direction(-c);
+      const double leave = 1.0 - fresnel_dielectric(double(-c), double(eta));
+      constexpr int n = 20000;
+      double integral = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const float mu = (i + 0.5f) / n;
+        const Vec3 wi{std::sqrt(1.0f - mu * mu), 0.0f, mu};
+        integral += boundary.eval(wo, wi)[0] * mu * 2.0 * std::numbers::pi / n;
+      }
+      if (c < std::sqrt(1.0f - 1.0f / (eta * eta))) CHECK(leave == 0.0);  // beyond the critical angle: no way out
+      CHECK(integral == doctest::Approx(leave * eta * eta).epsilon(1e-4));
+      // Sampled: the delta share is R(wo), the rest weighs f cos/pdf with f and pdf what eval() and pdf() give.
+      std::mt19937_64 rng(11);
+      std::uniform_real_distribution<float> u(0.0f, 1.0f);
+      double sum = 0.0, sum2 = 0.0;
+      int mirrored = 0;
+      for (int i = 0; i < kCount; ++i) {
+        const auto s = boundary.sample(wo, u(rng), {u(rng), u(rng)});
+        REQUIRE(s);
+        if (s->is_delta) {
+          ++mirrored;
+          CHECK(s->wi.z == doctest::Approx(-c));
+          continue;
+        }
+        CHECK(s->wi.z > 0.0f);
+        CHECK(s->eta == doctest::Approx(1.0f / eta));
+        CHECK(s->f[0] == doctest::Approx(boundary.eval(wo, s->wi)[0]).epsilon(1e-6));
+        CHECK(s->pdf[0] == doctest::Approx(boundary.pdf(wo, s->wi)[0]).epsilon(1e-6));
+        const double w = s->hero_weight()[0];
+        sum += w;
+        sum2 += w * w;
+      }
+      // Binomial: the mirror's share within 5 standard errors of R; the weights' mean estimates the integral.
+      const double r = 1.0 - leave;
+      CHECK(std::fabs(mirrored / double(kCount) - r) <= 5.0 * std::sqrt(r * (1 - r) / kCount) + 1e-9);
+      const double mean = sum / kCount, se = std::sqrt(std::fmax(0.0, sum2 / kCount - mean * mean) / kCount);
+      CHECK(std::fabs(mean - leave * eta * eta) <= 5.0 * se + 1e-6);
+    }
+  }
+  // From outside the boundary is the plain dielectric: smooth, nothing to evaluate.
+  const DielectricBsdf boundary(Float4(1.5f), TrowbridgeReitz(0, 0), Float4(1.0f));
+  CHECK(boundary.eval(direction(0.5f), direction(-0.5f))[0] == 0.0f);
+  CHECK(boundary.eval(direction(0.5f), direction(0.5f))[0] == 0.0f);
+  CHECK(boundary.flags().has_non_delta);
 }

@@ -83,7 +83,8 @@ class UniformSky final : public Light {
   float radiance_;
 };
 
-/// A slab of one medium with either index-matched boundaries (`boundary_ior` = 0) or a smooth dielectric.
+/// A slab of one medium with either index-matched boundaries (`boundary_ior` = 0) or a smooth dielectric, which
+/// lets light in diffusely with `diffuse_entry` (DielectricBsdf, "Diffuse entry").
 struct SlabScene {
   SlabGeometry geometry;
   std::vector<Material> materials;
@@ -94,10 +95,13 @@ struct SlabScene {
   TransportScene surfaces;
   VolumetricScene scene;
 
-  SlabScene(float thickness_m, Medium medium, std::unique_ptr<Light> light, float boundary_ior = 0.0f)
+  SlabScene(float thickness_m, Medium medium, std::unique_ptr<Light> light, float boundary_ior = 0.0f,
+            bool diffuse_entry = false)
       : geometry(thickness_m) {
     const float ior = boundary_ior > 0.0f ? boundary_ior : 1.0f;
-    materials.push_back(DielectricMaterial(std::make_shared<ConstantSpectrum>(ior), 0.0f));
+    DielectricMaterial boundary(std::make_shared<ConstantSpectrum>(ior), 0.0f);
+    if (diffuse_entry) boundary.use_diffuse_entry();
+    materials.push_back(std::move(boundary));
     media.push_back(std::move(medium));
     boundaries.push_back({0, boundary_ior == 0.0f});
     const bool infinite = light->is_infinite();

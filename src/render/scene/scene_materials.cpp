@@ -195,7 +195,7 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
     if (thin)
       m.only_keys({"type", "normal_map", "displacement", "ior", "glass", "transmittance"});  // a thin sheet is smooth (pbrt-v4 has no rough one either)
     else
-      m.only_keys({"type", "normal_map", "displacement", "ior", "glass", "roughness"});
+      m.only_keys({"type", "normal_map", "displacement", "ior", "glass", "roughness", "diffuse_entry"});
     SpectrumPtr ior;
     if (m.has("glass")) {
       if (m.has("ior")) m.at("ior").fail("give either glass or ior, not both");
@@ -211,12 +211,17 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
                                                 : nullptr;
       return m.blame([&] { return Material(ThinDielectricMaterial(ior, std::move(tint))); });
     }
-    if (textured_roughness(m)) {
-      FloatTexturePtr roughness = roughness_texture(m, "", context);
-      return m.blame([&] { return Material(DielectricMaterial(ior, roughness, roughness)); });
-    }
-    const float roughness = roughness_of(m);
-    return m.blame([&] { return Material(DielectricMaterial(ior, roughness)); });
+    // The boundary of a subsurface medium: light enters it diffusely (DielectricBsdf, "Diffuse entry").
+    const bool diffuse_entry = m.boolean_or("diffuse_entry", false);
+    return m.blame([&] {
+      DielectricMaterial dielectric = [&] {
+        if (!textured_roughness(m)) return DielectricMaterial(ior, roughness_of(m));
+        FloatTexturePtr roughness = roughness_texture(m, "", context);
+        return DielectricMaterial(ior, roughness, roughness);
+      }();
+      if (diffuse_entry) dielectric.use_diffuse_entry();
+      return Material(std::move(dielectric));
+    });
   }
   if (type == "diffuse_transmission") {
     m.only_keys({"type", "normal_map", "displacement", "reflectance", "transmittance", "scale"});

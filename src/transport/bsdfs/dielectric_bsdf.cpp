@@ -1,8 +1,10 @@
 #include "transport/bsdfs/dielectric_bsdf.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "transport/bsdfs/fresnel.h"
+#include "transport/sampling/direction_warps.h"
 
 namespace rimu {
 
@@ -61,7 +63,41 @@ void DielectricBsdf::eval_rough(Vec3 wo, Vec3 wi, SampledSpectrum& f, SampledSpe
   pdf = Float4::load(pdfs);
 }
 
+double DielectricBsdf::diffuse_entry_normalisation(double eta) {
+  // 1 − F̄_int = (1 − F̄_ext)/η² (reciprocity, fresnel.h).
+  const double inside_transmittance = (1.0 - fresnel_diffuse_reflectance(eta)) / (eta * eta);
+  return 1.0 / (std::numbers::pi * inside_transmittance);
+}
+
+SampledSpectrum DielectricBsdf::eval_inside_diffuse_entry(Vec3 wo, Vec3 wi) const {
+  if (!(wi.z > 0.0f)) return Float4(0.0f);  // the mirror is a delta; nothing else stays inside
+  const SampledSpectrum leave = Float4(1.0f) - fresnel_dielectric(Float4(wo.z), eta_);
+  const SampledSpectrum enter = Float4(1.0f) - fresnel_dielectric(Float4(wi.z), eta_);
+  return leave * enter * entry_norm_;
+}
+
+SampledSpectrum DielectricBsdf::pdf_inside_diffuse_entry(Vec3 wo, Vec3 wi) const {
+  if (!(wi.z > 0.0f)) return Float4(0.0f);
+  const SampledSpectrum leave = Float4(1.0f) - fresnel_dielectric(Float4(wo.z), eta_);
+  return leave * Float4(cosine_hemisphere_pdf(wi.z));
+}
+
+std::optional<BsdfSample> DielectricBsdf::sample_inside_diffuse_entry(Vec3 wo, float u_lobe, Vec2 u) const {
+  const SampledSpectrum reflectance = fresnel_dielectric(Float4(wo.z), eta_);
+  if (u_lobe < reflectance[0]) {
+    const Vec3 wi{-wo.x, -wo.y, wo.z};
+    return BsdfSample{wi, reflectance / Float4(std::fabs(wo.z)), reflectance, true};
+  }
+  const Vec3 wi = sample_cosine_hemisphere(u);
+  if (!(wi.z > 0.0f)) return std::nullopt;  // the horizon has density 0
+  BsdfSample s{wi, eval_inside_diffuse_entry(wo, wi), pdf_inside_diffuse_entry(wo, wi)};
+  if (!(s.pdf[0] > 0.0f)) return std::nullopt;
+  s.eta = 1.0f / eta_[0];
+  return s;
+}
+
 SampledSpectrum DielectricBsdf::eval(Vec3 wo, Vec3 wi) const {
+  if (diffuse_entry_ && wo.z < 0.0f) return eval_inside_diffuse_entry(wo, wi);
   if (is_smooth()) return Float4(0.0f);
   SampledSpectrum f, pdf;
   eval_rough(wo, wi, f, pdf);
@@ -69,6 +105,7 @@ SampledSpectrum DielectricBsdf::eval(Vec3 wo, Vec3 wi) const {
 }
 
 SampledSpectrum DielectricBsdf::pdf(Vec3 wo, Vec3 wi) const {
+  if (diffuse_entry_ && wo.z < 0.0f) return pdf_inside_diffuse_entry(wo, wi);
   if (is_smooth()) return Float4(0.0f);
   SampledSpectrum f, pdf;
   eval_rough(wo, wi, f, pdf);
@@ -104,6 +141,7 @@ std::optional<BsdfSample> DielectricBsdf::sample_smooth(Vec3 wo, float u_lobe) c
 
 std::optional<BsdfSample> DielectricBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
   if (wo.z == 0.0f) return std::nullopt;
+  if (diffuse_entry_ && wo.z < 0.0f) return sample_inside_diffuse_entry(wo, u_lobe, u);
   if (is_smooth()) return sample_smooth(wo, u_lobe);
 
   const Vec3 m = distribution_.sample_visible(wo, u);  // on wo's side: wo·m > 0

@@ -34,9 +34,28 @@ namespace rimu {
 /// (Veach 1997, §5.2, "non-symmetric scattering due to refraction"). The 1/η'² factor above applies it, so f is
 /// the BSDF for radiance transport, satisfying f(wo, wi)/n_o² = f(wi, wo)/n_i² (n_o, n_i: the indices on wo's and
 /// wi's sides; Veach 1997, Eq. 5.14). A light-tracing (importance) path would omit it; Rimu has none.
+///
+/// Diffuse entry (optional; the boundary of a subsurface medium): light from the outside enters diffusely instead
+/// of by refraction, as pbrt-v4's subsurface material (its BSSRDF's exit lobe S_ω, after Christensen & Burley 2015)
+/// and Cycles' random walk assume. Seen from the outside nothing changes (the lobes above); a path inside
+/// (wo.z < 0) is mirrored with F(wo) (a smooth inside, whatever the roughness) or leaves through the lobe
+///     f(wo, wi) = (1 − F(wo)) (1 − F(wi)) / (π (1 − F̄_int)),   wi.z > 0,
+/// with F̄_int = 1 − (1 − F̄_ext(η))/η² the inside's hemispherical reflectance (fresnel.h). It is non-delta, so
+/// next-event estimation reaches every light from the boundary, point, spot and distant ones included, which a
+/// smooth refracting boundary never lets in. Its normalisation makes the boundary exact in a white furnace: a
+/// non-absorbing medium under uniform radiance L holds η²L inside and shows L outside (tests/transport/
+/// dielectric_diffuse_entry_test.cpp). sample() draws wi from the cosine and weights by the rest; s.eta = 1/η
+/// (f carries η² on leaving, as refraction out would).
 class DielectricBsdf {
  public:
   DielectricBsdf(SampledSpectrum eta, TrowbridgeReitz distribution) : eta_(eta), distribution_(distribution) {}
+  /// With diffuse entry: `diffuse_entry_normalisation` = 1/(π (1 − F̄_int)) per lane
+  /// (diffuse_entry_normalisation(η) of each lane's η).
+  DielectricBsdf(SampledSpectrum eta, TrowbridgeReitz distribution, SampledSpectrum diffuse_entry_normalisation)
+      : eta_(eta), distribution_(distribution), entry_norm_(diffuse_entry_normalisation), diffuse_entry_(true) {}
+  /// 1/(π (1 − F̄_int(η))) for a dielectric of relative index η: what makes the diffuse entry lobe conserve flux.
+  /// Setup-time cost (fresnel_diffuse_reflectance).
+  static double diffuse_entry_normalisation(double eta);
 
   /// f per lane (radiance transport); 0 for the smooth interface (delta lobes only).
   SampledSpectrum eval(Vec3 wo, Vec3 wi) const;
@@ -47,6 +66,7 @@ class DielectricBsdf {
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
   BsdfFlags flags() const {
     const bool smooth = is_smooth();
+    if (diffuse_entry_) return {true, true, true};  // the inside's mirror is a delta, its way out is not
     return {smooth, !smooth, true};
   }
 
@@ -56,6 +76,10 @@ class DielectricBsdf {
   /// Delta lobes when the microfacets are too narrow to resolve, or when η = 1 in every lane (no interface).
   bool is_smooth() const { return distribution_.effectively_smooth() || (eta_ == Float4(1.0f)).all(); }
   std::optional<BsdfSample> sample_smooth(Vec3 wo, float u_lobe) const;
+  /// Diffuse entry, seen from the inside (wo.z < 0): the mirror or the way out.
+  std::optional<BsdfSample> sample_inside_diffuse_entry(Vec3 wo, float u_lobe, Vec2 u) const;
+  SampledSpectrum eval_inside_diffuse_entry(Vec3 wo, Vec3 wi) const;
+  SampledSpectrum pdf_inside_diffuse_entry(Vec3 wo, Vec3 wi) const;
   /// f and pdf of the rough interface for one lane's η.
   void eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, float& pdf) const;
   /// Both, per lane (each lane with its own η; computed once when all lanes share one η).
@@ -63,6 +87,8 @@ class DielectricBsdf {
 
   SampledSpectrum eta_;
   TrowbridgeReitz distribution_;
+  SampledSpectrum entry_norm_{0.0f};
+  bool diffuse_entry_ = false;
 };
 
 /// The refraction of w (unit, on the side of unit normal n: w·n > 0) through an interface of index ratio

@@ -97,10 +97,30 @@ DielectricMaterial::DielectricMaterial(SpectrumPtr ior, FloatTexturePtr roughnes
   roughness_v_ = std::move(roughness_v);
 }
 
+void DielectricMaterial::use_diffuse_entry() {
+  if (const auto* constant = dynamic_cast<const ConstantSpectrum*>(ior_.get())) {
+    diffuse_entry_normalisation_ = std::make_shared<ConstantSpectrum>(
+        DielectricBsdf::diffuse_entry_normalisation(constant->value(560.0)));
+    return;
+  }
+  // Every 5 nm: n(λ) of a glass or water changes by < 0.1 % between knots, the normalisation by less.
+  std::vector<double> lambda_nm, values;
+  for (int nm = 360; nm <= 830; nm += 5) {
+    lambda_nm.push_back(nm);
+    values.push_back(DielectricBsdf::diffuse_entry_normalisation(ior_->value(nm)));
+  }
+  diffuse_entry_normalisation_ = std::make_shared<TabulatedSpectrum>(
+      std::move(lambda_nm), std::move(values), Extrapolation::clamp, "diffuse entry of " + ior_->describe());
+}
+
 Bsdf DielectricMaterial::bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const {
-  if (!roughness_u_) return DielectricBsdf(ior_->sample(lambda), distribution_);
-  return DielectricBsdf(ior_->sample(lambda), distribution_for(clamp_roughness(roughness_u_->evaluate(context)),
-                                                               clamp_roughness(roughness_v_->evaluate(context))));
+  const TrowbridgeReitz distribution =
+      roughness_u_ ? distribution_for(clamp_roughness(roughness_u_->evaluate(context)),
+                                      clamp_roughness(roughness_v_->evaluate(context)))
+                   : distribution_;
+  if (diffuse_entry_normalisation_)
+    return DielectricBsdf(ior_->sample(lambda), distribution, diffuse_entry_normalisation_->sample(lambda));
+  return DielectricBsdf(ior_->sample(lambda), distribution);
 }
 
 DiffuseTransmissionMaterial::DiffuseTransmissionMaterial(SpectralTexturePtr reflectance, SpectralTexturePtr transmittance,

@@ -58,12 +58,16 @@ class DielectricMaterial {
   DielectricMaterial(SpectrumPtr ior, float roughness);
   /// Textured roughness along the two tangents (clamped to [0, 1] per hit). Throws as above.
   DielectricMaterial(SpectrumPtr ior, FloatTexturePtr roughness_u, FloatTexturePtr roughness_v);
+  /// Light enters diffusely (DielectricBsdf, "Diffuse entry"): for the boundary of a subsurface medium.
+  void use_diffuse_entry();
   Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
 
  private:
   SpectrumPtr ior_;
   FloatTexturePtr roughness_u_, roughness_v_;  // null: distribution_ everywhere
   TrowbridgeReitz distribution_;
+  /// DielectricBsdf::diffuse_entry_normalisation of n(λ), tabulated at load; null without diffuse entry.
+  SpectrumPtr diffuse_entry_normalisation_;
 };
 
 /// Lambertian reflection R(λ) and transmission T(λ), both multiplied by `scale` (pbrt-v4's diffusetransmission).

@@ -522,6 +522,9 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
       const double ior = p.real("eta", 1.33);  // pbrt-v4 reads one float here
       if (!(ior > 0) || !(ior < 1e3)) throw InputError(s.where, context + " (subsurface): \"eta\" must be in (0, 1000)");
       m["ior"] = ior;
+      // pbrt-v4's BSSRDF lets light in through its exit lobe S_ω, a Fresnel-weighted diffuse one: so does this
+      // boundary, and point, spot and distant lights reach the walk beneath it through next-event estimation.
+      m["diffuse_entry"] = true;
     } else if (const PbrtParam* eta = p.get("eta", {PbrtParamType::real, PbrtParamType::spectrum, PbrtParamType::rgb}); !eta) {
       m["ior"] = 1.5;
     } else if (eta->type == PbrtParamType::spectrum && !eta->strings.empty() && glass_of(eta->strings[0])) {
@@ -564,10 +567,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     m["displacement"] = float_value(p, "displacement", 0.0);
   }
   materials_[name] = m;
-  if (type == "subsurface") {
-    subsurface_medium(p, name);
-    if (!m.contains("roughness") && !smooth_subsurface_where_) smooth_subsurface_where_ = s.where;
-  }
+  if (type == "subsurface") subsurface_medium(p, name);
   return name;
 }
 

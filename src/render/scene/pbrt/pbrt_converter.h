@@ -310,7 +310,6 @@ class PbrtConverter {
   std::map<std::string, SourceLocation> forward_materials_;
   std::set<std::string> interface_materials_;  ///< pbrt's "interface": index-matched medium boundaries
   std::set<std::string> subsurface_materials_;  ///< pbrt's "subsurface": dielectrics that bound their own medium
-  std::optional<SourceLocation> smooth_subsurface_where_;  ///< the first "subsurface" with a smooth surface
   std::map<std::string, json> media_defined_;  ///< MakeNamedMedium name → Rimu medium (no boundary yet); null: not imported
   json media_ = json::object();                ///< the document's "media"
   std::map<std::string, std::string> boundary_materials_;  ///< material + '\n' + medium → the bounding copy's name

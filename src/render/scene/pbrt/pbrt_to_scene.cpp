@@ -521,19 +521,6 @@ json PbrtConverter::finish(const std::string& main_file) {
   json document = {{"description", "imported from the pbrt-v4 file " + std::filesystem::path(main_file).filename().string()},
                    {"camera", camera}, {"film", film_}, {"integrator", integrator_}};
   document["materials"] = std::move(materials_);
-  if (smooth_subsurface_where_) {
-    // Shadow rays stop at a refracting surface, so light from a light no path can hit reaches a walk beneath a
-    // smooth dielectric only through paths that leave it: none. pbrt-v4 samples lights where its BSSRDF exits.
-    const std::set<std::string> unreachable = {"point", "spot", "distant", "ies", "goniometric", "sun"};
-    for (const json& light : lights_)
-      if (unreachable.count(light.value("type", std::string()))) {
-        ignore("Material \"subsurface\" with a smooth surface (no roughness) beside point, spot, distant or goniometric "
-               "lights: their light beneath it is missing (a smooth dielectric stops shadow rays, and no path can hit "
-               "such a light; docs/pbrt-import.md, \"Subsurface\")",
-               *smooth_subsurface_where_);
-        break;
-      }
-  }
   document["lights"] = std::move(lights_);
   document["shapes"] = std::move(shapes_);
   finish_media();
