@@ -250,6 +250,8 @@ TEST_CASE("pbrt subsurface: a dielectric around its own medium, whose walk does 
         std::string::npos);
   const PbrtImport g = import_text(world + "Material \"subsurface\" \"string name\" \"Apple\" \"float g\" 0.5\nShape \"sphere\"\n");
   CHECK(ignored_list(g).find("\"g\" beside \"name\"") != std::string::npos);
+  const PbrtImport forward = import_text(world + "Material \"subsurface\" \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [1 1 1] \"float g\" 0.995\nShape \"sphere\"\n");
+  CHECK(ignored_list(forward).find("\"g\" beyond ±0.99 (clamped") != std::string::npos);
 
   // Light enters diffusely, as through pbrt-v4's BSSRDF exit lobe, so a smooth surface beside a light no path can
   // hit (a distant one) lets it in by next-event estimation: nothing to list, smooth or rough.
@@ -260,4 +262,23 @@ TEST_CASE("pbrt subsurface: a dielectric around its own medium, whose walk does 
     for (const auto& [name, material] : lit.document["materials"].items()) CHECK(material["diffuse_entry"] == true);
   }
   CHECK(d["materials"]["skin"]["diffuse_entry"] == true);
+
+  // Without diffuse entry a smooth boundary leaves the walk unlit by the distant light: said at load. Not with it, nor
+  // with a rough boundary (crossed by NEE), nor without such a light (only an environment).
+  const auto unlit_warning = [](const json& document) {
+    const auto scene = load_scene(document, "media.pbrt", test::test_data("pbrt"), test::library());
+    for (const std::string& w : scene->warnings)
+      if (w.find("is a smooth refracting dielectric") != std::string::npos) return true;
+    return false;
+  };
+  json lit = import_text(world + sun + "Material \"subsurface\"\nShape \"sphere\"\n").document;
+  CHECK_FALSE(unlit_warning(lit));
+  const std::string material = lit["media"].begin().value()["boundary_material"];
+  lit["materials"][material].erase("diffuse_entry");
+  CHECK(unlit_warning(lit));
+  lit["materials"][material]["roughness"] = 0.2;
+  CHECK_FALSE(unlit_warning(lit));
+  json sky_only = import_text(world + "LightSource \"infinite\"\nMaterial \"subsurface\"\nShape \"sphere\"\n").document;
+  sky_only["materials"][sky_only["media"].begin().value()["boundary_material"].get<std::string>()].erase("diffuse_entry");
+  CHECK_FALSE(unlit_warning(sky_only));
 }

@@ -96,4 +96,33 @@ std::vector<std::string> refracted_light_warnings(const Scene& scene) {
   return out;
 }
 
+std::vector<std::string> unlit_medium_warnings(const nlohmann::json& document, const Scene& scene) {
+  std::vector<std::string> warnings;
+  const bool small_lights = std::any_of(scene.lights.begin(), scene.lights.end(), [](const auto& light) {
+    return light->is_delta() || light->directional_irradiance_w_m2().has_value();
+  });
+  const auto media = document.find("media");
+  const auto materials = document.find("materials");
+  if (!small_lights || media == document.end() || !media->is_object() || materials == document.end()) return warnings;
+  for (const auto& [name, medium] : media->items()) {
+    if (!medium.is_object() || medium.value("index_matched", false)) continue;
+    // Homogeneous media scatter when given an albedo or σ_s; grids always may.
+    const bool scatters = medium.value("type", std::string()) != "homogeneous" || medium.contains("albedo") ||
+                          medium.contains("sigma_s");
+    const std::string boundary = medium.value("boundary_material", std::string());
+    const auto material = materials->find(boundary);
+    if (!scatters || material == materials->end() || !material->is_object()) continue;
+    const bool smooth = !material->contains("roughness") ||
+                        ((*material)["roughness"].is_number() && (*material)["roughness"].get<double>() == 0.0);
+    const bool index_one = (*material).contains("ior") && (*material)["ior"].is_number() && (*material)["ior"] == 1.0;
+    if (material->value("type", std::string()) == "dielectric" && smooth && !index_one &&
+        !material->value("diffuse_entry", false))
+      warnings.push_back("media/" + name + ": no light from the point, spot, goniometric, distant or sun lights reaches "
+                         "inside it: its boundary material '" + boundary + "' is a smooth refracting dielectric (shadow "
+                         "rays stop there, and no path can hit such a light); for skin, wax or milk give '" + boundary +
+                         "' \"diffuse_entry\": true (docs/scene-format.md, \"dielectric\")");
+  }
+  return warnings;
+}
+
 }  // namespace rimu

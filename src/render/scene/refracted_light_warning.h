@@ -12,10 +12,17 @@
 // a `dielectric`). A sun whose rays reach none of the probe points (a patch near the window, the camera far from
 // it) is not judged. Finite lights are not checked (a lamp in
 // a glass bulb is a deliberate choice, and its bulb is usually not the only way out).
+//
+// A second check, for media: a scattering medium bounded by a smooth refracting dielectric (a subsurface walk
+// written without `diffuse_entry`) never receives light from point, spot, goniometric or distant lights (shadow rays
+// from inside stop at its surface, and no path that leaves it can hit a delta light or practically a sun). It is
+// reported when the scene has such a light.
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "render/scene/scene.h"
 
@@ -23,5 +30,9 @@ namespace rimu {
 
 /// One message per light at infinity reached from the probe points only through refracting surfaces (above).
 std::vector<std::string> refracted_light_warnings(const Scene& scene);
+
+/// One message per medium (the scene's JSON `document`, as loaded into `scene`) that scatters beneath a smooth
+/// `dielectric` without `diffuse_entry`, when `scene` has a delta or directional light (above).
+std::vector<std::string> unlit_medium_warnings(const nlohmann::json& document, const Scene& scene);
 
 }  // namespace rimu

@@ -224,6 +224,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   // Appended: the lights' own load-time warnings (a sun below the horizon) are already there.
   for (std::string& warning : light_coverage_warnings(*scene)) scene->warnings.push_back(std::move(warning));
   for (std::string& warning : refracted_light_warnings(*scene)) scene->warnings.push_back(std::move(warning));
+  for (std::string& warning : unlit_medium_warnings(document, *scene)) scene->warnings.push_back(std::move(warning));
   if (scene->settings.integrator.guiding && scene->has_media())
     scene->warnings.push_back("integrator.guiding: path guiding is not applied in scenes with participating media "
                               "(the volumetric integrator does not guide yet); this scene renders unguided");

@@ -204,6 +204,7 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
     medium["sigma_s"] = scaled(default_sigma_s(), scale);
   }
   if (!(g > -1 && g < 1)) throw InputError(where, context + ": \"g\" must be in (-1, 1)");
+  if (std::abs(g) > 0.99) ignore(context + ": \"g\" beyond ±0.99 (clamped to Rimu's range)", where);
   medium["g"] = std::clamp(g, -0.99, 0.99);
   medium["boundary_material"] = material;
   medium["counts_towards_max_depth"] = false;
