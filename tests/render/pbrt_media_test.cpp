@@ -282,3 +282,35 @@ TEST_CASE("pbrt subsurface: a dielectric around its own medium, whose walk does 
   sky_only["materials"][sky_only["media"].begin().value()["boundary_material"].get<std::string>()].erase("diffuse_entry");
   CHECK_FALSE(unlit_warning(sky_only));
 }
+
+TEST_CASE("pbrt subsurface: a textured reflectance becomes a textured albedo of the medium; JSON refuses it on a grid") {
+  // pbrt-v4's head: "texture reflectance" with an mfp. The texture stays a texture (TexturedAlbedo scales σ_s where a
+  // path enters), no longer listed with a grey stand-in.
+  const PbrtImport textured = import_text(
+      kCamera + "WorldBegin\nTexture \"checks\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [0.9 0.6 0.4] \"rgb tex2\" [0.2 0.2 0.2]\n"
+                "Material \"subsurface\" \"texture reflectance\" \"checks\" \"rgb mfp\" [1 0.5 0.25] \"float scale\" 0.01\n"
+                "Shape \"sphere\"\n");
+  CHECK_MESSAGE(textured.ignored.empty(), ignored_list(textured));
+  REQUIRE(textured.document["media"].size() == 1);
+  const json& medium = textured.document["media"].begin().value();
+  CHECK(medium["albedo"].contains("checkerboard"));
+  const auto scene = load_scene(textured.document, "media.pbrt", test::test_data("pbrt"), test::library());
+  REQUIRE(scene->media.size() == 1);
+  CHECK(scene->media[0].textured_albedo() != nullptr);
+  // A uniform albedo is no texture.
+  const PbrtImport uniform = import_text(kCamera + "WorldBegin\nMaterial \"subsurface\" \"rgb reflectance\" [0.9 0.6 0.4]\nShape \"sphere\"\n");
+  CHECK(load_scene(uniform.document, "media.pbrt", test::test_data("pbrt"), test::library())->media[0].textured_albedo() == nullptr);
+  // A grid medium has no single σ_t per path for the texture to keep: refused at its key.
+  json grid = textured.document;
+  json& g = grid["media"].begin().value();
+  g["type"] = "grid";
+  g["procedural"] = "cloud";
+  g["resolution"] = {4, 4, 4};
+  std::string error;
+  try {
+    load_scene(grid, "media.pbrt", test::test_data("pbrt"), test::library());
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  CHECK(error.find("a textured albedo needs a homogeneous medium") != std::string::npos);
+}

@@ -5,6 +5,7 @@
 
 #include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
+#include "render/scene/scene_textures.h"
 #include "transport/sampling/wavelength_modes.h"
 #include "transport/media/medium.h"
 #include "transport/media/nanovdb_grid.h"
@@ -74,11 +75,23 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   // false: a subsurface walk, whose scattering events are no path vertices for max_depth (medium.h says why).
   const bool counts_towards_max_depth = m.boolean_or("counts_towards_max_depth", true);
   SpectrumPtr sigma_a, sigma_s;
+  std::shared_ptr<const TexturedAlbedo> textured_albedo;
   if (m.has("albedo")) {
     // Chiang et al. 2016: surface albedo colour (a reflectance) and mean free path colour × scale in metres.
     for (const char* key : {"sigma_a", "sigma_s"})
       if (m.has(key)) m.at(key).fail("give either albedo + mean_free_path or sigma_a + sigma_s");
-    const SpectrumPtr albedo = context.spectra.parse(m.at("albedo"), SpectrumRole::reflectance);
+    // A texture (an image, a combinator): the medium is built for a uniform grey A₀ and the texture scales its σ_s
+    // per path where the path enters (TexturedAlbedo; σ_t depends on the mean free path alone).
+    SpectrumPtr albedo;
+    const SpectralTexturePtr albedo_texture = load_spectral_texture(m.at("albedo"), context);
+    if (const auto* constant = dynamic_cast<const ConstantSpectralTexture*>(albedo_texture.get())) {
+      albedo = constant->spectrum();
+    } else {
+      if (type != "homogeneous") m.at("albedo").fail("a textured albedo needs a homogeneous medium");
+      constexpr double kBaseAlbedo = 0.5;
+      albedo = std::make_shared<ConstantSpectrum>(kBaseAlbedo);
+      textured_albedo = m.at("albedo").blame([&] { return std::make_shared<const TexturedAlbedo>(albedo_texture, kBaseAlbedo); });
+    }
     const SpectrumPtr mfp_shape = context.spectra.parse(m.at("mean_free_path"), SpectrumRole::reflectance);
     const double scale = m.number_or("mean_free_path_scale_m", 1.0, 1e-9, 1e9);
     // value() of an rgb-transport form is the original spectrum's, so this is the spectral medium in every mode.
@@ -100,7 +113,9 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   if (type == "homogeneous") {
     m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
                  "boundary_material", "index_matched", "contains_camera", "counts_towards_max_depth"});
-    return Medium(HomogeneousMedium(sigma_a, sigma_s, g), priority, counts_towards_max_depth);
+    Medium medium(HomogeneousMedium(sigma_a, sigma_s, g), priority, counts_towards_max_depth);
+    medium.set_textured_albedo(std::move(textured_albedo));
+    return medium;
   }
   m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
                "boundary_material", "index_matched", "file", "procedural", "resolution", "bounds_min", "bounds_max",

@@ -188,7 +188,14 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   int surface_depth = 0, vertex_count = 0, medium_events = 0, crossings = 0;
   int depth_medium_events = 0;  // the medium events that count towards max_depth (Medium::counts_towards_max_depth)
   int passages_since_vertex = 0;  // panes passed straight through since the last vertex (≤ kMaxShadowPassages)
+  // A textured subsurface albedo (TexturedAlbedo): the factor on σ_s read where the path last entered that medium.
+  struct AlbedoScale {
+    int medium = -1;
+    SampledSpectrum scale{1.0f};
+  };
+  AlbedoScale walk_albedo;
   for (;;) {
+    std::optional<AlbedoScale> entry_albedo;  // set at a surface whose enclosed medium has a textured albedo
     const std::optional<SurfaceHit> hit = surfaces.geometry->intersect(ray);
     const float t_surface = hit ? hit->t : INFINITY;
 
@@ -212,8 +219,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       if (medium_vertex_allowed && uses_equiangular(medium)) {
         equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}};
         int light_group = 0;
-        const SampledSpectrum direct =
+        SampledSpectrum direct =
             equiangular_direct(*equiangular, medium, beta, pdf_ratio, stack, lambda, sampler, light_group);
+        if (walk_albedo.medium == medium_index) direct *= walk_albedo.scale;
         contribute(direct, light_group);
       }
       SampledSpectrum throughput = beta;  // β ∝ the effective throughput while R is lane-independent
@@ -225,6 +233,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       if (flight.scattered) {
         flight_t = flight.t;
         scatter_point = ray.origin + ray.direction * flight.t;
+        if (walk_albedo.medium == medium_index) beta *= walk_albedo.scale;
       } else {
         pass_product *= flight.pass_probability;
       }
@@ -286,6 +295,10 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       }
       MaterialContext context = MaterialContext::at(*hit, -ray.direction);
       if (differentials) footprint = set_footprint(context, *hit, *differentials);
+      if (const int inside = boundary(hit->material).interior_medium;
+          inside >= 0 && dot(ray.direction, hit->geometric_normal) < 0.0f)
+        if (const TexturedAlbedo* albedo = media[size_t(inside)].textured_albedo())
+          entry_albedo = AlbedoScale{inside, albedo->scattering_scale(context, lambda)};
       context.shading_normal = material.shading_normal(context);  // a normal or bump map's, if any
       scatterer.bsdf = material.bsdf(context, lambda);
       const bool two_sided = !scatterer.bsdf->flags().has_transmission;
@@ -445,6 +458,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const MediumStack next_stack = stack_towards(ds->wi_world);
     ray.origin = origin_towards(ds->wi_world);
     stack = next_stack;
+    if (entry_albedo && stack.current(media) == entry_albedo->medium) walk_albedo = *entry_albedo;
     ray.direction = ds->wi_world;
     ray.t_min = 0.0f;
     ray.t_max = INFINITY;

@@ -2,10 +2,12 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <variant>
 
 #include "transport/media/grid_medium.h"
 #include "transport/media/homogeneous_medium.h"
+#include "transport/media/textured_albedo.h"
 
 namespace rimu {
 
@@ -31,11 +33,15 @@ class Medium {
   bool counts_towards_max_depth() const { return counts_towards_max_depth_; }
   const HomogeneousMedium* homogeneous() const { return std::get_if<HomogeneousMedium>(&medium_); }
   const GridMedium* grid() const { return std::get_if<GridMedium>(&medium_); }
+  /// A surface albedo texture over the boundary (TexturedAlbedo; null: none): a subsurface medium's colour map.
+  const TexturedAlbedo* textured_albedo() const { return textured_albedo_.get(); }
+  void set_textured_albedo(std::shared_ptr<const TexturedAlbedo> albedo) { textured_albedo_ = std::move(albedo); }
 
  private:
   Variant medium_;
   int priority_;
   bool counts_towards_max_depth_;
+  std::shared_ptr<const TexturedAlbedo> textured_albedo_;
 };
 
 /// What a surface does to the medium stack: the medium enclosed by the shape (−1: none) and whether the surface

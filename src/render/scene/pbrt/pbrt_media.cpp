@@ -178,7 +178,8 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
     // Reflectance = the surface albedo A (the total diffuse reflectance of a thick slab) and pbrt's mean free path ×
     // scale: Rimu's Chiang, Kutz & Burley 2016 parameterisation of a medium (docs/media.md). pbrt inverts A with
     // its own diffusion tables; Chiang's fit of random walks gives a somewhat different single-scattering albedo.
-    medium["albedo"] = textured("reflectance") ? json(0.5) : *reflectance(p, "reflectance", 0.5);
+    // A textured reflectance stays a texture: the medium scales σ_s by it where a path enters (TexturedAlbedo).
+    medium["albedo"] = reflectance(p, "reflectance", 0.5).value_or(json(0.5));
     double mfp_scale = scale;
     json mfp_shape = 1.0;
     if (const PbrtParam* mfp = p.get("mfp", spectral); mfp && !textured("mfp")) {
