@@ -26,6 +26,7 @@ test_packages=(
   libbenchmark-dev       # Google Benchmark (benchmarks)
   pybind11-dev python3-dev python3-pybind11  # the rimu Python module
   python3-numpy          # spectra as numpy arrays in the Python module and its tests
+  python3-jsonschema     # docs/scene.schema.json checked against the shipped scenes
   python3-venv python3-pip python3-setuptools python3-wheel  # the test of `pip install ./python` (offline)
   clang                  # fuzz targets (scripts/fuzz.sh): clang++ 14
   libclang-rt-14-dev     # libFuzzer and the sanitizer runtimes for clang 14
