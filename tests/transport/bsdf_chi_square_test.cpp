@@ -60,6 +60,14 @@ void run_all(const std::vector<Case>& cases) {
   }
 }
 
+/// f(η) per lane, for a BSDF's per-lane inputs that are functions of its index (tabulated Fresnel averages).
+template <typename F>
+Float4 per_lane(Float4 eta, F&& f) {
+  Float4 out;
+  for (int lane = 0; lane < 4; ++lane) out.set(lane, float(f(double(eta[lane]))));
+  return out;
+}
+
 std::string label(const std::string& what, float alpha, float cos_theta, float hero_nm) {
   return std::string(what) + " alpha " + std::to_string(alpha) + " cos(wo) " + std::to_string(cos_theta) + " hero " +
          std::to_string(hero_nm) + " nm";
@@ -150,8 +158,7 @@ TEST_CASE("chi-square: coated diffuse chooses coat and base with the probabiliti
   std::vector<Case> cases;
   for (float hero : kHeroes) {
     const Float4 eta = bk7->sample(wavelengths_with_hero(hero));
-    Float4 diffuse_fresnel;
-    for (int lane = 0; lane < 4; ++lane) diffuse_fresnel.set(lane, float(fresnel_diffuse_reflectance(eta[lane])));
+    const Float4 diffuse_fresnel = per_lane(eta, [](double e) { return fresnel_diffuse_reflectance(e); });
     for (float c : kCosines)
       cases.push_back({CoatedDiffuseBsdf(Float4(0.7f, 0.4f, 0.2f, 0.05f), eta, diffuse_fresnel), direction(c),
                        label("coated diffuse", 0, c, hero)});
@@ -166,8 +173,7 @@ TEST_CASE("chi-square: a diffuse-entry boundary, from inside: the mirror and the
   std::vector<Case> cases;
   for (float hero : kHeroes) {
     const Float4 eta = bk7->sample(wavelengths_with_hero(hero));
-    Float4 norm;
-    for (int lane = 0; lane < 4; ++lane) norm.set(lane, float(DielectricBsdf::diffuse_entry_normalisation(eta[lane])));
+    const Float4 norm = per_lane(eta, DielectricBsdf::diffuse_entry_normalisation);
     for (float c : kCosines)
       for (float side : {-1.0f, 1.0f})
         for (float alpha : {0.0f, 0.3f})

@@ -69,17 +69,28 @@ double DielectricBsdf::diffuse_entry_normalisation(double eta) {
   return 1.0 / (std::numbers::pi * inside_transmittance);
 }
 
+namespace {
+
+// The way out of a diffuse-entry boundary towards wi (wi.z > 0), given leave = 1 − F(wo) per lane: f and the
+// density of sample() (leave × cosine/π), for eval() and sample(): sample() has F(wo) from its lobe choice.
+struct InsideLobe {
+  SampledSpectrum f, pdf;
+};
+InsideLobe inside_lobe(SampledSpectrum leave, Vec3 wi, SampledSpectrum eta, SampledSpectrum normalisation) {
+  if (!(wi.z > 0.0f)) return {Float4(0.0f), Float4(0.0f)};  // the mirror is a delta; nothing else stays inside
+  const SampledSpectrum enter = Float4(1.0f) - fresnel_dielectric(Float4(wi.z), eta);
+  return {leave * enter * normalisation, leave * Float4(cosine_hemisphere_pdf(wi.z))};
+}
+
+}  // namespace
+
 SampledSpectrum DielectricBsdf::eval_inside_diffuse_entry(Vec3 wo, Vec3 wi) const {
-  if (!(wi.z > 0.0f)) return Float4(0.0f);  // the mirror is a delta; nothing else stays inside
-  const SampledSpectrum leave = Float4(1.0f) - fresnel_dielectric(Float4(wo.z), eta_);
-  const SampledSpectrum enter = Float4(1.0f) - fresnel_dielectric(Float4(wi.z), eta_);
-  return leave * enter * entry_norm_;
+  return inside_lobe(Float4(1.0f) - fresnel_dielectric(Float4(wo.z), eta_), wi, eta_, entry_norm_).f;
 }
 
 SampledSpectrum DielectricBsdf::pdf_inside_diffuse_entry(Vec3 wo, Vec3 wi) const {
   if (!(wi.z > 0.0f)) return Float4(0.0f);
-  const SampledSpectrum leave = Float4(1.0f) - fresnel_dielectric(Float4(wo.z), eta_);
-  return leave * Float4(cosine_hemisphere_pdf(wi.z));
+  return (Float4(1.0f) - fresnel_dielectric(Float4(wo.z), eta_)) * Float4(cosine_hemisphere_pdf(wi.z));
 }
 
 std::optional<BsdfSample> DielectricBsdf::sample_inside_diffuse_entry(Vec3 wo, float u_lobe, Vec2 u) const {
@@ -90,7 +101,8 @@ std::optional<BsdfSample> DielectricBsdf::sample_inside_diffuse_entry(Vec3 wo, f
   }
   const Vec3 wi = sample_cosine_hemisphere(u);
   if (!(wi.z > 0.0f)) return std::nullopt;  // the horizon has density 0
-  BsdfSample s{wi, eval_inside_diffuse_entry(wo, wi), pdf_inside_diffuse_entry(wo, wi)};
+  const InsideLobe lobe = inside_lobe(Float4(1.0f) - reflectance, wi, eta_, entry_norm_);
+  BsdfSample s{wi, lobe.f, lobe.pdf};
   if (!(s.pdf[0] > 0.0f)) return std::nullopt;
   s.eta = 1.0f / eta_[0];
   return s;
