@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "render/image/image_texture.h"
-#include "render/image/rgb_environment_image.h"
+#include "render/image/rgb_radiance_image.h"
 #include "render/image/rgb_image.h"
 #include "spectral/error.h"
 #include "test_image_files.h"
@@ -117,7 +117,7 @@ TEST_CASE("an environment image's pixels are converted once to the fast emission
   const Rgb pixels[3] = {{1e4, 2e3, 5e2}, {0.02, 0.05, 0.3}, {1e-6, 1e-6, 1e-6}};
   std::vector<float> rgb;
   for (const Rgb& p : pixels) rgb.insert(rgb.end(), {float(p.r), float(p.g), float(p.b)});
-  const RgbEnvironmentImage environment(std::make_shared<const RgbImage>(3, 1, rgb), upsampler);
+  const RgbRadianceImage environment(std::make_shared<const RgbImage>(3, 1, rgb), upsampler);
   for (int x = 0; x < 3; ++x) {
     CAPTURE(x);
     const Rgb p{float(pixels[x].r), float(pixels[x].g), float(pixels[x].b)};
@@ -147,7 +147,7 @@ TEST_CASE("an environment image's luminance is its pixels' Y and black pixels em
   SpectralLibrary& library = test::library();
   auto upsampler = std::make_shared<const RgbUpsampler>(library, RgbColourSpace::named("srgb-linear"));
   auto image = std::make_shared<const RgbImage>(2, 1, std::vector<float>{1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f});
-  const RgbEnvironmentImage environment(image, upsampler);
+  const RgbRadianceImage environment(image, upsampler);
   CHECK(environment.luminance(0, 0) == doctest::Approx(1.0).epsilon(1e-6));  // sRGB white has Y = 1
   CHECK(environment.luminance(1, 0) == 0.0f);
   const SampledSpectrum black = environment.radiance(1, 0, SampledWavelengths::sample_visible(0.5f));

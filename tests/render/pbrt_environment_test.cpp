@@ -9,6 +9,7 @@
 
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
+#include "transport/lights/area_light.h"
 #include "pbrt_test_support.h"
 
 using namespace rimu;
@@ -79,6 +80,50 @@ TEST_CASE("pbrt environment map: the JSON it becomes, illuminance, and errors") 
     const auto error = [&](const std::string& text) { return import_error(camera + text); };
     CHECK(error("LightSource \"infinite\" \"string filename\" \"nope.exr\"").find("t.pbrt:5: LightSource \"infinite\": cannot find the image") != std::string::npos);
     CHECK(error("LightSource \"infinite\" \"string filename\" \"envmap_texel.ppm\" \"rgb L\" [1 1 1]").find("t.pbrt:5: LightSource \"infinite\": give either \"L\" or \"filename\"") != std::string::npos);
+  }
+}
+
+TEST_CASE("pbrt area light with an image: the emission it becomes, power, a sphere listed, and errors") {
+  // A 2 × 2 m square of two triangles (pbrt: two shapes, each given "power") with envmap_texel.ppm: 32 × 32 pixels,
+  // one white (Y = 1), so the image's mean luminance is 1/1024.
+  const std::filesystem::path folder = test::test_data("pbrt");
+  const std::string camera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
+  const std::string square = "Shape \"trianglemesh\" \"point3 P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0] "
+                             "\"integer indices\" [0 1 2 0 2 3] \"point2 uv\" [0 0 1 0 1 1 0 1]\n";
+  const auto import = [&](const std::string& light, const std::string& shape) {
+    return import_pbrt_text(camera + "AttributeBegin\n" + light + "\n" + shape + "AttributeEnd\n", "t.pbrt", folder,
+                            test::library());
+  };
+  SUBCASE("the image and its scale, in film units") {
+    const PbrtImport imported =
+        import(R"(AreaLightSource "diffuse" "string filename" "envmap_texel.ppm" "float scale" 3)", square);
+    CHECK(imported.ignored.empty());
+    const json& emission = imported.document["shapes"][0]["emission"];
+    CHECK(emission["scale"] == 3.0);
+    CHECK(emission["image"].get<std::string>().find("envmap_texel.ppm") != std::string::npos);
+    const auto scene = load_scene(imported.document, "t.pbrt", folder, test::library());
+    const auto& light = dynamic_cast<const AreaLight&>(*scene->lights[0]);
+    CHECK(light.is_textured());
+  }
+  SUBCASE("power: pbrt-v4's k_e = π A · mean pixel luminance, per shape") {
+    // Each triangle (A = 2 m²) is given power 5: scale = 5 / (π · 2 · 1/1024) on each, the mesh's 2 · 5 over 4 m².
+    const PbrtImport imported =
+        import(R"(AreaLightSource "diffuse" "string filename" "envmap_texel.ppm" "float power" 5)", square);
+    CHECK(imported.document["shapes"][0]["emission"]["scale"].get<double>() ==
+          doctest::Approx(5.0 / (M_PI * 2.0 / 1024.0)).epsilon(1e-6));
+  }
+  SUBCASE("on a sphere: listed, emits uniformly") {
+    const PbrtImport imported =
+        import(R"(AreaLightSource "diffuse" "string filename" "envmap_texel.ppm")", "Shape \"sphere\" \"float radius\" 1\n");
+    REQUIRE(imported.ignored.size() == 1);
+    CHECK(imported.ignored[0].what.find("\"filename\" on a sphere") != std::string::npos);
+  }
+  SUBCASE("errors name the line") {
+    const auto error = [&](const std::string& light) {
+      return import_error(camera + light + "\n" + square);
+    };
+    CHECK(error(R"(AreaLightSource "diffuse" "string filename" "nope.png")").find("t.pbrt:4: AreaLightSource \"diffuse\": cannot find the image") != std::string::npos);
+    CHECK(error(R"(AreaLightSource "diffuse" "string filename" "envmap_texel.ppm" "rgb L" [1 1 1])").find("t.pbrt:4: AreaLightSource \"diffuse\": give either \"L\" or \"filename\"") != std::string::npos);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "grey_environment_image.h"
 #include "light_test_support.h"
 #include "transport/lights/area_light.h"
 
@@ -200,5 +201,116 @@ TEST_CASE("area light hard cases: all degenerate, grazing, reference on the ligh
     std::mt19937 rng(25);
     for (int i = 0; i < 1000; ++i)
       CHECK_FALSE(light.sample_li({{0.1f, 0.2f, 1}, {0, 0, -1}}, kLambda, {test::uniform01(rng), test::uniform01(rng)}));
+  }
+}
+
+namespace {
+/// The square of square_light (half-side a at height h, normal −z) with an emission image: u = (x + a)/2a and
+/// v = (y + a)/2a at every corner, as a quad's uvs (0,0), (1,0), (1,1), (0,1) give.
+AreaLight textured_square(double a, double h, std::shared_ptr<const RadianceImage> image, double scale) {
+  const float fa = float(a), fh = float(h);
+  const std::vector<Vec3> v = {{-fa, -fa, fh}, {fa, -fa, fh}, {fa, fa, fh}, {-fa, fa, fh}};
+  const std::vector<uint32_t> idx = {0, 2, 1, 0, 3, 2};
+  const Vec2 uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  std::vector<std::array<Vec2, 3>> corners;
+  for (size_t k = 0; k < 2; ++k) corners.push_back({uv[idx[3 * k]], uv[idx[3 * k + 1]], uv[idx[3 * k + 2]]});
+  return AreaLight(v, idx, TexturedEmission(std::move(image), scale, std::move(corners)), false);
+}
+
+/// A ray from ref along wi against the square of textured_square: the hit (triangle, position, uv) or nothing.
+std::optional<SurfaceHit> square_hit(double a, double h, const LightReference& ref, Vec3 wi) {
+  if (!(wi.z > 0.0f)) return std::nullopt;
+  const float t = (float(h) - ref.position.z) / wi.z;
+  const Vec3 p = ref.position + wi * t;
+  if (std::fabs(p.x) > a || std::fabs(p.y) > a) return std::nullopt;
+  SurfaceHit hit;
+  hit.position = p;
+  hit.primitive = p.y > p.x ? 1u : 0u;  // triangle 0 = (v0, v2, v1) lies below the diagonal y = x
+  hit.uv = {float((p.x + a) / (2 * a)), float((p.y + a) / (2 * a))};
+  return hit;
+}
+}  // namespace
+
+TEST_CASE("an area light with an emission image") {
+  SUBCASE("a uniform image is the uniform light: same samples, densities, radiance, bounds and power") {
+    const double c = 0.7, scale = 3.0;
+    const AreaLight textured = textured_square(0.5, 1.0, std::make_shared<test::GreyImage>(3, 2, std::vector<float>(6, float(c))), scale);
+    const AreaLight uniform = square_light(0.5, 1.0, c * scale, false);
+    CHECK(textured.emitted_spectrum() == nullptr);
+    CHECK(textured.total_power_w(0) == doctest::Approx(uniform.total_power_w(0)).epsilon(1e-6));
+    std::mt19937 rng(31);
+    for (int i = 0; i < 200; ++i) {
+      const LightReference ref{{test::uniform01(rng) - 0.5f, test::uniform01(rng) - 0.5f, -test::uniform01(rng)}, {0, 0, 1}};
+      const Vec2 u{test::uniform01(rng), test::uniform01(rng)};
+      const auto a = textured.sample_li(ref, kLambda, u), b = uniform.sample_li(ref, kLambda, u);
+      REQUIRE(bool(a) == bool(b));
+      if (!a) continue;
+      CHECK(a->pdf_solid_angle == doctest::Approx(b->pdf_solid_angle).epsilon(1e-5));
+      CHECK(a->radiance[1] == doctest::Approx(b->radiance[1]).epsilon(1e-6));
+      CHECK(length(a->wi - b->wi) < 1e-5f);
+    }
+    for (int part = 0; part < 2; ++part) {
+      const auto a = textured.part_bounds(part), b = uniform.part_bounds(part);
+      REQUIRE((a && b));
+      CHECK(a->intensity_w_sr == doctest::Approx(b->intensity_w_sr).epsilon(1e-6));
+    }
+  }
+  SUBCASE("left half bright, right half black: half the uniform square's irradiance on its axis") {
+    // Two pixels (1 | 0): bilinear between their centres u = 1/4 and 3/4, clamped outside, so L(u) + L(1 − u) = 1
+    // and, the geometry being symmetric under x → −x about the axis, E = E_uniform / 2 exactly.
+    const AreaLight light = textured_square(0.5, 1.0, std::make_shared<test::GreyImage>(2, 1, std::vector<float>{1, 0}), 1.0);
+    const auto e = irradiance_estimate(light, {{0, 0, 0}, {0, 0, 1}}, 40000, 32);
+    CAPTURE(e.mean());
+    CHECK(std::abs(e.mean() - 0.5 * square_irradiance(0.5, 1.0, 1.0)) <= test::kMonteCarloSigmas * e.standard_error());
+    // Its power is half the uniform one's (by the same symmetry); the triangles' means are 16-point grids, whose
+    // error on the ramp between the pixel centres is what the tolerance allows (they only choose triangles).
+    CHECK(light.total_power_w(0) == doctest::Approx(0.5 * square_light(0.5, 1.0, 1.0, false).total_power_w(0)).epsilon(0.01));
+    // The image's left (x = 0) column is at u < ½: x < 0 emits, x > 0 beyond the right pixel's centre does not.
+    SurfaceHit hit;
+    hit.primitive = 1;
+    hit.uv = {0.1f, 0.9f};
+    CHECK(light.radiance(hit, {0, 0, -1}, kLambda)[0] == doctest::Approx(1.0));
+    hit.primitive = 0;
+    hit.uv = {0.9f, 0.1f};
+    CHECK(light.radiance(hit, {0, 0, -1}, kLambda)[0] == 0.0f);
+  }
+  SUBCASE("light sampling agrees with the radiance rays see, near (solid angle) and far (area), whole and by parts") {
+    // A 4 × 3 image with a black pixel and a bright one, seen off-axis: the light-sampled irradiance (the radiance
+    // at each sampled point's uv) against cosine-weighted directions that find the square and read radiance() at
+    // the hit's uv. Both are unbiased estimates of the same integral, so they agree within their combined error.
+    const std::vector<float> pixels = {0.2f, 1.0f, 0.0f, 0.5f, 4.0f, 0.3f, 0.1f, 0.9f, 0.6f, 0.0f, 2.0f, 0.4f};
+    const auto image = std::make_shared<test::GreyImage>(4, 3, pixels);
+    for (const double h : {0.4, 12.0}) {
+      CAPTURE(h);
+      const AreaLight light = textured_square(0.5, h, image, 2.0);
+      const LightReference ref{{0.3f, -0.2f, 0}, {0, 0, 1}};
+      const int n = 200000;
+      const auto by_light = irradiance_estimate(light, ref, n, 33);
+      test::MeanEstimate by_parts, by_rays;
+      std::mt19937 rng(34);
+      for (int i = 0; i < n; ++i) {
+        const Vec2 u{test::uniform01(rng), test::uniform01(rng)};
+        double sum = 0.0;
+        for (int part = 0; part < 2; ++part)
+          if (const auto s = light.sample_part_li(part, ref, kLambda, u))
+            sum += s->radiance[0] * std::max(0.0f, s->wi.z) / s->pdf_solid_angle;
+        by_parts.add(sum);
+        // Cosine-weighted directions about +z: E = π · mean of L along them.
+        const float r = std::sqrt(test::uniform01(rng)), phi = 2.0f * std::numbers::pi_v<float> * test::uniform01(rng);
+        const Vec3 wi{r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - r * r))};
+        const auto hit = square_hit(0.5, h, ref, wi);
+        by_rays.add(hit ? std::numbers::pi * light.radiance(*hit, -wi, kLambda)[0] : 0.0);
+        if (hit && i % 97 == 0) CHECK(light.pdf_li(ref, wi, &*hit) > 0.0f);
+      }
+      CAPTURE(by_light.mean());
+      CAPTURE(by_parts.mean());
+      CAPTURE(by_rays.mean());
+      const auto agree = [](const test::MeanEstimate& x, const test::MeanEstimate& y) {
+        return std::abs(x.mean() - y.mean()) <=
+               test::kMonteCarloSigmas * std::hypot(x.standard_error(), y.standard_error());
+      };
+      CHECK(agree(by_light, by_rays));
+      CHECK(agree(by_parts, by_rays));
+    }
   }
 }

@@ -1,4 +1,4 @@
-// A grey environment image for the environment-light tests: radiance = luminance = the pixel value at every
+// A grey radiance image for the environment- and area-light tests: radiance = luminance = the pixel value at every
 // wavelength, so sampling densities and irradiances can be checked against sums over the pixels.
 #pragma once
 
@@ -6,11 +6,11 @@
 #include <utility>
 #include <vector>
 
-#include "transport/lights/environment_image.h"
+#include "transport/lights/radiance_image.h"
 
 namespace rimu::test {
 
-class GreyImage final : public EnvironmentImage {
+class GreyImage final : public RadianceImage {
  public:
   GreyImage(int w, int h, std::vector<float> values) : w_(w), h_(h), values_(std::move(values)) {}
   int width() const override { return w_; }

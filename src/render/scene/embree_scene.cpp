@@ -21,26 +21,9 @@ bool embree_memory_monitor(void* user, ssize_t bytes, bool /*post*/) {
   return true;
 }
 
-// The texture coordinates at barycentric (u, v) of triangle `primitive`: the mesh's uvs interpolated; without, its
-// default uvs interpolated (TriangleMesh::DefaultUvs): (u, v) itself, pbrt-v4's (u + v, v), or swapped (u + v, u).
-Vec2 surface_uv(const TriangleMesh& mesh, unsigned primitive, float u, float v) {
-  if (mesh.uvs.empty()) {
-    switch (mesh.default_uvs) {
-      case TriangleMesh::DefaultUvs::pbrt: return {u + v, v};
-      case TriangleMesh::DefaultUvs::pbrt_swapped: return {u + v, u};
-      case TriangleMesh::DefaultUvs::barycentric: break;
-    }
-    return {u, v};
-  }
-  const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
-  const float w = 1.0f - u - v;
-  const Vec2 a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
-  return {w * a.x + u * b.x + v * c.x, w * a.y + u * b.y + v * c.y};
-}
-
 // ∂p/∂u, ∂p/∂v of the triangle (a, b, c) in object space. With uvs, the 2×2 system p_i − p_c = (u_i − u_c)·∂p/∂u +
 // (v_i − v_c)·∂p/∂v (as pbrt-v4's Triangle::InteractionFromIntersection); without, uv are the default ones
-// (surface_uv), p = a + b1(b − a) + b2(c − a) written in them: barycentrics give ∂p/∂u = b − a, ∂p/∂v = c − a;
+// (TriangleMesh::uv_at), p = a + b1(b − a) + b2(c − a) written in them: barycentrics give ∂p/∂u = b − a, ∂p/∂v = c − a;
 // pbrt's (s, t) = (b1 + b2, b2) give p = a + s(b − a) + t(c − b); swapped, (b1 + b2, b1), p = a + s(c − a) + t(b − c).
 // Degenerate uvs give zero tangents (MaterialContext: unknown).
 std::pair<Vec3, Vec3> surface_tangents(const TriangleMesh& mesh, const uint32_t* tri, Vec3 a, Vec3 b, Vec3 c) {
@@ -84,7 +67,7 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   const auto* filter = static_cast<const EmbreeAlphaFilter*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    const Vec2 uv = surface_uv(*filter->mesh, RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+    const Vec2 uv = filter->mesh->uv_at(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
                                RTCHitN_v(args->hit, args->N, i));
     const Vec3 origin{RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
                       RTCRayN_org_z(args->ray, args->N, i)};
@@ -391,7 +374,7 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
     hit.position = p;
     hit.position_scale = scale;
   }
-  hit.uv = surface_uv(mesh, rh.hit.primID, u, v);
+  hit.uv = mesh.uv_at(rh.hit.primID, u, v);
   if (surface_tangents_) {
     const auto [dpdu, dpdv] = surface_tangents(mesh, tri, a, b, c);
     hit.dpdu = object_to_world ? object_to_world->vector(dpdu) : dpdu;

@@ -104,14 +104,14 @@ SpectrumPtr rgb_transport_form(const SpectrumPtr& spectrum, SpectrumRole role, S
   return spectrum;
 }
 
-RgbLaneEnvironmentImage::RgbLaneEnvironmentImage(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space)
+RgbLaneRadianceImage::RgbLaneRadianceImage(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space)
     : image_(std::move(image)), space_(space), to_srgb_(srgb().xyz_to_rgb() * space.rgb_to_xyz()) {}
 
-SampledSpectrum RgbLaneEnvironmentImage::radiance(int x, int y, const SampledWavelengths&) const {
+SampledSpectrum RgbLaneRadianceImage::radiance(int x, int y, const SampledWavelengths&) const {
   return srgb_lanes(image_value_in_srgb(to_srgb_, image_->pixel(x, y), 1e30));
 }
 
-float RgbLaneEnvironmentImage::luminance(int x, int y) const {
+float RgbLaneRadianceImage::luminance(int x, int y) const {
   const double y_value = space_.to_xyz(image_->pixel(x, y)).y;
   return y_value > 0.0 ? float(y_value) : 0.0f;
 }

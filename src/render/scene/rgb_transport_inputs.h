@@ -23,7 +23,7 @@
 #include "render/image/rgb_image.h"
 #include "render/scene/spectrum_input.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
-#include "transport/lights/environment_image.h"
+#include "transport/lights/radiance_image.h"
 #include "transport/media/homogeneous_medium.h"
 #include "transport/textures/spectral_texture.h"
 
@@ -70,13 +70,13 @@ struct RgbMediumCoefficients {
 RgbMediumCoefficients chiang2016_rgb_coefficients(const HomogeneousMedium& spectral, Rgb surface_albedo,
                                                   Rgb mean_free_path_m);
 
-/// An environment image in rgb transport: each pixel's linear sRGB in lanes 0-2 (lane 3 repeats G), negative
-/// channels clipped to 0, no upsampling. Pixel values are film units as in spectral mode (an RGB of luminance Y
-/// renders with film Y), so the light's scale is the user's alone (no cd/m² conversion). Luminance for importance
-/// sampling is the pixel's Y, as RgbEnvironmentImage's.
-class RgbLaneEnvironmentImage final : public EnvironmentImage {
+/// An environment or emission image in rgb transport: each pixel's linear sRGB in lanes 0-2 (lane 3 repeats G),
+/// negative channels clipped to 0, no upsampling. Pixel values are film units as in spectral mode (an RGB of
+/// luminance Y renders with film Y), so the light's scale is the user's alone (no cd/m² conversion). Luminance for
+/// importance sampling is the pixel's Y, as RgbRadianceImage's.
+class RgbLaneRadianceImage final : public RadianceImage {
  public:
-  RgbLaneEnvironmentImage(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space);
+  RgbLaneRadianceImage(std::shared_ptr<const RgbImage> image, const RgbColourSpace& space);
   int width() const override { return image_->width(); }
   int height() const override { return image_->height(); }
   SampledSpectrum radiance(int x, int y, const SampledWavelengths& lambda) const override;

@@ -106,6 +106,16 @@ LightSpectrum area_light_emission(const JsonCursor& emission, double area_m2, bo
   return parse_light_emission(emission, "radiance", geometry, context);
 }
 
+bool is_emission_image(const JsonCursor& emission) { return emission.is_object() && emission.has("image"); }
+
+EmissionImage area_emission_image(const JsonCursor& emission, LoadContext& context) {
+  if (has_light_amount(emission) || emission.has("spectrum"))
+    emission.fail("an emission image is scaled by 'scale' (film units: a pixel of luminance Y renders as film Y), "
+                  "not by a photometric amount or a spectrum");
+  emission.only_keys({"image", "colour_space", "encoding", "scale"});
+  return load_emission_image(emission, context);
+}
+
 nlohmann::json included_light(const JsonCursor& light, const std::filesystem::path& scene_directory) {
   const JsonCursor include = light.at("include");
   const std::filesystem::path path = scene_directory / include.string();

@@ -41,6 +41,12 @@ LightSpectrum area_light_emission(const JsonCursor& emission, const TriangleMesh
 /// The same for an emitting surface of world-space area `area_m2` per side (an analytic sphere's 4πr²).
 LightSpectrum area_light_emission(const JsonCursor& emission, double area_m2, bool two_sided, LoadContext& context);
 
+/// True if an emissive shape's "emission" is an image: an object with an "image" key.
+bool is_emission_image(const JsonCursor& emission);
+/// An emissive mesh's image emission: {"image": file, optional "colour_space", "encoding", "scale"} (no photometric
+/// amount: like an environment image, it is scaled in film units). Errors name the key.
+EmissionImage area_emission_image(const JsonCursor& emission, LoadContext& context);
+
 /// A light with "include": "file.json" (a definition written by rimu-light): the file's object with the scene
 /// light's other keys laid over it (position, direction... or any override). Errors name both files.
 nlohmann::json included_light(const JsonCursor& light, const std::filesystem::path& scene_directory);

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render/image/rgb_environment_image.h"
+#include "render/image/rgb_radiance_image.h"
 #include "render/scene/rgb_transport_inputs.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/photometric_units.h"
@@ -74,12 +74,12 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
   return load_environment(l, context);
 }
 
-// An environment pixel's RGB times the light's scale is its radiance in film units; single-precision radiance
+// An emission image's pixel RGB times the light's scale is its radiance in film units; single-precision radiance
 // overflows near 3.4e38, so (like a light's amount, kMaxLightAmount) it may be at most 1e30. Without this check a
 // pixel of FLT_MAX upsamples to infinite coefficients and every sample that sees it is discarded: a black map, or a
 // silently missing sun. The first pixel past the limit in reading order is named.
-void check_environment_pixels(const JsonCursor& image_key, const std::string& file, const RgbImage& image,
-                              double scale) {
+void check_emission_pixels(const JsonCursor& image_key, const std::string& file, const RgbImage& image,
+                           double scale) {
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x) {
       const Rgb rgb = image.pixel(x, y);
@@ -88,8 +88,8 @@ void check_environment_pixels(const JsonCursor& image_key, const std::string& fi
         char text[160];
         std::snprintf(text, sizeof text, "pixel (%d, %d) is (%g, %g, %g)", x, y, rgb.r, rgb.g, rgb.b);
         image_key.fail("'" + file + "': " + text + (scale == 1.0 ? "" : " times \"scale\" " + std::to_string(scale)) +
-                       ": an environment's radiance may be at most 1e30 per component (beyond, single-precision "
-                       "radiance overflows)");
+                       ": an emission image's radiance may be at most 1e30 per component (beyond, "
+                       "single-precision radiance overflows)");
       }
     }
 }
@@ -103,29 +103,20 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
     if (l.has("radiance")) l.at("radiance").fail("give either radiance or image, not both");
     if (has_light_amount(l) || l.has("spectrum"))
       l.fail("an image environment is scaled by 'scale' (film units), not by a photometric amount");
-    const std::filesystem::path path = context.spectra.scene_directory() / l.at("image").string();
-    const std::shared_ptr<const RgbImage> image = load_rgb_image(l, path);
-    const std::string space = l.string_or("colour_space", "srgb-linear");
-    const auto upsampler = context.spectra.upsampler(space, l.has("colour_space") ? l.at("colour_space") : l);
-    const double scale = l.number_or("scale", 1.0, 0.0, 1e30);
-    check_environment_pixels(l.at("image"), path.string(), *image, scale);
+    const EmissionImage emission = load_emission_image(l, context);
     const EnvironmentMapping mapping = l.has("mapping") && l.at("mapping").choice({"equirectangular", "equal_area_octahedral"}) ==
                                                                   "equal_area_octahedral"
                                            ? EnvironmentMapping::equal_area_octahedral
                                            : EnvironmentMapping::equirectangular;
-    if (mapping == EnvironmentMapping::equal_area_octahedral && image->width() != image->height())
-      l.at("image").fail("an equal-area octahedral image must be square, not " + std::to_string(image->width()) + " x " +
-                         std::to_string(image->height()));
+    const int width = emission.pixels->width(), height = emission.pixels->height();
+    if (mapping == EnvironmentMapping::equal_area_octahedral && width != height)
+      l.at("image").fail("an equal-area octahedral image must be square, not " + std::to_string(width) + " x " +
+                         std::to_string(height));
     // Scenes are y-up: by default the image's local n (equirectangular: top row; octahedral: centre) is +y and its
     // s (left edge; middle of the right edge) is +x (environment_light.h). Pixel values are in film units, like
     // every RGB emission (SpectrumInputContext::emission_rgb_scale).
     const Frame frame = l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
-    if (context.spectra.rgb_transport())  // the pixels as given, already film units (render/scene/rgb_transport_inputs.h)
-      light = std::make_unique<EnvironmentLight>(
-          std::make_shared<RgbLaneEnvironmentImage>(image, RgbColourSpace::named(space)), scale, frame, mapping);
-    else
-      light = std::make_unique<EnvironmentLight>(std::make_shared<RgbEnvironmentImage>(image, upsampler),
-                                                 scale * context.spectra.emission_rgb_scale(), frame, mapping);
+    light = std::make_unique<EnvironmentLight>(emission.pixels, emission.scale, frame, mapping);
   } else {
     only_light_keys(l, {"type", "name", "light_group", "radiance", "portals"});
     const EmitterGeometry geometry{EmitterKind::environment};
@@ -149,6 +140,20 @@ std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const st
     where.key = value.path();
     throw InputError(where, error.explanation());
   }
+}
+
+EmissionImage load_emission_image(const JsonCursor& l, LoadContext& context) {
+  const std::filesystem::path path = context.spectra.scene_directory() / l.at("image").string();
+  const std::shared_ptr<const RgbImage> image = load_rgb_image(l, path);
+  const std::string space = l.string_or("colour_space", "srgb-linear");
+  const double scale = l.number_or("scale", 1.0, 0.0, 1e30);
+  check_emission_pixels(l.at("image"), path.string(), *image, scale);
+  // Pixel values are film units, like every RGB emission (SpectrumInputContext::emission_rgb_scale); in rgb
+  // transport the pixels are used as given, already film units (render/scene/rgb_transport_inputs.h).
+  if (context.spectra.rgb_transport())
+    return {std::make_shared<RgbLaneRadianceImage>(image, RgbColourSpace::named(space)), scale};
+  const auto upsampler = context.spectra.upsampler(space, l.has("colour_space") ? l.at("colour_space") : l);
+  return {std::make_shared<RgbRadianceImage>(image, upsampler), scale * context.spectra.emission_rgb_scale()};
 }
 
 void load_lights(const JsonCursor& section, LoadContext& context) {

@@ -12,6 +12,7 @@
 #include "render/scene/scene.h"
 #include "render/scene/spectrum_input.h"
 #include "render/scene/triangle_mesh.h"
+#include "transport/lights/radiance_image.h"
 
 namespace rimu::scene_loading {
 
@@ -44,6 +45,15 @@ Transform parse_transform(const JsonCursor& shape);
 /// Reads the image named by a texture or environment object: "encoding" is "srgb" (8-bit sRGB-encoded, decoded to
 /// linear) or "linear"; by default integer files are sRGB-encoded and float files (EXR, HDR) linear.
 std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const std::filesystem::path& path);
+/// An image of emitted radiance (an environment's, an emissive shape's): the pixels of `l`'s "image" (with its
+/// "encoding", "colour_space" — default srgb-linear — and "scale" ≥ 0) as radiance, upsampled to spectra (or RGB lanes
+/// in rgb transport), and the factor to apply: "scale" in film units (a pixel of luminance Y renders as film Y).
+/// Every pixel times "scale" must be at most 1e30 (an error names the first that is not).
+struct EmissionImage {
+  std::shared_ptr<const RadianceImage> pixels;
+  double scale = 1.0;
+};
+EmissionImage load_emission_image(const JsonCursor& l, LoadContext& context);
 void load_materials(const JsonCursor& section, LoadContext& context);
 /// Loads the "media" section (render/scene/scene_media.cpp); runs after the materials, which media name as boundaries.
 void load_media(const JsonCursor& section, LoadContext& context);

@@ -302,6 +302,9 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       const int material = material_of(shape, context);
       int light = -1;
       if (const auto emission = shape.find("emission")) {
+        if (is_emission_image(*emission))
+          emission->at("image").fail("an emissive sphere's emission cannot be an image (a mesh's can: tessellate the "
+                                     "sphere, e.g. as a \"mesh\")");
         // An analytic area light (transport/lights/sphere_light.h): sampled in the cone it subtends, one light tree
         // leaf; an amount in lm is spread over its 4πr² (per side).
         const bool two_sided = shape.boolean_or("two_sided", false);
@@ -351,7 +354,9 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     const bool two_sided = emission ? shape.boolean_or("two_sided", false) : false;
     // An amount in lm is spread over the area after the transform (scene_light_emission.h).
     std::optional<LightSpectrum> radiance;
-    if (emission) radiance.emplace(area_light_emission(*emission, mesh, two_sided, context));
+    std::optional<EmissionImage> image;
+    if (emission && is_emission_image(*emission)) image = area_emission_image(*emission, context);
+    else if (emission) radiance.emplace(area_light_emission(*emission, mesh, two_sided, context));
     if (!emission && shape.has("two_sided")) shape.at("two_sided").fail("two_sided applies to emissive shapes only");
     if (!emission && shape.has("light_group"))
       shape.at("light_group").fail("light_group applies to emissive shapes (and lights) only");
@@ -359,9 +364,19 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
     scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
     if (mesh.triangle_count() == 0) continue;  // only degenerate triangles (counted above)
     count_normals_near_plane(mesh, scene);
-    if (radiance) {
+    if (emission) {
       // Lights were loaded first, so area lights take the indices after them, in the order of the shapes.
-      auto light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
+      std::unique_ptr<AreaLight> light;
+      if (image) {
+        // Each triangle's uvs at its corners, after the degenerate ones went: the map a hit's uv comes from.
+        std::vector<std::array<Vec2, 3>> corners(mesh.triangle_count());
+        for (size_t k = 0; k < corners.size(); ++k)
+          corners[k] = {mesh.uv_at(k, 0.0f, 0.0f), mesh.uv_at(k, 1.0f, 0.0f), mesh.uv_at(k, 0.0f, 1.0f)};
+        light = std::make_unique<AreaLight>(mesh.positions, mesh.indices,
+                                            TexturedEmission(image->pixels, image->scale, std::move(corners)), two_sided);
+      } else {
+        light = std::make_unique<AreaLight>(mesh.positions, mesh.indices, *radiance, two_sided);
+      }
       scene.lights.push_back(std::move(light));
       read_light_group(shape, scene);
       scene.light_names.push_back(emissive_shape_name(shape));

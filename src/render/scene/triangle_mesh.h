@@ -26,6 +26,23 @@ struct TriangleMesh {
   DefaultUvs default_uvs = DefaultUvs::barycentric;
 
   size_t triangle_count() const { return indices.size() / 3; }
+  /// The texture coordinates at barycentrics (b1, b2) of triangle `triangle` (b0 = 1 − b1 − b2, Embree's u and v):
+  /// the uvs interpolated; without uvs, the default ones: (b1, b2) itself, pbrt-v4's (b1 + b2, b2), or swapped
+  /// (b1 + b2, b1). What a hit sees and what an area light with an emission image reads (scene_shapes.cpp).
+  Vec2 uv_at(size_t triangle, float b1, float b2) const {
+    if (uvs.empty()) {
+      switch (default_uvs) {
+        case DefaultUvs::pbrt: return {b1 + b2, b2};
+        case DefaultUvs::pbrt_swapped: return {b1 + b2, b1};
+        case DefaultUvs::barycentric: break;
+      }
+      return {b1, b2};
+    }
+    const uint32_t* tri = &indices[3 * triangle];
+    const float b0 = 1.0f - b1 - b2;
+    const Vec2 a = uvs[tri[0]], b = uvs[tri[1]], c = uvs[tri[2]];
+    return {b0 * a.x + b1 * b.x + b2 * c.x, b0 * a.y + b1 * b.y + b2 * c.y};
+  }
   /// Applies `t` to positions and normals; flips the winding if `t` mirrors (determinant < 0).
   void transform(const Transform& t);
   /// Removes triangles whose area is zero or not finite (they would give NaN normals) and returns how many.

@@ -12,11 +12,23 @@ namespace rimu {
 
 AreaLight::AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t> indices, LightSpectrum radiance,
                      bool two_sided)
-    : radiance_(std::move(radiance)), two_sided_(two_sided) {
+    : uniform_(std::move(radiance)), two_sided_(two_sided) {
+  build_triangles(vertices_m, indices);
+  set_weights();
+}
+
+AreaLight::AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t> indices, TexturedEmission emission,
+                     bool two_sided)
+    : textured_(std::move(emission)), two_sided_(two_sided) {
+  assert(textured_->triangle_count() == indices.size() / 3);
+  build_triangles(vertices_m, indices);
+  set_weights();
+}
+
+void AreaLight::build_triangles(std::span<const Vec3> vertices_m, std::span<const uint32_t> indices) {
   assert(indices.size() % 3 == 0);
   const size_t count = indices.size() / 3;
   triangles_.resize(count);
-  std::vector<double> areas(count, 0.0);
   for (size_t k = 0; k < count; ++k) {
     assert(indices[3 * k] < vertices_m.size() && indices[3 * k + 1] < vertices_m.size() &&
            indices[3 * k + 2] < vertices_m.size());
@@ -36,11 +48,67 @@ AreaLight::AreaLight(std::span<const Vec3> vertices_m, std::span<const uint32_t>
     }
     t.normal = Vec3(float(c[0] / twice_area), float(c[1] / twice_area), float(c[2] / twice_area));
     t.area_m2 = 0.5 * twice_area;
-    areas[k] = t.area_m2;
     area_m2_ += t.area_m2;
   }
-  by_area_ = Distribution1D(areas);
 }
+
+void AreaLight::set_weights() {
+  std::vector<double> weights(triangles_.size(), 0.0);
+  if (uniform_) {
+    // Uniform emission: by area alone (w_k = A_k), whatever L is.
+    for (size_t k = 0; k < triangles_.size(); ++k) {
+      triangles_[k].radiance_integral = uniform_->integral_360_830();
+      weights[k] = triangles_[k].area_m2;
+    }
+    emits_ = !uniform_->is_black() && area_m2_ > 0.0;
+  } else {
+    double emitted = 0.0;  // Σ A_k · mean_k
+    for (size_t k = 0; k < triangles_.size(); ++k) {
+      if (triangles_[k].area_m2 == 0.0) continue;
+      triangles_[k].radiance_integral = textured_->triangle_mean_radiance_integral(k);
+      emitted += triangles_[k].area_m2 * triangles_[k].radiance_integral;
+    }
+    emits_ = emitted > 0.0 && std::isfinite(emitted);
+    // The floor (textured_emission.h): a share of the whole light's mean, so no triangle with area is unchoosable.
+    const double floor = emits_ ? TexturedEmission::kWeightFloor * emitted / area_m2_ : 0.0;
+    for (size_t k = 0; k < triangles_.size(); ++k)
+      if (triangles_[k].area_m2 > 0.0)
+        weights[k] = triangles_[k].area_m2 * std::max(triangles_[k].radiance_integral, floor);
+  }
+  for (size_t k = 0; k < triangles_.size(); ++k) {
+    triangles_[k].weight = weights[k];
+    total_weight_ += weights[k];
+  }
+  by_weight_ = Distribution1D(weights);
+}
+
+SampledSpectrum AreaLight::emitted(size_t k, Vec3 barycentric, const SampledWavelengths& lambda) const {
+  if (uniform_) return uniform_->sample(lambda);
+  return textured_->radiance(textured_->uv_at(k, barycentric), lambda);
+}
+
+namespace {
+/// Barycentrics (b0, b1, b2) of a point in (or, up to rounding, near) triangle (v0, v1, v2): the least-squares solution
+/// of p − v0 = b1 e1 + b2 e2 in double, clamped to the triangle.
+Vec3 barycentric_in(Vec3 v0, Vec3 v1, Vec3 v2, Vec3 p) {
+  const double e1[3] = {double(v1.x) - v0.x, double(v1.y) - v0.y, double(v1.z) - v0.z};
+  const double e2[3] = {double(v2.x) - v0.x, double(v2.y) - v0.y, double(v2.z) - v0.z};
+  const double d[3] = {double(p.x) - v0.x, double(p.y) - v0.y, double(p.z) - v0.z};
+  const auto dot3 = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const double d11 = dot3(e1, e1), d12 = dot3(e1, e2), d22 = dot3(e2, e2), p1 = dot3(d, e1), p2 = dot3(d, e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0.0) || !std::isfinite(det)) return {1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f};
+  double b1 = std::max(0.0, (d22 * p1 - d12 * p2) / det), b2 = std::max(0.0, (d11 * p2 - d12 * p1) / det);
+  if (b1 + b2 > 1.0) {
+    const double s = b1 + b2;
+    b1 /= s;
+    b2 /= s;
+  }
+  return {float(1.0 - b1 - b2), float(b1), float(b2)};
+}
+}  // namespace
+
+Vec3 AreaLight::barycentric_of(const Triangle& t, Vec3 point) { return barycentric_in(t.v0, t.v1, t.v2, point); }
 
 bool AreaLight::samples_solid_angle(const Triangle& t, Vec3 reference) {
   // A_k / d² against the centroid: a function of (triangle, reference) alone, so sampling and pdf agree on it.
@@ -63,9 +131,11 @@ float AreaLight::triangle_pdf(const Triangle& t, Vec3 reference, Vec3 wi, float 
   return float(pdf);
 }
 
-std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const LightReference& ref,
+std::optional<LightSample> AreaLight::sample_triangle(size_t k, const LightReference& ref,
                                                       const SampledWavelengths& lambda, Vec2 u, double choice) const {
+  const Triangle& t = triangles_[k];
   LightSample s;
+  Vec3 barycentric{1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f};  // where on t the sample lies (an image needs it)
   if (samples_solid_angle(t, ref.position)) {
     // Behind a one-sided triangle nothing arrives; say so before sampling (triangle_pdf would say 0 anyway).
     if (!two_sided_ && !(dot(t.normal, ref.position - t.v0) > 0.0f)) return std::nullopt;
@@ -84,8 +154,10 @@ std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const L
     const double pdf = 1.0 / omega;
     if (!(pdf > 0.0) || !std::isfinite(pdf) || pdf > double(std::numeric_limits<float>::max())) return std::nullopt;
     s.pdf_solid_angle = float(choice * double(float(pdf)));
+    if (textured_) barycentric = barycentric_of(t, ref.position + s.wi * s.distance);
   } else {
     const Vec3 b = sample_uniform_triangle(u);
+    barycentric = b;
     const Vec3 point = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
     const Vec3 to_light = point - ref.position;
     const float distance_squared = length_squared(to_light);
@@ -95,36 +167,35 @@ std::optional<LightSample> AreaLight::sample_triangle(const Triangle& t, const L
     s.pdf_solid_angle = float(choice * double(triangle_pdf(t, ref.position, s.wi, distance_squared)));
   }
   if (!(s.pdf_solid_angle > 0.0f) || !std::isfinite(s.pdf_solid_angle)) return std::nullopt;
-  s.radiance = radiance_.sample(lambda);
+  s.radiance = emitted(k, barycentric, lambda);
   s.normal = t.normal;
   return s;
 }
 
 std::optional<LightSample> AreaLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                                 Vec2 u) const {
-  if (by_area_.is_zero() || radiance_.is_black()) return std::nullopt;
-  const auto pick = by_area_.sample_discrete(u.x);
+  if (by_weight_.is_zero() || !emits_) return std::nullopt;
+  const auto pick = by_weight_.sample_discrete(u.x);
   const Triangle& t = triangles_[pick.index];
-  return sample_triangle(t, ref, lambda, {pick.u_remapped, u.y}, t.area_m2 / area_m2_);
+  return sample_triangle(size_t(pick.index), ref, lambda, {pick.u_remapped, u.y}, t.weight / total_weight_);
 }
 
 std::optional<LightSample> AreaLight::sample_part_li(int part, const LightReference& ref,
                                                      const SampledWavelengths& lambda, Vec2 u) const {
   if (part == -1) return sample_li(ref, lambda, u);
-  if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
-  const Triangle& t = triangles_[size_t(part)];
-  if (t.area_m2 == 0.0) return std::nullopt;
-  return sample_triangle(t, ref, lambda, u, 1.0);
+  if (part < 0 || part >= triangle_count() || !emits_) return std::nullopt;
+  if (triangles_[size_t(part)].area_m2 == 0.0) return std::nullopt;
+  return sample_triangle(size_t(part), ref, lambda, u, 1.0);
 }
 
 float AreaLight::hit_pdf(size_t k, const LightReference& ref, Vec3 wi, const SurfaceHit* hit, bool whole_mesh) const {
-  if (!hit || k >= triangles_.size() || by_area_.is_zero() || radiance_.is_black()) return 0.0f;
+  if (!hit || k >= triangles_.size() || by_weight_.is_zero() || !emits_) return 0.0f;
   const Triangle& t = triangles_[k];
   if (t.area_m2 == 0.0) return 0.0f;
   const float distance_squared = length_squared(hit->position - ref.position);
   if (!(distance_squared > 0.0f) || !std::isfinite(distance_squared)) return 0.0f;
   const float pdf = triangle_pdf(t, ref.position, wi, distance_squared);
-  return whole_mesh ? float(double(pdf) * (t.area_m2 / area_m2_)) : pdf;
+  return whole_mesh ? float(double(pdf) * (t.weight / total_weight_)) : pdf;
 }
 
 float AreaLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit) const {
@@ -138,21 +209,28 @@ float AreaLight::pdf_part_li(int part, const LightReference& ref, Vec3 wi, const
 }
 
 std::optional<LightBounds> AreaLight::part_bounds(int part) const {
-  if (part < 0 || part >= triangle_count() || radiance_.is_black()) return std::nullopt;
+  if (part < 0 || part >= triangle_count() || !emits_) return std::nullopt;
   const Triangle& t = triangles_[size_t(part)];
   if (t.area_m2 == 0.0) return std::nullopt;
-  return triangle_light_bounds(t.v0, t.v1, t.v2, t.normal, t.area_m2, radiance_.integral_360_830(), two_sided_);
+  // An image's floored mean (w_k / A_k), so that a triangle the mean's grid saw as black is still found.
+  const double radiance_integral = uniform_ ? t.radiance_integral : t.weight / t.area_m2;
+  return triangle_light_bounds(t.v0, t.v1, t.v2, t.normal, t.area_m2, radiance_integral, two_sided_);
 }
 
 SampledSpectrum AreaLight::radiance(const SurfaceHit& hit, Vec3 w_out, const SampledWavelengths& lambda) const {
   if (hit.primitive >= triangles_.size()) return Float4(0.0f);
   const Triangle& t = triangles_[hit.primitive];
   if (t.area_m2 == 0.0 || (!two_sided_ && !(dot(t.normal, w_out) > 0.0f))) return Float4(0.0f);
-  return radiance_.sample(lambda);
+  if (uniform_) return uniform_->sample(lambda);
+  return textured_->radiance(hit.uv, lambda);
 }
 
 double AreaLight::total_power_w(double) const {
-  return (two_sided_ ? 2.0 : 1.0) * std::numbers::pi * area_m2_ * radiance_.integral_360_830();
+  const double sides = two_sided_ ? 2.0 : 1.0;
+  if (uniform_) return sides * std::numbers::pi * area_m2_ * uniform_->integral_360_830();
+  double power = 0.0;
+  for (const Triangle& t : triangles_) power += t.area_m2 * t.radiance_integral;
+  return sides * std::numbers::pi * power;
 }
 
 }  // namespace rimu

@@ -26,7 +26,7 @@ EnvironmentLight::EnvironmentLight(LightSpectrum radiance)
   mean_radiance_integral_ = constant_->integral_360_830();
 }
 
-EnvironmentLight::EnvironmentLight(std::shared_ptr<const EnvironmentImage> image, double scale, Frame frame,
+EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, double scale, Frame frame,
                                    EnvironmentMapping mapping)
     : image_(std::move(image)), image_scale_(scale), frame_(frame), mapping_(mapping) {
   assert(image_ && image_->width() > 0 && image_->height() > 0 && std::isfinite(scale) && scale >= 0.0);

@@ -44,7 +44,7 @@
 #include <optional>
 
 #include "transport/sampling/distribution_2d.h"
-#include "transport/lights/environment_image.h"
+#include "transport/lights/radiance_image.h"
 #include "transport/lights/environment_portal.h"
 #include "transport/geometry/frame.h"
 #include "transport/lights/light.h"
@@ -61,7 +61,7 @@ class EnvironmentLight final : public Light {
   /// An image, its radiance multiplied by `scale` (set at load time, e.g. from nits in issue 5), oriented by
   /// `frame` (see above) and read in `mapping`. Cost O(width·height): the sampling distribution and 16 wavelengths
   /// of every pixel for the power estimate.
-  EnvironmentLight(std::shared_ptr<const EnvironmentImage> image, double scale,
+  EnvironmentLight(std::shared_ptr<const RadianceImage> image, double scale,
                    Frame frame = Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
                    EnvironmentMapping mapping = EnvironmentMapping::equirectangular);
 
@@ -100,7 +100,7 @@ class EnvironmentLight final : public Light {
   float solid_angle_pdf(Vec3 local_direction) const;
   SampledSpectrum lookup(Vec2 uv, const SampledWavelengths& lambda) const;
 
-  std::shared_ptr<const EnvironmentImage> image_;  // null for a constant environment
+  std::shared_ptr<const RadianceImage> image_;  // null for a constant environment
   std::optional<LightSpectrum> constant_;          // set for a constant environment
   double image_scale_ = 1.0;
   Frame frame_;

@@ -605,18 +605,50 @@ json PbrtConverter::light_amount(PbrtParams& p, const char* spectrum_key, const 
   return {{"spectrum", value}, {photometric_key, amount}};
 }
 
-json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m2, double power_multiple, bool& two_sided) {
+json PbrtConverter::area_emission(const PbrtStatement& area_light, double area_m2, double power_multiple, bool& two_sided,
+                                  bool image_capable) {
   const auto defaults = state_.attributes.find("light");
   PbrtParams p(*this, area_light, "AreaLightSource \"diffuse\"", defaults == state_.attributes.end() ? nullptr : &defaults->second);
   two_sided = p.boolean("twosided", false);
-  if (!p.string("filename", "").empty()) ignore("AreaLightSource \"filename\" (image emission)", area_light.where);
+  const std::string filename = p.string("filename", "");
   // pbrt gives "power" to every shape it makes: a mesh's triangles each emit it, at the radiance power/(π A_triangle).
   // With triangles of equal area that is a uniform radiance of shape_count · power over the whole mesh.
   const double power = p.real("power", -1.0);
+  if (!filename.empty() && image_capable) return image_area_emission(p, area_light, filename, area_m2, power * power_multiple, two_sided);
+  if (!filename.empty())
+    ignore("AreaLightSource \"filename\" on a sphere (Rimu's emissive spheres emit uniformly: \"L\" is used)", area_light.where);
   std::optional<double> lumens;
   if (power > 0 && area_m2 > 0) lumens = power * power_multiple;
   const json fields = light_amount(p, "L", "emission", lumens ? "luminous_power_lm" : "luminance_nt", lumens);
   return fields.contains("emission") ? fields["emission"] : fields;
+}
+
+json PbrtConverter::image_area_emission(PbrtParams& p, const PbrtStatement& s, const std::string& filename, double area_m2,
+                                        double power, bool two_sided) {
+  const std::string context = "AreaLightSource \"diffuse\"";
+  if (p.get("L", {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody}))
+    throw InputError(s.where, context + ": give either \"L\" or \"filename\", not both");
+  const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
+  if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
+  // pbrt-v4 (DiffuseAreaLight) reads the image's RGB at the hit's (u, 1 − v), bilinearly, clamped at the edges, as an
+  // RGB illuminant spectrum divided by the colour space white's luminance: a pixel of luminance Y is Y nits, Rimu's
+  // film units, so its scale carries over (as for an environment image).
+  double scale = p.real("scale", 1.0);
+  if (power > 0 && area_m2 > 0) {
+    // pbrt-v4 scales to the given power by k_e = π A (2 if two-sided) times the mean over the pixels of their
+    // luminance (the file's colour space; sRGB here, as Rimu reads it): the image's mean, "assuming no distortion in
+    // the mapping", not its mean over the surface.
+    const RgbImage image = RgbImage::read(path, default_encoding_for(path));
+    const RgbColourSpace& srgb = RgbColourSpace::named("srgb-linear");
+    double mean_y = 0.0;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) mean_y += srgb.to_xyz(image.pixel(x, y)).y;
+    mean_y /= double(image.width()) * image.height();
+    const double k_e = mean_y * (two_sided ? 2.0 : 1.0) * area_m2 * M_PI;
+    if (!(k_e > 0)) throw InputError(s.where, context + ": \"power\" given for a black image '" + path.string() + "'");
+    scale *= power / k_e;
+  }
+  return {{"image", path_for_document(path)}, {"scale", std::max(0.0, scale)}};
 }
 
 std::array<Vec3d, 3> PbrtConverter::light_axes(const PbrtMatrix& world, const std::string& context,

@@ -109,7 +109,14 @@ class PbrtConverter {
   /// `power_multiple`: how many times "power" the shape emits in pbrt-v4: the number of shapes pbrt makes of it (one
   /// per triangle of a mesh), each of which gets "power"; for a sphere under a scale s, s² (pbrt normalises by its
   /// object-space area).
-  json area_emission(const PbrtStatement& area_light, double area_m2, double power_multiple, bool& two_sided);
+  /// A shape's "emission" from the AreaLightSource in effect. `image_capable`: the shape may take an emission image
+  /// (a mesh; not Rimu's analytic sphere).
+  json area_emission(const PbrtStatement& area_light, double area_m2, double power_multiple, bool& two_sided,
+                     bool image_capable);
+  /// The emission of an area light with "filename": {"image", "scale"}, scaled to `power` (> 0; pbrt's per-shape power
+  /// times the shapes of the mesh) as pbrt-v4 does.
+  json image_area_emission(PbrtParams& p, const PbrtStatement& s, const std::string& filename, double area_m2, double power,
+                           bool two_sided);
   void texture(const PbrtStatement& s);
 
   // pbrt_shapes.cpp

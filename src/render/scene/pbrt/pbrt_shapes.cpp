@@ -346,7 +346,7 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
       ignore("AreaLightSource on " + context + " (not emissive in Rimu)", where);
     } else {
       bool two_sided = false;
-      shape["emission"] = area_emission(*state_.area_light, area_m2, power_multiple, two_sided);
+      shape["emission"] = area_emission(*state_.area_light, area_m2, power_multiple, two_sided, shape["type"] != "sphere");
       if (two_sided) shape["two_sided"] = true;
     }
   }

@@ -1,4 +1,4 @@
-// An equirectangular environment image read through OpenImageIO, converted once to spectral radiance per pixel.
+// An RGB image (an environment map, an emission image) converted once to spectral radiance per pixel.
 #pragma once
 
 #include <memory>
@@ -6,7 +6,7 @@
 
 #include "render/image/rgb_image.h"
 #include "spectral/upsampling/rgb_upsampler.h"
-#include "transport/lights/environment_image.h"
+#include "transport/lights/radiance_image.h"
 
 namespace rimu {
 
@@ -14,9 +14,9 @@ namespace rimu {
 /// convention), turned into W/(m²·sr·nm) shaped like the colour space's white. Every pixel is upsampled once, at
 /// construction (RgbUpsampler::emission_coefficients, 0.15-0.3 µs per pixel): 64 bytes of basis coefficients per pixel
 /// plus its luminance; a lookup is a 16-term dot product per lane times the white's table (no solve).
-class RgbEnvironmentImage final : public EnvironmentImage {
+class RgbRadianceImage final : public RadianceImage {
  public:
-  RgbEnvironmentImage(std::shared_ptr<const RgbImage> image, std::shared_ptr<const RgbUpsampler> upsampler);
+  RgbRadianceImage(std::shared_ptr<const RgbImage> image, std::shared_ptr<const RgbUpsampler> upsampler);
   int width() const override { return width_; }
   int height() const override { return height_; }
   SampledSpectrum radiance(int x, int y, const SampledWavelengths& lambda) const override;

@@ -1,11 +1,11 @@
-#include "render/image/rgb_environment_image.h"
+#include "render/image/rgb_radiance_image.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace rimu {
 
-RgbEnvironmentImage::RgbEnvironmentImage(std::shared_ptr<const RgbImage> image,
+RgbRadianceImage::RgbRadianceImage(std::shared_ptr<const RgbImage> image,
                                          std::shared_ptr<const RgbUpsampler> upsampler)
     : width_(image->width()), height_(image->height()), upsampler_(std::move(upsampler)) {
   // RgbImage::read has already rejected NaN/Inf pixels (naming the file and the pixel).
@@ -23,7 +23,7 @@ RgbEnvironmentImage::RgbEnvironmentImage(std::shared_ptr<const RgbImage> image,
   });
 }
 
-SampledSpectrum RgbEnvironmentImage::radiance(int x, int y, const SampledWavelengths& lambda) const {
+SampledSpectrum RgbRadianceImage::radiance(int x, int y, const SampledWavelengths& lambda) const {
   // S(λ) = emission_scale · max(0, s(λ)·Y) · W(λ), as EmissionSpectrum::evaluate with the shape clamped at 0
   // (basis truncation rings a few 1e-3 of the peak below zero where the exact shape is zero).
   const Float4 shape =

@@ -1,18 +1,19 @@
-// The pixels of an equirectangular (latitude-longitude) environment image, as the environment light reads them.
+// An image of spectral radiance, pixel by pixel: what an environment light (environment_light.h) and an area light
+// with an emission image (textured_emission.h) read.
 //
-// An interface so that the render side can supply OpenImageIO pixels upsampled to spectra (issue 4's scene
-// loader) while transport stays free of image libraries. Pixel (x, y): column x in [0, width), row y in
-// [0, height), row 0 at the TOP of the image. The direction each pixel covers is set by EnvironmentLight
-// (environment_light.h).
+// An interface so that the render side can supply image files' pixels upsampled to spectra (or, in RGB transport,
+// as RGB) while transport stays free of image libraries. Pixel (x, y): column x in [0, width), row y in
+// [0, height), row 0 at the TOP of the image. Where each pixel is (a direction, a point of a surface) is the
+// light's business.
 #pragma once
 
 #include "spectral/wavelengths/sampled_wavelengths.h"
 
 namespace rimu {
 
-class EnvironmentImage {
+class RadianceImage {
  public:
-  virtual ~EnvironmentImage() = default;
+  virtual ~RadianceImage() = default;
   virtual int width() const = 0;
   virtual int height() const = 0;
   /// Spectral radiance of pixel (x, y) at the four wavelengths, W/(m²·sr·nm) before the light's scale.
