@@ -44,7 +44,8 @@ namespace rimu {
 /// next-event estimation reaches every light from the boundary, point, spot and distant ones included, which a
 /// smooth refracting boundary never lets in. Its normalisation makes the boundary exact in a white furnace: a
 /// non-absorbing medium under uniform radiance L holds η²L inside and shows L outside (tests/transport/
-/// dielectric_diffuse_entry_test.cpp). sample() draws wi from the cosine and weights by the rest; s.eta = 1/η
+/// media_slab_reference_test.cpp; the lobe's integral in bsdf_energy_test.cpp, its sampling in
+/// bsdf_chi_square_test.cpp). sample() draws wi from the cosine and weights by the rest; s.eta = 1/η
 /// (f carries η² on leaving, as refraction out would).
 class DielectricBsdf {
  public:
