@@ -10,6 +10,8 @@
 #include <numbers>
 
 #include "meter_reading_check.h"
+#include "input_error_check.h"
+#include "test_image_files.h"
 #include "render/film/film.h"
 #include "render/reports/light_meter.h"
 #include "render/film/pixel_filter.h"
@@ -157,6 +159,37 @@ TEST_CASE("area lights: lumens over the area after the transform, one- and two-s
           doctest::Approx(1000.0 / shape_integrals(*test::library().illuminant("D65"), test::library().photopic_v())
                                        .efficacy_lm_W()).epsilon(1e-6));
   }
+}
+
+TEST_CASE("an emission image's white_luminance_nt: a white pixel seen by the camera has that luminance") {
+  // A 2 × 1 image, white | 50 % grey (linear), on the same 1 m² square: the camera reads 300 nt over the white half
+  // and 150 nt over the grey one (the columns away from the bilinear blend between the pixel centres), and the same
+  // with "scale" 300 / 72 983 film units. Both keys at once: an error at "scale".
+  const std::filesystem::path image = test::write_pfm("white_luminance", 2, 1, {1, 1, 1, 0.5f, 0.5f, 0.5f});
+  for (const json emission : {json{{"image", image.string()}, {"white_luminance_nt", 300}},
+                              json{{"image", image.string()}, {"scale", 300.0 / 72983.0}}}) {
+    CAPTURE(emission.dump());
+    json quad = light_quad(emission, 0.25f);
+    quad["uvs"] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // without, each triangle's uvs are its barycentrics
+    const auto scene = load(scene_with(json::array(), json::array({quad}), {0, 0, 3}));
+    Film film(FilmOptions{12, 12, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
+    RenderOptions options;
+    options.samples_per_pixel = 8;
+    options.threads = 1;
+    render(scene->transport_view(), scene->settings.integrator, Camera(scene->camera, 12, 12), PixelFilter::box(), film,
+           options);
+    // u grows along +x, which the camera at +z looking at −z has on its right: the white pixel (u < ¼ unblended,
+    // x < −0.25 m) fills image columns 1-2, the grey (u > ¾) columns 9-10 (0.088 m per column at 3 m).
+    const MeterReading white = measure_luminance_nt(film, PixelBounds{1, 3, 3, 9});
+    const MeterReading grey = measure_luminance_nt(film, PixelBounds{9, 3, 11, 9});
+    // Wavelength sampling is the only noise; 1e-5 covers 72 983's rounding (K_m ∫ȳ dλ = 72 983.3).
+    CHECK(white.value == doctest::Approx(300.0).epsilon(4.5 * white.standard_error / 300.0 + 1e-5));
+    CHECK(grey.value == doctest::Approx(150.0).epsilon(4.5 * grey.standard_error / 150.0 + 1e-5));
+  }
+  const json both = {{"image", image.string()}, {"white_luminance_nt", 300}, {"scale", 1}};
+  test::input_error([&] { load(scene_with(json::array(), json::array({light_quad(both, 0.25f)}))); },
+                    {"/shapes/0/emission/scale", "white_luminance_nt"});
+  std::filesystem::remove(image);
 }
 
 TEST_CASE("environment light in nits and in EV at ISO 100") {

@@ -112,8 +112,15 @@ EmissionImage area_emission_image(const JsonCursor& emission, LoadContext& conte
   if (has_light_amount(emission) || emission.has("spectrum"))
     emission.fail("an emission image is scaled by 'scale' (film units: a pixel of luminance Y renders as film Y), "
                   "not by a photometric amount or a spectrum");
-  emission.only_keys({"image", "colour_space", "encoding", "scale"});
-  return load_emission_image(emission, context);
+  emission.only_keys({"image", "colour_space", "encoding", "scale", "white_luminance_nt"});
+  if (emission.has("white_luminance_nt") && emission.has("scale"))
+    emission.at("scale").fail("give either scale (film units) or white_luminance_nt, not both");
+  // A pixel of luminance Y (Y = 1: white) renders as film Y · scale, and one film unit of Y is
+  // emission_rgb_scale() ≈ 72 983 cd/m² (K_m ∫ȳ dλ): a white of L nt is the scale L / that.
+  const double scale = emission.has("white_luminance_nt")
+                           ? emission.at("white_luminance_nt").number(1e-30, 1e30) / context.spectra.emission_rgb_scale()
+                           : emission.number_or("scale", 1.0, 0.0, 1e30);
+  return load_emission_image(emission, scale, context);
 }
 
 nlohmann::json included_light(const JsonCursor& light, const std::filesystem::path& scene_directory) {

@@ -43,8 +43,9 @@ LightSpectrum area_light_emission(const JsonCursor& emission, double area_m2, bo
 
 /// True if an emissive shape's "emission" is an image: an object with an "image" key.
 bool is_emission_image(const JsonCursor& emission);
-/// An emissive mesh's image emission: {"image": file, optional "colour_space", "encoding", "scale"} (no photometric
-/// amount: like an environment image, it is scaled in film units). Errors name the key.
+/// An emissive mesh's image emission: {"image": file, optional "colour_space", "encoding", and "scale" (film units,
+/// like an environment image's) or "white_luminance_nt" (the luminance of a pixel of luminance 1, a display's white).
+/// Errors name the key.
 EmissionImage area_emission_image(const JsonCursor& emission, LoadContext& context);
 
 /// A light with "include": "file.json" (a definition written by rimu-light): the file's object with the scene

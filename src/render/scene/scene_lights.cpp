@@ -103,7 +103,7 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
     if (l.has("radiance")) l.at("radiance").fail("give either radiance or image, not both");
     if (has_light_amount(l) || l.has("spectrum"))
       l.fail("an image environment is scaled by 'scale' (film units), not by a photometric amount");
-    const EmissionImage emission = load_emission_image(l, context);
+    const EmissionImage emission = load_emission_image(l, l.number_or("scale", 1.0, 0.0, 1e30), context);
     const EnvironmentMapping mapping = l.has("mapping") && l.at("mapping").choice({"equirectangular", "equal_area_octahedral"}) ==
                                                                   "equal_area_octahedral"
                                            ? EnvironmentMapping::equal_area_octahedral
@@ -142,11 +142,10 @@ std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const st
   }
 }
 
-EmissionImage load_emission_image(const JsonCursor& l, LoadContext& context) {
+EmissionImage load_emission_image(const JsonCursor& l, double scale, LoadContext& context) {
   const std::filesystem::path path = context.spectra.scene_directory() / l.at("image").string();
   const std::shared_ptr<const RgbImage> image = load_rgb_image(l, path);
   const std::string space = l.string_or("colour_space", "srgb-linear");
-  const double scale = l.number_or("scale", 1.0, 0.0, 1e30);
   check_emission_pixels(l.at("image"), path.string(), *image, scale);
   // Pixel values are film units, like every RGB emission (SpectrumInputContext::emission_rgb_scale); in rgb
   // transport the pixels are used as given, already film units (render/scene/rgb_transport_inputs.h).

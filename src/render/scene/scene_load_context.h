@@ -46,14 +46,14 @@ Transform parse_transform(const JsonCursor& shape);
 /// linear) or "linear"; by default integer files are sRGB-encoded and float files (EXR, HDR) linear.
 std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const std::filesystem::path& path);
 /// An image of emitted radiance (an environment's, an emissive shape's): the pixels of `l`'s "image" (with its
-/// "encoding", "colour_space" — default srgb-linear — and "scale" ≥ 0) as radiance, upsampled to spectra (or RGB lanes
-/// in rgb transport), and the factor to apply: "scale" in film units (a pixel of luminance Y renders as film Y).
-/// Every pixel times "scale" must be at most 1e30 (an error names the first that is not).
+/// "encoding" and "colour_space", default srgb-linear) as radiance, upsampled to spectra (or RGB lanes in rgb
+/// transport), and the factor to apply for `scale` (≥ 0, finite) in film units: a pixel of luminance Y renders as film
+/// Y · scale. Every pixel times `scale` must be at most 1e30 (an error names the first that is not).
 struct EmissionImage {
   std::shared_ptr<const RadianceImage> pixels;
   double scale = 1.0;
 };
-EmissionImage load_emission_image(const JsonCursor& l, LoadContext& context);
+EmissionImage load_emission_image(const JsonCursor& l, double scale, LoadContext& context);
 void load_materials(const JsonCursor& section, LoadContext& context);
 /// Loads the "media" section (render/scene/scene_media.cpp); runs after the materials, which media name as boundaries.
 void load_media(const JsonCursor& section, LoadContext& context);
