@@ -166,7 +166,7 @@ TEST_CASE("an emission image's white_luminance_nt: a white pixel seen by the cam
   // and 150 nt over the grey one (the columns away from the bilinear blend between the pixel centres), and the same
   // with "scale" 300 / 72 983 film units. Both keys at once: an error at "scale".
   const std::filesystem::path image = test::write_pfm("white_luminance", 2, 1, {1, 1, 1, 0.5f, 0.5f, 0.5f});
-  for (const json emission : {json{{"image", image.string()}, {"white_luminance_nt", 300}},
+  for (const json& emission : {json{{"image", image.string()}, {"white_luminance_nt", 300}},
                               json{{"image", image.string()}, {"scale", 300.0 / 72983.0}}}) {
     CAPTURE(emission.dump());
     json quad = light_quad(emission, 0.25f);
@@ -189,6 +189,38 @@ TEST_CASE("an emission image's white_luminance_nt: a white pixel seen by the cam
   const json both = {{"image", image.string()}, {"white_luminance_nt", 300}, {"scale", 1}};
   test::input_error([&] { load(scene_with(json::array(), json::array({light_quad(both, 0.25f)}))); },
                     {"/shapes/0/emission/scale", "white_luminance_nt"});
+  std::filesystem::remove(image);
+}
+
+TEST_CASE("a projector in candela and in lumens: the lux under each pixel, the right way round") {
+  // A 2 × 2 image (linear greys: top row 1, 0.25; bottom row 0.5, 0) projected straight down from 2 m with a 60° field
+  // and up = +z, so image right is world −x (axis × up): the top-left pixel lands at x > 0, z > 0. Under each pixel's
+  // centre, at screen (±½, ±½)·tan 30° · 2 m, a meter facing up reads g · I_white · cos θ / d². With lumens, I_white
+  // is Φ / Σ g·Ω over the pixels, Ω the solid angle of each quarter of the picture: by symmetry ¼ of the whole
+  // picture's 4·atan(tan²30°/√(1 + 2 tan²30°)).
+  const std::filesystem::path image = test::write_pfm("projector", 2, 2, {1, 1, 1, 0.25f, 0.25f, 0.25f, 0.5f, 0.5f, 0.5f, 0, 0, 0});
+  const double t = std::tan(kPi / 6.0), quarter_sr = std::atan(t * t / std::sqrt(1.0 + 2.0 * t * t));
+  const double greys[2][2] = {{1.0, 0.25}, {0.5, 0.0}};  // [row][column]
+  for (const bool lumens : {false, true}) {
+    CAPTURE(lumens);
+    json projector = {{"type", "projection"}, {"position", {0, 2, 0}}, {"direction", {0, -1, 0}}, {"up", {0, 0, 1}},
+                      {"fov_deg", 60}, {"image", image.string()}};
+    if (lumens) projector["luminous_power_lm"] = 500;
+    else projector["white_intensity_cd"] = 800;
+    const double white_cd = lumens ? 500.0 / ((1.0 + 0.25 + 0.5) * quarter_sr) : 800.0;
+    const auto scene = load(scene_with(json::array({projector})));
+    for (int row = 0; row < 2; ++row)
+      for (int column = 0; column < 2; ++column) {
+        CAPTURE(row);
+        CAPTURE(column);
+        // Screen (x, y) = (column − ½, ½ − row); world x = −x·tan·2, z = y·tan·2.
+        const double x = -(column - 0.5) * t * 2.0, z = (0.5 - row) * t * 2.0, d2 = x * x + z * z + 4.0;
+        const double expected = greys[row][column] * white_cd * (2.0 / std::sqrt(d2)) / d2;
+        const MeterReading reading = meter(*scene, {float(x), 0, float(z)}, {0, 1, 0});
+        if (expected == 0.0) CHECK(reading.value == 0.0);
+        else check_reading(reading, expected);
+      }
+  }
   std::filesystem::remove(image);
 }
 

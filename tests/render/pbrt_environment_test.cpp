@@ -10,6 +10,7 @@
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "transport/lights/area_light.h"
+#include "transport/lights/projection_light.h"
 #include "pbrt_test_support.h"
 
 using namespace rimu;
@@ -124,6 +125,39 @@ TEST_CASE("pbrt area light with an image: the emission it becomes, power, a sphe
     };
     CHECK(error(R"(AreaLightSource "diffuse" "string filename" "nope.png")").find("t.pbrt:4: AreaLightSource \"diffuse\": cannot find the image") != std::string::npos);
     CHECK(error(R"(AreaLightSource "diffuse" "string filename" "envmap_texel.ppm" "rgb L" [1 1 1])").find("t.pbrt:4: AreaLightSource \"diffuse\": give either \"L\" or \"filename\"") != std::string::npos);
+  }
+}
+
+TEST_CASE("pbrt projection light: frame, field, the pixel each direction gets, intensity and power") {
+  // envmap_texel.ppm: 32 × 32, one white pixel at (17, 6). pbrt-v4 projects along light-space +z through a screen of
+  // [−1, 1]² at tan(fov/2), light-space +x to the image's right and +y to its top row (its flip of y). A camera
+  // whose handedness is Rimu's (Scale −1 1 1), so light space is world space here.
+  const std::filesystem::path folder = test::test_data("pbrt");
+  const std::string camera = "LookAt 0 0 5  0 0 0  0 1 0\nScale -1 1 1\nCamera \"perspective\"\nWorldBegin\n";
+  const double nits_per_unit = SpectralResponse::from_spec(test::library(), "xyz").luminance_nits_per_unit_y();
+  const PbrtImport imported = import_pbrt_text(
+      camera + "LightSource \"projection\" \"string filename\" \"envmap_texel.ppm\" \"float fov\" 40 \"float scale\" 2",
+      "t.pbrt", folder, test::library());
+  CHECK(imported.ignored.empty());
+  const json& light = imported.document["lights"][0];
+  CHECK(light["type"] == "projection");
+  CHECK(light["fov_deg"] == 40.0);
+  CHECK(light["white_intensity_cd"].get<double>() == doctest::Approx(2.0 * nits_per_unit));
+  const auto scene = load_scene(imported.document, "t.pbrt", folder, test::library());
+  const auto& projector = dynamic_cast<const ProjectionLight&>(*scene->lights[0]);
+  const double t = std::tan(20.0 * M_PI / 180.0);
+  const double sx = -1.0 + 2.0 * 17.5 / 32.0, sy = 1.0 - 2.0 * 6.5 / 32.0;  // the white pixel's centre on the screen
+  const Vec3 towards = normalize(Vec3{float(sx * t), float(sy * t), 1.0f});
+  CHECK(projector.pixel_towards(towards) == std::pair<int, int>{17, 6});
+  CHECK(projector.pixel_towards(normalize(Vec3{float(sx * t), float(-sy * t), 1.0f})) == std::pair<int, int>{17, 25});
+  SUBCASE("power: luminous_power_lm = pbrt's power in the same film units") {
+    const PbrtImport powered = import_pbrt_text(
+        camera + "LightSource \"projection\" \"string filename\" \"envmap_texel.ppm\" \"float power\" 3",
+        "t.pbrt", folder, test::library());
+    CHECK(powered.document["lights"][0]["luminous_power_lm"].get<double>() == doctest::Approx(3.0 * nits_per_unit));
+  }
+  SUBCASE("errors name the line") {
+    CHECK(import_error(camera + "LightSource \"projection\"").find("t.pbrt:5: LightSource \"projection\": \"filename\" is required") != std::string::npos);
   }
 }
 

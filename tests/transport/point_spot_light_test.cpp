@@ -4,8 +4,11 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <vector>
 
+#include "grey_environment_image.h"
 #include "transport/lights/point_light.h"
+#include "transport/lights/projection_light.h"
 #include "transport/lights/spot_light.h"
 
 using namespace rimu;
@@ -98,4 +101,48 @@ TEST_CASE("spot light power matches numerical integration of its cone") {
         doctest::Approx(2.0 * std::numbers::pi * (1.0 - std::cos(std::numbers::pi / 6)) * 470.0).epsilon(1e-12));
   CHECK(hard.falloff({0.0f, 1.0f, 0.0f}) == 1.0f);
   CHECK(hard.falloff({0.6f, 0.8f, 0.0f}) == 0.0f);  // 36.9° off axis
+}
+
+TEST_CASE("projection light: which pixel lights where, its intensity, power and bounds") {
+  // A 3 × 2 grey image (aspect 1.5: the screen is ±1.5 × ±1) projected with a 60° field across its shorter side, from
+  // 2 m above the floor straight down, image right = world −x, image up = world +z (the frame a projector pointing
+  // down with up +z has: right = axis × up). Pixel (c, r) covers screen x ∈ [−1.5 + c, −0.5 + c], y ∈ [1 − r − 1, 1 − r].
+  const std::vector<float> pixels = {1, 2, 3, 4, 5, 6};  // row 0 (top): 1 2 3; row 1: 4 5 6
+  const Frame frame{{-1, 0, 0}, {0, 0, 1}, {0, -1, 0}};
+  const double tan30 = std::tan(std::numbers::pi / 6.0), scale = 0.5;
+  const ProjectionLight light({0, 2, 0}, frame, 60.0, std::make_shared<test::GreyImage>(3, 2, pixels), scale);
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c) {
+      CAPTURE(c);
+      CAPTURE(r);
+      // The floor point under the pixel's centre: screen (−1 + c, 0.5 − r) · tan30 · 2 m along right and up.
+      const double sx = (-1.0 + c) * tan30 * 2.0, sy = (0.5 - r) * tan30 * 2.0;
+      const Vec3 floor_point{float(-sx), 0.0f, float(sy)};
+      const auto s = light.sample_li({floor_point, {0, 1, 0}}, kLambda, {0.5f, 0.5f});
+      REQUIRE(s);
+      CHECK(s->is_delta);
+      const double d2 = sx * sx + sy * sy + 4.0;
+      CHECK(s->radiance[1] == doctest::Approx(scale * pixels[size_t(3 * r + c)] / d2).epsilon(1e-5));
+    }
+  // Outside the picture (beyond the long side's edge) and behind the projector: nothing.
+  CHECK_FALSE(light.sample_li({{float(-1.6 * tan30 * 2.0), 0, 0}, {0, 1, 0}}, kLambda, {0.5f, 0.5f}));
+  CHECK_FALSE(light.sample_li({{0, 3, 0}, {0, -1, 0}}, kLambda, {0.5f, 0.5f}));
+  CHECK(light.pixel_towards({0, 1, 0}).first == -1);
+  // Power: Σ I_pixel · Ω_pixel, each Ω the closed-form solid angle of the pixel's rectangle at distance 1, here
+  // checked against a 600 × 400 midpoint rule of ∫ I cos³θ dA over the image plane (error < 1e-5).
+  double power = 0.0;
+  const int nx = 600, ny = 400;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double x = (-1.5 + 3.0 * (i + 0.5) / nx) * tan30, y = (1.0 - 2.0 * (j + 0.5) / ny) * tan30;
+      const double cos3 = std::pow(1.0 + x * x + y * y, -1.5);
+      power += scale * pixels[size_t(3 * (j * 2 / ny) + i * 3 / nx)] * cos3 * (3.0 * tan30 / nx) * (2.0 * tan30 / ny);
+    }
+  CHECK(light.total_power_w(1.0) == doctest::Approx(power * 470.0).epsilon(1e-5));  // a grey pixel: ∫dλ = 470 nm
+  CHECK(light.luminance_weighted_solid_angle_sr() == doctest::Approx(power / scale).epsilon(1e-5));
+  // Bounds: the brightest pixel, in the cone to the picture's corners.
+  const auto b = light.part_bounds(0);
+  REQUIRE(b);
+  CHECK(b->intensity_w_sr == doctest::Approx(scale * 6.0 * 470.0).epsilon(1e-5));
+  CHECK(light.corner_angle_rad() == doctest::Approx(std::atan(tan30 * std::hypot(1.5, 1.0))));
 }

@@ -16,6 +16,7 @@
 #include "transport/lights/environment_light.h"
 #include "transport/lights/light_spectrum.h"
 #include "transport/lights/point_light.h"
+#include "transport/lights/projection_light.h"
 #include "transport/lights/spot_light.h"
 #include "spectral/photometry/light_units.h"
 
@@ -39,11 +40,13 @@ Frame environment_frame(const JsonCursor& f) {
 }
 
 std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context);
+std::unique_ptr<Light> load_projection(const JsonCursor& l, LoadContext& context);
 
 std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
   const std::string type =
-      l.at("type").choice({"point", "spot", "distant", "environment", "ies", "goniometric", "cie_sky", "sun"});
+      l.at("type").choice({"point", "spot", "distant", "environment", "ies", "goniometric", "cie_sky", "sun", "projection"});
   if (type == "ies") return load_ies_light(l, context);
+  if (type == "projection") return load_projection(l, context);
   if (type == "cie_sky") return load_cie_sky_light(l, context);
   if (type == "sun") return load_sun_light(l, context);
   // A goniometric image's default frame: image centre (local +z) along +y, as pbrt's after its y-z swap.
@@ -124,6 +127,45 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
   }
   light->set_portals(std::move(portals));
   return light;
+}
+
+std::unique_ptr<Light> load_projection(const JsonCursor& l, LoadContext& context) {
+  l.only_keys({"type", "name", "light_group", "position", "direction", "up", "frame", "fov_deg", "image", "colour_space",
+               "encoding", "white_intensity_cd", "luminous_power_lm"});
+  // The frame: given whole ([right, up, axis], as the pbrt importer writes it), or from the axis and an up direction
+  // (default +y) made perpendicular to it; right = axis × up, so the picture is seen upright from behind the projector.
+  Frame frame;
+  if (l.has("frame")) {
+    if (l.has("direction") || l.has("up")) l.at("frame").fail("give either frame or direction (and up), not both");
+    frame = environment_frame(l.at("frame"));
+  } else {
+    const Vec3 axis = unit_direction(l.at("direction"));
+    const Vec3 up_given = l.has("up") ? unit_direction(l.at("up")) : Vec3{0, 1, 0};
+    const Vec3 right = cross(axis, up_given);
+    if (!(length(right) > 1e-4f))
+      (l.has("up") ? l.at("up") : l.at("direction")).fail("the projector's up direction is parallel to its direction: give \"up\"");
+    frame.n = axis;
+    frame.s = normalize(right);
+    frame.t = cross(frame.s, axis);
+  }
+  const double fov_deg = l.at("fov_deg").number(0.01, 179.0);
+  if (l.has("white_intensity_cd") == l.has("luminous_power_lm"))
+    l.fail("a projector takes one of white_intensity_cd (the candela of a pixel of luminance 1) and luminous_power_lm");
+  // The pixels scaled so that a pixel of luminance Y has Y candela (emission_rgb_scale: cd/m² per film unit, the
+  // same conversion for a luminous intensity), then the amount.
+  const EmissionImage pixels = load_emission_image(l, 1.0 / context.spectra.emission_rgb_scale(), context);
+  const Vec3 position = l.at("position").vec3();
+  double white_cd = 0.0;
+  if (const auto cd = l.find("white_intensity_cd")) {
+    white_cd = cd->number(1e-30, 1e30);
+  } else {
+    const ProjectionLight unit(position, frame, fov_deg, pixels.pixels, pixels.scale);
+    const double lm_per_cd = unit.luminance_weighted_solid_angle_sr();
+    if (!(lm_per_cd > 0.0)) l.at("image").fail("the image is black: the projector would emit nothing");
+    white_cd = l.at("luminous_power_lm").number(1e-30, 1e30) / lm_per_cd;
+  }
+  if (!(white_cd * pixels.scale <= 1e30)) l.fail("the projector's intensity exceeds 1e30");
+  return std::make_unique<ProjectionLight>(position, frame, fov_deg, pixels.pixels, pixels.scale * white_cd);
 }
 
 }  // namespace

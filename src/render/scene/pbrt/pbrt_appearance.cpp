@@ -743,10 +743,38 @@ json PbrtConverter::goniometric_light(PbrtParams& p, const PbrtStatement& s, con
   return light;
 }
 
+json PbrtConverter::projection_light(PbrtParams& p, const PbrtStatement& s, const PbrtMatrix& world) {
+  const std::string context = "LightSource \"projection\"";
+  const std::string filename = p.string("filename", "");
+  if (filename.empty()) throw InputError(s.where, context + ": \"filename\" is required (as in pbrt-v4)");
+  const std::filesystem::path path = std::filesystem::absolute(s.directory / filename);
+  if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the image '" + path.string() + "'");
+  // pbrt-v4 projects along light-space +z through its Perspective(fov) screen, with the light's y flipped so that
+  // light-space +y is the image's top row and +x its right: Rimu's frame [right, up, axis] is the world images of
+  // light-space x, y, z.
+  const std::array<Vec3d, 3> axes = light_axes(world, context, s.where);
+  const double fov = p.real("fov", 90.0);
+  if (!(fov > 0.0 && fov < 179.0)) throw InputError(s.where, context + ": \"fov\" must be in (0, 179) degrees");
+  json light = {{"type", "projection"}, {"image", path_for_document(path)}, {"position", world.point({0, 0, 0})},
+                {"frame", {axes[0], axes[1], axes[2]}}, {"fov_deg", fov}};
+  // A pixel of luminance Y is pbrt's scale · Y "nits" of intensity (its spectrum over the colour space white's
+  // luminance), Rimu's scale · Y · nits_per_unit_y_ candela. pbrt's "power" scales to power / Σ Y·Ω over the
+  // pixels, which Rimu's luminous_power_lm does with the same sum (ProjectionLight), in the same film units.
+  const double scale = p.real("scale", 1.0), power = p.real("power", -1.0);
+  if (!(scale > 0.0)) {
+    ignore(context + " with a scale of 0 (it emits nothing)", s.where);
+    return nullptr;
+  }
+  if (power > 0) light["luminous_power_lm"] = nits_per_unit_y_ * scale * power;
+  else light["white_intensity_cd"] = nits_per_unit_y_ * scale;
+  return light;
+}
+
 void PbrtConverter::light_source(const PbrtStatement& s) {
   const std::string& type = s.strings[0];
   const std::string context = "LightSource \"" + type + "\"";
-  if (type != "point" && type != "spot" && type != "distant" && type != "infinite" && type != "goniometric") {
+  if (type != "point" && type != "spot" && type != "distant" && type != "infinite" && type != "goniometric" &&
+      type != "projection") {
     ignore(context, s.where);
     return;
   }
@@ -764,6 +792,13 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
     return v.empty() ? fallback : Vec3d{v[0], v[1], v[2]};
   };
   json light = {{"type", type}};
+  if (type == "projection") {
+    json projection = projection_light(p, s, world);
+    if (projection.is_null()) return;
+    origin("/lights/" + std::to_string(lights_.size()), s.where, context);
+    lights_.push_back(std::move(projection));
+    return;
+  }
   if (type == "goniometric") {
     json goniometric = goniometric_light(p, s, world);
     if (goniometric.is_null()) return;

@@ -115,6 +115,9 @@ class PbrtConverter {
                      bool image_capable);
   /// The emission of an area light with "filename": {"image", "scale"}, scaled to `power` (> 0; pbrt's per-shape power
   /// times the shapes of the mesh) as pbrt-v4 does.
+  /// LightSource "projection": {"type": "projection", image, position, frame, fov_deg, and white_intensity_cd or
+  /// luminous_power_lm}; nullptr (listed) for a scale of 0.
+  json projection_light(PbrtParams& p, const PbrtStatement& s, const PbrtMatrix& world);
   json image_area_emission(PbrtParams& p, const PbrtStatement& s, const std::string& filename, double area_m2, double power,
                            bool two_sided);
   void texture(const PbrtStatement& s);
