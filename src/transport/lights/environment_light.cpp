@@ -6,7 +6,6 @@
 #include <numbers>
 #include <vector>
 
-#include "spectral/wavelengths/wavelength_range.h"
 #include "transport/sampling/equal_area_square.h"
 #include "transport/lights/light_warps.h"
 
@@ -17,8 +16,6 @@ constexpr float kPi = std::numbers::pi_v<float>;
 constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
 /// Share of the mean luminance added to every pixel's sampling weight (see the header).
 constexpr double kLuminanceFloor = 1e-3;
-/// Wavelengths of the power estimate's midpoint rule: 4 lane groups of 4.
-constexpr int kPowerWavelengths = 16;
 }  // namespace
 
 EnvironmentLight::EnvironmentLight(LightSpectrum radiance)
@@ -44,13 +41,6 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, d
   // Ω_y = (2π/w)(cos θ_top − cos θ_bottom) of a pixel in row y (equirectangular) or 4π/(w·h) (equal-area), for
   // the power estimate.
   const bool equal_area = mapping_ == EnvironmentMapping::equal_area_octahedral;
-  const double band_nm = (kLambdaMaxNm - kLambdaMinNm) / kPowerWavelengths;
-  std::vector<SampledWavelengths> groups;
-  for (int g = 0; g < kPowerWavelengths / kLaneCount; ++g) {
-    Float4 l;
-    for (int j = 0; j < kLaneCount; ++j) l.set(j, float(kLambdaMinNm + (g * kLaneCount + j + 0.5) * band_nm));
-    groups.emplace_back(l, Float4(float(1.0 / (kLambdaMaxNm - kLambdaMinNm))));
-  }
   double radiance_times_solid_angle = 0.0;
   for (int y = 0; y < h; ++y) {
     const double theta_center = std::numbers::pi * (y + 0.5) / h;
@@ -61,9 +51,7 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, d
     for (int x = 0; x < w; ++x) {
       double& weight = luminance[size_t(y) * w + x];
       weight = (weight + kLuminanceFloor * mean) * sin_theta;
-      double spectral_sum = 0.0;
-      for (const auto& lambda : groups) spectral_sum += sum(image_->radiance(x, y, lambda));
-      radiance_times_solid_angle += spectral_sum * band_nm * pixel_sr;
+      radiance_times_solid_angle += pixel_radiance_integral(*image_, x, y) * pixel_sr;
     }
   }
   mean_radiance_integral_ = image_scale_ * radiance_times_solid_angle / (4.0 * std::numbers::pi);

@@ -6,14 +6,11 @@
 #include <numbers>
 #include <vector>
 
-#include "spectral/wavelengths/wavelength_range.h"
 #include "transport/lights/point_light.h"
 
 namespace rimu {
 
 namespace {
-/// Wavelengths of each pixel's ∫I dλ (midpoint rule), as the environment light's power.
-constexpr int kIntegralWavelengths = 16;
 /// Directions closer to the image plane than this (w·n/|w|) emit nothing: pbrt-v4's hither.
 constexpr float kHither = 1e-3f;
 }  // namespace
@@ -29,13 +26,6 @@ ProjectionLight::ProjectionLight(Vec3 position_m, Frame frame, double fov_deg,
   half_height_ = aspect > 1.0 ? 1.0f : float(1.0 / aspect);
 
   const int w = image_->width(), h = image_->height();
-  const double band_nm = (kLambdaMaxNm - kLambdaMinNm) / kIntegralWavelengths;
-  std::vector<SampledWavelengths> groups;
-  for (int g = 0; g < kIntegralWavelengths / kLaneCount; ++g) {
-    Float4 l;
-    for (int j = 0; j < kLaneCount; ++j) l.set(j, float(kLambdaMinNm + (g * kLaneCount + j + 0.5) * band_nm));
-    groups.emplace_back(l, Float4(float(1.0 / (kLambdaMaxNm - kLambdaMinNm))));
-  }
   // A pixel's patch of the image plane at distance 1 is the rectangle [x0, x1] × [y0, y1], of side
   // 2·half_width·tan/w by 2·half_height·tan/h; its solid angle ∫ cos³θ dA is exact by the corner function
   // F(x, y) = atan(xy/√(1 + x² + y²)), the solid angle of [0, x] × [0, y] (pbrt-v4 takes cos³θ at the pixel's centre
@@ -45,9 +35,7 @@ ProjectionLight::ProjectionLight(Vec3 position_m, Frame frame, double fov_deg,
   const auto corner = [](double x, double y) { return std::atan(x * y / std::sqrt(1.0 + x * x + y * y)); };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      double spectral_sum = 0.0;
-      for (const auto& lambda : groups) spectral_sum += sum(image_->radiance(x, y, lambda));
-      const double integral = std::max(0.0, scale * spectral_sum * band_nm);
+      const double integral = std::max(0.0, scale * pixel_radiance_integral(*image_, x, y));
       brightest_integral_ = std::max(brightest_integral_, integral);
       const double x0 = -half_width_ * tan + x * pixel_w, x1 = x0 + pixel_w;
       const double y1 = half_height_ * tan - y * pixel_h, y0 = y1 - pixel_h;  // row 0 at the top

@@ -24,4 +24,8 @@ class RadianceImage {
   virtual float luminance(int x, int y) const = 0;
 };
 
+/// ∫ radiance(x, y, λ) dλ over 360-830 nm, by the midpoint rule at 16 wavelengths (four lane groups): a pixel's
+/// share of a light's power and sampling weights (W/(m²·sr) for radiance, W/sr for an intensity image).
+double pixel_radiance_integral(const RadianceImage& image, int x, int y);
+
 }  // namespace rimu

@@ -4,14 +4,11 @@
 #include <cassert>
 #include <cmath>
 
-#include "spectral/wavelengths/wavelength_range.h"
 #include "transport/lights/light_warps.h"
 
 namespace rimu {
 
 namespace {
-/// Wavelengths of each pixel's ∫L dλ (midpoint rule): 4 lane groups of 4, as the environment light's power.
-constexpr int kIntegralWavelengths = 16;
 /// Points per side of the stratified grid in a triangle's mean: at least 4 × 4, at most 32 × 32, about two points per
 /// pixel the triangle spans in between.
 constexpr int kMinGridSide = 4, kMaxGridSide = 32;
@@ -23,20 +20,11 @@ TexturedEmission::TexturedEmission(std::shared_ptr<const RadianceImage> image, d
   assert(image_ && image_->width() > 0 && image_->height() > 0 && std::isfinite(scale) && scale >= 0.0);
   width_ = image_->width();
   height_ = image_->height();
-  const double band_nm = (kLambdaMaxNm - kLambdaMinNm) / kIntegralWavelengths;
-  std::vector<SampledWavelengths> groups;
-  for (int g = 0; g < kIntegralWavelengths / kLaneCount; ++g) {
-    Float4 l;
-    for (int j = 0; j < kLaneCount; ++j) l.set(j, float(kLambdaMinNm + (g * kLaneCount + j + 0.5) * band_nm));
-    groups.emplace_back(l, Float4(float(1.0 / (kLambdaMaxNm - kLambdaMinNm))));
-  }
   pixel_integral_.resize(size_t(width_) * size_t(height_));
   for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x) {
-      double spectral_sum = 0.0;
-      for (const auto& lambda : groups) spectral_sum += sum(image_->radiance(x, y, lambda));
-      pixel_integral_[size_t(y) * size_t(width_) + size_t(x)] = float(std::max(0.0, scale * spectral_sum * band_nm));
-    }
+    for (int x = 0; x < width_; ++x)
+      pixel_integral_[size_t(y) * size_t(width_) + size_t(x)] =
+          float(std::max(0.0, scale * pixel_radiance_integral(*image_, x, y)));
 }
 
 TexturedEmission::Footprint TexturedEmission::footprint(Vec2 uv) const {
