@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <memory>
 #include <numbers>
 
 #include "meter_reading_check.h"
@@ -47,15 +48,21 @@ MeterReading meter(const Scene& scene, Vec3 position, Vec3 normal, int samples =
   return measure_illuminance_lx(scene.transport_view(), position, normal, test::library().photopic_v(), samples, 7);
 }
 
-// Renders a 12x12 image at `spp` and reads the luminance over all of it.
-MeterReading camera_luminance(const Scene& scene, int spp = 8) {
-  Film film(FilmOptions{12, 12, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
+// The scene's camera image, 12 x 12 pixels at `spp`, box filter, one thread.
+std::unique_ptr<Film> render_12x12(const Scene& scene, int spp) {
+  auto film = std::make_unique<Film>(FilmOptions{12, 12, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
   RenderOptions options;
   options.samples_per_pixel = spp;
   options.threads = 1;
-  render(scene.transport_view(), scene.settings.integrator, Camera(scene.camera, 12, 12), PixelFilter::box(), film,
+  render(scene.transport_view(), scene.settings.integrator, Camera(scene.camera, 12, 12), PixelFilter::box(), *film,
          options);
-  return measure_luminance_nt(film, film.pixel_bounds());
+  return film;
+}
+
+// Renders a 12x12 image at `spp` and reads the luminance over all of it.
+MeterReading camera_luminance(const Scene& scene, int spp = 8) {
+  const auto film = render_12x12(scene, spp);
+  return measure_luminance_nt(*film, film->pixel_bounds());
 }
 
 using test::check_reading;
@@ -148,13 +155,8 @@ TEST_CASE("area lights: lumens over the area after the transform, one- and two-s
         json::array(),
         json::array({light_quad({{"spectrum", {{"illuminant", "D65"}}}, {"luminous_power_lm", 1000}}, 0.25f, two_sided)}),
         {0, 0, 3}));
-    Film film(FilmOptions{12, 12, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
-    RenderOptions options;
-    options.samples_per_pixel = 4;
-    options.threads = 1;
-    render(scene->transport_view(), scene->settings.integrator, Camera(scene->camera, 12, 12), PixelFilter::box(), film,
-           options);
-    check_reading(measure_luminance_nt(film, PixelBounds{3, 3, 9, 9}), 1000.0 / kPi / (two_sided ? 2.0 : 1.0));
+    const auto film = render_12x12(*scene, 4);
+    check_reading(measure_luminance_nt(*film, PixelBounds{3, 3, 9, 9}), 1000.0 / kPi / (two_sided ? 2.0 : 1.0));
     CHECK(scene->lights[0]->total_power_w(1.0) ==
           doctest::Approx(1000.0 / shape_integrals(*test::library().illuminant("D65"), test::library().photopic_v())
                                        .efficacy_lm_W()).epsilon(1e-6));
@@ -172,16 +174,11 @@ TEST_CASE("an emission image's white_luminance_nt: a white pixel seen by the cam
     json quad = light_quad(emission, 0.25f);
     quad["uvs"] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // without, each triangle's uvs are its barycentrics
     const auto scene = load(scene_with(json::array(), json::array({quad}), {0, 0, 3}));
-    Film film(FilmOptions{12, 12, std::nullopt, 0}, SpectralResponse::cie_xyz(test::library()));
-    RenderOptions options;
-    options.samples_per_pixel = 8;
-    options.threads = 1;
-    render(scene->transport_view(), scene->settings.integrator, Camera(scene->camera, 12, 12), PixelFilter::box(), film,
-           options);
+    const auto film = render_12x12(*scene, 8);
     // u grows along +x, which the camera at +z looking at −z has on its right: the white pixel (u < ¼ unblended,
     // x < −0.25 m) fills image columns 1-2, the grey (u > ¾) columns 9-10 (0.088 m per column at 3 m).
-    const MeterReading white = measure_luminance_nt(film, PixelBounds{1, 3, 3, 9});
-    const MeterReading grey = measure_luminance_nt(film, PixelBounds{9, 3, 11, 9});
+    const MeterReading white = measure_luminance_nt(*film, PixelBounds{1, 3, 3, 9});
+    const MeterReading grey = measure_luminance_nt(*film, PixelBounds{9, 3, 11, 9});
     // Wavelength sampling is the only noise; 1e-5 covers 72 983's rounding (K_m ∫ȳ dλ = 72 983.3).
     CHECK(white.value == doctest::Approx(300.0).epsilon(4.5 * white.standard_error / 300.0 + 1e-5));
     CHECK(grey.value == doctest::Approx(150.0).epsilon(4.5 * grey.standard_error / 150.0 + 1e-5));
