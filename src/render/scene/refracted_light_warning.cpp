@@ -117,10 +117,11 @@ std::vector<std::string> unlit_medium_warnings(const nlohmann::json& document, c
     const bool index_one = (*material).contains("ior") && (*material)["ior"].is_number() && (*material)["ior"] == 1.0;
     if (material->value("type", std::string()) == "dielectric" && smooth && !index_one &&
         !material->value("diffuse_entry", false))
-      warnings.push_back("media/" + name + ": no light from the point, spot, goniometric, distant or sun lights reaches "
-                         "inside it: its boundary material '" + boundary + "' is a smooth refracting dielectric (shadow "
-                         "rays stop there, and no path can hit such a light); for skin, wax or milk give '" + boundary +
-                         "' \"diffuse_entry\": true (docs/scene-format.md, \"dielectric\")");
+      warnings.push_back("media/" + name + ": no light from the point, spot, ies, goniometric, projection, distant "
+                         "or sun lights reaches inside it: its boundary material '" + boundary + "' is a smooth "
+                         "refracting dielectric (shadow rays stop there, and no path can hit such a light); for skin, "
+                         "wax or milk give '" + boundary + "' \"diffuse_entry\": true (docs/scene-format.md, "
+                         "\"dielectric\")");
   }
   return warnings;
 }
