@@ -167,8 +167,10 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     const PbrtMatrix world = world_from_object();
     // Rimu's analytic sphere has no cut-outs (a sphere with alpha takes the mesh path below), is not instanced, and
     // faces outwards. An emissive one is an analytic area light (transport/lights/sphere_light.h): pbrt-v4's sphere
-    // faces outwards under a mirroring transform too (its normal flips only with ReverseOrientation).
-    if (whole && shape_alpha_.is_null() && !object_ && !state_.reverse_orientation &&
+    // faces outwards under a mirroring transform too (its normal flips only with ReverseOrientation). An area light
+    // with an image takes the mesh path: Rimu's emission images are on meshes.
+    const bool image_light = state_.area_light && state_.area_light->find("filename") != nullptr;
+    if (whole && shape_alpha_.is_null() && !object_ && !state_.reverse_orientation && !image_light &&
         !medium_in_front_only(current_material()) && world.is_finite() && world.is_affine() && is_similarity(world, scale)) {
       // pbrt's sphere uv is about its object axes (pole +z, u = 0 along +x): carried as their world directions,
       // so textures land where pbrt puts them (a mirroring CTM flips the direction u runs, as in pbrt).
