@@ -18,5 +18,5 @@ cmake -S . -B "$build_dir" "${cmake_args[@]}" >/dev/null
 cmake --build "$build_dir" -j"$(nproc)"
 # The readers' fuzz targets, briefly (docs/fuzzing.md): a crash, sanitizer report or unexpected exception fails.
 # They run before CTest so that CTest's summary is the run's closing line.
-scripts/fuzz.sh "${RIMU_CI_FUZZ_SECONDS:-20}"
+scripts/fuzz.sh "${RIMU_CI_FUZZ_SECONDS:-12}"
 ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"
