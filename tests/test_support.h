@@ -4,12 +4,22 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 #include <string>
 
 #include "spectral/library/spectral_library.h"
+#include "spectral/wavelengths/sampled_wavelengths.h"
 
 namespace rimu::test {
+
+/// π for tests (files take it with `using rimu::test::kPi;`: one definition, so a unity build of the suite does not
+/// see two).
+inline constexpr double kPi = std::numbers::pi;
+
+/// Four wavelengths over the visible, 450 nm the hero, each with the pdf of uniform sampling over 360-830 nm: the
+/// lanes the light, material and texture tests evaluate spectra at (files take it with `using rimu::test::kLambda;`).
+inline const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
 
 /// The project's data folder, found the way the binaries find it (RIMU_DATA, then beside the executable).
 SpectralLibrary& library();

@@ -21,7 +21,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 // The bounds analytic_shapes.h states: area short by < 1e-3, every point within 1.1e-3 of the radius (5.4e-4 for a
 // circle's chord).
 constexpr double kAreaBound = 1e-3;

@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // A Lambertian card of `reflectance` filling the view, lit at normal incidence by a sun of `spectrum` and `lux`.
 json card_scene(double reflectance, json spectrum, double lux, json camera_extra) {

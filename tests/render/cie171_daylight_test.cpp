@@ -30,7 +30,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 constexpr double kDegree = kPi / 180.0;
 constexpr double kHorizontalIlluminanceLx = 10000.0;
 constexpr int kOpeningSamples = 32768;

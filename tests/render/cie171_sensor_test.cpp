@@ -24,9 +24,9 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace cie171_sensor_test {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 using Point = std::array<double, 3>;
 
@@ -109,8 +109,6 @@ void check_case(const char* name, const MeterReading& r, double reference) {
   CHECK(r.standard_error < 0.02 * reference);
   CHECK(std::abs(r.value - reference) <= test::kSensorSigmas * r.standard_error);
 }
-
-}  // namespace
 
 TEST_CASE("CIE 171 area source: the polygon factor equals Howell's corner factor for a parallel rectangle") {
   const double a = 2.0, b = 1.0, c = 2.0;
@@ -264,3 +262,5 @@ TEST_CASE("Sensor standard errors are honest: a grid's errors over their standar
   CHECK(mean_z2 > 1.154 - 4 * 0.13);
   CHECK(mean_z2 < 1.154 + 4 * 0.13);
 }
+
+}  // namespace cie171_sensor_test

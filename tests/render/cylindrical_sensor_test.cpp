@@ -22,9 +22,9 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace cylindrical_sensor_test {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 test::LoadedSensors load(const json& document) { return test::load_sensors(document, "cylinders.json"); }
 
 SensorReadings measure(const test::LoadedSensors& loaded) { return test::measure(loaded, 5); }
@@ -36,8 +36,6 @@ json semi_cylinder(const std::string& name, std::vector<double> position, std::v
                    std::vector<double> facing) {
   return {{"name", name}, {"type", "semi_cylindrical"}, {"position", position}, {"axis", axis}, {"facing", facing}};
 }
-
-}  // namespace
 
 TEST_CASE("cylindrical sensors: a point source gives I sin θ / (π d²), and (1 + cos α) times that facing it") {
   const double candela = 1000.0;
@@ -165,3 +163,5 @@ TEST_CASE("cylindrical sensors: bad meters are refused by key") {
   fails({{"type", "cylindrical"}, {"position", {0, 0, 0}}, {"axis", {0, 0, 1}}, {"facing", {1, 0, 0}}},
         {"/sensors/meters/0", "facing"});
 }
+
+}  // namespace cylindrical_sensor_test

@@ -21,7 +21,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace daylight_factor_test {
 
 const json kOvercast = {{"type", "cie_sky"}, {"sky_type", 1}, {"diffuse_horizontal_illuminance_lx", 10000}};
 
@@ -44,8 +44,6 @@ test::LoadedSensors load(const json& document) { return test::load_sensors(docum
 SensorReadings measure(const test::LoadedSensors& loaded) { return test::measure(loaded, 5); }
 
 void check_df(const MeterReading& df, double expected_percent) { test::check_sensor_reading(df, expected_percent); }
-
-}  // namespace
 
 TEST_CASE("daylight factor: 100 % unobstructed, 50 % at the foot of a tall black wall, under the CIE overcast sky") {
   const json wall = {{"type", "quad"}, {"material", "black"},
@@ -108,3 +106,5 @@ TEST_CASE("daylight factor: a scene without the overcast sky alone is refused, n
   CHECK_THROWS_WITH_AS(load(scene_with(json::array({kOvercast}), {grid})),
                        doctest::Contains("/sensors/grids/0/daylight_factor"), InputError);
 }
+
+}  // namespace daylight_factor_test

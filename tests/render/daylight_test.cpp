@@ -20,9 +20,9 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace daylight_test {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 json scene_with(json lights) {
   return json{{"camera", {{"from", {0, 1, 3}}, {"to", {0, 1, 0}}, {"up", {0, 1, 0}}, {"vertical_fov_deg", 40}}},
@@ -43,8 +43,6 @@ using test::check_reading;
 
 const json kGolden = {{"latitude_deg", 39.742476}, {"longitude_deg", -105.1786}, {"date", "2003-10-17"},
                       {"time", "12:30:30"}, {"utc_offset_h", -7}};
-
-}  // namespace
 
 TEST_CASE("a CIE overcast sky calibrated to 10000 lx gives 10000 lx on a horizontal meter") {
   const auto scene = load(scene_with(json::array(
@@ -154,3 +152,5 @@ TEST_CASE("bad daylight keys are named") {
   overcast["lights"][0].erase("sun_position");
   CHECK(load(overcast)->lights.size() == 1);
 }
+
+}  // namespace daylight_test

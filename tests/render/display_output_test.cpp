@@ -14,7 +14,7 @@
 using namespace rimu;
 namespace fs = std::filesystem;
 
-namespace {
+namespace display_output_test {
 
 // IEC 61966-2-1:1999: XYZ (D65) → linear sRGB (the standard's 4-decimal matrix) and the piecewise encoding.
 std::array<double, 3> xyz_to_linear_srgb(const std::array<double, 3>& xyz) {
@@ -33,8 +33,6 @@ std::array<double, 3> d65_grey(double y) {
   const double x = 0.31272, yy = 0.32903;
   return {y * x / yy, y, y * (1.0 - x - yy) / yy};
 }
-
-}  // namespace
 
 TEST_CASE("Standard view: plain sRGB encoding of XYZ, with exposure") {
   // OCIO's "DISPLAY - CIE-XYZ-D65_to_sRGB" against IEC 61966-2-1's matrix and curve. OCIO derives its matrix from the
@@ -124,3 +122,5 @@ TEST_CASE("PNG is written, readable, of the crop window's size, with the expecte
   CHECK_THROWS_AS(write_display_image(folder / "missing" / "x.png", film), InputError);
   fs::remove_all(folder);
 }
+
+}  // namespace display_output_test

@@ -17,10 +17,11 @@
 #include <vector>
 
 #include "integration_support.h"
+#include "test_support.h"
 
 namespace rimu::test::emitters {
 
-inline constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 inline constexpr double kAlbedo = 0.5;
 inline constexpr double kRadiance = 1.0;  // constant spectral radiance of the emitters (every lane sees the same)
 

@@ -15,6 +15,7 @@
 #include "render/reports/light_meter.h"
 #include "spectral/colorimetry/photometry_constants.h"
 #include "transport/integrators/shadow_passage.h"
+#include "test_support.h"
 
 using namespace rimu;
 using namespace rimu::test;
@@ -22,7 +23,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using rimu::test::kPi;
 constexpr double kSunTiltDeg = 40.0;
 constexpr double kFloorReflectance = 0.5;
 

@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // A bilateral (0-180°) table whose C planes differ, so the plane table and the quadrature see the C dependence:
 // 400 cd at nadir in every plane; at 45° 300 cd in C 0°, 200 cd in C 90°, 100 cd in C 180°; dark at 90°.

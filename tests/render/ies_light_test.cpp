@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 double rad(double deg) { return deg * kPi / 180.0; }
 
 // Axially symmetric downlight: 500 cd (×2 multiplier = 1000) to 30°, linear to 0 at 60°, dark to 90°. Its flux

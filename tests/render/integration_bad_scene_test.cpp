@@ -17,7 +17,7 @@ using namespace rimu;
 using namespace rimu::test;
 namespace fs = std::filesystem;
 
-namespace {
+namespace integration_bad_scene_test {
 
 // A valid one-sphere scene to break one key at a time.
 nlohmann::json valid_scene() {
@@ -53,8 +53,6 @@ void check_error(const nlohmann::json& scene, const std::string& key, const std:
   // what() leads with the location, so a user sees file and key path first.
   CHECK(std::string(e.what()).rfind("bad.json: " + key + ": ", 0) == 0);
 }
-
-}  // namespace
 
 TEST_CASE("bad scene: malformed JSON names the file and the line") {
   const fs::path path = fs::temp_directory_path() / ("rimu-bad-json-" + std::to_string(::getpid()) + ".json");
@@ -178,3 +176,5 @@ TEST_CASE("bad scene: degenerate triangles are removed and counted, and the rend
   s["shapes"][1]["indices"] = {1, 1, 2};
   CHECK(scene_from_json(s, "degenerate.json")->degenerate_triangles_removed == 1);
 }
+
+}  // namespace integration_bad_scene_test

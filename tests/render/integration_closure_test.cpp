@@ -14,13 +14,14 @@
 
 #include "integration_support.h"
 #include "render/camera/camera.h"
+#include "test_support.h"
 
 using namespace rimu;
 using namespace rimu::test;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // A 20 m square of albedo `rho` at y = 0 (normal +y), seen from 45° above by a narrow camera (every pixel on it).
 nlohmann::json plane_scene(double rho, const nlohmann::json& lights) {

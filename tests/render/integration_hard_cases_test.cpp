@@ -12,13 +12,14 @@
 #include <numbers>
 
 #include "integration_support.h"
+#include "test_support.h"
 
 using namespace rimu;
 using namespace rimu::test;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 constexpr double kRho = 0.5, kIrradiance = 2.0, kSky = 0.25, kTheta = kPi / 3.0;
 const double kExpected = kRho * (kIrradiance * std::cos(kTheta) / kPi + kSky);  // 0.2046
 

@@ -25,9 +25,9 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace light_units_render_test {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 double cos_deg(double d) { return std::cos(d * kPi / 180.0); }
 
 // A scene with the given lights and shapes, a camera at `from` looking at the origin, and a grey and a black material.
@@ -76,8 +76,6 @@ json light_quad(json emission, float half_size, bool two_sided = false) {
               {"two_sided", two_sided},
               {"transform", {{{"scale", 2.0}}}}};
 }
-
-}  // namespace
 
 TEST_CASE("a 1000 lm point light at 2 m gives 1000/(16π) lx on a facing sensor") {
   const auto scene = load(scene_with(json::array(
@@ -269,3 +267,5 @@ TEST_CASE("the light meter's standard error is honest: over 100 seeds its errors
   CHECK(mean_z2 > 1.154 - 4 * 0.18);
   CHECK(mean_z2 < 1.154 + 4 * 0.18);
 }
+
+}  // namespace light_units_render_test

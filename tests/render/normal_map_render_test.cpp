@@ -10,13 +10,14 @@
 #include "integration_support.h"
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "test_image_files.h"
+#include "test_support.h"
 
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace normal_map_render_test {
 
-constexpr double kPi = 3.14159265358979323846;
+using rimu::test::kPi;
 constexpr double kLightDeg = 40.0;  // the light's angle from the floor's normal, towards +x
 constexpr double kTiltDeg = 20.0;
 
@@ -55,8 +56,6 @@ std::string ramp_image() {
     for (int c = 0; c < 3; ++c) rgb.push_back(float(i) / 63.0f);
   return test::write_pfm("bump_ramp", 64, 1, rgb).string();
 }
-
-}  // namespace
 
 TEST_CASE("normal map render: a constant tilted map scales a floor's brightness by cos(θ ∓ tilt)/cos θ") {
   const json plain = {{"type", "diffuse"}, {"reflectance", 0.5}};
@@ -198,3 +197,5 @@ TEST_CASE("pbrt normalmap and displacement: imported as the material's normal_ma
                                         dir.path, test::library()),
                        doctest::Contains("test.pbrt:4"), InputError);
 }
+
+}  // namespace normal_map_render_test

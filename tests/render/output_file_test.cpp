@@ -18,7 +18,7 @@
 using namespace rimu;
 namespace fs = std::filesystem;
 
-namespace {
+namespace output_file_test {
 
 struct Folder : test::ScratchFolder {
   explicit Folder(const std::string& name) : ScratchFolder("output_file_" + name) {}
@@ -36,8 +36,6 @@ pid_t dead_pid() {
   ::waitpid(child, &status, 0);
   return child;
 }
-
-}  // namespace
 
 TEST_CASE("temporaries are named after their whole destination and marked incomplete") {
   const fs::path t = temporary_output_path(fs::path("shots") / "out.exr");
@@ -138,3 +136,5 @@ TEST_CASE("an output that is an input is refused: by name, symbolic link and har
   CHECK_NOTHROW(check_output_not_input("/dev/stdout", "-o", {{"/dev/stdin", "input"}}));  // may be one terminal
   CHECK(fs::file_size(scene) == 7);  // "partial": untouched
 }
+
+}  // namespace output_file_test

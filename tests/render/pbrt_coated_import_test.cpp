@@ -13,7 +13,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_coated_import_test {
 
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 
@@ -28,8 +28,6 @@ size_t bsdf_kind(const Scene& scene, const std::string& name) {
       .variant()
       .index();
 }
-
-}  // namespace
 
 TEST_CASE("pbrt coateddiffuse: pbrt's defaults become an absorbing smooth coat; rough and scattering coats are kept") {
   const PbrtImport imported = import_text(
@@ -166,3 +164,5 @@ TEST_CASE("scene format: coated materials refuse bad layer parameters with their
   CHECK(error_of({{"type", "coated_conductor"}, {"metal", "gold"}, {"conductor_roughness_u", {{"bogus", 1}}}}).find(
             "conductor_roughness_u") != std::string::npos);
 }
+
+}  // namespace pbrt_coated_import_test

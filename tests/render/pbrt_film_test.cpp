@@ -21,7 +21,7 @@ using nlohmann::json;
 
 using namespace rimu::test::pbrt_t;
 
-namespace {
+namespace pbrt_film_test {
 
 // The written EXR's three colour channels (X, Y, Z or the camera's R, G, B, in the file's order), as floats.
 std::array<std::vector<float>, 3> render_channels(const std::filesystem::path& scene, const std::filesystem::path& exr,
@@ -59,8 +59,6 @@ std::array<std::vector<float>, 3> render_channels(const std::filesystem::path& s
 }
 
 std::vector<double> as_doubles(const std::vector<float>& v) { return {v.begin(), v.end()}; }
-
-}  // namespace
 
 TEST_CASE("pbrt film: iso and the camera's shutter become Rimu's physical camera with pbrt's imaging ratio") {
   const PbrtImport imported = import_text(
@@ -187,3 +185,5 @@ TEST_CASE("pbrt film: pixel values scale exactly with iso times exposure time") 
   }
   CHECK(sum > 0.0);
 }
+
+}  // namespace pbrt_film_test

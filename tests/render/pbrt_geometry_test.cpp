@@ -18,7 +18,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_geometry_test {
 
 const std::string kCamera = "Scale -1 1 1\nLookAt 0.5 0.5 3  0.5 0.5 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 
@@ -35,8 +35,6 @@ std::optional<float> hit_distance_down(const Scene& scene, float x, float y) {
   const auto hit = scene.geometry.intersect(r);
   return hit ? std::optional<float>(hit->t) : std::nullopt;
 }
-
-}  // namespace
 
 TEST_CASE("pbrt plymesh reads .ply.gz: the same quad as the .ply") {
   for (const char* file : {"quad.ply", "quad.ply.gz"}) {
@@ -387,3 +385,5 @@ TEST_CASE("pbrt plymesh: a vertex normal that is NaN (as in pbrt-v4) or zero sha
   CHECK(n.x == doctest::Approx(0.6));
   CHECK(n.z == doctest::Approx(0.8));
 }
+
+}  // namespace pbrt_geometry_test

@@ -17,7 +17,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_grid_medium_test {
 
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\n";
 
@@ -35,8 +35,6 @@ void write_cloud(const std::filesystem::path& path) {
   nanovdb::io::writeGrid(path.string(), builder.getHandle<>(0.25, nanovdb::Vec3d(0.0), "density"),
                          nanovdb::io::Codec::ZIP);
 }
-
-}  // namespace
 
 TEST_CASE("pbrt grid media: a uniformgrid becomes a trilinear Rimu grid medium with its density inline") {
   const PbrtImport imported = import_text(
@@ -205,3 +203,5 @@ TEST_CASE("grid media in JSON: a .nvdb file, and its errors at the key with the 
   CHECK(error_of_json({{"procedural", "cloud"}, {"grid", "density"}, {"bounds_min", {0, 0, 0}}, {"bounds_max", {1, 1, 1}}})
             .find("/media/m/grid: \"grid\" names a grid of a .nvdb file") != std::string::npos);
 }
+
+}  // namespace pbrt_grid_medium_test

@@ -11,14 +11,12 @@
 
 using namespace rimu;
 
-namespace {
+namespace pbrt_hardening_test {
 
 const std::string kCamera = "LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\"\n";
 
 // The message of the InputError that importing `text` (as test.pbrt in tests/data/pbrt) raises.
 std::string error_of(const std::string& text) { return test::pbrt_import_error(text, "test.pbrt"); }
-
-}  // namespace
 
 TEST_CASE("pbrt hardening: a stratified sampler's xsamples × ysamples beyond 2^24 is refused, not overflowed") {
   CHECK(error_of(kCamera + "Sampler \"stratified\" \"integer xsamples\" 2147483647 \"integer ysamples\" 2147483647\n") ==
@@ -95,3 +93,5 @@ TEST_CASE("pbrt hardening: --strict's unused parameter of a texture is the state
   CHECK(error == "test.pbrt:5: not supported (--strict): parameter \"float te82\" of Texture \"bumps\"");
   CHECK(error_of(text).find("no error") == 0);  // without --strict: listed, not an error
 }
+
+}  // namespace pbrt_hardening_test

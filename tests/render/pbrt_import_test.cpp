@@ -18,7 +18,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_import_test {
 
 std::vector<PbrtStatement> statements_of(const std::string& text) {
   std::vector<PbrtStatement> out;
@@ -56,8 +56,6 @@ void check_rows(const json& transform, const std::array<double, 12>& expected) {
 }
 
 double nits_per_unit_y() { return SpectralResponse::cie_xyz(test::library()).luminance_nits_per_unit_y(); }
-
-}  // namespace
 
 TEST_CASE("pbrt tokens: comments, both quotes, escapes, brackets and line numbers") {
   const auto tokens = tokenize_pbrt("Shape # a comment \"not a string\"\n 'single' \"a\\\"b\" [1 2]\n-3.5e2", "t.pbrt");
@@ -462,3 +460,5 @@ TEST_CASE("pbrt: a problem inside a file or value the pbrt scene names is report
   CHECK_FALSE(at_pbrt_origin(InputError({"a.pbrt", 0, "/shapes/2"}, "x"), origins));
   CHECK_FALSE(at_pbrt_origin(InputError({"a.pbrt", 0, "/film/resolution"}, "x"), origins));
 }
+
+}  // namespace pbrt_import_test

@@ -14,7 +14,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_media_test {
 
 // A camera whose image-right agrees with Rimu's (pbrt's usual "Scale -1 1 1" idiom), so the world is not mirrored.
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\n";
@@ -24,8 +24,6 @@ PbrtImport import_text(const std::string& text) { return test::import_pbrt_test_
 std::string error_of(const std::string& text) { return test::pbrt_import_error(text, "media.pbrt"); }
 
 std::string ignored_list(const PbrtImport& imported) { return describe_ignored(imported.ignored); }
-
-}  // namespace
 
 TEST_CASE("pbrt media: a homogeneous medium becomes a Rimu medium bounded by a copy of the shape's material") {
   const PbrtImport imported = import_text(
@@ -314,3 +312,5 @@ TEST_CASE("pbrt subsurface: a textured reflectance becomes a textured albedo of 
   }
   CHECK(error.find("a textured albedo needs a homogeneous medium") != std::string::npos);
 }
+
+}  // namespace pbrt_media_test

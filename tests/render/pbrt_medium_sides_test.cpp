@@ -15,7 +15,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_medium_sides_test {
 
 const std::string kFog = "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"rgb sigma_s\" [2 2 2] \"rgb sigma_a\" [0.5 0.5 0.5]\n";
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n";
@@ -77,8 +77,6 @@ std::array<double, 3> first_normal(const json& shape) {
   const std::array<double, 3> e2{p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
   return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
 }
-
-}  // namespace
 
 TEST_CASE("pbrt medium sides: a cube facing inward with MediumInterface \"\" \"fog\" is filled with fog, as its twins") {
   // The cube's interface faces point outward with fog inside (the plain way); the twins point inward, by
@@ -146,3 +144,5 @@ TEST_CASE("pbrt medium sides: spheres and PLY meshes with fog in front are turne
   CHECK(ply.document["shapes"][0]["type"] == "triangles");
   CHECK(ply.document["shapes"][0]["material"] == ply.document["media"]["fog"]["boundary_material"]);
 }
+
+}  // namespace pbrt_medium_sides_test

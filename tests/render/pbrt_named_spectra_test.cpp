@@ -12,7 +12,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_named_spectra_test {
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 
 json material_of(const std::string& statement) {
@@ -22,7 +22,6 @@ json material_of(const std::string& statement) {
   CHECK_NOTHROW(load_scene(d, "t.pbrt", test::test_data("pbrt"), test::library()));
   return d["materials"][d["shapes"][0]["material"].get<std::string>()];
 }
-}  // namespace
 
 TEST_CASE("pbrt named spectra: every metal-*-eta/-k pair and every glass-* maps onto pbrt's own table") {
   const std::pair<const char*, const char*> metals[] = {{"Au", "pbrt-au"},     {"Ag", "pbrt-ag"},   {"Cu", "pbrt-cu"}, {"Al", "pbrt-al"},
@@ -70,3 +69,5 @@ TEST_CASE("pbrt named spectra: the tables hold pbrt's numbers, and pbrt's BK7 ta
   CHECK(worst > 0.0);  // two different things were compared
   CHECK(dielectric_ior(lib, "pbrt-sf11")->value(587.6) == doctest::Approx(1.7847).epsilon(2e-4));  // SF11's n_d 1.78472 (SCHOTT)
 }
+
+}  // namespace pbrt_named_spectra_test

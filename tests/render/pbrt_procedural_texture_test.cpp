@@ -16,7 +16,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_procedural_texture_test {
 
 // Mirrored header, as pbrt_texture_test.cpp's: pbrt's world is Rimu's (no x flip), the identity placement.
 const std::string kHeader = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
@@ -24,8 +24,6 @@ const std::string kHeader = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"
 PbrtImport import_text(const std::string& text) {
   return import_pbrt_text(text, "test.pbrt", std::filesystem::temp_directory_path(), test::library());
 }
-
-}  // namespace
 
 TEST_CASE("pbrt procedural float textures: fbm, wrinkled, windy, dots and the 3D checkerboard, with their mappings") {
   const PbrtImport imported = import_text(
@@ -220,3 +218,5 @@ TEST_CASE("pbrt coatedconductor with reflectance: the artist metal under the coa
                                              "\"spectrum conductor.eta\" \"metal-Au-eta\"\n"),
                        doctest::Contains("not both"), InputError);
 }
+
+}  // namespace pbrt_procedural_texture_test

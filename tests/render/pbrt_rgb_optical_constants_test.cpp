@@ -17,7 +17,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_rgb_optical_constants_test {
 
 const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 
@@ -43,8 +43,6 @@ Float4 normal_incidence_reflectance(const Scene& scene, const std::string& name,
   REQUIRE(sample->is_delta);
   return sample->f * Float4(std::fabs(sample->wi.z)) / sample->pdf;
 }
-
-}  // namespace
 
 TEST_CASE("pbrt conductor with rgb eta and k: pbrt's unbounded RGB, and the Fresnel reflectance of those n, k") {
   const std::array<double, 3> silver_eta{0.16, 0.14, 0.13}, silver_k{4.0, 3.2, 2.4};
@@ -110,3 +108,5 @@ TEST_CASE("pbrt dielectric with rgb eta: accepted as pbrt's unbounded RGB (grey:
   CHECK_CONTAINS(test::pbrt_import_error(kCamera + "Material \"conductor\" \"rgb eta\" [0 0 0] \"rgb k\" [1 1 1]"), "t.pbrt:4",
                  "must not be black");
 }
+
+}  // namespace pbrt_rgb_optical_constants_test

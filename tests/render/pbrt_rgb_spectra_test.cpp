@@ -19,7 +19,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_rgb_spectra_test {
 
 const std::string kCamera = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 
@@ -40,8 +40,6 @@ void check_table(const json& table, const std::function<double(double)>& expecte
     REQUIRE(values[i] == doctest::Approx(expected(nm[i])).epsilon(1e-12));
   }
 }
-
-}  // namespace
 
 TEST_CASE("pbrt rgb reflectance: pbrt's albedo spectrum of the colour, in the ColorSpace in effect") {
   const PbrtImport imported = test::import_pbrt_test_text(
@@ -121,3 +119,5 @@ TEST_CASE("pbrt rgb L: both upsamplers' emissions have the same luminance once l
   REQUIRE(rimu.size() == 2);
   for (size_t i = 0; i < 2; ++i) CHECK(sigmoid[i] == doctest::Approx(rimu[i]).epsilon(1e-4));
 }
+
+}  // namespace pbrt_rgb_spectra_test

@@ -14,7 +14,7 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_scene_sweep_test {
 
 const std::string kHeader = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 const std::string kQuad =
@@ -27,8 +27,6 @@ class UTexture final : public SpectralTexture {
  public:
   SampledSpectrum evaluate(Vec2 uv, const SampledWavelengths&) const override { return SampledSpectrum(uv.x); }
 };
-
-}  // namespace
 
 TEST_CASE("pbrt NamedMaterial may come before its MakeNamedMaterial, as pbrt-v4 looks names up at the end") {
   // contemporary-bathroom names its lights' material "light" before Include "materials.pbrt" defines it.
@@ -175,3 +173,5 @@ TEST_CASE("pbrt area light with alpha 0: pbrt-v4's invisible emitter is listed a
   REQUIRE(half.ignored.size() == 1);
   CHECK(half.ignored[0].what == "\"alpha\" on an area light (Rimu's lights are not cut out: left solid)");
 }
+
+}  // namespace pbrt_scene_sweep_test

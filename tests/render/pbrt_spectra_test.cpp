@@ -13,9 +13,8 @@ using nlohmann::json;
 
 using rimu::test::pbrt_t::import_error;
 
-namespace {
+namespace pbrt_spectra_test {
 const std::string kCamera = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
-}  // namespace
 
 TEST_CASE("pbrt spectra: inline pairs and spectrum files become inline tables carried out to 360-830 nm") {
   const std::filesystem::path file = test::test_data("pbrt/spectra.pbrt");
@@ -98,3 +97,5 @@ TEST_CASE("pbrt float textures that are constant everywhere become numbers (cons
         json({{"power", {{{"checkerboard", {1.0, 0.0}}, {"uv_scale", {1.0, 1.0}}, {"uv_offset", {0.0, 0.0}}}, 0.25}}}));
   CHECK(imported.ignored.empty());
 }
+
+}  // namespace pbrt_spectra_test

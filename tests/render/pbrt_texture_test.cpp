@@ -15,16 +15,13 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace pbrt_texture_test {
 
 const std::string kHeader = "Scale -1 1 1\nLookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\"\nWorldBegin\n";
 
 PbrtImport import_text(const std::string& text, const std::filesystem::path& directory) {
   return import_pbrt_text(text, "test.pbrt", directory, test::library());
 }
-
-
-}  // namespace
 
 TEST_CASE("pbrt float textures: roughness and mix amounts from scale, mix, directionmix, checkerboard, imagemap") {
   test::ScratchFolder dir("pbrt_textures");
@@ -314,3 +311,5 @@ TEST_CASE("pbrt sphere as a mesh (squashed, emissive, with alpha) carries pbrt-v
   CHECK(cut["alpha"]["texture"].get<std::string>().find("mask.ppm") != std::string::npos);
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", dir.path, test::library()));
 }
+
+}  // namespace pbrt_texture_test

@@ -20,7 +20,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // An 18 % grey Lambertian plane lit by a sun of `lux` at normal incidence, seen at a slant.
 std::unique_ptr<Scene> grey_card_scene(double lux) {

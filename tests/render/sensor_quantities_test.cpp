@@ -23,7 +23,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 }  // namespace
 

@@ -20,9 +20,9 @@
 using namespace rimu;
 using nlohmann::json;
 
-namespace {
+namespace sensors_test {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 using test::sensor_scene;
 
 test::LoadedSensors load(const json& document, const std::filesystem::path& directory = std::filesystem::current_path()) {
@@ -39,8 +39,6 @@ json point_lamp(double candela, std::vector<double> position) {
 json row_grid(const std::string& name, double z) {
   return json{{"name", name}, {"origin", {0, -0.1, z}}, {"u", {1, 0, 0}}, {"v", {0, 1, 0}}, {"size", {4, 0.2}}, {"counts", {4, 1}}};
 }
-
-}  // namespace
 
 TEST_CASE("sensors: a point source of I cd over a plane gives I cos³θ / h² lx at every angle and height") {
   // The inverse-square and cosine laws (CIE 171:2006, the point-source cases of its section 5): with the lamp at
@@ -193,3 +191,5 @@ TEST_CASE("sensors: bad \"sensors\" sections are refused by key, saying what was
         {"/sensors/meters/0", "direction"});
   fails({{"meters", {{{"type", "luminance"}, {"position", {0, 0, 0}}}}}}, {"/sensors/meters/0", "direction"});
 }
+
+}  // namespace sensors_test

@@ -12,7 +12,7 @@
 
 using namespace rimu;
 
-namespace {
+namespace colour_vector_graphic_test {
 
 const ColourFidelityEvaluator& evaluator() {
   static const ColourFidelityEvaluator e(test::library());
@@ -20,8 +20,6 @@ const ColourFidelityEvaluator& evaluator() {
 }
 
 double bisector_rad(int j) { return (j + 0.5) * 2.0 * std::numbers::pi / kTm30HueBins; }
-
-}  // namespace
 
 TEST_CASE("the graphic of a source rated against itself lies on the unit circle") {
   // CIE A is a Planckian radiator, and below 4000 K its reference is the Planckian at its own CCT: R_g = 100 and
@@ -70,3 +68,5 @@ TEST_CASE("the graphic refuses a destination in a missing folder and writes noth
   CHECK_THROWS_AS(write_colour_vector_graphic(cf, "CIE F2", png), InputError);
   CHECK_FALSE(std::filesystem::exists(png.parent_path()));
 }
+
+}  // namespace colour_vector_graphic_test

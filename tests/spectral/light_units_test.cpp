@@ -14,7 +14,7 @@ using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 double cos_deg(double d) { return std::cos(d * kPi / 180.0); }
 
 ShapeIntegrals integrals_of(const Spectrum& s) { return shape_integrals(s, test::library().photopic_v()); }

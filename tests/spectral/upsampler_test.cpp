@@ -19,7 +19,6 @@ using namespace rimu;
 namespace {
 
 using test::upsampler;
-const auto& kSpaces = test::kUpsamplerSpaces;
 
 /// One unit in the last place of a float near `x`: the resolution the knots are stored with.
 float ulp(float x) { return std::nextafter(x, 2 * x + 1) - x; }
@@ -29,7 +28,7 @@ float ulp(float x) { return std::nextafter(x, 2 * x + 1) - x; }
 TEST_CASE("RGB (1,1,1) upsamples to exactly 1.0 at every wavelength, in every space") {
   // By construction (KnotColorimetry rescales X and Z so the flat spectrum is the space's white), the white's
   // smoothest spectrum is flat; the run time reaches it to ~1e-15 in double, which rounds to exactly 1.0f.
-  for (const char* space : kSpaces) {
+  for (const char* space : test::kUpsamplerSpaces) {
     CAPTURE(space);
     const auto u = upsampler(space).upsample_reflectance({1, 1, 1});
     CHECK_FALSE(u.gamut_mapped);
@@ -42,7 +41,7 @@ TEST_CASE("RGB (1,1,1) upsamples to exactly 1.0 at every wavelength, in every sp
 
 TEST_CASE("RGB (0.18,0.18,0.18) upsamples to a flat 0.18 within one float ulp") {
   // The double result is 0.18·(1 ± 1e-15); rounding to float may land one ulp (1.5e-8) either side of 0.18f.
-  for (const char* space : kSpaces) {
+  for (const char* space : test::kUpsamplerSpaces) {
     CAPTURE(space);
     const auto u = upsampler(space).upsample_reflectance({0.18, 0.18, 0.18});
     CHECK_FALSE(u.gamut_mapped);
@@ -112,7 +111,7 @@ TEST_CASE("negative components: inside the locus reproduced exactly, otherwise m
 TEST_CASE("every space's primaries give spectra in [0,1], mapped where a smooth reflectance cannot reach them") {
   // No primary of these spaces at full intensity is a smooth reflectance: the brightness limit at sRGB red's
   // chromaticity is below its Y = 0.2126, and AP0/AP1 primaries lie outside the spectral locus.
-  for (const char* space : kSpaces) {
+  for (const char* space : test::kUpsamplerSpaces) {
     CAPTURE(space);
     for (const Rgb p : {Rgb{1, 0, 0}, Rgb{0, 1, 0}, Rgb{0, 0, 1}}) {
       INFO("primary (", p.r, ", ", p.g, ", ", p.b, ")");
@@ -299,7 +298,7 @@ TEST_CASE("reflectance_spectrum (textures' per-lookup path) is upsample_reflecta
   for (int r = 0; r <= 8; ++r)
     for (int g = 0; g <= 8; ++g)
       for (int b = 0; b <= 8; ++b) inputs.push_back({r / 8.0, g / 8.0, b / 8.0});
-  for (const char* space : kSpaces)
+  for (const char* space : test::kUpsamplerSpaces)
     for (const Rgb& rgb : inputs) {
       CAPTURE(space);
       CAPTURE(rgb.r);

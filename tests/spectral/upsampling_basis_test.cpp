@@ -23,7 +23,6 @@ using namespace rimu;
 namespace {
 
 using test::upsampler;
-const auto& kSpaces = test::kUpsamplerSpaces;
 
 /// Deterministic uniform numbers in [0, 1) (a 32-bit LCG: reproducible failures).
 struct Random {
@@ -51,7 +50,7 @@ TEST_CASE("fast path: random colours of every space come back as the input colou
   // is within ΔE00 ~0.01 of its input: asserted ≤ 0.02 (float knots and the residual's ΔE at dark colours),
   // mean ≤ 1e-3. The colours the fast path moves but the exact path does not are counted: near the brightness
   // limit (where the exact path maps too, from 2 % further) and saturated purples beyond the basis' reach.
-  for (const std::string space : kSpaces) {
+  for (const std::string space : test::kUpsamplerSpaces) {
     CAPTURE(space);
     const RgbUpsampler& up = upsampler(space);
     Random random{42};
@@ -124,7 +123,7 @@ TEST_CASE("fast path: the clamped spectrum carries the target colour") {
 }
 
 TEST_CASE("fast path: white, grey, black, non-finite input") {
-  for (const char* space : kSpaces) {
+  for (const char* space : test::kUpsamplerSpaces) {
     CAPTURE(space);
     const RgbUpsampler& up = upsampler(space);
     // White and grey sit on the table's ρ = 0 row, the flat spectrum, which is the first basis function:
@@ -148,7 +147,7 @@ TEST_CASE("fast path: white, grey, black, non-finite input") {
 }
 
 TEST_CASE("fast path: primaries and out-of-locus colours: values in [0,1], near the exact path's mapped colour") {
-  for (const std::string space : kSpaces) {
+  for (const std::string space : test::kUpsamplerSpaces) {
     CAPTURE(space);
     const RgbUpsampler& up = upsampler(space);
     for (const Rgb rgb : {Rgb{1, 0, 0}, Rgb{0, 1, 0}, Rgb{0, 0, 1}, Rgb{0.2, 0, 0}, Rgb{0, 0.2, 0}, Rgb{0, 0, 0.2},
@@ -455,7 +454,7 @@ TEST_CASE("fast path: Φc is negative only in the low blocks, and the zero-only 
   // residual is the clamped colour's (recomputed here in double from all 95 knots, within the float rounding of
   // the sum's terms), and where the full fit (every knot, its own Jacobian) holds the colour to 1e-4 so does the
   // zero-only fit.
-  for (const std::string space : kSpaces) {
+  for (const std::string space : test::kUpsamplerSpaces) {
     CAPTURE(space);
     const RgbUpsampler& up = upsampler(space);
     const UpsamplingBasis& basis = up.basis();

@@ -10,11 +10,12 @@
 #include "grey_environment_image.h"
 #include "light_test_support.h"
 #include "transport/lights/area_light.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+using rimu::test::kLambda;
 LightSpectrum constant(double value) { return LightSpectrum(std::make_shared<ConstantSpectrum>(1.0), value); }
 
 /// A square of half-side a at height h, centred on the z axis, emitting downwards (towards the origin).

@@ -7,12 +7,13 @@
 #include <vector>
 
 #include "statistics.h"
+#include "test_support.h"
 
 namespace rimu::test {
 namespace {
 
 constexpr int kCosBins = 20, kPhiBins = 20, kPieces = 2;
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 int cell_of(Vec3 wi) {
   const int c = std::clamp(int((wi.z + 1.0f) * 0.5f * kCosBins), 0, kCosBins - 1);

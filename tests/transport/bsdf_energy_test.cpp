@@ -14,7 +14,7 @@
 
 using namespace rimu;
 
-namespace {
+namespace bsdf_energy_test {
 
 Vec3 direction(float cos_theta) {
   const float s = std::sqrt(std::fmax(0.0f, 1.0f - cos_theta * cos_theta));
@@ -50,8 +50,6 @@ Albedo albedo(const Bsdf& bsdf, Vec3 wo, int count, float eta_hero_inside = 1.0f
 
 constexpr int kCount = 100000;
 constexpr double kSigmas = 4.0;  // a 4σ bound: false alarms ~6e-5 per check
-
-}  // namespace
 
 TEST_CASE("energy: a white Lambertian reflects exactly everything, sample by sample") {
   // f·cos/pdf = (1/π)·cos/(cos/π) = 1 for every sample: exact up to float rounding.
@@ -263,3 +261,5 @@ TEST_CASE("diffuse entry: from inside, the way out holds (1 − F(wo)) η² of t
   CHECK(boundary.eval(direction(0.5f), direction(0.5f))[0] == 0.0f);
   CHECK(boundary.flags().has_non_delta);
 }
+
+}  // namespace bsdf_energy_test

@@ -13,12 +13,13 @@
 #include "light_test_support.h"
 #include "square_chi_square.h"
 #include "transport/lights/sky/cie_sky_light.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kLambda;
+using rimu::test::kPi;
 
 /// The sun at elevation `elevation_deg` and azimuth `azimuth_deg` about `up` = +y (azimuth 0 along +x).
 Vec3 sun_towards(double elevation_deg, double azimuth_deg) {

@@ -9,11 +9,12 @@
 #include "light_test_support.h"
 #include "transport/lights/distant_light.h"
 #include "transport/geometry/frame.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+using rimu::test::kLambda;
 LightSpectrum constant(double value) { return LightSpectrum(std::make_shared<ConstantSpectrum>(1.0), value); }
 constexpr double kSunDiameterDeg = 0.53;
 }  // namespace

@@ -19,12 +19,13 @@
 #include "transport/lights/environment_light.h"
 #include "transport/lights/environment_portal.h"
 #include "transport/lights/point_light.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+using rimu::test::kPi;
+using rimu::test::kLambda;
 
 /// Solid angle of the rectangle [x0, x1] × [y0, y1] in a plane at distance h from the point, coordinates measured
 /// from the point's foot on the plane: the corner formula atan(xy / (h √(x² + y² + h²))) summed with signs.

@@ -14,12 +14,13 @@
 #include "square_chi_square.h"
 #include "transport/lights/environment_light.h"
 #include "transport/sampling/equal_area_square.h"
+#include "test_support.h"
 
 using namespace rimu;
 
-namespace {
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
-constexpr double kPi = std::numbers::pi;
+namespace equal_area_environment_test {
+using rimu::test::kLambda;
+using rimu::test::kPi;
 
 using test::GreyImage;
 
@@ -39,7 +40,6 @@ void check_direction(Vec3 got, Vec3 expected) {
   CHECK(got.y == doctest::Approx(expected.y).epsilon(1e-5));
   CHECK(got.z == doctest::Approx(expected.z).epsilon(1e-5));
 }
-}  // namespace
 
 TEST_CASE("equal-area square: landmarks and a point worked by hand") {
   check_direction(equal_area_square_to_sphere({0.5f, 0.5f}), {0, 0, 1});
@@ -137,3 +137,5 @@ TEST_CASE("equal-area environment: sampling matches pdf_li (chi-square), pdf = p
   const EnvironmentLight env(test_image(), 1.5, Frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, EnvironmentMapping::equal_area_octahedral);
   CHECK(env.total_power_w(3.0) == doctest::Approx(4 * kPi * kPi * 9.0 * mean * 470.0).epsilon(1e-5));
 }
+
+}  // namespace equal_area_environment_test

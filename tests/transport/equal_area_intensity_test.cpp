@@ -13,12 +13,13 @@
 #include "transport/lights/equal_area_intensity.h"
 #include "transport/sampling/equal_area_square.h"
 #include "transport/lights/goniometric_light.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // 6 × 6 pixels of uneven values with two black pixels.
 EqualAreaIntensity uneven_image() {

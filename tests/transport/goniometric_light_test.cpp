@@ -10,12 +10,13 @@
 #include "spectral/spectra/spectrum.h"
 #include "transport/lights/candela_distribution.h"
 #include "transport/lights/goniometric_light.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 double rad(double deg) { return deg * kPi / 180.0; }
 
 // A table with uneven γ and C steps, a dark cap and a C-dependence: values[c][γ].

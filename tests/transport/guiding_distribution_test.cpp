@@ -19,12 +19,13 @@
 #include "transport/guiding/guiding_field.h"
 #include "transport/guiding/path_guiding_record.h"
 #include "transport/sampling/equal_area_square.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // Uniform directions over the sphere weighted by `radiance`: the samples a path tracer with uniform sampling would
 // record (weight = radiance / (1/4π)).

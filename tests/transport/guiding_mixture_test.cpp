@@ -12,12 +12,13 @@
 #include "square_chi_square.h"
 #include "transport/guiding/vmf_mixture.h"
 #include "transport/sampling/equal_area_square.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // Uniformly sampled directions from the origin weighted by radiance·4π (escaping rays: no parallax).
 // The record a path vertex at `position` leaves when its ray goes along `direction` and meets its light `distance`

@@ -14,12 +14,13 @@
 #include "statistics.h"
 #include "transport/bsdfs/bsdf.h"
 #include "transport/bsdfs/material.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 HairParameters parameters(float beta_m, float beta_n, float alpha_deg = 2.0f) {
   HairParameters p;

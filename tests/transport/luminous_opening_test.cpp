@@ -14,12 +14,13 @@
 #include "transport/lights/candela_distribution.h"
 #include "transport/lights/goniometric_light.h"
 #include "transport/lights/luminous_opening.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 Vec3 random_direction(std::mt19937& rng) {
   const double z = 1.0 - 2.0 * test::uniform01(rng), phi = 2.0 * kPi * test::uniform01(rng);

@@ -18,7 +18,7 @@ SpectralTexturePtr constant_texture(double value) {
   return std::make_shared<ConstantSpectralTexture>(std::make_shared<ConstantSpectrum>(value));
 }
 
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+using rimu::test::kLambda;
 
 }  // namespace
 

@@ -10,11 +10,12 @@
 #include "transport/lights/point_light.h"
 #include "transport/lights/projection_light.h"
 #include "transport/lights/spot_light.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+using rimu::test::kLambda;
 LightSpectrum constant(double value) { return LightSpectrum(std::make_shared<ConstantSpectrum>(1.0), value); }
 }  // namespace
 

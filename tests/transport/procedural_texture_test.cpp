@@ -10,6 +10,7 @@
 #include "spectral/error.h"
 #include "transport/textures/perlin_noise.h"
 #include "transport/textures/procedural_texture.h"
+#include "test_support.h"
 
 using namespace rimu;
 
@@ -23,7 +24,7 @@ MaterialContext at(Vec3 p) {
 
 FloatTexturePtr constant(float v) { return std::make_shared<ConstantFloatTexture>(v); }
 
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+using rimu::test::kLambda;
 
 }  // namespace
 

@@ -9,7 +9,7 @@
 
 using namespace rimu;
 
-namespace {
+namespace shading_normal_map_test {
 
 constexpr float kPi = 3.14159265358979f;
 
@@ -45,8 +45,6 @@ MaterialContext flat_context(Vec3 dpdu, Vec3 dpdv) {
   c.wo = {0, 0, 1};
   return c;
 }
-
-}  // namespace
 
 TEST_CASE("normal map: a flat map (rgb 0.5, 0.5, 1 → n = (0, 0, 1)) leaves the shading normal unchanged") {
   const Vec3 ns = normalize(Vec3{0.2f, -0.1f, 1.0f}), ng{0, 0, 1};
@@ -156,3 +154,5 @@ TEST_CASE("material normal modifier: only materials with a map (or a mix of one)
   CHECK(mix.uses_tangents());
   CHECK(std::acos(mix.shading_normal(c).z) == doctest::Approx(a).epsilon(1e-4));
 }
+
+}  // namespace shading_normal_map_test

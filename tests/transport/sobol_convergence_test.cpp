@@ -9,13 +9,14 @@
 #include <vector>
 
 #include "transport/sampling/sampler.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
 constexpr double kE = 2.718281828459045;
-constexpr double kPi = 3.141592653589793;
+using rimu::test::kPi;
 
 // Smooth and non-separable: ∫₀¹∫₀¹ u·e^{uv} dv du = ∫₀¹ (e^u − 1) du = e − 2.
 double smooth(double u, double v) { return u * std::exp(u * v); }

@@ -13,12 +13,13 @@
 #include "transport/geometry/frame.h"
 #include "transport/lights/light_bounds.h"
 #include "transport/lights/sphere_light.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kLambda;
+using rimu::test::kPi;
 LightSpectrum constant(double value) { return LightSpectrum(std::make_shared<ConstantSpectrum>(1.0), value); }
 
 /// Monte Carlo irradiance ∫ L cos θ dω at `ref` by light sampling (samples below the tangent plane count 0).

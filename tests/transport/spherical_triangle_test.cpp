@@ -13,12 +13,13 @@
 #include "light_test_support.h"
 #include "statistics.h"
 #include "transport/sampling/spherical_triangle.h"
+#include "test_support.h"
 
 using namespace rimu;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using rimu::test::kPi;
 
 // ½ Σ Θᵢ Γᵢ for the triangle seen from p, with Γᵢ oriented towards the triangle's interior.
 Vec3 first_moment(Vec3 p, Vec3 v0, Vec3 v1, Vec3 v2) {

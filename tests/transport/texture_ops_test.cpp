@@ -26,7 +26,7 @@ class UTexture final : public FloatTexture {
   float evaluate(const MaterialContext& c) const override { return c.uv.x; }
 };
 
-const SampledWavelengths kLambda(Float4(450.0f, 550.0f, 650.0f, 750.0f), Float4(1.0f / 470.0f));
+using rimu::test::kLambda;
 
 MaterialContext with_normal(Vec3 n) {
   MaterialContext c;
