@@ -4,18 +4,18 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <numbers>
 #include <fstream>
 #include <string>
 
 #include "spectral/library/spectral_library.h"
+#include "spectral/math_constants.h"
 #include "spectral/wavelengths/sampled_wavelengths.h"
 
 namespace rimu::test {
 
-/// π for tests (files take it with `using rimu::test::kPi;`: one definition, so a unity build of the suite does not
-/// see two).
-inline constexpr double kPi = std::numbers::pi;
+/// π (files take it with `using rimu::test::kPi;`): the libraries' one definition, so that no unity batch of the
+/// suite sees two.
+using rimu::kPi;
 
 /// Four wavelengths over the visible, 450 nm the hero, each with the pdf of uniform sampling over 360-830 nm: the
 /// lanes the light, material and texture tests evaluate spectra at (files take it with `using rimu::test::kLambda;`).

@@ -26,11 +26,6 @@ constexpr const char* kScriptName = "plot.gp";
 constexpr const char* kImageName = "plot.png";
 constexpr const char* kOutputName = "gnuplot-output.txt";
 
-std::filesystem::path folder_of(const std::filesystem::path& path) {
-  const std::filesystem::path parent = path.parent_path();
-  return parent.empty() ? std::filesystem::path(".") : parent;
-}
-
 bool is_safe_data_name(const std::string& name) {
   if (name.empty() || name == kScriptName || name == kImageName || name == kOutputName || name[0] == '.') return false;
   for (const char c : name)

@@ -16,12 +16,13 @@
 #include "spectral/error.h"
 
 namespace rimu {
-namespace {
 
 std::filesystem::path folder_of(const std::filesystem::path& path) {
   const std::filesystem::path parent = path.parent_path();
   return parent.empty() ? std::filesystem::path(".") : parent;
 }
+
+namespace {
 
 // True if process `pid` exists (kill with signal 0 only checks; EPERM means it exists but is someone else's).
 bool process_alive(long pid) {

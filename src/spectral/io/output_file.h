@@ -29,6 +29,9 @@ class OutputError : public std::runtime_error {
 /// Cheap: callers run it before rendering so that a typo in -o does not cost a render.
 void check_output_path(const std::filesystem::path& path);
 
+/// The folder `path` is in: its parent, or "." for a bare file name.
+std::filesystem::path folder_of(const std::filesystem::path& path);
+
 /// The temporary name write_atomically() uses for `path`: in the same folder (so the final rename stays on one file
 /// system and is atomic), hidden, named after the whole destination so a user recognises it, unique per process
 /// and call, and ending in the destination's extension (OpenImageIO picks a format by extension):

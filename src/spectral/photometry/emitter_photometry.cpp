@@ -4,11 +4,11 @@
 #include <numbers>
 
 #include "spectral/indefinite_article.h"
+#include "spectral/math_constants.h"
 
 namespace rimu {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 double cos_deg(double degrees) { return std::cos(degrees * kPi / 180.0); }
 

@@ -12,6 +12,7 @@
 #include "spectral/spectra/spectrum_values_check.h"
 #include "spectral/library/tabulated_colorimetry.h"
 #include "spectral/colorimetry/tristimulus_method_json.h"
+#include "spectral/reports/report_format.h"
 
 namespace rimu {
 namespace {
@@ -21,12 +22,6 @@ constexpr const char* kColorCheckerFile = "spectra/reflectances/colorchecker_cla
 std::string spaced(std::string column) {
   std::replace(column.begin(), column.end(), '_', ' ');
   return column;
-}
-
-std::string format(const char* pattern, double a, double b = 0, double c = 0) {
-  char buffer[200];
-  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
-  return buffer;
 }
 
 nlohmann::ordered_json colour_json(const ReflectanceColour& c) {
@@ -44,11 +39,11 @@ nlohmann::ordered_json colour_json(const ReflectanceColour& c) {
 
 void colour_text(std::ostringstream& out, const std::string& label, const ReflectanceColour& c) {
   out << label << c.description << "\n";
-  out << format("  XYZ              %.4f %.4f %.4f\n", c.xyz.x, c.xyz.y, c.xyz.z);
-  out << format("  xyY              %.5f %.5f %.4f\n", c.xy.x, c.xy.y, c.xyz.y);
-  out << format("  CIELAB           %.3f %.3f %.3f\n", c.lab.l, c.lab.a, c.lab.b);
-  out << format("  sRGB (encoded)   %.4f %.4f %.4f", c.srgb_encoded.r, c.srgb_encoded.g, c.srgb_encoded.b)
-      << format("   8-bit %.0f %.0f %.0f", 255 * c.srgb_encoded.r, 255 * c.srgb_encoded.g, 255 * c.srgb_encoded.b)
+  out << format_numbers("  XYZ              %.4f %.4f %.4f\n", c.xyz.x, c.xyz.y, c.xyz.z);
+  out << format_numbers("  xyY              %.5f %.5f %.4f\n", c.xy.x, c.xy.y, c.xyz.y);
+  out << format_numbers("  CIELAB           %.3f %.3f %.3f\n", c.lab.l, c.lab.a, c.lab.b);
+  out << format_numbers("  sRGB (encoded)   %.4f %.4f %.4f", c.srgb_encoded.r, c.srgb_encoded.g, c.srgb_encoded.b)
+      << format_numbers("   8-bit %.0f %.0f %.0f", 255 * c.srgb_encoded.r, 255 * c.srgb_encoded.g, 255 * c.srgb_encoded.b)
       << (c.srgb_in_gamut ? "" : "   (outside sRGB: clipped)") << "\n";
 }
 
@@ -129,7 +124,7 @@ std::string reflectance_report_text(const ReflectanceReport& r) {
   colour_text(out, "sample             ", r.sample);
   if (r.reference) {
     colour_text(out, "reference          ", *r.reference);
-    out << format("ΔE*ab (1976)       %.3f\nΔE00 (CIEDE2000)   %.3f\n", r.delta_e_1976, r.delta_e_2000);
+    out << format_numbers("ΔE*ab (1976)       %.3f\nΔE00 (CIEDE2000)   %.3f\n", r.delta_e_1976, r.delta_e_2000);
   }
   return out.str();
 }

@@ -10,6 +10,7 @@
 #include "spectral/photometry/photometry.h"
 #include "spectral/library/tabulated_colorimetry.h"
 #include "spectral/colorimetry/tristimulus_method_json.h"
+#include "spectral/reports/report_format.h"
 
 namespace rimu {
 namespace {
@@ -17,12 +18,6 @@ namespace {
 Rgb colour_at_unit_luminance(const Xyz& xyz, const RgbColourSpace& space) {
   if (xyz.y <= 0.0) return {};
   return space.from_xyz({xyz.x / xyz.y, 1.0, xyz.z / xyz.y});
-}
-
-std::string format(const char* pattern, double a, double b = 0, double c = 0) {
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
-  return buffer;
 }
 
 }  // namespace
@@ -83,27 +78,27 @@ std::string report_text(const SpectrumReport& r) {
   out << "spectrum           " << r.description << "\n";
   out << "tristimulus method " << r.tristimulus_method << "\n";
   if (r.e308_table) out << "e308 weights       " << e308_table_description(*r.e308_table) << "\n";
-  out << format("XYZ (2°, Y=100)    %.4f %.4f %.4f\n", r.xyz_2deg.x, r.xyz_2deg.y, r.xyz_2deg.z);
-  out << format("xy  (2°)           %.5f %.5f\n", r.xy_2deg.x, r.xy_2deg.y);
-  out << format("u'v' (2°)          %.5f %.5f\n", r.uv_prime_2deg.u, r.uv_prime_2deg.v);
-  out << format("XYZ (10°, Y=100)   %.4f %.4f %.4f\n", r.xyz_10deg.x, r.xyz_10deg.y, r.xyz_10deg.z);
-  out << format("xy  (10°)          %.5f %.5f\n", r.xy_10deg.x, r.xy_10deg.y);
-  out << format("CCT                %.1f K   Duv %.5f", r.cct.cct_k, r.cct.duv) << "   ("
+  out << format_numbers("XYZ (2°, Y=100)    %.4f %.4f %.4f\n", r.xyz_2deg.x, r.xyz_2deg.y, r.xyz_2deg.z);
+  out << format_numbers("xy  (2°)           %.5f %.5f\n", r.xy_2deg.x, r.xy_2deg.y);
+  out << format_numbers("u'v' (2°)          %.5f %.5f\n", r.uv_prime_2deg.u, r.uv_prime_2deg.v);
+  out << format_numbers("XYZ (10°, Y=100)   %.4f %.4f %.4f\n", r.xyz_10deg.x, r.xyz_10deg.y, r.xyz_10deg.z);
+  out << format_numbers("xy  (10°)          %.5f %.5f\n", r.xy_10deg.x, r.xy_10deg.y);
+  out << format_numbers("CCT                %.1f K   Duv %.5f", r.cct.cct_k, r.cct.duv) << "   ("
       << cct_validity_name(r.cct.validity) << ")\n";
-  out << format("luminous efficacy  %.2f lm/W photopic, %.2f lm/W scotopic (of radiation, 360-830 nm)\n",
+  out << format_numbers("luminous efficacy  %.2f lm/W photopic, %.2f lm/W scotopic (of radiation, 360-830 nm)\n",
                 r.luminous_efficacy_lm_w, r.scotopic_luminous_efficacy_lm_w);
-  out << format("absolute Y         %.6g (K_m·∫S·ȳ dλ: cd/m² if S is in W/(m²·sr·nm))\n", r.absolute_xyz.y);
+  out << format_numbers("absolute Y         %.6g (K_m·∫S·ȳ dλ: cd/m² if S is in W/(m²·sr·nm))\n", r.absolute_xyz.y);
   if (r.cri) {
-    out << format("CRI Ra             %.1f", r.cri->ra)
+    out << format_numbers("CRI Ra             %.1f", r.cri->ra)
         << (r.cri->duv_within_cie_limit ? "" : "   (|Duv| > 5.4e-3: CIE 13.3 calls this not meaningful)") << "\n";
     out << "CRI R1-R14        ";
-    for (double ri : r.cri->special) out << format(" %.0f", ri);
+    for (double ri : r.cri->special) out << format_numbers(" %.0f", ri);
     out << "\n";
   } else {
     out << "CRI                n/a: " << r.cri_unavailable_reason << "\n";
   }
-  out << format("linear sRGB (Y=1)  %.5f %.5f %.5f\n", r.srgb_linear.r, r.srgb_linear.g, r.srgb_linear.b);
-  out << format("ACEScg (Y=1)       %.5f %.5f %.5f\n", r.acescg.r, r.acescg.g, r.acescg.b);
+  out << format_numbers("linear sRGB (Y=1)  %.5f %.5f %.5f\n", r.srgb_linear.r, r.srgb_linear.g, r.srgb_linear.b);
+  out << format_numbers("ACEScg (Y=1)       %.5f %.5f %.5f\n", r.acescg.r, r.acescg.g, r.acescg.b);
   return out.str();
 }
 

@@ -9,13 +9,13 @@
 namespace rimu {
 namespace {
 
-constexpr int n = kUpsampleKnotCount;
+constexpr int kKnots = kUpsampleKnotCount;
 
 /// (L·S)_i for L = DᵀD, D the first-difference operator: the tridiagonal (−1, 2, −1) with 1 at both ends.
 double laplacian_row(const KnotValues& s, int i) {
   double v = 0;
   if (i > 0) v += s[i] - s[i - 1];
-  if (i < n - 1) v += s[i] - s[i + 1];
+  if (i < kKnots - 1) v += s[i] - s[i + 1];
   return v;
 }
 
@@ -23,7 +23,7 @@ double laplacian_row(const KnotValues& s, int i) {
 
 double roughness(const KnotValues& knots) {
   double sum = 0;
-  for (int i = 0; i + 1 < n; ++i) sum += (knots[i + 1] - knots[i]) * (knots[i + 1] - knots[i]);
+  for (int i = 0; i + 1 < kKnots; ++i) sum += (knots[i + 1] - knots[i]) * (knots[i + 1] - knots[i]);
   return sum;
 }
 
@@ -33,11 +33,11 @@ std::optional<SmoothestSpectrum> smoothest_knot_spectrum(const KnotColorimetry& 
   // Each step solves that system; knots that went negative are bound, then a bound knot whose ν is negative
   // (it wants to rise) is freed. Freeing one at a time and binding all violators is the usual working-set rule.
   const double t[3] = {target.x, target.y, target.z};
-  std::array<bool, n> bound{};
+  std::array<bool, kKnots> bound{};
   SmoothestSpectrum result;
   for (int iteration = 1; iteration <= 400; ++iteration) {
     std::vector<int> free;
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < kKnots; ++i)
       if (!bound[i]) free.push_back(i);
     const int f = int(free.size());
     if (f < 1) return std::nullopt;
@@ -48,7 +48,7 @@ std::optional<SmoothestSpectrum> smoothest_knot_spectrum(const KnotColorimetry& 
       for (int b = 0; b < f; ++b) {
         const int j = free[b];
         double l = 0;
-        if (i == j) l = (i > 0) + (i < n - 1);
+        if (i == j) l = (i > 0) + (i < kKnots - 1);
         else if (std::abs(i - j) == 1) l = -1;
         m[a * size + b] = 2 * l;
       }
@@ -69,13 +69,13 @@ std::optional<SmoothestSpectrum> smoothest_knot_spectrum(const KnotColorimetry& 
     for (double v : s) scale = std::fmax(scale, std::abs(v));
     const double tolerance = 1e-12 * scale;
     bool changed = false;
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < kKnots; ++i)
       if (!bound[i] && s[i] < -tolerance) bound[i] = changed = true;
     if (changed) continue;
 
     int most_negative = -1;
     double worst = -1e-10 * scale;
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < kKnots; ++i) {
       if (!bound[i]) continue;
       const double nu = 2 * laplacian_row(s, i) + mu[0] * colorimetry.row(0)[i] + mu[1] * colorimetry.row(1)[i] +
                         mu[2] * colorimetry.row(2)[i];

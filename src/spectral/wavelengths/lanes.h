@@ -14,6 +14,8 @@
 namespace rimu {
 
 inline constexpr int kLaneCount = 4;
+/// kLaneCount as a float, for the spectral MIS sums (Σ of kLaneCount pdf ratios).
+inline constexpr float kLanes = float(kLaneCount);
 
 /// Four per-lane booleans (all-ones or all-zeros bit patterns in an SSE register).
 struct Mask4 {

@@ -7,15 +7,9 @@
 #include "transport/sampling/direction_warps.h"
 #include "transport/bsdfs/fresnel.h"
 #include "transport/bsdfs/simpson_rule.h"
+#include "transport/geometry/frame.h"
 
 namespace rimu {
-namespace {
-
-float side_of(Vec3 wo) { return wo.z < 0.0f ? -1.0f : 1.0f; }
-Vec3 flip_z(Vec3 w, float side) { return {w.x, w.y, w.z * side}; }
-
-}  // namespace
-
 CoatedDiffuseBsdf::CoatedDiffuseBsdf(SampledSpectrum albedo, SampledSpectrum eta,
                                      SampledSpectrum diffuse_fresnel_external)
     : albedo_(albedo), eta_(eta) {

@@ -3,16 +3,9 @@
 #include <cmath>
 
 #include "transport/bsdfs/fresnel.h"
+#include "transport/geometry/frame.h"
 
 namespace rimu {
-namespace {
-
-/// Mirror both directions through the surface plane when wo is below it (two-sided conductor).
-float side_of(Vec3 wo) { return wo.z < 0.0f ? -1.0f : 1.0f; }
-Vec3 flip_z(Vec3 w, float side) { return {w.x, w.y, w.z * side}; }
-
-}  // namespace
-
 SampledSpectrum ConductorBsdf::fresnel(float cos_theta) const { return fresnel_conductor(Float4(cos_theta), n_, k_); }
 
 SampledSpectrum ConductorBsdf::eval(Vec3 wo, Vec3 wi) const {

@@ -5,11 +5,11 @@
 #include <numbers>
 
 #include "transport/bsdfs/fresnel.h"
+#include "spectral/math_constants.h"
 
 namespace rimu {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 float safe_sqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
 float safe_asin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }

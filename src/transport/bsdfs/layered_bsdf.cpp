@@ -9,12 +9,10 @@
 
 #include "transport/sampling/bit_mixing.h"
 #include "transport/media/henyey_greenstein.h"
+#include "transport/geometry/frame.h"
 
 namespace rimu {
 namespace {
-
-float side_of(Vec3 wo) { return wo.z < 0.0f ? -1.0f : 1.0f; }
-Vec3 flip_z(Vec3 w, float side) { return {w.x, w.y, w.z * side}; }
 
 /// The walk's own random numbers: a counter hashed by mix_bits (splitmix64-style), seeded per call.
 class WalkRandom {

@@ -30,5 +30,10 @@ inline float cos2_theta(Vec3 w) { return w.z * w.z; }
 inline float sin2_theta(Vec3 w) { return std::fmax(0.0f, 1.0f - w.z * w.z); }
 inline float tan2_theta(Vec3 w) { return sin2_theta(w) / cos2_theta(w); }
 inline bool same_hemisphere(Vec3 a, Vec3 b) { return a.z * b.z > 0.0f; }
+/// -1 when w is below the shading plane, else +1: two-sided BSDFs mirror both directions by it (flip_z) and
+/// evaluate the upper side.
+inline float side_of(Vec3 w) { return w.z < 0.0f ? -1.0f : 1.0f; }
+/// w mirrored through the shading plane when side is -1 (unchanged for +1).
+inline Vec3 flip_z(Vec3 w, float side) { return {w.x, w.y, w.z * side}; }
 
 }  // namespace rimu

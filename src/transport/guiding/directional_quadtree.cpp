@@ -23,7 +23,7 @@ Vec2 into_quadrant(Vec2 p, int q) {
   return {below_one(2.0f * p.x - float(q & 1)), below_one(2.0f * p.y - float(q >> 1))};
 }
 
-using SampleIterator = std::vector<DirectionalSample>::iterator;
+using DirectionalSampleIterator = std::vector<DirectionalSample>::iterator;
 
 struct Builder {
   const QuadtreeSettings& settings;
@@ -32,11 +32,11 @@ struct Builder {
 
   // Builds the node for samples [first, last) (already in this node's own [0,1)² coordinates) into `nodes`.
   template <typename Nodes>
-  void build(Nodes& nodes, size_t node, SampleIterator first, SampleIterator last, int depth) {
+  void build(Nodes& nodes, size_t node, DirectionalSampleIterator first, DirectionalSampleIterator last, int depth) {
     // Split the range into the four quadrants. std::partition, not stable_partition: both are deterministic (the
     // result depends on the input order only), and the stable one allocates a buffer of the range at every node,
     // which was 30 % of a guided render's time (page faults included; perf, daylit room 160×90, 64 spp).
-    SampleIterator bounds[5];
+    DirectionalSampleIterator bounds[5];
     bounds[0] = first;
     bounds[4] = last;
     bounds[2] = std::partition(first, last, [](const DirectionalSample& s) { return s.square.y < 0.5f; });

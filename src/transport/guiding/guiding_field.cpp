@@ -10,18 +10,18 @@ namespace {
 
 float axis_value(Vec3 v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
 
-using SampleIterator = std::vector<GuidingSample>::iterator;
+using GuidingSampleIterator = std::vector<GuidingSample>::iterator;
 
 struct SpatialBuilder {
   const GuidingFieldSettings& settings;
   double split_count = 0.0;
   int leaves_planned = 1;  // leaves the tree will have once the recursion settles (bounded by max_leaves)
   std::vector<DirectionalSample> scratch;
-  std::vector<std::pair<SampleIterator, SampleIterator>> leaf_ranges;
+  std::vector<std::pair<GuidingSampleIterator, GuidingSampleIterator>> leaf_ranges;
 
   // The node at `node` for samples [first, last) inside [lo, hi].
   template <typename Nodes, typename Leaves>
-  void build(Nodes& nodes, Leaves& leaves, size_t node, SampleIterator first, SampleIterator last, Vec3 lo, Vec3 hi,
+  void build(Nodes& nodes, Leaves& leaves, size_t node, GuidingSampleIterator first, GuidingSampleIterator last, Vec3 lo, Vec3 hi,
              int depth) {
     const Vec3 extent = hi - lo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
@@ -44,7 +44,7 @@ struct SpatialBuilder {
     }
     ++leaves_planned;
     const float middle = 0.5f * (axis_value(lo, axis) + axis_value(hi, axis));
-    const SampleIterator cut =
+    const GuidingSampleIterator cut =
         std::partition(first, last, [&](const GuidingSample& s) { return axis_value(s.position, axis) < middle; });
     const size_t child = nodes.size();
     nodes[node].axis = int8_t(axis);
@@ -77,9 +77,9 @@ GuidingField GuidingField::build(std::vector<GuidingSample>& samples, int pass_s
   // one budget, in facing order.
   SpatialBuilder builder{settings, settings.split_samples * std::sqrt(double(std::max(pass_samples_per_pixel, 1))),
                          kFacings, {}, {}};
-  SampleIterator first = samples.begin();
+  GuidingSampleIterator first = samples.begin();
   for (int f = 0; f < kFacings; ++f) {
-    const SampleIterator last =
+    const GuidingSampleIterator last =
         std::partition(first, samples.end(), [f](const GuidingSample& s) { return s.facing == f; });
     Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
     for (auto it = first; it != last; ++it) {

@@ -14,7 +14,6 @@
 namespace rimu {
 namespace {
 
-constexpr float kLanes = float(kLaneCount);
 
 // The shading frame at a hit, flipped for opaque (two-sided) materials so that wo is on the +z side.
 struct ShadingContext {

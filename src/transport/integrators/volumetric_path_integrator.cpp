@@ -9,7 +9,6 @@
 namespace rimu {
 namespace {
 
-constexpr float kLanes = float(kLaneCount);
 // Crossing more index-matched boundaries than this along one segment means broken geometry (a ray stuck on a
 // surface): the segment is then treated as blocked rather than looping.
 constexpr int kMaxCrossings = 256;

@@ -12,8 +12,8 @@
 namespace rimu {
 
 namespace {
-constexpr float kPi = std::numbers::pi_v<float>;
-constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
+constexpr float kPiF = std::numbers::pi_v<float>;
+constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPiF);
 /// Share of the mean luminance added to every pixel's sampling weight (see the header).
 constexpr double kLuminanceFloor = 1e-3;
 }  // namespace
@@ -67,13 +67,13 @@ Vec2 EnvironmentLight::direction_to_uv(Vec3 direction) const {
   }
   const float theta = std::acos(std::clamp(d.z, -1.0f, 1.0f));
   float phi = std::atan2(-d.y, d.x);
-  if (phi < 0.0f) phi += 2.0f * kPi;
-  return {std::min(phi / (2.0f * kPi), below_one), std::min(theta / kPi, below_one)};
+  if (phi < 0.0f) phi += 2.0f * kPiF;
+  return {std::min(phi / (2.0f * kPiF), below_one), std::min(theta / kPiF, below_one)};
 }
 
 Vec3 EnvironmentLight::uv_to_direction(Vec2 uv) const {
   if (mapping_ == EnvironmentMapping::equal_area_octahedral) return frame_.to_world(equal_area_square_to_sphere(uv));
-  const float theta = kPi * uv.y, phi = 2.0f * kPi * uv.x;
+  const float theta = kPiF * uv.y, phi = 2.0f * kPiF * uv.x;
   const float sin_theta = std::sin(theta);
   return frame_.to_world({sin_theta * std::cos(phi), -sin_theta * std::sin(phi), std::cos(theta)});
 }
@@ -95,13 +95,13 @@ float EnvironmentLight::pdf_li(const LightReference& ref, Vec3 wi, const Surface
   if (distribution_.is_zero()) return kUniformSpherePdf;
   if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
     // dω = 4π du dv everywhere (the map preserves area).
-    const float pdf = distribution_.pdf(direction_to_uv(wi)) / (4.0f * kPi);
+    const float pdf = distribution_.pdf(direction_to_uv(wi)) / (4.0f * kPiF);
     return std::isfinite(pdf) ? pdf : 0.0f;
   }
   const Vec3 d = frame_.to_local(wi);
   const float sin_theta = std::sqrt(std::fmax(0.0f, d.x * d.x + d.y * d.y));
   if (!(sin_theta > 0.0f)) return 0.0f;
-  const float pdf = distribution_.pdf(direction_to_uv(wi)) / (2.0f * kPi * kPi * sin_theta);
+  const float pdf = distribution_.pdf(direction_to_uv(wi)) / (2.0f * kPiF * kPiF * sin_theta);
   return std::isfinite(pdf) ? pdf : 0.0f;
 }
 

@@ -1,4 +1,5 @@
 #include "transport/lights/light_bounds.h"
+#include "spectral/math_constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@
 namespace rimu {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // Angles are widened by this much (rad) wherever bounds are computed, so that float rounding in the importance
 // (cosines near 1 resolve angles to ~5e-4 rad) can never cut off a direction the light reaches.
 constexpr double kAngleMarginRad = 1e-3;

@@ -1,4 +1,5 @@
 #include "transport/lights/luminous_opening.h"
+#include "spectral/math_constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,6 @@
 namespace rimu {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 std::string format(double v) {
   char text[32];

@@ -8,11 +8,11 @@
 
 #include "transport/geometry/frame.h"
 #include "transport/lights/light_warps.h"
+#include "spectral/math_constants.h"
 
 namespace rimu {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 struct Vec3D {
   double x, y, z;

@@ -1,4 +1,5 @@
 #include "render/scene/pbrt/pbrt_matrix.h"
+#include "render/scene/pbrt/pbrt_vector_math.h"
 
 #include <cmath>
 #include <numbers>
@@ -8,15 +9,9 @@ namespace rimu {
 namespace {
 
 using V3 = std::array<double, 3>;
-
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double length(const V3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
-V3 normalized(const V3& a) {
-  const double l = length(a);
-  return {a[0] / l, a[1] / l, a[2] / l};
-}
+using pbrt_math::cross;
+using pbrt_math::length;
+using pbrt_math::normalized;
 
 }  // namespace
 

@@ -11,16 +11,15 @@
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/ply_loader.h"
 #include "render/scene/triangle_mesh.h"
+#include "render/scene/pbrt/pbrt_vector_math.h"
 
 namespace rimu {
 
 namespace {
 
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using pbrt_math::cross;
+using pbrt_math::dot;
+using pbrt_math::sub;
 
 std::vector<Vec3d> triples(const std::vector<double>& v) {
   std::vector<Vec3d> out(v.size() / 3);
