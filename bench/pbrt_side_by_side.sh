@@ -66,6 +66,12 @@ TABULATE_ONLY=${TABULATE_ONLY:-0}
 [[ $REPEATS -ge 2 ]] || { echo "$0: REPEATS must be 2 or more (the seed control compares seeds 1 and 2)" >&2; exit 1; }
 mkdir -p "$OUT"
 
+# fire_nanovdb.pbrt reads a generated NanoVDB file (not committed): made here once, with NanoVDB's headers.
+if [[ ! -f "$ROOT/bench/pbrt_scenes/fire.nvdb" ]]; then
+  g++ -std=c++17 -O1 "$ROOT/bench/pbrt_scenes/make_fire_nvdb.cpp" -o "$OUT/make_fire_nvdb" &&
+    "$OUT/make_fire_nvdb" "$ROOT/bench/pbrt_scenes/fire.nvdb"
+fi
+
 scenes=("$@")
 if [[ ${#scenes[@]} -eq 0 ]]; then
   for f in "$ROOT"/tests/data/pbrt/*.pbrt "$ROOT"/bench/pbrt_scenes/*.pbrt; do

@@ -111,16 +111,19 @@ TEST_CASE("pbrt media: RGB grids, emission and unknown presets are listed; the c
       "MediumInterface \"\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n");
   const std::string list = ignored_list(imported);
   CHECK(list.find("MakeNamedMedium \"preset\" \"Skin9\" (not one of pbrt-v4's names") != std::string::npos);
-  CHECK(list.find("MakeNamedMedium \"Le\" (Rimu's media do not emit") != std::string::npos);
   CHECK(list.find("MakeNamedMedium \"rgbgrid\" (not imported") != std::string::npos);
   CHECK(list.find("with the \"interface\" material and no medium inside it (left out) (2 times), first at media.pbrt:10") !=
         std::string::npos);
-  CHECK_MESSAGE(imported.ignored.size() == 4, list);
+  CHECK_MESSAGE(imported.ignored.size() == 3, list);
   CHECK(imported.document["shapes"].size() == 1);  // the diffuse sphere; both interface spheres are left out
   // The camera's medium, which no shape has inside: a medium around everything that the camera starts in.
   const json& media = imported.document["media"];
   REQUIRE(media.size() == 1);
   CHECK(media["air"]["contains_camera"] == true);
+  // "Le" × "Lescale", normalised by pbrt-v4 as a light's "L": the RGB's luminance (1) × 2 in pbrt's units, 72 983 nt
+  // each (as an area light's), with pbrt's spectral shape for the RGB.
+  CHECK(media["air"]["emission"]["luminance_nt"].get<double>() == doctest::Approx(2.0 * 72983.3).epsilon(1e-4));
+  CHECK(media["air"]["emission"].contains("spectrum"));
   CHECK_FALSE(media["air"].contains("boundary_material"));
   const auto scene = load_scene(imported.document, "media.pbrt", test::test_data("pbrt"), test::library());
   CHECK(scene->camera_medium == 0);

@@ -15,16 +15,7 @@ namespace rimu {
 namespace {
 
 using test::LaneStatistics;
-
-LaneStatistics render_ray(const test::SlabScene& slab, const VolumetricIntegratorSettings& s, const Ray& ray,
-                          int count, uint64_t seed) {
-  const VolumetricPathIntegrator integrator(slab.scene, s);
-  IndependentSampler sampler(seed);
-  return test::lane_statistics(count, [&](int i) {
-    sampler.start_pixel_sample(i, 0, 0);
-    return test::rotated_radiance(integrator, ray, sampler, i);
-  });
-}
+using test::render_ray;
 
 LightSpectrum constant_intensity(double w_sr_nm) {
   return LightSpectrum(std::make_shared<ConstantSpectrum>(1.0), w_sr_nm);

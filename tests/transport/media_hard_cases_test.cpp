@@ -13,6 +13,7 @@ namespace rimu {
 namespace {
 
 using test::LaneStatistics;
+using test::render_ray;
 
 Medium homogeneous(Float4 sigma_a, Float4 sigma_s, float g = 0.0f) {
   return Medium(HomogeneousMedium(test::bands(sigma_a), test::bands(sigma_s), g));
@@ -24,16 +25,6 @@ VolumetricIntegratorSettings settings(DistanceSampling mode, WavelengthMode wave
   s.path.wavelengths = wavelengths;
   s.path.max_depth = 64;
   return s;
-}
-
-LaneStatistics render_ray(const test::SlabScene& slab, const VolumetricIntegratorSettings& s, const Ray& ray,
-                          int count, uint64_t seed = 7) {
-  const VolumetricPathIntegrator integrator(slab.scene, s);
-  IndependentSampler sampler(seed);
-  return test::lane_statistics(count, [&](int i) {
-    sampler.start_pixel_sample(i, 0, 0);
-    return test::rotated_radiance(integrator, ray, sampler, i);
-  });
 }
 
 // |mean − expected| within 5 standard errors (a 5σ normal deviation has probability 6e-7), plus `floor` for

@@ -13,6 +13,7 @@
 #include "transport/lights/light_warps.h"
 #include "transport/lights/power_light_sampler.h"
 #include "transport/integrators/volumetric_path_integrator.h"
+#include "transport/sampling/sampler.h"
 
 namespace rimu::test {
 
@@ -163,6 +164,18 @@ inline Float4 rotated_radiance(const VolumetricPathIntegrator& integrator, const
   std::array<float, 4> lanes{};
   for (int l = 0; l < 4; ++l) lanes[size_t((r + l) % 4)] = out[size_t(l)];
   return Float4(lanes[0], lanes[1], lanes[2], lanes[3]);
+}
+
+/// `count` estimates of the radiance along `ray` by the volumetric integrator with `settings`, the hero rotated
+/// through the lanes (rotated_radiance), from an independent sampler seeded with `seed`.
+inline LaneStatistics render_ray(const SlabScene& slab, const VolumetricIntegratorSettings& settings, const Ray& ray,
+                                 int count, uint64_t seed = 7) {
+  const VolumetricPathIntegrator integrator(slab.scene, settings);
+  IndependentSampler sampler(seed);
+  return lane_statistics(count, [&](int i) {
+    sampler.start_pixel_sample(i, 0, 0);
+    return rotated_radiance(integrator, ray, sampler, i);
+  });
 }
 
 /// A unit direction with cosine-weighted density around `axis` (±z), from u.

@@ -106,6 +106,13 @@ LightSpectrum area_light_emission(const JsonCursor& emission, double area_m2, bo
   return parse_light_emission(emission, "radiance", geometry, context);
 }
 
+LightSpectrum medium_emission_radiance(const JsonCursor& emission, LoadContext& context) {
+  if (!has_light_amount(emission)) return LightSpectrum(context.spectra.parse(emission, SpectrumRole::emission), 1.0);
+  only_light_keys(emission, {});
+  if (emission.has("power_convention")) emission.at("power_convention").fail("power_convention applies to spot lights");
+  return parse_light_emission(emission, "radiance", EmitterGeometry{EmitterKind::medium}, context);
+}
+
 bool is_emission_image(const JsonCursor& emission) { return emission.is_object() && emission.has("image"); }
 
 EmissionImage area_emission_image(const JsonCursor& emission, LoadContext& context) {

@@ -41,6 +41,10 @@ LightSpectrum area_light_emission(const JsonCursor& emission, const TriangleMesh
 /// The same for an emitting surface of world-space area `area_m2` per side (an analytic sphere's 4πr²).
 LightSpectrum area_light_emission(const JsonCursor& emission, double area_m2, bool two_sided, LoadContext& context);
 
+/// An emissive medium's "emission" radiance L_e (MediumEmission): an absolute spectral radiance, or {"spectrum": ...,
+/// "luminance_nt" | "radiance_w_m2_sr" | "ev100"}, the luminance an optically thick body of the medium shows.
+LightSpectrum medium_emission_radiance(const JsonCursor& emission, LoadContext& context);
+
 /// True if an emissive shape's "emission" is an image: an object with an "image" key.
 bool is_emission_image(const JsonCursor& emission);
 /// An emissive mesh's image emission: {"image": file, optional "colour_space", "encoding", and "scale" (film units,

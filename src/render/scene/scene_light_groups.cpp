@@ -36,31 +36,37 @@ std::string light_group_name_problem(const std::string& name) {
   return {};
 }
 
-void read_light_group(const JsonCursor& light, Scene& scene) {
-  Light& loaded = *scene.lights.back();
-  const auto key = light.find("light_group");
-  if (!key) {
-    loaded.set_light_group(kUnmarked);
-    return;
-  }
+namespace {
+
+// The group index of `object`'s "light_group" (added to the scene's groups if new), or kUnmarked without the key.
+int group_of(const JsonCursor& object, Scene& scene) {
+  const auto key = object.find("light_group");
+  if (!key) return kUnmarked;
   const std::string name = key->string();
   if (const std::string problem = light_group_name_problem(name); !problem.empty()) key->fail(problem);
   auto& groups = scene.light_groups;
   const auto it = std::find(groups.begin(), groups.end(), name);
   // No cap on the number of groups: each costs memory and time in proportion (docs/rendering.md, "Cost").
   if (it == groups.end()) groups.push_back(name);
-  loaded.set_light_group(int(std::find(groups.begin(), groups.end(), name) - groups.begin()));
+  return int(std::find(groups.begin(), groups.end(), name) - groups.begin());
 }
+
+}  // namespace
+
+void read_light_group(const JsonCursor& light, Scene& scene) { scene.lights.back()->set_light_group(group_of(light, scene)); }
+
+int read_medium_light_group(const JsonCursor& medium, Scene& scene) { return group_of(medium, scene); }
 
 void finish_light_groups(Scene& scene) {
   auto& groups = scene.light_groups;
   if (groups.empty()) {
     for (auto& light : scene.lights) light->set_light_group(0);
+    for (Medium& medium : scene.media)
+      if (medium.emission()) medium.set_emission_light_group(0);
     return;
   }
   int fallback = -1;
-  for (auto& light : scene.lights) {
-    if (light->light_group() != kUnmarked) continue;
+  const auto fallback_group = [&] {
     if (fallback < 0) {
       auto it = std::find(groups.begin(), groups.end(), std::string(kDefaultLightGroup));
       if (it == groups.end()) {
@@ -69,8 +75,12 @@ void finish_light_groups(Scene& scene) {
       }
       fallback = int(it - groups.begin());
     }
-    light->set_light_group(fallback);
-  }
+    return fallback;
+  };
+  for (auto& light : scene.lights)
+    if (light->light_group() == kUnmarked) light->set_light_group(fallback_group());
+  for (Medium& medium : scene.media)
+    if (medium.emission() && medium.emission_light_group() == kUnmarked) medium.set_emission_light_group(fallback_group());
 }
 
 }  // namespace rimu::scene_loading

@@ -22,7 +22,11 @@ std::string light_group_name_problem(const std::string& name);
 /// ungrouped until finish_light_groups(). InputError naming the key for a bad name.
 void read_light_group(const JsonCursor& light, Scene& scene);
 
-/// After every light is loaded: with no "light_group" key anywhere, every light is in group 0 and the scene has no
+/// The group of an emissive medium's "light_group" (as read_light_group), or −1 (ungrouped until
+/// finish_light_groups()) without the key. The caller records it with Medium::set_emission.
+int read_medium_light_group(const JsonCursor& medium, Scene& scene);
+
+/// After every light and medium is loaded: with no "light_group" key anywhere, every light is in group 0 and the scene has no
 /// groups (no layers, no per-sample cost); otherwise the unmarked lights join kDefaultLightGroup (added last if no
 /// light named it).
 void finish_light_groups(Scene& scene);

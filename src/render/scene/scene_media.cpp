@@ -4,6 +4,8 @@
 #include <filesystem>
 
 #include "render/scene/rgb_transport_inputs.h"
+#include "render/scene/scene_light_emission.h"
+#include "render/scene/scene_light_groups.h"
 #include "render/scene/scene_load_context.h"
 #include "render/scene/scene_textures.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -68,7 +70,7 @@ bool is_nanovdb_file(const std::string& file) {
   return extension == ".nvdb";
 }
 
-Medium load_medium(const JsonCursor& m, LoadContext& context) {
+Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
   const std::string type = m.at("type").choice({"homogeneous", "grid"});
   const float g = float(m.number_or("g", 0.0, -0.99, 0.99));
   const int priority = m.integer_or("priority", 0, -1000, 1000);
@@ -112,7 +114,8 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   }
   if (type == "homogeneous") {
     m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
-                 "boundary_material", "index_matched", "contains_camera", "counts_towards_max_depth"});
+                 "boundary_material", "index_matched", "contains_camera", "counts_towards_max_depth", "emission",
+                 "light_group"});
     Medium medium(HomogeneousMedium(sigma_a, sigma_s, g), priority, counts_towards_max_depth);
     medium.set_textured_albedo(std::move(textured_albedo));
     return medium;
@@ -120,7 +123,7 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
                "boundary_material", "index_matched", "file", "procedural", "resolution", "bounds_min", "bounds_max",
                "seed", "voxels", "density", "interpolation", "transform", "contains_camera", "grid",
-               "counts_towards_max_depth"});
+               "counts_towards_max_depth", "emission", "light_group"});
   int nx = 0, ny = 0, nz = 0;
   std::vector<float> density;
   const int sources = int(m.has("file")) + int(m.has("procedural")) + int(m.has("density"));
@@ -171,6 +174,52 @@ Medium load_medium(const JsonCursor& m, LoadContext& context) {
   } catch (const InputError& e) {
     m.fail(e.explanation());
   }
+}
+
+// A medium's "emission": L_e as a spectrum (absolute, film units) or a spectral shape and a luminance (the
+// luminance of an optically thick body of the medium), or a black body at the temperatures of a grid of the
+// medium's .nvdb file.
+std::shared_ptr<const MediumEmission> load_medium_emission(const JsonCursor& m, const Medium& medium,
+                                                           LoadContext& context) {
+  const JsonCursor e = m.at("emission");
+  const SpectrumPtr& sigma_a = medium.homogeneous() ? medium.homogeneous()->sigma_a() : medium.grid()->sigma_a();
+  if (!(sigma_a->max_value() > 0.0))
+    e.fail("a medium emits sigma_a × its radiance: with sigma_a = 0 at every wavelength it cannot emit");
+  if (!(e.is_object() && e.has("temperature_grid"))) {
+    const LightSpectrum radiance = medium_emission_radiance(e, context);
+    return std::make_shared<const MediumEmission>(radiance.shape(), radiance.scale());
+  }
+  e.only_keys({"temperature_grid", "temperature_offset_k", "temperature_scale", "scale"});
+  const JsonCursor name = e.at("temperature_grid");
+  if (!medium.grid() || !m.has("file") || !is_nanovdb_file(m.at("file").string()))
+    name.fail("a temperature grid is read from the medium's .nvdb file: it needs a grid medium with a .nvdb \"file\"");
+  if (context.spectra.rgb_transport())
+    name.fail("a temperature grid's black body needs spectral transport, not --wavelengths rgb");
+  std::shared_ptr<const NanoVdbGrid> temperatures;
+  try {
+    temperatures = NanoVdbGrid::load(context.spectra.scene_directory() / m.at("file").string(), name.string());
+  } catch (const InputError& error) {
+    name.fail(error.what());
+  }
+  std::optional<Transform> world_from_grid;
+  if (m.has("transform")) world_from_grid = parse_transform(m);
+  const SpectrumPtr none = std::make_shared<ConstantSpectrum>(0.0);
+  // A GridMedium only for the lookup: its "density" is the temperature, placed exactly as the density grid.
+  auto field = std::make_shared<const GridMedium>(std::move(temperatures), none, none, 0.0f,
+                                                  medium.grid()->interpolation(), world_from_grid);
+  return std::make_shared<const MediumEmission>(std::move(field), e.number_or("temperature_offset_k", 0.0, -1e6, 1e6),
+                                                e.number_or("temperature_scale", 1.0, 0.0, 1e6),
+                                                e.number_or("scale", 1.0, 0.0, 1e30));
+}
+
+Medium load_medium(const JsonCursor& m, LoadContext& context) {
+  Medium medium = load_absorbing_medium(m, context);
+  if (m.has("emission")) {
+    medium.set_emission(load_medium_emission(m, medium, context), read_medium_light_group(m, context.scene));
+  } else if (m.has("light_group")) {
+    m.at("light_group").fail("a light group holds light: only a medium with \"emission\" has one");
+  }
+  return medium;
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ const char* EmitterGeometry::kind_name() const {
     case EmitterKind::distant: return "distant";
     case EmitterKind::area: return "area";
     case EmitterKind::environment: return "environment";
+    case EmitterKind::medium: return "medium";
   }
   return "?";
 }
@@ -72,6 +73,7 @@ NativeAmount native_amount(LightAmount amount, const EmitterGeometry& g, const S
       }
       wrong_unit(amount.unit, g, "lm or W (power), nt or W/m2/sr (luminance) or EV (reflected meter at ISO 100)", where);
     case EmitterKind::environment:
+    case EmitterKind::medium:
       if (q == LightQuantity::radiance) return same;
       if (q == LightQuantity::exposure_value) return {luminance_nt_from_ev100(amount.value), true};
       wrong_unit(amount.unit, g, "nt or W/m2/sr (luminance) or EV (reflected meter at ISO 100)", where);
@@ -116,6 +118,7 @@ EmitterOutput emitter_output(const EmitterGeometry& g, double scale, const Shape
       break;
     case EmitterKind::area:
     case EmitterKind::environment:
+    case EmitterKind::medium:
       out.radiance_w_m2_sr = radiant;
       out.luminance_nt = luminous;
       out.ev100 = ev100_from_luminance_nt(luminous);

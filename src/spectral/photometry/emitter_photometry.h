@@ -20,7 +20,8 @@
 
 namespace rimu {
 
-enum class EmitterKind { point, spot, distant, area, environment };
+/// `medium`: an emissive medium, whose amount is the luminance of an optically thick body of it (MediumEmission).
+enum class EmitterKind { point, spot, distant, area, environment, medium };
 
 /// How a spot light's power relates to its intensity (see above).
 enum class SpotPowerConvention { cone, point };

@@ -223,6 +223,16 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         if (walk_albedo.medium == medium_index) direct *= walk_albedo.scale;
         contribute(direct, light_group);
       }
+      if (medium.emission()) {
+        // The light the medium emits along this segment, seen from the last vertex: an estimator of its own
+        // (emitted_along), counted as surface emission at the segment's end is, with no light sampling to weigh
+        // it against (emissive media are not light-sampled).
+        const float sum_ratio = sum(pdf_ratio);
+        if (sum_ratio > 0.0f)
+          contribute(beta * emitted_along(medium, ray, std::fmin(t_surface, 1e30f), lambda, sampler) *
+                         Float4(kLanes / sum_ratio),
+                     medium.emission_light_group());
+      }
       SampledSpectrum throughput = beta;  // β ∝ the effective throughput while R is lane-independent
       const FreeFlight flight = sample_free_flight(media[size_t(medium_index)], ray, std::fmin(t_surface, 1e30f),
                                                    lambda, settings_.distance, sampler, throughput);

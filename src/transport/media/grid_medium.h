@@ -65,6 +65,9 @@ class GridMedium {
   /// The coefficients per unit density at the path's wavelengths.
   MediumCoefficients unit_coefficients(const SampledWavelengths& lambda) const { return unit_.coefficients(lambda); }
   const HenyeyGreenstein& phase() const { return unit_.phase(); }
+  /// σ_a and σ_s per unit density (1/m).
+  const SpectrumPtr& sigma_a() const { return unit_.sigma_a(); }
+  const SpectrumPtr& sigma_s() const { return unit_.sigma_s(); }
 
   /// Calls segment(t0, t1, max_density) for consecutive pieces of the ray inside the box over [ray.t_min, t_max],
   /// in order, each with the largest density of the majorant cell it crosses (a 3D-DDA over the majorant grid,

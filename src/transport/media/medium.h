@@ -7,6 +7,7 @@
 
 #include "transport/media/grid_medium.h"
 #include "transport/media/homogeneous_medium.h"
+#include "transport/media/medium_emission.h"
 #include "transport/media/textured_albedo.h"
 
 namespace rimu {
@@ -36,12 +37,22 @@ class Medium {
   /// A surface albedo texture over the boundary (TexturedAlbedo; null: none): a subsurface medium's colour map.
   const TexturedAlbedo* textured_albedo() const { return textured_albedo_.get(); }
   void set_textured_albedo(std::shared_ptr<const TexturedAlbedo> albedo) { textured_albedo_ = std::move(albedo); }
+  /// The light the medium emits (MediumEmission; null: none), and the light group it is credited to.
+  const MediumEmission* emission() const { return emission_.get(); }
+  int emission_light_group() const { return emission_light_group_; }
+  void set_emission(std::shared_ptr<const MediumEmission> emission, int light_group) {
+    emission_ = std::move(emission);
+    emission_light_group_ = light_group;
+  }
+  void set_emission_light_group(int light_group) { emission_light_group_ = light_group; }
 
  private:
   Variant medium_;
   int priority_;
   bool counts_towards_max_depth_;
   std::shared_ptr<const TexturedAlbedo> textured_albedo_;
+  std::shared_ptr<const MediumEmission> emission_;
+  int emission_light_group_ = 0;
 };
 
 /// What a surface does to the medium stack: the medium enclosed by the shape (−1: none) and whether the surface

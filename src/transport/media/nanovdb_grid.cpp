@@ -105,6 +105,14 @@ int floor_div8(int v) { return v >= 0 ? v / 8 : -((7 - v) / 8); }
 
 NanoVdbGrid::~NanoVdbGrid() = default;
 
+bool NanoVdbGrid::has_grid(const std::filesystem::path& path, const std::string& grid_name) {
+  try {
+    return nanovdb::io::hasGrid(path.string(), grid_name);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 std::shared_ptr<const NanoVdbGrid> NanoVdbGrid::load(const std::filesystem::path& path, const std::string& grid_name) {
   const std::string name = path.string();
   check_header(path, name);

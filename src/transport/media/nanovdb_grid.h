@@ -26,6 +26,9 @@ class NanoVdbGrid {
   /// and the checksum of the grid, tree and root data; not the nodes). Negative values are allowed; lookups clamp
   /// at 0.
   static std::shared_ptr<const NanoVdbGrid> load(const std::filesystem::path& path, const std::string& grid_name);
+  /// True if the .nvdb file at `path` names a grid `grid_name` (its headers only; false for a file NanoVDB cannot
+  /// read, which load() then reports).
+  static bool has_grid(const std::filesystem::path& path, const std::string& grid_name);
   ~NanoVdbGrid();
   NanoVdbGrid(const NanoVdbGrid&) = delete;
   NanoVdbGrid& operator=(const NanoVdbGrid&) = delete;

@@ -198,4 +198,41 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
   return out;
 }
 
+SampledSpectrum emitted_along(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
+                              Sampler& sampler) {
+  const MediumEmission& emission = *medium.emission();
+  const HomogeneousMedium* h = medium.homogeneous();
+  if (h && emission.uniform()) {
+    const MediumCoefficients c = h->coefficients(lambda);
+    const Float4 sigma_t = c.sigma_t_per_m();
+    const float d = std::fmin(t_max, 1e30f) - ray.t_min;
+    if (!(d > 0.0f)) return Float4(0.0f);
+    // (1 − e^{−σ_t d}) / σ_t, and its limit d where σ_t = 0 (then σ_a = 0 and the lane emits nothing anyway).
+    const Float4 path_length = select(sigma_t > Float4(0.0f), (Float4(1.0f) - exp(-sigma_t * Float4(d))) / sigma_t, Float4(d));
+    return c.sigma_a_per_m * emission.radiance_at(ray.origin, lambda) * path_length;
+  }
+  constexpr float kRouletteBelow = 0.1f;
+  const std::optional<SampledSpectrum> uniform =
+      emission.uniform() ? std::optional<SampledSpectrum>(emission.radiance_at(ray.origin, lambda)) : std::nullopt;
+  SampledSpectrum sum_emitted(0.0f), transmittance(1.0f);
+  for_each_tentative_collision(medium, ray, t_max, lambda, sampler,
+                               [&](float t, float majorant, const MediumCoefficients& c, Float4 sigma_n) {
+                                 if (max_lane(c.sigma_a_per_m) > 0.0f) {
+                                   const SampledSpectrum le =
+                                       uniform ? *uniform : emission.radiance_at(ray.origin + ray.direction * t, lambda);
+                                   sum_emitted += transmittance * c.sigma_a_per_m * le * Float4(1.0f / majorant);
+                                 }
+                                 transmittance *= sigma_n * Float4(1.0f / majorant);
+                                 const float largest = max_lane(transmittance);
+                                 if (!(largest > 0.0f)) return false;
+                                 if (largest < kRouletteBelow) {
+                                   const float survive = largest / kRouletteBelow;
+                                   if (sampler.next_1d() >= survive) return false;
+                                   transmittance *= Float4(1.0f / survive);
+                                 }
+                                 return true;
+                               });
+  return sum_emitted;
+}
+
 }  // namespace rimu

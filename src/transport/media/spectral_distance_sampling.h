@@ -1,4 +1,5 @@
-// Free-flight distance sampling and transmittance for four wavelengths at once (docs/media.md has the maths).
+// Free-flight distance sampling, transmittance and the light a medium emits along a segment, for four wavelengths at
+// once (docs/media.md has the maths).
 #pragma once
 
 #include "transport/media/medium.h"
@@ -68,5 +69,15 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
 SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
                                             const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler,
                                             SampledSpectrum& throughput);
+
+/// An estimate of ∫ T(t)·σ_a(t)·L_e(t) dt over [ray.t_min, t_max) per lane: the light an emissive medium
+/// (Medium::emission, non-null) adds along the segment, seen from ray.origin. Homogeneous media with uniform
+/// emission: exact, σ_a L_e (1 − e^{−σ_t d}) / σ_t, no random numbers. Otherwise a collision estimator over the
+/// majorant grid's tentative collisions (rate μ̄, the lanes' largest σ_t): Σ_i T̂_i σ_a L_e(t_i) / μ̄ with T̂ the
+/// ratio-tracking transmittance up to t_i (Novák, Selle, Jarosz 2014), Russian roulette once every lane's T̂ is
+/// below 0.1. Unbiased in every lane whatever the path's distance sampling: it is an estimator of its own, added to
+/// the path's light as surface emission reached by the same segment would be.
+SampledSpectrum emitted_along(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
+                              Sampler& sampler);
 
 }  // namespace rimu

@@ -572,9 +572,10 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
 }
 
 json PbrtConverter::light_amount(PbrtParams& p, const char* spectrum_key, const char* radiometric_key,
-                                 const char* photometric_key, std::optional<double> photometric_amount) {
+                                 const char* photometric_key, std::optional<double> photometric_amount,
+                                 const char* scale_key) {
   const PbrtParam* sp = p.get(spectrum_key, {PbrtParamType::spectrum, PbrtParamType::rgb, PbrtParamType::blackbody});
-  const double scale = p.real("scale", 1.0);
+  const double scale = p.real(scale_key, 1.0);
   json value;
   double rgb_y = 1.0;  // pbrt normalises only the illuminant of an RGB light: the RGB's own luminance stays
   bool is_rgb = true;

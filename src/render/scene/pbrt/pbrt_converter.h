@@ -160,8 +160,10 @@ class PbrtConverter {
   /// A pbrt spectrum parameter as a Rimu spectral value; spectrum files resolve against `directory`. Empty (and
   /// listed) for what is not imported.
   std::optional<json> spectrum_value(const PbrtParam& param, bool illuminant, const std::filesystem::path& directory);
+  /// A light's spectrum and amount from pbrt's `spectrum_key` × `scale_key`, normalised as pbrt-v4 normalises a
+  /// light's spectrum (SpectrumToPhotometric): the shape and a photometric amount, or the absolute value.
   json light_amount(PbrtParams& p, const char* spectrum_key, const char* radiometric_key, const char* photometric_key,
-                    std::optional<double> photometric_amount);
+                    std::optional<double> photometric_amount, const char* scale_key = "scale");
   double rgb_luminance(const PbrtParam& rgb) const;
   /// The value of float texture `name` if it is the same everywhere (constant, or scale/mix of such); empty
   /// otherwise. InputError (at `where`) for an unknown or spectrum texture.

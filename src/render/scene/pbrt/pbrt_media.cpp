@@ -9,8 +9,10 @@
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "render/scene/spectrum_input.h"
+#include "spectral/colorimetry/photometry_constants.h"
 #include "spectral/io/csv_table.h"
 #include "spectral/upsampling/rgb_upsampler.h"
+#include "transport/media/nanovdb_grid.h"
 
 namespace rimu {
 
@@ -121,13 +123,27 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
     ignore("MakeNamedMedium \"g\" beyond ±0.99 (clamped to Rimu's range)", s.where);
     g = std::clamp(g, -0.99, 0.99);
   }
+  // "Le" × "Lescale" (homogeneous, uniformgrid): pbrt-v4 normalises the spectrum as a light's "L"
+  // (SpectrumToPhotometric), so it imports as an area light's emission does: a shape and a luminance.
+  std::optional<json> emission;
   if (const PbrtParam* le = p.get("Le", {PbrtParamType::rgb, PbrtParamType::spectrum, PbrtParamType::blackbody})) {
     const bool dark = le->type != PbrtParamType::blackbody && le->strings.empty() &&
                       std::all_of(le->numbers.begin(), le->numbers.end(), [](double v) { return v == 0; });
-    if (!dark) ignore("MakeNamedMedium \"Le\" (Rimu's media do not emit: the medium is imported without its emission)", le->where);
+    const PbrtParam* le_scale = p.get("Lescale", {PbrtParamType::real});
+    if (dark) {
+    } else if (type == "nanovdb") {
+      ignore("MakeNamedMedium \"nanovdb\" \"Le\" (pbrt-v4's NanoVDB medium emits from its \"temperature\" grid only)",
+             le->where);
+    } else if (le_scale && le_scale->numbers.size() > 1) {
+      ignore("MakeNamedMedium \"uniformgrid\" per-voxel \"Lescale\" (Rimu's grid media emit one spectrum everywhere: "
+             "imported without its emission)", le_scale->where);
+    } else if (json fields = light_amount(p, "Le", "radiance", "luminance_nt", 1.0, "Lescale"); fields.contains("spectrum")) {
+      emission = std::move(fields);
+    }
   }
   if (type == "homogeneous") p.real("Lescale", 1.0);  // only meaningful with Le
   json medium = {{"type", "homogeneous"}, {"sigma_a", scaled(sigma_a, scale)}, {"sigma_s", scaled(sigma_s, scale)}, {"g", g}};
+  if (emission) medium["emission"] = std::move(*emission);
   if (type == "uniformgrid") add_density_grid(p, medium);
   if (type == "nanovdb") add_nanovdb_grid(p, medium);
   media_defined_[name] = std::move(medium);
@@ -223,14 +239,27 @@ void PbrtConverter::add_nanovdb_grid(PbrtParams& p, json& medium) {
   const std::filesystem::path path = std::filesystem::absolute(p.directory() / filename);
   if (!std::filesystem::is_regular_file(path))
     throw InputError(where, p.context() + ": cannot find the NanoVDB file '" + path.string() + "'");
-  // pbrt-v4 turns the file's "temperature" grid into blackbody emission scaled by these; Rimu's media do not emit.
-  bool emission = false;
-  for (const char* unused : {"Lescale", "temperaturecutoff", "temperatureoffset", "temperaturescale"})
-    emission |= p.get(unused, {PbrtParamType::real}) != nullptr;
-  if (emission)
-    ignore("MakeNamedMedium \"nanovdb\" emission (the file's \"temperature\" grid with \"Lescale\", "
-           "\"temperaturecutoff\", \"temperaturescale\": Rimu's media do not emit, so only the density is imported)",
-           where);
+  // pbrt-v4 emits from the file's "temperature" grid, if it has one: Lescale × the peak-normalised black body at
+  // T = (value − temperatureoffset) × temperaturescale ("temperaturecutoff" is the offset's older name), a raw
+  // spectral radiance (no photometric normalisation, unlike "Le"). pbrt's radiance L renders as Rimu's L × ∫ȳ dλ
+  // (its lights' spectra are normalised to ∫ȳ L = 1 per unit of scale, Rimu's area lights to ∫ȳ L = ∫ȳ dλ): the
+  // scale carries that factor.
+  const double le_scale = p.real("Lescale", 1.0);
+  const double offset_k = p.real("temperatureoffset", p.real("temperaturecutoff", 0.0));
+  const double temperature_scale = p.real("temperaturescale", 1.0);
+  if (NanoVdbGrid::has_grid(path, "temperature")) {
+    if (!(le_scale >= 0) || !(temperature_scale >= 0))
+      throw InputError(where, p.context() + ": \"Lescale\" and \"temperaturescale\" must be >= 0");
+    if (le_scale > 0)
+      medium["emission"] = {{"temperature_grid", "temperature"},
+                            {"temperature_offset_k", offset_k},
+                            {"temperature_scale", temperature_scale},
+                            {"scale", le_scale * nits_per_unit_y_ / kMaxLuminousEfficacy_lm_W}};
+  } else if (p.get("Lescale", {PbrtParamType::real}) || p.get("temperatureoffset", {PbrtParamType::real}) ||
+             p.get("temperaturescale", {PbrtParamType::real})) {
+    ignore("MakeNamedMedium \"nanovdb\" \"Lescale\", \"temperatureoffset\", \"temperaturescale\" (the file has no "
+           "\"temperature\" grid, so nothing emits, as in pbrt-v4)", where);
+  }
   medium["type"] = "grid";
   // pbrt-v4 reads the grid named "density", the JSON loader's default.
   medium["file"] = path_for_document(path);
@@ -277,10 +306,9 @@ void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
     if (!(hi[size_t(a)] > lo[size_t(a)])) throw InputError(where, context + ": the box \"p0\"–\"p1\" is empty");
   }
   if (!p.numbers("temperature", {PbrtParamType::real}).empty())
-    ignore("MakeNamedMedium \"uniformgrid\" \"temperature\" (Rimu's media do not emit: imported without its emission)", where);
+    ignore("MakeNamedMedium \"uniformgrid\" \"temperature\" (Rimu reads temperatures from .nvdb grids only: "
+           "imported without its emission)", where);
   for (const char* unused : {"temperaturescale", "temperatureoffset", "temperaturecutoff"}) p.real(unused, 0.0);
-  if (const PbrtParam* le_scale = p.get("Lescale", {PbrtParamType::real}); le_scale && le_scale->numbers.size() > 1)
-    ignore("MakeNamedMedium \"uniformgrid\" per-voxel \"Lescale\" (Rimu's media do not emit)", le_scale->where);
   medium["type"] = "grid";
   medium["voxels"] = {nx, ny, nz};
   medium["density"] = std::move(values);
