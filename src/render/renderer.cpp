@@ -77,7 +77,8 @@ namespace {
 template <typename Integrator>
 RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorSettings& integrator_settings,
                              const TransportScene& surfaces, const TabulatedWavelengthDensity* wavelength_density,
-                             const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
+                             const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options,
+                             const VolumetricScene* media = nullptr) {
   const auto start = std::chrono::steady_clock::now();
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
@@ -220,7 +221,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               feature.beauty_weight = sums[FilmTile::kWeight] - before[3];
               if (feature.beauty_weight > 0.0) {
                 feature_sampler->start_pixel_sample(x, y, uint32_t(s));
-                const PathFeatures f = first_diffuse_features(surfaces, ray, lambda, *feature_sampler);
+                const PathFeatures f = first_diffuse_features(surfaces, ray, lambda, *feature_sampler, media);
                 feature.albedo = feature_albedo_channels(f, lambda, film.response());
                 feature.normal = f.normal;
                 feature.depth = f.depth;
@@ -290,7 +291,7 @@ RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegrator
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
   const VolumetricPathIntegrator integrator(scene, integrator_settings);
   return render_loop(integrator, integrator_settings.path, scene.surfaces, scene.surfaces.wavelength_density, camera,
-                     filter, film, options);
+                     filter, film, options, &scene);
 }
 
 }  // namespace rimu

@@ -217,3 +217,26 @@ TEST_CASE("aov: the scene's film \"aov\" asks for layers; --aov replaces it; a b
   scene["film"]["aov"] = "depth,shadows";
   CHECK_THROWS_WITH_AS(render_scene(scene, "scene_key_bad", ""), doctest::Contains("/film/aov"), InputError);
 }
+
+TEST_CASE("aov: a subsurface object's albedo is the albedo it was authored with, as a diffuse surface of that colour") {
+  // A box of skin-like medium under a smooth diffuse-entry boundary: the boundary BSDF's own one-sample albedo was 0
+  // whenever the sample took the mirror lobe; the feature is now the medium's surface albedo A.
+  const json colour = {{"rgb", {0.8, 0.3, 0.2}}};
+  json diffuse = plane_scene();
+  diffuse["materials"]["plane"]["reflectance"] = colour;
+  json subsurface = plane_scene();
+  subsurface["materials"] = {{"skin", {{"type", "dielectric"}, {"ior", 1.4}, {"diffuse_entry", true}}}};
+  subsurface["media"] = {{"flesh", {{"type", "homogeneous"}, {"albedo", colour}, {"mean_free_path", 1.0},
+                                    {"mean_free_path_scale_m", 0.01}, {"boundary_material", "skin"},
+                                    {"counts_towards_max_depth", false}}}};
+  subsurface["shapes"] = {{{"type", "box"}, {"min", {-50, -50, 0}}, {"max", {50, 50, 10}}, {"material", "skin"}}};
+  const Rendered plane = render_scene(diffuse, "albedo_plane", "albedo");
+  const Rendered skin = render_scene(subsurface, "albedo_subsurface", "albedo");
+  for (const char* c : {"albedo.X", "albedo.Y", "albedo.Z"}) {
+    CAPTURE(c);
+    const std::vector<float>& a = plane.channels.at(c);
+    const std::vector<float>& b = skin.channels.at(c);
+    REQUIRE(a.size() == b.size());
+    for (size_t i = 0; i < a.size(); ++i) CHECK(b[i] == doctest::Approx(a[i]).epsilon(1e-5));
+  }
+}

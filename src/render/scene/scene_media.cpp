@@ -78,6 +78,7 @@ Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
   const bool counts_towards_max_depth = m.boolean_or("counts_towards_max_depth", true);
   SpectrumPtr sigma_a, sigma_s;
   std::shared_ptr<const TexturedAlbedo> textured_albedo;
+  SpectralTexturePtr surface_albedo;  // the authored albedo A, reported as the albedo feature (path_features.h)
   if (m.has("albedo")) {
     // Chiang et al. 2016: surface albedo colour (a reflectance) and mean free path colour × scale in metres.
     for (const char* key : {"sigma_a", "sigma_s"})
@@ -86,6 +87,7 @@ Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
     // per path where the path enters (TexturedAlbedo; σ_t depends on the mean free path alone).
     SpectrumPtr albedo;
     const SpectralTexturePtr albedo_texture = load_spectral_texture(m.at("albedo"), context);
+    surface_albedo = albedo_texture;
     if (const auto* constant = dynamic_cast<const ConstantSpectralTexture*>(albedo_texture.get())) {
       albedo = constant->spectrum();
     } else {
@@ -118,6 +120,7 @@ Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
                  "light_group"});
     Medium medium(HomogeneousMedium(sigma_a, sigma_s, g), priority, counts_towards_max_depth);
     medium.set_textured_albedo(std::move(textured_albedo));
+    medium.set_surface_albedo(std::move(surface_albedo));
     return medium;
   }
   m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
@@ -147,8 +150,10 @@ Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
       file.fail(e.what());  // "cloud.nvdb: ..." under the key that named the file
     }
     try {
-      return Medium(GridMedium(std::move(sparse), sigma_a, sigma_s, g, interpolation, world_from_grid), priority,
+      Medium medium(GridMedium(std::move(sparse), sigma_a, sigma_s, g, interpolation, world_from_grid), priority,
                     counts_towards_max_depth);
+      medium.set_surface_albedo(std::move(surface_albedo));
+      return medium;
     } catch (const InputError& e) {
       m.fail(e.explanation());
     }
@@ -168,9 +173,11 @@ Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
     density = procedural_cloud_density(nx, uint32_t(m.integer_or("seed", 1, 0, 1 << 30)));
   }
   try {
-    return Medium(GridMedium(nx, ny, nz, std::move(density), m.at("bounds_min").vec3(), m.at("bounds_max").vec3(),
+    Medium medium(GridMedium(nx, ny, nz, std::move(density), m.at("bounds_min").vec3(), m.at("bounds_max").vec3(),
                              sigma_a, sigma_s, g, interpolation, world_from_grid),
                   priority, counts_towards_max_depth);
+    medium.set_surface_albedo(std::move(surface_albedo));
+    return medium;
   } catch (const InputError& e) {
     m.fail(e.explanation());
   }

@@ -1,16 +1,30 @@
 #include "transport/integrators/path_features.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "transport/bsdfs/material.h"
 #include "transport/geometry/frame.h"
 #include "transport/integrators/path_integrator.h"
 #include "transport/integrators/ray_queries.h"
+#include "transport/integrators/volumetric_path_integrator.h"
 
 namespace rimu {
 
+namespace {
+
+// The surface albedo of the medium a ray enters at `hit` through material `material`, if it has one.
+const SpectralTexture* entered_surface_albedo(const VolumetricScene* media, const SurfaceHit& hit, Vec3 wo_world) {
+  if (!media || hit.material < 0 || size_t(hit.material) >= media->boundaries->size()) return nullptr;
+  const int inside = (*media->boundaries)[size_t(hit.material)].interior_medium;
+  if (inside < 0 || dot(wo_world, hit.geometric_normal) <= 0.0f) return nullptr;  // not entering from outside
+  return (*media->media)[size_t(inside)].surface_albedo();
+}
+
+}  // namespace
+
 PathFeatures first_diffuse_features(const TransportScene& scene, Ray ray, const SampledWavelengths& lambda,
-                                    Sampler& sampler) {
+                                    Sampler& sampler, const VolumetricScene* media) {
   PathFeatures features;
   float travelled = 0.0f;
   for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
@@ -42,6 +56,13 @@ PathFeatures first_diffuse_features(const TransportScene& scene, Ray ray, const 
     if (flags.has_non_delta || !flags.has_delta) {
       features.normal = ns;
       features.depth = travelled;
+      if (const SpectralTexture* albedo = entered_surface_albedo(media, *hit, wo_world);
+          albedo && flags.has_transmission) {
+        const SampledSpectrum a = albedo->evaluate_at(context, lambda);
+        for (int j = 0; j < kLaneCount; ++j)
+          features.albedo.set(j, std::isfinite(a[j]) ? std::clamp(a[j], 0.0f, 1.0f) : 0.0f);
+        return features;
+      }
       if (bs && bs->pdf[0] > 0.0f && !bs->is_delta) {
         const Vec3 wi_world = frame.to_world(bs->wi);
         // Opaque materials reflect only to the geometric front side, as the path integrator requires.

@@ -9,7 +9,8 @@
 
 namespace rimu {
 
-struct TransportScene;  // transport/integrators/path_integrator.h
+struct TransportScene;   // transport/integrators/path_integrator.h
+struct VolumetricScene;  // transport/integrators/volumetric_path_integrator.h
 
 /// One camera sample's features. Every value is finite.
 struct PathFeatures {
@@ -33,7 +34,12 @@ inline constexpr int kMaxSpecularBounces = 8;
 /// sampling one of its lobes, as a path would. Media are ignored (features are surface properties). Uses `sampler`
 /// for the delta lobe choices and the albedo's BSDF sample; the caller gives it a sampler of its own so that the
 /// image's samples do not change. Cost: one closest-hit ray per surface passed, one BSDF sample.
+/// With `media` (a scene with participating media): where the ray enters a medium that has a surface albedo
+/// (Medium::surface_albedo: skin, wax, milk authored by albedo and mean free path) through a boundary that
+/// transmits diffusely or roughly, the albedo is that surface albedo at the hit, clamped to [0, 1] — what the
+/// object looks like — rather than the boundary BSDF's one-sample estimate (a smooth diffuse-entry boundary reads
+/// 0 whenever its sample takes the mirror lobe).
 PathFeatures first_diffuse_features(const TransportScene& scene, Ray ray, const SampledWavelengths& lambda,
-                                    Sampler& sampler);
+                                    Sampler& sampler, const VolumetricScene* media = nullptr);
 
 }  // namespace rimu

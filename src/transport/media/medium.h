@@ -37,6 +37,11 @@ class Medium {
   /// A surface albedo texture over the boundary (TexturedAlbedo; null: none): a subsurface medium's colour map.
   const TexturedAlbedo* textured_albedo() const { return textured_albedo_.get(); }
   void set_textured_albedo(std::shared_ptr<const TexturedAlbedo> albedo) { textured_albedo_ = std::move(albedo); }
+  /// The surface albedo the medium was authored with (Chiang et al. 2016's multiple-scattering albedo A, a
+  /// texture or a constant; null for σ_a/σ_s media): what an object of it looks like, reported as the albedo feature
+  /// where a camera ray meets its boundary (path_features.h).
+  const SpectralTexture* surface_albedo() const { return surface_albedo_.get(); }
+  void set_surface_albedo(SpectralTexturePtr albedo) { surface_albedo_ = std::move(albedo); }
   /// The light the medium emits (MediumEmission; null: none), and the light group it is credited to.
   const MediumEmission* emission() const { return emission_.get(); }
   int emission_light_group() const { return emission_light_group_; }
@@ -51,6 +56,7 @@ class Medium {
   int priority_;
   bool counts_towards_max_depth_;
   std::shared_ptr<const TexturedAlbedo> textured_albedo_;
+  SpectralTexturePtr surface_albedo_;
   std::shared_ptr<const MediumEmission> emission_;
   int emission_light_group_ = 0;
 };
