@@ -39,8 +39,9 @@ enum class GridInterpolation {
 /// The box and the spectra come from the scene file, so one density file can be reused at any size.
 ///
 /// The densities may instead be a sparse NanoVDB grid (nanovdb_grid.h): the grid's space is then the file's index
-/// space (voxel centres at integers), the box is the active voxels' box (half a voxel beyond the outer centres,
-/// as for a dense grid), and the majorant blocks are NanoVDB's leaves, computed from the tree at load.
+/// space (voxel centres at integers), the box is the active voxels' box — with trilinear lookups NanoVDB's own
+/// [min, max + 1] (its world box, which pbrt-v4 clips to), with voxel lookups half a voxel beyond the outer centres
+/// as for a dense grid — and the majorant blocks are NanoVDB's leaves, computed from the tree at load.
 class GridMedium {
  public:
   /// Throws InputError if a size is 0, the data size is not nx·ny·nz, a density is negative or not finite,
