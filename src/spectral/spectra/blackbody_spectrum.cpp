@@ -18,17 +18,17 @@ double planck_radiance_w_m2_sr_nm(double lambda_nm, double temperature_k) {
   return per_metre * 1e-9;
 }
 
+double planck_peak_radiance_w_m2_sr_nm(double temperature_k) {
+  return planck_radiance_w_m2_sr_nm(kWienDisplacement_m_K / temperature_k * 1e9, temperature_k);
+}
+
 BlackbodySpectrum::BlackbodySpectrum(double temperature_k, Scale scale) : temperature_k_(temperature_k), scale_(1.0) {
   if (!(temperature_k > 0.0 && temperature_k <= 1e6)) {
     std::ostringstream message;  // %g-style: std::to_string spells 1e308 with 309 digits
     message << "blackbody temperature must be a finite number in (0, 1e6] K, got " << temperature_k;
     throw InputError({}, message.str());
   }
-  if (scale == Scale::peak_one) {
-    // Wien's displacement law: the peak is at b/T with b = 2.897771955e-3 m·K.
-    const double peak_nm = 2.897771955e-3 / temperature_k * 1e9;
-    scale_ = 1.0 / planck_radiance_w_m2_sr_nm(peak_nm, temperature_k);
-  }
+  if (scale == Scale::peak_one) scale_ = 1.0 / planck_peak_radiance_w_m2_sr_nm(temperature_k);
 }
 
 double BlackbodySpectrum::value(double lambda_nm) const {
@@ -36,7 +36,7 @@ double BlackbodySpectrum::value(double lambda_nm) const {
 }
 
 double BlackbodySpectrum::max_value() const {
-  const double peak_nm = std::clamp(2.897771955e-3 / temperature_k_ * 1e9, 360.0, 830.0);
+  const double peak_nm = std::clamp(kWienDisplacement_m_K / temperature_k_ * 1e9, 360.0, 830.0);
   return value(peak_nm);
 }
 

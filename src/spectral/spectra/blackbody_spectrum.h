@@ -14,6 +14,12 @@ inline constexpr double kBoltzmannConstant_J_K = 1.380649e-23;
 /// L(λ,T) = 2hc²/λ⁵ / (exp(hc/(λ k T)) − 1), with λ in metres, times 1e-9 m/nm.
 double planck_radiance_w_m2_sr_nm(double lambda_nm, double temperature_k);
 
+/// Wien's displacement constant b: a black body's spectral radiance peaks at λ = b/T.
+inline constexpr double kWienDisplacement_m_K = 2.897771955e-3;
+
+/// The spectral radiance at that peak, W/(m²·sr·nm): what a peak-normalised black body is divided by.
+double planck_peak_radiance_w_m2_sr_nm(double temperature_k);
+
 /// A black body. Absolute (W/(m²·sr·nm)) or scaled so its peak (Wien's law) is 1, as a light's shape.
 class BlackbodySpectrum final : public Spectrum {
  public:

@@ -12,11 +12,10 @@ namespace {
 // pbrt-v4 emits nothing below this temperature (NanoVDBMedium and GridMedium): cold voxels of a fire's grid.
 constexpr float kMinimumTemperatureK = 100.0f;
 
-// B(λ, T) / B(λ_max, T) at four wavelengths: Planck's law over its value at Wien's peak λ_max = b/T.
+// B(λ, T) / B(λ_max, T) at four wavelengths, as BlackbodySpectrum's peak_one scale (without its 1e6 K input bound:
+// a grid's temperatures are not user input checked at load).
 Float4 peak_normalised_planck(float temperature_k, const SampledWavelengths& lambda) {
-  constexpr double kWienB_m_K = 2.897771955e-3;
-  const double peak_nm = kWienB_m_K / temperature_k * 1e9;
-  const double peak = planck_radiance_w_m2_sr_nm(peak_nm, temperature_k);
+  const double peak = planck_peak_radiance_w_m2_sr_nm(temperature_k);
   std::array<float, kLaneCount> out{};
   for (int k = 0; k < kLaneCount; ++k)
     out[size_t(k)] = float(planck_radiance_w_m2_sr_nm(lambda.lambda_nm(k), temperature_k) / peak);
