@@ -117,7 +117,7 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
                "direct_lighting", "distance_sampling", "max_depth_includes_media", "light_sampler", "guiding",
-               "time_limit_s"});
+               "glossy_light_candidates", "time_limit_s"});
   if (const auto d = c.find("guiding")) {
     const std::string mode = d->is_string() ? d->choice({"on", "off", "mixture"}) : d->boolean() ? "on" : "off";
     s.integrator.guiding = mode != "off";
@@ -152,6 +152,14 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
   s.integrator.max_depth = c.integer_or("max_depth", s.integrator.max_depth, 0, 100000);
   s.integrator.russian_roulette_depth =
       c.integer_or("russian_roulette_depth", s.integrator.russian_roulette_depth, 1, 100000);
+  if (const auto d = c.find("glossy_light_candidates")) {  // "auto" (0): PathIntegratorSettings::glossy_candidates_for
+    if (d->is_string()) {
+      d->choice({"auto"});
+      s.integrator.glossy_light_candidates = 0;
+    } else {
+      s.integrator.glossy_light_candidates = d->integer(1, 64);
+    }
+  }
   s.seed = uint64_t(c.integer_or("seed", int(s.seed), 0, 2147483647));
 }
 

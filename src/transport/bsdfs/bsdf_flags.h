@@ -13,6 +13,10 @@ struct BsdfFlags {
   /// BSDF uses the sign of wo.z to know whether the ray is inside); opaque BSDFs (false) are two-sided, and the
   /// integrator may flip their shading frame so that wo.z > 0.
   bool has_transmission = false;
+  /// A non-delta lobe narrow enough (TrowbridgeReitz::is_glossy) that what it passes from a light depends more on
+  /// the light's direction than on its irradiance: next-event estimation then resamples its choice of light among
+  /// a few candidates by that (transport/integrators/light_resampling.h).
+  bool has_glossy = false;
 };
 
 }  // namespace rimu

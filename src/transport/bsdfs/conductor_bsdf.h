@@ -33,7 +33,7 @@ class ConductorBsdf {
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
   BsdfFlags flags() const {
     const bool smooth = distribution_.effectively_smooth();
-    return {smooth, !smooth, false};
+    return {smooth, !smooth, false, distribution_.is_glossy()};
   }
 
  private:

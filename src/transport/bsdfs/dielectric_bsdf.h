@@ -68,7 +68,7 @@ class DielectricBsdf {
   BsdfFlags flags() const {
     const bool smooth = is_smooth();
     if (diffuse_entry_) return {true, true, true};  // the inside's mirror is a delta, its way out is not
-    return {smooth, !smooth, true};
+    return {smooth, !smooth, true, !smooth && distribution_.is_glossy()};
   }
 
   SampledSpectrum eta() const { return eta_; }

@@ -27,6 +27,10 @@ class TrowbridgeReitz {
   float alpha_y() const { return alpha_y_; }
   /// True when both widths are below kSmoothAlpha: treat the surface as a perfect mirror / refractor.
   bool effectively_smooth() const { return alpha_x_ < kSmoothAlpha && alpha_y_ < kSmoothAlpha; }
+  /// Below kGlossyAlpha (in both directions) and not smooth, the lobe's solid angle is a small fraction of the
+  /// hemisphere (≈ π α² sr about the mirror direction: 0.28 sr at α = 0.3): a glossy lobe (BsdfFlags::has_glossy).
+  static constexpr float kGlossyAlpha = 0.3f;
+  bool is_glossy() const { return !effectively_smooth() && alpha_x_ < kGlossyAlpha && alpha_y_ < kGlossyAlpha; }
 
   /// The microfacet normal density D(m), per steradian of m, normalised so that the projected microfacet area
   /// covers the macro surface, ∫ D(m) cos θm dm = 1:  D(m) = 1 / (π αx αy (m_x²/αx² + m_y²/αy² + m_z²)²).

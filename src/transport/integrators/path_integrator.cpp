@@ -7,6 +7,7 @@
 #include "transport/geometry/frame.h"
 #include "transport/guiding/guided_bsdf.h"
 #include "transport/guiding/path_guiding_record.h"
+#include "transport/integrators/light_resampling.h"
 #include "transport/integrators/path_footprint.h"
 #include "transport/integrators/shadow_passage.h"
 #include "transport/sampling/wavelength_modes.h"
@@ -138,6 +139,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     contribute(beta * emitted * Float4(kLanes * weight), light, true);
   };
 
+  const int glossy_candidates = settings_.glossy_candidates_for(lights.size());
+
   // Panes passed straight through (docs/transport.md, "Glazing"): since the last scattering vertex (at most
   // kMaxShadowPassages, as for shadow rays), and in all (they do not count towards max_depth).
   int passages_since_vertex = 0, passages = 0;
@@ -207,31 +210,43 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     const float u_light_choice = sampler.next_1d();
     const Vec2 u_light = sampler.next_2d();
     if (flags.has_non_delta && strategy != DirectLighting::bsdf_only) {
-      if (const auto pick = light_sampler.sample(sampling_point, u_light_choice)) {
-        const Light& light = *lights[size_t(pick->light)];
-        if (const auto ls = light.sample_part_li(pick->part, reference, lambda, u_light)) {
-          const Vec3 wi = shading.frame.to_local(ls->wi);
-          const SampledSpectrum f = bsdf.eval(wo, wi) * Float4(std::fabs(wi.z));
-          // A direction below the geometric surface cannot be reached by an opaque material's light.
-          const bool wrong_side = !flags.has_transmission && dot(ls->wi, shading.geometric_normal) <= 0.0f;
-          if (!wrong_side && max_lane(f) > 0.0f) {
-            Ray shadow;
-            shadow.origin = offset_ray_origin(*hit, ls->wi, scene_.scene_scale);
-            const ShadowSegment segment = shadow_segment(shadow.origin, hit->position, *ls, scene_.scene_scale);
-            shadow.direction = segment.direction;
-            shadow.t_max = std::isinf(segment.length) ? segment.length : segment.length * (1.0f - 0x1p-12f);
-            if (const auto passage = trace_shadow(scene_, shadow, lambda)) {
-              const float q_light = pick->probability * ls->pdf_solid_angle;
-              const float s_light = q_light * sum_ratio;
-              // BSDF sampling reaches this light through the panes only by also choosing each one's straight-through
-              // lobe: its density carries their probabilities (docs/transport.md, "Glazing").
-              const float s_bsdf = ls->is_delta || strategy == DirectLighting::nee_only
-                                       ? 0.0f
-                                       : sum(pdf_ratio * lanes.densities(sampling.pdf(wo, wi) * passage->pass_probability));
-              const float weight = s_light / (s_light * s_light + s_bsdf * s_bsdf);
-              contribute(beta * f * passage->transmittance * ls->radiance * Float4(kLanes * weight), light);
-            }
-          }
+      // f·|cos θi| towards a light; zero below an opaque surface (its light cannot reach the material).
+      auto f_cos_towards = [&](Vec3 wi_world) {
+        if (!flags.has_transmission && dot(wi_world, shading.geometric_normal) <= 0.0f) return SampledSpectrum(0.0f);
+        const Vec3 wi = shading.frame.to_local(wi_world);
+        return bsdf.eval(wo, wi) * Float4(std::fabs(wi.z));
+      };
+      // The MIS weight a light sample will carry (before panes): resampling targets f·L times it.
+      auto light_weight = [&](const LightSample& ls, float choice_probability) {
+        if (ls.is_delta || strategy == DirectLighting::nee_only) return 1.0f;
+        const float s_light = choice_probability * ls.pdf_solid_angle * sum_ratio;
+        const float s_bsdf = sum(pdf_ratio * lanes.densities(sampling.pdf(wo, shading.frame.to_local(ls.wi))));
+        return s_light * s_light / (s_light * s_light + s_bsdf * s_bsdf);
+      };
+      const int candidates = flags.has_glossy ? glossy_candidates : 1;
+      if (const auto chosen = choose_light(light_sampler, lights, sampling_point, reference, lambda, candidates,
+                                           u_light_choice, u_light, f_cos_towards, light_weight)) {
+        const Light& light = *lights[size_t(chosen->pick.light)];
+        const LightSample& ls = chosen->sample;
+        Ray shadow;
+        shadow.origin = offset_ray_origin(*hit, ls.wi, scene_.scene_scale);
+        const ShadowSegment segment = shadow_segment(shadow.origin, hit->position, ls, scene_.scene_scale);
+        shadow.direction = segment.direction;
+        shadow.t_max = std::isinf(segment.length) ? segment.length : segment.length * (1.0f - 0x1p-12f);
+        if (const auto passage = trace_shadow(scene_, shadow, lambda)) {
+          // The MIS weights use the light sampler's own density of this sample (BSDF-sampled hits on the light
+          // use the same), so they still sum to one; resampling only changes how often the light is drawn,
+          // which density_scale accounts for (exactly 1 for one candidate).
+          const float s_light = chosen->pick.probability * ls.pdf_solid_angle * sum_ratio;
+          // BSDF sampling reaches this light through the panes only by also choosing each one's straight-through
+          // lobe: its density carries their probabilities (docs/transport.md, "Glazing").
+          const float s_bsdf =
+              ls.is_delta || strategy == DirectLighting::nee_only
+                  ? 0.0f
+                  : sum(pdf_ratio * lanes.densities(sampling.pdf(wo, shading.frame.to_local(ls.wi)) *
+                                                    passage->pass_probability));
+          const float weight = chosen->density_scale * s_light / (s_light * s_light + s_bsdf * s_bsdf);
+          contribute(beta * chosen->f_cos * passage->transmittance * ls.radiance * Float4(kLanes * weight), light);
         }
       }
     }

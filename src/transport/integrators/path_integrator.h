@@ -63,6 +63,18 @@ struct PathIntegratorSettings {
   bool guiding_mixture = false;
   /// α: the probability of drawing a guided vertex's direction from the learned field (else from the BSDF).
   float guiding_probability = 0.5f;
+  /// At vertices with a glossy lobe (BsdfFlags::has_glossy), next-event estimation draws this many candidate lights
+  /// and keeps one by what the BSDF passes from it (transport/integrators/light_resampling.h); 1 turns it off.
+  /// 0 (the default): kManyLightsCandidates in scenes with at least kManyLights lights, else 1 (what it gains grows
+  /// with the lights competing for a lobe, its cost does not: docs/benchmarks.md, "Glossy vertices").
+  int glossy_light_candidates = 0;
+  static constexpr int kManyLights = 8;
+  static constexpr int kManyLightsCandidates = 8;
+  /// The candidates per glossy vertex in a scene of `light_count` lights.
+  int glossy_candidates_for(size_t light_count) const {
+    if (glossy_light_candidates > 0) return glossy_light_candidates;
+    return light_count >= size_t(kManyLights) ? kManyLightsCandidates : 1;
+  }
 };
 
 /// What a path does for guiding: sample from `field` (nullptr: not yet learned) and append what it learned to
