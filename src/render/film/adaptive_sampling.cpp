@@ -61,8 +61,11 @@ ErrorTerms error_terms(double a_sum, double b_sum, double na, double nb, double 
 // The mean of `values` (w × h, row by row) over the (2r + 1)² square around each pixel, clipped to the image.
 // Summed directly (rows, then columns: (2r + 1) additions a pixel each way), not from a summed-area table, whose
 // differences would lose a dark pixel's small error next to a huge one; a window holding +∞ has the mean +∞.
-std::vector<double> window_means(const std::vector<double>& values, int w, int h, int r) {
-  std::vector<double> rows(values.size()), means(values.size());
+// `rows` is scratch space; `means` receives the result (both resized to the image).
+void window_means(const std::vector<double>& values, int w, int h, int r, std::vector<double>& rows,
+                  std::vector<double>& means) {
+  rows.resize(values.size());
+  means.resize(values.size());
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       double sum = 0.0;
@@ -76,7 +79,6 @@ std::vector<double> window_means(const std::vector<double>& values, int w, int h
       const int count = (std::min(w - 1, x + r) - std::max(0, x - r) + 1) * (std::min(h - 1, y + r) - std::max(0, y - r) + 1);
       means[size_t(y) * size_t(w) + size_t(x)] = sum / count;
     }
-  return means;
 }
 
 }  // namespace
@@ -97,7 +99,8 @@ uint64_t AdaptiveSampling::plan_pass(int pass_samples) {
   // samples: an estimate with one degree of freedom fewer than the pixel has samples, where the two half buffers'
   // difference has one, however many samples they hold. (With that one, a pass's shares stayed as noisy after
   // 2000 samples as after 32.)
-  std::vector<double> per_sample(n, INFINITY);  // +∞: fewer than 2 samples, no estimate
+  std::vector<double>& per_sample = scratch_.per_sample;
+  per_sample.assign(n, INFINITY);  // +∞: fewer than 2 samples, no estimate
   for (size_t i = 0; i < n; ++i) {
     const double* m = &moments_[kMoments * i];
     const double count = m[6];
@@ -116,10 +119,12 @@ uint64_t AdaptiveSampling::plan_pass(int pass_samples) {
   // a (2r + 1)² window, r = allocation_radius_px: a rare bright path in one pixel's samples says its neighbours'
   // can have it too), at least the neighbourhood's floor (update_errors), over the square root of its cost per
   // sample. The cost needs no window: it is a mean over the pixel's samples, and its square root varies little.
-  std::vector<double> deviation(n, -1.0);  // −1: no estimate, the pixel takes a uniform share
+  std::vector<double>& deviation = scratch_.deviation;
+  deviation.assign(n, -1.0);  // −1: no estimate, the pixel takes a uniform share
   double deviation_sum = 0.0, samples_sum = 0.0;
-  const std::vector<double> window =
-      window_means(per_sample, bounds_.width(), bounds_.height(), settings_.allocation_radius_px);
+  const std::vector<double>& window = scratch_.window;
+  window_means(per_sample, bounds_.width(), bounds_.height(), settings_.allocation_radius_px, scratch_.rows,
+               scratch_.window);
   for (size_t i = 0; i < n; ++i) {
     if (!active_[i]) continue;
     samples_sum += samples_[i];
@@ -140,7 +145,12 @@ uint64_t AdaptiveSampling::plan_pass(int pass_samples) {
   // whose shortfall sat in a few capped pixels spent only part of its budget (as little as two thirds on the Cornell
   // box at 80 × 45), so a time budget ran more, smaller passes (91 against 72 in 10 s there), each giving every
   // pixel its one sample whatever its error.
-  std::vector<double> extra(n, 0.0), room(n, 0.0), shortfall(n, 0.0);
+  std::vector<double>& extra = scratch_.extra;
+  std::vector<double>& room = scratch_.room;
+  std::vector<double>& shortfall = scratch_.shortfall;
+  extra.assign(n, 0.0);
+  room.assign(n, 0.0);
+  shortfall.assign(n, 0.0);
   double rest = 0.0;
   for (size_t i = 0; i < n; ++i) {
     if (!active_[i] || deviation[i] < 0.0) continue;
@@ -208,7 +218,8 @@ size_t AdaptiveSampling::after_pass(const Film& film, int samples_end) {
   // Converged: the 3×3 error at or under the threshold. Stopped: converged along with its whole neighbourhood, or
   // at the maximum.
   const int w = bounds_.width(), h = bounds_.height(), r = settings_.dilation_px;
-  std::vector<uint8_t> converged(size_t(w) * size_t(h));
+  std::vector<uint8_t>& converged = scratch_.converged;
+  converged.resize(size_t(w) * size_t(h));
   for (size_t i = 0; i < converged.size(); ++i) converged[i] = error_[i] <= float(settings_.noise_threshold);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -241,7 +252,8 @@ void AdaptiveSampling::update_errors() {
   const size_t n = relative_squared_.size();
   // Each pixel's variance per sample (SE² · n) and squared mean, for the neighbourhood's floor: luminance, then
   // linear R, G, B. A pixel without an estimate yet (an empty half) adds nothing to them.
-  std::vector<double> variance[4], mean_squared[4];
+  std::vector<double>* variance = scratch_.variance;
+  std::vector<double>* mean_squared = scratch_.mean_squared;
   for (int k = 0; k < 4; ++k) {
     variance[k].assign(n, 0.0);
     mean_squared[k].assign(n, 0.0);
@@ -275,13 +287,15 @@ void AdaptiveSampling::update_errors() {
   // the pixel's own samples, times neighbourhood_share. Pooled, not the mean of the pixels' relative variances: a
   // nearly black pixel's huge relative error does not lift its neighbours'.
   const int r = settings_.neighbourhood_radius_px;
-  std::vector<double> pooled[4];
+  std::vector<double>* pooled = scratch_.pooled;
+  std::vector<double>& means = scratch_.means;
   for (int k = 0; k < 4; ++k) {
-    pooled[k] = window_means(variance[k], w, h, r);
-    const std::vector<double> means = window_means(mean_squared[k], w, h, r);
+    window_means(variance[k], w, h, r, scratch_.rows, pooled[k]);
+    window_means(mean_squared[k], w, h, r, scratch_.rows, means);
     for (size_t i = 0; i < n; ++i) pooled[k][i] = pooled[k][i] > 0.0 ? pooled[k][i] / std::max(means[i], 1e-60) : 0.0;
   }
-  const std::vector<double> luminance_window = window_means(relative_squared_, w, h, 1);
+  const std::vector<double>& luminance_window = scratch_.luminance_window;
+  window_means(relative_squared_, w, h, 1, scratch_.rows, scratch_.luminance_window);
   for (size_t i = 0; i < n; ++i) {
     const double samples = half_weight_[0][i] + half_weight_[1][i];
     // No samples: no floor (the pixel has no estimate, its own error is +∞).

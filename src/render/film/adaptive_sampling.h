@@ -149,6 +149,14 @@ class AdaptiveSampling {
   /// the pixel's samples: a floor on its relative variance per sample).
   std::vector<double> colour_floor_;
   std::vector<uint8_t> active_;
+  /// plan_pass's and update_errors' per-pixel working arrays, kept between passes: allocated anew each pass, their
+  /// ~1.5 MB (at 80 × 45) went back to the system and came back as page faults every pass, 8 % of a window-and-
+  /// corridor render's CPU time at 512 spp (docs/benchmarks.md, "Adaptive sampling").
+  struct Scratch {
+    std::vector<double> per_sample, deviation, window, extra, room, shortfall;
+    std::vector<double> variance[4], mean_squared[4], pooled[4], means, luminance_window, rows;
+    std::vector<uint8_t> converged;
+  } scratch_;
   size_t active_count_;
 };
 

@@ -37,8 +37,8 @@ struct ChosenLight {
 /// light's point, an area light's directions), each density taken in its own light's measure, as p(x) is.
 ///
 /// Random numbers: candidate 0 uses the sampler's (u_choice, u_light); candidate j shifts u_choice by j/M (so the M
-/// choices are stratified along the light sampler's CDF) and u_light by a hash of the dimensions' bits; the
-/// reservoir's choice uses a further hash. The result is deterministic for the sampler's numbers.
+/// choices are stratified along the light sampler's CDF) and u_light by j steps of the R2 sequence, modulo 1; the
+/// reservoir's choice uses a hash of the sampler's numbers. The result is deterministic for the sampler's numbers.
 ///
 /// `f_cos_towards(wi_world)` returns f·|cos θi| per lane, zero where the light cannot be reached (below an opaque
 /// surface). `light_weight(sample, choice_probability)` returns the MIS weight the estimate will carry (1 for a
@@ -87,9 +87,14 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
     if (j > 0) {
       u_c += float(j) / float(candidates);
       if (u_c >= 1.0f) u_c -= 1.0f;
-      const uint64_t h = mix_bits(key + 0x9e3779b97f4a7c15ULL * uint64_t(j));
-      ux = unit(h);
-      uy = unit(mix_bits(h));
+      // A toroidal shift of the sampler's 2D point by j steps of the R2 sequence (Roberts 2018: 1/φ₂, 1/φ₂²), so
+      // that whichever candidate is kept, a pixel's light points are its stratified ones shifted, not random ones.
+      ux += float(j) * 0.7548776662f;
+      uy += float(j) * 0.5698402910f;
+      ux -= std::floor(ux);
+      uy -= std::floor(uy);
+      ux = std::fmin(ux, 0x1.fffffep-1f);
+      uy = std::fmin(uy, 0x1.fffffep-1f);
     }
     auto c = candidate(u_c, Vec2{ux, uy});
     if (!c) continue;
