@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "transport/geometry/frame.h"
+#include "transport/integrators/light_resampling.h"
 #include "transport/integrators/path_footprint.h"
 #include "transport/integrators/shadow_passage.h"
 
@@ -132,6 +133,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   const LightSampler& light_sampler = *surfaces.light_sampler;
   const PathIntegratorSettings& path = settings_.path;
   const DirectLighting strategy = path.direct_lighting;
+  const int glossy_candidates = path.glossy_candidates_for(lights.size());
 
   SampledSpectrum radiance(0.0f);
   // How each decision's per-lane densities enter (transport/sampling/wavelength_modes.h); free flights follow the mode
@@ -356,9 +358,35 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const float u_light_choice = sampler.next_1d();
     const Vec2 u_light = sampler.next_2d();
     if (scatterer.has_non_delta() && strategy != DirectLighting::bsdf_only) {
-      if (const auto pick = light_sampler.sample(sampling_point, u_light_choice)) {
+      // The light: the sampler's choice, or at a glossy surface one of several candidates resampled by what the BSDF
+      // passes from each (light_resampling.h; density_scale is then the factor on the usual estimate). Not at
+      // costly BSDFs (they are never flagged glossy) nor at medium vertices.
+      std::optional<LightChoice> pick;
+      std::optional<LightSample> ls;
+      float density_scale = 1.0f;
+      if (glossy_candidates > 1 && scatterer.bsdf && scatterer.bsdf->flags().has_glossy) {
+        auto f_cos_towards = [&](Vec3 wi_world) {
+          if (scatterer.opaque() && dot(wi_world, scatterer.geometric_normal) <= 0.0f) return SampledSpectrum(0.0f);
+          return scatterer.eval(wi_world);
+        };
+        auto light_weight = [&](const LightSample& candidate, float choice_probability) {
+          if (candidate.is_delta || strategy == DirectLighting::nee_only) return 1.0f;
+          const float s_light = choice_probability * candidate.pdf_solid_angle * sum_ratio;
+          const float s_dir = sum(pdf_ratio * lanes.densities(scatterer.pdf(candidate.wi)));
+          return s_light * s_light / (s_light * s_light + s_dir * s_dir);
+        };
+        if (const auto chosen = choose_light(light_sampler, lights, sampling_point, reference, lambda, glossy_candidates,
+                                             u_light_choice, u_light, f_cos_towards, light_weight)) {
+          pick = chosen->pick;
+          ls = chosen->sample;
+          density_scale = chosen->density_scale;
+        }
+      } else if ((pick = light_sampler.sample(sampling_point, u_light_choice))) {
+        ls = lights[size_t(pick->light)]->sample_part_li(pick->part, reference, lambda, u_light);
+      }
+      if (pick && ls) {
         const Light& light = *lights[size_t(pick->light)];
-        if (const auto ls = light.sample_part_li(pick->part, reference, lambda, u_light)) {
+        {
           // f·|cos θi| towards the light, the direction technique's densities q_k there, and the effective
           // throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi). None where f = 0.
           struct Towards {
@@ -391,7 +419,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
               const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only
                                       ? 0.0f
                                       : sum(pdf_ratio * q_dir * tr->pass_probability);
-              float weight = s_light / (s_light * s_light + s_dir * s_dir);
+              float weight = density_scale * s_light / (s_light * s_light + s_dir * s_dir);
               if (equiangular && scatter_point)
                 if (const auto light_m = light.delta_position_m())
                   weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *light_m,
