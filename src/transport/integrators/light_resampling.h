@@ -66,7 +66,7 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
   if (candidates <= 1) return candidate(u_choice, u_light);
   // Where the sampler has one light to give (a scene lit by an environment alone, or a point where every other
   // light is culled), every candidate would be that light: resampling would only choose among its directions, which
-  // cost a quarter more time per render on a metal sphere under an environment for 5 % less error (docs/benchmarks.md).
+  // an environment's own importance sampling and MIS already serve (docs/benchmarks.md, "Glossy vertices").
   // A probability of 1 is a property of the point, not of the draw, so skipping here keeps the estimate unbiased.
   if (const auto first = light_sampler.sample(at, u_choice); first && first->probability >= 1.0f)
     return candidate(u_choice, u_light);
