@@ -133,8 +133,8 @@ double summed_variance(const std::vector<double>& a, const std::vector<double>& 
   return s;
 }
 
-// lane_radiance() (integration_support.h) with the scene's volumetric integrator, as the renderer runs it in scenes
-// with media.
+// lane_radiance() (integration_support.h) along one ray with the scene's volumetric integrator, set up as the
+// renderer sets it up in scenes with media.
 std::array<Estimate, 4> volumetric_lane_radiance(const Scene& scene, const Ray& ray, int count, uint64_t seed) {
   const TransportScene view = scene.transport_view();
   const VolumetricScene volumetric{view, &scene.media, &scene.medium_boundaries, scene.camera_medium};
@@ -142,16 +142,7 @@ std::array<Estimate, 4> volumetric_lane_radiance(const Scene& scene, const Ray& 
   settings.path = scene.settings.integrator;
   settings.distance = scene.settings.distance_sampling;
   const VolumetricPathIntegrator integrator(volumetric, settings);
-  IndependentSampler sampler(seed);
-  std::array<std::vector<double>, 4> lanes;
-  for (int i = 0; i < count; ++i) {
-    sampler.start_pixel_sample(i, 0, uint32_t(i));
-    const SampledSpectrum l = integrator.radiance(ray, fixed_wavelengths(), sampler);
-    for (int j = 0; j < 4; ++j) lanes[size_t(j)].push_back(l[j]);
-  }
-  std::array<Estimate, 4> out;
-  for (int j = 0; j < 4; ++j) out[size_t(j)] = estimate_of(lanes[size_t(j)]);
-  return out;
+  return integrator_lane_radiance(integrator, [&](int) { return ray; }, count, seed);
 }
 
 // Along camera rays from `eye` to each target, the estimate with 8 resampled candidates equals, lane by lane, the

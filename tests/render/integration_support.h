@@ -75,12 +75,12 @@ inline Estimate estimate_of(const std::vector<double>& values) {
 /// Four fixed wavelengths across the visible, for checks lane by lane (their pdf is irrelevant to the integrator).
 inline SampledWavelengths fixed_wavelengths() { return {Float4(400.0f, 500.0f, 600.0f, 700.0f), Float4(1.0f / 470.0f)}; }
 
-/// The scene's own path integrator run directly on `count` camera rays (ray i = `ray_of(i)`), at fixed_wavelengths():
-/// lane j's `count` values are i.i.d. estimates of L(λ_j) averaged over the rays; returns their means and errors.
-inline std::array<Estimate, 4> lane_radiance(const Scene& scene, const std::function<Ray(int)>& ray_of, int count,
-                                             uint64_t seed = 11) {
-  const TransportScene view = scene.transport_view();
-  const PathIntegrator integrator(view, scene.settings.integrator);
+/// `integrator` (path or volumetric) run directly on `count` camera rays (ray i = `ray_of(i)`), at
+/// fixed_wavelengths(): lane j's `count` values are i.i.d. estimates of L(λ_j) averaged over the rays; returns their
+/// means and errors.
+template <typename Integrator>
+std::array<Estimate, 4> integrator_lane_radiance(const Integrator& integrator, const std::function<Ray(int)>& ray_of,
+                                                 int count, uint64_t seed) {
   IndependentSampler sampler(seed);
   std::array<std::vector<double>, 4> lanes;
   for (int i = 0; i < count; ++i) {
@@ -91,6 +91,14 @@ inline std::array<Estimate, 4> lane_radiance(const Scene& scene, const std::func
   std::array<Estimate, 4> out;
   for (int j = 0; j < 4; ++j) out[size_t(j)] = estimate_of(lanes[size_t(j)]);
   return out;
+}
+
+/// The scene's own path integrator, as integrator_lane_radiance.
+inline std::array<Estimate, 4> lane_radiance(const Scene& scene, const std::function<Ray(int)>& ray_of, int count,
+                                             uint64_t seed = 11) {
+  const TransportScene view = scene.transport_view();
+  const PathIntegrator integrator(view, scene.settings.integrator);
+  return integrator_lane_radiance(integrator, ray_of, count, seed);
 }
 
 /// A ray from `from` towards `to`.

@@ -52,8 +52,7 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
                                         const LightSamplingPoint& at, const LightReference& reference,
                                         const SampledWavelengths& lambda, int candidates, float u_choice, Vec2 u_light,
                                         const FCosTowards& f_cos_towards, const LightWeight& light_weight) {
-  auto candidate = [&](float u_c, Vec2 u_l) -> std::optional<ChosenLight> {
-    const auto pick = light_sampler.sample(at, u_c);
+  auto candidate_of = [&](const std::optional<LightChoice>& pick, Vec2 u_l) -> std::optional<ChosenLight> {
     if (!pick) return std::nullopt;
     const auto ls = lights[size_t(pick->light)]->sample_part_li(pick->part, reference, lambda, u_l);
     if (!ls) return std::nullopt;
@@ -63,13 +62,13 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
     if (!(max_lane(f_cos) > 0.0f)) return std::nullopt;
     return ChosenLight{*pick, *ls, f_cos, 1.0f};
   };
-  if (candidates <= 1) return candidate(u_choice, u_light);
+  const std::optional<LightChoice> first = light_sampler.sample(at, u_choice);
+  if (candidates <= 1) return candidate_of(first, u_light);
   // Where the sampler has one light to give (a scene lit by an environment alone, or a point where every other
   // light is culled), every candidate would be that light: resampling would only choose among its directions, which
   // an environment's own importance sampling and MIS already serve (docs/benchmarks.md, "Glossy vertices").
   // A probability of 1 is a property of the point, not of the draw, so skipping here keeps the estimate unbiased.
-  if (const auto first = light_sampler.sample(at, u_choice); first && first->probability >= 1.0f)
-    return candidate(u_choice, u_light);
+  if (first && first->probability >= 1.0f) return candidate_of(first, u_light);
 
   auto bits_of = [](float v) {
     uint32_t b;
@@ -96,7 +95,8 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
       ux = std::fmin(ux, 0x1.fffffep-1f);
       uy = std::fmin(uy, 0x1.fffffep-1f);
     }
-    auto c = candidate(u_c, Vec2{ux, uy});
+    // Candidate 0 is the sampler's own pick, already drawn above.
+    auto c = candidate_of(j == 0 ? first : light_sampler.sample(at, u_c), Vec2{ux, uy});
     if (!c) continue;
     const float target = sum(c->f_cos * c->sample.radiance) * light_weight(c->sample, c->pick.probability);
     if (!(target > 0.0f) || !std::isfinite(target)) continue;
