@@ -14,6 +14,8 @@
 #   wall     relMSE(uniform, --time T) / relMSE(adaptive)           equal wall time, noisy on a loaded machine;
 # and samples_fc and cpu_fc, the samples and CPU gains with the floor taken off both relMSEs (n/a when the adaptive
 # relMSE is under it): at long budgets the references' own noise is most of every relMSE and hides the gains.
+# Then a summary per scene and budget over the seeds: the geometric mean of the CPU gains, and the CPU gain of the
+# means (mean relMSE·CPU s of the uniform renders over the adaptive ones'), without and with the floor taken off,
 # and draws relMSE against the camera samples per pixel, one panel per scene, to OUT.png (gnuplot; default
 # adaptive_sampling.png). Scenes, lights ×1000 (bench/scaled_scene.py) so relMSE's floor of 0.01 is negligible: the
 # Cornell box, the ColorChecker room under F11, the daylit room with an open window (its difficulty is even: the
@@ -50,10 +52,10 @@ render() {
   mean_spp=$(sed -n 's/^rimu: adaptive sampling: .*; mean \([0-9.e+]*\) spp$/\1/p' "$scratch/log")
   [ -n "$mean_spp" ] || mean_spp=$(sed -n 's/^rimu: .*: \([0-9]*\) spp.*/\1/p' "$scratch/log" | head -1)
 }
-relmse() { "$compare" relmse "$1" "$2" | sed 's/.*=//'; }
+relmse() { "$compare" relmse "$1" "$2" | sed -n 's/^relmse=//p'; }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); budgets ${budgets} s at $resolution, references $ref_spp spp, threshold $threshold"
-printf "%-17s %4s %6s %7s %9s %11s %11s %11s %6s %6s %6s %9s %7s\n" scene seed budget floor spp_mean relmse_adapt relmse_same \
-  relmse_wall samples cpu wall samples_fc cpu_fc | tee "$scratch/table"
+printf "%-17s %4s %6s %7s %9s %11s %11s %11s %6s %6s %6s %9s %7s %7s %7s\n" scene seed budget floor spp_mean relmse_adapt relmse_same \
+  relmse_wall samples cpu wall samples_fc cpu_fc cpu_s_a cpu_s_u | tee "$scratch/table"
 for n in $scenes; do
   python3 "$root/bench/scaled_scene.py" "${sources[$n]}" "$scratch" "$n" "${factors[$n]}"
   scene=$scratch/${n}_dir/$n.json
@@ -79,14 +81,24 @@ for n in $scenes; do
       e_w=$(relmse "$scratch/wall.exr" "$ref99")
     fi
     awk -v n="$n" -v seed="$seed" -v t="$t" -v f="$floor" -v m="$spp_a" -v a="$e_a" -v s="$e_s" -v w="$e_w" -v ca="$cpu_a" -v cu="$cpu_u" \
-      'BEGIN { fc = a > f ? sprintf("%.2f", (s - f) / (a - f)) : "n/a"; wg = w == "nan" ? "n/a" : sprintf("%.2f", w / a)
-               cfc = a > f ? sprintf("%.2f", (s - f) * cu / ((a - f) * ca)) : "n/a"
-               printf "%-17s %4s %6s %7s %9.1f %11.4g %11.4g %11s %6.2f %6.2f %6s %9s %7s\n", n, seed, t, f, m, a, s, w, s / a, s * cu / (a * ca), wg, fc, cfc }' |
+      'BEGIN { fc = a + 0 > f + 0 ? sprintf("%.2f", (s - f) / (a - f)) : "n/a"; wg = w == "nan" ? "n/a" : sprintf("%.2f", w / a)
+               cfc = a + 0 > f + 0 ? sprintf("%.2f", (s - f) * cu / ((a - f) * ca)) : "n/a"
+               printf "%-17s %4s %6s %7s %9.1f %11.4g %11.4g %11s %6.2f %6.2f %6s %9s %7s %7.2f %7.2f\n", n, seed, t, f, m, a, s, w, s / a, s * cu / (a * ca), wg, fc, cfc, ca, cu }' |
       tee -a "$scratch/table"
   done
   done
 done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+# Per scene and budget over the seeds: the geometric mean of the seeds' CPU gains, and the gain of the means (mean
+# relMSE·CPU s of the uniform renders over that of the adaptive ones, and the same with the floor taken off every
+# relMSE). relMSE is an expectation: a few seeds' ratios are skewed by single rare paths, which the ratio of means
+# weighs as the expectation does, while their geometric mean weighs the typical seed.
+awk 'NR > 1 { k = $1 " " $3; n[k]++; lg[k] += log($10); u[k] += $7 * $15; a[k] += $6 * $14
+              uf[k] += ($7 - $4) * $15; af[k] += ($6 - $4) * $14; if (!(k in order)) { order[k] = ++count; key[count] = k } }
+     END { printf "%-17s %6s %5s %12s %12s %15s\n", "scene", "budget", "seeds", "cpu_geomean", "cpu_of_means", "cpu_of_means_fc"
+           for (i = 1; i <= count; ++i) { k = key[i]; split(k, p, " ")
+             printf "%-17s %6s %5d %12.3f %12.3f %15.3f\n", p[1], p[2], n[k], exp(lg[k] / n[k]), u[k] / a[k], uf[k] / af[k] } }' \
+  "$scratch/table"
 # One panel per scene: relMSE against the mean spp, log-log, adaptive and uniform at the same samples.
 {
   echo "set terminal pngcairo size $((330 * $(wc -w <<<"$scenes"))),400 font ',10'; set output '$plot'"

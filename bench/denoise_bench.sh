@@ -34,13 +34,13 @@ for n in $scenes; do
   scene=$scratch/${n}_dir/$n.json
   "$rimu" -q "$scene" -o "$scratch/ref_$n.exr" --spp "$ref_spp" --seed 99 --threads 2 --resolution "$resolution"
   "$rimu" -q "$scene" -o "$scratch/ref2.exr" --spp "$ref_spp" --seed 98 --threads 2 --resolution "$resolution"
-  floor=$("$compare" relmse "$scratch/ref2.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
+  floor=$("$compare" relmse "$scratch/ref2.exr" "$scratch/ref_$n.exr" | sed -n 's/^relmse=//p')
   printf "%-17s %5s %5s %12.4g\n" "$n" floor "" "$floor"
   megapixels=$(awk -v r="$resolution" 'BEGIN { split(r, d, "x"); print d[1] * d[2] / 1e6 }')
   reference_sum=$(channel_sum "$scratch/ref_$n.exr")
   for s in $spps; do
     "$rimu" -q "$scene" -o "$scratch/noisy.exr" --spp "$s" --seed 1 --threads 2 --resolution "$resolution" --aov all
-    e_n=$("$compare" relmse "$scratch/noisy.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
+    e_n=$("$compare" relmse "$scratch/noisy.exr" "$scratch/ref_$n.exr" | sed -n 's/^relmse=//p')
     noisy_sum=$(channel_sum "$scratch/noisy.exr")
     for denoiser in $denoisers; do
       label=new; [ "$denoiser" != "$rimu" ] && label=base
@@ -48,7 +48,7 @@ for n in $scenes; do
       { time "$denoiser" denoise "$scratch/noisy.exr" -o "$scratch/denoised.exr" --threads 2 2>"$scratch/log"; } 2>"$scratch/cpu"
       per_mp=$(sed -n 's/.*(\([0-9.e+-]*\) s per megapixel).*/\1/p' "$scratch/log")
       cpu_mp=$(awk -v mp="$megapixels" '{ printf "%.3g", ($1 + $2) / mp }' "$scratch/cpu")
-      e_d=$("$compare" relmse "$scratch/denoised.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
+      e_d=$("$compare" relmse "$scratch/denoised.exr" "$scratch/ref_$n.exr" | sed -n 's/^relmse=//p')
       gain=$(awk -v a="$e_n" -v b="$e_d" 'BEGIN { printf "%.1f", a / b }')
       shift=$(awk -v d="$(channel_sum "$scratch/denoised.exr")" -v a="$noisy_sum" -v r="$reference_sum" \
                   'BEGIN { printf "%+.1f%%", 100 * (d - a) / r }')

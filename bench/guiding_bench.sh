@@ -33,8 +33,8 @@ for n in ${BENCH_SCENES:-daylit_open daylit_glazed door_ajar cornell}; do
   for seed in $seeds; do
     t_off=$(cputime "$rimu" -q "$scene" -o "$scratch/off.exr" --spp "$spp" --seed "$seed" --threads 2 --resolution "$resolution" --guiding off)
     t_on=$(cputime "$rimu" -q "$scene" -o "$scratch/on.exr" --spp "$spp" --seed "$seed" --threads 2 --resolution "$resolution" --guiding on)
-    e_off=$("$compare" relmse "$scratch/off.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
-    e_on=$("$compare" relmse "$scratch/on.exr" "$scratch/ref_$n.exr" | sed 's/.*=//')
+    e_off=$("$compare" relmse "$scratch/off.exr" "$scratch/ref_$n.exr" | sed -n 's/^relmse=//p')
+    e_on=$("$compare" relmse "$scratch/on.exr" "$scratch/ref_$n.exr" | sed -n 's/^relmse=//p')
     gain=$(awk -v a="$e_off" -v b="$e_on" -v ta="$t_off" -v tb="$t_on" 'BEGIN { printf "%.2f", a * ta / (b * tb) }')
     printf "%-14s %-5s %10.4g %10.4g %8.2f %8.2f %6s\n" "$n" "$seed" "$e_off" "$e_on" "$t_off" "$t_on" "$gain"
   done

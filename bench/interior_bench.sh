@@ -76,7 +76,7 @@ for scene in $scenes; do
       tag=$(tr ' ,' '_' <<<"$config" | tr -s _)-$spp
       t=$(render "$config" "$file" "$spp" 1 "$work/$tag.exr")
       ref=$work/ref-rimu.exr; [[ $config == pbrt-v4 ]] && ref=$work/ref-pbrt.exr
-      e=$("$compare" relmse "$work/$tag.exr" "$ref" | sed 's/^relmse=//')
+      e=$("$compare" relmse "$work/$tag.exr" "$ref" | sed -n 's/^relmse=//p')
       printf "%s\t%s\t%s\t%s\t%s\n" "$scene" "$config" "$spp" "$t" "$e" >>"$out/runs.tsv"
       printf "%-24s %-24s %5s spp %8s CPU s relMSE %s\n" "$scene" "$config" "$spp" "$t" "$e" >&2
       last_t[$config]=$t; last_e[$config]=$e

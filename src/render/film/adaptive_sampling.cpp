@@ -61,24 +61,33 @@ ErrorTerms error_terms(double a_sum, double b_sum, double na, double nb, double 
 // The mean of `values` (w × h, row by row) over the (2r + 1)² square around each pixel, clipped to the image.
 // Summed directly (rows, then columns: (2r + 1) additions a pixel each way), not from a summed-area table, whose
 // differences would lose a dark pixel's small error next to a huge one; a window holding +∞ has the mean +∞.
+// Each pixel's terms are added in ascending order of the neighbour's column (rows pass) and row (columns pass),
+// one offset at a time over a whole row, so the loops run over contiguous memory (vectorised) and cost a few
+// instructions per pixel and offset; a loop per pixel over its clipped window cost ~200 per pixel, 1 % of a
+// window-and-corridor render (callgrind), for the same sums in the same order.
 // `rows` is scratch space; `means` receives the result (both resized to the image).
 void window_means(const std::vector<double>& values, int w, int h, int r, std::vector<double>& rows,
                   std::vector<double>& means) {
-  rows.resize(values.size());
-  means.resize(values.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double sum = 0.0;
-      for (int u = std::max(0, x - r); u <= std::min(w - 1, x + r); ++u) sum += values[size_t(y) * size_t(w) + size_t(u)];
-      rows[size_t(y) * size_t(w) + size_t(x)] = sum;
+  rows.assign(values.size(), 0.0);
+  means.assign(values.size(), 0.0);
+  const size_t width = size_t(w);
+  for (int y = 0; y < h; ++y) {
+    const double* in = &values[size_t(y) * width];
+    double* out = &rows[size_t(y) * width];
+    for (int d = -r; d <= r; ++d) {  // out[x] += in[x + d] where 0 ≤ x + d < w
+      const int x0 = std::max(0, -d), x1 = std::min(w, w - d);
+      for (int x = x0; x < x1; ++x) out[x] += in[x + d];
     }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double sum = 0.0;
-      for (int v = std::max(0, y - r); v <= std::min(h - 1, y + r); ++v) sum += rows[size_t(v) * size_t(w) + size_t(x)];
-      const int count = (std::min(w - 1, x + r) - std::max(0, x - r) + 1) * (std::min(h - 1, y + r) - std::max(0, y - r) + 1);
-      means[size_t(y) * size_t(w) + size_t(x)] = sum / count;
+  }
+  for (int y = 0; y < h; ++y) {
+    double* out = &means[size_t(y) * width];
+    for (int v = std::max(0, y - r); v <= std::min(h - 1, y + r); ++v) {
+      const double* in = &rows[size_t(v) * width];
+      for (size_t x = 0; x < width; ++x) out[x] += in[x];
     }
+    const int rows_in_window = std::min(h - 1, y + r) - std::max(0, y - r) + 1;
+    for (int x = 0; x < w; ++x) out[x] /= (std::min(w - 1, x + r) - std::max(0, x - r) + 1) * rows_in_window;
+  }
 }
 
 }  // namespace
