@@ -15,6 +15,15 @@
 //   rimu-pbrt-image-compare info IMAGE.exr
 //       render_time_s: pbrt's "renderTimeSeconds" or Rimu's "rimu:renderTimeSeconds" header attribute; pixels: the
 //       data window's pixel count
+//   rimu-pbrt-image-compare allocation COUNTS.exr RUN.exr RUN.exr ... --run-spp N
+//       what an adaptive render's per-pixel sample counts (COUNTS.exr's `spp` channel) are worth, without that
+//       render's own noise: from k ≥ 2 independent uniform renders of N spp each (RUN.exr; their mean is r, their
+//       spread per pixel times N the variance per sample σ²), each pixel's q = the mean over channels of
+//       σ²/(r² + 0.01), so that a render of n_i samples in pixel i has the expected relMSE Σ q_i/n_i / pixels.
+//       Prints allocation_gain (a uniform render of the same mean over those counts), oracle_gain (n_i ∝ √q_i, the
+//       best any per-pixel allocation of the same samples does) and oracle_3x3_gain (n_i ∝ the root of q's 3×3
+//       mean: what estimates as smooth as the sampler's would reach with exact variances). Equal samples, not CPU
+//       time: the counts carry no cost. docs/benchmarks.md, "Adaptive sampling"
 //   --crop X0 Y0 X1 Y1 (compare, relmse, png): only the pixels x0 ≤ x < x1, y0 ≤ y < y1 of both images (e.g. one
 //       object's pixels, so that its mean is not diluted by the rest of the frame)
 //
@@ -179,6 +188,76 @@ void relmse(const LinearRgbImage& image, const LinearRgbImage& reference, const 
               sum > 0 ? top / sum : 0.0);
 }
 
+// One float channel of an EXR (e.g. an adaptive render's `spp`), row by row.
+std::vector<double> read_channel(const std::filesystem::path& path, const char* name, int& width, int& height) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+    if (!file.header().channels().findChannel(name)) fail(path.string() + ": has no channel " + name);
+    std::vector<float> plane(size_t(width) * size_t(height));
+    Imf::FrameBuffer frame;
+    frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(plane.data() - window.min.x - window.min.y * width),
+                                  sizeof(float), sizeof(float) * size_t(width)));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    return {plane.begin(), plane.end()};
+  } catch (const std::exception& e) {
+    fail(path.string() + ": " + e.what());
+  }
+}
+
+// The `allocation` command (see the header): q per pixel from the runs, then the expected relMSE of three
+// allocations of the counts' mean S against S everywhere.
+void allocation(const std::vector<double>& counts, const std::vector<LinearRgbImage>& runs, double run_spp) {
+  const LinearRgbImage& first = runs.front();
+  for (const LinearRgbImage& run : runs) require_same_size(first, run);
+  const size_t pixels = size_t(first.width) * size_t(first.height);
+  if (counts.size() != pixels) fail("the counts image differs in size from the runs");
+  const double k = double(runs.size());
+  std::vector<double> q(pixels, 0.0);
+  for (size_t i = 0; i < 3 * pixels; ++i) {
+    double mean = 0.0, spread = 0.0;
+    for (const LinearRgbImage& run : runs) mean += run.rgb[i] / k;
+    for (const LinearRgbImage& run : runs) spread += (run.rgb[i] - mean) * (run.rgb[i] - mean) / (k - 1.0);
+    q[i / 3] += spread * run_spp / (mean * mean + 0.01) / 3.0;
+  }
+  double samples = 0.0;
+  for (size_t i = 0; i < pixels; ++i) {
+    if (!(counts[i] > 0)) fail("pixel " + std::to_string(i) + " of the counts has no samples");
+    samples += counts[i];
+  }
+  const double mean_samples = samples / double(pixels);
+  const auto expected_relmse = [&](const std::vector<double>& n) {
+    double sum = 0.0;
+    for (size_t i = 0; i < pixels; ++i) sum += q[i] / n[i];
+    return sum / double(pixels);
+  };
+  // n_i ∝ weight_i with the same total (a pixel of weight 0 keeps a hundredth of a sample: its q is 0 too).
+  const auto proportional = [&](const std::vector<double>& weight) {
+    double sum = 0.0;
+    for (double w : weight) sum += w;
+    std::vector<double> n(pixels);
+    for (size_t i = 0; i < pixels; ++i) n[i] = std::max(0.01, samples * weight[i] / sum);
+    return n;
+  };
+  std::vector<double> root(pixels), smooth_root(pixels);
+  for (size_t i = 0; i < pixels; ++i) root[i] = std::sqrt(q[i]);
+  for (int y = 0; y < first.height; ++y)
+    for (int x = 0; x < first.width; ++x) {
+      double sum = 0.0;
+      int count = 0;
+      for (int v = std::max(0, y - 1); v <= std::min(first.height - 1, y + 1); ++v)
+        for (int u = std::max(0, x - 1); u <= std::min(first.width - 1, x + 1); ++u, ++count)
+          sum += q[size_t(v) * size_t(first.width) + size_t(u)];
+      smooth_root[size_t(y) * size_t(first.width) + size_t(x)] = std::sqrt(sum / count);
+    }
+  const double uniform = expected_relmse(std::vector<double>(pixels, mean_samples));
+  std::printf("mean_spp=%.6g\nuniform_expected_relmse=%.6g\n", mean_samples, uniform);
+  std::printf("allocation_gain=%.4f\noracle_gain=%.4f\noracle_3x3_gain=%.4f\n", uniform / expected_relmse(counts),
+              uniform / expected_relmse(proportional(root)), uniform / expected_relmse(proportional(smooth_root)));
+}
+
 void side_by_side_png(const LinearRgbImage& a, const LinearRgbImage& b, const rimu::RgbColourSpace& space,
                       const std::filesystem::path& out) {
   require_same_size(a, b);
@@ -248,6 +327,7 @@ int main(int argc, char** argv) {
   int block = 8;
   std::optional<std::array<int, 4>> crop_box;
   std::string denominator_path;
+  double run_spp = 0.0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--space" && i + 1 < argc) space_name = argv[++i];
@@ -257,14 +337,17 @@ int main(int argc, char** argv) {
     }
     else if (arg == "--block" && i + 1 < argc) block = std::atoi(argv[++i]);
     else if (arg == "--denominator" && i + 1 < argc) denominator_path = argv[++i];
+    else if (arg == "--run-spp" && i + 1 < argc) run_spp = std::atof(argv[++i]);
     else if (arg.rfind("--", 0) == 0) fail("unknown option " + arg);
     else positional.push_back(arg);
   }
   const std::string command = positional.empty() ? "" : positional[0];
   const size_t expected = command == "info" ? 2 : command == "png" ? 4 : 3;
-  if ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
-      positional.size() != expected || block < 2)
-    fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr | png A.exr B.exr OUT.png | info A.exr "
+  const bool allocation_usage = command == "allocation" && positional.size() >= 4 && run_spp > 0;
+  if (!allocation_usage && ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
+                            positional.size() != expected || block < 2))
+    fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr | png A.exr B.exr OUT.png | info A.exr | "
+         "allocation COUNTS.exr RUN.exr RUN.exr... --run-spp N "
          "[--space NAME] [--block N] [--crop X0 Y0 X1 Y1] [--denominator D.exr]");
   if (command == "info") {
     info(positional[1]);
@@ -275,6 +358,14 @@ int main(int argc, char** argv) {
     space = &rimu::RgbColourSpace::named(space_name);
   } catch (const std::exception& e) {
     fail(std::string("--space: ") + e.what());
+  }
+  if (command == "allocation") {
+    int width = 0, height = 0;
+    const std::vector<double> counts = read_channel(positional[1], "spp", width, height);
+    std::vector<LinearRgbImage> runs;
+    for (size_t i = 2; i < positional.size(); ++i) runs.push_back(read_linear_rgb(positional[i], *space));
+    allocation(counts, runs, run_spp);
+    return 0;
   }
   LinearRgbImage a = read_linear_rgb(positional[1], *space);
   LinearRgbImage b = read_linear_rgb(positional[2], *space);

@@ -4,7 +4,9 @@
 # An image against itself: ratio exactly 1, every tile's z 0, relMSE 0. Two seeds: no 8×8 tile beyond 4.5σ of 48
 # (the standard error is right: a missing square root or a wrong divisor puts tiles far beyond it; false alarm for
 # 48 N(0,1) tests ≈ 3e-4). The same box with its red and green walls swapped (the JSON twin of the file, edited) is
-# caught. Bad input: exit 1 with the file named.
+# caught. `allocation`: counts equal everywhere are worth exactly 1; an adaptive render's unequal counts are worth
+# no more than the oracle's (n ∝ √q is the minimum of Σ q/n for the total), which is worth at least 1 (Cauchy–
+# Schwarz); an image without an `spp` channel is refused. Bad input: exit 1 with the file named.
 set -u
 rimu=$1; compare=$2; data=$3; work=$4
 rm -rf "$work"; mkdir -p "$work"
@@ -38,6 +40,19 @@ awk -v e="$relmse" -v w="$(value 'relmse_without_worst_0.1pct' "$out")" -v f="$(
   fail "--denominator of the reference itself changed the relMSE"
 d=$(value relmse "$("$compare" relmse "$work/s1.exr" "$work/s2.exr" --denominator "$work/s1.exr")")
 awk -v d="$d" -v e="$relmse" 'BEGIN {exit !(d > 0 && d != e)}' || fail "--denominator ignored: $d vs $relmse"
+
+# Counts: 48 spp everywhere (no pixel reaches the threshold of 10⁻⁶), and an adaptive render's unequal counts.
+"$rimu" "$data/cornell.pbrt" -o "$work/even.exr" -q --spp 48 --noise-threshold 0.000001 --threads 2 >/dev/null 2>&1 ||
+  fail "rimu did not render the even counts"
+"$rimu" "$data/cornell.pbrt" -o "$work/uneven.exr" -q --spp 256 --noise-threshold 0.05 --threads 2 >/dev/null 2>&1 ||
+  fail "rimu did not render the adaptive counts"
+out=$("$compare" allocation "$work/even.exr" "$work/s1.exr" "$work/s2.exr" --run-spp 16)
+[ "$(value allocation_gain "$out")" = 1.0000 ] && [ "$(value mean_spp "$out")" = 48 ] || fail "even counts: $out"
+out=$("$compare" allocation "$work/uneven.exr" "$work/s1.exr" "$work/s2.exr" --run-spp 16)
+awk -v a="$(value allocation_gain "$out")" -v o="$(value oracle_gain "$out")" 'BEGIN {exit !(a > 0 && a != 1 && a <= o && o >= 1)}' ||
+  fail "adaptive counts: $out"
+out=$("$compare" allocation "$work/s1.exr" "$work/s1.exr" "$work/s2.exr" --run-spp 16 2>&1); code=$?
+[ $code = 1 ] && grep -q "spp" <<<"$out" || fail "counts without spp: exit $code: $out"
 
 # The JSON twin has its geometry inline, so it renders from the work folder.
 sed -e 's/"red": {/"tmp": {/; s/"green": {/"red": {/; s/"tmp": {/"green": {/' "$data/cornell_equivalent.json" >"$work/swapped.json"
