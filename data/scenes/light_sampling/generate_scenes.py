@@ -2,7 +2,8 @@
 """Writes the light-sampling benchmark scenes (docs/benchmarks.md, "Light sampling"): a spot + D65 environment over
 a 3 m and a 100 m floor, a room lit by 32 x 32 ceiling panels and a sky window (also with the window as the sky's
 portal), and a street of 200 lamps; for wavelength-aware light choice, three scenes of coloured lights: a red and a
-blue lamp, a wall of RGB LED panels, and a square under low-/high-pressure sodium and mercury lamps.
+blue lamp, a wall of RGB LED panels, and a square under low-/high-pressure sodium and mercury lamps; for the
+resampled light choice at glossy vertices, 25 lamps over a lacquered copper and a lacquered plastic floor.
 
 Run from anywhere:  python3 data/scenes/light_sampling/generate_scenes.py
 The outputs are committed; this script is how they were made (standard library only). rimu renders each file as it
@@ -207,6 +208,28 @@ def sodium_mercury():
     }
 
 
+def lacquered_floor(metal):
+    """A 5 x 5 grid of 800 lm 3000 K lamps 1.2 m over a lacquered floor (a smooth coat over copper of roughness
+    0.1, or a coat of roughness 0.1 over a diffuse base) and a grey back wall: glints of a coated surface under many
+    lamps, for the resampled light choice (docs/transport.md, "Glossy vertices and many lights")."""
+    floor = ({"type": "coated_conductor", "metal": "copper", "conductor_roughness": 0.1, "coat_ior": 1.5} if metal
+             else {"type": "coated_diffuse", "reflectance": {"rgb": [0.5, 0.3, 0.2]}, "roughness": 0.1, "coat_ior": 1.5})
+    return {
+        "description": "Glossy vertices: 25 lamps over %s." % ("copper under a smooth clear coat" if metal
+                                                              else "a brown base under a coat of roughness 0.1"),
+        "camera": {"from": [0, 1.0, -3], "to": [0, 0, 0.5], "vertical_fov_deg": 40},
+        "film": {"resolution": [96, 96], "response": "xyz"},
+        "integrator": {"spp": 64, "max_depth": 4, "seed": 1},
+        "materials": {"floor": floor, "wall": {"type": "diffuse", "reflectance": 0.6}},
+        "lights": [{"type": "point", "position": [round(-1.6 + 0.8 * i, 2), 1.2, round(-0.5 + 0.8 * k, 2)],
+                    "luminous_power_lm": 800, "spectrum": {"blackbody": 3000}} for i in range(5) for k in range(5)],
+        "shapes": [
+            {"type": "quad", "material": "floor", "vertices": [[-4, 0, -4], [-4, 0, 6], [4, 0, 6], [4, 0, -4]]},
+            {"type": "quad", "material": "wall", "vertices": [[-4, 0, 6], [-4, 3, 6], [4, 3, 6], [4, 0, 6]]},
+        ],
+    }
+
+
 def write(name, scene):
     # One setting, shape or light per line: readable, and a diff shows which one changed.
     lines = []
@@ -229,3 +252,5 @@ if __name__ == "__main__":
     write("red_blue_lamps.json", red_blue())
     write("rgb_led_panels.json", rgb_led_panels())
     write("sodium_mercury_square.json", sodium_mercury())
+    write("lacquered_copper_lamps.json", lacquered_floor(metal=True))
+    write("lacquered_plastic_lamps.json", lacquered_floor(metal=False))
