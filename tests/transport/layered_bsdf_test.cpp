@@ -127,6 +127,25 @@ TEST_CASE("layered: the internal reflectance K(eta, tau) of the absorbing closed
   CHECK(coat_internal_reflectance(1.0, 0.0) == doctest::Approx(0.0).epsilon(1e-9));
 }
 
+TEST_CASE("layered: glossy over a metal whose lobe or coat is narrow, never over a diffuse base") {
+  // BsdfFlags::has_glossy sends a vertex to the resampled light choice (light_resampling.h): a lacquered metal is
+  // glossy as its metal is, or as its rough coat is; a smooth coat over a smooth metal is a delta lobe; a coat over a
+  // Lambertian base passes mostly diffuse light and is left to the light sampler whatever its coat.
+  const SampledWavelengths lambda = test::four_visible_wavelengths();
+  const ComplexIorSpectra copper = conductor_ior(test::library(), "copper");
+  const Float4 n = copper.n->sample(lambda) / Float4(1.5f), k = copper.k->sample(lambda) / Float4(1.5f);
+  const auto metal = [&](float alpha) { return ConductorBsdf(n, k, TrowbridgeReitz(alpha, alpha)); };
+  const LayerMedium clear{0.0f, Float4(0.0f), 0.0f};
+  const LayerWalk walk{10, 1};
+  const TrowbridgeReitz smooth(0.0f, 0.0f), narrow(0.01f, 0.01f), wide(0.5f, 0.5f);
+  CHECK(LayeredBsdf(1.5f, smooth, metal(0.01f), clear, walk).flags().has_glossy);  // the metal's lobe, refracted
+  CHECK(LayeredBsdf(1.5f, narrow, metal(0.0f), clear, walk).flags().has_glossy);   // the rough coat's reflection
+  CHECK(LayeredBsdf(1.5f, narrow, metal(0.5f), clear, walk).flags().has_glossy);
+  CHECK_FALSE(LayeredBsdf(1.5f, smooth, metal(0.0f), clear, walk).flags().has_glossy);  // all delta
+  CHECK_FALSE(LayeredBsdf(1.5f, wide, metal(0.5f), clear, walk).flags().has_glossy);    // nothing narrow
+  CHECK_FALSE(LayeredBsdf(1.5f, narrow, DiffuseBsdf(Float4(0.5f)), clear, walk).flags().has_glossy);
+}
+
 TEST_CASE("layered: a smooth coat over a smooth metal is a delta lobe with the albedo of its Fresnel series") {
   // Mirror-like at every event, zero thickness: the weight of a sample is R + (1−R)² F_m Σ (F_m R)^k summed over
   // the walks, in expectation R + (1−R)² F_m / (1 − F_m R), with R = F(θ, η) (equal from inside at the refracted
