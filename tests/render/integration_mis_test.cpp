@@ -177,6 +177,35 @@ void check_candidates_agree(const nlohmann::json& scene, Vec3 eye, const std::ve
   }
 }
 
+// 25 point lamps (10 W, 3000 K) in a 5 × 5 grid 1.2 m over a floor of `material`, seen at a slant, direct light only.
+nlohmann::json lamps_over_floor(const nlohmann::json& material, int resolution) {
+  nlohmann::json scene = nlohmann::json::parse(R"({
+    "camera": {"from": [0, 1.0, -3], "to": [0, 0, 0.5], "vertical_fov_deg": 40},
+    "film": {"filter": {"type": "box"}},
+    "integrator": {"max_depth": 1},
+    "shapes": [{"type": "quad", "material": "floor", "vertices": [[-4, 0, -4], [-4, 0, 6], [4, 0, 6], [4, 0, -4]]}],
+    "lights": []
+  })");
+  scene["film"]["resolution"] = {resolution, resolution};
+  scene["materials"]["floor"] = material;
+  for (int i = 0; i < 5; ++i)
+    for (int k = 0; k < 5; ++k)
+      scene["lights"].push_back({{"type", "point"}, {"position", {-1.6 + 0.8 * i, 1.2, -0.5 + 0.8 * k}},
+                                 {"radiant_power_w", 10.0}, {"spectrum", {{"blackbody", 3000}}}});
+  return scene;
+}
+
+// Two renders each way (seeds `seed`, +1 with one candidate; +10, +11 with 8): the pixels' summed variance is at
+// least halved by the resampling.
+void check_variance_halved(const nlohmann::json& scene, int spp, uint64_t seed) {
+  const auto [one_a, one_b] = render_pair(scene, 1, spp, seed);
+  const auto [eight_a, eight_b] = render_pair(scene, 8, spp, seed + 10);
+  const double variance_one = summed_variance(one_a, one_b), variance_eight = summed_variance(eight_a, eight_b);
+  CAPTURE(variance_one);
+  CAPTURE(variance_eight);
+  CHECK(variance_eight * 2.0 < variance_one);
+}
+
 }  // namespace integration_mis_test
 
 TEST_CASE("MIS: 25 point lights over rough copper, the resampled light choice is unbiased and lowers the variance") {
@@ -185,18 +214,8 @@ TEST_CASE("MIS: 25 point lights over rough copper, the resampled light choice is
   // 8 candidates (light_resampling.h) must give the same image in mean, with the variance of the glints cut:
   // with 25 similar lamps the lobe's lamp is among the candidates about 8× as often.
   using namespace integration_mis_test;
-  nlohmann::json scene = nlohmann::json::parse(R"({
-    "camera": {"from": [0, 1.0, -3], "to": [0, 0, 0.5], "vertical_fov_deg": 40},
-    "film": {"resolution": [32, 32], "filter": {"type": "box"}},
-    "integrator": {"max_depth": 1},
-    "materials": {"metal": {"type": "conductor", "metal": "copper", "roughness": 0.1}},
-    "shapes": [{"type": "quad", "material": "metal", "vertices": [[-4, 0, -4], [-4, 0, 6], [4, 0, 6], [4, 0, -4]]}],
-    "lights": []
-  })");
-  for (int i = 0; i < 5; ++i)
-    for (int k = 0; k < 5; ++k)
-      scene["lights"].push_back({{"type", "point"}, {"position", {-1.6 + 0.8 * i, 1.2, -0.5 + 0.8 * k}},
-                                 {"radiant_power_w", 10.0}, {"spectrum", {{"blackbody", 3000}}}});
+  const nlohmann::json scene =
+      lamps_over_floor(nlohmann::json::parse(R"({"type": "conductor", "metal": "copper", "roughness": 0.1})"), 32);
   // Unbiased: along fixed camera rays (at a lamp's glint, beside it, and between lamps), the resampled estimate
   // per lane equals the light sampler's own; and the same in the volumetric integrator (an absorbing fog around
   // everything: scenes with media resample too), at the glint and beside it.
@@ -205,12 +224,7 @@ TEST_CASE("MIS: 25 point lights over rough copper, the resampled light choice is
   foggy["media"] = {{"fog", {{"type", "homogeneous"}, {"sigma_a", 0.05}, {"sigma_s", 0}, {"contains_camera", true}}}};
   check_candidates_agree(foggy, {0, 1.0f, -3}, {{0, 0, -1.5f}, {0.2f, 0, -1.2f}}, true);
   // Less variance: two renders each way, the pixels' summed variance.
-  const auto [one_a, one_b] = render_pair(scene, 1, 64, 31);
-  const auto [eight_a, eight_b] = render_pair(scene, 8, 64, 41);
-  const double variance_one = summed_variance(one_a, one_b), variance_eight = summed_variance(eight_a, eight_b);
-  CAPTURE(variance_one);
-  CAPTURE(variance_eight);
-  CHECK(variance_eight * 2.0 < variance_one);
+  check_variance_halved(scene, 64, 31);
 }
 
 TEST_CASE("MIS: 25 point lights over lacquered copper (a smooth coat on a glossy metal) resample as the bare metal") {
@@ -218,26 +232,10 @@ TEST_CASE("MIS: 25 point lights over lacquered copper (a smooth coat on a glossy
   // (LayeredBsdf::flags) and resample their light. Its f is a random walk's estimate, a deterministic function of
   // the two directions (layered_bsdf.h), so the resampling target and the estimate use the same f: unbiased.
   using namespace integration_mis_test;
-  nlohmann::json scene = nlohmann::json::parse(R"({
-    "camera": {"from": [0, 1.0, -3], "to": [0, 0, 0.5], "vertical_fov_deg": 40},
-    "film": {"resolution": [24, 24], "filter": {"type": "box"}},
-    "integrator": {"max_depth": 1},
-    "materials": {"lacquer": {"type": "coated_conductor", "metal": "copper", "conductor_roughness": 0.1,
-                              "coat_ior": 1.5}},
-    "shapes": [{"type": "quad", "material": "lacquer", "vertices": [[-4, 0, -4], [-4, 0, 6], [4, 0, 6], [4, 0, -4]]}],
-    "lights": []
-  })");
-  for (int i = 0; i < 5; ++i)
-    for (int k = 0; k < 5; ++k)
-      scene["lights"].push_back({{"type", "point"}, {"position", {-1.6 + 0.8 * i, 1.2, -0.5 + 0.8 * k}},
-                                 {"radiant_power_w", 10.0}, {"spectrum", {{"blackbody", 3000}}}});
+  const nlohmann::json scene = lamps_over_floor(nlohmann::json::parse(R"({"type": "coated_conductor", "metal": "copper",
+                                                 "conductor_roughness": 0.1, "coat_ior": 1.5})"), 24);
   check_candidates_agree(scene, {0, 1.0f, -3}, {{0.2f, 0, -1.2f}}, false, 400000);
-  const auto [one_a, one_b] = render_pair(scene, 1, 32, 51);
-  const auto [eight_a, eight_b] = render_pair(scene, 8, 32, 61);
-  const double variance_one = summed_variance(one_a, one_b), variance_eight = summed_variance(eight_a, eight_b);
-  CAPTURE(variance_one);
-  CAPTURE(variance_eight);
-  CHECK(variance_eight * 2.0 < variance_one);
+  check_variance_halved(scene, 32, 51);
 }
 
 TEST_CASE("glossy_light_candidates: auto resamples in scenes of many lights only; explicit counts and errors") {
