@@ -7,7 +7,8 @@
 #   bench/glossy_lights_bench.sh BUILD [OUT_DIR]
 #
 # Environment (defaults in brackets): SCENES [interiors/night_room_downlights interiors/day_room_downlights
-# light_sampling/spot_3m_floor examples/metal_sphere_environment] (under data/scenes, without .json),
+# light_sampling/spot_3m_floor examples/metal_sphere_environment] (under data/scenes, without .json; or a path
+# ending in .json, e.g. a bench/lamp_subset.py copy of a room with fewer lamps),
 # CANDIDATES ["1 2 4 8 16"], SPP [64], REF_SPP [1024], SEEDS ["1 2 3 4 5 6"], RESOLUTION [160x90], THREADS [2].
 # Each scene is copied with its lights ×1000 (bench/scaled_scene.py: relMSE's +0.01 floor then negligible); the
 # reference uses 8 candidates, seed 99. relMSE is rimu-pbrt-image-compare's; "body" is its relMSE without the worst
@@ -47,8 +48,10 @@ echo "# glossy_lights_bench: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, l
 echo "# $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'); SPP=$spp REF_SPP=$ref_spp SEEDS=\"$seeds\" CANDIDATES=\"$candidates\" RESOLUTION=$resolution THREADS=$threads"
 printf "scene\tcandidates\tseed\tcpu_s\trelmse\tbody\n" >"$out/runs.tsv"
 for scene in $scenes; do
+  source=$root/data/scenes/$scene.json
+  [[ $scene == *.json ]] && source=$scene && scene=${scene%.json}
   name=${scene##*/}; work=$out/$name; rm -rf "$work"; mkdir -p "$work"
-  python3 "$root/bench/scaled_scene.py" "$root/data/scenes/$scene.json" "$work" scaled 1000
+  python3 "$root/bench/scaled_scene.py" "$source" "$work" scaled 1000
   with_candidates "$work/scaled_dir/scaled.json" 8 "$work/scaled_dir/ref.json"
   t=$(render "$work/scaled_dir/ref.json" "$ref_spp" 99 "$work/ref.exr")
   echo "$name: reference $ref_spp spp, $t CPU s" >&2
