@@ -360,9 +360,12 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     if (scatterer.has_non_delta() && strategy != DirectLighting::bsdf_only) {
       // The light: the sampler's choice, or at a glossy surface one of several candidates resampled by what the BSDF
       // passes from each (light_resampling.h; density_scale is then the factor on the usual estimate). Not at
-      // costly BSDFs (they are never flagged glossy) nor at medium vertices.
+      // medium vertices. A costly BSDF flagged glossy (a coated metal's random walk) has then been evaluated
+      // towards every candidate before any shadow ray: the kept one's f·|cos θi| is reused below (eval() is a
+      // deterministic function of the directions, so it is the same value evaluate() would compute again).
       std::optional<LightChoice> pick;
       std::optional<LightSample> ls;
+      std::optional<SampledSpectrum> chosen_f;
       float density_scale = 1.0f;
       if (glossy_candidates > 1 && scatterer.bsdf && scatterer.bsdf->flags().has_glossy) {
         auto f_cos_towards = [&](Vec3 wi_world) {
@@ -379,6 +382,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
                                              u_light_choice, u_light, f_cos_towards, light_weight)) {
           pick = chosen->pick;
           ls = chosen->sample;
+          chosen_f = chosen->f_cos;
           density_scale = chosen->density_scale;
         }
       } else if ((pick = light_sampler.sample(sampling_point, u_light_choice))) {
@@ -393,7 +397,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
             SampledSpectrum f, q_dir, throughput;
           };
           auto evaluate = [&]() -> std::optional<Towards> {
-            const SampledSpectrum f = scatterer.eval(ls->wi);
+            const SampledSpectrum f = chosen_f ? *chosen_f : scatterer.eval(ls->wi);
             if (!(max_lane(f) > 0.0f)) return std::nullopt;
             const SampledSpectrum q_dir = lanes.densities(scatterer.pdf(ls->wi));
             const float sum_dir = sum(pdf_ratio * q_dir);
