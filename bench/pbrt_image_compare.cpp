@@ -233,12 +233,14 @@ void allocation(const std::vector<double>& counts, const std::vector<LinearRgbIm
     for (size_t i = 0; i < pixels; ++i) sum += q[i] / n[i];
     return sum / double(pixels);
   };
-  // n_i ∝ weight_i with the same total (a pixel of weight 0 keeps a hundredth of a sample: its q is 0 too).
+  // n_i ∝ weight_i with the same total (a pixel of weight 0 keeps a hundredth of a sample: its q is 0 too); all
+  // weights 0 (runs without noise): the counts' mean everywhere.
   const auto proportional = [&](const std::vector<double>& weight) {
     double sum = 0.0;
     for (double w : weight) sum += w;
-    std::vector<double> n(pixels);
-    for (size_t i = 0; i < pixels; ++i) n[i] = std::max(0.01, samples * weight[i] / sum);
+    std::vector<double> n(pixels, mean_samples);
+    if (sum > 0.0)
+      for (size_t i = 0; i < pixels; ++i) n[i] = std::max(0.01, samples * weight[i] / sum);
     return n;
   };
   std::vector<double> root(pixels), smooth_root(pixels);
@@ -253,6 +255,7 @@ void allocation(const std::vector<double>& counts, const std::vector<LinearRgbIm
       smooth_root[size_t(y) * size_t(first.width) + size_t(x)] = std::sqrt(sum / count);
     }
   const double uniform = expected_relmse(std::vector<double>(pixels, mean_samples));
+  if (!(uniform > 0.0)) fail("the runs agree in every pixel: no noise to weigh the counts by (different seeds?)");
   std::printf("mean_spp=%.6g\nuniform_expected_relmse=%.6g\n", mean_samples, uniform);
   std::printf("allocation_gain=%.4f\noracle_gain=%.4f\noracle_3x3_gain=%.4f\n", uniform / expected_relmse(counts),
               uniform / expected_relmse(proportional(root)), uniform / expected_relmse(proportional(smooth_root)));

@@ -6,7 +6,8 @@
 # 48 N(0,1) tests ≈ 3e-4). The same box with its red and green walls swapped (the JSON twin of the file, edited) is
 # caught. `allocation`: counts equal everywhere are worth exactly 1; an adaptive render's unequal counts are worth
 # no more than the oracle's (n ∝ √q is the minimum of Σ q/n for the total), which is worth at least 1 (Cauchy–
-# Schwarz); an image without an `spp` channel is refused. Bad input: exit 1 with the file named.
+# Schwarz); an image without an `spp` channel, and runs without noise between them, are refused. Bad input: exit 1
+# with the file named.
 set -u
 rimu=$1; compare=$2; data=$3; work=$4
 rm -rf "$work"; mkdir -p "$work"
@@ -53,6 +54,8 @@ awk -v a="$(value allocation_gain "$out")" -v o="$(value oracle_gain "$out")" 'B
   fail "adaptive counts: $out"
 out=$("$compare" allocation "$work/s1.exr" "$work/s1.exr" "$work/s2.exr" --run-spp 16 2>&1); code=$?
 [ $code = 1 ] && grep -q "spp" <<<"$out" || fail "counts without spp: exit $code: $out"
+out=$("$compare" allocation "$work/uneven.exr" "$work/s1.exr" "$work/s1.exr" --run-spp 16 2>&1); code=$?
+[ $code = 1 ] && grep -q "runs agree" <<<"$out" || fail "one run twice: exit $code: $out"
 
 # The JSON twin has its geometry inline, so it renders from the work folder.
 sed -e 's/"red": {/"tmp": {/; s/"green": {/"red": {/; s/"tmp": {/"green": {/' "$data/cornell_equivalent.json" >"$work/swapped.json"
