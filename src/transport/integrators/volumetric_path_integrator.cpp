@@ -390,48 +390,46 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       }
       if (pick && ls) {
         const Light& light = *lights[size_t(pick->light)];
-        {
-          // f·|cos θi| towards the light, the direction technique's densities q_k there, and the effective
-          // throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi). None where f = 0.
-          struct Towards {
-            SampledSpectrum f, q_dir, throughput;
-          };
-          auto evaluate = [&]() -> std::optional<Towards> {
-            const SampledSpectrum f = chosen_f ? *chosen_f : scatterer.eval(ls->wi);
-            if (!(max_lane(f) > 0.0f)) return std::nullopt;
-            const SampledSpectrum q_dir = lanes.densities(scatterer.pdf(ls->wi));
-            const float sum_dir = sum(pdf_ratio * q_dir);
-            return Towards{f, q_dir, sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f};
-          };
-          const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
-          // A costly BSDF is evaluated only if the light is visible, unless the shadow ray needs the throughput
-          // (tracked media). Same estimate either way: without tracking, shadow() draws no random numbers.
-          const bool visibility_first =
-              scatterer.bsdf && scatterer.bsdf->evaluation_is_costly() && !shadow_reads_throughput_;
-          std::optional<Towards> towards;
-          if (!wrong_side && !visibility_first) towards = evaluate();
-          if (!wrong_side && (visibility_first || towards)) {
-            const Vec3 origin = origin_towards(ls->wi);
-            const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
-            const auto tr = shadow(origin, segment.direction, segment.length, stack_towards(ls->wi), lambda, sampler,
-                                   towards ? towards->throughput : beta);  // β: read by tracked media only
-            if (tr && visibility_first) towards = evaluate();
-            if (tr && towards) {
-              const SampledSpectrum& f = towards->f;
-              const SampledSpectrum& q_dir = towards->q_dir;
-              const float s_light = pick->probability * ls->pdf_solid_angle * sum_ratio;
-              const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only
-                                      ? 0.0f
-                                      : sum(pdf_ratio * q_dir * tr->pass_probability);
-              float weight = density_scale * s_light / (s_light * s_light + s_dir * s_dir);
-              if (equiangular && scatter_point)
-                if (const auto light_m = light.delta_position_m())
-                  weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *light_m,
-                                                      ratios_before_flight, lambda,
-                                                      pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),
-                                                                                           pick->light, pick->part));
-              contribute(beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight), light.light_group());
-            }
+        // f·|cos θi| towards the light, the direction technique's densities q_k there, and the effective
+        // throughput direction sampling would have had towards wi: 4·β·f / Σ_k R_k q_k(wi). None where f = 0.
+        struct Towards {
+          SampledSpectrum f, q_dir, throughput;
+        };
+        auto evaluate = [&]() -> std::optional<Towards> {
+          const SampledSpectrum f = chosen_f ? *chosen_f : scatterer.eval(ls->wi);
+          if (!(max_lane(f) > 0.0f)) return std::nullopt;
+          const SampledSpectrum q_dir = lanes.densities(scatterer.pdf(ls->wi));
+          const float sum_dir = sum(pdf_ratio * q_dir);
+          return Towards{f, q_dir, sum_dir > 0.0f ? beta * f * Float4(kLanes / sum_dir) : beta * f};
+        };
+        const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
+        // A costly BSDF is evaluated only if the light is visible, unless the shadow ray needs the throughput
+        // (tracked media). Same estimate either way: without tracking, shadow() draws no random numbers.
+        const bool visibility_first =
+            scatterer.bsdf && scatterer.bsdf->evaluation_is_costly() && !shadow_reads_throughput_;
+        std::optional<Towards> towards;
+        if (!wrong_side && !visibility_first) towards = evaluate();
+        if (!wrong_side && (visibility_first || towards)) {
+          const Vec3 origin = origin_towards(ls->wi);
+          const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
+          const auto tr = shadow(origin, segment.direction, segment.length, stack_towards(ls->wi), lambda, sampler,
+                                 towards ? towards->throughput : beta);  // β: read by tracked media only
+          if (tr && visibility_first) towards = evaluate();
+          if (tr && towards) {
+            const SampledSpectrum& f = towards->f;
+            const SampledSpectrum& q_dir = towards->q_dir;
+            const float s_light = pick->probability * ls->pdf_solid_angle * sum_ratio;
+            const float s_dir = ls->is_delta || strategy == DirectLighting::nee_only
+                                    ? 0.0f
+                                    : sum(pdf_ratio * q_dir * tr->pass_probability);
+            float weight = density_scale * s_light / (s_light * s_light + s_dir * s_dir);
+            if (equiangular && scatter_point)
+              if (const auto light_m = light.delta_position_m())
+                weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *light_m,
+                                                    ratios_before_flight, lambda,
+                                                    pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),
+                                                                                         pick->light, pick->part));
+            contribute(beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight), light.light_group());
           }
         }
       }
