@@ -64,6 +64,21 @@ struct LinearRgbImage {
   std::exit(status);
 }
 
+// The named FLOAT channels of an open EXR, one plane each over its data window, row by row.
+std::vector<std::vector<float>> read_planes(Imf::InputFile& file, const std::vector<const char*>& names) {
+  const Imath::Box2i window = file.header().dataWindow();
+  const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+  std::vector<std::vector<float>> planes(names.size(), std::vector<float>(size_t(width) * size_t(height)));
+  Imf::FrameBuffer frame;
+  for (size_t c = 0; c < names.size(); ++c) {
+    char* origin = reinterpret_cast<char*>(planes[c].data() - window.min.x - window.min.y * width);
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * size_t(width)));
+  }
+  file.setFrameBuffer(frame);
+  file.readPixels(window.min.y, window.max.y);
+  return planes;
+}
+
 // Reads R,G,B (taken as already in `space`) or X,Y,Z (converted with space.xyz_to_rgb()).
 LinearRgbImage read_linear_rgb(const std::filesystem::path& path, const rimu::RgbColourSpace& space) {
   try {
@@ -82,21 +97,12 @@ LinearRgbImage read_linear_rgb(const std::filesystem::path& path, const rimu::Rg
           far(c.white, space.white()))
         fail(path.string() + ": its chromaticities are not those of " + space.name() + " (use --space)");
     }
-    const char* names[3] = {"R", "G", "B"};
-    if (xyz) names[0] = "X", names[1] = "Y", names[2] = "Z";
-    std::vector<float> planes(size_t(3) * size_t(width) * size_t(height));
-    Imf::FrameBuffer frame;
-    for (int c = 0; c < 3; ++c) {
-      float* base = planes.data() + size_t(c) * size_t(width) * size_t(height);
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base - window.min.x - window.min.y * width),
-                                        sizeof(float), sizeof(float) * size_t(width)));
-    }
-    file.setFrameBuffer(frame);
-    file.readPixels(window.min.y, window.max.y);
-    LinearRgbImage image{width, height, std::vector<double>(planes.size())};
+    const std::vector<std::vector<float>> planes =
+        read_planes(file, xyz ? std::vector<const char*>{"X", "Y", "Z"} : std::vector<const char*>{"R", "G", "B"});
     const size_t n = size_t(width) * size_t(height);
+    LinearRgbImage image{width, height, std::vector<double>(3 * n)};
     for (size_t i = 0; i < n; ++i) {
-      const double a = planes[i], b = planes[n + i], c = planes[2 * n + i];
+      const double a = planes[0][i], b = planes[1][i], c = planes[2][i];
       if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
         fail(path.string() + ": pixel " + std::to_string(i % size_t(width)) + "," + std::to_string(i / size_t(width)) +
              " is not finite");
@@ -195,12 +201,7 @@ std::vector<double> read_channel(const std::filesystem::path& path, const char* 
     const Imath::Box2i window = file.header().dataWindow();
     width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
     if (!file.header().channels().findChannel(name)) fail(path.string() + ": has no channel " + name);
-    std::vector<float> plane(size_t(width) * size_t(height));
-    Imf::FrameBuffer frame;
-    frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(plane.data() - window.min.x - window.min.y * width),
-                                  sizeof(float), sizeof(float) * size_t(width)));
-    file.setFrameBuffer(frame);
-    file.readPixels(window.min.y, window.max.y);
+    const std::vector<float> plane = read_planes(file, {name}).front();
     return {plane.begin(), plane.end()};
   } catch (const std::exception& e) {
     fail(path.string() + ": " + e.what());
