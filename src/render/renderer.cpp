@@ -1,6 +1,5 @@
 #include "render/renderer.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -16,6 +15,7 @@
 
 #include "render/film/adaptive_sampling.h"
 #include "render/scene/ray_tally.h"
+#include "render/tile_schedule.h"
 #include "render/film/feature_buffers.h"
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
@@ -89,6 +89,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   const std::unique_ptr<Sampler> feature_prototype =
       options.features ? make_sampler(SamplerKind::independent, options.seed ^ kFeatureSeedSalt) : nullptr;
   const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
+  TileSchedule schedule(tiles.size());
+  std::vector<uint64_t> planned_samples(tiles.size());
 
   RenderStatistics stats;
   // Path guiding (surface integrator only): the field the current pass samples from, fitted after the last one.
@@ -146,18 +148,38 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     // depend on the threads.
     const size_t tile_record_limit = train ? (kGuidingSampleBudget - guiding_history.size()) / tiles.size() : 0;
 
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    // Each tile's samples in this pass, from which the schedule predicts its cost: the costliest tiles go first.
+    for (size_t t = 0; t < tiles.size(); ++t) {
+      const PixelBounds& b = tiles[t];
+      uint64_t samples = uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count);
+      if (options.adaptive) {
+        samples = 0;
+        for (int y = b.y0; y < b.y1; ++y)
+          for (int x = b.x0; x < b.x1; ++x) samples += uint64_t(options.adaptive->pass_samples(x, y));
+      }
+      planned_samples[t] = samples;
+    }
+    const std::vector<size_t>& tile_order = schedule.order(planned_samples);
+
+    // Each worker takes the next tile of the order until none is left (list scheduling): a split of the order into
+    // ranges, as parallel_for's partitioners make, would give one thread all of the costliest tiles.
+    const size_t workers =
+        std::min(tiles.size(), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    std::atomic<size_t> next_position{0};
+    tbb::parallel_for(size_t(0), workers, [&](size_t) {
       std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
       std::unique_ptr<Sampler> feature_sampler = feature_prototype ? feature_prototype->clone() : nullptr;
       // Light groups (render/film/film.h): each sample's share per group. A film without groups passes an empty
       // LightGroupRadiance, and the integrator and film skip the per-group work.
       std::vector<SampledSpectrum> group_slots(film.light_groups().size());
       const LightGroupRadiance groups{group_slots.empty() ? nullptr : group_slots.data(), int(group_slots.size())};
-      for (size_t t = range.begin(); t != range.end(); ++t) {
+      for (size_t position = next_position++; position < tiles.size(); position = next_position++) {
+        const size_t t = tile_order[position];
         if (options.interrupt && options.interrupt->requested()) {
           stopped = true;
           return;
         }
+        const auto tile_start = std::chrono::steady_clock::now();
         auto tile = std::make_unique<FilmTile>(film.make_tile(tiles[t]));
         if (options.features) feature_results[t] = options.features->make_tile(tile->bounds());
         [[maybe_unused]] PathGuidingContext guiding;
@@ -236,6 +258,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
         if (options.progress)
           options.progress->add(options.adaptive ? tile_samples : uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count));
         pass_camera_samples += tile_samples;
+        schedule.record(t, std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count(),
+                        tile_samples);
         results[t] = std::move(tile);
       }
     });
