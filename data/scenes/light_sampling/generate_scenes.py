@@ -3,7 +3,8 @@
 a 3 m and a 100 m floor, a room lit by 32 x 32 ceiling panels and a sky window (also with the window as the sky's
 portal), and a street of 200 lamps; for wavelength-aware light choice, three scenes of coloured lights: a red and a
 blue lamp, a wall of RGB LED panels, and a square under low-/high-pressure sodium and mercury lamps; for the
-resampled light choice at glossy vertices, 25 lamps over a lacquered copper and a lacquered plastic floor.
+resampled light choice at glossy vertices, 25 lamps over a lacquered copper and a lacquered plastic floor, and the LED
+wall over a gold floor and a copper ball.
 
 Run from anywhere:  python3 data/scenes/light_sampling/generate_scenes.py
 The outputs are committed; this script is how they were made (standard library only). rimu renders each file as it
@@ -182,6 +183,20 @@ def rgb_led_panels():
         "lighting two spheres on a white floor.", [], panels)
 
 
+def rgb_led_panels_metal():
+    """The RGB LED wall over a gold floor (roughness 0.3) with a copper ball (0.2) in place of the grey one: 72 area
+    lights and glossy vertices, where the MIS weights of resampled lights count (docs/transport.md, "Glossy
+    vertices and many lights")."""
+    scene = rgb_led_panels()
+    scene["description"] = ("Glossy vertices and many area lights: the wall of 12 x 6 RGB LED panels over a gold "
+                            "floor of roughness 0.3 and a copper ball of roughness 0.2.")
+    scene["materials"]["gold"] = {"type": "conductor", "metal": "gold", "roughness": 0.3}
+    scene["materials"]["copper"] = {"type": "conductor", "metal": "copper", "roughness": 0.2}
+    scene["shapes"][0]["material"] = "gold"
+    scene["shapes"][1]["material"] = "copper"
+    return scene
+
+
 def sodium_mercury():
     """A 30 m square under nine lamps 6 m up: low-pressure sodium (the D doublet), high-pressure sodium (CIE HP1)
     and mercury (its four visible line groups), with a dim night sky."""
@@ -251,6 +266,7 @@ if __name__ == "__main__":
     write("street.json", street())
     write("red_blue_lamps.json", red_blue())
     write("rgb_led_panels.json", rgb_led_panels())
+    write("rgb_led_panels_metal.json", rgb_led_panels_metal())
     write("sodium_mercury_square.json", sodium_mercury())
     write("lacquered_copper_lamps.json", lacquered_floor(metal=True))
     write("lacquered_plastic_lamps.json", lacquered_floor(metal=False))

@@ -23,6 +23,9 @@ struct ChosenLight {
   /// density of this sample): exactly 1 for one candidate; for M candidates q × RIS's unbiased contribution weight
   /// (Σ_j w_j / M) / p̂(chosen).
   float density_scale = 1.0f;
+  /// Whether the light was chosen among candidates (false: the light sampler's own choice, for one candidate or
+  /// where the point has a single light to give).
+  bool resampled = false;
 };
 
 /// Why: the light sampler (a light tree or by power) weighs lights by the irradiance each could bring, which
@@ -111,6 +114,7 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
   if (!kept || !(weight_sum > 0.0f) || !std::isfinite(weight_sum)) return std::nullopt;
   kept->density_scale =
       kept->pick.probability * kept->sample.pdf_solid_angle * weight_sum / (float(candidates) * kept_target);
+  kept->resampled = true;
   return kept;
 }
 

@@ -115,6 +115,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
   float previous_bsdf_sum = sum(pdf_ratio);   // S_bsdf = Σ_k R_k q_{k,bsdf} (in units of the prefix's hero density)
   LightReference previous_reference{};
   LightSamplingPoint previous_sampling_point{};  // where the light sampler chose for the previous vertex
+  // How many times its light sampler's density the previous vertex's MIS weights count: its candidates where it
+  // chose its light among several (light_resampling.h), 1 elsewhere (see the next-event estimation below).
+  float previous_light_boost = 1.0f;
   if (start) {  // a vertex the caller sampled with a wavelength-independent density: S_bsdf = q Σ_k R_k
     previous_specular = false;
     previous_hero_pdf = start->direction_pdf;
@@ -125,7 +128,10 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
 
   // Adds an emitter seen along the sampled direction: spectral MIS, and power-heuristic MIS against light sampling.
   const DirectLighting strategy = settings_.direct_lighting;
-  auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle, const Light& light) {
+  // choice_probability: the light sampler's probability of this light (and part) at the previous vertex; where it is
+  // 1 that vertex had a single light to give and did not resample, so its weights count the density once.
+  auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle, float choice_probability,
+                          const Light& light) {
     // NEE-only: a non-delta bounce leaves emitters to next-event estimation (which then takes full weight).
     if (strategy == DirectLighting::nee_only && !previous_specular) return;
     if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
@@ -133,7 +139,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       contribute(beta * emitted * Float4(kLanes / sum(pdf_ratio)), light);
       return;
     }
-    const float s_light = light_pdf_solid_angle * previous_sum_ratio;
+    const float boost = choice_probability < 1.0f ? previous_light_boost : 1.0f;
+    const float s_light = boost * light_pdf_solid_angle * previous_sum_ratio;
     const float s_bsdf = previous_bsdf_sum;
     const float weight = previous_hero_pdf * s_bsdf / (s_light * s_light + s_bsdf * s_bsdf);
     contribute(beta * emitted * Float4(kLanes * weight), light, true);
@@ -151,10 +158,10 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     if (!hit) {
       for (int index : scene_.infinite_lights) {
         const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
-        const float pdf = previous_specular ? 0.0f
-                                            : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0)) *
-                                                  lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
-        add_emission(le, pdf, *lights[size_t(index)]);
+        const float pmf =
+            previous_specular ? 0.0f : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0));
+        const float pdf = previous_specular ? 0.0f : pmf * lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
+        add_emission(le, pdf, pmf, *lights[size_t(index)]);
       }
       break;
     }
@@ -164,10 +171,10 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       const Light& light = *lights[size_t(hit->light)];
       const SampledSpectrum le = light.radiance(*hit, wo_world, lambda);
       const int part = light_sampler.part_of_hit(hit->primitive);
-      const float pdf = previous_specular ? 0.0f
-                                          : light_sampler.pmf(previous_sampling_point, hit->light, part) *
-                                                light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
-      add_emission(le, pdf, light);
+      const float pmf = previous_specular ? 0.0f : light_sampler.pmf(previous_sampling_point, hit->light, part);
+      const float pdf =
+          previous_specular ? 0.0f : pmf * light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
+      add_emission(le, pdf, pmf, light);
     }
     if (hit->material < 0) break;
     const Material& material = (*scene_.materials)[size_t(hit->material)];
@@ -216,14 +223,22 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
         const Vec3 wi = shading.frame.to_local(wi_world);
         return bsdf.eval(wo, wi) * Float4(std::fabs(wi.z));
       };
+      // Where the light is chosen among M candidates, the MIS weights count the light sampler's density M times,
+      // here and where BSDF sampling hits a light (previous_light_boost): resampling draws the lights that matter
+      // here up to M times as often as the sampler alone, and the power heuristic with the sampler's density alone
+      // gave BSDF sampling the weight of directions that next-event estimation now serves better. Any factor keeps
+      // the estimate unbiased as long as both techniques use the same one (the weights still sum to one), and the
+      // resampling targets the weight it will carry. A point with a single light to give does not resample (its
+      // choice probability is 1): there the density counts once, on both sides.
+      const int candidates = flags.has_glossy ? glossy_candidates : 1;
+      const float boost = float(candidates);
       // The MIS weight a light sample will carry (before panes): resampling targets f·L times it.
       auto light_weight = [&](const LightSample& ls, float choice_probability) {
         if (ls.is_delta || strategy == DirectLighting::nee_only) return 1.0f;
-        const float s_light = choice_probability * ls.pdf_solid_angle * sum_ratio;
+        const float s_light = boost * choice_probability * ls.pdf_solid_angle * sum_ratio;
         const float s_bsdf = sum(pdf_ratio * lanes.densities(sampling.pdf(wo, shading.frame.to_local(ls.wi))));
         return s_light * s_light / (s_light * s_light + s_bsdf * s_bsdf);
       };
-      const int candidates = flags.has_glossy ? glossy_candidates : 1;
       if (const auto chosen = choose_light(light_sampler, lights, sampling_point, reference, lambda, candidates,
                                            u_light_choice, u_light, f_cos_towards, light_weight)) {
         const Light& light = *lights[size_t(chosen->pick.light)];
@@ -234,9 +249,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
         shadow.direction = segment.direction;
         shadow.t_max = std::isinf(segment.length) ? segment.length : segment.length * (1.0f - 0x1p-12f);
         if (const auto passage = trace_shadow(scene_, shadow, lambda)) {
-          // The MIS weights use the light sampler's own density of this sample (BSDF-sampled hits on the light
-          // use the same), so they still sum to one; resampling only changes how often the light is drawn,
-          // which density_scale accounts for (exactly 1 for one candidate).
+          // The MIS weights use the light sampler's own density of this sample, times the boost where the light
+          // was resampled (BSDF-sampled hits on the light use the same), so they still sum to one; resampling
+          // changes how often the light is drawn, which density_scale accounts for (exactly 1 for one candidate).
           const float s_light = chosen->pick.probability * ls.pdf_solid_angle * sum_ratio;
           // BSDF sampling reaches this light through the panes only by also choosing each one's straight-through
           // lobe: its density carries their probabilities (docs/transport.md, "Glazing").
@@ -245,7 +260,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
                   ? 0.0f
                   : sum(pdf_ratio * lanes.densities(sampling.pdf(wo, shading.frame.to_local(ls.wi)) *
                                                     passage->pass_probability));
-          const float weight = chosen->density_scale * s_light / (s_light * s_light + s_bsdf * s_bsdf);
+          // m = (b·s_light)² / ((b·s_light)² + s_bsdf²) over the sampler's density s_light, b the boost above.
+          const float b_light = chosen->resampled ? boost * s_light : s_light;
+          const float weight = chosen->density_scale * (b_light / s_light) * b_light / (b_light * b_light + s_bsdf * s_bsdf);
           contribute(beta * chosen->f_cos * passage->transmittance * ls.radiance * Float4(kLanes * weight), light);
         }
       }
@@ -293,6 +310,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     previous_bsdf_sum = sum(pdf_ratio * bsdf_densities);
     previous_reference = reference;
     previous_sampling_point = sampling_point;
+    previous_light_boost = flags.has_glossy && strategy != DirectLighting::bsdf_only ? float(glossy_candidates) : 1.0f;
 
     beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
     eta_scale *= bs->eta * bs->eta;
