@@ -160,7 +160,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
         const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
         const float pmf =
             previous_specular ? 0.0f : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0));
-        const float pdf = previous_specular ? 0.0f : pmf * lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
+        const float pdf =
+            previous_specular ? 0.0f : pmf * lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
         add_emission(le, pdf, pmf, *lights[size_t(index)]);
       }
       break;
@@ -262,7 +263,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
                                                     passage->pass_probability));
           // m = (b·s_light)² / ((b·s_light)² + s_bsdf²) over the sampler's density s_light, b the boost above.
           const float b_light = chosen->resampled ? boost * s_light : s_light;
-          const float weight = chosen->density_scale * (b_light / s_light) * b_light / (b_light * b_light + s_bsdf * s_bsdf);
+          const float weight =
+              chosen->density_scale * (b_light / s_light) * b_light / (b_light * b_light + s_bsdf * s_bsdf);
           contribute(beta * chosen->f_cos * passage->transmittance * ls.radiance * Float4(kLanes * weight), light);
         }
       }
