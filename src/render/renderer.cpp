@@ -148,7 +148,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     // depend on the threads.
     const size_t tile_record_limit = train ? (kGuidingSampleBudget - guiding_history.size()) / tiles.size() : 0;
 
-    // Each tile's samples in this pass, from which the schedule predicts its cost: the costliest tiles go first.
+    // Each tile's samples in this pass (also what it reports when done), from which the schedule predicts its cost:
+    // the costliest tiles go first.
     for (size_t t = 0; t < tiles.size(); ++t) {
       const PixelBounds& b = tiles[t];
       uint64_t samples = uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count);
@@ -189,13 +190,11 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
           guiding.record_limit = tile_record_limit;
         }
         const PixelBounds& b = tile->bounds();
-        uint64_t tile_samples = 0;
         for (int y = b.y0; y < b.y1; ++y) {
           for (int x = b.x0; x < b.x1; ++x) {
             // Adaptive sampling: the pixel's own count for this pass, continuing its own sample indices.
             const int pixel_first = options.adaptive ? options.adaptive->samples(x, y) : first;
             const int pixel_count = options.adaptive ? options.adaptive->pass_samples(x, y) : count;
-            tile_samples += uint64_t(pixel_count);
             const uint64_t rays_before = rays_traced_by_this_thread();
             for (int s = pixel_first; s < pixel_first + pixel_count; ++s) {
               sampler->start_pixel_sample(x, y, uint32_t(s));
@@ -253,10 +252,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
             if (options.adaptive) options.adaptive->add_rays(x, y, rays_traced_by_this_thread() - rays_before);
           }
         }
-        // Uniform: every pixel's samples. Adaptive: the samples taken (a render that ends with every pixel stopped
-        // is marked complete by its caller).
-        if (options.progress)
-          options.progress->add(options.adaptive ? tile_samples : uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count));
+        // The samples the tile took, as planned before the pass: uniform, every pixel's; adaptive, each pixel's own
+        // count (a render that ends with every pixel stopped is marked complete by its caller).
+        const uint64_t tile_samples = planned_samples[t];
+        if (options.progress) options.progress->add(tile_samples);
         pass_camera_samples += tile_samples;
         schedule.record(t, std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count(),
                         tile_samples);

@@ -31,20 +31,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Every accumulator of the film (channel sums and weights) as raw doubles, for a bitwise comparison.
-std::vector<double> film_bits(const Film& film) {
-  std::vector<double> out;
-  const PixelBounds& b = film.pixel_bounds();
-  for (int y = b.y0; y < b.y1; ++y) {
-    for (int x = b.x0; x < b.x1; ++x) {
-      const auto v = film.pixel_value(x, y);
-      out.insert(out.end(), v.begin(), v.end());
-      out.push_back(film.weight_sum(x, y));
-    }
-  }
-  return out;
-}
-
 // The pass boundaries of render(): passes of 1, 2, 4, 8, 16, 16, ... samples per pixel (renderer.cpp doubles the
 // pass after each one, capped at 16), so whole-pass sample counts are 1, 3, 7, 15, 31, 47, ...
 bool is_pass_boundary(int spp) {

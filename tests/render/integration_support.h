@@ -131,6 +131,21 @@ inline RenderedFilm render_xyz(const Scene& scene, int spp, uint64_t seed, int t
   return out;
 }
 
+/// Every accumulator of the film (channel sums and weights) over its crop window as raw doubles, for a bitwise
+/// comparison.
+inline std::vector<double> film_bits(const Film& film) {
+  std::vector<double> out;
+  const PixelBounds& b = film.pixel_bounds();
+  for (int y = b.y0; y < b.y1; ++y) {
+    for (int x = b.x0; x < b.x1; ++x) {
+      const auto v = film.pixel_value(x, y);
+      out.insert(out.end(), v.begin(), v.end());
+      out.push_back(film.weight_sum(x, y));
+    }
+  }
+  return out;
+}
+
 /// The Y (luminance channel) of every pixel of the film's crop window, row by row.
 inline std::vector<double> luminance_values(const Film& film) {
   std::vector<double> y;

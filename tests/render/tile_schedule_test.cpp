@@ -70,15 +70,9 @@ TEST_CASE("tile schedule: an adaptive render on 1 and on 2 threads gives a bit-i
     };
     options.after_pass = [&](int reached) { sampling.after_pass(film, reached); };
     render(*scene, test::filter_of(*scene), film, options);
-    Result r;
-    for (int y = crop.y0; y < crop.y1; ++y) {
-      for (int x = crop.x0; x < crop.x1; ++x) {
-        const auto v = film.pixel_value(x, y);
-        r.bits.insert(r.bits.end(), v.begin(), v.end());
-        r.bits.push_back(film.weight_sum(x, y));
-        r.samples.push_back(sampling.samples(x, y));
-      }
-    }
+    Result r{test::film_bits(film), {}};
+    for (int y = crop.y0; y < crop.y1; ++y)
+      for (int x = crop.x0; x < crop.x1; ++x) r.samples.push_back(sampling.samples(x, y));
     return r;
   };
   const Result one = render_adaptive(1), two = render_adaptive(2);

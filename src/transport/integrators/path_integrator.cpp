@@ -214,7 +214,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     if (leaf) guide.emplace(leaf, hit->position);
     const GuidedBsdf sampling(bsdf, shading.frame, guide ? &*guide : nullptr, settings_.guiding_probability);
 
-    // Next-event estimation: one light (and part), chosen by the scene's light sampler.
+    // Next-event estimation: one light (and part), chosen by the scene's light sampler, or among `candidates` of its
+    // choices at a glossy vertex.
+    const int candidates = flags.has_glossy ? glossy_candidates : 1;
     const float u_light_choice = sampler.next_1d();
     const Vec2 u_light = sampler.next_2d();
     if (flags.has_non_delta && strategy != DirectLighting::bsdf_only) {
@@ -231,7 +233,6 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       // the estimate unbiased as long as both techniques use the same one (the weights still sum to one), and the
       // resampling targets the weight it will carry. A point with a single light to give does not resample (its
       // choice probability is 1): there the density counts once, on both sides.
-      const int candidates = flags.has_glossy ? glossy_candidates : 1;
       const float boost = float(candidates);
       // The MIS weight a light sample will carry (before panes): resampling targets f·L times it.
       auto light_weight = [&](const LightSample& ls, float choice_probability) {
@@ -312,7 +313,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     previous_bsdf_sum = sum(pdf_ratio * bsdf_densities);
     previous_reference = reference;
     previous_sampling_point = sampling_point;
-    previous_light_boost = flags.has_glossy && strategy != DirectLighting::bsdf_only ? float(glossy_candidates) : 1.0f;
+    previous_light_boost = float(candidates);  // (BSDF-only: unused, every light density is 0 there)
 
     beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
     eta_scale *= bs->eta * bs->eta;
