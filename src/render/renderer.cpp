@@ -198,13 +198,15 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
             const uint64_t rays_before = rays_traced_by_this_thread();
             for (int s = pixel_first; s < pixel_first + pixel_count; ++s) {
               sampler->start_pixel_sample(x, y, uint32_t(s));
-              // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4); then per-bounce ones.
+              // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4), the shutter time (1, only
+              // in a scene where something moves); then per-bounce ones.
               const FilterSample fs = filter.sample(sampler->next_2d());
               const Vec2 lens = sampler->next_2d();
               const SampledWavelengths lambda =
                   sample_path_wavelengths(integrator_settings.wavelengths, *sampler, wavelength_density);
+              const float time = surfaces.has_motion ? sampler->next_1d() : 0.0f;
               const float film_x = float(x) + 0.5f + fs.offset_px.x, film_y = float(y) + 0.5f + fs.offset_px.y;
-              const Ray ray = camera.generate_ray(film_x, film_y, lens);
+              const Ray ray = camera.generate_ray(film_x, film_y, lens, time);
               SampledSpectrum radiance;
               if (groups.groups) std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
               if constexpr (can_guide) {

@@ -20,9 +20,18 @@ Vec2 sample_uniform_disc(Vec2 u) {
 
 Camera::Camera(const CameraSettings& settings, int image_width, int image_height)
     : settings_(settings), width_(float(image_width)), height_(float(image_height)),
-      tan_half_fov_(std::tan(settings.vertical_fov_deg * float(M_PI / 360.0))) {}
+      tan_half_fov_(std::tan(settings.vertical_fov_deg * float(M_PI / 360.0))) {
+  if (settings.camera_to_world_end) {
+    // look_at frames are rotations and translations (never mirrors), so the motion is always valid.
+    bool valid = false;
+    motion_.emplace(settings.camera_to_world, *settings.camera_to_world_end, valid);
+  }
+}
 
-Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u) const {
+Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u, float time) const {
+  // A moving camera's frame at this time (exact interpolation: a camera ray costs far more than this).
+  const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
+  const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
   const float aspect = width_ / height_;
   if (settings_.orthographic_height > 0.0f) {
     // The film point on the z = 0 plane, the ray along +z; a lens bends it through the focus point straight ahead.
@@ -36,8 +45,9 @@ Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u) const {
       direction = normalize(focus - origin);
     }
     Ray ray;
-    ray.origin = settings_.camera_to_world.point(origin);
-    ray.direction = normalize(settings_.camera_to_world.vector(direction));
+    ray.origin = camera_to_world.point(origin);
+    ray.direction = normalize(camera_to_world.vector(direction));
+    ray.time = time;
     return ray;
   }
   // Point on the z = 1 plane in camera space: y up, x right, image centre on the axis.
@@ -52,14 +62,16 @@ Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u) const {
     direction = normalize(focus - origin);
   }
   Ray ray;
-  ray.origin = settings_.camera_to_world.point(origin);
-  ray.direction = normalize(settings_.camera_to_world.vector(direction));
+  ray.origin = camera_to_world.point(origin);
+  ray.direction = normalize(camera_to_world.vector(direction));
+  ray.time = time;
   return ray;
 }
 
 RayDifferentials Camera::generate_differentials(const Ray& ray, float film_x, float film_y, Vec2 lens_u,
                                                 float scale) const {
-  const Ray rx = generate_ray(film_x + 1.0f, film_y, lens_u), ry = generate_ray(film_x, film_y + 1.0f, lens_u);
+  const Ray rx = generate_ray(film_x + 1.0f, film_y, lens_u, ray.time);
+  const Ray ry = generate_ray(film_x, film_y + 1.0f, lens_u, ray.time);
   RayDifferentials d{rx.origin, rx.direction, ry.origin, ry.direction};
   d.scale_towards(ray.origin, ray.direction, scale);
   return d;

@@ -1,6 +1,9 @@
 // The camera: maps a point on the film and a point on the lens to a primary ray.
 #pragma once
 
+#include <optional>
+
+#include "transport/geometry/motion_transform.h"
 #include "transport/geometry/ray.h"
 #include "transport/geometry/ray_differentials.h"
 #include "transport/geometry/transform.h"
@@ -17,6 +20,8 @@ namespace rimu {
 /// meet on the plane of focus).
 struct CameraSettings {
   Transform camera_to_world;       ///< see Transform::look_at: +z forward, +y up, +x image right
+  /// A moving camera's camera_to_world at shutter close (motion blur; MotionTransform interpolates); none: it stays.
+  std::optional<Transform> camera_to_world_end;
   float vertical_fov_deg = 40.0f;
   float lens_radius = 0.0f;        ///< aperture radius in scene units; 0 = pinhole
   float focus_distance = 1.0f;     ///< scene units, along +z
@@ -26,16 +31,18 @@ struct CameraSettings {
 class Camera {
  public:
   Camera(const CameraSettings& settings, int image_width, int image_height);
-  /// The primary ray through film point (x, y) (in pixels) and lens sample u ∈ [0,1)². Direction is unit length.
-  Ray generate_ray(float film_x, float film_y, Vec2 lens_u) const;
-  /// The differentials of `ray` (= generate_ray(film_x, film_y, lens_u)): the rays through the film points one
-  /// pixel right and one pixel down with the same lens sample (so a thin lens's rays still meet on the plane of
+  /// The primary ray through film point (x, y) (in pixels) and lens sample u ∈ [0,1)², at `time` in the shutter
+  /// (Ray::time; a moving camera is where it is then). Direction is unit length.
+  Ray generate_ray(float film_x, float film_y, Vec2 lens_u, float time = 0.0f) const;
+  /// The differentials of `ray` (= generate_ray(film_x, film_y, lens_u, ray.time)): the rays through the film points
+  /// one pixel right and one pixel down with the same lens sample (so a thin lens's rays still meet on the plane of
   /// focus), moved towards `ray` by `scale`. Two more generate_ray calls.
   RayDifferentials generate_differentials(const Ray& ray, float film_x, float film_y, Vec2 lens_u, float scale) const;
   const CameraSettings& settings() const { return settings_; }
 
  private:
   CameraSettings settings_;
+  std::optional<MotionTransform> motion_;  // from camera_to_world to camera_to_world_end
   float width_, height_;
   float tan_half_fov_;
 };

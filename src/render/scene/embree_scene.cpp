@@ -54,7 +54,7 @@ RTCRay to_embree(const Ray& ray) {
   r.dir_z = ray.direction.z;
   r.tnear = ray.t_min;
   r.tfar = ray.t_max;
-  r.time = 0.0f;
+  r.time = ray.time;
   r.mask = 0xFFFFFFFFu;
   r.id = 0;
   r.flags = 0;
@@ -245,6 +245,22 @@ void EmbreeScene::add_instance(int prototype, const Transform& object_to_world) 
   instances_.push_back({prototype, object_to_world});
 }
 
+void EmbreeScene::add_instance(int prototype, const MotionTransform& motion) {
+  std::vector<Transform> keys = motion.linear_keys(kMotionKeyAngle);
+  RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(geometry, prototypes_.at(prototype).scene);
+  rtcSetGeometryTimeStepCount(geometry, unsigned(keys.size()));
+  for (size_t k = 0; k < keys.size(); ++k)
+    rtcSetGeometryTransform(geometry, unsigned(k), RTC_FORMAT_FLOAT3X4_ROW_MAJOR, keys[k].rows().data());
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  check_error("adding a moving instance");
+  set_slot(id, -1 - int(instances_.size()));
+  instances_.push_back({prototype, motion.start(), int(motion_keys_.size())});
+  motion_keys_.push_back(std::move(keys));
+}
+
 void EmbreeScene::set_slot(unsigned geometry_id, int slot) {
   if (slot_of_geometry_.size() <= geometry_id) slot_of_geometry_.resize(geometry_id + 1, 0);
   slot_of_geometry_[geometry_id] = slot;
@@ -291,10 +307,15 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
 
   const GeometryInfo* info = nullptr;
   const Transform* object_to_world = nullptr;
+  Transform moved;  // a moving instance's placement at the ray's time, as Embree interpolated it
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     const Instance& instance = instances_[size_t(-1 - slot_of_geometry_[rh.hit.instID[0]])];
     info = &prototypes_[size_t(instance.prototype)].geometries[rh.hit.geomID];
     object_to_world = &instance.object_to_world;
+    if (instance.motion >= 0) {
+      moved = interpolate_keys(motion_keys_[size_t(instance.motion)], rh.ray.time);
+      object_to_world = &moved;
+    }
   } else {
     info = &geometries_[size_t(slot_of_geometry_[rh.hit.geomID])];
   }

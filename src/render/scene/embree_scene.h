@@ -16,6 +16,7 @@
 #include "spectral/error.h"
 #include "transport/geometry/surface_hit.h"
 #include "render/scene/triangle_mesh.h"
+#include "transport/geometry/motion_transform.h"
 #include "transport/geometry/ray.h"
 #include "transport/integrators/ray_queries.h"
 
@@ -65,8 +66,23 @@ class EmbreeScene final : public RayQueries {
   /// An instance of a prototype placed by `object_to_world`. Costs ≈ 0.5 KB (Embree's instance geometry and its
   /// share of the top-level BVH, and this scene's record of it), however large the prototype.
   void add_instance(int prototype, const Transform& object_to_world);
-  /// The placement of the instance added `instance`-th (0-based).
+  /// An instance that moves while the shutter is open (motion blur): placed by motion.at(ray time). Embree
+  /// interpolates matrices linearly between keys, so a rotation is given as keys at most kMotionKeyAngle apart
+  /// (MotionTransform::linear_keys), and hits are shaded with the same interpolation of the same keys.
+  void add_instance(int prototype, const MotionTransform& motion);
+  /// The placement of the instance added `instance`-th (0-based); for a moving one, at shutter open.
   const Transform& instance_to_world(size_t instance) const { return instances_.at(instance).object_to_world; }
+  /// A moving instance's placements at equally spaced times from shutter open to close (at least two); nullptr for
+  /// an instance that stays put.
+  const std::vector<Transform>* instance_motion_keys(size_t instance) const {
+    const int m = instances_.at(instance).motion;
+    return m < 0 ? nullptr : &motion_keys_[size_t(m)];
+  }
+  /// Whether anything moves while the shutter is open: only then do camera samples draw a time.
+  bool has_motion() const { return !motion_keys_.empty(); }
+  /// The largest turn between two keys of a rotating instance, radians (2°): a point 1 m from the axis strays at
+  /// most 0.15 mm inside its arc between keys.
+  static constexpr double kMotionKeyAngle = 2.0 * 3.14159265358979323846 / 180.0;
 
   /// Builds the BVH. No geometry may be added afterwards.
   void commit();
@@ -110,6 +126,7 @@ class EmbreeScene final : public RayQueries {
   struct Instance {
     int prototype;
     Transform object_to_world;
+    int motion = -1;  ///< index in motion_keys_, or -1: the instance does not move
   };
 
   unsigned attach_mesh(RTCScene scene, TriangleMesh& mesh, std::shared_ptr<const AlphaMask> alpha);
@@ -124,6 +141,7 @@ class EmbreeScene final : public RayQueries {
   std::vector<std::unique_ptr<TriangleMesh>> meshes_;
   std::vector<Prototype> prototypes_;
   std::vector<Instance> instances_;       // found through slot_of_geometry_
+  std::vector<std::vector<Transform>> motion_keys_;  // per moving instance (Instance::motion)
   /// Per top-level geomID: ≥ 0, the index in geometries_; < 0, the instance −1 − value. An int per instance,
   /// where a GeometryInfo apiece cost 80 bytes.
   std::vector<int> slot_of_geometry_;

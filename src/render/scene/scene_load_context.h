@@ -40,8 +40,9 @@ struct LoadContext {
 JsonCursor instance_cursor(const JsonCursor& shapes, InstanceKey key);
 
 /// "transform": an array of operations applied in order to the object ({"translate": v}, {"scale": v or s},
-/// {"rotate": {"angle_deg": a, "axis": v}}, {"matrix": 12 row-major numbers}); absent = identity.
-Transform parse_transform(const JsonCursor& shape);
+/// {"rotate": {"angle_deg": a, "axis": v}}, {"matrix": 12 row-major numbers}); absent = identity. `key` names
+/// another array of the same steps ("transform_end": where a moving shape is at shutter close).
+Transform parse_transform(const JsonCursor& shape, const char* key = "transform");
 /// Reads the image named by a texture or environment object: "encoding" is "srgb" (8-bit sRGB-encoded, decoded to
 /// linear) or "linear"; by default integer files are sRGB-encoded and float files (EXR, HDR) linear.
 std::shared_ptr<const RgbImage> load_rgb_image(const JsonCursor& value, const std::filesystem::path& path);

@@ -29,6 +29,7 @@ TransportScene Scene::transport_view() const {
   view.passable_surfaces = std::any_of(materials.begin(), materials.end(), [](const Material& m) { return m.passes_shadow_rays(); });
   view.wavelength_density = wavelength_density.get();
   view.texture_footprints = texture_footprints;
+  view.has_motion = geometry.has_motion() || camera.camera_to_world_end.has_value();
   return view;
 }
 
@@ -42,8 +43,8 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
   // render_job resolves "keyframes" for the frame being rendered (render/scene/camera_keyframes.h); here there is none.
   if (c.has("keyframes"))
     c.at("keyframes").fail("a camera path keyed by frame needs a frame number: render with --frame N");
-  c.only_keys({"type", "from", "to", "up", "vertical_fov_deg", "lens_radius", "focus_distance", "height", "exposure",
-               "white_balance"});
+  c.only_keys({"type", "from", "to", "up", "from_end", "to_end", "up_end", "vertical_fov_deg", "lens_radius",
+               "focus_distance", "height", "exposure", "white_balance"});
   // The physical camera (render/camera/camera_exposure.h): applied when the film is written.
   if (const auto exposure = c.find("exposure")) scene.settings.camera_exposure.exposure = parse_exposure(*exposure);
   if (const auto wb = c.find("white_balance"))
@@ -56,6 +57,19 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
   if (length(to - from) == 0.0f) c.at("to").fail("'to' equals 'from': the camera has no viewing direction");
   if (length(cross(up, to - from)) == 0.0f) c.at("up").fail("'up' is parallel to the viewing direction");
   scene.camera.camera_to_world = Transform::look_at(from, to, up);
+  if (c.has("from_end") || c.has("to_end") || c.has("up_end")) {
+    // A moving camera (motion blur): where it is at shutter close; a key not given keeps its value at open.
+    const Vec3 from_end = c.has("from_end") ? c.at("from_end").vec3() : from;
+    const Vec3 to_end = c.has("to_end") ? c.at("to_end").vec3() : to;
+    const Vec3 up_end = c.has("up_end") ? c.at("up_end").vec3() : up;
+    const JsonCursor where = c.has("from_end") ? c.at("from_end") : c.has("to_end") ? c.at("to_end") : c.at("up_end");
+    check_coordinates(from_end, where, "the camera position at shutter close");
+    check_coordinates(to_end, where, "the point the camera looks at at shutter close");
+    if (length(to_end - from_end) == 0.0f) where.fail("'to_end' equals 'from_end': the camera has no viewing direction at shutter close");
+    if (length(cross(up_end, to_end - from_end)) == 0.0f) where.fail("'up_end' is parallel to the viewing direction at shutter close");
+    const Transform end = Transform::look_at(from_end, to_end, up_end);
+    if (end.rows() != scene.camera.camera_to_world.rows()) scene.camera.camera_to_world_end = end;
+  }
   if (type == "orthographic") {
     if (c.has("vertical_fov_deg")) c.at("vertical_fov_deg").fail("an orthographic camera has no field of view: give its 'height'");
     scene.camera.orthographic_height = float(c.at("height").number(1e-9, 1e9));
@@ -205,14 +219,22 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
     BoundsD world;
     const Vec3 lo = scene->geometry.bounds_min(), hi = scene->geometry.bounds_max();
     if (is_finite(lo) && is_finite(hi) && lo.x <= hi.x) world.extend(lo), world.extend(hi);
-    const Vec3 eye = scene->camera.camera_to_world.point(Vec3{0, 0, 0});
     const float lens = scene->camera.lens_radius;
-    world.extend(eye - Vec3{lens, lens, lens});
-    world.extend(eye + Vec3{lens, lens, lens});
+    for (const Transform* frame : {&scene->camera.camera_to_world,
+                                   scene->camera.camera_to_world_end ? &*scene->camera.camera_to_world_end : nullptr}) {
+      if (!frame) continue;
+      const Vec3 eye = frame->point(Vec3{0, 0, 0});
+      world.extend(eye - Vec3{lens, lens, lens});
+      world.extend(eye + Vec3{lens, lens, lens});
+    }
     const JsonCursor shapes = root.at("shapes");
-    for (size_t i = 0; i < context.instance_keys.size(); ++i)
-      check_instance_ray_space(world, scene->geometry.instance_to_world(i),
-                               scene_loading::instance_cursor(shapes, context.instance_keys[i]));
+    for (size_t i = 0; i < context.instance_keys.size(); ++i) {
+      const JsonCursor where = scene_loading::instance_cursor(shapes, context.instance_keys[i]);
+      if (const std::vector<Transform>* keys = scene->geometry.instance_motion_keys(i))
+        for (const Transform& placement : *keys) check_instance_ray_space(world, placement, where);
+      else
+        check_instance_ray_space(world, scene->geometry.instance_to_world(i), where);
+    }
   }
   const Vec3 extent = scene->geometry.bounds_max() - scene->geometry.bounds_min();
   scene->scene_scale = is_finite(extent) && length(extent) > 0.0f ? length(extent) : 1.0f;

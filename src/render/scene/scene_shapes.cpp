@@ -1,6 +1,7 @@
 // Shapes, transforms and instancing of the JSON scene format.
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "render/image/alpha_mask.h"
@@ -11,6 +12,7 @@
 #include "transport/lights/sphere_light.h"
 #include "transport/lights/light_spectrum.h"
 #include "render/scene/scene_load_context.h"
+#include "transport/geometry/motion_transform.h"
 #include "render/scene/scene_light_emission.h"
 #include "render/scene/scene_light_groups.h"
 
@@ -43,23 +45,26 @@ void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type,
       if (shape.has(key))
         shape.at(key).fail("prototypes cannot hold emissive geometry (area lights are not instanced); put the "
                            "emitter in \"shapes\"");
+    if (shape.has("transform_end"))
+      shape.at("transform_end").fail("a prototype's shapes cannot move on their own: give the instance that places "
+                                     "it a transform_end");
   }
   if (type == "mesh") {
-    shape.only_keys({"type", "name", "file", "object", "material", "transform", "emission", "light_group", "two_sided", "alpha",
+    shape.only_keys({"type", "name", "file", "object", "material", "transform", "transform_end", "emission", "light_group", "two_sided", "alpha",
                      "uv_default"});
   } else if (type == "quad") {
-    shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "emission", "light_group", "two_sided",
+    shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "transform_end", "emission", "light_group", "two_sided",
                      "alpha"});
   } else if (type == "box") {
-    shape.only_keys({"type", "name", "min", "max", "material", "transform", "emission", "light_group", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "min", "max", "material", "transform", "transform_end", "emission", "light_group", "two_sided", "alpha"});
   } else if (type == "cylinder") {
-    shape.only_keys({"type", "name", "radius", "zmin", "zmax", "phimax_deg", "caps", "material", "transform", "emission",
+    shape.only_keys({"type", "name", "radius", "zmin", "zmax", "phimax_deg", "caps", "material", "transform", "transform_end", "emission",
                      "light_group", "two_sided", "alpha"});
   } else if (type == "disk") {
-    shape.only_keys({"type", "name", "radius", "inner_radius", "height", "phimax_deg", "material", "transform", "emission",
+    shape.only_keys({"type", "name", "radius", "inner_radius", "height", "phimax_deg", "material", "transform", "transform_end", "emission",
                      "light_group", "two_sided", "alpha"});
   } else {
-    shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform", "emission",
+    shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform", "transform_end", "emission",
                      "light_group", "two_sided", "alpha"});
   }
 }
@@ -227,6 +232,58 @@ void place_instance(int prototype, const Transform& object_to_world, const JsonC
   context.instance_keys.push_back(key);
 }
 
+// A shape's motion while the shutter is open: from its "transform" to its "transform_end" (MotionTransform), or
+// nothing for a shape without "transform_end" or one that ends where it started.
+std::optional<MotionTransform> motion_of(const JsonCursor& shape) {
+  if (!shape.has("transform_end")) return std::nullopt;
+  const Transform start = parse_transform(shape), end = parse_transform(shape, "transform_end");
+  if (start.rows() == end.rows()) return std::nullopt;
+  bool valid = false;
+  MotionTransform motion(start, end, valid);
+  if (!valid)
+    shape.at("transform_end").fail("one of transform and transform_end mirrors the shape and the other does not: "
+                                   "the shape would pass through flat on its way");
+  return motion;
+}
+
+// A moving instance: every key of its motion is checked as a static placement would be.
+void place_moving_instance(int prototype, const MotionTransform& motion, const JsonCursor& shape, LoadContext& context,
+                           InstanceKey key) {
+  const JsonCursor where = shape.at("transform_end");
+  for (const Transform& placement : motion.linear_keys(EmbreeScene::kMotionKeyAngle))
+    check_instance_coordinates(context.prototype_bounds[prototype], placement, where);
+  context.scene.geometry.add_instance(prototype, motion);
+  context.instance_keys.push_back(key);
+}
+
+// A triangle shape that moves while the shutter is open: its mesh in object space becomes a prototype of its own,
+// placed by a moving instance (the path every moving object takes through Embree). Emitters cannot move: their
+// light would have to be sampled where the shape is at each ray's time (pbrt-v4 refuses moving area lights too).
+void load_moving_shape(const JsonCursor& shape, const std::string& type, const MotionTransform& motion, InstanceKey key,
+                       LoadContext& context) {
+  for (const char* emissive : {"emission", "light_group", "two_sided"})
+    if (shape.has(emissive))
+      shape.at("transform_end").fail("an emissive shape cannot move (area lights are sampled where they are at "
+                                     "shutter open); give it no transform_end");
+  TriangleMesh mesh = mesh_of(shape, type, context);
+  check_mesh_coordinates(mesh, shape);
+  const int material = material_of(shape, context);
+  std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
+  Scene& scene = context.scene;
+  // No rewinding for a mirroring motion: an instance's normals go through the inverse transpose, which already
+  // gives the normal a transformed, rewound mesh would have.
+  scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
+  if (mesh.triangle_count() == 0) return;
+  count_normals_near_plane(mesh, scene);
+  BoundsD bounds;
+  for (const Vec3& p : mesh.positions) bounds.extend(p);
+  std::vector<std::pair<TriangleMesh, int>> meshes;
+  meshes.emplace_back(std::move(mesh), material);
+  const int prototype = scene.geometry.add_prototype(std::move(meshes), {alpha});
+  context.prototype_bounds[prototype] = bounds;
+  place_moving_instance(prototype, motion, shape, context, key);
+}
+
 }  // namespace
 
 JsonCursor instance_cursor(const JsonCursor& shapes, InstanceKey key) {
@@ -235,9 +292,9 @@ JsonCursor instance_cursor(const JsonCursor& shapes, InstanceKey key) {
   return shape.has("transform") ? shape.at("transform") : shape;
 }
 
-Transform parse_transform(const JsonCursor& shape) {
+Transform parse_transform(const JsonCursor& shape, const char* key) {
   Transform t;
-  const auto ops = shape.find("transform");
+  const auto ops = shape.find(key);
   if (!ops) return t;
   if (!ops->is_array()) ops->fail("expected an array of steps, e.g. [{\"scale\": 2}, {\"translate\": [0, 1, 0]}]");
   for (size_t i = 0; i < ops->size(); ++i) {
@@ -323,10 +380,13 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       continue;
     }
     if (type == "instance") {
-      shape.only_keys({"type", "name", "prototype", "transform"});
+      shape.only_keys({"type", "name", "prototype", "transform", "transform_end"});
       const int prototype = prototype_of(shape, context);
-      place_instance(prototype, parse_transform(shape), shape.has("transform") ? shape.at("transform") : shape, context,
-                     {uint32_t(i), InstanceKey::kNoMatrix});
+      if (const auto motion = motion_of(shape))
+        place_moving_instance(prototype, *motion, shape, context, {uint32_t(i), InstanceKey::kNoMatrix});
+      else
+        place_instance(prototype, parse_transform(shape), shape.has("transform") ? shape.at("transform") : shape,
+                       context, {uint32_t(i), InstanceKey::kNoMatrix});
       continue;
     }
     if (type == "instances") {
@@ -344,6 +404,10 @@ void load_shapes(const JsonCursor& section, LoadContext& context) {
       continue;
     }
     check_triangle_shape_keys(shape, type, false);
+    if (const auto motion = motion_of(shape)) {
+      load_moving_shape(shape, type, *motion, InstanceKey{uint32_t(i), InstanceKey::kNoMatrix}, context);
+      continue;
+    }
     TriangleMesh mesh = mesh_of(shape, type, context);
     mesh.transform(parse_transform(shape));
     check_mesh_coordinates(mesh, shape);

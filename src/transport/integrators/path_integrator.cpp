@@ -246,6 +246,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
         const Light& light = *lights[size_t(chosen->pick.light)];
         const LightSample& ls = chosen->sample;
         Ray shadow;
+        shadow.time = ray.time;
         shadow.origin = offset_ray_origin(*hit, ls.wi, scene_.scene_scale);
         const ShadowSegment segment = shadow_segment(shadow.origin, hit->position, ls, scene_.scene_scale);
         shadow.direction = segment.direction;

@@ -39,6 +39,9 @@ struct TransportScene {
   /// (MaterialContext::dpdx … duvdy) from the camera ray's differentials, following them through specular bounces.
   /// False (the default) skips that work and leaves the footprint zero.
   bool texture_footprints = false;
+  /// Something moves while the shutter is open (EmbreeScene::has_motion): each camera sample then draws a time in
+  /// [0, 1] that its rays carry (Ray::time). False keeps every ray at time 0 and the sampler's dimensions as they were.
+  bool has_motion = false;
   /// The density camera paths draw wavelengths from (spectral/wavelengths/wavelength_density.h); nullptr: the visible density.
   const TabulatedWavelengthDensity* wavelength_density = nullptr;
 };

@@ -83,14 +83,14 @@ DistanceSampling distance_sampling_for(DistanceSampling requested, WavelengthMod
 }
 
 std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::shadow(
-    Vec3 origin, Vec3 direction, float distance, MediumStack stack, const SampledWavelengths& lambda,
+    Vec3 origin, Vec3 direction, float distance, float time, MediumStack stack, const SampledWavelengths& lambda,
     Sampler& sampler, SampledSpectrum throughput) const {
   ShadowResult out{Float4(1.0f), Float4(1.0f)};
   const auto& media = *scene_.media;
   float remaining = std::isinf(distance) ? INFINITY : distance * (1.0f - 0x1p-12f);
   int panes = 0;
   for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
-    Ray ray{origin, direction, 0.0f, remaining};
+    Ray ray{origin, direction, 0.0f, remaining, time};
     const std::optional<SurfaceHit> hit = scene_.surfaces.geometry->intersect(ray);
     const int medium = stack.current(media);
     if (medium >= 0) {
@@ -218,7 +218,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       // The equiangular technique is NEE from this segment's scattering points: none when those would end the path.
       const bool medium_vertex_allowed = !settings_.max_depth_includes_media || in_walk || depth < path.max_depth;
       if (medium_vertex_allowed && uses_equiangular(medium)) {
-        equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}};
+        equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}, ray.time};
         int light_group = 0;
         SampledSpectrum direct =
             equiangular_direct(*equiangular, medium, beta, pdf_ratio, stack, lambda, sampler, light_group);
@@ -412,7 +412,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         if (!wrong_side && (visibility_first || towards)) {
           const Vec3 origin = origin_towards(ls->wi);
           const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
-          const auto tr = shadow(origin, segment.direction, segment.length, stack_towards(ls->wi), lambda, sampler,
+          const auto tr = shadow(origin, segment.direction, segment.length, ray.time, stack_towards(ls->wi), lambda, sampler,
                                  towards ? towards->throughput : beta);  // β: read by tracked media only
           if (tr && visibility_first) towards = evaluate();
           if (tr && towards) {

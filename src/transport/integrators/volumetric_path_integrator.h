@@ -85,7 +85,8 @@ class VolumetricPathIntegrator {
   /// Transmittance from `origin` along `direction` over `distance`, crossing index-matched boundaries (and the
   /// media behind them); std::nullopt if a real surface blocks the way.
   /// `throughput`: the direction-sampling technique's throughput along this direction (spectral tracking).
-  std::optional<ShadowResult> shadow(Vec3 origin, Vec3 direction, float distance, MediumStack stack,
+  /// `time`: the path's moment in the shutter (Ray::time), where moving objects block it.
+  std::optional<ShadowResult> shadow(Vec3 origin, Vec3 direction, float distance, float time, MediumStack stack,
                                      const SampledWavelengths& lambda, Sampler& sampler,
                                      SampledSpectrum throughput) const;
   /// Whether the equiangular technique runs on segments through `medium` (see the setting).

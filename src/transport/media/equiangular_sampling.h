@@ -15,6 +15,7 @@ struct EquiangularSegment {
   Vec3 origin, direction;  ///< direction: unit
   float t0 = 0, t1 = 0;    ///< t1 may be large (1e30) for a segment that leaves the scene
   Vec3 light_m;
+  float time = 0;  ///< the path's moment in the shutter (Ray::time): where moving objects block the light
 
   /// Equiangular parameterisation (Kulla & Fajardo 2012, "Importance Sampling Techniques for Path Tracing in
   /// Participating Media", Computer Graphics Forum 31(4), EGSR; its point-light section): with θ(t) = atan((t − Δ)/h), t = Δ + h·tan(θ) for θ uniform in

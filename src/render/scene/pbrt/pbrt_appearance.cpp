@@ -787,6 +787,7 @@ void PbrtConverter::light_source(const PbrtStatement& s) {
   PbrtParams p(*this, s, context, defaults == state_.attributes.end() ? nullptr : &defaults->second);
   const PbrtMatrix world = world_from_object();
   if (!world.is_finite() || !world.is_affine()) throw InputError(s.where, context + ": the current transform is not finite and affine");
+  if (ctm_moves()) ignore(context + " that moves (ActiveTransform: lights stay at their start placement)", s.where);
   const auto point = [&](const char* name, Vec3d fallback) {
     const std::vector<double> v = p.numbers(name, {PbrtParamType::point3});
     if (!v.empty() && v.size() != 3) throw InputError(s.where, context + ": \"" + name + "\" takes one point");

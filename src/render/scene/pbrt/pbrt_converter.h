@@ -62,6 +62,11 @@ class PbrtParams {
 
 struct PbrtGraphicsState {
   PbrtMatrix ctm = PbrtMatrix::identity();
+  /// The CTM at TransformTimes' end time (motion blur): `ctm` is the start time's. Equal unless ActiveTransform
+  /// made them differ.
+  PbrtMatrix ctm_end = PbrtMatrix::identity();
+  /// Which of the two the transform statements change (ActiveTransform): 1 the start, 2 the end, 3 both.
+  int active_transforms = 3;
   std::string material;                    ///< Rimu material name; empty = pbrt's default diffuse
   std::optional<PbrtStatement> area_light;  ///< the AreaLightSource in effect
   bool reverse_orientation = false;
@@ -275,6 +280,14 @@ class PbrtConverter {
   /// placed the same object from the same file, else a new one.
   void object_instance(const PbrtStatement& s);
   PbrtMatrix world_from_object() const { return mirror_ * state_.ctm; }
+  /// The CTM moves while pbrt's shutter is open (its start and end differ).
+  bool ctm_moves() const;
+  /// A moving placement as Rimu takes it: where `start`/`end` (at TransformTimes' start and end times) put the
+  /// object at the camera's shutteropen and shutterclose (pbrt-v4's interpolation, MotionTransform, clamped to the
+  /// TransformTimes as pbrt clamps). Lists once, at `where`, a shutter reaching beyond the TransformTimes, where pbrt
+  /// holds the object still and Rimu moves it evenly over the whole shutter.
+  std::pair<PbrtMatrix, PbrtMatrix> shutter_placements(const PbrtMatrix& start, const PbrtMatrix& end,
+                                                       const SourceLocation& where);
   std::string path_for_document(const std::filesystem::path& absolute) const;
 
   SpectralLibrary& library_;
@@ -287,9 +300,8 @@ class PbrtConverter {
 
   PbrtGraphicsState state_;
   std::vector<std::pair<char, PbrtGraphicsState>> stack_;  ///< 'a' AttributeBegin, 't' TransformBegin, 'o' ObjectBegin
-  std::map<std::string, PbrtMatrix> named_coordinate_systems_;
+  std::map<std::string, std::pair<PbrtMatrix, PbrtMatrix>> named_coordinate_systems_;  ///< start and end CTMs
   bool world_begun_ = false;
-  bool end_time_active_ = false;
   std::optional<std::string> object_;  ///< inside ObjectBegin
   SourceLocation object_where_;        ///< that ObjectBegin
   json shape_alpha_;                   ///< the alpha of the Shape being converted (pbrt_shapes.cpp), or null
@@ -298,6 +310,11 @@ class PbrtConverter {
 
   // Camera: world-from-camera at the Camera statement, and its parameters.
   std::optional<PbrtMatrix> world_from_camera_;
+  std::optional<PbrtMatrix> world_from_camera_end_;  ///< a moving camera's at TransformTimes' end
+  SourceLocation camera_where_;
+  double transform_start_time_ = 0.0, transform_end_time_ = 1.0;  ///< TransformTimes
+  double shutter_open_ = 0.0, shutter_close_ = 1.0;                ///< Camera shutteropen, shutterclose
+  bool shutter_beyond_times_listed_ = false;
   PbrtMatrix mirror_ = PbrtMatrix::identity();  ///< makes pbrt's image-right Rimu's (see docs/pbrt-import.md)
   json camera_;
   double fov_deg_ = 90.0;

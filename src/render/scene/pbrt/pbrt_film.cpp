@@ -102,7 +102,9 @@ void PbrtConverter::film(const PbrtStatement& s) {
 
 void PbrtConverter::camera_shutter(PbrtParams& p) {
   shutter_given_ = p.get("shutteropen", {PbrtParamType::real}) || p.get("shutterclose", {PbrtParamType::real});
-  shutter_s_ = p.real("shutterclose", 1.0) - p.real("shutteropen", 0.0);
+  shutter_open_ = p.real("shutteropen", 0.0);
+  shutter_close_ = p.real("shutterclose", 1.0);
+  shutter_s_ = shutter_close_ - shutter_open_;
   if (!(shutter_s_ > 0.0))
     throw InputError(p.where(), "Camera: \"shutterclose\" must be later than \"shutteropen\" (the shutter would not "
                                 "open: pbrt-v4 refuses this too)");

@@ -266,6 +266,7 @@ void PbrtConverter::add_nanovdb_grid(PbrtParams& p, json& medium) {
   // pbrt-v4's NanoVDBMedium samples the grid trilinearly (SampleFromVoxels of order 1).
   medium["interpolation"] = "trilinear";
   // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium), after the file's own map.
+  if (ctm_moves()) ignore("a medium that moves (ActiveTransform: media stay at their start placement)", where);
   const json steps = transform_steps(world_from_object(), where);
   if (!steps.is_null()) medium["transform"] = steps;
 }
@@ -317,6 +318,7 @@ void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
   // pbrt-v4 interpolates its SampledGrid trilinearly between voxel centres (0 beyond the grid).
   medium["interpolation"] = "trilinear";
   // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium).
+  if (ctm_moves()) ignore("a medium that moves (ActiveTransform: media stay at their start placement)", where);
   const json steps = transform_steps(world_from_object(), where);
   if (!steps.is_null()) medium["transform"] = steps;
 }

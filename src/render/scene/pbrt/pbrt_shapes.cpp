@@ -169,7 +169,8 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     // faces outwards under a mirroring transform too (its normal flips only with ReverseOrientation). An area light
     // with an image takes the mesh path: Rimu's emission images are on meshes.
     const bool image_light = state_.area_light && state_.area_light->find("filename") != nullptr;
-    if (whole && shape_alpha_.is_null() && !object_ && !state_.reverse_orientation && !image_light &&
+    // A moving sphere takes the mesh path too: Rimu's analytic spheres stay where they are.
+    if (whole && shape_alpha_.is_null() && !object_ && !state_.reverse_orientation && !image_light && !ctm_moves() &&
         !medium_in_front_only(current_material()) && world.is_finite() && world.is_affine() && is_similarity(world, scale)) {
       // pbrt's sphere uv is about its object axes (pole +z, u = 0 along +x): carried as their world directions,
       // so textures land where pbrt puts them (a mirroring CTM flips the direction u runs, as in pbrt).
@@ -337,8 +338,26 @@ void PbrtConverter::emit_shape(json shape, const SourceLocation& where, const st
     }
   }
   if (shape["type"] != "sphere") {
-    const json steps = transform_steps(object_ ? state_.ctm : world_from_object(), where);
-    if (!steps.is_null()) shape["transform"] = steps;
+    const PbrtMatrix placement = object_ ? state_.ctm : world_from_object();
+    const bool emits = state_.area_light && !object_ && emissive_capable;
+    const bool curves = shape["type"] == "curves";
+    if (ctm_moves() && curves && !object_)
+      ignore(context + " that moves (Rimu's curves do not: shown at the start placement)", where);
+    if (ctm_moves() && object_)
+      ignore(context + " moving inside ObjectBegin (shown at its start placement; an ObjectInstance can move)", where);
+    if (ctm_moves() && emits)
+      ignore("a moving area light (pbrt-v4 refuses it: \"Animated area lights are not supported\"); rendered at its "
+             "start placement, still",
+             where);
+    if (ctm_moves() && !object_ && !emits && !curves) {
+      // Motion blur: where the shape is at shutteropen and at shutterclose.
+      const auto [open, close] = shutter_placements(placement, mirror_ * state_.ctm_end, where);
+      shape["transform"] = json::array({{{"matrix", matrix_rows(open, where)}}});
+      shape["transform_end"] = json::array({{{"matrix", matrix_rows(close, where)}}});
+    } else {
+      const json steps = transform_steps(placement, where);
+      if (!steps.is_null()) shape["transform"] = steps;
+    }
   }
   if (state_.area_light) {
     if (object_) {

@@ -5,8 +5,10 @@
 #include <cstdint>
 #include <cstdlib>
 #include <sstream>
+#include <tuple>
 
 #include "render/scene/pbrt/pbrt_converter.h"
+#include "transport/geometry/motion_transform.h"
 #include "render/film/spectral_response.h"
 #include "spectral/indefinite_article.h"
 
@@ -172,8 +174,61 @@ json PbrtConverter::transform_steps(const PbrtMatrix& m, const SourceLocation& w
   return json::array({{{"matrix", std::move(rows)}}});
 }
 
+bool PbrtConverter::ctm_moves() const { return state_.ctm.m != state_.ctm_end.m; }
+
+namespace {
+
+Transform to_transform(const PbrtMatrix& m) {
+  std::array<float, 12> rows{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) rows[size_t(4 * i + j)] = float(m.m[i][j]);
+  bool invertible = false;
+  return Transform::from_rows(rows, invertible);
+}
+
+PbrtMatrix to_pbrt_matrix(const Transform& t) {
+  PbrtMatrix m = PbrtMatrix::identity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) m.m[i][j] = t.rows()[size_t(4 * i + j)];
+  return m;
+}
+
+}  // namespace
+
+std::pair<PbrtMatrix, PbrtMatrix> PbrtConverter::shutter_placements(const PbrtMatrix& start, const PbrtMatrix& end,
+                                                                     const SourceLocation& where) {
+  const double span = transform_end_time_ - transform_start_time_;
+  // pbrt-v4's AnimatedTransform: the fraction of the way from the start time to the end time, clamped.
+  const auto fraction = [&](double time) {
+    return span > 0 ? std::clamp((time - transform_start_time_) / span, 0.0, 1.0) : 0.0;
+  };
+  if ((shutter_open_ < transform_start_time_ || shutter_close_ > transform_end_time_) && !shutter_beyond_times_listed_) {
+    shutter_beyond_times_listed_ = true;
+    ignore("a shutter (shutteropen/shutterclose) reaching beyond TransformTimes: pbrt-v4 holds moving objects at "
+           "their start or end placement there, Rimu moves them evenly from the one at shutteropen to the one at "
+           "shutterclose",
+           where);
+  }
+  const double a = fraction(shutter_open_), b = fraction(shutter_close_);
+  if (a == 0.0 && b == 1.0) return {start, end};
+  bool valid = false;
+  const MotionTransform motion(to_transform(start), to_transform(end), valid);
+  return {to_pbrt_matrix(motion.at(float(a))), to_pbrt_matrix(motion.at(float(b)))};
+}
+
 void PbrtConverter::object_instance(const PbrtStatement& s) {
   const std::string& name = s.strings[0];
+  if (ctm_moves()) {
+    // A moving instance is a shape of its own (a batch holds still placements).
+    instance_batch_.reset();
+    const auto [open, close] = shutter_placements(world_from_object(), mirror_ * state_.ctm_end, s.where);
+    json shape = {{"type", "instance"}, {"prototype", name},
+                  {"transform", json::array({{{"matrix", matrix_rows(open, s.where)}}})},
+                  {"transform_end", json::array({{{"matrix", matrix_rows(close, s.where)}}})}};
+    origin("/shapes/" + std::to_string(shapes_.size()), s.where, "ObjectInstance \"" + name + "\"");
+    shapes_.push_back(std::move(shape));
+    return;
+  }
   json matrix = matrix_rows(world_from_object(), s.where);
   // Consecutive instances of one object from one file are one "instances" shape, a 3×4 matrix each, with one
   // origin holding a line per instance: 25,000 placed buddhas took 2 KB each as a shape object and an origin apiece.
@@ -197,16 +252,21 @@ void PbrtConverter::statement(const PbrtStatement& s) {
 
 void PbrtConverter::statement_body(const PbrtStatement& s) {
   const std::string& k = s.keyword;
+  // pbrt-v4 keeps two CTMs, at TransformTimes' start and end; ActiveTransform chooses which ones statements change.
+  const auto set = [&](const PbrtMatrix& m) {
+    if (state_.active_transforms & 1) state_.ctm = m;
+    if (state_.active_transforms & 2) state_.ctm_end = m;
+  };
   const auto apply = [&](const PbrtMatrix& t) {
-    if (end_time_active_) return;  // motion blur's end transform: reported once at ActiveTransform
-    state_.ctm = state_.ctm * t;
+    if (state_.active_transforms & 1) state_.ctm = state_.ctm * t;
+    if (state_.active_transforms & 2) state_.ctm_end = state_.ctm_end * t;
   };
   const auto require_world = [&](bool inside) {
     if (world_begun_ != inside)
       throw InputError(s.where, k + (inside ? " is only allowed after WorldBegin" : " is only allowed before WorldBegin"));
   };
   if (k == "Identity") {
-    if (!end_time_active_) state_.ctm = PbrtMatrix::identity();
+    set(PbrtMatrix::identity());
   } else if (k == "Translate") {
     apply(PbrtMatrix::translate(s.numbers[0], s.numbers[1], s.numbers[2]));
   } else if (k == "Scale") {
@@ -222,21 +282,27 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
   } else if (k == "Transform" || k == "ConcatTransform") {
     const PbrtMatrix m = PbrtMatrix::from_pbrt_numbers(s.numbers.data());
     if (k == "Transform") {
-      if (!end_time_active_) state_.ctm = m;
+      set(m);
     } else {
       apply(m);
     }
   } else if (k == "CoordinateSystem") {
-    named_coordinate_systems_[s.strings[0]] = state_.ctm;
+    named_coordinate_systems_[s.strings[0]] = {state_.ctm, state_.ctm_end};
   } else if (k == "CoordSysTransform") {
     const auto it = named_coordinate_systems_.find(s.strings[0]);
     if (it == named_coordinate_systems_.end()) throw InputError(s.where, "CoordSysTransform: no coordinate system named \"" + s.strings[0] + "\"");
-    state_.ctm = it->second;
+    std::tie(state_.ctm, state_.ctm_end) = it->second;
   } else if (k == "ActiveTransform") {
-    end_time_active_ = s.strings[0] == "EndTime";
-    if (s.strings[0] != "StartTime") ignore("ActiveTransform " + s.strings[0] + " (motion blur: the start transform is used)", s.where);
+    const std::string& which = s.strings[0];
+    if (which != "StartTime" && which != "EndTime" && which != "All")
+      throw InputError(s.where, "ActiveTransform: expected StartTime, EndTime or All, not " + which);
+    state_.active_transforms = which == "StartTime" ? 1 : which == "EndTime" ? 2 : 3;
   } else if (k == "TransformTimes") {
-    ignore("TransformTimes (motion blur)", s.where);
+    require_world(false);
+    if (!(s.numbers[1] >= s.numbers[0]) || !std::isfinite(s.numbers[0]) || !std::isfinite(s.numbers[1]))
+      throw InputError(s.where, "TransformTimes: the end time must be finite and not before the start time");
+    transform_start_time_ = s.numbers[0];
+    transform_end_time_ = s.numbers[1];
   } else if (k == "ReverseOrientation") {
     state_.reverse_orientation = !state_.reverse_orientation;
   } else if (k == "AttributeBegin" || k == "TransformBegin") {
@@ -250,6 +316,7 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
       state_ = stack_.back().second;
     } else {
       state_.ctm = stack_.back().second.ctm;  // TransformEnd restores the transform only
+      state_.ctm_end = stack_.back().second.ctm_end;
     }
     stack_.pop_back();
   } else if (k == "Attribute") {
@@ -272,7 +339,15 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     const auto world_from_camera = state_.ctm.inverse();
     if (!world_from_camera) throw InputError(s.where, "Camera: the camera transform is singular");
     world_from_camera_ = *world_from_camera;
-    named_coordinate_systems_["camera"] = *world_from_camera;
+    camera_where_ = s.where;
+    PbrtMatrix world_from_camera_end = *world_from_camera;
+    if (ctm_moves()) {
+      // A moving camera: pbrt-v4 animates its transform between the two CTMs as it does a shape's.
+      const auto end = state_.ctm_end.inverse();
+      if (!end) throw InputError(s.where, "Camera: the camera transform at the end time (ActiveTransform EndTime) is singular");
+      world_from_camera_end_ = world_from_camera_end = *end;
+    }
+    named_coordinate_systems_["camera"] = {*world_from_camera, world_from_camera_end};
     PbrtParams p(*this, s, "Camera \"" + s.strings[0] + "\"");
     // pbrt's camera medium is the outside medium in effect at Camera (docs/pbrt-import.md, "Media").
     camera_medium_ = state_.outside_medium;
@@ -339,8 +414,9 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
   } else if (k == "WorldBegin") {
     require_world(false);
     world_begun_ = true;
-    state_.ctm = PbrtMatrix::identity();
-    named_coordinate_systems_["world"] = state_.ctm;
+    state_.ctm = state_.ctm_end = PbrtMatrix::identity();
+    state_.active_transforms = 3;
+    named_coordinate_systems_["world"] = {state_.ctm, state_.ctm_end};
     if (world_from_camera_) {
       // pbrt's camera space has image-right along +x = up × forward; Rimu's has forward × up (docs/pbrt-import.md).
       // Where they disagree the world is mirrored in the plane of the view direction and image-up, which leaves
@@ -498,9 +574,19 @@ json PbrtConverter::finish(const std::string& main_file) {
     const double half = fov_deg_ * M_PI / 360.0;
     vertical_fov_deg = 2.0 * std::atan(std::tan(half) * double(height_) / double(width_)) * 180.0 / M_PI;
   }
-  const PbrtMatrix& c = *world_from_camera_;
-  const Vec3d o = c.point({0, 0, 0}), f = c.vector({0, 0, 1}), u = c.vector({0, 1, 0});
+  PbrtMatrix c = *world_from_camera_;
   json camera = camera_.is_null() ? json::object() : camera_;
+  if (world_from_camera_end_) {
+    // A moving camera: where it is at shutteropen and shutterclose, in the world as mirrored (the mirror's plane
+    // passes through the camera at the start only).
+    const auto [open, close] = shutter_placements(mirror_ * c, mirror_ * *world_from_camera_end_, camera_where_);
+    c = open;
+    const Vec3d o = close.point({0, 0, 0}), f = close.vector({0, 0, 1}), u = close.vector({0, 1, 0});
+    camera["from_end"] = o;
+    camera["to_end"] = Vec3d{o[0] + f[0], o[1] + f[1], o[2] + f[2]};
+    camera["up_end"] = u;
+  }
+  const Vec3d o = c.point({0, 0, 0}), f = c.vector({0, 0, 1}), u = c.vector({0, 1, 0});
   camera["from"] = o;
   camera["to"] = Vec3d{o[0] + f[0], o[1] + f[1], o[2] + f[2]};
   camera["up"] = u;
