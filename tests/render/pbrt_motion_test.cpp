@@ -8,6 +8,7 @@
 
 #include "integration_support.h"
 #include "pbrt_test_support.h"
+#include "transport/geometry/motion_transform.h"
 
 using namespace rimu;
 using namespace rimu::test::pbrt_t;
@@ -108,6 +109,30 @@ TEST_CASE("pbrt motion: a moving camera, instance and sphere; lights and area li
   CHECK(listed(imported, "LightSource \"point\" that moves"));
   const auto scene = test::scene_from_json(imported.document);
   CHECK(scene->transport_view().has_motion);
+}
+
+TEST_CASE("pbrt motion: a turning ObjectInstance turns as pbrt-v4 turns it, in its camera-world rendering space") {
+  // pbrt-v4 interpolates an instance's placements C⁻¹·M·C, C the translation to the camera (0, 0, 5): a quarter turn
+  // about x placed at (2, 0, 0) carries the object's origin half-way to (2, 0, 0) + (0, 2.5, −2.5) − R45·(0, 0, 5) =
+  // (2, 1.036, −1.036), where a turn about its own origin would leave it at (2, 0, 0). The world is mirrored in x
+  // here (pbrt's image-right is −x for this camera; docs/pbrt-import.md).
+  const PbrtImport imported = import_text(kCamera + "WorldBegin\nObjectBegin \"tri\"\n" + kTriangle + "ObjectEnd\n"
+                                          "Translate 2 0 0\nActiveTransform EndTime\nRotate 90 1 0 0\nActiveTransform All\n"
+                                          "ObjectInstance \"tri\"\n");
+  const json& instance = imported.document["shapes"][0];
+  const json& prototype = imported.document["prototypes"][instance["prototype"].get<std::string>()];
+  // The prototype's copy is shifted by C⁻¹ = (0, 0, −5) after its own placement.
+  const json& shift = prototype[0]["transform"].back()["translate"];
+  CHECK(vec3_of(shift) == Vec3{0, 0, -5});
+  bool valid = false;
+  const MotionTransform motion(placement(instance, "transform"), placement(instance, "transform_end"), valid);
+  REQUIRE(valid);
+  const float y = float(5.0 * std::sqrt(0.5) - 2.5);
+  CHECK(length(motion.at(0.5f).point(vec3_of(shift)) - Vec3{-2, y, -y}) < 1e-5f);
+  // At the ends the placements are pbrt's CTMs (the origin at (±2, 0, 0)).
+  CHECK(length(motion.at(0.0f).point(vec3_of(shift)) - Vec3{-2, 0, 0}) < 1e-5f);
+  CHECK(length(motion.at(1.0f).point(vec3_of(shift)) - Vec3{-2, 0, 0}) < 1e-5f);
+  CHECK(test::scene_from_json(imported.document)->transport_view().has_motion);
 }
 
 TEST_CASE("pbrt motion: bad ActiveTransform and TransformTimes are errors with their line") {

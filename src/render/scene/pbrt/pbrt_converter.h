@@ -286,6 +286,11 @@ class PbrtConverter {
   /// object at the camera's shutteropen and shutterclose (pbrt-v4's interpolation, MotionTransform, clamped to the
   /// TransformTimes as pbrt clamps). Lists once, at `where`, a shutter reaching beyond the TransformTimes, where pbrt
   /// holds the object still and Rimu moves it evenly over the whole shutter.
+  /// pbrt-v4's render-from-world in its default camera-world rendering space (a translation taking the camera's
+  /// position at the middle of the TransformTimes to the origin), in which it interpolates a moving ObjectInstance.
+  PbrtMatrix render_from_world_for_instances() const;
+  /// The name of a copy of prototype `name` whose shapes are moved by `render_from_world` (made once per name).
+  std::string render_space_prototype(const std::string& name, const PbrtMatrix& render_from_world);
   std::pair<PbrtMatrix, PbrtMatrix> shutter_placements(const PbrtMatrix& start, const PbrtMatrix& end,
                                                        const SourceLocation& where);
   std::string path_for_document(const std::filesystem::path& absolute) const;

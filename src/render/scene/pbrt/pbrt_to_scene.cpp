@@ -216,15 +216,56 @@ std::pair<PbrtMatrix, PbrtMatrix> PbrtConverter::shutter_placements(const PbrtMa
   return {to_pbrt_matrix(motion.at(float(a))), to_pbrt_matrix(motion.at(float(b)))};
 }
 
+PbrtMatrix PbrtConverter::render_from_world_for_instances() const {
+  // pbrt-v4's CameraTransform for its default camera-world rendering space: the camera's position at the middle of
+  // the TransformTimes (its transform's translation, interpolated linearly) becomes the origin.
+  Vec3d p = world_from_camera_->point({0, 0, 0});
+  if (world_from_camera_end_) {
+    const Vec3d q = world_from_camera_end_->point({0, 0, 0});
+    for (int k = 0; k < 3; ++k) p[size_t(k)] = 0.5 * (p[size_t(k)] + q[size_t(k)]);
+  }
+  return PbrtMatrix::translate(-p[0], -p[1], -p[2]);
+}
+
+std::string PbrtConverter::render_space_prototype(const std::string& name, const PbrtMatrix& render_from_world) {
+  const std::string copy = name + " (pbrt render space)";
+  if (prototypes_.contains(copy)) return copy;
+  json shapes = prototypes_[name];
+  const Vec3d shift = render_from_world.point({0, 0, 0});
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    json& shape = shapes[i];
+    if (!shape.contains("transform")) shape["transform"] = json::array();
+    shape["transform"].push_back({{"translate", shift}});
+    // Errors in the copy point at the original's statement.
+    const std::string original = "/prototypes/" + name + "/" + std::to_string(i);
+    for (size_t k = 0; k < origins_.size(); ++k)
+      if (origins_[k].pointer == original) {
+        origin("/prototypes/" + copy + "/" + std::to_string(i), origins_[k].where, origins_[k].statement);
+        break;
+      }
+  }
+  prototypes_[copy] = std::move(shapes);
+  return copy;
+}
+
 void PbrtConverter::object_instance(const PbrtStatement& s) {
   const std::string& name = s.strings[0];
   if (ctm_moves()) {
-    // A moving instance is a shape of its own (a batch holds still placements).
+    // A moving instance is a shape of its own (a batch holds still placements). pbrt-v4 interpolates an instance's
+    // two placements as seen from its rendering space (by default camera-world: the world moved so that the
+    // camera's mid-shutter position is the origin), C⁻¹·M·C with C the translation to that position, and keeps the
+    // object's shapes in that space: so a turning instance turns about its origin's image in the shifted space,
+    // not about its own origin as a moving shape does. Rimu's instance moves C⁻¹·M, with the prototype's shapes
+    // shifted by C⁻¹ (a copy of the prototype): the same placement at every time.
     instance_batch_.reset();
-    const auto [open, close] = shutter_placements(world_from_object(), mirror_ * state_.ctm_end, s.where);
-    json shape = {{"type", "instance"}, {"prototype", name},
-                  {"transform", json::array({{{"matrix", matrix_rows(open, s.where)}}})},
-                  {"transform_end", json::array({{{"matrix", matrix_rows(close, s.where)}}})}};
+    const PbrtMatrix render_from_world = render_from_world_for_instances();
+    const PbrtMatrix world_from_render = *render_from_world.inverse();
+    const auto [open, close] = shutter_placements(render_from_world * state_.ctm * world_from_render,
+                                                  render_from_world * state_.ctm_end * world_from_render, s.where);
+    const PbrtMatrix open_world = mirror_ * world_from_render * open, close_world = mirror_ * world_from_render * close;
+    json shape = {{"type", "instance"}, {"prototype", render_space_prototype(name, render_from_world)},
+                  {"transform", json::array({{{"matrix", matrix_rows(open_world, s.where)}}})},
+                  {"transform_end", json::array({{{"matrix", matrix_rows(close_world, s.where)}}})}};
     origin("/shapes/" + std::to_string(shapes_.size()), s.where, "ObjectInstance \"" + name + "\"");
     shapes_.push_back(std::move(shape));
     return;
