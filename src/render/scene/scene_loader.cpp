@@ -65,8 +65,10 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
     const JsonCursor where = c.has("from_end") ? c.at("from_end") : c.has("to_end") ? c.at("to_end") : c.at("up_end");
     check_coordinates(from_end, where, "the camera position at shutter close");
     check_coordinates(to_end, where, "the point the camera looks at at shutter close");
-    if (length(to_end - from_end) == 0.0f) where.fail("'to_end' equals 'from_end': the camera has no viewing direction at shutter close");
-    if (length(cross(up_end, to_end - from_end)) == 0.0f) where.fail("'up_end' is parallel to the viewing direction at shutter close");
+    if (length(to_end - from_end) == 0.0f)
+      where.fail("'to_end' equals 'from_end': the camera has no viewing direction at shutter close");
+    if (length(cross(up_end, to_end - from_end)) == 0.0f)
+      where.fail("'up_end' is parallel to the viewing direction at shutter close");
     const Transform end = Transform::look_at(from_end, to_end, up_end);
     if (end.rows() != scene.camera.camera_to_world.rows()) scene.camera.camera_to_world_end = end;
   }

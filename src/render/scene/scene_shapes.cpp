@@ -50,22 +50,23 @@ void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type,
                                      "it a transform_end");
   }
   if (type == "mesh") {
-    shape.only_keys({"type", "name", "file", "object", "material", "transform", "transform_end", "emission", "light_group", "two_sided", "alpha",
-                     "uv_default"});
+    shape.only_keys({"type", "name", "file", "object", "material", "transform", "transform_end", "emission",
+                     "light_group", "two_sided", "alpha", "uv_default"});
   } else if (type == "quad") {
-    shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "transform_end", "emission", "light_group", "two_sided",
-                     "alpha"});
+    shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "transform_end",
+                     "emission", "light_group", "two_sided", "alpha"});
   } else if (type == "box") {
-    shape.only_keys({"type", "name", "min", "max", "material", "transform", "transform_end", "emission", "light_group", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "min", "max", "material", "transform", "transform_end", "emission", "light_group",
+                     "two_sided", "alpha"});
   } else if (type == "cylinder") {
-    shape.only_keys({"type", "name", "radius", "zmin", "zmax", "phimax_deg", "caps", "material", "transform", "transform_end", "emission",
-                     "light_group", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "radius", "zmin", "zmax", "phimax_deg", "caps", "material", "transform",
+                     "transform_end", "emission", "light_group", "two_sided", "alpha"});
   } else if (type == "disk") {
-    shape.only_keys({"type", "name", "radius", "inner_radius", "height", "phimax_deg", "material", "transform", "transform_end", "emission",
-                     "light_group", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "radius", "inner_radius", "height", "phimax_deg", "material", "transform",
+                     "transform_end", "emission", "light_group", "two_sided", "alpha"});
   } else {
-    shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform", "transform_end", "emission",
-                     "light_group", "two_sided", "alpha"});
+    shape.only_keys({"type", "name", "positions", "indices", "normals", "uvs", "uv_default", "material", "transform",
+                     "transform_end", "emission", "light_group", "two_sided", "alpha"});
   }
 }
 

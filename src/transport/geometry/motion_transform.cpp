@@ -112,7 +112,8 @@ TransformComponents decompose(const Transform& m) {
     for (int j = 0; j < 3; ++j)
       c.stretch[3 * i + j] = sign * (r[i] * a[j] + r[3 + i] * a[3 + j] + r[6 + i] * a[6 + j]);
   for (int i = 0; i < 3; ++i)
-    for (int j = i + 1; j < 3; ++j) c.stretch[3 * i + j] = c.stretch[3 * j + i] = 0.5 * (c.stretch[3 * i + j] + c.stretch[3 * j + i]);
+    for (int j = i + 1; j < 3; ++j)
+      c.stretch[3 * i + j] = c.stretch[3 * j + i] = 0.5 * (c.stretch[3 * i + j] + c.stretch[3 * j + i]);
   return c;
 }
 

@@ -218,7 +218,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       // The equiangular technique is NEE from this segment's scattering points: none when those would end the path.
       const bool medium_vertex_allowed = !settings_.max_depth_includes_media || in_walk || depth < path.max_depth;
       if (medium_vertex_allowed && uses_equiangular(medium)) {
-        equiangular = EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}, ray.time};
+        equiangular =
+            EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}, ray.time};
         int light_group = 0;
         SampledSpectrum direct =
             equiangular_direct(*equiangular, medium, beta, pdf_ratio, stack, lambda, sampler, light_group);
@@ -412,7 +413,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         if (!wrong_side && (visibility_first || towards)) {
           const Vec3 origin = origin_towards(ls->wi);
           const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
-          const auto tr = shadow(origin, segment.direction, segment.length, ray.time, stack_towards(ls->wi), lambda, sampler,
+          const auto tr = shadow(origin, segment.direction, segment.length, ray.time, stack_towards(ls->wi), lambda,
+                                 sampler,
                                  towards ? towards->throughput : beta);  // β: read by tracked media only
           if (tr && visibility_first) towards = evaluate();
           if (tr && towards) {

@@ -202,7 +202,8 @@ std::pair<PbrtMatrix, PbrtMatrix> PbrtConverter::shutter_placements(const PbrtMa
   const auto fraction = [&](double time) {
     return span > 0 ? std::clamp((time - transform_start_time_) / span, 0.0, 1.0) : 0.0;
   };
-  if ((shutter_open_ < transform_start_time_ || shutter_close_ > transform_end_time_) && !shutter_beyond_times_listed_) {
+  const bool beyond = shutter_open_ < transform_start_time_ || shutter_close_ > transform_end_time_;
+  if (beyond && !shutter_beyond_times_listed_) {
     shutter_beyond_times_listed_ = true;
     ignore("a shutter (shutteropen/shutterclose) reaching beyond TransformTimes: pbrt-v4 holds moving objects at "
            "their start or end placement there, Rimu moves them evenly from the one at shutteropen to the one at "
@@ -385,7 +386,8 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     if (ctm_moves()) {
       // A moving camera: pbrt-v4 animates its transform between the two CTMs as it does a shape's.
       const auto end = state_.ctm_end.inverse();
-      if (!end) throw InputError(s.where, "Camera: the camera transform at the end time (ActiveTransform EndTime) is singular");
+      if (!end)
+        throw InputError(s.where, "Camera: the camera transform at the end time (ActiveTransform EndTime) is singular");
       world_from_camera_end_ = world_from_camera_end = *end;
     }
     named_coordinate_systems_["camera"] = {*world_from_camera, world_from_camera_end};
