@@ -307,14 +307,13 @@ SurfaceHit EmbreeScene::shade_hit(const RTCRayHit& rh) const {
 
   const GeometryInfo* info = nullptr;
   const Transform* object_to_world = nullptr;
-  Transform moved;  // a moving instance's placement at the ray's time, as Embree interpolated it
+  std::optional<Transform> moved;  // a moving instance's placement at the ray's time, as Embree interpolated it
   if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     const Instance& instance = instances_[size_t(-1 - slot_of_geometry_[rh.hit.instID[0]])];
     info = &prototypes_[size_t(instance.prototype)].geometries[rh.hit.geomID];
     object_to_world = &instance.object_to_world;
     if (instance.motion >= 0) {
-      moved = interpolate_keys(motion_keys_[size_t(instance.motion)], rh.ray.time);
-      object_to_world = &moved;
+      object_to_world = &moved.emplace(interpolate_keys(motion_keys_[size_t(instance.motion)], rh.ray.time));
     }
   } else {
     info = &geometries_[size_t(slot_of_geometry_[rh.hit.geomID])];

@@ -250,11 +250,43 @@ std::optional<MotionTransform> motion_of(const JsonCursor& shape) {
 // A moving instance: every key of its motion is checked as a static placement would be.
 void place_moving_instance(int prototype, const MotionTransform& motion, const JsonCursor& shape, LoadContext& context,
                            InstanceKey key) {
+  // Checked after adding, on the keys the scene keeps (a failed check discards the whole scene).
+  EmbreeScene& geometry = context.scene.geometry;
+  geometry.add_instance(prototype, motion);
   const JsonCursor where = shape.at("transform_end");
-  for (const Transform& placement : motion.linear_keys(EmbreeScene::kMotionKeyAngle))
+  for (const Transform& placement : *geometry.instance_motion_keys(context.instance_keys.size()))
     check_instance_coordinates(context.prototype_bounds[prototype], placement, where);
-  context.scene.geometry.add_instance(prototype, motion);
   context.instance_keys.push_back(key);
+}
+
+// What a prototype is built from: its shapes' meshes in its own space, their materials and cut-outs, and the box
+// of their vertices (which every placement of the prototype is checked with).
+struct PrototypeParts {
+  std::vector<std::pair<TriangleMesh, int /*material*/>> meshes;
+  std::vector<std::shared_ptr<const AlphaMask>> alphas;
+  BoundsD bounds;
+};
+
+// Adds `shape`'s mesh (already in the prototype's space) to `parts`, checked as a scene's mesh is; a mesh of only
+// degenerate triangles is counted and left out.
+void add_prototype_part(const JsonCursor& shape, TriangleMesh mesh, LoadContext& context, PrototypeParts& parts) {
+  const int material = material_of(shape, context);
+  std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
+  check_mesh_coordinates(mesh, shape);  // the prototype's own space is a scene too (Embree checks it alike)
+  context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
+  count_normals_near_plane(mesh, context.scene);
+  for (const Vec3& p : mesh.positions) parts.bounds.extend(p);
+  if (mesh.triangle_count() > 0) {
+    parts.meshes.emplace_back(std::move(mesh), material);
+    parts.alphas.push_back(std::move(alpha));
+  }
+}
+
+// Builds the prototype (its BVH) and records its box; returns its index.
+int add_prototype(PrototypeParts parts, LoadContext& context) {
+  const int index = context.scene.geometry.add_prototype(std::move(parts.meshes), parts.alphas);
+  context.prototype_bounds[index] = parts.bounds;
+  return index;
 }
 
 // A triangle shape that moves while the shutter is open: its mesh in object space becomes a prototype of its own,
@@ -266,22 +298,12 @@ void load_moving_shape(const JsonCursor& shape, const std::string& type, const M
     if (shape.has(emissive))
       shape.at("transform_end").fail("an emissive shape cannot move (area lights are sampled where they are at "
                                      "shutter open); give it no transform_end");
-  TriangleMesh mesh = mesh_of(shape, type, context);
-  check_mesh_coordinates(mesh, shape);
-  const int material = material_of(shape, context);
-  std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
-  Scene& scene = context.scene;
   // No rewinding for a mirroring motion: an instance's normals go through the inverse transpose, which already
   // gives the normal a transformed, rewound mesh would have.
-  scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
-  if (mesh.triangle_count() == 0) return;
-  count_normals_near_plane(mesh, scene);
-  BoundsD bounds;
-  for (const Vec3& p : mesh.positions) bounds.extend(p);
-  std::vector<std::pair<TriangleMesh, int>> meshes;
-  meshes.emplace_back(std::move(mesh), material);
-  const int prototype = scene.geometry.add_prototype(std::move(meshes), {alpha});
-  context.prototype_bounds[prototype] = bounds;
+  PrototypeParts parts;
+  add_prototype_part(shape, mesh_of(shape, type, context), context, parts);
+  if (parts.meshes.empty()) return;  // only degenerate triangles (counted)
+  const int prototype = add_prototype(std::move(parts), context);
   place_moving_instance(prototype, motion, shape, context, key);
 }
 
@@ -456,29 +478,16 @@ void load_prototypes(const JsonCursor& section, LoadContext& context) {
   if (!section.is_object()) section.fail("expected an object of name → array of shapes");
   for (const auto& [name, unused] : section.value().items()) {
     const JsonCursor shapes = section.at(name);
-    std::vector<std::pair<TriangleMesh, int>> meshes;
-    std::vector<std::shared_ptr<const AlphaMask>> alphas;
-    BoundsD bounds;
+    PrototypeParts parts;
     for (size_t i = 0; i < shapes.size(); ++i) {
       const JsonCursor shape = shapes.at(i);
       const std::string type = shape.at("type").choice({"mesh", "triangles", "quad", "box", "cylinder", "disk"});
       check_triangle_shape_keys(shape, type, true);
       TriangleMesh mesh = mesh_of(shape, type, context);
       mesh.transform(parse_transform(shape));
-      const int material = material_of(shape, context);
-      std::shared_ptr<const AlphaMask> alpha = alpha_of(shape, context);
-      check_mesh_coordinates(mesh, shape);  // the prototype's own space is a scene too (Embree checks it alike)
-      context.scene.degenerate_triangles_removed += mesh.remove_degenerate_triangles();
-      count_normals_near_plane(mesh, context.scene);
-      for (const Vec3& p : mesh.positions) bounds.extend(p);
-      if (mesh.triangle_count() > 0) {
-        meshes.emplace_back(std::move(mesh), material);
-        alphas.push_back(std::move(alpha));
-      }
+      add_prototype_part(shape, std::move(mesh), context, parts);
     }
-    const int index = context.scene.geometry.add_prototype(std::move(meshes), alphas);
-    context.prototype_index[name] = index;
-    context.prototype_bounds[index] = bounds;
+    context.prototype_index[name] = add_prototype(std::move(parts), context);
   }
 }
 
