@@ -9,8 +9,10 @@
 # PBRT_BINARY is a CPU build of pbrt-v4 (never part of this repository). SCENES is the folder that holds the
 # repositories' files as SCENES/OWNER+REPO/PATH (the columns of bench/pbrt_corpus.txt). NAMEs pick scenes of the
 # list (default: all). Scenes of FORMAT v3 are first rewritten by `PBRT_BINARY --upgrade` into
-# corpus_NAME.pbrt next to the original, and v4 scenes copied to corpus_NAME.pbrt there (unique names: the side by
-# side names its work folders after the file). FORMAT v4-standins: a v4 scene some of whose files are absent from
+# corpus_NAME.pbrt next to the original, with the files they Include inlined first (bench/pbrt_v3_upgrade.py: the
+# upgrader leaves included files pbrt-v3), and v4 scenes copied to corpus_NAME.pbrt there (unique names: the side
+# by side names its work folders after the file). FORMAT v3-standins: upgraded so, then given stand-ins as below.
+# FORMAT v4-standins: a v4 scene some of whose files are absent from
 # the snapshot, copied by bench/pbrt_corpus_standins.py with those statements replaced (its header says how; the
 # format cell counts the replacements, listed in $OUT/NAME.standins.log). Environment: as bench/pbrt_side_by_side.sh (BUILD, OUT
 # [/tmp/pbrt_corpus], SPP, REF_SPP, THREADS, RESOLUTION, SPACE), plus NICE [19]: both renderers run under
@@ -67,21 +69,29 @@ while read -r name repo _commit path format; do
     rows+=("| $name | $format | missing: $src | | | | | | | | |")
     continue
   fi
-  if [[ $format == v3 ]]; then
-    if ! "$PBRT" --upgrade "$src" >"$entry.tmp" 2>"$OUT/$name.upgrade.log"; then
-      rows+=("| $name | v3 | pbrt --upgrade failed: $(grep -m1 -i error "$OUT/$name.upgrade.log" | sed "s/\x1b\[[0-9;]*m//g" | cut -c1-160) | | | | | | | | |")
-      rm -f "$entry.tmp"
+  standins_from="$src"
+  if [[ $format == v3 || $format == v3-standins ]]; then
+    # pbrt's upgrader leaves Included files as they are: bench/pbrt_v3_upgrade.py inlines them first.
+    upgraded="$(dirname "$src")/corpus_$name.upgraded.pbrt"
+    if ! python3 "$ROOT/bench/pbrt_v3_upgrade.py" "$PBRT" "$src" "$upgraded" 2>"$OUT/$name.upgrade.log"; then
+      rows+=("| $name | $format | pbrt --upgrade failed: $(grep -m1 -i error "$OUT/$name.upgrade.log" | sed "s/\x1b\[[0-9;]*m//g" | cut -c1-160) | | | | | | | | |")
+      rm -f "$upgraded"
       continue
     fi
-    mv "$entry.tmp" "$entry"
-  elif [[ $format == v4-standins ]]; then
+    if [[ $format == v3 ]]; then
+      mv "$upgraded" "$entry"
+    else
+      standins_from="$upgraded"
+    fi
+  fi
+  if [[ $format == v4-standins || $format == v3-standins ]]; then
     # Files absent from the snapshot get stand-ins (bench/pbrt_corpus_standins.py); the cell counts them.
-    if ! python3 "$ROOT/bench/pbrt_corpus_standins.py" "$src" "$entry" >"$OUT/$name.standins.log" 2>&1; then
+    if ! python3 "$ROOT/bench/pbrt_corpus_standins.py" "$standins_from" "$entry" >"$OUT/$name.standins.log" 2>&1; then
       rows+=("| $name | $format | stand-ins failed: $(tail -1 "$OUT/$name.standins.log" | cut -c1-160) | | | | | | | | |")
       continue
     fi
     format="$format ($(grep -c '^standin: ' "$OUT/$name.standins.log"))"
-  else
+  elif [[ $format != v3 ]]; then
     cp "$src" "$entry"
   fi
   bash "$ROOT/bench/pbrt_side_by_side.sh" "$PBRT" "$entry" >"$log.md" 2>"$log.err"

@@ -13,11 +13,26 @@ then read the same derived file, in which:
   parameters, such as `scale`, and its transform kept);
 - a `Texture ... "imagemap"` whose `filename` is absent becomes a `constant` texture of 0.5 (grey for a spectrum).
 
+Four more rules make pbrt-v3 scenes (FORMAT v3-standins, upgraded first) readable by pbrt-v4 at all:
+
+- a material of type `fourier` (pbrt-v3's tabulated BSDF, which the upgrader keeps and pbrt-v4 refuses) becomes
+  `diffuse` with `rgb reflectance` 0.5, the stand-in Rimu itself uses for it;
+- a `MakeNamedMedium` of type `heterogeneous` (pbrt-v3's density grid, which the upgrader means to rename but does
+  not) becomes `uniformgrid`, which Rimu reads it as;
+- an `infinite` light's `nsamples` (pbrt-v3's sample count, which the upgrader keeps and pbrt-v4 refuses as
+  unused) is removed;
+- with the environment variable PBRT_IMGTOOL naming pbrt-v4's `imgtool`, an `infinite` light's map that is not
+  square (pbrt-v3's equirectangular maps, which pbrt-v4 refuses) is converted by `imgtool makeequiarea` to
+  NAME.equiarea.exr next to it and the light reads that (pbrt-v4's own route for such maps). Rimu reads the
+  original map itself (docs/pbrt-import.md); the corpus compares both on the converted one.
+
 The comparison then covers what the scene still holds; what was replaced is printed, one line each, to stdout
 (`standin: LINE: WHAT`), so that the summary can count it. The statement grammar used is pbrt-v4's: a statement is a
 capitalised keyword followed by its quoted strings, numbers and bracketed lists; `#` starts a comment.
 """
+import os
 import re
+import subprocess
 import sys
 from pathlib import Path
 
@@ -60,6 +75,21 @@ def without_parameter(text, type_name):
     return re.sub(r'"\s*' + words + r'\s*"\s*(\[[^\]]*\]|"[^"]*")', '', text, count=1)
 
 
+def image_is_square(imgtool, path):
+    """Whether `imgtool info` reports a square image (True when it cannot tell)."""
+    info = subprocess.run([imgtool, 'info', str(path)], capture_output=True, text=True).stdout
+    m = re.search(r'resolution\s*\(?\s*(\d+)\s*,\s*(\d+)', info)
+    return not m or m.group(1) == m.group(2)
+
+
+def fourier_replacement(text):
+    """A fourier material statement's text as a grey diffuse one (its name kept, its parameters dropped)."""
+    m = re.match(r'(MakeNamedMaterial\s+"[^"]*")', text)
+    if m:
+        return f'{m.group(1)} "string type" [ "diffuse" ] "rgb reflectance" [ 0.5 0.5 0.5 ]'
+    return 'Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]'
+
+
 def main(src, out):
     src = Path(src)
     text = src.read_text()
@@ -79,9 +109,30 @@ def main(src, out):
                 replacement = f'# stand-in: Shape {tokens[1]} of absent {name} removed'
         elif keyword == 'LightSource' and len(tokens) > 1 and tokens[1] == '"infinite"':
             name = parameter(tokens, 'string filename')
+            imgtool = os.environ.get('PBRT_IMGTOOL')
+            body, notes = text[start:end], []
+            if parameter(tokens, 'integer nsamples') is not None:
+                body = without_parameter(body, 'integer nsamples')
+                notes.append("nsamples removed")
             if name and not (base / name).is_file():
-                body = without_parameter(text[start:end], 'string filename')
-                replacement = f'{body}\n    "rgb L" [ 1 1 1 ] # stand-in: uniform, {name} absent'
+                body = without_parameter(body, 'string filename') + '\n    "rgb L" [ 1 1 1 ]'
+                notes.append(f'uniform, {name} absent')
+            elif name and imgtool and not image_is_square(imgtool, base / name):
+                converted = str(Path(name).with_suffix('')) + '.equiarea.exr'
+                if not (base / converted).is_file():
+                    subprocess.run([imgtool, 'makeequiarea', str(base / name), '--outfile', str(base / converted)],
+                                   check=True, capture_output=True)
+                body = without_parameter(body, 'string filename') + f'\n    "string filename" [ "{converted}" ]'
+                notes.append(f'{name} made equal-area by imgtool makeequiarea')
+            if notes:
+                replacement = f'{body} # stand-in: {"; ".join(notes)}'
+        elif keyword in ('Material', 'MakeNamedMaterial') and (
+                (keyword == 'Material' and len(tokens) > 1 and tokens[1] == '"fourier"') or
+                parameter(tokens, 'string type') == 'fourier'):
+            replacement = f'{fourier_replacement(text[start:end])} # stand-in: fourier material as grey diffuse'
+        elif keyword == 'MakeNamedMedium' and parameter(tokens, 'string type') == 'heterogeneous':
+            body = re.sub(r'"heterogeneous"', '"uniformgrid"', text[start:end], count=1)
+            replacement = f'{body} # stand-in: heterogeneous read as uniformgrid'
         elif keyword == 'Texture' and len(tokens) > 3 and tokens[3] == '"imagemap"':
             name = parameter(tokens, 'string filename')
             if name and not (base / name).is_file():

@@ -54,6 +54,51 @@ TEST_CASE("pbrt environment map: one bright texel lights a plane from the direct
   }
 }
 
+TEST_CASE("pbrt environment map: a map that is not square is read in pbrt-v3's equirectangular mapping") {
+  // pbrt-v4 refuses such a map; pbrt-v3 (whose scenes hold them) looked light-space w up at u = φ/2π, v = θ/π with
+  // φ = atan2(w.y, w.x) ∈ [0, 2π), θ = acos(w.z), v = 0 the top row. envmap_equirect.ppm is 16 × 8, black but
+  // for texel (11, 2): φ ∈ [247.5°, 270°], θ ∈ [45°, 67.5°]. "Rotate -90 1 0 0" takes light (x, y, z) to world
+  // (x, z, −y); the plane's normal, turned by "Rotate -34.27 1 0 0", is (0, 0.5631, 0.8264). A pixel of the plane
+  // shows Y = (0.5/π)·scale·∫texel max(0, n·w) dω, integrated here by a 200 × 200 midpoint rule over the texel.
+  // Misreadings give: u mirrored 0 (the texel behind the plane), v mirrored 0.37 of it, the rotation ignored ~0.
+  constexpr double kScale = 50.0;
+  constexpr int kSteps = 200;
+  const double n[3] = {0.0, std::sin(34.27 * M_PI / 180), std::cos(34.27 * M_PI / 180)};
+  double integral = 0.0;
+  for (int i = 0; i < kSteps; ++i)
+    for (int j = 0; j < kSteps; ++j) {
+      const double theta = M_PI / 8 * (2 + (i + 0.5) / kSteps), phi = 2 * M_PI / 16 * (11 + (j + 0.5) / kSteps);
+      const double w[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+      const double world[3] = {w[0], w[2], -w[1]};
+      const double cosine = n[0] * world[0] + n[1] * world[1] + n[2] * world[2];
+      integral += std::max(0.0, cosine) * std::sin(theta) * (M_PI / 8 / kSteps) * (2 * M_PI / 16 / kSteps);
+    }
+  const double expected = 0.5 / M_PI * kScale * integral;
+  const std::filesystem::path folder = test::test_data("pbrt");
+  const std::string text =
+      "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 20\n"
+      "Film \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 16\n"
+      "Integrator \"path\" \"integer maxdepth\" 1\nWorldBegin\n"
+      "AttributeBegin\n  Rotate -90 1 0 0\n"
+      "  LightSource \"infinite\" \"string filename\" \"envmap_equirect.ppm\" \"float scale\" 50\nAttributeEnd\n"
+      "AttributeBegin\n  Rotate -34.27 1 0 0\n  Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n"
+      "  Shape \"trianglemesh\" \"point3 P\" [-10 -10 0  10 -10 0  10 10 0  -10 10 0] \"integer indices\" [0 1 2  0 2 3]\n"
+      "AttributeEnd\n";
+  for (const std::string& prefix : {std::string(), std::string("Scale -1 1 1\n")}) {
+    CAPTURE(prefix);
+    const PbrtImport imported = import_pbrt_text(prefix + text, "t.pbrt", folder, test::library());
+    REQUIRE(imported.ignored.size() == 1);  // listed: pbrt-v4 would refuse the map
+    CHECK_CONTAINS(imported.ignored[0].what, "not square", "pbrt-v4 refuses it", "equirectangular");
+    CHECK(imported.document["lights"][0]["mapping"] == "equirectangular");
+    const auto scene = load_scene(imported.document, "t.pbrt", folder, test::library());
+    const test::Estimate y = test::estimate_of(test::luminance_values(*test::render_xyz(*scene, 64, 5).film));
+    CAPTURE(y.mean);
+    CAPTURE(y.standard_error);
+    CAPTURE(expected);
+    CHECK(std::abs(y.mean - expected) <= test::kSigmas * y.standard_error + 2e-3 * expected);
+  }
+}
+
 TEST_CASE("pbrt environment map: the JSON it becomes, illuminance, and errors") {
   const std::filesystem::path folder = test::test_data("pbrt");
   const std::string camera = "LookAt 0 0 5  0 0 0  0 1 0\nScale -1 1 1\nCamera \"perspective\"\nWorldBegin\n";

@@ -85,4 +85,18 @@ DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, 
   return image;
 }
 
+ImageSize read_image_size(const std::filesystem::path& path) {
+  const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);
+  std::optional<DecodedImage> header = stb_image_header(path, false);
+  if (!header) header = exr_image_header(path);
+  if (!header) {
+    check_exr_header_sizes(path, file_bytes);
+    header.emplace();
+    if (std::string error; !image_library().read_header(path.string(), *header, error))
+      throw InputError({path.string(), 0, ""}, "cannot read the image: " + error);
+  }
+  check_image_header(*header, file_bytes, path.string());
+  return {header->width, header->height};
+}
+
 }  // namespace rimu

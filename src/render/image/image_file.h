@@ -38,4 +38,13 @@ void check_image_header(const DecodedImage& header, std::uintmax_t file_bytes, c
 /// a header that fails the checks, or pixels the library cannot decode.
 DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit = false);
 
+/// An image's size in pixels.
+struct ImageSize {
+  int width = 0, height = 0;
+};
+
+/// The size `path`'s header states, after the checks of read_image_file, without decoding a pixel (for choosing how
+/// to read an image before reading it). Throws InputError as read_image_file does.
+ImageSize read_image_size(const std::filesystem::path& path);
+
 }  // namespace rimu

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "render/scene/pbrt/pbrt_converter.h"
+#include "render/image/image_file.h"
 #include "render/scene/pbrt/pbrt_v3_hint.h"
 #include "render/image/rgb_image.h"
 #include "transport/lights/environment_portal.h"
@@ -375,13 +376,15 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
   }
   if (type == "mix") return mix_material(s, name, context, material_defaults);
   if (const auto v4 = pbrt_v4_name_of_v3_material(type))
-    throw InputError(s.where, context + ": material \"" + type + "\" is pbrt-v3's" +
-                                  (v4->empty() ? std::string() : " (pbrt-v4's upgrader makes it \"" + *v4 + "\")") +
-                                  "; " + pbrt_v3_hint());
+    throw InputError(s.where, context + ": material \"" + type + "\" is pbrt-v3's (pbrt-v4's upgrader makes it \"" +
+                                  *v4 + "\"); " + pbrt_v3_hint());
   if (type != "diffuse" && type != "coateddiffuse" && type != "coatedconductor" && type != "conductor" &&
       type != "dielectric" && type != "thindielectric" && type != "diffusetransmission" && type != "hair" &&
       type != "subsurface") {
-    ignore("Material \"" + type + "\" (a grey diffuse of reflectance 0.5 stands in)", s.where);
+    ignore("Material \"" + type + "\" (" +
+               (type == "fourier" ? "pbrt-v3's tabulated BSDF, which pbrt-v4 no longer reads; " : "") +
+               "a grey diffuse of reflectance 0.5 stands in)",
+           s.where);
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
     return name;
   }
@@ -689,6 +692,36 @@ json PbrtConverter::image_environment(PbrtParams& p, const PbrtStatement& s, con
   const std::array<Vec3d, 3> axes = light_axes(world, context, s.where);
   double scale = p.real("scale", 1.0);
   const double illuminance = p.real("illuminance", -1.0);
+  const ImageSize size = read_image_size(path);
+  if (size.width != size.height) {
+    // pbrt-v4 refuses a map that is not square ("unlikely to be an equal-area environment map"). Such maps come
+    // from pbrt-v3 scenes, whose infinite light read them in the equirectangular mapping: light-space direction w
+    // at u = φ/2π, v = θ/π with φ = atan2(w.y, w.x) ∈ [0, 2π), θ = acos(w.z), v = 0 the top row (pbrt-v3,
+    // InfiniteAreaLight::Le). Rimu's equirectangular map has φ = atan2(−t·d, s·d), θ = acos(n·d): so s, t, n are
+    // the world images of light-space x, −y, z. The upgrader keeps the file as it is, so this reads the scene as
+    // pbrt-v3 rendered it.
+    ignore(context + " with a map that is not square (pbrt-v4 refuses it; read in pbrt-v3's equirectangular "
+                     "mapping)",
+           s.where);
+    if (illuminance > 0) {
+      // No pbrt-v4 definition to follow: the true illuminance of the upper hemisphere (light-space z > 0),
+      // Σ Y(pixel) cos θ Ω(pixel) with Ω = (2π/w)(π/h) sin θ at the pixel centre.
+      const RgbImage image = RgbImage::read(path, default_encoding_for(path));
+      const RgbColourSpace& srgb = RgbColourSpace::named("srgb-linear");
+      double e = 0.0;
+      for (int y = 0; y < image.height(); ++y) {
+        const double theta = M_PI * (y + 0.5) / image.height();
+        if (std::cos(theta) <= 0) continue;
+        const double weight = std::cos(theta) * std::sin(theta) * (2.0 * M_PI / image.width()) * (M_PI / image.height());
+        for (int x = 0; x < image.width(); ++x) e += srgb.to_xyz(image.pixel(x, y)).y * weight;
+      }
+      if (!(e > 0)) throw InputError(s.where, context + ": \"illuminance\" given for a map whose upper hemisphere is black");
+      scale *= illuminance / e;
+    }
+    const Vec3d minus_y{-axes[1][0], -axes[1][1], -axes[1][2]};
+    return {{"type", "environment"}, {"image", path_for_document(path)}, {"mapping", "equirectangular"},
+            {"frame", {axes[0], minus_y, axes[2]}}, {"scale", std::max(0.0, scale)}};
+  }
   if (illuminance > 0) {
     // pbrt-v4 (lights.cpp, ImageInfiniteLight) scales the map so that k_e = (2π/N) Σ Y(pixel) cos θ over the N
     // pixels whose centre has light-space z > 0 becomes the given illuminance. Each pixel subtends 4π/N sr, so the

@@ -90,6 +90,10 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
   if (type.empty()) throw InputError(s.where, "MakeNamedMedium \"" + name + "\": needs \"string type\"");
   if (media_defined_.count(name)) throw InputError(s.where, "MakeNamedMedium: \"" + name + "\" is already defined");
   const std::string context = "MakeNamedMedium \"" + name + "\" (" + type + ")";
+  // pbrt-v3's density grid. pbrt-v4's upgrader means to rename it "uniformgrid" (same parameters: density, nx, ny,
+  // nz, p0, p1, sigma_a, sigma_s, g, scale) but tests the medium's name instead of its type, so upgraded files
+  // keep "heterogeneous", which pbrt-v4 then refuses: read it as the upgrader intends.
+  if (type == "heterogeneous") type = "uniformgrid";
   media_where_[name] = s.where;
   if (type == "rgbgrid" || type == "cloud") {
     ignore("MakeNamedMedium \"" + type + "\" (not imported: shapes it fills render without a medium)", s.where);
