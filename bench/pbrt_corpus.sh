@@ -40,6 +40,8 @@ BUILD_DIR=$(realpath "${BUILD:-$ROOT/build}")
 LIST="$ROOT/bench/pbrt_corpus.txt"
 OUT=${OUT:-/tmp/pbrt_corpus}
 export OUT
+# pbrt-v4's imgtool beside the binary converts pbrt-v3's equirectangular maps for pbrt (bench/pbrt_corpus_standins.py).
+if [[ -z "${PBRT_IMGTOOL:-}" && -x "$(dirname "$PBRT")/imgtool" ]]; then export PBRT_IMGTOOL="$(dirname "$PBRT")/imgtool"; fi
 renice -n "${NICE:-19}" $$ >/dev/null
 mkdir -p "$OUT"
 
