@@ -10,6 +10,7 @@
 #include "render/camera/camera.h"
 #include "render/render_job.h"
 #include "pbrt_test_support.h"
+#include "transport/sampling/equal_area_square.h"
 
 using namespace rimu;
 using nlohmann::json;
@@ -123,4 +124,114 @@ TEST_CASE("scene camera: orthographic rays are parallel, from the film plane, an
   CHECK(camera_error({{"type", "orthographic"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"height", 2}, {"vertical_fov_deg", 30}})
             .find("no field of view") != std::string::npos);
   CHECK(camera_error({{"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"height", 2}}).find("orthographic") != std::string::npos);
+}
+
+TEST_CASE("scene camera: a spherical camera's directions, both mappings, its frame and its keys") {
+  CameraSettings settings;
+  settings.camera_to_world = Transform::look_at({1, 2, 3}, {1, 2, 4}, {0, 1, 0});  // camera axes = world axes
+  const auto direction = [&](SphericalMapping mapping, float u, float v, int w, int h) {
+    settings.spherical = mapping;
+    const Camera camera(settings, w, h);
+    const Ray ray = camera.generate_ray(u * float(w), v * float(h), {0.5f, 0.5f});
+    CHECK(ray.origin.x == doctest::Approx(1.0));
+    CHECK(ray.origin.z == doctest::Approx(3.0));
+    return ray.direction;
+  };
+  const auto near = [](Vec3 a, Vec3 b) { return length(a - b) < 1e-5f; };
+  // Image-right in the world: the look_at frame's x axis.
+  const Vec3 right = Transform::look_at({1, 2, 3}, {1, 2, 4}, {0, 1, 0}).vector({1, 0, 0});
+  using M = SphericalMapping;
+  CHECK(near(direction(M::equirectangular, 0.5f, 0.5f, 64, 32), {0, 0, 1}));    // centre: the view axis
+  CHECK(near(direction(M::equirectangular, 0.75f, 0.5f, 64, 32), right));       // a quarter turn to the right
+  CHECK(near(direction(M::equirectangular, 0.0f, 0.5f, 64, 32), {0, 0, -1}));   // the left edge: behind
+  CHECK(near(direction(M::equirectangular, 0.3f, 0.0f, 64, 32), {0, 1, 0}));    // the top row: up
+  CHECK(near(direction(M::equirectangular, 0.3f, 1.0f, 64, 32), {0, -1, 0}));   // the bottom row: down
+  CHECK(near(direction(M::equal_area_octahedral, 0.5f, 0.5f, 32, 32), {0, 0, 1}));
+  CHECK(near(direction(M::equal_area_octahedral, 1.0f, 0.5f, 32, 32), right));
+  CHECK(near(direction(M::equal_area_octahedral, 0.5f, 1.0f, 32, 32), {0, -1, 0}));
+  CHECK(near(direction(M::equal_area_octahedral, 0.0f, 0.0f, 32, 32), {0, 0, -1}));
+  // The frame turns the mapping in camera space: here its forward (z) is the camera's up.
+  settings.spherical_frame = {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
+  CHECK(near(direction(M::equirectangular, 0.5f, 0.5f, 64, 32), {0, 1, 0}));
+  settings.spherical_frame = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  // Equal areas: the pixel centres of an equal-area image sample the sphere uniformly, so E[y²] = 1/3.
+  {
+    double mean_y2 = 0.0;
+    settings.spherical = M::equal_area_octahedral;
+    const Camera camera(settings, 64, 64);
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const Vec3 d = camera.generate_ray(x + 0.5f, y + 0.5f, {0.5f, 0.5f}).direction;
+        mean_y2 += double(d.y) * d.y / 4096.0;
+      }
+    CHECK(mean_y2 == doctest::Approx(1.0 / 3.0).epsilon(0.01));
+  }
+  const auto camera_error = [](const json& camera) {
+    try {
+      test::scene_from_json({{"camera", camera}, {"shapes", json::array()}});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const json base = {{"type", "spherical"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}};
+  CHECK(camera_error(base) == "no error");
+  json with = base;
+  with["mapping"] = "equal_area_octahedral";
+  with["frame"] = {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
+  CHECK(camera_error(with) == "no error");
+  with["frame"] = {{1, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  CHECK_CONTAINS(camera_error(with), "/camera/frame", "perpendicular");
+  with = base;
+  with["vertical_fov_deg"] = 30;
+  CHECK_CONTAINS(camera_error(with), "/camera/vertical_fov_deg", "no 'vertical_fov_deg'");
+  with = base;
+  with["mapping"] = "mercator";
+  CHECK_CONTAINS(camera_error(with), "/camera/mapping", "equirectangular");
+  CHECK_CONTAINS(camera_error({{"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"mapping", "equirectangular"}}),
+                 "/camera/mapping", "spherical");
+}
+
+TEST_CASE("pbrt spherical camera: a small light appears at the pixel pbrt-v4's mapping puts it") {
+  // pbrt-v4 (SphericalCamera::GenerateRay): uv = pixel / resolution; equirectangular θ = π v, φ = 2π u,
+  // (sin θ cos φ, sin θ sin φ, cos θ); equal-area EqualAreaSquareToSphere(uv); then y and z swapped. With
+  // "LookAt 0 0 0  0 0 1  0 1 0" pbrt's camera space is its world space, so a light in world direction d is at
+  // pbrt's (d.x, d.z, d.y) before the swap. The brightest pixel of Rimu's render of the imported scene must be the
+  // one that holds it (the importer mirrors the world for its camera handedness: the test sees only the image).
+  const Vec3 d = normalize(Vec3{1.0f, 0.5f, 2.0f});
+  const std::string light = "AttributeBegin\nTranslate " + std::to_string(20 * d.x) + " " + std::to_string(20 * d.y) +
+                            " " + std::to_string(20 * d.z) +
+                            "\nAreaLightSource \"diffuse\" \"rgb L\" [100 100 100]\nShape \"sphere\" \"float radius\" 1\n"
+                            "AttributeEnd\n";
+  struct Case {
+    std::string mapping;
+    int width, height;
+    Vec2 uv;  // pbrt's image position of d
+  };
+  const Vec3 pre_swap{d.x, d.z, d.y};
+  float phi = std::atan2(pre_swap.y, pre_swap.x);
+  if (phi < 0) phi += 2 * float(M_PI);
+  const Vec2 equirect{phi / (2 * float(M_PI)), std::acos(pre_swap.z) / float(M_PI)};
+  for (const Case& c : {Case{"equirectangular", 64, 32, equirect},
+                        Case{"equalarea", 48, 48, equal_area_sphere_to_square(pre_swap)}}) {
+    CAPTURE(c.mapping);
+    const std::string text = "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"spherical\" \"string mapping\" \"" + c.mapping +
+                             "\"\nFilm \"rgb\" \"integer xresolution\" " + std::to_string(c.width) +
+                             " \"integer yresolution\" " + std::to_string(c.height) + "\nWorldBegin\n" + light;
+    const PbrtImport imported = import_text(text);
+    CHECK(imported.ignored.empty());
+    const auto scene = load_scene(imported.document, "t.pbrt", test::test_data("pbrt"), test::library());
+    const auto film = test::render_xyz(*scene, 16, 1).film;
+    int best_x = -1, best_y = -1;
+    double best = -1.0;
+    for (int y = 0; y < c.height; ++y)
+      for (int x = 0; x < c.width; ++x)
+        if (film->pixel_value(x, y)[1] > best) best = film->pixel_value(x, y)[1], best_x = x, best_y = y;
+    CAPTURE(best_x);
+    CAPTURE(best_y);
+    CHECK(std::abs(best_x + 0.5f - c.uv.x * c.width) <= 1.0f);
+    CHECK(std::abs(best_y + 0.5f - c.uv.y * c.height) <= 1.0f);
+  }
+  CHECK_CONTAINS(import_error("LookAt 0 0 0  0 0 1  0 1 0\nCamera \"spherical\" \"string mapping\" \"cube\"\nWorldBegin\n"),
+                 "t.pbrt:2", "\"equalarea\" or \"equirectangular\"");
 }

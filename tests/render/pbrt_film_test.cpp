@@ -187,3 +187,14 @@ TEST_CASE("pbrt film: pixel values scale exactly with iso times exposure time") 
 }
 
 }  // namespace pbrt_film_test
+
+TEST_CASE("pbrt parameters given twice: pbrt-v4 reads the first, and the second is listed") {
+  // pbrt-v3-scenes' contemporary-bathroom.pbrt gives its resolution twice (a second line added under the first).
+  const PbrtImport imported = test::import_pbrt_test_text(
+      "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 40 "
+      "\"integer yresolution\" 30\n  \"integer xresolution\" 80 \"integer yresolution\" 60\nWorldBegin\n");
+  CHECK(imported.document["film"]["resolution"] == nlohmann::json::array({40, 30}));
+  REQUIRE(imported.ignored.size() == 2);
+  CHECK_CONTAINS(imported.ignored[0].what, "\"integer xresolution\"", "given again", "reads the first");
+  CHECK(imported.ignored[0].first.line == 4);
+}

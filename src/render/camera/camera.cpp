@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "transport/sampling/equal_area_square.h"
+
 namespace rimu {
 
 Vec2 sample_uniform_disc(Vec2 u) {
@@ -16,6 +18,17 @@ Vec2 sample_uniform_disc(Vec2 u) {
     phi = float(M_PI / 2.0) - float(M_PI / 4.0) * (a / b);
   }
   return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+Vec3 spherical_camera_direction(SphericalMapping mapping, Vec2 uv) {
+  if (mapping == SphericalMapping::equal_area_octahedral) {
+    // equal_area_square_to_sphere puts the image's right edge on +x and its bottom edge on +y: y is turned down.
+    const Vec3 a = equal_area_square_to_sphere(uv);
+    return {a.x, -a.y, a.z};
+  }
+  const float theta = float(M_PI) * uv.y, phi = 2.0f * float(M_PI) * (uv.x - 0.5f);
+  const float sin_theta = std::sin(theta);
+  return {sin_theta * std::sin(phi), std::cos(theta), sin_theta * std::cos(phi)};
 }
 
 Camera::Camera(const CameraSettings& settings, int image_width, int image_height)
@@ -33,6 +46,15 @@ Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u, float time) co
   const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
   const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
   const float aspect = width_ / height_;
+  if (settings_.spherical != SphericalMapping::none) {
+    // Every film point a direction from the camera's position; no lens (pbrt's SphericalCamera has none either).
+    const Vec3 local = spherical_camera_direction(settings_.spherical, {film_x / width_, film_y / height_});
+    Ray ray;
+    ray.origin = camera_to_world.point({0.0f, 0.0f, 0.0f});
+    ray.direction = normalize(camera_to_world.vector(settings_.spherical_frame.to_world(local)));
+    ray.time = time;
+    return ray;
+  }
   if (settings_.orthographic_height > 0.0f) {
     // The film point on the z = 0 plane, the ray along +z; a lens bends it through the focus point straight ahead.
     const float half = 0.5f * settings_.orthographic_height;

@@ -3,6 +3,7 @@
 
 #include <optional>
 
+#include "transport/geometry/frame.h"
 #include "transport/geometry/motion_transform.h"
 #include "transport/geometry/ray.h"
 #include "transport/geometry/ray_differentials.h"
@@ -10,9 +11,17 @@
 
 namespace rimu {
 
-/// A pinhole (lens_radius = 0) or thin-lens perspective camera, or an orthographic one (orthographic_height > 0:
+/// How a spherical camera maps the image to directions (docs/scene-format.md, camera `spherical`).
+enum class SphericalMapping {
+  none,             ///< not a spherical camera
+  equirectangular,  ///< latitude-longitude: the image centre on the view axis, the top row straight up
+  equal_area_octahedral,  ///< Clarberg's square equal-area map: the centre on the view axis, the corners behind
+};
+
+/// A pinhole (lens_radius = 0) or thin-lens perspective camera, an orthographic one (orthographic_height > 0:
 /// parallel rays along +z from the points of a film orthographic_height scene units tall; with lens_radius > 0
-/// they pass a thin lens focused at focus_distance, as pbrt's OrthographicCamera).
+/// they pass a thin lens focused at focus_distance, as pbrt's OrthographicCamera), or a spherical one (spherical
+/// ≠ none: every pixel a direction of the whole sphere around the camera's position, pbrt's SphericalCamera).
 ///
 /// Film coordinates are continuous pixels: (0,0) is the top-left corner of the image, (width, height) the
 /// bottom-right. The vertical field of view spans the image height. The thin lens focuses at `focus_distance`
@@ -26,7 +35,18 @@ struct CameraSettings {
   float lens_radius = 0.0f;        ///< aperture radius in scene units; 0 = pinhole
   float focus_distance = 1.0f;     ///< scene units, along +z
   float orthographic_height = 0.0f;  ///< > 0: orthographic, the film's height in scene units (fov unused)
+  SphericalMapping spherical = SphericalMapping::none;  ///< ≠ none: spherical (fov, lens and height unused)
+  /// A spherical camera's mapping turned in camera space: the camera-space directions of the mapping's own x
+  /// (right), y (up) and z (forward) axes; either handedness. The pbrt importer uses it to follow pbrt's mappings.
+  Frame spherical_frame{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 };
+
+/// The camera-space direction (x right, y up, z forward; before spherical_frame) that `mapping` gives the image
+/// point (u, v) ∈ [0, 1]², u across from the left edge, v down from the top. Equirectangular: longitude
+/// φ = 2π(u − ½) from the view axis, positive towards the right, and polar angle θ = πv from straight up.
+/// Equal-area octahedral: Clarberg's mapping with the image's centre on +z, the middle of its right edge on +x and
+/// the middle of its bottom edge on −y (down).
+Vec3 spherical_camera_direction(SphericalMapping mapping, Vec2 uv);
 
 class Camera {
  public:

@@ -86,7 +86,9 @@ void apply_camera_keyframes(nlohmann::json& document, int frame, const std::stri
   camera["from"] = at.from;
   camera["to"] = at.to;
   camera["up"] = at.up;
-  camera["vertical_fov_deg"] = at.fov_deg;
+  // Only the perspective cameras have a field of view (the others refuse the key).
+  const std::string type = camera.contains("type") && camera["type"].is_string() ? camera["type"].get<std::string>() : "";
+  if (type != "orthographic" && type != "spherical") camera["vertical_fov_deg"] = at.fov_deg;
 }
 
 }  // namespace rimu

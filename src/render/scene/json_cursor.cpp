@@ -216,6 +216,20 @@ Vec3 JsonCursor::vec3() const {
   return {float(at(size_t(0)).number()), float(at(size_t(1)).number()), float(at(size_t(2)).number())};
 }
 
+Frame JsonCursor::frame() const {
+  if (!is_array() || size() != 3) fail("expected three directions [s, t, n]");
+  Vec3 axes[3];
+  for (size_t i = 0; i < 3; ++i) {
+    axes[i] = at(i).vec3();
+    if (!(length(axes[i]) > 0.0f)) at(i).fail("a direction cannot be zero");
+    axes[i] = normalize(axes[i]);
+  }
+  if (std::fabs(dot(axes[0], axes[1])) > 1e-4f || std::fabs(dot(axes[0], axes[2])) > 1e-4f ||
+      std::fabs(dot(axes[1], axes[2])) > 1e-4f)
+    fail("the three directions must be perpendicular to one another");
+  return {axes[0], axes[1], axes[2]};
+}
+
 Vec2 JsonCursor::vec2() const {
   if (!value_->is_array() || value_->size() != 2)
     fail("expected an array of 2 numbers, found " + json_preview(*value_));

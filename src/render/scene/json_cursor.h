@@ -7,6 +7,7 @@
 #include <string>
 
 #include "spectral/error.h"
+#include "transport/geometry/frame.h"
 #include "transport/geometry/vector.h"
 
 namespace rimu {
@@ -77,6 +78,9 @@ class JsonCursor {
   std::string choice(std::initializer_list<const char*> choices) const;
   Vec3 vec3() const;
   Vec2 vec2() const;
+  /// Three directions [s, t, n], perpendicular to one another to 1e-4 after normalising (either handedness):
+  /// an environment image's or a spherical camera's axes.
+  Frame frame() const;
   /// Rejects members other than `allowed` (catches typos such as "radious").
   void only_keys(std::initializer_list<const char*> allowed) const;
   /// The same for a list built at run time (e.g. a texture's own keys plus its mapping's).

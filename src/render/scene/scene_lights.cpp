@@ -29,16 +29,6 @@ Vec3 unit_direction(const JsonCursor& c) {
   return normalize(d);
 }
 
-/// An environment image's axes: three world directions [s, t, n], orthonormal to 1e-4 (either handedness: a
-/// mirrored frame shows the image mirrored). They are renormalised.
-Frame environment_frame(const JsonCursor& f) {
-  if (!f.is_array() || f.size() != 3) f.fail("expected three directions [s, t, n]");
-  const Vec3 s = unit_direction(f.at(0)), t = unit_direction(f.at(1)), n = unit_direction(f.at(2));
-  if (std::fabs(dot(s, t)) > 1e-4f || std::fabs(dot(s, n)) > 1e-4f || std::fabs(dot(t, n)) > 1e-4f)
-    f.fail("the three directions must be perpendicular to one another");
-  return {s, t, n};
-}
-
 std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& context);
 std::unique_ptr<Light> load_projection(const JsonCursor& l, LoadContext& context);
 
@@ -52,7 +42,7 @@ std::unique_ptr<Light> load_light(const JsonCursor& l, LoadContext& context) {
   // A goniometric image's default frame: image centre (local +z) along +y, as pbrt's after its y-z swap.
   if (type == "goniometric")
     return load_goniometric_image_light(l, context,
-                                        l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, 1}, {0, 1, 0}});
+                                        l.has("frame") ? l.at("frame").frame() : Frame{{1, 0, 0}, {0, 0, 1}, {0, 1, 0}});
   if (type == "point") {
     only_light_keys(l, {"type", "name", "light_group", "position", "intensity"});
     const EmitterGeometry geometry{EmitterKind::point};
@@ -118,7 +108,7 @@ std::unique_ptr<Light> load_environment(const JsonCursor& l, LoadContext& contex
     // Scenes are y-up: by default the image's local n (equirectangular: top row; octahedral: centre) is +y and its
     // s (left edge; middle of the right edge) is +x (environment_light.h). Pixel values are in film units, like
     // every RGB emission (SpectrumInputContext::emission_rgb_scale).
-    const Frame frame = l.has("frame") ? environment_frame(l.at("frame")) : Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
+    const Frame frame = l.has("frame") ? l.at("frame").frame() : Frame{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
     light = std::make_unique<EnvironmentLight>(emission.pixels, emission.scale, frame, mapping);
   } else {
     only_light_keys(l, {"type", "name", "light_group", "radiance", "portals"});
@@ -137,7 +127,7 @@ std::unique_ptr<Light> load_projection(const JsonCursor& l, LoadContext& context
   Frame frame;
   if (l.has("frame")) {
     if (l.has("direction") || l.has("up")) l.at("frame").fail("give either frame or direction (and up), not both");
-    frame = environment_frame(l.at("frame"));
+    frame = l.at("frame").frame();
   } else {
     const Vec3 axis = unit_direction(l.at("direction"));
     const Vec3 up_given = l.has("up") ? unit_direction(l.at("up")) : Vec3{0, 1, 0};

@@ -44,12 +44,13 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
   if (c.has("keyframes"))
     c.at("keyframes").fail("a camera path keyed by frame needs a frame number: render with --frame N");
   c.only_keys({"type", "from", "to", "up", "from_end", "to_end", "up_end", "vertical_fov_deg", "lens_radius",
-               "focus_distance", "height", "exposure", "white_balance"});
+               "focus_distance", "height", "mapping", "frame", "exposure", "white_balance"});
   // The physical camera (render/camera/camera_exposure.h): applied when the film is written.
   if (const auto exposure = c.find("exposure")) scene.settings.camera_exposure.exposure = parse_exposure(*exposure);
   if (const auto wb = c.find("white_balance"))
     scene.settings.camera_exposure.white_balance = parse_white_balance(*wb, library);
-  const std::string type = c.has("type") ? c.at("type").choice({"pinhole", "thin_lens", "orthographic"}) : "pinhole";
+  const std::string type =
+      c.has("type") ? c.at("type").choice({"pinhole", "thin_lens", "orthographic", "spherical"}) : "pinhole";
   const Vec3 from = c.at("from").vec3(), to = c.at("to").vec3();
   const Vec3 up = c.has("up") ? c.at("up").vec3() : Vec3{0, 1, 0};
   check_coordinates(from, c.at("from"), "the camera position");
@@ -71,6 +72,19 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
       where.fail("'up_end' is parallel to the viewing direction at shutter close");
     const Transform end = Transform::look_at(from_end, to_end, up_end);
     if (end.rows() != scene.camera.camera_to_world.rows()) scene.camera.camera_to_world_end = end;
+  }
+  if (type != "spherical")
+    for (const char* key : {"mapping", "frame"})
+      if (c.has(key)) c.at(key).fail(std::string("'") + key + "' applies to \"type\": \"spherical\" cameras only");
+  if (type == "spherical") {
+    for (const char* key : {"vertical_fov_deg", "lens_radius", "focus_distance", "height"})
+      if (c.has(key)) c.at(key).fail(std::string("a spherical camera sees every direction: it has no '") + key + "'");
+    scene.camera.spherical = c.has("mapping") && c.at("mapping").choice({"equirectangular", "equal_area_octahedral"}) ==
+                                                     "equal_area_octahedral"
+                                 ? SphericalMapping::equal_area_octahedral
+                                 : SphericalMapping::equirectangular;
+    if (c.has("frame")) scene.camera.spherical_frame = c.at("frame").frame();
+    return;
   }
   if (type == "orthographic") {
     if (c.has("vertical_fov_deg")) c.at("vertical_fov_deg").fail("an orthographic camera has no field of view: give its 'height'");

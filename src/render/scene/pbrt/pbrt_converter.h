@@ -324,6 +324,7 @@ class PbrtConverter {
   json camera_;
   double fov_deg_ = 90.0;
   bool orthographic_ = false;  ///< Camera "orthographic"
+  bool spherical_ = false;     ///< Camera "spherical"
   int width_ = 1280, height_ = 720;
   // Film and shutter (pbrt_film.cpp): pbrt's PixelSensor settings, combined by finish_exposure().
   std::optional<double> film_iso_;  ///< Film "iso", when given

@@ -55,8 +55,14 @@ PbrtParams::PbrtParams(PbrtConverter& converter, const PbrtStatement& s, std::st
                        const std::vector<PbrtParam>* defaults)
     : converter_(converter), statement_(s), context_(std::move(context)) {
   for (const PbrtParam& p : s.params) {
-    for (const PbrtParam* q : all_)
-      if (q->name == p.name) throw InputError(p.where, context_ + ": parameter \"" + p.name + "\" given twice");
+    // pbrt-v4 reads the first of a parameter given twice (ParameterDictionary::lookupSingle) and says nothing;
+    // pbrt-v3's files have such repeats (a resolution changed by adding a second line). The later one is listed.
+    if (std::any_of(all_.begin(), all_.end(), [&](const PbrtParam* q) { return q->name == p.name; })) {
+      converter_.ignore("parameter \"" + p.type_name + " " + p.name + "\" of " + context_ +
+                            " given again (pbrt-v4 reads the first)",
+                        p.where);
+      continue;
+    }
     all_.push_back(&p);
   }
   // Attribute defaults apply where the statement does not give the parameter; unused ones are not reported
@@ -396,21 +402,47 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     camera_medium_ = state_.outside_medium;
     camera_medium_where_ = s.where;
     orthographic_ = s.strings[0] == "orthographic";
-    if (s.strings[0] != "perspective" && !orthographic_) ignore("Camera \"" + s.strings[0] + "\" (rendered as perspective)", s.where);
-    if (!orthographic_) {
-      fov_deg_ = p.real("fov", 90.0);
-      if (!(fov_deg_ > 0 && fov_deg_ < 180)) throw InputError(s.where, "Camera: \"fov\" must be in (0, 180) degrees");
+    spherical_ = s.strings[0] == "spherical";
+    if (s.strings[0] != "perspective" && !orthographic_ && !spherical_)
+      ignore("Camera \"" + s.strings[0] + "\" (rendered as perspective)", s.where);
+    if (spherical_) {
+      // pbrt-v4's SphericalCamera: uv = pFilm / resolution; equirectangular: θ = π v, φ = 2π u, the direction
+      // (sin θ cos φ, sin θ sin φ, cos θ); equal-area: EqualAreaSquareToSphere(uv); then y and z swapped, in camera
+      // space (whose axes are Rimu's camera axes after the importer's mirror). Rimu's mappings put the image centre
+      // on the view axis; the frame turns them into pbrt's: equirectangular, pbrt's direction is (−c.z, c.y, −c.x)
+      // of Rimu's c (a mirror: pbrt's panorama runs right to left), equal-area (c.x, c.z, −c.y).
+      const std::string mapping = p.string("mapping", "equalarea");
+      if (mapping != "equalarea" && mapping != "equirectangular")
+        throw InputError(s.where, "Camera \"spherical\": \"mapping\" must be \"equalarea\" or \"equirectangular\", not \"" +
+                                      mapping + "\"");
+      camera_shutter(p);
+      p.real("lensradius", 0.0);  // read and unused by pbrt-v4's spherical camera too
+      p.real("focaldistance", 1e30);
+      camera_ = json::object();
+      camera_["type"] = "spherical";
+      if (mapping == "equirectangular") {
+        camera_["mapping"] = "equirectangular";
+        camera_["frame"] = {{0, 0, -1}, {0, 1, 0}, {-1, 0, 0}};
+      } else {
+        camera_["mapping"] = "equal_area_octahedral";
+        camera_["frame"] = {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
+      }
+    } else {
+      if (!orthographic_) {
+        fov_deg_ = p.real("fov", 90.0);
+        if (!(fov_deg_ > 0 && fov_deg_ < 180)) throw InputError(s.where, "Camera: \"fov\" must be in (0, 180) degrees");
+      }
+      camera_shutter(p);
+      const double lens_radius = p.real("lensradius", 0.0);
+      const double focal_distance = p.real("focaldistance", 1e6);
+      camera_ = json::object();
+      if (lens_radius > 0) {
+        camera_["type"] = "thin_lens";
+        camera_["lens_radius"] = lens_radius;
+        camera_["focus_distance"] = focal_distance;
+      }
+      if (orthographic_) camera_["type"] = "orthographic";
     }
-    camera_shutter(p);
-    const double lens_radius = p.real("lensradius", 0.0);
-    const double focal_distance = p.real("focaldistance", 1e6);
-    camera_ = json::object();
-    if (lens_radius > 0) {
-      camera_["type"] = "thin_lens";
-      camera_["lens_radius"] = lens_radius;
-      camera_["focus_distance"] = focal_distance;
-    }
-    if (orthographic_) camera_["type"] = "orthographic";
   } else if (k == "Film") {
     require_world(false);
     film(s);
@@ -633,7 +665,9 @@ json PbrtConverter::finish(const std::string& main_file) {
   camera["from"] = o;
   camera["to"] = Vec3d{o[0] + f[0], o[1] + f[1], o[2] + f[2]};
   camera["up"] = u;
-  if (orthographic_) {
+  if (spherical_) {
+    // no field of view
+  } else if (orthographic_) {
     // pbrt's default screen window spans [-1, 1] camera-space units along the shorter image axis; camera space is
     // scaled like the world when the camera transform scales (|up| is the world length of one camera unit).
     const double camera_unit_m = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
