@@ -13,12 +13,16 @@ then read the same derived file, in which:
   parameters, such as `scale`, and its transform kept);
 - a `Texture ... "imagemap"` whose `filename` is absent becomes a `constant` texture of 0.5 (grey for a spectrum).
 
-Four more rules make pbrt-v3 scenes (FORMAT v3-standins, upgraded first) readable by pbrt-v4 at all:
+Five more rules make pbrt-v3 scenes (FORMAT v3-standins, upgraded first) readable by pbrt-v4 at all:
 
 - a material of type `fourier` (pbrt-v3's tabulated BSDF, which the upgrader keeps and pbrt-v4 refuses) becomes
   `diffuse` with `rgb reflectance` 0.5, the stand-in Rimu itself uses for it;
 - a `MakeNamedMedium` of type `heterogeneous` (pbrt-v3's density grid, which the upgrader means to rename but does
   not) becomes `uniformgrid`, which Rimu reads it as;
+- a `Film`'s `maxcomponentvalue` (pbrt-v3's `maxsampleluminance`, upgraded) is removed: pbrt clamps each camera
+  sample's largest sensor RGB component to it, a bias that depends on how each renderer samples wavelengths and
+  paths (a uniform white sky of value 12 comes out 17 % darker under pbrt's clamp at 20, from the spread of its
+  single-sample spectral estimates), so the two are compared unclamped (Rimu lists the parameter);
 - an `infinite` light's `nsamples` (pbrt-v3's sample count, which the upgrader keeps and pbrt-v4 refuses as
   unused) is removed;
 - with the environment variable PBRT_IMGTOOL naming pbrt-v4's `imgtool`, an `infinite` light's map that is not
@@ -130,6 +134,9 @@ def main(src, out):
                 (keyword == 'Material' and len(tokens) > 1 and tokens[1] == '"fourier"') or
                 parameter(tokens, 'string type') == 'fourier'):
             replacement = f'{fourier_replacement(text[start:end])} # stand-in: fourier material as grey diffuse'
+        elif keyword == 'Film' and parameter(tokens, 'float maxcomponentvalue') is not None:
+            replacement = (f'{without_parameter(text[start:end], "float maxcomponentvalue")} '
+                           f'# stand-in: maxcomponentvalue removed')
         elif keyword == 'MakeNamedMedium' and parameter(tokens, 'string type') == 'heterogeneous':
             body = re.sub(r'"heterogeneous"', '"uniformgrid"', text[start:end], count=1)
             replacement = f'{body} # stand-in: heterogeneous read as uniformgrid'

@@ -105,8 +105,14 @@ TEST_CASE("pbrt dielectric with rgb eta: accepted as pbrt's unbounded RGB (grey:
   // Negative RGB is the parser's error (as for every RGB); a black index is an error at the parameter.
   CHECK_CONTAINS(test::pbrt_import_error(kCamera + "Material \"dielectric\" \"rgb eta\" [1.5 -1 1.5]"), "t.pbrt:4",
                  "RGB values must be >= 0");
-  CHECK_CONTAINS(test::pbrt_import_error(kCamera + "Material \"conductor\" \"rgb eta\" [0 0 0] \"rgb k\" [1 1 1]"), "t.pbrt:4",
+  CHECK_CONTAINS(test::pbrt_import_error(kCamera + "Material \"dielectric\" \"rgb eta\" [0 0 0]"), "t.pbrt:4",
                  "must not be black");
+  // A conductor's n = 0 with k > 0 is a meaningful complex index (pbrt-v4 takes it: pbrt-v3-scenes' dragon/f14-3);
+  // Rimu's n > 0 gets 1e-3 in its place.
+  const json metal = test::import_pbrt_test_text(kCamera + "MakeNamedMaterial \"m\" \"string type\" \"conductor\" "
+                                                 "\"rgb eta\" [0 0 0] \"rgb k\" [1 1 1]\n")
+                         .document["materials"]["m"];
+  CHECK(metal["n"] == 1e-3);
 }
 
 }  // namespace pbrt_rgb_optical_constants_test

@@ -154,12 +154,14 @@ std::optional<json> PbrtConverter::spectrum_value(const PbrtParam& param, bool i
   }
 }
 
-std::optional<json> PbrtConverter::optical_constant(const PbrtParam& param, PbrtParams& p) {
+std::optional<json> PbrtConverter::optical_constant(const PbrtParam& param, PbrtParams& p, bool conductor_index) {
   if (param.type != PbrtParamType::rgb) return spectrum_value(param, false, p.directory());
   // pbrt-v4 reads an RGB eta or k as an unbounded spectrum (RGBUnboundedSpectrum), not as a colour.
   // The parser has checked three finite numbers >= 0 (as for every RGB).
   const bool index = param.name.ends_with("eta");
-  if (index && !(std::max({param.numbers[0], param.numbers[1], param.numbers[2]}) > 0))
+  const bool black = !(std::max({param.numbers[0], param.numbers[1], param.numbers[2]}) > 0);
+  if (index && black && conductor_index) return json(1e-3);  // pbrt-v3-scenes' dragon/f14-3: "rgb eta" [0 0 0]
+  if (index && black)
     throw InputError(param.where, p.context() + ": \"" + param.name + "\" must not be black (an index of refraction is > 0)");
   json value = unbounded_rgb({param.numbers[0], param.numbers[1], param.numbers[2]}, state_.colour_space, param.where);
   // pbrt's sigmoid spectra never reach 0, Rimu's smoothest spectra of saturated colours can; an index must stay > 0,
@@ -447,7 +449,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
     } else if (eta && k && eta->type != PbrtParamType::texture && k->type != PbrtParamType::texture) {
       // Floats, inline pairs, spectrum files or RGB (pbrt's unbounded RGB); a named spectrum Rimu lacks is listed
       // by spectrum_value.
-      const auto n_value = optical_constant(*eta, p);
+      const auto n_value = optical_constant(*eta, p, true);
       const auto k_value = optical_constant(*k, p);
       if (n_value && k_value) {
         out["n"] = *n_value;

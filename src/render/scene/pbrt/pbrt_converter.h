@@ -196,7 +196,10 @@ class PbrtConverter {
   /// pbrt's unbounded RGB coefficient `c` in `colour_space` (a Rimu colour space name) as a Rimu spectral value.
   /// A conductor's eta or k, a dielectric's or coat's eta: as spectrum_value, and RGB as pbrt-v4's unbounded RGB
   /// (unbounded_rgb in the colour space in effect). Throws InputError for a black RGB index of refraction.
-  std::optional<json> optical_constant(const PbrtParam& param, PbrtParams& p);
+  /// An "eta" or "k" as Rimu's spectral value. An RGB index of 0 (black) is an error, except for a conductor
+  /// (`conductor_index`), whose complex index n + ik is meaningful at n = 0 with k > 0 and which pbrt-v4 accepts:
+  /// Rimu's n > 0 then gets 1e-3 (the normal-incidence reflectance of n = 0, k = 1 is 1; of n = 1e-3, 0.998).
+  std::optional<json> optical_constant(const PbrtParam& param, PbrtParams& p, bool conductor_index = false);
   json unbounded_rgb(const Vec3d& c, const std::string& colour_space, const SourceLocation& where);
 
   // pbrt_rgb_spectra.cpp: pbrt-v4's RGB spectra (RGBAlbedoSpectrum, RGBUnboundedSpectrum, RGBIlluminantSpectrum)
