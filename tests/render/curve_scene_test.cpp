@@ -163,3 +163,32 @@ TEST_CASE("curves render: a fibre in a uniform environment scatters albedo x rad
   const RenderedFilm rendered = render_xyz(*scene, 4, 3);
   for (const double y : luminance_values(*rendered.film)) CHECK(std::isfinite(y));
 }
+
+TEST_CASE("curves: a long bent flat curve is hit along its true centreline (Embree's tessellation rate)") {
+  // pbrt-v3-scenes' figures/f3-18 curve: one cubic Bézier 5 units long, bent into an S, 0.15-0.35 wide, seen from
+  // +z. Embree cuts a flat curve into 4 linear pieces per segment by default, whose chords stray up to
+  // max|B''|/(8·4²) ≈ 0.5 from the Bézier, more than the curve's half-width: a ray aimed at the centreline missed.
+  // curve_tessellation_rate asks for 5 % of the radius: every centreline point is hit, within that of its depth.
+  const Vec3 p[4] = {{-2, -1, -1}, {2, 2, 0}, {-2, -2, 0}, {2, 1, -1}};
+  json points = json::array();
+  for (const Vec3& q : p) points.insert(points.end(), {q.x, q.y, q.z});
+  const auto scene = scene_from_json(
+      fibre_scene({{"points", points}, {"width", nullptr}, {"widths", {0.35, 0.28, 0.22, 0.15}}, {"curve_type", "flat"}}));
+  for (int i = 1; i < 40; ++i) {
+    const float t = i / 40.0f, s = 1.0f - t;
+    const Vec3 c = p[0] * (s * s * s) + p[1] * (3 * s * s * t) + p[2] * (3 * s * t * t) + p[3] * (t * t * t);
+    CAPTURE(t);
+    const auto hit = scene->geometry.intersect(ray_between({c.x, c.y, 5.0f}, {c.x, c.y, -5.0f}));
+    REQUIRE(hit);
+    CHECK(std::abs(hit->position.z - c.z) < 0.05f);
+  }
+  CurveSet straight;
+  straight.points = {{{0, 0, 0}, 0.01f}, {{1, 0, 0}, 0.01f}, {{2, 0, 0}, 0.01f}, {{3, 0, 0}, 0.01f}};
+  straight.first_point = {0};
+  CHECK(curve_tessellation_rate(straight) == 4);  // straight: Embree's default
+  CurveSet bent = straight;
+  bent.points[1].position = {1, 1, 0};  // |P0 − 2P1 + P2| = 2: n = ⌈√(6·2 / (8·0.05·0.01))⌉ = 55
+  CHECK(curve_tessellation_rate(bent) == 55);
+  bent.points[1].position = {1, 10, 0};
+  CHECK(curve_tessellation_rate(bent) == 64);  // the most
+}

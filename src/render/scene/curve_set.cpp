@@ -189,4 +189,20 @@ bool leaves_cylinder(const CurveSet& set, uint32_t segment, float t, Vec3 ray_or
   return dot(from_axis - tangent * dot(from_axis, tangent), ray_direction) > 0.0f;
 }
 
+int curve_tessellation_rate(const CurveSet& set) {
+  constexpr int kDefault = 4, kMost = 64;
+  constexpr float kTolerance = 0.05f;  // of the segment's smallest radius
+  double most = kDefault;
+  for (const uint32_t first : set.first_point) {
+    const CurveControlPoint* p = &set.points[first];
+    const float second = 6.0f * std::max(length(p[0].position - p[1].position * 2.0f + p[2].position),
+                                         length(p[1].position - p[2].position * 2.0f + p[3].position));
+    const float radius = std::min({p[0].radius, p[1].radius, p[2].radius, p[3].radius});
+    if (!(radius > 0.0f)) continue;
+    most = std::max(most, std::ceil(std::sqrt(double(second) / (8.0 * kTolerance * radius))));
+    if (most >= kMost) return kMost;
+  }
+  return int(most);
+}
+
 }  // namespace rimu

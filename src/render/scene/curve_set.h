@@ -53,6 +53,13 @@ struct CurveSet {
   size_t segments() const { return first_point.size(); }
 };
 
+/// The linear pieces per segment Embree should cut `set`'s flat curves into (rtcSetGeometryTessellationRate, default
+/// 4): enough that the chord of a piece strays from the segment by at most 5 % of its smallest radius, in [4, 64].
+/// A cubic Bézier's distance from its piecewise-linear interpolant with n pieces is at most max|B''|/(8n²), with
+/// |B''| ≤ 6·max(|P0 − 2P1 + P2|, |P1 − 2P2 + P3|). Hair (short, nearly straight segments) keeps 4; a long
+/// bent curve of a few pixels' width (pbrt-v3-scenes' figures/f3-18) needs ~46.
+int curve_tessellation_rate(const CurveSet& set);
+
 /// The number of segments a curve of `points` control points has in `basis` and `degree` (2 or 3), or 0 when the
 /// count does not make whole segments (Bézier: degree·n + 1 points; B-spline: n + degree points).
 size_t curve_segment_count(size_t points, CurveBasis basis, int degree);

@@ -199,6 +199,9 @@ unsigned EmbreeScene::add_curves(CurveSet curves, int material) {
                                sizeof(Vec3), set.normals.size());
   }
   check_error("sharing curve buffers with Embree");
+  // Embree cuts flat curves into linear pieces (4 per segment by default), which bends a long curve's outline away
+  // from the Bézier by more than a pixel: pbrt-v4 intersects the curve itself.
+  if (set.kind == CurveKind::flat) rtcSetGeometryTessellationRate(geometry, float(curve_tessellation_rate(set)));
   rtcSetGeometryUserData(geometry, &set);
   rtcSetGeometryIntersectFilterFunction(geometry, curve_self_hit_filter);
   rtcSetGeometryOccludedFilterFunction(geometry, curve_self_hit_filter);
