@@ -447,3 +447,49 @@ TEST_CASE("load_mesh dispatches on the extension, case-insensitively") {
   expect_input_error([&] { load_mesh(ply, "square"); }, {"square.PLY", "single mesh"});
   expect_input_error([&] { load_mesh(dir.write("cube.stl", "solid")); }, {"cube.stl", "'.stl'", ".obj, .ply"});
 }
+
+TEST_CASE("triangle mesh: pbrt's front, by the shading normals or the winding, reversed, and pbrt's default uvs") {
+  // Two triangles of the unit square facing +z by their winding; the second's normals point to −z.
+  rimu::TriangleMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  const auto facing_z = [](const rimu::TriangleMesh& m, size_t t) {
+    const uint32_t* i = &m.indices[3 * t];
+    return cross(m.positions[i[1]] - m.positions[i[0]], m.positions[i[2]] - m.positions[i[0]]).z;
+  };
+  SUBCASE("without normals: the winding; reversed flips every triangle") {
+    rimu::TriangleMesh m = mesh;
+    CHECK(m.turn_to_pbrt_front(false) == 0);
+    CHECK(m.turn_to_pbrt_front(true) == 2);
+    CHECK(facing_z(m, 0) < 0);
+    CHECK(facing_z(m, 1) < 0);
+  }
+  SUBCASE("with normals: the side they point to; a corner without one leaves the winding") {
+    rimu::TriangleMesh m = mesh;
+    m.positions.insert(m.positions.end(), {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}});
+    m.indices.insert(m.indices.end(), {4, 5, 6});  // a third triangle, facing +z by its winding
+    m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 0}, {0, 0, -1}, {0, 0, -1}, {0, 0, -1}};
+    rimu::TriangleMesh r = m;
+    CHECK(m.turn_to_pbrt_front(false) == 1);  // only the third, whose normals point to −z
+    CHECK(facing_z(m, 0) > 0);
+    CHECK(facing_z(m, 1) > 0);  // vertex 3 has no normal: the winding
+    CHECK(facing_z(m, 2) < 0);
+    CHECK(r.turn_to_pbrt_front(true) == 2);  // reversed: normals negated; the second by its reversed winding
+    CHECK(r.normals[0].z < 0);
+    CHECK(facing_z(r, 0) < 0);
+    CHECK(facing_z(r, 1) < 0);
+    CHECK(facing_z(r, 2) > 0);
+  }
+  SUBCASE("pbrt's default uvs survive a rewind: the corners get their own vertices with the uvs of the order read") {
+    rimu::TriangleMesh m = mesh;
+    m.default_uvs = rimu::TriangleMesh::DefaultUvs::pbrt;
+    const rimu::Vec2 before = m.uv_at(1, 0.25f, 0.5f);  // the second triangle, at barycentrics (0.25, 0.5)
+    CHECK(m.turn_to_pbrt_front(true) == 2);
+    CHECK(m.positions.size() == 6);
+    CHECK(m.uvs.size() == 6);
+    // Rewinding swapped corners 1 and 2, so the same point now has barycentrics (0.5, 0.25).
+    const rimu::Vec2 after = m.uv_at(1, 0.5f, 0.25f);
+    CHECK(after.x == doctest::Approx(before.x));
+    CHECK(after.y == doctest::Approx(before.y));
+  }
+}

@@ -320,10 +320,38 @@ TEST_CASE("pbrt meshes: PLY files by path, missing ones are errors with the line
   CHECK(d["shapes"][0]["type"] == "mesh");
   CHECK(d["shapes"][0]["file"] == "quad.ply");
   CHECK_CONTAINS(error_of(kUnmirroredCamera + "\nShape \"plymesh\" \"string filename\" \"no_such.ply\"", true), "test.pbrt:6", "cannot find the PLY file");
-  // An emissive PLY is read here so its emitting side can be set: inline, two triangles.
+  // An emissive PLY stays a file; its emitting side follows pbrt's rule, which the loader applies ("front").
   const json e = import_text(kUnmirroredCamera + "AreaLightSource \"diffuse\"\nShape \"plymesh\" \"string filename\" \"quad.ply\"").document;
-  CHECK(e["shapes"][0]["type"] == "triangles");
-  CHECK(e["shapes"][0]["indices"].size() == 6);
+  CHECK(e["shapes"][0]["type"] == "mesh");
+  CHECK(e["shapes"][0]["front"] == "pbrt");
+  CHECK(e["shapes"][0]["reversed"] == false);
+}
+
+TEST_CASE("pbrt meshes: a PLY whose sides matter stays a file and renders as the same mesh written inline") {
+  // Emissive, ReverseOrientation'd and medium-bounding PLY meshes used to be written inline (triangle by triangle)
+  // so that their sides could follow pbrt's rule; the loader now applies the rule to the file (TriangleMesh::
+  // turn_to_pbrt_front). The same quad as a "trianglemesh" (still inline) must give the same image, bit for bit.
+  const std::string quad_inline =
+      "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  1 1 0  0 1 0] \"integer indices\" [0 1 2  0 2 3]\n";
+  const std::string quad_file = "Shape \"plymesh\" \"string filename\" \"quad.ply\"\n";
+  const std::string camera = "LookAt 0.5 0.5 2  0.5 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 60\n"
+                             "Film \"rgb\" \"integer xresolution\" 12 \"integer yresolution\" 12\nWorldBegin\n"
+                             "LightSource \"infinite\" \"rgb L\" [0.3 0.3 0.3]\n";
+  for (const std::string& setup :
+       {std::string("AreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n"),
+        std::string("ReverseOrientation\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n"),
+        std::string("ReverseOrientation\nMaterial \"diffuse\"\n"),
+        std::string("Scale 1 -1 1\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"bool twosided\" false\n")}) {
+    CAPTURE(setup);
+    const auto render = [&](const std::string& shape) {
+      const PbrtImport imported = import_text(camera + "AttributeBegin\n" + setup + shape + "AttributeEnd\n");
+      const auto scene = load_scene(imported.document, "test.pbrt", test::test_data("pbrt"), test::library());
+      return test::luminance_values(*test::render_xyz(*scene, 4, 1).film);
+    };
+    const std::vector<double> from_file = render(quad_file), inline_quad = render(quad_inline);
+    CHECK(from_file == inline_quad);
+    CHECK(*std::max_element(from_file.begin(), from_file.end()) > 0.0);
+  }
 }
 
 TEST_CASE("pbrt: what is not imported is listed once with a count and the first line; --strict refuses it") {

@@ -138,10 +138,12 @@ TEST_CASE("pbrt medium sides: spheres and PLY meshes with fog in front are turne
   const auto p = s["positions"][100].get<std::array<double, 3>>();
   const auto n = s["normals"][100].get<std::array<double, 3>>();
   CHECK(p[0] * n[0] + p[1] * n[1] + p[2] * n[2] < 0);
-  // quad.ply (the unit square, normal +z) with fog in front goes inline and is turned.
+  // quad.ply (the unit square, normal +z) with fog in front stays a file, turned by the loader ("reversed").
   const PbrtImport ply = import_world("", "MediumInterface \"\" \"fog\"\nMaterial \"interface\"\nShape \"plymesh\" \"string filename\" \"quad.ply\"\n");
   CHECK(ply.ignored.empty());
-  CHECK(ply.document["shapes"][0]["type"] == "triangles");
+  CHECK(ply.document["shapes"][0]["type"] == "mesh");
+  CHECK(ply.document["shapes"][0]["front"] == "pbrt");
+  CHECK(ply.document["shapes"][0]["reversed"] == true);
   CHECK(ply.document["shapes"][0]["material"] == ply.document["media"]["fog"]["boundary_material"]);
 }
 

@@ -51,7 +51,7 @@ void check_triangle_shape_keys(const JsonCursor& shape, const std::string& type,
   }
   if (type == "mesh") {
     shape.only_keys({"type", "name", "file", "object", "material", "transform", "transform_end", "emission",
-                     "light_group", "two_sided", "alpha", "uv_default"});
+                     "light_group", "two_sided", "alpha", "uv_default", "front", "reversed"});
   } else if (type == "quad") {
     shape.only_keys({"type", "name", "vertices", "uvs", "uv_default", "material", "transform", "transform_end",
                      "emission", "light_group", "two_sided", "alpha"});
@@ -155,6 +155,18 @@ TriangleMesh mesh_of(const JsonCursor& shape, const std::string& type, LoadConte
   // (1,1) (what the pbrt importer asks for, so that textures on uv-less pbrt meshes land where pbrt puts them).
   if (const auto convention = shape.find("uv_default"); convention && convention->choice({"barycentric", "pbrt"}) == "pbrt")
     mesh.default_uvs = TriangleMesh::DefaultUvs::pbrt;
+  // A mesh file's front: its counter-clockwise side (Rimu's), or pbrt-v4's rule (the side of its shading normals),
+  // either one flipped by "reversed". The pbrt importer sets these instead of writing the mesh inline.
+  const bool pbrt_front = shape.has("front") && shape.at("front").choice({"counter_clockwise", "pbrt"}) == "pbrt";
+  const bool reversed = shape.boolean_or("reversed", false);
+  if (pbrt_front) {
+    mesh.turn_to_pbrt_front(reversed);
+  } else if (reversed) {
+    for (Vec3& n : mesh.normals) n = -n;
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) std::swap(mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]);
+    if (mesh.uvs.empty() && mesh.default_uvs == TriangleMesh::DefaultUvs::pbrt)
+      mesh.default_uvs = TriangleMesh::DefaultUvs::pbrt_swapped;
+  }
   if (const std::string problem = mesh.validate(); !problem.empty()) shape.fail("invalid mesh: " + problem);
   return mesh;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <utility>
+#include <vector>
 
 namespace rimu {
 
@@ -86,6 +87,48 @@ size_t TriangleMesh::vertices_without_normal() const {
   size_t count = 0;
   for (const Vec3& n : normals) count += length_squared(n) == 0.0f;
   return count;
+}
+
+size_t TriangleMesh::turn_to_pbrt_front(bool reversed) {
+  if (reversed)
+    for (Vec3& n : normals) n = -n;
+  std::vector<uint8_t> flips(triangle_count(), 0);
+  size_t flipped = 0;
+  for (size_t t = 0; t < triangle_count(); ++t) {
+    const uint32_t* tri = &indices[3 * t];
+    bool flip = reversed;
+    if (!normals.empty()) {
+      const Vec3 a = normals[tri[0]], b = normals[tri[1]], c = normals[tri[2]];
+      if (dot(a, a) > 0.0f && dot(b, b) > 0.0f && dot(c, c) > 0.0f) {
+        const Vec3 g = cross(positions[tri[1]] - positions[tri[0]], positions[tri[2]] - positions[tri[0]]);
+        flip = dot(g, a + b + c) < 0.0f;
+      }
+    }
+    flips[t] = flip;
+    flipped += flip;
+  }
+  if (flipped == 0) return 0;
+  if (uvs.empty() && default_uvs != DefaultUvs::barycentric) {
+    // Per-corner vertices carrying the default uvs of the order read, before corners 1 and 2 trade places.
+    const Vec2 corner_uv[3] = {{0, 0}, {1, 0}, {1, 1}};
+    std::vector<Vec3> corner_positions, corner_normals;
+    std::vector<uint32_t> corner_indices;
+    corner_positions.reserve(indices.size());
+    for (size_t i = 0; i < indices.size(); ++i) {
+      corner_indices.push_back(uint32_t(i));
+      corner_positions.push_back(positions[indices[i]]);
+      if (!normals.empty()) corner_normals.push_back(normals[indices[i]]);
+      uvs.push_back(corner_uv[i % 3]);
+    }
+    if (default_uvs == DefaultUvs::pbrt_swapped)  // (0,0), (1,1), (1,0) at corners 0, 1, 2
+      for (size_t i = 0; i < uvs.size(); i += 3) std::swap(uvs[i + 1], uvs[i + 2]);
+    positions = std::move(corner_positions);
+    normals = std::move(corner_normals);
+    indices = std::move(corner_indices);
+  }
+  for (size_t t = 0; t < triangle_count(); ++t)
+    if (flips[t]) std::swap(indices[3 * t + 1], indices[3 * t + 2]);
+  return flipped;
 }
 
 }  // namespace rimu

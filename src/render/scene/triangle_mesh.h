@@ -43,6 +43,14 @@ struct TriangleMesh {
     const Vec2 a = uvs[tri[0]], b = uvs[tri[1]], c = uvs[tri[2]];
     return {b0 * a.x + b1 * b.x + b2 * c.x, b0 * a.y + b1 * b.y + b2 * c.y};
   }
+  /// Rewinds the triangles whose front by pbrt-v4's rule is not their counter-clockwise side, Rimu's front (the pbrt
+  /// importer's meshes: docs/scene-format.md, mesh "front"). pbrt's front is the side the shading normals point to
+  /// where all three corners have one (a (0, 0, 0) normal orients nothing), else the counter-clockwise side;
+  /// `reversed` (pbrt's ReverseOrientation, or a shape turned inside out to bound the medium in front of it) flips
+  /// both, and negates the normals. Rewinding swaps corners 1 and 2, so a mesh without uvs whose default is pbrt's
+  /// per-triangle (0,0), (1,0), (1,1) first gets its corners as vertices of their own with those uvs (in the
+  /// order read) if any triangle is rewound. Returns the number of triangles rewound.
+  size_t turn_to_pbrt_front(bool reversed);
   /// Applies `t` to positions and normals; flips the winding if `t` mirrors (determinant < 0).
   void transform(const Transform& t);
   /// Removes triangles whose area is zero or not finite (they would give NaN normals) and returns how many.

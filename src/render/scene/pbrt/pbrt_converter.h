@@ -265,6 +265,8 @@ class PbrtConverter {
   /// (TriangleMesh::normals_near_plane_area_share): there Rimu's image differs from pbrt-v4's.
   void list_normals_near_plane(const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices,
                                const std::vector<Vec3d>& normals, const SourceLocation& where, const std::string& context);
+  /// The listing itself, for a mesh already found to have them.
+  void list_normals_near_plane(const SourceLocation& where, const std::string& context);
   /// A cylinder, disk or sphere mesh (render/scene/analytic_shapes.h, in object space) through emit_mesh, counted
   /// against the generated-triangle limit.
   void emit_analytic_mesh(PbrtParams& p, AnalyticMesh mesh, const SourceLocation& where, const std::string& context);

@@ -133,16 +133,36 @@ void PbrtConverter::shape(const PbrtStatement& s) {
     if (!std::filesystem::is_regular_file(path)) throw InputError(s.where, context + ": cannot find the PLY file '" + path.string() + "'");
     shape_alpha_ = alpha_parameter(p, true);  // PLY meshes with cut-outs (leaves) carry uvs
     if (state_.area_light || state_.reverse_orientation || medium_in_front_only(current_material())) {
-      // An emitter's side (and a reversed surface, or one turned to bound its front medium) is decided here,
-      // triangle by triangle, so the mesh goes inline.
-      const TriangleMesh mesh = load_ply(path);
-      std::vector<Vec3d> positions, normals;
-      std::vector<std::array<double, 2>> uvs;
+      // An emitter's side (and a reversed surface's, or one turned to bound its front medium) follows pbrt's rule,
+      // triangle by triangle: the mesh stays a file, with "front": "pbrt" for the loader to apply it
+      // (TriangleMesh::turn_to_pbrt_front). It was written inline until 6 December 2026: pbrt-v3-scenes'
+      // coffee-splash turned a 4 MiB PLY into 90 MB of JSON and a 365 MiB peak.
+      TriangleMesh mesh = load_ply(path);
+      std::vector<Vec3d> positions;
+      positions.reserve(mesh.positions.size());
       for (const Vec3& v : mesh.positions) positions.push_back({v.x, v.y, v.z});
-      for (const Vec3& n : mesh.normals) normals.push_back({n.x, n.y, n.z});
-      for (const Vec2& uv : mesh.uvs) uvs.push_back({uv.x, uv.y});
-      emit_mesh(p, std::move(positions), mesh.indices, std::move(normals), std::move(uvs), context, int(mesh.triangle_count()),
-                true);
+      const bool turned = turn_for_front_medium(positions, mesh.indices, p.where(), context);
+      positions = {};
+      const bool reversed = state_.reverse_orientation != turned;
+      // The importer's own copy, oriented as the loader will orient it, for the in-plane normals check and the area.
+      mesh.default_uvs = TriangleMesh::DefaultUvs::pbrt;
+      mesh.turn_to_pbrt_front(reversed);
+      if (mesh.normals_near_plane_area_share() >= TriangleMesh::kNormalsNearPlaneWarningShare) list_normals_near_plane(p.where(), context);
+      double area_m2 = 0.0;
+      if (state_.area_light && !object_) {
+        const PbrtMatrix world = world_from_object();
+        for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+          const uint32_t* tri = &mesh.indices[3 * t];
+          const auto point = [&](uint32_t i) { return world.point({mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z}); };
+          const Vec3d a = point(tri[0]);
+          const Vec3d g = cross(sub(point(tri[1]), a), sub(point(tri[2]), a));
+          area_m2 += 0.5 * std::sqrt(dot(g, g));
+        }
+      }
+      shape_turned_for_medium_ = turned;
+      emit_shape({{"type", "mesh"}, {"file", path_for_document(path)}, {"uv_default", "pbrt"}, {"front", "pbrt"},
+                  {"reversed", reversed}},
+                 s.where, context, true, area_m2, int(mesh.triangle_count()));
       return;
     }
     // Without uv in the file, pbrt's per-triangle default (Rimu keeps the file's vertex order here).
@@ -312,6 +332,10 @@ void PbrtConverter::list_normals_near_plane(const std::vector<Vec3d>& positions,
   mesh.indices = indices;
   // A floor whose normals all point along it: pbrt-v3-scenes' buddha-fractal, docs/benchmarks.md "Real-scene corpus".
   if (mesh.normals_near_plane_area_share() < TriangleMesh::kNormalsNearPlaneWarningShare) return;
+  list_normals_near_plane(where, context);
+}
+
+void PbrtConverter::list_normals_near_plane(const SourceLocation& where, const std::string& context) {
   ignore(context + " with shading normals \"N\" in (or across) the plane of 1 % or more of its area: on an opaque "
                    "surface Rimu ends the paths that leave it below that plane, pbrt-v4 follows them through the surface "
                    "(its image can be brighter there)",
