@@ -17,6 +17,20 @@ using nlohmann::json;
 
 using namespace rimu::test::pbrt_t;
 
+namespace {
+
+// The message of loading a scene with this camera and no shapes, or "no error".
+std::string camera_error(const json& camera) {
+  try {
+    test::scene_from_json({{"camera", camera}, {"shapes", json::array()}});
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+
+}  // namespace
+
 TEST_CASE("pbrt film: cropwindow and pixelbounds become the film's crop, as pbrt-v4 rounds them") {
   // cropwindow [x0 x1 y0 y1] (either order): ceil(res · value); 10 × 8 → x 3-8, y 0-4.
   const PbrtImport cropped = import_pbrt(test::test_data("pbrt/crop.pbrt"), test::library());
@@ -111,14 +125,6 @@ TEST_CASE("scene camera: orthographic rays are parallel, from the film plane, an
   CHECK(corner.origin.y == doctest::Approx(2.0));             // top edge: +2
   CHECK(corner.direction.z == doctest::Approx(1.0));
   CHECK(centre.direction.z == doctest::Approx(1.0));
-  const auto camera_error = [](const json& camera) {
-    try {
-      test::scene_from_json({{"camera", camera}, {"shapes", json::array()}});
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   CHECK(camera_error({{"type", "orthographic"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"height", 2}}) == "no error");
   CHECK(camera_error({{"type", "orthographic"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}}).find("/camera") != std::string::npos);
   CHECK(camera_error({{"type", "orthographic"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"height", 2}, {"vertical_fov_deg", 30}})
@@ -166,14 +172,6 @@ TEST_CASE("scene camera: a spherical camera's directions, both mappings, its fra
       }
     CHECK(mean_y2 == doctest::Approx(1.0 / 3.0).epsilon(0.01));
   }
-  const auto camera_error = [](const json& camera) {
-    try {
-      test::scene_from_json({{"camera", camera}, {"shapes", json::array()}});
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   const json base = {{"type", "spherical"}, {"from", {0, 0, 0}}, {"to", {0, 0, 1}}};
   CHECK(camera_error(base) == "no error");
   json with = base;
