@@ -90,4 +90,13 @@ TEST_CASE("camera keyframes: malformed paths are errors naming the key") {
   CHECK(meet.find("no viewing direction") != std::string::npos);
   CHECK(error_of(R"({"camera": {"keyframes": [{"frame": 0, "from": [0, 0, 0], "to": [2, 0, 0]},
                                    {"frame": 2, "from": [2, 0, 0], "to": [0, 0, 0]}]}})", 0) == "no error");
+  // A spherical or orthographic camera has no field of view: a key giving one is an error, and none is written.
+  const std::string spherical = error_of(R"({"camera": {"type": "spherical", "keyframes": [
+                                              {"frame": 1, "from": [0, 0, 1], "to": [0, 0, 0], "vertical_fov_deg": 30}]}})", 1);
+  CHECK(spherical.find("/camera/keyframes/0/vertical_fov_deg") != std::string::npos);
+  CHECK(spherical.find("no field of view") != std::string::npos);
+  json panorama = json::parse(R"({"camera": {"type": "spherical", "keyframes": [
+                                    {"frame": 1, "from": [0, 0, 1], "to": [0, 0, 0]}]}})");
+  apply_camera_keyframes(panorama, 1, "path.json");
+  CHECK_FALSE(panorama["camera"].contains("vertical_fov_deg"));
 }

@@ -42,6 +42,8 @@ void apply_camera_keyframes(nlohmann::json& document, int frame, const std::stri
         camera.at(key).fail(std::string("a camera with \"keyframes\" takes '") + key + "' from its keys, not here");
     fallback.up = camera.has("up") ? point(camera.at("up")) : Point{0, 1, 0};
     fallback.fov_deg = camera.number_or("vertical_fov_deg", 40.0, 1e-3, 179.0);
+    const std::string type = camera.has("type") && camera.at("type").is_string() ? camera.at("type").string() : "";
+    const bool has_fov = type != "orthographic" && type != "spherical";
     const JsonCursor list = camera.at("keyframes");
     if (!list.is_array() || list.size() == 0)
       list.fail("expected a non-empty array of keys {\"frame\": N, \"from\": [x, y, z], \"to\": [x, y, z]}");
@@ -56,6 +58,8 @@ void apply_camera_keyframes(nlohmann::json& document, int frame, const std::stri
       key.from = point(k.at("from"));
       key.to = point(k.at("to"));
       key.up = k.has("up") ? point(k.at("up")) : fallback.up;
+      if (!has_fov && k.has("vertical_fov_deg"))
+        k.at("vertical_fov_deg").fail("a " + type + " camera has no field of view to key");
       key.fov_deg = k.number_or("vertical_fov_deg", fallback.fov_deg, 1e-3, 179.0);
       keys.push_back(key);
     }
@@ -86,7 +90,7 @@ void apply_camera_keyframes(nlohmann::json& document, int frame, const std::stri
   camera["from"] = at.from;
   camera["to"] = at.to;
   camera["up"] = at.up;
-  // Only the perspective cameras have a field of view (the others refuse the key).
+  // Only the perspective cameras have a field of view (the others refuse the key, and their keys may not give it).
   const std::string type = camera.contains("type") && camera["type"].is_string() ? camera["type"].get<std::string>() : "";
   if (type != "orthographic" && type != "spherical") camera["vertical_fov_deg"] = at.fov_deg;
 }
