@@ -7,16 +7,14 @@ namespace rimu {
 
 RgbRadianceImage::RgbRadianceImage(std::shared_ptr<const RgbImage> image,
                                          std::shared_ptr<const RgbUpsampler> upsampler)
-    : width_(image->width()), height_(image->height()), upsampler_(std::move(upsampler)) {
+    : width_(image->width()), height_(image->height()), image_(image), upsampler_(std::move(upsampler)) {
   // RgbImage::read has already rejected NaN/Inf pixels (naming the file and the pixel).
-  pixels_.resize(size_t(width_) * size_t(height_));
-  luminance_.resize(pixels_.size());
+  luminance_.resize(size_t(width_) * size_t(height_));
   // Rows in parallel: every pixel is independent, so the result does not depend on the thread count.
   tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < width_; ++x) {
         const Rgb rgb = image->pixel(x, y);
-        pixels_[index(x, y)] = upsampler_->emission_coefficients(rgb);
         const double y_value = upsampler_->space().to_xyz(rgb).y;
         luminance_[index(x, y)] = y_value > 0.0 ? float(y_value) : 0.0f;
       }
@@ -26,8 +24,8 @@ RgbRadianceImage::RgbRadianceImage(std::shared_ptr<const RgbImage> image,
 SampledSpectrum RgbRadianceImage::radiance(int x, int y, const SampledWavelengths& lambda) const {
   // S(λ) = emission_scale · max(0, s(λ)·Y) · W(λ), as EmissionSpectrum::evaluate with the shape clamped at 0
   // (basis truncation rings a few 1e-3 of the peak below zero where the exact shape is zero).
-  const Float4 shape =
-      upsampler_->basis().evaluate(pixels_[index(x, y)], lambda.lambda_nm(), Float4(0.0f), Float4(INFINITY));
+  const Float4 shape = upsampler_->basis().evaluate(upsampler_->emission_coefficients(image_->pixel(x, y)),
+                                                     lambda.lambda_nm(), Float4(0.0f), Float4(INFINITY));
   return Float4(float(upsampler_->emission_scale())) * shape * upsampler_->illuminant()->sample(lambda);
 }
 

@@ -11,9 +11,12 @@
 namespace rimu {
 
 /// Pixel RGB is read as luminance-scaled colour: RGB with Y = 1 means 1 cd/m² (RgbUpsampler::upsample_emission's
-/// convention), turned into W/(m²·sr·nm) shaped like the colour space's white. Every pixel is upsampled once, at
-/// construction (RgbUpsampler::emission_coefficients, 0.15-0.3 µs per pixel): 64 bytes of basis coefficients per pixel
-/// plus its luminance; a lookup is a 16-term dot product per lane times the white's table (no solve).
+/// convention), turned into W/(m²·sr·nm) shaped like the colour space's white. A pixel is upsampled when it is
+/// looked up (RgbUpsampler::emission_coefficients, then a 16-term dot product per lane times the white's table), from
+/// the image as read (its file's precision: 3 bytes for an 8-bit file, 12 for a float one) and a luminance per pixel.
+/// Until 6 December 2026 every pixel's 64 bytes of basis coefficients were computed at construction: a 2048² sky
+/// took 402 MiB at the peak instead of 189, for no measurable speed (docs/benchmarks.md, "pbrt-v3 scenes"). The
+/// coefficients are the same either way, so images are bit-identical.
 class RgbRadianceImage final : public RadianceImage {
  public:
   RgbRadianceImage(std::shared_ptr<const RgbImage> image, std::shared_ptr<const RgbUpsampler> upsampler);
@@ -26,7 +29,7 @@ class RgbRadianceImage final : public RadianceImage {
   size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
 
   int width_ = 0, height_ = 0;
-  std::vector<BasisCoefficients> pixels_;  // the smooth factor s times the pixel's luminance
+  std::shared_ptr<const RgbImage> image_;  // the pixels as read
   std::vector<float> luminance_;           // Y ≥ 0 (0 where Y ≤ 0), for importance sampling
   std::shared_ptr<const RgbUpsampler> upsampler_;
 };
