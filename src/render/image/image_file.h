@@ -17,8 +17,8 @@
 namespace rimu {
 
 /// The most pixels an image may have: 2^27 = 134,217,728 (16384 × 8192, the largest common environment map).
-/// An environment map costs up to about 100 bytes per texel while loading and 68-76 bytes kept (docs/scene-format.md,
-/// "Limits"), so this bounds one image at about 13 GB; 16384 × 16384 (27 GB) is refused.
+/// An environment map costs about 40 bytes per texel while loading (docs/scene-format.md, "Limits"), so this bounds
+/// one image at about 5 GB; a reflectance texture far less.
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 27;
 
 /// A compressed image holds at most this many pixels per byte of file. Deflate (PNG, EXR ZIP, TIFF) expands at
