@@ -40,6 +40,8 @@ struct RenderJob {
   std::optional<LightSamplerKind> light_sampler;
   /// Overrides "integrator.guiding" (`--guiding on|off`; docs/transport.md, "Path guiding").
   std::optional<std::string> guiding;  ///< "on", "off" or "mixture"
+  /// Overrides "integrator.daylit_points" (`--daylit-points on|off|auto`; docs/transport.md, "Daylit points").
+  std::optional<std::string> daylit_points;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   std::optional<PixelBounds> crop;
   /// Write the EXR's image channels as half floats (`--half`); 32-bit floats otherwise (render/output/exr_output.h).

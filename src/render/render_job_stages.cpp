@@ -301,6 +301,7 @@ JobScene load_job_scene(const RenderJob& job, const std::filesystem::path& scene
         *job.wavelength_density == WavelengthDensityKind::lights ? "lights" : "visible";
   if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
   if (job.guiding) document["integrator"]["guiding"] = *job.guiding;
+  if (job.daylit_points) document["integrator"]["daylit_points"] = *job.daylit_points;
   try {
     loaded.scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
   } catch (const InputError& e) {

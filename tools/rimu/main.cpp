@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
       "`rimu display --help` re-exposes a rendered EXR without rendering; `rimu denoise --help` denoises one."};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
-      light_sampler, guiding;
+      light_sampler, guiding, daylit_points;
   app.add_option("scene", scene, "scene file (.json, or a pbrt-v4 .pbrt: see docs/pbrt-import.md); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "scene-referred OpenEXR output, a name ending in .exr (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
@@ -58,6 +58,11 @@ int main(int argc, char** argv) {
                  "helps interiors lit indirectly, see docs/transport.md), mixture: the same with a parallax-aware "
                  "mixture of lobes per region instead of a quadtree, off: the default (overrides the scene)")
       ->check(CLI::IsMember({"on", "off", "mixture"}));
+  app.add_option("--daylit-points", daylit_points,
+                 "on: each path also traces one ray of daylight (a sun, a sky with portals) into the scene and "
+                 "connects to the point it lights (daylit interiors; see docs/transport.md), off, or auto: on where "
+                 "daylight enters through portals, the default (overrides the scene)")
+      ->check(CLI::IsMember({"on", "off", "auto"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");
@@ -135,6 +140,7 @@ int main(int argc, char** argv) {
                                                               : rimu::WavelengthDensityKind::visible;
     if (!light_sampler.empty()) job.light_sampler = rimu::parse_light_sampler_kind(light_sampler);
     if (!guiding.empty()) job.guiding = guiding;
+    if (!daylit_points.empty()) job.daylit_points = daylit_points;
     if (!resolution.empty()) {
       const auto [w, h] = rimu::parse_resolution(resolution, "--resolution");
       job.width = w;

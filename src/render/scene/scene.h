@@ -17,6 +17,7 @@
 #include "spectral/library/spectral_library.h"
 #include "transport/lights/light.h"
 #include "transport/lights/light_sampler.h"
+#include "transport/lights/daylight_ray_sampler.h"
 #include "transport/bsdfs/material.h"
 #include "transport/integrators/path_integrator.h"
 #include "transport/integrators/volumetric_path_integrator.h"
@@ -47,6 +48,9 @@ struct RenderSettings {
   uint64_t seed = 1;
   SamplerKind sampler = SamplerKind::sobol;  ///< the "integrator" section's "sampler"
   PathIntegratorSettings integrator;
+  /// integrator "daylit_points": on, off, or (nullopt, "auto", the default) on where daylight enters through portals
+  /// (docs/transport.md, "Daylit points"); the loader resolves it into integrator.daylit_points.
+  std::optional<bool> daylit_points;
   DistanceSampling distance_sampling = DistanceSampling::spectral_mis;  ///< media only (integrator.distance_sampling)
   /// media only (integrator.max_depth_includes_media): medium scattering events count towards max_depth, as in
   /// pbrt-v4's volpath
@@ -76,6 +80,9 @@ struct Scene {
   /// one); Light::light_group() indexes it. Empty when no light names a group: the film then has no group layers.
   std::vector<std::string> light_groups;
   std::unique_ptr<LightSampler> light_sampler;
+  /// Rays of the distant lights through the apertures, for daylit points (transport/lights/daylight_ray_sampler.h);
+  /// nullptr without a distant light.
+  std::unique_ptr<DaylightRaySampler> daylight_rays;
   /// Load-time warnings (render_job prints them): e.g. lights the light sampler starves (render/scene/light_coverage.h).
   std::vector<std::string> warnings;
   std::vector<int> infinite_lights;

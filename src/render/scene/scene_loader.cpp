@@ -24,6 +24,7 @@ TransportScene Scene::transport_view() const {
   view.materials = &materials;
   view.lights = &lights;
   view.light_sampler = light_sampler.get();
+  view.daylight_rays = daylight_rays.get();
   view.infinite_lights = infinite_lights;
   view.scene_scale = scene_scale;
   view.passable_surfaces = std::any_of(materials.begin(), materials.end(), [](const Material& m) { return m.passes_shadow_rays(); });
@@ -147,7 +148,11 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
                "direct_lighting", "distance_sampling", "max_depth_includes_media", "light_sampler", "guiding",
-               "glossy_light_candidates", "time_limit_s"});
+               "glossy_light_candidates", "time_limit_s", "daylit_points"});
+  if (const auto d = c.find("daylit_points")) {
+    const std::string mode = d->is_string() ? d->choice({"auto", "on", "off"}) : d->boolean() ? "on" : "off";
+    s.daylit_points = mode == "auto" ? std::nullopt : std::optional<bool>(mode == "on");
+  }
   if (const auto d = c.find("guiding")) {
     const std::string mode = d->is_string() ? d->choice({"on", "off", "mixture"}) : d->boolean() ? "on" : "off";
     s.integrator.guiding = mode != "off";
@@ -262,6 +267,20 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   }
   const double scene_radius_m = 0.5 * double(scene->scene_scale);
   scene->light_sampler = make_light_sampler(scene->settings.light_sampler, light_pointers, scene_radius_m);
+  // Daylit points: where asked, or by default where daylight enters through portals (a room's windows: the case
+  // they are for; elsewhere their cost is not measured to pay). The volumetric integrator does not use them.
+  scene->settings.integrator.daylit_points = false;
+  if (scene->settings.daylit_points.value_or(true) && !scene->has_media()) {
+    const Vec3 centre = (scene->geometry.bounds_min() + scene->geometry.bounds_max()) * 0.5f;
+    // The camera is where the scene is seen from: the inside of a room whose windows are portals.
+    const Vec3 camera_position = scene->camera.camera_to_world.point(Vec3{0, 0, 0});
+    auto daylight_rays =
+        std::make_unique<DaylightRaySampler>(scene->lights, centre, float(scene_radius_m), camera_position);
+    if (!daylight_rays->empty() && (scene->settings.daylit_points.has_value() || daylight_rays->uses_portals())) {
+      scene->daylight_rays = std::move(daylight_rays);
+      scene->settings.integrator.daylit_points = true;
+    }
+  }
   if (scene->settings.wavelength_density == WavelengthDensityKind::lights &&
       scene->settings.integrator.wavelengths != WavelengthMode::rgb)
     scene->wavelength_density = std::make_shared<const TabulatedWavelengthDensity>(

@@ -10,6 +10,7 @@
 #include "transport/integrators/light_resampling.h"
 #include "transport/integrators/path_footprint.h"
 #include "transport/integrators/shadow_passage.h"
+#include "transport/integrators/daylit_connection.h"
 #include "transport/sampling/wavelength_modes.h"
 
 namespace rimu {
@@ -130,8 +131,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
   const DirectLighting strategy = settings_.direct_lighting;
   // choice_probability: the light sampler's probability of this light (and part) at the previous vertex; where it is
   // 1 that vertex had a single light to give and did not resample, so its weights count the density once.
+  // s_daylit: the daylit-point technique's density of this path (0 for every other light).
   auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle, float choice_probability,
-                          const Light& light) {
+                          const Light& light, float s_daylit = 0.0f) {
     // NEE-only: a non-delta bounce leaves emitters to next-event estimation (which then takes full weight).
     if (strategy == DirectLighting::nee_only && !previous_specular) return;
     if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
@@ -142,11 +144,27 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     const float boost = choice_probability < 1.0f ? previous_light_boost : 1.0f;
     const float s_light = boost * light_pdf_solid_angle * previous_sum_ratio;
     const float s_bsdf = previous_bsdf_sum;
-    const float weight = previous_hero_pdf * s_bsdf / (s_light * s_light + s_bsdf * s_bsdf);
+    const float weight = previous_hero_pdf * s_bsdf / (s_light * s_light + s_bsdf * s_bsdf + s_daylit * s_daylit);
     contribute(beta * emitted * Float4(kLanes * weight), light, true);
   };
 
   const int glossy_candidates = settings_.glossy_candidates_for(lights.size());
+
+  // Daylit points (daylit_connection.h): one daylight ray per path, traced when a first vertex connects to it.
+  const DaylightRaySampler* daylight_rays = settings_.daylit_points && strategy == DirectLighting::mis &&
+                                                    scene_.daylight_rays && !scene_.daylight_rays->empty()
+                                                ? scene_.daylight_rays
+                                                : nullptr;
+  std::optional<DaylightRaySampler::DaylightRay> daylight_ray;
+  std::optional<DaylitPoint> daylit;
+  bool daylit_traced = false;
+  // The previous vertex connected to the daylight ray's point (the technique exists for the path through it), and
+  // what that makes of its density at this vertex and the one before: B's density relative to the prefix is
+  // daylit_factor · p(y, ω) (daylit_connection.h), 0 where B cannot make the path.
+  bool previous_connects = false;
+  float previous_daylit_factor = 0.0f;
+  Vec3 previous_position{}, previous_geometric_normal{};
+  float segment_length = 0.0f;  // from the last scattering vertex along the current line (panes do not break it)
 
   // Panes passed straight through (docs/transport.md, "Glazing"): since the last scattering vertex (at most
   // kMaxShadowPassages, as for shadow rays), and in all (they do not count towards max_depth).
@@ -162,12 +180,24 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
             previous_specular ? 0.0f : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0));
         const float pdf =
             previous_specular ? 0.0f : pmf * lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
-        add_emission(le, pdf, pmf, *lights[size_t(index)]);
+        const float s_daylit =
+            previous_daylit_factor > 0.0f
+                ? previous_daylit_factor *
+                      daylight_rays->density(index, previous_position, previous_geometric_normal, ray.direction,
+                                        lights[size_t(index)]->pdf_li(previous_reference, ray.direction))
+                : 0.0f;
+        add_emission(le, pdf, pmf, *lights[size_t(index)], s_daylit);
       }
       break;
     }
 
     const Vec3 wo_world = -ray.direction;
+    segment_length += hit->t;
+    if (daylight_rays && depth == 0) {
+      const float u_daylight = sampler.next_1d();
+      const Vec2 u_daylight_direction = sampler.next_2d(), u_daylight_aperture = sampler.next_2d();
+      daylight_ray = daylight_rays->sample(lambda, u_daylight, u_daylight_direction, u_daylight_aperture);
+    }
     if (hit->light >= 0) {
       const Light& light = *lights[size_t(hit->light)];
       const SampledSpectrum le = light.radiance(*hit, wo_world, lambda);
@@ -202,6 +232,15 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     const LightSamplingPoint sampling_point{hit->position, flags.has_transmission ? Vec3{} : shading.geometric_normal,
                                             &lambda};
     const float sum_ratio = sum(pdf_ratio);
+    // B's density at this vertex (as y) relative to the path's prefix, per unit p(y, ω): Σ_k R_k at the previous
+    // vertex over the hero's density of reaching this one from it, in area measure.
+    float daylit_factor = 0.0f;
+    if (previous_connects && !may_pass) {
+      const float area_per_solid_angle =
+          std::fabs(dot(hit->geometric_normal, ray.direction)) / (segment_length * segment_length);
+      if (area_per_solid_angle > 0.0f && std::isfinite(area_per_solid_angle))
+        daylit_factor = previous_sum_ratio / (previous_hero_pdf * area_per_solid_angle);
+    }
 
     // Guided vertices: non-delta BSDFs only (a delta lobe cannot be evaluated, so no mixture density exists), and
     // not panes (passed straight through, they are no vertex). Every BSDF density below is the mixture's.
@@ -235,6 +274,14 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       // choice probability is 1): there the density counts once, on both sides.
       const float boost = float(candidates);
       // The MIS weight a light sample will carry (before panes): resampling targets f·L times it.
+      // The daylit-point technique's density of a light sample's path (0 unless it is a daylight source's, reached
+      // from a vertex that connected).
+      auto daylit_density = [&](const LightSample& ls, int light_index) {
+        return daylit_factor > 0.0f ? daylit_factor * daylight_rays->density(light_index, hit->position,
+                                                                             hit->geometric_normal, ls.wi,
+                                                                             ls.pdf_solid_angle)
+                                    : 0.0f;
+      };
       auto light_weight = [&](const LightSample& ls, float choice_probability) {
         if (ls.is_delta || strategy == DirectLighting::nee_only) return 1.0f;
         const float s_light = boost * choice_probability * ls.pdf_solid_angle * sum_ratio;
@@ -265,10 +312,29 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
                                                     passage->pass_probability));
           // m = (b·s_light)² / ((b·s_light)² + s_bsdf²) over the sampler's density s_light, b the boost above.
           const float b_light = chosen->resampled ? boost * s_light : s_light;
-          const float weight =
-              chosen->density_scale * (b_light / s_light) * b_light / (b_light * b_light + s_bsdf * s_bsdf);
+          const float s_daylit = daylit_density(ls, chosen->pick.light);
+          const float weight = chosen->density_scale * (b_light / s_light) * b_light /
+                               (b_light * b_light + s_bsdf * s_bsdf + s_daylit * s_daylit);
           contribute(beta * chosen->f_cos * passage->transmittance * ls.radiance * Float4(kLanes * weight), light);
         }
+      }
+    }
+
+    // Daylit points: connect this vertex to the point the path's daylight ray lit, where the next vertex would still
+    // do next-event estimation (so that the techniques cover the same paths).
+    const bool connects = daylight_rays && flags.has_non_delta && !may_pass && depth - passages + 1 < settings_.max_depth;
+    if (connects) {
+      if (!daylit_traced) {
+        daylit_traced = true;
+        if (daylight_ray)
+          daylit = find_daylit_point(scene_, *daylight_rays, settings_, lambda, *daylight_ray, ray.time, guiding.field);
+      }
+      if (daylit) {
+        const ConnectingVertex x{*hit, shading.frame, shading.geometric_normal, wo, bsdf, sampling,
+                                 flags.has_transmission, pdf_ratio, ray.time};
+        const SampledSpectrum c =
+            connect_to_daylit_point(scene_, lanes, x, *daylit, lambda, settings_.guiding_probability);
+        if (max_lane(c) > 0.0f) contribute(beta * c, *lights[size_t(daylit->light)]);
       }
     }
 
@@ -303,6 +369,11 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     }
     if (depth_reached) break;
     passages_since_vertex = 0;
+    segment_length = 0.0f;
+    previous_connects = connects && !bs->is_delta;
+    previous_daylit_factor = daylit_factor;
+    previous_position = hit->position;
+    previous_geometric_normal = hit->geometric_normal;
     if (differentials)
       differentials = footprint_after_bounce(*differentials, footprint, hit->position, shading.frame.n, wo, bs->wi,
                                              bs->is_delta);

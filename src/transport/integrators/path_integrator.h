@@ -22,6 +22,7 @@ namespace rimu {
 
 class GuidingField;    // transport/guiding/guiding_field.h
 struct GuidingSample;
+class DaylightRaySampler;   // transport/lights/daylight_ray_sampler.h
 
 /// What the integrator needs of a scene: geometry queries, materials by index, lights by index, and how lights
 /// are picked. Non-owning; the render side owns everything and keeps it alive while rendering.
@@ -42,6 +43,9 @@ struct TransportScene {
   /// Something moves while the shutter is open (EmbreeScene::has_motion): each camera sample then draws a time in
   /// [0, 1] that its rays carry (Ray::time). False keeps every ray at time 0 and the sampler's dimensions as they were.
   bool has_motion = false;
+  /// Rays of the scene's distant lights and portal skies through its apertures, for the daylit-point technique
+  /// (transport/integrators/daylit_connection.h); nullptr where the scene has neither or the technique is off.
+  const DaylightRaySampler* daylight_rays = nullptr;
   /// The density camera paths draw wavelengths from (spectral/wavelengths/wavelength_density.h); nullptr: the visible density.
   const TabulatedWavelengthDensity* wavelength_density = nullptr;
 };
@@ -66,6 +70,11 @@ struct PathIntegratorSettings {
   bool guiding_mixture = false;
   /// α: the probability of drawing a guided vertex's direction from the learned field (else from the BSDF).
   float guiding_probability = 0.5f;
+  /// Daylit points (transport/integrators/daylit_connection.h, docs/transport.md "Daylit points"): each path traces
+  /// one ray of daylight (a sun, a sky with portals) into the scene and connects its diffuse and glossy vertices to
+  /// the point it lights, with MIS against next-event estimation and BSDF sampling there. Only with
+  /// `direct_lighting` mis and where the scene has TransportScene::daylight_rays (the loader sets both).
+  bool daylit_points = false;
   /// At vertices with a glossy lobe (BsdfFlags::has_glossy), next-event estimation draws this many candidate lights
   /// and keeps one by what the BSDF passes from it (transport/integrators/light_resampling.h); 1 turns it off.
   /// 0 (the default): kManyLightsCandidates in scenes with at least kManyLights lights, else 1 (what it gains grows
@@ -92,7 +101,8 @@ struct PathGuidingContext {
 ///
 /// Dimension order per camera sample (every estimator draws the same dimension for the same decision):
 /// the render loop draws 0-1 film position, 2-3 lens, 4 wavelength; then per bounce, in this order:
-/// light choice (1), light position (2), BSDF lobe (1), BSDF direction (2), Russian roulette (1).
+/// light choice (1), light position (2), BSDF lobe (1), BSDF direction (2), Russian roulette (1). With daylit
+/// points, the first vertex draws the daylight ray first: its light (1), direction (2) and aperture point (2).
 class PathIntegrator {
  public:
   PathIntegrator(const TransportScene& scene, PathIntegratorSettings settings) : scene_(scene), settings_(settings) {}

@@ -43,6 +43,8 @@ class DistantLight final : public Light {
   double radiance_per_irradiance() const { return radiance_per_irradiance_; }
   /// Ω = 2π(1 − cos α), sr.
   double cone_solid_angle_sr() const;
+  /// The direction towards the light's centre (unit, world space).
+  Vec3 axis() const { return axis_; }
 
   const LightSpectrum* emitted_spectrum() const override { return &irradiance_; }
 

@@ -69,6 +69,7 @@ class EnvironmentLight final : public Light {
   /// Call before the light is shared (lights are read-only while rendering).
   void set_portals(PortalSet portals) { portals_ = std::move(portals); }
   const PortalSet& portals() const { return portals_; }
+  const PortalSet* portal_set() const override { return portals_.empty() ? nullptr : &portals_; }
 
   /// A direction through the portals (if any), else by luminance (image) or uniform on the sphere; distance ∞.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,

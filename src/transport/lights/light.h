@@ -20,6 +20,8 @@
 
 namespace rimu {
 
+class PortalSet;  // transport/lights/environment_portal.h
+
 class Light {
  public:
   virtual ~Light() = default;
@@ -60,6 +62,9 @@ class Light {
   virtual std::optional<Vec3> delta_position_m() const { return std::nullopt; }
   /// True if the light is at infinity (radiance_escaped may be nonzero).
   virtual bool is_infinite() const { return false; }
+  /// For a light at infinity with portals (the windows it enters by), those portals; nullptr otherwise. Sun rays use
+  /// them as the scene's apertures (transport/lights/daylight_ray_sampler.h).
+  virtual const PortalSet* portal_set() const { return nullptr; }
   /// For a light at infinity whose light arrives from a small cone of directions (a distant light: the sun), which
   /// only light sampling finds (a BSDF-sampled ray hardly ever hits it): its irradiance at normal incidence ∫E⊥ dλ
   /// over 360-830 nm (W/m², unoccluded). std::nullopt for every other light, environments and skies included (BSDF

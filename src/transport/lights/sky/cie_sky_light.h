@@ -66,6 +66,7 @@ class CieSkyLight final : public Light {
   /// Restrict light sampling to directions through `portals` (see above); an empty set restores the default.
   void set_portals(PortalSet portals) { portals_ = std::move(portals); }
   const PortalSet& portals() const { return portals_; }
+  const PortalSet* portal_set() const override { return portals_.empty() ? nullptr : &portals_; }
 
   /// A direction over the upper hemisphere by the tabulated luminance, or through the portals (see above); distance ∞.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
