@@ -71,7 +71,7 @@ TEST_CASE("daylit points are unbiased: the daylit room, open and double-glazed")
   check_daylit_unbiased(daylit_room("daylit_room_glazed.json"), 32, "two panes");
 }
 
-TEST_CASE("daylit points are unbiased: a sun of zero diameter, a glossy floor, and a room without portals") {
+TEST_CASE("daylit points are unbiased: a sun of zero diameter, a glossy floor, a mixed floor, a room without portals") {
   nlohmann::json delta = daylit_room("daylit_room_open.json");
   delta["lights"][0]["angular_diameter_deg"] = 0;
   check_daylit_unbiased(delta, 32, "delta sun");
@@ -79,6 +79,12 @@ TEST_CASE("daylit points are unbiased: a sun of zero diameter, a glossy floor, a
   nlohmann::json glossy = daylit_room("daylit_room_open.json");
   glossy["materials"]["floor"] = {{"type", "conductor"}, {"metal", "copper"}, {"roughness", 0.3}};
   check_daylit_unbiased(glossy, 32, "glossy floor");
+  // A stochastic mix on the floor: left out of the technique on both sides (daylit_connection.h).
+  nlohmann::json mixed = daylit_room("daylit_room_open.json");
+  mixed["materials"]["boards"] = mixed["materials"]["floor"];
+  mixed["materials"]["carpet"] = {{"type", "diffuse"}, {"reflectance", 0.6}};
+  mixed["materials"]["floor"] = {{"type", "mix"}, {"materials", {"boards", "carpet"}}, {"amount", 0.5}};
+  check_daylit_unbiased(mixed, 32, "mixed floor");
   // Without portals the sun rays start on a disc around the scene (most of them light the room's outside).
   nlohmann::json open_sky = daylit_room("daylit_room_open.json");
   open_sky["lights"][1].erase("portals");

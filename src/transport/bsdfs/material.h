@@ -241,6 +241,8 @@ class Material {
   /// Whether shadow rays pass this material straight through, weighted by its transmittance (a thin dielectric:
   /// its transmission does not bend rays; docs/transport.md, "Glazing"). Refracting and rough materials block them.
   bool passes_shadow_rays() const { return std::holds_alternative<ThinDielectricMaterial>(material_); }
+  /// A `mix`: which material it is at a hit depends on the direction it is seen from (MaterialContext::hash).
+  bool is_stochastic_mix() const { return std::holds_alternative<MixMaterial>(material_); }
 
   /// Gives the material a normal or bump map (null: none). A mix's own modifier is ignored: the chosen
   /// material's applies (pbrt-v4's mix has none).

@@ -29,6 +29,9 @@ std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const 
     ray.t_max = INFINITY;
   }
   const Material& material = (*scene.materials)[size_t(hit->material)];
+  // A mix chooses its material by the direction it is seen from, which differs for every vertex connecting here:
+  // mixes are left out of the technique (the path integrator leaves them out of its weights alike).
+  if (material.is_stochastic_mix()) return std::nullopt;
   DaylitPoint y;
   y.hit = *hit;
   y.light = daylight_ray.light;

@@ -53,7 +53,8 @@ struct DaylitPoint {
 
 /// Traces `ray` into the scene through panes (as shadow rays pass them) to the first surface that scatters, then
 /// from there towards the light. std::nullopt when the ray leaves the scene, meets an emitter without material, a
-/// delta-only surface, or the light is blocked from the point.
+/// delta-only surface or a `mix` (which is chosen per direction seen from: no point of the technique), or the light
+/// is blocked from the point.
 std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const DaylightRaySampler& daylight_rays,
                                              const PathIntegratorSettings& settings, const SampledWavelengths& lambda,
                                              const DaylightRaySampler::DaylightRay& ray, float time, const GuidingField* field);

@@ -235,7 +235,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     // B's density at this vertex (as y) relative to the path's prefix, per unit p(y, ω): Σ_k R_k at the previous
     // vertex over the hero's density of reaching this one from it, in area measure.
     float daylit_factor = 0.0f;
-    if (previous_connects && !may_pass) {
+    if (previous_connects && !may_pass && !material.is_stochastic_mix()) {
       const float area_per_solid_angle =
           std::fabs(dot(hit->geometric_normal, ray.direction)) / (segment_length * segment_length);
       if (area_per_solid_angle > 0.0f && std::isfinite(area_per_solid_angle))
