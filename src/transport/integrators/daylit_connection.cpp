@@ -108,12 +108,10 @@ SampledSpectrum connect_to_daylit_point(const TransportScene& scene, const LaneT
   Ray shadow;
   shadow.time = x.time;
   shadow.origin = offset_ray_origin(x.hit, w, scene.scene_scale);
-  const Vec3 target = offset_ray_origin(y.hit, -w, scene.scene_scale);
-  const Vec3 to_target = target - shadow.origin;
-  const float length_m = length(to_target);
-  if (!(length_m > 0.0f)) return none;
-  shadow.direction = to_target / length_m;
-  shadow.t_max = length_m * (1.0f - 0x1p-12f);
+  const ShadowSegment segment = shadow_segment(shadow.origin, offset_ray_origin(y.hit, -w, scene.scene_scale), w);
+  if (!(segment.length > 0.0f)) return none;
+  shadow.direction = segment.direction;
+  shadow.t_max = segment.length * (1.0f - 0x1p-12f);
   const std::optional<ShadowPassage> passage = trace_shadow(scene, shadow, lambda);
   if (!passage) return none;
 

@@ -50,14 +50,18 @@ Vec3 offset_ray_origin(const SurfaceHit& hit, Vec3 direction, float scene_scale)
   return hit.position + face_forward(hit.geometric_normal, direction) * (magnitude * 0x1p-18f);
 }
 
+ShadowSegment shadow_segment(Vec3 origin, Vec3 target, Vec3 fallback_direction) {
+  const Vec3 to_target = target - origin;
+  const float distance = length(to_target);
+  if (!(distance > 0.0f) || !std::isfinite(distance)) return {fallback_direction, 0.0f};
+  return {to_target / distance, distance};
+}
+
 ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls, float scene_scale) {
   if (!std::isfinite(ls.distance)) return {ls.wi, ls.distance};
   Vec3 target = reference + ls.wi * ls.distance;
   if (!(ls.normal == Vec3{})) target = offset_ray_origin(target, ls.normal, -ls.wi, scene_scale);
-  const Vec3 to_target = target - origin;
-  const float distance = length(to_target);
-  if (!(distance > 0.0f) || !std::isfinite(distance)) return {ls.wi, 0.0f};
-  return {to_target / distance, distance};
+  return shadow_segment(origin, target, ls.wi);
 }
 
 namespace {
@@ -137,7 +141,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     // NEE-only: a non-delta bounce leaves emitters to next-event estimation (which then takes full weight).
     if (strategy == DirectLighting::nee_only && !previous_specular) return;
     if (strategy == DirectLighting::bsdf_only) light_pdf_solid_angle = 0.0f;
-    if (previous_specular || light_pdf_solid_angle <= 0.0f) {
+    // Full weight where no other technique makes this path (a daylit point can where light sampling cannot).
+    if (previous_specular || (light_pdf_solid_angle <= 0.0f && !(s_daylit > 0.0f))) {
       contribute(beta * emitted * Float4(kLanes / sum(pdf_ratio)), light);
       return;
     }
@@ -178,14 +183,15 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
         const SampledSpectrum le = lights[size_t(index)]->radiance_escaped(ray.direction, lambda);
         const float pmf =
             previous_specular ? 0.0f : light_sampler.pmf(previous_sampling_point, index, light_sampler.part_of_hit(0));
-        const float pdf =
-            previous_specular ? 0.0f : pmf * lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
-        const float s_daylit =
-            previous_daylit_factor > 0.0f
-                ? previous_daylit_factor *
-                      daylight_rays->density(index, previous_position, previous_geometric_normal, ray.direction,
-                                        lights[size_t(index)]->pdf_li(previous_reference, ray.direction))
-                : 0.0f;
+        // The light's own density of the direction, needed by both weights (a specular bounce needs neither).
+        const float pdf_li =
+            previous_specular ? 0.0f : lights[size_t(index)]->pdf_li(previous_reference, ray.direction);
+        const float pdf = pmf * pdf_li;
+        const float s_daylit = previous_daylit_factor > 0.0f
+                                   ? previous_daylit_factor * daylight_rays->density(index, previous_position,
+                                                                                     previous_geometric_normal,
+                                                                                     ray.direction, pdf_li)
+                                   : 0.0f;
         add_emission(le, pdf, pmf, *lights[size_t(index)], s_daylit);
       }
       break;
@@ -273,7 +279,6 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       // resampling targets the weight it will carry. A point with a single light to give does not resample (its
       // choice probability is 1): there the density counts once, on both sides.
       const float boost = float(candidates);
-      // The MIS weight a light sample will carry (before panes): resampling targets f·L times it.
       // The daylit-point technique's density of a light sample's path (0 unless it is a daylight source's, reached
       // from a vertex that connected).
       auto daylit_density = [&](const LightSample& ls, int light_index) {
@@ -282,6 +287,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
                                                                              ls.pdf_solid_angle)
                                     : 0.0f;
       };
+      // The MIS weight a light sample will carry (before panes): resampling targets f·L times it.
       auto light_weight = [&](const LightSample& ls, float choice_probability) {
         if (ls.is_delta || strategy == DirectLighting::nee_only) return 1.0f;
         const float s_light = boost * choice_probability * ls.pdf_solid_angle * sum_ratio;

@@ -149,5 +149,8 @@ struct ShadowSegment {
   float length = 0.0f;
 };
 ShadowSegment shadow_segment(Vec3 origin, Vec3 reference, const LightSample& ls, float scene_scale);
+/// The segment from `origin` to `target`, both already lifted off their surfaces; length 0 (and
+/// `fallback_direction`) when they coincide or the distance is not finite.
+ShadowSegment shadow_segment(Vec3 origin, Vec3 target, Vec3 fallback_direction);
 
 }  // namespace rimu

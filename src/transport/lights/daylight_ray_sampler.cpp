@@ -9,6 +9,28 @@
 
 namespace rimu {
 
+namespace {
+
+// One of `count` items picked with probability weight(j) / total (total = Σ weight(j) > 0), and u's place within
+// the item's share, in [0, 1): the same number then serves as a coordinate on the item (as pbrt's
+// SampleDiscrete remaps it). Rounding that leaves u beyond the last share picks the last item.
+struct WeightedPick {
+  size_t index = 0;
+  float u_within = 0.5f;
+};
+template <class Weight>
+WeightedPick pick_by_weight(size_t count, const Weight& weight, float total, float u_fraction) {
+  float u = u_fraction * total;
+  for (size_t j = 0; j < count; ++j) {
+    const float w = weight(j);
+    if (u < w || j + 1 == count) return {j, w > 0.0f ? std::fmin(u / w, 0x1.fffffep-1f) : 0.5f};
+    u -= w;
+  }
+  return {};
+}
+
+}  // namespace
+
 DaylightRaySampler::DaylightRaySampler(const std::vector<std::unique_ptr<Light>>& lights, Vec3 scene_centre,
                                        float scene_radius_m, Vec3 inside)
     : source_of_light_(lights.size(), -1), centre_(scene_centre), radius_(scene_radius_m) {
@@ -103,18 +125,13 @@ std::optional<DaylightRaySampler::DaylightRay> DaylightRaySampler::sample_sun(co
   // An aperture by its projected area along ω, then a point uniform on it (uniform in projected area too).
   const float total = projected_area(ls->wi);
   if (!(total > 0.0f)) return std::nullopt;
-  float u = u_aperture.x * total;
-  for (size_t j = 0; j < apertures_.size(); ++j) {
-    const PortalRectangle& p = apertures_[j];
-    const float w = float(p.area_m2()) * std::fabs(dot(p.normal(), ls->wi));
-    if (u < w || j + 1 == apertures_.size()) {
-      const float s = w > 0.0f ? std::fmin(u / w, 0x1.fffffep-1f) : 0.5f;
-      ray.origin = p.corner + p.edge_a * s + p.edge_b * u_aperture.y;
-      return ray;
-    }
-    u -= w;
-  }
-  return std::nullopt;
+  const WeightedPick pick = pick_by_weight(
+      apertures_.size(),
+      [&](size_t j) { return float(apertures_[j].area_m2()) * std::fabs(dot(apertures_[j].normal(), ls->wi)); },
+      total, u_aperture.x);
+  const PortalRectangle& p = apertures_[pick.index];
+  ray.origin = p.corner + p.edge_a * pick.u_within + p.edge_b * u_aperture.y;
+  return ray;
 }
 
 std::optional<DaylightRaySampler::DaylightRay> DaylightRaySampler::sample_sky(const Source& source,
@@ -122,18 +139,10 @@ std::optional<DaylightRaySampler::DaylightRay> DaylightRaySampler::sample_sky(co
                                                                               Vec2 u_direction,
                                                                               Vec2 u_aperture) const {
   const std::vector<PortalRectangle>& portals = source.portals->portals();
-  float u = u_aperture.x * source.portal_area_m2;
-  size_t chosen = portals.size() - 1;
-  float s = 0.5f;
-  for (size_t j = 0; j < portals.size(); ++j) {
-    const float area = float(portals[j].area_m2());
-    if (u < area) {
-      chosen = j;
-      s = std::fmin(u / area, 0x1.fffffep-1f);
-      break;
-    }
-    u -= area;
-  }
+  const WeightedPick pick = pick_by_weight(
+      portals.size(), [&](size_t j) { return float(portals[j].area_m2()); }, source.portal_area_m2, u_aperture.x);
+  const size_t chosen = pick.index;
+  const float s = pick.u_within;
   const PortalRectangle* portal = &portals[chosen];
   // A cosine-distributed direction about the portal's outer normal (either side where it has none).
   Vec3 normal = source.outward[chosen];
