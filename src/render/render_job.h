@@ -43,6 +43,8 @@ struct RenderJob {
   /// Overrides "integrator.daylit_points" (`--daylit-points on|off|auto`; docs/transport.md, "Daylit points").
   std::optional<std::string> daylit_points;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
+  /// Overrides film "max_sample_value" (`--max-sample-value`; docs/rendering.md, "Sample clamp").
+  std::optional<double> max_sample_value;
   std::optional<PixelBounds> crop;
   /// Write the EXR's image channels as half floats (`--half`); 32-bit floats otherwise (render/output/exr_output.h).
   bool half_exr = false;

@@ -302,6 +302,7 @@ JobScene load_job_scene(const RenderJob& job, const std::filesystem::path& scene
   if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
   if (job.guiding) document["integrator"]["guiding"] = *job.guiding;
   if (job.daylit_points) document["integrator"]["daylit_points"] = *job.daylit_points;
+  if (job.max_sample_value) document["film"]["max_sample_value"] = *job.max_sample_value;
   try {
     loaded.scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
   } catch (const InputError& e) {
@@ -370,6 +371,7 @@ void set_up_film(RenderJobState& s) {
                      e.explanation());
   }
   film.set_output_transform(s.output_transform);
+  film.set_max_sample_value(settings.max_sample_value);
   s.aovs = job.aovs.any() ? job.aovs : settings.aovs;
   if (s.aovs.any() && !job.aovs.any() && (job.samples || job.checkpoint_interval_s || s.previous))
     throw InputError({s.scene_path.string(), 0, "/film/aov"},
@@ -502,7 +504,10 @@ void log_job_summary(const RenderJobState& s) {
   summary << " in " << statistics.seconds << " s, "
           << (statistics.seconds > 0 ? double(statistics.camera_samples) / statistics.seconds : 0.0)
           << " samples/s; discarded samples: " << c.nan << " NaN, " << c.infinite << " Inf, " << c.negative
-          << " negative\n";
+          << " negative";
+  if (s.film->max_sample_value())
+    summary << "; clamped samples: " << c.clamped << " (max_sample_value " << *s.film->max_sample_value() << ")";
+  summary << "\n";
   if (s.adaptive) {
     const PixelBounds& b = s.film->pixel_bounds();
     double samples = 0;

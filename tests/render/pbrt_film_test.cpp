@@ -115,12 +115,15 @@ TEST_CASE("pbrt film: spectral buckets, gbuffer, savefp16, maxcomponentvalue, di
   CHECK(gbuffer.ignored[0].what.find("Film \"gbuffer\": the auxiliary channels") == 0);
   CHECK_FALSE(gbuffer.document["film"].contains("spectral_bins"));
   // Rimu writes 32-bit floats unless run with --half: savefp16 false (or unset) is honoured, true is listed; a
-  // sample clamp is listed.
+  // sample clamp becomes the film's (a value that is not > 0 is listed).
   CHECK(import_text(kCamera + "Film \"rgb\" \"bool savefp16\" false \"float diagonal\" 50\nWorldBegin\n").ignored.empty());
   const PbrtImport fp16 = import_text(kCamera + "Film \"rgb\" \"bool savefp16\" true\nWorldBegin\n");
   REQUIRE(fp16.ignored.size() == 1);
   CHECK(fp16.ignored[0].what.find("--half") != std::string::npos);
-  CHECK(import_text(kCamera + "Film \"rgb\" \"float maxcomponentvalue\" 10\nWorldBegin\n").ignored.size() == 1);
+  const PbrtImport clamped = import_text(kCamera + "Film \"rgb\" \"float maxcomponentvalue\" 10\nWorldBegin\n");
+  CHECK(clamped.ignored.empty());
+  CHECK(clamped.document["film"]["max_sample_value"] == 10.0);
+  CHECK(import_text(kCamera + "Film \"rgb\" \"float maxcomponentvalue\" 0\nWorldBegin\n").ignored.size() == 1);
   // "exposuretime" is no pbrt-v4 Film parameter (the time is the camera's shutter): reported as unused.
   CHECK(import_text(kCamera + "Film \"rgb\" \"float exposuretime\" 2\nWorldBegin\n").ignored.size() == 1);
 }

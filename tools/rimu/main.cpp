@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"on", "off", "auto"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
+  app.add_option("--max-sample-value", job.max_sample_value,
+                 "clamp: scale each camera sample down so that its largest channel (in the written image's units, "
+                 "after exposure) is at most this; removes fireflies at the cost of a darker, biased image (see "
+                 "docs/rendering.md, \"Sample clamp\") (overrides the scene's film \"max_sample_value\")")
+      ->check(CLI::Range(1e-30, 1e30));
   app.add_option("--resolution", resolution, "WIDTHxHEIGHT (overrides the scene)");
   app.add_option("--crop", crop, "x0,y0,x1,y1: render only this window (pixels, end exclusive)");
   CLI::Option* half = app.add_flag(

@@ -1,5 +1,6 @@
 #include "render/film/film.h"
 
+#include <cmath>
 #include <string>
 
 #include "spectral/error.h"
@@ -34,7 +35,15 @@ Film::Film(const FilmOptions& options, SpectralResponse response, std::vector<st
       pixels_(checked_crop(options), response_, SpectralBinning{options.spectral_bins}, int(light_groups_.size())) {}
 
 FilmTile Film::make_tile(const PixelBounds& bounds) const {
-  return FilmTile(bounds.intersect(pixel_bounds()), response_, binning(), int(light_groups_.size()));
+  FilmTile tile(bounds.intersect(pixel_bounds()), response_, binning(), int(light_groups_.size()));
+  tile.set_max_channel_value(max_channel_value());
+  return tile;
+}
+
+float Film::max_channel_value() const {
+  if (!max_sample_value_) return INFINITY;
+  const double threshold = *max_sample_value_ / output_.scale;
+  return threshold > 0.0 && std::isfinite(threshold) ? float(threshold) : INFINITY;
 }
 
 void Film::merge_tile(const FilmTile& tile) {
@@ -52,10 +61,12 @@ void Film::merge_tile(const FilmTile& tile) {
   nan_.fetch_add(c.nan, std::memory_order_relaxed);
   infinite_.fetch_add(c.infinite, std::memory_order_relaxed);
   negative_.fetch_add(c.negative, std::memory_order_relaxed);
+  clamped_.fetch_add(c.clamped, std::memory_order_relaxed);
 }
 
 void Film::add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
                       float filter_weight, const SampledSpectrum* group_radiance) {
+  pixels_.set_max_channel_value(max_channel_value());
   pixels_.add_sample(x, y, radiance, lambda, filter_weight, group_radiance);
 }
 
@@ -88,7 +99,7 @@ double Film::spectral_value(int x, int y, int bin) const {
 
 FilmSampleCounts Film::sample_counts() const {
   FilmSampleCounts c = pixels_.sample_counts();  // from add_sample
-  c += FilmSampleCounts{accepted_.load(), nan_.load(), infinite_.load(), negative_.load()};
+  c += FilmSampleCounts{accepted_.load(), nan_.load(), infinite_.load(), negative_.load(), clamped_.load()};
   return c;
 }
 

@@ -74,6 +74,12 @@ class Film {
   /// Sets the exposure and white balance applied when the film is written (identity by default).
   void set_output_transform(const FilmOutputTransform& transform) { output_ = transform; }
   const FilmOutputTransform& output_transform() const { return output_; }
+  /// The sample clamp (film "max_sample_value", `--max-sample-value`; docs/rendering.md, "Sample clamp"): each
+  /// sample's channel values, times the output transform's exposure scale, are scaled down so that the largest is at
+  /// most `value` (the written image's units before white balance, as pbrt-v4's "maxcomponentvalue"). Tiles made
+  /// after this call apply it (make_tile), as does add_sample. nullopt: no clamp.
+  void set_max_sample_value(std::optional<double> value) { max_sample_value_ = value; }
+  std::optional<double> max_sample_value() const { return max_sample_value_; }
   /// The mean spectral radiance (W/(m²·sr·nm) if the input was) estimated in bin `bin` of pixel (x, y).
   double spectral_value(int x, int y, int bin) const;
   /// Group `group`'s share of spectral_value(x, y, bin); they sum over groups to it.
@@ -93,7 +99,11 @@ class Film {
   std::vector<std::string> light_groups_;
   FilmTile pixels_;  // the whole crop window, in the tile layout
   FilmOutputTransform output_;
-  std::atomic<uint64_t> accepted_{0}, nan_{0}, infinite_{0}, negative_{0};
+  std::optional<double> max_sample_value_;
+  std::atomic<uint64_t> accepted_{0}, nan_{0}, infinite_{0}, negative_{0}, clamped_{0};
+
+  /// The clamp in film units (the tiles' threshold): max_sample_value / exposure scale, or infinity.
+  float max_channel_value() const;
 };
 
 }  // namespace rimu

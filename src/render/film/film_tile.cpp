@@ -23,6 +23,7 @@ FilmSampleCounts& FilmSampleCounts::operator+=(const FilmSampleCounts& o) {
   nan += o.nan;
   infinite += o.infinite;
   negative += o.negative;
+  clamped += o.clamped;
   return *this;
 }
 
@@ -85,8 +86,18 @@ void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const S
   }
   ++counts_.accepted;
 
-  const Float4 weighted = lane_value * Float4(filter_weight / float(kLaneCount));
   const Response4 c = response_->evaluate(lambda);
+  // The weight the sample's values carry: its filter weight, times the clamp's factor where it applies.
+  float value_weight = filter_weight;
+  if (max_channel_value_ < INFINITY) {
+    const Float4 value = lane_value * Float4(1.0f / float(kLaneCount));
+    const float largest = std::max({sum(value * c.x), sum(value * c.y), sum(value * c.z)});
+    if (largest > max_channel_value_) {
+      value_weight *= max_channel_value_ / largest;
+      ++counts_.clamped;
+    }
+  }
+  const Float4 weighted = lane_value * Float4(value_weight / float(kLaneCount));
   double* p = pixel(x, y);
   p[0] += double(sum(weighted * c.x));
   p[1] += double(sum(weighted * c.y));
@@ -96,7 +107,7 @@ void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const S
   if (binning_.count == 0) {
     if (light_groups_ > 0)
       add_group_sums(p + first_group_sum(), light_groups_, group_stride(), group_radiance, live, live_pdf,
-                     filter_weight, c, kNoBins, 0.0);
+                     value_weight, c, kNoBins, 0.0);
     return;
   }
 
@@ -111,7 +122,7 @@ void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const S
     p[kFirstBin + b] += double(weighted[j]) * inverse_width;
   }
   if (light_groups_ > 0)
-    add_group_sums(p + first_group_sum(), light_groups_, group_stride(), group_radiance, live, live_pdf, filter_weight,
+    add_group_sums(p + first_group_sum(), light_groups_, group_stride(), group_radiance, live, live_pdf, value_weight,
                    c, bin, inverse_width);
 }
 

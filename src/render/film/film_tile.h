@@ -1,6 +1,7 @@
 // One thread's share of the film: the pixel accumulators of a rectangle, filled without locks.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -41,6 +42,9 @@ struct FilmSampleCounts {
   uint64_t nan = 0;
   uint64_t infinite = 0;
   uint64_t negative = 0;
+  /// Accepted samples scaled down by the film's sample clamp (FilmTile::set_max_channel_value): counted among
+  /// `accepted`, not discarded.
+  uint64_t clamped = 0;
 
   uint64_t discarded() const { return nan + infinite + negative; }
   FilmSampleCounts& operator+=(const FilmSampleCounts& o);
@@ -69,11 +73,19 @@ class FilmTile {
   ///   (1/4) Σ_j L_j 1[λ_j ∈ b] / (p_j Δ),
   /// whose expectation is the mean of L over the bin. A sample with NaN/Inf/negative values is discarded and
   /// counted (FilmSampleCounts), never written. Cost: a few dozen SSE instructions plus N-bin writes.
+  /// With a sample clamp (set_max_channel_value), a sample whose largest channel value exceeds it is scaled down
+  /// to it, its bins and light groups by the same factor, and counted as clamped.
   /// `group_radiance` (light_group_count() values, required when the tile has light groups, ignored otherwise):
   /// each group's share of `radiance`, accumulated by the same estimator into the group's three channel sums and
   /// spectral bins. A discarded sample is discarded from every layer, so the layers keep summing to the beauty.
   void add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
                   float filter_weight = 1.0f, const SampledSpectrum* group_radiance = nullptr);
+
+  /// The sample clamp: a sample's channel values (before the filter weight) are scaled so that the largest is at
+  /// most `value` (film units, > 0; infinity: no clamp, the default). Biased: it trades rare bright samples'
+  /// variance for a darker mean (docs/film.md, "Sample clamp").
+  void set_max_channel_value(float value) { max_channel_value_ = value; }
+  float max_channel_value() const { return max_channel_value_; }
 
   const PixelBounds& bounds() const { return bounds_; }
   const SpectralBinning& binning() const { return binning_; }
@@ -110,6 +122,7 @@ class FilmTile {
   int light_groups_ = 0;
   std::vector<double> data_;
   FilmSampleCounts counts_;
+  float max_channel_value_ = INFINITY;
 };
 
 }  // namespace rimu

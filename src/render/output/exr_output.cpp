@@ -124,6 +124,10 @@ Imf::Header make_header(const Film& film, const ExrOptions& options) {
   h.insert("rimu:discardedNaN", Imf::DoubleAttribute(double(counts.nan)));
   h.insert("rimu:discardedInf", Imf::DoubleAttribute(double(counts.infinite)));
   h.insert("rimu:discardedNegative", Imf::DoubleAttribute(double(counts.negative)));
+  if (film.max_sample_value()) {
+    h.insert("rimu:maxSampleValue", Imf::DoubleAttribute(*film.max_sample_value()));
+    h.insert("rimu:samplesClamped", Imf::DoubleAttribute(double(counts.clamped)));
+  }
   if (!m.scene.empty()) add_string(h, "rimu:scene", m.scene);
   if (m.interrupted) add_string(h, "rimu:interrupted", "interrupted at " + std::to_string(m.samples_per_pixel) + " spp");
   for (const auto& [key, value] : m.extra) add_string(h, "rimu:" + key, value);

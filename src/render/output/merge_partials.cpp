@@ -41,6 +41,11 @@ void check_same_render(const PartialImage& a, const PartialImage& b) {
                                              b.record.output_transform.channel_matrix(r, c);
   if (!same_transform)
     mismatch("exposure or white balance", "one", "another");
+  // Before the hash, which the clamp also changes: a clamped sample's weight is not that of an unclamped one.
+  const auto clamp_of = [](const PartialImage& p) {
+    return p.max_sample_value ? std::to_string(*p.max_sample_value) : std::string("none");
+  };
+  if (a.max_sample_value != b.max_sample_value) mismatch("sample clamp (max_sample_value)", clamp_of(a), clamp_of(b));
   // Before the hash (which a guiding option also changes): say plainly why guided and unguided partials do not mix.
   // Each partial trains its own field, so the merge of guided partials is unbiased; a mix is refused because it
   // is not the render either command asked for (docs/farm.md).

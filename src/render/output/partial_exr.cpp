@@ -195,12 +195,13 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
     return uint64_t(a->value());
   };
   p.counts = {count("rimu:samplesAccepted"), count("rimu:discardedNaN"), count("rimu:discardedInf"),
-              count("rimu:discardedNegative")};
+              count("rimu:discardedNegative"), count("rimu:samplesClamped")};
 
   RenderMetadata& m = p.metadata;
   m.seed = r.seed;
   if (const auto* a = h.findTypedAttribute<Imf::IntAttribute>("rimu:spp")) m.samples_per_pixel = a->value();
   if (const auto* a = h.findTypedAttribute<Imf::DoubleAttribute>("rimu:renderTimeSeconds")) m.render_time_s = a->value();
+  if (const auto* a = h.findTypedAttribute<Imf::DoubleAttribute>("rimu:maxSampleValue")) p.max_sample_value = a->value();
   if (const auto* a = h.findTypedAttribute<Imf::StringAttribute>("rimu:scene")) m.scene = a->value();
   if (Imf::hasIsoSpeed(h) && Imf::hasExpTime(h) && Imf::hasAperture(h)) {
     PhysicalCameraSettings camera;
@@ -232,6 +233,7 @@ std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLib
   FilmOptions options{partial.width, partial.height, partial.crop, partial.spectral_bins};
   auto film = std::make_unique<Film>(options, std::move(response), partial.light_groups);
   film->set_output_transform(partial.record.output_transform);
+  film->set_max_sample_value(partial.max_sample_value);  // (for the metadata: the sums are already clamped)
   add_partial_to_film(partial, *film);
   return film;
 }

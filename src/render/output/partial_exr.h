@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct PartialImage {
   int accumulators_per_pixel = 0;
   std::vector<double> sums;    ///< accumulators_per_pixel doubles per pixel of `crop`, row by row (exact)
   FilmSampleCounts counts;     ///< accepted and discarded samples
+  std::optional<double> max_sample_value;  ///< "rimu:maxSampleValue": the sample clamp its samples went through
   /// The metadata to write again (scene, camera, colour matrix, rimu:* strings such as the sampler); spp, render
   /// time and capture time are the file's own.
   RenderMetadata metadata;

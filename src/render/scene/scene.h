@@ -59,6 +59,8 @@ struct RenderSettings {
   WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
+  /// film "max_sample_value": the sample clamp (Film::set_max_sample_value; docs/rendering.md, "Sample clamp").
+  std::optional<double> max_sample_value;
   FilterSettings filter;
   CameraExposureSettings camera_exposure;  ///< the camera's "exposure" and "white_balance" (film units if absent)
   /// film "crop": render only these pixels of the width × height image (the default of `rimu --crop`).

@@ -109,7 +109,7 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
 }
 
 void load_film(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"resolution", "response", "spectral_bins", "filter", "crop", "aov"});
+  c.only_keys({"resolution", "response", "spectral_bins", "filter", "crop", "aov", "max_sample_value"});
   if (c.has("resolution")) {
     const JsonCursor r = c.at("resolution");
     if (r.size() != 2) r.fail("expected [width, height]");
@@ -127,6 +127,7 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
   }
   s.film_response = c.string_or("response", s.film_response);
   s.spectral_bins = c.integer_or("spectral_bins", 0, 0, 471);
+  if (c.has("max_sample_value")) s.max_sample_value = c.at("max_sample_value").number(1e-30, 1e30);
   if (c.has("aov")) {
     const JsonCursor aov = c.at("aov");
     try {

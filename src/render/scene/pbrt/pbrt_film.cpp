@@ -62,8 +62,12 @@ void PbrtConverter::film(const PbrtStatement& s) {
     ignore("Film \"savefp16\" true (Rimu writes 32-bit floats unless run with --half)", s.where);
   p.real("diagonal", 35.0);     // the sensor's size in mm: only pbrt's "realistic" camera uses it (listed there)
   const double max_component = p.real("maxcomponentvalue", INFINITY);
-  if (std::isfinite(max_component))
-    ignore("Film \"maxcomponentvalue\" (pbrt clamps each sample's largest RGB component; Rimu does not clamp)", s.where);
+  // pbrt-v4 scales each sample's sensor RGB (after the imaging ratio, before white balance) so that its largest
+  // component is at most this: Rimu's film "max_sample_value" is the same rule on its written channels.
+  if (max_component > 0.0 && max_component <= 1e30)
+    film_["max_sample_value"] = max_component;
+  else if (!std::isinf(max_component))
+    ignore("Film \"maxcomponentvalue\" " + std::to_string(max_component) + " (not > 0: Rimu does not clamp)", s.where);
 
   film_iso_.reset();
   if (const PbrtParam* iso = p.get("iso", {PbrtParamType::real})) {
