@@ -140,6 +140,10 @@ TEST_CASE("an environment image's pixels are converted once to the fast emission
         CHECK(std::abs(got[lane] - want_exact[lane]) <= 0.04f * peak);
       }
     }
+    // The pixel's integral over wavelength, upsampled once, is the generic four-lookup sum bit for bit (the light's
+    // power and sampling weights are built from it).
+    CHECK(environment.radiance_integral(x, 0) == environment.RadianceImage::radiance_integral(x, 0));
+    CHECK(environment.radiance_integral(x, 0) > 0.0);
   }
 }
 

@@ -22,11 +22,24 @@ RgbRadianceImage::RgbRadianceImage(std::shared_ptr<const RgbImage> image,
 }
 
 SampledSpectrum RgbRadianceImage::radiance(int x, int y, const SampledWavelengths& lambda) const {
+  return radiance_from(upsampler_->emission_coefficients(image_->pixel(x, y)), lambda);
+}
+
+SampledSpectrum RgbRadianceImage::radiance_from(const BasisCoefficients& coefficients,
+                                                const SampledWavelengths& lambda) const {
   // S(λ) = emission_scale · max(0, s(λ)·Y) · W(λ), as EmissionSpectrum::evaluate with the shape clamped at 0
   // (basis truncation rings a few 1e-3 of the peak below zero where the exact shape is zero).
-  const Float4 shape = upsampler_->basis().evaluate(upsampler_->emission_coefficients(image_->pixel(x, y)),
-                                                     lambda.lambda_nm(), Float4(0.0f), Float4(INFINITY));
+  const Float4 shape =
+      upsampler_->basis().evaluate(coefficients, lambda.lambda_nm(), Float4(0.0f), Float4(INFINITY));
   return Float4(float(upsampler_->emission_scale())) * shape * upsampler_->illuminant()->sample(lambda);
+}
+
+double RgbRadianceImage::radiance_integral(int x, int y) const {
+  const BasisCoefficients coefficients = upsampler_->emission_coefficients(image_->pixel(x, y));
+  double spectral_sum = 0.0;  // the same sum, in the same order, as RadianceImage::radiance_integral
+  for (const SampledWavelengths& lambda : radiance_integral_wavelengths())
+    spectral_sum += sum(radiance_from(coefficients, lambda));
+  return spectral_sum * radiance_integral_band_nm();
 }
 
 }  // namespace rimu

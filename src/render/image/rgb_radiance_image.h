@@ -24,9 +24,12 @@ class RgbRadianceImage final : public RadianceImage {
   int height() const override { return height_; }
   SampledSpectrum radiance(int x, int y, const SampledWavelengths& lambda) const override;
   float luminance(int x, int y) const override { return luminance_[index(x, y)]; }
+  /// The pixel upsampled once for the 16 wavelengths (radiance() would upsample it per lane group).
+  double radiance_integral(int x, int y) const override;
 
  private:
   size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }
+  SampledSpectrum radiance_from(const BasisCoefficients& coefficients, const SampledWavelengths& lambda) const;
 
   int width_ = 0, height_ = 0;
   std::shared_ptr<const RgbImage> image_;  // the pixels as read

@@ -1,7 +1,5 @@
 #include "transport/lights/radiance_image.h"
 
-#include <vector>
-
 #include "spectral/wavelengths/wavelength_range.h"
 
 namespace rimu {
@@ -11,22 +9,24 @@ namespace {
 /// estimate itself never uses it).
 constexpr int kIntegralWavelengths = 16;
 constexpr double kBandNm = (kLambdaMaxNm - kLambdaMinNm) / kIntegralWavelengths;
-
-std::vector<SampledWavelengths> midpoint_groups() {
-  std::vector<SampledWavelengths> groups;
-  for (int g = 0; g < kIntegralWavelengths / kLaneCount; ++g) {
-    Float4 l;
-    for (int j = 0; j < kLaneCount; ++j) l.set(j, float(kLambdaMinNm + (g * kLaneCount + j + 0.5) * kBandNm));
-    groups.emplace_back(l, Float4(float(1.0 / (kLambdaMaxNm - kLambdaMinNm))));
-  }
-  return groups;
-}
+static_assert(kIntegralWavelengths == 4 * kLaneCount);
 }  // namespace
 
-double pixel_radiance_integral(const RadianceImage& image, int x, int y) {
-  static const auto groups = midpoint_groups();
+const std::array<SampledWavelengths, 4>& radiance_integral_wavelengths() {
+  const auto group = [](int k) {
+    Float4 l;
+    for (int j = 0; j < kLaneCount; ++j) l.set(j, float(kLambdaMinNm + (k * kLaneCount + j + 0.5) * kBandNm));
+    return SampledWavelengths(l, Float4(float(1.0 / (kLambdaMaxNm - kLambdaMinNm))));
+  };
+  static const std::array<SampledWavelengths, 4> groups{group(0), group(1), group(2), group(3)};
+  return groups;
+}
+
+double radiance_integral_band_nm() { return kBandNm; }
+
+double RadianceImage::radiance_integral(int x, int y) const {
   double spectral_sum = 0.0;
-  for (const auto& lambda : groups) spectral_sum += sum(image.radiance(x, y, lambda));
+  for (const SampledWavelengths& lambda : radiance_integral_wavelengths()) spectral_sum += sum(radiance(x, y, lambda));
   return spectral_sum * kBandNm;
 }
 

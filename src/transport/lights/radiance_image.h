@@ -7,6 +7,8 @@
 // light's business.
 #pragma once
 
+#include <array>
+
 #include "spectral/wavelengths/sampled_wavelengths.h"
 
 namespace rimu {
@@ -22,10 +24,19 @@ class RadianceImage {
   /// The pixel's brightness for importance sampling: its luminance (any positive multiple will do), ≥ 0.
   /// Called once per pixel when the light is built.
   virtual float luminance(int x, int y) const = 0;
+  /// ∫ radiance(x, y, λ) dλ over 360-830 nm, by the midpoint rule at 16 wavelengths (four lane groups of
+  /// radiance_integral_wavelengths()): a pixel's share of a light's power and sampling weights (W/(m²·sr) for
+  /// radiance, W/sr for an intensity image). Called once per pixel when the light is built. The default asks
+  /// radiance() four times; an image that upsamples a pixel at each lookup overrides it to upsample once.
+  virtual double radiance_integral(int x, int y) const;
 };
 
-/// ∫ radiance(x, y, λ) dλ over 360-830 nm, by the midpoint rule at 16 wavelengths (four lane groups): a pixel's
-/// share of a light's power and sampling weights (W/(m²·sr) for radiance, W/sr for an intensity image).
-double pixel_radiance_integral(const RadianceImage& image, int x, int y);
+/// The four lane groups of wavelengths RadianceImage::radiance_integral's midpoint rule sums, and the width of the
+/// band each stands for (nm).
+const std::array<SampledWavelengths, 4>& radiance_integral_wavelengths();
+double radiance_integral_band_nm();
+
+/// image.radiance_integral(x, y).
+inline double pixel_radiance_integral(const RadianceImage& image, int x, int y) { return image.radiance_integral(x, y); }
 
 }  // namespace rimu
