@@ -24,10 +24,14 @@ PixelFilter filter_of(const FilterSettings& f) {
 
 py::array_t<float> render_scene(SpectralLibrary& library, const std::string& scene_path, std::optional<long long> width,
                                 std::optional<long long> height, std::optional<long long> samples_per_pixel,
-                                std::optional<uint64_t> seed, long long threads) {
+                                std::optional<uint64_t> seed, long long threads,
+                                std::optional<double> max_sample_value) {
   // Every number is checked before the scene is loaded, against the limits `rimu` applies to its options.
   if (samples_per_pixel) check_render_count(*samples_per_pixel, 1, kMaxSamplesPerPixel, argument("samples_per_pixel"));
   if (threads != 0) check_render_count(threads, 1, kMaxRenderThreads, argument("threads"));
+  if (max_sample_value && !(*max_sample_value >= 1e-30 && *max_sample_value <= 1e30))
+    throw InputError(argument("max_sample_value"),
+                     "expected a number in 1e-30-1e30 (the sample clamp), got " + std::to_string(*max_sample_value));
   const std::unique_ptr<Scene> scene = for_argument("scene", [&] {
     return load_scene(scene_path.empty() ? default_scene_path(library) : std::filesystem::path(scene_path), library);
   });
@@ -38,6 +42,7 @@ py::array_t<float> render_scene(SpectralLibrary& library, const std::string& sce
   if (seed) s.seed = *seed;
   Film film({s.width, s.height, std::nullopt, 0}, SpectralResponse::from_spec(library, s.film_response));
   film.set_output_transform(film_output_transform(s.camera_exposure, film.response(), library));
+  film.set_max_sample_value(max_sample_value ? max_sample_value : s.max_sample_value);
   RenderOptions options;
   options.samples_per_pixel = s.samples_per_pixel;
   options.threads = int(threads);
@@ -63,10 +68,12 @@ void bind_render(py::module_& m) {
   auto lib = py::reinterpret_borrow<py::class_<SpectralLibrary>>(m.attr("Library"));
   lib.def("render", &render_scene, py::arg("scene") = "", py::arg("width") = py::none(), py::arg("height") = py::none(),
           py::arg("samples_per_pixel") = py::none(), py::arg("seed") = py::none(), py::arg("threads") = 0,
+          py::arg("max_sample_value") = py::none(),
           "Renders a scene file (default: the Cornell box) and returns the film as a float32 array of shape "
           "(height, width, 3): CIE XYZ for the default film, after the scene's exposure and white balance. "
           "width or height given alone keeps the scene's aspect ratio (the other is scaled and rounded); both at "
-          "most 32768. threads=0 uses every core. "
+          "most 32768. threads=0 uses every core. max_sample_value: the sample clamp (the scene's film "
+          "\"max_sample_value\" by default; docs/rendering.md, \"Sample clamp\"). "
           "Deterministic for a given seed and sample count.\n\n"
           "Example: image = lib.render('data/scenes/cornell_box/scene.json', width=32, samples_per_pixel=4)");
 }

@@ -125,6 +125,17 @@ class Render(unittest.TestCase):
         self.assertGreater(first[..., 1].mean(), 0.0)
         np.testing.assert_array_equal(first, second)
 
+    def test_the_sample_clamp_bounds_every_pixel(self):
+        # The box's Gaussian filter averages samples with positive weights: a pixel of clamped samples is clamped.
+        lib = rimu.Library()
+        plain = lib.render(width=16, height=16, samples_per_pixel=2, seed=3, threads=2)
+        clamped = lib.render(width=16, height=16, samples_per_pixel=2, seed=3, threads=2, max_sample_value=0.05)
+        self.assertGreater(plain.max(), 0.05)
+        self.assertLessEqual(clamped.max(), 0.05 * (1 + 1e-5))
+        self.assertLess(clamped[..., 1].mean(), plain[..., 1].mean())
+        with self.assertRaisesRegex(ValueError, r"^max_sample_value: expected a number"):
+            lib.render(width=8, samples_per_pixel=1, max_sample_value=-1.0)
+
 
 if __name__ == "__main__":
     unittest.main()
