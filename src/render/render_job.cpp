@@ -10,6 +10,7 @@
 #include "render/scene/pbrt/pbrt_to_scene.h"
 #include "render/scene/scene_frame.h"
 #include "spectral/error.h"
+#include "spectral/io/csv_table.h"
 
 namespace rimu {
 
@@ -29,6 +30,14 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
       b.x1 <= b.x0 || b.y1 <= b.y0)
     throw InputError({"", 0, option}, "expected x0,y0,x1,y1 (pixels, end exclusive, x1 > x0, y1 > y0); got '" + text + "'");
   return b;
+}
+
+double parse_max_sample_value(const std::string& text, const std::string& option) {
+  double value = 0.0;
+  if (!parse_finite_number(text, value) || !(value >= 1e-30 && value <= 1e30))
+    throw InputError({"", 0, option}, "expected the largest channel value a camera sample may keep, a number in "
+                                      "1e-30-1e30 in the written image's units (e.g. 20); got '" + text + "'");
+  return value;
 }
 
 nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrary& library, bool strict, std::ostream& log,
