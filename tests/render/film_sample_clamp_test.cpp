@@ -2,7 +2,6 @@
 // scaled so that its largest channel after exposure is at most the value, its spectral bins and light groups with
 // it; clamped samples are counted, written into the EXR and kept apart in merges.
 #include <ImfDoubleAttribute.h>
-#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <doctest/doctest.h>
@@ -24,6 +23,7 @@
 #include "render/render_job.h"
 #include "render/scene/scene.h"
 #include "spectral/error.h"
+#include "light_groups_support.h"  // read_channels
 #include "test_support.h"
 
 using namespace rimu;
@@ -51,19 +51,6 @@ RenderJob clamp_test_job(const fs::path& out) {
   job.quiet = true;
   job.exr_output = out;
   return job;
-}
-
-std::vector<float> clamp_test_channel(const fs::path& exr, const char* name) {
-  Imf::InputFile file(exr.c_str());
-  const Imath::Box2i dw = file.header().dataWindow();
-  const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
-  std::vector<float> pixels(size_t(w) * size_t(h));
-  Imf::FrameBuffer fb;
-  fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(pixels.data() - dw.min.x - dw.min.y * w),
-                             sizeof(float), sizeof(float) * size_t(w)));
-  file.setFrameBuffer(fb);
-  file.readPixels(dw.min.y, dw.max.y);
-  return pixels;
 }
 
 }  // namespace
@@ -180,9 +167,11 @@ TEST_CASE("sample clamp: a render's pixels stay below it, the EXR says how many 
   size_t above = 0;
   const char* names[3] = {"X", "Y", "Z"};
   std::vector<std::vector<float>> clamped, plain;
+  const test::ExrChannels clamped_file = test::read_channels(dir / "clamped.exr");
+  const test::ExrChannels plain_channels = test::read_channels(dir / "plain.exr");
   for (const char* name : names) {
-    clamped.push_back(clamp_test_channel(dir / "clamped.exr", name));
-    plain.push_back(clamp_test_channel(dir / "plain.exr", name));
+    clamped.push_back(clamped_file.channels.at(name));
+    plain.push_back(plain_channels.channels.at(name));
   }
   // The embedded box has a Gaussian filter (radius 1.5): a pixel averages several samples, each clamped, so its
   // value is at most the clamp too (a weighted mean of values ≤ the clamp with positive weights).
