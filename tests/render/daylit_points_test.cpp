@@ -1,7 +1,7 @@
 // Daylit points (transport/integrators/daylit_connection.h) through the real render loop: with the technique on, the
 // image equals the one without within the standard error, over the whole image and per block (a wrong MIS weight
 // shows where its technique matters: the walls and ceiling), on the daylit rooms of data/scenes/interiors, open and
-// double-glazed, with a sun of zero diameter, a glossy floor, no portals, and with path guiding; it lowers the
+// double-glazed (and with a pane in the portal's plane), with a sun of zero diameter, a glossy floor, no portals, and with path guiding; it lowers the
 // room's per-pixel variance at equal samples; and it is deterministic.
 #include <doctest/doctest.h>
 
@@ -69,6 +69,27 @@ bool room_with_portal_default(nlohmann::json document) {
 TEST_CASE("daylit points are unbiased: the daylit room, open and double-glazed") {
   check_daylit_unbiased(daylit_room("daylit_room_open.json"), 32, "open window");
   check_daylit_unbiased(daylit_room("daylit_room_glazed.json"), 32, "two panes");
+}
+
+TEST_CASE("daylit points are unbiased: one pane in the portal's plane, three panes around it") {
+  // The daylight ray starts a margin outside its portal and takes the panes' transmittance on its way in; the test
+  // towards the light covers the rest (daylit_connection.cpp). A pane exactly in the portal's plane must count once.
+  nlohmann::json single = daylit_room("daylit_room_glazed.json");
+  auto& shapes = single["shapes"];
+  for (auto it = shapes.begin(); it != shapes.end();)
+    it = it->value("name", "") == "outer pane" ? shapes.erase(it) : it + 1;
+  for (auto& shape : shapes)
+    if (shape.value("name", "") == "inner pane")
+      for (auto& v : shape["vertices"]) v[0] = 4.0;
+  check_daylit_unbiased(single, 32, "one pane in the portal's plane");
+  nlohmann::json triple = daylit_room("daylit_room_glazed.json");
+  nlohmann::json middle;
+  for (const auto& shape : triple["shapes"])
+    if (shape.value("name", "") == "inner pane") middle = shape;
+  middle["name"] = "middle pane";
+  for (auto& v : middle["vertices"]) v[0] = 4.0;
+  triple["shapes"].push_back(middle);
+  check_daylit_unbiased(triple, 32, "three panes, the middle one in the portal's plane");
 }
 
 TEST_CASE("daylit points are unbiased: a sun of zero diameter, a glossy floor, a mixed floor, a room without portals") {

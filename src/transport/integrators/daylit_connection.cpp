@@ -13,17 +13,30 @@ std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const 
                                              const PathIntegratorSettings& settings, const SampledWavelengths& lambda,
                                              const DaylightRaySampler::DaylightRay& daylight_ray, float time,
                                              const GuidingField* field) {
+  // The ray starts a margin outside its aperture, so that a pane lying in the aperture's plane is on its inward
+  // side, met once here and not again by the test towards the light below (2⁻¹⁴ of the coordinates' magnitude:
+  // sixteen times the surfaces' offset, offset_ray_origin).
+  const float margin = std::fmax(max_component(abs(daylight_ray.origin)), 1e-4f * scene.scene_scale) * 0x1p-14f;
+  const Vec3 start = daylight_ray.origin + daylight_ray.to_light * margin;
   Ray ray;
-  ray.origin = daylight_ray.origin;
+  ray.origin = start;
   ray.direction = -daylight_ray.to_light;
   ray.time = time;
   std::optional<SurfaceHit> hit;
-  // Panes let the daylight ray through as they let shadow rays through (their transmittance is taken on the way back).
-  for (int passed = 0;; ++passed) {
+  // Panes let the daylight ray through as they let shadow rays through. Their transmittance is taken here, for a
+  // ray going the other way (towards the light, as a shadow ray from y would meet them): nothing else lies between
+  // the start and y, so the test towards the light only has to cover what lies beyond the start.
+  ShadowPassage inward;
+  for (;;) {
     hit = scene.geometry->intersect(ray);
     if (!hit || hit->material < 0) return std::nullopt;
-    if (!(scene.passable_surfaces && (*scene.materials)[size_t(hit->material)].passes_shadow_rays())) break;
-    if (passed == kMaxShadowPassages) return std::nullopt;
+    const Material& pane = (*scene.materials)[size_t(hit->material)];
+    if (!(scene.passable_surfaces && pane.passes_shadow_rays())) break;
+    if (inward.surfaces == kMaxShadowPassages) return std::nullopt;
+    const auto through = straight_through_at(pane, *hit, daylight_ray.to_light, lambda);
+    if (!through) return std::nullopt;
+    inward.pass(*through);
+    if (!(max_lane(inward.transmittance) > 0.0f)) return std::nullopt;
     ray.origin = offset_ray_origin(*hit, ray.direction, scene.scene_scale);
     ray.t_min = 0.0f;
     ray.t_max = INFINITY;
@@ -56,15 +69,17 @@ std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const 
   y.frame = Frame::from_normal(ns);
   y.geometric_normal = ng;
 
-  Ray shadow;
-  shadow.origin = offset_ray_origin(*hit, daylight_ray.to_light, scene.scene_scale);
-  shadow.direction = daylight_ray.to_light;
-  shadow.t_max = INFINITY;
-  shadow.time = time;
-  const std::optional<ShadowPassage> passage = trace_shadow(scene, shadow, lambda);
-  if (!passage) return std::nullopt;
-  y.radiance = daylight_ray.radiance * passage->transmittance;
-  y.pass_to_light = passage->pass_probability;
+  // y → light = y → start (the panes above, nothing opaque) + start → light.
+  Ray outward;
+  outward.origin = start;
+  outward.direction = daylight_ray.to_light;
+  outward.t_max = INFINITY;
+  outward.time = time;
+  const std::optional<ShadowPassage> beyond = trace_shadow(scene, outward, lambda);
+  // As many surfaces as one shadow ray may pass (kMaxShadowPassages), so that the technique makes the same paths.
+  if (!beyond || inward.surfaces + beyond->surfaces > kMaxShadowPassages) return std::nullopt;
+  y.radiance = daylight_ray.radiance * inward.transmittance * beyond->transmittance;
+  y.pass_to_light = inward.pass_probability * beyond->pass_probability;
 
   // What next-event estimation at y counts for this light (path_integrator.cpp): the sampler's probability, times
   // the candidates where a glossy vertex resamples its light.

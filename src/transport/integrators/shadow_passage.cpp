@@ -33,8 +33,7 @@ std::optional<ShadowPassage> trace_shadow(const TransportScene& scene, const Ray
     if (passed == kMaxShadowPassages || hit->material < 0) return std::nullopt;
     const auto through = straight_through_at((*scene.materials)[size_t(hit->material)], *hit, ray.direction, lambda);
     if (!through) return std::nullopt;
-    out.transmittance *= through->transmittance;
-    out.pass_probability *= through->probability;
+    out.pass(*through);
     if (!(max_lane(out.transmittance) > 0.0f)) return std::nullopt;
     // Continue from the far side of the pane, up to the same end point.
     const Vec3 end = ray.origin + ray.direction * ray.t_max;

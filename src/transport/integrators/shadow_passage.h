@@ -30,6 +30,14 @@ std::optional<ThinDielectricBsdf::StraightThrough> straight_through_at(const Mat
 struct ShadowPassage {
   SampledSpectrum transmittance{1.0f};
   SampledSpectrum pass_probability{1.0f};
+  int surfaces = 0;  ///< how many it passed (at most kMaxShadowPassages)
+
+  /// The passage through `through` as well (one more surface).
+  void pass(const ThinDielectricBsdf::StraightThrough& through) {
+    transmittance *= through.transmittance;
+    pass_probability *= through.probability;
+    ++surfaces;
+  }
 };
 
 /// A shadow ray in a scene without media: one occlusion query when the scene has no pass-through surface
