@@ -66,7 +66,6 @@ void Film::merge_tile(const FilmTile& tile) {
 
 void Film::add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
                       float filter_weight, const SampledSpectrum* group_radiance) {
-  pixels_.set_max_channel_value(max_channel_value());
   pixels_.add_sample(x, y, radiance, lambda, filter_weight, group_radiance);
 }
 

@@ -72,13 +72,19 @@ class Film {
   /// The value written to output files: output_transform() applied to pixel_value() (exposure, white balance).
   std::array<double, 3> output_value(int x, int y) const { return output_.apply(pixel_value(x, y)); }
   /// Sets the exposure and white balance applied when the film is written (identity by default).
-  void set_output_transform(const FilmOutputTransform& transform) { output_ = transform; }
+  void set_output_transform(const FilmOutputTransform& transform) {
+    output_ = transform;
+    pixels_.set_max_channel_value(max_channel_value());  // the clamp is in the written units
+  }
   const FilmOutputTransform& output_transform() const { return output_; }
   /// The sample clamp (film "max_sample_value", `--max-sample-value`; docs/rendering.md, "Sample clamp"): each
   /// sample's channel values, times the output transform's exposure scale, are scaled down so that the largest is at
   /// most `value` (the written image's units before white balance, as pbrt-v4's "maxcomponentvalue"). Tiles made
   /// after this call apply it (make_tile), as does add_sample. nullopt: no clamp.
-  void set_max_sample_value(std::optional<double> value) { max_sample_value_ = value; }
+  void set_max_sample_value(std::optional<double> value) {
+    max_sample_value_ = value;
+    pixels_.set_max_channel_value(max_channel_value());
+  }
   std::optional<double> max_sample_value() const { return max_sample_value_; }
   /// The mean spectral radiance (W/(m²·sr·nm) if the input was) estimated in bin `bin` of pixel (x, y).
   double spectral_value(int x, int y, int bin) const;

@@ -83,7 +83,7 @@ class FilmTile {
 
   /// The sample clamp: a sample's channel values (before the filter weight) are scaled so that the largest is at
   /// most `value` (film units, > 0; infinity: no clamp, the default). Biased: it trades rare bright samples'
-  /// variance for a darker mean (docs/film.md, "Sample clamp").
+  /// variance for a darker mean (docs/rendering.md, "Sample clamp").
   void set_max_channel_value(float value) { max_channel_value_ = value; }
   float max_channel_value() const { return max_channel_value_; }
 

@@ -22,25 +22,13 @@ std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const 
   ray.origin = start;
   ray.direction = -daylight_ray.to_light;
   ray.time = time;
-  std::optional<SurfaceHit> hit;
-  // Panes let the daylight ray through as they let shadow rays through. Their transmittance is taken here, for a
-  // ray going the other way (towards the light, as a shadow ray from y would meet them): nothing else lies between
-  // the start and y, so the test towards the light only has to cover what lies beyond the start.
+  // Panes let the daylight ray through as they let shadow rays through. Their transmittance is taken here, for light
+  // going the other way (towards the light, as a shadow ray from y would meet them): nothing else lies between the
+  // start and y, so the test towards the light only has to cover what lies beyond the start.
   ShadowPassage inward;
-  for (;;) {
-    hit = scene.geometry->intersect(ray);
-    if (!hit || hit->material < 0) return std::nullopt;
-    const Material& pane = (*scene.materials)[size_t(hit->material)];
-    if (!(scene.passable_surfaces && pane.passes_shadow_rays())) break;
-    if (inward.surfaces == kMaxShadowPassages) return std::nullopt;
-    const auto through = straight_through_at(pane, *hit, daylight_ray.to_light, lambda);
-    if (!through) return std::nullopt;
-    inward.pass(*through);
-    if (!(max_lane(inward.transmittance) > 0.0f)) return std::nullopt;
-    ray.origin = offset_ray_origin(*hit, ray.direction, scene.scene_scale);
-    ray.t_min = 0.0f;
-    ray.t_max = INFINITY;
-  }
+  const PaneWalk walk = pass_panes(scene, ray, daylight_ray.to_light, lambda, inward);
+  if (walk.end != PaneWalk::End::surface || walk.surface->material < 0) return std::nullopt;
+  const SurfaceHit* hit = &*walk.surface;
   const Material& material = (*scene.materials)[size_t(hit->material)];
   // A mix chooses its material by the direction it is seen from, which differs for every vertex connecting here:
   // mixes are left out of the technique (the path integrator leaves them out of its weights alike).

@@ -20,28 +20,38 @@ std::optional<ThinDielectricBsdf::StraightThrough> straight_through_at(const Mat
   return sheet->straight_through(std::fabs(dot(direction, context.shading_normal)));
 }
 
+PaneWalk pass_panes(const TransportScene& scene, const Ray& ray, Vec3 light_direction, const SampledWavelengths& lambda,
+                    ShadowPassage& passage) {
+  Ray segment = ray;
+  for (;;) {
+    std::optional<SurfaceHit> hit = scene.geometry->intersect(segment);
+    if (!hit) return {};
+    if (hit->material < 0 || !(scene.passable_surfaces && (*scene.materials)[size_t(hit->material)].passes_shadow_rays()))
+      return {PaneWalk::End::surface, std::move(hit)};
+    if (passage.surfaces == kMaxShadowPassages) return {PaneWalk::End::blocked, std::nullopt};
+    const auto through = straight_through_at((*scene.materials)[size_t(hit->material)], *hit, light_direction, lambda);
+    if (!through) return {PaneWalk::End::blocked, std::nullopt};
+    passage.pass(*through);
+    if (!(max_lane(passage.transmittance) > 0.0f)) return {PaneWalk::End::blocked, std::nullopt};
+    // Continue from the far side of the pane, up to the same end point.
+    segment.origin = offset_ray_origin(*hit, ray.direction, scene.scene_scale);
+    segment.t_min = 0.0f;
+    if (!std::isinf(ray.t_max)) {
+      const Vec3 end = ray.origin + ray.direction * ray.t_max;
+      segment.t_max = dot(end - segment.origin, ray.direction);
+      if (!(segment.t_max > 0.0f)) return {};
+    }
+  }
+}
+
 std::optional<ShadowPassage> trace_shadow(const TransportScene& scene, const Ray& ray, const SampledWavelengths& lambda) {
   if (!scene.passable_surfaces) {
     if (scene.geometry->occluded(ray)) return std::nullopt;
     return ShadowPassage{};
   }
   ShadowPassage out;
-  Ray segment = ray;
-  for (int passed = 0;; ++passed) {
-    const std::optional<SurfaceHit> hit = scene.geometry->intersect(segment);
-    if (!hit) return out;
-    if (passed == kMaxShadowPassages || hit->material < 0) return std::nullopt;
-    const auto through = straight_through_at((*scene.materials)[size_t(hit->material)], *hit, ray.direction, lambda);
-    if (!through) return std::nullopt;
-    out.pass(*through);
-    if (!(max_lane(out.transmittance) > 0.0f)) return std::nullopt;
-    // Continue from the far side of the pane, up to the same end point.
-    const Vec3 end = ray.origin + ray.direction * ray.t_max;
-    segment.origin = offset_ray_origin(*hit, ray.direction, scene.scene_scale);
-    segment.t_min = 0.0f;
-    segment.t_max = std::isinf(ray.t_max) ? ray.t_max : dot(end - segment.origin, ray.direction);
-    if (!(segment.t_max > 0.0f)) return out;
-  }
+  if (pass_panes(scene, ray, ray.direction, lambda, out).end != PaneWalk::End::reached_end) return std::nullopt;
+  return out;
 }
 
 }  // namespace rimu

@@ -40,6 +40,24 @@ struct ShadowPassage {
   }
 };
 
+/// Where a ray walked through pass-through surfaces (pass_panes) ended.
+struct PaneWalk {
+  enum class End {
+    reached_end,  ///< nothing but panes up to the ray's t_max
+    surface,      ///< at `surface`, the first surface not passed (opaque, refracting, or an emitter without material)
+    blocked       ///< at a pane it could not pass: a ninth (kMaxShadowPassages), or one that left no light
+  };
+  End end = End::reached_end;
+  std::optional<SurfaceHit> surface;
+};
+
+/// Closest hits along `ray` (up to its t_max) through the surfaces shadow rays pass (when
+/// TransportScene::passable_surfaces), multiplying into `passage` what each passes of light travelling along
+/// `light_direction`: ray.direction for a shadow ray, its reverse for a ray traced in from the light's side (the
+/// daylight rays of daylit_connection.h). At most kMaxShadowPassages surfaces in `passage` in all.
+PaneWalk pass_panes(const TransportScene& scene, const Ray& ray, Vec3 light_direction, const SampledWavelengths& lambda,
+                    ShadowPassage& passage);
+
 /// A shadow ray in a scene without media: one occlusion query when the scene has no pass-through surface
 /// (TransportScene::passable_surfaces false), else closest hits until the light, multiplying the transmittance of
 /// each pass-through surface met. std::nullopt when blocked (an opaque or refracting surface, or more than
