@@ -29,7 +29,7 @@ py::array_t<float> render_scene(SpectralLibrary& library, const std::string& sce
   // Every number is checked before the scene is loaded, against the limits `rimu` applies to its options.
   if (samples_per_pixel) check_render_count(*samples_per_pixel, 1, kMaxSamplesPerPixel, argument("samples_per_pixel"));
   if (threads != 0) check_render_count(threads, 1, kMaxRenderThreads, argument("threads"));
-  if (max_sample_value && !(*max_sample_value >= 1e-30 && *max_sample_value <= 1e30))
+  if (max_sample_value && !Film::valid_sample_clamp(*max_sample_value))
     throw InputError(argument("max_sample_value"),
                      "expected a number in 1e-30-1e30 (the sample clamp), got " + std::to_string(*max_sample_value));
   const std::unique_ptr<Scene> scene = for_argument("scene", [&] {

@@ -34,7 +34,7 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
 
 double parse_max_sample_value(const std::string& text, const std::string& option) {
   double value = 0.0;
-  if (!parse_finite_number(text, value) || !(value >= 1e-30 && value <= 1e30))
+  if (!parse_finite_number(text, value) || !Film::valid_sample_clamp(value))
     throw InputError({"", 0, option}, "expected the largest channel value a camera sample may keep, a number in "
                                       "1e-30-1e30 in the written image's units (e.g. 20); got '" + text + "'");
   return value;

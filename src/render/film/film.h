@@ -77,6 +77,9 @@ class Film {
     pixels_.set_max_channel_value(max_channel_value());  // the clamp is in the written units
   }
   const FilmOutputTransform& output_transform() const { return output_; }
+  /// The range a sample clamp may take, wherever it is given (the scene's film, `--max-sample-value`, Python).
+  static constexpr double kMinSampleClamp = 1e-30, kMaxSampleClamp = 1e30;
+  static bool valid_sample_clamp(double value) { return value >= kMinSampleClamp && value <= kMaxSampleClamp; }
   /// The sample clamp (film "max_sample_value", `--max-sample-value`; docs/rendering.md, "Sample clamp"): each
   /// sample's channel values, times the output transform's exposure scale, are scaled down so that the largest is at
   /// most `value` (the written image's units before white balance, as pbrt-v4's "maxcomponentvalue"). Tiles made

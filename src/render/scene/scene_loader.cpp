@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "render/camera/camera_exposure.h"
+#include "render/film/film.h"
 #include "render/scene/scene_camera.h"
 #include "render/scene/light_coverage.h"
 #include "render/scene/photometric_units.h"
@@ -127,7 +128,7 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
   }
   s.film_response = c.string_or("response", s.film_response);
   s.spectral_bins = c.integer_or("spectral_bins", 0, 0, 471);
-  if (c.has("max_sample_value")) s.max_sample_value = c.at("max_sample_value").number(1e-30, 1e30);
+  if (c.has("max_sample_value")) s.max_sample_value = c.at("max_sample_value").number(Film::kMinSampleClamp, Film::kMaxSampleClamp);
   if (c.has("aov")) {
     const JsonCursor aov = c.at("aov");
     try {
