@@ -93,14 +93,15 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   std::vector<uint64_t> planned_samples(tiles.size());
 
   RenderStatistics stats;
-  // Path guiding (surface integrator only): the field the current pass samples from, fitted after the last one.
-  constexpr bool can_guide = std::is_same_v<Integrator, PathIntegrator>;
-  stats.guiding.active = can_guide && integrator_settings.guiding;
+  // Path guiding: the field the current pass samples from, fitted after the last one. Both integrators guide
+  // their surface vertices; the volumetric one leaves its medium vertices to the phase function.
+  constexpr bool surfaces_only = std::is_same_v<Integrator, PathIntegrator>;
+  stats.guiding.active = integrator_settings.guiding;
   // Camera rays carry differentials only where a texture reads them, spaced as this render's samples are: a pixel's
   // spp samples cover it about 1/√spp apart; pbrt-v4's floor of 1/8 keeps high-spp renders from sharpening the
   // lookup below the texels' own noise-free resolution.
   const bool texture_footprints = [&] {
-    if constexpr (can_guide) return integrator.scene().texture_footprints;
+    if constexpr (surfaces_only) return integrator.scene().texture_footprints;
     else return integrator.scene().surfaces.texture_footprints;
   }();
   float differentials_scale = 0.0f;
@@ -183,12 +184,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
         const auto tile_start = std::chrono::steady_clock::now();
         auto tile = std::make_unique<FilmTile>(film.make_tile(tiles[t]));
         if (options.features) feature_results[t] = options.features->make_tile(tile->bounds());
-        [[maybe_unused]] PathGuidingContext guiding;
-        if constexpr (can_guide) {
-          guiding.field = guiding_field ? &*guiding_field : nullptr;
-          guiding.record = train ? &guiding_records[t] : nullptr;
-          guiding.record_limit = tile_record_limit;
-        }
+        PathGuidingContext guiding;
+        guiding.field = guiding_field ? &*guiding_field : nullptr;
+        guiding.record = train ? &guiding_records[t] : nullptr;
+        guiding.record_limit = tile_record_limit;
         const PixelBounds& b = tile->bounds();
         for (int y = b.y0; y < b.y1; ++y) {
           for (int x = b.x0; x < b.x1; ++x) {
@@ -209,18 +208,11 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               const Ray ray = camera.generate_ray(film_x, film_y, lens, time);
               SampledSpectrum radiance;
               if (groups.groups) std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
-              if constexpr (can_guide) {
-                if (differentials_scale > 0.0f) {
-                  const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
-                  radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
-                } else {
-                  radiance = integrator.radiance(ray, lambda, *sampler, guiding, groups);
-                }
-              } else if (differentials_scale > 0.0f) {
+              if (differentials_scale > 0.0f) {
                 const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
-                radiance = integrator.radiance(ray, &d, lambda, *sampler, groups);
+                radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
               } else {
-                radiance = integrator.radiance(ray, lambda, *sampler, groups);
+                radiance = integrator.radiance(ray, nullptr, lambda, *sampler, guiding, groups);
               }
               if (!options.features && !options.adaptive) {
                 tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);

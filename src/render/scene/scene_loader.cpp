@@ -292,9 +292,6 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   for (std::string& warning : light_coverage_warnings(*scene)) scene->warnings.push_back(std::move(warning));
   for (std::string& warning : refracted_light_warnings(*scene)) scene->warnings.push_back(std::move(warning));
   for (std::string& warning : unlit_medium_warnings(document, *scene)) scene->warnings.push_back(std::move(warning));
-  if (scene->settings.integrator.guiding && scene->has_media())
-    scene->warnings.push_back("integrator.guiding: path guiding is not applied in scenes with participating media "
-                              "(the volumetric integrator does not guide yet); this scene renders unguided");
   // Zero-area triangles cannot be hit or shaded; removing them is right, but a count the user never sees would
   // hide a broken export.
   if (scene->degenerate_triangles_removed > 0)

@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "transport/geometry/frame.h"
+#include "transport/guiding/guided_bsdf.h"
+#include "transport/guiding/path_guiding_record.h"
 #include "transport/integrators/light_resampling.h"
 #include "transport/integrators/path_footprint.h"
 #include "transport/integrators/shadow_passage.h"
@@ -21,6 +23,10 @@ struct Scatterer {
   Vec3 wo_local{}, wo_world{};
   Vec3 geometric_normal{};  // surface only, on the side of the shading normal
   const HenyeyGreenstein* phase = nullptr;  // medium vertex
+  /// Path guiding at a surface vertex (guided_bsdf.h): the learned directions, drawn with probability `alpha`. Every
+  /// density below is then the mixture's, as in the surface integrator.
+  std::optional<VertexGuide> guide;
+  float alpha = 0.0f;
 
   bool has_non_delta() const { return phase || bsdf->flags().has_non_delta; }
   bool opaque() const { return !phase && !bsdf->flags().has_transmission; }
@@ -32,6 +38,7 @@ struct Scatterer {
   }
   SampledSpectrum pdf(Vec3 wi_world) const {
     if (phase) return Float4(phase->eval(wo_world, wi_world));
+    if (guide) return GuidedBsdf(*bsdf, frame, &*guide, alpha).pdf(wo_local, frame.to_local(wi_world));
     return bsdf->pdf(wo_local, frame.to_local(wi_world));
   }
 };
@@ -59,7 +66,9 @@ std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe
     const PhaseSample ps = s.phase->sample(s.wo_world, u);
     return DirectionSample{ps.wi, Float4(ps.pdf_solid_angle), Float4(ps.pdf_solid_angle), false};
   }
-  const std::optional<BsdfSample> bs = s.bsdf->sample_deferring_density(s.wo_local, u_lobe, u);
+  // A guided vertex needs the BSDF's density for the mixture's: nothing is deferred there.
+  const std::optional<BsdfSample> bs = s.guide ? GuidedBsdf(*s.bsdf, s.frame, &*s.guide, s.alpha).sample(s.wo_local, u_lobe, u)
+                                               : s.bsdf->sample_deferring_density(s.wo_local, u_lobe, u);
   if (!bs || !(bs->pdf[0] > 0.0f)) return std::nullopt;
   const Vec3 wi_world = s.frame.to_world(bs->wi);
   if (s.opaque() && dot(wi_world, s.geometric_normal) <= 0.0f) return std::nullopt;
@@ -126,6 +135,7 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
 
 SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const RayDifferentials* camera_differentials,
                                                    const SampledWavelengths& lambda, Sampler& sampler,
+                                                   const PathGuidingContext& guiding,
                                                    const LightGroupRadiance& groups) const {
   const TransportScene& surfaces = scene_.surfaces;
   const auto& lights = *surfaces.lights;
@@ -158,10 +168,19 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   LightReference previous_reference{};
   LightSamplingPoint previous_sampling_point{};
 
-  // Every emitted contribution, credited to its light's group as well (light_group_radiance.h).
-  auto contribute = [&](const SampledSpectrum& contribution, int light_group) {
+  // Path guiding (path_integrator.cpp says what is learned): this path's record, if it teaches the field.
+  std::optional<PathGuidingRecord> record;
+  if (path.guiding && guiding.record && guiding.record->size() < guiding.record_limit)
+    record.emplace(guiding_lane_weights(lambda, path.wavelengths == WavelengthMode::rgb));
+  bool previous_recorded = false;  // the last direction decision's vertex is the record's last one
+
+  // Every emitted contribution, credited to its light's group as well (light_group_radiance.h). `direct_by_mis`:
+  // an emitter the last vertex's own sampled direction reached, weighted against next-event estimation there, which
+  // that vertex does not learn (as in the surface integrator).
+  auto contribute = [&](const SampledSpectrum& contribution, int light_group, bool direct_by_mis = false) {
     radiance += contribution;
     groups.add(light_group, contribution);
+    if (record) record->add_radiance(contribution, direct_by_mis && previous_recorded);
   };
   auto add_emission = [&](const SampledSpectrum& emitted, float light_pdf_solid_angle, const Light& light) {
     if (strategy == DirectLighting::nee_only && !previous_specular) return;
@@ -183,7 +202,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     const float s_dir = scale * sum_ratio;
     const float s_light = light_pdf_solid_angle * previous_sum_ratio;
     contribute(beta * emitted * Float4(kLanes * scale * s_dir / (s_light * s_light + s_dir * s_dir)),
-               light.light_group());
+               light.light_group(), true);
   };
 
   int surface_depth = 0, vertex_count = 0, medium_events = 0, crossings = 0;
@@ -252,6 +271,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     }
 
     Scatterer scatterer;
+    int guided_facing = -1;  // a guidable surface vertex's facing_of (guiding_field.h); −1 elsewhere
     SurfaceDifferentials footprint{};  // at a surface vertex reached with differentials
     LightReference reference;
     Vec3 shadow_origin;
@@ -324,6 +344,16 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       scatterer.wo_world = -ray.direction;
       scatterer.wo_local = scatterer.frame.to_local(scatterer.wo_world);
       if (scatterer.wo_local.z == 0.0f) break;
+      // Guided as the surface integrator guides: non-delta BSDFs, not panes; the same field and facing.
+      const BsdfFlags flags = scatterer.bsdf->flags();
+      if (path.guiding && flags.has_non_delta && !flags.has_delta && !may_pass) {
+        guided_facing = facing_of(ng);
+        if (guiding.field)
+          if (const LeafGuide leaf = guiding.field->distribution_at(hit->position, guided_facing)) {
+            scatterer.guide.emplace(leaf, hit->position);
+            scatterer.alpha = path.guiding_probability;
+          }
+      }
       reference = {hit->position, ng};
       shadow_origin = hit->position;
     }
@@ -485,6 +515,17 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       beta *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
       pdf_ratio *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
     }
+    // What arrives along wi, divided by the vertex's effective throughput (4β/ΣR: β alone is rescaled at every
+    // vertex), is the incident radiance the record learns. A medium vertex is not recorded; a deferred density
+    // (an unguided costly BSDF) records nothing either, having no density yet.
+    previous_recorded = false;
+    if (record && guided_facing >= 0 && !ds->density_deferred) {
+      const float effective = kLanes / sum(pdf_ratio);
+      if (effective > 0.0f && std::isfinite(effective))
+        previous_recorded = record->add_vertex(hit->position, guided_facing, ds->wi_world, ds->pdf[0],
+                                               std::fabs(dot(ds->wi_world, scatterer.geometric_normal)),
+                                               beta * Float4(effective));
+    }
 
     const float u_roulette = sampler.next_1d();
     if (vertex_count >= path.russian_roulette_depth) {
@@ -504,6 +545,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     ray.t_min = 0.0f;
     ray.t_max = INFINITY;
   }
+  if (record) record->flush(*guiding.record);
   if (!single) return radiance;
   const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
   if (groups.groups) groups.mask(hero_only);

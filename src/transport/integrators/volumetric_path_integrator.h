@@ -74,7 +74,14 @@ class VolumetricPathIntegrator {
   /// the scene asks for it (transport/integrators/path_footprint.h: through specular bounces and straight passages,
   /// ended by any other bounce or a scattering in a medium).
   SampledSpectrum radiance(const Ray& ray, const RayDifferentials* differentials, const SampledWavelengths& lambda,
-                           Sampler& sampler, const LightGroupRadiance& groups = {}) const;
+                           Sampler& sampler, const LightGroupRadiance& groups = {}) const {
+    return radiance(ray, differentials, lambda, sampler, PathGuidingContext{}, groups);
+  }
+  /// The same, guided by (and teaching) the field in `guiding` when the path settings' guiding is on: at surface
+  /// vertices only, as the surface integrator guides them (a medium vertex samples its phase function).
+  SampledSpectrum radiance(const Ray& ray, const RayDifferentials* differentials, const SampledWavelengths& lambda,
+                           Sampler& sampler, const PathGuidingContext& guiding,
+                           const LightGroupRadiance& groups = {}) const;
   const VolumetricScene& scene() const { return scene_; }
 
  private:
