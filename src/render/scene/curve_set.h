@@ -60,6 +60,10 @@ struct CurveSet {
 /// bent curve of a few pixels' width (pbrt-v3-scenes' figures/f3-18) needs ~46.
 int curve_tessellation_rate(const CurveSet& set);
 
+/// The unit vector a fraction t of the way from unit `a` to unit `b` along the great circle through them (spherical
+/// interpolation; pbrt-v4's Slerp). Opposite vectors turn about an arbitrary perpendicular.
+Vec3 slerp_unit(Vec3 a, Vec3 b, float t);
+
 /// The number of segments a curve of `points` control points has in `basis` and `degree` (2 or 3), or 0 when the
 /// count does not make whole segments (Bézier: degree·n + 1 points; B-spline: n + degree points).
 size_t curve_segment_count(size_t points, CurveBasis basis, int degree);
@@ -67,7 +71,8 @@ size_t curve_segment_count(size_t points, CurveBasis basis, int degree);
 /// Appends one curve to `set` as cubic Bézier segments: a B-spline is converted exactly (each segment's Bézier
 /// points are fixed averages of its degree + 1 B-spline points) and a quadratic raised exactly to a cubic (degree
 /// elevation), radii alongside the positions (so the radius is the same spline of the per-point radii).
-/// `segment_normals` (ribbons): segments + 1 normals, one at each segment's ends, interpolated linearly between.
+/// `segment_normals` (ribbons): segments + 1 normals, one at each segment's ends, turned from one to the next along
+/// the arc between them (slerp_unit, as pbrt-v4 does), to within Embree's cubic Bézier of normals.
 /// Segments of zero radius or a single point (nothing a ray can hit) are left out; the number left out is returned.
 /// Throws std::invalid_argument when the count of points does not make whole segments.
 size_t append_curve(CurveSet& set, std::span<const Vec3> points, std::span<const float> radii, CurveBasis basis,
