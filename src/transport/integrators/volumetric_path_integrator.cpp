@@ -27,6 +27,7 @@ struct Scatterer {
   /// density below is then the mixture's, as in the surface integrator.
   std::optional<VertexGuide> guide;
   float alpha = 0.0f;
+  bool guidable = false;  ///< guiding is on and this vertex could be guided: its density is needed now (the record)
 
   bool has_non_delta() const { return phase || bsdf->flags().has_non_delta; }
   bool opaque() const { return !phase && !bsdf->flags().has_transmission; }
@@ -66,9 +67,12 @@ std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe
     const PhaseSample ps = s.phase->sample(s.wo_world, u);
     return DirectionSample{ps.wi, Float4(ps.pdf_solid_angle), Float4(ps.pdf_solid_angle), false};
   }
-  // A guided vertex needs the BSDF's density for the mixture's: nothing is deferred there.
-  const std::optional<BsdfSample> bs = s.guide ? GuidedBsdf(*s.bsdf, s.frame, &*s.guide, s.alpha).sample(s.wo_local, u_lobe, u)
-                                               : s.bsdf->sample_deferring_density(s.wo_local, u_lobe, u);
+  // A guided vertex needs the BSDF's density for the mixture's, and a guidable one for the field's record: nothing
+  // is deferred there.
+  const std::optional<BsdfSample> bs =
+      s.guide       ? GuidedBsdf(*s.bsdf, s.frame, &*s.guide, s.alpha).sample(s.wo_local, u_lobe, u)
+      : s.guidable ? s.bsdf->sample(s.wo_local, u_lobe, u)
+                    : s.bsdf->sample_deferring_density(s.wo_local, u_lobe, u);
   if (!bs || !(bs->pdf[0] > 0.0f)) return std::nullopt;
   const Vec3 wi_world = s.frame.to_world(bs->wi);
   if (s.opaque() && dot(wi_world, s.geometric_normal) <= 0.0f) return std::nullopt;
@@ -347,6 +351,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       // Guided as the surface integrator guides: non-delta BSDFs, not panes; the same field and facing.
       const BsdfFlags flags = scatterer.bsdf->flags();
       if (path.guiding && flags.has_non_delta && !flags.has_delta && !may_pass) {
+        scatterer.guidable = true;
         guided_facing = facing_of(ng);
         if (guiding.field)
           if (const LeafGuide leaf = guiding.field->distribution_at(hit->position, guided_facing)) {
@@ -516,10 +521,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       pdf_ratio *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
     }
     // What arrives along wi, divided by the vertex's effective throughput (4β/ΣR: β alone is rescaled at every
-    // vertex), is the incident radiance the record learns. A medium vertex is not recorded; a deferred density
-    // (an unguided costly BSDF) records nothing either, having no density yet.
+    // vertex), is the incident radiance the record learns. A medium vertex is not recorded.
     previous_recorded = false;
-    if (record && guided_facing >= 0 && !ds->density_deferred) {
+    if (record && guided_facing >= 0) {
       const float effective = kLanes / sum(pdf_ratio);
       if (effective > 0.0f && std::isfinite(effective))
         previous_recorded = record->add_vertex(hit->position, guided_facing, ds->wi_world, ds->pdf[0],
