@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"bvh", "bvh-spectral", "power", "uniform"}));
   app.add_option("--guiding", guiding,
                  "on: learn where light comes from while rendering and sample directions from it (path guiding; "
-                 "helps interiors lit indirectly, see docs/transport.md), mixture: the same with a parallax-aware "
+                 "somewhat less noise per sample on interiors lit indirectly, but each sample costs more: measured in "
+                 "docs/benchmarks.md), mixture: the same with a parallax-aware "
                  "mixture of lobes per region instead of a quadtree, off: the default (overrides the scene)")
       ->check(CLI::IsMember({"on", "off", "mixture"}));
   app.add_option("--daylit-points", daylit_points,
