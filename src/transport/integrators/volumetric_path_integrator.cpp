@@ -27,7 +27,9 @@ struct Scatterer {
   /// density below is then the mixture's, as in the surface integrator.
   std::optional<VertexGuide> guide;
   float alpha = 0.0f;
-  bool guidable = false;  ///< guiding is on and this vertex could be guided: its density is needed now (the record)
+  /// Guiding is on and this surface vertex could be guided: its facing_of (guiding_field.h), −1 elsewhere. Such a
+  /// vertex's density is needed now, for the field's record.
+  int guided_facing = -1;
 
   bool has_non_delta() const { return phase || bsdf->flags().has_non_delta; }
   bool opaque() const { return !phase && !bsdf->flags().has_transmission; }
@@ -70,9 +72,9 @@ std::optional<DirectionSample> sample_direction(const Scatterer& s, float u_lobe
   // A guided vertex needs the BSDF's density for the mixture's, and a guidable one for the field's record: nothing
   // is deferred there.
   const std::optional<BsdfSample> bs =
-      s.guide       ? GuidedBsdf(*s.bsdf, s.frame, &*s.guide, s.alpha).sample(s.wo_local, u_lobe, u)
-      : s.guidable ? s.bsdf->sample(s.wo_local, u_lobe, u)
-                    : s.bsdf->sample_deferring_density(s.wo_local, u_lobe, u);
+      s.guide                ? GuidedBsdf(*s.bsdf, s.frame, &*s.guide, s.alpha).sample(s.wo_local, u_lobe, u)
+      : s.guided_facing >= 0 ? s.bsdf->sample(s.wo_local, u_lobe, u)
+                             : s.bsdf->sample_deferring_density(s.wo_local, u_lobe, u);
   if (!bs || !(bs->pdf[0] > 0.0f)) return std::nullopt;
   const Vec3 wi_world = s.frame.to_world(bs->wi);
   if (s.opaque() && dot(wi_world, s.geometric_normal) <= 0.0f) return std::nullopt;
@@ -275,7 +277,6 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     }
 
     Scatterer scatterer;
-    int guided_facing = -1;  // a guidable surface vertex's facing_of (guiding_field.h); −1 elsewhere
     SurfaceDifferentials footprint{};  // at a surface vertex reached with differentials
     LightReference reference;
     Vec3 shadow_origin;
@@ -351,10 +352,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       // Guided as the surface integrator guides: non-delta BSDFs, not panes; the same field and facing.
       const BsdfFlags flags = scatterer.bsdf->flags();
       if (path.guiding && flags.has_non_delta && !flags.has_delta && !may_pass) {
-        scatterer.guidable = true;
-        guided_facing = facing_of(ng);
+        scatterer.guided_facing = facing_of(ng);
         if (guiding.field)
-          if (const LeafGuide leaf = guiding.field->distribution_at(hit->position, guided_facing)) {
+          if (const LeafGuide leaf = guiding.field->distribution_at(hit->position, scatterer.guided_facing)) {
             scatterer.guide.emplace(leaf, hit->position);
             scatterer.alpha = path.guiding_probability;
           }
@@ -523,10 +523,10 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     // What arrives along wi, divided by the vertex's effective throughput (4β/ΣR: β alone is rescaled at every
     // vertex), is the incident radiance the record learns. A medium vertex is not recorded.
     previous_recorded = false;
-    if (record && guided_facing >= 0) {
+    if (record && scatterer.guided_facing >= 0) {
       const float effective = kLanes / sum(pdf_ratio);
       if (effective > 0.0f && std::isfinite(effective))
-        previous_recorded = record->add_vertex(hit->position, guided_facing, ds->wi_world, ds->pdf[0],
+        previous_recorded = record->add_vertex(hit->position, scatterer.guided_facing, ds->wi_world, ds->pdf[0],
                                                std::fabs(dot(ds->wi_world, scatterer.geometric_normal)),
                                                beta * Float4(effective));
     }
