@@ -33,6 +33,22 @@ class VertexGuide {
   VertexMixture mixture_;
 };
 
+/// Which surface vertices are guided: a BSDF with a non-delta lobe and no delta one (a delta lobe cannot be
+/// evaluated, so no mixture density exists), and not a pane the path passes straight through (no vertex at all).
+/// The path integrators and the daylit points (daylit_connection.h) all decide by this and find the leaf by
+/// guide_leaf_at, because a guided density must be the same function of the vertex wherever it is evaluated: a
+/// technique that guided a vertex the path's own sampling did not would be weighted wrongly (docs/benchmarks.md,
+/// "Path guiding", fifth round: such a mismatch came out 57 % too bright).
+inline bool is_guidable(const BsdfFlags& flags, bool passes_through) {
+  return flags.has_non_delta && !flags.has_delta && !passes_through;
+}
+
+/// The learned guide of a guidable vertex at `position` whose geometric normal `ng` is on the side its BSDF's frame
+/// faces (the side it is seen from, or for a transmissive BSDF as the surface gives it); none without a field.
+inline LeafGuide guide_leaf_at(const GuidingField* field, Vec3 position, Vec3 ng) {
+  return field ? field->distribution_at(position, facing_of(ng)) : LeafGuide{};
+}
+
 class GuidedBsdf {
  public:
   /// `guide` nullptr (or α = 0): the BSDF alone. The guide's directions are world-space; the BSDF's local.

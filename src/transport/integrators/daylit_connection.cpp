@@ -82,8 +82,9 @@ std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const 
   const int candidates = flags.has_glossy ? settings.glossy_candidates_for(scene.lights->size()) : 1;
   y.light_choice = (candidates > 1 && choice < 1.0f ? float(candidates) : 1.0f) * choice;
 
-  if (settings.guiding && field && !flags.has_delta)
-    if (const LeafGuide leaf = field->distribution_at(hit->position, facing_of(ng))) y.guide.emplace(leaf, hit->position);
+  // Guided as a path's own vertex here would be (a daylit point is never a pane: pass_panes walked past those).
+  if (settings.guiding && is_guidable(flags, false))
+    if (const LeafGuide leaf = guide_leaf_at(field, hit->position, ng)) y.guide.emplace(leaf, hit->position);
   return y;
 }
 

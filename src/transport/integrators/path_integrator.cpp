@@ -248,11 +248,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
         daylit_factor = previous_sum_ratio / (previous_hero_pdf * area_per_solid_angle);
     }
 
-    // Guided vertices: non-delta BSDFs only (a delta lobe cannot be evaluated, so no mixture density exists), and
-    // not panes (passed straight through, they are no vertex). Every BSDF density below is the mixture's.
-    const bool guidable = guiding_on && flags.has_non_delta && !flags.has_delta && !may_pass;
-    const int facing = facing_of(shading.geometric_normal);
-    const LeafGuide leaf = guidable && guiding.field ? guiding.field->distribution_at(hit->position, facing) : LeafGuide{};
+    // Guided vertices (is_guidable says which): every BSDF density below is the mixture's.
+    const bool guidable = guiding_on && is_guidable(flags, may_pass);
+    const LeafGuide leaf = guidable ? guide_leaf_at(guiding.field, hit->position, shading.geometric_normal) : LeafGuide{};
     // Built only where a leaf guides: a VertexGuide holds a mixture's 16 lobe slots, which every unguided vertex
     // (all of them with guiding off) would otherwise initialise for nothing.
     std::optional<VertexGuide> guide;
@@ -405,8 +403,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     // The vertex's throughput before roulette: what arrives along wi_world, divided by it, is the incident radiance.
     previous_recorded =
         record && guidable &&
-        record->add_vertex(hit->position, facing, wi_world, bs->pdf[0], std::fabs(dot(wi_world, shading.geometric_normal)),
-                           beta);
+        record->add_vertex(hit->position, facing_of(shading.geometric_normal), wi_world, bs->pdf[0],
+                           std::fabs(dot(wi_world, shading.geometric_normal)), beta);
 
     // Russian roulette on the effective throughput (what the film will see), after a few bounces. Radiance
     // scaling inside a denser medium is no loss (it is regained on leaving), so it does not count: without

@@ -349,15 +349,14 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       scatterer.wo_world = -ray.direction;
       scatterer.wo_local = scatterer.frame.to_local(scatterer.wo_world);
       if (scatterer.wo_local.z == 0.0f) break;
-      // Guided as the surface integrator guides: non-delta BSDFs, not panes; the same field and facing.
+      // Guided as the surface integrator guides (is_guidable): the same field and facing.
       const BsdfFlags flags = scatterer.bsdf->flags();
-      if (path.guiding && flags.has_non_delta && !flags.has_delta && !may_pass) {
+      if (path.guiding && is_guidable(flags, may_pass)) {
         scatterer.guided_facing = facing_of(ng);
-        if (guiding.field)
-          if (const LeafGuide leaf = guiding.field->distribution_at(hit->position, scatterer.guided_facing)) {
-            scatterer.guide.emplace(leaf, hit->position);
-            scatterer.alpha = path.guiding_probability;
-          }
+        if (const LeafGuide leaf = guide_leaf_at(guiding.field, hit->position, ng)) {
+          scatterer.guide.emplace(leaf, hit->position);
+          scatterer.alpha = path.guiding_probability;
+        }
       }
       reference = {hit->position, ng};
       shadow_origin = hit->position;
