@@ -1,8 +1,8 @@
 // libFuzzer target: image files (PNG, JPEG, TGA, BMP, OpenEXR, PFM/PPM, Radiance HDR) read as the renderer reads
 // image textures, environment maps and alpha masks: RgbImage::read and AlphaMask::read, i.e. Rimu's header checks
-// (render/image/image_file.h) and then stb_image (PNG, JPEG, TGA, BMP: render/image/stb_image_decoder.h) or
-// OpenImageIO's decoder in the module the renderer loads (librimu_oiio.so, built beside this target). Debian's
-// libstb and OpenImageIO are not instrumented: the fuzzer sees Rimu's side of each call (the header checks, the
+// (render/image/image_file.h) and then stb_image (PNG, JPEG, TGA, BMP: render/image/stb_image_decoder.h), FreeImage
+// (PFM, in librimu_freeimage.so) or OpenImageIO's decoder in the module the renderer loads (librimu_oiio.so; both
+// modules built beside this target). Debian's libstb, FreeImage and OpenImageIO are not instrumented: the fuzzer sees Rimu's side of each call (the header checks, the
 // truncation check, the conversions), and a decoder's own overflow shows only if it corrupts Rimu's memory.
 #include <cstring>
 

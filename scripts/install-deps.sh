@@ -11,8 +11,9 @@ packages=(
   libembree-dev          # Embree 3: BVH and ray queries
   libopenexr-dev         # OpenEXR 3: film output
   libopencolorio-dev     # OpenColorIO 2: display transforms
-  libopenimageio-dev     # OpenImageIO 2: EXR/PFM/TIFF textures, PNG output
+  libopenimageio-dev     # OpenImageIO 2: TIFF, HDR and other textures, PNG output
   libstb-dev             # stb_image: PNG, JPEG, TGA, BMP textures in-process
+  libfreeimage-dev       # FreeImage: PFM images (environment maps) without loading OpenImageIO
   libtbb-dev             # oneTBB: parallel tiles
   nlohmann-json3-dev     # scene files, --json output
   libcli11-dev           # command-line parsing

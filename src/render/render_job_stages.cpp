@@ -335,7 +335,12 @@ DisplayOptions check_job_without_scene(const RenderJob& job) {
   DisplayOptions display;
   display.exposure_ev = job.exposure_ev;
   display.view = job.view;
-  const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
+  // The view and the exposure matter only to display images, but the job records them (a resumed render or a
+  // merge of its partials may write one later): checked when the job writes a display image or when either was
+  // given other than its default. Otherwise OpenColorIO is never loaded (display_module/display_module_api.h).
+  const bool writes_display = job.png_output || job.preview_output || job.preview_error_output;
+  if (writes_display || job.view != DisplayOptions{}.view || job.exposure_ev != 0.0)
+    const DisplayTransform display_check(ResponseKind::cie_xyz, display);  // the view, the exposure, the config
   return display;
 }
 

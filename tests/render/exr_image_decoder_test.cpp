@@ -25,19 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Values that vary from pixel to pixel and channel to channel over many octaves (HDR: 1e-3 to 1e4), some negative.
-std::vector<float> test_values(size_t count) {
-  std::vector<float> v(count);
-  uint32_t h = 0x2545f491u;
-  for (size_t i = 0; i < count; ++i) {
-    h ^= uint32_t(i) * 0x85ebca6bu;
-    h = (h ^ (h >> 13)) * 0xc2b2ae35u;
-    h ^= h >> 16;
-    const float octave = float(h % 8) - 3.0f;
-    v[i] = std::pow(10.0f, octave) * float((h >> 8) % 1000) / 999.0f * ((h & 0x10000) && i % 7 == 0 ? -1.0f : 1.0f);
-  }
-  return v;
-}
 
 struct ExrSpec {
   ExrSpec(std::vector<std::string> names, OIIO::TypeDesc all = OIIO::TypeDesc::HALF)
@@ -68,7 +55,7 @@ fs::path write_exr(const fs::path& path, int width, int height, const ExrSpec& e
     spec.tile_height = 16;
   }
   REQUIRE(out->open(path.string(), spec));
-  const std::vector<float> values = test_values(size_t(width) * size_t(height) * e.channels.size());
+  const std::vector<float> values = test::hdr_test_values(size_t(width) * size_t(height) * e.channels.size());
   REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
   REQUIRE(out->close());
   return path;

@@ -4,11 +4,14 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "render/image/image_library.h"
 
@@ -36,21 +39,41 @@ inline void check_same_header(const DecodedImage& decoded, const DecodedImage& o
   CHECK(decoded.format_name == oiio.format_name);
 }
 
+/// Values that vary from pixel to pixel and channel to channel over many octaves (HDR: 1e-3 to 1e4), some
+/// negative: a decoder that swapped bytes, channels or rows, or rescaled, would show.
+inline std::vector<float> hdr_test_values(size_t count) {
+  std::vector<float> v(count);
+  uint32_t h = 0x2545f491u;
+  for (size_t i = 0; i < count; ++i) {
+    h ^= uint32_t(i) * 0x85ebca6bu;
+    h = (h ^ (h >> 13)) * 0xc2b2ae35u;
+    h ^= h >> 16;
+    const float octave = float(h % 8) - 3.0f;
+    v[i] = std::pow(10.0f, octave) * float((h >> 8) % 1000) / 999.0f * ((h & 0x10000) && i % 7 == 0 ? -1.0f : 1.0f);
+  }
+  return v;
+}
+
 /// The whole content of `path`.
 inline std::string file_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-/// For a test that checks the module stays unloaded: if an earlier test of this process loaded it (ctest runs each
-/// test alone; a plain run of the binary does not), runs the test cases matching `test_case_pattern` again by
+/// For a test that checks a module stays unloaded: if an earlier test of this process loaded it (`already_loaded`;
+/// ctest runs each test alone, a plain run of the binary does not), runs the test cases matching `test_case_pattern` again by
 /// themselves in a new process, checks that they pass and returns true (the caller then returns).
-inline bool reran_alone_as_module_is_loaded(const std::string& test_case_pattern) {
-  if (!image_library_loaded()) return false;
+inline bool reran_alone_if(bool already_loaded, const std::string& test_case_pattern) {
+  if (!already_loaded) return false;
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
   const std::string command = "'" + self + "' '--test-case=" + test_case_pattern + "' >/dev/null 2>&1";
   CHECK(std::system(command.c_str()) == 0);
   return true;
+}
+
+/// reran_alone_if for the OpenImageIO module.
+inline bool reran_alone_as_module_is_loaded(const std::string& test_case_pattern) {
+  return reran_alone_if(image_library_loaded(), test_case_pattern);
 }
 
 }  // namespace rimu::test

@@ -69,7 +69,7 @@ DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, 
     check_same_image(image, *header, path);
     return image;
   }
-  const ImageModuleApi& library = image_library();
+  const ImageModuleApi& library = image_reader_for(path);
   // OpenEXR allocates header attributes at their claimed size inside the library: check them first.
   check_exr_header_sizes(path, file_bytes);
   DecodedImage image;
@@ -92,7 +92,7 @@ ImageSize read_image_size(const std::filesystem::path& path) {
   if (!header) {
     check_exr_header_sizes(path, file_bytes);
     header.emplace();
-    if (std::string error; !image_library().read_header(path.string(), *header, error))
+    if (std::string error; !image_reader_for(path).read_header(path.string(), *header, error))
       throw InputError({path.string(), 0, ""}, "cannot read the image: " + error);
   }
   check_image_header(*header, file_bytes, path.string());

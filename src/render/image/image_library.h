@@ -1,20 +1,30 @@
 // OpenImageIO, loaded on first use: image textures and environment maps are read, and display images (PNG, JPEG,
 // TIFF) written, through a module (librimu_oiio.so) that only those paths load, so a render without them starts
-// without OpenImageIO's ~250 libraries (image_module/image_module_api.h says why that matters).
+// without OpenImageIO's ~250 libraries (image_module/image_module_api.h says why that matters). PFM files, the usual
+// format of pbrt scenes' environment maps, go to a second module (librimu_freeimage.so, FreeImage: ~4 MiB loaded
+// instead of ~120), found the same way.
 #pragma once
+
+#include <filesystem>
 
 #include "render/image/image_module/image_module_api.h"
 
 namespace rimu {
 
 /// The OpenImageIO module's functions; loads it on the first call (thread-safe; later calls cost an atomic load).
-/// The module is found at, in order: the RIMU_IMAGE_MODULE environment variable (a wrong one is an error);
-/// `<exe>/../lib/rimu/librimu_oiio.so` (the build tree and an installed tree); the install prefix's and then the
-/// build tree's path recorded at compile time (for the Python module, whose executable is python3). Throws RenderError (exit 2: the
-/// installation, not the user's input) naming the places tried and dlopen's message if none loads.
+/// The module (librimu_oiio.so) is found as loadable_module.h says, RIMU_IMAGE_MODULE naming it. Throws RenderError
+/// (exit 2: the installation, not the user's input) naming the places tried and dlopen's message if none loads.
 const ImageModuleApi& image_library();
 
 /// True once image_library() has loaded the module in this process (tests check that reading a PNG does not).
 bool image_library_loaded();
+
+/// The module that reads `path`: the FreeImage module for a PFM (the file starts with "PF" or "Pf" and a white
+/// space), found as image_library() finds its own (RIMU_PFM_MODULE instead of RIMU_IMAGE_MODULE), else
+/// image_library(). Throws as image_library() does.
+const ImageModuleApi& image_reader_for(const std::filesystem::path& path);
+
+/// True once image_reader_for() has loaded the FreeImage module in this process.
+bool pfm_module_loaded();
 
 }  // namespace rimu

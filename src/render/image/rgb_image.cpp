@@ -26,7 +26,7 @@ ImageEncoding default_encoding_for(const std::filesystem::path& path) {
   }
   if (exr_image_header(path)) return encoding;  // float: linear
   DecodedImage header;
-  if (std::string error; !image_library().read_header(path.string(), header, error)) return encoding;
+  if (std::string error; !image_reader_for(path).read_header(path.string(), header, error)) return encoding;
   encoding.srgb_transfer = !header.stored_as_float;
   return encoding;
 }

@@ -1,19 +1,46 @@
 #include "render/output/display_transform.h"
 
-#include <OpenColorIO/OpenColorIO.h>
-
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
+#include "render/image/loadable_module.h"
+#include "render/output/display_module/display_module_api.h"
 #include "spectral/io/data_directory.h"
 #include "spectral/error.h"
 
-namespace OCIO = OCIO_NAMESPACE;
+#ifndef RIMU_DISPLAY_MODULE_INSTALL_PATH
+#define RIMU_DISPLAY_MODULE_INSTALL_PATH ""
+#endif
+#ifndef RIMU_DISPLAY_MODULE_BUILD_PATH
+#define RIMU_DISPLAY_MODULE_BUILD_PATH ""
+#endif
 
 namespace rimu {
+namespace {
+
+std::atomic<bool> ocio_loaded{false};
+
+// OpenColorIO in a module loaded on first use (display_module_api.h says why).
+const DisplayModuleApi& display_library() {
+  static constexpr ModuleLocation kOpenColorIO{
+      "librimu_ocio.so", "RIMU_DISPLAY_MODULE", RIMU_DISPLAY_MODULE_INSTALL_PATH, RIMU_DISPLAY_MODULE_BUILD_PATH,
+      "OpenColorIO module (needed to write display images)", "rimu_display_module_api", kDisplayModuleApiVersion};
+  static const DisplayModuleApi& api = *static_cast<const DisplayModuleApi*>(load_module(kOpenColorIO, ocio_loaded));
+  return api;
+}
+
+}  // namespace
+
+bool display_library_loaded() { return ocio_loaded.load(); }
 
 struct DisplayTransform::Processor {
-  OCIO::ConstCPUProcessorRcPtr cpu;
+  Processor(const DisplayModuleApi& a, void* h) : api(a), handle(h) {}
+  ~Processor() { api.destroy(handle); }
+  Processor(const Processor&) = delete;
+  Processor& operator=(const Processor&) = delete;
+  const DisplayModuleApi& api;
+  void* handle;
 };
 
 const char* film_colour_space(ResponseKind kind) {
@@ -31,31 +58,22 @@ DisplayTransform::DisplayTransform(ResponseKind film_kind, const DisplayOptions&
                                                     << ", got " << options.exposure_ev;
                                                   return m.str();
                                                 }());
-  OCIO::ConstConfigRcPtr config;
-  try {
-    config = OCIO::Config::CreateFromFile(config_path_.c_str());
-  } catch (const OCIO::Exception& e) {
-    throw InputError({config_path_.string(), 0, ""}, std::string("cannot load the OpenColorIO config: ") + e.what());
-  }
-  bool view_known = false;
-  std::string views;
-  for (int i = 0; i < config->getNumViews(options.display.c_str()); ++i) {
-    const std::string v = config->getView(options.display.c_str(), i);
-    views += (views.empty() ? "" : ", ") + v;
-    view_known |= v == options.view;
-  }
-  if (!view_known)
+  const DisplayModuleApi& api = display_library();
+  DisplayModuleFailure failure = DisplayModuleFailure::none;
+  std::string error;
+  void* handle = api.create(config_path_.string(), film_colour_space(film_kind), options.display, options.view,
+                            failure, error);
+  if (!handle) {
+    if (failure == DisplayModuleFailure::config)
+      throw InputError({config_path_.string(), 0, ""}, "cannot load the OpenColorIO config: " + error);
+    if (failure == DisplayModuleFailure::unknown_view)
+      throw InputError({config_path_.string(), 0, "--view"},
+                       "unknown view '" + options.view + "' for display '" + options.display + "'; views: " +
+                           (error.empty() ? std::string("none (unknown display?)") : error));
     throw InputError({config_path_.string(), 0, "--view"},
-                     "unknown view '" + options.view + "' for display '" + options.display + "'; views: " +
-                         (views.empty() ? std::string("none (unknown display?)") : views));
-  try {
-    auto processor = config->getProcessor(film_colour_space(film_kind), options.display.c_str(), options.view.c_str(),
-                                          OCIO::TRANSFORM_DIR_FORWARD);
-    processor_ = std::make_unique<Processor>(Processor{processor->getDefaultCPUProcessor()});
-  } catch (const OCIO::Exception& e) {
-    throw InputError({config_path_.string(), 0, "--view"},
-                     "cannot build the display transform for view '" + options.view + "': " + e.what());
+                     "cannot build the display transform for view '" + options.view + "': " + error);
   }
+  processor_ = std::make_unique<Processor>(api, handle);
 }
 
 DisplayTransform::~DisplayTransform() = default;
@@ -64,8 +82,7 @@ DisplayTransform& DisplayTransform::operator=(DisplayTransform&&) noexcept = def
 
 void DisplayTransform::apply(std::vector<float>& rgb, size_t pixel_count) const {
   for (float& v : rgb) v *= exposure_scale_;
-  OCIO::PackedImageDesc image(rgb.data(), long(pixel_count), 1, 3);
-  processor_->cpu->apply(image);  // throws only for malformed image descriptions, which this one is not
+  processor_->api.apply(processor_->handle, rgb.data(), long(pixel_count));
 }
 
 }  // namespace rimu

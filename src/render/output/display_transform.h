@@ -29,7 +29,7 @@ inline constexpr double kMaxDisplayExposure_ev = 60.0;
 
 /// A CPU colour processor from a film's scene-linear channels to the display's encoded RGB.
 ///
-/// Wraps OpenColorIO, which reports errors by throwing OCIO::Exception: every failure while loading the config or
+/// Wraps OpenColorIO (in a module loaded on first use), which reports errors by throwing OCIO::Exception: every failure while loading the config or
 /// building the processor becomes an InputError naming the config file and the display/view (listing the views
 /// that exist), so callers see Rimu's error style only. The source colour space follows the film: XYZ films
 /// use "CIE-XYZ - Scene-linear" (the config's scene reference); camera films "Camera RGB - as Linear Rec.709".
@@ -56,5 +56,9 @@ class DisplayTransform {
 
 /// The OCIO source colour space Rimu uses for a film kind (see DisplayTransform).
 const char* film_colour_space(ResponseKind kind);
+
+/// True once a DisplayTransform has loaded the OpenColorIO module (librimu_ocio.so) in this process: OpenColorIO is
+/// loaded on first use, by programs that write or check a display image (display_module/display_module_api.h).
+bool display_library_loaded();
 
 }  // namespace rimu

@@ -1,0 +1,117 @@
+// PFM files are read by the FreeImage module (render/image/image_module/freeimage_module.cpp) instead of the
+// OpenImageIO module: they decode to what OpenImageIO gives for the same file (header fields, and every sample bit
+// for bit: colour and grey, both byte orders, scales other than 1), reading one leaves OpenImageIO unloaded, and
+// damaged headers are errors naming the file.
+#include <doctest/doctest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "image_module_test_support.h"
+#include "input_error_check.h"
+#include "render/image/image_file.h"
+#include "render/image/image_library.h"
+#include "render/image/rgb_image.h"
+#include "test_support.h"
+
+using namespace rimu;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Samples over many octaves, some negative (test::hdr_test_values), and a subnormal.
+std::vector<float> test_samples(size_t count) {
+  std::vector<float> samples = test::hdr_test_values(count);
+  samples[0] = 1e-40f;
+  return samples;
+}
+
+// A PFM written byte by byte: `channels` 3 ("PF") or 1 ("Pf"), the header's scale as given (its sign the byte
+// order: negative little-endian), rows stored bottom first; `samples` top row first.
+fs::path write_pfm_file(const fs::path& path, int width, int height, int channels, const std::string& scale,
+                        const std::vector<float>& samples) {
+  const bool big_endian = scale[0] != '-';
+  std::ofstream out(path, std::ios::binary);
+  out << (channels == 3 ? "PF" : "Pf") << "\n" << width << " " << height << "\n" << scale << "\n";
+  for (int y = height - 1; y >= 0; --y)
+    for (int i = 0; i < width * channels; ++i) {
+      uint32_t bits = std::bit_cast<uint32_t>(samples[size_t(y) * size_t(width * channels) + size_t(i)]);
+      if (big_endian) bits = __builtin_bswap32(bits);
+      out.write(reinterpret_cast<const char*>(&bits), 4);
+    }
+  return path;
+}
+
+DecodedImage pfm_module_decode(const fs::path& path) {
+  DecodedImage image;
+  std::string error;
+  REQUIRE_MESSAGE(image_reader_for(path).read_pixels(path.string(), image, error), error);
+  return image;
+}
+
+}  // namespace
+
+TEST_CASE("PFM: the FreeImage module decodes what OpenImageIO decodes, bit for bit") {
+  test::ScratchFolder dir("pfm_module");
+  struct Case {
+    int width, height, channels;
+    const char* scale;
+  };
+  for (const Case c : {Case{5, 3, 3, "-1.0"}, Case{5, 3, 3, "1.0"}, Case{7, 2, 1, "-1"}, Case{4, 6, 1, "1.000"},
+                       Case{3, 4, 3, "-2.5"}, Case{2, 5, 3, "0.125"}, Case{1, 1, 3, "-1.0"}}) {
+    const std::string name = std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
+                             std::to_string(c.channels) + "_" + c.scale + ".pfm";
+    CAPTURE(name);
+    const std::vector<float> samples = test_samples(size_t(c.width * c.height * c.channels));
+    const fs::path file = write_pfm_file(dir / name, c.width, c.height, c.channels, c.scale, samples);
+    const DecodedImage freeimage = pfm_module_decode(file);
+    const DecodedImage oiio = test::module_decode(file, false, false);
+    test::check_same_header(freeimage, oiio);
+    REQUIRE(freeimage.pixels.size() == oiio.pixels.size());
+    CHECK(freeimage.bytes.empty());
+    CHECK(std::memcmp(freeimage.pixels.data(), oiio.pixels.data(), oiio.pixels.size() * sizeof(float)) == 0);
+    // And both are the samples written, times the scale's magnitude (a check of the test's own file too).
+    const float magnitude = std::fabs(std::stof(c.scale));
+    for (size_t i = 0; i < samples.size(); ++i) CHECK(freeimage.pixels[i] == samples[i] * magnitude);
+  }
+}
+
+TEST_CASE("PFM: reading a PFM environment map or texture does not load the OpenImageIO module") {
+  if (test::reran_alone_if(image_library_loaded() || pfm_module_loaded(), "PFM: reading a PFM environment map*")) return;
+  test::ScratchFolder dir("pfm_unloaded");
+  const fs::path pfm = write_pfm_file(dir / "sky.pfm", 8, 4, 3, "-1.0", test_samples(8 * 4 * 3));
+  CHECK_FALSE(pfm_module_loaded());
+  const RgbImage image = RgbImage::read(pfm, default_encoding_for(pfm));
+  CHECK(image.width() == 8);
+  CHECK(read_image_size(pfm).width == 8);
+  CHECK(pfm_module_loaded());
+  CHECK_FALSE(image_library_loaded());
+}
+
+TEST_CASE("PFM: damaged files are errors naming the file") {
+  test::ScratchFolder dir("pfm_damaged");
+  const auto write = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(dir / name, std::ios::binary) << bytes;
+    return dir / name;
+  };
+  const std::string pixels(3 * 4 * 2, '\0');
+  // A scale of 0 or not a number: neither a byte order nor a factor.
+  const fs::path zero = write("zero.pfm", "PF\n2 1\n0.0\n" + pixels);
+  test::input_error([&] { RgbImage::read(zero, {}); }, {zero.string(), "scale"});
+  const fs::path nan = write("nan.pfm", "PF\n2 1\nnan\n" + pixels);
+  test::input_error([&] { RgbImage::read(nan, {}); }, {nan.string()});
+  // A width that is no number, a negative height.
+  const fs::path words = write("words.pfm", "PF\ntwo one\n-1.0\n" + pixels);
+  test::input_error([&] { RgbImage::read(words, {}); }, {words.string()});
+  const fs::path negative = write("negative.pfm", "PF\n2 -1\n-1.0\n" + pixels);
+  test::input_error([&] { RgbImage::read(negative, {}); }, {negative.string()});
+  // Cut short: Rimu's own check, before FreeImage reads the pixels.
+  const fs::path cut = write("cut.pfm", "PF\n4 4\n-1.0\n" + pixels);
+  test::input_error([&] { RgbImage::read(cut, {}); }, {cut.string(), "truncated"});
+}
