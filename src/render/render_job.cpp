@@ -35,8 +35,9 @@ PixelBounds parse_crop(const std::string& text, const std::string& option) {
 double parse_max_sample_value(const std::string& text, const std::string& option) {
   double value = 0.0;
   if (!parse_finite_number(text, value) || !Film::valid_sample_clamp(value))
-    throw InputError({"", 0, option}, "expected the largest channel value a camera sample may keep, a number in "
-                                      "1e-30-1e30 in the written image's units (e.g. 20); got '" + text + "'");
+    throw InputError({"", 0, option}, std::string("expected the largest channel value a camera sample may keep, a "
+                                                  "number from ") + Film::kSampleClampRange +
+                                          " in the written image's units (e.g. 20); got '" + text + "'");
   return value;
 }
 

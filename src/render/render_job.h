@@ -136,7 +136,7 @@ nlohmann::json read_pbrt_scene(const std::filesystem::path& path, SpectralLibrar
 /// Parses "WxH", "x0,y0,x1,y1": InputError naming `option` on malformed text.
 std::pair<int, int> parse_resolution(const std::string& text, const std::string& option);
 PixelBounds parse_crop(const std::string& text, const std::string& option);
-/// Parses a sample clamp (`--max-sample-value`): a finite number in 1e-30-1e30; InputError naming `option` otherwise.
+/// Parses a sample clamp (`--max-sample-value`): a finite number in Film's clamp range; InputError naming `option` otherwise.
 double parse_max_sample_value(const std::string& text, const std::string& option);
 
 }  // namespace rimu

@@ -95,13 +95,13 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   RenderStatistics stats;
   // Path guiding: the field the current pass samples from, fitted after the last one. Both integrators guide
   // their surface vertices; the volumetric one leaves its medium vertices to the phase function.
-  constexpr bool surfaces_only = std::is_same_v<Integrator, PathIntegrator>;
   stats.guiding.active = integrator_settings.guiding;
   // Camera rays carry differentials only where a texture reads them, spaced as this render's samples are: a pixel's
   // spp samples cover it about 1/√spp apart; pbrt-v4's floor of 1/8 keeps high-spp renders from sharpening the
   // lookup below the texels' own noise-free resolution.
   const bool texture_footprints = [&] {
-    if constexpr (surfaces_only) return integrator.scene().texture_footprints;
+    // The surface integrator holds a TransportScene; the volumetric one holds its surfaces beside the media.
+    if constexpr (std::is_same_v<Integrator, PathIntegrator>) return integrator.scene().texture_footprints;
     else return integrator.scene().surfaces.texture_footprints;
   }();
   float differentials_scale = 0.0f;

@@ -20,6 +20,15 @@ std::optional<ThinDielectricBsdf::StraightThrough> straight_through_at(const Mat
   return sheet->straight_through(std::fabs(dot(direction, context.shading_normal)));
 }
 
+bool ShadowPassage::pass_surface(const Material& material, const SurfaceHit& hit, Vec3 light_direction,
+                                 const SampledWavelengths& lambda) {
+  if (surfaces == kMaxShadowPassages) return false;
+  const auto through = straight_through_at(material, hit, light_direction, lambda);
+  if (!through) return false;
+  pass(*through);
+  return max_lane(transmittance) > 0.0f;
+}
+
 PaneWalk pass_panes(const TransportScene& scene, const Ray& ray, Vec3 light_direction, const SampledWavelengths& lambda,
                     ShadowPassage& passage) {
   Ray segment = ray;
@@ -28,11 +37,8 @@ PaneWalk pass_panes(const TransportScene& scene, const Ray& ray, Vec3 light_dire
     if (!hit) return {};
     if (hit->material < 0 || !(scene.passable_surfaces && (*scene.materials)[size_t(hit->material)].passes_shadow_rays()))
       return {PaneWalk::End::surface, std::move(hit)};
-    if (passage.surfaces == kMaxShadowPassages) return {PaneWalk::End::blocked, std::nullopt};
-    const auto through = straight_through_at((*scene.materials)[size_t(hit->material)], *hit, light_direction, lambda);
-    if (!through) return {PaneWalk::End::blocked, std::nullopt};
-    passage.pass(*through);
-    if (!(max_lane(passage.transmittance) > 0.0f)) return {PaneWalk::End::blocked, std::nullopt};
+    if (!passage.pass_surface((*scene.materials)[size_t(hit->material)], *hit, light_direction, lambda))
+      return {PaneWalk::End::blocked, std::nullopt};
     // Continue from the far side of the pane, up to the same end point.
     segment.origin = offset_ray_origin(*hit, ray.direction, scene.scene_scale);
     segment.t_min = 0.0f;

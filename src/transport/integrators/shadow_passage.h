@@ -38,6 +38,12 @@ struct ShadowPassage {
     pass_probability *= through.probability;
     ++surfaces;
   }
+  /// The passage through the surface of `material` at `hit` as well, for light travelling along `light_direction`;
+  /// false where the shadow ray is blocked there: kMaxShadowPassages passed already, a material shadow rays cannot
+  /// pass (straight_through_at), or no light left. Every walk through panes (pass_panes, the volumetric
+  /// integrator's shadow rays) passes a surface by this one rule.
+  bool pass_surface(const Material& material, const SurfaceHit& hit, Vec3 light_direction,
+                    const SampledWavelengths& lambda);
 };
 
 /// Where a ray walked through pass-through surfaces (pass_panes) ended.

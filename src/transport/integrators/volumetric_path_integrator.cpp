@@ -100,10 +100,13 @@ DistanceSampling distance_sampling_for(DistanceSampling requested, WavelengthMod
 std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::shadow(
     Vec3 origin, Vec3 direction, float distance, float time, MediumStack stack, const SampledWavelengths& lambda,
     Sampler& sampler, SampledSpectrum throughput) const {
-  ShadowResult out{Float4(1.0f), Float4(1.0f)};
+  ShadowResult out{Float4(1.0f), Float4(1.0f)};  // the media's part
+  ShadowPassage panes;                           // the panes' part (shadow_passage.h)
+  const auto passed = [&] {
+    return ShadowResult{out.transmittance * panes.transmittance, out.pass_probability * panes.pass_probability};
+  };
   const auto& media = *scene_.media;
   float remaining = std::isinf(distance) ? INFINITY : distance * (1.0f - 0x1p-12f);
-  int panes = 0;
   for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
     Ray ray{origin, direction, 0.0f, remaining, time};
     const std::optional<SurfaceHit> hit = scene_.surfaces.geometry->intersect(ray);
@@ -115,26 +118,20 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
           estimate_transmittance(media[size_t(medium)], ray, end, lambda, settings_.distance, sampler, throughput);
       out.transmittance *= tr.transmittance;
       out.pass_probability *= tr.pass_probability;
-      if (max_lane(out.transmittance) <= 0.0f) return std::nullopt;
+      if (max_lane(out.transmittance * panes.transmittance) <= 0.0f) return std::nullopt;
     }
-    if (!hit) return out;
+    if (!hit) return passed();
     const MediumBoundary b = boundary(hit->material);
     if (hit->material < 0) return std::nullopt;
-    if (!b.index_matched) {
-      // A pane (thin dielectric): passed with its transmittance, as the path's straight-through lobe (shadow_passage.h).
-      if (panes == kMaxShadowPassages) return std::nullopt;
-      const auto through =
-          straight_through_at((*scene_.surfaces.materials)[size_t(hit->material)], *hit, direction, lambda);
-      if (!through) return std::nullopt;
-      ++panes;
-      out.transmittance *= through->transmittance;
-      out.pass_probability *= through->probability;
-      if (max_lane(out.transmittance) <= 0.0f) return std::nullopt;
-    }
+    // Not an index-matched boundary: a pane (thin dielectric), passed with its transmittance as the path's
+    // straight-through lobe, or the end of the shadow ray.
+    if (!b.index_matched &&
+        !panes.pass_surface((*scene_.surfaces.materials)[size_t(hit->material)], *hit, direction, lambda))
+      return std::nullopt;
     stack.cross(b.interior_medium, dot(direction, hit->geometric_normal) < 0.0f);
     origin = offset_ray_origin(*hit, direction, scene_.surfaces.scene_scale);
     remaining -= hit->t;
-    if (!(remaining > 0.0f)) return out;
+    if (!(remaining > 0.0f)) return passed();
   }
   return std::nullopt;
 }
