@@ -8,6 +8,7 @@
 
 #include "render/camera/camera_exposure.h"
 #include "render/scene/scene_sensors.h"
+#include "render/installation_check.h"
 #include "render/render_job.h"
 #include "render/film/render_size.h"
 #include "display_command.h"
@@ -131,8 +132,23 @@ int main(int argc, char** argv) {
   app.add_option("--expect-scene-hash", expect_hash, "refuse to render unless the scene hashes to this (farm tasks)");
   app.add_flag("--print-scene-hash", print_hash,
                "print the scene hash (scene file, the files it names, image options) and exit");
+  bool check_install = false;
+  app.add_flag("--check-install", check_install,
+               "load everything a render loads only when a scene needs it (the data folder, the OpenImageIO, "
+               "FreeImage and OpenColorIO modules, the display config), print where each was found, and exit "
+               "(status 2 if any is missing; for farm nodes: docs/farm.md)");
 
   return rimu::run_tool("rimu", app, argc, argv, [&] {
+    if (check_install) {
+      int missing = 0;
+      for (const rimu::InstallationItem& item : rimu::check_installation()) {
+        std::cout << (item.ok ? "ok       " : "MISSING  ") << item.name << ": " << item.detail << "\n";
+        missing += item.ok ? 0 : 1;
+      }
+      if (missing > 0)
+        throw rimu::RenderError(std::to_string(missing) + " part(s) of the installation could not be loaded (above)");
+      return;
+    }
     if (!scene.empty()) job.scene = scene;
     job.exr_output = output;
     if (!png.empty()) job.png_output = png;

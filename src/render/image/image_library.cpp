@@ -49,10 +49,13 @@ const ImageModuleApi& image_library() {
 
 bool image_library_loaded() { return oiio_loaded.load(); }
 
-const ImageModuleApi& image_reader_for(const std::filesystem::path& path) {
-  if (!is_pfm(path)) return image_library();
+const ImageModuleApi& pfm_library() {
   static const ImageModuleApi& api = *static_cast<const ImageModuleApi*>(load_module(kFreeImage, freeimage_loaded));
   return api;
+}
+
+const ImageModuleApi& image_reader_for(const std::filesystem::path& path) {
+  return is_pfm(path) ? pfm_library() : image_library();
 }
 
 bool pfm_module_loaded() { return freeimage_loaded.load(); }

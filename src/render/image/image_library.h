@@ -24,7 +24,10 @@ bool image_library_loaded();
 /// image_library(). Throws as image_library() does.
 const ImageModuleApi& image_reader_for(const std::filesystem::path& path);
 
-/// True once image_reader_for() has loaded the FreeImage module in this process.
+/// The FreeImage module's functions (PFM only); loads it on the first call, as image_library() does its own.
+const ImageModuleApi& pfm_library();
+
+/// True once pfm_library() has loaded the FreeImage module in this process.
 bool pfm_module_loaded();
 
 }  // namespace rimu

@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,10 @@
 
 namespace rimu {
 namespace {
+
+// Where each module was loaded from, by file name.
+std::mutex loaded_paths_mutex;
+std::map<std::string, std::string> loaded_paths;
 
 std::vector<std::filesystem::path> candidate_paths(const ModuleLocation& module) {
   if (const char* env = std::getenv(module.environment_variable); env && *env) return {env};
@@ -48,11 +54,20 @@ const void* load_module(const ModuleLocation& module, std::atomic<bool>& loaded)
       tried += "\n  " + path.string() + ": not a module of this Rimu build (rebuild or reinstall it)";
       continue;
     }
+    {
+      const std::lock_guard<std::mutex> lock(loaded_paths_mutex);
+      loaded_paths[module.file_name] = path.lexically_normal().string();
+    }
     loaded.store(true);
     return api;  // the handle stays open for the life of the process
   }
   throw RenderError(std::string("cannot load Rimu's ") + module.purpose + "; set " + module.environment_variable +
                     " or reinstall Rimu. Tried:" + tried);
+}
+
+std::vector<std::pair<std::string, std::string>> loaded_modules() {
+  const std::lock_guard<std::mutex> lock(loaded_paths_mutex);
+  return {loaded_paths.begin(), loaded_paths.end()};
 }
 
 }  // namespace rimu

@@ -6,6 +6,9 @@
 #pragma once
 
 #include <atomic>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace rimu {
 
@@ -26,5 +29,8 @@ struct ModuleLocation {
 /// returns; sets `loaded`. Not thread-safe by itself: callers load once, in a function-local static. Throws
 /// RenderError (exit 2: the installation, not the user's input) naming the places tried and dlopen's message.
 const void* load_module(const ModuleLocation& module, std::atomic<bool>& loaded);
+
+/// The modules loaded so far in this process: each one's file name and the path it was loaded from.
+std::vector<std::pair<std::string, std::string>> loaded_modules();
 
 }  // namespace rimu
