@@ -14,6 +14,7 @@ packages=(
   libopenimageio-dev     # OpenImageIO 2: TIFF, HDR and other textures, PNG output
   libstb-dev             # stb_image: PNG, JPEG, TGA, BMP textures in-process
   libfreeimage-dev       # FreeImage: PFM images (environment maps) without loading OpenImageIO
+  libpng-dev             # libpng: display PNGs written without loading OpenImageIO
   libtbb-dev             # oneTBB: parallel tiles
   nlohmann-json3-dev     # scene files, --json output
   libcli11-dev           # command-line parsing

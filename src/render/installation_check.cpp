@@ -28,7 +28,7 @@ std::vector<InstallationItem> check_installation() {
     return std::string("(loaded)");
   };
   check("data folder", [] { return find_data_directory().string(); });
-  check("OpenImageIO module (image textures, PNG/JPEG/TIFF output)", [&] {
+  check("OpenImageIO module (image textures, JPEG/TIFF output)", [&] {
     (void)image_library();
     return loaded_from("librimu_oiio.so");
   });

@@ -24,7 +24,7 @@ namespace {
 
 constexpr ModuleLocation kOpenImageIO{
     "librimu_oiio.so", "RIMU_IMAGE_MODULE", RIMU_IMAGE_MODULE_INSTALL_PATH, RIMU_IMAGE_MODULE_BUILD_PATH,
-    "OpenImageIO module (needed to read image textures and write PNG, JPEG or TIFF)", "rimu_image_module_api",
+    "OpenImageIO module (needed to read image textures and write JPEG or TIFF)", "rimu_image_module_api",
     kImageModuleApiVersion};
 constexpr ModuleLocation kFreeImage{"librimu_freeimage.so", "RIMU_PFM_MODULE", RIMU_PFM_MODULE_INSTALL_PATH,
                                     RIMU_PFM_MODULE_BUILD_PATH, "FreeImage module (needed to read PFM images)",

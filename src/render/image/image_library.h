@@ -1,5 +1,5 @@
-// OpenImageIO, loaded on first use: image textures and environment maps are read, and display images (PNG, JPEG,
-// TIFF) written, through a module (librimu_oiio.so) that only those paths load, so a render without them starts
+// OpenImageIO, loaded on first use: image textures and environment maps are read, and JPEG and TIFF display
+// images written (PNGs are written in-process: render/output/png_file.h), through a module (librimu_oiio.so) that only those paths load, so a render without them starts
 // without OpenImageIO's ~250 libraries (image_module/image_module_api.h says why that matters). PFM files, the usual
 // format of pbrt scenes' environment maps, go to a second module (librimu_freeimage.so, FreeImage: ~4 MiB loaded
 // instead of ~120), found the same way.

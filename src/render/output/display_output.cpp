@@ -6,6 +6,7 @@
 
 #include "render/image/image_library.h"
 #include "render/output/output_file.h"
+#include "render/output/png_file.h"
 #include "spectral/version.h"
 #include "spectral/error.h"
 
@@ -86,7 +87,8 @@ std::string display_image_format(const std::filesystem::path& path, const std::s
                      ".png, .jpg, .jpeg, .tif or .tiff, got '" +
                          path.extension().string() + "'" + hint);
   }
-  if (std::string error; !image_library().can_write(format, error))
+  // PNG is written in-process (png_file.h); JPEG and TIFF by OpenImageIO, whose build is asked before rendering.
+  if (std::string error; format != "png" && !image_library().can_write(format, error))
     throw InputError({path.string(), 0, option}, "this OpenImageIO build cannot write " + format + ": " + error);
   return format;
 }
@@ -95,11 +97,17 @@ DisplayLevels write_display_image(const std::filesystem::path& path, const Film&
   const std::string format = display_image_format(path);
   const std::vector<uint8_t> pixels = display_pixels(film, options);  // InputErrors before touching the disk
   const PixelBounds& b = film.pixel_bounds();
+  const std::string software = std::string("Rimu ") + rimu_version();
   write_atomically(path, [&](const std::filesystem::path& temporary) {
     // The views other than Raw end in the sRGB display encoding (data/ocio/config.ocio): say so in the file.
+    if (format == "png") {
+      write_png_rgb8(temporary, b.width(), b.height(), pixels,
+                     PngMetadata{{{"Software", software}, {"rimu:view", options.view}}, options.view != "Raw"});
+      return;
+    }
     std::string error;
     if (!image_library().write_rgb8(temporary.string(), format, b.width(), b.height(), pixels,
-                                    std::string("Rimu ") + rimu_version(), options.view, options.view != "Raw", error))
+                                    software, options.view, options.view != "Raw", error))
       throw std::runtime_error(error);
   });
   return display_levels(pixels);
