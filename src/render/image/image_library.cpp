@@ -25,10 +25,11 @@ namespace {
 constexpr ModuleLocation kOpenImageIO{
     "librimu_oiio.so", "RIMU_IMAGE_MODULE", RIMU_IMAGE_MODULE_INSTALL_PATH, RIMU_IMAGE_MODULE_BUILD_PATH,
     "OpenImageIO module (needed to read image textures and write JPEG or TIFF)", "rimu_image_module_api",
-    kImageModuleApiVersion};
+    kImageModuleApiVersion, &call_module_entry<ImageModuleApi>};
 constexpr ModuleLocation kFreeImage{"librimu_freeimage.so", "RIMU_PFM_MODULE", RIMU_PFM_MODULE_INSTALL_PATH,
                                     RIMU_PFM_MODULE_BUILD_PATH, "FreeImage module (needed to read PFM images)",
-                                    "rimu_image_module_api", kImageModuleApiVersion};
+                                    "rimu_image_module_api", kImageModuleApiVersion,
+                                    &call_module_entry<ImageModuleApi>};
 
 std::atomic<bool> oiio_loaded{false};
 std::atomic<bool> freeimage_loaded{false};

@@ -46,9 +46,8 @@ const void* load_module(const ModuleLocation& module, std::atomic<bool>& loaded)
       tried += "\n  " + path.string() + ": " + dlerror();
       continue;
     }
-    using Entry = const void* (*)();
-    const auto entry = reinterpret_cast<Entry>(dlsym(handle, module.entry_symbol));
-    const void* api = entry ? entry() : nullptr;
+    void* entry = dlsym(handle, module.entry_symbol);
+    const void* api = entry ? module.call_entry(entry) : nullptr;
     // Every module's function table starts with its int api_version.
     if (!api || *static_cast<const int*>(api) != module.api_version) {
       tried += "\n  " + path.string() + ": not a module of this Rimu build (rebuild or reinstall it)";

@@ -23,7 +23,16 @@ struct ModuleLocation {
   const char* purpose;       ///< the error message's words: "OpenImageIO module (needed to …)"
   const char* entry_symbol;  ///< the extern "C" function returning the table
   int api_version;           ///< the table's first member must equal it, or the module is refused as stale
+  /// Calls the entry function found at `symbol` through its own type (call_module_entry<Api>): calling it through
+  /// another function pointer type is undefined (clang's -fsanitize=function stops there).
+  const void* (*call_entry)(void* symbol);
 };
+
+/// ModuleLocation::call_entry for a module whose entry function returns `const Api*`.
+template <typename Api>
+const void* call_module_entry(void* symbol) {
+  return reinterpret_cast<const Api* (*)()>(symbol)();
+}
 
 /// Loads the module (RTLD_LOCAL: its libraries' symbols stay inside it) and returns what its entry function
 /// returns; sets `loaded`. Not thread-safe by itself: callers load once, in a function-local static. Throws

@@ -25,7 +25,8 @@ std::atomic<bool> ocio_loaded{false};
 const DisplayModuleApi& display_library() {
   static constexpr ModuleLocation kOpenColorIO{
       "librimu_ocio.so", "RIMU_DISPLAY_MODULE", RIMU_DISPLAY_MODULE_INSTALL_PATH, RIMU_DISPLAY_MODULE_BUILD_PATH,
-      "OpenColorIO module (needed to write display images)", "rimu_display_module_api", kDisplayModuleApiVersion};
+      "OpenColorIO module (needed to write display images)", "rimu_display_module_api", kDisplayModuleApiVersion,
+      &call_module_entry<DisplayModuleApi>};
   static const DisplayModuleApi& api = *static_cast<const DisplayModuleApi*>(load_module(kOpenColorIO, ocio_loaded));
   return api;
 }
