@@ -32,7 +32,7 @@ std::vector<InstallationItem> check_installation() {
     (void)image_library();
     return loaded_from("librimu_oiio.so");
   });
-  check("FreeImage module (PFM images)", [&] {
+  check("FreeImage module (PFM and HDR images)", [&] {
     (void)pfm_library();
     return loaded_from("librimu_freeimage.so");
   });

@@ -46,7 +46,7 @@ RenderJob tiny_job(const fs::path& out, std::optional<SampleRange> samples, cons
   return job;
 }
 
-void render(const RenderJob& job) {
+void render_partial(const RenderJob& job) {
   std::ostringstream log;
   run_render_job(job, log);
 }
@@ -62,11 +62,11 @@ TEST_CASE("partial renders: sample ranges merge to the single process's image wi
   for (const std::string film : {"xyz", "spectral:47"}) {
     CAPTURE(film);
     Folder dir("ranges");
-    render(tiny_job(dir / "single.exr", SampleRange{0, 24}, film));
+    render_partial(tiny_job(dir / "single.exr", SampleRange{0, 24}, film));
     // Ranges that cut passes (the pass boundaries are 1, 3, 7, 15, 31) and one that is a whole pass.
-    render(tiny_job(dir / "a.exr", SampleRange{0, 5}, film));
-    render(tiny_job(dir / "b.exr", SampleRange{5, 15}, film));
-    render(tiny_job(dir / "c.exr", SampleRange{15, 24}, film));
+    render_partial(tiny_job(dir / "a.exr", SampleRange{0, 5}, film));
+    render_partial(tiny_job(dir / "b.exr", SampleRange{5, 15}, film));
+    render_partial(tiny_job(dir / "c.exr", SampleRange{15, 24}, film));
     const MergeResult result = merge({dir / "c.exr", dir / "a.exr", dir / "b.exr"}, dir / "merged.exr");
     CHECK(result.complete);
     CHECK(result.samples_per_pixel == 24);
@@ -91,27 +91,27 @@ TEST_CASE("partial renders: sample ranges merge to the single process's image wi
 
     // A plain render (no --samples) writes the same image as the partial covering everything: bit for bit.
     RenderJob plain = tiny_job(dir / "plain.exr", std::nullopt, film);
-    render(plain);
+    render_partial(plain);
     CHECK(compare_exr(dir / "single.exr", dir / "plain.exr", true).different == 0);
   }
 }
 
 TEST_CASE("partial renders: crop tiles merge bit for bit, and a merged file merges again (tree of merges)") {
   Folder dir("tiles");
-  render(tiny_job(dir / "single.exr", SampleRange{0, 24}));
+  render_partial(tiny_job(dir / "single.exr", SampleRange{0, 24}));
   RenderJob left = tiny_job(dir / "left.exr", SampleRange{0, 24});
   left.crop = PixelBounds{0, 0, 10, 16};
   RenderJob right = tiny_job(dir / "right.exr", SampleRange{0, 24});
   right.crop = PixelBounds{10, 0, 24, 16};
-  render(left);
-  render(right);
+  render_partial(left);
+  render_partial(right);
   merge({dir / "right.exr", dir / "left.exr"}, dir / "merged.exr");
   CHECK(compare_exr(dir / "single.exr", dir / "merged.exr", false).different == 0);  // sums too
 
   // Tree: (a + b) + c equals a + b + c up to the same bound.
-  render(tiny_job(dir / "a.exr", SampleRange{0, 8}));
-  render(tiny_job(dir / "b.exr", SampleRange{8, 16}));
-  render(tiny_job(dir / "c.exr", SampleRange{16, 24}));
+  render_partial(tiny_job(dir / "a.exr", SampleRange{0, 8}));
+  render_partial(tiny_job(dir / "b.exr", SampleRange{8, 16}));
+  render_partial(tiny_job(dir / "c.exr", SampleRange{16, 24}));
   MergeOptions gaps;
   gaps.allow_gaps = true;
   const MergeResult ab = merge({dir / "a.exr", dir / "b.exr"}, dir / "ab.exr", gaps);
@@ -130,9 +130,9 @@ TEST_CASE("partial renders: camera films keep their colour matrix and the photom
   b.iso = 400;
   RenderJob single = tiny_job(dir / "single.exr", SampleRange{0, 24}, film);
   single.iso = 400;
-  render(a);
-  render(b);
-  render(single);
+  render_partial(a);
+  render_partial(b);
+  render_partial(single);
   merge({dir / "a.exr", dir / "b.exr"}, dir / "merged.exr");
   CHECK(compare_exr(dir / "single.exr", dir / "merged.exr", true).max_ulps <= 1);
   const PartialImage s = read_partial_exr(dir / "single.exr");
@@ -152,8 +152,8 @@ TEST_CASE("partial renders: camera films keep their colour matrix and the photom
 
 TEST_CASE("partial renders: mismatched, overlapping and missing partials are errors and nothing is written") {
   Folder dir("errors");
-  render(tiny_job(dir / "a.exr", SampleRange{0, 12}));
-  render(tiny_job(dir / "b.exr", SampleRange{12, 24}));
+  render_partial(tiny_job(dir / "a.exr", SampleRange{0, 12}));
+  render_partial(tiny_job(dir / "b.exr", SampleRange{12, 24}));
   const fs::path out = dir / "out.exr";
   auto refused = [&](const std::vector<fs::path>& parts, const std::string& message) {
     CAPTURE(message);
@@ -169,38 +169,38 @@ TEST_CASE("partial renders: mismatched, overlapping and missing partials are err
 
   RenderJob other_seed = tiny_job(dir / "seed.exr", SampleRange{12, 24});
   other_seed.seed = 8;
-  render(other_seed);
+  render_partial(other_seed);
   refused({dir / "a.exr", dir / "seed.exr"}, "seed 8 here, 7 there");
 
   RenderJob other_size = tiny_job(dir / "size.exr", SampleRange{12, 24});
   other_size.width = 20;
-  render(other_size);
+  render_partial(other_size);
   refused({dir / "a.exr", dir / "size.exr"}, "resolution 20x16 here, 24x16 there");
 
   RenderJob other_scene = tiny_job(dir / "scene.exr", SampleRange{12, 24});
   other_scene.film = "xyz10";
-  render(other_scene);
+  render_partial(other_scene);
   refused({dir / "a.exr", dir / "scene.exr"}, "film xyz10 here, xyz there");
   RenderJob other_iso = tiny_job(dir / "iso.exr", SampleRange{12, 24});
   other_iso.iso = 200;
-  render(other_iso);
+  render_partial(other_iso);
   refused({dir / "a.exr", dir / "iso.exr"}, "exposure or white balance");
   RenderJob other_mode = tiny_job(dir / "mode.exr", SampleRange{12, 24});
   other_mode.wavelengths = WavelengthMode::single;  // an image option with no check of its own: the scene hash tells
-  render(other_mode);
+  render_partial(other_mode);
   refused({dir / "a.exr", dir / "mode.exr"}, "the scene (its file, the files it names, or image options) differs: scene hash");
   RenderJob half = tiny_job(dir / "half.exr", SampleRange{12, 24});
   half.half_exr = true;  // --half: not an image option (the scene hash is the same), the merge checks it itself
-  render(half);
+  render_partial(half);
   refused({dir / "a.exr", dir / "half.exr"}, "pixel type half here, float there");
 
-  render(tiny_job(dir / "overlap.exr", SampleRange{10, 24}));
+  render_partial(tiny_job(dir / "overlap.exr", SampleRange{10, 24}));
   refused({dir / "a.exr", dir / "overlap.exr"}, "both hold samples 10:12");
   refused({dir / "a.exr", dir / "a.exr"}, "both hold samples 0:12");
   refused({dir / "a.exr"}, "no partial holds samples 12:24 of 24");
 
   RenderJob plain = tiny_job(dir / "plain.exr", std::nullopt);
-  render(plain);
+  render_partial(plain);
   refused({dir / "a.exr", dir / "plain.exr"}, "not a partial render");
 }
 
@@ -208,14 +208,14 @@ TEST_CASE("partial renders: --half partials merge to half, record --half for --r
   Folder dir("half");
   RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12}), b = tiny_job(dir / "b.exr", SampleRange{12, 24});
   a.half_exr = b.half_exr = true;
-  render(a);
-  render(b);
+  render_partial(a);
+  render_partial(b);
   merge({dir / "a.exr", dir / "b.exr"}, dir / "ab.exr");
   const PartialImage merged = read_partial_exr(dir / "ab.exr");
   CHECK(merged.pixel_type == ExrPixelType::half);  // the partials' type, as one process with --half would write
   CHECK(render_job_from_json(merged.record.job, "ab.exr").half_exr);  // --resume continues as half
   CHECK(read_partial_exr(dir / "a.exr").pixel_type == ExrPixelType::half);
-  render(tiny_job(dir / "f.exr", SampleRange{0, 12}));
+  render_partial(tiny_job(dir / "f.exr", SampleRange{0, 12}));
   CHECK(read_partial_exr(dir / "f.exr").pixel_type == ExrPixelType::float32);  // the default
   CHECK_FALSE(render_job_from_json(read_partial_exr(dir / "f.exr").record.job, "f.exr").half_exr);
   // Records written while half was the default say "float": false for half and true for --float.
@@ -248,7 +248,7 @@ TEST_CASE("partial renders: --samples beyond the render's spp and malformed rang
   CHECK(parse_duration_s("30s", "--checkpoint") == 30);
   CHECK_THROWS_AS(parse_duration_s("0s", "--checkpoint"), InputError);
   Folder dir("beyond");
-  CHECK_THROWS_AS(render(tiny_job(dir / "x.exr", SampleRange{0, 48})), InputError);
+  CHECK_THROWS_AS(render_partial(tiny_job(dir / "x.exr", SampleRange{0, 48})), InputError);
   CHECK_FALSE(fs::exists(dir / "x.exr"));
 }
 
@@ -267,7 +267,7 @@ TEST_CASE("partial renders: a header whose windows the file cannot hold is refus
   // A real partial's header with its windows enlarged, and no pixels: before, the merge allocated a film for the
   // claimed window (30000 x 30000 pixels of 7 accumulators: 50 GB) and failed with std::bad_alloc (exit 2).
   Folder dir("hostile_header");
-  render(tiny_job(dir / "a.exr", SampleRange{0, 24}));
+  render_partial(tiny_job(dir / "a.exr", SampleRange{0, 24}));
   const auto rewrite = [&](const std::string& name, int display_side, int data_side) {
     Imf::Header header = Imf::InputFile((dir / "a.exr").c_str()).header();
     header.displayWindow() = Imath::Box2i({0, 0}, {display_side - 1, display_side - 1});
@@ -296,7 +296,7 @@ TEST_CASE("partial renders: OpenEXR does not allocate for a data window of 2^29 
   // line-offset table, 1.3-1.9 GB, before Rimu's checks saw the header. Here a real partial's data window is patched
   // in place to 2^29 rows (the file stays a few KB): OpenEXR must refuse it by the limits Rimu sets, naming the height.
   Folder dir("tall_header");
-  render(tiny_job(dir / "a.exr", SampleRange{0, 24}));
+  render_partial(tiny_job(dir / "a.exr", SampleRange{0, 24}));
   std::ifstream in(dir / "a.exr", std::ios::binary);
   std::string bytes{std::istreambuf_iterator<char>(in), {}};
   const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
@@ -321,7 +321,7 @@ TEST_CASE("partial renders: OpenEXR does not allocate for a data window of 2^29 
 TEST_CASE("partial renders: a header attribute claiming more bytes than the file holds is refused before OpenEXR reads it") {
   // fuzz_merge: a 2.7 KB partial whose rimu:partial:requested string claimed 1.86 GB, which OpenEXR allocated.
   Folder dir("attribute_size");
-  render(tiny_job(dir / "a.exr", SampleRange{0, 24}));
+  render_partial(tiny_job(dir / "a.exr", SampleRange{0, 24}));
   std::ifstream in(dir / "a.exr", std::ios::binary);
   std::string bytes{std::istreambuf_iterator<char>(in), {}};
   const std::string key = std::string("rimu:partial:requested") + '\0' + "string" + '\0';
@@ -346,15 +346,15 @@ TEST_CASE("partial renders: guided partials merge; a mix of guided and unguided 
   Folder dir("guiding");
   RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12});
   a.guiding = "on";
-  render(a);
+  render_partial(a);
   RenderJob b = tiny_job(dir / "b.exr", SampleRange{12, 24});
   b.guiding = "on";
-  render(b);
+  render_partial(b);
   CHECK(read_partial_exr(dir / "a.exr", false).metadata.extra.at("guiding") == "on");
   // Each partial trained its own field: the merge is an unbiased image of 24 spp (not bit-identical to one process).
   CHECK(merge({dir / "a.exr", dir / "b.exr"}, dir / "merged.exr").samples_per_pixel == 24);
 
-  render(tiny_job(dir / "plain.exr", SampleRange{12, 24}));
+  render_partial(tiny_job(dir / "plain.exr", SampleRange{12, 24}));
   CHECK(read_partial_exr(dir / "plain.exr", false).metadata.extra.at("guiding") == "off");
   try {
     merge({dir / "a.exr", dir / "plain.exr"}, dir / "out.exr");

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <fstream>
 
+#include "render/image/image_module/radiance_header.h"
 #include "render/image/loadable_module.h"
 
 namespace rimu {
@@ -27,18 +28,21 @@ constexpr ModuleLocation kOpenImageIO{
     "OpenImageIO module (needed to read image textures and write JPEG or TIFF)", "rimu_image_module_api",
     kImageModuleApiVersion, &call_module_entry<ImageModuleApi>};
 constexpr ModuleLocation kFreeImage{"librimu_freeimage.so", "RIMU_PFM_MODULE", RIMU_PFM_MODULE_INSTALL_PATH,
-                                    RIMU_PFM_MODULE_BUILD_PATH, "FreeImage module (needed to read PFM images)",
+                                    RIMU_PFM_MODULE_BUILD_PATH, "FreeImage module (needed to read PFM and HDR images)",
                                     "rimu_image_module_api", kImageModuleApiVersion,
                                     &call_module_entry<ImageModuleApi>};
 
 std::atomic<bool> oiio_loaded{false};
 std::atomic<bool> freeimage_loaded{false};
 
-// A PFM's signature: "PF" (colour) or "Pf" (grey) and the white space before its width.
-bool is_pfm(const std::filesystem::path& path) {
+// The files the FreeImage module reads: a PFM (its signature: "PF" colour or "Pf" grey and the white space before
+// its width) or a Radiance HDR stored in the standard orientation (radiance_header.h).
+bool for_freeimage(const std::filesystem::path& path) {
   char magic[3] = {0, 0, 0};
   std::ifstream(path, std::ios::binary).read(magic, 3);
-  return magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f') && std::isspace(static_cast<unsigned char>(magic[2]));
+  if (magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f') && std::isspace(static_cast<unsigned char>(magic[2])))
+    return true;
+  return magic[0] == '#' && magic[1] == '?' && radiance_standard_size(path.string()).has_value();
 }
 
 }  // namespace
@@ -56,7 +60,7 @@ const ImageModuleApi& pfm_library() {
 }
 
 const ImageModuleApi& image_reader_for(const std::filesystem::path& path) {
-  return is_pfm(path) ? pfm_library() : image_library();
+  return for_freeimage(path) ? pfm_library() : image_library();
 }
 
 bool pfm_module_loaded() { return freeimage_loaded.load(); }

@@ -16,7 +16,7 @@
 //   which stb_image does not report;
 // - Radiance HDR: stb_image 2.27 loops for ever on a truncated run-length-encoded scanline (past the end it reads
 //   zeros, and a run of length 0 never advances; found by mutating a 52-byte file), so a damaged .hdr would hang
-//   the load instead of failing;
+//   the load instead of failing (HDR goes to the FreeImage module, image_library.h);
 // - any file whose header stb_image refuses (12-bit or arithmetic-coded JPEG …): OpenImageIO may read it.
 #pragma once
 

@@ -1,7 +1,7 @@
-// PFM files are read by the FreeImage module (render/image/image_module/freeimage_module.cpp) instead of the
-// OpenImageIO module: they decode to what OpenImageIO gives for the same file (header fields, and every sample bit
-// for bit: colour and grey, both byte orders, scales other than 1), reading one leaves OpenImageIO unloaded, and
-// damaged headers are errors naming the file.
+// PFM and Radiance HDR files are read by the FreeImage module (render/image/image_module/freeimage_module.cpp)
+// instead of the OpenImageIO module: they decode to what OpenImageIO gives for the same file (header fields, and
+// every sample bit for bit: PFM colour and grey, both byte orders, scales other than 1; HDR flat and run-length
+// encoded), reading one leaves OpenImageIO unloaded, and damaged files are errors naming the file.
 #include <doctest/doctest.h>
 
 #include <bit>
@@ -10,8 +10,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 #include <string>
 #include <vector>
+
+#include <OpenImageIO/imageio.h>
 
 #include "image_module_test_support.h"
 #include "input_error_check.h"
@@ -82,6 +85,39 @@ TEST_CASE("PFM: the FreeImage module decodes what OpenImageIO decodes, bit for b
   }
 }
 
+TEST_CASE("HDR: the FreeImage module decodes what OpenImageIO decodes, bit for bit") {
+  test::ScratchFolder dir("hdr_module");
+  // Widths below 8 and above 32767 are stored flat, the others run-length encoded (Radiance's rule, which
+  // OpenImageIO's writer follows); a band of equal pixels makes runs.
+  for (const auto& [width, height] : std::vector<std::pair<int, int>>{{5, 3}, {53, 37}, {8, 2}, {1, 1}}) {
+    const std::string name = std::to_string(width) + "x" + std::to_string(height) + ".hdr";
+    CAPTURE(name);
+    std::vector<float> samples = test::hdr_test_values(size_t(width * height * 3));
+    for (float& v : samples) v = std::fabs(v);  // RGBE holds no negative values
+    for (int x = 0; x < width && height > 1; ++x)
+      for (int c = 0; c < 3; ++c) samples[size_t((width + x) * 3 + c)] = 1.5f;
+    const fs::path file = dir / name;
+    auto out = OIIO::ImageOutput::create(file.string());
+    REQUIRE(out);
+    REQUIRE(out->open(file.string(), OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT)));
+    REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, samples.data()));
+    REQUIRE(out->close());
+    const DecodedImage freeimage = pfm_module_decode(file);
+    const DecodedImage oiio = test::module_decode(file, false, false);
+    test::check_same_header(freeimage, oiio);
+    REQUIRE(freeimage.pixels.size() == oiio.pixels.size());
+    CHECK(std::memcmp(freeimage.pixels.data(), oiio.pixels.data(), oiio.pixels.size() * sizeof(float)) == 0);
+  }
+  // Another orientation ("+Y": rows stored bottom first) is left to OpenImageIO; the standard one comes here, rows
+  // top first as stored.
+  const std::string rgbe = "\x80\x80\x80\x81" "\x40\x40\x40\x81";  // RGBE of (1, 1, 1) and (0.5, 0.5, 0.5)
+  std::ofstream(dir / "up.hdr", std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 2 +X 1\n" << rgbe;
+  std::ofstream(dir / "down.hdr", std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 1\n" << rgbe;
+  CHECK(&image_reader_for(dir / "up.hdr") == &image_library());
+  CHECK(&image_reader_for(dir / "down.hdr") == &pfm_library());
+  CHECK(pfm_module_decode(dir / "down.hdr").pixels == std::vector<float>{1, 1, 1, 0.5f, 0.5f, 0.5f});
+}
+
 TEST_CASE("PFM: reading a PFM environment map or texture does not load the OpenImageIO module") {
   if (test::reran_alone_if(image_library_loaded() || pfm_module_loaded(), "PFM: reading a PFM environment map*")) return;
   test::ScratchFolder dir("pfm_unloaded");
@@ -114,4 +150,10 @@ TEST_CASE("PFM: damaged files are errors naming the file") {
   // Cut short: Rimu's own check, before FreeImage reads the pixels.
   const fs::path cut = write("cut.pfm", "PF\n4 4\n-1.0\n" + pixels);
   test::input_error([&] { RgbImage::read(cut, {}); }, {cut.string(), "truncated"});
+  // A Radiance file cut inside its run-length encoded pixels (stb_image loops for ever on one: why HDR never went
+  // to stb_image) is an error naming it.
+  std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n";
+  for (int row = 0; row < 2; ++row) hdr += std::string("\x02\x02\x00\x10", 4) + std::string(1, char(0x80 + 16)) + "A";
+  const fs::path short_hdr = write("short.hdr", hdr);
+  test::input_error([&] { RgbImage::read(short_hdr, {}); }, {short_hdr.string()});
 }
