@@ -31,7 +31,7 @@ py::array_t<float> render_scene(SpectralLibrary& library, const std::string& sce
   if (threads != 0) check_render_count(threads, 1, kMaxRenderThreads, argument("threads"));
   if (max_sample_value && !Film::valid_sample_clamp(*max_sample_value))
     throw InputError(argument("max_sample_value"),
-                     std::string("expected a number from ") + Film::kSampleClampRange + " (the sample clamp), got " +
+                     std::string("expected a number from ") + Film::sample_clamp_range() + " (the sample clamp), got " +
                          std::to_string(*max_sample_value));
   const std::unique_ptr<Scene> scene = for_argument("scene", [&] {
     return load_scene(scene_path.empty() ? default_scene_path(library) : std::filesystem::path(scene_path), library);

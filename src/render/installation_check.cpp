@@ -33,7 +33,7 @@ std::vector<InstallationItem> check_installation() {
     return loaded_from("librimu_oiio.so");
   });
   check("FreeImage module (PFM and HDR images)", [&] {
-    (void)pfm_library();
+    (void)freeimage_library();
     return loaded_from("librimu_freeimage.so");
   });
   check("OpenColorIO module and config (display images)", [&] {

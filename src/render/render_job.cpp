@@ -36,7 +36,7 @@ double parse_max_sample_value(const std::string& text, const std::string& option
   double value = 0.0;
   if (!parse_finite_number(text, value) || !Film::valid_sample_clamp(value))
     throw InputError({"", 0, option}, std::string("expected the largest channel value a camera sample may keep, a "
-                                                  "number from ") + Film::kSampleClampRange +
+                                                  "number from ") + Film::sample_clamp_range() +
                                           " in the written image's units (e.g. 20); got '" + text + "'");
   return value;
 }

@@ -15,26 +15,11 @@
 using namespace rimu;
 namespace fs = std::filesystem;
 
-namespace {
-
-RenderJob tiny_job(const fs::path& exr) {
-  RenderJob job;  // the embedded Cornell box
-  job.exr_output = exr;
-  job.width = 8;
-  job.height = 8;
-  job.samples_per_pixel = 1;
-  job.threads = 1;
-  job.quiet = true;
-  return job;
-}
-
-}  // namespace
-
 TEST_CASE("display module: a render that writes only an EXR does not load OpenColorIO; one with a PNG does") {
   if (test::reran_alone_if(display_library_loaded(), "display module: a render that writes only an EXR*")) return;
   test::ScratchFolder dir("display_module");
   std::ostringstream log;
-  RenderJob job = tiny_job(dir / "only.exr");
+  RenderJob job = test::tiny_render_job(dir / "only.exr");
   run_render_job(job, log);
   CHECK(fs::exists(dir / "only.exr"));
   CHECK_FALSE(display_library_loaded());
@@ -49,7 +34,7 @@ TEST_CASE("display module: a render that writes only an EXR does not load OpenCo
 TEST_CASE("display module: an unknown view is refused before rendering, with or without a PNG") {
   test::ScratchFolder dir("display_module_view");
   std::ostringstream log;
-  RenderJob job = tiny_job(dir / "out.exr");
+  RenderJob job = test::tiny_render_job(dir / "out.exr");
   job.view = "Filmic";
   test::input_error([&] { run_render_job(job, log); }, {"--view", "unknown view 'Filmic'", "Standard"});
   CHECK_FALSE(fs::exists(dir / "out.exr"));

@@ -114,19 +114,19 @@ TEST_CASE("HDR: the FreeImage module decodes what OpenImageIO decodes, bit for b
   std::ofstream(dir / "up.hdr", std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 2 +X 1\n" << rgbe;
   std::ofstream(dir / "down.hdr", std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 1\n" << rgbe;
   CHECK(&image_reader_for(dir / "up.hdr") == &image_library());
-  CHECK(&image_reader_for(dir / "down.hdr") == &pfm_library());
+  CHECK(&image_reader_for(dir / "down.hdr") == &freeimage_library());
   CHECK(pfm_module_decode(dir / "down.hdr").pixels == std::vector<float>{1, 1, 1, 0.5f, 0.5f, 0.5f});
 }
 
 TEST_CASE("PFM: reading a PFM environment map or texture does not load the OpenImageIO module") {
-  if (test::reran_alone_if(image_library_loaded() || pfm_module_loaded(), "PFM: reading a PFM environment map*")) return;
+  if (test::reran_alone_if(image_library_loaded() || freeimage_library_loaded(), "PFM: reading a PFM environment map*")) return;
   test::ScratchFolder dir("pfm_unloaded");
   const fs::path pfm = write_pfm_file(dir / "sky.pfm", 8, 4, 3, "-1.0", test_samples(8 * 4 * 3));
-  CHECK_FALSE(pfm_module_loaded());
+  CHECK_FALSE(freeimage_library_loaded());
   const RgbImage image = RgbImage::read(pfm, default_encoding_for(pfm));
   CHECK(image.width() == 8);
   CHECK(read_image_size(pfm).width == 8);
-  CHECK(pfm_module_loaded());
+  CHECK(freeimage_library_loaded());
   CHECK_FALSE(image_library_loaded());
 }
 

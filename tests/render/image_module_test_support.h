@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/image/image_library.h"
+#include "render/render_job.h"
 
 namespace rimu::test {
 
@@ -52,6 +53,19 @@ inline std::vector<float> hdr_test_values(size_t count) {
     v[i] = std::pow(10.0f, octave) * float((h >> 8) % 1000) / 999.0f * ((h & 0x10000) && i % 7 == 0 ? -1.0f : 1.0f);
   }
   return v;
+}
+
+/// The smallest render job: the embedded Cornell box at 8 × 8 pixels, 1 sample, 1 thread, quiet, to `exr`; for the
+/// checks of which modules a render loads.
+inline RenderJob tiny_render_job(const std::filesystem::path& exr) {
+  RenderJob job;
+  job.exr_output = exr;
+  job.width = 8;
+  job.height = 8;
+  job.samples_per_pixel = 1;
+  job.threads = 1;
+  job.quiet = true;
+  return job;
 }
 
 /// The whole content of `path`.

@@ -82,14 +82,8 @@ TEST_CASE("PNG output: the codes read back bit for bit, with the display's colou
 TEST_CASE("PNG output: a render with --png does not load OpenImageIO") {
   if (test::reran_alone_as_module_is_loaded("PNG output: a render with --png*")) return;
   test::ScratchFolder dir("png_unloaded");
-  RenderJob job;  // the embedded Cornell box
-  job.exr_output = dir / "box.exr";
+  RenderJob job = test::tiny_render_job(dir / "box.exr");
   job.png_output = dir / "box.png";
-  job.width = 8;
-  job.height = 8;
-  job.samples_per_pixel = 1;
-  job.threads = 1;
-  job.quiet = true;
   std::ostringstream log;
   run_render_job(job, log);
   CHECK(fs::exists(dir / "box.png"));

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,8 +81,12 @@ class Film {
   /// The range a sample clamp may take, wherever it is given (the scene's film, `--max-sample-value`, Python).
   static constexpr double kMinSampleClamp = 1e-30, kMaxSampleClamp = 1e30;
   static bool valid_sample_clamp(double value) { return value >= kMinSampleClamp && value <= kMaxSampleClamp; }
-  /// The range in words, for messages: "1e-30 to 1e30".
-  static constexpr const char* kSampleClampRange = "1e-30 to 1e30";
+  /// The range in words, for messages ("1e-30 to 1e+30"), written from the two bounds above.
+  static std::string sample_clamp_range() {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g to %g", kMinSampleClamp, kMaxSampleClamp);
+    return text;
+  }
   /// The sample clamp (film "max_sample_value", `--max-sample-value`; docs/rendering.md, "Sample clamp"): each
   /// sample's channel values, times the output transform's exposure scale, are scaled down so that the largest is at
   /// most `value` (the written image's units before white balance, as pbrt-v4's "maxcomponentvalue"). Tiles made

@@ -16,19 +16,19 @@ namespace {
 #ifndef RIMU_IMAGE_MODULE_BUILD_PATH
 #define RIMU_IMAGE_MODULE_BUILD_PATH ""
 #endif
-#ifndef RIMU_PFM_MODULE_INSTALL_PATH
-#define RIMU_PFM_MODULE_INSTALL_PATH ""
+#ifndef RIMU_FREEIMAGE_MODULE_INSTALL_PATH
+#define RIMU_FREEIMAGE_MODULE_INSTALL_PATH ""
 #endif
-#ifndef RIMU_PFM_MODULE_BUILD_PATH
-#define RIMU_PFM_MODULE_BUILD_PATH ""
+#ifndef RIMU_FREEIMAGE_MODULE_BUILD_PATH
+#define RIMU_FREEIMAGE_MODULE_BUILD_PATH ""
 #endif
 
 constexpr ModuleLocation kOpenImageIO{
     "librimu_oiio.so", "RIMU_IMAGE_MODULE", RIMU_IMAGE_MODULE_INSTALL_PATH, RIMU_IMAGE_MODULE_BUILD_PATH,
     "OpenImageIO module (needed to read image textures and write JPEG or TIFF)", "rimu_image_module_api",
     kImageModuleApiVersion, &call_module_entry<ImageModuleApi>};
-constexpr ModuleLocation kFreeImage{"librimu_freeimage.so", "RIMU_PFM_MODULE", RIMU_PFM_MODULE_INSTALL_PATH,
-                                    RIMU_PFM_MODULE_BUILD_PATH, "FreeImage module (needed to read PFM and HDR images)",
+constexpr ModuleLocation kFreeImage{"librimu_freeimage.so", "RIMU_FREEIMAGE_MODULE", RIMU_FREEIMAGE_MODULE_INSTALL_PATH,
+                                    RIMU_FREEIMAGE_MODULE_BUILD_PATH, "FreeImage module (needed to read PFM and HDR images)",
                                     "rimu_image_module_api", kImageModuleApiVersion,
                                     &call_module_entry<ImageModuleApi>};
 
@@ -42,7 +42,7 @@ bool for_freeimage(const std::filesystem::path& path) {
   std::ifstream(path, std::ios::binary).read(magic, 3);
   if (magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f') && std::isspace(static_cast<unsigned char>(magic[2])))
     return true;
-  return magic[0] == '#' && magic[1] == '?' && radiance_standard_size(path.string()).has_value();
+  return radiance_standard_size(path.string()).has_value();
 }
 
 }  // namespace
@@ -54,15 +54,15 @@ const ImageModuleApi& image_library() {
 
 bool image_library_loaded() { return oiio_loaded.load(); }
 
-const ImageModuleApi& pfm_library() {
+const ImageModuleApi& freeimage_library() {
   static const ImageModuleApi& api = *static_cast<const ImageModuleApi*>(load_module(kFreeImage, freeimage_loaded));
   return api;
 }
 
 const ImageModuleApi& image_reader_for(const std::filesystem::path& path) {
-  return for_freeimage(path) ? pfm_library() : image_library();
+  return for_freeimage(path) ? freeimage_library() : image_library();
 }
 
-bool pfm_module_loaded() { return freeimage_loaded.load(); }
+bool freeimage_library_loaded() { return freeimage_loaded.load(); }
 
 }  // namespace rimu

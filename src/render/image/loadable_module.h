@@ -1,7 +1,7 @@
 // Rimu's optional libraries live in modules of their own (lib/rimu/librimu_*.so), loaded on first use, so that a
 // process that does not need one never pays for loading it: OpenImageIO (~250 libraries, ~120 MiB of resident
-// memory and ~0.25 s of CPU), FreeImage for PFM images (~3 MiB) and OpenColorIO for display images (~3 MiB and
-// the relocation of its libraries; render/output/display_library.h). Each module exports one function returning
+// memory and ~0.25 s of CPU), FreeImage for PFM and HDR images (~3 MiB) and OpenColorIO for display images (~3 MiB
+// and the relocation of its libraries; render/output/display_transform.h). Each module exports one function returning
 // its table of functions, whose first member is the table's int version.
 #pragma once
 

@@ -137,7 +137,7 @@ bool read_pixels(const std::string& path, DecodedImage& image, std::string& erro
     error = "cannot read the image: " + error;
     return false;
   }
-  if (!FreeImage_HasPixels(bitmap) || image.width <= 0 || image.height <= 0) {
+  if (!FreeImage_HasPixels(bitmap)) {  // the size is the header's, checked positive
     FreeImage_Unload(bitmap);
     error = "cannot read the image: FreeImage returned no pixels";
     return false;

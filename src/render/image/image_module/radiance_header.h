@@ -19,10 +19,11 @@ struct RadianceSize {
 /// no size line within the first 64 KiB, or a size that is not positive).
 inline std::optional<RadianceSize> radiance_standard_size(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  char magic[2] = {0, 0};
+  if (!in.read(magic, 2) || magic[0] != '#' || magic[1] != '?') return std::nullopt;  // read no more of other files
   std::string head(65536, '\0');
   in.read(head.data(), std::streamsize(head.size()));
   head.resize(size_t(in.gcount()));
-  if (head.compare(0, 2, "#?") != 0) return std::nullopt;
   const size_t blank = head.find("\n\n");  // the header's lines end with an empty one
   if (blank == std::string::npos) return std::nullopt;
   const size_t line = blank + 2, end = head.find('\n', line);
