@@ -1,12 +1,16 @@
 // Equiangular sampling (Kulla & Fajardo 2012): the sampler follows its density (chi-square), and the volumetric
 // integrator's combination of equiangular and free-flight sampling by MIS is unbiased (same means as free-flight
-// sampling alone) and has lower variance for a ray passing close to a point or spot light.
+// sampling alone) and has lower variance for a ray passing close to a point or spot light, or a small area light.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
 #include "media_test_scene.h"
 #include "statistics.h"
+#include <array>
+
+#include "transport/lights/area_light.h"
+#include "transport/lights/bvh_light_sampler.h"
 #include "transport/lights/point_light.h"
 #include "transport/sampling/sampler.h"
 #include "transport/lights/spot_light.h"
@@ -113,6 +117,152 @@ TEST_CASE("Equiangular + free-flight MIS agrees with free-flight sampling alone 
         const double se = std::hypot(distance_only.standard_error[k], combined.standard_error[k]);
         CHECK(std::fabs(distance_only.mean[k] - combined.mean[k]) <= 5.0 * se);
         CHECK(combined.standard_error[k] < 0.5 * distance_only.standard_error[k]);
+      }
+    }
+  }
+}
+
+}  // namespace rimu
+
+namespace rimu {
+namespace {
+
+// The slab of SlabScene with a one-sided square area light (two triangles, normal +x) inside it, centred at
+// (0, 0, 1) in the plane x = 0: the light is geometry too, so that the phase function's directions can reach it.
+class SlabWithQuadLight final : public RayQueries {
+ public:
+  SlabWithQuadLight(float thickness_m, std::array<Vec3, 4> corners) : slab_(thickness_m), corners_(corners) {}
+  std::optional<SurfaceHit> intersect(const Ray& ray) const override {
+    std::optional<SurfaceHit> best = slab_.intersect(ray);
+    const Vec3 triangles[2][3] = {{corners_[0], corners_[1], corners_[2]}, {corners_[0], corners_[2], corners_[3]}};
+    for (uint32_t k = 0; k < 2; ++k) {
+      // Möller–Trumbore.
+      const Vec3 e1 = triangles[k][1] - triangles[k][0], e2 = triangles[k][2] - triangles[k][0];
+      const Vec3 p = cross(ray.direction, e2);
+      const float det = dot(e1, p);
+      if (std::fabs(det) < 1e-12f) continue;
+      const Vec3 s = ray.origin - triangles[k][0];
+      const float b1 = dot(s, p) / det;
+      const Vec3 q = cross(s, e1);
+      const float b2 = dot(ray.direction, q) / det;
+      const float t = dot(e2, q) / det;
+      if (b1 < 0.0f || b2 < 0.0f || b1 + b2 > 1.0f || !(t > ray.t_min) || !(t < ray.t_max) || (best && t >= best->t))
+        continue;
+      SurfaceHit hit;
+      hit.t = t;
+      hit.position = ray.origin + ray.direction * t;
+      hit.geometric_normal = hit.shading_normal = normalize(cross(e1, e2));
+      hit.material = -1;
+      hit.light = 0;
+      hit.primitive = k;
+      best = hit;
+    }
+    return best;
+  }
+  bool occluded(const Ray& ray) const override { return intersect(ray).has_value(); }
+
+ private:
+  test::SlabGeometry slab_;
+  std::array<Vec3, 4> corners_;
+};
+
+struct QuadLightSlab {
+  SlabWithQuadLight geometry;
+  std::vector<Material> materials;
+  std::vector<std::unique_ptr<Light>> lights;
+  std::vector<const Light*> light_pointers;
+  std::unique_ptr<LightSampler> light_sampler;
+  std::vector<Medium> media;
+  std::vector<MediumBoundary> boundaries;
+  VolumetricScene scene;
+
+  // `half_size_m`: half the square's side; `by_triangle`: the light tree, which picks the two triangles
+  // separately (parts 0 and 1), else the power sampler (the whole light, part −1).
+  QuadLightSlab(float half_size_m, Medium medium, bool by_triangle)
+      : geometry(2.0f, corners(half_size_m)) {
+    materials.push_back(DielectricMaterial(std::make_shared<ConstantSpectrum>(1.0), 0.0f));
+    media.push_back(std::move(medium));
+    boundaries.push_back({0, true});
+    const auto c = corners(half_size_m);
+    const std::vector<Vec3> vertices(c.begin(), c.end());
+    const std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+    lights.push_back(std::make_unique<AreaLight>(vertices, indices, constant_intensity(1.0), false));
+    light_pointers.push_back(lights[0].get());
+    if (by_triangle) {
+      light_sampler = std::make_unique<BvhLightSampler>(light_pointers);
+    } else {
+      const double power[] = {1.0};
+      light_sampler = std::make_unique<PowerLightSampler>(power);
+    }
+    TransportScene surfaces;
+    surfaces.geometry = &geometry;
+    surfaces.materials = &materials;
+    surfaces.lights = &lights;
+    surfaces.light_sampler = light_sampler.get();
+    surfaces.scene_scale = 2.0f;
+    scene = {surfaces, &media, &boundaries};
+  }
+  static std::array<Vec3, 4> corners(float a) {
+    return {Vec3{0.0f, -a, 1.0f - a}, Vec3{0.0f, a, 1.0f - a}, Vec3{0.0f, a, 1.0f + a}, Vec3{0.0f, -a, 1.0f + a}};
+  }
+};
+
+LaneStatistics render_quad_ray(const QuadLightSlab& slab, const VolumetricIntegratorSettings& settings,
+                               const Ray& ray, int count, uint64_t seed) {
+  const VolumetricPathIntegrator integrator(slab.scene, settings);
+  IndependentSampler sampler(seed);
+  return test::lane_statistics(count, [&](int i) {
+    sampler.start_pixel_sample(i, 0, 0);
+    return test::rotated_radiance(integrator, ray, sampler, i);
+  });
+}
+
+}  // namespace
+
+TEST_CASE("Equiangular sampling towards area lights: unbiased, and lower variance near a small one") {
+  // The slab of the test above with a one-sided square light (L = 1 W/(m²·sr·nm), facing +x) in the plane x = 0
+  // around (0, 0, 1); the camera ray runs along z at x = 0.05 m, in front of it. Three techniques now reach the
+  // light from a scattering point: free flight + NEE, free flight + the phase function's direction (which hits a
+  // light with area), and equiangular + NEE; their weights must sum to 1 for every path. Against free-flight
+  // sampling alone (with its own NEE/direction MIS) the means must agree within 5 combined standard errors, for
+  // a small light (2 cm side: 1/d² varies along the ray as a point light's) and a large one (40 cm: the phase
+  // function's direction hits it often, so a missing w_d on those hits would show), with the light chosen whole
+  // (power sampler) or by triangle (the light tree), in the three free-flight modes. Near the small light the
+  // combination must at least halve each lane's standard error, as for a point light (the integrand is nearly the
+  // same; measured 4.7-5.5× lower); near the large one, where the light's 1/d² is blunted by its extent and the
+  // technique aims at a centre 20 cm from the nearest point, cut it by a fifth (measured 2.0× aiming at the whole
+  // light's centroid, 3.0-3.2× at each triangle's).
+  const Medium medium(HomogeneousMedium(test::bands(1.0f, 0.8f, 0.6f, 0.9f), test::bands(0.1f, 0.2f, 0.4f, 0.05f),
+                                        0.3f));
+  const Ray ray{{0.05f, 0.0f, -1.0f}, {0.0f, 0.0f, 1.0f}};
+  for (const float half_size_m : {0.01f, 0.2f}) {
+    for (const bool by_triangle : {false, true}) {
+      const QuadLightSlab slab(half_size_m, medium, by_triangle);
+      for (DistanceSampling mode : {DistanceSampling::spectral_mis, DistanceSampling::hero_only,
+                                    DistanceSampling::averaged}) {
+        CAPTURE(half_size_m);
+        CAPTURE(by_triangle);
+        CAPTURE(int(mode));
+        VolumetricIntegratorSettings s;
+        s.distance = mode;
+        s.path.max_depth = 64;
+        s.equiangular = false;
+        const int count = 20000;
+        const LaneStatistics distance_only = render_quad_ray(slab, s, ray, count, 3);
+        s.equiangular = true;
+        const LaneStatistics combined = render_quad_ray(slab, s, ray, count, 4);
+        CHECK(distance_only.non_finite == 0);
+        CHECK(combined.non_finite == 0);
+        for (int k = 0; k < 4; ++k) {
+          CAPTURE(k);
+          CAPTURE(distance_only.mean[k]);
+          CAPTURE(combined.mean[k]);
+          CAPTURE(distance_only.standard_error[k]);
+          CAPTURE(combined.standard_error[k]);
+          const double se = std::hypot(distance_only.standard_error[k], combined.standard_error[k]);
+          CHECK(std::fabs(distance_only.mean[k] - combined.mean[k]) <= 5.0 * se);
+          CHECK(combined.standard_error[k] < (half_size_m < 0.05f ? 0.5 : 0.8) * distance_only.standard_error[k]);
+        }
       }
     }
   }

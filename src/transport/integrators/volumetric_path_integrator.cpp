@@ -176,6 +176,15 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
   if (path.guiding && guiding.record && guiding.record->size() < guiding.record_limit)
     record.emplace(guiding_lane_weights(lambda, path.wavelengths == WavelengthMode::rgb));
   bool previous_recorded = false;  // the last direction decision's vertex is the record's last one
+  // The last vertex, if it scattered on a segment where the equiangular technique ran: an emitter its sampled
+  // direction reaches is the distance technique's estimate too, and takes w_d (volumetric_equiangular.cpp).
+  struct EquiangularVertex {
+    EquiangularSegment segment;
+    int medium = -1;
+    float t = 0.0f;
+    SampledSpectrum ratios_before_flight;
+  };
+  std::optional<EquiangularVertex> previous_equiangular;
 
   // Every emitted contribution, credited to its light's group as well (light_group_radiance.h). `direct_by_mis`:
   // an emitter the last vertex's own sampled direction reached, weighted against next-event estimation there, which
@@ -239,7 +248,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       const Medium& medium = media[size_t(medium_index)];
       // The equiangular technique is NEE from this segment's scattering points: none when those would end the path.
       const bool medium_vertex_allowed = !settings_.max_depth_includes_media || in_walk || depth < path.max_depth;
-      if (medium_vertex_allowed && uses_equiangular(medium)) {
+      // Not inside a subsurface walk: its lights lie beyond the refracting boundary, which blocks the connection.
+      if (medium_vertex_allowed && !in_walk && uses_equiangular(medium)) {
         equiangular =
             EquiangularSegment{ray.origin, ray.direction, ray.t_min, std::fmin(t_surface, 1e30f), {}, ray.time};
         int light_group = 0;
@@ -301,10 +311,18 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
       if (hit->light >= 0) {
         const Light& light = *lights[size_t(hit->light)];
         const int part = light_sampler.part_of_hit(hit->primitive);
-        const float pdf = previous_specular ? 0.0f
-                                            : light_sampler.pmf(previous_sampling_point, hit->light, part) *
-                                                  light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
-        add_emission(light.radiance(*hit, -ray.direction, lambda), pdf, light);
+        // (A medium vertex, the only one with an equiangular state, is never specular.)
+        const float choice = previous_specular ? 0.0f : light_sampler.pmf(previous_sampling_point, hit->light, part);
+        const float pdf =
+            previous_specular ? 0.0f : choice * light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
+        float equiangular_weight = 1.0f;  // w_d, when the last vertex scattered where equiangular sampling ran
+        if (previous_equiangular)
+          if (const auto centre_m = light.emission_centre_m(part))
+            equiangular_weight = distance_technique_weight(
+                previous_equiangular->segment, media[size_t(previous_equiangular->medium)], previous_equiangular->t,
+                *centre_m, previous_equiangular->ratios_before_flight, lambda, choice,
+                light_sampler.pmf(equiangular_choice_point(previous_equiangular->segment), hit->light, part));
+        add_emission(light.radiance(*hit, -ray.direction, lambda) * Float4(equiangular_weight), pdf, light);
       }
       const MediumBoundary b = boundary(hit->material);
       if (b.index_matched) {
@@ -457,8 +475,8 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
                                     : sum(pdf_ratio * q_dir * tr->pass_probability);
             float weight = density_scale * s_light / (s_light * s_light + s_dir * s_dir);
             if (equiangular && scatter_point)
-              if (const auto light_m = light.delta_position_m())
-                weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *light_m,
+              if (const auto centre_m = light.emission_centre_m(pick->part))
+                weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *centre_m,
                                                     ratios_before_flight, lambda,
                                                     pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),
                                                                                          pick->light, pick->part));
@@ -501,6 +519,9 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
                                                              scatterer.wo_local, scatterer.frame.to_local(ds->wi_world),
                                                              ds->is_delta);
     previous_specular = ds->is_delta;
+    previous_equiangular.reset();
+    if (scatter_point && equiangular)
+      previous_equiangular = EquiangularVertex{*equiangular, medium_index, flight_t, ratios_before_flight};
     previous_hero_pdf = ds->pdf[0];
     previous_density.reset();
     if (ds->density_deferred) previous_density.emplace(DeferredDensity{*scatterer.bsdf, scatterer.wo_local, ds->wi_local});

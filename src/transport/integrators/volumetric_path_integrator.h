@@ -35,9 +35,10 @@ struct VolumetricIntegratorSettings {
   /// A safety bound on scattering events per path (stuck-path guard; Russian roulette ends paths long before in
   /// any medium with albedo < 1). Paths reaching it end, which truncates at most the 10⁶th-order scattering.
   int max_medium_events = 1000000;
-  /// Equiangular sampling towards point and spot lights on every homogeneous segment, combined with free-flight
-  /// sampling + NEE by the balance heuristic (Kulla & Fajardo 2012; docs/media.md). Not used with
-  /// spectral_tracking, in grid media, or with direct_lighting = bsdf_only.
+  /// Equiangular sampling towards every light that is not at infinity (point, spot, luminaire, emitting triangle,
+  /// sphere) on every homogeneous segment, combined with free-flight sampling + NEE by the balance heuristic (Kulla
+  /// & Fajardo 2012; docs/media.md). Not used with spectral_tracking, in grid media, inside subsurface walks, or
+  /// with direct_lighting = bsdf_only.
   bool equiangular = true;
 };
 
@@ -60,7 +61,8 @@ DistanceSampling distance_sampling_for(DistanceSampling requested, WavelengthMod
 /// every vertex (the lane estimate 4β/ΣR is invariant), which keeps thousands of bounces in float range.
 ///
 /// Random numbers per vertex: light choice (1), light position (2), lobe (1; unused in media), direction (2),
-/// Russian roulette (1); free flights take a variable number (spectral_distance_sampling.h).
+/// Russian roulette (1); per homogeneous segment, the equiangular technique's four; free flights take a variable
+/// number (spectral_distance_sampling.h).
 class VolumetricPathIntegrator {
  public:
   VolumetricPathIntegrator(const VolumetricScene& scene, VolumetricIntegratorSettings settings);
@@ -98,18 +100,20 @@ class VolumetricPathIntegrator {
                                      SampledSpectrum throughput) const;
   /// Whether the equiangular technique runs on segments through `medium` (see the setting).
   bool uses_equiangular(const Medium& medium) const;
-  /// The equiangular technique on one homogeneous segment (volumetric_equiangular.cpp): picks a light as NEE
-  /// does; for a point or spot light, samples t equiangularly and connects to the light. `beta`, `ratios`: the
-  /// path's β and R_k before the segment's free flight. Returns the MIS-weighted radiance per lane.
-  /// Consumes two uniform numbers (light choice, t) plus the shadow ray's. `light_group`: the chosen light's group.
+  /// The equiangular technique on one homogeneous segment (volumetric_equiangular.cpp): picks a light (part) as NEE
+  /// does; unless it is at infinity, samples t equiangularly towards the part's centre and connects to a point of
+  /// the part as NEE would. `beta`, `ratios`: the path's β and R_k before the segment's free flight. Returns the
+  /// MIS-weighted radiance per lane. Consumes four uniform numbers (light choice, t, point on the light) plus the
+  /// shadow ray's. `light_group`: the chosen light's group.
   SampledSpectrum equiangular_direct(EquiangularSegment segment, const Medium& medium, const SampledSpectrum& beta,
                                      const SampledSpectrum& ratios, const MediumStack& stack,
                                      const SampledWavelengths& lambda, Sampler& sampler, int& light_group) const;
-  /// The balance-heuristic weight of free-flight sampling + NEE to a light at `light_m` for a scattering event at
-  /// `t` of `segment`, against the equiangular technique: P_nee·S_dist / (P_nee·S_dist + P_equi·S_equi)
-  /// (docs/media.md), with P_nee the probability NEE chose the light at the scattering point and P_equi the one
-  /// the equiangular technique chooses it with (at equiangular_choice_point).
-  float distance_technique_weight(EquiangularSegment segment, const Medium& medium, float t, Vec3 light_m,
+  /// w_d: the balance-heuristic weight of free-flight sampling (then NEE, or the phase function's direction) for a
+  /// scattering event at `t` of `segment` lit by a light part centred at `centre_m`, against the equiangular
+  /// technique: P_nee·S_dist / (P_nee·S_dist + P_equi·S_equi) (docs/media.md), with P_nee the probability NEE
+  /// chooses the part at the scattering point and P_equi the one the equiangular technique chooses it with (at
+  /// equiangular_choice_point).
+  float distance_technique_weight(EquiangularSegment segment, const Medium& medium, float t, Vec3 centre_m,
                                   const SampledSpectrum& ratios, const SampledWavelengths& lambda,
                                   float nee_probability, float equiangular_probability) const;
   /// Where the equiangular technique chooses its light: the segment's start, as a point in a medium (no normal).
@@ -124,7 +128,7 @@ class VolumetricPathIntegrator {
 
   const VolumetricScene& scene_;
   VolumetricIntegratorSettings settings_;
-  bool has_point_lights_ = false;  ///< any light with a delta position (point, spot)
+  bool has_finite_lights_ = false;  ///< any light with an emission centre (not at infinity)
   /// Some medium is tracked (uses_tracking): shadow() then reads the NEE throughput, which needs the BSDF's f and
   /// density first; else NEE may trace the shadow ray before evaluating a costly BSDF (Bsdf::evaluation_is_costly).
   bool shadow_reads_throughput_ = false;

@@ -75,11 +75,27 @@ void AreaLight::set_weights() {
       if (triangles_[k].area_m2 > 0.0)
         weights[k] = triangles_[k].area_m2 * std::max(triangles_[k].radiance_integral, floor);
   }
+  double centroid[3] = {};
   for (size_t k = 0; k < triangles_.size(); ++k) {
+    const Triangle& t = triangles_[k];
     triangles_[k].weight = weights[k];
     total_weight_ += weights[k];
+    centroid[0] += weights[k] * (double(t.v0.x) + t.v1.x + t.v2.x) / 3.0;
+    centroid[1] += weights[k] * (double(t.v0.y) + t.v1.y + t.v2.y) / 3.0;
+    centroid[2] += weights[k] * (double(t.v0.z) + t.v1.z + t.v2.z) / 3.0;
   }
+  if (total_weight_ > 0.0)
+    weighted_centroid_m_ = Vec3(float(centroid[0] / total_weight_), float(centroid[1] / total_weight_),
+                                float(centroid[2] / total_weight_));
   by_weight_ = Distribution1D(weights);
+}
+
+std::optional<Vec3> AreaLight::emission_centre_m(int part) const {
+  if (!emits_ || !(total_weight_ > 0.0)) return std::nullopt;
+  if (part < 0) return weighted_centroid_m_;
+  if (part >= triangle_count() || triangles_[size_t(part)].area_m2 == 0.0) return std::nullopt;
+  const Triangle& t = triangles_[size_t(part)];
+  return (t.v0 + t.v1 + t.v2) * (1.0f / 3.0f);
 }
 
 SampledSpectrum AreaLight::emitted(size_t k, Vec3 barycentric, const SampledWavelengths& lambda) const {

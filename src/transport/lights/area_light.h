@@ -69,6 +69,8 @@ class AreaLight final : public Light {
   /// The triangle's box, normal (θo = 0, θe = π/2) and intensity L·A_k (an image's: the triangle's floored mean L);
   /// none for degenerate triangles.
   std::optional<LightBounds> part_bounds(int part) const override;
+  /// Triangle `part`'s centroid (none if it is degenerate); part −1: the mean of the centroids weighted by w_k.
+  std::optional<Vec3> emission_centre_m(int part) const override;
 
   int triangle_count() const { return int(triangles_.size()); }
   /// Triangles skipped for zero (or non-finite) area.
@@ -119,6 +121,7 @@ class AreaLight final : public Light {
   double area_m2_ = 0.0;
   double total_weight_ = 0.0;  // W = Σ w_k
   bool emits_ = false;         // some triangle has area and emission
+  Vec3 weighted_centroid_m_{};  // Σ_k w_k c_k / Σ_k w_k (valid when emits_)
   int degenerate_count_ = 0;
   bool two_sided_;
 };

@@ -36,6 +36,8 @@ class GoniometricLight final : public Light {
   /// Φ = ∫shape dλ · ∫table dω.
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
+  /// The luminaire's position (the opening's centre).
+  std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 
   /// The table's peak times ∫shape dλ, in the narrowest cone about ±axis outside which the table is 0
   /// (IntensityDistribution::nonzero_gamma_rad), over the opening's bounding box.

@@ -57,9 +57,12 @@ class Light {
 
   /// True if sample_li returns delta samples (point, spot, distant of zero diameter): no MIS with BSDF sampling.
   virtual bool is_delta() const { return false; }
-  /// The position of a light that emits from one point (point, spot), else std::nullopt. Media use it for
-  /// equiangular sampling along a ray towards the light (transport/media/equiangular_sampling.h).
-  virtual std::optional<Vec3> delta_position_m() const { return std::nullopt; }
+  /// The point the emission of `part` (−1: the whole light) gathers around, which equiangular sampling in media aims
+  /// at (transport/integrators/volumetric_equiangular.cpp): a point, spot, projector's or luminaire's position, an
+  /// emitting triangle's centroid (a mesh's, weighted by emission, for part −1), a sphere's centre. std::nullopt
+  /// for lights at infinity and parts that emit nothing. Any point is unbiased there; a central one makes the
+  /// technique's 1/d² match the light's.
+  virtual std::optional<Vec3> emission_centre_m(int /*part*/) const { return std::nullopt; }
   /// True if the light is at infinity (radiance_escaped may be nonzero).
   virtual bool is_infinite() const { return false; }
   /// For a light at infinity with portals (the windows it enters by), those portals; nullptr otherwise. Sun rays use

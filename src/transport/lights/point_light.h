@@ -20,7 +20,7 @@ class PointLight final : public Light {
   /// Φ = 4π ∫I(λ) dλ.
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
-  std::optional<Vec3> delta_position_m() const override { return position_m_; }
+  std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 
   Vec3 position_m() const { return position_m_; }
   /// A point emitting I = ∫I(λ)dλ in every direction (θo = π).

@@ -37,7 +37,7 @@ class ProjectionLight final : public Light {
   /// (in closed form).
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
-  std::optional<Vec3> delta_position_m() const override { return position_m_; }
+  std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
   /// The brightest pixel's ∫I dλ in the cone about the axis that holds the picture's corners (no falloff beyond).
   std::optional<LightBounds> part_bounds(int part) const override;
 

@@ -49,6 +49,9 @@ class SphereLight final : public Light {
   const LightSpectrum* emitted_spectrum() const override { return &radiance_; }
 
   Vec3 centre_m() const { return centre_m_; }
+  std::optional<Vec3> emission_centre_m(int) const override {
+    return radiance_.is_black() ? std::nullopt : std::optional<Vec3>(centre_m_);
+  }
   float radius_m() const { return radius_m_; }
   double area_m2() const;
   bool two_sided() const { return two_sided_; }

@@ -29,7 +29,7 @@ class SpotLight final : public Light {
   /// Φ = 2π (1 − (cos θ_inner + cos θ_outer)/2) ∫I(λ) dλ (derivation above).
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
-  std::optional<Vec3> delta_position_m() const override { return position_m_; }
+  std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 
   /// The on-axis intensity ∫I(λ)dλ in the cone θo = inner, falling to nothing at θo + θe = outer.
   std::optional<LightBounds> part_bounds(int part) const override;

@@ -9,7 +9,8 @@
 
 namespace rimu {
 
-/// The ray segment o + t·d, t ∈ [t0, t1], seen from a light at `light_m`: Δ = (light − o)·d is the foot of the
+/// The ray segment o + t·d, t ∈ [t0, t1], seen from a light at `light_m` (a point light, or the centre the
+/// technique aims at for a light with extent): Δ = (light − o)·d is the foot of the
 /// perpendicular from the light, h its distance to the line.
 struct EquiangularSegment {
   Vec3 origin, direction;  ///< direction: unit
