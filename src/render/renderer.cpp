@@ -66,7 +66,7 @@ RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& fil
     settings.path = scene.settings.integrator;
     settings.distance = scene.settings.distance_sampling;
     settings.max_depth_includes_media = scene.settings.max_depth_includes_media;
-    settings.equiangular = scene.settings.equiangular_sampling;
+    settings.equiangular = scene.settings.equiangular;
     return render(volumetric, settings, camera, filter, film, options);
   }
   return render(view, scene.settings.integrator, camera, filter, film, options);

@@ -11,6 +11,8 @@
 
 #include "transport/lights/area_light.h"
 #include "transport/lights/bvh_light_sampler.h"
+#include "transport/lights/candela_distribution.h"
+#include "transport/lights/goniometric_light.h"
 #include "transport/lights/point_light.h"
 #include "transport/sampling/sampler.h"
 #include "transport/lights/spot_light.h"
@@ -88,11 +90,19 @@ TEST_CASE("Equiangular + free-flight MIS agrees with free-flight sampling alone 
                                         0.3f));
   const Vec3 light_m{0.0f, 0.0f, 1.0f};
   const Ray ray{{0.05f, 0.0f, -1.0f}, {0.0f, 0.0f, 1.0f}};
-  for (int light_type = 0; light_type < 2; ++light_type) {
-    // The spot light points across the ray (+x, towards it) with a 60° cone: the ray's nearest stretch is lit.
+  for (int light_type = 0; light_type < 3; ++light_type) {
+    // The spot light points across the ray (+x, towards it) with a 60° cone: the ray's nearest stretch is lit. The
+    // IES-style luminaire (a goniometric light, aimed at equiangularly since 6 December 2026) sends 1 unit up to
+    // 90° from its axis (+x) and 0.2 beyond.
     std::unique_ptr<Light> light;
     if (light_type == 0) light = std::make_unique<PointLight>(light_m, constant_intensity(1.0));
-    else light = std::make_unique<SpotLight>(light_m, Vec3{1.0f, 0.0f, 0.0f}, 50.0, 60.0, constant_intensity(1.0));
+    else if (light_type == 1)
+      light = std::make_unique<SpotLight>(light_m, Vec3{1.0f, 0.0f, 0.0f}, 50.0, 60.0, constant_intensity(1.0));
+    else
+      light = std::make_unique<GoniometricLight>(
+          light_m, Vec3{1.0f, 0.0f, 0.0f}, Vec3{0.0f, 0.0f, 1.0f}, constant_intensity(1.0),
+          std::make_shared<CandelaDistribution>(std::vector<double>{0, 90, 91, 180}, std::vector<double>{0, 360},
+                                                std::vector<double>{1, 1, 0.2, 0.2, 1, 1, 0.2, 0.2}));
     const test::SlabScene slab(2.0f, medium, std::move(light));
     for (DistanceSampling mode : {DistanceSampling::spectral_mis, DistanceSampling::hero_only,
                                   DistanceSampling::averaged}) {
@@ -101,10 +111,10 @@ TEST_CASE("Equiangular + free-flight MIS agrees with free-flight sampling alone 
       VolumetricIntegratorSettings s;
       s.distance = mode;
       s.path.max_depth = 64;
-      s.equiangular = false;
+      s.equiangular = EquiangularLights::off;
       const int count = 20000;
       const LaneStatistics distance_only = render_ray(slab, s, ray, count, 3);
-      s.equiangular = true;
+      s.equiangular = EquiangularLights::points;
       const LaneStatistics combined = render_ray(slab, s, ray, count, 4);
       CHECK(distance_only.non_finite == 0);
       CHECK(combined.non_finite == 0);
@@ -246,10 +256,14 @@ TEST_CASE("Equiangular sampling towards area lights: unbiased, and lower varianc
         VolumetricIntegratorSettings s;
         s.distance = mode;
         s.path.max_depth = 64;
-        s.equiangular = false;
+        s.equiangular = EquiangularLights::off;
         const int count = 20000;
         const LaneStatistics distance_only = render_quad_ray(slab, s, ray, count, 3);
-        s.equiangular = true;
+        // The default aims at lights at a point only: the same paths as without (same seed, same estimates).
+        s.equiangular = EquiangularLights::points;
+        const LaneStatistics points_only = render_quad_ray(slab, s, ray, count, 3);
+        for (int k = 0; k < 4; ++k) CHECK(points_only.mean[k] == distance_only.mean[k]);
+        s.equiangular = EquiangularLights::all;
         const LaneStatistics combined = render_quad_ray(slab, s, ray, count, 4);
         CHECK(distance_only.non_finite == 0);
         CHECK(combined.non_finite == 0);

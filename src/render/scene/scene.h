@@ -55,8 +55,9 @@ struct RenderSettings {
   /// media only (integrator.max_depth_includes_media): medium scattering events count towards max_depth, as in
   /// pbrt-v4's volpath
   bool max_depth_includes_media = false;
-  /// media only (integrator.equiangular): equiangular sampling towards lights in homogeneous media (docs/media.md)
-  bool equiangular_sampling = true;
+  /// media only (integrator.equiangular): which lights equiangular sampling aims at in homogeneous media
+  /// (docs/media.md)
+  EquiangularLights equiangular = EquiangularLights::points;
   LightSamplerKind light_sampler = LightSamplerKind::bvh;  ///< integrator.light_sampler (transport/lights/light_sampler.h)
   WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
   std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>

@@ -173,7 +173,10 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
                                                      : DistanceSampling::spectral_mis;
   }
   s.max_depth_includes_media = c.boolean_or("max_depth_includes_media", s.max_depth_includes_media);
-  s.equiangular_sampling = c.boolean_or("equiangular", s.equiangular_sampling);
+  if (const auto d = c.find("equiangular")) {
+    const std::string v = d->choice({"points", "all", "off"});
+    s.equiangular = v == "all" ? EquiangularLights::all : v == "off" ? EquiangularLights::off : EquiangularLights::points;
+  }
   if (const auto sampler = c.find("sampler"))
     s.sampler = *parse_sampler_kind(sampler->choice({"sobol", "independent"}));
   if (const auto d = c.find("direct_lighting")) {

@@ -31,13 +31,13 @@ VolumetricPathIntegrator::VolumetricPathIntegrator(const VolumetricScene& scene,
     : scene_(scene), settings_(settings) {
   settings_.distance = distance_sampling_for(settings.distance, settings.path.wavelengths);
   for (const auto& light : *scene_.surfaces.lights)
-    if (light->emission_centre_m(-1)) has_finite_lights_ = true;
+    if (equiangular_centre_m(*light, -1)) has_equiangular_lights_ = true;
   for (const Medium& medium : *scene_.media)
     if (uses_tracking(medium, settings_.distance)) shadow_reads_throughput_ = true;
 }
 
 bool VolumetricPathIntegrator::uses_equiangular(const Medium& medium) const {
-  return settings_.equiangular && has_finite_lights_ && medium.homogeneous() != nullptr &&
+  return has_equiangular_lights_ && medium.homogeneous() != nullptr &&
          settings_.distance != DistanceSampling::spectral_tracking &&
          settings_.path.direct_lighting != DirectLighting::bsdf_only;
 }
@@ -54,8 +54,8 @@ SampledSpectrum VolumetricPathIntegrator::equiangular_direct(EquiangularSegment 
   if (!pick) return Float4(0.0f);
   const Light& light = *(*scene_.surfaces.lights)[size_t(pick->light)];
   light_group = light.light_group();
-  const std::optional<Vec3> centre_m = light.emission_centre_m(pick->part);
-  if (!centre_m) return Float4(0.0f);  // the technique has density 0 for lights at infinity
+  const std::optional<Vec3> centre_m = equiangular_centre_m(light, pick->part);
+  if (!centre_m) return Float4(0.0f);  // the technique has density 0 for lights it does not aim at
   segment.light_m = *centre_m;
   const auto es = segment.sample(u_t);
   if (!es) return Float4(0.0f);
@@ -80,6 +80,18 @@ SampledSpectrum VolumetricPathIntegrator::equiangular_direct(EquiangularSegment 
   const float denominator = s_equi + s_dist;
   if (!(denominator > 0.0f)) return Float4(0.0f);
   return throughput * tr->transmittance * ls->radiance * Float4(float(kLaneCount) / (ls->pdf_solid_angle * denominator));
+}
+
+std::optional<Vec3> VolumetricPathIntegrator::equiangular_centre_m(const Light& light, int part) const {
+  switch (settings_.equiangular) {
+    case EquiangularLights::off:
+      return std::nullopt;
+    case EquiangularLights::points:
+      return light.is_delta() ? light.emission_centre_m(part) : std::nullopt;
+    case EquiangularLights::all:
+      return light.emission_centre_m(part);
+  }
+  return std::nullopt;
 }
 
 float VolumetricPathIntegrator::distance_technique_weight(EquiangularSegment segment, const Medium& medium, float t,

@@ -317,7 +317,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
             previous_specular ? 0.0f : choice * light.pdf_part_li(part, previous_reference, ray.direction, &*hit);
         float equiangular_weight = 1.0f;  // w_d, when the last vertex scattered where equiangular sampling ran
         if (previous_equiangular)
-          if (const auto centre_m = light.emission_centre_m(part))
+          if (const auto centre_m = equiangular_centre_m(light, part))
             equiangular_weight = distance_technique_weight(
                 previous_equiangular->segment, media[size_t(previous_equiangular->medium)], previous_equiangular->t,
                 *centre_m, previous_equiangular->ratios_before_flight, lambda, choice,
@@ -475,7 +475,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
                                     : sum(pdf_ratio * q_dir * tr->pass_probability);
             float weight = density_scale * s_light / (s_light * s_light + s_dir * s_dir);
             if (equiangular && scatter_point)
-              if (const auto centre_m = light.emission_centre_m(pick->part))
+              if (const auto centre_m = equiangular_centre_m(light, pick->part))
                 weight *= distance_technique_weight(*equiangular, media[size_t(medium_index)], flight_t, *centre_m,
                                                     ratios_before_flight, lambda,
                                                     pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),

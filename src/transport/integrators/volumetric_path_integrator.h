@@ -25,6 +25,18 @@ struct VolumetricScene {
   int camera_medium = -1;
 };
 
+/// Which lights equiangular sampling aims at (the scene key integrator.equiangular).
+enum class EquiangularLights {
+  off,
+  /// Lights at a point (point, spot, projector, IES luminaire), where the 1/d² it cancels is sharpest. The default:
+  /// it costs one more light connection per segment, which pays for these (docs/benchmarks.md).
+  points,
+  /// Every light not at infinity: also emitting triangles and spheres, by their centres. Lower noise in the glow
+  /// around a softbox or bulb in haze; in a scene filled with haze where lights are large against the distances
+  /// (a hazy Cornell box) the extra connection can cost more than it gains (docs/benchmarks.md).
+  all,
+};
+
 struct VolumetricIntegratorSettings {
   PathIntegratorSettings path;  ///< max_depth counts surface interactions (and see below); RR counts all vertices
   /// Whether scattering events in media count towards path.max_depth too, as pbrt-v4's volpath counts them
@@ -35,11 +47,10 @@ struct VolumetricIntegratorSettings {
   /// A safety bound on scattering events per path (stuck-path guard; Russian roulette ends paths long before in
   /// any medium with albedo < 1). Paths reaching it end, which truncates at most the 10⁶th-order scattering.
   int max_medium_events = 1000000;
-  /// Equiangular sampling towards every light that is not at infinity (point, spot, luminaire, emitting triangle,
-  /// sphere) on every homogeneous segment, combined with free-flight sampling + NEE by the balance heuristic (Kulla
-  /// & Fajardo 2012; docs/media.md). Not used with spectral_tracking, in grid media, inside subsurface walks, or
-  /// with direct_lighting = bsdf_only.
-  bool equiangular = true;
+  /// Equiangular sampling on every homogeneous segment, combined with free-flight sampling + NEE by the balance
+  /// heuristic (Kulla & Fajardo 2012; docs/media.md), towards the lights EquiangularLights says. Not used with
+  /// spectral_tracking, in grid media, inside subsurface walks, or with direct_lighting = bsdf_only.
+  EquiangularLights equiangular = EquiangularLights::points;
 };
 
 /// The free-flight technique a wavelength mode runs when the scene asks for `requested` (docs/media.md,
@@ -116,6 +127,9 @@ class VolumetricPathIntegrator {
   float distance_technique_weight(EquiangularSegment segment, const Medium& medium, float t, Vec3 centre_m,
                                   const SampledSpectrum& ratios, const SampledWavelengths& lambda,
                                   float nee_probability, float equiangular_probability) const;
+  /// The point the equiangular technique aims at for `part` of `light` (Light::emission_centre_m), or std::nullopt
+  /// where the setting leaves the light out (the technique then has density 0 for it, and w_d = 1).
+  std::optional<Vec3> equiangular_centre_m(const Light& light, int part) const;
   /// Where the equiangular technique chooses its light: the segment's start, as a point in a medium (no normal).
   /// Any point fixed before the distance is drawn keeps the technique's density known to NEE's MIS weight.
   static LightSamplingPoint equiangular_choice_point(const EquiangularSegment& segment) {
@@ -128,7 +142,7 @@ class VolumetricPathIntegrator {
 
   const VolumetricScene& scene_;
   VolumetricIntegratorSettings settings_;
-  bool has_finite_lights_ = false;  ///< any light with an emission centre (not at infinity)
+  bool has_equiangular_lights_ = false;  ///< any light equiangular_centre_m aims at
   /// Some medium is tracked (uses_tracking): shadow() then reads the NEE throughput, which needs the BSDF's f and
   /// density first; else NEE may trace the shadow ray before evaluating a costly BSDF (Bsdf::evaluation_is_costly).
   bool shadow_reads_throughput_ = false;

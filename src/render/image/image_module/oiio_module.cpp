@@ -1,4 +1,6 @@
 // OpenImageIO behind the ImageModuleApi (image_module_api.h): loaded by render/image/image_library.cpp on first use.
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
@@ -120,6 +122,17 @@ bool write_rgb8_uncaptured(const std::string& path, const std::string& format, i
   return true;
 }
 
+// The EXIF orientation (1-8) a Radiance HDR file's size line gives ("+Y h +X w": 4, rows stored bottom first; "+X w
+// -Y h": 5, columns stored; …), which OpenImageIO only reports: its reader returns the pixels in the order stored.
+// For a Radiance file the orientation is part of the pixel data, not a display hint, so Rimu applies it (pbrt-v4's
+// reader, stb_image, refuses every orientation but the standard one). Other formats' orientation tags (a camera
+// JPEG's or TIFF's EXIF Orientation) are left as stored, as pbrt-v4 and most renderers leave them. 1: as stored.
+int radiance_orientation(const OIIO::ImageInput& input) {
+  if (std::string(input.format_name()) != "hdr") return 1;
+  const int orientation = input.spec().get_int_attribute("Orientation", 1);
+  return orientation >= 1 && orientation <= 8 ? orientation : 1;
+}
+
 std::unique_ptr<OIIO::ImageInput> open_header(const std::string& path, DecodedImage& image, std::string& error) {
   OIIO::ImageSpec config;
   if (image.as_stored) config.attribute("oiio:UnassociatedAlpha", 1);
@@ -135,6 +148,7 @@ std::unique_ptr<OIIO::ImageInput> open_header(const std::string& path, DecodedIm
   image.alpha_channel = spec.alpha_channel;
   image.bits_per_sample = spec.get_int_attribute("oiio:BitsPerSample", int(spec.format.size() * 8));
   image.format_name = input->format_name();
+  if (radiance_orientation(*input) >= 5) std::swap(image.width, image.height);  // stored transposed
   // OpenImageIO reports a binary PBM (magic "P4", one bit per pixel, rows padded to a byte) as 8-bit.
   if (image.format_name == "pnm") {
     char magic[2] = {0, 0};
@@ -181,6 +195,20 @@ bool read_pixels_uncaptured(const std::string& path, DecodedImage& image, std::s
     error = "cannot read the pixels: " +
             (reason.empty() ? std::string("OpenImageIO gives no reason (is the file truncated or damaged?)") : reason);
     return false;
+  }
+  if (const int orientation = radiance_orientation(*input); orientation != 1 && !bytes) {
+    // The pixels as stored, in an ImageBuf that wraps them with the file's orientation; reorient() turns them
+    // upright (rows top first, left to right), with width and height swapped for orientations 5-8.
+    OIIO::ImageSpec stored = input->spec();
+    stored.set_format(OIIO::TypeDesc::FLOAT);
+    stored.attribute("Orientation", orientation);
+    const OIIO::ImageBuf as_stored(stored, image.pixels.data());
+    const OIIO::ImageBuf upright = OIIO::ImageBufAlgo::reorient(as_stored);
+    if (upright.has_error() || upright.spec().width != image.width || upright.spec().height != image.height ||
+        !upright.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+      error = "cannot turn the pixels of orientation " + std::to_string(orientation) + " upright: " + upright.geterror();
+      return false;
+    }
   }
   input->close();
   return true;
