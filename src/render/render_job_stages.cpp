@@ -526,6 +526,10 @@ void log_job_summary(const RenderJobState& s) {
     summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
             << " spatial leaves, " << g.directional_nodes << " directional nodes (or lobes), "
             << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
+  if (statistics.caustic_light_tracing)
+    summary << "rimu: caustics of lamps and emitting shapes light-traced (one light path per camera sample)\n";
+  else if (s.loaded.scene && s.loaded.scene->settings.integrator.caustic_light_tracing)
+    summary << "rimu: caustics path-traced: light tracing needs a pinhole camera, no media and no adaptive sampling\n";
   if (!s.film->light_groups().empty()) {
     summary << "rimu: light groups, one EXR layer each (rebalance them with rimu display --group):";
     for (const std::string& group : s.film->light_groups()) summary << " " << group;

@@ -20,6 +20,7 @@
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
 #include "transport/guiding/guiding_field.h"
+#include "transport/integrators/caustic_light_tracer.h"
 #include "transport/integrators/path_features.h"
 #include "transport/integrators/path_integrator.h"
 #include "transport/integrators/volumetric_path_integrator.h"
@@ -116,6 +117,18 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   // Each tile's records of the current pass. Kept across passes (cleared, not freed): allocating them anew every
   // pass cost a guided render ~9 % of its time in page faults (perf, daylit room 160×90, 64 spp).
   std::vector<std::vector<GuidingSample>> guiding_records;
+  // Caustic light tracing (transport/integrators/caustic_light_tracer.h): surfaces only, where the settings ask for
+  // it (render() turned it off where the camera or adaptive sampling cannot have it). Each tile's splats of a pass.
+  std::optional<CausticLightTracer> caustics;
+  if constexpr (std::is_same_v<Integrator, PathIntegrator>)
+    if (integrator_settings.caustic_light_tracing) {
+      caustics.emplace(surfaces, integrator_settings);
+      if (caustics->empty()) caustics.reset();
+    }
+  constexpr uint64_t kCausticSeedSalt = 0x632be59bd9b4e019ull;
+  const std::unique_ptr<Sampler> caustic_prototype =
+      caustics ? make_sampler(SamplerKind::independent, options.seed ^ kCausticSeedSalt) : nullptr;
+  std::vector<std::vector<CausticSplat>> caustic_splats;
   // Adaptive sampling ends when every pixel stopped (converged or at its maximum): its pixels take unequal counts, so
   // the schedule's position is no pixel's count and may pass the maximum.
   const auto more_passes = [&] {
@@ -131,6 +144,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
+    if (caustics) {
+      caustic_splats.resize(tiles.size());
+      for (auto& splats : caustic_splats) splats.clear();
+    }
     std::vector<FeatureTile> feature_results(options.features ? tiles.size() : 0);
     std::atomic<bool> stopped{false};
     std::atomic<uint64_t> pass_camera_samples{0};
@@ -172,6 +189,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     tbb::parallel_for(size_t(0), workers, [&](size_t) {
       std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
       std::unique_ptr<Sampler> feature_sampler = feature_prototype ? feature_prototype->clone() : nullptr;
+      std::unique_ptr<Sampler> caustic_sampler = caustic_prototype ? caustic_prototype->clone() : nullptr;
       // Light groups (render/film/film.h): each sample's share per group. A film without groups passes an empty
       // LightGroupRadiance, and the integrator and film skip the per-group work.
       std::vector<SampledSpectrum> group_slots(film.light_groups().size());
@@ -214,6 +232,12 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
                 radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
               } else {
                 radiance = integrator.radiance(ray, nullptr, lambda, *sampler, guiding, groups);
+              }
+              if (caustics) {
+                // One light path per camera sample, from its own stream (the camera paths draw what they drew
+                // without it), at the sample's wavelengths and time.
+                caustic_sampler->start_pixel_sample(x, y, uint32_t(s));
+                caustics->trace(lambda, *caustic_sampler, time, camera, caustic_splats[t]);
               }
               if (!options.features && !options.adaptive) {
                 tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
@@ -262,6 +286,37 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     for (const auto& tile : results) film.merge_tile(*tile);
+    // The light paths' splats, in tile order (the same image whatever the threads did), spread over the pixels by
+    // the filter's density: the camera samples' offsets have that density, so both parts are filtered alike. A
+    // pixel's sums are divided by its camera samples, each of which traced one light path for the whole image: each
+    // splat counts once per pixel of the rendered area (caustic_light_tracer.h).
+    if (caustics) {
+      const PixelBounds& area = film.pixel_bounds();
+      const float per_path = 1.0f / float(double(area.width()) * double(area.height()));
+      const float r = filter.radius_px();
+      std::vector<SampledSpectrum> group_slots(film.light_groups().size());
+      for (const auto& splats : caustic_splats) {
+        for (const CausticSplat& splat : splats) {
+          if (!group_slots.empty()) {
+            std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
+            group_slots[size_t(splat.light_group)] = splat.radiance;
+          }
+          const int x0 = std::max(area.x0, int(std::floor(splat.film_px.x - 0.5f - r)));
+          const int x1 = std::min(area.x1 - 1, int(std::ceil(splat.film_px.x - 0.5f + r)));
+          const int y0 = std::max(area.y0, int(std::floor(splat.film_px.y - 0.5f - r)));
+          const int y1 = std::min(area.y1 - 1, int(std::ceil(splat.film_px.y - 0.5f + r)));
+          for (int py = y0; py <= y1; ++py) {
+            for (int px = x0; px <= x1; ++px) {
+              const double density =
+                  filter.pdf({splat.film_px.x - (float(px) + 0.5f), splat.film_px.y - (float(py) + 0.5f)});
+              if (!(density > 0.0)) continue;
+              film.add_splat(px, py, splat.radiance, splat.lambda, float(density) * per_path,
+                             group_slots.empty() ? nullptr : group_slots.data());
+            }
+          }
+        }
+      }
+    }
     for (const FeatureTile& tile : feature_results) options.features->merge_tile(tile);
     if (train) {
       for (auto& r : guiding_records) {
@@ -300,9 +355,16 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 
 RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
-  const PathIntegrator integrator(transport, integrator_settings);
-  return render_loop(integrator, integrator_settings, transport, transport.wavelength_density, camera, filter, film,
-                     options);
+  // Caustic light tracing needs a camera it can connect to and one light path per camera sample of every pixel
+  // alike (adaptive sampling gives pixels unequal counts, which its splats would be divided by): elsewhere the
+  // path tracer keeps every caustic.
+  PathIntegratorSettings settings = integrator_settings;
+  settings.caustic_light_tracing = settings.caustic_light_tracing && camera.supports_light_tracing() && !options.adaptive;
+  const PathIntegrator integrator(transport, settings);
+  RenderStatistics stats =
+      render_loop(integrator, settings, transport, transport.wavelength_density, camera, filter, film, options);
+  stats.caustic_light_tracing = settings.caustic_light_tracing;
+  return stats;
 }
 
 RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegratorSettings& integrator_settings,

@@ -60,6 +60,9 @@ struct RenderStatistics {
   double seconds = 0;
   uint64_t camera_samples = 0;
   GuidingStatistics guiding;
+  /// Caustics were light-traced (PathIntegratorSettings::caustic_light_tracing asked for it and the camera and
+  /// sampling allow it; transport/integrators/caustic_light_tracer.h).
+  bool caustic_light_tracing = false;
 };
 
 /// Renders `scene` into `film` (which fixes resolution, crop and response). The result depends only on the

@@ -29,14 +29,14 @@ namespace fs = std::filesystem;
 namespace {
 
 // A fresh empty folder under the system temp folder, removed at the end of the test.
-struct ScratchFolder {
+struct ExrScratchFolder {
   fs::path path;
-  explicit ScratchFolder(const std::string& name)
+  explicit ExrScratchFolder(const std::string& name)
       : path(fs::temp_directory_path() / ("rimu-film-test-" + name + "-" + std::to_string(::getpid()))) {
     fs::remove_all(path);
     fs::create_directories(path);
   }
-  ~ScratchFolder() { fs::remove_all(path); }
+  ~ExrScratchFolder() { fs::remove_all(path); }
   size_t entry_count() const { return size_t(std::distance(fs::directory_iterator(path), fs::directory_iterator())); }
 };
 
@@ -70,7 +70,7 @@ std::map<std::string, std::vector<float>> read_channels(const fs::path& path, Im
 }  // namespace
 
 TEST_CASE("EXR round trip: XYZ film with crop window, spectral bins and metadata") {
-  ScratchFolder folder("exr");
+  ExrScratchFolder folder("exr");
   Film film(FilmOptions{6, 4, PixelBounds{1, 1, 5, 3}, 5}, SpectralResponse::cie_xyz(test::library()));
   fill(film);
   film.add_sample(2, 2, Float4(std::nanf("")), SampledWavelengths::sample_visible(0.5f));  // one discarded sample
@@ -145,7 +145,7 @@ TEST_CASE("EXR round trip: XYZ film with crop window, spectral bins and metadata
 }
 
 TEST_CASE("EXR of a camera film: R, G, B channels, no chromaticities, the camera named") {
-  ScratchFolder folder("exr-camera");
+  ExrScratchFolder folder("exr-camera");
   Film film(FilmOptions{3, 2, {}, 0}, SpectralResponse::camera_rgb(test::library(), "sony_ilce_9"));
   fill(film);
   const fs::path path = folder.path / "camera.exr";
@@ -162,7 +162,7 @@ TEST_CASE("EXR of a camera film: R, G, B channels, no chromaticities, the camera
 }
 
 TEST_CASE("writing into a missing folder fails cleanly and leaves no file") {
-  ScratchFolder folder("missing");
+  ExrScratchFolder folder("missing");
   Film film(FilmOptions{2, 2, {}, 0}, SpectralResponse::cie_xyz(test::library()));
   const fs::path path = folder.path / "no-such-folder" / "out.exr";
   CHECK_THROWS_WITH_AS(write_exr(path, film), doctest::Contains(path.string().c_str()), InputError);
@@ -174,7 +174,7 @@ TEST_CASE("writing into a missing folder fails cleanly and leaves no file") {
 }
 
 TEST_CASE("a library failure mid-write leaves neither the file nor the temporary") {
-  ScratchFolder folder("failure");
+  ExrScratchFolder folder("failure");
   const fs::path path = folder.path / "out.exr";
   fs::path temporary_seen;
   CHECK_THROWS_WITH_AS(write_atomically(path,
@@ -199,7 +199,7 @@ TEST_CASE("a library failure mid-write leaves neither the file nor the temporary
 }
 
 TEST_CASE("half output clamps instead of overflowing to Inf") {
-  ScratchFolder folder("clamp");
+  ExrScratchFolder folder("clamp");
   Film film(FilmOptions{1, 1, {}, 0}, SpectralResponse::cie_xyz(test::library()));
   film.add_sample(0, 0, Float4(1e9f), SampledWavelengths::sample_visible(0.4f));
   const fs::path path = folder.path / "bright.exr";
@@ -256,7 +256,7 @@ TEST_CASE("no NaN or Inf reaches an image: an overflowing output transform is wr
   // An exposure scale of 1e300 times a film value of ~1 overflows a float (3.4e38) to Inf; a NaN in the white
   // balance matrix makes NaN. The EXR writer replaces them (NaN → 0, ±Inf → ± the largest value of the type) and
   // says how many; the display image clamps (NaN → 0, Inf → 255).
-  ScratchFolder folder("finite");
+  ExrScratchFolder folder("finite");
   Film film(FilmOptions{2, 1, {}, 0}, SpectralResponse::cie_xyz(test::library()));
   film.add_sample(0, 0, Float4(1.0f), SampledWavelengths::sample_visible(0.4f));
   film.add_sample(1, 0, Float4(1.0f), SampledWavelengths::sample_visible(0.6f));

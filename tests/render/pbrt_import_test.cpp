@@ -196,6 +196,23 @@ TEST_CASE("pbrt camera and film: fov spans the shorter axis, resolution, samples
   CHECK_CONTAINS(error_of("WorldBegin\nShape \"sphere\"", true), "no Camera");
 }
 
+TEST_CASE("pbrt bdpt, sppm and lightpath scenes light-trace their caustics; path and volpath do not") {
+  const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
+  for (const char* type : {"bdpt", "sppm", "lightpath"}) {
+    CAPTURE(type);
+    const PbrtImport imported = import_text(std::string("Integrator \"") + type + "\"\n" + camera);
+    CHECK(imported.document["integrator"]["caustics"] == "light_tracing");
+    REQUIRE(imported.ignored.size() == 1);
+    CHECK(imported.ignored[0].what.find("caustics light-traced") != std::string::npos);
+  }
+  for (const char* type : {"path", "volpath"}) {
+    CAPTURE(type);
+    const PbrtImport imported = import_text(std::string("Integrator \"") + type + "\"\n" + camera);
+    CHECK_FALSE(imported.document["integrator"].contains("caustics"));
+    CHECK(imported.ignored.empty());
+  }
+}
+
 TEST_CASE("pbrt pixel filters: box, gaussian and triangle with pbrt-v4's default radii; others listed") {
   const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
   const PbrtImport triangle = import_text("PixelFilter \"triangle\"\n" + camera);

@@ -6,13 +6,12 @@
 #include <cmath>
 #include <vector>
 
+#include "spectral/math_constants.h"
 #include "transport/geometry/motion_transform.h"
 
 using namespace rimu;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 constexpr double kKeyAngle = 2.0 * kPi / 180.0;  // the renderer's (EmbreeScene::kMotionKeyAngle)
 

@@ -99,4 +99,46 @@ RayDifferentials Camera::generate_differentials(const Ray& ray, float film_x, fl
   return d;
 }
 
+namespace {
+
+// Whether a transform's linear part is a rotation (orthonormal columns, within float rounding).
+bool is_rigid(const Transform& t) {
+  const Vec3 x = t.vector({1, 0, 0}), y = t.vector({0, 1, 0}), z = t.vector({0, 0, 1});
+  const auto near = [](float a, float b) { return std::fabs(a - b) < 1e-4f; };
+  return near(dot(x, x), 1) && near(dot(y, y), 1) && near(dot(z, z), 1) && near(dot(x, y), 0) && near(dot(x, z), 0) &&
+         near(dot(y, z), 0);
+}
+
+}  // namespace
+
+bool Camera::supports_light_tracing() const {
+  return settings_.spherical == SphericalMapping::none && !(settings_.orthographic_height > 0.0f) &&
+         !(settings_.lens_radius > 0.0f) && is_rigid(settings_.camera_to_world) &&
+         (!settings_.camera_to_world_end || is_rigid(*settings_.camera_to_world_end));
+}
+
+std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time) const {
+  if (!supports_light_tracing()) return std::nullopt;
+  const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
+  const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
+  const Vec3 eye = camera_to_world.point({0.0f, 0.0f, 0.0f});
+  const Vec3 to_point = point_m - eye;
+  const float distance = length(to_point);
+  if (!(distance > 0.0f) || !std::isfinite(distance)) return std::nullopt;
+  // The direction in camera space (the inverse of a rotation is its transpose: dot products with the axes).
+  const Vec3 w = to_point / distance;
+  const float cx = dot(w, camera_to_world.vector({1, 0, 0})), cy = dot(w, camera_to_world.vector({0, 1, 0}));
+  const float cos_theta = dot(w, camera_to_world.vector({0, 0, 1}));
+  if (!(cos_theta > 1e-6f)) return std::nullopt;
+  // generate_ray's film mapping inverted: the point (sx, sy, 1) on the plane at unit distance.
+  const float sx = cx / cos_theta, sy = cy / cos_theta;
+  const float aspect = width_ / height_;
+  const Vec2 film{(sx / (tan_half_fov_ * aspect) + 1.0f) * 0.5f * width_, (1.0f - sy / tan_half_fov_) * 0.5f * height_};
+  // One pixel is 2·tan(fov/2)/height wide and high on that plane.
+  const float pixel_side = 2.0f * tan_half_fov_ / height_;
+  const float importance = 1.0f / (pixel_side * pixel_side * cos_theta * cos_theta * cos_theta * distance * distance);
+  if (!std::isfinite(importance) || !std::isfinite(film.x) || !std::isfinite(film.y)) return std::nullopt;
+  return CameraVisibility{film, eye, importance};
+}
+
 }  // namespace rimu

@@ -8,6 +8,7 @@
 #include "transport/geometry/ray.h"
 #include "transport/geometry/ray_differentials.h"
 #include "transport/geometry/transform.h"
+#include "transport/integrators/light_tracing_camera.h"
 
 namespace rimu {
 
@@ -48,7 +49,7 @@ struct CameraSettings {
 /// the middle of its bottom edge on −y (down).
 Vec3 spherical_camera_direction(SphericalMapping mapping, Vec2 uv);
 
-class Camera {
+class Camera final : public LightTracingCamera {
  public:
   Camera(const CameraSettings& settings, int image_width, int image_height);
   /// The primary ray through film point (x, y) (in pixels) and lens sample u ∈ [0,1)², at `time` in the shutter
@@ -59,6 +60,12 @@ class Camera {
   /// focus), moved towards `ray` by `scale`. Two more generate_ray calls.
   RayDifferentials generate_differentials(const Ray& ray, float film_x, float film_y, Vec2 lens_u, float scale) const;
   const CameraSettings& settings() const { return settings_; }
+  /// Whether see() can answer: a pinhole perspective camera (no lens, not orthographic or spherical) whose
+  /// transforms are rotations and translations (a scale would change the solid angle a pixel covers).
+  bool supports_light_tracing() const;
+  /// Light tracing's view of the point (light_tracing_camera.h); std::nullopt behind the camera or where
+  /// supports_light_tracing() is false.
+  std::optional<CameraVisibility> see(Vec3 point_m, float time) const override;
 
  private:
   CameraSettings settings_;

@@ -69,6 +69,11 @@ void Film::add_sample(int x, int y, const SampledSpectrum& radiance, const Sampl
   pixels_.add_sample(x, y, radiance, lambda, filter_weight, group_radiance);
 }
 
+void Film::add_splat(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda, float weight,
+                     const SampledSpectrum* group_radiance) {
+  pixels_.add_splat(x, y, radiance, lambda, weight, group_radiance);
+}
+
 std::array<double, 3> Film::group_value(int x, int y, int group) const {
   const double* p = pixels_.pixel(x, y);
   const double w = p[FilmTile::kWeight];

@@ -58,6 +58,9 @@ class Film {
   /// Adds one sample directly (single-threaded use only; see FilmTile::add_sample for the estimator).
   void add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
                   float filter_weight = 1.0f, const SampledSpectrum* group_radiance = nullptr);
+  /// Adds a light-traced contribution directly (single-threaded use only; see FilmTile::add_splat).
+  void add_splat(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda, float weight,
+                 const SampledSpectrum* group_radiance = nullptr);
 
   /// The light groups' names, in layer order (empty: the film has no group layers).
   const std::vector<std::string>& light_groups() const { return light_groups_; }

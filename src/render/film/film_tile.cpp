@@ -64,6 +64,16 @@ namespace {
 
 void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
                           float filter_weight, const SampledSpectrum* group_radiance) {
+  accumulate(x, y, radiance, lambda, filter_weight, false, group_radiance);
+}
+
+void FilmTile::add_splat(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
+                         float weight, const SampledSpectrum* group_radiance) {
+  accumulate(x, y, radiance, lambda, weight, true, group_radiance);
+}
+
+void FilmTile::accumulate(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
+                          float filter_weight, bool splat, const SampledSpectrum* group_radiance) {
   assert(bounds_.contains(x, y));
   const Float4 pdf = lambda.pdf();
   const Mask4 live = pdf != Float4(0.0f);
@@ -84,7 +94,7 @@ void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const S
     ++counts_.negative;
     return;
   }
-  ++counts_.accepted;
+  if (!splat) ++counts_.accepted;
 
   const Response4 c = response_->evaluate(lambda);
   // The weight the sample's values carry: its filter weight, times the clamp's factor where it applies.
@@ -102,7 +112,7 @@ void FilmTile::add_sample(int x, int y, const SampledSpectrum& radiance, const S
   p[0] += double(sum(weighted * c.x));
   p[1] += double(sum(weighted * c.y));
   p[2] += double(sum(weighted * c.z));
-  p[kWeight] += double(filter_weight);
+  if (!splat) p[kWeight] += double(filter_weight);
   static constexpr int kNoBins[kLaneCount] = {-1, -1, -1, -1};
   if (binning_.count == 0) {
     if (light_groups_ > 0)

@@ -80,6 +80,12 @@ class FilmTile {
   /// spectral bins. A discarded sample is discarded from every layer, so the layers keep summing to the beauty.
   void add_sample(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda,
                   float filter_weight = 1.0f, const SampledSpectrum* group_radiance = nullptr);
+  /// A light-traced contribution (caustic light tracing, transport/integrators/caustic_light_tracer.h): added to the
+  /// pixel's sums as a sample of filter weight `weight` would be (sample clamp, bins and groups alike), without
+  /// adding to its weight sum or its accepted count: the pixel's camera samples, which the sums are divided by, also
+  /// count the light paths traced with them. Non-finite or negative values are discarded and counted.
+  void add_splat(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda, float weight,
+                 const SampledSpectrum* group_radiance = nullptr);
 
   /// The sample clamp: a sample's channel values (before the filter weight) are scaled so that the largest is at
   /// most `value` (film units, > 0; infinity: no clamp, the default). Biased: it trades rare bright samples'
@@ -112,6 +118,8 @@ class FilmTile {
   static constexpr int kFirstBin = 4;
 
  private:
+  void accumulate(int x, int y, const SampledSpectrum& radiance, const SampledWavelengths& lambda, float filter_weight,
+                  bool splat, const SampledSpectrum* group_radiance);
   size_t offset(int x, int y) const {
     return (size_t(y - bounds_.y0) * size_t(bounds_.width()) + size_t(x - bounds_.x0)) * size_t(doubles_per_pixel());
   }

@@ -149,7 +149,7 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
-               "direct_lighting", "distance_sampling", "max_depth_includes_media", "equiangular", "light_sampler", "guiding",
+               "direct_lighting", "distance_sampling", "max_depth_includes_media", "equiangular", "caustics", "light_sampler", "guiding",
                "glossy_light_candidates", "time_limit_s", "daylit_points"});
   if (const auto d = c.find("daylit_points")) {
     const std::string mode = d->is_string() ? d->choice({"auto", "on", "off"}) : d->boolean() ? "on" : "off";
@@ -173,6 +173,8 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
                                                      : DistanceSampling::spectral_mis;
   }
   s.max_depth_includes_media = c.boolean_or("max_depth_includes_media", s.max_depth_includes_media);
+  if (const auto d = c.find("caustics"))
+    s.integrator.caustic_light_tracing = d->choice({"path_tracing", "light_tracing"}) == "light_tracing";
   if (const auto d = c.find("equiangular")) {
     const std::string v = d->choice({"points", "all", "off"});
     s.equiangular = v == "all" ? EquiangularLights::all : v == "off" ? EquiangularLights::off : EquiangularLights::points;

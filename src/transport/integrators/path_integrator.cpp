@@ -174,6 +174,9 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
   // Panes passed straight through (docs/transport.md, "Glazing"): since the last scattering vertex (at most
   // kMaxShadowPassages, as for shadow rays), and in all (they do not count towards max_depth).
   int passages_since_vertex = 0, passages = 0;
+  // Caustic light tracing (caustic_light_tracer.h): 1 after a camera ray's first vertex sampled a non-delta lobe
+  // (E D), 2 once delta lobes followed (E D S⁺), 0 otherwise. An emitter it traces, hit in state 2, is left to it.
+  int caustic_state = 0;
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
     // How far the recorded vertex's light was: the mixture's parallax (quadtree fields do not read it).
@@ -204,7 +207,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       const Vec2 u_daylight_direction = sampler.next_2d(), u_daylight_aperture = sampler.next_2d();
       daylight_ray = daylight_rays->sample(lambda, u_daylight, u_daylight_direction, u_daylight_aperture);
     }
-    if (hit->light >= 0) {
+    if (hit->light >= 0 &&
+        !(caustic_state == 2 && settings_.caustic_light_tracing && lights[size_t(hit->light)]->samples_emission())) {
       const Light& light = *lights[size_t(hit->light)];
       const SampledSpectrum le = light.radiance(*hit, wo_world, lambda);
       const int part = light_sampler.part_of_hit(hit->primitive);
@@ -372,6 +376,8 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       continue;
     }
     if (depth_reached) break;
+    if (!start && depth == passages) caustic_state = bs->is_delta ? 0 : 1;  // the camera ray's first vertex
+    else if (caustic_state != 0) caustic_state = bs->is_delta ? 2 : 0;
     passages_since_vertex = 0;
     segment_length = 0.0f;
     previous_connects = connects && !bs->is_delta;

@@ -80,6 +80,11 @@ struct PathIntegratorSettings {
   /// 0 (the default): kManyLightsCandidates in scenes with at least kManyLights lights, else 1 (what it gains grows
   /// with the lights competing for a lobe, its cost does not: docs/benchmarks.md, "Glossy vertices").
   int glossy_light_candidates = 0;
+  /// Caustics of the lights that sample emission (Light::samples_emission) by light tracing
+  /// (transport/integrators/caustic_light_tracer.h): the path tracer leaves out their paths E D S⁺ L (a camera ray's
+  /// first vertex sampled by a non-delta lobe, every later one by a delta lobe, then such a light), which the render
+  /// loop's light tracer adds. Off by default; the render loop turns it on only where it also traces them.
+  bool caustic_light_tracing = false;
   static constexpr int kManyLights = 8;
   static constexpr int kManyLightsCandidates = 8;
   /// The candidates per glossy vertex in a scene of `light_count` lights.

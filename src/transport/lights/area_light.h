@@ -57,6 +57,9 @@ class AreaLight final : public Light {
   SampledSpectrum radiance(const SurfaceHit& hit, Vec3 w_out, const SampledWavelengths& lambda) const override;
   /// Lambertian emitter: Φ = π A ∫L(λ) dλ per emitting side (an image's: Σ_k A_k times triangle k's mean).
   double total_power_w(double scene_radius_m) const override;
+  bool samples_emission() const override;
+  std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
+                                                const SampledWavelengths& lambda) const override;
 
   /// Parts are the triangles (light samplers may choose them one by one, e.g. the light BVH).
   int part_count() const override { return triangle_count(); }

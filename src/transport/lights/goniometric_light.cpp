@@ -74,3 +74,22 @@ std::optional<IntensityDistribution::DirectionSample> GoniometricLight::sample_e
 }
 
 }  // namespace rimu
+
+namespace rimu {
+
+bool GoniometricLight::samples_emission() const {
+  return opening_.is_point() && per_unit_intensity_.integral_360_830() > 0.0 && table_->integral_sr() > 0.0;
+}
+
+std::optional<EmissionSample> GoniometricLight::sample_emission(float, Vec2, Vec2 u_direction,
+                                                                const SampledWavelengths& lambda) const {
+  if (!samples_emission()) return std::nullopt;
+  // A direction in proportion to the table (its own sampler), weighted by table/p_ω.
+  const auto s = sample_emission_direction(u_direction);
+  if (!s || !(s->pdf > 0.0f)) return std::nullopt;
+  const double candela = table_value(s->w);
+  if (!(candela > 0.0)) return std::nullopt;
+  return EmissionSample{position_m_, s->w, Vec3{}, per_unit_intensity_.sample(lambda) * Float4(float(candela / s->pdf))};
+}
+
+}  // namespace rimu

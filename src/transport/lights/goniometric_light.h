@@ -36,6 +36,9 @@ class GoniometricLight final : public Light {
   /// Φ = ∫shape dλ · ∫table dω.
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
+  bool samples_emission() const override;
+  std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
+                                                const SampledWavelengths& lambda) const override;
   /// The luminaire's position (the opening's centre).
   std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 

@@ -22,6 +22,16 @@ namespace rimu {
 
 class PortalSet;  // transport/lights/environment_portal.h
 
+/// A ray of a light's emission, for light tracing (transport/integrators/caustic_light_tracer.h).
+struct EmissionSample {
+  Vec3 origin_m;           ///< on the light (on its surface for an emitter with area; not offset)
+  Vec3 direction;          ///< unit, away from the light
+  Vec3 normal{};           ///< the emitting surface's normal at the origin, on the emitting side; zero for a point
+  /// L_e·|cos θ| / (p_A·p_ω) per lane (a light at a point: I(ω)/p_ω), in W/nm: its mean over the samples is the
+  /// light's spectral power Φ(λ).
+  SampledSpectrum weight;
+};
+
 class Light {
  public:
   virtual ~Light() = default;
@@ -74,6 +84,16 @@ class Light {
   /// sampling finds those). The light tree splits the light samples between itself and such lights by it
   /// (bvh_light_sampler.h, "Lights at infinity").
   virtual std::optional<float> directional_irradiance_w_m2() const { return std::nullopt; }
+
+  /// Whether sample_emission draws rays of this light (lights at a point, uniform emitting triangles and spheres);
+  /// the others (lights at infinity, projectors, image emission, luminaires with an opening) are not light-traced.
+  virtual bool samples_emission() const { return false; }
+  /// A ray of emission: a part by power (u_part), a point on it (u_position), a direction (u_direction), with the
+  /// weight of EmissionSample. std::nullopt where nothing is emitted, or for lights that do not sample emission.
+  virtual std::optional<EmissionSample> sample_emission(float /*u_part*/, Vec2 /*u_position*/, Vec2 /*u_direction*/,
+                                                        const SampledWavelengths& /*lambda*/) const {
+    return std::nullopt;
+  }
 
   // Parts. A light sampler may choose the parts of a light separately: the triangles of an emissive mesh (part k
   // is triangle k, SurfaceHit::primitive). Every other light is one part, and these default to the whole light.

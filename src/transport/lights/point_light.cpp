@@ -1,4 +1,5 @@
 #include "transport/lights/point_light.h"
+#include "transport/lights/light_warps.h"
 
 #include <cmath>
 #include <numbers>
@@ -33,5 +34,19 @@ std::optional<LightBounds> PointLight::part_bounds(int part) const {
 }
 
 double PointLight::total_power_w(double) const { return 4.0 * std::numbers::pi * intensity_.integral_360_830(); }
+
+}  // namespace rimu
+
+namespace rimu {
+
+bool PointLight::samples_emission() const { return !intensity_.is_black(); }
+
+std::optional<EmissionSample> PointLight::sample_emission(float, Vec2, Vec2 u_direction,
+                                                          const SampledWavelengths& lambda) const {
+  if (intensity_.is_black()) return std::nullopt;
+  // A uniform direction (p_ω = 1/4π): the weight I/p_ω is the same for every direction.
+  return EmissionSample{position_m_, sample_uniform_sphere(u_direction), Vec3{},
+                        intensity_.sample(lambda) * Float4(4.0f * std::numbers::pi_v<float>)};
+}
 
 }  // namespace rimu

@@ -20,6 +20,9 @@ class PointLight final : public Light {
   /// Φ = 4π ∫I(λ) dλ.
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
+  bool samples_emission() const override;
+  std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
+                                                const SampledWavelengths& lambda) const override;
   std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 
   Vec3 position_m() const { return position_m_; }

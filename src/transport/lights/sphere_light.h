@@ -43,6 +43,9 @@ class SphereLight final : public Light {
   SampledSpectrum radiance(const SurfaceHit& hit, Vec3 w_out, const SampledWavelengths& lambda) const override;
   /// Lambertian emitter: Φ = π · 4π r² · ∫L(λ) dλ per emitting side.
   double total_power_w(double scene_radius_m) const override;
+  bool samples_emission() const override;
+  std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
+                                                const SampledWavelengths& lambda) const override;
   /// The sphere's box, every normal (θo = π, θe = π/2) and the intensity πr²·∫L dλ it shows in every direction.
   std::optional<LightBounds> part_bounds(int part) const override;
 

@@ -1,4 +1,6 @@
 #include "transport/lights/spot_light.h"
+#include "transport/lights/light_warps.h"
+#include "transport/geometry/frame.h"
 
 #include <algorithm>
 #include <cassert>
@@ -48,6 +50,25 @@ std::optional<LightBounds> SpotLight::part_bounds(int part) const {
 
 double SpotLight::total_power_w(double) const {
   return 2.0 * std::numbers::pi * (1.0 - 0.5 * (cos_inner_ + cos_outer_)) * intensity_.integral_360_830();
+}
+
+}  // namespace rimu
+
+namespace rimu {
+
+bool SpotLight::samples_emission() const { return !intensity_.is_black(); }
+
+std::optional<EmissionSample> SpotLight::sample_emission(float, Vec2, Vec2 u_direction,
+                                                         const SampledWavelengths& lambda) const {
+  if (intensity_.is_black()) return std::nullopt;
+  // Uniform in the outer cone (p_ω = 1/(2π(1 − cos θ_outer))), weighted by the falloff: nothing is sent outside it.
+  const float one_minus_cos_outer = float(1.0 - cos_outer_);
+  if (!(one_minus_cos_outer > 0.0f)) return std::nullopt;
+  const Vec3 direction = Frame::from_normal(axis_).to_world(sample_uniform_cone(u_direction, one_minus_cos_outer));
+  const float s = falloff(direction);
+  if (!(s > 0.0f)) return std::nullopt;
+  const float inverse_pdf = 2.0f * std::numbers::pi_v<float> * one_minus_cos_outer;
+  return EmissionSample{position_m_, direction, Vec3{}, intensity_.sample(lambda) * Float4(s * inverse_pdf)};
 }
 
 }  // namespace rimu

@@ -29,6 +29,9 @@ class SpotLight final : public Light {
   /// Φ = 2π (1 − (cos θ_inner + cos θ_outer)/2) ∫I(λ) dλ (derivation above).
   double total_power_w(double scene_radius_m) const override;
   bool is_delta() const override { return true; }
+  bool samples_emission() const override;
+  std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
+                                                const SampledWavelengths& lambda) const override;
   std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 
   /// The on-axis intensity ∫I(λ)dλ in the cone θo = inner, falling to nothing at θo + θe = outer.

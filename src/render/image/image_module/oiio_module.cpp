@@ -122,11 +122,14 @@ bool write_rgb8_uncaptured(const std::string& path, const std::string& format, i
   return true;
 }
 
-// The EXIF orientation (1-8) a Radiance HDR file's size line gives ("+Y h +X w": 4, rows stored bottom first; "+X w
-// -Y h": 5, columns stored; …), which OpenImageIO only reports: its reader returns the pixels in the order stored.
-// For a Radiance file the orientation is part of the pixel data, not a display hint, so Rimu applies it (pbrt-v4's
-// reader, stb_image, refuses every orientation but the standard one). Other formats' orientation tags (a camera
-// JPEG's or TIFF's EXIF Orientation) are left as stored, as pbrt-v4 and most renderers leave them. 1: as stored.
+// The EXIF orientation (1-8) a Radiance HDR file's size line gives ("+Y h +X w": 4, rows stored bottom first;
+// "-Y h -X w": 2, right to left; "+Y h -X w": 3), which OpenImageIO only reports: its reader returns the pixels in
+// the order stored. For a Radiance file the orientation is part of the pixel data, not a display hint, so Rimu
+// applies it (pbrt-v4's reader, stb_image, refuses every orientation but the standard one). Size lines whose
+// scanlines are columns ("+X w -Y h" …, 5-8) are refused: OpenImageIO's reorientation of them disagrees with the
+// Radiance format's definition (the first axis the order of the scanlines, the second the order within one; checked
+// on a 2 × 2 file, tests/render/freeimage_module_test.cpp), and no tool writes them. Other formats' orientation tags
+// (a camera JPEG's or TIFF's EXIF Orientation) are left as stored, as pbrt-v4 and most renderers leave them.
 int radiance_orientation(const OIIO::ImageInput& input) {
   if (std::string(input.format_name()) != "hdr") return 1;
   const int orientation = input.spec().get_int_attribute("Orientation", 1);
@@ -148,7 +151,12 @@ std::unique_ptr<OIIO::ImageInput> open_header(const std::string& path, DecodedIm
   image.alpha_channel = spec.alpha_channel;
   image.bits_per_sample = spec.get_int_attribute("oiio:BitsPerSample", int(spec.format.size() * 8));
   image.format_name = input->format_name();
-  if (radiance_orientation(*input) >= 5) std::swap(image.width, image.height);  // stored transposed
+  if (const int orientation = radiance_orientation(*input); orientation >= 5) {
+    error = "a Radiance HDR file whose scanlines are columns (a size line \"+X …\" or \"-X …\", orientation " +
+            std::to_string(orientation) + ") is not supported: write it in the standard orientation \"-Y height +X width\"";
+    input.reset();
+    return input;
+  }
   // OpenImageIO reports a binary PBM (magic "P4", one bit per pixel, rows padded to a byte) as 8-bit.
   if (image.format_name == "pnm") {
     char magic[2] = {0, 0};
@@ -197,8 +205,8 @@ bool read_pixels_uncaptured(const std::string& path, DecodedImage& image, std::s
     return false;
   }
   if (const int orientation = radiance_orientation(*input); orientation != 1 && !bytes) {
-    // The pixels as stored, in an ImageBuf that wraps them with the file's orientation; reorient() turns them
-    // upright (rows top first, left to right), with width and height swapped for orientations 5-8.
+    // The pixels as stored, in an ImageBuf that wraps them with the file's orientation (2-4: open_header refused
+    // the others); reorient() turns them upright (rows top first, left to right).
     OIIO::ImageSpec stored = input->spec();
     stored.set_format(OIIO::TypeDesc::FLOAT);
     stored.attribute("Orientation", orientation);

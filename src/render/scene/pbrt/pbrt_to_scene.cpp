@@ -465,8 +465,15 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
   } else if (k == "Integrator") {
     require_world(false);
     PbrtParams p(*this, s, "Integrator \"" + s.strings[0] + "\"");
-    if (s.strings[0] != "path" && s.strings[0] != "volpath")
-      ignore("Integrator \"" + s.strings[0] + "\" (rendered with Rimu's path tracer)", s.where);
+    const std::string& type = s.strings[0];
+    if (type == "bdpt" || type == "sppm" || type == "lightpath") {
+      // Light-carried methods: what a path tracer misses most in their scenes is caustics (a lamp through glass or
+      // water); Rimu light-traces those (transport/integrators/caustic_light_tracer.h) and path-traces the rest.
+      integrator_["caustics"] = "light_tracing";
+      ignore("Integrator \"" + type + "\" (rendered with Rimu's path tracer, caustics light-traced)", s.where);
+    } else if (type != "path" && type != "volpath") {
+      ignore("Integrator \"" + type + "\" (rendered with Rimu's path tracer)", s.where);
+    }
     const int max_depth = p.integer("maxdepth", 5);
     if (max_depth < 0) throw InputError(s.where, "Integrator: \"maxdepth\" must be >= 0");
     integrator_["max_depth"] = max_depth;

@@ -1,0 +1,28 @@
+// What light tracing needs of a camera: where a point's light lands on the film and how much of it the film
+// records there (the camera's importance). The camera itself lives in render/camera; the light tracer
+// (caustic_light_tracer.h) sees it through this interface.
+#pragma once
+
+#include <optional>
+
+#include "transport/geometry/vector.h"
+
+namespace rimu {
+
+struct CameraVisibility {
+  Vec2 film_px;             ///< continuous pixel coordinates of the point's image; may lie outside the image
+  Vec3 camera_position_m;   ///< where a shadow ray from the point must reach
+  /// The measurement per unit of radiance leaving the point towards the camera, in the film's units per camera
+  /// sample: for a pinhole, 1/(a cos³θ d²), with a one pixel's area on the plane at unit distance, θ the angle off
+  /// the view axis and d the distance (pbrt-v4's W_e/p of PerspectiveCamera::SampleWi, per pixel).
+  float importance = 0.0f;
+};
+
+class LightTracingCamera {
+ public:
+  virtual ~LightTracingCamera() = default;
+  /// std::nullopt where the camera cannot see the point (behind it) or does not support light tracing.
+  virtual std::optional<CameraVisibility> see(Vec3 point_m, float time) const = 0;
+};
+
+}  // namespace rimu

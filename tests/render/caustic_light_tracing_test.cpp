@@ -1,0 +1,85 @@
+// Caustic light tracing (transport/integrators/caustic_light_tracer.h) through the real render loop: the path tracer
+// drops the paths E D S⁺ L of the lights it traces and the light tracer adds them, so the image's mean must stay the
+// path tracer's (within the standard error) where the path tracer alone can find those paths too (a large area light
+// above a glass block over a floor); the image is the same for any thread count; and a camera light tracing cannot
+// connect to keeps the path tracer's caustics.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "integration_support.h"
+
+using namespace rimu;
+
+namespace {
+
+// A white floor under a black ceiling 1 m up whose 0.6 m square opening is filled by a glass block (n = 1.5, 10 cm
+// thick); above it a one-sided 0.8 m square light (or a 15 cm sphere), seen from under the ceiling: the floor's
+// light comes through two refractions (E D S S L, and more bounces after it), which BSDF sampling from the floor also
+// finds often enough (the light is large), so both estimators converge here.
+nlohmann::json glass_block_scene(const char* caustics, const char* light) {
+  nlohmann::json scene = nlohmann::json::parse(R"({
+    "camera": {"type": "pinhole", "from": [0.0, 0.6, -0.9], "to": [0.0, 0.0, 0.2], "up": [0, 1, 0],
+               "vertical_fov_deg": 50},
+    "film": {"resolution": [32, 24], "filter": {"type": "gaussian"}},
+    "integrator": {"max_depth": 6},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.8}, "black": {"type": "diffuse", "reflectance": 0},
+                  "glass": {"type": "dielectric", "ior": 1.5}},
+    "shapes": [
+      {"type": "quad", "material": "floor", "vertices": [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]},
+      {"type": "quad", "material": "black", "vertices": [[-2, 1, -2], [-0.3, 1, -2], [-0.3, 1, 2], [-2, 1, 2]]},
+      {"type": "quad", "material": "black", "vertices": [[0.3, 1, -2], [2, 1, -2], [2, 1, 2], [0.3, 1, 2]]},
+      {"type": "quad", "material": "black", "vertices": [[-0.3, 1, -2], [0.3, 1, -2], [0.3, 1, -0.3], [-0.3, 1, -0.3]]},
+      {"type": "quad", "material": "black", "vertices": [[-0.3, 1, 0.3], [0.3, 1, 0.3], [0.3, 1, 2], [-0.3, 1, 2]]},
+      {"type": "box", "material": "glass", "min": [-0.3, 0.95, -0.3], "max": [0.3, 1.05, 0.3]}
+    ]})");
+  scene["integrator"]["caustics"] = caustics;
+  if (std::string(light) == "area") {
+    scene["shapes"].push_back({{"type", "quad"}, {"material", "black"},
+                               {"vertices", {{-0.4, 1.5, -0.4}, {0.4, 1.5, -0.4}, {0.4, 1.5, 0.4}, {-0.4, 1.5, 0.4}}},
+                               {"emission", {{"illuminant", "D65"}, {"scale", 1.0}}}});
+  } else {
+    scene["shapes"].push_back({{"type", "sphere"}, {"material", "black"}, {"center", {0.0, 1.4, 0.0}}, {"radius", 0.15},
+                               {"emission", {{"illuminant", "D65"}, {"scale", 1.0}}}});
+  }
+  return scene;
+}
+
+void check_same_mean(const char* light, int spp) {
+  const auto traced = test::scene_from_json(glass_block_scene("light_tracing", light));
+  const auto path_traced = test::scene_from_json(glass_block_scene("path_tracing", light));
+  const test::RenderedFilm a = test::render_xyz(*traced, spp, 1);
+  const test::RenderedFilm b = test::render_xyz(*path_traced, spp, 2);
+  CHECK(a.statistics.caustic_light_tracing);
+  CHECK_FALSE(b.statistics.caustic_light_tracing);
+  const test::Estimate d = test::paired_difference(test::luminance_values(*a.film), test::luminance_values(*b.film));
+  const double m = test::mean_of(test::luminance_values(*b.film));
+  INFO(std::string(light) << ": light-traced − path-traced = " << d.mean << " ± " << d.standard_error << " (mean " << m << ")");
+  CHECK(std::fabs(d.mean) <= test::kSigmas * d.standard_error);
+  CHECK(d.standard_error > 0.0);
+  CHECK(d.standard_error < 0.02 * m);  // a test that could see a few per cent
+}
+
+}  // namespace
+
+TEST_CASE("caustic light tracing leaves the image's mean as the path tracer's: area and sphere lights") {
+  check_same_mean("area", 512);
+  check_same_mean("sphere", 512);
+}
+
+TEST_CASE("caustic light tracing gives the same image for any thread count") {
+  const auto scene = test::scene_from_json(glass_block_scene("light_tracing", "area"));
+  const test::RenderedFilm one = test::render_xyz(*scene, 4, 7, 1);
+  const test::RenderedFilm two = test::render_xyz(*scene, 4, 7, 2);
+  CHECK(one.statistics.caustic_light_tracing);
+  CHECK(test::film_bits(*one.film) == test::film_bits(*two.film));
+}
+
+TEST_CASE("a thin-lens camera keeps the path tracer's caustics") {
+  nlohmann::json document = glass_block_scene("light_tracing", "area");
+  document["camera"]["type"] = "thin_lens";
+  document["camera"]["lens_radius"] = 0.01;
+  document["camera"]["focus_distance"] = 1.1;
+  const auto scene = test::scene_from_json(document);
+  CHECK_FALSE(test::render_xyz(*scene, 1, 1).statistics.caustic_light_tracing);
+}
