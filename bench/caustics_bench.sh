@@ -6,9 +6,10 @@
 #
 #   bench/caustics_bench.sh BUILD [OUT_DIR]
 #
-# Environment (defaults in brackets): SCENES [dispersion/scene light_sampling/spot_3m_floor] (under data/scenes,
+# Environment (defaults in brackets): SCENES [dispersion/scene examples/spot_glass_caustic] (under data/scenes,
 # without .json, or a path ending in .json or .pbrt: a pbrt scene is converted by rimu-convert first), SPPS
-# ["16 64"], REF_SPP [2048], SEEDS ["1 2 3"], RESOLUTION [160x120], THREADS [2]. Lights ×1000
+# ["16 64"], REF_SPP [2048], SEEDS ["1 2 3"], RESOLUTION [160x120], THREADS [2], CROP [none: the whole image;
+# "X0 Y0 X1 Y1": relMSE over those pixels only, e.g. the caustic]. Lights ×1000
 # (bench/scaled_scene.py: relMSE's +0.01 floor then negligible). Where a caustic comes from a light at a point (a
 # spot), the path tracer never renders it: its relMSE then holds that bias, which more samples do not remove.
 # CPU seconds are user + system of the whole process under nice 19. Gain at equal time = (relMSE·CPU)_path /
@@ -21,7 +22,7 @@ rimu=$build/bin/rimu; compare=$build/bin/rimu-pbrt-image-compare; convert=$build
 for tool in "$rimu" "$compare" "$convert"; do
   [[ -x $tool ]] || { echo "$0: $tool missing: cmake --build $build --target rimu rimu-pbrt-image-compare rimu-convert" >&2; exit 1; }
 done
-scenes=${SCENES:-"dispersion/scene light_sampling/spot_3m_floor"}
+scenes=${SCENES:-"dispersion/scene examples/spot_glass_caustic"}
 spps=${SPPS:-"16 64"}; ref_spp=${REF_SPP:-2048}; seeds=${SEEDS:-"1 2 3"}
 resolution=${RESOLUTION:-160x120}; threads=${THREADS:-2}
 export RIMU_DATA=${RIMU_DATA:-$root/data}
@@ -44,7 +45,7 @@ render() {
 }
 
 echo "# caustics_bench: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "# $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'); SPPS=\"$spps\" REF_SPP=$ref_spp SEEDS=\"$seeds\" RESOLUTION=$resolution THREADS=$threads"
+echo "# $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'); SPPS=\"$spps\" REF_SPP=$ref_spp SEEDS=\"$seeds\" RESOLUTION=$resolution THREADS=$threads CROP=\"${CROP:-}\""
 printf "scene\tcaustics\tspp\tseed\tcpu_s\trelmse\tbody\n" >"$out/runs.tsv"
 for scene in $scenes; do
   if [[ $scene == *.json || $scene == *.pbrt ]]; then source=$scene; else source=$root/data/scenes/$scene.json; fi
@@ -61,7 +62,7 @@ for scene in $scenes; do
     for mode in path_tracing light_tracing; do
       for seed in $seeds; do
         t=$(render "$work/scaled_dir/$mode.json" "$spp" "$seed" "$work/$mode-$spp-$seed.exr")
-        r=$("$compare" relmse "$work/$mode-$spp-$seed.exr" "$work/ref.exr")
+        r=$("$compare" relmse "$work/$mode-$spp-$seed.exr" "$work/ref.exr" ${CROP:+--crop $CROP})
         e=$(sed -n 's/^relmse=//p' <<<"$r"); b=$(sed -n 's/^relmse_without_worst_0.1pct=//p' <<<"$r")
         printf "%s\t%s\t%s\t%s\t%s\t%s\t%s\n" "$name" "$mode" "$spp" "$seed" "$t" "$e" "$b" >>"$out/runs.tsv"
         printf "%-28s %-13s %5s spp seed %-3s %7s CPU s relMSE %-10s body %s\n" "$name" "$mode" "$spp" "$seed" "$t" "$e" "$b" >&2

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -75,6 +76,35 @@ RenderStatistics render(const Scene& scene, const PixelFilter& filter, Film& fil
 
 namespace {
 
+// A tile's caustic splats (transport/integrators/caustic_light_tracer.h) spread over the pixels of `into` by the
+// filter's density: the camera samples' offsets have that density, so both parts of the image are filtered alike.
+// A pixel's sums are divided by its camera samples, each of which traced one light path for the whole image, so
+// each splat counts once per pixel of the rendered area.
+void add_caustic_splats(const std::vector<CausticSplat>& splats, const PixelFilter& filter, FilmTile& into) {
+  const PixelBounds& area = into.bounds();
+  const float per_path = 1.0f / float(double(area.width()) * double(area.height()));
+  const float r = filter.radius_px();
+  std::vector<SampledSpectrum> group_slots(size_t(into.light_group_count()));
+  for (const CausticSplat& splat : splats) {
+    if (!group_slots.empty()) {
+      std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
+      group_slots[size_t(splat.light_group)] = splat.radiance;
+    }
+    const int x0 = std::max(area.x0, int(std::floor(splat.film_px.x - 0.5f - r)));
+    const int x1 = std::min(area.x1 - 1, int(std::ceil(splat.film_px.x - 0.5f + r)));
+    const int y0 = std::max(area.y0, int(std::floor(splat.film_px.y - 0.5f - r)));
+    const int y1 = std::min(area.y1 - 1, int(std::ceil(splat.film_px.y - 0.5f + r)));
+    for (int py = y0; py <= y1; ++py) {
+      for (int px = x0; px <= x1; ++px) {
+        const double density = filter.pdf({splat.film_px.x - (float(px) + 0.5f), splat.film_px.y - (float(py) + 0.5f)});
+        if (!(density > 0.0)) continue;
+        into.add_splat(px, py, splat.radiance, splat.lambda, float(density) * per_path,
+                       group_slots.empty() ? nullptr : group_slots.data());
+      }
+    }
+  }
+}
+
 // The render loop over tiles and passes, for any integrator with radiance(ray, lambda, sampler).
 template <typename Integrator>
 RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorSettings& integrator_settings,
@@ -129,6 +159,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   const std::unique_ptr<Sampler> caustic_prototype =
       caustics ? make_sampler(SamplerKind::independent, options.seed ^ kCausticSeedSalt) : nullptr;
   std::vector<std::vector<CausticSplat>> caustic_splats;
+  std::vector<char> caustic_done;
+  std::optional<FilmTile> caustic_tile;
   // Adaptive sampling ends when every pixel stopped (converged or at its maximum): its pixels take unequal counts, so
   // the schedule's position is no pixel's count and may pass the maximum.
   const auto more_passes = [&] {
@@ -144,10 +176,25 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
+    // Caustic light tracing: each tile's splats, held until every tile before it has finished, then spread into
+    // the pass's splat tile in tile order (commit_splats), so that the image does not depend on the threads and
+    // at most the tiles ahead of the slowest one wait in memory. Tiles are then scheduled in index order. The
+    // splat tile joins the film when the pass is complete (an interrupted pass drops it with its samples).
+    std::mutex splat_mutex;
+    size_t next_commit = 0;
     if (caustics) {
-      caustic_splats.resize(tiles.size());
-      for (auto& splats : caustic_splats) splats.clear();
+      caustic_splats.assign(tiles.size(), {});
+      caustic_done.assign(tiles.size(), 0);
+      caustic_tile.emplace(film.make_tile(film.pixel_bounds()));
     }
+    const auto commit_splats = [&](size_t finished) {
+      std::lock_guard<std::mutex> lock(splat_mutex);
+      caustic_done[finished] = 1;
+      for (; next_commit < tiles.size() && caustic_done[next_commit]; ++next_commit) {
+        add_caustic_splats(caustic_splats[next_commit], filter, *caustic_tile);
+        std::vector<CausticSplat>().swap(caustic_splats[next_commit]);
+      }
+    };
     std::vector<FeatureTile> feature_results(options.features ? tiles.size() : 0);
     std::atomic<bool> stopped{false};
     std::atomic<uint64_t> pass_camera_samples{0};
@@ -179,7 +226,12 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       }
       planned_samples[t] = samples;
     }
-    const std::vector<size_t>& tile_order = schedule.order(planned_samples);
+    std::vector<size_t> index_order;
+    if (caustics) {
+      index_order.resize(tiles.size());
+      for (size_t t = 0; t < tiles.size(); ++t) index_order[t] = t;
+    }
+    const std::vector<size_t>& tile_order = caustics ? index_order : schedule.order(planned_samples);
 
     // Each worker takes the next tile of the order until none is left (list scheduling): a split of the order into
     // ranges, as parallel_for's partitioners make, would give one thread all of the costliest tiles.
@@ -279,6 +331,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
         schedule.record(t, std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count(),
                         tile_samples);
         results[t] = std::move(tile);
+        if (caustics) commit_splats(t);
       }
     });
     if (stopped) {
@@ -286,37 +339,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     for (const auto& tile : results) film.merge_tile(*tile);
-    // The light paths' splats, in tile order (the same image whatever the threads did), spread over the pixels by
-    // the filter's density: the camera samples' offsets have that density, so both parts are filtered alike. A
-    // pixel's sums are divided by its camera samples, each of which traced one light path for the whole image: each
-    // splat counts once per pixel of the rendered area (caustic_light_tracer.h).
-    if (caustics) {
-      const PixelBounds& area = film.pixel_bounds();
-      const float per_path = 1.0f / float(double(area.width()) * double(area.height()));
-      const float r = filter.radius_px();
-      std::vector<SampledSpectrum> group_slots(film.light_groups().size());
-      for (const auto& splats : caustic_splats) {
-        for (const CausticSplat& splat : splats) {
-          if (!group_slots.empty()) {
-            std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
-            group_slots[size_t(splat.light_group)] = splat.radiance;
-          }
-          const int x0 = std::max(area.x0, int(std::floor(splat.film_px.x - 0.5f - r)));
-          const int x1 = std::min(area.x1 - 1, int(std::ceil(splat.film_px.x - 0.5f + r)));
-          const int y0 = std::max(area.y0, int(std::floor(splat.film_px.y - 0.5f - r)));
-          const int y1 = std::min(area.y1 - 1, int(std::ceil(splat.film_px.y - 0.5f + r)));
-          for (int py = y0; py <= y1; ++py) {
-            for (int px = x0; px <= x1; ++px) {
-              const double density =
-                  filter.pdf({splat.film_px.x - (float(px) + 0.5f), splat.film_px.y - (float(py) + 0.5f)});
-              if (!(density > 0.0)) continue;
-              film.add_splat(px, py, splat.radiance, splat.lambda, float(density) * per_path,
-                             group_slots.empty() ? nullptr : group_slots.data());
-            }
-          }
-        }
-      }
-    }
+    // The light paths' splats of the pass (committed in tile order while it ran), now that it is complete.
+    if (caustics) film.merge_tile(*caustic_tile);
     for (const FeatureTile& tile : feature_results) options.features->merge_tile(tile);
     if (train) {
       for (auto& r : guiding_records) {

@@ -105,7 +105,9 @@ void CausticLightTracer::trace(const SampledWavelengths& lambda, Sampler& sample
       }
     }
 
-    // The light path continues through delta lobes only: a non-delta one leaves the paths traced here.
+    // The light path continues through delta lobes only: a non-delta one leaves the paths traced here (and a
+    // surface without any ends it at once).
+    if (!flags.has_delta) return;
     const float u_lobe = sampler.next_1d();
     const Vec2 u = sampler.next_2d();
     const std::optional<BsdfSample> bs = bsdf.sample(wo, u_lobe, u);
