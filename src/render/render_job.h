@@ -42,6 +42,9 @@ struct RenderJob {
   std::optional<std::string> guiding;  ///< "on", "off" or "mixture"
   /// Overrides "integrator.daylit_points" (`--daylit-points on|off|auto`; docs/transport.md, "Daylit points").
   std::optional<std::string> daylit_points;
+  /// Overrides "integrator.caustics" (`--caustics path_tracing|light_tracing`; docs/transport.md, "Caustics by
+  /// light tracing").
+  std::optional<std::string> caustics;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   /// Overrides film "max_sample_value" (`--max-sample-value`; docs/rendering.md, "Sample clamp").
   std::optional<double> max_sample_value;

@@ -32,6 +32,7 @@ nlohmann::json image_options(const RenderJob& job) {
   if (job.light_sampler) j["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
   if (job.guiding) j["guiding"] = *job.guiding;
   if (job.daylit_points) j["daylit_points"] = *job.daylit_points;
+  if (job.caustics) j["caustics"] = *job.caustics;
   if (job.max_sample_value) j["max_sample_value"] = *job.max_sample_value;
   if (job.strict) j["strict"] = true;
   return j;
@@ -128,6 +129,7 @@ RenderJob render_job_from_json(const std::string& json, const std::string& where
     if (j.contains("frame")) job.frame = j["frame"].get<int>();
     if (j.contains("guiding")) job.guiding = j["guiding"].get<std::string>();
     if (j.contains("daylit_points")) job.daylit_points = j["daylit_points"].get<std::string>();
+    if (j.contains("caustics")) job.caustics = j["caustics"].get<std::string>();
     if (j.contains("max_sample_value")) job.max_sample_value = j["max_sample_value"].get<double>();
     if (j.contains("crop")) {
       const auto& c = j["crop"];

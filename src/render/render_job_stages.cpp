@@ -302,6 +302,7 @@ JobScene load_job_scene(const RenderJob& job, const std::filesystem::path& scene
   if (job.light_sampler) document["integrator"]["light_sampler"] = light_sampler_kind_name(*job.light_sampler);
   if (job.guiding) document["integrator"]["guiding"] = *job.guiding;
   if (job.daylit_points) document["integrator"]["daylit_points"] = *job.daylit_points;
+  if (job.caustics) document["integrator"]["caustics"] = *job.caustics;
   if (job.max_sample_value) document["film"]["max_sample_value"] = *job.max_sample_value;
   try {
     loaded.scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
@@ -529,7 +530,7 @@ void log_job_summary(const RenderJobState& s) {
   if (statistics.caustic_light_tracing)
     summary << "rimu: caustics of lamps and emitting shapes light-traced (one light path per camera sample)\n";
   else if (s.loaded.scene && s.loaded.scene->settings.integrator.caustic_light_tracing)
-    summary << "rimu: caustics path-traced: light tracing needs a pinhole camera, no media and no adaptive sampling\n";
+    summary << "rimu: caustics path-traced: light tracing needs a pinhole or thin-lens camera, no media and no adaptive sampling\n";
   if (!s.film->light_groups().empty()) {
     summary << "rimu: light groups, one EXR layer each (rebalance them with rimu display --group):";
     for (const std::string& group : s.film->light_groups()) summary << " " << group;

@@ -379,7 +379,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 
 RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
-  // Caustic light tracing needs a camera it can connect to and one light path per camera sample of every pixel
+  // Caustic light tracing needs a camera it can connect to (pinhole or thin lens) and one light path per camera sample of every pixel
   // alike (adaptive sampling gives pixels unequal counts, which its splats would be divided by): elsewhere the
   // path tracer keeps every caustic.
   PathIntegratorSettings settings = integrator_settings;

@@ -1,8 +1,9 @@
 // Caustic light tracing (transport/integrators/caustic_light_tracer.h) through the real render loop: the path tracer
 // drops the paths E D S⁺ L of the lights it traces and the light tracer adds them, so the image's mean must stay the
-// path tracer's (within the standard error) where the path tracer alone can find those paths too (a large area light
-// above a glass block over a floor); the image is the same for any thread count; and a camera light tracing cannot
-// connect to keeps the path tracer's caustics.
+// path tracer's (within the standard error) where the path tracer alone can find those paths too (a floor lit through
+// a glass block, seen by a pinhole and by a thin-lens camera); the image is the same for any thread count; a camera
+// light tracing cannot connect to (orthographic) keeps the path tracer's caustics; and the caustics go to their
+// light's group.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -45,16 +46,30 @@ nlohmann::json glass_block_scene(const char* caustics, const char* light) {
   return scene;
 }
 
-void check_same_mean(const char* light, int spp) {
-  const auto traced = test::scene_from_json(glass_block_scene("light_tracing", light));
-  const auto path_traced = test::scene_from_json(glass_block_scene("path_tracing", light));
+// A thin lens focused on the floor's middle, 2 cm aperture radius.
+nlohmann::json with_thin_lens(nlohmann::json scene) {
+  scene["camera"]["type"] = "thin_lens";
+  scene["camera"]["lens_radius"] = 0.02;
+  scene["camera"]["focus_distance"] = 1.0;
+  return scene;
+}
+
+void check_same_mean(const char* light, int spp, bool thin_lens = false) {
+  nlohmann::json traced_document = glass_block_scene("light_tracing", light);
+  nlohmann::json path_traced_document = glass_block_scene("path_tracing", light);
+  if (thin_lens) {
+    traced_document = with_thin_lens(traced_document);
+    path_traced_document = with_thin_lens(path_traced_document);
+  }
+  const auto traced = test::scene_from_json(traced_document);
+  const auto path_traced = test::scene_from_json(path_traced_document);
   const test::RenderedFilm a = test::render_xyz(*traced, spp, 1);
   const test::RenderedFilm b = test::render_xyz(*path_traced, spp, 2);
   CHECK(a.statistics.caustic_light_tracing);
   CHECK_FALSE(b.statistics.caustic_light_tracing);
   const test::Estimate d = test::paired_difference(test::luminance_values(*a.film), test::luminance_values(*b.film));
   const double m = test::mean_of(test::luminance_values(*b.film));
-  INFO(std::string(light) << ": light-traced − path-traced = " << d.mean << " ± " << d.standard_error << " (mean " << m << ")");
+  INFO(std::string(light) + (thin_lens ? " (thin lens)" : "") << ": light-traced − path-traced = " << d.mean << " ± " << d.standard_error << " (mean " << m << ")");
   CHECK(std::fabs(d.mean) <= test::kSigmas * d.standard_error);
   CHECK(d.standard_error > 0.0);
   CHECK(d.standard_error < 0.02 * m);  // a test that could see a few per cent
@@ -67,6 +82,10 @@ TEST_CASE("caustic light tracing leaves the image's mean as the path tracer's: a
   check_same_mean("sphere", 512);
 }
 
+TEST_CASE("caustic light tracing through a thin lens leaves the image's mean as the path tracer's") {
+  check_same_mean("area", 512, true);
+}
+
 TEST_CASE("caustic light tracing gives the same image for any thread count") {
   const auto scene = test::scene_from_json(glass_block_scene("light_tracing", "area"));
   const test::RenderedFilm one = test::render_xyz(*scene, 4, 7, 1);
@@ -75,11 +94,38 @@ TEST_CASE("caustic light tracing gives the same image for any thread count") {
   CHECK(test::film_bits(*one.film) == test::film_bits(*two.film));
 }
 
-TEST_CASE("a thin-lens camera keeps the path tracer's caustics") {
+TEST_CASE("an orthographic camera keeps the path tracer's caustics") {
   nlohmann::json document = glass_block_scene("light_tracing", "area");
-  document["camera"]["type"] = "thin_lens";
-  document["camera"]["lens_radius"] = 0.01;
-  document["camera"]["focus_distance"] = 1.1;
+  document["camera"]["type"] = "orthographic";
+  document["camera"]["height"] = 1.5;
+  document["camera"].erase("vertical_fov_deg");
   const auto scene = test::scene_from_json(document);
   CHECK_FALSE(test::render_xyz(*scene, 1, 1).statistics.caustic_light_tracing);
+}
+
+TEST_CASE("light-traced caustics go to their light's group: the layers still sum to the beauty") {
+  // The glass block under two lights of two groups: a square light (light-traced caustics) and an environment
+  // (path-traced). Every pixel's two layers sum to its beauty, to double rounding.
+  nlohmann::json document = glass_block_scene("light_tracing", "area");
+  document["shapes"].back()["light_group"] = "lamp";
+  document["lights"] = nlohmann::json::array(
+      {{{"type", "environment"}, {"light_group", "sky"}, {"radiance", {{"illuminant", "D65"}, {"scale", 0.2}}}}});
+  const auto scene = test::scene_from_json(document);
+  REQUIRE(scene->light_groups.size() == 2);
+  FilmOptions options{scene->settings.width, scene->settings.height, std::nullopt, 0};
+  Film film(options, SpectralResponse::cie_xyz(test::library()), scene->light_groups);
+  RenderOptions render_options;
+  render_options.samples_per_pixel = 8;
+  render_options.seed = 3;
+  render_options.threads = 2;
+  CHECK(render(*scene, test::filter_of(*scene), film, render_options).caustic_light_tracing);
+  double lamp_total = 0.0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      const auto beauty = film.pixel_value(x, y);
+      const auto a = film.group_value(x, y, 0), b = film.group_value(x, y, 1);
+      for (int c = 0; c < 3; ++c) CHECK(a[size_t(c)] + b[size_t(c)] == doctest::Approx(beauty[size_t(c)]).epsilon(1e-9));
+      lamp_total += scene->light_groups[0] == "lamp" ? a[1] : b[1];
+    }
+  CHECK(lamp_total > 0.0);
 }

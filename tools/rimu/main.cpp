@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
       "`rimu display --help` re-exposes a rendered EXR without rendering; `rimu denoise --help` denoises one."};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
-      light_sampler, guiding, daylit_points;
+      light_sampler, guiding, daylit_points, caustics;
   app.add_option("scene", scene, "scene file (.json, or a pbrt-v4 .pbrt: see docs/pbrt-import.md); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "scene-referred OpenEXR output, a name ending in .exr (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
                  "connects to the point it lights (daylit interiors; see docs/transport.md), off, or auto: on where "
                  "daylight enters through portals, the default (overrides the scene)")
       ->check(CLI::IsMember({"on", "off", "auto"}));
+  app.add_option("--caustics", caustics,
+                 "light_tracing: each sample also traces one light path from a lamp through glass, water and mirrors "
+                 "to the first diffuse surface, seen by the camera (caustics of spots and small lamps; see "
+                 "docs/transport.md), path_tracing: the default (overrides the scene)")
+      ->check(CLI::IsMember({"path_tracing", "light_tracing"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   std::string max_sample_value;
@@ -163,6 +168,7 @@ int main(int argc, char** argv) {
     if (!light_sampler.empty()) job.light_sampler = rimu::parse_light_sampler_kind(light_sampler);
     if (!guiding.empty()) job.guiding = guiding;
     if (!daylit_points.empty()) job.daylit_points = daylit_points;
+    if (!caustics.empty()) job.caustics = caustics;
     if (!max_sample_value.empty())
       job.max_sample_value = rimu::parse_max_sample_value(max_sample_value, "--max-sample-value");
     if (!resolution.empty()) {

@@ -113,32 +113,48 @@ bool is_rigid(const Transform& t) {
 
 bool Camera::supports_light_tracing() const {
   return settings_.spherical == SphericalMapping::none && !(settings_.orthographic_height > 0.0f) &&
-         !(settings_.lens_radius > 0.0f) && is_rigid(settings_.camera_to_world) &&
+         is_rigid(settings_.camera_to_world) &&
          (!settings_.camera_to_world_end || is_rigid(*settings_.camera_to_world_end));
 }
 
-std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time) const {
+std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time, Vec2 u_lens) const {
   if (!supports_light_tracing()) return std::nullopt;
   const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
   const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
+  const Vec3 right = camera_to_world.vector({1, 0, 0}), up = camera_to_world.vector({0, 1, 0}),
+             axis = camera_to_world.vector({0, 0, 1});
+  // The point in camera space (the inverse of a rotation is its transpose: dot products with the axes).
   const Vec3 eye = camera_to_world.point({0.0f, 0.0f, 0.0f});
-  const Vec3 to_point = point_m - eye;
+  const Vec3 from_eye = point_m - eye;
+  const Vec3 q{dot(from_eye, right), dot(from_eye, up), dot(from_eye, axis)};
+  if (!(q.z > 0.0f)) return std::nullopt;
+  // The lens point o (the pinhole: the eye), uniform on the aperture as generate_ray draws it.
+  Vec3 o{0.0f, 0.0f, 0.0f};
+  if (settings_.lens_radius > 0.0f) {
+    const Vec2 d = sample_uniform_disc(u_lens);
+    o = {settings_.lens_radius * d.x, settings_.lens_radius * d.y, 0.0f};
+  }
+  const Vec3 to_point = q - o;
   const float distance = length(to_point);
   if (!(distance > 0.0f) || !std::isfinite(distance)) return std::nullopt;
-  // The direction in camera space (the inverse of a rotation is its transpose: dot products with the axes).
-  const Vec3 w = to_point / distance;
-  const float cx = dot(w, camera_to_world.vector({1, 0, 0})), cy = dot(w, camera_to_world.vector({0, 1, 0}));
-  const float cos_theta = dot(w, camera_to_world.vector({0, 0, 1}));
+  const float cos_theta = to_point.z / distance;
   if (!(cos_theta > 1e-6f)) return std::nullopt;
-  // generate_ray's film mapping inverted: the point (sx, sy, 1) on the plane at unit distance.
-  const float sx = cx / cos_theta, sy = cy / cos_theta;
+  // generate_ray's film mapping inverted: the ray o → q meets the plane in focus at p; the film point is the one
+  // whose ray through the lens centre meets p, i.e. (sx, sy, 1) = p / p.z. A pinhole: the direction of q itself.
+  float sx = q.x / q.z, sy = q.y / q.z;
+  if (settings_.lens_radius > 0.0f) {
+    const Vec3 p = o + to_point * (settings_.focus_distance / to_point.z);
+    sx = p.x / settings_.focus_distance;
+    sy = p.y / settings_.focus_distance;
+  }
   const float aspect = width_ / height_;
   const Vec2 film{(sx / (tan_half_fov_ * aspect) + 1.0f) * 0.5f * width_, (1.0f - sy / tan_half_fov_) * 0.5f * height_};
   // One pixel is 2·tan(fov/2)/height wide and high on that plane.
   const float pixel_side = 2.0f * tan_half_fov_ / height_;
   const float importance = 1.0f / (pixel_side * pixel_side * cos_theta * cos_theta * cos_theta * distance * distance);
   if (!std::isfinite(importance) || !std::isfinite(film.x) || !std::isfinite(film.y)) return std::nullopt;
-  return CameraVisibility{film, eye, importance};
+  const Vec3 lens_point = eye + right * o.x + up * o.y;
+  return CameraVisibility{film, lens_point, importance};
 }
 
 }  // namespace rimu

@@ -60,12 +60,12 @@ class Camera final : public LightTracingCamera {
   /// focus), moved towards `ray` by `scale`. Two more generate_ray calls.
   RayDifferentials generate_differentials(const Ray& ray, float film_x, float film_y, Vec2 lens_u, float scale) const;
   const CameraSettings& settings() const { return settings_; }
-  /// Whether see() can answer: a pinhole perspective camera (no lens, not orthographic or spherical) whose
+  /// Whether see() can answer: a pinhole or thin-lens perspective camera (not orthographic or spherical) whose
   /// transforms are rotations and translations (a scale would change the solid angle a pixel covers).
   bool supports_light_tracing() const;
   /// Light tracing's view of the point (light_tracing_camera.h); std::nullopt behind the camera or where
   /// supports_light_tracing() is false.
-  std::optional<CameraVisibility> see(Vec3 point_m, float time) const override;
+  std::optional<CameraVisibility> see(Vec3 point_m, float time, Vec2 u_lens) const override;
 
  private:
   CameraSettings settings_;

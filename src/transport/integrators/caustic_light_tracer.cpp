@@ -80,7 +80,8 @@ void CausticLightTracer::trace(const SampledWavelengths& lambda, Sampler& sample
 
     // E y S⁺ L: y's non-delta component seen by the camera.
     if (specular_vertices > 0 && flags.has_non_delta) {
-      if (const auto seen = camera.see(hit->position, time)) {
+      const Vec2 u_lens = sampler.next_2d();
+      if (const auto seen = camera.see(hit->position, time, u_lens)) {
         const Vec3 to_camera = seen->camera_position_m - hit->position;
         const float distance = length(to_camera);
         const Vec3 w_camera = distance > 0.0f ? to_camera / distance : Vec3{};

@@ -11,18 +11,20 @@ namespace rimu {
 
 struct CameraVisibility {
   Vec2 film_px;             ///< continuous pixel coordinates of the point's image; may lie outside the image
-  Vec3 camera_position_m;   ///< where a shadow ray from the point must reach
-  /// The measurement per unit of radiance leaving the point towards the camera, in the film's units per camera
-  /// sample: for a pinhole, 1/(a cos³θ d²), with a one pixel's area on the plane at unit distance, θ the angle off
-  /// the view axis and d the distance (pbrt-v4's W_e/p of PerspectiveCamera::SampleWi, per pixel).
+  Vec3 camera_position_m;   ///< the point on the lens (the pinhole) a shadow ray from the point must reach
+  /// The measurement per unit of radiance leaving the point towards that lens point, in the film's units per camera
+  /// sample: 1/(a cos³θ d²), with a one pixel's area on the plane at unit distance, θ the angle of the ray off the
+  /// view axis and d its length (pbrt-v4's W_e/p of PerspectiveCamera::SampleWi, per pixel; the lens area cancels
+  /// between the two).
   float importance = 0.0f;
 };
 
 class LightTracingCamera {
  public:
   virtual ~LightTracingCamera() = default;
-  /// std::nullopt where the camera cannot see the point (behind it) or does not support light tracing.
-  virtual std::optional<CameraVisibility> see(Vec3 point_m, float time) const = 0;
+  /// std::nullopt where the camera cannot see the point (behind it) or does not support light tracing. `u_lens`:
+  /// a uniform point for the lens point (a pinhole ignores it).
+  virtual std::optional<CameraVisibility> see(Vec3 point_m, float time, Vec2 u_lens) const = 0;
 };
 
 }  // namespace rimu
