@@ -69,7 +69,8 @@ void check_same_mean(const char* light, int spp, bool thin_lens = false) {
   CHECK_FALSE(b.statistics.caustic_light_tracing);
   const test::Estimate d = test::paired_difference(test::luminance_values(*a.film), test::luminance_values(*b.film));
   const double m = test::mean_of(test::luminance_values(*b.film));
-  INFO(std::string(light) + (thin_lens ? " (thin lens)" : "") << ": light-traced − path-traced = " << d.mean << " ± " << d.standard_error << " (mean " << m << ")");
+  const std::string label = std::string(light) + (thin_lens ? " (thin lens)" : "");
+  INFO(label << ": light-traced − path-traced = " << d.mean << " ± " << d.standard_error << " (mean " << m << ")");
   CHECK(std::fabs(d.mean) <= test::kSigmas * d.standard_error);
   CHECK(d.standard_error > 0.0);
   CHECK(d.standard_error < 0.02 * m);  // a test that could see a few per cent
