@@ -130,3 +130,37 @@ TEST_CASE("light-traced caustics go to their light's group: the layers still sum
     }
   CHECK(lamp_total > 0.0);
 }
+
+TEST_CASE("light tracing's hard cases write nothing non-finite: a spot inside a glass ball touching a mirror floor") {
+  // The spot sits at the ball's centre (every emitted ray meets the glass from inside at normal incidence), the ball
+  // touches a smooth gold floor (rays pass between glass and mirror at grazing angles), a 1 µm glass ball floats
+  // nearby (tiny scales), and the camera looks along the floor (grazing connections). Nothing may reach the film as
+  // NaN or infinity (the film would count and drop such a splat; the REQUIRE sees any that got through), and the
+  // image is not black.
+  const auto scene = test::scene_from_json(nlohmann::json::parse(R"({
+    "camera": {"type": "pinhole", "from": [0.0, 0.02, -1.5], "to": [0.0, 0.0, 0.0], "up": [0, 1, 0],
+               "vertical_fov_deg": 60},
+    "film": {"resolution": [24, 16]},
+    "integrator": {"max_depth": 12, "caustics": "light_tracing"},
+    "materials": {"mirror": {"type": "conductor", "metal": "gold"}, "wall": {"type": "diffuse", "reflectance": 0.7},
+                  "glass": {"type": "dielectric", "ior": 1.5}},
+    "shapes": [
+      {"type": "quad", "material": "mirror", "vertices": [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]},
+      {"type": "quad", "material": "wall", "vertices": [[-2, 0, 1], [-2, 2, 1], [2, 2, 1], [2, 0, 1]]},
+      {"type": "sphere", "material": "glass", "center": [0.0, 0.2, 0.0], "radius": 0.2},
+      {"type": "sphere", "material": "glass", "center": [0.5, 0.3, 0.0], "radius": 1e-6}
+    ],
+    "lights": [{"type": "spot", "position": [0.0, 0.2, 0.0], "direction": [0.0, 0.3, 1.0], "cone_angle_deg": 170,
+                "intensity": {"illuminant": "D65", "scale": 1.0}}]
+  })"));
+  const test::RenderedFilm rendered = test::render_xyz(*scene, 16, 5);
+  CHECK(rendered.statistics.caustic_light_tracing);
+  double total = 0.0;
+  for (int y = 0; y < rendered.film->height(); ++y)
+    for (int x = 0; x < rendered.film->width(); ++x)
+      for (const double v : rendered.film->pixel_value(x, y)) {
+        REQUIRE(std::isfinite(v));
+        total += v;
+      }
+  CHECK(total > 0.0);
+}

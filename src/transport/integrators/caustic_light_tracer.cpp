@@ -1,5 +1,6 @@
 #include "transport/integrators/caustic_light_tracer.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "spectral/wavelengths/lanes.h"
@@ -19,10 +20,21 @@ float adjoint_shading_factor(Vec3 wo, Vec3 wi, Vec3 ns, Vec3 ng) {
   return std::isfinite(factor) ? factor : 0.0f;
 }
 
+// Whether a material can have a delta lobe (conservatively: every kind but the diffuse ones and hair, whose lobes
+// are never delta; a conductor or dielectric may be smooth somewhere even with a roughness texture).
+bool may_scatter_specularly(const Material& material) {
+  const Material::Variant& m = material.variant();
+  return !(std::holds_alternative<DiffuseMaterial>(m) || std::holds_alternative<DiffuseTransmissionMaterial>(m) ||
+           std::holds_alternative<HairMaterial>(m));
+}
+
 }  // namespace
 
 CausticLightTracer::CausticLightTracer(const TransportScene& scene, const PathIntegratorSettings& settings)
     : scene_(scene), settings_(settings) {
+  // Without a surface that can scatter specularly there is no caustic to trace: no light path is drawn (the path
+  // tracer, which then never reaches its state E D S⁺, keeps everything).
+  if (std::none_of(scene.materials->begin(), scene.materials->end(), may_scatter_specularly)) return;
   std::vector<double> power;
   for (size_t i = 0; i < scene.lights->size(); ++i) {
     const Light& light = *(*scene.lights)[i];

@@ -45,7 +45,8 @@ struct CausticSplat {
 
 class CausticLightTracer {
  public:
-  /// The lights it traces: every one with Light::samples_emission(), chosen by total power.
+  /// The lights it traces: every one with Light::samples_emission(), chosen by total power; none in a scene without a
+  /// material that can scatter specularly (nothing to trace there).
   CausticLightTracer(const TransportScene& scene, const PathIntegratorSettings& settings);
 
   /// No light to trace (the render then runs without it).
