@@ -27,22 +27,8 @@ spps=${SPPS:-"16 64"}; ref_spp=${REF_SPP:-2048}; seeds=${SEEDS:-"1 2 3"}
 resolution=${RESOLUTION:-160x120}; threads=${THREADS:-2}
 export RIMU_DATA=${RIMU_DATA:-$root/data}
 mkdir -p "$out"
-
-# edit SOURCE.json OUT.json MODE: the scene with integrator.caustics = MODE
-edit() {
-  python3 - "$@" <<'PY'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene.setdefault("integrator", {})["caustics"] = sys.argv[3]
-json.dump(scene, open(sys.argv[2], "w"))
-PY
-}
-# render FILE SPP SEED OUT.exr: prints CPU seconds
-render() {
-  /usr/bin/time -f "%U %S" -o "$4.time" nice -n 19 "$rimu" -q "$1" -o "$4" --float --spp "$2" --seed "$3" \
-    --threads "$threads" --resolution "$resolution" >"$4.log" 2>&1
-  awk '{s = $1 + $2} END {printf "%.2f", s}' "$4.time"
-}
+# shellcheck source=bench/bench_common.sh
+source "$root/bench/bench_common.sh"
 
 echo "# caustics_bench: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "# $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'); SPPS=\"$spps\" REF_SPP=$ref_spp SEEDS=\"$seeds\" RESOLUTION=$resolution THREADS=$threads CROP=\"${CROP:-}\""
@@ -55,7 +41,7 @@ for scene in $scenes; do
     source=$work/converted.json
   fi
   python3 "$root/bench/scaled_scene.py" "$source" "$work" scaled 1000
-  for mode in path_tracing light_tracing; do edit "$work/scaled_dir/scaled.json" "$work/scaled_dir/$mode.json" "$mode"; done
+  for mode in path_tracing light_tracing; do with_integrator_key "$work/scaled_dir/scaled.json" "$work/scaled_dir/$mode.json" caustics "$mode"; done
   t=$(render "$work/scaled_dir/light_tracing.json" "$ref_spp" 99 "$work/ref.exr")
   echo "$name: reference $ref_spp spp, $t CPU s" >&2
   for spp in $spps; do

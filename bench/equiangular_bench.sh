@@ -27,6 +27,8 @@ spps=${SPPS:-"16 64"}; ref_spp=${REF_SPP:-1024}; seeds=${SEEDS:-"1 2 3"}
 resolution=${RESOLUTION:-160x90}; threads=${THREADS:-2}; modes=${MODES:-"off points all"}
 export RIMU_DATA=${RIMU_DATA:-$root/data}
 mkdir -p "$out"
+# shellcheck source=bench/bench_common.sh
+source "$root/bench/bench_common.sh"
 
 # edit SOURCE.json OUT.json EQUIANGULAR [SIGMA_A SIGMA_S G]: the scene with integrator.equiangular set (and a
 # scene-wide haze of these coefficients, per metre, added)
@@ -41,12 +43,6 @@ if len(sys.argv) > 4:
                                             "contains_camera": True}
 json.dump(scene, open(sys.argv[2], "w"))
 PY
-}
-# render FILE SPP SEED OUT.exr: prints CPU seconds
-render() {
-  /usr/bin/time -f "%U %S" -o "$4.time" nice -n 19 "$rimu" -q "$1" -o "$4" --float --spp "$2" --seed "$3" \
-    --threads "$threads" --resolution "$resolution" >"$4.log" 2>&1
-  awk '{s = $1 + $2} END {printf "%.2f", s}' "$4.time"
 }
 
 echo "# equiangular_bench: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load before: $(cut -d' ' -f1-3 /proc/loadavg)"

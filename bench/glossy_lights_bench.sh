@@ -27,22 +27,8 @@ candidates=${CANDIDATES:-"1 2 4 8 16"}; spp=${SPP:-64}; ref_spp=${REF_SPP:-1024}
 resolution=${RESOLUTION:-160x90}; threads=${THREADS:-2}
 export RIMU_DATA=${RIMU_DATA:-$root/data}
 mkdir -p "$out"
-
-# with_candidates SOURCE.json M OUT.json: the scene with integrator.glossy_light_candidates = M
-with_candidates() {
-  python3 - "$1" "$2" "$3" <<'EOF'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene.setdefault("integrator", {})["glossy_light_candidates"] = int(sys.argv[2])
-json.dump(scene, open(sys.argv[3], "w"))
-EOF
-}
-# render FILE SPP SEED OUT.exr: prints CPU seconds
-render() {
-  /usr/bin/time -f "%U %S" -o "$4.time" nice -n 19 "$rimu" -q "$1" -o "$4" --float --spp "$2" --seed "$3" \
-    --threads "$threads" --resolution "$resolution" >"$4.log" 2>&1
-  awk '{s = $1 + $2} END {printf "%.2f", s}' "$4.time"
-}
+# shellcheck source=bench/bench_common.sh
+source "$root/bench/bench_common.sh"
 
 echo "# glossy_lights_bench: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "# $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'); SPP=$spp REF_SPP=$ref_spp SEEDS=\"$seeds\" CANDIDATES=\"$candidates\" RESOLUTION=$resolution THREADS=$threads"
@@ -52,11 +38,11 @@ for scene in $scenes; do
   [[ $scene == *.json ]] && source=$scene && scene=${scene%.json}
   name=${scene##*/}; work=$out/$name; rm -rf "$work"; mkdir -p "$work"
   python3 "$root/bench/scaled_scene.py" "$source" "$work" scaled 1000
-  with_candidates "$work/scaled_dir/scaled.json" 8 "$work/scaled_dir/ref.json"
+  with_integrator_key "$work/scaled_dir/scaled.json" "$work/scaled_dir/ref.json" glossy_light_candidates 8
   t=$(render "$work/scaled_dir/ref.json" "$ref_spp" 99 "$work/ref.exr")
   echo "$name: reference $ref_spp spp, $t CPU s" >&2
   for m in $candidates; do
-    with_candidates "$work/scaled_dir/scaled.json" "$m" "$work/scaled_dir/m$m.json"
+    with_integrator_key "$work/scaled_dir/scaled.json" "$work/scaled_dir/m$m.json" glossy_light_candidates "$m"
     for seed in $seeds; do
       t=$(render "$work/scaled_dir/m$m.json" "$spp" "$seed" "$work/m$m-$seed.exr")
       r=$("$compare" relmse "$work/m$m-$seed.exr" "$work/ref.exr")

@@ -225,16 +225,6 @@ struct QuadLightSlab {
   }
 };
 
-LaneStatistics render_quad_ray(const QuadLightSlab& slab, const VolumetricIntegratorSettings& settings,
-                               const Ray& ray, int count, uint64_t seed) {
-  const VolumetricPathIntegrator integrator(slab.scene, settings);
-  IndependentSampler sampler(seed);
-  return test::lane_statistics(count, [&](int i) {
-    sampler.start_pixel_sample(i, 0, 0);
-    return test::rotated_radiance(integrator, ray, sampler, i);
-  });
-}
-
 }  // namespace
 
 TEST_CASE("Equiangular sampling towards area lights: unbiased, and lower variance near a small one") {
@@ -266,13 +256,13 @@ TEST_CASE("Equiangular sampling towards area lights: unbiased, and lower varianc
         s.path.max_depth = 64;
         s.equiangular = EquiangularLights::off;
         const int count = 20000;
-        const LaneStatistics distance_only = render_quad_ray(slab, s, ray, count, 3);
+        const LaneStatistics distance_only = render_ray(slab.scene, s, ray, count, 3);
         // The default aims at lights at a point only: the same paths as without (same seed, same estimates).
         s.equiangular = EquiangularLights::points;
-        const LaneStatistics points_only = render_quad_ray(slab, s, ray, count, 3);
+        const LaneStatistics points_only = render_ray(slab.scene, s, ray, count, 3);
         for (int k = 0; k < 4; ++k) CHECK(points_only.mean[k] == distance_only.mean[k]);
         s.equiangular = EquiangularLights::all;
-        const LaneStatistics combined = render_quad_ray(slab, s, ray, count, 4);
+        const LaneStatistics combined = render_ray(slab.scene, s, ray, count, 4);
         check_agree_and_less_noisy(distance_only, combined, half_size_m < 0.05f ? 0.5 : 0.8);
       }
     }

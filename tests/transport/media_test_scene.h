@@ -168,14 +168,18 @@ inline Float4 rotated_radiance(const VolumetricPathIntegrator& integrator, const
 
 /// `count` estimates of the radiance along `ray` by the volumetric integrator with `settings`, the hero rotated
 /// through the lanes (rotated_radiance), from an independent sampler seeded with `seed`.
-inline LaneStatistics render_ray(const SlabScene& slab, const VolumetricIntegratorSettings& settings, const Ray& ray,
-                                 int count, uint64_t seed = 7) {
-  const VolumetricPathIntegrator integrator(slab.scene, settings);
+inline LaneStatistics render_ray(const VolumetricScene& scene, const VolumetricIntegratorSettings& settings,
+                                 const Ray& ray, int count, uint64_t seed = 7) {
+  const VolumetricPathIntegrator integrator(scene, settings);
   IndependentSampler sampler(seed);
   return lane_statistics(count, [&](int i) {
     sampler.start_pixel_sample(i, 0, 0);
     return rotated_radiance(integrator, ray, sampler, i);
   });
+}
+inline LaneStatistics render_ray(const SlabScene& slab, const VolumetricIntegratorSettings& settings, const Ray& ray,
+                                 int count, uint64_t seed = 7) {
+  return render_ray(slab.scene, settings, ray, count, seed);
 }
 
 /// A unit direction with cosine-weighted density around `axis` (±z), from u.

@@ -31,6 +31,18 @@ Vec3 spherical_camera_direction(SphericalMapping mapping, Vec2 uv) {
   return {sin_theta * std::sin(phi), std::cos(theta), sin_theta * std::cos(phi)};
 }
 
+namespace {
+
+// Whether a transform's linear part is a rotation (orthonormal columns, within float rounding).
+bool is_rigid(const Transform& t) {
+  const Vec3 x = t.vector({1, 0, 0}), y = t.vector({0, 1, 0}), z = t.vector({0, 0, 1});
+  const auto near = [](float a, float b) { return std::fabs(a - b) < 1e-4f; };
+  return near(dot(x, x), 1) && near(dot(y, y), 1) && near(dot(z, z), 1) && near(dot(x, y), 0) && near(dot(x, z), 0) &&
+         near(dot(y, z), 0);
+}
+
+}  // namespace
+
 Camera::Camera(const CameraSettings& settings, int image_width, int image_height)
     : settings_(settings), width_(float(image_width)), height_(float(image_height)),
       tan_half_fov_(std::tan(settings.vertical_fov_deg * float(M_PI / 360.0))) {
@@ -39,6 +51,9 @@ Camera::Camera(const CameraSettings& settings, int image_width, int image_height
     bool valid = false;
     motion_.emplace(settings.camera_to_world, *settings.camera_to_world_end, valid);
   }
+  supports_light_tracing_ = settings.spherical == SphericalMapping::none && !(settings.orthographic_height > 0.0f) &&
+                            is_rigid(settings.camera_to_world) &&
+                            (!settings.camera_to_world_end || is_rigid(*settings.camera_to_world_end));
 }
 
 Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u, float time) const {
@@ -97,24 +112,6 @@ RayDifferentials Camera::generate_differentials(const Ray& ray, float film_x, fl
   RayDifferentials d{rx.origin, rx.direction, ry.origin, ry.direction};
   d.scale_towards(ray.origin, ray.direction, scale);
   return d;
-}
-
-namespace {
-
-// Whether a transform's linear part is a rotation (orthonormal columns, within float rounding).
-bool is_rigid(const Transform& t) {
-  const Vec3 x = t.vector({1, 0, 0}), y = t.vector({0, 1, 0}), z = t.vector({0, 0, 1});
-  const auto near = [](float a, float b) { return std::fabs(a - b) < 1e-4f; };
-  return near(dot(x, x), 1) && near(dot(y, y), 1) && near(dot(z, z), 1) && near(dot(x, y), 0) && near(dot(x, z), 0) &&
-         near(dot(y, z), 0);
-}
-
-}  // namespace
-
-bool Camera::supports_light_tracing() const {
-  return settings_.spherical == SphericalMapping::none && !(settings_.orthographic_height > 0.0f) &&
-         is_rigid(settings_.camera_to_world) &&
-         (!settings_.camera_to_world_end || is_rigid(*settings_.camera_to_world_end));
 }
 
 std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time, Vec2 u_lens) const {

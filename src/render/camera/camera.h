@@ -62,7 +62,7 @@ class Camera final : public LightTracingCamera {
   const CameraSettings& settings() const { return settings_; }
   /// Whether see() can answer: a pinhole or thin-lens perspective camera (not orthographic or spherical) whose
   /// transforms are rotations and translations (a scale would change the solid angle a pixel covers).
-  bool supports_light_tracing() const;
+  bool supports_light_tracing() const { return supports_light_tracing_; }
   /// Light tracing's view of the point (light_tracing_camera.h); std::nullopt behind the camera or where
   /// supports_light_tracing() is false.
   std::optional<CameraVisibility> see(Vec3 point_m, float time, Vec2 u_lens) const override;
@@ -72,6 +72,7 @@ class Camera final : public LightTracingCamera {
   std::optional<MotionTransform> motion_;  // from camera_to_world to camera_to_world_end
   float width_, height_;
   float tan_half_fov_;
+  bool supports_light_tracing_ = false;  // decided once in the constructor (see supports_light_tracing)
 };
 
 /// Uniform point on the unit disc from u ∈ [0,1)² (Shirley–Chiu concentric mapping: low distortion keeps

@@ -99,10 +99,11 @@ void CausticLightTracer::trace(const SampledWavelengths& lambda, Sampler& sample
         const Vec3 w_camera = distance > 0.0f ? to_camera / distance : Vec3{};
         const bool wrong_side = !flags.has_transmission && dot(w_camera, ng) <= 0.0f;
         if (distance > 0.0f && !wrong_side) {
+          // f·|cos| towards the camera with the adjoint's shading factor, as at a specular vertex below.
           const SampledSpectrum f = bsdf.eval(wo, frame.to_local(w_camera));
-          const float factor = std::fabs(dot(wo_world, ns)) * std::fabs(dot(w_camera, ng)) /
-                               std::fabs(dot(wo_world, ng));
-          if (max_lane(f) > 0.0f && factor > 0.0f && std::isfinite(factor)) {
+          const float factor =
+              std::fabs(dot(w_camera, ns)) * adjoint_shading_factor(wo_world, w_camera, ns, ng);
+          if (max_lane(f) > 0.0f && factor > 0.0f) {
             Ray shadow;
             shadow.time = time;
             shadow.origin = offset_ray_origin(*hit, w_camera, scene_.scene_scale);

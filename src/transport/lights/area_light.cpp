@@ -1,6 +1,5 @@
 #include "transport/lights/area_light.h"
-#include "transport/sampling/direction_warps.h"
-#include "transport/geometry/frame.h"
+#include "transport/lights/lambertian_emission.h"
 
 #include <cassert>
 #include <cmath>
@@ -260,20 +259,14 @@ bool AreaLight::samples_emission() const { return uniform_.has_value() && emits_
 std::optional<EmissionSample> AreaLight::sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
                                                          const SampledWavelengths& lambda) const {
   if (!samples_emission()) return std::nullopt;
-  // A triangle by area (the weights of uniform emission), a point uniform on it: p_A = 1/A over the whole light. A
-  // cosine-weighted direction about the emitting side's normal (p_ω = cos/π): weight L·cos/(p_A p_ω) = π A L, twice
-  // that where a two-sided light picks its side (the remapped choice number's half).
+  // A triangle by area (the weights of uniform emission), a point uniform on it: p_A = 1/A over the whole light; a
+  // two-sided light picks its side by the remapped choice number's half.
   const auto pick = by_weight_.sample_discrete(u_part);
   const Triangle& t = triangles_[size_t(pick.index)];
   if (t.area_m2 == 0.0) return std::nullopt;
   const Vec3 b = sample_uniform_triangle(u_position);
-  const Vec3 origin = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
-  const bool back = two_sided_ && pick.u_remapped < 0.5f;
-  const Vec3 normal = back ? -t.normal : t.normal;
-  const Vec3 direction = Frame::from_normal(normal).to_world(sample_cosine_hemisphere(u_direction));
-  const float sides = two_sided_ ? 2.0f : 1.0f;
-  return EmissionSample{origin, direction, normal,
-                        uniform_->sample(lambda) * Float4(sides * std::numbers::pi_v<float> * float(area_m2_))};
+  return lambertian_emission(t.v0 * b.x + t.v1 * b.y + t.v2 * b.z, t.normal, two_sided_, pick.u_remapped < 0.5f,
+                             u_direction, uniform_->sample(lambda), area_m2_);
 }
 
 }  // namespace rimu

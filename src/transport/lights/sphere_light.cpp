@@ -1,5 +1,5 @@
 #include "transport/lights/sphere_light.h"
-#include "transport/sampling/direction_warps.h"
+#include "transport/lights/lambertian_emission.h"
 
 #include <algorithm>
 #include <cassert>
@@ -152,14 +152,10 @@ bool SphereLight::samples_emission() const { return !radiance_.is_black(); }
 std::optional<EmissionSample> SphereLight::sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
                                                            const SampledWavelengths& lambda) const {
   if (radiance_.is_black()) return std::nullopt;
-  // A point uniform on the area A (p_A = 1/A), a cosine-weighted direction about the emitting side's normal
-  // (p_ω = cos/π): weight L·cos/(p_A p_ω) = π A L, twice that where a two-sided sphere picks its side by u_part.
+  // A point uniform on the area (p_A = 1/A); a two-sided sphere picks its side by u_part.
   const Vec3 outward = sample_uniform_sphere(u_position);
-  const Vec3 normal = two_sided_ && u_part < 0.5f ? -outward : outward;
-  const Vec3 direction = Frame::from_normal(normal).to_world(sample_cosine_hemisphere(u_direction));
-  const float sides = two_sided_ ? 2.0f : 1.0f;
-  return EmissionSample{centre_m_ + outward * radius_m_, direction, normal,
-                        radiance_.sample(lambda) * Float4(sides * std::numbers::pi_v<float> * float(area_m2()))};
+  return lambertian_emission(centre_m_ + outward * radius_m_, outward, two_sided_, u_part < 0.5f, u_direction,
+                             radiance_.sample(lambda), area_m2());
 }
 
 }  // namespace rimu
