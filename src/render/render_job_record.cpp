@@ -33,6 +33,7 @@ nlohmann::json image_options(const RenderJob& job) {
   if (job.guiding) j["guiding"] = *job.guiding;
   if (job.daylit_points) j["daylit_points"] = *job.daylit_points;
   if (job.caustics) j["caustics"] = *job.caustics;
+  if (job.method) j["method"] = *job.method;
   if (job.max_sample_value) j["max_sample_value"] = *job.max_sample_value;
   if (job.strict) j["strict"] = true;
   return j;
@@ -130,6 +131,7 @@ RenderJob render_job_from_json(const std::string& json, const std::string& where
     if (j.contains("guiding")) job.guiding = j["guiding"].get<std::string>();
     if (j.contains("daylit_points")) job.daylit_points = j["daylit_points"].get<std::string>();
     if (j.contains("caustics")) job.caustics = j["caustics"].get<std::string>();
+    if (j.contains("method")) job.method = j["method"].get<std::string>();
     if (j.contains("max_sample_value")) job.max_sample_value = j["max_sample_value"].get<double>();
     if (j.contains("crop")) {
       const auto& c = j["crop"];

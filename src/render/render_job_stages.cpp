@@ -303,6 +303,7 @@ JobScene load_job_scene(const RenderJob& job, const std::filesystem::path& scene
   if (job.guiding) document["integrator"]["guiding"] = *job.guiding;
   if (job.daylit_points) document["integrator"]["daylit_points"] = *job.daylit_points;
   if (job.caustics) document["integrator"]["caustics"] = *job.caustics;
+  if (job.method) document["integrator"]["method"] = *job.method;
   if (job.max_sample_value) document["film"]["max_sample_value"] = *job.max_sample_value;
   try {
     loaded.scene = load_scene(document, scene_path.string(), scene_path.parent_path(), library);
@@ -527,6 +528,11 @@ void log_job_summary(const RenderJobState& s) {
     summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
             << " spatial leaves, " << g.directional_nodes << " directional nodes (or lobes), "
             << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
+  if (statistics.bidirectional)
+    summary << "rimu: bidirectional path tracing (one light subpath per camera sample)\n";
+  else if (s.loaded.scene && s.loaded.scene->settings.integrator.bidirectional)
+    summary << "rimu: path-traced: bidirectional path tracing needs a pinhole or thin-lens camera, no media, no "
+               "adaptive sampling and no light groups\n";
   if (statistics.caustic_light_tracing)
     summary << "rimu: caustics of lamps and emitting shapes light-traced (one light path per camera sample)\n";
   else if (s.loaded.scene && s.loaded.scene->settings.integrator.caustic_light_tracing)

@@ -21,6 +21,7 @@
 #include "render/interrupt_flag.h"
 #include "render/progress_reporter.h"
 #include "transport/guiding/guiding_field.h"
+#include "transport/integrators/bidirectional_path_integrator.h"
 #include "transport/integrators/caustic_light_tracer.h"
 #include "transport/integrators/path_features.h"
 #include "transport/integrators/path_integrator.h"
@@ -112,6 +113,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
                              const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options,
                              const VolumetricScene* media = nullptr) {
   const auto start = std::chrono::steady_clock::now();
+  constexpr bool kBidirectional = std::is_same_v<Integrator, BidirectionalPathIntegrator>;
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, size_t(options.threads));
 
@@ -134,6 +136,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   const bool texture_footprints = [&] {
     // The surface integrator holds a TransportScene; the volumetric one holds its surfaces beside the media.
     if constexpr (std::is_same_v<Integrator, PathIntegrator>) return integrator.scene().texture_footprints;
+    else if constexpr (kBidirectional) return false;  // its vertices read textures at their finest level
     else return integrator.scene().surfaces.texture_footprints;
   }();
   float differentials_scale = 0.0f;
@@ -155,9 +158,11 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       caustics.emplace(surfaces, integrator_settings);
       if (caustics->empty()) caustics.reset();
     }
+  // Light paths (the caustic tracer's, the bidirectional integrator's light subpaths) splat onto the film.
+  const bool splatting = caustics.has_value() || kBidirectional;
   constexpr uint64_t kCausticSeedSalt = 0x632be59bd9b4e019ull;
   const std::unique_ptr<Sampler> caustic_prototype =
-      caustics ? make_sampler(SamplerKind::independent, options.seed ^ kCausticSeedSalt) : nullptr;
+      splatting ? make_sampler(SamplerKind::independent, options.seed ^ kCausticSeedSalt) : nullptr;
   std::vector<std::vector<CausticSplat>> caustic_splats;
   std::vector<char> caustic_done;
   std::optional<FilmTile> caustic_tile;
@@ -182,7 +187,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     // splat tile joins the film when the pass is complete (an interrupted pass drops it with its samples).
     std::mutex splat_mutex;
     size_t next_commit = 0;
-    if (caustics) {
+    if (splatting) {
       caustic_splats.assign(tiles.size(), {});
       caustic_done.assign(tiles.size(), 0);
       caustic_tile.emplace(film.make_tile(film.pixel_bounds()));
@@ -227,11 +232,11 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       planned_samples[t] = samples;
     }
     std::vector<size_t> index_order;
-    if (caustics) {
+    if (splatting) {
       index_order.resize(tiles.size());
       for (size_t t = 0; t < tiles.size(); ++t) index_order[t] = t;
     }
-    const std::vector<size_t>& tile_order = caustics ? index_order : schedule.order(planned_samples);
+    const std::vector<size_t>& tile_order = splatting ? index_order : schedule.order(planned_samples);
 
     // Each worker takes the next tile of the order until none is left (list scheduling): a split of the order into
     // ranges, as parallel_for's partitioners make, would give one thread all of the costliest tiles.
@@ -279,7 +284,11 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               const Ray ray = camera.generate_ray(film_x, film_y, lens, time);
               SampledSpectrum radiance;
               if (groups.groups) std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
-              if (differentials_scale > 0.0f) {
+              if constexpr (kBidirectional) {
+                // The light subpath from the light paths' own stream, as the caustic tracer's.
+                caustic_sampler->start_pixel_sample(x, y, uint32_t(s));
+                radiance = integrator.radiance(ray, lambda, *sampler, *caustic_sampler, caustic_splats[t]);
+              } else if (differentials_scale > 0.0f) {
                 const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
                 radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
               } else {
@@ -331,7 +340,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
         schedule.record(t, std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count(),
                         tile_samples);
         results[t] = std::move(tile);
-        if (caustics) commit_splats(t);
+        if (splatting) commit_splats(t);
       }
     });
     if (stopped) {
@@ -340,7 +349,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     }
     for (const auto& tile : results) film.merge_tile(*tile);
     // The light paths' splats of the pass (committed in tile order while it ran), now that it is complete.
-    if (caustics) film.merge_tile(*caustic_tile);
+    if (splatting) film.merge_tile(*caustic_tile);
     for (const FeatureTile& tile : feature_results) options.features->merge_tile(tile);
     if (train) {
       for (auto& r : guiding_records) {
@@ -383,6 +392,17 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
   // alike (adaptive sampling gives pixels unequal counts, which its splats would be divided by): elsewhere the
   // path tracer keeps every caustic.
   PathIntegratorSettings settings = integrator_settings;
+  // Bidirectional path tracing: the same needs, and a film without light groups (its estimates are not split by
+  // light); it has caustics of its own and does not guide.
+  if (settings.bidirectional && camera.supports_light_tracing() && !options.adaptive && film.light_groups().empty()) {
+    settings.caustic_light_tracing = false;
+    settings.guiding = false;
+    const BidirectionalPathIntegrator integrator(transport, settings, camera, double(film.pixel_bounds().area()));
+    RenderStatistics stats =
+        render_loop(integrator, settings, transport, transport.wavelength_density, camera, filter, film, options);
+    stats.bidirectional = true;
+    return stats;
+  }
   settings.caustic_light_tracing = settings.caustic_light_tracing && camera.supports_light_tracing() && !options.adaptive;
   const PathIntegrator integrator(transport, settings);
   RenderStatistics stats =

@@ -207,6 +207,19 @@ inline double worst_deviation(const std::vector<double>& deviations) {
   return worst;
 }
 
+/// The sum of every channel of every pixel of `film`, REQUIRE-ing each to be finite (the hard-case tests: nothing
+/// non-finite may reach the film, where it would otherwise only be counted and dropped).
+inline double finite_total(const Film& film) {
+  double total = 0.0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x)
+      for (const double v : film.pixel_value(x, y)) {
+        REQUIRE(std::isfinite(v));
+        total += v;
+      }
+  return total;
+}
+
 /// The mean of a list of values.
 inline double mean_of(const std::vector<double>& values) {
   double sum = 0.0;

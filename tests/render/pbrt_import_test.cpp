@@ -196,9 +196,14 @@ TEST_CASE("pbrt camera and film: fov spans the shorter axis, resolution, samples
   CHECK_CONTAINS(error_of("WorldBegin\nShape \"sphere\"", true), "no Camera");
 }
 
-TEST_CASE("pbrt bdpt, sppm and lightpath scenes light-trace their caustics; path and volpath do not") {
+TEST_CASE("pbrt bdpt is bidirectional; sppm and lightpath scenes light-trace their caustics; path and volpath do not") {
   const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
-  for (const char* type : {"bdpt", "sppm", "lightpath"}) {
+  const PbrtImport bdpt = import_text("Integrator \"bdpt\" \"integer maxdepth\" 7\n" + camera);
+  CHECK(bdpt.document["integrator"]["method"] == "bidirectional");
+  CHECK(bdpt.document["integrator"]["caustics"] == "light_tracing");  // where bidirectional cannot run
+  CHECK(bdpt.document["integrator"]["max_depth"] == 7);
+  CHECK(bdpt.ignored.empty());
+  for (const char* type : {"sppm", "lightpath"}) {
     CAPTURE(type);
     const PbrtImport imported = import_text(std::string("Integrator \"") + type + "\"\n" + camera);
     CHECK(imported.document["integrator"]["caustics"] == "light_tracing");
@@ -209,6 +214,7 @@ TEST_CASE("pbrt bdpt, sppm and lightpath scenes light-trace their caustics; path
     CAPTURE(type);
     const PbrtImport imported = import_text(std::string("Integrator \"") + type + "\"\n" + camera);
     CHECK_FALSE(imported.document["integrator"].contains("caustics"));
+    CHECK_FALSE(imported.document["integrator"].contains("method"));
     CHECK(imported.ignored.empty());
   }
 }

@@ -31,6 +31,7 @@ LightSpectrum flat(double value) { return LightSpectrum(std::make_shared<Constan
 struct PowerCheck {
   double total = 0.0, total_se = 0.0;   // mean weight (lane 0) and its standard error
   double share = 0.0, share_se = 0.0;   // mean weight · 1[in region] / total
+  double support = 0.0, support_se = 0.0;  // mean 1/p_ω: the solid angle the directions are drawn over
 };
 
 // The mean weight (lane 0 at 550 nm) and the share of it whose direction satisfies `in_region`.
@@ -38,7 +39,7 @@ PowerCheck emitted_power(const Light& light, const std::function<bool(const Emis
   const SampledWavelengths lambda(Float4(550.0f, 450.0f, 650.0f, 500.0f), Float4(1.0f / 470.0f));
   IndependentSampler sampler(17);
   const int n = 200000;
-  double sum = 0, sum2 = 0, in = 0, in2 = 0;
+  double sum = 0, sum2 = 0, in = 0, in2 = 0, support = 0, support2 = 0;
   for (int i = 0; i < n; ++i) {
     sampler.start_pixel_sample(i, 0, 0);
     const float u_part = sampler.next_1d();
@@ -51,6 +52,15 @@ PowerCheck emitted_power(const Light& light, const std::function<bool(const Emis
     REQUIRE(w >= 0.0);
     sum += w;
     sum2 += w * w;
+    // The densities the sample reports are the ones emission_density gives for its ray (the bidirectional
+    // integrator's MIS weights read both).
+    const EmissionDensity d = light.emission_density(s->normal, s->direction);
+    REQUIRE(d.position == doctest::Approx(s->pdf_position).epsilon(1e-5));
+    REQUIRE(d.direction == doctest::Approx(s->pdf_direction).epsilon(1e-4));
+    REQUIRE(s->pdf_direction > 0.0f);
+    const double inverse = 1.0 / double(s->pdf_direction);
+    support += inverse;
+    support2 += inverse * inverse;
     if (in_region(*s)) {
       in += w;
       in2 += w * w;
@@ -62,7 +72,16 @@ PowerCheck emitted_power(const Light& light, const std::function<bool(const Emis
   const double in_mean = in / n;
   c.share = in_mean / c.total;
   c.share_se = std::sqrt(std::max(0.0, in2 / n - in_mean * in_mean) / n) / c.total;
+  c.support = support / n;
+  c.support_se = std::sqrt(std::max(0.0, support2 / n - c.support * c.support) / n);
   return c;
+}
+
+// E[1/p_ω] over the drawn directions is the solid angle they are drawn over, if p_ω is their density.
+void check_support(const PowerCheck& c, double solid_angle) {
+  CAPTURE(c.support);
+  CAPTURE(solid_angle);
+  CHECK(std::fabs(c.support - solid_angle) <= 5.0 * c.support_se + 1e-5 * solid_angle);
 }
 
 void check_power(const PowerCheck& c, double power, double share) {
@@ -80,15 +99,18 @@ TEST_CASE("Emission sampling: each light's weights average to its power, spread 
   SUBCASE("point light: 4πI, half above the equator") {
     const PointLight light({1, 2, 3}, flat(2.0));
     CHECK(light.samples_emission());
-    check_power(emitted_power(light, [](const EmissionSample& s) { return s.direction.z > 0.0f; }), 4 * kPiDouble * 2.0, 0.5);
+    const PowerCheck c = emitted_power(light, [](const EmissionSample& s) { return s.direction.z > 0.0f; });
+    check_power(c, 4 * kPiDouble * 2.0, 0.5);
+    check_support(c, 4 * kPiDouble);
   }
   SUBCASE("spot light: 2π(1 − (cos θi + cos θo)/2) I, the inner cone its share") {
     const double inner = 20.0, outer = 35.0, ci = std::cos(inner * kPiDouble / 180), co = std::cos(outer * kPiDouble / 180);
     const Vec3 axis = normalize(Vec3{1, -1, 0});
     const SpotLight light({0, 0, 0}, axis, inner, outer, flat(3.0));
     const double power = 2 * kPiDouble * (1 - 0.5 * (ci + co)) * 3.0;
-    check_power(emitted_power(light, [&](const EmissionSample& s) { return dot(s.direction, axis) >= float(ci); }),
-                power, 2 * kPiDouble * (1 - ci) * 3.0 / power);
+    const PowerCheck c = emitted_power(light, [&](const EmissionSample& s) { return dot(s.direction, axis) >= float(ci); });
+    check_power(c, power, 2 * kPiDouble * (1 - ci) * 3.0 / power);
+    check_support(c, 2 * kPiDouble * (1 - co));
   }
   SUBCASE("sphere light: π·4πr²·L, 3/4 within 60° of the normal (one and two sides)") {
     for (const bool two_sided : {false, true}) {

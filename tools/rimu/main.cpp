@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
       "`rimu display --help` re-exposes a rendered EXR without rendering; `rimu denoise --help` denoises one."};
   rimu::RenderJob job;
   std::string scene, output = "rimu.exr", png, film, resolution, crop, sampler, wavelengths, wavelength_density,
-      light_sampler, guiding, daylit_points, caustics;
+      light_sampler, guiding, daylit_points, caustics, method;
   app.add_option("scene", scene, "scene file (.json, or a pbrt-v4 .pbrt: see docs/pbrt-import.md); omit for the embedded Cornell box");
   app.add_option("-o,--output", output, "scene-referred OpenEXR output, a name ending in .exr (default rimu.exr)");
   app.add_option("--png", png, "also write a display image (sRGB through OpenColorIO): 8-bit PNG, or JPEG or TIFF "
@@ -70,6 +70,12 @@ int main(int argc, char** argv) {
                  "to the first diffuse surface, seen by the camera (caustics of spots and small lamps; see "
                  "docs/transport.md), path_tracing: the default (overrides the scene)")
       ->check(CLI::IsMember({"path_tracing", "light_tracing"}));
+  app.add_option("--method", method,
+                 "bidirectional: each sample also traces a light subpath and joins every vertex of it to every vertex "
+                 "of the camera's, weighted by MIS (light that arrives by way of lit surfaces near the lights: lamps "
+                 "under shades, caustics seen in mirrors; see docs/transport.md), path_tracing: the default "
+                 "(overrides the scene)")
+      ->check(CLI::IsMember({"path_tracing", "bidirectional"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   std::string max_sample_value;
@@ -169,6 +175,7 @@ int main(int argc, char** argv) {
     if (!guiding.empty()) job.guiding = guiding;
     if (!daylit_points.empty()) job.daylit_points = daylit_points;
     if (!caustics.empty()) job.caustics = caustics;
+    if (!method.empty()) job.method = method;
     if (!max_sample_value.empty())
       job.max_sample_value = rimu::parse_max_sample_value(max_sample_value, "--max-sample-value");
     if (!resolution.empty()) {

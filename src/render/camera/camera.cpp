@@ -154,4 +154,15 @@ std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time, Vec2 u_len
   return CameraVisibility{film, lens_point, importance};
 }
 
+float Camera::direction_density(Vec3 direction, float time) const {
+  if (!supports_light_tracing()) return 0.0f;
+  const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
+  const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
+  const float cos_theta = dot(direction, camera_to_world.vector({0, 0, 1}));
+  if (!(cos_theta > 1e-6f)) return 0.0f;
+  const float pixel_side = 2.0f * tan_half_fov_ / height_;
+  const float density = 1.0f / (pixel_side * pixel_side * cos_theta * cos_theta * cos_theta);
+  return std::isfinite(density) ? density : 0.0f;
+}
+
 }  // namespace rimu

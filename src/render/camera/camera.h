@@ -66,6 +66,7 @@ class Camera final : public LightTracingCamera {
   /// Light tracing's view of the point (light_tracing_camera.h); std::nullopt behind the camera or where
   /// supports_light_tracing() is false.
   std::optional<CameraVisibility> see(Vec3 point_m, float time, Vec2 u_lens) const override;
+  float direction_density(Vec3 direction, float time) const override;
 
  private:
   CameraSettings settings_;

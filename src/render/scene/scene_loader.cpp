@@ -149,7 +149,7 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
-               "direct_lighting", "distance_sampling", "max_depth_includes_media", "equiangular", "caustics", "light_sampler", "guiding",
+               "direct_lighting", "distance_sampling", "max_depth_includes_media", "equiangular", "caustics", "method", "light_sampler", "guiding",
                "glossy_light_candidates", "time_limit_s", "daylit_points"});
   if (const auto d = c.find("daylit_points")) {
     const std::string mode = d->is_string() ? d->choice({"auto", "on", "off"}) : d->boolean() ? "on" : "off";
@@ -175,6 +175,8 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
   s.max_depth_includes_media = c.boolean_or("max_depth_includes_media", s.max_depth_includes_media);
   if (const auto d = c.find("caustics"))
     s.integrator.caustic_light_tracing = d->choice({"path_tracing", "light_tracing"}) == "light_tracing";
+  if (const auto d = c.find("method"))
+    s.integrator.bidirectional = d->choice({"path_tracing", "bidirectional"}) == "bidirectional";
   if (const auto d = c.find("equiangular")) {
     const std::string v = d->choice({"points", "all", "off"});
     s.equiangular = v == "all" ? EquiangularLights::all : v == "off" ? EquiangularLights::off : EquiangularLights::points;
@@ -277,16 +279,21 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   scene->light_sampler = make_light_sampler(scene->settings.light_sampler, light_pointers, scene_radius_m);
   // Daylit points: where asked, or by default where daylight enters through portals (a room's windows: the case
   // they are for; elsewhere their cost is not measured to pay). The volumetric integrator does not use them.
+  // Bidirectional path tracing starts light subpaths as the same rays of daylight (also without portals: a sun's
+  // rays then come from a disc around the scene), whatever the daylit points do.
   scene->settings.integrator.daylit_points = false;
-  if (scene->settings.daylit_points.value_or(true) && !scene->has_media()) {
+  const bool daylit_points_wanted = scene->settings.daylit_points.value_or(true);
+  if ((daylit_points_wanted || scene->settings.integrator.bidirectional) && !scene->has_media()) {
     const Vec3 centre = (scene->geometry.bounds_min() + scene->geometry.bounds_max()) * 0.5f;
     // The camera is where the scene is seen from: the inside of a room whose windows are portals.
     const Vec3 camera_position = scene->camera.camera_to_world.point(Vec3{0, 0, 0});
     auto daylight_rays =
         std::make_unique<DaylightRaySampler>(scene->lights, centre, float(scene_radius_m), camera_position);
-    if (!daylight_rays->empty() && (scene->settings.daylit_points.has_value() || daylight_rays->uses_portals())) {
+    const bool points = daylit_points_wanted &&
+                        (scene->settings.daylit_points.has_value() || daylight_rays->uses_portals());
+    if (!daylight_rays->empty() && (points || scene->settings.integrator.bidirectional)) {
       scene->daylight_rays = std::move(daylight_rays);
-      scene->settings.integrator.daylit_points = true;
+      scene->settings.integrator.daylit_points = points;
     }
   }
   if (scene->settings.wavelength_density == WavelengthDensityKind::lights &&

@@ -5,20 +5,12 @@
 
 #include "spectral/wavelengths/lanes.h"
 #include "transport/geometry/frame.h"
+#include "transport/integrators/adjoint_shading.h"
 #include "transport/integrators/shadow_passage.h"
 #include "transport/sampling/wavelength_modes.h"
 
 namespace rimu {
 namespace {
-
-// |ωo·n_s||ωi·n_g| / (|ωo·n_g||ωi·n_s|): the factor by which a BSDF with shading normals differs from its adjoint
-// (Veach 1997, §5.3); 0 where a cosine with the geometric normal vanishes (the path grazes the surface).
-float adjoint_shading_factor(Vec3 wo, Vec3 wi, Vec3 ns, Vec3 ng) {
-  const float denominator = std::fabs(dot(wo, ng)) * std::fabs(dot(wi, ns));
-  if (!(denominator > 0.0f)) return 0.0f;
-  const float factor = std::fabs(dot(wo, ns)) * std::fabs(dot(wi, ng)) / denominator;
-  return std::isfinite(factor) ? factor : 0.0f;
-}
 
 // Whether a material can have a delta lobe (conservatively: every kind but the diffuse ones and hair, whose lobes
 // are never delta; a conductor or dielectric may be smooth somewhere even with a roughness texture).

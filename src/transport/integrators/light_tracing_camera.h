@@ -25,6 +25,11 @@ class LightTracingCamera {
   /// std::nullopt where the camera cannot see the point (behind it) or does not support light tracing. `u_lens`:
   /// a uniform point for the lens point (a pinhole ignores it).
   virtual std::optional<CameraVisibility> see(Vec3 point_m, float time, Vec2 u_lens) const = 0;
+  /// The solid-angle density with which the camera draws a ray along `direction` (unit, world space, from the lens)
+  /// in one camera sample of a pixel whose area the direction falls in: 1/(a cos³θ), a and θ as for `importance`
+  /// (the same for a pinhole and a thin lens, whose rays through a point of the plane in focus spread over the lens
+  /// alike); 0 behind the camera. The bidirectional integrator's MIS weights read it.
+  virtual float direction_density(Vec3 direction, float time) const = 0;
 };
 
 }  // namespace rimu

@@ -85,6 +85,10 @@ struct PathIntegratorSettings {
   /// first vertex sampled by a non-delta lobe, every later one by a delta lobe, then such a light), which the render
   /// loop's light tracer adds. Off by default; the render loop turns it on only where it also traces them.
   bool caustic_light_tracing = false;
+  /// Bidirectional path tracing (transport/integrators/bidirectional_path_integrator.h) instead of the path tracer:
+  /// `"integrator": {"method": "bidirectional"}`. The render loop uses it only where it can (a camera light paths
+  /// connect to, no media, no adaptive sampling, no light groups) and falls back to the path tracer elsewhere.
+  bool bidirectional = false;
   static constexpr int kManyLights = 8;
   static constexpr int kManyLightsCandidates = 8;
   /// The candidates per glossy vertex in a scene of `light_count` lights.

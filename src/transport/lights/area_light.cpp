@@ -265,8 +265,15 @@ std::optional<EmissionSample> AreaLight::sample_emission(float u_part, Vec2 u_po
   const Triangle& t = triangles_[size_t(pick.index)];
   if (t.area_m2 == 0.0) return std::nullopt;
   const Vec3 b = sample_uniform_triangle(u_position);
-  return lambertian_emission(t.v0 * b.x + t.v1 * b.y + t.v2 * b.z, t.normal, two_sided_, pick.u_remapped < 0.5f,
-                             u_direction, uniform_->sample(lambda), area_m2_);
+  EmissionSample sample = lambertian_emission(t.v0 * b.x + t.v1 * b.y + t.v2 * b.z, t.normal, two_sided_,
+                                              pick.u_remapped < 0.5f, u_direction, uniform_->sample(lambda), area_m2_);
+  sample.primitive = uint32_t(pick.index);
+  return sample;
+}
+
+EmissionDensity AreaLight::emission_density(Vec3 normal, Vec3 direction) const {
+  if (!samples_emission()) return {};
+  return lambertian_emission_density(normal, direction, two_sided_, area_m2_);
 }
 
 }  // namespace rimu

@@ -60,6 +60,7 @@ class AreaLight final : public Light {
   bool samples_emission() const override;
   std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
                                                 const SampledWavelengths& lambda) const override;
+  EmissionDensity emission_density(Vec3 normal, Vec3 direction) const override;
 
   /// Parts are the triangles (light samplers may choose them one by one, e.g. the light BVH).
   int part_count() const override { return triangle_count(); }

@@ -65,6 +65,7 @@ DaylightRaySampler::DaylightRaySampler(const std::vector<std::unique_ptr<Light>>
     powers.push_back(power);
     total += power;
   }
+  total_power_w_ = total;
   for (size_t k = 0; k < sources_.size(); ++k) {
     sources_[k].probability = float(powers[k] / total);
     source_of_light_[size_t(sources_[k].light)] = int(k);

@@ -50,6 +50,8 @@ class DaylightRaySampler {
 
   bool empty() const { return sources_.empty(); }
   bool uses_portals() const { return !apertures_.empty(); }
+  /// The power the sources bring through the apertures, in W (Σ of the powers the sources are chosen by).
+  double total_power_w() const { return total_power_w_; }
 
   struct DaylightRay {
     int light = -1;        ///< index into the scene's lights
@@ -89,6 +91,7 @@ class DaylightRaySampler {
   std::vector<PortalRectangle> apertures_;
   Vec3 centre_;
   float radius_ = 0.0f;
+  double total_power_w_ = 0.0;
 };
 
 }  // namespace rimu

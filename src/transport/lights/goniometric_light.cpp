@@ -89,7 +89,13 @@ std::optional<EmissionSample> GoniometricLight::sample_emission(float, Vec2, Vec
   if (!s || !(s->pdf > 0.0f)) return std::nullopt;
   const double candela = table_value(s->w);
   if (!(candela > 0.0)) return std::nullopt;
-  return EmissionSample{position_m_, s->w, Vec3{}, per_unit_intensity_.sample(lambda) * Float4(float(candela / s->pdf))};
+  return EmissionSample{position_m_, s->w, Vec3{}, per_unit_intensity_.sample(lambda) * Float4(float(candela / s->pdf)),
+                        1.0f, s->pdf};
+}
+
+EmissionDensity GoniometricLight::emission_density(Vec3, Vec3 direction) const {
+  if (!samples_emission()) return {};
+  return {1.0f, table_->pdf(frame_.to_local(direction))};
 }
 
 }  // namespace rimu

@@ -39,6 +39,7 @@ class GoniometricLight final : public Light {
   bool samples_emission() const override;
   std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
                                                 const SampledWavelengths& lambda) const override;
+  EmissionDensity emission_density(Vec3 normal, Vec3 direction) const override;
   /// The luminaire's position (the opening's centre).
   std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 

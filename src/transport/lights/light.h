@@ -30,6 +30,19 @@ struct EmissionSample {
   /// L_e·|cos θ| / (p_A·p_ω) per lane (a light at a point: I(ω)/p_ω), in W/nm: its mean over the samples is the
   /// light's spectral power Φ(λ).
   SampledSpectrum weight;
+  /// p_A: the density of origin_m over the light's surface (per m², the side's choice included for a two-sided
+  /// emitter); 1 for a light at a point. The bidirectional integrator's MIS weights read it (and p_ω).
+  float pdf_position = 1.0f;
+  /// p_ω: the solid-angle density of `direction` given the origin.
+  float pdf_direction = 0.0f;
+  /// The emitting triangle (SurfaceHit::primitive) of a mesh light; 0 for other lights.
+  uint32_t primitive = 0;
+};
+
+/// The densities Light::sample_emission has for a ray it could have drawn (Light::emission_density).
+struct EmissionDensity {
+  float position = 0.0f;   ///< p_A, as EmissionSample::pdf_position
+  float direction = 0.0f;  ///< p_ω, as EmissionSample::pdf_direction
 };
 
 class Light {
@@ -94,6 +107,10 @@ class Light {
                                                         const SampledWavelengths& /*lambda*/) const {
     return std::nullopt;
   }
+  /// The densities sample_emission has for a ray leaving the light along `direction` from a point of it whose
+  /// emitting side's normal is `normal` (zero for a light at a point); zero for lights that do not sample emission
+  /// and directions they never draw. The caller asks only for points and directions that emit.
+  virtual EmissionDensity emission_density(Vec3 /*normal*/, Vec3 /*direction*/) const { return {}; }
 
   // Parts. A light sampler may choose the parts of a light separately: the triangles of an emissive mesh (part k
   // is triangle k, SurfaceHit::primitive). Every other light is one part, and these default to the whole light.

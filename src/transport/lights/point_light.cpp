@@ -46,7 +46,13 @@ std::optional<EmissionSample> PointLight::sample_emission(float, Vec2, Vec2 u_di
   if (intensity_.is_black()) return std::nullopt;
   // A uniform direction (p_ω = 1/4π): the weight I/p_ω is the same for every direction.
   return EmissionSample{position_m_, sample_uniform_sphere(u_direction), Vec3{},
-                        intensity_.sample(lambda) * Float4(4.0f * std::numbers::pi_v<float>)};
+                        intensity_.sample(lambda) * Float4(4.0f * std::numbers::pi_v<float>), 1.0f,
+                        0.25f * std::numbers::inv_pi_v<float>};
+}
+
+EmissionDensity PointLight::emission_density(Vec3, Vec3) const {
+  if (intensity_.is_black()) return {};
+  return {1.0f, 0.25f * std::numbers::inv_pi_v<float>};
 }
 
 }  // namespace rimu

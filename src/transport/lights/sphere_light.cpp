@@ -158,4 +158,9 @@ std::optional<EmissionSample> SphereLight::sample_emission(float u_part, Vec2 u_
                              radiance_.sample(lambda), area_m2());
 }
 
+EmissionDensity SphereLight::emission_density(Vec3 normal, Vec3 direction) const {
+  if (radiance_.is_black()) return {};
+  return lambertian_emission_density(normal, direction, two_sided_, area_m2());
+}
+
 }  // namespace rimu

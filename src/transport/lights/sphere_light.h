@@ -46,6 +46,7 @@ class SphereLight final : public Light {
   bool samples_emission() const override;
   std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
                                                 const SampledWavelengths& lambda) const override;
+  EmissionDensity emission_density(Vec3 normal, Vec3 direction) const override;
   /// The sphere's box, every normal (θo = π, θe = π/2) and the intensity πr²·∫L dλ it shows in every direction.
   std::optional<LightBounds> part_bounds(int part) const override;
 

@@ -68,7 +68,15 @@ std::optional<EmissionSample> SpotLight::sample_emission(float, Vec2, Vec2 u_dir
   const float s = falloff(direction);
   if (!(s > 0.0f)) return std::nullopt;
   const float inverse_pdf = 2.0f * std::numbers::pi_v<float> * one_minus_cos_outer;
-  return EmissionSample{position_m_, direction, Vec3{}, intensity_.sample(lambda) * Float4(s * inverse_pdf)};
+  return EmissionSample{position_m_, direction, Vec3{}, intensity_.sample(lambda) * Float4(s * inverse_pdf), 1.0f,
+                        1.0f / inverse_pdf};
+}
+
+EmissionDensity SpotLight::emission_density(Vec3, Vec3 direction) const {
+  const float one_minus_cos_outer = float(1.0 - cos_outer_);
+  if (intensity_.is_black() || !(one_minus_cos_outer > 0.0f) || !(dot(direction, axis_) >= float(cos_outer_)))
+    return {};
+  return {1.0f, 1.0f / (2.0f * std::numbers::pi_v<float> * one_minus_cos_outer)};
 }
 
 }  // namespace rimu

@@ -32,6 +32,7 @@ class SpotLight final : public Light {
   bool samples_emission() const override;
   std::optional<EmissionSample> sample_emission(float u_part, Vec2 u_position, Vec2 u_direction,
                                                 const SampledWavelengths& lambda) const override;
+  EmissionDensity emission_density(Vec3 normal, Vec3 direction) const override;
   std::optional<Vec3> emission_centre_m(int) const override { return position_m_; }
 
   /// The on-axis intensity ∫I(λ)dλ in the cone θo = inner, falling to nothing at θo + θe = outer.

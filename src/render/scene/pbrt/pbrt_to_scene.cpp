@@ -466,7 +466,12 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
     require_world(false);
     PbrtParams p(*this, s, "Integrator \"" + s.strings[0] + "\"");
     const std::string& type = s.strings[0];
-    if (type == "bdpt" || type == "sppm" || type == "lightpath") {
+    if (type == "bdpt") {
+      // Rimu's bidirectional path tracer (transport/integrators/bidirectional_path_integrator.h); where it cannot
+      // run (media, an orthographic camera) the path tracer with light-traced caustics stands in.
+      integrator_["method"] = "bidirectional";
+      integrator_["caustics"] = "light_tracing";
+    } else if (type == "sppm" || type == "lightpath") {
       // Light-carried methods: what a path tracer misses most in their scenes is caustics (a lamp through glass or
       // water); Rimu light-traces those (transport/integrators/caustic_light_tracer.h) and path-traces the rest.
       integrator_["caustics"] = "light_tracing";
