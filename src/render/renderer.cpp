@@ -287,7 +287,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
               if constexpr (kBidirectional) {
                 // The light subpath from the light paths' own stream, as the caustic tracer's.
                 caustic_sampler->start_pixel_sample(x, y, uint32_t(s));
-                radiance = integrator.radiance(ray, lambda, *sampler, *caustic_sampler, caustic_splats[t]);
+                radiance = integrator.radiance(ray, lambda, *sampler, *caustic_sampler, caustic_splats[t], groups);
               } else if (differentials_scale > 0.0f) {
                 const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
                 radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
@@ -392,9 +392,8 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
   // alike (adaptive sampling gives pixels unequal counts, which its splats would be divided by): elsewhere the
   // path tracer keeps every caustic.
   PathIntegratorSettings settings = integrator_settings;
-  // Bidirectional path tracing: the same needs, and a film without light groups (its estimates are not split by
-  // light); it has caustics of its own and does not guide.
-  if (settings.bidirectional && camera.supports_light_tracing() && !options.adaptive && film.light_groups().empty()) {
+  // Bidirectional path tracing: the same needs; it has caustics of its own and does not guide.
+  if (settings.bidirectional && camera.supports_light_tracing() && !options.adaptive) {
     settings.caustic_light_tracing = false;
     settings.guiding = false;
     const BidirectionalPathIntegrator integrator(transport, settings, camera, double(film.pixel_bounds().area()));

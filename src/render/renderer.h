@@ -63,8 +63,8 @@ struct RenderStatistics {
   /// Caustics were light-traced (PathIntegratorSettings::caustic_light_tracing asked for it and the camera and
   /// sampling allow it; transport/integrators/caustic_light_tracer.h).
   bool caustic_light_tracing = false;
-  /// Rendered by bidirectional path tracing (PathIntegratorSettings::bidirectional asked for it and the camera,
-  /// sampling and film allow it; transport/integrators/bidirectional_path_integrator.h).
+  /// Rendered by bidirectional path tracing (PathIntegratorSettings::bidirectional asked for it and the camera
+  /// and sampling allow it; transport/integrators/bidirectional_path_integrator.h).
   bool bidirectional = false;
 };
 

@@ -4,8 +4,8 @@
 // area light, a sphere light, through a thin lens; a coated floor (a delta and a non-delta lobe at one vertex) under
 // a sky and a spot; the daylit rooms, whose light subpaths start as rays of daylight through the window. Where the
 // path tracer cannot find a caustic (a spot through glass) it must agree with the path tracer plus light-traced
-// caustics. It is deterministic for any thread count, falls back to the path tracer where it cannot run, and writes
-// nothing non-finite on hard cases.
+// caustics. It is deterministic for any thread count, credits light groups, falls back to the path tracer where it
+// cannot run, and writes nothing non-finite on hard cases.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -161,21 +161,48 @@ TEST_CASE("bidirectional path tracing gives the same image for any thread count"
 }
 
 TEST_CASE("bidirectional path tracing falls back to the path tracer where it cannot run") {
-  // An orthographic camera (no light subpath can be joined to it) and a film with light groups.
+  // An orthographic camera: no light subpath can be joined to it.
   nlohmann::json orthographic = with_method(glass_block_scene("area"), "bidirectional");
   orthographic["camera"]["type"] = "orthographic";
   orthographic["camera"]["height"] = 1.5;
   orthographic["camera"].erase("vertical_fov_deg");
   CHECK_FALSE(test::render_xyz(*test::scene_from_json(orthographic), 1, 1).statistics.bidirectional);
-  nlohmann::json grouped = with_method(glass_block_scene("area"), "bidirectional");
-  grouped["shapes"].back()["light_group"] = "lamp";
-  const auto scene = test::scene_from_json(grouped);
-  REQUIRE(scene->light_groups.size() == 1);
+}
+
+TEST_CASE("bidirectional path tracing credits each contribution to its light's group: the layers sum to the beauty") {
+  // The glass block under a square light (group "lamp") and a sky (group "sky"): every pixel's two layers sum to
+  // its beauty, to float rounding (a sample's contributions are summed in float, into the beauty and into each
+  // group: a sample here often has both lights' contributions, whose float sums round differently, ~1e-7 each),
+  // and both have light (joins, splats and hits of each).
+  nlohmann::json document = with_method(glass_block_scene("area"), "bidirectional");
+  document["shapes"].back()["light_group"] = "lamp";
+  document["lights"] = nlohmann::json::array(
+      {{{"type", "environment"}, {"light_group", "sky"}, {"radiance", {{"illuminant", "D65"}, {"scale", 0.2}}}}});
+  const auto scene = test::scene_from_json(document);
+  REQUIRE(scene->light_groups.size() == 2);
   FilmOptions options{scene->settings.width, scene->settings.height, std::nullopt, 0};
   Film film(options, SpectralResponse::cie_xyz(test::library()), scene->light_groups);
   RenderOptions render_options;
-  render_options.samples_per_pixel = 1;
-  CHECK_FALSE(render(*scene, test::filter_of(*scene), film, render_options).bidirectional);
+  render_options.samples_per_pixel = 8;
+  render_options.seed = 3;
+  render_options.threads = 2;
+  CHECK(render(*scene, test::filter_of(*scene), film, render_options).bidirectional);
+  double totals[2] = {0.0, 0.0}, worst = 0.0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      const auto beauty = film.pixel_value(x, y);
+      const auto a = film.group_value(x, y, 0), b = film.group_value(x, y, 1);
+      for (int c = 0; c < 3; ++c) {
+        const double sum = a[size_t(c)] + b[size_t(c)];
+        worst = std::max(worst, std::fabs(sum - beauty[size_t(c)]) / std::max(1e-30, std::fabs(beauty[size_t(c)])));
+      }
+      totals[0] += a[1];
+      totals[1] += b[1];
+    }
+  INFO("largest relative difference of the layers' sum from the beauty: " << worst);
+  CHECK(worst < 1e-6);
+  CHECK(totals[0] > 0.0);
+  CHECK(totals[1] > 0.0);
 }
 
 TEST_CASE("bidirectional path tracing's hard cases write nothing non-finite") {

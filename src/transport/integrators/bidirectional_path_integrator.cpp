@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "spectral/wavelengths/lanes.h"
 #include "transport/geometry/frame.h"
@@ -155,7 +156,8 @@ struct Subpaths {
 
 SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
                                                       Sampler& camera_sampler, Sampler& light_sampler,
-                                                      std::vector<CausticSplat>& splats) const {
+                                                      std::vector<CausticSplat>& splats,
+                                                      const LightGroupRadiance& groups) const {
   thread_local std::vector<PathVertex> camera_storage, light_storage;
   thread_local std::vector<JoinedVertex> joined;
   Subpaths p{scene_, settings_, lambda, LaneTechniques{settings_.wavelengths}, camera_ray.time, {}, {}};
@@ -203,7 +205,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
           v.kind = VertexKind::light_at_infinity;
           v.ng = ray.direction;
           v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : pdf_direction;
-          p.camera.push_back(v);
+          p.camera.push_back(std::move(v));
         }
         break;
       }
@@ -220,7 +222,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         if (previous.kind == VertexKind::surface) v.pdf_nee = p.nee_density(previous, hit->light, ray.direction, &*hit);
       }
       if (!scatters || k > max_depth) {
-        p.camera.push_back(v);
+        p.camera.push_back(std::move(v));
         break;
       }
       v.u_light_choice = camera_sampler.next_1d();
@@ -230,17 +232,17 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       const std::optional<BsdfSample> bs = v.bsdf->sample(v.wo, u_lobe, u);
       const float u_roulette = camera_sampler.next_1d();
       if (!bs || !(bs->pdf[0] > 0.0f)) {
-        p.camera.push_back(v);
+        p.camera.push_back(std::move(v));
         break;
       }
       const Vec3 wi = v.world(bs->wi);
       if (!v.on_side(wi)) {
-        p.camera.push_back(v);
+        p.camera.push_back(std::move(v));
         break;
       }
       v.delta = bs->is_delta;
       const SampledSpectrum densities = p.lanes.densities(bs->pdf);
-      p.camera.push_back(v);
+      p.camera.push_back(std::move(v));
       PathVertex& here = p.camera.back();
       PathVertex& before = p.camera[p.camera.size() - 2];
       before.pdf_rev = here.delta ? SampledSpectrum(1.0f)
@@ -338,7 +340,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
           v.pdf_fwd =
               p.light.back().delta ? SampledSpectrum(1.0f) : to_area(pdf_direction, p.light.back().position, v);
         }
-        p.light.push_back(v);
+        p.light.push_back(std::move(v));
         if (k == 1) {
           unit = max_lane(abs(beta)) > 0.0f ? max_lane(abs(beta)) : 1.0f;
           PathVertex& first = p.light[0];
@@ -387,6 +389,11 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
 
   // ---- Joining them.
   SampledSpectrum radiance(0.0f);
+  // Each contribution, credited to its light's group as well (light_group_radiance.h).
+  auto contribute = [&](int light_index, const SampledSpectrum& contribution) {
+    radiance += contribution;
+    if (groups.groups) groups.add(lights[size_t(light_index)]->light_group(), contribution);
+  };
   // The daylight rays' density p(y, ω) of a vertex y lit from `to_light` by light `index` (its sample_li density
   // `direction_pdf`, used for a sun); 0 for lights that are no daylight source, and without daylight subpaths.
   auto daylight_density = [&](int index, const PathVertex& y, Vec3 to_light, float direction_pdf) {
@@ -452,7 +459,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
           p_nee = scene_.light_sampler->pmf(p.sampling_point(z_previous), index, part) * pdf_li;
           joined[1].pf = SampledSpectrum(daylight_density(index, z_previous, z.ng, pdf_li));
         }
-        radiance += finish(n, 0, z.ratio, z.beta * le, p_nee, daylight_choice_, !light.is_delta());
+        contribute(index, finish(n, 0, z.ratio, z.beta * le, p_nee, daylight_choice_, !light.is_delta()));
       }
       continue;
     }
@@ -460,7 +467,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       const int n = fill(0, t);
       joined[0].connectible = false;
       if (n >= 2) joined[1].pf = to_area(SampledSpectrum(z.emit_direction), z.position, z_previous);
-      radiance += finish(n, 0, z.ratio, z.beta * z.emitted, z.pdf_nee, z.pdf_emit, true);
+      contribute(z.light, finish(n, 0, z.ratio, z.beta * z.emitted, z.pdf_nee, z.pdf_emit, true));
     }
     // The joined end needs a non-delta component; how its own subpath went on from it does not matter.
     if (!z.bsdf || !z.non_delta) continue;
@@ -504,7 +511,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
                                          : to_area(SampledSpectrum(e.direction), x0.position, z);
               if (t >= 3) joined[2].pf = to_area(bsdf_pdf(z, ls->wi, z.world(z.wo)), z.position, z_previous);
               const SampledSpectrum value = z.beta * f * ls->radiance / Float4(choice_density);
-              radiance += finish(n, 1, z.ratio, value, p_nee, p_emit, !ls->is_delta);
+              contribute(pick->light, finish(n, 1, z.ratio, value, p_nee, p_emit, !ls->is_delta));
             }
           }
         }
@@ -538,7 +545,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       joined[size_t(s - 1)].pc = to_area(bsdf_pdf(z, z.world(z.wo), -w_yz), z.position, y);
       joined[size_t(s - 2)].pc = to_area(bsdf_pdf(y, w_yz, y.world(y.wo)), y.position, y_previous);
       const PathVertex& y0 = p.light[0];
-      radiance += finish(n, s, y.ratio * z.ratio, value, y0.pdf_nee, y0.pdf_emit, y0.hittable);
+      contribute(y0.light, finish(n, s, y.ratio * z.ratio, value, y0.pdf_nee, y0.pdf_emit, y0.hittable));
     }
   }
 
@@ -580,7 +587,11 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
 
   std::swap(p.camera, camera_storage);
   std::swap(p.light, light_storage);
-  if (settings_.wavelengths == WavelengthMode::single) radiance *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
+  if (settings_.wavelengths == WavelengthMode::single) {
+    const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
+    if (groups.groups) groups.mask(hero_only);
+    radiance *= hero_only;
+  }
   return radiance;
 }
 

@@ -33,8 +33,7 @@
 //
 // Scope: surfaces only (the render loop keeps the volumetric integrator for scenes with media), cameras that can be
 // connected to (pinhole, thin lens), no adaptive sampling; panes are ordinary specular vertices here (shadow rays
-// do not pass them), and path guiding, daylit points and light groups other than the whole image are the path
-// tracer's. A stochastic `mix` material is evaluated with the component chosen where the subpath arrived, as
+// do not pass them), and path guiding and daylit points are the path tracer's. A stochastic `mix` material is evaluated with the component chosen where the subpath arrived, as
 // pbrt-v4 does.
 #pragma once
 
@@ -57,9 +56,12 @@ class BidirectionalPathIntegrator {
 
   /// One camera sample: the estimate for its pixel (techniques with t ≥ 2), per lane in PathIntegrator::radiance's
   /// units; the t = 1 contributions of its light subpath are appended to `splats`. The camera subpath draws from
-  /// `camera_sampler` (as the path tracer would), the light subpath from `light_sampler`.
+  /// `camera_sampler` (as the path tracer would), the light subpath from `light_sampler`. Each light group's share
+  /// of the result is added to `groups` (light_group_radiance.h; nothing when groups.groups is null); the splats
+  /// carry their light's group.
   SampledSpectrum radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& camera_sampler,
-                           Sampler& light_sampler, std::vector<CausticSplat>& splats) const;
+                           Sampler& light_sampler, std::vector<CausticSplat>& splats,
+                           const LightGroupRadiance& groups = {}) const;
 
   const TransportScene& scene() const { return scene_; }
 
