@@ -282,6 +282,16 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     if (from_daylight) {
       // A ray of daylight from an aperture: y₀ is its direction at infinity, y₁'s density the sampler's p(y, ω).
       daylight = scene_.daylight_rays->sample(lambda, pick.u_remapped, u_direction, u_position);
+      // The light arrives at the aperture only if nothing lies between it and the sky (an outer pane, an overhang):
+      // the ray is traced inwards from the aperture, so that stretch must be tested, or the subpath would skip
+      // what lies there (a first version did: the double-glazed room came out 34 % bright).
+      if (daylight) {
+        Ray outward;
+        outward.origin = daylight->origin;
+        outward.direction = daylight->to_light;
+        outward.time = p.time;
+        if (scene_.geometry->occluded(outward)) daylight.reset();
+      }
       if (daylight) {
         y0.kind = VertexKind::light_at_infinity;
         y0.ng = daylight->to_light;

@@ -32,8 +32,9 @@
 // f(ωi, ωo), evaluated with the arguments exchanged.
 //
 // Scope: surfaces only (the render loop keeps the volumetric integrator for scenes with media), cameras that can be
-// connected to (pinhole, thin lens), no adaptive sampling; panes are ordinary specular vertices here (shadow rays
-// do not pass them), and path guiding and daylit points are the path tracer's. A stochastic `mix` material is evaluated with the component chosen where the subpath arrived, as
+// connected to (pinhole, thin lens), no adaptive sampling, no panes (as specular vertices no technique here would
+// reach a small light behind them: the render loop keeps the path tracer, whose shadow rays pass them); path guiding
+// and daylit points are the path tracer's. A stochastic `mix` material is evaluated with the component chosen where the subpath arrived, as
 // pbrt-v4 does.
 #pragma once
 
