@@ -10,47 +10,13 @@
 
 #include <cmath>
 
+#include "light_tracing_scenes.h"
 #include "integration_support.h"
 #include "render/scene/json_cursor.h"
 
 using namespace rimu;
 
 namespace {
-
-// A white floor under a black ceiling 1 m up whose 0.6 m square opening is filled by a glass block (n = 1.5, 10 cm
-// thick), lit from above through it by a 0.8 m square light or a 15 cm sphere (paths E D S S L and longer ones,
-// which the path tracer also finds: the light is large), or by a spot (which only light paths find through glass).
-nlohmann::json glass_block_scene(const char* light) {
-  nlohmann::json scene = nlohmann::json::parse(R"({
-    "camera": {"type": "pinhole", "from": [0.0, 0.6, -0.9], "to": [0.0, 0.0, 0.2], "up": [0, 1, 0],
-               "vertical_fov_deg": 50},
-    "film": {"resolution": [32, 24], "filter": {"type": "gaussian"}},
-    "integrator": {"max_depth": 6},
-    "materials": {"floor": {"type": "diffuse", "reflectance": 0.8}, "black": {"type": "diffuse", "reflectance": 0},
-                  "glass": {"type": "dielectric", "ior": 1.5}},
-    "shapes": [
-      {"type": "quad", "material": "floor", "vertices": [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]},
-      {"type": "quad", "material": "black", "vertices": [[-2, 1, -2], [-0.3, 1, -2], [-0.3, 1, 2], [-2, 1, 2]]},
-      {"type": "quad", "material": "black", "vertices": [[0.3, 1, -2], [2, 1, -2], [2, 1, 2], [0.3, 1, 2]]},
-      {"type": "quad", "material": "black", "vertices": [[-0.3, 1, -2], [0.3, 1, -2], [0.3, 1, -0.3], [-0.3, 1, -0.3]]},
-      {"type": "quad", "material": "black", "vertices": [[-0.3, 1, 0.3], [0.3, 1, 0.3], [0.3, 1, 2], [-0.3, 1, 2]]},
-      {"type": "box", "material": "glass", "min": [-0.3, 0.95, -0.3], "max": [0.3, 1.05, 0.3]}
-    ]})");
-  const std::string kind = light;
-  if (kind == "area") {
-    scene["shapes"].push_back({{"type", "quad"}, {"material", "black"},
-                               {"vertices", {{-0.4, 1.5, -0.4}, {0.4, 1.5, -0.4}, {0.4, 1.5, 0.4}, {-0.4, 1.5, 0.4}}},
-                               {"emission", {{"illuminant", "D65"}, {"scale", 1.0}}}});
-  } else if (kind == "sphere") {
-    scene["shapes"].push_back({{"type", "sphere"}, {"material", "black"}, {"center", {0.0, 1.4, 0.0}}, {"radius", 0.15},
-                               {"emission", {{"illuminant", "D65"}, {"scale", 1.0}}}});
-  } else {
-    scene["lights"] = nlohmann::json::array({{{"type", "spot"}, {"position", {0.0, 1.5, 0.0}},
-                                             {"direction", {0.0, -1.0, 0.0}}, {"cone_angle_deg", 60},
-                                             {"intensity", {{"illuminant", "D65"}, {"scale", 1.0}}}}});
-  }
-  return scene;
-}
 
 nlohmann::json with_method(nlohmann::json scene, const char* method) {
   scene["integrator"]["method"] = method;
@@ -87,21 +53,17 @@ void check_agrees_with_path_tracer(const nlohmann::json& document, int spp, cons
 }  // namespace
 
 TEST_CASE("bidirectional path tracing converges to the path tracer's image: area light, sphere light, thin lens") {
-  check_agrees_with_path_tracer(glass_block_scene("area"), 128, "area light");
-  check_agrees_with_path_tracer(glass_block_scene("sphere"), 384, "sphere light");
-  nlohmann::json thin_lens = glass_block_scene("area");
-  thin_lens["camera"]["type"] = "thin_lens";
-  thin_lens["camera"]["lens_radius"] = 0.02;
-  thin_lens["camera"]["focus_distance"] = 1.0;
-  check_agrees_with_path_tracer(thin_lens, 128, "thin lens");
+  check_agrees_with_path_tracer(test::glass_block_scene("area"), 128, "area light");
+  check_agrees_with_path_tracer(test::glass_block_scene("sphere"), 384, "sphere light");
+  check_agrees_with_path_tracer(test::with_thin_lens(test::glass_block_scene("area")), 128, "thin lens");
 }
 
 TEST_CASE("bidirectional path tracing: a spot's caustic through glass agrees with light-traced caustics") {
   // The path tracer never finds E D S S L from a spot; with caustics light-traced it does (its own test checks that
   // against the path tracer).
-  nlohmann::json reference = glass_block_scene("spot");
+  nlohmann::json reference = test::glass_block_scene("spot");
   reference["integrator"]["caustics"] = "light_tracing";
-  check_agrees(glass_block_scene("spot"), reference, 64, 128, "spot through glass");
+  check_agrees(test::glass_block_scene("spot"), reference, 64, 128, "spot through glass");
 }
 
 TEST_CASE("bidirectional path tracing: a coated floor (delta and non-delta lobes at one vertex) under a sky and a spot") {
@@ -153,7 +115,7 @@ TEST_CASE("bidirectional path tracing: light subpaths as rays of daylight throug
 }
 
 TEST_CASE("bidirectional path tracing gives the same image for any thread count") {
-  const auto scene = test::scene_from_json(with_method(glass_block_scene("area"), "bidirectional"));
+  const auto scene = test::scene_from_json(with_method(test::glass_block_scene("area"), "bidirectional"));
   const test::RenderedFilm one = test::render_xyz(*scene, 4, 7, 1);
   const test::RenderedFilm two = test::render_xyz(*scene, 4, 7, 2);
   CHECK(one.statistics.bidirectional);
@@ -162,13 +124,13 @@ TEST_CASE("bidirectional path tracing gives the same image for any thread count"
 
 TEST_CASE("bidirectional path tracing falls back to the path tracer where it cannot run") {
   // An orthographic camera: no light subpath can be joined to it.
-  nlohmann::json orthographic = with_method(glass_block_scene("area"), "bidirectional");
+  nlohmann::json orthographic = with_method(test::glass_block_scene("area"), "bidirectional");
   orthographic["camera"]["type"] = "orthographic";
   orthographic["camera"]["height"] = 1.5;
   orthographic["camera"].erase("vertical_fov_deg");
   CHECK_FALSE(test::render_xyz(*test::scene_from_json(orthographic), 1, 1).statistics.bidirectional);
   // Panes (the sun through a window is reached by no technique that treats them as specular vertices).
-  nlohmann::json glazed = with_method(glass_block_scene("area"), "bidirectional");
+  nlohmann::json glazed = with_method(test::glass_block_scene("area"), "bidirectional");
   glazed["materials"]["glass"] = {{"type", "thin_dielectric"}, {"ior", 1.5}};
   CHECK_FALSE(test::render_xyz(*test::scene_from_json(glazed), 1, 1).statistics.bidirectional);
 }
@@ -178,19 +140,12 @@ TEST_CASE("bidirectional path tracing credits each contribution to its light's g
   // its beauty, to float rounding (a sample's contributions are summed in float, into the beauty and into each
   // group: a sample here often has both lights' contributions, whose float sums round differently, ~1e-7 each),
   // and both have light (joins, splats and hits of each).
-  nlohmann::json document = with_method(glass_block_scene("area"), "bidirectional");
-  document["shapes"].back()["light_group"] = "lamp";
-  document["lights"] = nlohmann::json::array(
-      {{{"type", "environment"}, {"light_group", "sky"}, {"radiance", {{"illuminant", "D65"}, {"scale", 0.2}}}}});
-  const auto scene = test::scene_from_json(document);
+  const auto scene =
+      test::scene_from_json(with_method(test::with_lamp_and_sky_groups(test::glass_block_scene("area")), "bidirectional"));
   REQUIRE(scene->light_groups.size() == 2);
-  FilmOptions options{scene->settings.width, scene->settings.height, std::nullopt, 0};
-  Film film(options, SpectralResponse::cie_xyz(test::library()), scene->light_groups);
-  RenderOptions render_options;
-  render_options.samples_per_pixel = 8;
-  render_options.seed = 3;
-  render_options.threads = 2;
-  CHECK(render(*scene, test::filter_of(*scene), film, render_options).bidirectional);
+  const test::RenderedFilm rendered = test::render_xyz(*scene, 8, 3, 2, std::nullopt, nullptr, true);
+  CHECK(rendered.statistics.bidirectional);
+  const Film& film = *rendered.film;
   double totals[2] = {0.0, 0.0}, worst = 0.0;
   for (int y = 0; y < film.height(); ++y)
     for (int x = 0; x < film.width(); ++x) {
@@ -210,26 +165,15 @@ TEST_CASE("bidirectional path tracing credits each contribution to its light's g
 }
 
 TEST_CASE("bidirectional path tracing's hard cases write nothing non-finite") {
-  // A spot at the centre of a glass ball resting on a smooth gold floor, a 1 µm glass ball, a grazing camera, a rough
-  // glass slab and a coated wall: nothing non-finite may reach the film, and the image is not black.
-  const auto scene = test::scene_from_json(nlohmann::json::parse(R"({
-    "camera": {"type": "pinhole", "from": [0.0, 0.02, -1.5], "to": [0.0, 0.0, 0.0], "up": [0, 1, 0],
-               "vertical_fov_deg": 60},
-    "film": {"resolution": [24, 16]},
-    "integrator": {"max_depth": 12, "method": "bidirectional"},
-    "materials": {"mirror": {"type": "conductor", "metal": "gold"}, "wall": {"type": "coated_diffuse",
-                  "reflectance": 0.7, "roughness": 0.2}, "glass": {"type": "dielectric", "ior": 1.5},
-                  "frosted": {"type": "dielectric", "ior": 1.5, "roughness": 0.3}},
-    "shapes": [
-      {"type": "quad", "material": "mirror", "vertices": [[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]},
-      {"type": "quad", "material": "wall", "vertices": [[-2, 0, 1], [-2, 2, 1], [2, 2, 1], [2, 0, 1]]},
-      {"type": "box", "material": "frosted", "min": [-0.8, 0.0, 0.4], "max": [-0.4, 0.5, 0.45]},
-      {"type": "sphere", "material": "glass", "center": [0.0, 0.2, 0.0], "radius": 0.2},
-      {"type": "sphere", "material": "glass", "center": [0.5, 0.3, 0.0], "radius": 1e-6}
-    ],
-    "lights": [{"type": "spot", "position": [0.0, 0.2, 0.0], "direction": [0.0, 0.3, 1.0], "cone_angle_deg": 170,
-                "intensity": {"illuminant": "D65", "scale": 1.0}}]
-  })"));
+  // light_tracing_scenes.h's hard case (a spot inside a glass ball on a mirror, a 1 µm ball, a grazing camera) with
+  // a rough glass slab and a rough coated wall: nothing non-finite may reach the film, and the image is not black.
+  nlohmann::json document = test::spot_in_glass_ball_scene();
+  document["integrator"]["method"] = "bidirectional";
+  document["materials"]["wall"] = {{"type", "coated_diffuse"}, {"reflectance", 0.7}, {"roughness", 0.2}};
+  document["materials"]["frosted"] = {{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 0.3}};
+  document["shapes"].push_back(
+      {{"type", "box"}, {"material", "frosted"}, {"min", {-0.8, 0.0, 0.4}}, {"max", {-0.4, 0.5, 0.45}}});
+  const auto scene = test::scene_from_json(document);
   const test::RenderedFilm rendered = test::render_xyz(*scene, 16, 5);
   CHECK(rendered.statistics.bidirectional);
   CHECK(test::finite_total(*rendered.film) > 0.0);

@@ -114,13 +114,16 @@ struct RenderedFilm {
   RenderStatistics statistics;
 };
 
-/// Renders `scene` into a CIE 1931 XYZ film of the scene's resolution (optionally a crop of it).
+/// Renders `scene` into a CIE 1931 XYZ film of the scene's resolution (optionally a crop of it), with a layer per
+/// light group of the scene where `light_groups` (else the film has none).
 inline RenderedFilm render_xyz(const Scene& scene, int spp, uint64_t seed, int threads = 2,
                                std::optional<PixelBounds> crop = std::nullopt,
-                               const InterruptFlag* interrupt = nullptr) {
+                               const InterruptFlag* interrupt = nullptr, bool light_groups = false) {
   FilmOptions options{scene.settings.width, scene.settings.height, crop, 0};
   RenderedFilm out;
-  out.film = std::make_unique<Film>(options, SpectralResponse::cie_xyz(library()));
+  out.film = light_groups
+                 ? std::make_unique<Film>(options, SpectralResponse::cie_xyz(library()), scene.light_groups)
+                 : std::make_unique<Film>(options, SpectralResponse::cie_xyz(library()));
   RenderOptions render_options;
   render_options.samples_per_pixel = spp;
   render_options.seed = seed;

@@ -57,9 +57,8 @@ Camera::Camera(const CameraSettings& settings, int image_width, int image_height
 }
 
 Ray Camera::generate_ray(float film_x, float film_y, Vec2 lens_u, float time) const {
-  // A moving camera's frame at this time (exact interpolation: a camera ray costs far more than this).
-  const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
-  const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
+  std::optional<Transform> moved;
+  const Transform& camera_to_world = camera_to_world_at(time, moved);
   const float aspect = width_ / height_;
   if (settings_.spherical != SphericalMapping::none) {
     // Every film point a direction from the camera's position; no lens (pbrt's SphericalCamera has none either).
@@ -116,8 +115,8 @@ RayDifferentials Camera::generate_differentials(const Ray& ray, float film_x, fl
 
 std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time, Vec2 u_lens) const {
   if (!supports_light_tracing()) return std::nullopt;
-  const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
-  const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
+  std::optional<Transform> moved;
+  const Transform& camera_to_world = camera_to_world_at(time, moved);
   const Vec3 right = camera_to_world.vector({1, 0, 0}), up = camera_to_world.vector({0, 1, 0}),
              axis = camera_to_world.vector({0, 0, 1});
   // The point in camera space (the inverse of a rotation is its transpose: dot products with the axes).
@@ -146,9 +145,7 @@ std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time, Vec2 u_len
   }
   const float aspect = width_ / height_;
   const Vec2 film{(sx / (tan_half_fov_ * aspect) + 1.0f) * 0.5f * width_, (1.0f - sy / tan_half_fov_) * 0.5f * height_};
-  // One pixel is 2·tan(fov/2)/height wide and high on that plane.
-  const float pixel_side = 2.0f * tan_half_fov_ / height_;
-  const float importance = 1.0f / (pixel_side * pixel_side * cos_theta * cos_theta * cos_theta * distance * distance);
+  const float importance = 1.0f / (pixel_solid_angle(cos_theta) * distance * distance);
   if (!std::isfinite(importance) || !std::isfinite(film.x) || !std::isfinite(film.y)) return std::nullopt;
   const Vec3 lens_point = eye + right * o.x + up * o.y;
   return CameraVisibility{film, lens_point, importance};
@@ -156,13 +153,25 @@ std::optional<CameraVisibility> Camera::see(Vec3 point_m, float time, Vec2 u_len
 
 float Camera::direction_density(Vec3 direction, float time) const {
   if (!supports_light_tracing()) return 0.0f;
-  const std::optional<Transform> moved = motion_ ? std::optional<Transform>(motion_->at(time)) : std::nullopt;
-  const Transform& camera_to_world = moved ? *moved : settings_.camera_to_world;
+  std::optional<Transform> moved;
+  const Transform& camera_to_world = camera_to_world_at(time, moved);
   const float cos_theta = dot(direction, camera_to_world.vector({0, 0, 1}));
   if (!(cos_theta > 1e-6f)) return 0.0f;
-  const float pixel_side = 2.0f * tan_half_fov_ / height_;
-  const float density = 1.0f / (pixel_side * pixel_side * cos_theta * cos_theta * cos_theta);
+  const float density = 1.0f / pixel_solid_angle(cos_theta);
   return std::isfinite(density) ? density : 0.0f;
+}
+
+const Transform& Camera::camera_to_world_at(float time, std::optional<Transform>& moved) const {
+  // A moving camera's frame at this time (exact interpolation: a camera ray costs far more than this).
+  if (motion_) moved = motion_->at(time);
+  return moved ? *moved : settings_.camera_to_world;
+}
+
+float Camera::pixel_solid_angle(float cos_theta) const {
+  // One pixel is 2·tan(fov/2)/height wide and high on the plane at unit distance; seen at θ off the axis its solid
+  // angle is that area times cos³θ.
+  const float pixel_side = 2.0f * tan_half_fov_ / height_;
+  return pixel_side * pixel_side * cos_theta * cos_theta * cos_theta;
 }
 
 }  // namespace rimu

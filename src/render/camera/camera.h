@@ -69,6 +69,11 @@ class Camera final : public LightTracingCamera {
   float direction_density(Vec3 direction, float time) const override;
 
  private:
+  /// The camera's frame at `time`: settings_.camera_to_world, or a moving camera's interpolated one, kept in `moved`.
+  const Transform& camera_to_world_at(float time, std::optional<Transform>& moved) const;
+  /// The solid angle one pixel covers seen at θ off the view axis (perspective cameras): a cos³θ.
+  float pixel_solid_angle(float cos_theta) const;
+
   CameraSettings settings_;
   std::optional<MotionTransform> motion_;  // from camera_to_world to camera_to_world_end
   float width_, height_;

@@ -105,7 +105,8 @@ struct Subpaths {
   const SampledWavelengths& lambda;
   LaneTechniques lanes;
   float time = 0.0f;
-  std::vector<PathVertex> camera, light;
+  std::vector<PathVertex>& camera;  // this thread's storage, cleared per camera sample
+  std::vector<PathVertex>& light;
 
   // The vertex a ray hit, with its BSDF in the frame of the side it arrived from (`wo_world` back along the ray).
   bool make_surface_vertex(const SurfaceHit& hit, Vec3 wo_world, PathVertex& v) const {
@@ -130,6 +131,21 @@ struct Subpaths {
     v.frame = Frame::from_normal(ns);
     v.wo = v.frame.to_local(wo_world);
     return v.wo.z != 0.0f;
+  }
+
+  // The bookkeeping after the last vertex of `path` drew `bs` (the caller updates the throughput): whether it was a
+  // delta sample, the previous vertex's reverse density (of being reached from here), the next vertex's forward
+  // density `pdf_direction` (a delta lobe's counts 1, unconverted, on both sides) and the spectral-MIS ratios.
+  void record_scattering(std::vector<PathVertex>& path, const BsdfSample& bs, SampledSpectrum& pdf_direction,
+                         SampledSpectrum& ratio) const {
+    PathVertex& here = path.back();
+    PathVertex& before = path[path.size() - 2];
+    here.delta = bs.is_delta;
+    const SampledSpectrum densities = lanes.densities(bs.pdf);
+    before.pdf_rev = here.delta ? SampledSpectrum(1.0f)
+                                : to_area(lanes.densities(here.bsdf->pdf(bs.wi, here.wo)), here.position, before);
+    pdf_direction = here.delta ? SampledSpectrum(1.0f) : densities;
+    ratio *= densities / Float4(bs.pdf[0]);
   }
 
   LightSamplingPoint sampling_point(const PathVertex& v) const {
@@ -160,11 +176,10 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
                                                       const LightGroupRadiance& groups) const {
   thread_local std::vector<PathVertex> camera_storage, light_storage;
   thread_local std::vector<JoinedVertex> joined;
-  Subpaths p{scene_, settings_, lambda, LaneTechniques{settings_.wavelengths}, camera_ray.time, {}, {}};
-  std::swap(p.camera, camera_storage);
-  std::swap(p.light, light_storage);
-  p.camera.clear();
-  p.light.clear();
+  camera_storage.clear();
+  light_storage.clear();
+  Subpaths p{scene_, settings_, lambda, LaneTechniques{settings_.wavelengths}, camera_ray.time, camera_storage,
+             light_storage};
   const auto& lights = *scene_.lights;
   const int max_depth = settings_.max_depth;
   const SampledSpectrum initial = p.lanes.initial_ratios();
@@ -240,22 +255,11 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         p.camera.push_back(std::move(v));
         break;
       }
-      v.delta = bs->is_delta;
-      const SampledSpectrum densities = p.lanes.densities(bs->pdf);
       p.camera.push_back(std::move(v));
-      PathVertex& here = p.camera.back();
-      PathVertex& before = p.camera[p.camera.size() - 2];
-      before.pdf_rev = here.delta ? SampledSpectrum(1.0f)
-                                  : to_area(p.lanes.densities(here.bsdf->pdf(bs->wi, here.wo)), here.position, before);
-      pdf_direction = here.delta ? SampledSpectrum(1.0f) : densities;
+      p.record_scattering(p.camera, *bs, pdf_direction, ratio);
       beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
       eta_scale *= bs->eta * bs->eta;
-      ratio *= densities / Float4(bs->pdf[0]);
-      if (bs->wavelength_dependent_direction && p.lanes.drops_partners_at_dispersion()) {
-        const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
-        ratio *= hero_only;
-        beta *= hero_only;
-      }
+      p.lanes.keep_followed_lanes(bs->wavelength_dependent_direction, ratio, beta);
       if (!survives(beta, ratio, eta_scale, 1.0f, k, u_roulette, beta)) break;
       if (!(max_lane(abs(beta)) > 0.0f)) break;
       ray.origin = offset_ray_origin(*hit, wi, scene_.scene_scale);
@@ -357,7 +361,6 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
           if (daylight) {
             first.pdf_nee = p.nee_density(p.light[1], light_index, daylight->to_light, nullptr);
           } else {
-            first.hit.t = length(first.position - hit->position);
             first.pdf_nee = p.nee_density(p.light[1], light_index, normalize(first.position - hit->position),
                                           first.ng == Vec3{} ? nullptr : &first.hit);
           }
@@ -371,23 +374,12 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         if (!bs || !(bs->pdf[0] > 0.0f)) break;
         const Vec3 wi = here.world(bs->wi);
         if (!here.on_side(wi)) break;
-        here.delta = bs->is_delta;
-        const SampledSpectrum densities = p.lanes.densities(bs->pdf);
-        PathVertex& before = p.light[p.light.size() - 2];
-        before.pdf_rev = here.delta ? SampledSpectrum(1.0f)
-                                    : to_area(p.lanes.densities(here.bsdf->pdf(bs->wi, here.wo)), here.position, before);
-        pdf_direction = here.delta ? SampledSpectrum(1.0f) : densities;
+        p.record_scattering(p.light, *bs, pdf_direction, ratio);
         // Flux: the radiance scaling of a refraction undone, and the adjoint's shading-normal factor.
-        const Vec3 wo_world = here.world(here.wo);
         const float scale = std::fabs(bs->wi.z) / bs->pdf[0] * bs->eta * bs->eta *
-                            adjoint_shading_factor(wo_world, wi, here.frame.n, here.ng);
+                            adjoint_shading_factor(here.world(here.wo), wi, here.frame.n, here.ng);
         beta *= bs->f * Float4(scale);
-        ratio *= densities / Float4(bs->pdf[0]);
-        if (bs->wavelength_dependent_direction && p.lanes.drops_partners_at_dispersion()) {
-          const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
-          ratio *= hero_only;
-          beta *= hero_only;
-        }
+        p.lanes.keep_followed_lanes(bs->wavelength_dependent_direction, ratio, beta);
         if (!survives(beta, ratio, 1.0f, unit, k, u_roulette, beta)) break;
         ray.origin = offset_ray_origin(*hit, wi, scene_.scene_scale);
         ray.direction = wi;
@@ -578,12 +570,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     shadow.direction = w;
     shadow.t_max = length(seen->camera_position_m - shadow.origin) * (1.0f - 0x1p-12f);
     if (scene_.geometry->occluded(shadow)) continue;
-    const int n = s + 1;
-    for (int i = 0; i < s; ++i) {
-      const PathVertex& v = p.light[size_t(i)];
-      joined[size_t(i)] = {v.pdf_fwd, v.pdf_rev, i >= 1 && v.connectible()};
-    }
-    joined[size_t(s)] = {SampledSpectrum(0.0f), SampledSpectrum(0.0f), false};
+    const int n = fill(s, 1);  // the lens vertex's own densities are never read (no technique reaches the lens)
     joined[size_t(s - 1)].connectible = true;
     joined[size_t(s - 1)].pc =
         to_area(SampledSpectrum(camera_.direction_density(-w, p.time) / film_pixels_), seen->camera_position_m, y);
@@ -595,8 +582,6 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       splats.push_back({seen->film_px, contribution, lambda, lights[size_t(y0.light)]->light_group()});
   }
 
-  std::swap(p.camera, camera_storage);
-  std::swap(p.light, light_storage);
   if (settings_.wavelengths == WavelengthMode::single) {
     const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
     if (groups.groups) groups.mask(hero_only);

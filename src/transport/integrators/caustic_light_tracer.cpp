@@ -128,11 +128,7 @@ void CausticLightTracer::trace(const SampledWavelengths& lambda, Sampler& sample
                         adjoint_shading_factor(wo_world, wi_world, ns, ng);
     beta *= bs->f * Float4(scale);
     pdf_ratio *= lanes.densities(bs->pdf) / Float4(bs->pdf[0]);
-    if (bs->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
-      const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
-      pdf_ratio *= hero_only;
-      beta *= hero_only;
-    }
+    lanes.keep_followed_lanes(bs->wavelength_dependent_direction, pdf_ratio, beta);
     if (!(max_lane(abs(beta)) > 0.0f) || !(sum(pdf_ratio) > 0.0f)) return;
     passages_since_vertex = straight_through ? passages_since_vertex + 1 : 0;
     ray.origin = offset_ray_origin(*hit, wi_world, scene_.scene_scale);

@@ -400,11 +400,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
     beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
     eta_scale *= bs->eta * bs->eta;
     pdf_ratio *= bsdf_densities / Float4(bs->pdf[0]);
-    if (bs->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
-      const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
-      pdf_ratio *= hero_only;
-      beta *= hero_only;
-    }
+    lanes.keep_followed_lanes(bs->wavelength_dependent_direction, pdf_ratio, beta);
 
     // The vertex's throughput before roulette: what arrives along wi_world, divided by it, is the incident radiance.
     previous_recorded =

@@ -532,11 +532,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
     beta *= ds->f_cos / Float4(ds->pdf[0]);
     eta_scale *= ds->eta * ds->eta;
     pdf_ratio *= lanes.densities(ds->pdf) / Float4(ds->pdf[0]);
-    if (ds->wavelength_dependent_direction && lanes.drops_partners_at_dispersion()) {
-      // Independent mode: the partners' own directions were not followed (see LaneTechniques).
-      beta *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
-      pdf_ratio *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
-    }
+    lanes.keep_followed_lanes(ds->wavelength_dependent_direction, pdf_ratio, beta);
     // What arrives along wi, divided by the vertex's effective throughput (4β/ΣR: β alone is rescaled at every
     // vertex), is the incident radiance the record learns. A medium vertex is not recorded.
     previous_recorded = false;

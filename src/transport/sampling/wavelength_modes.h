@@ -65,6 +65,14 @@ struct LaneTechniques {
   }
   /// Independent mode keeps only the hero after a wavelength-dependent direction (see above).
   bool drops_partners_at_dispersion() const { return mode == WavelengthMode::independent; }
+  /// After a sampled decision: where its direction depended on λ and the mode drops the partners, only the hero's
+  /// lane of the path's ratios and throughput is kept (the partners' own directions were not followed).
+  void keep_followed_lanes(bool wavelength_dependent_direction, SampledSpectrum& ratios, SampledSpectrum& beta) const {
+    if (!wavelength_dependent_direction || !drops_partners_at_dispersion()) return;
+    const Float4 hero_only(1.0f, 0.0f, 0.0f, 0.0f);
+    ratios *= hero_only;
+    beta *= hero_only;
+  }
 };
 
 }  // namespace rimu
