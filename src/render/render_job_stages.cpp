@@ -531,8 +531,8 @@ void log_job_summary(const RenderJobState& s) {
   if (statistics.bidirectional)
     summary << "rimu: bidirectional path tracing (one light subpath per camera sample)\n";
   else if (s.loaded.scene && s.loaded.scene->settings.integrator.bidirectional)
-    summary << "rimu: path-traced: bidirectional path tracing needs a pinhole or thin-lens camera, no media, no panes "
-               "(thin_dielectric) and no adaptive sampling\n";
+    summary << "rimu: path-traced: bidirectional path tracing needs a pinhole or thin-lens camera, no media and no "
+               "adaptive sampling\n";
   if (statistics.caustic_light_tracing)
     summary << "rimu: caustics of lamps and emitting shapes light-traced (one light path per camera sample)\n";
   else if (s.loaded.scene && s.loaded.scene->settings.integrator.caustic_light_tracing)

@@ -392,10 +392,8 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
   // alike (adaptive sampling gives pixels unequal counts, which its splats would be divided by): elsewhere the
   // path tracer keeps every caustic.
   PathIntegratorSettings settings = integrator_settings;
-  // Bidirectional path tracing: the same needs, and no panes (it would treat them as specular vertices, which no
-  // technique of it passes towards a small light behind glass: the sun through a window); it has caustics of its
-  // own and does not guide.
-  if (settings.bidirectional && camera.supports_light_tracing() && !options.adaptive && !transport.passable_surfaces) {
+  // Bidirectional path tracing: the same needs; it has caustics of its own and does not guide.
+  if (settings.bidirectional && camera.supports_light_tracing() && !options.adaptive) {
     settings.caustic_light_tracing = false;
     settings.guiding = false;
     const BidirectionalPathIntegrator integrator(transport, settings, camera, double(film.pixel_bounds().area()));

@@ -8,6 +8,8 @@
 #include "transport/geometry/frame.h"
 #include "transport/integrators/adjoint_shading.h"
 #include "transport/integrators/bidirectional_mis.h"
+#include "transport/integrators/daylit_connection.h"
+#include "transport/integrators/shadow_passage.h"
 #include "transport/lights/daylight_ray_sampler.h"
 #include "transport/sampling/wavelength_modes.h"
 
@@ -32,12 +34,17 @@ struct PathVertex {
   Vec3 wo{};  ///< local: towards the previous vertex of its own subpath
   std::optional<Bsdf> bsdf;
   bool transmits = false;
+  bool pane = false;           ///< a surface subpaths may pass straight through (Material::passes_shadow_rays)
   bool delta = false;          ///< its subpath left it by a delta lobe (no technique can join the path here)
   bool non_delta = false;      ///< its BSDF has a non-delta component (a technique may join the path here)
   SampledSpectrum beta{0.0f};  ///< the subpath's throughput up to this vertex (hero-density units)
   SampledSpectrum ratio{1.0f};  ///< the subpath's spectral-MIS ratios R_h = p_h/p_hero
   SampledSpectrum pdf_fwd{0.0f};  ///< area density of this vertex from the previous one of its subpath
   SampledSpectrum pdf_rev{0.0f};  ///< area density of this vertex from the next one of its subpath
+  /// The probability that a walk along the edge from the previous vertex of its subpath passes the panes on it (per
+  /// lane, the same either way along it): both walks pass each by choosing its straight-through lobe, so the
+  /// edge's densities from either side carry it; shadow rays pass them deterministically (shadow_passage.h).
+  SampledSpectrum pass_in{1.0f};
   SurfaceHit hit{};
   // As a light's end of a path (y₀, or a camera subpath's hit on an emitter):
   int light = -1;
@@ -116,6 +123,8 @@ struct Subpaths {
     v.ng = hit.geometric_normal;
     if (hit.material < 0) return false;
     const Material& material = (*scene.materials)[size_t(hit.material)];
+    // An emitting pane stays a vertex (its emission is the technique s = 0's).
+    v.pane = scene.passable_surfaces && material.passes_shadow_rays() && hit.light < 0;
     MaterialContext context = MaterialContext::at(hit, wo_world);
     context.shading_normal = material.shading_normal(context);
     v.bsdf.emplace(material.bsdf(context, lambda));
@@ -142,10 +151,25 @@ struct Subpaths {
     PathVertex& before = path[path.size() - 2];
     here.delta = bs.is_delta;
     const SampledSpectrum densities = lanes.densities(bs.pdf);
-    before.pdf_rev = here.delta ? SampledSpectrum(1.0f)
-                                : to_area(lanes.densities(here.bsdf->pdf(bs.wi, here.wo)), here.position, before);
+    before.pdf_rev =
+        here.delta ? SampledSpectrum(1.0f)
+                   : to_area(lanes.densities(here.bsdf->pdf(bs.wi, here.wo)), here.position, before) * here.pass_in;
     pdf_direction = here.delta ? SampledSpectrum(1.0f) : densities;
     ratio *= densities / Float4(bs.pdf[0]);
+  }
+
+  // Whether `bs`, drawn at the pane `v`, passes straight through it (as the path tracer passes panes): then `v` is no
+  // vertex, and the edge being walked goes on with the lobe's probability per lane in `edge_pass` and its
+  // transmittance over that probability in `beta` (the spectral-MIS ratios as for any sampled lobe).
+  bool passes(const PathVertex& v, const BsdfSample& bs, int& edge_passes, SampledSpectrum& edge_pass,
+              SampledSpectrum& beta, SampledSpectrum& ratio) const {
+    if (!v.pane || edge_passes >= kMaxShadowPassages || !(bs.wi.z * v.wo.z < 0.0f)) return false;
+    const SampledSpectrum densities = lanes.densities(bs.pdf);
+    edge_pass *= densities;
+    ++edge_passes;
+    beta *= bs.f * Float4(std::fabs(bs.wi.z) / bs.pdf[0]);
+    ratio *= densities / Float4(bs.pdf[0]);
+    return true;
   }
 
   LightSamplingPoint sampling_point(const PathVertex& v) const {
@@ -208,25 +232,28 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     SampledSpectrum beta = initial, ratio = initial;
     float eta_scale = 1.0f;
     SampledSpectrum pdf_direction(camera_.direction_density(camera_ray.direction, p.time) / film_pixels_);
+    SampledSpectrum edge_pass(1.0f);  // the panes passed since the last vertex (PathVertex::pass_in)
+    int edge_passes = 0;
     Ray ray = camera_ray;
-    for (int k = 1;; ++k) {
+    for (int k = 1;;) {
       const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
       PathVertex v;
       v.beta = beta;
       v.ratio = ratio;
+      v.pass_in = edge_pass;
       const PathVertex& previous = p.camera.back();
       if (!hit) {
         if (!scene_.infinite_lights.empty()) {
           v.kind = VertexKind::light_at_infinity;
           v.ng = ray.direction;
-          v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : pdf_direction;
+          v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : pdf_direction * edge_pass;
           p.camera.push_back(std::move(v));
         }
         break;
       }
       const bool scatters = p.make_surface_vertex(*hit, -ray.direction, v);
       // A delta lobe's density counts 1 wherever it appears, unconverted (pdf_rev below does the same).
-      v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : to_area(pdf_direction, previous.position, v);
+      v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : to_area(pdf_direction, previous.position, v) * edge_pass;
       if (hit->light >= 0) {
         const Light& light = *lights[size_t(hit->light)];
         v.light = hit->light;
@@ -236,7 +263,10 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         v.emit_direction = e.direction;
         if (previous.kind == VertexKind::surface) v.pdf_nee = p.nee_density(previous, hit->light, ray.direction, &*hit);
       }
-      if (!scatters || k > max_depth) {
+      // A pane is sampled even beyond the depth limit: next-event estimation from the last vertex passes it, so the
+      // camera subpath must be able to as well (as in the path tracer).
+      const bool pane = scatters && v.pane && edge_passes < kMaxShadowPassages;
+      if (!pane && (!scatters || k > max_depth)) {
         p.camera.push_back(std::move(v));
         break;
       }
@@ -250,13 +280,23 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         p.camera.push_back(std::move(v));
         break;
       }
+      if (p.passes(v, *bs, edge_passes, edge_pass, beta, ratio)) {
+        // No roulette at a pane (the path tracer draws its number and ignores it too).
+        if (!(max_lane(abs(beta)) > 0.0f)) break;
+        ray.origin = offset_ray_origin(*hit, ray.direction, scene_.scene_scale);
+        ray.t_min = 0.0f;
+        ray.t_max = INFINITY;
+        continue;
+      }
       const Vec3 wi = v.world(bs->wi);
-      if (!v.on_side(wi)) {
+      if (k > max_depth || !v.on_side(wi)) {
         p.camera.push_back(std::move(v));
         break;
       }
       p.camera.push_back(std::move(v));
       p.record_scattering(p.camera, *bs, pdf_direction, ratio);
+      edge_pass = SampledSpectrum(1.0f);
+      edge_passes = 0;
       beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
       eta_scale *= bs->eta * bs->eta;
       p.lanes.keep_followed_lanes(bs->wavelength_dependent_direction, ratio, beta);
@@ -266,6 +306,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       ray.direction = wi;
       ray.t_min = 0.0f;
       ray.t_max = INFINITY;
+      ++k;
     }
   }
 
@@ -281,30 +322,25 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     y0.ratio = initial;
     SampledSpectrum beta(0.0f), pdf_direction(0.0f);
     std::optional<DaylightRaySampler::DaylightRay> daylight;
+    std::optional<DaylightEntry> entry;  // where a ray of daylight meets the first surface that is no pane
     Ray ray;
     ray.time = p.time;
     if (from_daylight) {
       // A ray of daylight from an aperture: y₀ is its direction at infinity, y₁'s density the sampler's p(y, ω).
       daylight = scene_.daylight_rays->sample(lambda, pick.u_remapped, u_direction, u_position);
-      // The light arrives at the aperture only if nothing lies between it and the sky (an outer pane, an overhang):
-      // the ray is traced inwards from the aperture, so that stretch must be tested, or the subpath would skip
-      // what lies there (a first version did: the double-glazed room came out 34 % bright).
-      if (daylight) {
-        Ray outward;
-        outward.origin = daylight->origin;
-        outward.direction = daylight->to_light;
-        outward.time = p.time;
-        if (scene_.geometry->occluded(outward)) daylight.reset();
-      }
-      if (daylight) {
+      // Its panes (between the sky and the aperture as well, an outer pane, or an overhang blocking it) are passed
+      // as shadow rays pass them: next-event estimation from the point met passes them so, and the density of
+      // this technique (the sampler's p(y, ω)) has no lobe choice in it. A first version traced the ray from the
+      // aperture inwards only and skipped what lay outside (the double-glazed room came out 34 % bright).
+      if (daylight) entry = enter_through_aperture(scene_, *daylight, lambda, p.time);
+      if (entry) {
         y0.kind = VertexKind::light_at_infinity;
         y0.ng = daylight->to_light;
         y0.light = daylight->light;
         y0.pdf_emit = choice;
         y0.hittable = !daylight->is_delta;
-        ray.origin = daylight->origin;
         ray.direction = -daylight->to_light;
-        beta = initial * daylight->radiance;
+        beta = initial * daylight->radiance * entry->passage.transmittance;
       }
     } else {
       const int light_index = emitting_[size_t(pick.index)];
@@ -334,25 +370,47 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       const int light_index = y0.light;
       SampledSpectrum ratio = initial;
       float unit = 1.0f;  // the flux at y₁, Russian roulette's unit
-      for (int k = 1; max_lane(abs(beta)) > 0.0f; ++k) {
-        const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
+      SampledSpectrum edge_pass(1.0f);  // the panes passed since the last vertex (PathVertex::pass_in)
+      int edge_passes = 0;
+      for (int k = 1; max_lane(abs(beta)) > 0.0f;) {
+        const std::optional<SurfaceHit> hit =
+            k == 1 && entry ? std::optional<SurfaceHit>(entry->hit) : scene_.geometry->intersect(ray);
         if (!hit) break;
         PathVertex v;
         v.beta = beta;
         v.ratio = ratio;
+        v.pass_in = edge_pass;
         if (!p.make_surface_vertex(*hit, -ray.direction, v)) break;
-        if (k == 1 && daylight) {
+        if (k == 1 && entry) {
           // p(y, ω) per m² at y (and per sr for a sun of finite size), the source's choice included; the throughput
-          // L |n_y·ω| / p(y, ω) (its cosine cancels).
+          // L T |n_y·ω| / p(y, ω) (its cosine cancels). The panes on the way were passed deterministically: a camera
+          // subpath walking this edge the other way passes them by its lobe choices (y₀'s reverse density).
           const float density = scene_.daylight_rays->density(light_index, hit->position, hit->geometric_normal,
                                                               daylight->to_light, daylight->direction_pdf);
           if (!(density > 0.0f)) break;
           v.pdf_fwd = SampledSpectrum(density);
+          v.pass_in = entry->passage.pass_probability;
           v.beta = beta * Float4(std::fabs(dot(hit->geometric_normal, daylight->to_light)) / (choice * density));
           beta = v.beta;
         } else {
-          v.pdf_fwd =
-              p.light.back().delta ? SampledSpectrum(1.0f) : to_area(pdf_direction, p.light.back().position, v);
+          v.pdf_fwd = p.light.back().delta ? SampledSpectrum(1.0f)
+                                           : to_area(pdf_direction, p.light.back().position, v) * edge_pass;
+        }
+        // A pane is sampled even at the depth limit: the vertex beyond it is the subpath's last one then.
+        const bool pane = v.pane && edge_passes < kMaxShadowPassages;
+        std::optional<BsdfSample> bs;
+        float u_roulette = 0.0f;
+        if (pane || k < max_depth) {
+          const float u_lobe = light_sampler.next_1d();
+          const Vec2 u = light_sampler.next_2d();
+          bs = v.bsdf->sample(v.wo, u_lobe, u);
+          u_roulette = light_sampler.next_1d();
+          if (bs && bs->pdf[0] > 0.0f && p.passes(v, *bs, edge_passes, edge_pass, beta, ratio)) {
+            ray.origin = offset_ray_origin(*hit, ray.direction, scene_.scene_scale);
+            ray.t_min = 0.0f;
+            ray.t_max = INFINITY;
+            continue;
+          }
         }
         p.light.push_back(std::move(v));
         if (k == 1) {
@@ -367,14 +425,12 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         }
         if (k >= max_depth) break;
         PathVertex& here = p.light.back();
-        const float u_lobe = light_sampler.next_1d();
-        const Vec2 u = light_sampler.next_2d();
-        const std::optional<BsdfSample> bs = here.bsdf->sample(here.wo, u_lobe, u);
-        const float u_roulette = light_sampler.next_1d();
         if (!bs || !(bs->pdf[0] > 0.0f)) break;
         const Vec3 wi = here.world(bs->wi);
         if (!here.on_side(wi)) break;
         p.record_scattering(p.light, *bs, pdf_direction, ratio);
+        edge_pass = SampledSpectrum(1.0f);
+        edge_passes = 0;
         // Flux: the radiance scaling of a refraction undone, and the adjoint's shading-normal factor.
         const float scale = std::fabs(bs->wi.z) / bs->pdf[0] * bs->eta * bs->eta *
                             adjoint_shading_factor(here.world(here.wo), wi, here.frame.n, here.ng);
@@ -385,6 +441,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         ray.direction = wi;
         ray.t_min = 0.0f;
         ray.t_max = INFINITY;
+        ++k;
       }
     }
   }
@@ -468,7 +525,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     if (z.light >= 0 && max_lane(z.emitted) > 0.0f) {
       const int n = fill(0, t);
       joined[0].connectible = false;
-      if (n >= 2) joined[1].pf = to_area(SampledSpectrum(z.emit_direction), z.position, z_previous);
+      if (n >= 2) joined[1].pf = to_area(SampledSpectrum(z.emit_direction), z.position, z_previous) * z.pass_in;
       contribute(z.light, finish(n, 0, z.ratio, z.beta * z.emitted, z.pdf_nee, z.pdf_emit, true));
     }
     // The joined end needs a non-delta component; how its own subpath went on from it does not matter.
@@ -490,7 +547,9 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
             const ShadowSegment segment = shadow_segment(shadow.origin, z.position, *ls, scene_.scene_scale);
             shadow.direction = segment.direction;
             shadow.t_max = std::isinf(segment.length) ? segment.length : segment.length * (1.0f - 0x1p-12f);
-            if (!scene_.geometry->occluded(shadow)) {
+            if (const std::optional<ShadowPassage> passage = trace_shadow(scene_, shadow, lambda)) {
+              // Both walks would pass the panes on this edge by their lobe choices (PathVertex::pass_in).
+              const SampledSpectrum& pass = passage->pass_probability;
               PathVertex x0;
               const bool at_infinity = !std::isfinite(ls->distance);
               x0.kind = at_infinity ? VertexKind::light_at_infinity : VertexKind::light;
@@ -506,13 +565,17 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
               // Shift the camera vertices up by one: x₀ is the light.
               for (int i = n - 1; i >= 1; --i) joined[size_t(i)] = joined[size_t(i - 1)];
               joined[0] = {SampledSpectrum(0.0f), SampledSpectrum(0.0f), false};
-              joined[0].pc = at_infinity || ls->is_delta ? bsdf_pdf(z, z.world(z.wo), ls->wi)
-                                                         : to_area(bsdf_pdf(z, z.world(z.wo), ls->wi), z.position, x0);
+              joined[0].pc = (at_infinity || ls->is_delta
+                                  ? bsdf_pdf(z, z.world(z.wo), ls->wi)
+                                  : to_area(bsdf_pdf(z, z.world(z.wo), ls->wi), z.position, x0)) *
+                             pass;
               joined[1].connectible = true;
+              // Daylight subpaths pass their panes deterministically (enter_through_aperture).
               joined[1].pf = at_infinity ? SampledSpectrum(daylight_density(pick->light, z, ls->wi, ls->pdf_solid_angle))
-                                         : to_area(SampledSpectrum(e.direction), x0.position, z);
-              if (t >= 3) joined[2].pf = to_area(bsdf_pdf(z, ls->wi, z.world(z.wo)), z.position, z_previous);
-              const SampledSpectrum value = z.beta * f * ls->radiance / Float4(choice_density);
+                                         : to_area(SampledSpectrum(e.direction), x0.position, z) * pass;
+              if (t >= 3) joined[2].pf = to_area(bsdf_pdf(z, ls->wi, z.world(z.wo)), z.position, z_previous) * z.pass_in;
+              const SampledSpectrum value =
+                  z.beta * f * ls->radiance * passage->transmittance / Float4(choice_density);
               contribute(pick->light, finish(n, 1, z.ratio, value, p_nee, p_emit, !ls->is_delta));
             }
           }
@@ -538,16 +601,21 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       const ShadowSegment segment = shadow_segment(shadow.origin, target, -w_yz);
       shadow.direction = segment.direction;
       shadow.t_max = segment.length * (1.0f - 0x1p-12f);
-      if (segment.length <= 0.0f || scene_.geometry->occluded(shadow)) continue;
+      if (segment.length <= 0.0f) continue;
+      const std::optional<ShadowPassage> passage = trace_shadow(scene_, shadow, lambda);
+      if (!passage) continue;
+      const SampledSpectrum& pass = passage->pass_probability;
       const int n = fill(s, t);
       const PathVertex& y_previous = p.light[size_t(s - 2)];
       joined[size_t(s - 1)].connectible = joined[size_t(s)].connectible = true;
-      joined[size_t(s)].pf = to_area(bsdf_pdf(y, y.world(y.wo), w_yz), y.position, z);
-      if (t >= 3) joined[size_t(s + 1)].pf = to_area(bsdf_pdf(z, -w_yz, z.world(z.wo)), z.position, z_previous);
-      joined[size_t(s - 1)].pc = to_area(bsdf_pdf(z, z.world(z.wo), -w_yz), z.position, y);
-      joined[size_t(s - 2)].pc = to_area(bsdf_pdf(y, w_yz, y.world(y.wo)), y.position, y_previous);
+      joined[size_t(s)].pf = to_area(bsdf_pdf(y, y.world(y.wo), w_yz), y.position, z) * pass;
+      if (t >= 3)
+        joined[size_t(s + 1)].pf = to_area(bsdf_pdf(z, -w_yz, z.world(z.wo)), z.position, z_previous) * z.pass_in;
+      joined[size_t(s - 1)].pc = to_area(bsdf_pdf(z, z.world(z.wo), -w_yz), z.position, y) * pass;
+      joined[size_t(s - 2)].pc = to_area(bsdf_pdf(y, w_yz, y.world(y.wo)), y.position, y_previous) * y.pass_in;
       const PathVertex& y0 = p.light[0];
-      contribute(y0.light, finish(n, s, y.ratio * z.ratio, value, y0.pdf_nee, y0.pdf_emit, y0.hittable));
+      contribute(y0.light, finish(n, s, y.ratio * z.ratio, value * passage->transmittance, y0.pdf_nee, y0.pdf_emit,
+                                  y0.hittable));
     }
   }
 
@@ -569,14 +637,17 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     shadow.origin = offset_ray_origin(y.hit, w, scene_.scene_scale);
     shadow.direction = w;
     shadow.t_max = length(seen->camera_position_m - shadow.origin) * (1.0f - 0x1p-12f);
-    if (scene_.geometry->occluded(shadow)) continue;
+    const std::optional<ShadowPassage> passage = trace_shadow(scene_, shadow, lambda);
+    if (!passage) continue;
     const int n = fill(s, 1);  // the lens vertex's own densities are never read (no technique reaches the lens)
     joined[size_t(s - 1)].connectible = true;
     joined[size_t(s - 1)].pc =
-        to_area(SampledSpectrum(camera_.direction_density(-w, p.time) / film_pixels_), seen->camera_position_m, y);
-    joined[size_t(s - 2)].pc = to_area(bsdf_pdf(y, w, y.world(y.wo)), y.position, p.light[size_t(s - 2)]);
+        to_area(SampledSpectrum(camera_.direction_density(-w, p.time) / film_pixels_), seen->camera_position_m, y) *
+        passage->pass_probability;
+    joined[size_t(s - 2)].pc = to_area(bsdf_pdf(y, w, y.world(y.wo)), y.position, p.light[size_t(s - 2)]) * y.pass_in;
     const PathVertex& y0 = p.light[0];
-    SampledSpectrum contribution = finish(n, s, y.ratio, value, y0.pdf_nee, y0.pdf_emit, y0.hittable);
+    SampledSpectrum contribution =
+        finish(n, s, y.ratio, value * passage->transmittance, y0.pdf_nee, y0.pdf_emit, y0.hittable);
     if (settings_.wavelengths == WavelengthMode::single) contribution *= Float4(1.0f, 0.0f, 0.0f, 0.0f);
     if (max_lane(abs(contribution)) > 0.0f)
       splats.push_back({seen->film_px, contribution, lambda, lights[size_t(y0.light)]->light_group()});

@@ -31,10 +31,15 @@
 // factor applied (Veach 1997, §5.3); a light vertex's BSDF towards the other side is the adjoint, f*(ωo, ωi) =
 // f(ωi, ωo), evaluated with the arguments exchanged.
 //
+// Panes (surfaces shadow rays pass: shadow_passage.h) are passed as the path tracer passes them: a subpath that
+// chooses a pane's straight-through lobe makes no vertex there, and the edge it walks carries that choice's
+// probability in its densities from either side (PathVertex::pass_in); joins pass them as shadow rays do (their
+// transmittance, and their pass probabilities in the joined edge's densities); rays of daylight pass all panes from
+// the sky to their first surface deterministically (enter_through_aperture), as next-event estimation does. A pane
+// reflection is a specular vertex.
+//
 // Scope: surfaces only (the render loop keeps the volumetric integrator for scenes with media), cameras that can be
-// connected to (pinhole, thin lens), no adaptive sampling, no panes (as specular vertices no technique here would
-// reach a small light behind them: the render loop keeps the path tracer, whose shadow rays pass them); path guiding
-// and daylit points are the path tracer's. A stochastic `mix` material is evaluated with the component chosen where the subpath arrived, as
+// connected to (pinhole, thin lens), no adaptive sampling; path guiding and daylit points are the path tracer's. A stochastic `mix` material is evaluated with the component chosen where the subpath arrived, as
 // pbrt-v4 does.
 #pragma once
 

@@ -9,10 +9,9 @@
 
 namespace rimu {
 
-std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const DaylightRaySampler& daylight_rays,
-                                             const PathIntegratorSettings& settings, const SampledWavelengths& lambda,
-                                             const DaylightRaySampler::DaylightRay& daylight_ray, float time,
-                                             const GuidingField* field) {
+std::optional<DaylightEntry> enter_through_aperture(const TransportScene& scene,
+                                                    const DaylightRaySampler::DaylightRay& daylight_ray,
+                                                    const SampledWavelengths& lambda, float time) {
   // The ray starts a margin outside its aperture, so that a pane lying in the aperture's plane is on its inward
   // side, met once here and not again by the test towards the light below (2⁻¹⁴ of the coordinates' magnitude:
   // sixteen times the surfaces' offset, offset_ray_origin).
@@ -23,12 +22,34 @@ std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const 
   ray.direction = -daylight_ray.to_light;
   ray.time = time;
   // Panes let the daylight ray through as they let shadow rays through. Their transmittance is taken here, for light
-  // going the other way (towards the light, as a shadow ray from y would meet them): nothing else lies between the
-  // start and y, so the test towards the light only has to cover what lies beyond the start.
-  ShadowPassage inward;
-  const PaneWalk walk = pass_panes(scene, ray, daylight_ray.to_light, lambda, inward);
-  if (walk.end != PaneWalk::End::surface || walk.surface->material < 0) return std::nullopt;
-  const SurfaceHit* hit = &*walk.surface;
+  // going the other way (towards the light, as a shadow ray from the point met would meet them): nothing else lies
+  // between the start and that point, so the test towards the light only has to cover what lies beyond the start.
+  DaylightEntry entry;
+  const PaneWalk walk = pass_panes(scene, ray, daylight_ray.to_light, lambda, entry.passage);
+  if (walk.end != PaneWalk::End::surface) return std::nullopt;
+  entry.hit = *walk.surface;
+  // Point → light = point → start (the panes above, nothing opaque) + start → light.
+  Ray outward;
+  outward.origin = start;
+  outward.direction = daylight_ray.to_light;
+  outward.t_max = INFINITY;
+  outward.time = time;
+  const std::optional<ShadowPassage> beyond = trace_shadow(scene, outward, lambda);
+  // As many surfaces as one shadow ray may pass (kMaxShadowPassages), so that the techniques make the same paths.
+  if (!beyond || entry.passage.surfaces + beyond->surfaces > kMaxShadowPassages) return std::nullopt;
+  entry.passage.transmittance *= beyond->transmittance;
+  entry.passage.pass_probability *= beyond->pass_probability;
+  entry.passage.surfaces += beyond->surfaces;
+  return entry;
+}
+
+std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const DaylightRaySampler& daylight_rays,
+                                             const PathIntegratorSettings& settings, const SampledWavelengths& lambda,
+                                             const DaylightRaySampler::DaylightRay& daylight_ray, float time,
+                                             const GuidingField* field) {
+  const std::optional<DaylightEntry> entry = enter_through_aperture(scene, daylight_ray, lambda, time);
+  if (!entry || entry->hit.material < 0) return std::nullopt;
+  const SurfaceHit* hit = &entry->hit;
   const Material& material = (*scene.materials)[size_t(hit->material)];
   // A mix chooses its material by the direction it is seen from, which differs for every vertex connecting here:
   // mixes are left out of the technique (the path integrator leaves them out of its weights alike).
@@ -57,17 +78,8 @@ std::optional<DaylitPoint> find_daylit_point(const TransportScene& scene, const 
   y.frame = Frame::from_normal(ns);
   y.geometric_normal = ng;
 
-  // y → light = y → start (the panes above, nothing opaque) + start → light.
-  Ray outward;
-  outward.origin = start;
-  outward.direction = daylight_ray.to_light;
-  outward.t_max = INFINITY;
-  outward.time = time;
-  const std::optional<ShadowPassage> beyond = trace_shadow(scene, outward, lambda);
-  // As many surfaces as one shadow ray may pass (kMaxShadowPassages), so that the technique makes the same paths.
-  if (!beyond || inward.surfaces + beyond->surfaces > kMaxShadowPassages) return std::nullopt;
-  y.radiance = daylight_ray.radiance * inward.transmittance * beyond->transmittance;
-  y.pass_to_light = inward.pass_probability * beyond->pass_probability;
+  y.radiance = daylight_ray.radiance * entry->passage.transmittance;
+  y.pass_to_light = entry->passage.pass_probability;
 
   // What next-event estimation at y counts for this light (path_integrator.cpp): the sampler's probability, times
   // the candidates where a glossy vertex resamples its light.

@@ -24,6 +24,7 @@
 #include "transport/geometry/frame.h"
 #include "transport/geometry/surface_hit.h"
 #include "transport/guiding/guided_bsdf.h"
+#include "transport/integrators/shadow_passage.h"
 #include "transport/lights/daylight_ray_sampler.h"
 #include "transport/sampling/wavelength_modes.h"
 
@@ -50,6 +51,19 @@ struct DaylitPoint {
   float light_choice = 0.0f;  ///< b · P_y: what next-event estimation at y counts for the light (technique A)
   std::optional<VertexGuide> guide;
 };
+
+/// Where a ray of daylight first meets a surface that is no pane (an opaque or refracting one, or an emitter), and
+/// the panes it passed on its whole way from the light: those between the sky and its aperture as well as those
+/// inside, each as a shadow ray passes it (their transmittance, and the probability that BSDF sampling would have
+/// passed it: ShadowPassage). std::nullopt when the ray leaves the scene, something blocks the sky from the
+/// aperture, or it passes more than kMaxShadowPassages panes in all (as one shadow ray may).
+struct DaylightEntry {
+  SurfaceHit hit;
+  ShadowPassage passage;
+};
+std::optional<DaylightEntry> enter_through_aperture(const TransportScene& scene,
+                                                    const DaylightRaySampler::DaylightRay& ray,
+                                                    const SampledWavelengths& lambda, float time);
 
 /// Traces `ray` into the scene through panes (as shadow rays pass them) to the first surface that scatters, then
 /// from there towards the light. std::nullopt when the ray leaves the scene, meets an emitter without material, a

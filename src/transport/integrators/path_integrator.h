@@ -87,7 +87,7 @@ struct PathIntegratorSettings {
   bool caustic_light_tracing = false;
   /// Bidirectional path tracing (transport/integrators/bidirectional_path_integrator.h) instead of the path tracer:
   /// `"integrator": {"method": "bidirectional"}`. The render loop uses it only where it can (a camera light paths
-  /// connect to, no media, no panes, no adaptive sampling) and falls back to the path tracer elsewhere.
+  /// connect to, no media, no adaptive sampling) and falls back to the path tracer elsewhere.
   bool bidirectional = false;
   static constexpr int kManyLights = 8;
   static constexpr int kManyLightsCandidates = 8;
