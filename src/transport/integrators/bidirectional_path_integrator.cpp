@@ -396,8 +396,9 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
           v.pdf_fwd = p.light.back().delta ? SampledSpectrum(1.0f)
                                            : to_area(pdf_direction, p.light.back().position, v) * edge_pass;
         }
-        // A pane is sampled even at the depth limit: the vertex beyond it is the subpath's last one then.
-        const bool pane = v.pane && edge_passes < kMaxShadowPassages;
+        // A pane is sampled even at the depth limit: the vertex beyond it is the subpath's last one then. (A ray of
+        // daylight's first surface is never one: enter_through_aperture passed them.)
+        const bool pane = v.pane && edge_passes < kMaxShadowPassages && !(k == 1 && entry);
         std::optional<BsdfSample> bs;
         float u_roulette = 0.0f;
         if (pane || k < max_depth) {
