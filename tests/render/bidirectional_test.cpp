@@ -4,9 +4,9 @@
 // area light, a sphere light, through a thin lens; a coated floor (a delta and a non-delta lobe at one vertex) under
 // a sky and a spot; the daylit rooms, whose light subpaths start as rays of daylight through the window. Where the
 // path tracer cannot find a caustic (a spot through glass) it must agree with the path tracer plus light-traced
-// caustics. Panes: two clear ones and two tinted ones over the floor, the glazed room. It is deterministic for any
-// thread count, credits light groups, falls back to the path tracer where it cannot run, and writes nothing
-// non-finite on hard cases.
+// caustics. Panes: two clear ones and two tinted ones over the floor, the glazed room; lamps inside lanterns. It is
+// deterministic for any thread count, credits light groups, falls back to the path tracer where it cannot run, and
+// writes nothing non-finite on hard cases.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -152,6 +152,32 @@ TEST_CASE("bidirectional path tracing passes panes as the path tracer does: two 
   nlohmann::json spot_reference = with_panes(test::glass_block_scene("spot"));
   spot_reference["integrator"]["caustics"] = "light_tracing";
   check_agrees(with_panes(test::glass_block_scene("spot")), spot_reference, 64, 128, "spot through two panes");
+}
+
+TEST_CASE("bidirectional path tracing: lamps inside diffusely transmitting lanterns (pbrt-v3's pavilion at night)") {
+  // A point lamp and a small sphere lamp, each inside a closed paper box (diffuse transmission) on a floor under a
+  // dim sky: all their light leaves through a surface that transmits diffusely, so light subpaths start with a
+  // transmitting vertex and every join from outside meets the box's other side.
+  const nlohmann::json document = nlohmann::json::parse(R"({
+    "camera": {"type": "pinhole", "from": [0.0, 1.0, -2.2], "to": [0.0, 0.2, 0.3], "up": [0, 1, 0],
+               "vertical_fov_deg": 45},
+    "film": {"resolution": [32, 24], "filter": {"type": "gaussian"}},
+    "integrator": {"max_depth": 6},
+    "materials": {"floor": {"type": "diffuse", "reflectance": 0.6},
+                  "paper": {"type": "diffuse_transmission", "reflectance": 0.3, "transmittance": 0.55},
+                  "black": {"type": "diffuse", "reflectance": 0}},
+    "shapes": [
+      {"type": "quad", "material": "floor", "vertices": [[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]]},
+      {"type": "box", "material": "paper", "min": [-0.7, 0.0, 0.0], "max": [-0.3, 0.5, 0.4]},
+      {"type": "box", "material": "paper", "min": [0.3, 0.0, 0.0], "max": [0.7, 0.5, 0.4]},
+      {"type": "sphere", "material": "black", "center": [0.5, 0.25, 0.2], "radius": 0.05,
+       "emission": {"illuminant": "D65", "scale": 20.0}}
+    ],
+    "lights": [{"type": "point", "position": [-0.5, 0.25, 0.2], "spectrum": {"illuminant": "D65"},
+                "luminous_power_lm": 0.5},
+               {"type": "environment", "radiance": {"illuminant": "D65", "scale": 0.02}}]
+  })");
+  check_agrees_with_path_tracer(document, 128, "lanterns");
 }
 
 TEST_CASE("bidirectional path tracing gives the same image for any thread count") {
