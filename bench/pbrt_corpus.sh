@@ -54,7 +54,8 @@ is_wanted() {
 }
 
 # field ROW N: the Nth cell of a markdown row "| a | b | ... |"
-field() { awk -F' [|] ' -v n="$2" '{sub(/^[|] /, ""); sub(/ [|]$/, ""); print $n}' <<<"$1"; }
+# (Split on every "|": a separator of spaces around "|" ran empty cells together, which left the CPU column empty.)
+field() { awk -F'|' -v n="$2" '{v = $(n + 1); gsub(/^ +| +$/, "", v); print v}' <<<"$1"; }
 # share TESTS BEYOND: "BEYOND/TESTS (P %)"
 share() { awk -v t="$1" -v b="$2" 'BEGIN {if (t > 0) printf "%d/%d (%.1f %%)", b, t, 100 * b / t; else print "–"}'; }
 
