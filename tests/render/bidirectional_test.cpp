@@ -24,15 +24,6 @@ nlohmann::json with_method(nlohmann::json scene, const char* method) {
   return scene;
 }
 
-// One channel (0 X, 1 Y, 2 Z) of every pixel of the film's crop window, row by row.
-std::vector<double> channel_values(const Film& film, int channel) {
-  std::vector<double> values;
-  const PixelBounds& b = film.pixel_bounds();
-  for (int py = b.y0; py < b.y1; ++py)
-    for (int px = b.x0; px < b.x1; ++px) values.push_back(film.pixel_value(px, py)[size_t(channel)]);
-  return values;
-}
-
 // `document` rendered bidirectionally (seed 2) against `reference_document` (seed 1, the path tracer unless it says
 // otherwise): the mean paired difference and every 8 × 8 block's within kSigmas standard errors, and a standard
 // error small enough to see a few per cent; in luminance, or in X, Y and Z where colour is what is tested.
@@ -45,7 +36,7 @@ void check_agrees(const nlohmann::json& document, const nlohmann::json& referenc
   CHECK(a.statistics.bidirectional);
   CHECK_FALSE(b.statistics.bidirectional);
   for (int channel = every_channel ? 0 : 1; channel <= (every_channel ? 2 : 1); ++channel) {
-    const std::vector<double> la = channel_values(*a.film, channel), lb = channel_values(*b.film, channel);
+    const std::vector<double> la = test::channel_values(*a.film, channel), lb = test::channel_values(*b.film, channel);
     const test::Estimate d = test::paired_difference(la, lb);
     const double m = test::mean_of(lb);
     INFO(std::string(what) << ", channel " << std::string(1, "XYZ"[channel]) << ": bidirectional − reference = " << d.mean << " ± "

@@ -149,14 +149,17 @@ inline std::vector<double> film_bits(const Film& film) {
   return out;
 }
 
-/// The Y (luminance channel) of every pixel of the film's crop window, row by row.
-inline std::vector<double> luminance_values(const Film& film) {
-  std::vector<double> y;
+/// One channel (0 X, 1 Y, 2 Z) of every pixel of the film's crop window, row by row.
+inline std::vector<double> channel_values(const Film& film, int channel) {
+  std::vector<double> values;
   const PixelBounds& b = film.pixel_bounds();
   for (int py = b.y0; py < b.y1; ++py)
-    for (int px = b.x0; px < b.x1; ++px) y.push_back(film.pixel_value(px, py)[1]);
-  return y;
+    for (int px = b.x0; px < b.x1; ++px) values.push_back(film.pixel_value(px, py)[size_t(channel)]);
+  return values;
 }
+
+/// The Y (luminance channel) of every pixel of the film's crop window, row by row.
+inline std::vector<double> luminance_values(const Film& film) { return channel_values(film, 1); }
 
 
 /// The mean of the differences a_i − b_i of two renders of the same pixels (independent across pixels, each pair

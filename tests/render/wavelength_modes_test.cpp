@@ -32,14 +32,6 @@ RenderedFilm render_mode(const Scene& scene, int spp, uint64_t seed) {
   return out;
 }
 
-std::vector<double> channel_values(const Film& film, int channel) {
-  std::vector<double> v;
-  const PixelBounds& b = film.pixel_bounds();
-  for (int y = b.y0; y < b.y1; ++y)
-    for (int x = b.x0; x < b.x1; ++x) v.push_back(film.pixel_value(x, y)[size_t(channel)]);
-  return v;
-}
-
 // A small closed room (grey floor, ceiling, left wall and sphere; the other walls as given) with a ceiling light.
 nlohmann::json room(const std::string& mode, const nlohmann::json& emission, const nlohmann::json& wall_reflectance) {
   nlohmann::json s = nlohmann::json::parse(R"({

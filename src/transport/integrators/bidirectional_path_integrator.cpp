@@ -65,6 +65,14 @@ struct PathVertex {
   bool on_side(Vec3 w) const { return transmits || dot(w, ng) > 0.0f; }
 };
 
+// The panes a subpath has passed since its last vertex (PathVertex::pass_in): the product of their
+// straight-through lobes' probabilities per lane, and how many (a ninth is a vertex: kMaxShadowPassages).
+struct PaneEdge {
+  SampledSpectrum pass{1.0f};
+  int count = 0;
+  bool open() const { return count < kMaxShadowPassages; }
+};
+
 // A solid-angle density at `from` of the direction towards `to`, as an area density at `to`: × |cos θ_to|/d² (a
 // point without normal: 1/d²). Lights at infinity keep solid-angle densities (every technique reaching them does).
 SampledSpectrum to_area(const SampledSpectrum& pdf, Vec3 from, const PathVertex& to) {
@@ -158,17 +166,21 @@ struct Subpaths {
     ratio *= densities / Float4(bs.pdf[0]);
   }
 
-  // Whether `bs`, drawn at the pane `v`, passes straight through it (as the path tracer passes panes): then `v` is no
-  // vertex, and the edge being walked goes on with the lobe's probability per lane in `edge_pass` and its
-  // transmittance over that probability in `beta` (the spectral-MIS ratios as for any sampled lobe).
-  bool passes(const PathVertex& v, const BsdfSample& bs, int& edge_passes, SampledSpectrum& edge_pass,
-              SampledSpectrum& beta, SampledSpectrum& ratio) const {
-    if (!v.pane || edge_passes >= kMaxShadowPassages || !(bs.wi.z * v.wo.z < 0.0f)) return false;
+  // Whether `bs`, drawn at the pane `v` (hit by `ray` at `hit`), passes straight through it (as the path tracer
+  // passes panes): then `v` is no vertex, the edge being walked goes on with the lobe's probability per lane in
+  // `edge`, its transmittance over that probability in `beta` (the spectral-MIS ratios as for any sampled lobe),
+  // and `ray` continues along the same line from the pane's far side.
+  bool passes(const PathVertex& v, const BsdfSample& bs, const SurfaceHit& hit, PaneEdge& edge, SampledSpectrum& beta,
+              SampledSpectrum& ratio, Ray& ray) const {
+    if (!v.pane || !edge.open() || !(bs.wi.z * v.wo.z < 0.0f)) return false;
     const SampledSpectrum densities = lanes.densities(bs.pdf);
-    edge_pass *= densities;
-    ++edge_passes;
+    edge.pass *= densities;
+    ++edge.count;
     beta *= bs.f * Float4(std::fabs(bs.wi.z) / bs.pdf[0]);
     ratio *= densities / Float4(bs.pdf[0]);
+    ray.origin = offset_ray_origin(hit, ray.direction, scene.scene_scale);
+    ray.t_min = 0.0f;
+    ray.t_max = INFINITY;
     return true;
   }
 
@@ -232,28 +244,27 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     SampledSpectrum beta = initial, ratio = initial;
     float eta_scale = 1.0f;
     SampledSpectrum pdf_direction(camera_.direction_density(camera_ray.direction, p.time) / film_pixels_);
-    SampledSpectrum edge_pass(1.0f);  // the panes passed since the last vertex (PathVertex::pass_in)
-    int edge_passes = 0;
+    PaneEdge edge;
     Ray ray = camera_ray;
     for (int k = 1;;) {
       const std::optional<SurfaceHit> hit = scene_.geometry->intersect(ray);
       PathVertex v;
       v.beta = beta;
       v.ratio = ratio;
-      v.pass_in = edge_pass;
+      v.pass_in = edge.pass;
       const PathVertex& previous = p.camera.back();
       if (!hit) {
         if (!scene_.infinite_lights.empty()) {
           v.kind = VertexKind::light_at_infinity;
           v.ng = ray.direction;
-          v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : pdf_direction * edge_pass;
+          v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : pdf_direction * edge.pass;
           p.camera.push_back(std::move(v));
         }
         break;
       }
       const bool scatters = p.make_surface_vertex(*hit, -ray.direction, v);
       // A delta lobe's density counts 1 wherever it appears, unconverted (pdf_rev below does the same).
-      v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : to_area(pdf_direction, previous.position, v) * edge_pass;
+      v.pdf_fwd = previous.delta ? SampledSpectrum(1.0f) : to_area(pdf_direction, previous.position, v) * edge.pass;
       if (hit->light >= 0) {
         const Light& light = *lights[size_t(hit->light)];
         v.light = hit->light;
@@ -265,7 +276,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       }
       // A pane is sampled even beyond the depth limit: next-event estimation from the last vertex passes it, so the
       // camera subpath must be able to as well (as in the path tracer).
-      const bool pane = scatters && v.pane && edge_passes < kMaxShadowPassages;
+      const bool pane = scatters && v.pane && edge.open();
       if (!pane && (!scatters || k > max_depth)) {
         p.camera.push_back(std::move(v));
         break;
@@ -280,12 +291,9 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         p.camera.push_back(std::move(v));
         break;
       }
-      if (p.passes(v, *bs, edge_passes, edge_pass, beta, ratio)) {
+      if (p.passes(v, *bs, *hit, edge, beta, ratio, ray)) {
         // No roulette at a pane (the path tracer draws its number and ignores it too).
         if (!(max_lane(abs(beta)) > 0.0f)) break;
-        ray.origin = offset_ray_origin(*hit, ray.direction, scene_.scene_scale);
-        ray.t_min = 0.0f;
-        ray.t_max = INFINITY;
         continue;
       }
       const Vec3 wi = v.world(bs->wi);
@@ -295,8 +303,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       }
       p.camera.push_back(std::move(v));
       p.record_scattering(p.camera, *bs, pdf_direction, ratio);
-      edge_pass = SampledSpectrum(1.0f);
-      edge_passes = 0;
+      edge = {};
       beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
       eta_scale *= bs->eta * bs->eta;
       p.lanes.keep_followed_lanes(bs->wavelength_dependent_direction, ratio, beta);
@@ -370,8 +377,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       const int light_index = y0.light;
       SampledSpectrum ratio = initial;
       float unit = 1.0f;  // the flux at y₁, Russian roulette's unit
-      SampledSpectrum edge_pass(1.0f);  // the panes passed since the last vertex (PathVertex::pass_in)
-      int edge_passes = 0;
+      PaneEdge edge;
       for (int k = 1; max_lane(abs(beta)) > 0.0f;) {
         const std::optional<SurfaceHit> hit =
             k == 1 && entry ? std::optional<SurfaceHit>(entry->hit) : scene_.geometry->intersect(ray);
@@ -379,7 +385,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         PathVertex v;
         v.beta = beta;
         v.ratio = ratio;
-        v.pass_in = edge_pass;
+        v.pass_in = edge.pass;
         if (!p.make_surface_vertex(*hit, -ray.direction, v)) break;
         if (k == 1 && entry) {
           // p(y, ω) per m² at y (and per sr for a sun of finite size), the source's choice included; the throughput
@@ -394,11 +400,11 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
           beta = v.beta;
         } else {
           v.pdf_fwd = p.light.back().delta ? SampledSpectrum(1.0f)
-                                           : to_area(pdf_direction, p.light.back().position, v) * edge_pass;
+                                           : to_area(pdf_direction, p.light.back().position, v) * edge.pass;
         }
         // A pane is sampled even at the depth limit: the vertex beyond it is the subpath's last one then. (A ray of
         // daylight's first surface is never one: enter_through_aperture passed them.)
-        const bool pane = v.pane && edge_passes < kMaxShadowPassages && !(k == 1 && entry);
+        const bool pane = v.pane && edge.open() && !(k == 1 && entry);
         std::optional<BsdfSample> bs;
         float u_roulette = 0.0f;
         if (pane || k < max_depth) {
@@ -406,12 +412,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
           const Vec2 u = light_sampler.next_2d();
           bs = v.bsdf->sample(v.wo, u_lobe, u);
           u_roulette = light_sampler.next_1d();
-          if (bs && bs->pdf[0] > 0.0f && p.passes(v, *bs, edge_passes, edge_pass, beta, ratio)) {
-            ray.origin = offset_ray_origin(*hit, ray.direction, scene_.scene_scale);
-            ray.t_min = 0.0f;
-            ray.t_max = INFINITY;
-            continue;
-          }
+          if (bs && bs->pdf[0] > 0.0f && p.passes(v, *bs, *hit, edge, beta, ratio, ray)) continue;
         }
         p.light.push_back(std::move(v));
         if (k == 1) {
@@ -430,8 +431,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         const Vec3 wi = here.world(bs->wi);
         if (!here.on_side(wi)) break;
         p.record_scattering(p.light, *bs, pdf_direction, ratio);
-        edge_pass = SampledSpectrum(1.0f);
-        edge_passes = 0;
+        edge = {};
         // Flux: the radiance scaling of a refraction undone, and the adjoint's shading-normal factor.
         const float scale = std::fabs(bs->wi.z) / bs->pdf[0] * bs->eta * bs->eta *
                             adjoint_shading_factor(here.world(here.wo), wi, here.frame.n, here.ng);
