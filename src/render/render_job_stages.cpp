@@ -528,7 +528,12 @@ void log_job_summary(const RenderJobState& s) {
     summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
             << " spatial leaves, " << g.directional_nodes << " directional nodes (or lobes), "
             << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
-  if (statistics.bidirectional)
+  if (statistics.bidirectional && statistics.vertex_merging)
+    summary << "rimu: vertex connection and merging (one light subpath per camera sample to connect; per sample "
+               "index, light subpaths to merge with: last pass "
+            << statistics.merge_vertices << " light vertices, " << double(statistics.merge_memory_bytes) / (1024.0 * 1024.0)
+            << " MiB at most, radius " << statistics.merge_radius_m << " m)\n";
+  else if (statistics.bidirectional)
     summary << "rimu: bidirectional path tracing (one light subpath per camera sample)\n";
   else if (s.loaded.scene && s.loaded.scene->settings.integrator.bidirectional)
     summary << "rimu: path-traced: bidirectional path tracing needs a pinhole or thin-lens camera, no media and no "

@@ -106,6 +106,22 @@ void add_caustic_splats(const std::vector<CausticSplat>& splats, const PixelFilt
   }
 }
 
+// Numbers from `base`, each moved into stratum k of K: a merging pass's wavelength buckets cover the spectrum evenly
+// (their heroes in the K strata of the sampler's unit interval), so the colour noise they share with other pixels of
+// their bucket cancels over the buckets of a pass.
+class StratumSampler final : public Sampler {
+ public:
+  StratumSampler(Sampler& base, int stratum, int strata) : base_(base), stratum_(stratum), strata_(strata) {}
+  void start_pixel_sample(int x, int y, uint32_t sample_index) override { base_.start_pixel_sample(x, y, sample_index); }
+  float next_1d() override { return std::min((float(stratum_) + base_.next_1d()) / float(strata_), 0x1.fffffep-1f); }
+  Vec2 next_2d() override { return {next_1d(), next_1d()}; }
+  std::unique_ptr<Sampler> clone() const override { return std::make_unique<StratumSampler>(base_, stratum_, strata_); }
+
+ private:
+  Sampler& base_;
+  int stratum_, strata_;
+};
+
 // The render loop over tiles and passes, for any integrator with radiance(ray, lambda, sampler).
 template <typename Integrator>
 RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorSettings& integrator_settings,
@@ -166,6 +182,55 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   std::vector<std::vector<CausticSplat>> caustic_splats;
   std::vector<char> caustic_done;
   std::optional<FilmTile> caustic_tile;
+  // Vertex merging (transport/integrators/vertex_merging.h): before each sample index, a pass of light subpaths
+  // (at most one per pixel) from their own stream, in batches of a fixed size joined in order (the pass does not
+  // depend on the threads); the camera samples of that index then merge with them.
+  std::optional<VertexMergingPass> merging;
+  std::vector<MergeVertexBatch> merge_batches;
+  constexpr uint64_t kMergeSeedSalt = 0x2545f4914f6cdd1dull;
+  std::unique_ptr<Sampler> merge_prototype;
+  int merge_subpaths = 0;
+  if constexpr (kBidirectional) {
+    if (integrator_settings.vertex_merging) {
+      merging.emplace();
+      merge_prototype = make_sampler(SamplerKind::independent, options.seed ^ kMergeSeedSalt);
+      merge_subpaths = int(std::min<int64_t>(film.pixel_bounds().area(),
+                                             std::max(1, integrator_settings.merging.max_light_subpaths)));
+      stats.vertex_merging = true;
+    }
+  }
+  const auto trace_merge_pass = [&](int sample_index) {
+    if constexpr (kBidirectional) {
+      const VertexMergingSettings& m = integrator_settings.merging;
+      std::vector<SampledWavelengths> sets;
+      const int buckets = std::max(1, m.wavelength_buckets);
+      for (int k = 0; k < buckets; ++k) {
+        merge_prototype->start_pixel_sample(-1 - k, -1, uint32_t(sample_index));
+        StratumSampler stratum(*merge_prototype, k, buckets);
+        sets.push_back(sample_path_wavelengths(integrator_settings.wavelengths, stratum, wavelength_density));
+      }
+      merging->start(m.radius(sample_index, surfaces.scene_scale), std::move(sets), merge_subpaths);
+      constexpr int kBatch = 4096;
+      merge_batches.resize(size_t((merge_subpaths + kBatch - 1) / kBatch));
+      tbb::parallel_for(size_t(0), merge_batches.size(), [&](size_t b) {
+        const std::unique_ptr<Sampler> sampler = merge_prototype->clone();
+        MergeVertexBatch& batch = merge_batches[b];
+        batch.clear();
+        const int end = std::min(merge_subpaths, int(b + 1) * kBatch);
+        for (int j = int(b) * kBatch; j < end; ++j) {
+          sampler->start_pixel_sample(j, 0, uint32_t(sample_index));
+          const float time = surfaces.has_motion ? sampler->next_1d() : 0.0f;
+          const int bucket = merging->subpath_bucket(j);
+          integrator.trace_merge_subpath(merging->wavelengths(bucket), bucket, time, *sampler, batch);
+        }
+      });
+      for (const MergeVertexBatch& batch : merge_batches) merging->append(batch);
+      merging->build();
+      stats.merge_radius_m = merging->radius();
+      stats.merge_vertices = merging->vertex_count();
+      stats.merge_memory_bytes = std::max(stats.merge_memory_bytes, merging->memory_bytes());
+    }
+  };
   // Adaptive sampling ends when every pixel stopped (converged or at its maximum): its pixels take unequal counts, so
   // the schedule's position is no pixel's count and may pass the maximum.
   const auto more_passes = [&] {
@@ -181,25 +246,6 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       break;
     }
     std::vector<std::unique_ptr<FilmTile>> results(tiles.size());
-    // Caustic light tracing: each tile's splats, held until every tile before it has finished, then spread into
-    // the pass's splat tile in tile order (commit_splats), so that the image does not depend on the threads and
-    // at most the tiles ahead of the slowest one wait in memory. Tiles are then scheduled in index order. The
-    // splat tile joins the film when the pass is complete (an interrupted pass drops it with its samples).
-    std::mutex splat_mutex;
-    size_t next_commit = 0;
-    if (splatting) {
-      caustic_splats.assign(tiles.size(), {});
-      caustic_done.assign(tiles.size(), 0);
-      caustic_tile.emplace(film.make_tile(film.pixel_bounds()));
-    }
-    const auto commit_splats = [&](size_t finished) {
-      std::lock_guard<std::mutex> lock(splat_mutex);
-      caustic_done[finished] = 1;
-      for (; next_commit < tiles.size() && caustic_done[next_commit]; ++next_commit) {
-        add_caustic_splats(caustic_splats[next_commit], filter, *caustic_tile);
-        std::vector<CausticSplat>().swap(caustic_splats[next_commit]);
-      }
-    };
     std::vector<FeatureTile> feature_results(options.features ? tiles.size() : 0);
     std::atomic<bool> stopped{false};
     std::atomic<uint64_t> pass_camera_samples{0};
@@ -219,130 +265,165 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
     // depend on the threads.
     const size_t tile_record_limit = train ? (kGuidingSampleBudget - guiding_history.size()) / tiles.size() : 0;
 
-    // Each tile's samples in this pass (also what it reports when done), from which the schedule predicts its cost:
-    // the costliest tiles go first.
-    for (size_t t = 0; t < tiles.size(); ++t) {
-      const PixelBounds& b = tiles[t];
-      uint64_t samples = uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count);
-      if (options.adaptive) {
-        samples = 0;
-        for (int y = b.y0; y < b.y1; ++y)
-          for (int x = b.x0; x < b.x1; ++x) samples += uint64_t(options.adaptive->pass_samples(x, y));
+    // With vertex merging, the pass is taken one sample index at a time (each after its light vertices); else at once.
+    const int sub_passes = merging ? count : 1;
+    for (int sub_pass = 0; sub_pass < sub_passes && !stopped; ++sub_pass) {
+      const int sample_begin = merging ? first + sub_pass : first;
+      const int sample_end = merging ? sample_begin + 1 : first + count;
+      if (merging) trace_merge_pass(sample_begin);
+      // Caustic light tracing: each tile's splats, held until every tile before it has finished, then spread into
+      // the pass's splat tile in tile order (commit_splats), so that the image does not depend on the threads and
+      // at most the tiles ahead of the slowest one wait in memory. Tiles are then scheduled in index order. The
+      // splat tile joins the film when the pass is complete (an interrupted pass drops it with its samples).
+      std::mutex splat_mutex;
+      size_t next_commit = 0;
+      if (splatting) {
+        caustic_splats.assign(tiles.size(), {});
+        caustic_done.assign(tiles.size(), 0);
+        if (sub_pass == 0) caustic_tile.emplace(film.make_tile(film.pixel_bounds()));
       }
-      planned_samples[t] = samples;
-    }
-    std::vector<size_t> index_order;
-    if (splatting) {
-      index_order.resize(tiles.size());
-      for (size_t t = 0; t < tiles.size(); ++t) index_order[t] = t;
-    }
-    const std::vector<size_t>& tile_order = splatting ? index_order : schedule.order(planned_samples);
+      const auto commit_splats = [&](size_t finished) {
+        std::lock_guard<std::mutex> lock(splat_mutex);
+        caustic_done[finished] = 1;
+        for (; next_commit < tiles.size() && caustic_done[next_commit]; ++next_commit) {
+          add_caustic_splats(caustic_splats[next_commit], filter, *caustic_tile);
+          std::vector<CausticSplat>().swap(caustic_splats[next_commit]);
+        }
+      };
+      // Each tile's samples in this pass (also what it reports when done), from which the schedule predicts its cost:
+      // the costliest tiles go first.
+      for (size_t t = 0; t < tiles.size(); ++t) {
+        const PixelBounds& b = tiles[t];
+        uint64_t samples = uint64_t(b.width()) * uint64_t(b.height()) * uint64_t(count);
+        if (options.adaptive) {
+          samples = 0;
+          for (int y = b.y0; y < b.y1; ++y)
+            for (int x = b.x0; x < b.x1; ++x) samples += uint64_t(options.adaptive->pass_samples(x, y));
+        }
+        planned_samples[t] = samples;
+      }
+      std::vector<size_t> index_order;
+      if (splatting) {
+        index_order.resize(tiles.size());
+        for (size_t t = 0; t < tiles.size(); ++t) index_order[t] = t;
+      }
+      const std::vector<size_t>& tile_order = splatting ? index_order : schedule.order(planned_samples);
 
-    // Each worker takes the next tile of the order until none is left (list scheduling): a split of the order into
-    // ranges, as parallel_for's partitioners make, would give one thread all of the costliest tiles.
-    const size_t workers =
-        std::min(tiles.size(), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-    std::atomic<size_t> next_position{0};
-    tbb::parallel_for(size_t(0), workers, [&](size_t) {
-      std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
-      std::unique_ptr<Sampler> feature_sampler = feature_prototype ? feature_prototype->clone() : nullptr;
-      std::unique_ptr<Sampler> caustic_sampler = caustic_prototype ? caustic_prototype->clone() : nullptr;
-      // Light groups (render/film/film.h): each sample's share per group. A film without groups passes an empty
-      // LightGroupRadiance, and the integrator and film skip the per-group work.
-      std::vector<SampledSpectrum> group_slots(film.light_groups().size());
-      const LightGroupRadiance groups{group_slots.empty() ? nullptr : group_slots.data(), int(group_slots.size())};
-      for (size_t position = next_position++; position < tiles.size(); position = next_position++) {
-        const size_t t = tile_order[position];
-        if (options.interrupt && options.interrupt->requested()) {
-          stopped = true;
-          return;
-        }
-        const auto tile_start = std::chrono::steady_clock::now();
-        auto tile = std::make_unique<FilmTile>(film.make_tile(tiles[t]));
-        if (options.features) feature_results[t] = options.features->make_tile(tile->bounds());
-        PathGuidingContext guiding;
-        guiding.field = guiding_field ? &*guiding_field : nullptr;
-        guiding.record = train ? &guiding_records[t] : nullptr;
-        guiding.record_limit = tile_record_limit;
-        const PixelBounds& b = tile->bounds();
-        for (int y = b.y0; y < b.y1; ++y) {
-          for (int x = b.x0; x < b.x1; ++x) {
-            // Adaptive sampling: the pixel's own count for this pass, continuing its own sample indices.
-            const int pixel_first = options.adaptive ? options.adaptive->samples(x, y) : first;
-            const int pixel_count = options.adaptive ? options.adaptive->pass_samples(x, y) : count;
-            const uint64_t rays_before = rays_traced_by_this_thread();
-            for (int s = pixel_first; s < pixel_first + pixel_count; ++s) {
-              sampler->start_pixel_sample(x, y, uint32_t(s));
-              // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4), the shutter time (1, only
-              // in a scene where something moves); then per-bounce ones.
-              const FilterSample fs = filter.sample(sampler->next_2d());
-              const Vec2 lens = sampler->next_2d();
-              const SampledWavelengths lambda =
-                  sample_path_wavelengths(integrator_settings.wavelengths, *sampler, wavelength_density);
-              const float time = surfaces.has_motion ? sampler->next_1d() : 0.0f;
-              const float film_x = float(x) + 0.5f + fs.offset_px.x, film_y = float(y) + 0.5f + fs.offset_px.y;
-              const Ray ray = camera.generate_ray(film_x, film_y, lens, time);
-              SampledSpectrum radiance;
-              if (groups.groups) std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
-              if constexpr (kBidirectional) {
-                // The light subpath from the light paths' own stream, as the caustic tracer's.
-                caustic_sampler->start_pixel_sample(x, y, uint32_t(s));
-                radiance = integrator.radiance(ray, lambda, *sampler, *caustic_sampler, caustic_splats[t], groups);
-              } else if (differentials_scale > 0.0f) {
-                const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
-                radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
-              } else {
-                radiance = integrator.radiance(ray, nullptr, lambda, *sampler, guiding, groups);
-              }
-              if (caustics) {
-                // One light path per camera sample, from its own stream (the camera paths draw what they drew
-                // without it), at the sample's wavelengths and time.
-                caustic_sampler->start_pixel_sample(x, y, uint32_t(s));
-                caustics->trace(lambda, *caustic_sampler, time, camera, caustic_splats[t]);
-              }
-              if (!options.features && !options.adaptive) {
-                tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
-                continue;
-              }
-              // The sample's share of the film's sums is read back from the tile, so the half buffers hold exactly
-              // what the film does (discarded samples included).
-              const double* sums = tile->pixel(x, y);
-              const double before[4] = {sums[0], sums[1], sums[2], sums[FilmTile::kWeight]};
-              tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
-              if (options.adaptive && sums[FilmTile::kWeight] - before[3] > 0.0) {
-                const double weight = sums[FilmTile::kWeight] - before[3];
-                const double value[3] = {(sums[0] - before[0]) / weight, (sums[1] - before[1]) / weight,
-                                         (sums[2] - before[2]) / weight};
-                options.adaptive->add_sample_value(x, y, value);
-              }
-              if (!options.features) continue;
-              FeatureSample feature;
-              feature.half = s & 1;
-              for (int k = 0; k < 3; ++k) feature.beauty_sum[size_t(k)] = sums[k] - before[k];
-              feature.beauty_weight = sums[FilmTile::kWeight] - before[3];
-              if (feature.beauty_weight > 0.0) {
-                feature_sampler->start_pixel_sample(x, y, uint32_t(s));
-                const PathFeatures f = first_diffuse_features(surfaces, ray, lambda, *feature_sampler, media);
-                feature.albedo = feature_albedo_channels(f, lambda, film.response());
-                feature.normal = f.normal;
-                feature.depth = f.depth;
-              }
-              feature_results[t].add(x, y, feature);
-            }
-            if (options.adaptive) options.adaptive->add_rays(x, y, rays_traced_by_this_thread() - rays_before);
+      // Each worker takes the next tile of the order until none is left (list scheduling): a split of the order into
+      // ranges, as parallel_for's partitioners make, would give one thread all of the costliest tiles.
+      const size_t workers =
+          std::min(tiles.size(), tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+      std::atomic<size_t> next_position{0};
+      tbb::parallel_for(size_t(0), workers, [&](size_t) {
+        std::unique_ptr<Sampler> sampler = prototype_sampler->clone();
+        std::unique_ptr<Sampler> feature_sampler = feature_prototype ? feature_prototype->clone() : nullptr;
+        std::unique_ptr<Sampler> caustic_sampler = caustic_prototype ? caustic_prototype->clone() : nullptr;
+        // Light groups (render/film/film.h): each sample's share per group. A film without groups passes an empty
+        // LightGroupRadiance, and the integrator and film skip the per-group work.
+        std::vector<SampledSpectrum> group_slots(film.light_groups().size());
+        const LightGroupRadiance groups{group_slots.empty() ? nullptr : group_slots.data(), int(group_slots.size())};
+        for (size_t position = next_position++; position < tiles.size(); position = next_position++) {
+          const size_t t = tile_order[position];
+          if (options.interrupt && options.interrupt->requested()) {
+            stopped = true;
+            return;
           }
+          const auto tile_start = std::chrono::steady_clock::now();
+          if (!results[t]) {
+            results[t] = std::make_unique<FilmTile>(film.make_tile(tiles[t]));
+            if (options.features) feature_results[t] = options.features->make_tile(results[t]->bounds());
+          }
+          FilmTile* const tile = results[t].get();
+          PathGuidingContext guiding;
+          guiding.field = guiding_field ? &*guiding_field : nullptr;
+          guiding.record = train ? &guiding_records[t] : nullptr;
+          guiding.record_limit = tile_record_limit;
+          const PixelBounds& b = tile->bounds();
+          for (int y = b.y0; y < b.y1; ++y) {
+            for (int x = b.x0; x < b.x1; ++x) {
+              // Adaptive sampling: the pixel's own count for this pass, continuing its own sample indices.
+              const int pixel_first = options.adaptive ? options.adaptive->samples(x, y) : sample_begin;
+              const int pixel_count = options.adaptive ? options.adaptive->pass_samples(x, y) : sample_end - sample_begin;
+              const uint64_t rays_before = rays_traced_by_this_thread();
+              for (int s = pixel_first; s < pixel_first + pixel_count; ++s) {
+                sampler->start_pixel_sample(x, y, uint32_t(s));
+                // Dimension order: film (2), lens (2), wavelengths (1; independent mode 4), the shutter time (1, only
+                // in a scene where something moves); then per-bounce ones.
+                const FilterSample fs = filter.sample(sampler->next_2d());
+                const Vec2 lens = sampler->next_2d();
+                SampledWavelengths lambda =
+                    sample_path_wavelengths(integrator_settings.wavelengths, *sampler, wavelength_density);
+                // Merging: the wavelengths of the sample's bucket (its own draw is kept, so the dimensions line up).
+                MergeContext merge_context;
+                if (merging) {
+                  merge_context = {&*merging, merging->pixel_bucket(x, y, s)};
+                  lambda = merging->wavelengths(merge_context.bucket);
+                }
+                const float time = surfaces.has_motion ? sampler->next_1d() : 0.0f;
+                const float film_x = float(x) + 0.5f + fs.offset_px.x, film_y = float(y) + 0.5f + fs.offset_px.y;
+                const Ray ray = camera.generate_ray(film_x, film_y, lens, time);
+                SampledSpectrum radiance;
+                if (groups.groups) std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
+                if constexpr (kBidirectional) {
+                  // The light subpath from the light paths' own stream, as the caustic tracer's.
+                  caustic_sampler->start_pixel_sample(x, y, uint32_t(s));
+                  radiance = integrator.radiance(ray, lambda, *sampler, *caustic_sampler, caustic_splats[t], groups,
+                                                 merging ? &merge_context : nullptr);
+                } else if (differentials_scale > 0.0f) {
+                  const RayDifferentials d = camera.generate_differentials(ray, film_x, film_y, lens, differentials_scale);
+                  radiance = integrator.radiance(ray, &d, lambda, *sampler, guiding, groups);
+                } else {
+                  radiance = integrator.radiance(ray, nullptr, lambda, *sampler, guiding, groups);
+                }
+                if (caustics) {
+                  // One light path per camera sample, from its own stream (the camera paths draw what they drew
+                  // without it), at the sample's wavelengths and time.
+                  caustic_sampler->start_pixel_sample(x, y, uint32_t(s));
+                  caustics->trace(lambda, *caustic_sampler, time, camera, caustic_splats[t]);
+                }
+                if (!options.features && !options.adaptive) {
+                  tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
+                  continue;
+                }
+                // The sample's share of the film's sums is read back from the tile, so the half buffers hold exactly
+                // what the film does (discarded samples included).
+                const double* sums = tile->pixel(x, y);
+                const double before[4] = {sums[0], sums[1], sums[2], sums[FilmTile::kWeight]};
+                tile->add_sample(x, y, radiance, lambda, fs.weight, groups.groups);
+                if (options.adaptive && sums[FilmTile::kWeight] - before[3] > 0.0) {
+                  const double weight = sums[FilmTile::kWeight] - before[3];
+                  const double value[3] = {(sums[0] - before[0]) / weight, (sums[1] - before[1]) / weight,
+                                           (sums[2] - before[2]) / weight};
+                  options.adaptive->add_sample_value(x, y, value);
+                }
+                if (!options.features) continue;
+                FeatureSample feature;
+                feature.half = s & 1;
+                for (int k = 0; k < 3; ++k) feature.beauty_sum[size_t(k)] = sums[k] - before[k];
+                feature.beauty_weight = sums[FilmTile::kWeight] - before[3];
+                if (feature.beauty_weight > 0.0) {
+                  feature_sampler->start_pixel_sample(x, y, uint32_t(s));
+                  const PathFeatures f = first_diffuse_features(surfaces, ray, lambda, *feature_sampler, media);
+                  feature.albedo = feature_albedo_channels(f, lambda, film.response());
+                  feature.normal = f.normal;
+                  feature.depth = f.depth;
+                }
+                feature_results[t].add(x, y, feature);
+              }
+              if (options.adaptive) options.adaptive->add_rays(x, y, rays_traced_by_this_thread() - rays_before);
+            }
+          }
+          // The samples the tile took, as planned before the pass: uniform, every pixel's; adaptive, each pixel's own
+          // count (a render that ends with every pixel stopped is marked complete by its caller).
+          const uint64_t tile_samples = planned_samples[t] / uint64_t(sub_passes);
+          if (options.progress) options.progress->add(tile_samples);
+          pass_camera_samples += tile_samples;
+          schedule.record(t, std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count(),
+                          tile_samples);
+          if (splatting) commit_splats(t);
         }
-        // The samples the tile took, as planned before the pass: uniform, every pixel's; adaptive, each pixel's own
-        // count (a render that ends with every pixel stopped is marked complete by its caller).
-        const uint64_t tile_samples = planned_samples[t];
-        if (options.progress) options.progress->add(tile_samples);
-        pass_camera_samples += tile_samples;
-        schedule.record(t, std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count(),
-                        tile_samples);
-        results[t] = std::move(tile);
-        if (splatting) commit_splats(t);
-      }
-    });
+      });
+    }
     if (stopped) {
       stats.interrupted = true;  // the unfinished pass is dropped: every pixel keeps the same sample count
       break;

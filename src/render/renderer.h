@@ -66,6 +66,12 @@ struct RenderStatistics {
   /// Rendered by bidirectional path tracing (PathIntegratorSettings::bidirectional asked for it and the camera
   /// and sampling allow it; transport/integrators/bidirectional_path_integrator.h).
   bool bidirectional = false;
+  /// With vertex merging (transport/integrators/vertex_merging.h): the last pass's radius and light vertices, and
+  /// the most memory a pass's light vertices took.
+  bool vertex_merging = false;
+  float merge_radius_m = 0.0f;
+  uint64_t merge_vertices = 0;
+  size_t merge_memory_bytes = 0;
 };
 
 /// Renders `scene` into `film` (which fixes resolution, crop and response). The result depends only on the

@@ -233,4 +233,16 @@ inline double mean_of(const std::vector<double>& values) {
   return sum / double(values.size());
 }
 
+/// The relative mean squared difference of `image` from `reference`, per pixel: (a − b)² / (b² + ε), ε = 1 % of the
+/// reference's mean squared (so black pixels do not dominate), averaged over the pixels.
+inline double relative_mse(const std::vector<double>& image, const std::vector<double>& reference) {
+  const double m = mean_of(reference), floor = 0.01 * m * m;
+  double sum = 0.0;
+  for (size_t i = 0; i < image.size(); ++i) {
+    const double d = image[i] - reference[i];
+    sum += d * d / (reference[i] * reference[i] + floor);
+  }
+  return sum / double(image.size());
+}
+
 }  // namespace rimu::test

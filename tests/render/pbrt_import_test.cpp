@@ -196,20 +196,23 @@ TEST_CASE("pbrt camera and film: fov spans the shorter axis, resolution, samples
   CHECK_CONTAINS(error_of("WorldBegin\nShape \"sphere\"", true), "no Camera");
 }
 
-TEST_CASE("pbrt bdpt is bidirectional; sppm and lightpath scenes light-trace their caustics; path and volpath do not") {
+TEST_CASE("pbrt bdpt is bidirectional, sppm vertex connection and merging; lightpath light-traces its caustics") {
   const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
   const PbrtImport bdpt = import_text("Integrator \"bdpt\" \"integer maxdepth\" 7\n" + camera);
   CHECK(bdpt.document["integrator"]["method"] == "bidirectional");
   CHECK(bdpt.document["integrator"]["caustics"] == "light_tracing");  // where bidirectional cannot run
   CHECK(bdpt.document["integrator"]["max_depth"] == 7);
   CHECK(bdpt.ignored.empty());
-  for (const char* type : {"sppm", "lightpath"}) {
-    CAPTURE(type);
-    const PbrtImport imported = import_text(std::string("Integrator \"") + type + "\"\n" + camera);
-    CHECK(imported.document["integrator"]["caustics"] == "light_tracing");
-    REQUIRE(imported.ignored.size() == 1);
-    CHECK(imported.ignored[0].what.find("caustics light-traced") != std::string::npos);
-  }
+  const PbrtImport sppm = import_text("Integrator \"sppm\" \"float radius\" 0.01\n" + camera);
+  CHECK(sppm.document["integrator"]["method"] == "vcm");
+  CHECK(sppm.document["integrator"]["merge_radius"].get<double>() == doctest::Approx(0.01));
+  CHECK(sppm.document["integrator"]["caustics"] == "light_tracing");  // where it cannot run
+  CHECK(sppm.ignored.empty());
+  CHECK(import_text("Integrator \"sppm\"\n" + camera).document["integrator"]["merge_radius"] == 1.0);  // pbrt's default
+  const PbrtImport lightpath = import_text("Integrator \"lightpath\"\n" + camera);
+  CHECK(lightpath.document["integrator"]["caustics"] == "light_tracing");
+  REQUIRE(lightpath.ignored.size() == 1);
+  CHECK(lightpath.ignored[0].what.find("caustics light-traced") != std::string::npos);
   for (const char* type : {"path", "volpath"}) {
     CAPTURE(type);
     const PbrtImport imported = import_text(std::string("Integrator \"") + type + "\"\n" + camera);

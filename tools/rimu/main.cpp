@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
                  "of the camera's, weighted by MIS (light that arrives by way of lit surfaces near the lights: lamps "
                  "under shades, caustics seen in mirrors; see docs/transport.md), path_tracing: the default "
                  "(overrides the scene)")
-      ->check(CLI::IsMember({"path_tracing", "bidirectional"}));
+      ->check(CLI::IsMember({"path_tracing", "bidirectional", "vcm"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   std::string max_sample_value;

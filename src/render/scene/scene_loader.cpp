@@ -149,8 +149,8 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
-               "direct_lighting", "distance_sampling", "max_depth_includes_media", "equiangular", "caustics", "method", "light_sampler", "guiding",
-               "glossy_light_candidates", "time_limit_s", "daylit_points"});
+               "direct_lighting", "distance_sampling", "max_depth_includes_media", "equiangular", "caustics", "method",
+               "merge_radius", "light_sampler", "guiding", "glossy_light_candidates", "time_limit_s", "daylit_points"});
   if (const auto d = c.find("daylit_points")) {
     const std::string mode = d->is_string() ? d->choice({"auto", "on", "off"}) : d->boolean() ? "on" : "off";
     s.daylit_points = mode == "auto" ? std::nullopt : std::optional<bool>(mode == "on");
@@ -175,8 +175,12 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
   s.max_depth_includes_media = c.boolean_or("max_depth_includes_media", s.max_depth_includes_media);
   if (const auto d = c.find("caustics"))
     s.integrator.caustic_light_tracing = d->choice({"path_tracing", "light_tracing"}) == "light_tracing";
-  if (const auto d = c.find("method"))
-    s.integrator.bidirectional = d->choice({"path_tracing", "bidirectional"}) == "bidirectional";
+  if (const auto d = c.find("method")) {
+    const std::string method = d->choice({"path_tracing", "bidirectional", "vcm"});
+    s.integrator.bidirectional = method != "path_tracing";
+    s.integrator.vertex_merging = method == "vcm";
+  }
+  if (const auto d = c.find("merge_radius")) s.integrator.merging.radius_m = float(d->number(1e-9, 1e9));
   if (const auto d = c.find("equiangular")) {
     const std::string v = d->choice({"points", "all", "off"});
     s.equiangular = v == "all" ? EquiangularLights::all : v == "off" ? EquiangularLights::off : EquiangularLights::points;

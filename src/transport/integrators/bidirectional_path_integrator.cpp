@@ -75,14 +75,17 @@ struct PaneEdge {
 
 // A solid-angle density at `from` of the direction towards `to`, as an area density at `to`: × |cos θ_to|/d² (a
 // point without normal: 1/d²). Lights at infinity keep solid-angle densities (every technique reaching them does).
-SampledSpectrum to_area(const SampledSpectrum& pdf, Vec3 from, const PathVertex& to) {
-  if (to.kind == VertexKind::light_at_infinity) return pdf;
-  const Vec3 d = from - to.position;
+SampledSpectrum to_area(const SampledSpectrum& pdf, Vec3 from, Vec3 to_position, Vec3 to_normal, bool at_infinity) {
+  if (at_infinity) return pdf;
+  const Vec3 d = from - to_position;
   const float d2 = length_squared(d);
   if (!(d2 > 0.0f) || !std::isfinite(d2)) return SampledSpectrum(0.0f);
   float g = 1.0f / d2;
-  if (!(to.ng == Vec3{})) g *= std::fabs(dot(to.ng, d)) / std::sqrt(d2);
+  if (!(to_normal == Vec3{})) g *= std::fabs(dot(to_normal, d)) / std::sqrt(d2);
   return pdf * Float4(g);
+}
+SampledSpectrum to_area(const SampledSpectrum& pdf, Vec3 from, const PathVertex& to) {
+  return to_area(pdf, from, to.position, to.ng, to.kind == VertexKind::light_at_infinity);
 }
 
 }  // namespace
@@ -184,6 +187,19 @@ struct Subpaths {
     return true;
   }
 
+  // Russian roulette as the path tracer's: on the effective throughput in units of `unit` (a light subpath's flux
+  // at its first vertex: what it carries then is what scattering has left of it, whatever the light's units), once
+  // a subpath has `vertices` scattering vertices (the path tracer's depth + 1) and from russian_roulette_depth on.
+  bool survives(const SampledSpectrum& beta, const SampledSpectrum& ratio, float eta_scale, float unit, int vertices,
+                float u, SampledSpectrum& beta_out) const {
+    if (vertices < settings.russian_roulette_depth) return true;
+    const float effective = max_lane(beta) / unit * eta_scale * kLanes / sum(ratio);
+    const float q = std::fmin(1.0f, effective);
+    if (!(q > 0.0f) || u >= q) return false;
+    beta_out /= Float4(q);
+    return true;
+  }
+
   LightSamplingPoint sampling_point(const PathVertex& v) const {
     return {v.position, v.transmits ? Vec3{} : v.ng, &lambda};
   }
@@ -204,12 +220,156 @@ struct Subpaths {
   }
 };
 
+
+// Where light subpaths start: the integrator's choice of lights by power.
+struct LightStarts {
+  const Distribution1D* by_power = nullptr;
+  const std::vector<int>& emitting;
+};
+
+// The light subpath into p.light: y₀ on a light chosen by power (or a ray of daylight), y₁ … y_{max_depth}.
+void trace_light_subpath(Subpaths& p, const LightStarts& starts, Sampler& light_sampler) {
+  const auto& lights = *p.scene.lights;
+  const int max_depth = p.settings.max_depth;
+  const SampledSpectrum initial = p.lanes.initial_ratios();
+if (starts.by_power) {
+  const float u_choice = light_sampler.next_1d();
+  const Vec2 u_position = light_sampler.next_2d(), u_direction = light_sampler.next_2d();
+  const auto pick = starts.by_power->sample_discrete(u_choice);
+  const float choice = pick.probability;
+  const bool from_daylight = size_t(pick.index) == starts.emitting.size();
+  PathVertex y0;
+  y0.beta = initial;
+  y0.ratio = initial;
+  SampledSpectrum beta(0.0f), pdf_direction(0.0f);
+  std::optional<DaylightRaySampler::DaylightRay> daylight;
+  std::optional<DaylightEntry> entry;  // where a ray of daylight meets the first surface that is no pane
+  Ray ray;
+  ray.time = p.time;
+  if (from_daylight) {
+    // A ray of daylight from an aperture: y₀ is its direction at infinity, y₁'s density the sampler's p(y, ω).
+    daylight = p.scene.daylight_rays->sample(p.lambda, pick.u_remapped, u_direction, u_position);
+    // Its panes (between the sky and the aperture as well, an outer pane, or an overhang blocking it) are passed
+    // as shadow rays pass them: next-event estimation from the point met passes them so, and the density of
+    // this technique (the sampler's p(y, ω)) has no lobe choice in it. A first version traced the ray from the
+    // aperture inwards only and skipped what lay outside (the double-glazed room came out 34 % bright).
+    if (daylight) entry = enter_through_aperture(p.scene, *daylight, p.lambda, p.time);
+    if (entry) {
+      y0.kind = VertexKind::light_at_infinity;
+      y0.ng = daylight->to_light;
+      y0.light = daylight->light;
+      y0.pdf_emit = choice;
+      y0.hittable = !daylight->is_delta;
+      ray.direction = -daylight->to_light;
+      beta = initial * daylight->radiance * entry->passage.transmittance;
+    }
+  } else {
+    const int light_index = starts.emitting[size_t(pick.index)];
+    const std::optional<EmissionSample> e =
+        lights[size_t(light_index)]->sample_emission(pick.u_remapped, u_position, u_direction, p.lambda);
+    if (e && choice > 0.0f && e->pdf_direction > 0.0f && e->pdf_position > 0.0f) {
+      y0.kind = VertexKind::light;
+      y0.position = e->origin_m;
+      y0.ng = e->normal;
+      y0.light = light_index;
+      y0.pdf_emit = choice * e->pdf_position;
+      y0.hittable = !(e->normal == Vec3{});
+      y0.hit.position = e->origin_m;
+      y0.hit.geometric_normal = e->normal;
+      y0.hit.primitive = e->primitive;
+      y0.hit.light = light_index;
+      beta = initial * e->weight / Float4(choice);
+      pdf_direction = SampledSpectrum(e->pdf_direction);
+      ray.origin = e->normal == Vec3{} ? e->origin_m
+                                       : offset_ray_origin(e->origin_m, e->normal, e->direction, p.scene.scene_scale);
+      ray.direction = e->direction;
+    }
+  }
+  if (y0.light >= 0) {
+    y0.pdf_fwd = SampledSpectrum(y0.pdf_emit);
+    p.light.push_back(y0);
+    const int light_index = y0.light;
+    SampledSpectrum ratio = initial;
+    float unit = 1.0f;  // the flux at y₁, Russian roulette's unit
+    PaneEdge edge;
+    for (int k = 1; max_lane(abs(beta)) > 0.0f;) {
+      const std::optional<SurfaceHit> hit =
+          k == 1 && entry ? std::optional<SurfaceHit>(entry->hit) : p.scene.geometry->intersect(ray);
+      if (!hit) break;
+      PathVertex v;
+      v.beta = beta;
+      v.ratio = ratio;
+      v.pass_in = edge.pass;
+      if (!p.make_surface_vertex(*hit, -ray.direction, v)) break;
+      if (k == 1 && entry) {
+        // p(y, ω) per m² at y (and per sr for a sun of finite size), the source's choice included; the throughput
+        // L T |n_y·ω| / p(y, ω) (its cosine cancels). The panes on the way were passed deterministically: a camera
+        // subpath walking this edge the other way passes them by its lobe choices (y₀'s reverse density).
+        const float density = p.scene.daylight_rays->density(light_index, hit->position, hit->geometric_normal,
+                                                            daylight->to_light, daylight->direction_pdf);
+        if (!(density > 0.0f)) break;
+        v.pdf_fwd = SampledSpectrum(density);
+        v.pass_in = entry->passage.pass_probability;
+        v.beta = beta * Float4(std::fabs(dot(hit->geometric_normal, daylight->to_light)) / (choice * density));
+        beta = v.beta;
+      } else {
+        v.pdf_fwd = p.light.back().delta ? SampledSpectrum(1.0f)
+                                         : to_area(pdf_direction, p.light.back().position, v) * edge.pass;
+      }
+      // A pane is sampled even at the depth limit: the vertex beyond it is the subpath's last one then. (A ray of
+      // daylight's first surface is never one: enter_through_aperture passed them.)
+      const bool pane = v.pane && edge.open() && !(k == 1 && entry);
+      std::optional<BsdfSample> bs;
+      float u_roulette = 0.0f;
+      if (pane || k < max_depth) {
+        const float u_lobe = light_sampler.next_1d();
+        const Vec2 u = light_sampler.next_2d();
+        bs = v.bsdf->sample(v.wo, u_lobe, u);
+        u_roulette = light_sampler.next_1d();
+        if (bs && bs->pdf[0] > 0.0f && p.passes(v, *bs, *hit, edge, beta, ratio, ray)) continue;
+      }
+      p.light.push_back(std::move(v));
+      if (k == 1) {
+        unit = max_lane(abs(beta)) > 0.0f ? max_lane(abs(beta)) : 1.0f;
+        PathVertex& first = p.light[0];
+        if (daylight) {
+          first.pdf_nee = p.nee_density(p.light[1], light_index, daylight->to_light, nullptr);
+        } else {
+          first.pdf_nee = p.nee_density(p.light[1], light_index, normalize(first.position - hit->position),
+                                        first.ng == Vec3{} ? nullptr : &first.hit);
+        }
+      }
+      if (k >= max_depth) break;
+      PathVertex& here = p.light.back();
+      if (!bs || !(bs->pdf[0] > 0.0f)) break;
+      const Vec3 wi = here.world(bs->wi);
+      if (!here.on_side(wi)) break;
+      p.record_scattering(p.light, *bs, pdf_direction, ratio);
+      edge = {};
+      // Flux: the radiance scaling of a refraction undone, and the adjoint's shading-normal factor.
+      const float scale = std::fabs(bs->wi.z) / bs->pdf[0] * bs->eta * bs->eta *
+                          adjoint_shading_factor(here.world(here.wo), wi, here.frame.n, here.ng);
+      beta *= bs->f * Float4(scale);
+      p.lanes.keep_followed_lanes(bs->wavelength_dependent_direction, ratio, beta);
+      if (!p.survives(beta, ratio, 1.0f, unit, k, u_roulette, beta)) break;
+      ray.origin = offset_ray_origin(*hit, wi, p.scene.scene_scale);
+      ray.direction = wi;
+      ray.t_min = 0.0f;
+      ray.t_max = INFINITY;
+      ++k;
+    }
+  }
+}
+
+}
+
 }  // namespace
 
 SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
                                                       Sampler& camera_sampler, Sampler& light_sampler,
                                                       std::vector<CausticSplat>& splats,
-                                                      const LightGroupRadiance& groups) const {
+                                                      const LightGroupRadiance& groups,
+                                                      const MergeContext* merging) const {
   thread_local std::vector<PathVertex> camera_storage, light_storage;
   thread_local std::vector<JoinedVertex> joined;
   camera_storage.clear();
@@ -219,19 +379,6 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
   const auto& lights = *scene_.lights;
   const int max_depth = settings_.max_depth;
   const SampledSpectrum initial = p.lanes.initial_ratios();
-
-  // Russian roulette as the path tracer's: on the effective throughput in units of `unit` (a light subpath's flux
-  // at its first vertex: what it carries then is what scattering has left of it, whatever the light's units), once
-  // a subpath has `vertices` scattering vertices (the path tracer's depth + 1) and from russian_roulette_depth on.
-  auto survives = [&](const SampledSpectrum& beta, const SampledSpectrum& ratio, float eta_scale, float unit,
-                      int vertices, float u, SampledSpectrum& beta_out) {
-    if (vertices < settings_.russian_roulette_depth) return true;
-    const float effective = max_lane(beta) / unit * eta_scale * kLanes / sum(ratio);
-    const float q = std::fmin(1.0f, effective);
-    if (!(q > 0.0f) || u >= q) return false;
-    beta_out /= Float4(q);
-    return true;
-  };
 
   // ---- The camera subpath: z₀ on the lens, z₁ … z_{max_depth+1} (the last only to find an emitter).
   {
@@ -307,7 +454,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
       eta_scale *= bs->eta * bs->eta;
       p.lanes.keep_followed_lanes(bs->wavelength_dependent_direction, ratio, beta);
-      if (!survives(beta, ratio, eta_scale, 1.0f, k, u_roulette, beta)) break;
+      if (!p.survives(beta, ratio, eta_scale, 1.0f, k, u_roulette, beta)) break;
       if (!(max_lane(abs(beta)) > 0.0f)) break;
       ray.origin = offset_ray_origin(*hit, wi, scene_.scene_scale);
       ray.direction = wi;
@@ -317,135 +464,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     }
   }
 
-  // ---- The light subpath: y₀ on a light chosen by power (or a ray of daylight), y₁ … y_{max_depth}.
-  if (by_power_) {
-    const float u_choice = light_sampler.next_1d();
-    const Vec2 u_position = light_sampler.next_2d(), u_direction = light_sampler.next_2d();
-    const auto pick = by_power_->sample_discrete(u_choice);
-    const float choice = pick.probability;
-    const bool from_daylight = size_t(pick.index) == emitting_.size();
-    PathVertex y0;
-    y0.beta = initial;
-    y0.ratio = initial;
-    SampledSpectrum beta(0.0f), pdf_direction(0.0f);
-    std::optional<DaylightRaySampler::DaylightRay> daylight;
-    std::optional<DaylightEntry> entry;  // where a ray of daylight meets the first surface that is no pane
-    Ray ray;
-    ray.time = p.time;
-    if (from_daylight) {
-      // A ray of daylight from an aperture: y₀ is its direction at infinity, y₁'s density the sampler's p(y, ω).
-      daylight = scene_.daylight_rays->sample(lambda, pick.u_remapped, u_direction, u_position);
-      // Its panes (between the sky and the aperture as well, an outer pane, or an overhang blocking it) are passed
-      // as shadow rays pass them: next-event estimation from the point met passes them so, and the density of
-      // this technique (the sampler's p(y, ω)) has no lobe choice in it. A first version traced the ray from the
-      // aperture inwards only and skipped what lay outside (the double-glazed room came out 34 % bright).
-      if (daylight) entry = enter_through_aperture(scene_, *daylight, lambda, p.time);
-      if (entry) {
-        y0.kind = VertexKind::light_at_infinity;
-        y0.ng = daylight->to_light;
-        y0.light = daylight->light;
-        y0.pdf_emit = choice;
-        y0.hittable = !daylight->is_delta;
-        ray.direction = -daylight->to_light;
-        beta = initial * daylight->radiance * entry->passage.transmittance;
-      }
-    } else {
-      const int light_index = emitting_[size_t(pick.index)];
-      const std::optional<EmissionSample> e =
-          lights[size_t(light_index)]->sample_emission(pick.u_remapped, u_position, u_direction, lambda);
-      if (e && choice > 0.0f && e->pdf_direction > 0.0f && e->pdf_position > 0.0f) {
-        y0.kind = VertexKind::light;
-        y0.position = e->origin_m;
-        y0.ng = e->normal;
-        y0.light = light_index;
-        y0.pdf_emit = choice * e->pdf_position;
-        y0.hittable = !(e->normal == Vec3{});
-        y0.hit.position = e->origin_m;
-        y0.hit.geometric_normal = e->normal;
-        y0.hit.primitive = e->primitive;
-        y0.hit.light = light_index;
-        beta = initial * e->weight / Float4(choice);
-        pdf_direction = SampledSpectrum(e->pdf_direction);
-        ray.origin = e->normal == Vec3{} ? e->origin_m
-                                         : offset_ray_origin(e->origin_m, e->normal, e->direction, scene_.scene_scale);
-        ray.direction = e->direction;
-      }
-    }
-    if (y0.light >= 0) {
-      y0.pdf_fwd = SampledSpectrum(y0.pdf_emit);
-      p.light.push_back(y0);
-      const int light_index = y0.light;
-      SampledSpectrum ratio = initial;
-      float unit = 1.0f;  // the flux at y₁, Russian roulette's unit
-      PaneEdge edge;
-      for (int k = 1; max_lane(abs(beta)) > 0.0f;) {
-        const std::optional<SurfaceHit> hit =
-            k == 1 && entry ? std::optional<SurfaceHit>(entry->hit) : scene_.geometry->intersect(ray);
-        if (!hit) break;
-        PathVertex v;
-        v.beta = beta;
-        v.ratio = ratio;
-        v.pass_in = edge.pass;
-        if (!p.make_surface_vertex(*hit, -ray.direction, v)) break;
-        if (k == 1 && entry) {
-          // p(y, ω) per m² at y (and per sr for a sun of finite size), the source's choice included; the throughput
-          // L T |n_y·ω| / p(y, ω) (its cosine cancels). The panes on the way were passed deterministically: a camera
-          // subpath walking this edge the other way passes them by its lobe choices (y₀'s reverse density).
-          const float density = scene_.daylight_rays->density(light_index, hit->position, hit->geometric_normal,
-                                                              daylight->to_light, daylight->direction_pdf);
-          if (!(density > 0.0f)) break;
-          v.pdf_fwd = SampledSpectrum(density);
-          v.pass_in = entry->passage.pass_probability;
-          v.beta = beta * Float4(std::fabs(dot(hit->geometric_normal, daylight->to_light)) / (choice * density));
-          beta = v.beta;
-        } else {
-          v.pdf_fwd = p.light.back().delta ? SampledSpectrum(1.0f)
-                                           : to_area(pdf_direction, p.light.back().position, v) * edge.pass;
-        }
-        // A pane is sampled even at the depth limit: the vertex beyond it is the subpath's last one then. (A ray of
-        // daylight's first surface is never one: enter_through_aperture passed them.)
-        const bool pane = v.pane && edge.open() && !(k == 1 && entry);
-        std::optional<BsdfSample> bs;
-        float u_roulette = 0.0f;
-        if (pane || k < max_depth) {
-          const float u_lobe = light_sampler.next_1d();
-          const Vec2 u = light_sampler.next_2d();
-          bs = v.bsdf->sample(v.wo, u_lobe, u);
-          u_roulette = light_sampler.next_1d();
-          if (bs && bs->pdf[0] > 0.0f && p.passes(v, *bs, *hit, edge, beta, ratio, ray)) continue;
-        }
-        p.light.push_back(std::move(v));
-        if (k == 1) {
-          unit = max_lane(abs(beta)) > 0.0f ? max_lane(abs(beta)) : 1.0f;
-          PathVertex& first = p.light[0];
-          if (daylight) {
-            first.pdf_nee = p.nee_density(p.light[1], light_index, daylight->to_light, nullptr);
-          } else {
-            first.pdf_nee = p.nee_density(p.light[1], light_index, normalize(first.position - hit->position),
-                                          first.ng == Vec3{} ? nullptr : &first.hit);
-          }
-        }
-        if (k >= max_depth) break;
-        PathVertex& here = p.light.back();
-        if (!bs || !(bs->pdf[0] > 0.0f)) break;
-        const Vec3 wi = here.world(bs->wi);
-        if (!here.on_side(wi)) break;
-        p.record_scattering(p.light, *bs, pdf_direction, ratio);
-        edge = {};
-        // Flux: the radiance scaling of a refraction undone, and the adjoint's shading-normal factor.
-        const float scale = std::fabs(bs->wi.z) / bs->pdf[0] * bs->eta * bs->eta *
-                            adjoint_shading_factor(here.world(here.wo), wi, here.frame.n, here.ng);
-        beta *= bs->f * Float4(scale);
-        p.lanes.keep_followed_lanes(bs->wavelength_dependent_direction, ratio, beta);
-        if (!survives(beta, ratio, 1.0f, unit, k, u_roulette, beta)) break;
-        ray.origin = offset_ray_origin(*hit, wi, scene_.scene_scale);
-        ray.direction = wi;
-        ray.t_min = 0.0f;
-        ray.t_max = INFINITY;
-        ++k;
-      }
-    }
-  }
+  trace_light_subpath(p, LightStarts{by_power_ ? &*by_power_ : nullptr, emitting_}, light_sampler);
 
   // ---- Joining them.
   SampledSpectrum radiance(0.0f);
@@ -492,9 +511,11 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     }
     return n;
   };
+  // Vertex merging's c = π r² N for this sample's bucket (0: no merging): every technique's weight counts the merges.
+  const float merge_factor = merging ? merging->pass->merge_factor(merging->bucket) : 0.0f;
   auto finish = [&](int n, int s, const SampledSpectrum& ratio, const SampledSpectrum& value, float p_nee,
-                    float p_emit, bool hittable) {
-    const SampledSpectrum sums = technique_sum(joined.data(), n, s, p_nee, p_emit, hittable);
+                    float p_emit, bool hittable, bool merge = false) {
+    const SampledSpectrum sums = technique_sum(joined.data(), n, s, p_nee, p_emit, hittable, merge_factor, merge);
     const float denominator = sum(ratio * sums);
     if (!(denominator > 0.0f) || !std::isfinite(denominator)) return SampledSpectrum(0.0f);
     return value * Float4(kLanes / denominator);
@@ -618,6 +639,41 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
       contribute(y0.light, finish(n, s, y.ratio * z.ratio, value * passage->transmittance, y0.pdf_nee, y0.pdf_emit,
                                   y0.hittable));
     }
+
+    // Merges: z with the pass's light vertices of its bucket within the radius (vertex_merging.h). Light vertex y_i
+    // stands for z: the path is y₀ … y_{i−1}, z, z_{t−2} … z₀, and z's BSDF scatters the light y_i received.
+    if (merging && t - 1 <= max_depth) {
+      const VertexMergingPass& pass = *merging->pass;
+      pass.for_each_within(z.position, merging->bucket, [&](const MergeVertex& m) {
+        const int i = m.index, n = i + t;
+        if (n - 2 > max_depth || !z.on_side(m.w_light)) return;
+        // The photons' density is per area of the surface (their irradiance is the geometric normal's), the BSDF's
+        // cosine the shading normal's, as a connection's.
+        const float cos_geometric = std::fabs(dot(z.ng, m.w_light));
+        if (!(cos_geometric > 0.0f)) return;
+        const Vec3 local = z.frame.to_local(m.w_light);
+        const SampledSpectrum value = z.beta * z.bsdf->eval(z.wo, local) * m.beta *
+                                      Float4(std::fabs(local.z) / (cos_geometric * merge_factor));
+        if (!(max_lane(abs(value)) > 0.0f)) return;
+        const MergeSubpath& subpath = pass.subpath(m.subpath);
+        if (joined.size() < size_t(n + 1)) joined.resize(size_t(n + 1));
+        const JoinedVertex* light_densities = pass.densities(subpath);
+        for (int k = 0; k < i; ++k) joined[size_t(k)] = light_densities[k];
+        for (int j = 0; j < t; ++j) {
+          const PathVertex& zj = p.camera[size_t(j)];
+          joined[size_t(n - 1 - j)] = {zj.pdf_rev, zj.pdf_fwd, j >= 1 && zj.connectible()};
+        }
+        joined[size_t(i)].pf = m.pdf_fwd;
+        joined[size_t(i)].connectible = true;
+        joined[size_t(i - 1)].pc = to_area(bsdf_pdf(z, z.world(z.wo), m.w_light), z.position, m.previous_position,
+                                           m.previous_normal, m.previous_at_infinity) *
+                                   m.pass_in;
+        if (t >= 3)
+          joined[size_t(i + 1)].pf = to_area(bsdf_pdf(z, m.w_light, z.world(z.wo)), z.position, z_previous) * z.pass_in;
+        contribute(subpath.light, finish(n, i, m.ratio * z.ratio, value, subpath.pdf_nee, subpath.pdf_emit,
+                                         subpath.hittable, true));
+      });
+    }
   }
 
   // t = 1: y_{s−1} seen by the camera, splatted.
@@ -660,6 +716,48 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     radiance *= hero_only;
   }
   return radiance;
+}
+
+void BidirectionalPathIntegrator::trace_merge_subpath(const SampledWavelengths& lambda, int bucket, float time,
+                                                      Sampler& sampler, MergeVertexBatch& batch) const {
+  thread_local std::vector<PathVertex> unused_camera, light_storage;
+  light_storage.clear();
+  Subpaths p{scene_, settings_, lambda, LaneTechniques{settings_.wavelengths}, time, unused_camera, light_storage};
+  trace_light_subpath(p, LightStarts{by_power_ ? &*by_power_ : nullptr, emitting_}, sampler);
+  const auto subpath = uint32_t(batch.subpaths.size());
+  bool any = false;
+  for (size_t i = 1; i < p.light.size(); ++i) {
+    const PathVertex& y = p.light[i];
+    if (!y.non_delta || y.kind != VertexKind::surface) continue;
+    const PathVertex& previous = p.light[i - 1];
+    MergeVertex m;
+    m.position = y.position;
+    m.w_light = y.world(y.wo);
+    m.previous_position = previous.position;
+    m.previous_normal = previous.ng;
+    m.previous_at_infinity = previous.kind == VertexKind::light_at_infinity;
+    m.beta = y.beta;
+    m.ratio = y.ratio;
+    m.pdf_fwd = y.pdf_fwd;
+    m.pass_in = y.pass_in;
+    m.subpath = subpath;
+    m.index = uint16_t(i);
+    m.bucket = uint16_t(bucket);
+    batch.vertices.push_back(m);
+    any = true;
+  }
+  if (!any) return;
+  MergeSubpath s;
+  s.first_density = uint32_t(batch.densities.size());
+  s.light = p.light[0].light;
+  s.pdf_nee = p.light[0].pdf_nee;
+  s.pdf_emit = p.light[0].pdf_emit;
+  s.hittable = p.light[0].hittable;
+  batch.subpaths.push_back(s);
+  for (size_t i = 0; i < p.light.size(); ++i) {
+    const PathVertex& y = p.light[i];
+    batch.densities.push_back({y.pdf_fwd, y.pdf_rev, i >= 1 && y.connectible()});
+  }
 }
 
 }  // namespace rimu

@@ -49,9 +49,16 @@
 #include "transport/integrators/caustic_light_tracer.h"
 #include "transport/integrators/light_tracing_camera.h"
 #include "transport/integrators/path_integrator.h"
+#include "transport/integrators/vertex_merging.h"
 #include "transport/sampling/distribution_1d.h"
 
 namespace rimu {
+
+/// A camera sample's merging: the pass's light vertices and the sample's wavelength bucket.
+struct MergeContext {
+  const VertexMergingPass* pass = nullptr;
+  int bucket = 0;
+};
 
 class BidirectionalPathIntegrator {
  public:
@@ -65,9 +72,17 @@ class BidirectionalPathIntegrator {
   /// `camera_sampler` (as the path tracer would), the light subpath from `light_sampler`. Each light group's share
   /// of the result is added to `groups` (light_group_radiance.h; nothing when groups.groups is null); the splats
   /// carry their light's group.
+  ///
+  /// With `merging` (vertex_merging.h), every camera vertex also merges with the pass's light vertices of the
+  /// sample's bucket (whose wavelengths `lambda` must be), and every technique's weight counts the merges.
   SampledSpectrum radiance(const Ray& camera_ray, const SampledWavelengths& lambda, Sampler& camera_sampler,
                            Sampler& light_sampler, std::vector<CausticSplat>& splats,
-                           const LightGroupRadiance& groups = {}) const;
+                           const LightGroupRadiance& groups = {}, const MergeContext* merging = nullptr) const;
+
+  /// One light subpath of a merging pass, traced as radiance() traces its own (at `lambda`, the wavelengths of
+  /// `bucket`, and `time`): its vertices y_i (i ≥ 1) with a non-delta BSDF, and its MIS densities, go to `batch`.
+  void trace_merge_subpath(const SampledWavelengths& lambda, int bucket, float time, Sampler& sampler,
+                           MergeVertexBatch& batch) const;
 
   const TransportScene& scene() const { return scene_; }
 

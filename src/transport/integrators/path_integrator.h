@@ -15,6 +15,7 @@
 #include "transport/geometry/ray_differentials.h"
 #include "transport/integrators/light_group_radiance.h"
 #include "transport/integrators/ray_queries.h"
+#include "transport/integrators/vertex_merging.h"
 #include "transport/sampling/sampler.h"
 #include "transport/sampling/wavelength_modes.h"
 
@@ -89,6 +90,10 @@ struct PathIntegratorSettings {
   /// `"integrator": {"method": "bidirectional"}`. The render loop uses it only where it can (a camera light paths
   /// connect to, no media, no adaptive sampling) and falls back to the path tracer elsewhere.
   bool bidirectional = false;
+  /// Vertex merging on top of it (transport/integrators/vertex_merging.h): `"method": "vcm"`. Only with
+  /// `bidirectional`.
+  bool vertex_merging = false;
+  VertexMergingSettings merging;
   static constexpr int kManyLights = 8;
   static constexpr int kManyLightsCandidates = 8;
   /// The candidates per glossy vertex in a scene of `light_count` lights.

@@ -471,9 +471,18 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
       // run (media, an orthographic camera) the path tracer with light-traced caustics stands in.
       integrator_["method"] = "bidirectional";
       integrator_["caustics"] = "light_tracing";
-    } else if (type == "sppm" || type == "lightpath") {
-      // Light-carried methods: what a path tracer misses most in their scenes is caustics (a lamp through glass or
-      // water); Rimu light-traces those (transport/integrators/caustic_light_tracer.h) and path-traces the rest.
+    } else if (type == "sppm") {
+      // Photon mapping: Rimu's vertex connection and merging (transport/integrators/vertex_merging.h), whose merges
+      // are SPPM's photon lookups, with pbrt's initial search radius; where it cannot run (media, an orthographic
+      // camera), the path tracer with light-traced caustics.
+      integrator_["method"] = "vcm";
+      integrator_["merge_radius"] = p.real("radius", 1.0);
+      integrator_["caustics"] = "light_tracing";
+      if (p.get("photonsperiteration", {PbrtParamType::integer}))
+        ignore("Integrator \"sppm\" \"photonsperiteration\" (Rimu traces one light subpath per pixel per pass)", s.where);
+    } else if (type == "lightpath") {
+      // Light tracing: what a path tracer misses most in such scenes is caustics (a lamp through glass or water);
+      // Rimu light-traces those (transport/integrators/caustic_light_tracer.h) and path-traces the rest.
       integrator_["caustics"] = "light_tracing";
       ignore("Integrator \"" + type + "\" (rendered with Rimu's path tracer, caustics light-traced)", s.where);
     } else if (type != "path" && type != "volpath") {

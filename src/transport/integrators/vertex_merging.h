@@ -1,0 +1,155 @@
+// Vertex merging: photon mapping inside bidirectional path tracing, combined with its connections by multiple
+// importance sampling (Georgiev, Křivánek, Davidovič & Slusallek 2012, "Light transport simulation with vertex
+// connection and merging"; Hachisuka, Pantaleoni & Jensen 2012, "A path space extension for robust light transport
+// simulation").
+//
+// Why. A connection joins one camera vertex to the vertices of one light subpath. Where the light reaches what the
+// camera sees only by a rare way in (a room lit through a door ajar) or only by a specular chain seen through another
+// (a pool floor seen through rippled water, E S D S L), few light subpaths find it and no connection can join a
+// camera path through the specular surfaces. Merging lets every camera vertex use every light vertex of the pass
+// that landed within a radius r of it: the light subpaths that found the way in serve all pixels, and a vertex seen
+// through a specular surface is reached from both sides. Its cost is a bias that vanishes as r shrinks with the
+// passes (r_i = r₁ i^{(α−1)/2}, Knaus & Zwicker 2011; α = 0.75 as Georgiev et al.), so the estimate is consistent,
+// not unbiased.
+//
+// Wavelengths. A light vertex carries its subpath's four wavelengths; a camera vertex can merge only with light
+// vertices at its own. Each pass therefore draws a few sets of wavelengths ("buckets"); every light subpath of the
+// pass and every camera sample uses one of them (the camera samples by a hash of their pixel, so that neighbouring
+// pixels see different sets), and merges happen within a bucket. pbrt-v4's SPPM uses one set per pass for the whole
+// image; more buckets trade fewer light vertices per merge for colour noise that is not shared by the whole image.
+//
+// This file holds one pass's light vertices (what a merge needs of each: where, from where its light came, its
+// flux and its subpath's MIS densities) in a hashed uniform grid of cells 2r wide; the bidirectional integrator
+// traces the subpaths (BidirectionalPathIntegrator::trace_merge_subpath) and merges
+// (BidirectionalPathIntegrator::radiance).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "spectral/wavelengths/sampled_wavelengths.h"
+#include "transport/geometry/vector.h"
+#include "transport/integrators/bidirectional_mis.h"
+
+namespace rimu {
+
+/// Vertex merging's settings (`"integrator": {"method": "vcm", "merge_radius": …}`).
+struct VertexMergingSettings {
+  /// r₁ in metres; 0 (the default): 0.002 × the scene's bounding-box diagonal.
+  float radius_m = 0.0f;
+  float alpha = 0.75f;  ///< the radius shrinks as i^{(α−1)/2} over passes i = 1, 2, …
+  int wavelength_buckets = 4;
+  /// At most this many light subpaths per pass (one per pixel below it): bounds the pass's memory.
+  int max_light_subpaths = 1 << 20;
+
+  /// The radius of pass `sample_index` (0-based: the film's sample index), for a scene of diagonal `scene_scale`.
+  float radius(int sample_index, float scene_scale) const;
+};
+
+/// A light subpath's vertex y_i (i ≥ 1) on a surface with a non-delta BSDF, as a merge reads it.
+struct MergeVertex {
+  Vec3 position{};
+  Vec3 w_light{};  ///< unit, world: from y_i back towards y_{i−1} (towards the light for a ray of daylight)
+  Vec3 previous_position{};  ///< y_{i−1} (unused when it is at infinity)
+  Vec3 previous_normal{};    ///< y_{i−1}'s geometric normal (zero for a lamp at a point)
+  SampledSpectrum beta{0.0f};     ///< flux arriving at y_i over the densities that made it (hero-density units)
+  SampledSpectrum ratio{1.0f};    ///< the subpath's spectral-MIS ratios
+  SampledSpectrum pdf_fwd{0.0f};  ///< y_i's area density from y_{i−1} (1: y_{i−1} left by a delta lobe)
+  SampledSpectrum pass_in{1.0f};  ///< the pass probability of the panes between y_{i−1} and y_i
+  uint32_t subpath = 0;           ///< index into VertexMergingPass::subpaths
+  uint16_t index = 0;             ///< i
+  uint16_t bucket = 0;
+  bool previous_at_infinity = false;
+};
+
+/// What a merge needs of a light subpath as a whole: y₀'s densities for the techniques that start there, and where
+/// the MIS densities of its vertices y₀ … y_{m−1} begin in VertexMergingPass::densities.
+struct MergeSubpath {
+  uint32_t first_density = 0;
+  int light = -1;
+  float pdf_nee = 0.0f;
+  float pdf_emit = 0.0f;
+  bool hittable = false;
+};
+
+/// The light vertices a group of subpaths left (filled by one task; VertexMergingPass::append joins them in order).
+struct MergeVertexBatch {
+  std::vector<MergeSubpath> subpaths;
+  std::vector<JoinedVertex> densities;
+  std::vector<MergeVertex> vertices;
+  void clear() {
+    subpaths.clear();
+    densities.clear();
+    vertices.clear();
+  }
+};
+
+/// One pass's light vertices, searchable by position.
+class VertexMergingPass {
+ public:
+  /// Starts a pass of `light_subpaths` subpaths with merge radius `radius_m` and these wavelength sets.
+  void start(float radius_m, std::vector<SampledWavelengths> bucket_wavelengths, int light_subpaths);
+  /// Appends a batch (in the order the batches were made, so that the pass does not depend on the threads).
+  void append(const MergeVertexBatch& batch);
+  /// Builds the search grid over everything appended.
+  void build();
+
+  float radius() const { return radius_; }
+  int buckets() const { return int(wavelengths_.size()); }
+  const SampledWavelengths& wavelengths(int bucket) const { return wavelengths_[size_t(bucket)]; }
+  /// The bucket of light subpath `index`, and of a camera sample of pixel (x, y) in pass `sample_index`.
+  int subpath_bucket(int index) const { return index % buckets(); }
+  int pixel_bucket(int x, int y, int sample_index) const;
+  /// c = π r² N_k: the factor that turns a connection's density into the merge's (N_k: the bucket's subpaths).
+  float merge_factor(int bucket) const;
+
+  const MergeSubpath& subpath(uint32_t index) const { return subpaths_[index]; }
+  const JoinedVertex* densities(const MergeSubpath& s) const { return densities_.data() + s.first_density; }
+  size_t vertex_count() const { return vertices_.size(); }
+  size_t memory_bytes() const;
+
+  /// Calls f(vertex) for each light vertex of `bucket` within the radius of p, in a fixed order.
+  template <typename F>
+  void for_each_within(Vec3 p, int bucket, F&& f) const {
+    if (vertices_.empty()) return;
+    const float r2 = radius_ * radius_;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = cell_coordinate(p[a] - radius_);
+      hi[a] = cell_coordinate(p[a] + radius_);
+    }
+    // Cells are 2r wide: at most two per axis. Distinct cells may share a slot; each slot is visited once.
+    uint32_t visited[8];
+    int visited_count = 0;
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const uint32_t slot = slot_of(x, y, z, bucket);
+          bool seen = false;
+          for (int k = 0; k < visited_count; ++k) seen = seen || visited[k] == slot;
+          if (seen) continue;
+          visited[visited_count++] = slot;
+          for (uint32_t k = slot_start_[slot]; k < slot_start_[slot + 1]; ++k) {
+            const MergeVertex& v = vertices_[order_[k]];
+            if (v.bucket == bucket && length_squared(v.position - p) <= r2) f(v);
+          }
+        }
+  }
+
+ private:
+  int cell_coordinate(float x) const { return int(std::floor(x * inverse_cell_)); }
+  uint32_t slot_of(int x, int y, int z, int bucket) const;
+
+  float radius_ = 0.0f;
+  float inverse_cell_ = 0.0f;
+  std::vector<SampledWavelengths> wavelengths_;
+  std::vector<uint32_t> bucket_subpaths_;  ///< N_k
+  int light_subpaths_ = 0;
+  std::vector<MergeSubpath> subpaths_;
+  std::vector<JoinedVertex> densities_;
+  std::vector<MergeVertex> vertices_;
+  std::vector<uint32_t> slot_start_;  ///< per slot, its first entry in order_ (one more entry: the end)
+  std::vector<uint32_t> order_;       ///< vertex indices by slot
+};
+
+}  // namespace rimu
