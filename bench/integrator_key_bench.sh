@@ -10,7 +10,8 @@
 # Environment (defaults in brackets): SCENES (under data/scenes, without .json, or a path ending in .json or .pbrt:
 # a pbrt scene is converted by rimu-convert first), SPPS ["16 64"], REF_SPP [2048], SEEDS ["1 2 3"], RESOLUTION
 # [160x120], THREADS [2], CROP [none: the whole image; "X0 Y0 X1 Y1": relMSE over those pixels only], FACTORS
-# [none: "SCENE=F ..." light factors per scene name, e.g. "interiors-door_ajar=1000000"]. Lights ×1000 otherwise
+# [none: "SCENE=F ..." light factors per scene name, e.g. "interiors-door_ajar=1000000"], REF_MODES [none: "SCENE=MODE
+# ..." the reference's KEY per scene name instead of MODE_B, e.g. an unbiased method's where MODE_B is consistent only]. Lights ×1000 otherwise
 # (bench/scaled_scene.py: relMSE's +0.01 floor then negligible). CPU seconds are user + system of the whole
 # process under nice 19. Gain at equal time = (relMSE·CPU)_A / (relMSE·CPU)_B over the seeds' means at the same
 # spp. Writes OUT_DIR/runs.tsv, OUT_DIR/table.md and OUT_DIR/NAME_SCENE.png.
@@ -43,9 +44,11 @@ for scene in $scenes; do
   factor=1000
   for pair in ${FACTORS:-}; do [[ ${pair%%=*} == "$name" ]] && factor=${pair#*=}; done
   python3 "$root/bench/scaled_scene.py" "$source" "$work" scaled "$factor"
-  for mode in $mode_a $mode_b; do with_integrator_key "$work/scaled_dir/scaled.json" "$work/scaled_dir/$mode.json" "$key" "$mode"; done
-  t=$(render "$work/scaled_dir/$mode_b.json" "$ref_spp" 99 "$work/ref.exr")
-  echo "$name: reference $ref_spp spp, $t CPU s" >&2
+  ref_mode=$mode_b
+  for pair in ${REF_MODES:-}; do [[ ${pair%%=*} == "$name" ]] && ref_mode=${pair#*=}; done
+  for mode in $mode_a $mode_b $ref_mode; do with_integrator_key "$work/scaled_dir/scaled.json" "$work/scaled_dir/$mode.json" "$key" "$mode"; done
+  t=$(render "$work/scaled_dir/$ref_mode.json" "$ref_spp" 99 "$work/ref.exr")
+  echo "$name: reference $ref_mode, $ref_spp spp, $t CPU s" >&2
   for spp in $spps; do
     for mode in $mode_a $mode_b; do
       for seed in $seeds; do

@@ -106,20 +106,29 @@ void add_caustic_splats(const std::vector<CausticSplat>& splats, const PixelFilt
   }
 }
 
-// Numbers from `base`, each moved into stratum k of K: a merging pass's wavelength buckets cover the spectrum evenly
-// (their heroes in the K strata of the sampler's unit interval), so the colour noise they share with other pixels of
-// their bucket cancels over the buckets of a pass.
-class StratumSampler final : public Sampler {
+// A merging pass's wavelengths (transport/integrators/vertex_merging.h): every pixel and light subpath of a bucket
+// shares them, so their error is shared too and cancels only over buckets and passes. The first number (the hero's)
+// is therefore not random but a low-discrepancy point: bucket k of K takes (k + u_i)/K, u_i = frac(u₀ + i φ⁻¹) the
+// Kronecker sequence over the passes i (the sample indices), which spreads the heroes of successive passes evenly
+// over the spectrum. Further numbers (independent mode's other lanes) come from `base`.
+class PassWavelengthSampler final : public Sampler {
  public:
-  StratumSampler(Sampler& base, int stratum, int strata) : base_(base), stratum_(stratum), strata_(strata) {}
+  PassWavelengthSampler(Sampler& base, float hero_u) : base_(base), hero_u_(hero_u) {}
   void start_pixel_sample(int x, int y, uint32_t sample_index) override { base_.start_pixel_sample(x, y, sample_index); }
-  float next_1d() override { return std::min((float(stratum_) + base_.next_1d()) / float(strata_), 0x1.fffffep-1f); }
+  float next_1d() override {
+    if (first_) {
+      first_ = false;
+      return hero_u_;
+    }
+    return base_.next_1d();
+  }
   Vec2 next_2d() override { return {next_1d(), next_1d()}; }
-  std::unique_ptr<Sampler> clone() const override { return std::make_unique<StratumSampler>(base_, stratum_, strata_); }
+  std::unique_ptr<Sampler> clone() const override { return std::make_unique<PassWavelengthSampler>(base_, hero_u_); }
 
  private:
   Sampler& base_;
-  int stratum_, strata_;
+  float hero_u_;
+  bool first_ = true;
 };
 
 // The render loop over tiles and passes, for any integrator with radiance(ray, lambda, sampler).
@@ -204,10 +213,14 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       const VertexMergingSettings& m = integrator_settings.merging;
       std::vector<SampledWavelengths> sets;
       const int buckets = std::max(1, m.wavelength_buckets);
+      merge_prototype->start_pixel_sample(-1, -1, 0);
+      const double golden = 0.6180339887498949;  // φ⁻¹
+      const double u_pass = std::fmod(double(merge_prototype->next_1d()) + double(sample_index) * golden, 1.0);
       for (int k = 0; k < buckets; ++k) {
-        merge_prototype->start_pixel_sample(-1 - k, -1, uint32_t(sample_index));
-        StratumSampler stratum(*merge_prototype, k, buckets);
-        sets.push_back(sample_path_wavelengths(integrator_settings.wavelengths, stratum, wavelength_density));
+        merge_prototype->start_pixel_sample(-2 - k, -1, uint32_t(sample_index));
+        const float hero_u = std::min(float((double(k) + u_pass) / double(buckets)), 0x1.fffffep-1f);
+        PassWavelengthSampler pass_sampler(*merge_prototype, hero_u);
+        sets.push_back(sample_path_wavelengths(integrator_settings.wavelengths, pass_sampler, wavelength_density));
       }
       merging->start(m.radius(sample_index, surfaces.scene_scale), std::move(sets), merge_subpaths);
       constexpr int kBatch = 4096;
