@@ -529,10 +529,11 @@ void log_job_summary(const RenderJobState& s) {
             << " spatial leaves, " << g.directional_nodes << " directional nodes (or lobes), "
             << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
   if (statistics.bidirectional && statistics.vertex_merging)
-    summary << "rimu: vertex connection and merging (one light subpath per camera sample to connect; per sample "
-               "index, light subpaths to merge with: last pass "
-            << statistics.merge_vertices << " light vertices, " << double(statistics.merge_memory_bytes) / (1024.0 * 1024.0)
-            << " MiB at most, radius " << statistics.merge_radius_m << " m)\n";
+    summary << "rimu: vertex connection and merging (per sample index " << statistics.merge_light_subpaths
+            << " light subpaths, each joined by its pixel's camera sample and merged with by every camera vertex; last "
+               "pass "
+            << statistics.merge_vertices << " light vertices to merge with, radius " << statistics.merge_radius_m
+            << " m; " << double(statistics.merge_memory_bytes) / (1024.0 * 1024.0) << " MiB at most)\n";
   else if (statistics.bidirectional)
     summary << "rimu: bidirectional path tracing (one light subpath per camera sample)\n";
   else if (s.loaded.scene && s.loaded.scene->settings.integrator.bidirectional)

@@ -147,7 +147,8 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   constexpr uint64_t kFeatureSeedSalt = 0x9e3779b97f4a7c15ull;
   const std::unique_ptr<Sampler> feature_prototype =
       options.features ? make_sampler(SamplerKind::independent, options.seed ^ kFeatureSeedSalt) : nullptr;
-  const std::vector<PixelBounds> tiles = make_tiles(film.pixel_bounds());
+  const PixelBounds film_bounds = film.pixel_bounds();
+  const std::vector<PixelBounds> tiles = make_tiles(film_bounds);
   TileSchedule schedule(tiles.size());
   std::vector<uint64_t> planned_samples(tiles.size());
 
@@ -195,7 +196,6 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   // (at most one per pixel) from their own stream, in batches of a fixed size joined in order (the pass does not
   // depend on the threads); the camera samples of that index then merge with them.
   std::optional<VertexMergingPass> merging;
-  std::vector<MergeVertexBatch> merge_batches;
   constexpr uint64_t kMergeSeedSalt = 0x2545f4914f6cdd1dull;
   std::unique_ptr<Sampler> merge_prototype;
   int merge_subpaths = 0;
@@ -224,7 +224,7 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
       }
       merging->start(m.radius(sample_index, surfaces.scene_scale), std::move(sets), merge_subpaths);
       constexpr int kBatch = 4096;
-      merge_batches.resize(size_t((merge_subpaths + kBatch - 1) / kBatch));
+      std::vector<MergeVertexBatch>& merge_batches = merging->batches(size_t((merge_subpaths + kBatch - 1) / kBatch));
       tbb::parallel_for(size_t(0), merge_batches.size(), [&](size_t b) {
         const std::unique_ptr<Sampler> sampler = merge_prototype->clone();
         MergeVertexBatch& batch = merge_batches[b];
@@ -237,10 +237,10 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
           integrator.trace_merge_subpath(merging->wavelengths(bucket), bucket, time, *sampler, batch);
         }
       });
-      for (const MergeVertexBatch& batch : merge_batches) merging->append(batch);
       merging->build();
       stats.merge_radius_m = merging->radius();
       stats.merge_vertices = merging->vertex_count();
+      stats.merge_light_subpaths = uint64_t(merge_subpaths);
       stats.merge_memory_bytes = std::max(stats.merge_memory_bytes, merging->memory_bytes());
     }
   };
@@ -371,6 +371,15 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
                 if (merging) {
                   merge_context = {&*merging, merging->pixel_bucket(x, y, s)};
                   lambda = merging->wavelengths(merge_context.bucket);
+                  // The pass's light subpath of this pixel serves its joins where it has the sample's wavelengths
+                  // and time (where things move it was traced at its own).
+                  const int64_t pixel = int64_t(y - film_bounds.y0) * film_bounds.width() + (x - film_bounds.x0);
+                  if (!surfaces.has_motion && pixel < merging->light_subpath_count() &&
+                      merging->subpath_bucket(int(pixel)) == merge_context.bucket) {
+                    merge_context.reuse_light_subpath = true;
+                    merge_context.light_subpath =
+                        merging->light_subpath(int(pixel), merge_context.light_subpath_length);
+                  }
                 }
                 const float time = surfaces.has_motion ? sampler->next_1d() : 0.0f;
                 const float film_x = float(x) + 0.5f + fs.offset_px.x, film_y = float(y) + 0.5f + fs.offset_px.y;

@@ -71,6 +71,7 @@ struct RenderStatistics {
   bool vertex_merging = false;
   float merge_radius_m = 0.0f;
   uint64_t merge_vertices = 0;
+  uint64_t merge_light_subpaths = 0;  ///< per pass
   size_t merge_memory_bytes = 0;
 };
 

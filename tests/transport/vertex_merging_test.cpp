@@ -25,10 +25,14 @@ TEST_CASE("vertex merging: the grid finds exactly the light vertices of a bucket
     std::uniform_real_distribution<float> spread(-3.0f, 3.0f);
     std::vector<Vec3> positions;
     std::vector<int> bucket_of;
+    std::vector<MergeVertexBatch>& batches = pass.batches(4);
     for (int b = 0; b < 4; ++b) {
-      MergeVertexBatch batch;
+      MergeVertexBatch& batch = batches[size_t(b)];
       for (int j = 0; j < subpaths / 4; ++j) {
         batch.subpaths.push_back(MergeSubpath{});
+        batch.stored_start.push_back(uint32_t(batch.stored.size()));
+        batch.stored.push_back(StoredLightVertex{});  // one stored vertex per subpath, its light the subpath's index
+        batch.stored.back().light = b * (subpaths / 4) + j;
         for (int v = 0; v < 3; ++v) {
           MergeVertex m;
           m.position = j % 2 ? Vec3{cluster(rng) - 1.0f, cluster(rng), cluster(rng) + 0.5f}
@@ -40,10 +44,16 @@ TEST_CASE("vertex merging: the grid finds exactly the light vertices of a bucket
           bucket_of.push_back(m.bucket);
         }
       }
-      pass.append(batch);
     }
     pass.build();
     REQUIRE(pass.vertex_count() == positions.size());
+    // Each subpath is found whole by its index, across the batches.
+    for (int j = 0; j < 4 * (subpaths / 4); j += 37) {
+      int length = 0;
+      const StoredLightVertex* stored = pass.light_subpath(j, length);
+      REQUIRE(length == 1);
+      CHECK(stored->light == j);
+    }
     int found_total = 0;
     for (int q = 0; q < 300; ++q) {
       const Vec3 p = q % 2 ? Vec3{cluster(rng) - 1.0f, cluster(rng), cluster(rng) + 0.5f}
@@ -53,7 +63,7 @@ TEST_CASE("vertex merging: the grid finds exactly the light vertices of a bucket
       for (size_t i = 0; i < positions.size(); ++i)
         if (bucket_of[i] == bucket && length_squared(positions[i] - p) <= radius * radius)
           expected.insert({positions[i].x, positions[i].y, positions[i].z});
-      pass.for_each_within(p, bucket, [&](const MergeVertex& m) {
+      pass.for_each_within(p, bucket, [&](const MergeVertex& m, const MergeSubpath&, const JoinedVertex*) {
         found.insert({m.position.x, m.position.y, m.position.z});
       });
       CHECK(found == expected);

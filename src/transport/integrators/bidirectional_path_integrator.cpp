@@ -363,6 +363,34 @@ if (starts.by_power) {
 
 }
 
+// A light subpath kept by the merging pass (StoredLightVertex), back into p.light as trace_light_subpath made it: a
+// surface vertex's BSDF and frame rebuilt from its hit (the same material at the same wavelengths gives the same).
+void rebuild_light_subpath(Subpaths& p, const StoredLightVertex* stored, int length) {
+  for (int i = 0; i < length; ++i) {
+    const StoredLightVertex& s = stored[i];
+    PathVertex v;
+    if (VertexKind(s.kind) == VertexKind::surface) {
+      p.make_surface_vertex(s.hit, s.wo_world, v);
+    } else {
+      v.kind = VertexKind(s.kind);
+      v.position = s.position;
+      v.ng = s.normal;
+      v.hit = s.hit;
+    }
+    v.beta = s.beta;
+    v.ratio = s.ratio;
+    v.pdf_fwd = s.pdf_fwd;
+    v.pdf_rev = s.pdf_rev;
+    v.pass_in = s.pass_in;
+    v.delta = s.delta;
+    v.light = s.light;
+    v.pdf_nee = s.pdf_nee;
+    v.pdf_emit = s.pdf_emit;
+    v.hittable = s.hittable;
+    p.light.push_back(std::move(v));
+  }
+}
+
 }  // namespace
 
 SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, const SampledWavelengths& lambda,
@@ -464,7 +492,10 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     }
   }
 
-  trace_light_subpath(p, LightStarts{by_power_ ? &*by_power_ : nullptr, emitting_}, light_sampler);
+  if (merging && merging->reuse_light_subpath)
+    rebuild_light_subpath(p, merging->light_subpath, merging->light_subpath_length);
+  else
+    trace_light_subpath(p, LightStarts{by_power_ ? &*by_power_ : nullptr, emitting_}, light_sampler);
 
   // ---- Joining them.
   SampledSpectrum radiance(0.0f);
@@ -644,7 +675,8 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
     // stands for z: the path is y₀ … y_{i−1}, z, z_{t−2} … z₀, and z's BSDF scatters the light y_i received.
     if (merging && t - 1 <= max_depth) {
       const VertexMergingPass& pass = *merging->pass;
-      pass.for_each_within(z.position, merging->bucket, [&](const MergeVertex& m) {
+      pass.for_each_within(z.position, merging->bucket, [&](const MergeVertex& m, const MergeSubpath& subpath,
+                                                             const JoinedVertex* light_densities) {
         const int i = m.index, n = i + t;
         if (n - 2 > max_depth || !z.on_side(m.w_light)) return;
         // The photons' density is per area of the surface (their irradiance is the geometric normal's), the BSDF's
@@ -655,9 +687,7 @@ SampledSpectrum BidirectionalPathIntegrator::radiance(const Ray& camera_ray, con
         const SampledSpectrum value = z.beta * z.bsdf->eval(z.wo, local) * m.beta *
                                       Float4(std::fabs(local.z) / (cos_geometric * merge_factor));
         if (!(max_lane(abs(value)) > 0.0f)) return;
-        const MergeSubpath& subpath = pass.subpath(m.subpath);
         if (joined.size() < size_t(n + 1)) joined.resize(size_t(n + 1));
-        const JoinedVertex* light_densities = pass.densities(subpath);
         for (int k = 0; k < i; ++k) joined[size_t(k)] = light_densities[k];
         for (int j = 0; j < t; ++j) {
           const PathVertex& zj = p.camera[size_t(j)];
@@ -724,6 +754,26 @@ void BidirectionalPathIntegrator::trace_merge_subpath(const SampledWavelengths& 
   light_storage.clear();
   Subpaths p{scene_, settings_, lambda, LaneTechniques{settings_.wavelengths}, time, unused_camera, light_storage};
   trace_light_subpath(p, LightStarts{by_power_ ? &*by_power_ : nullptr, emitting_}, sampler);
+  batch.stored_start.push_back(uint32_t(batch.stored.size()));
+  for (const PathVertex& y : p.light) {
+    StoredLightVertex s;
+    s.hit = y.hit;
+    s.position = y.position;
+    s.normal = y.ng;
+    if (y.kind == VertexKind::surface) s.wo_world = y.world(y.wo);
+    s.beta = y.beta;
+    s.ratio = y.ratio;
+    s.pdf_fwd = y.pdf_fwd;
+    s.pdf_rev = y.pdf_rev;
+    s.pass_in = y.pass_in;
+    s.pdf_nee = y.pdf_nee;
+    s.pdf_emit = y.pdf_emit;
+    s.light = y.light;
+    s.kind = uint8_t(y.kind);
+    s.delta = y.delta;
+    s.hittable = y.hittable;
+    batch.stored.push_back(s);
+  }
   const auto subpath = uint32_t(batch.subpaths.size());
   bool any = false;
   for (size_t i = 1; i < p.light.size(); ++i) {

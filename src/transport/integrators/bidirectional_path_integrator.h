@@ -54,10 +54,14 @@
 
 namespace rimu {
 
-/// A camera sample's merging: the pass's light vertices and the sample's wavelength bucket.
+/// A camera sample's merging: the pass's light vertices and the sample's wavelength bucket; and, where
+/// `reuse_light_subpath`, the pass's light subpath of its pixel, which its joins use instead of tracing one.
 struct MergeContext {
   const VertexMergingPass* pass = nullptr;
   int bucket = 0;
+  bool reuse_light_subpath = false;
+  const StoredLightVertex* light_subpath = nullptr;
+  int light_subpath_length = 0;
 };
 
 class BidirectionalPathIntegrator {
@@ -80,7 +84,8 @@ class BidirectionalPathIntegrator {
                            const LightGroupRadiance& groups = {}, const MergeContext* merging = nullptr) const;
 
   /// One light subpath of a merging pass, traced as radiance() traces its own (at `lambda`, the wavelengths of
-  /// `bucket`, and `time`): its vertices y_i (i ≥ 1) with a non-delta BSDF, and its MIS densities, go to `batch`.
+  /// `bucket`, and `time`): its vertices y_i (i ≥ 1) with a non-delta BSDF, and its MIS densities, go to `batch`, and
+  /// the whole subpath (for the joins of its pixel's camera sample).
   void trace_merge_subpath(const SampledWavelengths& lambda, int bucket, float time, Sampler& sampler,
                            MergeVertexBatch& batch) const;
 

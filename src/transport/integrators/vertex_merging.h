@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "spectral/wavelengths/sampled_wavelengths.h"
+#include "transport/geometry/surface_hit.h"
 #include "transport/geometry/vector.h"
 #include "transport/integrators/bidirectional_mis.h"
 
@@ -41,8 +42,9 @@ struct VertexMergingSettings {
   float radius_m = 0.0f;
   float alpha = 0.75f;  ///< the radius shrinks as i^{(α−1)/2} over passes i = 1, 2, …
   int wavelength_buckets = 1;  ///< K, the pass's sets of wavelengths (see the file's comment)
-  /// At most this many light subpaths per pass (one per pixel below it): bounds the pass's memory.
-  int max_light_subpaths = 1 << 20;
+  /// At most this many light subpaths per pass (one per pixel below it, each kept whole for its pixel's joins): bounds
+  /// the pass's memory (1–2.6 KiB per subpath measured: docs/transport.md, "Vertex connection and merging").
+  int max_light_subpaths = 1 << 18;
 
   /// The radius of pass `sample_index` (0-based: the film's sample index), for a scene of diagonal `scene_scale`.
   float radius(int sample_index, float scene_scale) const;
@@ -74,26 +76,48 @@ struct MergeSubpath {
   bool hittable = false;
 };
 
+/// A light subpath's vertex kept whole for the camera sample of its pixel, which joins it as it would join a subpath
+/// of its own (BidirectionalPathIntegrator::radiance rebuilds a surface vertex's BSDF from `hit` and `wo_world`).
+struct StoredLightVertex {
+  SurfaceHit hit{};
+  Vec3 position{}, normal{};  ///< as the vertex had them (a surface's are rebuilt from the hit)
+  Vec3 wo_world{};            ///< a surface's direction back along the subpath
+  SampledSpectrum beta{0.0f}, ratio{1.0f}, pdf_fwd{0.0f}, pdf_rev{0.0f}, pass_in{1.0f};
+  float pdf_nee = 0.0f, pdf_emit = 0.0f;
+  int light = -1;
+  uint8_t kind = 0;  ///< the integrator's vertex kind
+  bool delta = false, hittable = false;
+};
+
 /// The light vertices a group of subpaths left (filled by one task; VertexMergingPass::append joins them in order).
 struct MergeVertexBatch {
   std::vector<MergeSubpath> subpaths;
   std::vector<JoinedVertex> densities;
   std::vector<MergeVertex> vertices;
+  std::vector<StoredLightVertex> stored;  ///< every subpath's vertices, whole
+  std::vector<uint32_t> stored_start;     ///< per subpath of the batch, its first entry in `stored`
   void clear() {
     subpaths.clear();
     densities.clear();
     vertices.clear();
+    stored.clear();
+    stored_start.clear();
   }
 };
 
-/// One pass's light vertices, searchable by position.
+/// One pass's light vertices, searchable by position. The batches are the pass's own (filled in place and kept from
+/// pass to pass, so their memory is allocated once).
 class VertexMergingPass {
  public:
   /// Starts a pass of `light_subpaths` subpaths with merge radius `radius_m` and these wavelength sets.
   void start(float radius_m, std::vector<SampledWavelengths> bucket_wavelengths, int light_subpaths);
-  /// Appends a batch (in the order the batches were made, so that the pass does not depend on the threads).
-  void append(const MergeVertexBatch& batch);
-  /// Builds the search grid over everything appended.
+  /// The pass's `count` batches, to be filled (each cleared by its filler) in subpath order: batch b holds the
+  /// subpaths after those of batches 0 … b−1, so that the pass does not depend on the threads.
+  std::vector<MergeVertexBatch>& batches(size_t count) {
+    batches_.resize(count);
+    return batches_;
+  }
+  /// Builds the search grid over the batches' vertices.
   void build();
 
   float radius() const { return radius_; }
@@ -105,15 +129,17 @@ class VertexMergingPass {
   /// c = π r² N_k: the factor that turns a connection's density into the merge's (N_k: the bucket's subpaths).
   float merge_factor(int bucket) const;
 
-  const MergeSubpath& subpath(uint32_t index) const { return subpaths_[index]; }
-  const JoinedVertex* densities(const MergeSubpath& s) const { return densities_.data() + s.first_density; }
-  size_t vertex_count() const { return vertices_.size(); }
+  int light_subpath_count() const { return light_subpaths_; }
+  /// Light subpath `index` whole (its vertices y₀ … y_{m−1}; m may be 0), for the camera sample of its pixel.
+  const StoredLightVertex* light_subpath(int index, int& length) const;
+  size_t vertex_count() const { return order_.size(); }
   size_t memory_bytes() const;
 
-  /// Calls f(vertex) for each light vertex of `bucket` within the radius of p, in a fixed order.
+  /// Calls f(vertex, its subpath, the subpath's MIS densities) for each light vertex of `bucket` within the radius of
+  /// p, in a fixed order.
   template <typename F>
   void for_each_within(Vec3 p, int bucket, F&& f) const {
-    if (vertices_.empty()) return;
+    if (order_.empty()) return;
     const float r2 = radius_ * radius_;
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
@@ -132,13 +158,19 @@ class VertexMergingPass {
           if (seen) continue;
           visited[visited_count++] = slot;
           for (uint32_t k = slot_start_[slot]; k < slot_start_[slot + 1]; ++k) {
-            const MergeVertex& v = vertices_[order_[k]];
-            if (v.bucket == bucket && length_squared(v.position - p) <= r2) f(v);
+            const Entry& e = order_[k];
+            if (e.vertex->bucket != bucket || length_squared(e.vertex->position - p) > r2) continue;
+            const MergeSubpath& subpath = e.batch->subpaths[e.vertex->subpath];
+            f(*e.vertex, subpath, e.batch->densities.data() + subpath.first_density);
           }
         }
   }
 
  private:
+  struct Entry {
+    const MergeVertex* vertex;
+    const MergeVertexBatch* batch;
+  };
   int cell_coordinate(float x) const { return int(std::floor(x * inverse_cell_)); }
   uint32_t slot_of(int x, int y, int z, int bucket) const;
 
@@ -147,11 +179,10 @@ class VertexMergingPass {
   std::vector<SampledWavelengths> wavelengths_;
   std::vector<uint32_t> bucket_subpaths_;  ///< N_k
   int light_subpaths_ = 0;
-  std::vector<MergeSubpath> subpaths_;
-  std::vector<JoinedVertex> densities_;
-  std::vector<MergeVertex> vertices_;
-  std::vector<uint32_t> slot_start_;  ///< per slot, its first entry in order_ (one more entry: the end)
-  std::vector<uint32_t> order_;       ///< vertex indices by slot
+  std::vector<MergeVertexBatch> batches_;
+  std::vector<uint32_t> first_subpath_;  ///< per batch, the index of its first stored subpath (one more: the end)
+  std::vector<uint32_t> slot_start_;     ///< per slot, its first entry in order_ (one more entry: the end)
+  std::vector<Entry> order_;             ///< the vertices by slot
 };
 
 }  // namespace rimu
