@@ -45,8 +45,8 @@ struct RenderJob {
   /// Overrides "integrator.caustics" (`--caustics path_tracing|light_tracing`; docs/transport.md, "Caustics by
   /// light tracing").
   std::optional<std::string> caustics;
-  /// Overrides "integrator.method" (`--method path_tracing|bidirectional`; docs/transport.md, "Bidirectional path
-  /// tracing").
+  /// Overrides "integrator.method" (`--method path_tracing|bidirectional|vcm`; docs/transport.md, "Bidirectional
+  /// path tracing", "Vertex connection and merging").
   std::optional<std::string> method;
   std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
   /// Overrides film "max_sample_value" (`--max-sample-value`; docs/rendering.md, "Sample clamp").

@@ -73,8 +73,9 @@ int main(int argc, char** argv) {
   app.add_option("--method", method,
                  "bidirectional: each sample also traces a light subpath and joins every vertex of it to every vertex "
                  "of the camera's, weighted by MIS (light that arrives by way of lit surfaces near the lights: lamps "
-                 "under shades, caustics seen in mirrors; see docs/transport.md), path_tracing: the default "
-                 "(overrides the scene)")
+                 "under shades, caustics seen in mirrors; see docs/transport.md), vcm: bidirectional plus vertex "
+                 "merging (photon mapping weighted by the same MIS: a pool floor seen and lit through water; "
+                 "consistent, not unbiased), path_tracing: the default (overrides the scene)")
       ->check(CLI::IsMember({"path_tracing", "bidirectional", "vcm"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
