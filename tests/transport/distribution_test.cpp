@@ -133,3 +133,99 @@ TEST_CASE("Distribution2D sampling matches its pdf, with empty rows and columns"
   CAPTURE(chi.statistic);
   CHECK(chi.p_value > test::kChiSquareAlpha);
 }
+
+TEST_CASE("Distribution2D over a large grid: guide-table searches agree with the pdf, at guide-cell edges too") {
+  // 250 × 52 cells (15 guide cells per row, 3 for the marginal: k/15 and u·15 round, unlike powers of two), a third
+  // of them empty, weights over 6 decades.
+  const int w = 250, h = 52;
+  std::mt19937 rng(7);
+  std::vector<double> weights(size_t(w) * h);
+  for (double& x : weights) {
+    const float r = test::uniform01(rng);
+    x = r < 0.33f ? 0.0 : std::pow(10.0, 6.0 * test::uniform01(rng));
+  }
+  for (int y = 0; y < h; ++y) weights[size_t(y) * w + 17] = 0.0;  // a whole empty column
+  const Distribution2D d(weights, w, h);
+  double total = 0;
+  for (double x : weights) total += x;
+  // The density is the weights' own to the float CDFs' rounding: a cell's share of its row, and a row's share of
+  // the total, are differences of two CDF values in [0, 1], each within half an ulp (≤ 2⁻²⁵) of the exact sum.
+  for (int y = 0; y < h; ++y) {
+    double row_sum = 0;
+    for (int x = 0; x < w; ++x) row_sum += weights[size_t(y) * w + x];
+    for (int x = 0; x < w; ++x) {
+      const double cell_share = weights[size_t(y) * w + x] / row_sum, row_share = row_sum / total;
+      const double exact = double(w) * h * cell_share * row_share;
+      const double rounding = double(w) * h * 0x1p-24 * (cell_share + row_share + 0x1p-24) + 1e-6 * exact;
+      CAPTURE(x);
+      CAPTURE(y);
+      CHECK(std::abs(d.pdf({(x + 0.5f) / w, (y + 0.5f) / h}) - exact) <= rounding);
+    }
+  }
+  // Every u near a guide cell's edge (k/15 across, k/3 down: ±4 ulps) lands on a positive cell whose density the
+  // sample reports, and on the cell a search of the whole CDF finds (the first u with a larger CDF value is where
+  // the cell changes, so its neighbours must agree with the cells that sample() gives nearby).
+  const auto edges = [](int cells) {
+    std::vector<float> out;
+    for (int k = 0; k <= cells; ++k) {
+      float u = std::min(float(k) / float(cells), std::nextafter(1.0f, 0.0f));
+      for (int step = 0; step < 4; ++step) u = std::nextafter(u, 0.0f);
+      for (int step = 0; step < 9; ++step, u = std::nextafter(u, 1.0f))
+        if (u >= 0.0f && u < 1.0f) out.push_back(u);
+    }
+    return out;
+  };
+  // Sampling is monotone in u (inversion): along increasing u the chosen cell never moves back.
+  for (float uy : edges(3)) {
+    int previous_x = -1;
+    for (float ux : edges(15)) {
+      const auto s = d.sample({ux, uy});
+      CHECK(s.x >= previous_x);
+      previous_x = s.x;
+    }
+  }
+  for (float ux : edges(15))
+    for (float uy : edges(3)) {
+      const auto s = d.sample({ux, uy});
+      REQUIRE(weights[size_t(s.y) * w + s.x] > 0.0);
+      CHECK(s.pdf == d.pdf(s.uv));
+      CHECK(int(s.uv.x * w) == s.x);
+      CHECK(int(s.uv.y * h) == s.y);
+    }
+  // Frequencies against the density, by chi-square over 32 × 16 blocks of cells.
+  const int bx = 32, by = 16, n = 400000;
+  std::vector<double> observed(bx * by, 0.0), expected(bx * by, 0.0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) expected[(y * by / h) * bx + x * bx / w] += n * weights[size_t(y) * w + x] / total;
+  for (int i = 0; i < n; ++i) {
+    const auto s = d.sample({test::uniform01(rng), test::uniform01(rng)});
+    REQUIRE(weights[size_t(s.y) * w + s.x] > 0.0);
+    REQUIRE(s.pdf == d.pdf(s.uv));
+    observed[(s.y * by / h) * bx + s.x * bx / w] += 1;
+  }
+  const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
+  CAPTURE(chi.statistic);
+  CHECK(chi.p_value > test::kChiSquareAlpha);
+  CHECK(d.memory_bytes() < size_t(w) * h * 5);  // 4 B of CDF per cell and a guide entry per 16
+}
+
+TEST_CASE("Distribution2D's guide table at a cell edge where u·G rounds up past k/G") {
+  // 176 equal cells, 11 guide cells: the CDF value c_80 = 5/11 (rounded to float) sits on guide edge k = 5, and
+  // u = the float below it has u·11 rounded up to 5, so the guide's bracket starts one cell too far right unless
+  // the search widens it. The answer is known: the last i with float(i/176) ≤ u.
+  const int w = 176;
+  const std::vector<double> weights(w, 1.0);
+  const Distribution2D d(weights, w, 1);
+  for (int k = 1; k < 11; ++k) {
+    float u = std::nextafter(float(k) / 11.0f, 0.0f);
+    for (int step = 0; step < 4; ++step) u = std::nextafter(u, 0.0f);
+    for (int step = 0; step < 9; ++step, u = std::nextafter(u, 1.0f)) {
+      int expected = 0;
+      for (int i = 0; i < w; ++i)
+        if (float(double(i) / w) <= u) expected = i;
+      CAPTURE(k);
+      CAPTURE(u);
+      CHECK(d.sample({u, 0.5f}).x == expected);
+    }
+  }
+}

@@ -87,7 +87,7 @@ TEST_CASE("grid medium: every trilinear density along a ray is below its segment
     const Vec3 target = Transform::rotate(20.0f, {0, 0, 1}).point({u(rng), u(rng), u(rng)});
     const Vec3 from{u(rng) * 4 - 2, u(rng) * 4 - 2, -1.0f};
     const Ray ray{from, normalize(target - from)};
-    medium.for_each_majorant_segment(ray, 10.0f, [&](float t0, float t1, float majorant) {
+    medium.for_each_majorant_segment(ray, 10.0f, [&](float t0, float t1, float majorant, const Ray&) {
       for (int k = 0; k <= 16; ++k) {
         const float t = t0 + (t1 - t0) * float(k) / 16.0f;
         ++checked;

@@ -150,7 +150,7 @@ TEST_CASE("nanovdb grid: every lookup along a ray is below its segment's majoran
       const Vec3 target = world(-6.5f + 30 * u(rng), -6.5f + 30 * u(rng), -6.5f + 30 * u(rng));
       const Vec3 from = world(-20 + 60 * u(rng), -20 + 60 * u(rng), -20.0f);
       const Ray ray{from, normalize(target - from)};
-      medium.for_each_majorant_segment(ray, 100.0f, [&](float t0, float t1, float majorant) {
+      medium.for_each_majorant_segment(ray, 100.0f, [&](float t0, float t1, float majorant, const Ray&) {
         // Inside the segment only: a point rounded onto a block face may read the voxel across it (the spikes sit
         // on faces), which a continuous distance sample does with probability ~1e-7.
         for (int k = 1; k < 16; ++k) {

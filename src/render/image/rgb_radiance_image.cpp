@@ -1,5 +1,7 @@
 #include "render/image/rgb_radiance_image.h"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -40,6 +42,23 @@ double RgbRadianceImage::radiance_integral(int x, int y) const {
   for (const SampledWavelengths& lambda : radiance_integral_wavelengths())
     spectral_sum += sum(radiance_from(coefficients, lambda));
   return spectral_sum * radiance_integral_band_nm();
+}
+
+void RgbRadianceImage::radiance_integrals(int y, std::span<double> out) const {
+  std::vector<BasisCoefficients> row(width_);
+  for (int x = 0; x < width_; ++x) row[x] = upsampler_->emission_coefficients(image_->pixel(x, y));
+  // Per pixel the same sum in the same order as radiance_integral (group by group), so the values are identical;
+  // group by group, the thread's basis cache (UpsamplingBasis::at) refills 4 times per row instead of per pixel.
+  std::fill(out.begin(), out.begin() + width_, 0.0);
+  for (const SampledWavelengths& lambda : radiance_integral_wavelengths()) {
+    const Float4 scale(float(upsampler_->emission_scale()));
+    const SampledSpectrum white = upsampler_->illuminant()->sample(lambda);
+    for (int x = 0; x < width_; ++x) {
+      const Float4 shape = upsampler_->basis().evaluate(row[x], lambda.lambda_nm(), Float4(0.0f), Float4(INFINITY));
+      out[x] += sum(scale * shape * white);  // radiance_from's products, in its order
+    }
+  }
+  for (int x = 0; x < width_; ++x) out[x] *= radiance_integral_band_nm();
 }
 
 }  // namespace rimu

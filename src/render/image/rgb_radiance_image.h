@@ -26,6 +26,8 @@ class RgbRadianceImage final : public RadianceImage {
   float luminance(int x, int y) const override { return luminance_[index(x, y)]; }
   /// The pixel upsampled once for the 16 wavelengths (radiance() would upsample it per lane group).
   double radiance_integral(int x, int y) const override;
+  /// The row's pixels upsampled once each, then evaluated one wavelength group at a time (same values).
+  void radiance_integrals(int y, std::span<double> out) const override;
 
  private:
   size_t index(int x, int y) const { return size_t(y) * size_t(width_) + size_t(x); }

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "transport/sampling/bit_mixing.h"
+#include "transport/sampling/exponential_warp.h"
 #include "transport/media/henyey_greenstein.h"
 #include "transport/geometry/frame.h"
 
@@ -139,7 +140,7 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
       }
       if (has_albedo_) {
         // Distance along w to the next interaction in the slab (σt = 1): the height changes by |cos θ|·d.
-        const float dz = -std::log1p(-random.next()) * std::fabs(w.z);
+        const float dz = sample_unit_exponential(random.next()) * std::fabs(w.z);
         const float zp = w.z > 0.0f ? z + dz : z - dz;
         if (zp == z) continue;
         if (0.0f < zp && zp < thickness) {
@@ -297,7 +298,7 @@ std::optional<BsdfSample> LayeredBsdf::sample(Vec3 wo, float u_lobe, Vec2 u, boo
     }
     if (w.z == 0.0f) return std::nullopt;
     if (has_albedo_) {
-      const float dz = -std::log1p(-random.next()) * std::fabs(w.z);
+      const float dz = sample_unit_exponential(random.next()) * std::fabs(w.z);
       const float zp = w.z > 0.0f ? z + dz : z - dz;
       if (zp == z) return std::nullopt;
       if (0.0f < zp && zp < thickness) {

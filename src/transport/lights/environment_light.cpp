@@ -42,7 +42,9 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, d
   // the power estimate.
   const bool equal_area = mapping_ == EnvironmentMapping::equal_area_octahedral;
   double radiance_times_solid_angle = 0.0;
+  std::vector<double> row_integrals(w);
   for (int y = 0; y < h; ++y) {
+    image_->radiance_integrals(y, row_integrals);
     const double theta_center = std::numbers::pi * (y + 0.5) / h;
     const double sin_theta = equal_area ? 1.0 : std::sin(theta_center);
     const double pixel_sr = equal_area ? 4.0 * std::numbers::pi / (double(w) * h)
@@ -51,7 +53,7 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, d
     for (int x = 0; x < w; ++x) {
       double& weight = luminance[size_t(y) * w + x];
       weight = (weight + kLuminanceFloor * mean) * sin_theta;
-      radiance_times_solid_angle += pixel_radiance_integral(*image_, x, y) * pixel_sr;
+      radiance_times_solid_angle += row_integrals[x] * pixel_sr;
     }
   }
   mean_radiance_integral_ = image_scale_ * radiance_times_solid_angle / (4.0 * std::numbers::pi);

@@ -33,9 +33,11 @@ ProjectionLight::ProjectionLight(Vec3 position_m, Frame frame, double fov_deg,
   const double tan = tan_half_fov_;
   const double pixel_w = 2.0 * half_width_ * tan / w, pixel_h = 2.0 * half_height_ * tan / h;
   const auto corner = [](double x, double y) { return std::atan(x * y / std::sqrt(1.0 + x * x + y * y)); };
-  for (int y = 0; y < h; ++y)
+  std::vector<double> row_integrals(w);
+  for (int y = 0; y < h; ++y) {
+    image_->radiance_integrals(y, row_integrals);
     for (int x = 0; x < w; ++x) {
-      const double integral = std::max(0.0, scale * pixel_radiance_integral(*image_, x, y));
+      const double integral = std::max(0.0, scale * row_integrals[x]);
       brightest_integral_ = std::max(brightest_integral_, integral);
       const double x0 = -half_width_ * tan + x * pixel_w, x1 = x0 + pixel_w;
       const double y1 = half_height_ * tan - y * pixel_h, y0 = y1 - pixel_h;  // row 0 at the top
@@ -43,6 +45,7 @@ ProjectionLight::ProjectionLight(Vec3 position_m, Frame frame, double fov_deg,
       power_w_ += integral * solid_angle_sr;
       luminance_solid_angle_sr_ += std::max(0.0f, image_->luminance(x, y)) * solid_angle_sr;
     }
+  }
 }
 
 std::pair<int, int> ProjectionLight::pixel_towards(Vec3 w_out) const {

@@ -30,4 +30,8 @@ double RadianceImage::radiance_integral(int x, int y) const {
   return spectral_sum * kBandNm;
 }
 
+void RadianceImage::radiance_integrals(int y, std::span<double> out) const {
+  for (int x = 0; x < width(); ++x) out[x] = radiance_integral(x, y);
+}
+
 }  // namespace rimu

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 
 #include "spectral/wavelengths/sampled_wavelengths.h"
 
@@ -29,6 +30,10 @@ class RadianceImage {
   /// radiance, W/sr for an intensity image). Called once per pixel when the light is built. The default asks
   /// radiance() four times; an image that upsamples a pixel at each lookup overrides it to upsample once.
   virtual double radiance_integral(int x, int y) const;
+  /// radiance_integral(x, y) for every pixel of row y into out[0..width), the same values. Lights call it once per
+  /// row when they are built; an image that upsamples per lookup overrides it to evaluate the row one wavelength
+  /// group at a time (per-thread basis caches then refill 4 times per row, not 4 times per pixel).
+  virtual void radiance_integrals(int y, std::span<double> out) const;
 };
 
 /// The four lane groups of wavelengths RadianceImage::radiance_integral's midpoint rule sums, and the width of the
@@ -36,7 +41,5 @@ class RadianceImage {
 const std::array<SampledWavelengths, 4>& radiance_integral_wavelengths();
 double radiance_integral_band_nm();
 
-/// image.radiance_integral(x, y).
-inline double pixel_radiance_integral(const RadianceImage& image, int x, int y) { return image.radiance_integral(x, y); }
 
 }  // namespace rimu

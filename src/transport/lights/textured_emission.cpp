@@ -21,10 +21,12 @@ TexturedEmission::TexturedEmission(std::shared_ptr<const RadianceImage> image, d
   width_ = image_->width();
   height_ = image_->height();
   pixel_integral_.resize(size_t(width_) * size_t(height_));
-  for (int y = 0; y < height_; ++y)
+  std::vector<double> row_integrals(width_);
+  for (int y = 0; y < height_; ++y) {
+    image_->radiance_integrals(y, row_integrals);
     for (int x = 0; x < width_; ++x)
-      pixel_integral_[size_t(y) * size_t(width_) + size_t(x)] =
-          float(std::max(0.0, scale * pixel_radiance_integral(*image_, x, y)));
+      pixel_integral_[size_t(y) * size_t(width_) + size_t(x)] = float(std::max(0.0, scale * row_integrals[x]));
+  }
 }
 
 TexturedEmission::Footprint TexturedEmission::footprint(Vec2 uv) const {

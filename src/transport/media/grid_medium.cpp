@@ -102,8 +102,18 @@ float GridMedium::density_in_grid(Vec3 p) const {
   const int ix = int(std::floor(s.x)), iy = int(std::floor(s.y)), iz = int(std::floor(s.z));
   const float fx = s.x - float(ix), fy = s.y - float(iy), fz = s.z - float(iz);
   const auto lerp = [](float f, float a, float b) { return a + f * (b - a); };
-  const auto row = [&](int yy, int zz) { return lerp(fx, voxel(ix, yy, zz), voxel(ix + 1, yy, zz)); };
-  return lerp(fz, lerp(fy, row(iy, iz), row(iy + 1, iz)), lerp(fy, row(iy, iz + 1), row(iy + 1, iz + 1)));
+  float d[8];  // the 8 corners, x fastest
+  if (ix >= 0 && iy >= 0 && iz >= 0 && ix + 1 < nx_ && iy + 1 < ny_ && iz + 1 < nz_) {
+    // All inside (nearly every lookup): direct loads, no bounds test per voxel.
+    const size_t sy = size_t(nx_), sz = size_t(nx_) * size_t(ny_);
+    const float* p0 = &density_[(size_t(iz) * size_t(ny_) + size_t(iy)) * size_t(nx_) + size_t(ix)];
+    d[0] = p0[0], d[1] = p0[1], d[2] = p0[sy], d[3] = p0[sy + 1];
+    d[4] = p0[sz], d[5] = p0[sz + 1], d[6] = p0[sz + sy], d[7] = p0[sz + sy + 1];
+  } else {
+    for (int k = 0; k < 8; ++k) d[k] = voxel(ix + (k & 1), iy + ((k >> 1) & 1), iz + (k >> 2));
+  }
+  return lerp(fz, lerp(fy, lerp(fx, d[0], d[1]), lerp(fx, d[2], d[3])),
+              lerp(fy, lerp(fx, d[4], d[5]), lerp(fx, d[6], d[7])));
 }
 
 bool GridMedium::clip(const Ray& ray, float t_max, float& t0, float& t1) const {

@@ -60,7 +60,11 @@ class GridMedium {
   GridInterpolation interpolation() const { return interpolation_; }
   /// σ_a, σ_s at a world point, given the per-unit-density coefficients at the path's wavelengths.
   MediumCoefficients coefficients(Vec3 p, const MediumCoefficients& per_unit_density) const {
-    const float d = density(p);
+    return coefficients_in_grid(grid_from_world_ ? grid_from_world_->point(p) : p, per_unit_density);
+  }
+  /// The same at a point of the grid's own space (for_each_majorant_segment's grid-space ray).
+  MediumCoefficients coefficients_in_grid(Vec3 p_grid, const MediumCoefficients& per_unit_density) const {
+    const float d = density_in_grid(p_grid);
     return {per_unit_density.sigma_a_per_m * Float4(d), per_unit_density.sigma_s_per_m * Float4(d)};
   }
   /// The coefficients per unit density at the path's wavelengths.
@@ -70,9 +74,10 @@ class GridMedium {
   const SpectrumPtr& sigma_a() const { return unit_.sigma_a(); }
   const SpectrumPtr& sigma_s() const { return unit_.sigma_s(); }
 
-  /// Calls segment(t0, t1, max_density) for consecutive pieces of the ray inside the box over [ray.t_min, t_max],
-  /// in order, each with the largest density of the majorant cell it crosses (a 3D-DDA over the majorant grid,
-  /// Amanatides & Woo 1987). Stops early when segment returns false.
+  /// Calls segment(t0, t1, max_density, grid_ray) for consecutive pieces of the ray inside the box over
+  /// [ray.t_min, t_max], in order, each with the largest density of the majorant cell it crosses (a 3D-DDA over the
+  /// majorant grid, Amanatides & Woo 1987); grid_ray is the ray in the grid's space, with the same parameter t.
+  /// Stops early when segment returns false.
   template <typename F>
   void for_each_majorant_segment(const Ray& ray, float t_max, F&& segment) const;
 
@@ -80,11 +85,12 @@ class GridMedium {
   /// empty space and thin edges get small majorants.
   static constexpr int kBlock = 8;
 
+  /// The density at a point of the grid's space.
+  float density_in_grid(Vec3 p) const;
+
  private:
   void set_transform(const std::optional<Transform>& world_from_grid);
   bool clip(const Ray& ray, float t_max, float& t0, float& t1) const;
-  /// The density at a point of the grid's space.
-  float density_in_grid(Vec3 p) const;
   float voxel(int x, int y, int z) const {
     return x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_ ? 0.0f : density_[size_t((z * ny_ + y) * nx_ + x)];
   }
@@ -155,7 +161,7 @@ void GridMedium::for_each_majorant_segment(const Ray& world_ray, float t_max, F&
     const int axis = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
     const float t_exit = std::fmin(t_next[axis], t1);
     const float m = majorant_[size_t((cell[2] * my_ + cell[1]) * mx_ + cell[0])];
-    if (t_exit > t && !segment(t, t_exit, m)) return;
+    if (t_exit > t && !segment(t, t_exit, m, static_cast<const Ray&>(ray))) return;
     t = t_exit;
     cell[axis] += step[axis];
     if (cell[axis] < 0 || cell[axis] >= size[axis]) return;

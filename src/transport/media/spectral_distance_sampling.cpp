@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "transport/sampling/exponential_warp.h"
+
 namespace rimu {
 namespace {
 
@@ -11,22 +13,24 @@ float mean_lane(Float4 v) { return 0.25f * sum(v); }
 Float4 safe_divide(Float4 a, Float4 b) { return select(b > Float4(0.0f), a / b, Float4(0.0f)); }
 
 // A free-flight distance with density σ exp(−σ t); infinite for σ = 0 (the flight never collides).
-float exponential_distance(float sigma, float u) { return sigma > 0.0f ? -std::log1p(-u) / sigma : INFINITY; }
+float exponential_distance(float sigma, float u) { return sigma > 0.0f ? sample_unit_exponential(u) / sigma : INFINITY; }
 
 // Calls segment(t0, t1, majorant, coefficients_at) over the pieces of [t_min, t_max) with a constant majorant
-// μ̄ (per metre, the same for every lane: the largest σ_t of any lane in the piece).
+// μ̄ (per metre, the same for every lane: the largest σ_t of any lane in the piece); coefficients_at(t) gives σ_a,
+// σ_s at the ray's point t (a grid finds it in its own space, where the walk already is: no transform per lookup).
 template <typename F>
 void for_each_majorant(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda, F&& f) {
   if (const HomogeneousMedium* h = medium.homogeneous()) {
     const MediumCoefficients c = h->coefficients(lambda);
-    f(ray.t_min, t_max, max_lane(c.sigma_t_per_m()), [c](Vec3) { return c; });
+    f(ray.t_min, t_max, max_lane(c.sigma_t_per_m()), [c](float) { return c; });
     return;
   }
   const GridMedium& grid = *medium.grid();
   const MediumCoefficients unit = grid.unit_coefficients(lambda);
   const float unit_majorant = max_lane(unit.sigma_t_per_m());
-  grid.for_each_majorant_segment(ray, t_max, [&](float t0, float t1, float max_density) {
-    return f(t0, t1, max_density * unit_majorant, [&](Vec3 p) { return grid.coefficients(p, unit); });
+  grid.for_each_majorant_segment(ray, t_max, [&](float t0, float t1, float max_density, const Ray& grid_ray) {
+    return f(t0, t1, max_density * unit_majorant,
+             [&](float t) { return grid.coefficients_in_grid(grid_ray.origin + grid_ray.direction * t, unit); });
   });
 }
 
@@ -41,7 +45,7 @@ void for_each_tentative_collision(const Medium& medium, const Ray& ray, float t_
     for (float t = t0;;) {
       t += exponential_distance(majorant, sampler.next_1d());
       if (t >= t1) return true;
-      const MediumCoefficients c = coefficients_at(ray.origin + ray.direction * t);
+      const MediumCoefficients c = coefficients_at(t);
       const Float4 sigma_n = max(Float4(majorant) - c.sigma_t_per_m(), Float4(0.0f));
       if (!collision(t, majorant, c, sigma_n)) return false;
     }
