@@ -73,7 +73,9 @@ TEST_CASE("light groups: adaptive sampling keeps layers that sum to the beauty")
   ScratchFolder folder("light_groups_adaptive");
   RenderJob job = tiny_job(light_groups_example(), folder / "adaptive.exr");
   job.samples_per_pixel = 64;
-  job.noise_threshold = 0.1;
+  // 0.1 stopped every pixel in the same pass once the constant sky was left to BSDF sampling (less noise): 0.05
+  // keeps some pixels sampling longer than others, which is what this test needs.
+  job.noise_threshold = 0.05;
   render(job);
   const ExrChannels exr = read_channels(folder / "adaptive.exr");
   // Adaptive sampling was at work: some pixels stopped before the maximum (the sky converges at once).

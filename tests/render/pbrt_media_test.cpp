@@ -316,4 +316,45 @@ TEST_CASE("pbrt subsurface: a textured reflectance becomes a textured albedo of 
   CHECK(error.find("a textured albedo needs a homogeneous medium") != std::string::npos);
 }
 
+TEST_CASE("pbrt media: a \"cloud\" medium imports as a noise cloud, with pbrt's defaults, box and placement") {
+  // clouds.pbrt of mmp/pbrt-v4-scenes: the cloud inside a sphere of material "" (pbrt's old spelling of
+  // "interface"), here with a box and a placement of its own.
+  const PbrtImport imported = import_text(
+      kCamera +
+      "WorldBegin\n"
+      "AttributeBegin\n Translate 1 2 3\n"
+      " MakeNamedMedium \"c\" \"string type\" \"cloud\" \"spectrum sigma_s\" [200 10 900 10]\n"
+      "   \"spectrum sigma_a\" [200 .01 900 .01] \"float density\" 2 \"point3 p0\" [1 0 -1] \"point3 p1\" [0 2 1]\n"
+      "AttributeEnd\n"
+      "MakeNamedMedium \"plain\" \"string type\" \"cloud\"\n"
+      "AttributeBegin\n MediumInterface \"c\" \"\"\n Material \"\"\n Shape \"sphere\" \"float radius\" 1\nAttributeEnd\n"
+      "AttributeBegin\n MediumInterface \"plain\" \"\"\n Material \"none\"\n Shape \"sphere\" \"float radius\" 1\nAttributeEnd\n");
+  CHECK_MESSAGE(imported.ignored.empty(), ignored_list(imported));
+  const json& media = imported.document["media"];
+  REQUIRE(media.size() == 2);
+  const json& c = media["c"];
+  CHECK(c["type"] == "noise_cloud");
+  CHECK(c["density_scale"].get<double>() == 2.0);
+  CHECK(c["wispiness"].get<double>() == 1.0);
+  CHECK(c["frequency"].get<double>() == 5.0);
+  CHECK(c["bounds_min"] == json::array({0.0, 0.0, -1.0}));  // pbrt's Bounds3f(p0, p1): componentwise min and max
+  CHECK(c["bounds_max"] == json::array({1.0, 2.0, 1.0}));
+  CHECK(c.contains("transform"));  // the CTM at MakeNamedMedium
+  CHECK(c["index_matched"] == true);  // Material "" is the interface: no surface, only the medium's boundary
+  const json& plain = media["plain"];
+  CHECK(plain["sigma_a"] == 1.0);
+  CHECK(plain["sigma_s"] == 1.0);
+  CHECK(plain["density_scale"].get<double>() == 1.0);
+  CHECK(plain["bounds_min"] == json::array({0.0, 0.0, 0.0}));
+  CHECK(plain["bounds_max"] == json::array({1.0, 1.0, 1.0}));
+  CHECK_FALSE(plain.contains("transform"));
+  CHECK(plain["index_matched"] == true);
+  CHECK_NOTHROW(load_scene(imported.document, "media.pbrt", test::test_data("pbrt"), test::library()));
+  // pbrt's cloud reads no "scale" (pbrt-v4 stops at it as unused): listed, not applied.
+  const PbrtImport scaled = import_text(kCamera + "MakeNamedMedium \"c\" \"string type\" \"cloud\" \"float scale\" 3\nWorldBegin\n");
+  CHECK(ignored_list(scaled).find("scale") != std::string::npos);
+  CHECK(error_of(kCamera + "MakeNamedMedium \"c\" \"string type\" \"cloud\" \"float frequency\" -1\nWorldBegin\n")
+            .find("media.pbrt:4: MakeNamedMedium \"c\" (cloud): \"frequency\" must be in [0, 1e6]") != std::string::npos);
+}
+
 }  // namespace pbrt_media_test

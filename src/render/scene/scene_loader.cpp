@@ -12,6 +12,7 @@
 #include "render/scene/scene_sensors.h"
 #include "render/scene/scene_light_groups.h"
 #include "transport/lights/emission_wavelength_density.h"
+#include "transport/lights/environment_light.h"
 #include "transport/lights/power_light_sampler.h"
 #include "transport/sampling/wavelength_modes.h"
 
@@ -275,6 +276,11 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   scene->scene_scale = is_finite(extent) && length(extent) > 0.0f ? length(extent) : 1.0f;
 
   std::vector<const Light*> light_pointers;
+  // A constant environment is left to BSDF and phase sampling wherever they are combined with light sampling
+  // (EnvironmentLight::set_left_to_bsdf_sampling says why); next-event estimation alone still samples it.
+  if (scene->settings.integrator.direct_lighting == DirectLighting::mis)
+    for (const std::unique_ptr<Light>& light : scene->lights)
+      if (auto* environment = dynamic_cast<EnvironmentLight*>(light.get())) environment->set_left_to_bsdf_sampling(true);
   for (size_t i = 0; i < scene->lights.size(); ++i) {
     light_pointers.push_back(scene->lights[i].get());
     if (scene->lights[i]->is_infinite()) scene->infinite_lights.push_back(int(i));

@@ -1,5 +1,5 @@
-// The "media" section of the JSON scene format: homogeneous and voxel-grid media, and the material whose shapes
-// enclose each of them (docs/media.md).
+// The "media" section of the JSON scene format: homogeneous, voxel-grid and noise-cloud media, and the material whose
+// shapes enclose each of them (docs/media.md).
 #include <cctype>
 #include <filesystem>
 
@@ -71,7 +71,7 @@ bool is_nanovdb_file(const std::string& file) {
 }
 
 Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
-  const std::string type = m.at("type").choice({"homogeneous", "grid"});
+  const std::string type = m.at("type").choice({"homogeneous", "grid", "noise_cloud"});
   const float g = float(m.number_or("g", 0.0, -0.99, 0.99));
   const int priority = m.integer_or("priority", 0, -1000, 1000);
   // false: a subsurface walk, whose scattering events are no path vertices for max_depth (medium.h says why).
@@ -122,6 +122,27 @@ Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
     medium.set_textured_albedo(std::move(textured_albedo));
     medium.set_surface_albedo(std::move(surface_albedo));
     return medium;
+  }
+  if (type == "noise_cloud") {
+    m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
+                 "boundary_material", "index_matched", "contains_camera", "counts_towards_max_depth", "emission",
+                 "light_group", "density_scale", "wispiness", "frequency", "bounds_min", "bounds_max", "transform"});
+    NoiseCloudShape shape;
+    shape.density = float(m.number_or("density_scale", 1.0, 0.0, 1e6));
+    shape.wispiness = float(m.number_or("wispiness", 1.0, 0.0, 1e3));
+    shape.frequency = float(m.number_or("frequency", 5.0, 0.0, 1e6));
+    const Vec3 lo = m.has("bounds_min") ? m.at("bounds_min").vec3() : Vec3{0.0f, 0.0f, 0.0f};
+    const Vec3 hi = m.has("bounds_max") ? m.at("bounds_max").vec3() : Vec3{1.0f, 1.0f, 1.0f};
+    std::optional<Transform> world_from_medium;
+    if (m.has("transform")) world_from_medium = parse_transform(m);
+    try {
+      Medium medium(NoiseCloudMedium(sigma_a, sigma_s, g, shape, lo, hi, world_from_medium), priority,
+                    counts_towards_max_depth);
+      medium.set_surface_albedo(std::move(surface_albedo));
+      return medium;
+    } catch (const InputError& e) {
+      m.fail(e.explanation());
+    }
   }
   m.only_keys({"type", "g", "priority", "albedo", "mean_free_path", "mean_free_path_scale_m", "sigma_a", "sigma_s",
                "boundary_material", "index_matched", "file", "procedural", "resolution", "bounds_min", "bounds_max",
@@ -189,7 +210,7 @@ Medium load_absorbing_medium(const JsonCursor& m, LoadContext& context) {
 std::shared_ptr<const MediumEmission> load_medium_emission(const JsonCursor& m, const Medium& medium,
                                                            LoadContext& context) {
   const JsonCursor e = m.at("emission");
-  const SpectrumPtr& sigma_a = medium.homogeneous() ? medium.homogeneous()->sigma_a() : medium.grid()->sigma_a();
+  const SpectrumPtr& sigma_a = medium.sigma_a();
   if (!(sigma_a->max_value() > 0.0))
     e.fail("a medium emits sigma_a × its radiance: with sigma_a = 0 at every wavelength it cannot emit");
   if (!(e.is_object() && e.has("temperature_grid"))) {

@@ -211,7 +211,7 @@ BvhLightSampler::BvhLightSampler(std::span<const Light* const> lights, Importanc
     // An environment with portals has bounds (its portals) and is a leaf like any area light.
     if (light.is_infinite() && !light.part_bounds(0)) {
       is_infinite_[i] = true;
-      if (light.total_power_w(1.0) > 0.0) {
+      if (light.total_power_w(1.0) > 0.0 && light.sampled_by_nee()) {
         infinite_lights_.push_back(int(i));
         // A directional light with E⊥ ≤ 0 (or NaN) but power counts as a wide one: it keeps the rule's share.
         const float e = light.directional_irradiance_w_m2().value_or(0.0f);

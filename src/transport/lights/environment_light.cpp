@@ -92,7 +92,7 @@ SampledSpectrum EnvironmentLight::radiance_escaped(Vec3 direction, const Sampled
 }
 
 float EnvironmentLight::pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit*) const {
-  if (!(mean_radiance_integral_ > 0.0)) return 0.0f;
+  if (!(mean_radiance_integral_ > 0.0) || !sampled_by_nee()) return 0.0f;
   if (!portals_.empty()) return portals_.pdf(ref.position, wi);
   if (distribution_.is_zero()) return kUniformSpherePdf;
   if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
@@ -109,7 +109,7 @@ float EnvironmentLight::pdf_li(const LightReference& ref, Vec3 wi, const Surface
 
 std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                                        Vec2 u) const {
-  if (!(mean_radiance_integral_ > 0.0)) return std::nullopt;
+  if (!(mean_radiance_integral_ > 0.0) || !sampled_by_nee()) return std::nullopt;
   LightSample s;
   if (!portals_.empty()) {
     const auto through = portals_.sample(ref.position, u);

@@ -8,15 +8,16 @@
 #include "transport/media/grid_medium.h"
 #include "transport/media/homogeneous_medium.h"
 #include "transport/media/medium_emission.h"
+#include "transport/media/noise_cloud_medium.h"
 #include "transport/media/textured_albedo.h"
 
 namespace rimu {
 
-/// A homogeneous or voxel-grid medium, held by value, with the priority that resolves overlaps (see MediumStack)
-/// and whether its scattering events count towards the path's max_depth.
+/// A homogeneous, voxel-grid or procedural (noise cloud) medium, held by value, with the priority that resolves
+/// overlaps (see MediumStack) and whether its scattering events count towards the path's max_depth.
 class Medium {
  public:
-  using Variant = std::variant<HomogeneousMedium, GridMedium>;
+  using Variant = std::variant<HomogeneousMedium, GridMedium, NoiseCloudMedium>;
 
   template <typename T>
   explicit Medium(T medium, int priority = 0, bool counts_towards_max_depth = true)
@@ -34,6 +35,11 @@ class Medium {
   bool counts_towards_max_depth() const { return counts_towards_max_depth_; }
   const HomogeneousMedium* homogeneous() const { return std::get_if<HomogeneousMedium>(&medium_); }
   const GridMedium* grid() const { return std::get_if<GridMedium>(&medium_); }
+  const NoiseCloudMedium* noise_cloud() const { return std::get_if<NoiseCloudMedium>(&medium_); }
+  /// σ_a per unit density (1/m; the medium's σ_a for a homogeneous one).
+  const SpectrumPtr& sigma_a() const {
+    return std::visit([](const auto& m) -> const SpectrumPtr& { return m.sigma_a(); }, medium_);
+  }
   /// A surface albedo texture over the boundary (TexturedAlbedo; null: none): a subsurface medium's colour map.
   const TexturedAlbedo* textured_albedo() const { return textured_albedo_.get(); }
   void set_textured_albedo(std::shared_ptr<const TexturedAlbedo> albedo) { textured_albedo_ = std::move(albedo); }

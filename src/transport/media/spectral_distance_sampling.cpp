@@ -25,6 +25,16 @@ void for_each_majorant(const Medium& medium, const Ray& ray, float t_max, const 
     f(ray.t_min, t_max, max_lane(c.sigma_t_per_m()), [c](float) { return c; });
     return;
   }
+  if (const NoiseCloudMedium* cloud = medium.noise_cloud()) {
+    // Density ≤ 1: σ_t per unit density bounds the whole box (one segment, as pbrt-v4's CloudMedium).
+    const MediumCoefficients unit = cloud->unit_coefficients(lambda);
+    float t0, t1;
+    Ray local;
+    if (!cloud->clip(ray, t_max, t0, t1, local)) return;
+    f(t0, t1, max_lane(unit.sigma_t_per_m()),
+      [&](float t) { return cloud->coefficients_in_medium(local.origin + local.direction * t, unit); });
+    return;
+  }
   const GridMedium& grid = *medium.grid();
   const MediumCoefficients unit = grid.unit_coefficients(lambda);
   const float unit_majorant = max_lane(unit.sigma_t_per_m());
@@ -139,7 +149,7 @@ FreeFlight homogeneous_free_flight(const HomogeneousMedium& medium, const Ray& r
 }  // namespace
 
 bool uses_tracking(const Medium& medium, DistanceSampling mode) {
-  return medium.grid() != nullptr || mode == DistanceSampling::spectral_tracking;
+  return medium.homogeneous() == nullptr || mode == DistanceSampling::spectral_tracking;
 }
 
 FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,

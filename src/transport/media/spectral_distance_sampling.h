@@ -48,7 +48,7 @@ struct SegmentTransmittance {
   SampledSpectrum pass_probability = Float4(1.0f);
 };
 
-/// Whether free flights and transmittance in `medium` are tracked through null collisions (grid media, or the
+/// Whether free flights and transmittance in `medium` are tracked through null collisions (grid and noise-cloud media, or the
 /// spectral_tracking mode): then they consume random numbers per tentative collision and read the throughput; else
 /// they are analytic (homogeneous media) and read neither.
 bool uses_tracking(const Medium& medium, DistanceSampling mode);

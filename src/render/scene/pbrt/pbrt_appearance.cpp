@@ -370,7 +370,8 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
   const auto defaults = state_.attributes.find("material");
   const std::vector<PbrtParam>* material_defaults = defaults == state_.attributes.end() ? nullptr : &defaults->second;
   json m;
-  if (type == "interface") {
+  // pbrt-v4 reads "" and "none" as "interface" (deprecated spellings it warns about; clouds.pbrt uses "").
+  if (type == "interface" || type.empty() || type == "none") {
     // pbrt's "no surface" (a medium's boundary). Without media its shapes have nothing to show: they are left out.
     materials_[name] = {{"type", "diffuse"}, {"reflectance", 0.5}};
     interface_materials_.insert(name);

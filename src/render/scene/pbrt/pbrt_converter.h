@@ -225,6 +225,13 @@ class PbrtConverter {
   void add_density_grid(PbrtParams& p, json& medium);
   /// A "nanovdb" medium: the JSON grid medium reading the .nvdb file's "density" grid (relative to the pbrt file).
   void add_nanovdb_grid(PbrtParams& p, json& medium);
+  /// A "cloud" medium (pbrt-v4's procedural CloudMedium): Rimu's "noise_cloud" with its parameters, box and
+  /// transform. pbrt's cloud takes no "scale" and no "Le" (left unread, so listed).
+  json noise_cloud_medium(PbrtParams& p);
+  /// "p0" and "p1" as pbrt's Bounds3f takes them (componentwise min and max; defaults 0 and 1); InputError if empty.
+  std::pair<Vec3d, Vec3d> medium_box(PbrtParams& p);
+  /// "g", default 0: an error outside (−1, 1), clamped (and listed) beyond Rimu's ±0.99.
+  double medium_g(PbrtParams& p);
   /// The material a shape of `material` gets under the MediumInterface in effect: a copy bounding the inside medium
   /// where one begins at the shape; empty for an "interface" shape with no medium to bound (left out, listed).
   std::optional<std::string> boundary_material(const std::string& material, const SourceLocation& where, const std::string& context);

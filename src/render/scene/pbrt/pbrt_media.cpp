@@ -95,7 +95,13 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
   // keep "heterogeneous", which pbrt-v4 then refuses: read it as the upgrader intends.
   if (type == "heterogeneous") type = "uniformgrid";
   media_where_[name] = s.where;
-  if (type == "rgbgrid" || type == "cloud") {
+  if (type == "cloud") {
+    PbrtParams p(*this, s, context);
+    p.string("type", "");
+    media_defined_[name] = noise_cloud_medium(p);
+    return;
+  }
+  if (type == "rgbgrid") {
     ignore("MakeNamedMedium \"" + type + "\" (not imported: shapes it fills render without a medium)", s.where);
     media_defined_[name] = nullptr;
     return;
@@ -121,12 +127,7 @@ void PbrtConverter::make_named_medium(const PbrtStatement& s) {
   }
   const double scale = p.real("scale", 1.0);
   if (!(scale >= 0)) throw InputError(s.where, context + ": \"scale\" must be >= 0");
-  double g = p.real("g", 0.0);
-  if (!(g > -1 && g < 1)) throw InputError(s.where, context + ": \"g\" must be in (-1, 1)");
-  if (std::abs(g) > 0.99) {
-    ignore("MakeNamedMedium \"g\" beyond ±0.99 (clamped to Rimu's range)", s.where);
-    g = std::clamp(g, -0.99, 0.99);
-  }
+  const double g = medium_g(p);
   // "Le" × "Lescale" (homogeneous, uniformgrid): pbrt-v4 normalises the spectrum as a light's "L"
   // (SpectrumToPhotometric), so it imports as an area light's emission does: a shape and a luminance.
   std::optional<json> emission;
@@ -236,6 +237,58 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
   subsurface_materials_.insert(material);
 }
 
+double PbrtConverter::medium_g(PbrtParams& p) {
+  double g = p.real("g", 0.0);
+  if (!(g > -1 && g < 1)) throw InputError(p.where(), p.context() + ": \"g\" must be in (-1, 1)");
+  if (std::abs(g) > 0.99) {
+    ignore("MakeNamedMedium \"g\" beyond ±0.99 (clamped to Rimu's range)", p.where());
+    g = std::clamp(g, -0.99, 0.99);
+  }
+  return g;
+}
+
+std::pair<Vec3d, Vec3d> PbrtConverter::medium_box(PbrtParams& p) {
+  const auto point = [&](const char* name, Vec3d fallback) {
+    const std::vector<double> v = p.numbers(name, {PbrtParamType::point3});
+    if (v.empty()) return fallback;
+    if (v.size() != 3) throw InputError(p.where(), p.context() + ": \"" + name + "\" takes 3 numbers");
+    return Vec3d{v[0], v[1], v[2]};
+  };
+  const Vec3d p0 = point("p0", {0, 0, 0}), p1 = point("p1", {1, 1, 1});
+  // pbrt's Bounds3f(p0, p1) takes the componentwise min and max.
+  Vec3d lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[size_t(a)] = std::min(p0[size_t(a)], p1[size_t(a)]);
+    hi[size_t(a)] = std::max(p0[size_t(a)], p1[size_t(a)]);
+    if (!(hi[size_t(a)] > lo[size_t(a)])) throw InputError(p.where(), p.context() + ": the box \"p0\"–\"p1\" is empty");
+  }
+  return {lo, hi};
+}
+
+json PbrtConverter::noise_cloud_medium(PbrtParams& p) {
+  json medium = {{"type", "noise_cloud"}};
+  // pbrt-v4's CloudMedium::Create: unbounded spectra (default 1), "density" 1, "wispiness" 1, "frequency" 5, "g" 0.
+  medium["sigma_a"] = coefficient_value(p, "sigma_a", 1.0);
+  medium["sigma_s"] = coefficient_value(p, "sigma_s", 1.0);
+  medium["g"] = medium_g(p);
+  const std::pair<const char*, double> shape[] = {{"density", 1.0}, {"wispiness", 1.0}, {"frequency", 5.0}};
+  for (const auto& [key, fallback] : shape) {
+    const double v = p.real(key, fallback);
+    // pbrt takes any number; a negative one clamps the density to 0 everywhere (density) or mirrors the noise
+    // (frequency): refused here, as a scene error rather than a cloud that is not there.
+    if (!(v >= 0) || !(v <= 1e6)) throw InputError(p.where(), p.context() + ": \"" + key + "\" must be in [0, 1e6]");
+    medium[std::string(key) == "density" ? "density_scale" : key] = v;
+  }
+  const auto [lo, hi] = medium_box(p);
+  medium["bounds_min"] = lo;
+  medium["bounds_max"] = hi;
+  // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium).
+  if (ctm_moves()) ignore("a medium that moves (ActiveTransform: media stay at their start placement)", p.where());
+  const json steps = transform_steps(world_from_object(), p.where());
+  if (!steps.is_null()) medium["transform"] = steps;
+  return medium;
+}
+
 void PbrtConverter::add_nanovdb_grid(PbrtParams& p, json& medium) {
   const SourceLocation& where = p.where();
   const std::string filename = p.string("filename", "");
@@ -296,20 +349,7 @@ void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
                                            json(d).dump() + "; densities must be finite and >= 0");
     values.push_back(d);
   }
-  const auto point = [&](const char* name, Vec3d fallback) {
-    const std::vector<double> v = p.numbers(name, {PbrtParamType::point3});
-    if (v.empty()) return fallback;
-    if (v.size() != 3) throw InputError(where, context + ": \"" + name + "\" takes 3 numbers");
-    return Vec3d{v[0], v[1], v[2]};
-  };
-  const Vec3d p0 = point("p0", {0, 0, 0}), p1 = point("p1", {1, 1, 1});
-  // pbrt's Bounds3f(p0, p1) takes the componentwise min and max.
-  Vec3d lo, hi;
-  for (int a = 0; a < 3; ++a) {
-    lo[size_t(a)] = std::min(p0[size_t(a)], p1[size_t(a)]);
-    hi[size_t(a)] = std::max(p0[size_t(a)], p1[size_t(a)]);
-    if (!(hi[size_t(a)] > lo[size_t(a)])) throw InputError(where, context + ": the box \"p0\"–\"p1\" is empty");
-  }
+  const auto [lo, hi] = medium_box(p);
   if (!p.numbers("temperature", {PbrtParamType::real}).empty())
     ignore("MakeNamedMedium \"uniformgrid\" \"temperature\" (Rimu reads temperatures from .nvdb grids only: "
            "imported without its emission)", where);

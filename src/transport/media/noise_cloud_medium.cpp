@@ -1,0 +1,78 @@
+#include "transport/media/noise_cloud_medium.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "spectral/error.h"
+#include "transport/textures/perlin_noise.h"
+
+namespace rimu {
+
+namespace {
+// The noise's gradient by forward differences over `step` (what pbrt-v4's displacement uses, not the analytic one).
+Vec3 noise_gradient(Vec3 p) {
+  constexpr float kStep = 0.01f;
+  const float n = perlin_noise(p);
+  return Vec3{perlin_noise(p + Vec3{kStep, 0.0f, 0.0f}) - n, perlin_noise(p + Vec3{0.0f, kStep, 0.0f}) - n,
+              perlin_noise(p + Vec3{0.0f, 0.0f, kStep}) - n} /
+         kStep;
+}
+}  // namespace
+
+NoiseCloudMedium::NoiseCloudMedium(SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m, float g,
+                                   NoiseCloudShape shape, Vec3 bounds_min, Vec3 bounds_max,
+                                   const std::optional<Transform>& world_from_medium)
+    : unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g), shape_(shape), min_(bounds_min), max_(bounds_max) {
+  for (float v : {shape.density, shape.wispiness, shape.frequency})
+    if (!(v >= 0.0f) || !std::isfinite(v))
+      throw InputError({}, "a noise cloud's density, wispiness and frequency must be finite and >= 0");
+  const Vec3 extent = max_ - min_;
+  if (!(extent.x > 0.0f && extent.y > 0.0f && extent.z > 0.0f)) throw InputError({}, "the medium's box is empty");
+  if (world_from_medium) {
+    if (!world_from_medium->is_finite() || !(std::fabs(world_from_medium->determinant()) > 1e-30f))
+      throw InputError({}, "the medium's transform must be finite and invertible");
+    medium_from_world_ = world_from_medium->inverse();
+  }
+}
+
+float NoiseCloudMedium::density_in_medium(Vec3 p) const {
+  Vec3 q = p * shape_.frequency;
+  if (shape_.wispiness > 0.0f) {
+    float step = 0.05f * shape_.wispiness, frequency = 10.0f;
+    for (int i = 0; i < 2; ++i, step *= 0.5f, frequency *= 1.99f) q = q + noise_gradient(q * frequency) * step;
+  }
+  float sum = 0.0f, weight = 0.5f, frequency = 1.0f;
+  for (int i = 0; i < 5; ++i, weight *= 0.5f, frequency *= 1.99f) sum += weight * perlin_noise(q * frequency);
+  const float thinning = std::clamp((1.0f - p.y) * 4.5f * shape_.density * sum, 0.0f, 1.0f);
+  return std::clamp(thinning + 2.0f * std::max(0.0f, 0.5f - p.y), 0.0f, 1.0f);
+}
+
+float NoiseCloudMedium::density(Vec3 p_world) const {
+  const Vec3 p = medium_from_world_ ? medium_from_world_->point(p_world) : p_world;
+  if (!(p.x >= min_.x && p.y >= min_.y && p.z >= min_.z && p.x <= max_.x && p.y <= max_.y && p.z <= max_.z))
+    return 0.0f;
+  return density_in_medium(p);
+}
+
+bool NoiseCloudMedium::clip(const Ray& world_ray, float t_max, float& t0, float& t1, Ray& medium_ray) const {
+  // An affine map keeps the ray's parameter.
+  medium_ray = world_ray;
+  if (medium_from_world_) {
+    medium_ray.origin = medium_from_world_->point(world_ray.origin);
+    medium_ray.direction = medium_from_world_->vector(world_ray.direction);
+  }
+  // Slab test (Kay & Kajiya 1986).
+  t0 = medium_ray.t_min;
+  t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.0f / medium_ray.direction[a];
+    float near = (min_[a] - medium_ray.origin[a]) * inv, far = (max_[a] - medium_ray.origin[a]) * inv;
+    if (near > far) std::swap(near, far);
+    if (std::isnan(near)) continue;  // direction 0 with the origin on a plane: inside along this axis
+    t0 = std::fmax(t0, near);
+    t1 = std::fmin(t1, far);
+  }
+  return t0 < t1;
+}
+
+}  // namespace rimu
