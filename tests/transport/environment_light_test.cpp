@@ -179,3 +179,64 @@ TEST_CASE("black environment images") {
     CHECK(env.pdf_li({}, {0, 0, 1}) == 0.0f);
   }
 }
+
+TEST_CASE("environment combined with BSDF sampling: a constant one is left to it, an image samples above its mean") {
+  // Constant: not sampled by next-event estimation at all (density 0), unless combined is off again.
+  EnvironmentLight constant(LightSpectrum(std::make_shared<ConstantSpectrum>(1.0), 2.0));
+  const LightReference surface{{0, 0, 0}, {0, 0, 1}}, medium{{0, 0, 0}, {0, 0, 0}};
+  constant.set_combined_with_bsdf_sampling(true);
+  CHECK_FALSE(constant.sampled_by_nee());
+  CHECK_FALSE(constant.sample_li(surface, kLambda, {0.3f, 0.6f}));
+  CHECK(constant.pdf_li(surface, {0, 0, 1}) == 0.0f);
+  constant.set_combined_with_bsdf_sampling(false);
+  CHECK(constant.sampled_by_nee());
+  CHECK(constant.pdf_li(surface, {0, 0, 1}) == doctest::Approx(1.0 / (4.0 * kPi)));
+
+  // Image: from a surface point, the density follows max(0, Y − Ȳ) (Ȳ the solid-angle mean): zero on pixels below
+  // the mean, and sampled frequencies match pdf_li (chi-square); from a point in a medium, the full density.
+  const std::shared_ptr<GreyImage> image = test_image();
+  EnvironmentLight full(image, 2.0), combined(image, 2.0);
+  combined.set_combined_with_bsdf_sampling(true);
+  CHECK(combined.sampled_by_nee());
+  double weighted = 0, weight = 0;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const double s = std::sin(kPi * (y + 0.5) / 8);
+      weighted += s * image->luminance(x, y);
+      weight += s;
+    }
+  const double mean = weighted / weight;
+  int below = 0, above = 0;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const Vec3 d = combined.uv_to_direction({(x + 0.5f) / 16, (y + 0.5f) / 8});
+      CAPTURE(x);
+      CAPTURE(y);
+      if (image->luminance(x, y) <= mean) {
+        CHECK(combined.pdf_li(surface, d) == 0.0f);
+        ++below;
+      } else {
+        CHECK(combined.pdf_li(surface, d) > 0.0f);
+        ++above;
+      }
+      CHECK(combined.pdf_li(medium, d) == full.pdf_li(medium, d));
+    }
+  CHECK(below > 0);
+  CHECK(above > 0);
+  const int nu = 32, nv = 16, sub = 4, n = 200000;
+  const std::vector<double> expected = test::square_expected_counts(
+      [&](Vec2 uv) { return combined.pdf_li(surface, combined.uv_to_direction(uv)) * 2 * kPi * kPi * std::sin(kPi * uv.y); },
+      nu, nv, sub, n);
+  CHECK(std::accumulate(expected.begin(), expected.end(), 0.0) / n == doctest::Approx(1.0).epsilon(1e-4));
+  std::vector<double> observed(nu * nv, 0.0);
+  std::mt19937 rng(37);
+  for (int s = 0; s < n; ++s) {
+    const auto ls = combined.sample_li(surface, kLambda, {test::uniform01(rng), test::uniform01(rng)});
+    REQUIRE(ls);
+    REQUIRE(ls->pdf_solid_angle == combined.pdf_li(surface, ls->wi));
+    observed[test::square_cell(combined.direction_to_uv(ls->wi), nu, nv)] += 1;
+  }
+  const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
+  CAPTURE(chi.statistic);
+  CHECK(chi.p_value > test::kChiSquareAlpha);
+}

@@ -276,11 +276,12 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   scene->scene_scale = is_finite(extent) && length(extent) > 0.0f ? length(extent) : 1.0f;
 
   std::vector<const Light*> light_pointers;
-  // A constant environment is left to BSDF and phase sampling wherever they are combined with light sampling
-  // (EnvironmentLight::set_left_to_bsdf_sampling says why); next-event estimation alone still samples it.
+  // Environments sample only what BSDF and phase sampling do badly wherever those are combined with light sampling
+  // (EnvironmentLight::set_combined_with_bsdf_sampling says how); next-event estimation alone needs the full density.
   if (scene->settings.integrator.direct_lighting == DirectLighting::mis)
     for (const std::unique_ptr<Light>& light : scene->lights)
-      if (auto* environment = dynamic_cast<EnvironmentLight*>(light.get())) environment->set_left_to_bsdf_sampling(true);
+      if (auto* environment = dynamic_cast<EnvironmentLight*>(light.get()))
+        environment->set_combined_with_bsdf_sampling(true);
   for (size_t i = 0; i < scene->lights.size(); ++i) {
     light_pointers.push_back(scene->lights[i].get());
     if (scene->lights[i]->is_infinite()) scene->infinite_lights.push_back(int(i));

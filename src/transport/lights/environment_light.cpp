@@ -97,13 +97,13 @@ float EnvironmentLight::pdf_li(const LightReference& ref, Vec3 wi, const Surface
   if (distribution_.is_zero()) return kUniformSpherePdf;
   if (mapping_ == EnvironmentMapping::equal_area_octahedral) {
     // dω = 4π du dv everywhere (the map preserves area).
-    const float pdf = distribution_.pdf(direction_to_uv(wi)) / (4.0f * kPiF);
+    const float pdf = sampling_distribution(ref).pdf(direction_to_uv(wi)) / (4.0f * kPiF);
     return std::isfinite(pdf) ? pdf : 0.0f;
   }
   const Vec3 d = frame_.to_local(wi);
   const float sin_theta = std::sqrt(std::fmax(0.0f, d.x * d.x + d.y * d.y));
   if (!(sin_theta > 0.0f)) return 0.0f;
-  const float pdf = distribution_.pdf(direction_to_uv(wi)) / (2.0f * kPiF * kPiF * sin_theta);
+  const float pdf = sampling_distribution(ref).pdf(direction_to_uv(wi)) / (2.0f * kPiF * kPiF * sin_theta);
   return std::isfinite(pdf) ? pdf : 0.0f;
 }
 
@@ -123,12 +123,38 @@ std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref
     // The density and radiance are evaluated from the returned direction, exactly as pdf_li and
     // radiance_escaped do, so a BSDF-sampled ray along the same direction gets the same numbers even where the
     // uv → direction → uv round trip crosses a pixel edge by an ulp.
-    s.wi = normalize(uv_to_direction(distribution_.sample(u).uv));
+    s.wi = normalize(uv_to_direction(sampling_distribution(ref).sample(u).uv));
     s.pdf_solid_angle = pdf_li(ref, s.wi);
     if (s.pdf_solid_angle == 0.0f) return std::nullopt;
   }
   s.radiance = radiance_escaped(s.wi, lambda);
   return s;
+}
+
+void EnvironmentLight::set_combined_with_bsdf_sampling(bool combined) {
+  combined_with_bsdf_ = combined;
+  compensated_ = Distribution2D();
+  if (!combined || !image_ || distribution_.is_zero()) return;
+  const int w = image_->width(), h = image_->height();
+  const bool equal_area = mapping_ == EnvironmentMapping::equal_area_octahedral;
+  // Ȳ over solid angle: rows of an equirectangular map weighted by sin θ (their pixels' solid angle).
+  double weighted = 0.0, total_weight = 0.0;
+  std::vector<double> sin_theta(h, 1.0);
+  for (int y = 0; y < h; ++y) {
+    if (!equal_area) sin_theta[y] = std::sin(std::numbers::pi * (y + 0.5) / h);
+    for (int x = 0; x < w; ++x) weighted += sin_theta[y] * std::max(0.0, double(image_->luminance(x, y)));
+    total_weight += sin_theta[y] * w;
+  }
+  const double mean = weighted / total_weight;
+  std::vector<double> weights(size_t(w) * h);
+  bool any = false;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double above = std::max(0.0, double(image_->luminance(x, y)) - mean) * sin_theta[y];
+      weights[size_t(y) * w + x] = above;
+      any = any || above > 0.0;
+    }
+  if (any) compensated_ = Distribution2D(weights, w, h);
 }
 
 std::optional<LightBounds> EnvironmentLight::part_bounds(int part) const {

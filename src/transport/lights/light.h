@@ -98,7 +98,7 @@ class Light {
   /// (bvh_light_sampler.h, "Lights at infinity").
   virtual std::optional<float> directional_irradiance_w_m2() const { return std::nullopt; }
   /// False for a light that next-event estimation leaves to BSDF and phase sampling (a constant environment, when
-  /// the integrator combines both: EnvironmentLight::set_left_to_bsdf_sampling): the light samplers never choose it,
+  /// the integrator combines both: EnvironmentLight::set_combined_with_bsdf_sampling): the light samplers never choose it,
   /// sample_li gives nothing and pdf_li is 0, so a sampled ray that escapes to it counts with MIS weight 1.
   virtual bool sampled_by_nee() const { return true; }
 

@@ -7,6 +7,7 @@
 
 #include "spectral/error.h"
 #include "spectral/io/input_file.h"
+#include "transport/geometry/ray_box_clip.h"
 #include "transport/media/nanovdb_grid.h"
 
 namespace rimu {
@@ -117,18 +118,7 @@ float GridMedium::density_in_grid(Vec3 p) const {
 }
 
 bool GridMedium::clip(const Ray& ray, float t_max, float& t0, float& t1) const {
-  // Slab test (Kay & Kajiya 1986): intersect the three pairs of planes.
-  t0 = ray.t_min;
-  t1 = t_max;
-  for (int a = 0; a < 3; ++a) {
-    const float inv = 1.0f / ray.direction[a];
-    float near = (min_[a] - ray.origin[a]) * inv, far = (max_[a] - ray.origin[a]) * inv;
-    if (near > far) std::swap(near, far);
-    if (std::isnan(near)) continue;  // direction 0 with the origin on a plane: inside along this axis
-    t0 = std::fmax(t0, near);
-    t1 = std::fmin(t1, far);
-  }
-  return t0 < t1;
+  return clip_ray_to_box(ray, t_max, min_, max_, t0, t1);
 }
 
 void parse_grid_bytes(std::string_view bytes, const std::string& name, int& nx, int& ny, int& nz,

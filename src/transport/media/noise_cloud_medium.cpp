@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "spectral/error.h"
+#include "transport/geometry/ray_box_clip.h"
 #include "transport/textures/perlin_noise.h"
 
 namespace rimu {
@@ -61,18 +62,7 @@ bool NoiseCloudMedium::clip(const Ray& world_ray, float t_max, float& t0, float&
     medium_ray.origin = medium_from_world_->point(world_ray.origin);
     medium_ray.direction = medium_from_world_->vector(world_ray.direction);
   }
-  // Slab test (Kay & Kajiya 1986).
-  t0 = medium_ray.t_min;
-  t1 = t_max;
-  for (int a = 0; a < 3; ++a) {
-    const float inv = 1.0f / medium_ray.direction[a];
-    float near = (min_[a] - medium_ray.origin[a]) * inv, far = (max_[a] - medium_ray.origin[a]) * inv;
-    if (near > far) std::swap(near, far);
-    if (std::isnan(near)) continue;  // direction 0 with the origin on a plane: inside along this axis
-    t0 = std::fmax(t0, near);
-    t1 = std::fmin(t1, far);
-  }
-  return t0 < t1;
+  return clip_ray_to_box(medium_ray, t_max, min_, max_, t0, t1);
 }
 
 }  // namespace rimu
