@@ -1,10 +1,13 @@
-// The piece of a ray inside an axis-aligned box, for media that live in a box of their own space.
+// The piece of a ray inside an axis-aligned box, and the box's own space, for media that live in a box of their own
+// space (grids, the noise cloud).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
+#include "spectral/error.h"
 #include "transport/geometry/ray.h"
+#include "transport/geometry/transform.h"
 
 namespace rimu {
 
@@ -23,6 +26,14 @@ inline bool clip_ray_to_box(const Ray& ray, float t_max, Vec3 lo, Vec3 hi, float
     t1 = std::fmin(t1, far);
   }
   return t0 < t1;
+}
+
+/// The inverse of a box's placement in the world (the box's own space from the world's). Throws InputError if the
+/// placement is not finite and invertible.
+inline Transform box_from_world(const Transform& world_from_box) {
+  if (!world_from_box.is_finite() || !(std::fabs(world_from_box.determinant()) > 1e-30f))
+    throw InputError({}, "the medium's transform must be finite and invertible");
+  return world_from_box.inverse();
 }
 
 }  // namespace rimu

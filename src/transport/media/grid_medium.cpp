@@ -78,10 +78,7 @@ GridMedium::GridMedium(std::shared_ptr<const NanoVdbGrid> sparse, SpectrumPtr si
 }
 
 void GridMedium::set_transform(const std::optional<Transform>& world_from_grid) {
-  if (!world_from_grid) return;
-  if (!world_from_grid->is_finite() || !(std::fabs(world_from_grid->determinant()) > 1e-30f))
-    throw InputError({}, "the medium's transform must be finite and invertible");
-  grid_from_world_ = world_from_grid->inverse();
+  if (world_from_grid) grid_from_world_ = box_from_world(*world_from_grid);
 }
 
 float GridMedium::density(Vec3 p) const { return density_in_grid(grid_from_world_ ? grid_from_world_->point(p) : p); }

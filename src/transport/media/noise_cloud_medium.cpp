@@ -29,11 +29,7 @@ NoiseCloudMedium::NoiseCloudMedium(SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_
       throw InputError({}, "a noise cloud's density, wispiness and frequency must be finite and >= 0");
   const Vec3 extent = max_ - min_;
   if (!(extent.x > 0.0f && extent.y > 0.0f && extent.z > 0.0f)) throw InputError({}, "the medium's box is empty");
-  if (world_from_medium) {
-    if (!world_from_medium->is_finite() || !(std::fabs(world_from_medium->determinant()) > 1e-30f))
-      throw InputError({}, "the medium's transform must be finite and invertible");
-    medium_from_world_ = world_from_medium->inverse();
-  }
+  if (world_from_medium) medium_from_world_ = box_from_world(*world_from_medium);
 }
 
 float NoiseCloudMedium::density_in_medium(Vec3 p) const {

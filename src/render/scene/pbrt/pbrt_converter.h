@@ -232,6 +232,9 @@ class PbrtConverter {
   std::pair<Vec3d, Vec3d> medium_box(PbrtParams& p);
   /// "g", default 0: an error outside (−1, 1), clamped (and listed) beyond Rimu's ±0.99.
   double medium_g(PbrtParams& p);
+  /// The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium): its steps as `medium`'s
+  /// "transform" (none for the identity); a moving CTM is listed (media stay at their start placement).
+  void add_medium_placement(const SourceLocation& where, json& medium);
   /// The material a shape of `material` gets under the MediumInterface in effect: a copy bounding the inside medium
   /// where one begins at the shape; empty for an "interface" shape with no medium to bound (left out, listed).
   std::optional<std::string> boundary_material(const std::string& material, const SourceLocation& where, const std::string& context);

@@ -237,6 +237,12 @@ void PbrtConverter::subsurface_medium(PbrtParams& p, const std::string& material
   subsurface_materials_.insert(material);
 }
 
+void PbrtConverter::add_medium_placement(const SourceLocation& where, json& medium) {
+  if (ctm_moves()) ignore("a medium that moves (ActiveTransform: media stay at their start placement)", where);
+  const json steps = transform_steps(world_from_object(), where);
+  if (!steps.is_null()) medium["transform"] = steps;
+}
+
 double PbrtConverter::medium_g(PbrtParams& p) {
   double g = p.real("g", 0.0);
   if (!(g > -1 && g < 1)) throw InputError(p.where(), p.context() + ": \"g\" must be in (-1, 1)");
@@ -282,10 +288,7 @@ json PbrtConverter::noise_cloud_medium(PbrtParams& p) {
   const auto [lo, hi] = medium_box(p);
   medium["bounds_min"] = lo;
   medium["bounds_max"] = hi;
-  // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium).
-  if (ctm_moves()) ignore("a medium that moves (ActiveTransform: media stay at their start placement)", p.where());
-  const json steps = transform_steps(world_from_object(), p.where());
-  if (!steps.is_null()) medium["transform"] = steps;
+  add_medium_placement(p.where(), medium);
   return medium;
 }
 
@@ -323,9 +326,7 @@ void PbrtConverter::add_nanovdb_grid(PbrtParams& p, json& medium) {
   // pbrt-v4's NanoVDBMedium samples the grid trilinearly (SampleFromVoxels of order 1).
   medium["interpolation"] = "trilinear";
   // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium), after the file's own map.
-  if (ctm_moves()) ignore("a medium that moves (ActiveTransform: media stay at their start placement)", where);
-  const json steps = transform_steps(world_from_object(), where);
-  if (!steps.is_null()) medium["transform"] = steps;
+  add_medium_placement(where, medium);
 }
 
 void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
@@ -362,9 +363,7 @@ void PbrtConverter::add_density_grid(PbrtParams& p, json& medium) {
   // pbrt-v4 interpolates its SampledGrid trilinearly between voxel centres (0 beyond the grid).
   medium["interpolation"] = "trilinear";
   // The medium's space is the CTM at MakeNamedMedium (pbrt's renderFromMedium).
-  if (ctm_moves()) ignore("a medium that moves (ActiveTransform: media stay at their start placement)", where);
-  const json steps = transform_steps(world_from_object(), where);
-  if (!steps.is_null()) medium["transform"] = steps;
+  add_medium_placement(where, medium);
 }
 
 namespace {
