@@ -384,12 +384,12 @@ TEST_CASE("pbrt: what is not imported is listed once with a count and the first 
   const std::filesystem::path file = test::test_data("pbrt/unsupported.pbrt");
   const PbrtImport imported = import_pbrt(file, test::library());
   const std::string report = describe_ignored(imported.ignored);
-  CHECK_CONTAINS(report, "ignored: Material \"measured\" (a grey diffuse of reflectance 0.5 stands in) (2 times), first at " +
+  CHECK_CONTAINS(report, "ignored: Material \"fourier\" (pbrt-v3's tabulated BSDF, which pbrt-v4 no longer reads; a grey diffuse of reflectance 0.5 stands in) (2 times), first at " +
                              file.string() + ":7\n");
   CHECK_CONTAINS(report, "ignored: parameter \"vector3 S\" of Shape \"trianglemesh\" (1 time), first at " + file.string() + ":10");
   CHECK(imported.ignored.size() == 2);  // line 9's partial sphere is imported (a mesh)
   CHECK_THROWS_WITH_AS(import_pbrt(file, test::library(), {true, {}}),
-                       doctest::Contains("unsupported.pbrt:7: not supported (--strict): Material \"measured\""), InputError);
+                       doctest::Contains("unsupported.pbrt:7: not supported (--strict): Material \"fourier\""), InputError);
 }
 
 TEST_CASE("pbrt Cornell box renders the same image as the same scene written in Rimu's JSON") {

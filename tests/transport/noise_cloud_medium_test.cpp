@@ -15,8 +15,8 @@
 namespace rimu {
 namespace {
 
-const SpectrumPtr kSigmaA = std::make_shared<ConstantSpectrum>(0.05);
-const SpectrumPtr kSigmaS = std::make_shared<ConstantSpectrum>(1.95);
+const SpectrumPtr kCloudSigmaA = std::make_shared<ConstantSpectrum>(0.05);
+const SpectrumPtr kCloudSigmaS = std::make_shared<ConstantSpectrum>(1.95);
 
 // The density of the header's formula without the displacement (wispiness 0), term by term.
 double reference_density(Vec3 p, double density_scale, double frequency) {
@@ -34,8 +34,8 @@ Transform placement() { return Transform::translate({-2, 1, 4}) * Transform::rot
 TEST_CASE("noise cloud: pbrt-v4's density formula, in [0, 1], solid below y = 0") {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-0.5f, 1.5f);
-  const NoiseCloudMedium plain(kSigmaA, kSigmaS, 0.0f, {2.0f, 0.0f, 5.0f}, {0, 0, 0}, {1, 1, 1});
-  const NoiseCloudMedium wispy(kSigmaA, kSigmaS, 0.0f, {2.0f, 1.0f, 5.0f}, {0, 0, 0}, {1, 1, 1});
+  const NoiseCloudMedium plain(kCloudSigmaA, kCloudSigmaS, 0.0f, {2.0f, 0.0f, 5.0f}, {0, 0, 0}, {1, 1, 1});
+  const NoiseCloudMedium wispy(kCloudSigmaA, kCloudSigmaS, 0.0f, {2.0f, 1.0f, 5.0f}, {0, 0, 0}, {1, 1, 1});
   int wispy_differs = 0, partial = 0;
   for (int i = 0; i < 2000; ++i) {
     const Vec3 p{u(rng), u(rng), u(rng)};
@@ -56,13 +56,13 @@ TEST_CASE("noise cloud: pbrt-v4's density formula, in [0, 1], solid below y = 0"
   }
   CHECK(wispy_differs > 500);  // the displacement moves the field
   CHECK(partial > 200);        // and the cloud has structure between empty and solid
-  CHECK_THROWS(NoiseCloudMedium(kSigmaA, kSigmaS, 0.0f, {1.0f, -1.0f, 5.0f}, {0, 0, 0}, {1, 1, 1}));
-  CHECK_THROWS(NoiseCloudMedium(kSigmaA, kSigmaS, 0.0f, {}, {0, 0, 0}, {1, 0, 1}));
+  CHECK_THROWS(NoiseCloudMedium(kCloudSigmaA, kCloudSigmaS, 0.0f, {1.0f, -1.0f, 5.0f}, {0, 0, 0}, {1, 1, 1}));
+  CHECK_THROWS(NoiseCloudMedium(kCloudSigmaA, kCloudSigmaS, 0.0f, {}, {0, 0, 0}, {1, 0, 1}));
 }
 
 TEST_CASE("noise cloud: ratio tracking and free flights through a placed cloud give exp(-sigma_t * integral of d)") {
   const Transform world_from_medium = placement();
-  const Medium medium(NoiseCloudMedium(kSigmaA, kSigmaS, 0.0f, {2.0f, 1.0f, 5.0f}, {0, 0, 0}, {1, 1, 1}, world_from_medium));
+  const Medium medium(NoiseCloudMedium(kCloudSigmaA, kCloudSigmaS, 0.0f, {2.0f, 1.0f, 5.0f}, {0, 0, 0}, {1, 1, 1}, world_from_medium));
   const NoiseCloudMedium& cloud = *medium.noise_cloud();
   // A ray through the box's middle at a slant (medium space), from outside to outside.
   const Vec3 from = world_from_medium.point({-0.2f, 0.35f, 0.1f}), to = world_from_medium.point({1.2f, 0.6f, 0.9f});

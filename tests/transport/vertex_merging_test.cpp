@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <tuple>
 #include <vector>
 
 #include "transport/integrators/vertex_merging.h"

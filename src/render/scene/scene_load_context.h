@@ -12,6 +12,7 @@
 #include "render/scene/scene.h"
 #include "render/scene/spectrum_input.h"
 #include "render/scene/triangle_mesh.h"
+#include "transport/bsdfs/measured_brdf.h"
 #include "transport/lights/radiance_image.h"
 
 namespace rimu::scene_loading {
@@ -33,6 +34,8 @@ struct LoadContext {
   /// checked against the whole scene's extent once it is known. Indices, not cursors (a cursor holds two strings:
   /// 300 bytes an instance).
   std::vector<InstanceKey> instance_keys;
+  /// Measured BRDFs by resolved path: materials that name the same file share its tables (tens of MB each).
+  std::map<std::filesystem::path, MeasuredBrdfPtr> measured_brdfs;
 };
 
 /// The key of an instance's placement (for its errors): its "transform" (or the shape, without one), or the

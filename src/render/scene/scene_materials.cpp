@@ -156,7 +156,7 @@ std::shared_ptr<const Material> MaterialResolver::named(const std::string& name,
 
 Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialResolver& resolver) {
   const std::string type = m.at("type").choice({"diffuse", "conductor", "dielectric", "thin_dielectric", "coated_diffuse",
-                                                    "diffuse_transmission", "coated_conductor", "mix", "hair"});
+                                                    "diffuse_transmission", "coated_conductor", "mix", "hair", "measured"});
   // Each mix decorrelates its choice from other mixes' by its own salt: its key path, hashed.
   if (type == "mix") {
     uint32_t salt = 0;
@@ -234,6 +234,15 @@ Material load_material_kind(const JsonCursor& m, LoadContext& context, MaterialR
     return m.blame([&] { return Material(DiffuseTransmissionMaterial(std::move(reflectance), std::move(transmittance), scale)); });
   }
   if (type == "hair") return load_hair(m, context);
+  if (type == "measured") {
+    // {"type": "measured", "file": "x.bsdf"}: a measured BRDF of the RGL database (pbrt-v4's `measured`).
+    m.only_keys({"type", "normal_map", "displacement", "file"});
+    const JsonCursor file = m.at("file");
+    const std::filesystem::path path = (context.spectra.scene_directory() / file.string()).lexically_normal();
+    MeasuredBrdfPtr& brdf = context.measured_brdfs[path];
+    if (!brdf) brdf = file.blame([&] { return std::make_shared<const MeasuredBrdf>(MeasuredBrdf::read(path)); });
+    return MeasuredMaterial(brdf);
+  }
   if (type == "coated_conductor") {
     m.only_keys({"type", "normal_map", "displacement", "coat_ior", "roughness", "thickness", "albedo", "g", "max_depth", "samples", "metal", "n", "k",
                  "reflectance", "conductor_roughness", "conductor_roughness_u", "conductor_roughness_v"});

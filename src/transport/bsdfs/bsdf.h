@@ -13,6 +13,7 @@
 #include "transport/bsdfs/diffuse_transmission_bsdf.h"
 #include "transport/bsdfs/hair_bsdf.h"
 #include "transport/bsdfs/layered_bsdf.h"
+#include "transport/bsdfs/measured_bsdf.h"
 #include "transport/bsdfs/thin_dielectric_bsdf.h"
 
 namespace rimu {
@@ -29,7 +30,7 @@ namespace rimu {
 class Bsdf {
  public:
   using Variant = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, CoatedDiffuseBsdf, ThinDielectricBsdf,
-                               DiffuseTransmissionBsdf, LayeredBsdf, HairBsdf>;
+                               DiffuseTransmissionBsdf, LayeredBsdf, HairBsdf, MeasuredBsdf>;
 
   template <typename T>
   Bsdf(T bsdf) : bsdf_(std::move(bsdf)) {}  // NOLINT(google-explicit-constructor): any BSDF is a Bsdf

@@ -305,6 +305,14 @@ CoatedConductorMaterial CoatedConductorMaterial::with_conductor_roughness(FloatT
   return std::move(*this);
 }
 
+MeasuredMaterial::MeasuredMaterial(MeasuredBrdfPtr brdf) : brdf_(std::move(brdf)) {
+  if (!brdf_) throw InputError({}, "a measured material needs its BRDF's tables");
+}
+
+Bsdf MeasuredMaterial::bsdf(const MaterialContext& /*context*/, const SampledWavelengths& lambda) const {
+  return MeasuredBsdf(brdf_.get(), lambda.lambda_nm());
+}
+
 MixMaterial::MixMaterial(std::shared_ptr<const Material> first, std::shared_ptr<const Material> second,
                          FloatTexturePtr amount, uint32_t salt)
     : first_(std::move(first)), second_(std::move(second)), amount_(std::move(amount)), salt_(salt) {

@@ -195,6 +195,19 @@ class CoatedConductorMaterial {
   CoatLayer layer_;
 };
 
+/// A measured BRDF of the RGL database (pbrt-v4's `measured`): MeasuredBsdf over tables read once at load and
+/// shared by every surface that names the same file.
+class MeasuredMaterial {
+ public:
+  /// Throws InputError if the tables are missing.
+  explicit MeasuredMaterial(MeasuredBrdfPtr brdf);
+  Bsdf bsdf(const MaterialContext& context, const SampledWavelengths& lambda) const;
+  const MeasuredBrdf& brdf() const { return *brdf_; }
+
+ private:
+  MeasuredBrdfPtr brdf_;
+};
+
 class Material;
 
 /// pbrt-v4's "mix": at each hit one of two materials, `second` with probability amount(hit) ∈ [0, 1] (clamped),
@@ -228,7 +241,7 @@ class Material {
  public:
   using Variant = std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, CoatedDiffuseMaterial,
                                ThinDielectricMaterial, DiffuseTransmissionMaterial, CoatedConductorMaterial, MixMaterial,
-                               HairMaterial>;
+                               HairMaterial, MeasuredMaterial>;
 
   template <typename T>
   Material(T material) : material_(std::move(material)) {}  // NOLINT(google-explicit-constructor)

@@ -9,7 +9,8 @@
 namespace rimu {
 namespace {
 
-constexpr float kInvFourPi = float(0.25 / std::numbers::pi);
+// The equal-area square covers the sphere's 4π sr with unit area: a density on the square is 4π times the density per sr.
+constexpr float kSquareToSphereDensity = float(0.25 / std::numbers::pi);
 
 constexpr float kBelowOne = 0x1.fffffep-1f;
 
@@ -136,9 +137,9 @@ float DirectionalQuadtree::pdf_square(Vec2 p) const {
 Vec3 DirectionalQuadtree::sample_direction(Vec2 u) const { return equal_area_square_to_sphere(sample_square(u)); }
 
 float DirectionalQuadtree::pdf_direction(Vec3 direction) const {
-  return pdf_square(equal_area_sphere_to_square(direction)) * kInvFourPi;
+  return pdf_square(equal_area_sphere_to_square(direction)) * kSquareToSphereDensity;
 }
 
-float DirectionalQuadtree::pdf_direction_at_square(Vec2 square) const { return pdf_square(square) * kInvFourPi; }
+float DirectionalQuadtree::pdf_direction_at_square(Vec2 square) const { return pdf_square(square) * kSquareToSphereDensity; }
 
 }  // namespace rimu

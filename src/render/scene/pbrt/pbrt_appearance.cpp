@@ -383,7 +383,7 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
                                   *v4 + "\"); " + pbrt_v3_hint());
   if (type != "diffuse" && type != "coateddiffuse" && type != "coatedconductor" && type != "conductor" &&
       type != "dielectric" && type != "thindielectric" && type != "diffusetransmission" && type != "hair" &&
-      type != "subsurface") {
+      type != "subsurface" && type != "measured") {
     ignore("Material \"" + type + "\" (" +
                (type == "fourier" ? "pbrt-v3's tabulated BSDF, which pbrt-v4 no longer reads; " : "") +
                "a grey diffuse of reflectance 0.5 stands in)",
@@ -465,6 +465,14 @@ std::string PbrtConverter::material(const PbrtStatement& s, const std::string& t
   };
   if (type == "hair") {
     m = hair_material(p, s);
+  } else if (type == "measured") {
+    // A measured BRDF of the RGL database: the file is read by the scene loader (MeasuredBrdf), as pbrt-v4 reads it.
+    const std::string filename = p.string("filename", "");
+    if (filename.empty()) throw InputError(s.where, context + " (measured): needs \"string filename\" (a .bsdf file)");
+    const std::filesystem::path path = std::filesystem::absolute(p.directory() / filename);
+    if (!std::filesystem::is_regular_file(path))
+      throw InputError(s.where, context + " (measured): cannot find the BRDF file '" + path.string() + "'");
+    m = {{"type", "measured"}, {"file", path.string()}};
   } else if (type == "diffuse") {
     m = {{"type", "diffuse"}, {"reflectance", *reflectance(p, "reflectance", 0.5)}};
   } else if (type == "diffusetransmission") {
