@@ -222,7 +222,7 @@ std::unique_ptr<Scene> load_scene(const nlohmann::json& document, const std::str
   const JsonCursor root(document, name);
   root.only_keys({"description", "camera", "film", "integrator", "spectra", "materials", "prototypes", "shapes",
                   "lights", "media", "sensors"});
-  LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}, {}, {}};
+  LoadContext context{*scene, SpectrumInputContext(library, directory), {}, {}, {}, {}, {}};
   if (const auto spectra = root.find("spectra")) {
     if (!spectra->is_object()) spectra->fail("expected an object of name → spectrum");
     context.spectra.set_named(*spectra);
