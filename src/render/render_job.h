@@ -48,7 +48,7 @@ struct RenderJob {
   /// Overrides "integrator.method" (`--method path_tracing|bidirectional|vcm`; docs/transport.md, "Bidirectional
   /// path tracing", "Vertex connection and merging").
   std::optional<std::string> method;
-  std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | spectral:<bins>
+  std::optional<std::string> film;  ///< xyz | xyz10 | camera:<name> | camera-xyz:<name> | spectral:<bins>
   /// Overrides film "max_sample_value" (`--max-sample-value`; docs/rendering.md, "Sample clamp").
   std::optional<double> max_sample_value;
   std::optional<PixelBounds> crop;

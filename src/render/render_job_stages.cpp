@@ -33,7 +33,7 @@ PixelFilter make_filter(const FilterSettings& f) {
   return PixelFilter::gaussian(f.radius_px, f.sigma_px);
 }
 
-// "--film" is either a response (xyz, xyz10, camera:<name>) or spectral:<bins> (XYZ plus a spectral framebuffer).
+// "--film" is either a response (xyz, xyz10, camera:<name>, camera-xyz:<name>) or spectral:<bins> (XYZ plus a spectral framebuffer).
 void apply_film_option(const std::string& film, RenderSettings& settings) {
   if (film.rfind("spectral:", 0) == 0) {
     int bins = 0;
@@ -121,7 +121,11 @@ SpectralResponse film_response(RenderJobState& s) {
       if (settings.film_response != "xyz") throw InputError({}, "rgb transport renders to an XYZ film only");
       return SpectralResponse::rgb_transport(s.library);
     }
-    return SpectralResponse::from_spec(s.library, settings.film_response);
+    // A colour-corrected camera film ("camera-xyz:") balances its white in its fitted matrix.
+    const WhiteBalanceSettings& white_balance = settings.camera_exposure.white_balance;
+    const SpectrumPtr white = white_balance_illuminant(white_balance, s.library);
+    return SpectralResponse::from_spec(s.library, settings.film_response, white.get(),
+                                       white ? white_balance.describe() : "D65");
   } catch (const InputError& e) {
     throw InputError({"", 0, s.job.film ? "--film" : s.scene_path.string() + ": /film/response"}, e.explanation());
   }

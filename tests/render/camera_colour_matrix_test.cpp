@@ -6,6 +6,7 @@
 #include "spectral/colorimetry/chromaticity.h"
 #include "spectral/colorimetry/cielab.h"
 #include "spectral/colorimetry/delta_e.h"
+#include "spectral/error.h"
 #include "spectral/spectra/tabulated_spectrum.h"
 #include "test_support.h"
 
@@ -115,4 +116,43 @@ TEST_CASE("the fit holds on surfaces it was not trained on: the 14 CIE test colo
                                                     << fit.mean_delta_e2000 << ")");
   CHECK(mean < 2.0 * fit.mean_delta_e2000);
   CHECK(mean < 3.0);
+}
+
+TEST_CASE("pbrt-v4's sensor pipeline: under D65 it is the D65 fit; under tungsten a white keeps its luminance and "
+          "comes out with D65's chromaticity") {
+  SpectralLibrary& library = test::library();
+  const SpectralResponse camera = SpectralResponse::camera_rgb(library, "nikon_d850");
+  const SpectrumPtr d65 = library.illuminant("D65"), a = library.illuminant("A");
+  const Matrix3 under_d65 = fit_camera_to_xyz_under(camera, *d65, library);
+  const CameraColourFit fit = fit_camera_to_xyz(camera, library);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) CHECK(under_d65(r, c) == doctest::Approx(fit.camera_to_xyz(r, c)).epsilon(1e-9));
+
+  // Under illuminant A the fit adapts: the perfect white lit by A maps to D65's chromaticity (within the fit's
+  // residual on the neutral patches, a few thousandths in xy) at the luminance the XYZ film sees from A (the fit
+  // keeps Y(A) by construction of its targets, to its residual: 1 %).
+  const Matrix3 under_a = fit_camera_to_xyz_under(camera, *a, library);
+  const auto white = under_a.apply(channels_under(*a, camera, nullptr));
+  const Chromaticity xy = chromaticity_of(Xyz{white[0], white[1], white[2]});
+  CHECK(xy.x == doctest::Approx(0.31272).epsilon(0.01 / 0.31272));
+  CHECK(xy.y == doctest::Approx(0.32903).epsilon(0.01 / 0.32903));
+  const double y_of_a = channels_under(*a, SpectralResponse::cie_xyz(library), nullptr)[1];
+  CHECK(white[1] == doctest::Approx(y_of_a).epsilon(0.01));
+  // The raw white under A, by contrast, is far from neutral through the D65 fit.
+  const auto raw = fit.camera_to_xyz.apply(channels_under(*a, camera, nullptr));
+  CHECK(chromaticity_of(Xyz{raw[0], raw[1], raw[2]}).x > 0.40);
+
+  // The colour-corrected film's curves are the matrix times the sensor's, so its channels of any light are M times
+  // the sensor's raw ones; it is an XYZ film in the XYZ film's photometric units, with its white balance built in.
+  const SpectralResponse corrected = SpectralResponse::from_spec(library, "camera-xyz:nikon_d850", a.get(), "A");
+  CHECK(corrected.kind() == ResponseKind::cie_xyz);
+  CHECK(corrected.white_balance_in_curves());
+  CHECK(corrected.luminance_nits_per_unit_y() == doctest::Approx(SpectralResponse::cie_xyz(library).luminance_nits_per_unit_y()));
+  for (const char* patch : {"dark_skin", "blue", "yellow"}) {
+    const SpectrumPtr p = library.colorchecker_patch(patch);
+    const auto direct = channels_under(*a, corrected, p.get());
+    const auto through = under_a.apply(channels_under(*a, camera, p.get()));
+    for (int c = 0; c < 3; ++c) CHECK(direct[size_t(c)] == doctest::Approx(through[size_t(c)]).epsilon(1e-9));
+  }
+  CHECK_THROWS_AS(SpectralResponse::from_spec(library, "camera-xyz:leica_m3"), InputError);
 }

@@ -92,12 +92,11 @@ TEST_CASE("pbrt film: iso and the camera's shutter become Rimu's physical camera
         std::string::npos);
 }
 
-TEST_CASE("pbrt film: a camera sensor becomes the camera-RGB film with pbrt's default 6500 K white balance") {
+TEST_CASE("pbrt film: a camera sensor becomes the colour-corrected camera film with pbrt's default 6500 K white balance") {
   const PbrtImport imported = import_text(kCamera + "Film \"rgb\" \"string sensor\" \"nikon_d850\"\nWorldBegin\n");
-  CHECK(imported.document["film"]["response"] == "camera:pbrt_physlight_nikon_d850_10nm");
+  CHECK(imported.document["film"]["response"] == "camera-xyz:pbrt_physlight_nikon_d850_10nm");
   CHECK(imported.document["camera"]["white_balance"]["daylight_cct"].get<double>() == doctest::Approx(6500.0 * 1.4388 / 1.4380));
-  REQUIRE(imported.ignored.size() == 1);  // approximated: raw camera RGB, not pbrt's colour-corrected output
-  CHECK(imported.ignored[0].what.find("Film \"sensor\" \"nikon_d850\" (approximated") == 0);
+  CHECK(imported.ignored.empty());  // pbrt-v4's PixelSensor pipeline: the fit to XYZ under the white balance
   CHECK(import_error(kCamera + "Film \"rgb\" \"string sensor\" \"leica_m3\"\nWorldBegin\n")
             .find("t.pbrt:3: Film: unknown \"sensor\" \"leica_m3\"") != std::string::npos);
 }

@@ -77,7 +77,8 @@ int main(int argc, char** argv) {
                  "merging (photon mapping weighted by the same MIS: a pool floor seen and lit through water; "
                  "consistent, not unbiased), path_tracing: the default (overrides the scene)")
       ->check(CLI::IsMember({"path_tracing", "bidirectional", "vcm"}));
-  app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor), "
+  app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor, raw), "
+                                 "camera-xyz:<name> (the sensor through its fitted matrix to XYZ), "
                                  "spectral:<bins> (adds a spectral framebuffer)");
   std::string max_sample_value;
   app.add_option("--max-sample-value", max_sample_value,

@@ -90,24 +90,26 @@ double parse_shutter_time_s(const std::string& text, const std::string& option) 
   return t;
 }
 
+SpectrumPtr white_balance_illuminant(const WhiteBalanceSettings& white_balance, SpectralLibrary& library) {
+  switch (white_balance.kind) {
+    case WhiteBalanceSettings::Kind::none: return nullptr;
+    case WhiteBalanceSettings::Kind::cct:
+      return std::make_shared<BlackbodySpectrum>(white_balance.cct_k, BlackbodySpectrum::Scale::peak_one);
+    case WhiteBalanceSettings::Kind::daylight:
+      return std::make_shared<TabulatedSpectrum>(daylight_spectrum(library.daylight_basis(), white_balance.cct_k));
+    case WhiteBalanceSettings::Kind::illuminant: return library.illuminant(white_balance.illuminant);
+  }
+  return nullptr;
+}
+
 FilmOutputTransform film_output_transform(const CameraExposureSettings& camera, const SpectralResponse& response,
                                           SpectralLibrary& library) {
   FilmOutputTransform t;
   if (camera.exposure) t.scale = film_exposure_scale(*camera.exposure, response);
-  switch (camera.white_balance.kind) {
-    case WhiteBalanceSettings::Kind::none: break;
-    case WhiteBalanceSettings::Kind::cct:
-      t.channel_matrix = white_balance_matrix(
-          BlackbodySpectrum(camera.white_balance.cct_k, BlackbodySpectrum::Scale::peak_one), response, library);
-      break;
-    case WhiteBalanceSettings::Kind::daylight:
-      t.channel_matrix = white_balance_matrix(daylight_spectrum(library.daylight_basis(), camera.white_balance.cct_k),
-                                              response, library);
-      break;
-    case WhiteBalanceSettings::Kind::illuminant:
-      t.channel_matrix = white_balance_matrix(*library.illuminant(camera.white_balance.illuminant), response, library);
-      break;
-  }
+  // A colour-corrected camera film has its white balance in its matrix (SpectralResponse::colour_corrected).
+  if (response.white_balance_in_curves()) return t;
+  if (const SpectrumPtr white = white_balance_illuminant(camera.white_balance, library))
+    t.channel_matrix = white_balance_matrix(*white, response, library);
   return t;
 }
 

@@ -68,6 +68,10 @@ WhiteBalanceSettings parse_white_balance_option(const std::string& text, Spectra
 /// Parses a shutter time in seconds given as "0.01" or "1/100"; InputError naming `option` otherwise.
 double parse_shutter_time_s(const std::string& text, const std::string& option);
 
+/// The illuminant a white balance neutralises (a blackbody of peak 1, a CIE daylight, or a named illuminant); null for
+/// none.
+SpectrumPtr white_balance_illuminant(const WhiteBalanceSettings& white_balance, SpectralLibrary& library);
+
 /// The exposure scale and white-balance matrix for a film of `response`. Throws InputError if the film sees no
 /// light from the white-balance illuminant in some channel.
 FilmOutputTransform film_output_transform(const CameraExposureSettings& camera, const SpectralResponse& response,

@@ -1,5 +1,6 @@
 #include "render/film/camera_colour_matrix.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -10,7 +11,7 @@
 namespace rimu {
 namespace {
 
-// The film's three channels for the radiance D65(λ)·ρ(λ): 1 nm trapezoid over 360-830 nm.
+// The film's three channels for the radiance E(λ)·ρ(λ) (ρ = 1 without a reflectance): 1 nm trapezoid over 360-830 nm.
 std::array<double, 3> channels_under(const Spectrum& illuminant, const Spectrum* reflectance,
                                      const SpectralResponse& response) {
   std::array<double, 3> sum{};
@@ -24,19 +25,9 @@ std::array<double, 3> channels_under(const Spectrum& illuminant, const Spectrum*
 
 Xyz as_xyz(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
 
-}  // namespace
-
-CameraColourFit fit_camera_to_xyz(const SpectralResponse& camera, SpectralLibrary& library) {
-  const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
-  const SpectrumPtr d65 = library.illuminant("D65");
-  const std::vector<std::string> names = library.colorchecker_patch_names();
-  std::vector<std::array<double, 3>> c, x;
-  for (const std::string& name : names) {
-    const SpectrumPtr patch = library.colorchecker_patch(name);
-    c.push_back(channels_under(*d65, patch.get(), camera));
-    x.push_back(channels_under(*d65, patch.get(), xyz));
-  }
-  // Normal equations: M (Σ c cᵀ) = Σ x cᵀ.
+// M = argmin Σ‖M cᵢ − xᵢ‖² from the normal equations M (Σ c cᵀ) = Σ x cᵀ.
+Matrix3 least_squares(const std::vector<std::array<double, 3>>& c, const std::vector<std::array<double, 3>>& x,
+                      const SpectralResponse& camera) {
   Matrix3 cc, xc;
   for (size_t i = 0; i < c.size(); ++i)
     for (int r = 0; r < 3; ++r)
@@ -51,9 +42,38 @@ CameraColourFit fit_camera_to_xyz(const SpectralResponse& camera, SpectralLibrar
   if (!(largest > 0.0) || !(std::abs(cc.determinant()) > 1e-12 * largest * largest * largest))
     throw InputError({}, "cannot fit a camera-to-XYZ matrix for '" + camera.description() +
                              "': its responses to the ColorChecker patches do not span three dimensions");
+  return xc * cc.inverse();
+}
 
+}  // namespace
+
+Matrix3 fit_camera_to_xyz_under(const SpectralResponse& camera, const Spectrum& white, SpectralLibrary& library) {
+  const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
+  const SpectrumPtr d65 = library.illuminant("D65");
+  const double scale = channels_under(white, nullptr, xyz)[1] / channels_under(*d65, nullptr, xyz)[1];
+  std::vector<std::array<double, 3>> c, x;
+  for (const std::string& name : library.colorchecker_patch_names()) {
+    const SpectrumPtr patch = library.colorchecker_patch(name);
+    c.push_back(channels_under(white, patch.get(), camera));
+    std::array<double, 3> target = channels_under(*d65, patch.get(), xyz);
+    for (double& v : target) v *= scale;
+    x.push_back(target);
+  }
+  return least_squares(c, x, camera);
+}
+
+CameraColourFit fit_camera_to_xyz(const SpectralResponse& camera, SpectralLibrary& library) {
+  const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
+  const SpectrumPtr d65 = library.illuminant("D65");
+  const std::vector<std::string> names = library.colorchecker_patch_names();
+  std::vector<std::array<double, 3>> c, x;
+  for (const std::string& name : names) {
+    const SpectrumPtr patch = library.colorchecker_patch(name);
+    c.push_back(channels_under(*d65, patch.get(), camera));
+    x.push_back(channels_under(*d65, patch.get(), xyz));
+  }
   CameraColourFit fit;
-  fit.camera_to_xyz = xc * cc.inverse();
+  fit.camera_to_xyz = least_squares(c, x, camera);
   fit.patch_count = int(c.size());
   fit.d65_white_rgb = channels_under(*d65, nullptr, camera);
   const Xyz white = as_xyz(channels_under(*d65, nullptr, xyz));

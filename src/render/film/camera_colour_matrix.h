@@ -36,6 +36,13 @@ struct CameraColourFit {
 /// span three dimensions for this response (a degenerate sensor).
 CameraColourFit fit_camera_to_xyz(const SpectralResponse& camera, SpectralLibrary& library);
 
+/// pbrt-v4's sensor pipeline (its PixelSensor): the matrix that turns the camera's raw R, G, B of the ColorChecker
+/// patches lit by `white` (the white-balance illuminant) into the XYZ of the same patches lit by D65, scaled by
+/// Y(white)/Y(D65) so that a white lit by `white` keeps its luminance and is rendered with D65's chromaticity:
+/// white balance by the fit (a chromatic adaptation learnt on the patches) rather than by per-channel gains. The
+/// same least squares as fit_camera_to_xyz, whose matrix this is when `white` is D65. Throws as fit_camera_to_xyz.
+Matrix3 fit_camera_to_xyz_under(const SpectralResponse& camera, const Spectrum& white, SpectralLibrary& library);
+
 /// The matrix the display applies to a camera film's written R, G, B (which include the white balance M_wb of
 /// render/film/film_output_transform.h, possibly the identity). Without white balance: camera_to_xyz. With one, the
 /// balanced neutral R = G = B is taken as the camera's D65 white: camera_to_xyz · diag(d65_R/d65_G, 1, d65_B/d65_G),

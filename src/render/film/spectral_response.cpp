@@ -4,6 +4,7 @@
 #include <cmath>
 #include <regex>
 
+#include "render/film/camera_colour_matrix.h"
 #include "spectral/error.h"
 #include "spectral/colorimetry/photometry_constants.h"
 #include "spectral/colour_spaces/rgb_colour_space.h"
@@ -135,13 +136,51 @@ SpectralResponse SpectralResponse::camera_rgb(SpectralLibrary& library, std::str
                           "camera " + camera_short_name(stem) + " (" + stem + ")", stem);
 }
 
-SpectralResponse SpectralResponse::from_spec(SpectralLibrary& library, std::string_view spec) {
+SpectralResponse SpectralResponse::colour_corrected(const SpectralResponse& camera, const Matrix3& camera_to_xyz,
+                                                   SpectralLibrary& library, const std::string& white_description) {
+  // The camera's curves are piecewise linear between their knots, so their combination is, between the union of the
+  // knots: tabulated there, it is exact.
+  const std::array<const TabulatedSpectrum*, 3> curves = {&camera.curves_.x_bar, &camera.curves_.y_bar,
+                                                          &camera.curves_.z_bar};
+  std::vector<double> knots;
+  for (const TabulatedSpectrum* c : curves) knots.insert(knots.end(), c->wavelengths_nm().begin(), c->wavelengths_nm().end());
+  std::sort(knots.begin(), knots.end());
+  knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+  std::array<std::vector<double>, 3> values;
+  for (const double nm : knots)
+    for (int k = 0; k < 3; ++k) {
+      double v = 0.0;
+      for (int j = 0; j < 3; ++j) v += camera_to_xyz(k, j) * curves[size_t(j)]->value(nm);
+      values[size_t(k)].push_back(v);
+    }
+  const Extrapolation outside = camera.curves_.y_bar.extrapolation();
+  const std::string name = camera.camera_name_ + " to XYZ";
+  Observer combined{name, TabulatedSpectrum(knots, values[0], outside, name + " X"),
+                    TabulatedSpectrum(knots, values[1], outside, name + " Y"),
+                    TabulatedSpectrum(knots, values[2], outside, name + " Z")};
+  // In the XYZ film's units (the fit's targets are), so its photometric scale is the 1931 observer's.
+  SpectralResponse response(ResponseKind::cie_xyz, std::move(combined), cie_xyz(library).normalisation_nm(),
+                            camera.description_ + " through its ColorChecker fit to XYZ, white balanced to " +
+                                white_description,
+                            camera.camera_name_);
+  response.white_balance_in_curves_ = true;
+  return response;
+}
+
+SpectralResponse SpectralResponse::from_spec(SpectralLibrary& library, std::string_view spec, const Spectrum* white,
+                                            const std::string& white_description) {
   if (spec == "xyz") return cie_xyz(library, StandardObserver::cie1931_2deg);
   if (spec == "xyz10") return cie_xyz(library, StandardObserver::cie1964_10deg);
-  constexpr std::string_view camera_prefix = "camera:";
+  constexpr std::string_view camera_prefix = "camera:", corrected_prefix = "camera-xyz:";
   if (spec.rfind(camera_prefix, 0) == 0) return camera_rgb(library, spec.substr(camera_prefix.size()));
-  throw InputError({"", 0, "--film"},
-                   "unknown film response '" + std::string(spec) + "'; expected xyz, xyz10 or camera:<name>");
+  if (spec.rfind(corrected_prefix, 0) == 0) {
+    const SpectralResponse camera = camera_rgb(library, spec.substr(corrected_prefix.size()));
+    const SpectrumPtr d65 = library.illuminant("D65");
+    const Matrix3 m = fit_camera_to_xyz_under(camera, white ? *white : *d65, library);
+    return colour_corrected(camera, m, library, white_description);
+  }
+  throw InputError({"", 0, "--film"}, "unknown film response '" + std::string(spec) +
+                                          "'; expected xyz, xyz10, camera:<name> or camera-xyz:<name>");
 }
 
 double SpectralResponse::value(int channel, double lambda_nm) const {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "spectral/colorimetry/observer.h"
+#include "spectral/colour_spaces/matrix3.h"
 #include "spectral/library/spectral_library.h"
 
 namespace rimu {
@@ -40,8 +41,20 @@ class SpectralResponse {
   /// The film of the rgb transport baseline (WavelengthMode::rgb): lanes 0-2 carry linear sRGB, and the film turns
   /// them into CIE 1931 XYZ with the sRGB matrix (IEC 61966-2-1) instead of response curves. kind() is cie_xyz.
   static SpectralResponse rgb_transport(SpectralLibrary& library);
-  /// A film response from the CLI's spelling: "xyz" (1931 2°), "xyz10" (1964 10°) or "camera:<name>".
-  static SpectralResponse from_spec(SpectralLibrary& library, std::string_view spec);
+  /// A camera film whose channels are XYZ: the curves M·(r̄, ḡ, b̄) of `camera` (kind cie_xyz, in the XYZ film's
+  /// units), with M from fit_camera_to_xyz_under (render/film/camera_colour_matrix.h), which holds the white
+  /// balance: pbrt-v4's sensor pipeline (a film "response" of "camera-xyz:<name>"). The matrix acts on each sample,
+  /// as pbrt's does on its sensor RGB, and being linear it commutes with the film's sums. Curves may dip below zero
+  /// (the fit's), so a channel of a sample may be negative; the radiance never is.
+  static SpectralResponse colour_corrected(const SpectralResponse& camera, const Matrix3& camera_to_xyz,
+                                           SpectralLibrary& library, const std::string& white_description);
+  /// Whether the white balance is part of the curves (colour_corrected): the film's output then applies none.
+  bool white_balance_in_curves() const { return white_balance_in_curves_; }
+  /// A film response from the CLI's spelling: "xyz" (1931 2°), "xyz10" (1964 10°), "camera:<name>" (raw R, G, B) or
+  /// "camera-xyz:<name>" (colour_corrected, white balanced to `white`, D65 without one; described as
+  /// `white_description`).
+  static SpectralResponse from_spec(SpectralLibrary& library, std::string_view spec, const Spectrum* white = nullptr,
+                                    const std::string& white_description = "D65");
   /// Every camera file stem in data/spectra/cameras, sorted.
   static std::vector<std::string> camera_file_stems(const SpectralLibrary& library);
   /// The short name of a camera file stem: source prefix and "_<step>nm" suffix removed.
@@ -78,6 +91,7 @@ class SpectralResponse {
   double normalisation_nm_;
   std::string description_;
   std::string camera_name_;
+  bool white_balance_in_curves_ = false;
   std::array<std::string, 3> channel_names_;
   bool lanes_are_rgb_ = false;
   Response4 rgb_lane_matrix_{};

@@ -227,9 +227,14 @@ PartialImage read_partial_exr(const std::filesystem::path& path, bool with_sums)
 }
 
 std::unique_ptr<Film> film_from_partial(const PartialImage& partial, SpectralLibrary& library) {
-  SpectralResponse response = partial.record.film_spec == "rgb-transport"
-                                  ? SpectralResponse::rgb_transport(library)
-                                  : SpectralResponse::from_spec(library, partial.record.film_spec);
+  // A colour-corrected camera film is rebuilt under its white balance's name ("rimu:whiteBalance"), for the
+  // description the merged image carries; its sums are already the film's, so the curves are not used again.
+  const auto white = partial.metadata.extra.find("whiteBalance");
+  SpectralResponse response =
+      partial.record.film_spec == "rgb-transport"
+          ? SpectralResponse::rgb_transport(library)
+          : SpectralResponse::from_spec(library, partial.record.film_spec, nullptr,
+                                        white == partial.metadata.extra.end() ? "D65" : white->second);
   FilmOptions options{partial.width, partial.height, partial.crop, partial.spectral_bins};
   auto film = std::make_unique<Film>(options, std::move(response), partial.light_groups);
   film->set_output_transform(partial.record.output_transform);

@@ -60,7 +60,7 @@ struct RenderSettings {
   EquiangularLights equiangular = EquiangularLights::points;
   LightSamplerKind light_sampler = LightSamplerKind::bvh;  ///< integrator.light_sampler (transport/lights/light_sampler.h)
   WavelengthDensityKind wavelength_density = WavelengthDensityKind::visible;
-  std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>
+  std::string film_response = "xyz";  ///< xyz, xyz10, camera:<name>, camera-xyz:<name>
   int spectral_bins = 0;              ///< 0 = no spectral framebuffer
   /// film "max_sample_value": the sample clamp (Film::set_max_sample_value; docs/rendering.md, "Sample clamp").
   std::optional<double> max_sample_value;

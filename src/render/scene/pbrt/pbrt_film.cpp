@@ -82,20 +82,18 @@ void PbrtConverter::film(const PbrtStatement& s) {
   film_sensor_ = p.string("sensor", "cie1931");
   film_.erase("response");
   if (film_sensor_ != "cie1931") {
-    // pbrt-v4's camera curves ship as data/spectra/cameras/pbrt_physlight_<sensor>_10nm.csv.
-    const std::string response = "camera:pbrt_physlight_" + film_sensor_ + "_10nm";
+    // pbrt-v4's camera curves ship as data/spectra/cameras/pbrt_physlight_<sensor>_10nm.csv. pbrt-v4 writes the
+    // sensor's R, G, B through its 24-patch fit to XYZ under the white-balance illuminant (PixelSensor): Rimu's
+    // colour-corrected camera film is that pipeline.
+    const std::string camera = "pbrt_physlight_" + film_sensor_ + "_10nm";
     try {
-      SpectralResponse::from_spec(library_, response);
+      SpectralResponse::camera_rgb(library_, camera);
     } catch (const InputError&) {
       throw InputError(s.where, "Film: unknown \"sensor\" \"" + film_sensor_ +
                                     "\"; expected cie1931 or one of pbrt-v4's camera sensors (canon_eos_5d_mkiv, "
                                     "nikon_d850, sony_ilce_9, … as in data/spectra/cameras/pbrt_physlight_*.csv)");
     }
-    film_["response"] = response;
-    ignore("Film \"sensor\" \"" + film_sensor_ +
-               "\" (approximated: Rimu writes the sensor's raw R, G, B, white-balanced by per-channel gains, where "
-               "pbrt writes them through its 24-patch colour matrix into the colour space's RGB)",
-           s.where);
+    film_["response"] = "camera-xyz:" + camera;
   }
   if (film_white_balance_k_ != 0.0 && state_.colour_space != "srgb-linear" && state_.colour_space != "rec2020" &&
       state_.colour_space != "display-p3")
