@@ -11,7 +11,9 @@ then read the same derived file, in which:
 - an `Import` or `Include` of an absent file is commented out;
 - a `LightSource "infinite"` whose `filename` is absent becomes a uniform one, `"rgb L" [1 1 1]` (its other
   parameters, such as `scale`, and its transform kept);
-- a `Texture ... "imagemap"` whose `filename` is absent becomes a `constant` texture of 0.5 (grey for a spectrum).
+- a `Texture ... "imagemap"` whose `filename` is absent becomes a `constant` texture of 0.5 (grey for a spectrum);
+- a `measured` material whose `filename` (an RGL .bsdf file) is absent becomes `diffuse` with `rgb reflectance`
+  0.5 (both renderers refuse a measured material without its file).
 
 Five more rules make pbrt-v3 scenes (FORMAT v3-standins, upgraded first) readable by pbrt-v4 at all:
 
@@ -87,7 +89,8 @@ def image_is_square(imgtool, path):
 
 
 def fourier_replacement(text):
-    """A fourier material statement's text as a grey diffuse one (its name kept, its parameters dropped)."""
+    """A material statement's text (fourier, or measured without its file) as a grey diffuse one (its name kept, its
+    parameters dropped)."""
     m = re.match(r'(MakeNamedMaterial\s+"[^"]*")', text)
     if m:
         return f'{m.group(1)} "string type" [ "diffuse" ] "rgb reflectance" [ 0.5 0.5 0.5 ]'
@@ -134,6 +137,13 @@ def main(src, out):
                 (keyword == 'Material' and len(tokens) > 1 and tokens[1] == '"fourier"') or
                 parameter(tokens, 'string type') == 'fourier'):
             replacement = f'{fourier_replacement(text[start:end])} # stand-in: fourier material as grey diffuse'
+        elif keyword in ('Material', 'MakeNamedMaterial') and (
+                (keyword == 'Material' and len(tokens) > 1 and tokens[1] == '"measured"') or
+                parameter(tokens, 'string type') == 'measured'):
+            name = parameter(tokens, 'string filename')
+            if not name or not (base / name).is_file():
+                replacement = (f'{fourier_replacement(text[start:end])} '
+                               f'# stand-in: measured material as grey diffuse, {name} absent')
         elif keyword == 'Film' and parameter(tokens, 'float maxcomponentvalue') is not None:
             replacement = (f'{without_parameter(text[start:end], "float maxcomponentvalue")} '
                            f'# stand-in: maxcomponentvalue removed')

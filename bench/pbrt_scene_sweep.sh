@@ -16,7 +16,8 @@
 #   *.exr            an 8×8 render of Rimu's built-in Cornell box (square, so also a valid equal-area sky)
 #   *.pbrt           one unit quad per material the scene's .pbrt files name with MakeNamedMaterial
 #   *.spd            a constant spectrum of 1 (two "wavelength value" lines)
-# Anything else (a .bsdf, a .nvdb, ...) is left missing. The stand-ins test what the importer makes of every
+#   *.bsdf           a rough gold written in the measured-BRDF form by bin/rimu-make-measured-bsdf (when built)
+# Anything else (a .nvdb, ...) is left missing. The stand-ins test what the importer makes of every
 # statement of the real files; the pictures are of course not the scenes'. Rows say which files were stood in.
 #
 # Columns: the first run's outcome (ok, or the error's first line); with stand-ins: the outcome, the number of
@@ -113,7 +114,7 @@ missing_file() {
   local tag=$1 folder=$2 path
   while read -r path; do
     [[ -n "$path" && "$path" == "$folder"* && ! -e "$path" ]] && { echo "$path"; return; }
-  done < <(grep -oE "'[^']+'|/[^ :']+\.(ply|ply\.gz|png|exr|pbrt|pfm|hdr|tga|jpg|spd)" "$OUT/logs/$tag.log" | tr -d "'")
+  done < <(grep -oE "'[^']+'|/[^ :']+\.(ply|ply\.gz|png|exr|pbrt|pfm|hdr|tga|jpg|spd|bsdf)" "$OUT/logs/$tag.log" | tr -d "'")
 }
 
 echo "| scene | as it is | with stand-ins | stood in | render s | listed as ignored |"
@@ -146,6 +147,7 @@ for scene in "$@"; do
         *.exr) nice -n 19 "$RIMU" --resolution 8x8 --spp 1 --threads "$THREADS" -o "$file" >/dev/null 2>&1 ;;
         *.pbrt) write_geometry "$file" "$copy" ;;
         *.spd) printf '360 1\n830 1\n' >"$file" ;;
+        *.bsdf) "$BUILD/bin/rimu-make-measured-bsdf" "$file" >/dev/null 2>&1 ;;
         *) break ;;
       esac
       [[ -e "$file" ]] || break
