@@ -179,6 +179,9 @@ ExrOptions job_exr_options(const RenderJobState& s, int reached, bool interrupte
     exr.metadata.extra[key] = value;
   exr.metadata.camera = settings.camera_exposure.exposure;
   exr.metadata.finished_at = std::time(nullptr);
+  // A camera-xyz film balanced its white in its fitted matrix: no matrix a display could undo (rimu display refuses
+  // --white-balance on it).
+  if (s.film->response().white_balance_in_curves()) exr.metadata.extra["whiteBalanceInFilmResponse"] = "yes";
   if (s.colour_fit) {
     // The written R, G, B are M_wb · raw (times the exposure): undo the white balance to reach the fit's raw input.
     exr.metadata.camera_to_xyz = s.colour_fit->camera_to_xyz * s.output_transform.channel_matrix.inverse();

@@ -225,3 +225,21 @@ TEST_CASE("display --white-balance undoes a camera film's render-time white bala
         CHECK(std::abs(shown[c] - shown_reference[c]) <= (2 * 0x1p-24 + 0x1p-40) * std::abs(shown_reference[c]));
     }
 }
+
+TEST_CASE("display --white-balance refuses a camera-xyz film, whose white balance is part of its fitted channels") {
+  ScratchFolder folder("light_groups_white_camera_xyz");
+  RenderJob job = tiny_job(light_groups_example(), folder / "fitted.exr");
+  job.film = "camera-xyz:nikon_d850";
+  job.white_balance = "3200K";
+  render(job);
+  ExrDisplaySource fitted = read_exr_for_display(folder / "fitted.exr", library());
+  CHECK(fitted.white_balanced);
+  CHECK_FALSE(fitted.white_balance_matrix);
+  CHECK(fitted.film->response().kind() == ResponseKind::cie_xyz);
+  // Light groups still rebalance; a new white is an error naming the option and why.
+  relight_exr_film(*fitted.film, {{{"sun", 0.0}}, std::nullopt}, true, std::nullopt, "fitted.exr", library());
+  const DisplayWhite d65 = parse_display_white("D65", library(), "--white-balance");
+  input_error([&] {
+    relight_exr_film(*fitted.film, {{}, d65}, true, fitted.white_balance_matrix, "fitted.exr", library());
+  }, {"fitted.exr", "--white-balance", "camera-xyz"});
+}

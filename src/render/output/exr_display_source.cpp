@@ -111,6 +111,7 @@ ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, Spectra
   ExrDisplaySource source;
   std::optional<double> nits_per_unit_y;
   std::string white_balance_text;
+  bool balance_in_channels = false;
   try {
     const std::unique_ptr<Imf::InputFile> file = open_exr_input(path);
     const Imf::Header& header = file->header();
@@ -118,6 +119,8 @@ ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, Spectra
       throw InputError({path.string(), 0, ""}, "is not an image Rimu wrote (no 'rimu:filmResponse' attribute): "
                                                "display it with any EXR viewer");
     const std::string* white_balance = string_attribute(header, "rimu:whiteBalance");
+    const std::string* in_channels = string_attribute(header, "rimu:whiteBalanceInFilmResponse");
+    balance_in_channels = in_channels && *in_channels == "yes";
     source.white_balanced = white_balance && *white_balance != "none";
     if (source.white_balanced) white_balance_text = *white_balance;
     if (const auto* m = header.findTypedAttribute<Imf::M33dAttribute>("rimu:whiteBalanceMatrix")) {
@@ -142,7 +145,10 @@ ExrDisplaySource read_exr_for_display(const std::filesystem::path& path, Spectra
     throw InputError({path.string(), 0, ""}, std::string("cannot be read as an OpenEXR image: ") + e.what());
   }
   const SpectralResponse& response = source.film->response();
-  if (source.white_balanced && !source.white_balance_matrix)
+  // A camera-xyz film holds its white balance in its channels: there is no matrix to undo, and none is rebuilt
+  // (relight_exr_film then refuses --white-balance).
+  if (balance_in_channels) source.white_balance_matrix.reset();
+  else if (source.white_balanced && !source.white_balance_matrix)
     source.white_balance_matrix = rebuilt_white_balance_matrix(white_balance_text, response, library);
   if (response.kind() == ResponseKind::camera_rgb) source.camera_fit = fit_camera_to_xyz(response, library);
   // Of the displayed Y (the film's output values): an XYZ file records it; a camera film is shown through XYZ.

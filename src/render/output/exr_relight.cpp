@@ -130,8 +130,10 @@ void relight_exr_film(Film& film, const ExrRelightOptions& options, bool white_b
   if (white_balanced) {
     if (!render_white_balance)
       throw InputError({file, 0, "--white-balance"},
-                       "was rendered with a white balance (rimu:whiteBalance) that cannot be undone: it has no "
-                       "rimu:whiteBalanceMatrix and its rimu:whiteBalance is not one Rimu can rebuild");
+                       "was rendered with a white balance (rimu:whiteBalance) that cannot be undone: a camera-xyz "
+                       "film holds it in its fitted channels (rimu:whiteBalanceInFilmResponse; render again with "
+                       "the new white balance), or the file has no rimu:whiteBalanceMatrix and its rimu:whiteBalance "
+                       "is not one Rimu can rebuild");
     undo = render_white_balance->inverse();
   }
   FilmOutputTransform transform = film.output_transform();

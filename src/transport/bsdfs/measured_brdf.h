@@ -18,6 +18,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -49,12 +50,14 @@ class MeasuredBrdf {
   const BilinearWarp2D& spectra() const { return spectra_; }
 
   /// θ ↔ u_θ and φ ↔ u_φ of the paper's parameterisation.
-  static float theta_to_u(float theta) { return std::sqrt(theta * (2.0f / 3.14159265f)); }
-  static float phi_to_u(float phi) { return phi * (0.5f / 3.14159265f) + 0.5f; }
-  static float u_to_theta(float u) { return u * u * (3.14159265f / 2.0f); }
-  static float u_to_phi(float u) { return (2.0f * u - 1.0f) * 3.14159265f; }
+  static float theta_to_u(float theta) { return std::sqrt(theta * (2.0f / kPi)); }
+  static float phi_to_u(float phi) { return phi * (0.5f / kPi) + 0.5f; }
+  static float u_to_theta(float u) { return u * u * (kPi / 2.0f); }
+  static float u_to_phi(float u) { return (2.0f * u - 1.0f) * kPi; }
 
  private:
+  static constexpr float kPi = std::numbers::pi_v<float>;
+
   std::string name_;
   bool isotropic_ = true;
   std::vector<float> wavelengths_nm_;

@@ -95,7 +95,9 @@ void PbrtConverter::film(const PbrtStatement& s) {
     }
     film_["response"] = "camera-xyz:" + camera;
   }
-  if (film_white_balance_k_ != 0.0 && state_.colour_space != "srgb-linear" && state_.colour_space != "rec2020" &&
+  // A camera sensor is balanced too (pbrt-v4's default 6500 K), to the colour space's white in pbrt.
+  if ((film_white_balance_k_ != 0.0 || film_sensor_ != "cie1931") && state_.colour_space != "srgb-linear" &&
+      state_.colour_space != "rec2020" &&
       state_.colour_space != "display-p3")
     ignore("Film \"whitebalance\" under ColorSpace " + state_.colour_space +
                " (Rimu balances to D65; pbrt to the colour space's white)",
