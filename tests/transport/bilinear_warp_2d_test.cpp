@@ -97,3 +97,25 @@ TEST_CASE("bilinear warp: an interpolant returns the given values at the grid po
   const float nan[1] = {NAN};
   CHECK(std::isfinite(table.value({0.3f, 0.3f}, nan)));
 }
+
+TEST_CASE("bilinear warp: values_along_last gives value() at each of four values of the last parameter") {
+  std::vector<float> values;
+  const int width = 5, height = 4;
+  for (int a = 0; a < 3; ++a)
+    for (int l = 0; l < 6; ++l)
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) values.push_back(float(1 + a) * 0.3f + float(l * l) * 0.1f + float(x * y) * 0.05f);
+  const BilinearWarp2D table(values, width, height, {{0.0f, 1.0f, 3.0f}, {400, 450, 500, 600, 700, 830}},
+                             BilinearWarp2D::Use::interpolate);
+  std::mt19937 rng(3);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec2 p{test::uniform01(rng), test::uniform01(rng)};
+    const float leading[1] = {4.0f * test::uniform01(rng) - 0.5f};
+    const std::array<float, 4> lambda = {350.0f + 500.0f * test::uniform01(rng), 400.0f, 830.0f, 612.5f};
+    const std::array<float, 4> together = table.values_along_last(p, leading, lambda);
+    for (size_t lane = 0; lane < 4; ++lane) {
+      const float parameters[2] = {leading[0], lambda[lane]};
+      CHECK(together[lane] == doctest::Approx(table.value(p, parameters)).epsilon(1e-6));
+    }
+  }
+}

@@ -27,12 +27,10 @@ float square_to_sphere_jacobian(float u_theta, float sin_theta) {
 }  // namespace
 
 SampledSpectrum MeasuredBsdf::spectral_factor(Vec2 u, float phi_o, float theta_o) const {
-  Float4 s;
-  for (int lane = 0; lane < 4; ++lane) {
-    const float parameters[3] = {phi_o, theta_o, lambda_nm_[lane]};
-    s.set(lane, std::max(0.0f, brdf_->spectra().value(u, parameters)));
-  }
-  return s;
+  const float leading[2] = {phi_o, theta_o};
+  const std::array<float, 4> lambda = {lambda_nm_[0], lambda_nm_[1], lambda_nm_[2], lambda_nm_[3]};
+  const std::array<float, 4> s = brdf_->spectra().values_along_last(u, leading, lambda);
+  return max(Float4(s[0], s[1], s[2], s[3]), Float4(0.0f));
 }
 
 float MeasuredBsdf::microfacet_factor(Vec2 u_wm, Vec2 u_wo, float cos_theta_i) const {

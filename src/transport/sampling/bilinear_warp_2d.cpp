@@ -94,12 +94,12 @@ BilinearWarp2D::BilinearWarp2D(std::span<const float> values, int width, int hei
 }
 
 BilinearWarp2D::Blend BilinearWarp2D::blend(std::span<const float> parameters) const {
-  assert(parameters.size() == parameter_values_.size());
+  assert(parameters.size() <= parameter_values_.size());
   Blend b;
   b.grid[0] = 0;
   b.weight[0] = 1.0f;
   b.count = 1;
-  for (size_t k = 0; k < parameter_values_.size(); ++k) {
+  for (size_t k = 0; k < parameters.size(); ++k) {
     const std::vector<float>& tabulated = parameter_values_[k];
     if (tabulated.size() < 2) continue;
     const float x = parameters[k];
@@ -137,6 +137,42 @@ float BilinearWarp2D::bilinear(Vec2 p, const Blend& b) const {
 }
 
 float BilinearWarp2D::value(Vec2 p, std::span<const float> parameters) const { return bilinear(p, blend(parameters)); }
+
+std::array<float, 4> BilinearWarp2D::values_along_last(Vec2 p, std::span<const float> leading,
+                                                      const std::array<float, 4>& last) const {
+  assert(leading.size() + 1 == parameter_values_.size());
+  const Blend b = blend(leading);
+  const float gx = unit(p.x) * float(width_ - 1), gy = unit(p.y) * float(height_ - 1);
+  const int x = std::min(int(gx), width_ - 2), y = std::min(int(gy), height_ - 2);
+  const float s = gx - float(x), t = gy - float(y);
+  const size_t per_grid = size_t(width_) * size_t(height_), w = size_t(width_);
+  const size_t cell = size_t(y) * w + size_t(x);
+  // The grid g's bilinear value at p.
+  const auto at = [&](size_t g) {
+    const float* v = values_.data() + g * per_grid + cell;
+    return (1.0f - t) * ((1.0f - s) * v[0] + s * v[1]) + t * ((1.0f - s) * v[w] + s * v[w + 1]);
+  };
+  const std::vector<float>& tabulated = parameter_values_.back();
+  const size_t stride = parameter_stride_.back();
+  std::array<float, 4> out{};
+  for (size_t lane = 0; lane < 4; ++lane) {
+    int i = 0;
+    float weight = 0.0f;
+    if (tabulated.size() >= 2) {
+      const float value = last[lane];
+      i = interval_of(int(tabulated.size()), [&](int j) { return tabulated[size_t(j)] <= value; });
+      const float u = std::clamp((value - tabulated[size_t(i)]) / (tabulated[size_t(i) + 1] - tabulated[size_t(i)]), 0.0f, 1.0f);
+      weight = std::isfinite(u) ? u : 0.0f;
+    }
+    float sum = 0.0f;
+    for (int c = 0; c < b.count; ++c) {
+      const size_t g = b.grid[size_t(c)] + size_t(i) * stride;
+      sum += b.weight[size_t(c)] * ((1.0f - weight) * at(g) + (weight > 0.0f ? weight * at(g + stride) : 0.0f));
+    }
+    out[lane] = sum;
+  }
+  return out;
+}
 
 float BilinearWarp2D::density(Vec2 p, std::span<const float> parameters) const {
   // Normalised in grid units; a unit-square area is (width − 1)(height − 1) grid cells.

@@ -59,6 +59,10 @@ class BilinearWarp2D {
   float density(Vec2 p, std::span<const float> parameters) const;
   /// The bilinearly interpolated value at p, as given (Use::interpolate). Cost O(1).
   float value(Vec2 p, std::span<const float> parameters) const;
+  /// value() at one point for four values of the last parameter, the others given in `leading` (one fewer than the
+  /// table's parameters): the leading parameters' grids and p's cell are found once, not once per value (a measured
+  /// BRDF's spectra at the four wavelengths of a path). Use::interpolate.
+  std::array<float, 4> values_along_last(Vec2 p, std::span<const float> leading, const std::array<float, 4>& last) const;
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -71,6 +75,7 @@ class BilinearWarp2D {
     std::array<float, 8> weight{};
     int count = 0;
   };
+  /// The blend of the first parameters.size() parameters (all of them, or the leading ones).
   Blend blend(std::span<const float> parameters) const;
   /// Σₖ weightₖ · table[gridₖ · per_grid + index]: a table's entry blended over the grids.
   static float blended(const std::vector<float>& table, const Blend& b, size_t per_grid, size_t index);
