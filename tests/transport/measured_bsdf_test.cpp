@@ -108,6 +108,16 @@ TEST_CASE("measured BRDF: a sample's f and density are what eval() and pdf() giv
   CHECK(checked > 1800);
 }
 
+TEST_CASE("measured BRDF: a narrow lobe is glossy for next-event estimation, a wide one is not") {
+  // GGX peaks at D = 1/(π α²): α = 0.05 is far above the glossy threshold's peak (α = 0.3), α = 0.6 below it.
+  const MeasuredBrdf narrow = tabulated_gold(0.05f);
+  CHECK(narrow.glossy());
+  CHECK(MeasuredBsdf(&narrow, Float4(550.0f)).flags().has_glossy);
+  const MeasuredBrdf wide = tabulated_gold(0.6f);
+  CHECK_FALSE(wide.glossy());
+  CHECK_FALSE(MeasuredBsdf(&wide, Float4(550.0f)).flags().has_glossy);
+}
+
 TEST_CASE("measured BRDF: a tabulated GGX conductor reflects what the analytic one does") {
   // The tables are 48 × 48 visible-normal and spectral grids at 12 incident elevations: bilinear interpolation of
   // a lobe of α = 0.3 over cells ~2° wide. The directional albedo, which averages it, is compared (50,000 samples

@@ -1,9 +1,11 @@
 #include "transport/bsdfs/measured_brdf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "spectral/error.h"
+#include "transport/bsdfs/microfacet.h"
 
 namespace rimu {
 
@@ -91,7 +93,11 @@ MeasuredBrdf MeasuredBrdf::from_tensor_file(const TensorFile& file) {
 
   const auto extent = [](const std::vector<uint64_t>& shape, size_t i) { return int(shape[i]); };
   using Use = BilinearWarp2D::Use;
-  brdf.ndf_ = BilinearWarp2D(table(file, "ndf", 2, false, 0), extent(ndf_shape, 1), extent(ndf_shape, 0), {}, Use::interpolate);
+  const std::vector<float> ndf = table(file, "ndf", 2, false, 0);
+  // A GGX lobe of width α peaks at D = 1/(π α²): a measured D that high is as narrow as a glossy GGX lobe.
+  const float glossy_peak = 1.0f / (std::numbers::pi_v<float> * TrowbridgeReitz::kGlossyAlpha * TrowbridgeReitz::kGlossyAlpha);
+  brdf.glossy_ = *std::max_element(ndf.begin(), ndf.end()) > glossy_peak;
+  brdf.ndf_ = BilinearWarp2D(ndf, extent(ndf_shape, 1), extent(ndf_shape, 0), {}, Use::interpolate);
   brdf.sigma_ = BilinearWarp2D(table(file, "sigma", 2, false, 0), extent(sigma_shape, 1), extent(sigma_shape, 0), {},
                                Use::interpolate);
   const size_t vndf_grid = size_t(vndf_shape[2] * vndf_shape[3]), luminance_grid = size_t(luminance_shape[2] * luminance_shape[3]);

@@ -37,6 +37,9 @@ class MeasuredBrdf {
   static MeasuredBrdf read(const std::filesystem::path& path);
 
   bool isotropic() const { return isotropic_; }
+  /// Whether the normal distribution peaks above a GGX lobe of TrowbridgeReitz::kGlossyAlpha (D > 1/(π α²)): a lobe
+  /// that narrow gets the glossy treatment of next-event estimation (BsdfFlags::has_glossy).
+  bool glossy() const { return glossy_; }
   const std::string& name() const { return name_; }
   /// Wavelengths (nm) the spectra were measured at; outside them the nearest one's values hold.
   const std::vector<float>& wavelengths_nm() const { return wavelengths_nm_; }
@@ -60,6 +63,7 @@ class MeasuredBrdf {
 
   std::string name_;
   bool isotropic_ = true;
+  bool glossy_ = false;
   std::vector<float> wavelengths_nm_;
   BilinearWarp2D ndf_, sigma_, vndf_, luminance_, spectra_;
 };

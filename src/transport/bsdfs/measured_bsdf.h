@@ -26,7 +26,7 @@ class MeasuredBsdf {
   SampledSpectrum pdf(Vec3 wo, Vec3 wi) const;
   /// std::nullopt if wo lies on the horizon or the reflected direction falls below it. `u_lobe` is unused.
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
-  BsdfFlags flags() const { return {false, true, false, false}; }
+  BsdfFlags flags() const { return {false, true, false, brdf_->glossy()}; }
 
  private:
   /// A direction pair in the tables' terms: both turned to the front, the half vector, ωo's angles, ωm on the square
