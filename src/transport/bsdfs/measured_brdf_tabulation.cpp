@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 #include "transport/bsdfs/fresnel.h"
 #include "transport/bsdfs/measured_brdf.h"
@@ -52,7 +53,7 @@ std::map<std::string, TensorFile::Field> tabulate_microfacet_brdf(const Microfac
       for (int x = 0; x < n; ++x) {
         const float u_theta = u_at(x, n), theta_m = MeasuredBrdf::u_to_theta(u_theta);
         const Vec3 wm = direction(theta_m, MeasuredBrdf::u_to_phi(u_at(y, n)));
-        const float jacobian = 2.0f * 3.14159265f * 3.14159265f * u_theta * std::sin(theta_m);
+        const float jacobian = 2.0f * std::numbers::pi_v<float> * std::numbers::pi_v<float> * u_theta * std::sin(theta_m);
         vndf[size_t(k) * grid + size_t(y) * size_t(n) + size_t(x)] = ggx.d(wm) * std::max(0.0f, dot(wo, wm)) / sigma_o * jacobian;
       }
     // S at the points the warp maps the spectral grid to.

@@ -4,12 +4,9 @@
 #include <cmath>
 #include <numbers>
 
-
 namespace rimu {
 
 namespace {
-
-constexpr float kPi = std::numbers::pi_v<float>;
 
 struct Angles {
   float theta, phi;
@@ -21,7 +18,8 @@ Angles angles_of(Vec3 w) {
 // dω/du of the square's map to the sphere (θ = π u_θ²/2, φ = 2π u_φ − π): 2π² u_θ sin θ, kept from 0 as pbrt-v4
 // keeps it.
 float square_to_sphere_jacobian(float u_theta, float sin_theta) {
-  return std::max(2.0f * kPi * kPi * u_theta * sin_theta, 1e-6f);
+  constexpr float pi = std::numbers::pi_v<float>;
+  return std::max(2.0f * pi * pi * u_theta * sin_theta, 1e-6f);
 }
 
 }  // namespace
