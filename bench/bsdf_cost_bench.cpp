@@ -67,15 +67,7 @@ Bsdf make(int which) {
     // 64 × 64 grids, 48 wavelengths (as rimu-make-measured-bsdf writes it).
     default: {
       static const MeasuredBrdf brdf = [rough] {
-        MicrofacetTabulation t;
-        t.distribution = TrowbridgeReitz(rough, rough);
-        const ComplexIorSpectra au = conductor_ior(library, "gold");
-        for (int nm = 360; nm <= 830; nm += 10) {
-          const SampledWavelengths one(Float4(float(nm)), Float4(1.0f));
-          t.wavelengths_nm.push_back(float(nm));
-          t.n.push_back(au.n->sample(one)[0]);
-          t.k.push_back(au.k->sample(one)[0]);
-        }
+        MicrofacetTabulation t = MicrofacetTabulation::conductor(conductor_ior(library, "gold"), rough);
         t.theta_i_count = 16;
         t.vndf_size = 64;
         return MeasuredBrdf::from_tensor_file(TensorFile::parse(TensorFile::serialise(tabulate_microfacet_brdf(t)), "gold"));

@@ -24,15 +24,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     SpectralLibrary library = SpectralLibrary::at_default_location();
-    const ComplexIorSpectra ior = conductor_ior(library, metal);
-    MicrofacetTabulation t;
-    t.distribution = TrowbridgeReitz(alpha, alpha);
-    for (int nm = 360; nm <= 830; nm += 10) {
-      const SampledWavelengths one(Float4(float(nm)), Float4(1.0f));
-      t.wavelengths_nm.push_back(float(nm));
-      t.n.push_back(ior.n->sample(one)[0]);
-      t.k.push_back(ior.k->sample(one)[0]);
-    }
+    MicrofacetTabulation t = MicrofacetTabulation::conductor(conductor_ior(library, metal), alpha);
     t.theta_i_count = 16;
     t.vndf_size = 64;
     const std::string bytes = TensorFile::serialise(tabulate_microfacet_brdf(t));

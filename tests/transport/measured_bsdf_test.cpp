@@ -22,17 +22,7 @@ const float kMeasuredLanes[4] = {450.0f, 550.0f, 650.0f, 750.0f};
 
 // Gold's n and k at 400, 450, ..., 750 nm: the lanes the tests evaluate fall on tabulated wavelengths.
 MicrofacetTabulation gold_tabulation(float alpha) {
-  MicrofacetTabulation t;
-  t.distribution = TrowbridgeReitz(alpha, alpha);
-  const ComplexIorSpectra gold = conductor_ior(test::library(), "gold");
-  for (int i = 0; i < 8; ++i) {
-    const float nm = 400.0f + 50.0f * float(i);
-    const SampledWavelengths one(Float4(nm), Float4(1.0f));
-    t.wavelengths_nm.push_back(nm);
-    t.n.push_back(gold.n->sample(one)[0]);
-    t.k.push_back(gold.k->sample(one)[0]);
-  }
-  return t;
+  return MicrofacetTabulation::conductor(conductor_ior(test::library(), "gold"), alpha, 400.0f, 750.0f, 50.0f);
 }
 
 ConductorBsdf gold_conductor(float alpha) {

@@ -45,44 +45,51 @@ Matrix3 least_squares(const std::vector<std::array<double, 3>>& c, const std::ve
   return xc * cc.inverse();
 }
 
+// The fit's training set: the camera's channels cᵢ of each ColorChecker patch lit by `white`, and the targets xᵢ, the
+// XYZ of the same patch lit by D65 times Y(white)/Y(D65) (exactly 1 when `white` is D65).
+struct TrainingSet {
+  std::vector<std::string> names;
+  std::vector<std::array<double, 3>> c, x;
+};
+TrainingSet training_set(const SpectralResponse& camera, const Spectrum& white, const SpectralResponse& xyz,
+                         const Spectrum& d65, SpectralLibrary& library) {
+  TrainingSet set;
+  set.names = library.colorchecker_patch_names();
+  const double scale = channels_under(white, nullptr, xyz)[1] / channels_under(d65, nullptr, xyz)[1];
+  for (const std::string& name : set.names) {
+    const SpectrumPtr patch = library.colorchecker_patch(name);
+    set.c.push_back(channels_under(white, patch.get(), camera));
+    std::array<double, 3> target = channels_under(d65, patch.get(), xyz);
+    for (double& v : target) v *= scale;
+    set.x.push_back(target);
+  }
+  return set;
+}
+
 }  // namespace
 
 Matrix3 fit_camera_to_xyz_under(const SpectralResponse& camera, const Spectrum& white, SpectralLibrary& library) {
-  const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
-  const SpectrumPtr d65 = library.illuminant("D65");
-  const double scale = channels_under(white, nullptr, xyz)[1] / channels_under(*d65, nullptr, xyz)[1];
-  std::vector<std::array<double, 3>> c, x;
-  for (const std::string& name : library.colorchecker_patch_names()) {
-    const SpectrumPtr patch = library.colorchecker_patch(name);
-    c.push_back(channels_under(white, patch.get(), camera));
-    std::array<double, 3> target = channels_under(*d65, patch.get(), xyz);
-    for (double& v : target) v *= scale;
-    x.push_back(target);
-  }
-  return least_squares(c, x, camera);
+  const TrainingSet set =
+      training_set(camera, white, SpectralResponse::cie_xyz(library), *library.illuminant("D65"), library);
+  return least_squares(set.c, set.x, camera);
 }
 
 CameraColourFit fit_camera_to_xyz(const SpectralResponse& camera, SpectralLibrary& library) {
   const SpectralResponse xyz = SpectralResponse::cie_xyz(library);
   const SpectrumPtr d65 = library.illuminant("D65");
-  const std::vector<std::string> names = library.colorchecker_patch_names();
-  std::vector<std::array<double, 3>> c, x;
-  for (const std::string& name : names) {
-    const SpectrumPtr patch = library.colorchecker_patch(name);
-    c.push_back(channels_under(*d65, patch.get(), camera));
-    x.push_back(channels_under(*d65, patch.get(), xyz));
-  }
+  const TrainingSet set = training_set(camera, *d65, xyz, *d65, library);
   CameraColourFit fit;
-  fit.camera_to_xyz = least_squares(c, x, camera);
-  fit.patch_count = int(c.size());
+  fit.camera_to_xyz = least_squares(set.c, set.x, camera);
+  fit.patch_count = int(set.c.size());
   fit.d65_white_rgb = channels_under(*d65, nullptr, camera);
   const Xyz white = as_xyz(channels_under(*d65, nullptr, xyz));
-  for (size_t i = 0; i < c.size(); ++i) {
-    const double de = delta_e_2000(lab_of(fit.camera_to_xyz.apply(as_xyz(c[i])), white), lab_of(as_xyz(x[i]), white));
-    fit.mean_delta_e2000 += de / double(c.size());
+  for (size_t i = 0; i < set.c.size(); ++i) {
+    const double de =
+        delta_e_2000(lab_of(fit.camera_to_xyz.apply(as_xyz(set.c[i])), white), lab_of(as_xyz(set.x[i]), white));
+    fit.mean_delta_e2000 += de / double(set.c.size());
     if (de > fit.max_delta_e2000) {
       fit.max_delta_e2000 = de;
-      fit.worst_patch = names[i];
+      fit.worst_patch = set.names[i];
     }
   }
   return fit;

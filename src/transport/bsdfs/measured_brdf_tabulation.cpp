@@ -19,6 +19,19 @@ Vec3 direction(float theta, float phi) {
 
 }  // namespace
 
+MicrofacetTabulation MicrofacetTabulation::conductor(const ComplexIorSpectra& ior, float alpha, float first_nm,
+                                                     float last_nm, float step_nm) {
+  MicrofacetTabulation t;
+  t.distribution = TrowbridgeReitz(alpha, alpha);
+  for (float nm = first_nm; nm <= last_nm; nm += step_nm) {
+    const SampledWavelengths one(Float4(nm), Float4(1.0f));
+    t.wavelengths_nm.push_back(nm);
+    t.n.push_back(ior.n->sample(one)[0]);
+    t.k.push_back(ior.k->sample(one)[0]);
+  }
+  return t;
+}
+
 std::map<std::string, TensorFile::Field> tabulate_microfacet_brdf(const MicrofacetTabulation& t) {
   assert(t.wavelengths_nm.size() == t.n.size() && t.n.size() == t.k.size() && t.theta_i_count >= 2);
   const TrowbridgeReitz& ggx = t.distribution;

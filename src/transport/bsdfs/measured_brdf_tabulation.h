@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "spectral/library/optical_constants.h"
 #include "transport/bsdfs/microfacet.h"
 #include "transport/bsdfs/tensor_file.h"
 
@@ -21,6 +22,11 @@ struct MicrofacetTabulation {
   float max_theta_i = 1.48f;                 ///< radians (85°)
   int ndf_size = 64;                         ///< θ samples of ndf and sigma (φ: 2, isotropic)
   int vndf_size = 48;                        ///< each side of the visible-normal and spectral grids
+
+  /// A conductor of index `ior` under GGX of width `alpha` (isotropic), its n and k read at first_nm,
+  /// first_nm + step_nm, … up to last_nm; the other fields at their defaults.
+  static MicrofacetTabulation conductor(const ComplexIorSpectra& ior, float alpha, float first_nm = 360.0f,
+                                        float last_nm = 830.0f, float step_nm = 10.0f);
 };
 
 /// The fields of an isotropic tensor file (theta_i, phi_i = [0], wavelengths, ndf, sigma, vndf, luminance, spectra,

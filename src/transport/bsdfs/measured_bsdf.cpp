@@ -15,11 +15,11 @@ Angles angles_of(Vec3 w) {
   return {std::acos(std::clamp(w.z, -1.0f, 1.0f)), std::atan2(w.y, w.x)};
 }
 
-// dω/du of the square's map to the sphere (θ = π u_θ²/2, φ = 2π u_φ − π): 2π² u_θ sin θ, kept from 0 as pbrt-v4
-// keeps it.
-float square_to_sphere_jacobian(float u_theta, float sin_theta) {
+// The Jacobian from the half vector's square to ωi: dωm/du of the square's map to the sphere (θ = π u_θ²/2,
+// φ = 2π u_φ − π), 2π² u_θ sin θm, kept from 0 as pbrt-v4 keeps it, times dωi/dωm = 4 ωo·ωm of reflection.
+float square_to_incident_jacobian(Vec3 wo, Vec3 wm, float u_theta, float sin_theta_m) {
   constexpr float pi = std::numbers::pi_v<float>;
-  return std::max(2.0f * pi * pi * u_theta * sin_theta, 1e-6f);
+  return 4.0f * dot(wo, wm) * std::max(2.0f * pi * pi * u_theta * sin_theta_m, 1e-6f);
 }
 
 }  // namespace
@@ -75,7 +75,7 @@ SampledSpectrum MeasuredBsdf::pdf(Vec3 wo, Vec3 wi) const {
   const float luminance_density = brdf_->luminance().density(pair->vndf.p, parameters);
   const Vec3 wm = pair->wm;
   const float sin_theta_m = std::sqrt(wm.x * wm.x + wm.y * wm.y);
-  const float jacobian = 4.0f * dot(pair->wo, wm) * square_to_sphere_jacobian(pair->u_wm.x, sin_theta_m);
+  const float jacobian = square_to_incident_jacobian(pair->wo, wm, pair->u_wm.x, sin_theta_m);
   const float density = pair->vndf.density * luminance_density / jacobian;
   return Float4(std::isfinite(density) ? density : 0.0f);
 }
@@ -101,7 +101,7 @@ std::optional<BsdfSample> MeasuredBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u
 
   const Vec2 u_wo{MeasuredBrdf::theta_to_u(o.theta), MeasuredBrdf::phi_to_u(o.phi)};
   const SampledSpectrum f = spectral_factor(by_luminance.p, o.phi, o.theta) * Float4(microfacet_factor(u_wm, u_wo, wi.z));
-  const float jacobian = 4.0f * dot(wo, wm) * square_to_sphere_jacobian(u_wm.x, sin_theta_m);
+  const float jacobian = square_to_incident_jacobian(wo, wm, u_wm.x, sin_theta_m);
   const float density = by_luminance.density * by_vndf.density / jacobian;
   if (!(density > 0.0f) || !std::isfinite(density)) return std::nullopt;
   return BsdfSample{back ? -wi : wi, f, Float4(density)};

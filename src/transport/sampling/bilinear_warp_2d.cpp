@@ -93,6 +93,20 @@ BilinearWarp2D::BilinearWarp2D(std::span<const float> values, int width, int hei
   }
 }
 
+BilinearWarp2D::Step BilinearWarp2D::step_along(size_t k, float x) const {
+  const std::vector<float>& tabulated = parameter_values_[k];
+  if (tabulated.size() < 2) return {0, 0.0f};
+  const int i = interval_of(int(tabulated.size()), [&](int j) { return tabulated[size_t(j)] <= x; });
+  const float t = std::clamp((x - tabulated[size_t(i)]) / (tabulated[size_t(i) + 1] - tabulated[size_t(i)]), 0.0f, 1.0f);
+  return {i, std::isfinite(t) ? t : 0.0f};  // a NaN parameter takes the first grid rather than spreading NaN
+}
+
+BilinearWarp2D::Cell BilinearWarp2D::locate(Vec2 p) const {
+  const float gx = unit(p.x) * float(width_ - 1), gy = unit(p.y) * float(height_ - 1);
+  const int x = std::min(int(gx), width_ - 2), y = std::min(int(gy), height_ - 2);
+  return {x, y, size_t(y) * size_t(width_) + size_t(x), gx - float(x), gy - float(y)};
+}
+
 BilinearWarp2D::Blend BilinearWarp2D::blend(std::span<const float> parameters) const {
   assert(parameters.size() <= parameter_values_.size());
   Blend b;
@@ -100,13 +114,9 @@ BilinearWarp2D::Blend BilinearWarp2D::blend(std::span<const float> parameters) c
   b.weight[0] = 1.0f;
   b.count = 1;
   for (size_t k = 0; k < parameters.size(); ++k) {
-    const std::vector<float>& tabulated = parameter_values_[k];
-    if (tabulated.size() < 2) continue;
-    const float x = parameters[k];
-    const int i = interval_of(int(tabulated.size()), [&](int j) { return tabulated[size_t(j)] <= x; });
-    const float t = std::clamp((x - tabulated[size_t(i)]) / (tabulated[size_t(i) + 1] - tabulated[size_t(i)]), 0.0f, 1.0f);
-    const float w = std::isfinite(t) ? t : 0.0f;  // a NaN parameter takes the first grid rather than spreading NaN
-    // Each grid so far splits into its neighbour below (1 − t) and above (t) along this parameter.
+    if (parameter_values_[k].size() < 2) continue;
+    const auto [i, w] = step_along(k, parameters[k]);
+    // Each grid so far splits into its neighbour below (1 − w) and above (w) along this parameter.
     for (int c = b.count - 1; c >= 0; --c) {
       const size_t base = b.grid[size_t(c)] + size_t(i) * parameter_stride_[k];
       const float weight = b.weight[size_t(c)];
@@ -127,10 +137,8 @@ float BilinearWarp2D::blended(const std::vector<float>& table, const Blend& b, s
 }
 
 float BilinearWarp2D::bilinear(Vec2 p, const Blend& b) const {
-  const float gx = unit(p.x) * float(width_ - 1), gy = unit(p.y) * float(height_ - 1);
-  const int x = std::min(int(gx), width_ - 2), y = std::min(int(gy), height_ - 2);
-  const float s = gx - float(x), t = gy - float(y);
-  const size_t per_grid = size_t(width_) * size_t(height_), i = size_t(y) * size_t(width_) + size_t(x);
+  const auto [x, y, i, s, t] = locate(p);
+  const size_t per_grid = size_t(width_) * size_t(height_);
   const float v00 = blended(values_, b, per_grid, i), v10 = blended(values_, b, per_grid, i + 1);
   const float v01 = blended(values_, b, per_grid, i + size_t(width_)), v11 = blended(values_, b, per_grid, i + size_t(width_) + 1);
   return (1.0f - t) * ((1.0f - s) * v00 + s * v10) + t * ((1.0f - s) * v01 + s * v11);
@@ -142,28 +150,17 @@ std::array<float, 4> BilinearWarp2D::values_along_last(Vec2 p, std::span<const f
                                                       const std::array<float, 4>& last) const {
   assert(leading.size() + 1 == parameter_values_.size());
   const Blend b = blend(leading);
-  const float gx = unit(p.x) * float(width_ - 1), gy = unit(p.y) * float(height_ - 1);
-  const int x = std::min(int(gx), width_ - 2), y = std::min(int(gy), height_ - 2);
-  const float s = gx - float(x), t = gy - float(y);
+  const auto [x, y, cell, s, t] = locate(p);
   const size_t per_grid = size_t(width_) * size_t(height_), w = size_t(width_);
-  const size_t cell = size_t(y) * w + size_t(x);
   // The grid g's bilinear value at p.
   const auto at = [&](size_t g) {
     const float* v = values_.data() + g * per_grid + cell;
     return (1.0f - t) * ((1.0f - s) * v[0] + s * v[1]) + t * ((1.0f - s) * v[w] + s * v[w + 1]);
   };
-  const std::vector<float>& tabulated = parameter_values_.back();
   const size_t stride = parameter_stride_.back();
   std::array<float, 4> out{};
   for (size_t lane = 0; lane < 4; ++lane) {
-    int i = 0;
-    float weight = 0.0f;
-    if (tabulated.size() >= 2) {
-      const float value = last[lane];
-      i = interval_of(int(tabulated.size()), [&](int j) { return tabulated[size_t(j)] <= value; });
-      const float u = std::clamp((value - tabulated[size_t(i)]) / (tabulated[size_t(i) + 1] - tabulated[size_t(i)]), 0.0f, 1.0f);
-      weight = std::isfinite(u) ? u : 0.0f;
-    }
+    const auto [i, weight] = step_along(parameter_values_.size() - 1, last[lane]);
     float sum = 0.0f;
     for (int c = 0; c < b.count; ++c) {
       const size_t g = b.grid[size_t(c)] + size_t(i) * stride;
@@ -213,10 +210,7 @@ BilinearWarp2D::Sample BilinearWarp2D::invert(Vec2 p, std::span<const float> par
   assert(!marginal_cdf_.empty());
   const Blend b = blend(parameters);
   const size_t per_grid = size_t(width_) * size_t(height_), w = size_t(width_);
-  const float gx = unit(p.x) * float(width_ - 1), gy = unit(p.y) * float(height_ - 1);
-  const int x = std::min(int(gx), width_ - 2), y = std::min(int(gy), height_ - 2);
-  const float s = gx - float(x), t = gy - float(y);
-  const size_t i = size_t(y) * w + size_t(x);
+  const auto [x, y, i, s, t] = locate(p);
 
   const float c0 = (1.0f - t) * blended(values_, b, per_grid, i) + t * blended(values_, b, per_grid, i + w);
   const float c1 = (1.0f - t) * blended(values_, b, per_grid, i + 1) + t * blended(values_, b, per_grid, i + w + 1);

@@ -75,6 +75,21 @@ class BilinearWarp2D {
     std::array<float, 8> weight{};
     int count = 0;
   };
+  /// Parameter k's tabulated interval [index, index + 1] holding x and x's weight towards index + 1 (clamped at the
+  /// ends; 0 for a NaN x or a parameter tabulated once).
+  struct Step {
+    int index;
+    float weight;
+  };
+  Step step_along(size_t k, float x) const;
+  /// The grid cell holding p (clamped to the square): its corner (x, y), the index of that corner's value in a grid,
+  /// and p's position (s, t) within the cell.
+  struct Cell {
+    int x, y;
+    size_t index;
+    float s, t;
+  };
+  Cell locate(Vec2 p) const;
   /// The blend of the first parameters.size() parameters (all of them, or the leading ones).
   Blend blend(std::span<const float> parameters) const;
   /// Σₖ weightₖ · table[gridₖ · per_grid + index]: a table's entry blended over the grids.
