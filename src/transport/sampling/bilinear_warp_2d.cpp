@@ -150,11 +150,12 @@ std::array<float, 4> BilinearWarp2D::values_along_last(Vec2 p, std::span<const f
                                                       const std::array<float, 4>& last) const {
   assert(leading.size() + 1 == parameter_values_.size());
   const Blend b = blend(leading);
-  const auto [x, y, cell, s, t] = locate(p);
+  const Cell cell = locate(p);
   const size_t per_grid = size_t(width_) * size_t(height_), w = size_t(width_);
   // The grid g's bilinear value at p.
   const auto at = [&](size_t g) {
-    const float* v = values_.data() + g * per_grid + cell;
+    const float* v = values_.data() + g * per_grid + cell.index;
+    const float s = cell.s, t = cell.t;
     return (1.0f - t) * ((1.0f - s) * v[0] + s * v[1]) + t * ((1.0f - s) * v[w] + s * v[w + 1]);
   };
   const size_t stride = parameter_stride_.back();
