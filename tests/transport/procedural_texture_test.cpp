@@ -3,9 +3,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "spectral/error.h"
 #include "transport/textures/perlin_noise.h"
@@ -67,6 +71,33 @@ TEST_CASE("Perlin noise: pbrt-v4's values, zero on the lattice, bounded and cont
   // Non-finite points (a degenerate placement) give the lattice value rather than undefined integer conversions.
   CHECK(perlin_noise(Vec3{std::nanf(""), 0.0f, 0.0f}) == 0.0f);
   CHECK(perlin_noise(Vec3{1e30f, -1e30f, 3.5f}) == perlin_noise(Vec3{std::fmod(1e30f, float(1 << 30)), std::fmod(-1e30f, float(1 << 30)), 3.5f}));
+}
+
+TEST_CASE("Perlin noise, four lanes: every lane the scalar noise's bits, including the awkward points") {
+  // perlin_noise4 feeds the cloud medium, whose images must not change with it: compare bit patterns.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> near(-40.0f, 40.0f), wide(-3e9f, 3e9f);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 20000; ++i) points.push_back({near(rng), near(rng), near(rng)});
+  for (int i = 0; i < 400; ++i) points.push_back({wide(rng), near(rng), wide(rng)});  // beyond the 2³⁰ wrap
+  // Lattice points, their negative zero and half-way points, cells at the permutation's wrap (255 → 256).
+  for (float v : {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -0.5f, 255.0f, 255.999f, 256.0f, -256.5f, 1073741823.0f})
+    points.push_back({v, -v, 0.25f * v});
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  points.push_back({nan, 1.0f, 2.0f});
+  points.push_back({1.5f, inf, 2.0f});
+  points.push_back({1.5f, 2.5f, -inf});
+  while (points.size() % 4) points.push_back({0.3f, 0.7f, 0.1f});
+  size_t different = 0;
+  for (size_t i = 0; i < points.size(); i += 4) {
+    const Float4 x(points[i].x, points[i + 1].x, points[i + 2].x, points[i + 3].x);
+    const Float4 y(points[i].y, points[i + 1].y, points[i + 2].y, points[i + 3].y);
+    const Float4 z(points[i].z, points[i + 1].z, points[i + 2].z, points[i + 3].z);
+    const auto lanes = perlin_noise4(x, y, z).to_array();
+    for (size_t k = 0; k < 4; ++k)
+      if (std::bit_cast<uint32_t>(lanes[k]) != std::bit_cast<uint32_t>(perlin_noise(points[i + k]))) ++different;
+  }
+  CHECK(different == 0);
 }
 
 TEST_CASE("fbm, turbulence, windy: the octave sums of pbrt-v4's FBm and Turbulence at full resolution") {

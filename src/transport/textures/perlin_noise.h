@@ -1,6 +1,7 @@
 // Perlin's improved gradient noise (Perlin 2002) and the sums pbrt-v4's procedural textures build from it.
 #pragma once
 
+#include "spectral/wavelengths/lanes.h"
 #include "transport/geometry/vector.h"
 
 namespace rimu {
@@ -12,6 +13,10 @@ namespace rimu {
 /// 2³⁰ first (pbrt-v4's guard against int overflow). ~10 ns.
 float perlin_noise(Vec3 p);
 inline float perlin_noise(float x, float y, float z = 0.5f) { return perlin_noise(Vec3{x, y, z}); }
+/// The noise at four points at once, lane i at (x[i], y[i], z[i]): every lane bit for bit what perlin_noise gives
+/// (the same operations in the same order, on SSE lanes; the lattice hashes stay scalar lookups). For what needs
+/// several values at a time, like the cloud medium's gradients and octaves: about 2.5 scalar calls' cost for four.
+Float4 perlin_noise4(Float4 x, Float4 y, Float4 z);
 
 /// Fractional Brownian motion: Σᵢ ωⁱ·noise(λᵢ·p), λᵢ = 1.99ⁱ, i < octaves (pbrt-v4's FBm with every octave
 /// present: Rimu's procedural textures do not use the ray differentials to drop the octaves a pixel cannot resolve).
