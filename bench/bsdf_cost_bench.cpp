@@ -63,9 +63,12 @@ Bsdf make(int which) {
     case 6: return LayeredBsdf(kEta, TrowbridgeReitz(rough, rough), DiffuseBsdf(kBase), {0.5f, Float4(0.8f), 0.3f}, {10, 1});
     // pbrt-v4's default hair (β_m = β_n = 0.3, α = 2°, η = 1.55) with a brown σa, the fibre across the frame.
     case 7: return HairBsdf({0.6f, 0.8f}, 0.3f, Float4(0.55f, 0.95f, 1.8f, 2.4f), HairParameters{});
+    // The layered walk's parts alone: the rough coat (what every coat event costs) and a rough metal.
+    case 9: return DielectricBsdf(Float4(kEta), TrowbridgeReitz(rough, rough));
+    case 10: return metal;
     // A measured BRDF (pbrt-v4's `measured`) of the RGL file's size: gold α = 0.09 tabulated at 16 elevations,
     // 64 × 64 grids, 48 wavelengths (as rimu-make-measured-bsdf writes it).
-    default: {
+    case 8: {
       static const MeasuredBrdf brdf = [rough] {
         MicrofacetTabulation t = MicrofacetTabulation::conductor(conductor_ior(library, "gold"), rough);
         t.theta_i_count = 16;
@@ -74,13 +77,15 @@ Bsdf make(int which) {
       }();
       return MeasuredBsdf(&brdf, lambda.lambda_nm());
     }
+    default: return DiffuseBsdf(kBase);
   }
 }
 
 const char* const kNames[] = {"diffuse", "coated_diffuse closed form (clear)", "coated_diffuse closed form (thickness 0.01)",
                               "layered: smooth coat, diffuse, thickness 0.01", "layered: rough coat 0.3, diffuse, thickness 0.01",
                               "layered: rough coat 0.3, rough gold 0.3", "layered: rough coat 0.3, diffuse, scattering slab 0.5",
-                              "hair (pbrt-v4's defaults, brown)", "measured (GGX gold 0.09 tabulated, RGL layout)"};
+                              "hair (pbrt-v4's defaults, brown)", "measured (GGX gold 0.09 tabulated, RGL layout)",
+                              "rough dielectric 0.3 (eta 1.5)", "rough conductor 0.3 (gold)"};
 
 void BM_EvalPdf(benchmark::State& state) {
   const Bsdf bsdf = make(int(state.range(0)));
@@ -93,7 +98,7 @@ void BM_EvalPdf(benchmark::State& state) {
   }
   state.SetLabel(kNames[state.range(0)]);
 }
-BENCHMARK(BM_EvalPdf)->DenseRange(0, 8);
+BENCHMARK(BM_EvalPdf)->DenseRange(0, 10);
 
 void BM_Sample(benchmark::State& state) {
   const Bsdf bsdf = make(int(state.range(0)));
@@ -105,7 +110,7 @@ void BM_Sample(benchmark::State& state) {
   }
   state.SetLabel(kNames[state.range(0)]);
 }
-BENCHMARK(BM_Sample)->DenseRange(0, 8);
+BENCHMARK(BM_Sample)->DenseRange(0, 10);
 
 }  // namespace
 

@@ -46,9 +46,11 @@ std::optional<BsdfSample> ConductorBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 
   const Vec3 wi = reflect(wo, h);
   if (!(wi.z > 0.0f)) return std::nullopt;  // reflected below the horizon: this sample is lost (single scattering)
   const float wo_dot_h = dot(wo, h);
-  const float pdf = distribution_.visible_d(wo, h) / (4.0f * wo_dot_h);
-  if (!(pdf > 0.0f) || !std::isfinite(pdf)) return std::nullopt;
-  const float scale = distribution_.d(h) * distribution_.g2(wo, wi) / (4.0f * wo.z * wi.z);
+  // D and Λ(wo) once for both: D_wo(h) = G1(wo) (wo·h) D(h) / cos θo (TrowbridgeReitz::visible_d; h faces wo).
+  const float d = distribution_.d(h), lambda_o = distribution_.lambda(wo);
+  const float pdf = d / ((1.0f + lambda_o) * 4.0f * wo.z);
+  if (!(wo_dot_h > 0.0f) || !(pdf > 0.0f) || !std::isfinite(pdf)) return std::nullopt;
+  const float scale = d / ((1.0f + lambda_o + distribution_.lambda(wi)) * 4.0f * wo.z * wi.z);
   return BsdfSample{flip_z(wi, side), fresnel(wo_dot_h) * Float4(scale), Float4(pdf)};
 }
 

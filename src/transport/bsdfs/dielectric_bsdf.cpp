@@ -18,8 +18,9 @@ std::optional<Vec3> refract(Vec3 w, Vec3 n, float eta_ratio) {
   return -w / eta_ratio + (cos_i / eta_ratio - cos_t) * n;
 }
 
-void DielectricBsdf::eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, float& pdf) const {
+void DielectricBsdf::eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, float& pdf, float* pdf_reverse) const {
   f = pdf = 0.0f;
+  if (pdf_reverse) *pdf_reverse = 0.0f;
   const float cos_o = wo.z, cos_i = wi.z;
   if (cos_o == 0.0f || cos_i == 0.0f) return;
   const bool reflection = cos_o * cos_i > 0.0f;
@@ -34,33 +35,60 @@ void DielectricBsdf::eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, floa
   // A microfacet seen from its back by either direction contributes nothing (Walter et al. 2007, Eq. 20's χ⁺).
   if (wo_m * cos_o <= 0.0f || wi_m * cos_i <= 0.0f) return;
   const float fresnel = fresnel_dielectric(wo_m, eta);
-  const float d = distribution_.d(m), g = distribution_.g2(wo, wi);
-  const float visible = distribution_.visible_d(wo, m);
+  // D, Λ(wo) and Λ(wi) once each: G2 = 1/(1 + Λo + Λi), and the visible-normal density of m seen from wo,
+  // D_wo(m) = G1(wo) |wo·m| D(m) / |cos θo| with G1(wo) = 1/(1 + Λo) (TrowbridgeReitz::visible_d; m faces wo,
+  // checked above).
+  const float d = distribution_.d(m);
+  const float lambda_o = distribution_.lambda(wo), lambda_i = distribution_.lambda(wi);
+  const float g = 1.0f / (1.0f + lambda_o + lambda_i);
+  const float visible = std::fabs(wo_m) * d / ((1.0f + lambda_o) * std::fabs(cos_o));
+  // Seen from wi instead (pdf(wi, wo)): the same m, D and Fresnel factor (Snell's law holds at m, so F is the same
+  // from both sides), wi's visible normals, and for refraction the Jacobian's denominator (wo·m + wi·m η')², which
+  // is η'² times this one.
+  const float visible_from_i = std::fabs(wi_m) * d / ((1.0f + lambda_i) * std::fabs(cos_i));
+  float reverse = 0.0f;
   if (reflection) {
     f = d * g * fresnel / (4.0f * std::fabs(cos_o * cos_i));
     pdf = visible / (4.0f * std::fabs(wo_m)) * fresnel;
+    reverse = visible_from_i / (4.0f * std::fabs(wi_m)) * fresnel;
   } else {
     const float denom = (wi_m + wo_m / eta_ratio) * (wi_m + wo_m / eta_ratio);
     if (!(denom > 0.0f)) return;
     const float transmit = 1.0f - fresnel;
     f = transmit * d * g * std::fabs(wi_m * wo_m / (cos_i * cos_o * denom)) / (eta_ratio * eta_ratio);
     pdf = visible * std::fabs(wi_m) / denom * transmit;
+    reverse = visible_from_i * std::fabs(wo_m) / (denom * eta_ratio * eta_ratio) * transmit;
   }
-  if (!std::isfinite(f) || !std::isfinite(pdf)) f = pdf = 0.0f;
+  if (!std::isfinite(f) || !std::isfinite(pdf) || !std::isfinite(reverse)) f = pdf = reverse = 0.0f;
+  if (pdf_reverse) *pdf_reverse = reverse;
 }
 
-void DielectricBsdf::eval_rough(Vec3 wo, Vec3 wi, SampledSpectrum& f, SampledSpectrum& pdf) const {
+void DielectricBsdf::eval_rough(Vec3 wo, Vec3 wi, SampledSpectrum& f, SampledSpectrum& pdf,
+                                SampledSpectrum* pdf_reverse) const {
   if ((eta_ == Float4(eta_[0])).all()) {
-    float f0, pdf0;
-    eval_rough_lane(wo, wi, eta_[0], f0, pdf0);
+    float f0, pdf0, reverse0;
+    eval_rough_lane(wo, wi, eta_[0], f0, pdf0, pdf_reverse ? &reverse0 : nullptr);
     f = Float4(f0);
     pdf = Float4(pdf0);
+    if (pdf_reverse) *pdf_reverse = Float4(reverse0);
     return;
   }
-  alignas(16) float fs[4], pdfs[4];
-  for (int lane = 0; lane < kLaneCount; ++lane) eval_rough_lane(wo, wi, eta_[lane], fs[lane], pdfs[lane]);
+  alignas(16) float fs[4], pdfs[4], reverses[4];
+  for (int lane = 0; lane < kLaneCount; ++lane)
+    eval_rough_lane(wo, wi, eta_[lane], fs[lane], pdfs[lane], pdf_reverse ? &reverses[lane] : nullptr);
   f = Float4::load(fs);
   pdf = Float4::load(pdfs);
+  if (pdf_reverse) *pdf_reverse = Float4::load(reverses);
+}
+
+SampledSpectrum DielectricBsdf::eval_with_reverse_pdf(Vec3 wo, Vec3 wi, SampledSpectrum& pdf_reverse) const {
+  if ((diffuse_entry_ && (wo.z < 0.0f || wi.z < 0.0f)) || is_smooth()) {
+    pdf_reverse = pdf(wi, wo);
+    return eval(wo, wi);
+  }
+  SampledSpectrum f, pdf_forward;
+  eval_rough(wo, wi, f, pdf_forward, &pdf_reverse);
+  return f;
 }
 
 double DielectricBsdf::diffuse_entry_normalisation(double eta) {

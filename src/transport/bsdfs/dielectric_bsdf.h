@@ -62,6 +62,10 @@ class DielectricBsdf {
   SampledSpectrum eval(Vec3 wo, Vec3 wi) const;
   /// Per-lane solid-angle density of sample(): lane k as if λ_k were the hero; 0 for the smooth interface.
   SampledSpectrum pdf(Vec3 wo, Vec3 wi) const;
+  /// eval(wo, wi), and pdf(wi, wo) (the density of sampling wo from wi) in `pdf_reverse`, from one evaluation of
+  /// the shared microfacet terms: the half vector, D and G are the same both ways. For walks that leave through
+  /// the interface and weigh that against arriving from the other side (the layered BSDF).
+  SampledSpectrum eval_with_reverse_pdf(Vec3 wo, Vec3 wi, SampledSpectrum& pdf_reverse) const;
   /// Reflect if u_lobe < F(hero), else refract; `u` picks the microfacet normal (rough only). std::nullopt if
   /// wo.z = 0, or the sampled direction is invalid (rough: reflected through the surface, or on the horizon).
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
@@ -81,10 +85,10 @@ class DielectricBsdf {
   std::optional<BsdfSample> sample_inside_diffuse_entry(Vec3 wo, float u_lobe, Vec2 u) const;
   SampledSpectrum eval_inside_diffuse_entry(Vec3 wo, Vec3 wi) const;
   SampledSpectrum pdf_inside_diffuse_entry(Vec3 wo, Vec3 wi) const;
-  /// f and pdf of the rough interface for one lane's η.
-  void eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, float& pdf) const;
-  /// Both, per lane (each lane with its own η; computed once when all lanes share one η).
-  void eval_rough(Vec3 wo, Vec3 wi, SampledSpectrum& f, SampledSpectrum& pdf) const;
+  /// f and pdf of the rough interface for one lane's η, and pdf(wi, wo) if `pdf_reverse` is given.
+  void eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, float& pdf, float* pdf_reverse = nullptr) const;
+  /// The same per lane (each lane with its own η; computed once when all lanes share one η).
+  void eval_rough(Vec3 wo, Vec3 wi, SampledSpectrum& f, SampledSpectrum& pdf, SampledSpectrum* pdf_reverse = nullptr) const;
 
   SampledSpectrum eta_;
   TrowbridgeReitz distribution_;

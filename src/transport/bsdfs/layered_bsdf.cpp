@@ -159,9 +159,10 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
           z = zp;
           if (w.z > 0.0f && !top_smooth_) {
             // Leaving through the rough coat towards wi; MIS against the companion's density of this direction.
-            const SampledSpectrum f_exit = top_.eval(-w, wi);
+            SampledSpectrum companion_pdf;
+            const SampledSpectrum f_exit = top_.eval_with_reverse_pdf(-w, wi, companion_pdf);
             if (max_lane(f_exit) > 0.0f) {
-              const float weight_exit = power_heuristic(ps.pdf_solid_angle, top_.pdf(wi, -w)[0]);
+              const float weight_exit = power_heuristic(ps.pdf_solid_angle, companion_pdf[0]);
               f += beta * Float4(transmittance(zp - thickness, w) * weight_exit) * f_exit;
             }
           }
@@ -197,9 +198,10 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
       beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
       w = bs->wi;
       if (!top_smooth_) {
-        const SampledSpectrum f_exit = top_.eval(-w, wi);
+        SampledSpectrum companion_pdf;
+        const SampledSpectrum f_exit = top_.eval_with_reverse_pdf(-w, wi, companion_pdf);
         if (max_lane(f_exit) > 0.0f) {
-          const float weight = base_specular ? 1.0f : power_heuristic(bs->pdf[0], top_.pdf(wi, -w)[0]);
+          const float weight = base_specular ? 1.0f : power_heuristic(bs->pdf[0], companion_pdf[0]);
           f += beta * Float4(transmittance(thickness, w) * weight) * f_exit;
         }
       }

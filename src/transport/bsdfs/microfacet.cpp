@@ -41,22 +41,16 @@ Vec3 TrowbridgeReitz::sample_visible(Vec3 w, Vec2 u) const {
   const Vec3 wu = w * flip;  // upper-hemisphere copy; D is symmetric under z → −z
   // 1. Stretch: the view direction in the configuration where the surface has α = 1.
   const Vec3 vh = normalize(Vec3(alpha_x_ * wu.x, alpha_y_ * wu.y, wu.z));
-  // 2. An orthonormal basis around vh (T1 horizontal; any T1 works at normal incidence).
-  const float len2 = vh.x * vh.x + vh.y * vh.y;
-  const Vec3 t1 = len2 > 0.0f ? Vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : Vec3(1.0f, 0.0f, 0.0f);
-  const Vec3 t2 = cross(vh, t1);
-  // 3. A uniform point on the unit disk, then squeeze the half of the disk that the projected hemisphere
-  //    covers only partly: the visible projected area of a unit hemisphere seen from vh is the half-disk plus
-  //    a half-ellipse of minor radius vh.z.
-  const float r = std::sqrt(u.x);
-  const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
-  const float p1 = r * std::cos(phi);
-  float p2 = r * std::sin(phi);
-  const float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * std::sqrt(std::fmax(0.0f, 1.0f - p1 * p1)) + s * p2;
-  // 4. Lift the disk point onto the hemisphere around vh.
-  const Vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::fmax(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-  // 5. Unstretch the normal back to the α configuration (normals transform with the inverse transpose).
+  // 2. In that configuration the visible normals are the normalised sums vh + c, with c uniform on the spherical
+  //    cap of the unit sphere above the plane z = −vh.z (Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with
+  //    Spherical Caps", Eq. 8): no basis around vh is needed. z of c is uniform in (−vh.z, 1], its azimuth in
+  //    [0, 2π).
+  const float z = (1.0f - u.y) * (1.0f + vh.z) - vh.z;
+  const float sin_theta = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * std::numbers::pi_v<float> * u.x;
+  const Vec3 nh(sin_theta * std::cos(phi) + vh.x, sin_theta * std::sin(phi) + vh.y, z + vh.z);
+  // 3. Unstretch the (unnormalised) normal back to the α configuration (normals transform with the inverse
+  //    transpose) and normalise once. nh.z = (1 − u.y)(1 + vh.z) > 0 for u.y < 1; the floor keeps m off the horizon.
   const Vec3 m = normalize(Vec3(alpha_x_ * nh.x, alpha_y_ * nh.y, std::fmax(1e-7f, nh.z)));
   return m * flip;
 }

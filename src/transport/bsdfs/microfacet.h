@@ -46,10 +46,12 @@ class TrowbridgeReitz {
   /// Density of visible normals seen from w, per steradian of m (Heitz 2018, Eq. 1):
   ///     D_w(m) = G1(w) |w·m| D(m) / |cos θw|,   zero when m faces away from w.
   float visible_d(Vec3 w, Vec3 m) const;
-  /// A microfacet normal distributed as D_w (Heitz 2018, "Sampling the GGX Distribution of Visible Normals",
-  /// JCGT 7(4), Listing 1, implemented from the paper's description): stretch w to the α = 1 configuration,
-  /// sample the projected hemisphere of a unit sphere, unstretch. The result lies in w's hemisphere
-  /// (m.z has the sign of w.z, or +z when w.z = 0). `u` in [0,1)².
+  /// A microfacet normal distributed as D_w: stretch w to the α = 1 configuration (Heitz 2018, "Sampling the GGX
+  /// Distribution of Visible Normals", JCGT 7(4)), where the visible normals are w plus a uniform point of a
+  /// spherical cap (Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps", implemented from the
+  /// paper's description; the same density as Heitz's projected-disk mapping, with no basis around w and two
+  /// square roots fewer), unstretch. The result lies in w's hemisphere (m.z has the sign of w.z, or +z when
+  /// w.z = 0). `u` in [0,1)².
   Vec3 sample_visible(Vec3 w, Vec2 u) const;
 
  private:
