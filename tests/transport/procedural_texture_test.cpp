@@ -98,6 +98,23 @@ TEST_CASE("Perlin noise, four lanes: every lane the scalar noise's bits, includi
       if (std::bit_cast<uint32_t>(lanes[k]) != std::bit_cast<uint32_t>(perlin_noise(points[i + k]))) ++different;
   }
   CHECK(different == 0);
+  // fbm and turbulence take their octaves four at a time: the same bits as the plain scalar sums.
+  size_t sums_different = 0;
+  for (size_t i = 0; i < 2000; ++i) {
+    const Vec3 p = points[i];
+    for (const int octaves : {0, 1, 3, 4, 5, 8, 30}) {
+      const float omega = 0.3f + 0.1f * float(octaves % 5);
+      float sum = 0.0f, abs_sum = 0.0f, frequency = 1.0f, weight = 1.0f;
+      for (int k = 0; k < octaves; ++k, frequency *= 1.99f, weight *= omega) {
+        sum += weight * perlin_noise(p * frequency);
+        abs_sum += weight * std::fabs(perlin_noise(p * frequency));
+      }
+      abs_sum += weight * 0.2f;
+      sums_different += std::bit_cast<uint32_t>(fbm(p, omega, octaves)) != std::bit_cast<uint32_t>(sum);
+      sums_different += std::bit_cast<uint32_t>(turbulence(p, omega, octaves)) != std::bit_cast<uint32_t>(abs_sum);
+    }
+  }
+  CHECK(sums_different == 0);
 }
 
 TEST_CASE("fbm, turbulence, windy: the octave sums of pbrt-v4's FBm and Turbulence at full resolution") {

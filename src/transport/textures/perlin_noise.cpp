@@ -1,5 +1,6 @@
 #include "transport/textures/perlin_noise.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -141,21 +142,45 @@ Float4 perlin_noise4(Float4 x, Float4 y, Float4 z) {
   return lerp4(wz, y0, y1);
 }
 
+namespace {
+
+// noise(1.99ⁱ p) for i < octaves into `values`, four octaves per perlin_noise4 call (each value bit for bit the
+// scalar call's: the frequencies are the same running products). At most kMaxOctaves; returns how many were written.
+constexpr int kMaxOctaves = 32;
+int octave_noise(Vec3 p, int octaves, float* values) {
+  octaves = std::clamp(octaves, 0, kMaxOctaves);
+  alignas(16) float frequencies[kMaxOctaves + 3];
+  float frequency = 1.0f;
+  for (int i = 0; i < octaves; ++i, frequency *= 1.99f) frequencies[i] = frequency;
+  int i = 0;
+  for (; i + 4 <= octaves; i += 4) {
+    const Float4 f = Float4::load(frequencies + i);
+    const auto n = perlin_noise4(Float4(p.x) * f, Float4(p.y) * f, Float4(p.z) * f).to_array();
+    for (int k = 0; k < 4; ++k) values[i + k] = n[size_t(k)];
+  }
+  for (; i < octaves; ++i) values[i] = perlin_noise(p * frequencies[i]);
+  return octaves;
+}
+
+}  // namespace
+
 float fbm(Vec3 p, float omega, int octaves) {
-  float sum = 0.0f, frequency = 1.0f, weight = 1.0f;
-  for (int i = 0; i < octaves; ++i) {
-    sum += weight * perlin_noise(p * frequency);
-    frequency *= 1.99f;
+  float values[kMaxOctaves];
+  const int n = octave_noise(p, octaves, values);
+  float sum = 0.0f, weight = 1.0f;
+  for (int i = 0; i < n; ++i) {
+    sum += weight * values[i];
     weight *= omega;
   }
   return sum;
 }
 
 float turbulence(Vec3 p, float omega, int octaves) {
-  float sum = 0.0f, frequency = 1.0f, weight = 1.0f;
-  for (int i = 0; i < octaves; ++i) {
-    sum += weight * std::fabs(perlin_noise(p * frequency));
-    frequency *= 1.99f;
+  float values[kMaxOctaves];
+  const int n = octave_noise(p, octaves, values);
+  float sum = 0.0f, weight = 1.0f;
+  for (int i = 0; i < n; ++i) {
+    sum += weight * std::fabs(values[i]);
     weight *= omega;
   }
   return sum + weight * 0.2f;
