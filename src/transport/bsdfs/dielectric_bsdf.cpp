@@ -41,23 +41,23 @@ void DielectricBsdf::eval_rough_lane(Vec3 wo, Vec3 wi, float eta, float& f, floa
   const float d = distribution_.d(m);
   const float lambda_o = distribution_.lambda(wo), lambda_i = distribution_.lambda(wi);
   const float g = 1.0f / (1.0f + lambda_o + lambda_i);
-  const float visible = std::fabs(wo_m) * d / ((1.0f + lambda_o) * std::fabs(cos_o));
-  // Seen from wi instead (pdf(wi, wo)): the same m, D and Fresnel factor (Snell's law holds at m, so F is the same
-  // from both sides), wi's visible normals, and for refraction the Jacobian's denominator (wo·m + wi·m η')², which
-  // is η'² times this one.
-  const float visible_from_i = std::fabs(wi_m) * d / ((1.0f + lambda_i) * std::fabs(cos_i));
+  const float visible = TrowbridgeReitz::visible_d(d, lambda_o, wo_m, cos_o);
+  // Seen from wi instead (pdf(wi, wo), only when asked): the same m, D and Fresnel factor (Snell's law holds at m,
+  // so F is the same from both sides), wi's visible normals, and for refraction the Jacobian's denominator
+  // (wo·m + wi·m η')², which is η'² times this one.
+  const float visible_from_i = pdf_reverse ? TrowbridgeReitz::visible_d(d, lambda_i, wi_m, cos_i) : 0.0f;
   float reverse = 0.0f;
   if (reflection) {
     f = d * g * fresnel / (4.0f * std::fabs(cos_o * cos_i));
     pdf = visible / (4.0f * std::fabs(wo_m)) * fresnel;
-    reverse = visible_from_i / (4.0f * std::fabs(wi_m)) * fresnel;
+    if (pdf_reverse) reverse = visible_from_i / (4.0f * std::fabs(wi_m)) * fresnel;
   } else {
     const float denom = (wi_m + wo_m / eta_ratio) * (wi_m + wo_m / eta_ratio);
     if (!(denom > 0.0f)) return;
     const float transmit = 1.0f - fresnel;
     f = transmit * d * g * std::fabs(wi_m * wo_m / (cos_i * cos_o * denom)) / (eta_ratio * eta_ratio);
     pdf = visible * std::fabs(wi_m) / denom * transmit;
-    reverse = visible_from_i * std::fabs(wo_m) / (denom * eta_ratio * eta_ratio) * transmit;
+    if (pdf_reverse) reverse = visible_from_i * std::fabs(wo_m) / (denom * eta_ratio * eta_ratio) * transmit;
   }
   if (!std::isfinite(f) || !std::isfinite(pdf) || !std::isfinite(reverse)) f = pdf = reverse = 0.0f;
   if (pdf_reverse) *pdf_reverse = reverse;

@@ -33,7 +33,7 @@ float TrowbridgeReitz::visible_d(Vec3 w, Vec3 m) const {
   // to the same side of the macro surface by the caller's convention, so compare signs of the z components too.
   const float w_dot_m = dot(w, m) * (w.z < 0.0f ? -1.0f : 1.0f) * (m.z < 0.0f ? -1.0f : 1.0f);
   if (cos_w == 0.0f || w_dot_m <= 0.0f) return 0.0f;
-  return g1(w) * w_dot_m * d(m) / cos_w;
+  return visible_d(d(m), lambda(w), w_dot_m, cos_w);
 }
 
 Vec3 TrowbridgeReitz::sample_visible(Vec3 w, Vec2 u) const {

@@ -4,6 +4,8 @@
 // z → −z, so D, Λ and G depend only on |cos θ|; a direction below the surface is treated as its mirror image.
 #pragma once
 
+#include <cmath>
+
 #include "transport/geometry/vector.h"
 
 namespace rimu {
@@ -46,6 +48,11 @@ class TrowbridgeReitz {
   /// Density of visible normals seen from w, per steradian of m (Heitz 2018, Eq. 1):
   ///     D_w(m) = G1(w) |w·m| D(m) / |cos θw|,   zero when m faces away from w.
   float visible_d(Vec3 w, Vec3 m) const;
+  /// The same from D(m) and Λ(w) already at hand (m facing w): |w·m| D(m) / ((1 + Λ(w)) |cos θw|). For BSDFs that
+  /// need D and Λ for G2 as well.
+  static float visible_d(float d_m, float lambda_w, float w_dot_m, float cos_w) {
+    return std::fabs(w_dot_m) * d_m / ((1.0f + lambda_w) * std::fabs(cos_w));
+  }
   /// A microfacet normal distributed as D_w: stretch w to the α = 1 configuration (Heitz 2018, "Sampling the GGX
   /// Distribution of Visible Normals", JCGT 7(4)), where the visible normals are w plus a uniform point of a
   /// spherical cap (Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps", implemented from the

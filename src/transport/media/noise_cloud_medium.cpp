@@ -40,16 +40,11 @@ float NoiseCloudMedium::density_in_medium(Vec3 p) const {
     float step = 0.05f * shape_.wispiness, frequency = 10.0f;
     for (int i = 0; i < 2; ++i, step *= 0.5f, frequency *= 1.99f) q = q + noise_gradient(q * frequency) * step;
   }
-  // Five octaves at frequencies 1.99ⁱ: the first four in one perlin_noise4 call, the fifth alone; summed in the
-  // octaves' order.
-  alignas(16) float frequencies[5];
-  float frequency = 1.0f;
-  for (float& f : frequencies) f = frequency, frequency *= 1.99f;
-  const Float4 f4 = Float4::load(frequencies);
-  const auto octaves = perlin_noise4(Float4(q.x) * f4, Float4(q.y) * f4, Float4(q.z) * f4).to_array();
+  // Five octaves at frequencies 1.99ⁱ, weighted 2⁻⁽ⁱ⁺¹⁾ and summed in the octaves' order.
+  float octaves[5];
+  perlin_octaves(q, 5, octaves);
   float sum = 0.0f, weight = 0.5f;
-  for (int i = 0; i < 4; ++i, weight *= 0.5f) sum += weight * octaves[size_t(i)];
-  sum += weight * perlin_noise(q * frequencies[4]);
+  for (int i = 0; i < 5; ++i, weight *= 0.5f) sum += weight * octaves[i];
   const float thinning = std::clamp((1.0f - p.y) * 4.5f * shape_.density * sum, 0.0f, 1.0f);
   return std::clamp(thinning + 2.0f * std::max(0.0f, 0.5f - p.y), 0.0f, 1.0f);
 }

@@ -7,6 +7,9 @@
 namespace rimu {
 namespace {
 
+// pbrt-v4 takes coordinates modulo 2³⁰ (its guard against int overflow); below that fmod is the identity.
+constexpr float kWrap = float(1 << 30);
+
 // Ken Perlin's permutation of 0-255 (the reference implementation of "Improving Noise", SIGGRAPH 2002), repeated
 // once so that p[p[p[x] + y] + z] never needs a wrap (x, y, z ≤ 256).
 constexpr std::array<unsigned char, 256> kPermutation = {
@@ -76,7 +79,6 @@ Float4 lerp4(Float4 t, Float4 a, Float4 b) { return (Float4(1.0f) - t) * a + t *
 }  // namespace
 
 float perlin_noise(Vec3 p) {
-  constexpr float kWrap = float(1 << 30);
   // A non-finite coordinate (a degenerate transform) has no lattice cell; 0 is the lattice value.
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0.0f;
   // fmod by 2³⁰ is the identity below 2³⁰ in magnitude, and a library call (tens of ns) that cost more than the
@@ -101,7 +103,6 @@ float perlin_noise(Vec3 p) {
 }
 
 Float4 perlin_noise4(Float4 x, Float4 y, Float4 z) {
-  constexpr float kWrap = float(1 << 30);
   // Below 2³⁰ in magnitude fmod by 2³⁰ is the identity; a lane beyond it, or not finite, takes the scalar path
   // (never in practice: the cloud's and the textures' points are a few hundred units at most).
   if (!(max(max(abs(x), abs(y)), abs(z)) < Float4(kWrap)).all())
@@ -142,14 +143,9 @@ Float4 perlin_noise4(Float4 x, Float4 y, Float4 z) {
   return lerp4(wz, y0, y1);
 }
 
-namespace {
-
-// noise(1.99ⁱ p) for i < octaves into `values`, four octaves per perlin_noise4 call (each value bit for bit the
-// scalar call's: the frequencies are the same running products). At most kMaxOctaves; returns how many were written.
-constexpr int kMaxOctaves = 32;
-int octave_noise(Vec3 p, int octaves, float* values) {
-  octaves = std::clamp(octaves, 0, kMaxOctaves);
-  alignas(16) float frequencies[kMaxOctaves + 3];
+int perlin_octaves(Vec3 p, int octaves, float* values) {
+  octaves = std::clamp(octaves, 0, kMaxNoiseOctaves);
+  alignas(16) float frequencies[kMaxNoiseOctaves];
   float frequency = 1.0f;
   for (int i = 0; i < octaves; ++i, frequency *= 1.99f) frequencies[i] = frequency;
   int i = 0;
@@ -162,11 +158,9 @@ int octave_noise(Vec3 p, int octaves, float* values) {
   return octaves;
 }
 
-}  // namespace
-
 float fbm(Vec3 p, float omega, int octaves) {
-  float values[kMaxOctaves];
-  const int n = octave_noise(p, octaves, values);
+  float values[kMaxNoiseOctaves];
+  const int n = perlin_octaves(p, octaves, values);
   float sum = 0.0f, weight = 1.0f;
   for (int i = 0; i < n; ++i) {
     sum += weight * values[i];
@@ -176,8 +170,8 @@ float fbm(Vec3 p, float omega, int octaves) {
 }
 
 float turbulence(Vec3 p, float omega, int octaves) {
-  float values[kMaxOctaves];
-  const int n = octave_noise(p, octaves, values);
+  float values[kMaxNoiseOctaves];
+  const int n = perlin_octaves(p, octaves, values);
   float sum = 0.0f, weight = 1.0f;
   for (int i = 0; i < n; ++i) {
     sum += weight * std::fabs(values[i]);

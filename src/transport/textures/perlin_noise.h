@@ -18,6 +18,12 @@ inline float perlin_noise(float x, float y, float z = 0.5f) { return perlin_nois
 /// several values at a time, like the cloud medium's gradients and octaves: about 2.5 scalar calls' cost for four.
 Float4 perlin_noise4(Float4 x, Float4 y, Float4 z);
 
+/// The most octaves perlin_octaves, fbm and turbulence evaluate (the textures allow 30).
+inline constexpr int kMaxNoiseOctaves = 32;
+/// noise(1.99ⁱ·p) for i < octaves (at most kMaxNoiseOctaves) into `values`, four octaves per perlin_noise4 call:
+/// each value bit for bit perlin_noise(p·1.99ⁱ), the frequency being the same running product. Returns the count.
+int perlin_octaves(Vec3 p, int octaves, float* values);
+
 /// Fractional Brownian motion: Σᵢ ωⁱ·noise(λᵢ·p), λᵢ = 1.99ⁱ, i < octaves (pbrt-v4's FBm with every octave
 /// present: Rimu's procedural textures do not use the ray differentials to drop the octaves a pixel cannot resolve).
 float fbm(Vec3 p, float omega, int octaves);
