@@ -121,6 +121,27 @@ TEST_CASE("environment image sampling matches pdf_li, by chi-square over image c
   }
 }
 
+TEST_CASE("environment image: a deferred sample is sample_li's, its radiance filled in by resolve_radiance") {
+  const EnvironmentLight env(test_image(), 2.0, Frame::from_normal(normalize({0.3f, 1.0f, -0.4f})));
+  std::mt19937 rng(8);
+  for (int s = 0; s < 2000; ++s) {
+    const Vec2 u{test::uniform01(rng), test::uniform01(rng)};
+    const auto full = env.sample_li({}, kLambda, u);
+    auto deferred = env.sample_part_li_deferred(0, {}, kLambda, u);
+    REQUIRE(full);
+    REQUIRE(deferred);
+    CHECK_FALSE(full->radiance_pending);
+    CHECK(deferred->radiance_pending);
+    CHECK(deferred->wi == full->wi);
+    CHECK(deferred->pdf_solid_angle == full->pdf_solid_angle);
+    env.resolve_radiance(*deferred, kLambda);
+    CHECK_FALSE(deferred->radiance_pending);
+    for (int k = 0; k < 4; ++k) CHECK(deferred->radiance[k] == full->radiance[k]);
+    env.resolve_radiance(*deferred, kLambda);  // a resolved sample is left as it is
+    CHECK(deferred->radiance[0] == full->radiance[0]);
+  }
+}
+
 TEST_CASE("environment image irradiance by light sampling matches quadrature") {
   // The quadrature (1024 × 512 midpoints; the image is piecewise constant, so its error is the pixel edges',
   // ~1e-3 relative) against the Monte Carlo estimate within kMonteCarloSigmas standard errors plus that 1e-3.

@@ -129,4 +129,35 @@ TEST_CASE("grid medium: ratio-tracking transmittance through a placed trilinear 
   CHECK(std::fabs(voxel_expected - expected) > 20.0 * standard_error);
 }
 
+TEST_CASE("grid medium: ratio tracking's Russian roulette ends deep walks early and keeps the mean exp(-tau)") {
+  // The voxel grid above, unplaced, with σ_t = 5.6 per unit density (σ_a 2.1, σ_s 3.5). Along x at y = 0.5,
+  // z = 1.5 the voxels hold 1.1, 0.3, 0.7; the segment x in [−1, 1.5] crosses the first and half the second:
+  // τ = 5.6 · (1.1 + 0.5 · 0.3) = 7.0, T = 9.1e-4, deep in the roulette's range (below 0.1).
+  const SpectrumPtr sigma_a = std::make_shared<ConstantSpectrum>(2.1), sigma_s = std::make_shared<ConstantSpectrum>(3.5);
+  const Medium medium(GridMedium(3, 2, 2, kDensity, {0, 0, 0}, {3, 2, 2}, sigma_a, sigma_s, 0.0f,
+                                 GridInterpolation::voxel, std::nullopt));
+  const Ray ray{{-1.0f, 0.5f, 1.5f}, {1.0f, 0.0f, 0.0f}};
+  const double expected = std::exp(-5.6 * (1.1 + 0.5 * 0.3));
+  const test::TransmittanceStatistics s = test::transmittance_statistics(medium, ray, 2.5f, 400000);
+  CAPTURE(s.mean);
+  CAPTURE(expected);
+  CAPTURE(s.standard_error);
+  CHECK(std::fabs(s.mean - expected) <= 4.5 * s.standard_error);
+  CHECK(s.standard_error < 0.05 * expected);  // the check above means something
+  // No voxel reaches its block's majorant (1.8) along this ray, so without the roulette no estimate is exactly 0;
+  // with it, a walk that reaches T̂ < 0.1 survives with probability T̂/0.1, and most estimates are 0.
+  const SampledWavelengths lambda(Float4(450.0f, 520.0f, 600.0f, 680.0f), Float4(1.0f));
+  IndependentSampler sampler(3);
+  sampler.start_pixel_sample(0, 0, 0);
+  int zeros = 0;
+  const int count = 20000;
+  for (int i = 0; i < count; ++i) {
+    SampledSpectrum throughput = Float4(1.0f);
+    const SegmentTransmittance t =
+        estimate_transmittance(medium, ray, 2.5f, lambda, DistanceSampling::spectral_mis, sampler, throughput);
+    if (t.transmittance[0] == 0.0f) ++zeros;
+  }
+  CHECK(zeros > count / 2);
+}
+
 }  // namespace rimu

@@ -16,6 +16,8 @@ namespace rimu {
 /// The light a vertex's next-event estimation samples, and the factor its contribution is multiplied by.
 struct ChosenLight {
   LightChoice pick;
+  /// Its radiance may be pending where the light was not resampled (Light::sample_part_li_deferred): call the
+  /// light's resolve_radiance once the shadow ray has passed.
   LightSample sample;
   /// The BSDF towards the light times |cos θi|, per lane (never all zero).
   SampledSpectrum f_cos;
@@ -55,9 +57,13 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
                                         const LightSamplingPoint& at, const LightReference& reference,
                                         const SampledWavelengths& lambda, int candidates, float u_choice, Vec2 u_light,
                                         const FCosTowards& f_cos_towards, const LightWeight& light_weight) {
-  auto candidate_of = [&](const std::optional<LightChoice>& pick, Vec2 u_l) -> std::optional<ChosenLight> {
+  // Resampling reads each candidate's radiance; the light sampler's own choice leaves it to after the shadow ray.
+  auto candidate_of = [&](const std::optional<LightChoice>& pick, Vec2 u_l,
+                          bool defer_radiance = false) -> std::optional<ChosenLight> {
     if (!pick) return std::nullopt;
-    const auto ls = lights[size_t(pick->light)]->sample_part_li(pick->part, reference, lambda, u_l);
+    const Light& light = *lights[size_t(pick->light)];
+    const auto ls = defer_radiance ? light.sample_part_li_deferred(pick->part, reference, lambda, u_l)
+                                   : light.sample_part_li(pick->part, reference, lambda, u_l);
     if (!ls) return std::nullopt;
     const float density = pick->probability * ls->pdf_solid_angle;
     if (!(density > 0.0f)) return std::nullopt;
@@ -66,12 +72,12 @@ std::optional<ChosenLight> choose_light(const LightSampler& light_sampler, const
     return ChosenLight{*pick, *ls, f_cos, 1.0f};
   };
   const std::optional<LightChoice> first = light_sampler.sample(at, u_choice);
-  if (candidates <= 1) return candidate_of(first, u_light);
+  if (candidates <= 1) return candidate_of(first, u_light, true);
   // Where the sampler has one light to give (a scene lit by an environment alone, or a point where every other
   // light is culled), every candidate would be that light: resampling would only choose among its directions, which
   // an environment's own importance sampling and MIS already serve (docs/benchmarks.md, "Glossy vertices").
   // A probability of 1 is a property of the point, not of the draw, so skipping here keeps the estimate unbiased.
-  if (first && first->probability >= 1.0f) return candidate_of(first, u_light);
+  if (first && first->probability >= 1.0f) return candidate_of(first, u_light, true);
 
   auto bits_of = [](float v) {
     uint32_t b;

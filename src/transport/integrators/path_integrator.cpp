@@ -299,7 +299,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
       if (const auto chosen = choose_light(light_sampler, lights, sampling_point, reference, lambda, candidates,
                                            u_light_choice, u_light, f_cos_towards, light_weight)) {
         const Light& light = *lights[size_t(chosen->pick.light)];
-        const LightSample& ls = chosen->sample;
+        LightSample ls = chosen->sample;
         Ray shadow;
         shadow.time = ray.time;
         shadow.origin = offset_ray_origin(*hit, ls.wi, scene_.scene_scale);
@@ -323,6 +323,7 @@ SampledSpectrum trace_path(const TransportScene& scene_, const PathIntegratorSet
           const float s_daylit = daylit_density(ls, chosen->pick.light);
           const float weight = chosen->density_scale * (b_light / s_light) * b_light /
                                (b_light * b_light + s_bsdf * s_bsdf + s_daylit * s_daylit);
+          light.resolve_radiance(ls, lambda);  // pending until the shadow ray passed
           contribute(beta * chosen->f_cos * passage->transmittance * ls.radiance * Float4(kLanes * weight), light);
         }
       }

@@ -436,7 +436,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
           density_scale = chosen->density_scale;
         }
       } else if ((pick = light_sampler.sample(sampling_point, u_light_choice))) {
-        ls = lights[size_t(pick->light)]->sample_part_li(pick->part, reference, lambda, u_light);
+        ls = lights[size_t(pick->light)]->sample_part_li_deferred(pick->part, reference, lambda, u_light);
       }
       if (pick && ls) {
         const Light& light = *lights[size_t(pick->light)];
@@ -480,6 +480,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
                                                     ratios_before_flight, lambda,
                                                     pick->probability, light_sampler.pmf(equiangular_choice_point(*equiangular),
                                                                                          pick->light, pick->part));
+            light.resolve_radiance(*ls, lambda);  // pending until the shadow ray passed
             contribute(beta * f * tr->transmittance * ls->radiance * Float4(kLanes * weight), light.light_group());
           }
         }

@@ -109,6 +109,25 @@ float EnvironmentLight::pdf_li(const LightReference& ref, Vec3 wi, const Surface
 
 std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                                        Vec2 u) const {
+  std::optional<LightSample> s = sample_direction(ref, u);
+  if (s) s->radiance = radiance_escaped(s->wi, lambda);
+  return s;
+}
+
+std::optional<LightSample> EnvironmentLight::sample_part_li_deferred(int, const LightReference& ref,
+                                                                     const SampledWavelengths&, Vec2 u) const {
+  std::optional<LightSample> s = sample_direction(ref, u);
+  if (s) s->radiance_pending = true;
+  return s;
+}
+
+void EnvironmentLight::resolve_radiance(LightSample& sample, const SampledWavelengths& lambda) const {
+  if (!sample.radiance_pending) return;
+  sample.radiance = radiance_escaped(sample.wi, lambda);
+  sample.radiance_pending = false;
+}
+
+std::optional<LightSample> EnvironmentLight::sample_direction(const LightReference& ref, Vec2 u) const {
   if (!(mean_radiance_integral_ > 0.0) || !sampled_by_nee()) return std::nullopt;
   LightSample s;
   if (!portals_.empty()) {
@@ -127,7 +146,6 @@ std::optional<LightSample> EnvironmentLight::sample_li(const LightReference& ref
     s.pdf_solid_angle = pdf_li(ref, s.wi);
     if (s.pdf_solid_angle == 0.0f) return std::nullopt;
   }
-  s.radiance = radiance_escaped(s.wi, lambda);
   return s;
 }
 

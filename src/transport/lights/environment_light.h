@@ -93,6 +93,10 @@ class EnvironmentLight final : public Light {
   /// A direction through the portals (if any), else by luminance (image) or uniform on the sphere; distance ∞.
   std::optional<LightSample> sample_li(const LightReference& ref, const SampledWavelengths& lambda,
                                        Vec2 u) const override;
+  /// sample_li's sample with its radiance pending (the environment is one part).
+  std::optional<LightSample> sample_part_li_deferred(int part, const LightReference& ref,
+                                                     const SampledWavelengths& lambda, Vec2 u) const override;
+  void resolve_radiance(LightSample& sample, const SampledWavelengths& lambda) const override;
   /// p_ω(wi); `hit` is ignored.
   float pdf_li(const LightReference& ref, Vec3 wi, const SurfaceHit* hit = nullptr) const override;
   /// The radiance arriving from direction `direction` (nearest pixel, × scale).
@@ -118,6 +122,8 @@ class EnvironmentLight final : public Light {
 
  private:
   float solid_angle_pdf(Vec3 local_direction) const;
+  /// sample_li's direction, density and distance, without the radiance.
+  std::optional<LightSample> sample_direction(const LightReference& ref, Vec2 u) const;
   SampledSpectrum lookup(Vec2 uv, const SampledWavelengths& lambda) const;
 
   std::shared_ptr<const RadianceImage> image_;  // null for a constant environment

@@ -126,6 +126,19 @@ class Light {
   /// Part −1 is the whole light (sample_li, pdf_li), for samplers that choose whole lights.
   virtual std::optional<LightSample> sample_part_li(int part, const LightReference& ref,
                                                     const SampledWavelengths& lambda, Vec2 u) const;
+  /// sample_part_li with the same direction, density and distance from the same numbers, but a light whose
+  /// radiance costs more than its direction may leave `radiance` unevaluated (radiance_pending set): for callers
+  /// that trace the shadow ray first and call resolve_radiance only for samples that pass. Why: an environment
+  /// image's radiance is a random texel upsampled from RGB to four wavelengths; in a dense cloud 60 % of the shadow
+  /// rays from its scattering points end in the cloud (docs/benchmarks.md, "pbrt-v3 scenes", cloud's second
+  /// round). Lights whose radiance comes with their sampling return sample_part_li's sample.
+  virtual std::optional<LightSample> sample_part_li_deferred(int part, const LightReference& ref,
+                                                             const SampledWavelengths& lambda, Vec2 u) const {
+    return sample_part_li(part, ref, lambda, u);
+  }
+  /// Evaluates the radiance of a sample this light left pending (sample_part_li_deferred) for the same `lambda`;
+  /// does nothing to a sample whose radiance is there.
+  virtual void resolve_radiance(LightSample& /*sample*/, const SampledWavelengths& /*lambda*/) const {}
   /// The density sample_part_li(part, ref, ...) has for wi (0 where it would return std::nullopt).
   virtual float pdf_part_li(int part, const LightReference& ref, Vec3 wi, const SurfaceHit* hit = nullptr) const;
   /// Where the part can emit, for the light BVH (light_bounds.h); std::nullopt for lights at infinity (except an

@@ -28,6 +28,8 @@ struct LightSample {
   /// The light's geometric normal at the sampled point, for lights with a surface there (area lights); zero
   /// otherwise. Shadow rays stop short of that surface along it (shadow_segment in path_integrator.h).
   Vec3 normal{};
+  /// Set by Light::sample_part_li_deferred when `radiance` is not evaluated yet: Light::resolve_radiance fills it in.
+  bool radiance_pending = false;
 };
 
 /// Where a light is being sampled from.

@@ -44,6 +44,9 @@ void for_each_majorant(const Medium& medium, const Ray& ray, float t_max, const 
   });
 }
 
+// Ratio tracking's Russian roulette threshold (estimate_transmittance).
+constexpr float kTransmittanceRouletteBelow = 0.1f;
+
 // Null-collision tracking's walk: calls collision(t, μ̄, coefficients, σ_n) at each tentative collision along
 // [t_min, t_max), at exponential steps of rate μ̄ (one sampler dimension each), σ_n = max(μ̄ − σ_t, 0) per lane.
 // collision returns false to end the walk.
@@ -199,7 +202,12 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
     else out.pass_probability = Float4(std::exp(-mean_lane(sigma_t) * d));
     return out;
   }
-  // Ratio tracking: T ≈ Π σ_n/μ̄ over tentative collisions at rate μ̄ (unbiased, bounded by 1 per step).
+  // Ratio tracking: T ≈ Π σ_n/μ̄ over tentative collisions at rate μ̄ (unbiased, bounded by 1 per step), with
+  // Russian roulette once every lane's estimate is below kTransmittanceRouletteBelow: the walk continues with
+  // probability T̂_max / threshold and its estimate is divided by that (so a survivor carries the threshold again).
+  // Unbiased; without it a shadow ray from deep inside a dense grid walked every tentative collision to the far
+  // side (hundreds of lookups) to return a transmittance of 10⁻¹⁰ — pbrt-v4 plays the same roulette below 0.05.
+  // The pass probabilities of a walk that the roulette ends are never read: its transmittance is 0.
   for_each_tentative_collision(medium, ray, t_max, lambda, sampler,
                                [&](float, float majorant, const MediumCoefficients& c, Float4 sigma_n) {
     out.transmittance *= sigma_n / Float4(majorant);
@@ -207,7 +215,17 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
     out.pass_probability *= p.null_lane;
     // The free-flight technique would have carried this throughput through the same null collision.
     throughput = tracking_weights_after_null(throughput, sigma_n);
-    return !(max_lane(out.transmittance) <= 0.0f);  // stop once no lane passes
+    const float largest = max_lane(out.transmittance);
+    if (!(largest > 0.0f)) return false;  // stop once no lane passes
+    if (largest < kTransmittanceRouletteBelow) {
+      const float survive = largest / kTransmittanceRouletteBelow;
+      if (sampler.next_1d() >= survive) {
+        out.transmittance = Float4(0.0f);
+        return false;
+      }
+      out.transmittance *= Float4(1.0f / survive);
+    }
+    return true;
   });
   return out;
 }

@@ -62,7 +62,8 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
                               DistanceSampling mode, Sampler& sampler, SampledSpectrum& throughput);
 
 /// The transmittance over [ray.t_min, t_max): exp(−σ_t d) for homogeneous media (analytic modes), else ratio
-/// tracking (Novák, Selle, Jarosz 2014) against the majorant grid. Consumes one number per tentative collision.
+/// tracking (Novák, Selle, Jarosz 2014) against the majorant grid, with Russian roulette once every lane's estimate
+/// is below 0.1. Consumes one number per tentative collision and one per roulette.
 /// `throughput` is what the free-flight technique's throughput would be on this segment (spectral_tracking's
 /// probabilities depend on it, and so do the pass probabilities); updated along the null collisions (rescaled so
 /// that its largest lane is 1: only its direction matters, and this keeps it finite).
