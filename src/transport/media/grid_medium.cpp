@@ -27,30 +27,98 @@ GridMedium::GridMedium(int nx, int ny, int nz, std::vector<float> densities, Vec
   const Vec3 extent = max_ - min_;
   if (!(extent.x > 0.0f && extent.y > 0.0f && extent.z > 0.0f)) throw InputError({}, "the medium's box is empty");
   voxel_size_ = {extent.x / float(nx), extent.y / float(ny), extent.z / float(nz)};
-  mx_ = (nx + kBlock - 1) / kBlock;
-  my_ = (ny + kBlock - 1) / kBlock;
-  mz_ = (nz + kBlock - 1) / kBlock;
-  majorant_.assign(size_t(mx_) * size_t(my_) * size_t(mz_), 0.0f);
-  // A block's voxels span [b·kBlock, (b+1)·kBlock) in voxel units. Trilinear lookup there reads voxels from one
-  // before the block to one after it (the sample position is x·n − ½, its floor and floor + 1).
-  const int margin = interpolation_ == GridInterpolation::trilinear ? 1 : 0;
-  for (int bz = 0; bz < mz_; ++bz)
-    for (int by = 0; by < my_; ++by)
-      for (int bx = 0; bx < mx_; ++bx) {
-        float m = 0.0f;
-        for (int z = std::max(bz * kBlock - margin, 0); z < std::min((bz + 1) * kBlock + margin, nz); ++z)
-          for (int y = std::max(by * kBlock - margin, 0); y < std::min((by + 1) * kBlock + margin, ny); ++y)
-            for (int x = std::max(bx * kBlock - margin, 0); x < std::min((bx + 1) * kBlock + margin, nx); ++x)
-              m = std::fmax(m, density_[size_t((z * ny + y) * nx + x)]);
-        majorant_[size_t((bz * my_ + by) * mx_ + bx)] = m;
+  choose_majorants(world_from_grid);
+}
+
+namespace {
+// Block maxima of side `block` over an n-voxel grid, with `margin` voxels beyond each block (trilinear lookups read
+// one voxel past the block). Blocks of side 2B are maxima of 2³ blocks of side B with the same margin: their voxel
+// ranges [2Bb − m, 2Bb + 2B + m) are the union of the children's, so coarser levels are reductions, not new passes.
+struct BlockMaxima {
+  int block, nx, ny, nz;
+  std::vector<float> maxima;
+};
+
+BlockMaxima coarser(const BlockMaxima& fine) {
+  BlockMaxima out{fine.block * 2, (fine.nx + 1) / 2, (fine.ny + 1) / 2, (fine.nz + 1) / 2, {}};
+  out.maxima.assign(size_t(out.nx) * out.ny * out.nz, 0.0f);
+  for (int z = 0; z < fine.nz; ++z)
+    for (int y = 0; y < fine.ny; ++y)
+      for (int x = 0; x < fine.nx; ++x) {
+        float& m = out.maxima[size_t((z / 2 * out.ny + y / 2) * out.nx + x / 2)];
+        m = std::fmax(m, fine.maxima[size_t((z * fine.ny + y) * fine.nx + x)]);
       }
+  return out;
+}
+
+// The largest σ_t per unit density over 360–830 nm (every 10 nm), per metre.
+float largest_unit_sigma_t(const HomogeneousMedium& unit) {
+  float largest = 0.0f;
+  for (float nm = 360.0f; nm <= 830.0f; nm += 40.0f) {
+    const SampledWavelengths lambda(Float4(nm, nm + 10.0f, nm + 20.0f, nm + 30.0f), Float4(1.0f));
+    largest = std::fmax(largest, max_lane(unit.coefficients(lambda).sigma_t_per_m()));
+  }
+  return largest;
+}
+}  // namespace
+
+void GridMedium::choose_majorants(const std::optional<Transform>& world_from_grid) {
+  const int margin = interpolation_ == GridInterpolation::trilinear ? 1 : 0;
+  BlockMaxima level{4, (nx_ + 3) / 4, (ny_ + 3) / 4, (nz_ + 3) / 4, {}};
+  level.maxima.assign(size_t(level.nx) * level.ny * level.nz, 0.0f);
+  for (int bz = 0; bz < level.nz; ++bz)
+    for (int by = 0; by < level.ny; ++by)
+      for (int bx = 0; bx < level.nx; ++bx) {
+        float m = 0.0f;
+        for (int z = std::max(bz * 4 - margin, 0); z < std::min((bz + 1) * 4 + margin, nz_); ++z)
+          for (int y = std::max(by * 4 - margin, 0); y < std::min((by + 1) * 4 + margin, ny_); ++y)
+            for (int x = std::max(bx * 4 - margin, 0); x < std::min((bx + 1) * 4 + margin, nx_); ++x)
+              m = std::fmax(m, density_[size_t((z * ny_ + y) * nx_ + x)]);
+        level.maxima[size_t((bz * level.ny + by) * level.nx + bx)] = m;
+      }
+
+  // Cost of tracking per voxel of ray length, in DDA steps: a ray crosses about 1.5/B block faces per voxel
+  // (|dx| + |dy| + |dz| averaged over directions is 1.5), and makes σ̄·v·E[majorant] tentative collisions, each a
+  // density lookup worth ~3 DDA steps (σ̄ the largest σ_t per unit density, v a voxel's length in metres, E the
+  // blocks' volume-weighted mean majorant: a ray spends its length in blocks in proportion to their volume). On the
+  // pbrt-v3 cloud (σ̄·v ≈ 2) the estimate picks 4; measured there, render time with B = 4 was 0.87 of B = 8's and
+  // B = 16's 1.08 (docs/benchmarks.md, "pbrt-v3 scenes", cloud's third round).
+  const Vec3 world_voxel = world_from_grid ? Vec3{length(world_from_grid->vector({voxel_size_.x, 0, 0})),
+                                                  length(world_from_grid->vector({0, voxel_size_.y, 0})),
+                                                  length(world_from_grid->vector({0, 0, voxel_size_.z}))}
+                                           : voxel_size_;
+  const double collisions_per_voxel_at_density_1 =
+      double(largest_unit_sigma_t(unit_)) * (world_voxel.x + world_voxel.y + world_voxel.z) / 3.0;
+  constexpr double kLookupInDdaSteps = 3.0;
+  const auto cost = [&](const BlockMaxima& l) {
+    double weighted = 0.0;  // Σ majorant × voxels of the block inside the grid
+    for (int bz = 0; bz < l.nz; ++bz)
+      for (int by = 0; by < l.ny; ++by)
+        for (int bx = 0; bx < l.nx; ++bx) {
+          const double voxels = double(std::min(l.block, nx_ - bx * l.block)) * std::min(l.block, ny_ - by * l.block) *
+                                std::min(l.block, nz_ - bz * l.block);
+          weighted += voxels * l.maxima[size_t((bz * l.ny + by) * l.nx + bx)];
+        }
+    const double mean_majorant = weighted / (double(nx_) * ny_ * nz_);
+    return 1.5 / l.block + kLookupInDdaSteps * collisions_per_voxel_at_density_1 * mean_majorant;
+  };
+  BlockMaxima best = level;
+  double best_cost = cost(level);
+  for (int k = 0; k < 2; ++k) {  // B = 8, 16
+    level = coarser(level);
+    const double c = cost(level);
+    if (c < best_cost) best = level, best_cost = c;
+  }
+  block_ = best.block;
+  mx_ = best.nx, my_ = best.ny, mz_ = best.nz;
+  majorant_ = std::move(best.maxima);
 }
 
 GridMedium::GridMedium(std::shared_ptr<const NanoVdbGrid> sparse, SpectrumPtr sigma_a_per_m, SpectrumPtr sigma_s_per_m,
                        float g, GridInterpolation interpolation, const std::optional<Transform>& world_from_medium)
     : sparse_(std::move(sparse)), unit_(std::move(sigma_a_per_m), std::move(sigma_s_per_m), g),
       interpolation_(interpolation) {
-  static_assert(kBlock == 8, "the sparse grid's majorant blocks are NanoVDB's 8³ leaves");
+  static_assert(kSparseBlock == 8, "the sparse grid's majorant blocks are NanoVDB's 8³ leaves");
   set_transform(world_from_medium ? *world_from_medium * sparse_->world_from_index() : sparse_->world_from_index());
   const auto& lo = sparse_->index_min();
   const auto& hi = sparse_->index_max();

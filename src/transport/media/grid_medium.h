@@ -81,15 +81,21 @@ class GridMedium {
   template <typename F>
   void for_each_majorant_segment(const Ray& ray, float t_max, F&& segment) const;
 
-  /// Majorant cells are blocks of kBlock³ voxels: coarse enough to be cheap to traverse, fine enough that a cloud's
-  /// empty space and thin edges get small majorants.
-  static constexpr int kBlock = 8;
+  /// Majorant cells are blocks of B³ voxels. A NanoVDB grid's are its 8³ leaves (kSparseBlock). A dense grid's side
+  /// B is 4, 8 or 16, whichever makes tracking cheapest by an estimate made at load (choose_majorant_block in
+  /// grid_medium.cpp): small blocks give tight majorants (fewer null collisions, each a density lookup), large ones
+  /// fewer cells for the DDA to cross; a dense cloud wants the first, a thin fog the second.
+  static constexpr int kSparseBlock = 8;
+  /// B, the majorant blocks' side in voxels.
+  int majorant_block() const { return block_; }
 
   /// The density at a point of the grid's space.
   float density_in_grid(Vec3 p) const;
 
  private:
   void set_transform(const std::optional<Transform>& world_from_grid);
+  /// A dense grid's majorant blocks: block_, mx_..mz_ and majorant_ (see majorant_block).
+  void choose_majorants(const std::optional<Transform>& world_from_grid);
   bool clip(const Ray& ray, float t_max, float& t0, float& t1) const;
   float voxel(int x, int y, int z) const {
     return x < 0 || y < 0 || z < 0 || x >= nx_ || y >= ny_ || z >= nz_ ? 0.0f : density_[size_t((z * ny_ + y) * nx_ + x)];
@@ -100,6 +106,7 @@ class GridMedium {
   Vec3 min_, max_, voxel_size_;
   Vec3 majorant_min_;                 // the majorant grid's corner: min_, or NanoVDB's leaf-aligned corner
   int mx_, my_, mz_;                  // majorant grid size
+  int block_ = kSparseBlock;          // majorant block side in voxels
   std::vector<float> majorant_;       // max density per block
   HomogeneousMedium unit_;
   GridInterpolation interpolation_;
@@ -133,7 +140,7 @@ void GridMedium::for_each_majorant_segment(const Ray& world_ray, float t_max, F&
   float t0, t1;
   if (!clip(ray, t_max, t0, t1)) return;
   // The DDA walks majorant cells; positions are in cell units.
-  const Vec3 cell_size{voxel_size_.x * kBlock, voxel_size_.y * kBlock, voxel_size_.z * kBlock};
+  const Vec3 cell_size{voxel_size_.x * float(block_), voxel_size_.y * float(block_), voxel_size_.z * float(block_)};
   const int size[3] = {mx_, my_, mz_};
   const Vec3 entry = ray.origin + ray.direction * t0;
   int cell[3], step[3];
