@@ -95,6 +95,32 @@ TEST_CASE("OpenEXR images decode bit for bit as OpenImageIO decodes them") {
   check_identical(write_exr(dir / "mixed.exr", 37, 23, mixed), 32);
 }
 
+TEST_CASE("RgbImage keeps the R, G, B of float images of one, three and four channels, pixel by pixel") {
+  // RgbImage::read compacts three or more channels in place and widens grey into a new buffer: each pixel's
+  // values must be the decoder's, in order, whatever the channel count (37 × 23: no power of two).
+  const int w = 37, h = 23;
+  test::ScratchFolder dir("rgb_image_channels");
+  for (const std::vector<std::string>& names :
+       {std::vector<std::string>{"Y"}, std::vector<std::string>{"R", "G", "B"}, std::vector<std::string>{"R", "G", "B", "A"}}) {
+    CAPTURE(names.size());
+    const fs::path path =
+        write_exr(dir / ("channels_" + std::to_string(names.size()) + ".exr"), w, h, {names, OIIO::TypeDesc::FLOAT});
+    const DecodedImage decoded = read_image_file(path, true);
+    const RgbImage image = RgbImage::read(path, {});
+    REQUIRE(image.width() == w);
+    REQUIRE(image.height() == h);
+    const size_t channels = names.size();
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = (size_t(y) * w + size_t(x)) * channels;
+        const Rgb p = image.pixel(x, y);
+        CHECK(float(p.r) == decoded.pixels[i]);
+        CHECK(float(p.g) == decoded.pixels[i + (channels >= 3 ? 1 : 0)]);
+        CHECK(float(p.b) == decoded.pixels[i + (channels >= 3 ? 2 : 0)]);
+      }
+  }
+}
+
 TEST_CASE("OpenEXR images with other channels are left to OpenImageIO") {
   test::ScratchFolder dir("exr_decoder_other");
   CHECK_FALSE(exr_image_header(write_exr(dir / "rgbz.exr", 8, 8, {{"R", "G", "B", "Z"}})));

@@ -64,18 +64,28 @@ RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& 
     image.bytes = {};  // freed before the caller's texels are made
     return RgbImage(w, h, std::move(rgb8), encoding.srgb_transfer);
   }
-  const std::vector<float>& raw = image.pixels;
-  std::vector<float> rgb(count * 3);
+  // Floats: RGB of three or more channels in place (pixel i's RGB goes to [3i, 3i + 3), never past where pixel
+  // i's channels were, so one forward pass reads every value before it is overwritten); grey needs a new buffer.
+  // In place saves a copy of the image (48 MiB for a 2048² sky) and its first touch of fresh pages: the copy and its
+  // zero-fill were a third of the load of the pbrt-v3 cloud scene (docs/benchmarks.md, "pbrt-v3 scenes").
+  std::vector<float>& raw = image.pixels;
+  const bool in_place = channels >= 3;
+  std::vector<float> grey_to_rgb;
+  if (!in_place) grey_to_rgb.resize(count * 3);
+  std::vector<float>& rgb = in_place ? raw : grey_to_rgb;
   for (size_t i = 0; i < count; ++i) {
+    float v[3];
     for (int c = 0; c < 3; ++c) {
-      float v = raw[i * size_t(channels) + channel(c)];
-      if (!std::isfinite(v))
+      v[c] = raw[i * size_t(channels) + channel(c)];
+      if (!std::isfinite(v[c]))
         throw InputError({path.string(), 0, ""}, "pixel (" + std::to_string(i % size_t(w)) + ", " +
                                                      std::to_string(i / size_t(w)) + ") is not a finite number");
-      if (encoding.srgb_transfer) v = float(srgb_decode(v));
-      rgb[3 * i + size_t(c)] = v;
+      if (encoding.srgb_transfer) v[c] = float(srgb_decode(v[c]));
     }
+    for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = v[c];
   }
+  rgb.resize(count * 3);
+  if (channels > 3) rgb.shrink_to_fit();  // an alpha channel's quarter is not kept
   return RgbImage(w, h, std::move(rgb));
 }
 
