@@ -229,3 +229,23 @@ TEST_CASE("Distribution2D's guide table at a cell edge where u·G rounds up past
     }
   }
 }
+
+TEST_CASE("Distribution2D from float weights is the double one's, to the weights' rounding") {
+  // The same weights as floats and as the doubles those floats are: identical tables, so identical samples.
+  const int w = 40, h = 17;
+  std::mt19937 rng(21);
+  std::vector<float> weights_f(size_t(w) * h);
+  for (float& x : weights_f) x = test::uniform01(rng) < 0.2f ? 0.0f : std::pow(10.0f, 4.0f * test::uniform01(rng));
+  const std::vector<double> weights_d(weights_f.begin(), weights_f.end());
+  const Distribution2D from_float(std::span<const float>(weights_f), w, h), from_double(weights_d, w, h);
+  for (int i = 0; i < 20000; ++i) {
+    const Vec2 u{test::uniform01(rng), test::uniform01(rng)};
+    const auto a = from_float.sample(u), b = from_double.sample(u);
+    REQUIRE(a.x == b.x);
+    REQUIRE(a.y == b.y);
+    REQUIRE(a.uv.x == b.uv.x);
+    REQUIRE(a.uv.y == b.uv.y);
+    REQUIRE(a.pdf == b.pdf);
+    REQUIRE(from_float.pdf(u) == from_double.pdf(u));
+  }
+}

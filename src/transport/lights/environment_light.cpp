@@ -28,13 +28,14 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, d
     : image_(std::move(image)), image_scale_(scale), frame_(frame), mapping_(mapping) {
   assert(image_ && image_->width() > 0 && image_->height() > 0 && std::isfinite(scale) && scale >= 0.0);
   const int w = image_->width(), h = image_->height();
-  std::vector<double> luminance(size_t(w) * h);
+  // The sampling weights in float (a 2048² sky's 4 M weights: 16 MiB, not 32), sums in double.
+  std::vector<float> luminance(size_t(w) * h);
   double mean = 0.0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const float lum = image_->luminance(x, y);
       assert(std::isfinite(lum) && lum >= 0.0f);
-      luminance[size_t(y) * w + x] = std::max(0.0, double(lum));
+      luminance[size_t(y) * w + x] = std::max(0.0f, lum);
       mean += luminance[size_t(y) * w + x];
     }
   mean /= double(w) * h;
@@ -51,8 +52,8 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, d
                                        : 2.0 * std::numbers::pi / w *
                                              (std::cos(std::numbers::pi * y / h) - std::cos(std::numbers::pi * (y + 1) / h));
     for (int x = 0; x < w; ++x) {
-      double& weight = luminance[size_t(y) * w + x];
-      weight = (weight + kLuminanceFloor * mean) * sin_theta;
+      float& weight = luminance[size_t(y) * w + x];
+      weight = float((double(weight) + kLuminanceFloor * mean) * sin_theta);
       radiance_times_solid_angle += row_integrals[x] * pixel_sr;
     }
   }
@@ -164,11 +165,11 @@ void EnvironmentLight::set_combined_with_bsdf_sampling(bool combined) {
     total_weight += sin_theta[y] * w;
   }
   const double mean = weighted / total_weight;
-  std::vector<double> weights(size_t(w) * h);
+  std::vector<float> weights(size_t(w) * h);  // float, as the main table's
   bool any = false;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const double above = std::max(0.0, double(image_->luminance(x, y)) - mean) * sin_theta[y];
+      const float above = float(std::max(0.0, double(image_->luminance(x, y)) - mean) * sin_theta[y]);
       weights[size_t(y) * w + x] = above;
       any = any || above > 0.0;
     }

@@ -82,7 +82,7 @@ class GridMedium {
   void for_each_majorant_segment(const Ray& ray, float t_max, F&& segment) const;
 
   /// Majorant cells are blocks of B³ voxels. A NanoVDB grid's are its 8³ leaves (kSparseBlock). A dense grid's side
-  /// B is 4, 8 or 16, whichever makes tracking cheapest by an estimate made at load (choose_majorant_block in
+  /// B is 4, 8 or 16, whichever makes tracking cheapest by an estimate made at load (choose_majorants in
   /// grid_medium.cpp): small blocks give tight majorants (fewer null collisions, each a density lookup), large ones
   /// fewer cells for the DDA to cross; a dense cloud wants the first, a thin fog the second.
   static constexpr int kSparseBlock = 8;

@@ -26,12 +26,14 @@ Distribution2D::Cdf Distribution2D::marginal() const {
   return {marginal_cdf_.data(), marginal_guide_.data(), height_, guide_cells_for(height_)};
 }
 
-double Distribution2D::build(std::span<const double> weights, float* cdf, uint32_t* guide, int guide_cells) {
+template <typename Weight>
+double Distribution2D::build(std::span<const Weight> weights, float* cdf, uint32_t* guide, int guide_cells) {
   const int n = int(weights.size());
   // Sums in double, rounded once per entry: rounding is monotone, so the float CDF never decreases, and a bin of
   // zero weight has c_i = c_{i+1} exactly (zero width: never drawn, pdf 0).
   double sum = 0.0;
-  for (double w : weights) {
+  for (const Weight weight : weights) {
+    const double w = weight;
     assert(std::isfinite(w) && w >= 0.0 && "distribution weights must be finite and >= 0");
     sum += w;
   }
@@ -60,6 +62,17 @@ double Distribution2D::build(std::span<const double> weights, float* cdf, uint32
 
 Distribution2D::Distribution2D(std::span<const double> weights, int width, int height)
     : width_(width), height_(height) {
+  build_tables(weights);
+}
+
+Distribution2D::Distribution2D(std::span<const float> weights, int width, int height)
+    : width_(width), height_(height) {
+  build_tables(weights);
+}
+
+template <typename Weight>
+void Distribution2D::build_tables(std::span<const Weight> weights) {
+  const int width = width_, height = height_;
   assert(width > 0 && height > 0 && weights.size() == size_t(width) * size_t(height));
   const int row_guide = guide_cells_for(width);
   row_cdfs_.resize(size_t(height) * (width + 1));
@@ -70,7 +83,7 @@ Distribution2D::Distribution2D(std::span<const double> weights, int width, int h
                         row_guides_.data() + size_t(y) * (row_guide + 1), row_guide);
   marginal_cdf_.resize(height + 1);
   marginal_guide_.resize(guide_cells_for(height) + 1);
-  total_ = build(row_sums, marginal_cdf_.data(), marginal_guide_.data(), guide_cells_for(height));
+  total_ = build(std::span<const double>(row_sums), marginal_cdf_.data(), marginal_guide_.data(), guide_cells_for(height));
 }
 
 Distribution2D::Found Distribution2D::find(const Cdf& c, float u) {

@@ -37,6 +37,9 @@ class Distribution2D {
   /// `weights` holds width × height non-negative, finite values, row by row (index y·width + x).
   /// Cost O(width·height).
   Distribution2D(std::span<const double> weights, int width, int height);
+  /// The same from float weights: an environment image's millions of weights in half the memory (sums are still
+  /// taken in double).
+  Distribution2D(std::span<const float> weights, int width, int height);
   Distribution2D() = default;
 
   struct Sample {
@@ -71,7 +74,10 @@ class Distribution2D {
   };
   static Found find(const Cdf& c, float u);
   /// Writes the normalised float CDF of `weights` into cdf[0..n] and its guide into guide[0..G]; returns Σ weights.
-  static double build(std::span<const double> weights, float* cdf, uint32_t* guide, int guide_cells);
+  template <typename Weight>
+  static double build(std::span<const Weight> weights, float* cdf, uint32_t* guide, int guide_cells);
+  template <typename Weight>
+  void build_tables(std::span<const Weight> weights);
   static int guide_cells_for(int bins);
 
   std::vector<float> row_cdfs_;         // height × (width + 1)
