@@ -51,15 +51,6 @@ BlockMaxima coarser(const BlockMaxima& fine) {
   return out;
 }
 
-// The largest σ_t per unit density over 360–830 nm (every 10 nm), per metre.
-float largest_unit_sigma_t(const HomogeneousMedium& unit) {
-  float largest = 0.0f;
-  for (float nm = 360.0f; nm <= 830.0f; nm += 40.0f) {
-    const SampledWavelengths lambda(Float4(nm, nm + 10.0f, nm + 20.0f, nm + 30.0f), Float4(1.0f));
-    largest = std::fmax(largest, max_lane(unit.coefficients(lambda).sigma_t_per_m()));
-  }
-  return largest;
-}
 }  // namespace
 
 void GridMedium::choose_majorants(const std::optional<Transform>& world_from_grid) {
@@ -87,8 +78,11 @@ void GridMedium::choose_majorants(const std::optional<Transform>& world_from_gri
                                                   length(world_from_grid->vector({0, voxel_size_.y, 0})),
                                                   length(world_from_grid->vector({0, 0, voxel_size_.z}))}
                                            : voxel_size_;
+  // σ̄ bounded by the spectra's own maxima (the lanes' largest σ_t is at most their sum).
+  const double largest_unit_sigma_t =
+      std::max(0.0, unit_.sigma_a()->max_value()) + std::max(0.0, unit_.sigma_s()->max_value());
   const double collisions_per_voxel_at_density_1 =
-      double(largest_unit_sigma_t(unit_)) * (world_voxel.x + world_voxel.y + world_voxel.z) / 3.0;
+      largest_unit_sigma_t * (world_voxel.x + world_voxel.y + world_voxel.z) / 3.0;
   constexpr double kLookupInDdaSteps = 3.0;
   const auto cost = [&](const BlockMaxima& l) {
     double weighted = 0.0;  // Σ majorant × voxels of the block inside the grid
