@@ -179,9 +179,47 @@ TEST_CASE("environment image with a single bright pixel") {
   }
   // The luminance floor sends 1e-3 × mean × Σ sin θ / (pixel + floor) ≈ 0.1 % of the samples elsewhere.
   CHECK(in_pixel >= 9950);
+  CHECK(env.sampling_block() == 1);  // a block would spread the pixel's samples over its dark neighbours
   const double exact = irradiance_quadrature(env, normal, 64 * 16, 32 * 16);
   const auto e = irradiance_estimate(env, {{0, 0, 0}, normal}, 20000, 34);
   CHECK(std::abs(e.mean() - exact) <= test::kMonteCarloSigmas * e.standard_error() + 1e-3 * exact);
+}
+
+TEST_CASE("a smooth environment image is sampled from coarser tables, still matching pdf_li and the quadrature") {
+  // 256 × 128 pixels of a slow variation with a soft bright region: the sampling tables take blocks of pixels
+  // (distribution_coarsening.h), and sampling, density and irradiance must stay consistent with the pixels.
+  const int w = 256, h = 128;
+  std::vector<float> v(size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double dx = (x + 0.5 - 80.0) / 30.0, dy = (y + 0.5 - 40.0) / 20.0;
+      v[size_t(y) * w + x] = float(0.2 + 0.1 * std::sin(2 * kPi * x / w) + 3.0 * std::exp(-(dx * dx + dy * dy)));
+    }
+  const EnvironmentLight env(std::make_shared<GreyImage>(w, h, v), 1.0);
+  CHECK(env.sampling_block() >= 2);
+  const int nu = 64, nv = 32, sub = 4, n = 200000;
+  const std::vector<double> expected = test::square_expected_counts(
+      [&](Vec2 uv) { return env.pdf_li({}, env.uv_to_direction(uv)) * 2 * kPi * kPi * std::sin(kPi * uv.y); }, nu, nv,
+      sub, n);
+  CHECK(std::accumulate(expected.begin(), expected.end(), 0.0) / n == doctest::Approx(1.0).epsilon(1e-3));
+  std::vector<double> observed(nu * nv, 0.0);
+  std::mt19937 rng(41);
+  for (int s = 0; s < n; ++s) {
+    const auto ls = env.sample_li({}, kLambda, {test::uniform01(rng), test::uniform01(rng)});
+    REQUIRE(ls);
+    REQUIRE(ls->pdf_solid_angle == env.pdf_li({}, ls->wi));
+    observed[test::square_cell(env.direction_to_uv(ls->wi), nu, nv)] += 1;
+  }
+  const auto chi = test::pearson_chi_square(observed, expected, test::Pooling::sparse_into_one);
+  CAPTURE(chi.statistic);
+  CHECK(chi.p_value > test::kChiSquareAlpha);
+  for (Vec3 normal : {Vec3{0, 0, 1}, normalize(Vec3{0.6f, -0.7f, 0.3f})}) {
+    const double exact = irradiance_quadrature(env, normal, w * 4, h * 4);
+    const auto e = irradiance_estimate(env, {{0, 0, 0}, normal}, 40000, 42);
+    CAPTURE(exact);
+    CAPTURE(e.mean());
+    CHECK(std::abs(e.mean() - exact) <= test::kMonteCarloSigmas * e.standard_error() + 1e-3 * exact);
+  }
 }
 
 TEST_CASE("black environment images") {

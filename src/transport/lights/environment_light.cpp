@@ -6,6 +6,7 @@
 #include <numbers>
 #include <vector>
 
+#include "transport/sampling/distribution_coarsening.h"
 #include "transport/sampling/equal_area_square.h"
 #include "transport/lights/light_warps.h"
 
@@ -16,6 +17,8 @@ constexpr float kPiF = std::numbers::pi_v<float>;
 constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPiF);
 /// Share of the mean luminance added to every pixel's sampling weight (see the header).
 constexpr double kLuminanceFloor = 1e-3;
+/// The relative variance a coarser sampling table may add to a light sample (see the header): 1 %.
+constexpr double kMaxAddedSamplingVariance = 0.01;
 }  // namespace
 
 EnvironmentLight::EnvironmentLight(LightSpectrum radiance)
@@ -58,7 +61,15 @@ EnvironmentLight::EnvironmentLight(std::shared_ptr<const RadianceImage> image, d
     }
   }
   mean_radiance_integral_ = image_scale_ * radiance_times_solid_angle / (4.0 * std::numbers::pi);
-  distribution_ = Distribution2D(luminance, w, h);
+  distribution_ = sampling_table(luminance, w, h, distribution_block_);
+}
+
+Distribution2D EnvironmentLight::sampling_table(std::span<const float> weights, int width, int height,
+                                                SamplingBlock& block) {
+  block = choose_sampling_block(weights, width, height, kMaxAddedSamplingVariance);
+  if (block.factor == 1) return Distribution2D(weights, width, height);
+  return Distribution2D(block_sums(weights, width, height, block.factor), width / block.factor,
+                        height / block.factor);
 }
 
 Vec2 EnvironmentLight::direction_to_uv(Vec3 direction) const {
@@ -173,7 +184,7 @@ void EnvironmentLight::set_combined_with_bsdf_sampling(bool combined) {
       weights[size_t(y) * w + x] = above;
       any = any || above > 0.0;
     }
-  if (any) compensated_ = Distribution2D(weights, w, h);
+  if (any) compensated_ = sampling_table(weights, w, h, compensated_block_);
 }
 
 std::optional<LightBounds> EnvironmentLight::part_bounds(int part) const {
