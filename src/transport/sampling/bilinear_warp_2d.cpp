@@ -177,6 +177,12 @@ float BilinearWarp2D::density(Vec2 p, std::span<const float> parameters) const {
   return bilinear(p, blend(parameters)) * float(width_ - 1) * float(height_ - 1);
 }
 
+BilinearWarp2D::CellEdges BilinearWarp2D::cell_edges(const Blend& b, size_t i, float t) const {
+  const size_t per_grid = size_t(width_) * size_t(height_), w = size_t(width_);
+  return {(1.0f - t) * blended(values_, b, per_grid, i) + t * blended(values_, b, per_grid, i + w),
+          (1.0f - t) * blended(values_, b, per_grid, i + 1) + t * blended(values_, b, per_grid, i + w + 1)};
+}
+
 BilinearWarp2D::Sample BilinearWarp2D::sample(Vec2 u, std::span<const float> parameters) const {
   assert(!marginal_cdf_.empty());
   const Blend b = blend(parameters);
@@ -199,8 +205,7 @@ BilinearWarp2D::Sample BilinearWarp2D::sample(Vec2 u, std::span<const float> par
   };
   const int x = interval_of(width_, [&](int i) { return running(i) < target; });
   const size_t i = size_t(y) * w + size_t(x);
-  const float c0 = (1.0f - t) * blended(values_, b, per_grid, i) + t * blended(values_, b, per_grid, i + w);
-  const float c1 = (1.0f - t) * blended(values_, b, per_grid, i + 1) + t * blended(values_, b, per_grid, i + w + 1);
+  const auto [c0, c1] = cell_edges(b, i, t);
   const float s = invert_linear_cdf(c0, c1, target - running(x));
 
   const float cells = float(width_ - 1) * float(height_ - 1);
@@ -213,8 +218,7 @@ BilinearWarp2D::Sample BilinearWarp2D::invert(Vec2 p, std::span<const float> par
   const size_t per_grid = size_t(width_) * size_t(height_), w = size_t(width_);
   const auto [x, y, i, s, t] = locate(p);
 
-  const float c0 = (1.0f - t) * blended(values_, b, per_grid, i) + t * blended(values_, b, per_grid, i + w);
-  const float c1 = (1.0f - t) * blended(values_, b, per_grid, i + 1) + t * blended(values_, b, per_grid, i + w + 1);
+  const auto [c0, c1] = cell_edges(b, i, t);
   const float row0 = blended(row_cdf_, b, per_grid, size_t(y) * w + w - 1);
   const float row1 = blended(row_cdf_, b, per_grid, size_t(y + 1) * w + w - 1);
   const float running = (1.0f - t) * blended(row_cdf_, b, per_grid, i) + t * blended(row_cdf_, b, per_grid, i + w);

@@ -95,6 +95,12 @@ class BilinearWarp2D {
   /// Σₖ weightₖ · table[gridₖ · per_grid + index]: a table's entry blended over the grids.
   static float blended(const std::vector<float>& table, const Blend& b, size_t per_grid, size_t index);
   float bilinear(Vec2 p, const Blend& b) const;
+  /// The density along the cell starting at grid index i, at height t within it: its values at the left (c0) and
+  /// right (c1) edges, each interpolated between the cell's two rows. sample() and invert() share it.
+  struct CellEdges {
+    float c0, c1;
+  };
+  CellEdges cell_edges(const Blend& b, size_t i, float t) const;
 
   int width_ = 0, height_ = 0;
   std::vector<std::vector<float>> parameter_values_;
