@@ -98,10 +98,21 @@ void apply_job_options(const RenderJob& job, RenderSettings& settings, SpectralL
   apply_camera_options(job, settings.camera_exposure, library);
 }
 
-// --crop, else the scene's film "crop" (checked against the scene's resolution, which --width/--height may change).
+// --crop, else the scene's film "crop" (checked against the scene's resolution, which --width/--height may change)
+// or "crop_window" (fractions, turned into pixels at the render's resolution).
 FilmOptions film_options(const RenderJobState& s) {
   const RenderSettings& settings = s.loaded.scene->settings;
   FilmOptions options{settings.width, settings.height, std::nullopt, settings.spectral_bins};
+  if (!s.job.crop && settings.crop_window) {
+    // Fractions of whatever resolution the render uses (the scene's, or --resolution's).
+    const PixelBounds pixels = settings.crop_window->pixels(settings.width, settings.height);
+    if (pixels.empty())
+      throw InputError({s.scene_path.string(), 0, "/film/crop_window"},
+                       "the crop window selects no pixels of the " + std::to_string(settings.width) + "x" +
+                           std::to_string(settings.height) + " image");
+    options.crop = pixels;
+    return options;
+  }
   if (const std::optional<PixelBounds> crop = s.job.crop ? s.job.crop : settings.crop) {
     if (crop->x1 > settings.width || crop->y1 > settings.height)
       throw InputError({s.job.crop ? "" : s.scene_path.string(), 0, s.job.crop ? "--crop" : "/film/crop"},

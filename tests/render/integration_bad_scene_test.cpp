@@ -99,6 +99,21 @@ TEST_CASE("bad scene: unknown material, negative radius, unknown key, missing me
   CHECK(std::string(e.what()).find("mesh.obj") != std::string::npos);
 }
 
+TEST_CASE("bad scene: a film crop_window must be fractions in order, and not beside a crop in pixels") {
+  nlohmann::json s = valid_scene();
+  s["film"]["crop_window"] = {0.5, 0.0, 0.25, 1.0};
+  check_error(s, "/film/crop_window", "expected x0 < x1 and y0 < y1");
+  s["film"]["crop_window"] = {0.0, 0.0, 1.5, 1.0};
+  check_error(s, "/film/crop_window/2", "");
+  s["film"]["crop_window"] = {0.0, 0.0, 0.5};
+  check_error(s, "/film/crop_window", "expected [x0, y0, x1, y1]");
+  s["film"]["crop_window"] = {0.0, 0.0, 0.5, 0.5};
+  s["film"]["crop"] = {0, 0, 2, 2};
+  check_error(s, "/film/crop_window", "not both");
+  s["film"].erase("crop");
+  CHECK(scene_from_json(s, "good.json")->settings.crop_window == CropWindow{0.0, 0.0, 0.5, 0.5});
+}
+
 TEST_CASE("bad scene: non-finite and huge numbers in a transform") {
   // JSON has no NaN or Infinity literals. nlohmann refuses an overflowing literal such as 1e400 with an
   // out_of_range exception (406, "number overflow") that carries no position; the loader turns it into an

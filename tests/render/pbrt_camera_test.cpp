@@ -31,11 +31,13 @@ std::string camera_error(const json& camera) {
 
 }  // namespace
 
-TEST_CASE("pbrt film: cropwindow and pixelbounds become the film's crop, as pbrt-v4 rounds them") {
-  // cropwindow [x0 x1 y0 y1] (either order): ceil(res · value); 10 × 8 → x 3-8, y 0-4.
+TEST_CASE("pbrt film: cropwindow becomes the film's crop_window, pixelbounds its crop, as pbrt-v4 reads them") {
+  // cropwindow [x0 x1 y0 y1] (either order) stays fractions [x0, y0, x1, y1] (pixels ceil(res · value) at whatever
+  // resolution renders; 10 × 8 → x 3-8, y 0-4, checked by the render below).
   const PbrtImport cropped = import_pbrt(test::test_data("pbrt/crop.pbrt"), test::library());
   CHECK(cropped.ignored.empty());
-  CHECK(cropped.document["film"]["crop"] == json({3, 0, 8, 4}));
+  CHECK(cropped.document["film"]["crop_window"] == json({0.25, 0.0, 0.75, 0.5}));
+  CHECK_FALSE(cropped.document["film"].contains("crop"));
   // pixelbounds [x0 x1 y0 y1], clamped to the image (listed), and overridden by a cropwindow (listed).
   CHECK(import_text(kCamera + "Film \"rgb\" \"integer xresolution\" 10 \"integer yresolution\" 8 \"integer pixelbounds\" [1 4 2 6]\nWorldBegin\n")
             .document["film"]["crop"] == json({1, 2, 4, 6}));
@@ -44,10 +46,13 @@ TEST_CASE("pbrt film: cropwindow and pixelbounds become the film's crop, as pbrt
   REQUIRE(clamped.ignored.size() == 1);
   CHECK(clamped.ignored[0].what == "Film \"pixelbounds\" beyond the image (clamped, as in pbrt)");
   const PbrtImport both = import_text(kCamera + "Film \"rgb\" \"integer xresolution\" 10 \"integer yresolution\" 8 \"integer pixelbounds\" [1 4 2 6] \"float cropwindow\" [0 0.5 0 1]\nWorldBegin\n");
-  CHECK(both.document["film"]["crop"] == json({0, 0, 5, 8}));
+  CHECK(both.document["film"]["crop_window"] == json({0.0, 0.0, 0.5, 1.0}));
+  CHECK_FALSE(both.document["film"].contains("crop"));
   CHECK(both.ignored.size() == 1);
   // The whole image is no crop at all.
-  CHECK_FALSE(import_text(kCamera + "Film \"rgb\" \"float cropwindow\" [0 1 0 1]\nWorldBegin\n").document["film"].contains("crop"));
+  const json whole = import_text(kCamera + "Film \"rgb\" \"float cropwindow\" [0 1 0 1]\nWorldBegin\n").document["film"];
+  CHECK_FALSE(whole.contains("crop"));
+  CHECK_FALSE(whole.contains("crop_window"));
   // Empty or malformed windows are errors at the Film's line.
   CHECK(import_error(kCamera + "Film \"rgb\" \"float cropwindow\" [0.5 0.5 0 1]\nWorldBegin\n").find("t.pbrt:3: Film: the crop window or pixel bounds select no pixels") != std::string::npos);
   CHECK(import_error(kCamera + "Film \"rgb\" \"float cropwindow\" [0 0.5 0]\nWorldBegin\n").find("t.pbrt:3: Film: \"cropwindow\" takes 4 numbers") != std::string::npos);
@@ -72,10 +77,46 @@ TEST_CASE("scene film crop: rimu renders only the crop, and --crop overrides it"
   job.crop = PixelBounds{0, 0, 2, 2};
   run_render_job(job, log);
   CHECK(data_window(job.exr_output) == std::array<int, 4>{0, 0, 2, 2});
-  // A scene crop the command line's resolution no longer holds names the scene's key.
+  // The file's cropwindow is a fraction of the picture: at --resolution 5x5 it selects x ceil(1.25) = 2 to
+  // ceil(3.75) = 4 and y 0 to ceil(2.5) = 3, as pbrt-v4 would at that resolution; at 40 × 32 x 10-30, y 0-16.
   job.crop.reset();
   job.width = 5;
   job.height = 5;
+  run_render_job(job, log);
+  CHECK(data_window(job.exr_output) == std::array<int, 4>{2, 0, 4, 3});
+  job.width = 40;
+  job.height = 32;
+  run_render_job(job, log);
+  CHECK(data_window(job.exr_output) == std::array<int, 4>{10, 0, 30, 16});
+  // A window that selects no pixel at the resolution asked for names the scene's key: at 1 × 1 the x range is
+  // ceil(0.25) = 1 to ceil(0.75) = 1.
+  job.width = 1;
+  job.height = 1;
+  try {
+    run_render_job(job, log);
+    FAIL("expected an InputError");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("/film/crop_window") != std::string::npos);
+  }
+}
+
+TEST_CASE("scene film crop in pixels: a resolution that no longer holds it names the key") {
+  const test::ScratchFolder folder("film-crop-pixels");
+  const std::filesystem::path scene = folder / "s.pbrt";
+  {
+    std::ofstream out(scene);
+    out << "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\n"
+           "Film \"rgb\" \"integer xresolution\" 10 \"integer yresolution\" 8 \"integer pixelbounds\" [3 8 0 4]\n"
+           "Sampler \"independent\" \"integer pixelsamples\" 1\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [1 1 1]\n";
+  }
+  RenderJob job;
+  job.scene = scene;
+  job.exr_output = folder / "out.exr";
+  job.quiet = true;
+  job.threads = 1;
+  job.width = 5;
+  job.height = 5;
+  std::ostringstream log;
   try {
     run_render_job(job, log);
     FAIL("expected an InputError");

@@ -24,6 +24,19 @@ struct PixelBounds {
   friend bool operator==(const PixelBounds&, const PixelBounds&) = default;
 };
 
+/// A crop given as fractions of the image, [x0, x1) × [y0, y1) in [0, 1] (y down): pbrt's "cropwindow", which
+/// keeps selecting the same part of the picture at any resolution. Its pixels at width × height are pbrt-v4's,
+/// ⌈width·x0⌉ ≤ x < ⌈width·x1⌉ (likewise y).
+struct CropWindow {
+  double x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 1.0;
+
+  PixelBounds pixels(int width, int height) const {
+    return {int(std::ceil(width * x0)), int(std::ceil(height * y0)), int(std::ceil(width * x1)),
+            int(std::ceil(height * y1))};
+  }
+  friend bool operator==(const CropWindow&, const CropWindow&) = default;
+};
+
 /// N equal bins over 360-830 nm for the optional spectral framebuffer.
 struct SpectralBinning {
   int count = 0;  ///< 0 = no spectral framebuffer

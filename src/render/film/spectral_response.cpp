@@ -175,8 +175,9 @@ SpectralResponse SpectralResponse::from_spec(SpectralLibrary& library, std::stri
   if (spec.rfind(camera_prefix, 0) == 0) return camera_rgb(library, spec.substr(camera_prefix.size()));
   if (spec.rfind(corrected_prefix, 0) == 0) {
     const SpectralResponse camera = camera_rgb(library, spec.substr(corrected_prefix.size()));
-    const SpectrumPtr d65 = library.illuminant("D65");
-    const Matrix3 m = fit_camera_to_xyz_under(camera, white ? *white : *d65, library);
+    // Balanced to the given white, else to D65 (looked up only then).
+    const Matrix3 m = white ? fit_camera_to_xyz_under(camera, *white, library)
+                            : fit_camera_to_xyz_under(camera, *library.illuminant("D65"), library);
     return colour_corrected(camera, m, library, white_description);
   }
   throw InputError({"", 0, "--film"}, "unknown film response '" + std::string(spec) +

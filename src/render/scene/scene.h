@@ -68,6 +68,10 @@ struct RenderSettings {
   CameraExposureSettings camera_exposure;  ///< the camera's "exposure" and "white_balance" (film units if absent)
   /// film "crop": render only these pixels of the width × height image (the default of `rimu --crop`).
   std::optional<PixelBounds> crop;
+  /// film "crop_window": the same as fractions of the image (pbrt's "cropwindow"), turned into pixels at the
+  /// resolution the render uses, so that `rimu --resolution` keeps the same part of the picture. At most one of
+  /// crop and crop_window is set.
+  std::optional<CropWindow> crop_window;
   /// film "aov": the feature layers every render of the scene writes ("albedo,normal", "all"; `rimu --aov` replaces
   /// them; render/output/aov_channels.h).
   AovSelection aovs;

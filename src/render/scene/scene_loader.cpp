@@ -111,7 +111,7 @@ void load_camera(const JsonCursor& c, Scene& scene, SpectralLibrary& library) {
 }
 
 void load_film(const JsonCursor& c, RenderSettings& s) {
-  c.only_keys({"resolution", "response", "spectral_bins", "filter", "crop", "aov", "max_sample_value"});
+  c.only_keys({"resolution", "response", "spectral_bins", "filter", "crop", "crop_window", "aov", "max_sample_value"});
   if (c.has("resolution")) {
     const JsonCursor r = c.at("resolution");
     if (r.size() != 2) r.fail("expected [width, height]");
@@ -126,6 +126,18 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
     b.x1 = crop->at(size_t(2)).integer(b.x0 + 1, s.width);
     b.y1 = crop->at(size_t(3)).integer(b.y0 + 1, s.height);
     s.crop = b;
+  }
+  if (const auto window = c.find("crop_window")) {
+    if (c.has("crop")) window->fail("give either \"crop\" (pixels) or \"crop_window\" (fractions), not both");
+    if (!window->is_array() || window->size() != 4)
+      window->fail("expected [x0, y0, x1, y1]: fractions of the image, 0 <= x0 < x1 <= 1, 0 <= y0 < y1 <= 1");
+    CropWindow w;
+    w.x0 = window->at(size_t(0)).number(0.0, 1.0);
+    w.y0 = window->at(size_t(1)).number(0.0, 1.0);
+    w.x1 = window->at(size_t(2)).number(0.0, 1.0);
+    w.y1 = window->at(size_t(3)).number(0.0, 1.0);
+    if (!(w.x0 < w.x1 && w.y0 < w.y1)) window->fail("expected x0 < x1 and y0 < y1");
+    s.crop_window = w;
   }
   s.film_response = c.string_or("response", s.film_response);
   s.spectral_bins = c.integer_or("spectral_bins", 0, 0, 471);
