@@ -213,6 +213,27 @@ TEST_CASE("horizontal sum, min_lane, max_lane") {
     CHECK(min_lane(a) == std::fmin(std::fmin(a[0], a[1]), std::fmin(a[2], a[3])));
   }
   CHECK(std::isnan(sum(Float4(1.0f, std::numeric_limits<float>::quiet_NaN(), 2.0f, 3.0f))));
+  // min_lane and max_lane keep std::fmin/fmax's rule for NaN: NaN lanes are ignored, NaN only if all are.
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  for (int lane = 0; lane < kLaneCount; ++lane) {
+    Float4 a(-3.0f, 5.0f, -7.0f, 2.0f);
+    const float removed = a[lane];
+    a.set(lane, nan);
+    float largest = -inf, smallest = inf;
+    for (int k = 0; k < kLaneCount; ++k)
+      if (k != lane) largest = std::max(largest, a[k]), smallest = std::min(smallest, a[k]);
+    CAPTURE(removed);
+    CHECK(max_lane(a) == largest);
+    CHECK(min_lane(a) == smallest);
+  }
+  CHECK(max_lane(Float4(nan, nan, -2.0f, nan)) == -2.0f);
+  CHECK(min_lane(Float4(nan, 4.0f, nan, nan)) == 4.0f);
+  CHECK(std::isnan(max_lane(Float4(nan))));
+  CHECK(std::isnan(min_lane(Float4(nan))));
+  CHECK(max_lane(Float4(-inf, nan, -inf, nan)) == -inf);
+  CHECK(min_lane(Float4(inf, inf, nan, inf)) == inf);
+  CHECK(max_lane(Float4(-inf, 1e-30f, -1e38f, 0.0f)) == 1e-30f);
+  CHECK(min_lane(Float4(inf, -1e-30f, 1e38f, 0.0f)) == -1e-30f);
 }
 
 TEST_CASE("construction, load, set, to_array, exp") {

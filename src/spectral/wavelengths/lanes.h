@@ -110,13 +110,25 @@ inline float sum(Float4 a) {
   shuf = _mm_movehl_ps(shuf, sums);
   return _mm_cvtss_f32(_mm_add_ss(sums, shuf));
 }
+/// The largest (smallest) lane with std::fmax's (fmin's) rule for NaN: NaN lanes are ignored, and the answer is
+/// NaN only if every lane is. In registers: std::fmax is a libm call (SSE's maxps does not ignore NaN), three per
+/// lane reduction, and max_lane runs at every step of a medium's tracking. NaN lanes become −∞ (+∞) first, which
+/// never wins unless every lane is NaN or that infinity.
 inline float max_lane(Float4 a) {
-  const auto x = a.to_array();
-  return std::fmax(std::fmax(x[0], x[1]), std::fmax(x[2], x[3]));
+  const __m128 nan = _mm_cmpunord_ps(a.v, a.v);
+  if (_mm_movemask_ps(nan) == 0xF) return a[0];
+  __m128 v = _mm_blendv_ps(a.v, _mm_set1_ps(-INFINITY), nan);
+  v = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1)));
+  v = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 0, 3, 2)));
+  return _mm_cvtss_f32(v);
 }
 inline float min_lane(Float4 a) {
-  const auto x = a.to_array();
-  return std::fmin(std::fmin(x[0], x[1]), std::fmin(x[2], x[3]));
+  const __m128 nan = _mm_cmpunord_ps(a.v, a.v);
+  if (_mm_movemask_ps(nan) == 0xF) return a[0];
+  __m128 v = _mm_blendv_ps(a.v, _mm_set1_ps(INFINITY), nan);
+  v = _mm_min_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1)));
+  v = _mm_min_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(1, 0, 3, 2)));
+  return _mm_cvtss_f32(v);
 }
 /// True in lanes holding NaN.
 inline Mask4 is_nan(Float4 a) { return Mask4(_mm_cmpunord_ps(a.v, a.v)); }
