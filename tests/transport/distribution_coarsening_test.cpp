@@ -39,6 +39,16 @@ TEST_CASE("coarsening a table: exact added variance for constant blocks and a lo
   // Only factors dividing both sides are tried: 48 × 24 admits 2, 4 and 8; 30 × 20 only 2.
   CHECK(choose_sampling_block(std::vector<float>(48 * 24, 1.0f), 48, 24, 0.01).factor == 8);
   CHECK(choose_sampling_block(std::vector<float>(30 * 20, 1.0f), 30, 20, 0.01).factor == 2);
+  // R_f need not grow with f: one 2 × 2 block holding a single cell of 1 and three holding 0.5 everywhere sample
+  // their 4 × 4 cells better as one block. R_2 = (4·1/1 + 3·4·1/2)/7 = 10/7, R_4 = 16·4/(7·7) = 64/49.
+  std::vector<float> mixed(16, 0.5f);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) mixed[size_t(y) * 4 + x] = 0.0f;
+  mixed[0] = 1.0f;
+  CHECK(coarsening_added_variance(mixed, 4, 4, 2) == doctest::Approx(3.0 / 7.0));
+  CHECK(coarsening_added_variance(mixed, 4, 4, 4) == doctest::Approx(15.0 / 49.0));
+  // The search stops at the first factor over the limit (f = 2 here) and does not try f = 4 beyond it.
+  CHECK(choose_sampling_block(mixed, 4, 4, 0.4).factor == 1);
   // All zero: nothing to lose.
   CHECK(coarsening_added_variance(std::vector<float>(16, 0.0f), 4, 4, 2) == 0.0);
 }
@@ -89,7 +99,7 @@ TEST_CASE("coarsening a table: block sums keep the total, and the added variance
   }
 }
 
-TEST_CASE("coarsening a table: a smooth field takes blocks, a spike keeps its cells, and R grows with the block") {
+TEST_CASE("coarsening a table: a smooth field takes blocks (its R growing with the block), a spike keeps its cells") {
   const int w = 256, h = 128;
   const std::vector<float> smooth = smooth_weights(w, h);
   double previous = 0.0;

@@ -13,7 +13,10 @@
 // R_f − 1 is the relative variance the coarsening adds to a light sample whose other factors (BSDF, cosine,
 // visibility) vary independently of the map within a block: a light sample's relative second moment (1 + v) becomes
 // about R_f (1 + v). choose_sampling_block takes the largest power-of-two factor dividing both sides with
-// R_f − 1 ≤ the allowed increase (R_f grows with f: merging blocks never matches f better).
+// R_f − 1 ≤ the allowed increase, going up from f = 2 and stopping at the first factor above it. R_f ≥ R_1 = 1
+// always, but it need not grow with f (4 × 4 cells: one 2 × 2 block holding a single cell of 1, three holding 0.5
+// in every cell: R_2 = 10/7, R_4 = 64/49), so a larger factor past a rejected one is not tried: on real maps the
+// cost of blocks grows with their size, and stopping early only keeps a table finer than it could be.
 #pragma once
 
 #include <span>
