@@ -242,7 +242,7 @@ TEST_CASE("MIS: 25 point lights over lacquered copper (a smooth coat on a glossy
   using namespace integration_mis_test;
   const nlohmann::json scene = lamps_over_floor(nlohmann::json::parse(R"({"type": "coated_conductor", "metal": "copper",
                                                  "conductor_roughness": 0.1, "coat_ior": 1.5})"), 24);
-  check_candidates_agree(scene, {0, 1.0f, -3}, {{0.2f, 0, -1.2f}}, false, 400000);
+  check_candidates_agree(scene, {0, 1.0f, -3}, {{0.2f, 0, -1.2f}}, false, 500000);
   check_variance_halved(scene, 32, 51);
 }
 

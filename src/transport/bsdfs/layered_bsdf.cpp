@@ -9,29 +9,12 @@
 
 #include "transport/sampling/bit_mixing.h"
 #include "transport/sampling/exponential_warp.h"
+#include "transport/sampling/walk_random.h"
 #include "transport/media/henyey_greenstein.h"
 #include "transport/geometry/frame.h"
 
 namespace rimu {
 namespace {
-
-/// The walk's own random numbers: a counter hashed by mix_bits (splitmix64-style), seeded per call.
-class WalkRandom {
- public:
-  explicit WalkRandom(uint64_t seed) : state_(seed) {}
-  /// Uniform in [0, 1): the top 24 bits of the next hash.
-  float next() {
-    state_ += 0x9e3779b97f4a7c15ULL;
-    return float(mix_bits(state_) >> 40) * 0x1p-24f;
-  }
-  Vec2 next_2d() {
-    const float a = next();
-    return {a, next()};
-  }
-
- private:
-  uint64_t state_;
-};
 
 uint64_t hash_floats(std::initializer_list<float> values) {
   uint64_t h = 0x6a09e667f3bcc909ULL;
@@ -116,9 +99,9 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
   SampledSpectrum f = top_.eval(wo, wi) * Float4(float(walk_.samples));
   for (int s = 0; s < walk_.samples; ++s) {
     // Into the slab along wo (radiance), and the companion path in from wi (importance).
-    const float uc_o = random.next();
+    const float uc_o = random.next_1d();
     const auto wos = top_.sample(wo, uc_o, random.next_2d());
-    const float uc_i = random.next();
+    const float uc_i = random.next_1d();
     const auto wis = top_.sample(wi, uc_i, random.next_2d());
     // A coat reflection drawn for wo cannot enter: this walk contributes 0 (the transmitted ones carry 1/T).
     if (!usable(wos) || wos->wi.z >= 0.0f) continue;
@@ -135,12 +118,12 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
     for (int depth = 0; depth < walk_.max_depth; ++depth) {
       if (depth > 3 && max_lane(beta) < 0.25f) {
         const float q = std::max(0.0f, 1.0f - max_lane(beta));
-        if (random.next() < q) break;
+        if (random.next_1d() < q) break;
         beta /= Float4(1.0f - q);
       }
       if (has_albedo_) {
         // Distance along w to the next interaction in the slab (σt = 1): the height changes by |cos θ|·d.
-        const float dz = sample_unit_exponential(random.next()) * std::fabs(w.z);
+        const float dz = sample_unit_exponential(random.next_1d()) * std::fabs(w.z);
         const float zp = w.z > 0.0f ? z + dz : z - dz;
         if (zp == z) continue;
         if (0.0f < zp && zp < thickness) {
@@ -177,7 +160,7 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
       if (w.z > 0.0f) {
         // Back at the coat from inside: only its internal reflection continues the walk (leaving is counted by
         // the connections, so a transmission drawn here ends the walk; the reflections carry 1/R).
-        const float uc = random.next();
+        const float uc = random.next_1d();
         const auto rs = top_.sample(-w, uc, random.next_2d());
         if (!usable(rs) || rs->wi.z >= 0.0f) break;
         beta *= rs->f * Float4(std::fabs(rs->wi.z) / rs->pdf[0]);
@@ -192,7 +175,7 @@ SampledSpectrum LayeredBsdf::eval(Vec3 wo, Vec3 wi) const {
              Float4(std::fabs(wis->wi.z) * weight * transmittance(thickness, wis->wi)) * wis_weight;
       }
       // ...and reflect.
-      const float uc = random.next();
+      const float uc = random.next_1d();
       const auto bs = base_sample(-w, uc, random.next_2d());
       if (!usable(bs) || bs->wi.z <= 0.0f) break;
       beta *= bs->f * Float4(std::fabs(bs->wi.z) / bs->pdf[0]);
@@ -222,9 +205,9 @@ SampledSpectrum LayeredBsdf::pdf(Vec3 wo, Vec3 wi) const {
   float pdf_sum = float(walk_.samples) * top_.pdf(wo, wi)[0];
   for (int s = 0; s < walk_.samples; ++s) {
     // One bounce off the base: in along wo, out towards wi.
-    const float uc_o = random.next();
+    const float uc_o = random.next_1d();
     const auto wos = top_.sample(wo, uc_o, random.next_2d());
-    const float uc_i = random.next();
+    const float uc_i = random.next_1d();
     const auto wis = top_.sample(wi, uc_i, random.next_2d());
     const bool companion = usable(wis) && wis->wi.z < 0.0f;
     if (!usable(wos) || wos->wi.z >= 0.0f) continue;
@@ -235,7 +218,7 @@ SampledSpectrum LayeredBsdf::pdf(Vec3 wo, Vec3 wi) const {
       continue;
     }
     // Rough coat: the product of base and coat densities, estimated by MIS of the two ways to connect them.
-    const float uc = random.next();
+    const float uc = random.next_1d();
     const auto rs = base_sample(-wos->wi, uc, random.next_2d());
     if (!usable(rs) || rs->wi.z <= 0.0f) continue;
     if (base_specular) {
@@ -294,13 +277,13 @@ std::optional<BsdfSample> LayeredBsdf::sample(Vec3 wo, float u_lobe, Vec2 u, boo
     const float throughput = max_lane(beta);
     if (depth > 3 && throughput < 0.25f) {
       const float q = std::max(0.0f, 1.0f - throughput);
-      if (random.next() < q) return std::nullopt;
+      if (random.next_1d() < q) return std::nullopt;
       beta /= Float4(1.0f - q);
       delta_pdf *= 1.0f - q;
     }
     if (w.z == 0.0f) return std::nullopt;
     if (has_albedo_) {
-      const float dz = sample_unit_exponential(random.next()) * std::fabs(w.z);
+      const float dz = sample_unit_exponential(random.next_1d()) * std::fabs(w.z);
       const float zp = w.z > 0.0f ? z + dz : z - dz;
       if (zp == z) return std::nullopt;
       if (0.0f < zp && zp < thickness) {
@@ -321,7 +304,7 @@ std::optional<BsdfSample> LayeredBsdf::sample(Vec3 wo, float u_lobe, Vec2 u, boo
     const bool at_top = w.z > 0.0f;
     z = at_top ? thickness : 0.0f;
 
-    const float uc = random.next();
+    const float uc = random.next_1d();
     const Vec2 u2 = random.next_2d();
     const auto event = at_top ? top_.sample(-w, uc, u2) : base_sample(-w, uc, u2);
     if (!usable(event)) return std::nullopt;

@@ -70,7 +70,7 @@ SampledSpectrum VolumetricPathIntegrator::equiangular_direct(EquiangularSegment 
   const float phase = medium.phase().eval(-segment.direction, ls->wi);
   const SampledSpectrum throughput = beta * c.sigma_s_per_m * exp(-c.sigma_t_per_m() * Float4(s)) * Float4(phase);
   if (!(max_lane(throughput) > 0.0f)) return Float4(0.0f);
-  const auto tr = shadow(point, ls->wi, ls->distance, segment.time, stack, lambda, sampler, throughput);
+  const auto tr = shadow(point, ls->wi, ls->distance, segment.time, stack, lambda, throughput);
   if (!tr) return Float4(0.0f);
 
   const float s_equi = pick->probability * es->pdf_per_m * sum(ratios);

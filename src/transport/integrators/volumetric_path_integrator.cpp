@@ -99,7 +99,7 @@ DistanceSampling distance_sampling_for(DistanceSampling requested, WavelengthMod
 
 std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::shadow(
     Vec3 origin, Vec3 direction, float distance, float time, MediumStack stack, const SampledWavelengths& lambda,
-    Sampler& sampler, SampledSpectrum throughput) const {
+    SampledSpectrum throughput) const {
   ShadowResult out{Float4(1.0f), Float4(1.0f)};  // the media's part
   ShadowPassage panes;                           // the panes' part (shadow_passage.h)
   const auto passed = [&] {
@@ -107,6 +107,9 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
   };
   const auto& media = *scene_.media;
   float remaining = std::isinf(distance) ? INFINITY : distance * (1.0f - 0x1p-12f);
+  // The trackers' numbers for every medium the shadow ray crosses, keyed by the ray: no sampler dimension, as
+  // without media (walk_random.h).
+  WalkRandom walk(Ray{origin, direction, 0.0f, remaining, time}, remaining);
   for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
     Ray ray{origin, direction, 0.0f, remaining, time};
     const std::optional<SurfaceHit> hit = scene_.surfaces.geometry->intersect(ray);
@@ -115,7 +118,7 @@ std::optional<VolumetricPathIntegrator::ShadowResult> VolumetricPathIntegrator::
       // A medium reaching infinity (an open mesh) absorbs everything with σ_t > 0; 1e30 m keeps e^{−σd} defined.
       const float end = hit ? hit->t : std::fmin(remaining, 1e30f);
       const SegmentTransmittance tr =
-          estimate_transmittance(media[size_t(medium)], ray, end, lambda, settings_.distance, sampler, throughput);
+          estimate_transmittance(media[size_t(medium)], ray, end, lambda, settings_.distance, &walk, throughput);
       out.transmittance *= tr.transmittance;
       out.pass_probability *= tr.pass_probability;
       if (max_lane(out.transmittance * panes.transmittance) <= 0.0f) return std::nullopt;
@@ -454,7 +457,7 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
         };
         const bool wrong_side = scatterer.opaque() && dot(ls->wi, scatterer.geometric_normal) <= 0.0f;
         // A costly BSDF is evaluated only if the light is visible, unless the shadow ray needs the throughput
-        // (tracked media). Same estimate either way: without tracking, shadow() draws no random numbers.
+        // (tracked media). Same estimate either way: shadow() draws no sampler numbers.
         const bool visibility_first =
             scatterer.bsdf && scatterer.bsdf->evaluation_is_costly() && !shadow_reads_throughput_;
         std::optional<Towards> towards;
@@ -463,7 +466,6 @@ SampledSpectrum VolumetricPathIntegrator::radiance(const Ray& camera_ray, const 
           const Vec3 origin = origin_towards(ls->wi);
           const ShadowSegment segment = shadow_segment(origin, reference.position, *ls, surfaces.scene_scale);
           const auto tr = shadow(origin, segment.direction, segment.length, ray.time, stack_towards(ls->wi), lambda,
-                                 sampler,
                                  towards ? towards->throughput : beta);  // β: read by tracked media only
           if (tr && visibility_first) towards = evaluate();
           if (tr && towards) {

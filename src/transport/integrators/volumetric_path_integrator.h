@@ -106,9 +106,9 @@ class VolumetricPathIntegrator {
   /// media behind them); std::nullopt if a real surface blocks the way.
   /// `throughput`: the direction-sampling technique's throughput along this direction (spectral tracking).
   /// `time`: the path's moment in the shutter (Ray::time), where moving objects block it.
+  /// Draws no sampler dimension: tracked media take their numbers from a stream keyed by the shadow ray.
   std::optional<ShadowResult> shadow(Vec3 origin, Vec3 direction, float distance, float time, MediumStack stack,
-                                     const SampledWavelengths& lambda, Sampler& sampler,
-                                     SampledSpectrum throughput) const;
+                                     const SampledWavelengths& lambda, SampledSpectrum throughput) const;
   /// Whether the equiangular technique runs on segments through `medium` (see the setting).
   bool uses_equiangular(const Medium& medium) const;
   /// The equiangular technique on one homogeneous segment (volumetric_equiangular.cpp): picks a light (part) as NEE

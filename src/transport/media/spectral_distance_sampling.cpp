@@ -1,8 +1,10 @@
 #include "transport/media/spectral_distance_sampling.h"
 
+#include <cassert>
 #include <cmath>
 
 #include "transport/sampling/exponential_warp.h"
+#include "transport/sampling/walk_random.h"
 
 namespace rimu {
 namespace {
@@ -48,15 +50,20 @@ void for_each_majorant(const Medium& medium, const Ray& ray, float t_max, const 
 constexpr float kTransmittanceRouletteBelow = 0.1f;
 
 // Null-collision tracking's walk: calls collision(t, μ̄, coefficients, σ_n) at each tentative collision along
-// [t_min, t_max), at exponential steps of rate μ̄ (one sampler dimension each), σ_n = max(μ̄ − σ_t, 0) per lane.
-// collision returns false to end the walk.
+// [t_min, t_max), at exponential steps of rate μ̄, σ_n = max(μ̄ − σ_t, 0) per lane. collision returns false to
+// end the walk. The steps' numbers come from `random` (walk_random.h), except the first, which is `first_u`: the
+// sampler's one dimension for the walk, so that the first collision — the one a camera ray entering a medium
+// makes — is stratified across a pixel's samples.
 template <typename F>
 void for_each_tentative_collision(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
-                                  Sampler& sampler, F&& collision) {
+                                  float first_u, WalkRandom& random, F&& collision) {
+  bool first = true;
   for_each_majorant(medium, ray, t_max, lambda, [&](float t0, float t1, float majorant, auto&& coefficients_at) {
     if (!(majorant > 0.0f)) return true;
     for (float t = t0;;) {
-      t += exponential_distance(majorant, sampler.next_1d());
+      // Memorylessness: a step that leaves a piece is redrawn in the next one, so the first number may start any piece.
+      t += exponential_distance(majorant, first ? first_u : random.next_1d());
+      first = false;
       if (t >= t1) return true;
       const MediumCoefficients c = coefficients_at(t);
       const Float4 sigma_n = max(Float4(majorant) - c.sigma_t_per_m(), Float4(0.0f));
@@ -163,10 +170,12 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
   // the probabilities above. Path contribution per lane: σ_s at the real vertex, σ_n at null vertices, e^{−μ̄ t}
   // along the way; the density as run: μ̄ e^{−μ̄ t} · P_s or P_n. The exponentials cancel (docs/media.md).
   FreeFlight flight;
-  for_each_tentative_collision(medium, ray, t_max, lambda, sampler,
+  const float first_u = sampler.next_1d();
+  WalkRandom random(first_u, ray, t_max);
+  for_each_tentative_collision(medium, ray, t_max, lambda, first_u, random,
                                [&](float t, float majorant, const MediumCoefficients& c, Float4 sigma_n) {
     const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
-    const float u = sampler.next_1d();
+    const float u = random.next_1d();
     if (p.scatter + p.null <= 0.0f) {  // the hero (or the mean) only absorbs here: the path ends
       flight.weight = Float4(0.0f);
       return false;
@@ -191,6 +200,14 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
 SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
                                             const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler,
                                             SampledSpectrum& throughput) {
+  if (!uses_tracking(medium, mode)) return estimate_transmittance(medium, ray, t_max, lambda, mode, nullptr, throughput);
+  WalkRandom random(sampler.next_1d(), ray, t_max);
+  return estimate_transmittance(medium, ray, t_max, lambda, mode, &random, throughput);
+}
+
+SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
+                                            const SampledWavelengths& lambda, DistanceSampling mode,
+                                            WalkRandom* random, SampledSpectrum& throughput) {
   SegmentTransmittance out;
   if (!uses_tracking(medium, mode)) {
     const MediumCoefficients c = medium.homogeneous()->coefficients(lambda);
@@ -208,7 +225,8 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
   // Unbiased; without it a shadow ray from deep inside a dense grid walked every tentative collision to the far
   // side (hundreds of lookups) to return a transmittance of 10⁻¹⁰ — pbrt-v4 plays the same roulette below 0.05.
   // The pass probabilities of a walk that the roulette ends are never read: its transmittance is 0.
-  for_each_tentative_collision(medium, ray, t_max, lambda, sampler,
+  assert(random);
+  for_each_tentative_collision(medium, ray, t_max, lambda, random->next_1d(), *random,
                                [&](float, float majorant, const MediumCoefficients& c, Float4 sigma_n) {
     out.transmittance *= sigma_n / Float4(majorant);
     const CollisionProbabilities p = collision_probabilities(mode, c.sigma_s_per_m, sigma_n, throughput);
@@ -219,7 +237,7 @@ SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray
     if (!(largest > 0.0f)) return false;  // stop once no lane passes
     if (largest < kTransmittanceRouletteBelow) {
       const float survive = largest / kTransmittanceRouletteBelow;
-      if (sampler.next_1d() >= survive) {
+      if (random->next_1d() >= survive) {
         out.transmittance = Float4(0.0f);
         return false;
       }
@@ -247,7 +265,9 @@ SampledSpectrum emitted_along(const Medium& medium, const Ray& ray, float t_max,
   const std::optional<SampledSpectrum> uniform =
       emission.uniform() ? std::optional<SampledSpectrum>(emission.radiance_at(ray.origin, lambda)) : std::nullopt;
   SampledSpectrum sum_emitted(0.0f), transmittance(1.0f);
-  for_each_tentative_collision(medium, ray, t_max, lambda, sampler,
+  const float first_u = sampler.next_1d();
+  WalkRandom random(first_u, ray, t_max);
+  for_each_tentative_collision(medium, ray, t_max, lambda, first_u, random,
                                [&](float t, float majorant, const MediumCoefficients& c, Float4 sigma_n) {
                                  if (max_lane(c.sigma_a_per_m) > 0.0f) {
                                    const SampledSpectrum le =
@@ -259,7 +279,7 @@ SampledSpectrum emitted_along(const Medium& medium, const Ray& ray, float t_max,
                                  if (!(largest > 0.0f)) return false;
                                  if (largest < kRouletteBelow) {
                                    const float survive = largest / kRouletteBelow;
-                                   if (sampler.next_1d() >= survive) return false;
+                                   if (random.next_1d() >= survive) return false;
                                    transmittance *= Float4(1.0f / survive);
                                  }
                                  return true;

@@ -4,6 +4,7 @@
 
 #include "transport/media/medium.h"
 #include "transport/sampling/sampler.h"
+#include "transport/sampling/walk_random.h"
 
 namespace rimu {
 
@@ -54,7 +55,8 @@ struct SegmentTransmittance {
 bool uses_tracking(const Medium& medium, DistanceSampling mode);
 
 /// Samples a free flight from ray.origin along ray.direction (unit) until t_max (the next surface) in `medium`.
-/// Consumes one uniform number (homogeneous analytic modes) or two per tentative collision (trackers).
+/// Consumes one sampler dimension either way: the analytic modes' exponential sample, or the trackers' first step
+/// (their other numbers come from a WalkRandom keyed by it and the ray: sampling/walk_random.h says why).
 /// `throughput` is the path's effective per-lane throughput (only spectral_tracking reads it; any positive
 /// multiple will do); it is updated along the flight's null collisions for the next segment, as a multiple
 /// rescaled so that its largest lane is 1.
@@ -63,20 +65,28 @@ FreeFlight sample_free_flight(const Medium& medium, const Ray& ray, float t_max,
 
 /// The transmittance over [ray.t_min, t_max): exp(−σ_t d) for homogeneous media (analytic modes), else ratio
 /// tracking (Novák, Selle, Jarosz 2014) against the majorant grid, with Russian roulette once every lane's estimate
-/// is below 0.1. Consumes one number per tentative collision and one per roulette.
+/// is below 0.1. Consumes no sampler dimension when analytic, one when tracked (the walk's first step; the rest
+/// from a WalkRandom, as sample_free_flight).
 /// `throughput` is what the free-flight technique's throughput would be on this segment (spectral_tracking's
 /// probabilities depend on it, and so do the pass probabilities); updated along the null collisions (rescaled so
 /// that its largest lane is 1: only its direction matters, and this keeps it finite).
 SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
                                             const SampledWavelengths& lambda, DistanceSampling mode, Sampler& sampler,
                                             SampledSpectrum& throughput);
+/// The same with every number of a tracked walk from `random` (no sampler dimension; may be null when
+/// !uses_tracking): a shadow ray keys one stream by its own ray for every medium it crosses, so that it takes no
+/// sampler dimension, whatever it crosses.
+SegmentTransmittance estimate_transmittance(const Medium& medium, const Ray& ray, float t_max,
+                                            const SampledWavelengths& lambda, DistanceSampling mode,
+                                            WalkRandom* random, SampledSpectrum& throughput);
 
 /// An estimate of ∫ T(t)·σ_a(t)·L_e(t) dt over [ray.t_min, t_max) per lane: the light an emissive medium
 /// (Medium::emission, non-null) adds along the segment, seen from ray.origin. Homogeneous media with uniform
 /// emission: exact, σ_a L_e (1 − e^{−σ_t d}) / σ_t, no random numbers. Otherwise a collision estimator over the
 /// majorant grid's tentative collisions (rate μ̄, the lanes' largest σ_t): Σ_i T̂_i σ_a L_e(t_i) / μ̄ with T̂ the
 /// ratio-tracking transmittance up to t_i (Novák, Selle, Jarosz 2014), Russian roulette once every lane's T̂ is
-/// below 0.1. Unbiased in every lane whatever the path's distance sampling: it is an estimator of its own, added to
+/// below 0.1 (one sampler dimension when tracked, as estimate_transmittance). Unbiased in every lane whatever the
+/// path's distance sampling: it is an estimator of its own, added to
 /// the path's light as surface emission reached by the same segment would be.
 SampledSpectrum emitted_along(const Medium& medium, const Ray& ray, float t_max, const SampledWavelengths& lambda,
                               Sampler& sampler);

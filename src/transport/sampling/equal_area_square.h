@@ -17,8 +17,8 @@ namespace rimu {
 /// The unit direction of square point `p` ∈ [0, 1]² (values outside are clamped).
 Vec3 equal_area_square_to_sphere(Vec2 p);
 
-/// The square point of direction `d` (need not be normalised; not zero), in [0, 1]². Exact inverse of
-/// equal_area_square_to_sphere up to rounding (the angle uses atan2, not a polynomial fit).
+/// The square point of direction `d` (need not be normalised; not zero), in [0, 1]². The inverse of
+/// equal_area_square_to_sphere up to rounding and the 1.3e-7 rad of its polynomial atan (equal_area_square.cpp).
 Vec2 equal_area_sphere_to_square(Vec3 d);
 
 }  // namespace rimu

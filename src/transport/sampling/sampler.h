@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "transport/sampling/bit_mixing.h"  // mix_bits, used with samplers for seeding
+#include "transport/sampling/pcg32.h"
 #include "transport/geometry/vector.h"
 
 namespace rimu {
@@ -40,7 +41,7 @@ class IndependentSampler final : public Sampler {
 
  private:
   uint64_t seed_;
-  uint64_t state_ = 0, increment_ = 1;
+  Pcg32 random_;
 };
 
 /// Which sampler a render uses (docs/sampling.md compares them).
