@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -73,6 +74,17 @@ void check_identical(const fs::path& path, int bits) {
   // Bit for bit: memcmp, so that -0 and NaN would count too.
   REQUIRE(exr.pixels.size() == oiio.pixels.size());
   CHECK(std::memcmp(exr.pixels.data(), oiio.pixels.data(), exr.pixels.size() * sizeof(float)) == 0);
+  // Read compact (as RgbImage reads): a file of halves keeps them, each equal to the float OpenImageIO gives;
+  // any other file comes as floats.
+  const DecodedImage compact = read_image_file(path, true, true);
+  if (bits == 16) {
+    CHECK(compact.pixels.empty());
+    REQUIRE(compact.halves.size() == oiio.pixels.size());
+    for (size_t i = 0; i < compact.halves.size(); ++i) CHECK(imath_half_to_float(compact.halves[i]) == oiio.pixels[i]);
+  } else {
+    CHECK(compact.halves.empty());
+    CHECK(compact.pixels == exr.pixels);
+  }
 }
 
 }  // namespace
@@ -95,16 +107,19 @@ TEST_CASE("OpenEXR images decode bit for bit as OpenImageIO decodes them") {
   check_identical(write_exr(dir / "mixed.exr", 37, 23, mixed), 32);
 }
 
-TEST_CASE("RgbImage keeps the R, G, B of float images of one, three and four channels, pixel by pixel") {
-  // RgbImage::read compacts three or more channels in place and widens grey into a new buffer: each pixel's
-  // values must be the decoder's, in order, whatever the channel count (37 × 23: no power of two).
+TEST_CASE("RgbImage keeps the R, G, B of float and half images of one, three and four channels, pixel by pixel") {
+  // RgbImage::read compacts three or more channels in place and widens grey into a new buffer, as floats or as
+  // halves: each pixel's values must be the decoder's floats, in order, whatever the channel count (37 × 23: no
+  // power of two).
   const int w = 37, h = 23;
   test::ScratchFolder dir("rgb_image_channels");
+  for (const OIIO::TypeDesc type : {OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::HALF})
   for (const std::vector<std::string>& names :
        {std::vector<std::string>{"Y"}, std::vector<std::string>{"R", "G", "B"}, std::vector<std::string>{"R", "G", "B", "A"}}) {
     CAPTURE(names.size());
-    const fs::path path =
-        write_exr(dir / ("channels_" + std::to_string(names.size()) + ".exr"), w, h, {names, OIIO::TypeDesc::FLOAT});
+    CAPTURE(type == OIIO::TypeDesc::HALF);
+    const fs::path path = write_exr(dir / ("channels_" + std::to_string(names.size()) + "_" + type.c_str() + ".exr"), w,
+                                    h, {names, type});
     const DecodedImage decoded = read_image_file(path, true);
     const RgbImage image = RgbImage::read(path, {});
     REQUIRE(image.width() == w);
@@ -118,6 +133,23 @@ TEST_CASE("RgbImage keeps the R, G, B of float images of one, three and four cha
         CHECK(float(p.g) == decoded.pixels[i + (channels >= 3 ? 1 : 0)]);
         CHECK(float(p.b) == decoded.pixels[i + (channels >= 3 ? 2 : 0)]);
       }
+  }
+}
+
+TEST_CASE("a half OpenEXR image with an infinite or NaN pixel is refused, naming the file and the pixel") {
+  test::ScratchFolder dir("rgb_image_half_nonfinite");
+  for (const float bad_value : {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                                std::numeric_limits<float>::quiet_NaN(), 1e6f /* above half's 65504: infinite */}) {
+    CAPTURE(bad_value);
+    const fs::path path = dir / "bad.exr";
+    auto out = OIIO::ImageOutput::create(path.string());
+    REQUIRE(out);
+    REQUIRE(out->open(path.string(), OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::HALF)));
+    const std::vector<float> values = {0.5f, 0.5f, 0.5f, 0.25f, bad_value, 0.0f, 0.0f, 0.0f, bad_value, 1.0f, 1.0f, 1.0f};
+    REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+    REQUIRE(out->close());
+    REQUIRE(read_image_file(path, true, true).halves.size() == 12);  // the half path is the one tested
+    test::input_error([&] { RgbImage::read(path, {}); }, {path.string(), "pixel (1, 0) is not a finite number"});
   }
 }
 

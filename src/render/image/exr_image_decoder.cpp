@@ -75,7 +75,7 @@ std::optional<DecodedImage> exr_image_header(const std::filesystem::path& path) 
   return image;
 }
 
-DecodedImage exr_image_pixels(const std::filesystem::path& path, const DecodedImage& header) {
+DecodedImage exr_image_pixels(const std::filesystem::path& path, const DecodedImage& header, bool halves_if_half) {
   DecodedImage image = header;
   try {
     const std::unique_ptr<Imf::InputFile> file = open_exr_input(path);
@@ -88,11 +88,20 @@ DecodedImage exr_image_pixels(const std::filesystem::path& path, const DecodedIm
         window.max.y - window.min.y + 1 != header.height)
       throw InputError({path.string(), 0, ""}, "the image changed while it was read");
     const size_t channels = names.size();
-    image.pixels.assign(size_t(header.width) * size_t(header.height) * channels, 0.0f);
+    const size_t values = size_t(header.width) * size_t(header.height) * channels;
+    const bool halves = halves_if_half && header.bits_per_sample == 16;
     Imf::FrameBuffer frame;
-    for (size_t c = 0; c < channels; ++c)
-      frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, window, sizeof(float) * channels,
-                                              sizeof(float) * channels * size_t(header.width)));
+    if (halves) {
+      image.halves.assign(values, 0);
+      for (size_t c = 0; c < channels; ++c)
+        frame.insert(names[c], Imf::Slice::Make(Imf::HALF, image.halves.data() + c, window, sizeof(std::uint16_t) * channels,
+                                                sizeof(std::uint16_t) * channels * size_t(header.width)));
+    } else {
+      image.pixels.assign(values, 0.0f);
+      for (size_t c = 0; c < channels; ++c)
+        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, window, sizeof(float) * channels,
+                                                sizeof(float) * channels * size_t(header.width)));
+    }
     file->setFrameBuffer(frame);
     file->readPixels(window.min.y, window.max.y);
   } catch (const InputError&) {

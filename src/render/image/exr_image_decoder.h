@@ -21,8 +21,11 @@ namespace rimu {
 /// open_exr_input (its header checks); throws InputError naming the file if OpenEXR cannot read the header.
 std::optional<DecodedImage> exr_image_header(const std::filesystem::path& path);
 
-/// The pixels of `path` as floats (the data window, row 0 at the top), `header` being what exr_image_header gave.
-/// Throws InputError naming the file if the file ends before its pixels do or OpenEXR cannot decode them.
-DecodedImage exr_image_pixels(const std::filesystem::path& path, const DecodedImage& header);
+/// The pixels of `path` as floats (the data window, row 0 at the top), `header` being what exr_image_header gave;
+/// with `halves_if_half`, a file whose channels are all half fills DecodedImage::halves instead (half the memory,
+/// the same values). Throws InputError naming the file if the file ends before its pixels do or OpenEXR cannot
+/// decode them.
+DecodedImage exr_image_pixels(const std::filesystem::path& path, const DecodedImage& header,
+                              bool halves_if_half = false);
 
 }  // namespace rimu

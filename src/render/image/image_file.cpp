@@ -46,26 +46,26 @@ namespace {
 // pixels.
 void check_same_image(const DecodedImage& image, const DecodedImage& header, const std::filesystem::path& path) {
   if (image.width != header.width || image.height != header.height || image.channels != header.channels ||
-      image.pixels.size() + image.bytes.size() !=
+      image.pixels.size() + image.bytes.size() + image.halves.size() !=
           std::size_t(image.width) * std::size_t(image.height) * std::size_t(image.channels))
     throw InputError({path.string(), 0, ""}, "the image changed while it was read");
 }
 
 }  // namespace
 
-DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool bytes_if_8bit) {
+DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool compact) {
   const std::uintmax_t file_bytes = check_input_file(path, kMaxBinaryFileBytes);  // a FIFO would block the library
   // PNG, JPEG, TGA and BMP in-process, without loading OpenImageIO (stb_image_decoder.h).
   if (const std::optional<DecodedImage> header = stb_image_header(path, as_stored)) {
     check_image_header(*header, file_bytes, path.string());
-    DecodedImage image = stb_image_pixels(path, *header, bytes_if_8bit);
+    DecodedImage image = stb_image_pixels(path, *header, compact);
     check_same_image(image, *header, path);
     return image;
   }
   // OpenEXR images of R, G, B (A) or Y (A) with OpenEXR itself, which Rimu links anyway (exr_image_decoder.h).
   if (const std::optional<DecodedImage> header = exr_image_header(path)) {
     check_image_header(*header, file_bytes, path.string());
-    DecodedImage image = exr_image_pixels(path, *header);
+    DecodedImage image = exr_image_pixels(path, *header, compact);
     check_same_image(image, *header, path);
     return image;
   }
@@ -74,7 +74,7 @@ DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, 
   check_exr_header_sizes(path, file_bytes);
   DecodedImage image;
   image.as_stored = as_stored;
-  image.bytes_if_8bit = bytes_if_8bit;
+  image.bytes_if_8bit = compact;
   if (std::string error; !library.read_header(path.string(), image, error))
     throw InputError({path.string(), 0, ""}, "cannot read the image: " + error);
   check_image_header(image, file_bytes, path.string());

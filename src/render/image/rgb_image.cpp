@@ -64,6 +64,33 @@ RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& 
     image.bytes = {};  // freed before the caller's texels are made
     return RgbImage(w, h, std::move(rgb8), encoding.srgb_transfer);
   }
+  if (!image.halves.empty() && !encoding.srgb_transfer) {
+    // Halves (an OpenEXR file of half samples), kept: RGB of three or more channels in place, as floats below.
+    std::vector<std::uint16_t> rgb16;
+    std::vector<std::uint16_t>& raw = image.halves;
+    const bool in_place = channels >= 3;
+    if (!in_place) rgb16.resize(count * 3);
+    std::vector<std::uint16_t>& out = in_place ? raw : rgb16;
+    for (size_t i = 0; i < count; ++i) {
+      std::uint16_t v[3];
+      for (int c = 0; c < 3; ++c) {
+        v[c] = raw[i * size_t(channels) + channel(c)];
+        if ((v[c] & 0x7c00u) == 0x7c00u)  // the exponent of infinities and NaNs
+          throw InputError({path.string(), 0, ""}, "pixel (" + std::to_string(i % size_t(w)) + ", " +
+                                                       std::to_string(i / size_t(w)) + ") is not a finite number");
+      }
+      for (int c = 0; c < 3; ++c) out[3 * i + size_t(c)] = v[c];
+    }
+    out.resize(count * 3);
+    if (channels > 3) out.shrink_to_fit();
+    return RgbImage(w, h, std::move(out));
+  }
+  if (!image.halves.empty()) {
+    // sRGB-encoded halves (an unusual file): decoded below as floats.
+    image.pixels.resize(image.halves.size());
+    for (size_t i = 0; i < image.halves.size(); ++i) image.pixels[i] = imath_half_to_float(image.halves[i]);
+    image.halves = {};
+  }
   // Floats: RGB of three or more channels in place (pixel i's RGB goes to [3i, 3i + 3), never past where pixel
   // i's channels were, so one forward pass reads every value before it is overwritten); grey needs a new buffer.
   // In place saves a copy of the image (48 MiB for a 2048² sky) and its first touch of fresh pages: the copy and its

@@ -13,7 +13,7 @@
 namespace rimu {
 
 /// Bumped whenever a signature below changes, so that a stale module is refused rather than called wrongly.
-inline constexpr int kImageModuleApiVersion = 4;
+inline constexpr int kImageModuleApiVersion = 5;
 
 /// The pixels of an image file, interleaved, row 0 at the top: as 32-bit floats, or as the file's own bytes for a
 /// file of 8-bit samples if the caller asks (four times less memory than floats, and no conversion buffer).
@@ -31,6 +31,9 @@ struct DecodedImage {
   bool bytes_if_8bit = false;
   std::vector<float> pixels;
   std::vector<std::uint8_t> bytes;
+  /// An OpenEXR file of half samples read as stored (exr_image_pixels with halves_if_half; never by the module):
+  /// the IEEE 754 binary16 bit patterns, and `pixels` empty.
+  std::vector<std::uint16_t> halves;
 };
 
 struct ImageModuleApi {
