@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "counting_sampler.h"
 #include "media_test_scene.h"
 #include "transport/sampling/sampler.h"
 
@@ -99,27 +100,7 @@ TEST_CASE("sigma_t spanning 1e-4 to 1e4 across the lanes of one slab") {
 namespace {
 // Counts the random numbers a path draws: a path with n medium vertices draws at least 8n (7 per vertex + 1
 // per free flight), so the count bounds the number of bounces from below.
-class CountingSampler final : public Sampler {
- public:
-  explicit CountingSampler(uint64_t seed) : inner_(seed) {}
-  void start_pixel_sample(int x, int y, uint32_t i) override {
-    inner_.start_pixel_sample(x, y, i);
-    count = 0;
-  }
-  float next_1d() override {
-    ++count;
-    return inner_.next_1d();
-  }
-  Vec2 next_2d() override {
-    count += 2;
-    return inner_.next_2d();
-  }
-  std::unique_ptr<Sampler> clone() const override { return std::make_unique<CountingSampler>(1); }
-  long count = 0;
-
- private:
-  IndependentSampler inner_;
-};
+using test::CountingSampler;
 }  // namespace
 
 TEST_CASE("An optically thick slab with albedo 0.999: thousands of bounces, no underflow, a bounded walk") {

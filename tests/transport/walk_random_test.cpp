@@ -11,28 +11,12 @@
 #include "transport/media/medium.h"
 #include "transport/media/spectral_distance_sampling.h"
 #include "transport/sampling/walk_random.h"
+#include "counting_sampler.h"
 
 namespace rimu {
 namespace {
 
-// Counts the dimensions drawn from an independent sampler.
-class CountingSampler final : public Sampler {
- public:
-  void start_pixel_sample(int x, int y, uint32_t sample_index) override { inner_.start_pixel_sample(x, y, sample_index); }
-  float next_1d() override {
-    ++draws;
-    return inner_.next_1d();
-  }
-  Vec2 next_2d() override {
-    draws += 2;
-    return inner_.next_2d();
-  }
-  std::unique_ptr<Sampler> clone() const override { return std::make_unique<CountingSampler>(); }
-  int draws = 0;
-
- private:
-  IndependentSampler inner_{11};
-};
+;
 
 // A 4³ voxel grid over the unit cube: density 0.1 everywhere but one corner voxel of 1.0, off the rays below, with
 // σ_t = 60 per unit density (σ_s 54, σ_a 6). The majorant is 60 per unit length across the cube while σ_t = 6 along
@@ -51,16 +35,16 @@ TEST_CASE("medium walks take one sampler dimension each, however many tentative 
   const Medium medium = sparse_in_majorant_grid();
   const SampledWavelengths lambda(Float4(450.0f, 520.0f, 600.0f, 680.0f), Float4(1.0f));
   const Ray ray{{-0.5f, 0.4f, 0.4f}, {1.0f, 0.0f, 0.0f}};
-  CountingSampler sampler;
+  test::CountingSampler sampler(11);
   sampler.start_pixel_sample(0, 0, 0);
   int scattered = 0;
   float deepest = 0.0f;
   for (int i = 0; i < 2000; ++i) {
     SampledSpectrum throughput = Float4(1.0f);
-    const int before = sampler.draws;
+    const long before = sampler.count;
     const FreeFlight flight =
         sample_free_flight(medium, ray, 2.0f, lambda, DistanceSampling::spectral_mis, sampler, throughput);
-    CHECK(sampler.draws - before == 1);
+    CHECK(sampler.count - before == 1);
     if (flight.scattered) {
       ++scattered;
       deepest = std::fmax(deepest, flight.t - 0.5f);  // the ray enters the cube at t = 0.5
@@ -75,13 +59,13 @@ TEST_CASE("medium walks take one sampler dimension each, however many tentative 
   // ~60 tentative collisions, or ends by Russian roulette after some 20).
   for (int i = 0; i < 500; ++i) {
     SampledSpectrum throughput = Float4(1.0f);
-    const int before = sampler.draws;
+    const long before = sampler.count;
     estimate_transmittance(medium, ray, 2.0f, lambda, DistanceSampling::spectral_mis, sampler, throughput);
-    CHECK(sampler.draws - before == 1);
+    CHECK(sampler.count - before == 1);
     WalkRandom random(sampler.next_1d(), ray, 2.0f);
-    const int after_key = sampler.draws;
+    const long after_key = sampler.count;
     estimate_transmittance(medium, ray, 2.0f, lambda, DistanceSampling::spectral_mis, &random, throughput);
-    CHECK(sampler.draws == after_key);
+    CHECK(sampler.count == after_key);
   }
 }
 
