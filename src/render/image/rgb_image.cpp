@@ -47,6 +47,31 @@ const float* RgbImage::decode_table(bool srgb_transfer) {
   return srgb_transfer ? tables.srgb.data() : tables.linear.data();
 }
 
+namespace {
+
+// Pixel i's R, G, B (grey repeated; alpha and further channels dropped) at [3i, 3i + 3), each sample passed through
+// decode(sample, i). Three or more channels are compacted in place: pixel i's RGB never lands past where its
+// channels were, so one forward pass reads every sample before it is overwritten. That saves a copy of the image
+// (48 MiB for a 2048² sky of floats) and its first touch of fresh pages: the copy and its zero-fill were a third of
+// the load of the pbrt-v3 cloud scene (docs/benchmarks.md, "pbrt-v3 scenes"). Grey needs a new buffer.
+template <typename Sample, typename Decode>
+std::vector<Sample> rgb_of(std::vector<Sample>&& raw, int channels, size_t count, Decode decode) {
+  const bool in_place = channels >= 3;
+  std::vector<Sample> grey_to_rgb;
+  if (!in_place) grey_to_rgb.resize(count * 3);
+  std::vector<Sample>& rgb = in_place ? raw : grey_to_rgb;
+  for (size_t i = 0; i < count; ++i) {
+    Sample v[3];
+    for (int c = 0; c < 3; ++c) v[c] = decode(raw[i * size_t(channels) + size_t(channels >= 3 ? c : 0)], i);
+    for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = v[c];
+  }
+  rgb.resize(count * 3);
+  if (channels > 3) rgb.shrink_to_fit();  // an alpha channel's quarter is not kept
+  return std::move(rgb);
+}
+
+}  // namespace
+
 RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& encoding) {
   // Colour as stored, not multiplied by alpha: a texture's colour is a reflectance, and a cut-out applies its alpha
   // separately (stochastically, as pbrt-v4 does), so premultiplied texels would darken the edges of a leaf twice.
@@ -54,36 +79,23 @@ RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& 
   DecodedImage image = read_image_file(path, true, true);
   const int w = image.width, channels = image.channels, h = image.height;
   const size_t count = size_t(w) * size_t(h);
-  const auto channel = [channels](int c) { return size_t(channels >= 3 ? c : 0); };
   if (!image.bytes.empty()) {
     // 8-bit codes kept as they are (every code is finite): RGB as read, or grey repeated, or RGB without alpha.
     if (channels == 3) return RgbImage(w, h, std::move(image.bytes), encoding.srgb_transfer);
-    std::vector<std::uint8_t> rgb8(count * 3);
-    for (size_t i = 0; i < count; ++i)
-      for (int c = 0; c < 3; ++c) rgb8[3 * i + size_t(c)] = image.bytes[i * size_t(channels) + channel(c)];
-    image.bytes = {};  // freed before the caller's texels are made
+    std::vector<std::uint8_t> rgb8 = rgb_of(std::move(image.bytes), channels, count, [](std::uint8_t v, size_t) { return v; });
     return RgbImage(w, h, std::move(rgb8), encoding.srgb_transfer);
   }
+  const auto refuse = [&](size_t i) {
+    throw InputError({path.string(), 0, ""}, "pixel (" + std::to_string(i % size_t(w)) + ", " +
+                                                 std::to_string(i / size_t(w)) + ") is not a finite number");
+  };
   if (!image.halves.empty() && !encoding.srgb_transfer) {
-    // Halves (an OpenEXR file of half samples), kept: RGB of three or more channels in place, as floats below.
-    std::vector<std::uint16_t> rgb16;
-    std::vector<std::uint16_t>& raw = image.halves;
-    const bool in_place = channels >= 3;
-    if (!in_place) rgb16.resize(count * 3);
-    std::vector<std::uint16_t>& out = in_place ? raw : rgb16;
-    for (size_t i = 0; i < count; ++i) {
-      std::uint16_t v[3];
-      for (int c = 0; c < 3; ++c) {
-        v[c] = raw[i * size_t(channels) + channel(c)];
-        if ((v[c] & 0x7c00u) == 0x7c00u)  // the exponent of infinities and NaNs
-          throw InputError({path.string(), 0, ""}, "pixel (" + std::to_string(i % size_t(w)) + ", " +
-                                                       std::to_string(i / size_t(w)) + ") is not a finite number");
-      }
-      for (int c = 0; c < 3; ++c) out[3 * i + size_t(c)] = v[c];
-    }
-    out.resize(count * 3);
-    if (channels > 3) out.shrink_to_fit();
-    return RgbImage(w, h, std::move(out));
+    // Halves (an OpenEXR file of half samples) kept as halves: the same values in half the bytes.
+    std::vector<std::uint16_t> rgb16 = rgb_of(std::move(image.halves), channels, count, [&](std::uint16_t v, size_t i) {
+      if ((v & 0x7c00u) == 0x7c00u) refuse(i);  // the exponent of infinities and NaNs
+      return v;
+    });
+    return RgbImage(w, h, std::move(rgb16));
   }
   if (!image.halves.empty()) {
     // sRGB-encoded halves (an unusual file): decoded below as floats.
@@ -91,28 +103,10 @@ RgbImage RgbImage::read(const std::filesystem::path& path, const ImageEncoding& 
     for (size_t i = 0; i < image.halves.size(); ++i) image.pixels[i] = imath_half_to_float(image.halves[i]);
     image.halves = {};
   }
-  // Floats: RGB of three or more channels in place (pixel i's RGB goes to [3i, 3i + 3), never past where pixel
-  // i's channels were, so one forward pass reads every value before it is overwritten); grey needs a new buffer.
-  // In place saves a copy of the image (48 MiB for a 2048² sky) and its first touch of fresh pages: the copy and its
-  // zero-fill were a third of the load of the pbrt-v3 cloud scene (docs/benchmarks.md, "pbrt-v3 scenes").
-  std::vector<float>& raw = image.pixels;
-  const bool in_place = channels >= 3;
-  std::vector<float> grey_to_rgb;
-  if (!in_place) grey_to_rgb.resize(count * 3);
-  std::vector<float>& rgb = in_place ? raw : grey_to_rgb;
-  for (size_t i = 0; i < count; ++i) {
-    float v[3];
-    for (int c = 0; c < 3; ++c) {
-      v[c] = raw[i * size_t(channels) + channel(c)];
-      if (!std::isfinite(v[c]))
-        throw InputError({path.string(), 0, ""}, "pixel (" + std::to_string(i % size_t(w)) + ", " +
-                                                     std::to_string(i / size_t(w)) + ") is not a finite number");
-      if (encoding.srgb_transfer) v[c] = float(srgb_decode(v[c]));
-    }
-    for (int c = 0; c < 3; ++c) rgb[3 * i + size_t(c)] = v[c];
-  }
-  rgb.resize(count * 3);
-  if (channels > 3) rgb.shrink_to_fit();  // an alpha channel's quarter is not kept
+  std::vector<float> rgb = rgb_of(std::move(image.pixels), channels, count, [&](float v, size_t i) {
+    if (!std::isfinite(v)) refuse(i);
+    return encoding.srgb_transfer ? float(srgb_decode(v)) : v;
+  });
   return RgbImage(w, h, std::move(rgb));
 }
 
