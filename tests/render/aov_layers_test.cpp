@@ -133,7 +133,7 @@ TEST_CASE("aov: a smooth mirror shows the albedo, normal and distance of the pla
   CHECK(r.channels.count("half_even.X") == 0);
 }
 
-TEST_CASE("aov: black and empty scenes write finite layers; escaped rays have albedo, normal and depth 0") {
+TEST_CASE("aov: black and empty scenes write finite layers, escaped rays have albedo, normal and depth 0") {
   json black = plane_scene();
   black["materials"]["plane"]["reflectance"] = 0.0;
   json empty = json::parse(R"({
@@ -165,7 +165,7 @@ TEST_CASE("aov: the image is the same with and without feature layers") {
   for (const char* c : {"X", "Y", "Z"}) CHECK(plain.channels.at(c) == layered.channels.at(c));
 }
 
-TEST_CASE("aov: rimu denoise names the layers a render lacks and writes nothing; with them it keeps the noisy beauty") {
+TEST_CASE("aov: rimu denoise names the layers a render lacks and writes nothing, with them it keeps the noisy beauty") {
   const fs::path dir = fs::temp_directory_path() / "rimu_aov_test";
   const fs::path out = dir / "denoised.exr";
   fs::remove(out);
@@ -205,7 +205,7 @@ TEST_CASE("aov: partial renders, checkpoints and bad lists are refused before re
   CHECK(aov_list_text(parse_aov_list("normal,albedo", "--aov")) == "albedo,normal");
 }
 
-TEST_CASE("aov: the scene's film \"aov\" asks for layers; --aov replaces it; a bad list names the key") {
+TEST_CASE("aov: the scene's film \"aov\" asks for layers, --aov replaces it, a bad list names the key") {
   json scene = plane_scene();
   scene["film"]["aov"] = "depth";
   const Rendered from_scene = render_scene(scene, "scene_key", "");

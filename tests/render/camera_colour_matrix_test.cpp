@@ -118,7 +118,7 @@ TEST_CASE("the fit holds on surfaces it was not trained on: the 14 CIE test colo
   CHECK(mean < 3.0);
 }
 
-TEST_CASE("pbrt-v4's sensor pipeline: under D65 it is the D65 fit; under tungsten a white keeps its luminance and "
+TEST_CASE("pbrt-v4's sensor pipeline: under D65 it is the D65 fit, under tungsten a white keeps its luminance and "
           "comes out with D65's chromaticity") {
   SpectralLibrary& library = test::library();
   const SpectralResponse camera = SpectralResponse::camera_rgb(library, "nikon_d850");

@@ -25,7 +25,7 @@ json camera_at(int frame) {
 
 }  // namespace
 
-TEST_CASE("camera keyframes: a key's own frame gives the key exactly; the keys' camera replaces the keyframes") {
+TEST_CASE("camera keyframes: a key's own frame gives the key exactly, the keys' camera replaces the keyframes") {
   const json c = camera_at(11);
   CHECK(c["from"] == json::array({0.0, 1.0, 0.0}));
   CHECK(c["to"] == json::array({5.0, 1.0, 0.0}));

@@ -135,7 +135,7 @@ TEST_CASE("daylit points are deterministic: the same seed gives a bit-identical 
   CHECK(film_bits(*one.film) == film_bits(*two.film));
 }
 
-TEST_CASE("integrator.daylit_points takes auto, on, off, true or false; anything else is an input error naming the key") {
+TEST_CASE("integrator.daylit_points takes auto, on, off, true or false, anything else is an input error naming the key") {
   nlohmann::json document = daylit_room("daylit_room_open.json");
   // Left out it is "auto": on in the room whose window is a portal, off once the portal is gone.
   CHECK(room_with_portal_default(document));

@@ -15,7 +15,7 @@
 using namespace rimu;
 namespace fs = std::filesystem;
 
-TEST_CASE("display module: a render that writes only an EXR does not load OpenColorIO; one with a PNG does") {
+TEST_CASE("display module: a render that writes only an EXR does not load OpenColorIO, one with a PNG does") {
   if (test::reran_alone_if(display_library_loaded(), "display module: a render that writes only an EXR*")) return;
   test::ScratchFolder dir("display_module");
   std::ostringstream log;

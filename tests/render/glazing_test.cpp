@@ -107,7 +107,7 @@ TEST_CASE("glazing: a tinted pane transmits the closed form at each wavelength")
   }
 }
 
-TEST_CASE("glazing: refracting glass still blocks shadow rays; alpha cut-outs pass where alpha is 0") {
+TEST_CASE("glazing: refracting glass still blocks shadow rays, alpha cut-outs pass where alpha is 0") {
   const double open = unshaded_floor_radiance();
   const std::array<Estimate, 4> refracting = floor_radiance(sun_over_panes({{{"type", "dielectric"}, {"ior", 1.5}}}));
   const std::array<Estimate, 4> rough = floor_radiance(sun_over_panes({{{"type", "dielectric"}, {"ior", 1.5}, {"roughness", 0.2}}}));
@@ -192,7 +192,7 @@ TEST_CASE("glazing: a double-glazed room equals its BSDF-only reference (surface
   check_matches_bsdf_only(true);
 }
 
-TEST_CASE("glazing: a sky seen only through refracting glass warns at load; through panes, or past a glass ball, not") {
+TEST_CASE("glazing: a sky seen only through refracting glass warns at load, through panes, or past a glass ball, not") {
   auto warns = [](const json& document) {
     const auto scene = scene_from_json(document);
     for (const std::string& w : scene->warnings)

@@ -117,7 +117,7 @@ TEST_CASE("path guiding is deterministic: the same seed gives a bit-identical im
   CHECK(differing_pixels(one, two) == 0);
 }
 
-TEST_CASE("integrator.guiding takes on, off, mixture, true or false; anything else is an input error naming the key") {
+TEST_CASE("integrator.guiding takes on, off, mixture, true or false, anything else is an input error naming the key") {
   const std::filesystem::path path = library().root() / "scenes" / "cornell_box" / "scene.json";
   nlohmann::json document = small_version(path, 8, 8);
   for (const auto& [value, expected] : std::vector<std::pair<nlohmann::json, bool>>{

@@ -253,7 +253,7 @@ TEST_CASE("input limits: a voxel grid's header is checked against the file's siz
               {"fog.json: /media/fog/file: ", "short.rvol: the header announces"});
 }
 
-TEST_CASE("input limits: named spectra resolve through long chains; a real cycle is named") {
+TEST_CASE("input limits: named spectra resolve through long chains, a real cycle is named") {
   // Nine named spectra in a chain used to be called a cycle (the depth limit was 8).
   json s = one_sphere_scene();
   s["spectra"] = json::object();

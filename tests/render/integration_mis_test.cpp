@@ -246,7 +246,7 @@ TEST_CASE("MIS: 25 point lights over lacquered copper (a smooth coat on a glossy
   check_variance_halved(scene, 32, 51);
 }
 
-TEST_CASE("glossy_light_candidates: auto resamples in scenes of many lights only; explicit counts and errors") {
+TEST_CASE("glossy_light_candidates: auto resamples in scenes of many lights only, explicit counts and errors") {
   PathIntegratorSettings settings;
   CHECK(settings.glossy_candidates_for(3) == 1);
   CHECK(settings.glossy_candidates_for(PathIntegratorSettings::kManyLights) == PathIntegratorSettings::kManyLightsCandidates);

@@ -104,7 +104,7 @@ TEST_CASE("light groups: two partials merged keep layers that sum to the beauty 
   CHECK_FALSE(fs::exists(folder / "bad.exr"));
 }
 
-TEST_CASE("light groups: --group x=0 shows the beauty minus layer x exactly; scales act on their layer") {
+TEST_CASE("light groups: --group x=0 shows the beauty minus layer x exactly, scales act on their layer") {
   test::ScratchFolder folder("light_groups_display");
   render(tiny_job(example_scene(), folder / "final.exr"));
   render(tiny_job(example_scene(), folder / "partial.exr", SampleRange{0, 8}));

@@ -60,7 +60,7 @@ TEST_CASE("measured material: a tabulated gold ball renders as the analytic gold
   CHECK(test::finite_total(*test::render_xyz(*measured, 4, 3).film) > 0.0);
 }
 
-TEST_CASE("measured material: materials naming one file share its tables; a bad file is an error at the key") {
+TEST_CASE("measured material: materials naming one file share its tables, a bad file is an error at the key") {
   test::ScratchFolder folder("measured_json");
   write_gold(folder, "gold.bsdf");
   json document = ball_scene({{"type", "measured"}, {"file", "gold.bsdf"}});
@@ -82,7 +82,7 @@ TEST_CASE("measured material: materials naming one file share its tables; a bad 
                        doctest::Contains("/materials/again"), InputError);
 }
 
-TEST_CASE("pbrt measured: the file is imported and read; a missing filename or file is an error at its line") {
+TEST_CASE("pbrt measured: the file is imported and read, a missing filename or file is an error at its line") {
   test::ScratchFolder folder("measured_pbrt");
   write_gold(folder, "gold.bsdf");
   const std::string head = "LookAt 0 0 4  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n";

@@ -342,7 +342,7 @@ TEST_CASE("partial renders: a header attribute claiming more bytes than the file
   CHECK_FALSE(fs::exists(dir / "out.exr"));
 }
 
-TEST_CASE("partial renders: guided partials merge; a mix of guided and unguided partials is refused") {
+TEST_CASE("partial renders: guided partials merge, a mix of guided and unguided partials is refused") {
   Folder dir("guiding");
   RenderJob a = tiny_job(dir / "a.exr", SampleRange{0, 12});
   a.guiding = "on";

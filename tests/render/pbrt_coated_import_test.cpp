@@ -29,7 +29,7 @@ size_t bsdf_kind(const Scene& scene, const std::string& name) {
       .index();
 }
 
-TEST_CASE("pbrt coateddiffuse: pbrt's defaults become an absorbing smooth coat; rough and scattering coats are kept") {
+TEST_CASE("pbrt coateddiffuse: pbrt's defaults become an absorbing smooth coat, rough and scattering coats are kept") {
   const PbrtImport imported = import_text(
       kCamera +
       "MakeNamedMaterial \"plain\" \"string type\" \"coateddiffuse\" \"rgb reflectance\" [0.5 0.2 0.1]\n"

@@ -63,7 +63,7 @@ TEST_CASE("pbrt bilinearmesh: two triangles per patch and pbrt's default uv for 
   CHECK_FALSE(two.contains("uvs"));
 }
 
-TEST_CASE("pbrt partial spheres, cylinders and disks become meshes with pbrt's normals and uv; empty ones are listed") {
+TEST_CASE("pbrt partial spheres, cylinders and disks become meshes with pbrt's normals and uv, empty ones are listed") {
   // A partial sphere: every vertex on the sphere inside zmin/zmax and φ ≤ φmax, nothing listed.
   const PbrtImport sphere = import_text("Shape \"sphere\" \"float radius\" 2 \"float zmin\" -0.5 \"float zmax\" 1 \"float phimax\" 90");
   CHECK(sphere.ignored.empty());
@@ -345,7 +345,7 @@ TEST_CASE("normals in the plane are counted by area: a scanned mesh's slivers ar
   CHECK(scene->meshes_with_normals_near_plane == 1);
 }
 
-TEST_CASE("pbrt plymesh: a vertex normal that is NaN (as in pbrt-v4) or zero shades its triangles flat; the others keep theirs") {
+TEST_CASE("pbrt plymesh: a vertex normal that is NaN (as in pbrt-v4) or zero shades its triangles flat, the others keep theirs") {
   // Bitterli's lamp exports NaN normals at some vertices; pbrt-v4 interpolates them into a NaN normal, which falls
   // back to the geometric one (Triangle::InteractionFromIntersection), and Rimu refused the file. (A zero normal,
   // which pbrt-v4 leaves out of the blend of the other two, is flat in Rimu too: one "no normal" mark.) Three separate

@@ -196,7 +196,7 @@ TEST_CASE("pbrt camera and film: fov spans the shorter axis, resolution, samples
   CHECK_CONTAINS(error_of("WorldBegin\nShape \"sphere\"", true), "no Camera");
 }
 
-TEST_CASE("pbrt bdpt is bidirectional, sppm vertex connection and merging; lightpath light-traces its caustics") {
+TEST_CASE("pbrt bdpt is bidirectional, sppm vertex connection and merging, lightpath light-traces its caustics") {
   const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
   const PbrtImport bdpt = import_text("Integrator \"bdpt\" \"integer maxdepth\" 7\n" + camera);
   CHECK(bdpt.document["integrator"]["method"] == "bidirectional");
@@ -222,7 +222,7 @@ TEST_CASE("pbrt bdpt is bidirectional, sppm vertex connection and merging; light
   }
 }
 
-TEST_CASE("pbrt pixel filters: box, gaussian and triangle with pbrt-v4's default radii; others listed") {
+TEST_CASE("pbrt pixel filters: box, gaussian and triangle with pbrt-v4's default radii, others listed") {
   const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
   const PbrtImport triangle = import_text("PixelFilter \"triangle\"\n" + camera);
   CHECK(triangle.ignored.empty());
@@ -380,7 +380,7 @@ TEST_CASE("pbrt meshes: a PLY whose sides matter stays a file and renders as the
   }
 }
 
-TEST_CASE("pbrt: what is not imported is listed once with a count and the first line; --strict refuses it") {
+TEST_CASE("pbrt: what is not imported is listed once with a count and the first line, --strict refuses it") {
   const std::filesystem::path file = test::test_data("pbrt/unsupported.pbrt");
   const PbrtImport imported = import_pbrt(file, test::library());
   const std::string report = describe_ignored(imported.ignored);
@@ -413,7 +413,7 @@ TEST_CASE("pbrt Cornell box renders the same image as the same scene written in 
   CHECK(test::worst_deviation(test::render_block_deviations(*from_pbrt, *mirrored)) > test::kSigmas);
 }
 
-TEST_CASE("pbrt loopsubdiv: subdivided to \"levels\" with limit normals; meshes Loop's rules refuse are listed") {
+TEST_CASE("pbrt loopsubdiv: subdivided to \"levels\" with limit normals, meshes Loop's rules refuse are listed") {
   const PbrtImport imported = import_text(kUnmirroredCamera + "Shape \"loopsubdiv\" \"integer levels\" 2 \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]");
   CHECK(imported.ignored.empty());
   const json& mesh = imported.document["shapes"][0];

@@ -100,7 +100,7 @@ TEST_CASE("pbrt media: a named preset gives pbrt's measured coefficients (Jensen
   CHECK_NOTHROW(load_scene(imported.document, "media.pbrt", test::test_data("pbrt"), test::library()));
 }
 
-TEST_CASE("pbrt media: RGB grids, emission and unknown presets are listed; the camera's medium surrounds everything") {
+TEST_CASE("pbrt media: RGB grids, emission and unknown presets are listed, the camera's medium surrounds everything") {
   const PbrtImport imported = import_text(
       "MakeNamedMedium \"air\" \"string type\" \"homogeneous\" \"rgb Le\" [1 1 1] \"float Lescale\" 2 \"string preset\" \"Skin9\"\n"
       "MakeNamedMedium \"cloud\" \"string type\" \"rgbgrid\" \"rgb sigma_a\" [1 1 1]\n"
@@ -129,7 +129,7 @@ TEST_CASE("pbrt media: RGB grids, emission and unknown presets are listed; the c
   CHECK(scene->camera_medium == 0);
 }
 
-TEST_CASE("pbrt media: a camera inside a bounded medium starts in it; vacuum inside glass in a medium is listed") {
+TEST_CASE("pbrt media: a camera inside a bounded medium starts in it, vacuum inside glass in a medium is listed") {
   const PbrtImport imported = import_text(
       "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n"
       "MediumInterface \"\" \"fog\"\n" + kCamera +
@@ -284,7 +284,7 @@ TEST_CASE("pbrt subsurface: a dielectric around its own medium, whose walk does 
   CHECK_FALSE(unlit_warning(sky_only));
 }
 
-TEST_CASE("pbrt subsurface: a textured reflectance becomes a textured albedo of the medium; JSON refuses it on a grid") {
+TEST_CASE("pbrt subsurface: a textured reflectance becomes a textured albedo of the medium, JSON refuses it on a grid") {
   // pbrt-v4's head: "texture reflectance" with an mfp. The texture stays a texture (TexturedAlbedo scales σ_s where a
   // path enters), no longer listed with a grey stand-in.
   const PbrtImport textured = import_text(

@@ -110,7 +110,7 @@ TEST_CASE("pbrt medium sides: an interface plane with fog in front bounds it fro
   CHECK(first_normal(front.document["shapes"][0])[2] < 0);
 }
 
-TEST_CASE("pbrt medium sides: an opaque room facing inward holds the camera's fog; an open opaque floor is listed") {
+TEST_CASE("pbrt medium sides: an opaque room facing inward holds the camera's fog, an open opaque floor is listed") {
   // The room's walls face inward with fog in front; the twin faces outward with fog inside. The camera is in fog.
   const PbrtImport inward = import_world("MediumInterface \"\" \"fog\"\n",
                                          "MediumInterface \"\" \"fog\"\nMaterial \"diffuse\"\n" + cube(true));

@@ -40,7 +40,7 @@ bool listed(const PbrtImport& imported, const std::string& fragment) {
 
 }  // namespace
 
-TEST_CASE("pbrt motion: ActiveTransform EndTime moves a shape; statements under All move both ends") {
+TEST_CASE("pbrt motion: ActiveTransform EndTime moves a shape, statements under All move both ends") {
   const PbrtImport imported = import_text(kCamera + "WorldBegin\nAttributeBegin\n  Translate 0 0 -1\n"
                                                     "  ActiveTransform EndTime\n  Translate 2 0 0\n  ActiveTransform All\n"
                                                     "  Scale 0.5 0.5 0.5\n" + kTriangle +
@@ -80,7 +80,7 @@ TEST_CASE("pbrt motion: a shutter open for part of the TransformTimes takes the 
   CHECK(listed(beyond, "beyond TransformTimes"));
 }
 
-TEST_CASE("pbrt motion: a moving camera, instance and sphere; lights and area lights stay at their start") {
+TEST_CASE("pbrt motion: a moving camera, instance and sphere, lights and area lights stay at their start") {
   const PbrtImport imported = import_text(
       "LookAt 0 0 5  0 0 0  0 1 0\nActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\nCamera \"perspective\"\n"
       "WorldBegin\n"

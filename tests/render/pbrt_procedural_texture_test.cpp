@@ -64,7 +64,7 @@ TEST_CASE("pbrt procedural float textures: fbm, wrinkled, windy, dots and the 3D
   CHECK_NOTHROW(load_scene(imported.document, "test.pbrt", std::filesystem::temp_directory_path(), test::library()));
 }
 
-TEST_CASE("pbrt procedural spectrum textures: marble, dots, 3D checkerboard; bad octaves and dimensions refused") {
+TEST_CASE("pbrt procedural spectrum textures: marble, dots, 3D checkerboard, bad octaves and dimensions refused") {
   const PbrtImport imported = import_text(
       kHeader +
       "Texture \"stone\" \"spectrum\" \"marble\" \"float scale\" 3 \"float variation\" 0.4 \"integer octaves\" 6\n"

@@ -77,7 +77,7 @@ TEST_CASE("pbrt conductor with rgb eta and k: pbrt's unbounded RGB, and the Fres
   CHECK(std::abs(silver[3] - silver[0]) < 0.1f);
 }
 
-TEST_CASE("pbrt dielectric with rgb eta: accepted as pbrt's unbounded RGB (grey: a constant; coloured: dispersion)") {
+TEST_CASE("pbrt dielectric with rgb eta: accepted as pbrt's unbounded RGB (grey: a constant, coloured: dispersion)") {
   const PbrtImport imported = test::import_pbrt_test_text(
       kCamera + "MakeNamedMaterial \"grey\" \"string type\" \"dielectric\" \"rgb eta\" [1.5 1.5 1.5]\n"
                 "MakeNamedMaterial \"flint\" \"string type\" \"dielectric\" \"rgb eta\" [1.60 1.62 1.66]\n"

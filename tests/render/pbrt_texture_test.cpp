@@ -185,7 +185,7 @@ TEST_CASE("float image texture: scale, then invert, as pbrt-v4's FloatImageTextu
   CHECK(over.evaluate(right) == 0.0f);                      // max(0, 1 − 3·1)
 }
 
-TEST_CASE("float image texture: values beyond [0, 1] kept as read (pbrt-v4 does not clamp); non-finite texels rejected") {
+TEST_CASE("float image texture: values beyond [0, 1] kept as read (pbrt-v4 does not clamp), non-finite texels rejected") {
   // A float image (PFM, linear): 2.5 and -0.5 in the first channel, looked up at the texel centres.
   const auto path = test::write_pfm("float_image_unclamped", 2, 1, {2.5f, 0.0f, 0.0f, -0.5f, 0.0f, 0.0f});
   const auto values = std::make_shared<const AlphaMask>(AlphaMask::read(path, 0, false, false, false));
@@ -279,7 +279,7 @@ TEST_CASE("pbrt sphere: textures land where pbrt-v4 puts them (pole +z, u = φ/2
   }
 }
 
-TEST_CASE("pbrt sphere as a mesh (squashed, emissive, with alpha) carries pbrt-v4's uv; an image alpha is kept") {
+TEST_CASE("pbrt sphere as a mesh (squashed, emissive, with alpha) carries pbrt-v4's uv, an image alpha is kept") {
   test::ScratchFolder dir("pbrt_sphere_mesh_uv");
   const auto mask = test::write_ppm("pbrt_sphere_mask", 2, 1, {0, 0, 0, 255, 255, 255});
   std::filesystem::copy_file(mask, dir / "mask.ppm", std::filesystem::copy_options::overwrite_existing);

@@ -147,7 +147,7 @@ TEST_CASE("PLY native-order binary errors name the element, the record and the b
   }
 }
 
-TEST_CASE(".ply.gz meshes load like the .ply; truncated, corrupt and mislabelled ones are input errors") {
+TEST_CASE(".ply.gz meshes load like the .ply, truncated, corrupt and mislabelled ones are input errors") {
   test::ScratchFolder dir("ply_gzip");
   const std::string ply = compact_ply(Order::native);
   const std::string compressed = gzip(ply);

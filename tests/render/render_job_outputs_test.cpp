@@ -211,7 +211,7 @@ TEST_CASE("an exposure scale that underflows or overflows is bad input, not an i
   CHECK(film_exposure_scale(PhysicalCameraSettings{}, xyz) > 0.0);
 }
 
-TEST_CASE("a photometric scene without a camera exposure gets a metered display image; the EXR stays in film units") {
+TEST_CASE("a photometric scene without a camera exposure gets a metered display image, the EXR stays in film units") {
   // An 18 % card under 1000 lx: L = 0.18·1000/π = 57.3 nt, Y = L/72 983 in film units, which the Standard view
   // showed at code 2-3 of 255. Metered, the mean luminance is shown as 0.18, sRGB-encoded 0.4614 → code 117.7;
   // the card is uniform and D65-lit, so every channel is near it. ±6 codes: the 2-spp noise of an 8×8 film is

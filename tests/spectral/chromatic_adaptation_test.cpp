@@ -55,7 +55,7 @@ TEST_CASE("every CAT maps the source white exactly onto the destination white, a
       }
 }
 
-TEST_CASE("XYZ scaling is the diagonal of the white ratios; the methods differ off the white") {
+TEST_CASE("XYZ scaling is the diagonal of the white ratios, the methods differ off the white") {
   const Matrix3 scaling = chromatic_adaptation_matrix(kD65Astm, kD50Astm, CatMethod::xyz_scaling);
   CHECK(scaling(0, 0) == doctest::Approx(0.96422 / 0.95047).epsilon(1e-15));
   CHECK(scaling(2, 2) == doctest::Approx(0.82521 / 1.08883).epsilon(1e-15));

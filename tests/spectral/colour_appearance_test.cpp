@@ -93,7 +93,7 @@ TEST_CASE("the generic CIECAM02 gives TM-30's CAM02-UCS (D = 1, L_A = 100, Y_b =
   }
 }
 
-TEST_CASE("UCS round trip, every surround and both models; black maps to J ≈ 0") {
+TEST_CASE("UCS round trip, every surround and both models, black maps to J ≈ 0") {
   for (AppearanceModel which : {AppearanceModel::ciecam02, AppearanceModel::cam16})
     for (const Surround& s : {Surround::average(), Surround::dim(), Surround::dark()}) {
       ViewingConditions v = conditions(64.0);

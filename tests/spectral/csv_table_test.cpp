@@ -164,7 +164,7 @@ TEST_CASE("a CSV that is not a regular file, or holds a NUL byte, is refused by 
                  "NUL"));
 }
 
-TEST_CASE("spectral values must be 0 or 1e-30 to 1e30 in magnitude; numbers beyond a double say so") {
+TEST_CASE("spectral values must be 0 or 1e-30 to 1e30 in magnitude, numbers beyond a double say so") {
   // Before: a flat 1e-310 W/nm light gave XYZ "inf 100 inf" and xy "nan"; 1.7e308 an unrelated blackbody error.
   for (const char* bad : {"1e-310", "1e-31", "-1e-31", "1e31", "1.7e308"}) {
     CAPTURE(bad);

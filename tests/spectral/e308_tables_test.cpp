@@ -146,7 +146,7 @@ TEST_CASE("Stearns & Stearns bandpass correction undoes a triangular bandpass on
         doctest::Approx(1.083 * measured.back() - 0.083 * measured[measured.size() - 2]).epsilon(1e-12));
 }
 
-TEST_CASE("E308 Table 5 is Table 6 with the Stearns correction folded in; the white point is unchanged") {
+TEST_CASE("E308 Table 5 is Table 6 with the Stearns correction folded in, the white point is unchanged") {
   // The identity that relates the two tables: Σ W5_i R_i = Σ W6_i R'_i for R' the Stearns-corrected data. Checked
   // on the checked-in files of every illuminant, observer and interval (stored to 9 decimals: 5e-9 per weight).
   for (const std::string& name : SpectralLibrary::e308_illuminant_names()) {
@@ -197,7 +197,7 @@ TEST_CASE("E308 Table 5 is Table 6 with the Stearns correction folded in; the wh
   CHECK(a.z == doctest::Approx(b.z).epsilon(1e-6));
 }
 
-TEST_CASE("E308 Table 5 recovers the colour seen by a triangular-bandpass instrument; Table 6 does not") {
+TEST_CASE("E308 Table 5 recovers the colour seen by a triangular-bandpass instrument, Table 6 does not") {
   // What Table 5 is for. The 24 ColorChecker reflectances of N. Ohta (5 nm, data/) are taken to 1 nm (E2022
   // Lagrange) and "measured" every 10 nm by a simulated spectrophotometer whose triangular bandpass is 10 nm wide
   // at half height (the interval): m_i = Σ_d (1 − |d|/10) R(λ_i + d) / 10. The truth is the CIE 1 nm sum of R

@@ -92,7 +92,7 @@ TEST_CASE("run_gnuplot draws to exactly the given path and leaves no temporary f
   CHECK(entries_in(box.out()) == 1);
 }
 
-TEST_CASE("run_gnuplot: a broken script is a PlotError carrying gnuplot's message; nothing is left behind") {
+TEST_CASE("run_gnuplot: a broken script is a PlotError carrying gnuplot's message, nothing is left behind") {
   Sandbox box;
   GnuplotJob job;
   job.commands = "plot 'line.dat' using 1:2 with lines\nthis_is_not_a_gnuplot_command";

@@ -136,7 +136,7 @@ TEST_CASE("units that do not fit the light are errors naming the ones that do") 
                        doctest::Contains("an environment light cannot be given in lx"), InputError);
 }
 
-TEST_CASE("recolouring keeps lumens; keep radiometric keeps the watts of the reference shape") {
+TEST_CASE("recolouring keeps lumens, keep radiometric keeps the watts of the reference shape") {
   // 800 lm at 2700 K and at 6500 K: the same lumens, radiant power 800/K(T) each (Manuka course notes §7.6).
   const BlackbodySpectrum warm(2700.0, BlackbodySpectrum::Scale::peak_one);
   const BlackbodySpectrum cool(6500.0, BlackbodySpectrum::Scale::peak_one);

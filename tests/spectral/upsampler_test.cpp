@@ -80,7 +80,7 @@ TEST_CASE("NaN and infinite components are an InputError that names the value an
   }
 }
 
-TEST_CASE("negative components: inside the locus reproduced exactly, otherwise mapped; never a negative value") {
+TEST_CASE("negative components: inside the locus reproduced exactly, otherwise mapped, never a negative value") {
   const auto& up = upsampler("srgb-linear");
   SUBCASE("a cyan beyond sRGB but inside the spectral locus keeps its negative red through the round trip") {
     // sRGB (−0.05, 0.5, 0.5): xy = (0.200, 0.320), well inside the locus. Round-trip error comes only from the

@@ -215,7 +215,7 @@ TEST_CASE("light BVH: sampled frequencies equal pmf() at random points of three 
   CHECK(nothing_scores < tests / 4);  // the test has points where something can contribute
 }
 
-TEST_CASE("light BVH, capped search: pmf() still equals the sampled frequency; the sum may fall short of 1") {
+TEST_CASE("light BVH, capped search: pmf() still equals the sampled frequency, the sum may fall short of 1") {
   // A capped search (8 visits, the cap kSearchBudget documents; an option, not the default, which is unlimited): at
   // points where a search gives up and the child it could not decide holds no
   // scoring leaf, a descent into it finds nothing (probability lost), but pmf() must still be exact and every part
@@ -385,7 +385,7 @@ TEST_CASE("light BVH: spot and IES lights are never chosen outside their cones")
   CHECK(ies_outside > 1000);
 }
 
-TEST_CASE("light BVH: lights below an opaque surface's tangent plane are not chosen; without a normal they are") {
+TEST_CASE("light BVH: lights below an opaque surface's tangent plane are not chosen, without a normal they are") {
   TestScene s;
   s.lights.push_back(std::make_unique<PointLight>(Vec3{0, -1, 0}, flat(1.0)));
   s.lights.push_back(std::make_unique<PointLight>(Vec3{0, 1, 0}, flat(1.0)));
@@ -398,7 +398,7 @@ TEST_CASE("light BVH: lights below an opaque surface's tangent plane are not cho
   CHECK(sampler.pmf(none, 1, 0) == doctest::Approx(0.5));
 }
 
-TEST_CASE("light BVH: an environment keeps the rule's share; a sun shares with the tree by irradiance") {
+TEST_CASE("light BVH: an environment keeps the rule's share, a sun shares with the tree by irradiance") {
   // outdoor_scene: an environment (0), a spot 2 m up (1), a sun (2), a point light (3). Where the sun and the tree
   // can contribute, the environment gets the rule's 1/3 and the sun and the tree split the other 2/3 by the sun's
   // irradiance against the tree root's importance, each keeping at least kInfiniteRuleWeight of its 1/3.

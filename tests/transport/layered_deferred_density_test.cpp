@@ -44,7 +44,7 @@ class PlaneGeometry final : public RayQueries {
 
 }  // namespace
 
-TEST_CASE("layered: sample() without its density draws the same direction and weight; pdf(wo, wi) is that density") {
+TEST_CASE("layered: sample() without its density draws the same direction and weight, pdf(wo, wi) is that density") {
   const LayerMedium slab{0.2f, Float4(0.5f), 0.3f};
   const ConductorBsdf smooth_gold(Float4(0.2f, 0.4f, 0.6f, 0.8f), Float4(3.0f), TrowbridgeReitz(0.0f, 0.0f));
   struct Case {

@@ -47,7 +47,7 @@ test::MeanEstimate illuminance(const GoniometricLight& light, Vec3 receiver, Vec
 
 }  // namespace
 
-TEST_CASE("luminous opening: LM-63 width, length and height map to shapes; the others are refused by value") {
+TEST_CASE("luminous opening: LM-63 width, length and height map to shapes, the others are refused by value") {
   CHECK(luminous_opening_from_lm63(0, 0, 0, 1).opening->is_point());
   const auto rect = luminous_opening_from_lm63(0.2, 0.6, 0, 1).opening;
   REQUIRE(rect);

@@ -83,7 +83,7 @@ TEST_CASE("max_depth_includes_media: max_depth 0 keeps no light scattered in the
   CHECK(once[3] - unscattered[3] > 0.2);
 }
 
-TEST_CASE("max_depth_includes_media: the mean rises with max_depth towards the furnace's 1; without it, 1 at any depth") {
+TEST_CASE("max_depth_includes_media: the mean rises with max_depth towards the furnace's 1, without it, 1 at any depth") {
   const double furnace[4] = {1.0, 1.0, 1.0, 1.0};
   // Without the rule the index-matched slab has no surface interaction to count: every depth is the full furnace.
   check_lanes(render_slab(0, false, 20000, 7), furnace);

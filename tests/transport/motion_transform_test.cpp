@@ -65,7 +65,7 @@ TEST_CASE("motion: the decomposition puts a transform back together (rotation, n
   }
 }
 
-TEST_CASE("motion: translation and scale move linearly; one segment suffices without rotation") {
+TEST_CASE("motion: translation and scale move linearly, one segment suffices without rotation") {
   const Transform start = Transform::translate({0, 0, 0}) * Transform::scale({1, 2, 1});
   const Transform end = Transform::translate({4, -2, 8}) * Transform::scale({3, 2, 1});
   const MotionTransform m = motion(start, end);
@@ -120,7 +120,7 @@ TEST_CASE("motion: linear keys follow the arc to within the chord of a key inter
   CHECK(motion(Transform(), Transform::rotate(180, {1, 0, 0})).linear_keys(0.001).size() == 129);
 }
 
-TEST_CASE("motion: a mirror at one end only is refused; mirrored at both ends it interpolates") {
+TEST_CASE("motion: a mirror at one end only is refused, mirrored at both ends it interpolates") {
   bool valid = true;
   MotionTransform(Transform(), Transform::scale({-1, 1, 1}), valid);
   CHECK_FALSE(valid);

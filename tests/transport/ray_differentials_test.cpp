@@ -170,7 +170,7 @@ MaterialContext flat_context() {
 
 }  // namespace
 
-TEST_CASE("bump with differentials: a ramp gives its analytic tilt at any footprint; a sine is differenced over it") {
+TEST_CASE("bump with differentials: a ramp gives its analytic tilt at any footprint, a sine is differenced over it") {
   MaterialContext c = flat_context();
   const float slope = std::tan(0.35f);
   for (const float footprint : {0.0f, 1e-3f, 0.05f, 0.4f}) {
