@@ -91,16 +91,19 @@ DecodedImage exr_image_pixels(const std::filesystem::path& path, const DecodedIm
     const size_t values = size_t(header.width) * size_t(header.height) * channels;
     const bool halves = halves_if_half && header.bits_per_sample == 16;
     Imf::FrameBuffer frame;
+    // Channel c of pixel i at samples[i·channels + c], as `type`.
+    const auto interleave = [&](Imf::PixelType type, auto* samples) {
+      const size_t bytes = sizeof(*samples);
+      for (size_t c = 0; c < channels; ++c)
+        frame.insert(names[c], Imf::Slice::Make(type, samples + c, window, bytes * channels,
+                                                bytes * channels * size_t(header.width)));
+    };
     if (halves) {
       image.halves.assign(values, 0);
-      for (size_t c = 0; c < channels; ++c)
-        frame.insert(names[c], Imf::Slice::Make(Imf::HALF, image.halves.data() + c, window, sizeof(std::uint16_t) * channels,
-                                                sizeof(std::uint16_t) * channels * size_t(header.width)));
+      interleave(Imf::HALF, image.halves.data());
     } else {
       image.pixels.assign(values, 0.0f);
-      for (size_t c = 0; c < channels; ++c)
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, window, sizeof(float) * channels,
-                                                sizeof(float) * channels * size_t(header.width)));
+      interleave(Imf::FLOAT, image.pixels.data());
     }
     file->setFrameBuffer(frame);
     file->readPixels(window.min.y, window.max.y);

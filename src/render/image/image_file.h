@@ -33,8 +33,8 @@ inline constexpr std::uint64_t kMaxPixelsPerFileByte = 16384;
 void check_image_header(const DecodedImage& header, std::uintmax_t file_bytes, const std::string& file);
 
 /// The pixels of `path` as floats (DecodedImage), or, if `compact`, as stored where that is smaller: bytes for a file
-/// of 8-bit samples, halves for an OpenEXR file of half samples; after check_input_file and check_image_header. `as_stored` as in DecodedImage. Loads OpenImageIO only for a file that
-/// stb_image_header leaves to it. Throws InputError naming the file for a file that is not a regular image file,
+/// of 8-bit samples, halves for an OpenEXR file of half samples; after check_input_file and check_image_header.
+/// `as_stored` as in DecodedImage. Loads OpenImageIO only for a file that stb_image_header leaves to it. Throws InputError naming the file for a file that is not a regular image file,
 /// a header that fails the checks, or pixels the library cannot decode.
 DecodedImage read_image_file(const std::filesystem::path& path, bool as_stored, bool compact = false);
 

@@ -9,6 +9,7 @@
 
 #include "render/scene/pbrt/pbrt_converter.h"
 #include "transport/geometry/motion_transform.h"
+#include "render/film/film_tile.h"
 #include "render/film/spectral_response.h"
 #include "spectral/indefinite_article.h"
 
@@ -621,15 +622,16 @@ void PbrtConverter::film_crop(PbrtParams& p, const PbrtStatement& s) {
   const std::vector<double> window = p.numbers("cropwindow", {PbrtParamType::real});
   const std::vector<double> bounds = p.numbers("pixelbounds", {PbrtParamType::integer});
   if (window.empty() && bounds.empty()) return;
-  const auto clamp01 = [](double v) { return std::clamp(v, 0.0, 1.0); };
   int x0 = 0, x1 = width_, y0 = 0, y1 = height_;
+  CropWindow crop_window;
   if (!window.empty()) {
     if (window.size() != 4) throw InputError(s.where, "Film: \"cropwindow\" takes 4 numbers [x0 x1 y0 y1], not " + std::to_string(window.size()));
     if (!bounds.empty()) ignore("Film \"pixelbounds\" together with \"cropwindow\" (the crop window is used, as in pbrt)", s.where);
-    x0 = int(std::ceil(width_ * clamp01(std::min(window[0], window[1]))));
-    x1 = int(std::ceil(width_ * clamp01(std::max(window[0], window[1]))));
-    y0 = int(std::ceil(height_ * clamp01(std::min(window[2], window[3]))));
-    y1 = int(std::ceil(height_ * clamp01(std::max(window[2], window[3]))));
+    const auto clamp01 = [](double v) { return std::clamp(v, 0.0, 1.0); };
+    crop_window = {clamp01(std::min(window[0], window[1])), clamp01(std::min(window[2], window[3])),
+                   clamp01(std::max(window[0], window[1])), clamp01(std::max(window[2], window[3]))};
+    const PixelBounds pixels = crop_window.pixels(width_, height_);
+    x0 = pixels.x0, y0 = pixels.y0, x1 = pixels.x1, y1 = pixels.y1;
   } else {
     if (bounds.size() != 4) throw InputError(s.where, "Film: \"pixelbounds\" takes 4 integers [x0 x1 y0 y1], not " + std::to_string(bounds.size()));
     x0 = std::max(0, int(bounds[0]));
@@ -645,9 +647,8 @@ void PbrtConverter::film_crop(PbrtParams& p, const PbrtStatement& s) {
   if (!window.empty()) {
     // Kept as fractions, so that `rimu --resolution` crops the same part of the picture (pbrt-v4 applies the
     // window to whatever resolution it renders at); the pixels above are what it selects at the file's own.
-    const double wx0 = clamp01(std::min(window[0], window[1])), wx1 = clamp01(std::max(window[0], window[1]));
-    const double wy0 = clamp01(std::min(window[2], window[3])), wy1 = clamp01(std::max(window[2], window[3]));
-    if (wx0 > 0.0 || wy0 > 0.0 || wx1 < 1.0 || wy1 < 1.0) film_["crop_window"] = {wx0, wy0, wx1, wy1};
+    if (crop_window != CropWindow{})
+      film_["crop_window"] = {crop_window.x0, crop_window.y0, crop_window.x1, crop_window.y1};
   } else if (x0 != 0 || y0 != 0 || x1 != width_ || y1 != height_) {
     film_["crop"] = {x0, y0, x1, y1};
   }
