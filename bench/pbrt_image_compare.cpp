@@ -24,6 +24,10 @@
 //       best any per-pixel allocation of the same samples does) and oracle_3x3_gain (n_i ∝ the root of q's 3×3
 //       mean: what estimates as smooth as the sampler's would reach with exact variances). Equal samples, not CPU
 //       time: the counts carry no cost. docs/benchmarks.md, "Adaptive sampling"
+//   rimu-pbrt-image-compare mean OUT.exr IN.exr IN.exr ... [--space srgb-linear]
+//       the per-pixel mean of the inputs (each converted to the RGB space), written as R, G, B floats with that
+//       space's chromaticities: a reference averaged from renders of several seeds (docs/benchmarks.md,
+//       "Metropolis light transport")
 //   --crop X0 Y0 X1 Y1 (compare, relmse, png): only the pixels x0 ≤ x < x1, y0 ≤ y < y1 of both images (e.g. one
 //       object's pixels, so that its mean is not diluted by the rest of the frame)
 //
@@ -32,6 +36,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <OpenImageIO/imageio.h>
 #include <ImfDoubleAttribute.h>
@@ -113,6 +118,41 @@ LinearRgbImage read_linear_rgb(const std::filesystem::path& path, const rimu::Rg
     return image;
   } catch (const std::exception& e) {
     fail(path.string() + ": " + e.what());
+  }
+}
+
+void require_same_size(const LinearRgbImage& a, const LinearRgbImage& b);
+
+// The per-pixel mean of `inputs`, written to `path` as float R, G, B in `space` (with its chromaticities).
+void write_mean(const std::vector<std::string>& inputs, const std::string& path, const rimu::RgbColourSpace& space) {
+  LinearRgbImage mean = read_linear_rgb(inputs[0], space);
+  for (size_t i = 1; i < inputs.size(); ++i) {
+    const LinearRgbImage next = read_linear_rgb(inputs[i], space);
+    require_same_size(mean, next);
+    for (size_t k = 0; k < mean.rgb.size(); ++k) mean.rgb[k] += next.rgb[k];
+  }
+  std::vector<float> planes[3];
+  for (int c = 0; c < 3; ++c) planes[c].resize(size_t(mean.width) * size_t(mean.height));
+  for (size_t i = 0; i < planes[0].size(); ++i)
+    for (int c = 0; c < 3; ++c) planes[c][i] = float(mean.rgb[3 * i + size_t(c)] / double(inputs.size()));
+  try {
+    Imf::Header header(mean.width, mean.height);
+    const char* names[3] = {"R", "G", "B"};
+    Imf::FrameBuffer frame;
+    for (int c = 0; c < 3; ++c) {
+      header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(planes[c].data()), sizeof(float),
+                                        sizeof(float) * size_t(mean.width)));
+    }
+    Imf::addChromaticities(header, Imf::Chromaticities({float(space.red().x), float(space.red().y)},
+                                                       {float(space.green().x), float(space.green().y)},
+                                                       {float(space.blue().x), float(space.blue().y)},
+                                                       {float(space.white().x), float(space.white().y)}));
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frame);
+    file.writePixels(mean.height);
+  } catch (const std::exception& e) {
+    fail(path + ": " + e.what());
   }
 }
 
@@ -348,10 +388,11 @@ int main(int argc, char** argv) {
   const std::string command = positional.empty() ? "" : positional[0];
   const size_t expected = command == "info" ? 2 : command == "png" ? 4 : 3;
   const bool allocation_usage = command == "allocation" && positional.size() >= 4 && run_spp > 0;
-  if (!allocation_usage && ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
+  const bool mean_usage = command == "mean" && positional.size() >= 3;
+  if (!allocation_usage && !mean_usage && ((command != "info" && command != "png" && command != "compare" && command != "relmse") ||
                             positional.size() != expected || block < 2))
     fail("usage: rimu-pbrt-image-compare compare|relmse A.exr B.exr | png A.exr B.exr OUT.png | info A.exr | "
-         "allocation COUNTS.exr RUN.exr RUN.exr... --run-spp N "
+         "allocation COUNTS.exr RUN.exr RUN.exr... --run-spp N | mean OUT.exr IN.exr... "
          "[--space NAME] [--block N] [--crop X0 Y0 X1 Y1] [--denominator D.exr]");
   if (command == "info") {
     info(positional[1]);
@@ -362,6 +403,10 @@ int main(int argc, char** argv) {
     space = &rimu::RgbColourSpace::named(space_name);
   } catch (const std::exception& e) {
     fail(std::string("--space: ") + e.what());
+  }
+  if (command == "mean") {
+    write_mean(std::vector<std::string>(positional.begin() + 2, positional.end()), positional[1], *space);
+    return 0;
   }
   if (command == "allocation") {
     int width = 0, height = 0;

@@ -403,6 +403,12 @@ void set_up_film(RenderJobState& s) {
                      "feature layers need the render's feature buffers, which live in its memory, not in a partial: "
                      "render the scene in one process (no --samples, --checkpoint or --resume), or remove \"aov\"");
   if (s.aovs.any() || job.denoise) s.features = std::make_unique<FeatureBuffers>(film.pixel_bounds());
+  // Metropolis light transport: its chains and its estimate of the image's brightness live in the render's memory.
+  if (settings.integrator.metropolis && (job.samples || job.checkpoint_interval_s || s.previous))
+    throw InputError({s.scene_path.string(), 0, "/integrator/method"},
+                     "Metropolis light transport's Markov chains live in the render's memory, not in a partial: it "
+                     "cannot be split into sample ranges (--samples) for `rimu merge` or checkpointed and resumed "
+                     "(--checkpoint, --resume); render it in one process, or with another method (--method)");
   s.filter = make_filter(settings.filter);
   if (film.response().kind() == ResponseKind::camera_rgb) s.colour_fit = fit_camera_to_xyz(film.response(), s.library);
   s.metered_display = !settings.camera_exposure.exposure && s.loaded.scene->photometric_lights;
@@ -546,7 +552,13 @@ void log_job_summary(const RenderJobState& s) {
     summary << "rimu: path guiding: " << g.training_passes << " training passes, largest field " << g.spatial_leaves
             << " spatial leaves, " << g.directional_nodes << " directional nodes (or lobes), "
             << double(g.memory_bytes) / (1024.0 * 1024.0) << " MiB\n";
-  if (statistics.bidirectional && statistics.vertex_merging)
+  if (statistics.metropolis)
+    summary << "rimu: Metropolis light transport over "
+            << (statistics.bidirectional ? "bidirectional path tracing" : "the path tracer") << "\n";
+  else if (s.loaded.scene && s.loaded.scene->settings.integrator.metropolis)
+    summary << "rimu: path-traced: Metropolis light transport needs a render without light groups, spectral bins, "
+               "feature buffers (--aov, --denoise) or adaptive sampling\n";
+  else if (statistics.bidirectional && statistics.vertex_merging)
     summary << "rimu: vertex connection and merging (per sample index " << statistics.merge_light_subpaths
             << " light subpaths, each joined by its pixel's camera sample and merged with by every camera vertex; last "
                "pass "

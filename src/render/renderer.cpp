@@ -19,6 +19,7 @@
 #include "render/tile_schedule.h"
 #include "render/film/feature_buffers.h"
 #include "render/interrupt_flag.h"
+#include "render/metropolis_renderer.h"
 #include "render/progress_reporter.h"
 #include "transport/guiding/guiding_field.h"
 #include "transport/integrators/bidirectional_path_integrator.h"
@@ -84,25 +85,16 @@ namespace {
 void add_caustic_splats(const std::vector<CausticSplat>& splats, const PixelFilter& filter, FilmTile& into) {
   const PixelBounds& area = into.bounds();
   const float per_path = 1.0f / float(double(area.width()) * double(area.height()));
-  const float r = filter.radius_px();
   std::vector<SampledSpectrum> group_slots(size_t(into.light_group_count()));
   for (const CausticSplat& splat : splats) {
     if (!group_slots.empty()) {
       std::fill(group_slots.begin(), group_slots.end(), SampledSpectrum(0.0f));
       group_slots[size_t(splat.light_group)] = splat.radiance;
     }
-    const int x0 = std::max(area.x0, int(std::floor(splat.film_px.x - 0.5f - r)));
-    const int x1 = std::min(area.x1 - 1, int(std::ceil(splat.film_px.x - 0.5f + r)));
-    const int y0 = std::max(area.y0, int(std::floor(splat.film_px.y - 0.5f - r)));
-    const int y1 = std::min(area.y1 - 1, int(std::ceil(splat.film_px.y - 0.5f + r)));
-    for (int py = y0; py <= y1; ++py) {
-      for (int px = x0; px <= x1; ++px) {
-        const double density = filter.pdf({splat.film_px.x - (float(px) + 0.5f), splat.film_px.y - (float(py) + 0.5f)});
-        if (!(density > 0.0)) continue;
-        into.add_splat(px, py, splat.radiance, splat.lambda, float(density) * per_path,
-                       group_slots.empty() ? nullptr : group_slots.data());
-      }
-    }
+    filter.spread(splat.film_px, area.x0, area.y0, area.x1, area.y1, [&](int px, int py, double density) {
+      into.add_splat(px, py, splat.radiance, splat.lambda, float(density) * per_path,
+                     group_slots.empty() ? nullptr : group_slots.data());
+    });
   }
 }
 
@@ -487,6 +479,14 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
   return stats;
 }
 
+// Metropolis light transport splats paths anywhere on the film and gives every pixel the same sample count: it has
+// no per-pixel counts for adaptive sampling, no half buffers for a denoiser, and its splats carry the beauty only
+// (no light groups or spectral bins); a partial render (first_sample > 0) could not continue the chains.
+bool metropolis_possible(const Film& film, const RenderOptions& options) {
+  return !options.adaptive && !options.features && options.first_sample == 0 && film.light_groups().empty() &&
+         film.binning().count == 0;
+}
+
 }  // namespace
 
 RenderStatistics render(const TransportScene& transport, const PathIntegratorSettings& integrator_settings,
@@ -505,6 +505,34 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
     stats.bidirectional = true;
     return stats;
   }
+  if (settings.metropolis && metropolis_possible(film, options)) {
+    settings.caustic_light_tracing = false;
+    settings.guiding = false;
+    if (settings.metropolis_settings.bidirectional && camera.supports_light_tracing()) {
+      // Over bidirectional path tracing: one point of primary sample space draws the camera and the light subpath.
+      const BidirectionalPathIntegrator integrator(transport, settings, camera, double(film.pixel_bounds().area()));
+      const CameraPathRadiance radiance = [&](const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
+                                              std::vector<CausticSplat>& light_splats) {
+        return integrator.radiance(ray, lambda, sampler, sampler, light_splats);
+      };
+      RenderStatistics stats = render_metropolis(radiance, settings.metropolis_settings, settings.wavelengths,
+                                                 transport.wavelength_density, transport.has_motion, camera, filter,
+                                                 film, options);
+      stats.metropolis = true;
+      stats.bidirectional = true;
+      return stats;
+    }
+    const PathIntegrator integrator(transport, settings);
+    const CameraPathRadiance radiance = [&](const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
+                                            std::vector<CausticSplat>&) {
+      return integrator.radiance(ray, nullptr, lambda, sampler, PathGuidingContext{});
+    };
+    RenderStatistics stats = render_metropolis(radiance, settings.metropolis_settings, settings.wavelengths,
+                                               transport.wavelength_density, transport.has_motion, camera, filter,
+                                               film, options);
+    stats.metropolis = true;
+    return stats;
+  }
   settings.caustic_light_tracing = settings.caustic_light_tracing && camera.supports_light_tracing() && !options.adaptive;
   const PathIntegrator integrator(transport, settings);
   RenderStatistics stats =
@@ -515,6 +543,20 @@ RenderStatistics render(const TransportScene& transport, const PathIntegratorSet
 
 RenderStatistics render(const VolumetricScene& scene, const VolumetricIntegratorSettings& integrator_settings,
                         const Camera& camera, const PixelFilter& filter, Film& film, const RenderOptions& options) {
+  if (integrator_settings.path.metropolis && metropolis_possible(film, options)) {
+    VolumetricIntegratorSettings settings = integrator_settings;
+    settings.path.guiding = false;
+    const VolumetricPathIntegrator integrator(scene, settings);
+    const CameraPathRadiance radiance = [&](const Ray& ray, const SampledWavelengths& lambda, Sampler& sampler,
+                                            std::vector<CausticSplat>&) {
+      return integrator.radiance(ray, nullptr, lambda, sampler, PathGuidingContext{});
+    };
+    RenderStatistics stats = render_metropolis(radiance, settings.path.metropolis_settings, settings.path.wavelengths,
+                                               scene.surfaces.wavelength_density, scene.surfaces.has_motion, camera,
+                                               filter, film, options);
+    stats.metropolis = true;
+    return stats;
+  }
   const VolumetricPathIntegrator integrator(scene, integrator_settings);
   return render_loop(integrator, integrator_settings.path, scene.surfaces, scene.surfaces.wavelength_density, camera,
                      filter, film, options, &scene);

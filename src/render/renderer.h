@@ -66,6 +66,8 @@ struct RenderStatistics {
   /// Rendered by bidirectional path tracing (PathIntegratorSettings::bidirectional asked for it and the camera
   /// and sampling allow it; transport/integrators/bidirectional_path_integrator.h).
   bool bidirectional = false;
+  /// Rendered by Metropolis light transport (PathIntegratorSettings::metropolis; render/metropolis_renderer.h).
+  bool metropolis = false;
   /// With vertex merging (transport/integrators/vertex_merging.h): the last pass's radius and light vertices, and
   /// the most memory a pass's light vertices took.
   bool vertex_merging = false;

@@ -222,6 +222,30 @@ TEST_CASE("pbrt bdpt is bidirectional, sppm vertex connection and merging, light
   }
 }
 
+TEST_CASE("pbrt mlt is Metropolis light transport with pbrt's chains, sigma, large steps, bootstrap and mutations") {
+  const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
+  // The Sampler's count is pbrt's path count elsewhere; mlt renders its mutations per pixel instead, before or after.
+  const PbrtImport mlt = import_text("Film \"rgb\" \"integer xresolution\" 200 \"integer yresolution\" 100\n"
+                                     "Integrator \"mlt\" \"integer mutationsperpixel\" 512 \"integer chains\" 64 "
+                                     "\"float sigma\" 0.02 \"float largestepprobability\" 0.4 "
+                                     "\"integer bootstrapsamples\" 40000\nSampler \"zsobol\" \"integer pixelsamples\" 8\n" +
+                                     camera);
+  const json& integrator = mlt.document["integrator"];
+  CHECK(integrator["method"] == "metropolis");
+  CHECK(integrator["spp"] == 512);
+  CHECK(integrator["metropolis"]["chains"] == 64);
+  CHECK(integrator["metropolis"]["sigma"].get<double>() == doctest::Approx(0.02));
+  CHECK(integrator["metropolis"]["large_step_probability"].get<double>() == doctest::Approx(0.4));
+  CHECK(integrator["metropolis"]["bootstrap_per_pixel"].get<double>() == doctest::Approx(2.0));  // 40,000 over 200 × 100
+  CHECK(mlt.ignored.empty());
+  const json defaults = import_text("Integrator \"mlt\"\n" + camera).document["integrator"];
+  CHECK(defaults["spp"] == 100);  // pbrt's defaults
+  CHECK(defaults["metropolis"]["chains"] == 1000);
+  CHECK(defaults["metropolis"]["bootstrap_per_pixel"].get<double>() == doctest::Approx(100000.0 / (1280.0 * 720.0)));
+  CHECK_CONTAINS(error_of("Integrator \"mlt\" \"float sigma\" -1\n" + camera, true), "sigma");
+  CHECK_CONTAINS(error_of("Integrator \"mlt\" \"integer mutationsperpixel\" 0\n" + camera, true), "mutationsperpixel");
+}
+
 TEST_CASE("pbrt pixel filters: box, gaussian and triangle with pbrt-v4's default radii, others listed") {
   const std::string camera = "LookAt 0 0 0 0 0 1 0 1 0\nCamera \"perspective\"\nWorldBegin";
   const PbrtImport triangle = import_text("PixelFilter \"triangle\"\n" + camera);

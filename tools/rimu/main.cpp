@@ -75,8 +75,10 @@ int main(int argc, char** argv) {
                  "of the camera's, weighted by MIS (light that arrives by way of lit surfaces near the lights: lamps "
                  "under shades, caustics seen in mirrors; see docs/transport.md), vcm: bidirectional plus vertex "
                  "merging (photon mapping weighted by the same MIS: a pool floor seen and lit through water; "
-                 "consistent, not unbiased), path_tracing: the default (overrides the scene)")
-      ->check(CLI::IsMember({"path_tracing", "bidirectional", "vcm"}));
+                 "consistent, not unbiased), metropolis: Metropolis light transport over the path tracer (paths found once are "
+                 "explored by small changes: light that arrives through a gap; consistent, see docs/transport.md), "
+                 "path_tracing: the default (overrides the scene)")
+      ->check(CLI::IsMember({"path_tracing", "bidirectional", "vcm", "metropolis"}));
   app.add_option("--film", film, "xyz (CIE 1931 2°), xyz10 (CIE 1964 10°), camera:<name> (measured sensor, raw), "
                                  "camera-xyz:<name> (the sensor through its fitted matrix to XYZ), "
                                  "spectral:<bins> (adds a spectral framebuffer)");

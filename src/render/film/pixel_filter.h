@@ -1,6 +1,8 @@
 // The pixel reconstruction filter, applied by importance-sampling each camera sample's offset from the pixel centre.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -52,6 +54,21 @@ class PixelFilter {
   double pdf(Vec2 offset_px) const { return axis_->pdf(offset_px.x) * axis_->pdf(offset_px.y); }
   /// An offset with density pdf(), from two uniform numbers in [0, 1); weight 1. Cost: two binary searches.
   FilterSample sample(Vec2 u) const;
+  /// Spreads a contribution at film point `film_px` (a light-traced splat, a Metropolis sample) over the pixels the
+  /// filter reaches, by the density a camera sample of each pixel would have landed there with: calls
+  /// `add(x, y, density)` for each pixel (x, y) with x0 ≤ x < x1, y0 ≤ y < y1 and density > 0.
+  template <typename Add>
+  void spread(Vec2 film_px, int x0, int y0, int x1, int y1, Add&& add) const {
+    const int px0 = std::max(x0, int(std::floor(film_px.x - 0.5f - radius_px_)));
+    const int px1 = std::min(x1 - 1, int(std::ceil(film_px.x - 0.5f + radius_px_)));
+    const int py0 = std::max(y0, int(std::floor(film_px.y - 0.5f - radius_px_)));
+    const int py1 = std::min(y1 - 1, int(std::ceil(film_px.y - 0.5f + radius_px_)));
+    for (int py = py0; py <= py1; ++py)
+      for (int px = px0; px <= px1; ++px) {
+        const double density = pdf({film_px.x - (float(px) + 0.5f), film_px.y - (float(py) + 0.5f)});
+        if (density > 0.0) add(px, py, density);
+      }
+  }
 
   Kind kind() const { return kind_; }
   float radius_px() const { return radius_px_; }

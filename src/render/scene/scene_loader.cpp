@@ -163,7 +163,8 @@ void load_film(const JsonCursor& c, RenderSettings& s) {
 void load_integrator(const JsonCursor& c, RenderSettings& s) {
   c.only_keys({"spp", "max_depth", "russian_roulette_depth", "seed", "sampler", "wavelengths", "wavelength_density",
                "direct_lighting", "distance_sampling", "max_depth_includes_media", "equiangular", "caustics", "method",
-               "merge_radius", "light_sampler", "guiding", "glossy_light_candidates", "time_limit_s", "daylit_points"});
+               "merge_radius", "light_sampler", "guiding", "glossy_light_candidates", "time_limit_s", "daylit_points",
+               "metropolis"});
   if (const auto d = c.find("daylit_points")) {
     const std::string mode = d->is_string() ? d->choice({"auto", "on", "off"}) : d->boolean() ? "on" : "off";
     s.daylit_points = mode == "auto" ? std::nullopt : std::optional<bool>(mode == "on");
@@ -189,9 +190,23 @@ void load_integrator(const JsonCursor& c, RenderSettings& s) {
   if (const auto d = c.find("caustics"))
     s.integrator.caustic_light_tracing = d->choice({"path_tracing", "light_tracing"}) == "light_tracing";
   if (const auto d = c.find("method")) {
-    const std::string method = d->choice({"path_tracing", "bidirectional", "vcm"});
-    s.integrator.bidirectional = method != "path_tracing";
+    const std::string method = d->choice({"path_tracing", "bidirectional", "vcm", "metropolis"});
+    s.integrator.bidirectional = method == "bidirectional" || method == "vcm";
     s.integrator.vertex_merging = method == "vcm";
+    s.integrator.metropolis = method == "metropolis";
+  }
+  if (const auto m = c.find("metropolis")) {
+    // The Metropolis loop's settings (transport/integrators/metropolis_settings.h), used with "method": "metropolis".
+    m->only_keys({"bootstrap_per_pixel", "chains", "sigma", "large_step_probability", "large_step_mis",
+                  "bidirectional", "brightness_cap"});
+    MetropolisSettings& ms = s.integrator.metropolis_settings;
+    ms.bootstrap_per_pixel = float(m->number_or("bootstrap_per_pixel", ms.bootstrap_per_pixel, 1e-3, 1e4));
+    if (const auto d = m->find("chains")) ms.chains = d->integer(1, 1 << 24);
+    ms.sigma = float(m->number_or("sigma", ms.sigma, 1e-5, 0.5));
+    ms.large_step_probability = float(m->number_or("large_step_probability", ms.large_step_probability, 0.0, 1.0));
+    ms.large_step_mis = m->boolean_or("large_step_mis", ms.large_step_mis);
+    ms.bidirectional = m->boolean_or("bidirectional", ms.bidirectional);
+    ms.brightness_cap = float(m->number_or("brightness_cap", ms.brightness_cap, 0.0, 1e30));
   }
   if (const auto d = c.find("merge_radius")) s.integrator.merging.radius_m = float(d->number(1e-9, 1e9));
   if (const auto d = c.find("equiangular")) {

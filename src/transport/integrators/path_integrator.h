@@ -14,6 +14,7 @@
 #include "transport/geometry/ray.h"
 #include "transport/geometry/ray_differentials.h"
 #include "transport/integrators/light_group_radiance.h"
+#include "transport/integrators/metropolis_settings.h"
 #include "transport/integrators/ray_queries.h"
 #include "transport/integrators/vertex_merging.h"
 #include "transport/sampling/sampler.h"
@@ -94,6 +95,11 @@ struct PathIntegratorSettings {
   /// `bidirectional`.
   bool vertex_merging = false;
   VertexMergingSettings merging;
+  /// Metropolis light transport over this path tracer (render/metropolis_renderer.h): `"method": "metropolis"`. The
+  /// render loop uses it where it can (no adaptive sampling, feature buffers, light groups or spectral bins) and
+  /// falls back to the path tracer elsewhere.
+  bool metropolis = false;
+  MetropolisSettings metropolis_settings;
   static constexpr int kManyLights = 8;
   static constexpr int kManyLightsCandidates = 8;
   /// The candidates per glossy vertex in a scene of `light_count` lights.

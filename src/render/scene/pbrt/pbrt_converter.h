@@ -355,6 +355,10 @@ class PbrtConverter {
   json lights_ = json::array();
   json film_ = json::object();
   json integrator_ = json::object();
+  /// pbrt's `mlt`: its mutations per pixel (the sample count it renders, whatever the Sampler says; 0: not mlt) and
+  /// bootstrap paths (a count for the whole image: per pixel once the resolution is known).
+  int64_t metropolis_spp_ = 0;
+  double metropolis_bootstrap_ = 0.0;
   std::set<std::string> named_materials_;
   /// NamedMaterial names used before their MakeNamedMaterial → the first such NamedMaterial (checked at finish)
   std::map<std::string, SourceLocation> forward_materials_;

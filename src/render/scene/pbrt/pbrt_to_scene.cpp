@@ -481,6 +481,27 @@ void PbrtConverter::statement_body(const PbrtStatement& s) {
       integrator_["caustics"] = "light_tracing";
       if (p.get("photonsperiteration", {PbrtParamType::integer}))
         ignore("Integrator \"sppm\" \"photonsperiteration\" (Rimu traces one light subpath per pixel per pass)", s.where);
+    } else if (type == "mlt") {
+      // Metropolis light transport: Rimu's runs over its path tracer in primary sample space (Kelemen et al. 2002;
+      // render/metropolis_renderer.h), pbrt-v4's over bidirectional path tracing (multiplexed MLT); pbrt's chains,
+      // sigma, large-step probability, bootstrap paths and mutations per pixel carry over.
+      integrator_["method"] = "metropolis";
+      const int chains = p.integer("chains", 1000);
+      const double sigma = p.real("sigma", 0.01), large = p.real("largestepprobability", 0.3);
+      if (chains < 1 || chains > (1 << 24))
+        throw InputError(s.where, "Integrator \"mlt\": \"chains\" must be 1-16777216, not " + std::to_string(chains));
+      if (!(sigma >= 1e-5 && sigma <= 0.5))
+        throw InputError(s.where, "Integrator \"mlt\": \"sigma\" must be in [1e-5, 0.5]");
+      if (!(large >= 0.0 && large <= 1.0))
+        throw InputError(s.where, "Integrator \"mlt\": \"largestepprobability\" must be in [0, 1]");
+      integrator_["metropolis"] = {{"chains", chains}, {"sigma", sigma}, {"large_step_probability", large}};
+      metropolis_bootstrap_ = double(p.integer("bootstrapsamples", 100000));
+      metropolis_spp_ = p.integer("mutationsperpixel", 100);
+      if (metropolis_spp_ < 1 || metropolis_spp_ > kMaxSamplesPerPixel)
+        throw InputError(s.where, "Integrator \"mlt\": \"mutationsperpixel\" must be 1-" +
+                                      std::to_string(kMaxSamplesPerPixel) + ", not " + std::to_string(metropolis_spp_));
+      if (metropolis_bootstrap_ < 1.0)
+        throw InputError(s.where, "Integrator \"mlt\": \"bootstrapsamples\" must be at least 1");
     } else if (type == "lightpath") {
       // Light tracing: what a path tracer misses most in such scenes is caustics (a lamp through glass or water);
       // Rimu light-traces those (transport/integrators/caustic_light_tracer.h) and path-traces the rest.
@@ -709,6 +730,11 @@ json PbrtConverter::finish(const std::string& main_file) {
   if (film_.find("resolution") == film_.end()) film_["resolution"] = {width_, height_};
   if (integrator_.find("max_depth") == integrator_.end()) integrator_["max_depth"] = 5;
   if (integrator_.find("spp") == integrator_.end()) integrator_["spp"] = 16;
+  if (metropolis_spp_ > 0) {
+    integrator_["spp"] = metropolis_spp_;
+    const double pixels = double(width_) * double(height_);
+    integrator_["metropolis"]["bootstrap_per_pixel"] = std::clamp(metropolis_bootstrap_ / pixels, 1e-3, 1e4);
+  }
   // Moved, not copied: a scene of a million instances holds a million shapes here (copying took a tenth of its
   // import and as much memory again). The converter is done after finish().
   json document = {{"description", "imported from the pbrt-v4 file " + std::filesystem::path(main_file).filename().string()},
