@@ -557,7 +557,7 @@ void log_job_summary(const RenderJobState& s) {
             << (statistics.bidirectional ? "bidirectional path tracing" : "the path tracer") << "\n";
   else if (s.loaded.scene && s.loaded.scene->settings.integrator.metropolis)
     summary << "rimu: path-traced: Metropolis light transport needs a render without light groups, spectral bins, "
-               "feature buffers (--aov, --denoise) or adaptive sampling\n";
+               "feature buffers (--aov, --denoise), adaptive sampling or a sample clamp (--max-sample-value)\n";
   else if (statistics.bidirectional && statistics.vertex_merging)
     summary << "rimu: vertex connection and merging (per sample index " << statistics.merge_light_subpaths
             << " light subpaths, each joined by its pixel's camera sample and merged with by every camera vertex; last "

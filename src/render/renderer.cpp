@@ -481,10 +481,12 @@ RenderStatistics render_loop(const Integrator& integrator, const PathIntegratorS
 
 // Metropolis light transport splats paths anywhere on the film and gives every pixel the same sample count: it has
 // no per-pixel counts for adaptive sampling, no half buffers for a denoiser, and its splats carry the beauty only
-// (no light groups or spectral bins); a partial render (first_sample > 0) could not continue the chains.
+// (no light groups or spectral bins) and bypass the sample clamp (a clamp of each path's value would weight the
+// chains' splats, which all have the brightness b, arbitrarily); a partial render (first_sample > 0) could not
+// continue the chains.
 bool metropolis_possible(const Film& film, const RenderOptions& options) {
   return !options.adaptive && !options.features && options.first_sample == 0 && film.light_groups().empty() &&
-         film.binning().count == 0;
+         film.binning().count == 0 && !film.max_sample_value();
 }
 
 }  // namespace

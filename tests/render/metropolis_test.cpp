@@ -47,11 +47,15 @@ std::vector<std::vector<double>> region_means(const std::vector<std::vector<doub
 // `runs` Metropolis renders (seeds 1…) against `runs` path-traced ones (seeds 101…): per region (4 × 3 blocks and the
 // whole image) the difference of the mean luminances within kSigmas of its standard error, which comes from the
 // spread between the runs (each run's pixels are correlated by its chains, its runs are independent); and a
-// standard error of the whole image's mean below 3 % of it.
+// standard error of the whole image's mean below `resolution` (3 %) of it.
 void check_agrees_with_path_tracer(const nlohmann::json& document, int spp, int runs, const char* what,
-                                   const nlohmann::json& settings = nlohmann::json::object()) {
-  const auto metropolis = test::scene_from_json(with_metropolis(document, settings));
-  const auto path_traced = test::scene_from_json(document);
+                                   const nlohmann::json& settings = nlohmann::json::object(),
+                                   const std::filesystem::path& directory = {}, double resolution = 0.03) {
+  const auto load = [&](const nlohmann::json& d) {
+    return directory.empty() ? test::scene_from_json(d) : load_scene(d, "scene.json", directory, test::library());
+  };
+  const auto metropolis = load(with_metropolis(document, settings));
+  const auto path_traced = load(document);
   std::vector<std::vector<double>> a, b;
   int width = 0, height = 0;
   for (int run = 0; run < runs; ++run) {
@@ -71,7 +75,7 @@ void check_agrees_with_path_tracer(const nlohmann::json& document, int spp, int 
                            << ": Metropolis " << ea.mean << " ± " << ea.standard_error << ", path tracer " << eb.mean
                            << " ± " << eb.standard_error);
     CHECK(std::fabs(ea.mean - eb.mean) <= test::kSigmas * se);
-    if (r + 1 == ra.size()) CHECK(se < 0.03 * eb.mean);
+    if (r + 1 == ra.size()) CHECK(se < resolution * eb.mean);
   }
 }
 
@@ -96,6 +100,22 @@ TEST_CASE("Metropolis light transport converges to the path tracer's image: the 
   const auto metropolis = load_scene(with_metropolis(room), "daylit_room_open.json", directory, test::library());
   REQUIRE(metropolis->daylight_rays);
   check_agrees_with_path_tracer(room, 32, 8, "daylit room");
+}
+
+TEST_CASE("Metropolis light transport converges to the path tracer's image: a stage in a haze (media)") {
+  // Media: the chains run over the volumetric path tracer (bidirectional path tracing does not run in media), whose
+  // walks draw from streams keyed by the chain's numbers.
+  nlohmann::json stage = parse_json_file(test::library().root() / "scenes" / "media" / "stage_haze.json");
+  stage["film"]["resolution"] = {32, 18};
+  const auto directory = test::library().root() / "scenes" / "media";
+  const auto metropolis = load_scene(with_metropolis(stage), "stage_haze.json", directory, test::library());
+  const test::RenderedFilm r = test::render_xyz(*metropolis, 2, 1);
+  CHECK(r.statistics.metropolis);
+  CHECK_FALSE(r.statistics.bidirectional);
+  // Here a render's mean spreads 7× as much as the path tracer's between seeds (measured: 4.8 % against 0.7 % at
+  // 256 spp; chains linger on the spot's paths through the haze), so the standard error allowed is 6 %: the check
+  // resolves a difference of 4.5 × 6 % ≈ 27 %, not a few per cent as the surface scenes' do.
+  check_agrees_with_path_tracer(stage, 256, 8, "stage haze", {}, directory, 0.06);
 }
 
 TEST_CASE("Metropolis light transport is deterministic for any thread count") {
@@ -137,7 +157,7 @@ TEST_CASE("Metropolis light transport renders a scene without light black, and f
     for (double v : test::channel_values(*r.film, channel)) CHECK(v == 0.0);
 }
 
-TEST_CASE("Metropolis light transport falls back where it cannot run: light groups, a camera light paths miss") {
+TEST_CASE("Metropolis light transport falls back where it cannot run: light groups, a clamp, a camera light paths miss") {
   const auto scene =
       test::scene_from_json(with_metropolis(test::with_lamp_and_sky_groups(test::glass_block_scene("area"))));
   const test::RenderedFilm r = test::render_xyz(*scene, 2, 1, 2, std::nullopt, nullptr, true);
@@ -147,6 +167,14 @@ TEST_CASE("Metropolis light transport falls back where it cannot run: light grou
   orthographic["camera"]["type"] = "orthographic";
   orthographic["camera"]["height"] = 1.5;
   orthographic["camera"].erase("vertical_fov_deg");
+  // A sample clamp: the path tracer renders (the chains' splats would bypass it).
+  const auto plain = test::scene_from_json(with_metropolis(test::glass_block_scene("area")));
+  Film clamped(FilmOptions{plain->settings.width, plain->settings.height, std::nullopt, 0},
+               SpectralResponse::cie_xyz(test::library()));
+  clamped.set_max_sample_value(10.0);
+  RenderOptions options;
+  options.samples_per_pixel = 2;
+  CHECK_FALSE(render(*plain, test::filter_of(*plain), clamped, options).metropolis);
   const test::RenderedFilm o = test::render_xyz(*test::scene_from_json(orthographic), 2, 1);
   CHECK(o.statistics.metropolis);
   CHECK_FALSE(o.statistics.bidirectional);

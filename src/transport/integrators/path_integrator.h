@@ -96,8 +96,8 @@ struct PathIntegratorSettings {
   bool vertex_merging = false;
   VertexMergingSettings merging;
   /// Metropolis light transport over this path tracer (render/metropolis_renderer.h): `"method": "metropolis"`. The
-  /// render loop uses it where it can (no adaptive sampling, feature buffers, light groups or spectral bins) and
-  /// falls back to the path tracer elsewhere.
+  /// render loop uses it where it can (no adaptive sampling, feature buffers, light groups, spectral bins or sample
+  /// clamp) and falls back to the path tracer elsewhere.
   bool metropolis = false;
   MetropolisSettings metropolis_settings;
   static constexpr int kManyLights = 8;
