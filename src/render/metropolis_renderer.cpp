@@ -318,17 +318,14 @@ RenderStatistics render_metropolis(const CameraPathRadiance& radiance, const Met
           }
           const float accept =
               chain.current.target > 0.0f ? std::min(1.0f, proposal.target / chain.current.target) : 1.0f;
-          // Expected values (Kelemen et al. 2002): both paths splat, weighted by the chance of each being next.
-          if (settings.large_step_mis) {
-            // Kelemen et al. 2002: the large steps are also uniform samples of the image, combined with the chain's
-            // by the balance heuristic over the densities f/b and p_large.
-            const double large = sampler.large_step() ? 1.0 : 0.0;
-            loop.splat(proposal, double(accept) + large, double(proposal.target) + pass_large_density);
-            loop.splat(chain.current, double(1.0f - accept), double(chain.current.target) + pass_large_density);
-          } else {
-            loop.splat(proposal, double(accept), double(proposal.target));
-            loop.splat(chain.current, double(1.0f - accept), double(chain.current.target));
-          }
+          // Expected values (Kelemen et al. 2002): both paths splat, weighted by the chance of each being next. With
+          // large_step_mis the large steps are also uniform samples of the image, combined with the chain's by the
+          // balance heuristic over the densities f/b and p_large (Kelemen et al.'s combination); without it that
+          // density and the large step's own weight are 0.
+          const double large = settings.large_step_mis && sampler.large_step() ? 1.0 : 0.0;
+          const double large_density = settings.large_step_mis ? pass_large_density : 0.0;
+          loop.splat(proposal, double(accept) + large, double(proposal.target) + large_density);
+          loop.splat(chain.current, double(1.0f - accept), double(chain.current.target) + large_density);
           if (sampler.next_free_1d() < accept) {
             sampler.accept();
             std::swap(chain.current, proposal);
